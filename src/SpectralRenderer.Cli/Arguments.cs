@@ -1,0 +1,68 @@
+using SpectralRenderer.Diagnostics;
+using System.Globalization;
+
+namespace SpectralRenderer.Cli;
+
+/// <summary>
+/// A command's arguments: positionals and --options. Each command declares its options
+/// (flags take no value); anything else is bad usage, reported in one line with a hint.
+/// </summary>
+public sealed class Arguments
+{
+    readonly Dictionary<string, List<string>> _options = new(StringComparer.Ordinal);
+    readonly HashSet<string> _flags = new(StringComparer.Ordinal);
+
+    public List<string> Positionals { get; } = [];
+    public string Command { get; }
+
+    public Arguments(string command, IReadOnlyList<string> args, IEnumerable<string> valueOptions, IEnumerable<string> flagOptions,
+        IReadOnlyDictionary<string, string>? aliases = null)
+    {
+        Command = command;
+        var values = new HashSet<string>(valueOptions);
+        var flags = new HashSet<string>(flagOptions) { "--help" };
+        for (int i = 0; i < args.Count; i++)
+        {
+            var a = args[i];
+            if (aliases is not null && aliases.TryGetValue(a, out var full)) a = full;
+            if (a.StartsWith("--") || (a.StartsWith('-') && a.Length == 2 && !char.IsDigit(a[1])))
+            {
+                string? inline = null;
+                int eq = a.IndexOf('=');
+                if (eq > 0) { inline = a[(eq + 1)..]; a = a[..eq]; }
+                if (a == "-h") a = "--help";
+                if (flags.Contains(a)) { _flags.Add(a); continue; }
+                if (!values.Contains(a))
+                    throw new InputException("", $"unknown option '{a}'",
+                        InputException.DidYouMean(a, values.Concat(flags)) ?? $"see 'spectral {command} --help'");
+                var v = inline ?? (i + 1 < args.Count ? args[++i] : throw new InputException("", $"option {a} needs a value", $"see 'spectral {command} --help'"));
+                if (!_options.TryGetValue(a, out var list)) _options[a] = list = [];
+                list.Add(v);
+            }
+            else Positionals.Add(a);
+        }
+    }
+
+    public bool Help => _flags.Contains("--help");
+    public bool Flag(string name) => _flags.Contains(name);
+    public string? Value(string name) => _options.TryGetValue(name, out var l) ? l[^1] : null;
+    public IReadOnlyList<string> Values(string name) => _options.TryGetValue(name, out var l) ? l : [];
+
+    public int? Int(string name, int min, int max)
+    {
+        var v = Value(name);
+        if (v is null) return null;
+        if (!int.TryParse(v, NumberStyles.Integer, CultureInfo.InvariantCulture, out int n) || n < min || n > max)
+            throw new InputException(Command, $"{name} '{v}' is not a whole number in {min}–{max}");
+        return n;
+    }
+
+    public double? Double(string name)
+    {
+        var v = Value(name);
+        if (v is null) return null;
+        if (!double.TryParse(v, NumberStyles.Float, CultureInfo.InvariantCulture, out double d) || !double.IsFinite(d))
+            throw new InputException(Command, $"{name} '{v}' is not a number");
+        return d;
+    }
+}

@@ -1,0 +1,70 @@
+using SpectralRenderer.Cli.Commands;
+using SpectralRenderer.Diagnostics;
+
+namespace SpectralRenderer.Cli;
+
+/// <summary>The `spectral` command: dispatch, help, and the exit codes 0 success, 1 failure, 2 bad usage or input.</summary>
+public static class CommandLine
+{
+    public const int Success = 0, Failure = 1, BadInput = 2;
+
+    static readonly (string Name, string Summary, Func<string[], TextWriter, TextWriter, int> Run)[] Commands =
+    [
+        ("colors", "the 24 ColorChecker patches' XYZ, Lab, RGB and ΔE00 under a light", ColorsCommand.Run),
+    ];
+
+    public static string Version => typeof(CommandLine).Assembly.GetName().Version?.ToString(3) ?? "0.0.0";
+
+    public static int Run(string[] args, TextWriter stdout, TextWriter stderr)
+    {
+        if (args.Length == 0 || args[0] is "--help" or "-h" or "help")
+        {
+            stdout.Write(Usage());
+            return args.Length == 0 ? BadInput : Success;
+        }
+        if (args[0] == "--version") { stdout.WriteLine($"spectral {Version}"); return Success; }
+        var cmd = Commands.FirstOrDefault(c => c.Name == args[0]);
+        if (cmd.Name is null)
+        {
+            stderr.WriteLine($"spectral: unknown command '{args[0]}' (hint: {InputException.DidYouMean(args[0], Commands.Select(c => c.Name)) ?? "see 'spectral --help'"})");
+            return BadInput;
+        }
+        try
+        {
+            return cmd.Run(args[1..], stdout, stderr);
+        }
+        catch (InputException e)
+        {
+            stderr.WriteLine($"spectral {cmd.Name}: {e.Message}");
+            return BadInput;
+        }
+        catch (OperationCanceledException)
+        {
+            stderr.WriteLine($"spectral {cmd.Name}: interrupted; no output was left under a final name");
+            return Failure;
+        }
+        catch (IOException e)
+        {
+            stderr.WriteLine($"spectral {cmd.Name}: {e.Message}");
+            return Failure;
+        }
+        catch (UnauthorizedAccessException e)
+        {
+            stderr.WriteLine($"spectral {cmd.Name}: {e.Message}");
+            return BadInput;
+        }
+    }
+
+    static string Usage()
+    {
+        var w = new StringWriter();
+        w.WriteLine($"spectral {Version} — a spectral ray tracer (Li et al. 2010, eq. 2–4) with CIE-exact colour");
+        w.WriteLine();
+        w.WriteLine("usage: spectral <command> [options]     spectral <command> --help for its options");
+        w.WriteLine();
+        foreach (var c in Commands) w.WriteLine($"  {c.Name,-12} {c.Summary}");
+        w.WriteLine();
+        w.WriteLine("exit codes: 0 success, 1 failure, 2 bad usage or bad input");
+        return w.ToString();
+    }
+}

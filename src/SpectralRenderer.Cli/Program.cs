@@ -1,0 +1,3 @@
+using SpectralRenderer.Cli;
+
+return CommandLine.Run(args, Console.Out, Console.Error);

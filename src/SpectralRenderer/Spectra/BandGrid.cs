@@ -1,0 +1,78 @@
+using System.Globalization;
+using SpectralRenderer.Diagnostics;
+
+namespace SpectralRenderer.Spectra;
+
+/// <summary>
+/// The wavelength bands a render carries: <see cref="Count"/> equal bands between
+/// <see cref="Start"/> and <see cref="End"/> nm (the paper's 380–780 nm in 20 bands of 20 nm).
+/// Band b covers [Start + b·Width, Start + (b+1)·Width].
+/// </summary>
+public sealed class BandGrid : IEquatable<BandGrid>
+{
+    public const int MaxBands = 1024;
+
+    public BandGrid(double start, double end, int count)
+    {
+        if (!(double.IsFinite(start) && double.IsFinite(end)) || start <= 0 || end <= start)
+            throw new ArgumentOutOfRangeException(nameof(end), $"band range {start}–{end} nm is empty or not positive");
+        if (count < 1 || count > MaxBands)
+            throw new ArgumentOutOfRangeException(nameof(count), $"band count {count} is outside 1–{MaxBands}");
+        Start = start;
+        End = end;
+        Count = count;
+    }
+
+    public static BandGrid Default { get; } = new(380, 780, 20);
+
+    public double Start { get; }
+    public double End { get; }
+    public int Count { get; }
+    public double Width => (End - Start) / Count;
+
+    public double Lower(int band) => Start + band * Width;
+    public double Upper(int band) => band == Count - 1 ? End : Start + (band + 1) * Width;
+    public double Centre(int band) => 0.5 * (Lower(band) + Upper(band));
+
+    /// <summary>The band edges, Count + 1 values.</summary>
+    public double[] Edges()
+    {
+        var e = new double[Count + 1];
+        for (int i = 0; i < Count; i++) e[i] = Lower(i);
+        e[Count] = End;
+        return e;
+    }
+
+    /// <summary>The band containing <paramref name="wavelength"/>, or -1 outside the grid.</summary>
+    public int BandOf(double wavelength)
+    {
+        if (wavelength < Start || wavelength > End) return -1;
+        return Math.Min(Count - 1, (int)((wavelength - Start) / Width));
+    }
+
+    /// <summary>Parses "start:end:count", e.g. "380:780:20" or "400:700:31".</summary>
+    public static BandGrid Parse(string text, string where = "--bands")
+    {
+        var parts = text.Split(':');
+        const string hint = "write start:end:count in nm, e.g. 380:780:20";
+        if (parts.Length != 3)
+            throw new InputException(where, $"'{text}' is not a band grid", hint);
+        if (!double.TryParse(parts[0], NumberStyles.Float, CultureInfo.InvariantCulture, out var start) ||
+            !double.TryParse(parts[1], NumberStyles.Float, CultureInfo.InvariantCulture, out var end) ||
+            !int.TryParse(parts[2], NumberStyles.Integer, CultureInfo.InvariantCulture, out var count))
+            throw new InputException(where, $"'{text}' has a non-numeric part", hint);
+        if (!double.IsFinite(start) || !double.IsFinite(end) || start <= 0 || end <= start)
+            throw new InputException(where, $"band range {start}–{end} nm is empty or not positive", hint);
+        if (count < 1 || count > MaxBands)
+            throw new InputException(where, $"band count {count} is outside 1–{MaxBands}", hint);
+        return new BandGrid(start, end, count);
+    }
+
+    public override string ToString() =>
+        string.Create(CultureInfo.InvariantCulture, $"{Start:0.###}:{End:0.###}:{Count}");
+
+    public bool Equals(BandGrid? other) =>
+        other is not null && other.Start == Start && other.End == End && other.Count == Count;
+    public override bool Equals(object? obj) => Equals(obj as BandGrid);
+    public override int GetHashCode() => HashCode.Combine(Start, End, Count);
+}

@@ -1,0 +1,95 @@
+using System.Globalization;
+using SpectralRenderer.Diagnostics;
+
+namespace SpectralRenderer.Spectra;
+
+/// <summary>
+/// Reads spectral CSV files (data/README.md): one header line of named columns, the first
+/// column the wavelength in nm, rows in strictly ascending wavelength, values finite and
+/// non-negative (reflectances, powers and colour-matching functions are never negative).
+/// Every defect is reported as "file:line: what is wrong".
+/// </summary>
+public static class CsvSpectrumReader
+{
+    public static SpectralTable Read(string path)
+    {
+        string text;
+        try { text = File.ReadAllText(path); }
+        catch (FileNotFoundException) { throw new InputException(path, "file not found", "check the path"); }
+        catch (DirectoryNotFoundException) { throw new InputException(path, "file not found", "check the path"); }
+        catch (IOException e) { throw new InputException(path, $"cannot be read: {e.Message}"); }
+        catch (UnauthorizedAccessException e) { throw new InputException(path, $"cannot be read: {e.Message}"); }
+        return Parse(text, path);
+    }
+
+    public static SpectralTable Parse(string text, string path)
+    {
+        var lines = text.Replace("\r\n", "\n").Split('\n');
+        int n = lines.Length;
+        while (n > 0 && lines[n - 1].Trim().Length == 0) n--;
+        if (n == 0)
+            throw new InputException($"{path}:1", "the file is empty", "a spectral CSV needs a header line and data rows");
+
+        var header = lines[0].TrimStart('\uFEFF').Split(',').Select(h => h.Trim()).ToArray();
+        if (header.Length < 2)
+            throw new InputException($"{path}:1", "the header names fewer than two columns", "expected e.g. wavelength_nm,value");
+        for (int c = 0; c < header.Length; c++)
+        {
+            if (header[c].Length == 0)
+                throw new InputException($"{path}:1", $"column {c + 1} has no name", "every column needs a name in the header");
+            for (int d = 0; d < c; d++)
+                if (header[d] == header[c])
+                    throw new InputException($"{path}:1", $"column name '{header[c]}' appears twice");
+        }
+        if (n == 1)
+            throw new InputException($"{path}:2", "the file has a header but no data rows");
+
+        var wl = new List<double>(n);
+        var cols = new List<double>[header.Length - 1];
+        for (int c = 0; c < cols.Length; c++) cols[c] = new List<double>(n);
+
+        for (int i = 1; i < n; i++)
+        {
+            int lineNo = i + 1;
+            string line = lines[i];
+            if (line.Trim().Length == 0)
+                throw new InputException($"{path}:{lineNo}", "empty line inside the data", "remove it");
+            var cells = line.Split(',');
+            if (cells.Length != header.Length)
+                throw new InputException($"{path}:{lineNo}",
+                    cells.Length < header.Length
+                        ? $"missing column: {cells.Length} cells, the header names {header.Length} (first missing: '{header[cells.Length]}')"
+                        : $"{cells.Length} cells, the header names only {header.Length}");
+            for (int c = 0; c < cells.Length; c++)
+            {
+                var cell = cells[c].Trim();
+                if (!double.TryParse(cell, NumberStyles.Float, CultureInfo.InvariantCulture, out double v))
+                    throw new InputException($"{path}:{lineNo}", $"'{cell}' in column '{header[c]}' is not a number");
+                if (!double.IsFinite(v))
+                    throw new InputException($"{path}:{lineNo}", $"{cell} in column '{header[c]}' is not finite", "spectral values must be finite numbers");
+                if (c == 0)
+                {
+                    if (v <= 0)
+                        throw new InputException($"{path}:{lineNo}", $"wavelength {cell} nm is not positive");
+                    if (wl.Count > 0 && v == wl[^1])
+                        throw new InputException($"{path}:{lineNo}", $"wavelength {cell} nm appears twice", "each wavelength needs exactly one row");
+                    if (wl.Count > 0 && v < wl[^1])
+                        throw new InputException($"{path}:{lineNo}", $"wavelength {cell} nm follows {wl[^1].ToString(CultureInfo.InvariantCulture)} nm: not ascending", "sort the rows by wavelength");
+                    wl.Add(v);
+                }
+                else
+                {
+                    if (v < 0)
+                        throw new InputException($"{path}:{lineNo}", $"negative value {cell} in column '{header[c]}'", "reflectances, powers and sensitivities cannot be negative");
+                    cols[c - 1].Add(v);
+                }
+            }
+        }
+
+        var wavelengths = wl.ToArray();
+        var spectra = new Dictionary<string, TabulatedSpectrum>(StringComparer.Ordinal);
+        for (int c = 0; c < cols.Length; c++)
+            spectra[header[c + 1]] = new TabulatedSpectrum(header[c + 1], wavelengths, cols[c].ToArray());
+        return new SpectralTable(path, header.Skip(1).ToArray(), spectra);
+    }
+}

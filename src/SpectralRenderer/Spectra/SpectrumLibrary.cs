@@ -1,0 +1,76 @@
+using System.Collections.Concurrent;
+using System.Globalization;
+using SpectralRenderer.Diagnostics;
+
+namespace SpectralRenderer.Spectra;
+
+/// <summary>
+/// Resolves spectrum names (see docs/scene-format.md): the CIE illuminants <c>D65 A D50 E FL2 FL11</c>,
+/// the modelled LEDs <c>led-blue led-green</c>, the NIST sources <c>led-rgb led-yag</c>,
+/// ColorChecker patches <c>colorchecker:14</c> / <c>colorchecker:green</c> (Ohta),
+/// <c>constant:0.5</c>, and any CSV file with a column: <c>file.csv:column</c>.
+/// </summary>
+public static class SpectrumLibrary
+{
+    static readonly ConcurrentDictionary<string, SpectralTable> Tables = new(StringComparer.Ordinal);
+
+    static readonly (string Name, string File, string Column)[] Builtins =
+    [
+        ("D65", "illuminants.csv", "D65"), ("A", "illuminants.csv", "A"), ("D50", "illuminants.csv", "D50"),
+        ("E", "illuminants.csv", "E"), ("FL2", "illuminants.csv", "FL2"), ("FL11", "illuminants.csv", "FL11"),
+        ("led-blue", "leds.csv", "blue_465nm"), ("led-green", "leds.csv", "green_525nm"),
+        ("led-rgb", "light-sources.csv", "3-LED-1 (457/540/605)"), ("led-yag", "light-sources.csv", "Phosphor LED YAG"),
+    ];
+
+    /// <summary>Every built-in name, for help texts and "did you mean".</summary>
+    public static IEnumerable<string> KnownNames =>
+        Builtins.Select(b => b.Name).Concat(ColorChecker.PatchKeys.Select(k => "colorchecker:" + k)).Append("constant:<value>");
+
+    public static SpectralTable Table(string path) => Tables.GetOrAdd(System.IO.Path.GetFullPath(path), CsvSpectrumReader.Read);
+    public static SpectralTable DataTable(string file) => Table(DataDirectory.File_(file));
+
+    public static bool IsBuiltin(string name) =>
+        Builtins.Any(b => string.Equals(b.Name, name, StringComparison.OrdinalIgnoreCase));
+
+    /// <summary>Resolves a name. <paramref name="baseDirectory"/> anchors relative CSV paths; <paramref name="where"/> names the place for errors.</summary>
+    public static TabulatedSpectrum Resolve(string name, string? baseDirectory = null, string where = "spectrum")
+    {
+        name = name.Trim();
+        foreach (var b in Builtins)
+            if (string.Equals(b.Name, name, StringComparison.OrdinalIgnoreCase))
+                return Rename(DataTable(b.File)[b.Column], b.Name);
+
+        if (name.StartsWith("constant:", StringComparison.OrdinalIgnoreCase))
+        {
+            var v = name["constant:".Length..];
+            if (!double.TryParse(v, NumberStyles.Float, CultureInfo.InvariantCulture, out double c) || !double.IsFinite(c) || c < 0)
+                throw new InputException(where, $"'{name}' needs a finite non-negative number after 'constant:'", "e.g. constant:0.5");
+            return TabulatedSpectrum.Constant(c, name);
+        }
+
+        if (name.StartsWith("colorchecker:", StringComparison.OrdinalIgnoreCase))
+            return ColorChecker.Patch(name["colorchecker:".Length..], where);
+
+        int colon = name.LastIndexOf(':');
+        if (colon > 0 && name[..colon].EndsWith(".csv", StringComparison.OrdinalIgnoreCase))
+        {
+            var file = name[..colon];
+            var column = name[(colon + 1)..];
+            var path = System.IO.Path.IsPathRooted(file) ? file : System.IO.Path.Combine(baseDirectory ?? ".", file);
+            var table = Table(path);
+            if (!table.TryGet(column, out var s))
+                throw new InputException(where, $"{file} has no column '{column}'",
+                    InputException.DidYouMean(column, table.Columns) ?? $"its columns are: {string.Join(", ", table.Columns)}");
+            return s;
+        }
+        if (name.EndsWith(".csv", StringComparison.OrdinalIgnoreCase))
+            throw new InputException(where, $"'{name}' names a CSV file but no column", "write file.csv:column");
+
+        throw new InputException(where, $"unknown spectrum '{name}'",
+            InputException.DidYouMean(name, Builtins.Select(b => b.Name).Concat(ColorChecker.PatchKeys.Select(k => "colorchecker:" + k)))
+            ?? "built-in names: D65, A, D50, E, FL2, FL11, led-blue, led-green, led-rgb, led-yag, colorchecker:1..24, constant:<v>, file.csv:column");
+    }
+
+    static TabulatedSpectrum Rename(TabulatedSpectrum s, string name) =>
+        new(name, s.Wavelengths.ToArray(), s.Values.ToArray(), s.Extrapolation);
+}

@@ -1,0 +1,49 @@
+using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Spectra;
+
+namespace SpectralRenderer.Tests.Spectra;
+
+public class CsvSpectrumReaderTests
+{
+    [Fact]
+    public void Reads_named_columns()
+    {
+        var t = CsvSpectrumReader.Parse("wavelength_nm,a,b c\n400,0.1,1\n410,0.2,2\n", "x.csv");
+        Assert.Equal(["a", "b c"], t.Columns);
+        Assert.Equal(0.15, t["a"].Evaluate(405), 14);
+        Assert.Equal(2.0, t["b c"].Evaluate(410));
+    }
+
+    [Fact]
+    public void Every_shipped_data_file_reads()
+    {
+        foreach (var f in Directory.GetFiles(DataDirectory.Path, "*.csv"))
+            Assert.NotEmpty(CsvSpectrumReader.Read(f).Columns);
+    }
+
+    [Theory]
+    [InlineData("wavelength_nm,a\n400,0.1\n410,x\n", "bad.csv:3:", "'x' in column 'a' is not a number")]
+    [InlineData("wavelength_nm,a,b\n400,0.1,0.2\n410,0.3\n", "bad.csv:3:", "missing column")]
+    [InlineData("wavelength_nm,a\n400,0.1\n390,0.2\n", "bad.csv:3:", "not ascending")]
+    [InlineData("wavelength_nm,a\n400,0.1\n400,0.2\n", "bad.csv:3:", "appears twice")]
+    [InlineData("wavelength_nm,a\n400,0.1\n410,NaN\n", "bad.csv:3:", "not finite")]
+    [InlineData("wavelength_nm,a\n400,Infinity\n", "bad.csv:2:", "not finite")]
+    [InlineData("wavelength_nm,a\n400,0.1\n410,-0.2\n", "bad.csv:3:", "negative value -0.2")]
+    [InlineData("", "bad.csv:1:", "empty")]
+    [InlineData("\n\n", "bad.csv:1:", "empty")]
+    [InlineData("wavelength_nm,a\n", "bad.csv:2:", "no data rows")]
+    [InlineData("wavelength_nm\n400\n", "bad.csv:1:", "fewer than two columns")]
+    public void Broken_files_are_rejected_with_file_and_line(string text, string where, string what)
+    {
+        var e = Assert.Throws<InputException>(() => CsvSpectrumReader.Parse(text, "bad.csv"));
+        Assert.StartsWith(where, e.Message);
+        Assert.Contains(what, e.Message);
+    }
+
+    [Fact]
+    public void A_missing_file_names_the_file()
+    {
+        var e = Assert.Throws<InputException>(() => CsvSpectrumReader.Read("/nonexistent/spectra.csv"));
+        Assert.StartsWith("/nonexistent/spectra.csv: file not found", e.Message);
+    }
+}
