@@ -1,0 +1,66 @@
+using System.Buffers.Binary;
+using System.Globalization;
+using System.Text;
+using SpectralRenderer.Rendering;
+
+namespace SpectralRenderer.Imaging;
+
+/// <summary>
+/// Writes an ENVI raster (ENVI Header Format, NV5 Geospatial "ENVI Header Files" documentation):
+/// a flat binary file of float32 values (data type = 4), little-endian (byte order = 0), band-sequential
+/// (interleave = bsq: band 0 row by row, then band 1, …), and a text header beside it, same name with .hdr,
+/// carrying samples (width), lines (height), bands, wavelength (band centres), fwhm (band widths) and band names.
+/// GDAL's ENVI driver and ENVI/spectral python read it.
+/// </summary>
+public static class EnviWriter
+{
+    /// <summary>Writes <paramref name="imagePath"/> (e.g. spectral.img) and its header (spectral.hdr).</summary>
+    public static void Write(string imagePath, SpectralImage image, string? description = null)
+    {
+        AtomicFile.Write(imagePath, s => WriteData(s, image));
+        AtomicFile.WriteAllText(HeaderPath(imagePath), Header(image, description));
+    }
+
+    /// <summary>The header path ENVI and GDAL look for: the image path with its extension replaced by .hdr.</summary>
+    public static string HeaderPath(string imagePath) => Path.ChangeExtension(imagePath, ".hdr");
+
+    /// <summary>The BSQ float32 little-endian samples.</summary>
+    public static void WriteData(Stream stream, SpectralImage image)
+    {
+        int n = image.Width * image.Height;
+        var plane = new float[n];
+        var bytes = new byte[n * 4];
+        for (int b = 0; b < image.Bands; b++)
+        {
+            image.CopyBand(b, plane);
+            for (int i = 0; i < n; i++) BinaryPrimitives.WriteSingleLittleEndian(bytes.AsSpan(4 * i), plane[i]);
+            stream.Write(bytes);
+        }
+    }
+
+    /// <summary>The header text. Keys per the ENVI header format; lists in braces; no braces inside the description.</summary>
+    public static string Header(SpectralImage image, string? description = null)
+    {
+        var inv = CultureInfo.InvariantCulture;
+        var g = image.Grid;
+        string List(Func<int, string> item) => "{" + string.Join(", ", Enumerable.Range(0, g.Count).Select(item)) + "}";
+        description ??= $"SpectralRenderer spectral radiance, bands {g}";
+        description = description.Replace('{', '(').Replace('}', ')').Replace("\r", " ").Replace("\n", " ");
+        var sb = new StringBuilder();
+        sb.Append("ENVI\n");
+        sb.Append($"description = {{{description}}}\n");
+        sb.Append(inv, $"samples = {image.Width}\n");
+        sb.Append(inv, $"lines = {image.Height}\n");
+        sb.Append(inv, $"bands = {image.Bands}\n");
+        sb.Append("header offset = 0\n");
+        sb.Append("file type = ENVI Standard\n");
+        sb.Append("data type = 4\n");           // 4 = 32-bit IEEE float
+        sb.Append("interleave = bsq\n");
+        sb.Append("byte order = 0\n");          // 0 = little-endian (least significant byte first)
+        sb.Append("wavelength units = Nanometers\n");
+        sb.Append($"wavelength = {List(b => g.Centre(b).ToString("R", inv))}\n");
+        sb.Append($"fwhm = {List(b => (g.Upper(b) - g.Lower(b)).ToString("R", inv))}\n");
+        sb.Append($"band names = {List(b => string.Create(inv, $"{g.Lower(b):0.###}-{g.Upper(b):0.###} nm"))}\n");
+        return sb.ToString();
+    }
+}

@@ -1,0 +1,39 @@
+using SpectralRenderer.Color;
+
+namespace SpectralRenderer.Imaging;
+
+/// <summary>The OpenEXR compression attribute values we write (OpenEXR file layout, "compression" attribute).</summary>
+public enum ExrCompression : byte
+{
+    /// <summary>NO_COMPRESSION: one scanline per chunk, stored raw.</summary>
+    None = 0,
+    /// <summary>ZIP_COMPRESSION: 16 scanlines per chunk, byte reordering + delta predictor + zlib.</summary>
+    Zip = 3,
+}
+
+/// <summary>OpenEXR channel pixel types (chlist "pixel type": 0 UINT, 1 HALF, 2 FLOAT).</summary>
+public enum ExrPixelType
+{
+    Half = 1,
+    Float = 2,
+}
+
+/// <summary>
+/// How <see cref="ExrWriter"/> writes a spectral image. <see cref="Colorimeter"/> is required for the
+/// <see cref="Rgb"/> and <see cref="Xyz"/> preview channels and supplies spectralKappa / spectralIntegration.
+/// </summary>
+public sealed record ExrOptions
+{
+    public ExrCompression Compression { get; init; } = ExrCompression.Zip;
+    /// <summary>Pixel type of every channel (spectral and preview).</summary>
+    public ExrPixelType PixelType { get; init; } = ExrPixelType.Float;
+    /// <summary>Adds R, G, B: linear sRGB (IEC 61966-2-1 matrix) of each pixel's XYZ, so ordinary viewers show a picture.</summary>
+    public bool Rgb { get; init; } = true;
+    /// <summary>Adds X, Y, Z: each pixel's CIE XYZ (eq. 3).</summary>
+    public bool Xyz { get; init; }
+    /// <summary>Names spectral channels T.&lt;λ&gt;nm (reflectance) instead of S0.&lt;λ&gt;nm (emitted radiance).</summary>
+    public bool Reflective { get; init; }
+    public Colorimeter? Colorimeter { get; init; }
+    /// <summary>Extra string attributes (e.g. "software", "comments").</summary>
+    public IReadOnlyDictionary<string, string>? Attributes { get; init; }
+}

@@ -1,0 +1,209 @@
+using System.Buffers.Binary;
+using System.Globalization;
+using System.Text;
+using SpectralRenderer.Color;
+using SpectralRenderer.Rendering;
+
+namespace SpectralRenderer.Imaging;
+
+/// <summary>
+/// Writes a <see cref="SpectralImage"/> as a single-part scanline OpenEXR 2.0 file
+/// ("The OpenEXR File Layout", openexr.com/en/latest/OpenEXRFileLayout.html) in the spectral layout of
+/// Fichet, Pacanowski &amp; Wilkie, "An OpenEXR Layout for Spectral Images", JCGT 10(3), 2021:
+/// one channel per band named S0.&lt;λ&gt;nm (emissive, Stokes S0) or T.&lt;λ&gt;nm (reflective), λ the band
+/// centre with six decimals and a comma as decimal separator, plus the attributes spectralLayoutVersion and
+/// emissiveUnits. Our own attributes: spectralBandEdges (string, the Count + 1 band edges in nm,
+/// comma-separated), spectralKappa (double, κ of eq. 3) and spectralIntegration (string, the band scheme).
+/// Optional preview channels R, G, B (linear sRGB) and X, Y, Z.
+/// </summary>
+public static class ExrWriter
+{
+    /// <summary>File layout §"Magic Number": 20000630 as a little-endian int.</summary>
+    public const int Magic = 20000630;
+    /// <summary>Lines per chunk (File layout, "Compression" table): NO_COMPRESSION 1, ZIPS 1, ZIP 16.</summary>
+    public static int LinesPerChunk(ExrCompression c) => c == ExrCompression.Zip ? 16 : 1;
+
+    public const string LayoutVersion = "1.0";
+    public const string EmissiveUnits = "W.m^-2.sr^-1";
+
+    /// <summary>The JCGT 2021 channel name of a band centred on <paramref name="centreNm"/>, e.g. S0.390,000000nm.</summary>
+    public static string SpectralChannelName(double centreNm, bool reflective = false) =>
+        (reflective ? "T." : "S0.") + centreNm.ToString("F6", CultureInfo.InvariantCulture).Replace('.', ',') + "nm";
+
+    public static void Write(string path, SpectralImage image, ExrOptions? options = null)
+    {
+        options ??= new ExrOptions();
+        Validate(image, options);
+        AtomicFile.Write(path, s => Write(s, image, options));
+    }
+
+    public static void Write(Stream stream, SpectralImage image, ExrOptions? options = null)
+    {
+        options ??= new ExrOptions();
+        Validate(image, options);
+        int w = image.Width, h = image.Height;
+
+        // Channels, each a row-major H × W plane, sorted by name in byte order as OpenEXR's ChannelList is.
+        var channels = new List<(string Name, float[] Plane)>();
+        for (int b = 0; b < image.Bands; b++)
+        {
+            var plane = new float[w * h];
+            image.CopyBand(b, plane);
+            channels.Add((SpectralChannelName(image.Grid.Centre(b), options.Reflective), plane));
+        }
+        if (options.Rgb || options.Xyz)
+        {
+            var cm = options.Colorimeter!;
+            var planes = new float[6][];
+            for (int i = 0; i < 6; i++) planes[i] = new float[w * h];
+            for (int y = 0; y < h; y++)
+                for (int x = 0; x < w; x++)
+                {
+                    int i = y * w + x;
+                    var xyz = cm.ToXyz((ReadOnlySpan<float>)image.Pixel(x, y));
+                    var (r, g, bl) = RgbSpace.Srgb.Linear(xyz);
+                    planes[0][i] = (float)r; planes[1][i] = (float)g; planes[2][i] = (float)bl;
+                    planes[3][i] = (float)xyz.X; planes[4][i] = (float)xyz.Y; planes[5][i] = (float)xyz.Z;
+                }
+            if (options.Rgb) { channels.Add(("R", planes[0])); channels.Add(("G", planes[1])); channels.Add(("B", planes[2])); }
+            if (options.Xyz) { channels.Add(("X", planes[3])); channels.Add(("Y", planes[4])); channels.Add(("Z", planes[5])); }
+        }
+        channels.Sort((a, b) => string.CompareOrdinal(a.Name, b.Name));
+        if (channels.Select(c => c.Name).Distinct().Count() != channels.Count)
+            throw new ArgumentException("two EXR channels have the same name (are two bands centred on the same wavelength?)");
+
+        var header = Header(image, options, channels.Select(c => c.Name).ToList(), out bool longNames);
+
+        int lines = LinesPerChunk(options.Compression);
+        int chunkCount = (h + lines - 1) / lines;
+        int sampleBytes = options.PixelType == ExrPixelType.Float ? 4 : 2;
+        var chunks = new byte[chunkCount][];
+        Parallel.For(0, chunkCount, c =>
+        {
+            int y0 = c * lines, y1 = Math.Min(h, y0 + lines);
+            // File layout, "Scan Line Blocks": per scanline, per channel (sorted), all pixels of that channel.
+            var raw = new byte[(y1 - y0) * channels.Count * w * sampleBytes];
+            int at = 0;
+            for (int y = y0; y < y1; y++)
+                foreach (var (_, plane) in channels)
+                    for (int x = 0; x < w; x++, at += sampleBytes)
+                    {
+                        float v = plane[y * w + x];
+                        if (sampleBytes == 4) BinaryPrimitives.WriteSingleLittleEndian(raw.AsSpan(at), v);
+                        else BinaryPrimitives.WriteUInt16LittleEndian(raw.AsSpan(at), BitConverter.HalfToUInt16Bits((Half)v));
+                    }
+            if (options.Compression == ExrCompression.Zip)
+            {
+                var z = ExrZip.Compress(raw);
+                // A chunk whose compressed form is not smaller is stored raw (readers tell by its size).
+                if (z.Length < raw.Length) raw = z;
+            }
+            chunks[c] = raw;
+        });
+
+        var bw = new BinaryWriter(stream, Encoding.ASCII, leaveOpen: true);
+        bw.Write(Magic);
+        // Version field: version 2 in bits 0–7; bit 10 "long names"; bits 9 (tiled), 11 (deep), 12 (multipart) clear.
+        bw.Write(2 | (longNames ? 0x400 : 0));
+        bw.Write(header);
+        // Offset table: one unsigned 64-bit file offset per chunk, in increasing y order.
+        long offset = 8 + header.Length + 8L * chunkCount;
+        foreach (var chunk in chunks)
+        {
+            bw.Write((ulong)offset);
+            offset += 8 + chunk.Length;
+        }
+        for (int c = 0; c < chunkCount; c++)
+        {
+            bw.Write(c * lines);            // y coordinate of the chunk's first scanline (data window starts at 0)
+            bw.Write(chunks[c].Length);     // pixel data size
+            bw.Write(chunks[c]);
+        }
+        bw.Flush();
+    }
+
+    static void Validate(SpectralImage image, ExrOptions options)
+    {
+        if (!Enum.IsDefined(options.Compression)) throw new ArgumentException($"unsupported EXR compression {options.Compression}");
+        if (!Enum.IsDefined(options.PixelType)) throw new ArgumentException($"unsupported EXR pixel type {options.PixelType}");
+        if ((options.Rgb || options.Xyz) && options.Colorimeter is null)
+            throw new ArgumentException("EXR R,G,B / X,Y,Z channels need ExrOptions.Colorimeter (or set Rgb = false)");
+        if (options.Colorimeter is { } cm && !cm.Grid.Equals(image.Grid))
+            throw new ArgumentException($"the colorimeter's band grid {cm.Grid} differs from the image's {image.Grid}");
+    }
+
+    /// <summary>File layout §"Header": attributes (name, type name, size, value), then a null byte.</summary>
+    static byte[] Header(SpectralImage image, ExrOptions options, List<string> channelNames, out bool longNames)
+    {
+        var attrs = new SortedDictionary<string, (string Type, byte[] Value)>(StringComparer.Ordinal);
+
+        // chlist: per channel name\0, int pixel type, uchar pLinear, 3 reserved zero bytes, int xSampling, int ySampling; then \0.
+        var chlist = new MemoryStream();
+        var cw = new BinaryWriter(chlist);
+        foreach (var name in channelNames)
+        {
+            cw.Write(Encoding.UTF8.GetBytes(name)); cw.Write((byte)0);
+            cw.Write((int)options.PixelType);
+            cw.Write(0);                     // pLinear + 3 reserved bytes
+            cw.Write(1); cw.Write(1);        // x and y sampling
+        }
+        cw.Write((byte)0);
+        attrs["channels"] = ("chlist", chlist.ToArray());
+        attrs["compression"] = ("compression", [(byte)options.Compression]);
+        var box = Box(0, 0, image.Width - 1, image.Height - 1);
+        attrs["dataWindow"] = ("box2i", box);
+        attrs["displayWindow"] = ("box2i", box);
+        attrs["lineOrder"] = ("lineOrder", [0]);          // INCREASING_Y
+        attrs["pixelAspectRatio"] = ("float", Floats(1f));
+        attrs["screenWindowCenter"] = ("v2f", Floats(0f, 0f));
+        attrs["screenWindowWidth"] = ("float", Floats(1f));
+        if (options.Rgb)  // R, G, B are linear sRGB: ITU-R BT.709 primaries, D65 white (x, y pairs R, G, B, W).
+            attrs["chromaticities"] = ("chromaticities", Floats(0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f));
+
+        // JCGT 2021 §3: the layout version and, for emissive images, the radiometric units.
+        attrs["spectralLayoutVersion"] = ("string", Encoding.UTF8.GetBytes(LayoutVersion));
+        if (!options.Reflective) attrs["emissiveUnits"] = ("string", Encoding.UTF8.GetBytes(EmissiveUnits));
+        attrs["spectralBandEdges"] = ("string", Encoding.UTF8.GetBytes(
+            string.Join(",", image.Grid.Edges().Select(e => e.ToString("R", CultureInfo.InvariantCulture)))));
+        if (options.Colorimeter is { } cm)
+        {
+            attrs["spectralKappa"] = ("double", BitConverter.GetBytes(cm.Kappa));
+            attrs["spectralIntegration"] = ("string", Encoding.UTF8.GetBytes(
+                $"{cm.Scheme.ToString().ToLowerInvariant()}; observer {cm.Observer.Name}; reference light {cm.ReferenceLight.Name}; {(cm.Absolute ? "absolute" : "relative")}"));
+        }
+        if (options.Attributes is not null)
+            foreach (var (k, v) in options.Attributes)
+                if (!attrs.ContainsKey(k)) attrs[k] = ("string", Encoding.UTF8.GetBytes(v));
+
+        longNames = channelNames.Concat(attrs.Keys).Concat(attrs.Values.Select(a => a.Type)).Any(n => Encoding.UTF8.GetByteCount(n) > 31);
+        var ms = new MemoryStream();
+        var bw = new BinaryWriter(ms);
+        foreach (var (name, (type, value)) in attrs)
+        {
+            if (Encoding.UTF8.GetByteCount(name) > 255) throw new ArgumentException($"EXR attribute name '{name}' is longer than 255 bytes");
+            bw.Write(Encoding.UTF8.GetBytes(name)); bw.Write((byte)0);
+            bw.Write(Encoding.ASCII.GetBytes(type)); bw.Write((byte)0);
+            bw.Write(value.Length);
+            bw.Write(value);
+        }
+        bw.Write((byte)0);
+        return ms.ToArray();
+    }
+
+    static byte[] Box(int xMin, int yMin, int xMax, int yMax)
+    {
+        var b = new byte[16];
+        BinaryPrimitives.WriteInt32LittleEndian(b, xMin);
+        BinaryPrimitives.WriteInt32LittleEndian(b.AsSpan(4), yMin);
+        BinaryPrimitives.WriteInt32LittleEndian(b.AsSpan(8), xMax);
+        BinaryPrimitives.WriteInt32LittleEndian(b.AsSpan(12), yMax);
+        return b;
+    }
+
+    static byte[] Floats(params float[] v)
+    {
+        var b = new byte[4 * v.Length];
+        for (int i = 0; i < v.Length; i++) BinaryPrimitives.WriteSingleLittleEndian(b.AsSpan(4 * i), v[i]);
+        return b;
+    }
+}

@@ -1,0 +1,90 @@
+using System.Buffers.Binary;
+using System.Globalization;
+using System.Text;
+using System.Text.RegularExpressions;
+using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Rendering;
+using SpectralRenderer.Spectra;
+
+namespace SpectralRenderer.Imaging;
+
+/// <summary>Reads .npy files (format 1.0–3.0) of little- or big-endian float32/float64 in C order.</summary>
+public static class NpyReader
+{
+    static readonly Regex Descr = new(@"'descr'\s*:\s*'([<>=|])(f)(4|8)'", RegexOptions.CultureInvariant);
+    static readonly Regex Fortran = new(@"'fortran_order'\s*:\s*(True|False)", RegexOptions.CultureInvariant);
+    static readonly Regex Shape = new(@"'shape'\s*:\s*\(([^)]*)\)", RegexOptions.CultureInvariant);
+
+    /// <summary>Reads an H × W × N array as a <see cref="SpectralImage"/> on <paramref name="grid"/> (N must equal its band count).</summary>
+    public static SpectralImage ReadImage(string path, BandGrid grid)
+    {
+        using var fs = File.OpenRead(path);
+        return ReadImage(fs, grid, path);
+    }
+
+    public static SpectralImage ReadImage(Stream stream, BandGrid grid, string where = "NPY")
+    {
+        var (shape, data) = Read(stream, where);
+        if (shape.Length != 3) throw new InputException(where, $"array has {shape.Length} dimensions", "expected H × W × N");
+        if (shape[2] != grid.Count) throw new InputException(where, $"array has {shape[2]} bands, the band grid {grid} has {grid.Count}");
+        return new SpectralImage(shape[1], shape[0], grid, data);
+    }
+
+    public static (int[] Shape, float[] Data) Read(Stream stream, string where = "NPY")
+    {
+        Span<byte> pre = stackalloc byte[8];
+        try { stream.ReadExactly(pre); }
+        catch (EndOfStreamException) { throw new InputException(where, "not a .npy file (too short)"); }
+        if (!pre[..6].SequenceEqual(NpyWriter.Magic)) throw new InputException(where, "not a .npy file (no \\x93NUMPY magic)");
+        int major = pre[6];
+        int headerLength;
+        if (major == 1)
+        {
+            Span<byte> l = stackalloc byte[2];
+            stream.ReadExactly(l);
+            headerLength = BinaryPrimitives.ReadUInt16LittleEndian(l);
+        }
+        else if (major is 2 or 3)
+        {
+            Span<byte> l = stackalloc byte[4];
+            stream.ReadExactly(l);
+            headerLength = checked((int)BinaryPrimitives.ReadUInt32LittleEndian(l));
+        }
+        else throw new InputException(where, $".npy format version {major}.{pre[7]} is not supported");
+        var hb = new byte[headerLength];
+        try { stream.ReadExactly(hb); }
+        catch (EndOfStreamException) { throw new InputException(where, "file is truncated (in the header)"); }
+        var header = (major == 3 ? Encoding.UTF8 : Encoding.Latin1).GetString(hb);
+
+        var d = Descr.Match(header);
+        if (!d.Success) throw new InputException(where, $"unsupported dtype in header {header.Trim()}", "only float32 (<f4) and float64 (<f8)");
+        var f = Fortran.Match(header);
+        if (f.Success && f.Groups[1].Value == "True") throw new InputException(where, "Fortran-order arrays are not supported", "save with numpy.ascontiguousarray");
+        var s = Shape.Match(header);
+        if (!s.Success) throw new InputException(where, "header has no shape");
+        var shape = s.Groups[1].Value.Split(',', StringSplitOptions.TrimEntries | StringSplitOptions.RemoveEmptyEntries)
+            .Select(t => int.TryParse(t.TrimEnd('L'), NumberStyles.Integer, CultureInfo.InvariantCulture, out int v) && v >= 0 ? v
+                : throw new InputException(where, $"bad shape entry '{t}'")).ToArray();
+        long count = 1;
+        foreach (int v in shape) count *= v;
+        if (count > Array.MaxLength) throw new InputException(where, "array too large");
+        bool big = d.Groups[1].Value == ">";
+        int size = d.Groups[3].Value == "4" ? 4 : 8;
+        var bytes = new byte[count * size];
+        try { stream.ReadExactly(bytes); }
+        catch (EndOfStreamException) { throw new InputException(where, $"file is truncated: {count} values of {size} bytes expected"); }
+        var data = new float[count];
+        for (int i = 0; i < data.Length; i++)
+        {
+            var b = bytes.AsSpan(i * size, size);
+            data[i] = (size, big) switch
+            {
+                (4, false) => BinaryPrimitives.ReadSingleLittleEndian(b),
+                (4, true) => BinaryPrimitives.ReadSingleBigEndian(b),
+                (_, false) => (float)BinaryPrimitives.ReadDoubleLittleEndian(b),
+                _ => (float)BinaryPrimitives.ReadDoubleBigEndian(b),
+            };
+        }
+        return (shape, data);
+    }
+}

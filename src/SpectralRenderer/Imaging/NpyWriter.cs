@@ -1,0 +1,51 @@
+using System.Buffers.Binary;
+using System.Globalization;
+using System.Text;
+using SpectralRenderer.Rendering;
+
+namespace SpectralRenderer.Imaging;
+
+/// <summary>
+/// Writes a <see cref="SpectralImage"/> as a NumPy .npy file, format version 1.0 (NEP 1 / numpy.lib.format):
+/// magic "\x93NUMPY", major 1, minor 0, a little-endian uint16 header length, then an ASCII Python dict literal
+/// {'descr': '&lt;f4', 'fortran_order': False, 'shape': (H, W, N), } padded with spaces and ended by '\n' so that
+/// magic + length + header is a multiple of 64 bytes, then the float32 data in C order (the image's own layout).
+/// </summary>
+public static class NpyWriter
+{
+    internal static ReadOnlySpan<byte> Magic => [0x93, (byte)'N', (byte)'U', (byte)'M', (byte)'P', (byte)'Y'];
+
+    public static void Write(string path, SpectralImage image) => AtomicFile.Write(path, s => Write(s, image));
+
+    public static void Write(Stream stream, SpectralImage image) =>
+        Write(stream, [image.Height, image.Width, image.Bands], image.Data);
+
+    /// <summary>Any C-order float32 array.</summary>
+    public static void Write(Stream stream, ReadOnlySpan<int> shape, ReadOnlySpan<float> data)
+    {
+        long count = 1;
+        foreach (int d in shape) count *= d;
+        if (count != data.Length) throw new ArgumentException($"shape holds {count} values, data {data.Length}");
+        string dims = shape.Length == 1 ? $"{shape[0]}," : string.Join(", ", shape.ToArray().Select(d => d.ToString(CultureInfo.InvariantCulture)));
+        string dict = $"{{'descr': '<f4', 'fortran_order': False, 'shape': ({dims}), }}";
+        int preamble = Magic.Length + 2 + 2;
+        int total = (preamble + dict.Length + 1 + 63) / 64 * 64;
+        string header = dict.PadRight(total - preamble - 1) + "\n";
+        if (header.Length > ushort.MaxValue) throw new ArgumentException("NPY header too long for format 1.0");
+
+        stream.Write(Magic);
+        stream.WriteByte(1);  // major version
+        stream.WriteByte(0);  // minor version
+        Span<byte> len = stackalloc byte[2];
+        BinaryPrimitives.WriteUInt16LittleEndian(len, (ushort)header.Length);
+        stream.Write(len);
+        stream.Write(Encoding.ASCII.GetBytes(header));
+        var buffer = new byte[4 * Math.Min(data.Length, 1 << 16)];
+        for (int at = 0; at < data.Length; at += buffer.Length / 4)
+        {
+            int n = Math.Min(buffer.Length / 4, data.Length - at);
+            for (int i = 0; i < n; i++) BinaryPrimitives.WriteSingleLittleEndian(buffer.AsSpan(4 * i), data[at + i]);
+            stream.Write(buffer, 0, 4 * n);
+        }
+    }
+}

@@ -1,0 +1,44 @@
+using System.Globalization;
+using System.Text;
+using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Spectra;
+
+namespace SpectralRenderer.Imaging;
+
+/// <summary>
+/// wavelengths.csv beside an .npy cube: header "band,start_nm,centre_nm,end_nm", one row per band,
+/// band numbered from 0 as the array's last axis is.
+/// </summary>
+public static class WavelengthsCsv
+{
+    public const string Header = "band,start_nm,centre_nm,end_nm";
+
+    public static string Format(BandGrid grid)
+    {
+        var inv = CultureInfo.InvariantCulture;
+        var sb = new StringBuilder(Header).Append('\n');
+        for (int b = 0; b < grid.Count; b++)
+            sb.Append(inv, $"{b},{grid.Lower(b).ToString("R", inv)},{grid.Centre(b).ToString("R", inv)},{grid.Upper(b).ToString("R", inv)}\n");
+        return sb.ToString();
+    }
+
+    public static void Write(string path, BandGrid grid) => AtomicFile.WriteAllText(path, Format(grid));
+
+    /// <summary>Reads the grid back (evenly spaced bands).</summary>
+    public static BandGrid Read(string path)
+    {
+        var lines = File.ReadAllLines(path).Where(l => l.Trim().Length > 0).ToArray();
+        if (lines.Length < 2 || lines[0].Trim() != Header)
+            throw new InputException(path, "not a wavelengths.csv", $"the first line must be {Header}");
+        var rows = lines.Skip(1).Select((l, i) =>
+        {
+            var p = l.Split(',');
+            if (p.Length != 4 || !double.TryParse(p[1], NumberStyles.Float, CultureInfo.InvariantCulture, out var lo)
+                || !double.TryParse(p[3], NumberStyles.Float, CultureInfo.InvariantCulture, out var hi))
+                throw new InputException($"{path}:{i + 2}", $"bad row '{l}'", "band,start_nm,centre_nm,end_nm");
+            return (lo, hi);
+        }).ToArray();
+        try { return new BandGrid(rows[0].lo, rows[^1].hi, rows.Length); }
+        catch (ArgumentOutOfRangeException e) { throw new InputException(path, e.Message); }
+    }
+}
