@@ -10,6 +10,8 @@ public static class CommandLine
 
     static readonly (string Name, string Summary, Func<string[], TextWriter, TextWriter, int> Run)[] Commands =
     [
+        ("render", "render a scene file: band images, spectral cubes, sRGB preview", RenderCommand.Run),
+        ("colorcheck", "a rendered ColorChecker's patches against their 1 nm reference (ΔE00)", ColorCheckCommand.Run),
         ("colors", "the 24 ColorChecker patches' XYZ, Lab, RGB and ΔE00 under a light", ColorsCommand.Run),
     ];
 

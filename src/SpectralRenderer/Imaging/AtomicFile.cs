@@ -15,7 +15,6 @@ public static class AtomicFile
             using (var fs = new FileStream(tmp, FileMode.CreateNew, FileAccess.Write, FileShare.None, 1 << 16))
             {
                 write(fs);
-                fs.Flush(true);
             }
             File.Move(tmp, path, overwrite: true);
         }

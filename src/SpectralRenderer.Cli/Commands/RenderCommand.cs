@@ -1,0 +1,142 @@
+using System.Globalization;
+using System.Text.Json.Nodes;
+using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Imaging;
+using SpectralRenderer.Rendering;
+using SpectralRenderer.Scenes;
+
+namespace SpectralRenderer.Cli.Commands;
+
+/// <summary>`spectral render SCENE.json -o OUTDIR`: load, render in tiles on all cores, write the outputs.</summary>
+public static class RenderCommand
+{
+    public const string Help = """
+        usage: spectral render SCENE.json [-o OUTDIR] [--width W] [--height H] [--bands N | S:E:N]
+                               [--spp N] [--threads N] [--rgb srgb|paper] [--integration weighted|paper]
+                               [--formats LIST] [--models DIR] [--quiet]
+
+        Renders a scene file (docs/scene-format.md) with the paper's eq. 2 in every band and writes:
+          preview.png        8-bit sRGB (or eq. 4 with --rgb paper)
+          bands/             one 16-bit greyscale PNG per band on a common scale, and bands.png (Fig. 2)
+          spectral.exr       all bands, spectral OpenEXR layout (S0.<λ>nm channels) + R G B + X Y Z
+          spectral.hdr/.img  ENVI cube, BSQ float32, wavelengths in nm
+          spectral.npy       H × W × N float32 NumPy array, with wavelengths.csv
+          object-id.png      16-bit id of the object seen at each pixel (0 = background; ids in render.json)
+          render.json        resolved scene, band edges, κ, white point, timings, ray counts, version
+
+          -o, --out DIR      output folder (default: out/<scene name>)
+          --width, --height  image size in pixels (override the scene's camera)
+          --bands N|S:E:N    band count over the scene's range, or a full grid such as 400:700:31
+          --spp N            samples per pixel (1 = pixel centre; more = stratified jitter)
+          --threads N        worker threads (default: all cores); output is identical for any N
+          --rgb MODE         srgb (default) or paper (the paper's eq. 4, linear, clipped)
+          --integration S    weighted (default, spectral prefiltering) or paper
+          --formats LIST     comma-separated from png,bands,exr,envi,npy,aov or all (default: all)
+          --models DIR       a folder to search for mesh files (after the scene's folder, before $SPECTRAL_MODELS)
+          --quiet            no progress or summary on stderr
+        """;
+
+    static readonly string[] Values = ["-o", "--out", "--width", "--height", "--bands", "--band-range", "--spp", "--threads", "--rgb", "--integration", "--formats", "--models"];
+
+    public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
+    {
+        var a = new Arguments("render", argv, Values, ["--quiet"], new Dictionary<string, string> { ["-o"] = "--out" });
+        if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
+        if (a.Positionals.Count != 1) throw new InputException("", a.Positionals.Count == 0 ? "no scene file given" : $"unexpected argument '{a.Positionals[1]}'", "usage: spectral render SCENE.json -o OUTDIR");
+        var scenePath = a.Positionals[0];
+        var outDir = a.Value("--out") ?? Path.Combine("out", Path.GetFileNameWithoutExtension(scenePath));
+        int? threads = a.Int("--threads", 1, 1024);
+        bool quiet = a.Flag("--quiet");
+
+        var overrides = Overrides(a, scenePath);
+        var loadClock = System.Diagnostics.Stopwatch.StartNew();
+        var scene = SceneLoader.Load(scenePath, overrides);
+        double loadSeconds = loadClock.Elapsed.TotalSeconds;
+        PrepareOutputFolder(outDir);
+
+        using var cancel = new CancellationTokenSource();
+        ConsoleCancelEventHandler onCancel = (_, e) => { e.Cancel = true; cancel.Cancel(); };
+        Console.CancelKeyPress += onCancel;
+        try
+        {
+            var progress = quiet ? null : ProgressBar.For(stderr);
+            var setup = System.Diagnostics.Stopwatch.StartNew();
+            var geometry = new SceneGeometry(scene);
+            var integrator = new WhittedIntegrator(scene, geometry);
+            double buildSeconds = setup.Elapsed.TotalSeconds;
+            var result = Renderer.Render(scene, integrator, threads ?? 0, progress is null ? null : progress.Report, cancel.Token);
+            progress?.Finish();
+            var writeClock = System.Diagnostics.Stopwatch.StartNew();
+            var run = new JsonObject
+            {
+                ["command_line"] = "spectral render " + string.Join(' ', argv),
+                ["load_s"] = loadSeconds,
+                ["build_s"] = buildSeconds,
+            };
+            var files = RenderOutputWriter.Write(scene, result, outDir, run, cancel.Token);
+            if (!quiet)
+            {
+                double secs = result.Elapsed.TotalSeconds;
+                stderr.WriteLine(string.Create(CultureInfo.InvariantCulture,
+                    $"rendered {result.Image.Width}×{result.Image.Height}, {scene.Grid.Count} bands ({scene.Grid}), {scene.Camera.SamplesPerPixel} spp in {secs:0.###} s ({result.Rays.Total / Math.Max(secs, 1e-9) / 1e6:0.##} Mrays/s, {result.Threads} threads); wrote {files.Count} files to {outDir} in {writeClock.Elapsed.TotalSeconds:0.##} s"));
+            }
+            return CommandLine.Success;
+        }
+        finally { Console.CancelKeyPress -= onCancel; }
+    }
+
+    public static SceneOverrides Overrides(Arguments a, string scenePath)
+    {
+        string? bands = a.Value("--band-range") ?? a.Value("--bands");
+        if (bands is not null && !bands.Contains(':'))
+        {
+            if (!int.TryParse(bands, NumberStyles.Integer, CultureInfo.InvariantCulture, out int n) || n < 1 || n > Spectra.BandGrid.MaxBands)
+                throw new InputException("--bands", $"'{bands}' is neither a band count nor a grid start:end:count", "e.g. --bands 40 or --bands 400:700:31");
+            // A count keeps the scene's range: peek at it without loading the scene twice.
+            var range = SceneRange(scenePath);
+            bands = string.Create(CultureInfo.InvariantCulture, $"{range.Start}:{range.End}:{n}");
+        }
+        var models = a.Values("--models").ToList();
+        foreach (var m in models)
+            if (!Directory.Exists(m)) throw new InputException("--models", $"folder '{m}' does not exist");
+        return new SceneOverrides
+        {
+            Width = a.Int("--width", int.MinValue, int.MaxValue),
+            Height = a.Int("--height", int.MinValue, int.MaxValue),
+            Bands = bands,
+            SamplesPerPixel = a.Int("--spp", 1, 65536),
+            Rgb = a.Value("--rgb"),
+            Integration = a.Value("--integration"),
+            Formats = a.Value("--formats"),
+            ModelDirectories = models,
+        };
+    }
+
+    static Spectra.BandGrid SceneRange(string scenePath)
+    {
+        try
+        {
+            var node = JsonNode.Parse(File.ReadAllText(scenePath), documentOptions: new System.Text.Json.JsonDocumentOptions { CommentHandling = System.Text.Json.JsonCommentHandling.Skip, AllowTrailingCommas = true });
+            if (node?["bands"]?.GetValue<string>() is { } g) return Spectra.BandGrid.Parse(g);
+        }
+        catch (Exception e) when (e is System.Text.Json.JsonException or InvalidOperationException or IOException or UnauthorizedAccessException) { /* the loader reports it */ }
+        return Spectra.BandGrid.Default;
+    }
+
+    /// <summary>Creates the output folder, or says in one line why it cannot be used.</summary>
+    public static void PrepareOutputFolder(string outDir)
+    {
+        if (File.Exists(outDir)) throw new InputException(outDir, "exists and is a file, not a folder", "choose another -o");
+        try
+        {
+            Directory.CreateDirectory(outDir);
+            var probe = Path.Combine(outDir, $".write-test-{Environment.ProcessId}");
+            File.WriteAllBytes(probe, []);
+            File.Delete(probe);
+        }
+        catch (Exception e) when (e is IOException or UnauthorizedAccessException)
+        {
+            throw new InputException(outDir, $"cannot be written: {e.Message}", "choose a folder you can write to");
+        }
+    }
+}

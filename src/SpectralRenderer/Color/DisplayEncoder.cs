@@ -1,0 +1,39 @@
+namespace SpectralRenderer.Color;
+
+/// <summary>
+/// Pixel spectra → display RGB: eq. 3 (band values → XYZ through the scene's <see cref="Colorimeter"/>),
+/// exposure, optional Bradford adaptation from the scene white to the RGB space's white, then eq. 4
+/// (paper) or sRGB, clipped and encoded.
+/// </summary>
+public sealed class DisplayEncoder
+{
+    readonly Colorimeter _colorimeter;
+    readonly double[,] _toRgb;
+    readonly double _exposure;
+
+    public DisplayEncoder(Colorimeter colorimeter, RgbSpace space, double exposure = 1, bool adapt = false)
+    {
+        _colorimeter = colorimeter;
+        Space = space;
+        _exposure = exposure;
+        _toRgb = adapt ? Matrix3.Multiply(space.FromXyz, ChromaticAdaptation.BradfordMatrix(colorimeter.White, space.White)) : space.FromXyz;
+    }
+
+    public RgbSpace Space { get; }
+
+    public Xyz Xyz(ReadOnlySpan<float> bands) => _colorimeter.ToXyz(bands) * _exposure;
+
+    /// <summary>Linear RGB (unclipped) of a pixel spectrum.</summary>
+    public (double R, double G, double B) Linear(ReadOnlySpan<float> bands)
+    {
+        var v = Matrix3.Apply(_toRgb, Xyz(bands));
+        return (v.X, v.Y, v.Z);
+    }
+
+    /// <summary>8-bit display RGB of a pixel spectrum.</summary>
+    public (byte R, byte G, byte B) Encode8(ReadOnlySpan<float> bands)
+    {
+        var (r, g, b) = Linear(bands);
+        return (RgbSpace.To8(Space.Encode(r)), RgbSpace.To8(Space.Encode(g)), RgbSpace.To8(Space.Encode(b)));
+    }
+}

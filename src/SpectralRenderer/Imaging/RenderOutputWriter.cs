@@ -1,0 +1,147 @@
+using System.Globalization;
+using System.Text.Json;
+using System.Text.Json.Nodes;
+using SpectralRenderer.Color;
+using SpectralRenderer.Rendering;
+using SpectralRenderer.Scenes;
+
+namespace SpectralRenderer.Imaging;
+
+/// <summary>
+/// Writes a render's files into its output folder (guide §6): preview.png, bands/ with bands.png,
+/// the spectral cubes, object-id.png and render.json. Each file goes to a temporary name first.
+/// </summary>
+public static class RenderOutputWriter
+{
+    public static List<string> Write(Scene scene, RenderResult result, string outDir, JsonObject? run = null, CancellationToken cancel = default)
+    {
+        var written = new List<string>();
+        var formats = scene.Output.Formats;
+        var image = result.Image;
+        var encoder = new DisplayEncoder(scene.Colorimeter, scene.Output.Rgb, scene.Output.Exposure, scene.Output.Adapt);
+        Directory.CreateDirectory(outDir);
+
+        void Done(string name) { written.Add(name); cancel.ThrowIfCancellationRequested(); }
+
+        if (formats.Contains("png"))
+        {
+            var rgb = Preview(image, encoder);
+            AtomicFile.Write(Path.Combine(outDir, "preview.png"), s => PngWriter.WriteRgb8(s, image.Width, image.Height, rgb));
+            Done("preview.png");
+        }
+        float scale = image.Max();
+        if (formats.Contains("bands"))
+        {
+            var dir = Path.Combine(outDir, "bands");
+            Directory.CreateDirectory(dir);
+            var plane = new float[image.Width * image.Height];
+            var grey = new ushort[plane.Length];
+            for (int b = 0; b < image.Bands; b++)
+            {
+                image.CopyBand(b, plane);
+                for (int i = 0; i < plane.Length; i++) grey[i] = scale > 0 ? RgbSpace.To16(Math.Clamp(plane[i] / scale, 0, 1)) : (ushort)0;
+                var name = BandFileName(scene, b);
+                AtomicFile.Write(Path.Combine(dir, name), s => PngWriter.WriteGray16(s, image.Width, image.Height, grey));
+                Done($"bands/{name}");
+            }
+            var (mw, mh, mosaic) = BandMosaic.Build(image, scale);
+            AtomicFile.Write(Path.Combine(outDir, "bands.png"), s => PngWriter.WriteGray8(s, mw, mh, mosaic));
+            Done("bands.png");
+        }
+        if (formats.Contains("aov"))
+        {
+            var ids = new ushort[result.ObjectIds.Length];
+            for (int i = 0; i < ids.Length; i++) ids[i] = (ushort)(result.ObjectIds[i] + 1);
+            AtomicFile.Write(Path.Combine(outDir, "object-id.png"), s => PngWriter.WriteGray16(s, image.Width, image.Height, ids));
+            Done("object-id.png");
+        }
+        SpectralFiles.Write(scene, image, outDir, formats, Done);
+
+        var json = Describe(scene, result, scale, written, run);
+        AtomicFile.WriteAllText(Path.Combine(outDir, "render.json"), json.ToJsonString(new JsonSerializerOptions { WriteIndented = true }));
+        written.Add("render.json");
+        return written;
+    }
+
+    public static string BandFileName(Scene scene, int b) =>
+        string.Create(CultureInfo.InvariantCulture, $"band-{b + 1:00}-{scene.Grid.Lower(b):0.###}-{scene.Grid.Upper(b):0.###}nm.png");
+
+    public static byte[] Preview(SpectralImage image, DisplayEncoder encoder)
+    {
+        var rgb = new byte[image.Width * image.Height * 3];
+        Parallel.For(0, image.Height, y =>
+        {
+            for (int x = 0; x < image.Width; x++)
+            {
+                var (r, g, b) = encoder.Encode8(image.Pixel(x, y));
+                int o = (y * image.Width + x) * 3;
+                rgb[o] = r; rgb[o + 1] = g; rgb[o + 2] = b;
+            }
+        });
+        return rgb;
+    }
+
+    static JsonObject Describe(Scene scene, RenderResult result, float bandScale, List<string> written, JsonObject? run)
+    {
+        var g = scene.Grid;
+        var c = scene.Colorimeter;
+        JsonArray Arr(IEnumerable<double> v) => new(v.Select(x => (JsonNode)JsonValue.Create(x)!).ToArray());
+        var objects = new JsonArray();
+        for (int i = 0; i < scene.Objects.Count; i++)
+        {
+            var o = scene.Objects[i];
+            var m = scene.Materials[o.Material];
+            objects.Add(new JsonObject
+            {
+                ["id"] = i + 1,
+                ["name"] = o.Name,
+                ["material"] = m.Name,
+                ["reflectance"] = m.DiffuseSpectrum?.Name,
+            });
+        }
+        var white = scene.ReferenceWhite;
+        return new JsonObject
+        {
+            ["tool"] = "spectral",
+            ["version"] = typeof(RenderOutputWriter).Assembly.GetName().Version?.ToString(3),
+            ["scene"] = scene.SourcePath,
+            ["created_utc"] = DateTime.UtcNow.ToString("yyyy-MM-ddTHH:mm:ssZ", CultureInfo.InvariantCulture),
+            ["width"] = result.Image.Width,
+            ["height"] = result.Image.Height,
+            ["spp"] = scene.Camera.SamplesPerPixel,
+            ["bands"] = new JsonObject
+            {
+                ["grid"] = g.ToString(),
+                ["count"] = g.Count,
+                ["edges_nm"] = Arr(g.Edges()),
+                ["centres_nm"] = Arr(Enumerable.Range(0, g.Count).Select(g.Centre)),
+                ["band_image_scale"] = bandScale,
+            },
+            ["colour"] = new JsonObject
+            {
+                ["integration"] = scene.Integration.ToString().ToLowerInvariant(),
+                ["observer"] = c.Observer.Degrees,
+                ["reference_white"] = white.Name,
+                ["reference_white_spd"] = new JsonObject { ["wavelengths_nm"] = Arr(white.Wavelengths.ToArray()), ["values"] = Arr(white.Values.ToArray()) },
+                ["kappa"] = c.Kappa,
+                ["white_xyz"] = Arr([c.White.X, c.White.Y, c.White.Z]),
+                ["weights_x"] = Arr(c.Wx), ["weights_y"] = Arr(c.Wy), ["weights_z"] = Arr(c.Wz),
+                ["rgb"] = scene.Output.Rgb.Name,
+                ["exposure"] = scene.Output.Exposure,
+                ["adapt"] = scene.Output.Adapt,
+            },
+            ["objects"] = objects,
+            ["timings_s"] = new JsonObject { ["render"] = result.Elapsed.TotalSeconds },
+            ["rays"] = new JsonObject
+            {
+                ["primary"] = result.Rays.Primary, ["shadow"] = result.Rays.Shadow, ["secondary"] = result.Rays.Secondary, ["total"] = result.Rays.Total,
+                ["mrays_per_s"] = result.Rays.Total / Math.Max(1e-9, result.Elapsed.TotalSeconds) / 1e6,
+            },
+            ["threads"] = result.Threads,
+            ["tiles"] = result.Tiles,
+            ["run"] = run,
+            ["files"] = new JsonArray(written.Select(f => (JsonNode)JsonValue.Create(f)!).ToArray()),
+            ["resolved_scene"] = scene.Resolved?.DeepClone(),
+        };
+    }
+}

@@ -1,0 +1,119 @@
+using System.Diagnostics;
+using SpectralRenderer.Scenes;
+
+namespace SpectralRenderer.Rendering;
+
+/// <summary>What a render produced: the spectral framebuffer, the object seen at each pixel, and counts.</summary>
+public sealed class RenderResult
+{
+    public required SpectralImage Image { get; init; }
+    /// <summary>Per pixel, the index of the object the centre ray hits, or −1 for background.</summary>
+    public required int[] ObjectIds { get; init; }
+    public required RayCounters Rays { get; init; }
+    public required TimeSpan Elapsed { get; init; }
+    public required int Threads { get; init; }
+    public required int Tiles { get; init; }
+}
+
+/// <summary>Progress of a render, reported after each tile.</summary>
+public readonly record struct RenderProgress(int TilesDone, int Tiles, long Rays, TimeSpan Elapsed);
+
+/// <summary>
+/// Renders a scene in square tiles on all cores. Each pixel depends only on its own position
+/// (its jitter comes from a hash of x, y and the sample index), so the framebuffer is identical
+/// whatever the thread count or tile order.
+/// </summary>
+public sealed class Renderer
+{
+    public const int TileSize = 32;
+
+    public static RenderResult Render(Scene scene, int threads = 0, Action<RenderProgress>? progress = null, CancellationToken cancel = default)
+    {
+        var geometry = new SceneGeometry(scene);
+        return Render(scene, new WhittedIntegrator(scene, geometry), threads, progress, cancel);
+    }
+
+    public static RenderResult Render(Scene scene, WhittedIntegrator integrator, int threads = 0, Action<RenderProgress>? progress = null, CancellationToken cancel = default)
+    {
+        var cam = scene.Camera;
+        int width = cam.Width, height = cam.Height, bands = scene.Bands, padded = scene.PaddedBands;
+        var image = new SpectralImage(width, height, scene.Grid);
+        var ids = new int[width * height];
+        int tilesX = (width + TileSize - 1) / TileSize, tilesY = (height + TileSize - 1) / TileSize;
+        int tiles = tilesX * tilesY;
+        if (threads <= 0) threads = Environment.ProcessorCount;
+        var total = new RayCounters();
+        var gate = new object();
+        int done = 0;
+        var clock = Stopwatch.StartNew();
+        int spp = cam.SamplesPerPixel;
+        int strata = (int)Math.Ceiling(Math.Sqrt(spp));
+        float inv = 1f / spp;
+
+        Parallel.For(0, tiles, new ParallelOptions { MaxDegreeOfParallelism = threads, CancellationToken = cancel },
+            () => new TileState(integrator.ScratchLength, padded),
+            (tile, _, state) =>
+            {
+                int x0 = tile % tilesX * TileSize, y0 = tile / tilesX * TileSize;
+                int x1 = Math.Min(width, x0 + TileSize), y1 = Math.Min(height, y0 + TileSize);
+                var counters = new RayCounters();
+                var sum = state.Sum.AsSpan();
+                var sample = state.Sample.AsSpan();
+                var scratch = state.Scratch.AsSpan();
+                for (int y = y0; y < y1; y++)
+                for (int x = x0; x < x1; x++)
+                {
+                    int id;
+                    if (spp == 1)
+                    {
+                        counters.Primary++;
+                        id = integrator.Radiance(cam.Generate(x + 0.5f, y + 0.5f), 0, -1, sum, scratch, ref counters);
+                    }
+                    else
+                    {
+                        sum.Clear();
+                        for (int s = 0; s < spp; s++)
+                        {
+                            // Stratified jitter: sample s in cell (s mod m, s div m) of an m×m grid.
+                            uint h = Hash((uint)x, (uint)y, (uint)s);
+                            float jx = ((s % strata) + (h & 0xFFFF) / 65536f) / strata;
+                            float jy = ((s / strata % strata) + (h >> 16) / 65536f) / strata;
+                            counters.Primary++;
+                            integrator.Radiance(cam.Generate(x + jx, y + jy), 0, -1, sample, scratch, ref counters);
+                            SpectralMath.AddScaled(sum, sample, inv);
+                        }
+                        counters.Primary++;
+                        var centre = cam.Generate(x + 0.5f, y + 0.5f);
+                        id = integrator.Geometry.Intersect(ref centre, out var hit) ? hit.Object : -1;
+                    }
+                    sum[..bands].CopyTo(image.Data.AsSpan(image.Offset(x, y), bands));
+                    ids[y * width + x] = id;
+                }
+                lock (gate)
+                {
+                    total.Add(counters);
+                    done++;
+                    progress?.Invoke(new RenderProgress(done, tiles, total.Total, clock.Elapsed));
+                }
+                return state;
+            },
+            _ => { });
+
+        return new RenderResult { Image = image, ObjectIds = ids, Rays = total, Elapsed = clock.Elapsed, Threads = threads, Tiles = tiles };
+    }
+
+    sealed class TileState(int scratch, int padded)
+    {
+        public readonly float[] Scratch = new float[scratch];
+        public readonly float[] Sum = new float[padded];
+        public readonly float[] Sample = new float[padded];
+    }
+
+    /// <summary>A small integer hash (lowbias32 by C. Wellons) for per-sample jitter.</summary>
+    static uint Hash(uint x, uint y, uint s)
+    {
+        uint h = x * 0x9E3779B1u ^ (y + 0x7F4A7C15u) * 0x85EBCA77u ^ (s + 1) * 0xC2B2AE3Du;
+        h ^= h >> 16; h *= 0x7FEB352Du; h ^= h >> 15; h *= 0x846CA68Bu; h ^= h >> 16;
+        return h;
+    }
+}

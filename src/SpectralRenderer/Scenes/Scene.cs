@@ -1,0 +1,58 @@
+using SpectralRenderer.Color;
+using SpectralRenderer.Spectra;
+
+namespace SpectralRenderer.Scenes;
+
+/// <summary>A named object: a shape (analytic or mesh) with a material.</summary>
+public sealed class SceneObject
+{
+    public required string Name { get; init; }
+    public required int Material { get; init; }
+    public Geometry.AnalyticShape? Shape { get; init; }
+}
+
+/// <summary>Output choices of a render (the scene's "output" block, overridable on the command line).</summary>
+public sealed class OutputOptions
+{
+    public RgbSpace Rgb { get; set; } = RgbSpace.Srgb;
+    public double Exposure { get; set; } = 1.0;
+    /// <summary>Bradford-adapt from the scene's reference white to the RGB space's white (off by default: §3.3 is about seeing the light's colour).</summary>
+    public bool Adapt { get; set; }
+    public HashSet<string> Formats { get; set; } = new(OutputFormats.Default, StringComparer.Ordinal);
+}
+
+public static class OutputFormats
+{
+    public static readonly string[] All = ["png", "bands", "exr", "envi", "npy", "aov"];
+    public static readonly string[] Default = ["png", "bands", "exr", "envi", "npy", "aov"];
+}
+
+/// <summary>
+/// The resolved scene: every spectrum already turned into band values on the scene's band grid,
+/// ready for the <see cref="Rendering.WhittedIntegrator"/>.
+/// </summary>
+public sealed class Scene
+{
+    public required string SourcePath { get; init; }
+    public required BandGrid Grid { get; init; }
+    public required BandIntegration Integration { get; init; }
+    public required Observer Observer { get; init; }
+    public required TabulatedSpectrum ReferenceWhite { get; init; }
+    public required Colorimeter Colorimeter { get; init; }
+    public required Camera Camera { get; set; }
+    public required List<Material> Materials { get; init; }
+    public required List<Light> Lights { get; init; }
+    public required List<SceneObject> Objects { get; init; }
+    /// <summary>Radiance of rays that escape, band values.</summary>
+    public required float[] Background { get; init; }
+    /// <summary>a_glob of eq. 2.</summary>
+    public required float[] GlobalAmbient { get; init; }
+    public bool HasGlobalAmbient { get; init; }
+    public int MaxDepth { get; init; } = 5;
+    public required OutputOptions Output { get; init; }
+    /// <summary>The resolved scene as JSON (for render.json).</summary>
+    public System.Text.Json.Nodes.JsonObject? Resolved { get; init; }
+
+    public int Bands => Grid.Count;
+    public int PaddedBands => Rendering.SpectralMath.Padded(Grid.Count);
+}

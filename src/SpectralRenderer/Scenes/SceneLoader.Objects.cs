@@ -1,0 +1,200 @@
+using System.Numerics;
+using System.Text.Json;
+using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Geometry;
+using SpectralRenderer.Spectra;
+
+namespace SpectralRenderer.Scenes;
+
+public sealed partial class SceneLoader
+{
+    static readonly string[] ObjectTypes = ["sphere", "plane", "quad", "box", "mesh", "colorchecker"];
+
+    void ParseObject(JsonElement e, string path, int index, List<SceneObject> objects, List<Material> materials, Dictionary<string, int> materialIndex)
+    {
+        Object(e, path);
+        var type = String(Required(e, "type", path), $"{path}.type").ToLowerInvariant();
+        if (Array.IndexOf(ObjectTypes, type) < 0)
+            throw Error($"{path}.type", $"unknown object type '{type}'", InputException.DidYouMean(type, ObjectTypes) ?? $"types: {string.Join(", ", ObjectTypes)}");
+        string[] common = ["type", "name", "material", "transform"];
+        string[] specific = type switch
+        {
+            "sphere" => ["center", "radius"],
+            "plane" => ["point", "normal"],
+            "quad" => ["center", "size", "normal", "up"],
+            "box" => ["center", "size", "min", "max"],
+            "mesh" => ["file", "fit", "shading", "normals"],
+            _ => ["center", "normal", "up", "patch_size", "gap", "frame"],
+        };
+        Keys(e, path, [.. common, .. specific]);
+        var name = TryGet(e, "name", out var n) ? String(n, $"{path}.name") : type == "colorchecker" ? "patch" : $"{type}-{index}";
+        var user = TryGet(e, "transform", out var t) ? Transform(t, $"{path}.transform") : Matrix4x4.Identity;
+
+        if (type == "colorchecker") { ColorCheckerChart(e, path, name, user, objects, materials); return; }
+        if (type == "mesh") { objects.Add(MeshObject(e, path, name, user, MaterialOf(e, path, materials, materialIndex))); return; }
+
+        int material = MaterialOf(e, path, materials, materialIndex);
+        Matrix4x4 local;
+        ShapeKind kind;
+        switch (type)
+        {
+            case "sphere":
+            {
+                float r = (float)Number(e, "radius", path, 1, 1e-9);
+                local = Matrix4x4.CreateScale(r) * Matrix4x4.CreateTranslation(Vec3(e, "center", path, Vector3.Zero));
+                kind = ShapeKind.Sphere;
+                break;
+            }
+            case "plane":
+            {
+                var normal = TryGet(e, "normal", out var nn) ? Direction(nn, $"{path}.normal") : Vector3.UnitY;
+                local = Basis(normal, Vector3.UnitY, axisIsY: true) * Matrix4x4.CreateTranslation(Vec3(e, "point", path, Vector3.Zero));
+                kind = ShapeKind.Plane;
+                break;
+            }
+            case "quad":
+            {
+                var size = Size2(e, path);
+                var normal = TryGet(e, "normal", out var nn) ? Direction(nn, $"{path}.normal") : Vector3.UnitZ;
+                var up = TryGet(e, "up", out var u) ? Direction(u, $"{path}.up") : Vector3.UnitY;
+                local = Matrix4x4.CreateScale(size.X, size.Y, 1) * Basis(normal, up, axisIsY: false, path: $"{path}.up") * Matrix4x4.CreateTranslation(Vec3(e, "center", path, Vector3.Zero));
+                kind = ShapeKind.Quad;
+                break;
+            }
+            default:
+            {
+                Vector3 centre, size;
+                if (TryGet(e, "min", out var mn) || TryGet(e, "max", out _))
+                {
+                    var lo = Vec3(Required(e, "min", path), $"{path}.min");
+                    var hi = Vec3(Required(e, "max", path), $"{path}.max");
+                    centre = 0.5f * (lo + hi);
+                    size = hi - lo;
+                    _ = mn;
+                }
+                else
+                {
+                    centre = Vec3(e, "center", path, Vector3.Zero);
+                    size = Vec3(e, "size", path, Vector3.One);
+                }
+                if (size.X <= 0 || size.Y <= 0 || size.Z <= 0) throw Error($"{path}.size", "a box needs a positive size on every axis");
+                local = Matrix4x4.CreateScale(size) * Matrix4x4.CreateTranslation(centre);
+                kind = ShapeKind.Box;
+                break;
+            }
+        }
+        objects.Add(new SceneObject { Name = name, Material = material, Shape = new AnalyticShape(kind, local * user) });
+    }
+
+    Vector2 Size2(JsonElement e, string path)
+    {
+        if (!TryGet(e, "size", out var s)) return Vector2.One;
+        if (s.ValueKind == JsonValueKind.Number) { float v = (float)Number(s, $"{path}.size", 1e-9); return new Vector2(v, v); }
+        if (s.ValueKind != JsonValueKind.Array || s.GetArrayLength() != 2) throw Error($"{path}.size", $"expected [width, height], found {Kind(s)}");
+        return new Vector2((float)Number(s[0], $"{path}.size[0]", 1e-9), (float)Number(s[1], $"{path}.size[1]", 1e-9));
+    }
+
+    int MaterialOf(JsonElement e, string path, List<Material> materials, Dictionary<string, int> materialIndex)
+    {
+        var m = Required(e, "material", path);
+        if (m.ValueKind == JsonValueKind.String && materialIndex.TryGetValue(m.GetString()!, out int i)) return i;
+        if (m.ValueKind == JsonValueKind.String && !materialIndex.ContainsKey(m.GetString()!))
+        {
+            var name = m.GetString()!;
+            // A built-in spectrum name stands for a diffuse material of that reflectance.
+            if (name.StartsWith("colorchecker:", StringComparison.OrdinalIgnoreCase) || name.StartsWith("constant:", StringComparison.OrdinalIgnoreCase) || _namedSpectra.ContainsKey(name))
+            {
+                materials.Add(ParseMaterial(m, $"{path}.material", name));
+                return materials.Count - 1;
+            }
+            throw Error($"{path}.material", $"unknown material '{name}'",
+                InputException.DidYouMean(name, materialIndex.Keys) ?? (materialIndex.Count > 0 ? $"materials: {string.Join(", ", materialIndex.Keys)}" : "define it under \"materials\""));
+        }
+        materials.Add(ParseMaterial(m, $"{path}.material", $"{path}.material"));
+        return materials.Count - 1;
+    }
+
+    /// <summary>The Macbeth chart as 24 quads, 4 rows × 6 columns in the standard order, on an optional black frame.</summary>
+    void ColorCheckerChart(JsonElement e, string path, string name, Matrix4x4 user, List<SceneObject> objects, List<Material> materials)
+    {
+        if (TryGet(e, "material", out _)) throw Error($"{path}.material", "a colorchecker chooses its own materials (the 24 Ohta reflectances)");
+        float patch = (float)Number(e, "patch_size", path, 1, 1e-9);
+        float gap = (float)Number(e, "gap", path, 0.2 * patch, 0);
+        var normal = TryGet(e, "normal", out var nn) ? Direction(nn, $"{path}.normal") : Vector3.UnitZ;
+        var up = TryGet(e, "up", out var u) ? Direction(u, $"{path}.up") : Vector3.UnitY;
+        var centre = Vec3(e, "center", path, Vector3.Zero);
+        var basis = Basis(normal, up, axisIsY: false, path: $"{path}.up");
+        float pitch = patch + gap;
+        for (int p = 1; p <= ColorChecker.PatchCount; p++)
+        {
+            int row = (p - 1) / 6, col = (p - 1) % 6;
+            var offset = new Vector3((col - 2.5f) * pitch, (1.5f - row) * pitch, 0);
+            var local = Matrix4x4.CreateScale(patch, patch, 1) * Matrix4x4.CreateTranslation(offset) * basis * Matrix4x4.CreateTranslation(centre);
+            var spectrum = ColorChecker.Patch(p);
+            var bands = Bands(spectrum, $"{path} (patch {p})");
+            materials.Add(MakeMaterial($"colorchecker:{p}", bands, bands, Zero(), 32, SpecularModel.BlinnPhong, Zero(), Zero(), Const(1), false, false, spectrum));
+            objects.Add(new SceneObject { Name = $"{name}-{p:00}", Material = materials.Count - 1, Shape = new AnalyticShape(ShapeKind.Quad, local * user) });
+        }
+        if (TryGet(e, "frame", out var frame) && !(frame.ValueKind == JsonValueKind.False))
+        {
+            var spectrum = frame.ValueKind == JsonValueKind.True ? TabulatedSpectrum.Constant(0.03, "chart frame") : Spectrum(frame, $"{path}.frame");
+            var bands = Bands(spectrum, $"{path}.frame");
+            materials.Add(MakeMaterial($"{name}-frame", bands, bands, Zero(), 32, SpecularModel.BlinnPhong, Zero(), Zero(), Const(1), false, false, spectrum));
+            // Behind the patches by a hair, so the patches win at every pixel they cover.
+            var local = Matrix4x4.CreateScale(6 * pitch + gap, 4 * pitch + gap, 1) * Matrix4x4.CreateTranslation(0, 0, -1e-3f * pitch) * basis * Matrix4x4.CreateTranslation(centre);
+            objects.Add(new SceneObject { Name = $"{name}-frame", Material = materials.Count - 1, Shape = new AnalyticShape(ShapeKind.Quad, local * user) });
+        }
+    }
+
+    /// <summary>A rotation taking the canonical normal (+z, or +y for planes) to <paramref name="normal"/>, with its height axis towards <paramref name="up"/>.</summary>
+    Matrix4x4 Basis(Vector3 normal, Vector3 up, bool axisIsY, string? path = null)
+    {
+        if (axisIsY)
+        {
+            // any orthonormal frame with y = normal
+            var helper = MathF.Abs(normal.X) < 0.9f ? Vector3.UnitX : Vector3.UnitZ;
+            var z = Vector3.Normalize(Vector3.Cross(helper, normal));
+            var x = Vector3.Cross(normal, z);
+            return Rows(x, normal, z);
+        }
+        var xAxis = Vector3.Cross(up, normal);
+        if (xAxis.LengthSquared() < 1e-12f) throw Error(path ?? "$", "up is parallel to the normal", "choose an up vector across the surface");
+        xAxis = Vector3.Normalize(xAxis);
+        var yAxis = Vector3.Cross(normal, xAxis);
+        return Rows(xAxis, yAxis, normal);
+    }
+
+    static Matrix4x4 Rows(Vector3 x, Vector3 y, Vector3 z) => new(
+        x.X, x.Y, x.Z, 0,
+        y.X, y.Y, y.Z, 0,
+        z.X, z.Y, z.Z, 0,
+        0, 0, 0, 1);
+
+    /// <summary>{"translate": [x,y,z], "rotate": [rx,ry,rz] degrees about x then y then z, "scale": s | [sx,sy,sz]}: scale, then rotate, then translate.</summary>
+    Matrix4x4 Transform(JsonElement e, string path)
+    {
+        Object(e, path);
+        Keys(e, path, "translate", "rotate", "scale");
+        var m = Matrix4x4.Identity;
+        if (TryGet(e, "scale", out var s))
+        {
+            if (s.ValueKind == JsonValueKind.Number) m *= Matrix4x4.CreateScale((float)Number(s, $"{path}.scale", 1e-9));
+            else
+            {
+                var v = Vec3(s, $"{path}.scale");
+                if (v.X == 0 || v.Y == 0 || v.Z == 0) throw Error($"{path}.scale", "a zero scale flattens the object", "use a positive or negative scale");
+                m *= Matrix4x4.CreateScale(v);
+            }
+        }
+        if (TryGet(e, "rotate", out var r))
+        {
+            var deg = Vec3(r, $"{path}.rotate") * (MathF.PI / 180);
+            m *= Matrix4x4.CreateRotationX(deg.X) * Matrix4x4.CreateRotationY(deg.Y) * Matrix4x4.CreateRotationZ(deg.Z);
+        }
+        if (TryGet(e, "translate", out var tr)) m *= Matrix4x4.CreateTranslation(Vec3(tr, $"{path}.translate"));
+        return m;
+    }
+
+    SceneObject MeshObject(JsonElement e, string path, string name, Matrix4x4 user, int material) =>
+        throw Error($"{path}.type", "mesh objects are not supported yet");
+}

@@ -1,0 +1,242 @@
+using System.Globalization;
+using System.Numerics;
+using System.Text.Json;
+using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Geometry;
+using SpectralRenderer.Rendering;
+using SpectralRenderer.Spectra;
+
+namespace SpectralRenderer.Scenes;
+
+public sealed partial class SceneLoader
+{
+    // ---- spectra --------------------------------------------------------------------------------
+
+    /// <summary>
+    /// A spectrum value: a number (constant), a name (the scene's "spectra" first, then built-ins and
+    /// file.csv:column), inline pairs [[λ, v], …], or an object {name|csv+column|values, scale, extrapolate}.
+    /// </summary>
+    TabulatedSpectrum Spectrum(JsonElement e, string path, int depth = 0)
+    {
+        if (depth > 16) throw Error(path, "spectrum names refer to each other in a cycle");
+        TabulatedSpectrum s;
+        switch (e.ValueKind)
+        {
+            case JsonValueKind.Number:
+                s = TabulatedSpectrum.Constant(Number(e, path, 0), $"constant:{e.GetRawText()}");
+                break;
+            case JsonValueKind.String:
+            {
+                var name = e.GetString()!;
+                if (_resolvedNamed.TryGetValue(name, out var cached)) return cached;
+                if (_namedSpectra.TryGetValue(name, out var named))
+                {
+                    s = Spectrum(named.Element, named.Path, depth + 1);
+                    s = new TabulatedSpectrum(name, s.Wavelengths.ToArray(), s.Values.ToArray(), s.Extrapolation);
+                    _resolvedNamed[name] = s;
+                    return s;
+                }
+                try { s = SpectrumLibrary.Resolve(name, _dir, Where(path)); }
+                catch (InputException ex) when (ex.What.StartsWith("unknown spectrum", StringComparison.Ordinal))
+                {
+                    throw Error(path, $"unknown spectrum '{name}'",
+                        InputException.DidYouMean(name, _namedSpectra.Keys.Concat(SpectrumLibrary.KnownNames)) ??
+                        "name one in \"spectra\", a built-in (D65, A, FL11, led-blue, colorchecker:14, …) or file.csv:column");
+                }
+                break;
+            }
+            case JsonValueKind.Array:
+                s = Inline(e, path);
+                break;
+            case JsonValueKind.Object:
+            {
+                Keys(e, path, "name", "csv", "column", "values", "constant", "scale", "extrapolate");
+                int given = (TryGet(e, "name", out _) ? 1 : 0) + (TryGet(e, "csv", out _) ? 1 : 0) + (TryGet(e, "values", out _) ? 1 : 0) + (TryGet(e, "constant", out _) ? 1 : 0);
+                if (given != 1) throw Error(path, "a spectrum object needs exactly one of name, csv (+ column), values, constant");
+                if (TryGet(e, "name", out var n)) s = Spectrum(n, $"{path}.name", depth + 1);
+                else if (TryGet(e, "values", out var v)) s = Inline(v, $"{path}.values");
+                else if (TryGet(e, "constant", out var c)) s = TabulatedSpectrum.Constant(Number(c, $"{path}.constant", 0));
+                else
+                {
+                    var csv = String(Required(e, "csv", path), $"{path}.csv");
+                    var column = String(Required(e, "column", path), $"{path}.column");
+                    s = SpectrumLibrary.Resolve($"{csv}:{column}", _dir, Where(path));
+                }
+                if (TryGet(e, "extrapolate", out var x))
+                {
+                    var policy = String(x, $"{path}.extrapolate").ToLowerInvariant() switch
+                    {
+                        "clamp" => Extrapolation.Clamp,
+                        "zero" => Extrapolation.Zero,
+                        "error" or "none" => Extrapolation.Error,
+                        var other => throw Error($"{path}.extrapolate", $"unknown extrapolation '{other}'", "use clamp, zero or error"),
+                    };
+                    s = s.WithExtrapolation(policy);
+                }
+                if (TryGet(e, "scale", out var sc)) s = s.Scaled(Number(sc, $"{path}.scale", 0));
+                break;
+            }
+            default:
+                throw Error(path, $"expected a spectrum (a name, a number, [[λ, v], …] or an object), found {Kind(e)}");
+        }
+        return s;
+    }
+
+    TabulatedSpectrum Inline(JsonElement e, string path)
+    {
+        int n = e.GetArrayLength();
+        if (n < 2) throw Error(path, "an inline spectrum needs at least two [λ, v] pairs");
+        var wl = new double[n];
+        var v = new double[n];
+        for (int i = 0; i < n; i++)
+        {
+            var pair = e[i];
+            string p = $"{path}[{i}]";
+            if (pair.ValueKind != JsonValueKind.Array || pair.GetArrayLength() != 2) throw Error(p, $"expected a pair [wavelength_nm, value], found {Kind(pair)}");
+            wl[i] = Number(pair[0], $"{p}[0]", 1e-9);
+            v[i] = Number(pair[1], $"{p}[1]");
+            if (v[i] < 0) throw Error($"{p}[1]", $"negative value {v[i].ToString(CultureInfo.InvariantCulture)}", "reflectances and powers cannot be negative");
+            if (i > 0 && wl[i] <= wl[i - 1]) throw Error($"{p}[0]", $"wavelength {wl[i].ToString(CultureInfo.InvariantCulture)} nm does not follow {wl[i - 1].ToString(CultureInfo.InvariantCulture)} nm", "list the pairs in strictly ascending wavelength");
+        }
+        return new TabulatedSpectrum($"inline@{path}", wl, v);
+    }
+
+    /// <summary>A spectrum as padded band values on the scene's grid (the scheme's projection).</summary>
+    float[] Bands(JsonElement e, string path) => Bands(Spectrum(e, path), path);
+
+    float[] Bands(TabulatedSpectrum s, string path)
+    {
+        if (!s.Covers(_grid.Start, _grid.End))
+            throw Error(path, $"spectrum '{s.Name}' covers {s.First:0.###}–{s.Last:0.###} nm but the bands need {_grid.Start:0.###}–{_grid.End:0.###} nm",
+                "choose bands inside its range or give it \"extrapolate\": \"clamp\" or \"zero\"");
+        return SpectralMath.ToPadded(_colorimeter!.Project(s));
+    }
+
+    float[] OptionalBands(JsonElement obj, string name, string path, float[]? fallback = null) =>
+        TryGet(obj, name, out var v) ? Bands(v, $"{path}.{name}") : fallback ?? new float[SpectralMath.Padded(_grid.Count)];
+
+    // ---- materials ------------------------------------------------------------------------------
+
+    Material ParseMaterial(JsonElement e, string path, string name)
+    {
+        if (e.ValueKind == JsonValueKind.String || e.ValueKind == JsonValueKind.Number || e.ValueKind == JsonValueKind.Array)
+        {   // shorthand: a bare spectrum is a diffuse material
+            var d = Spectrum(e, path);
+            var bands = Bands(d, path);
+            return MakeMaterial(name, bands, bands, Zero(), 32, SpecularModel.BlinnPhong, Zero(), Zero(), Const(1), false, false, d);
+        }
+        Object(e, path);
+        Keys(e, path, "diffuse", "ambient", "specular", "shininess", "model", "mirror", "transmit", "ior", "fresnel");
+        TabulatedSpectrum? diffuseSpectrum = TryGet(e, "diffuse", out var ds) ? Spectrum(ds, $"{path}.diffuse") : null;
+        var diffuse = diffuseSpectrum is null ? Zero() : Bands(diffuseSpectrum, $"{path}.diffuse");
+        var ambient = OptionalBands(e, "ambient", path, diffuse);  // m_amb defaults to m_diff
+        var specular = OptionalBands(e, "specular", path);
+        float shininess = (float)Number(e, "shininess", path, 32, 0, 1e6);
+        var model = SpecularModel.BlinnPhong;
+        if (TryGet(e, "model", out var m))
+            model = String(m, $"{path}.model").ToLowerInvariant() switch
+            {
+                "blinn-phong" or "blinn" => SpecularModel.BlinnPhong,
+                "phong" => SpecularModel.Phong,
+                var other => throw Error($"{path}.model", $"unknown specular model '{other}'", "use blinn-phong or phong"),
+            };
+        var mirror = OptionalBands(e, "mirror", path);
+        var transmit = OptionalBands(e, "transmit", path);
+        float[] ior = Const(1.5f);
+        bool dispersive = false;
+        if (TryGet(e, "ior", out var iorE))
+        {
+            if (iorE.ValueKind == JsonValueKind.Number) ior = Const((float)Number(iorE, $"{path}.ior", 1e-3, 100));
+            else if (iorE.ValueKind == JsonValueKind.Object)
+            {
+                Keys(iorE, $"{path}.ior", "cauchy");
+                var c = Required(iorE, "cauchy", $"{path}.ior");
+                if (c.ValueKind != JsonValueKind.Array || c.GetArrayLength() != 2) throw Error($"{path}.ior.cauchy", "expected [A, B] with n(λ) = A + B/λ², λ in nm (B in nm²)");
+                double a = Number(c[0], $"{path}.ior.cauchy[0]", 1e-3, 100), b = Number(c[1], $"{path}.ior.cauchy[1]", -1e7, 1e7);
+                ior = new float[SpectralMath.Padded(_grid.Count)];
+                for (int i = 0; i < _grid.Count; i++) { double l = _grid.Centre(i); ior[i] = (float)(a + b / (l * l)); }
+                dispersive = b != 0 && _grid.Count > 1;
+            }
+            else throw Error($"{path}.ior", $"expected a number or {{\"cauchy\": [A, B]}}, found {Kind(iorE)}");
+        }
+        bool fresnel = Bool(e, "fresnel", path, false);
+        return MakeMaterial(name, ambient, diffuse, specular, shininess, model, mirror, transmit, ior, dispersive, fresnel, diffuseSpectrum);
+    }
+
+    Material MakeMaterial(string name, float[] ambient, float[] diffuse, float[] specular, float shininess, SpecularModel model,
+        float[] mirror, float[] transmit, float[] ior, bool dispersive, bool fresnel, TabulatedSpectrum? diffuseSpectrum) => new()
+    {
+        Name = name, Ambient = ambient, Diffuse = diffuse, Specular = specular, Shininess = shininess, Model = model,
+        Mirror = mirror, Transmit = transmit, Ior = ior, Dispersive = dispersive, Fresnel = fresnel, DiffuseSpectrum = diffuseSpectrum,
+        HasAmbient = SpectralMath.Any(ambient), HasSpecular = SpectralMath.Any(specular),
+        HasMirror = SpectralMath.Any(mirror), HasTransmission = SpectralMath.Any(transmit),
+    };
+
+    float[] Zero() => new float[SpectralMath.Padded(_grid.Count)];
+    float[] Const(float v)
+    {
+        var a = new float[SpectralMath.Padded(_grid.Count)];
+        Array.Fill(a, v, 0, _grid.Count);
+        return a;
+    }
+
+    // ---- lights ---------------------------------------------------------------------------------
+
+    static readonly string[] LightTypes = ["point", "spot", "directional"];
+
+    Light ParseLight(JsonElement e, string path, int index)
+    {
+        Object(e, path);
+        var type = String(Required(e, "type", path), $"{path}.type").ToLowerInvariant();
+        if (Array.IndexOf(LightTypes, type) < 0)
+            throw Error($"{path}.type", $"unknown light type '{type}'", InputException.DidYouMean(type, LightTypes) ?? "use point, spot or directional");
+        var common = new[] { "type", "name", "spectrum", "intensity", "ambient", "attenuation" };
+        string[] specific = type switch
+        {
+            "point" => ["position"],
+            "spot" => ["position", "direction", "look_at", "cutoff", "exponent"],
+            _ => ["direction"],
+        };
+        Keys(e, path, [.. common, .. specific]);
+        var name = TryGet(e, "name", out var n) ? String(n, $"{path}.name") : $"light-{index}";
+        var spectrum = Spectrum(Required(e, "spectrum", path), $"{path}.spectrum");
+        float intensity = (float)Number(e, "intensity", path, 1, 0);
+        var bands = Bands(spectrum, $"{path}.spectrum");
+        for (int i = 0; i < bands.Length; i++) bands[i] *= intensity;
+        var ambient = OptionalBands(e, "ambient", path);
+        float c0 = 1, c1 = 0, c2 = 0;
+        if (TryGet(e, "attenuation", out var att))
+        {
+            if (att.ValueKind != JsonValueKind.Array || att.GetArrayLength() != 3) throw Error($"{path}.attenuation", "expected [c0, c1, c2] with d = 1/(c0 + c1·r + c2·r²)");
+            c0 = (float)Number(att[0], $"{path}.attenuation[0]", 0);
+            c1 = (float)Number(att[1], $"{path}.attenuation[1]", 0);
+            c2 = (float)Number(att[2], $"{path}.attenuation[2]", 0);
+            if (c0 + c1 + c2 <= 0) throw Error($"{path}.attenuation", "all attenuation coefficients are zero", "use [1, 0, 0] for no attenuation");
+        }
+        Vector3 position = default, direction = default;
+        float cosCutoff = -1, exponent = 0;
+        if (type != "directional") position = Vec3(Required(e, "position", path), $"{path}.position");
+        if (type == "directional") direction = Direction(Required(e, "direction", path), $"{path}.direction");
+        if (type == "spot")
+        {
+            if (TryGet(e, "direction", out var d)) direction = Direction(d, $"{path}.direction");
+            else if (TryGet(e, "look_at", out var la)) direction = Vector3.Normalize(Vec3(la, $"{path}.look_at") - position);
+            else throw Error($"{path}.direction", "a spot light needs a direction or look_at");
+            cosCutoff = MathF.Cos((float)Number(e, "cutoff", path, 30, 0, 180) * MathF.PI / 180);
+            exponent = (float)Number(e, "exponent", path, 0, 0, 1e6);
+        }
+        return new Light
+        {
+            Name = name, Kind = type switch { "point" => LightKind.Point, "spot" => LightKind.Spot, _ => LightKind.Directional },
+            Position = position, Direction = direction, Intensity = bands, Ambient = ambient, HasAmbient = SpectralMath.Any(ambient),
+            C0 = c0, C1 = c1, C2 = c2, CosCutoff = cosCutoff, SpotExponent = exponent, Spectrum = spectrum,
+        };
+    }
+
+    Vector3 Direction(JsonElement e, string path)
+    {
+        var v = Vec3(e, path);
+        if (v.LengthSquared() == 0) throw Error(path, "the direction is the zero vector");
+        return Vector3.Normalize(v);
+    }
+}

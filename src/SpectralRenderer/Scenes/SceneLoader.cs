@@ -1,0 +1,343 @@
+using System.Globalization;
+using System.Numerics;
+using System.Text.Json;
+using System.Text.Json.Nodes;
+using SpectralRenderer.Color;
+using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Geometry;
+using SpectralRenderer.Rendering;
+using SpectralRenderer.Spectra;
+
+namespace SpectralRenderer.Scenes;
+
+/// <summary>
+/// Reads a scene file (docs/scene-format.md): JSON with comments and trailing commas. Every error
+/// is one line naming file:line:column and the JSON path, what is wrong, and a hint.
+/// </summary>
+public sealed partial class SceneLoader
+{
+    public const int MaxResolution = 32768;
+    static readonly JsonReaderOptions ReaderOptions = new() { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true };
+
+    readonly string _file;
+    readonly string _dir;
+    readonly JsonLocator _locator;
+    readonly SceneOverrides _overrides;
+    readonly Dictionary<string, (JsonElement Element, string Path)> _namedSpectra = new(StringComparer.Ordinal);
+    readonly Dictionary<string, TabulatedSpectrum> _resolvedNamed = new(StringComparer.Ordinal);
+    BandGrid _grid = BandGrid.Default;
+    Colorimeter? _colorimeter;
+
+    SceneLoader(string file, JsonLocator locator, SceneOverrides overrides)
+    {
+        _file = file;
+        _dir = Path.GetDirectoryName(Path.GetFullPath(file))!;
+        _locator = locator;
+        _overrides = overrides;
+    }
+
+    public static Scene Load(string path, SceneOverrides? overrides = null)
+    {
+        byte[] bytes;
+        try { bytes = File.ReadAllBytes(path); }
+        catch (FileNotFoundException) { throw new InputException(path, "scene file not found", "check the path"); }
+        catch (DirectoryNotFoundException) { throw new InputException(path, "scene file not found", "check the path"); }
+        catch (UnauthorizedAccessException e) { throw new InputException(path, $"cannot be read: {e.Message}"); }
+        return Parse(bytes, path, overrides ?? new SceneOverrides());
+    }
+
+    public static Scene Parse(byte[] utf8, string path, SceneOverrides? overrides = null)
+    {
+        var span = utf8.AsSpan();
+        if (span.StartsWith((ReadOnlySpan<byte>)[0xEF, 0xBB, 0xBF])) span = span[3..];
+        JsonDocument doc;
+        try
+        {
+            doc = JsonDocument.Parse(span.ToArray(), new JsonDocumentOptions { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true });
+        }
+        catch (JsonException e)
+        {
+            string msg = e.Message;
+            int cut = msg.IndexOf(" LineNumber:", StringComparison.Ordinal);
+            if (cut > 0) msg = msg[..cut].TrimEnd('.', ' ');
+            throw new InputException($"{path}:{(e.LineNumber ?? 0) + 1}:{(e.BytePositionInLine ?? 0) + 1}", $"JSON syntax error: {msg}",
+                "check for a missing comma, quote or bracket just before this place");
+        }
+        using (doc)
+        {
+            var loader = new SceneLoader(path, new JsonLocator(span, ReaderOptions), overrides ?? new SceneOverrides());
+            return loader.Build(doc.RootElement);
+        }
+    }
+
+    // ---- errors -------------------------------------------------------------------------------
+
+    InputException Error(string jsonPath, string what, string? hint = null)
+    {
+        // Point at the nearest located ancestor when the path itself is absent (a missing field).
+        string p = jsonPath;
+        string? pos = _locator.Locate(p);
+        while (pos is null && p.Length > 1)
+        {
+            int cut = Math.Max(p.LastIndexOf('.'), p.LastIndexOf('['));
+            if (cut <= 0) break;
+            p = p[..cut];
+            pos = _locator.Locate(p);
+        }
+        return new InputException(pos is null ? $"{_file}: {jsonPath}" : $"{_file}:{pos}: {jsonPath}", what, hint);
+    }
+
+    static string Kind(JsonElement e) => e.ValueKind switch
+    {
+        JsonValueKind.Object => "an object",
+        JsonValueKind.Array => "an array",
+        JsonValueKind.String => "a string",
+        JsonValueKind.Number => "a number",
+        JsonValueKind.True or JsonValueKind.False => "a boolean",
+        _ => "null",
+    };
+
+    void Keys(JsonElement obj, string path, params string[] allowed)
+    {
+        foreach (var p in obj.EnumerateObject())
+            if (Array.IndexOf(allowed, p.Name) < 0)
+                throw Error($"{path}.{p.Name}", $"unknown field '{p.Name}'",
+                    InputException.DidYouMean(p.Name, allowed) ?? $"allowed here: {string.Join(", ", allowed)}");
+    }
+
+    JsonElement Object(JsonElement e, string path)
+    {
+        if (e.ValueKind != JsonValueKind.Object) throw Error(path, $"expected an object, found {Kind(e)}");
+        return e;
+    }
+
+    static bool TryGet(JsonElement obj, string name, out JsonElement value) => obj.TryGetProperty(name, out value) && value.ValueKind != JsonValueKind.Null;
+
+    JsonElement Required(JsonElement obj, string name, string path)
+    {
+        if (!TryGet(obj, name, out var v)) throw Error($"{path}.{name}", $"missing required field '{name}'");
+        return v;
+    }
+
+    double Number(JsonElement e, string path, double min = double.NegativeInfinity, double max = double.PositiveInfinity)
+    {
+        if (e.ValueKind != JsonValueKind.Number) throw Error(path, $"expected a number, found {Kind(e)}");
+        double v = e.GetDouble();
+        if (!double.IsFinite(v) || v < min || v > max)
+            throw Error(path, $"{v.ToString(CultureInfo.InvariantCulture)} is out of range", $"expected {min.ToString(CultureInfo.InvariantCulture)} to {max.ToString(CultureInfo.InvariantCulture)}");
+        return v;
+    }
+
+    double Number(JsonElement obj, string name, string path, double fallback, double min = double.NegativeInfinity, double max = double.PositiveInfinity) =>
+        TryGet(obj, name, out var v) ? Number(v, $"{path}.{name}", min, max) : fallback;
+
+    int Integer(JsonElement obj, string name, string path, int fallback, int min, int max)
+    {
+        if (!TryGet(obj, name, out var v)) return fallback;
+        if (v.ValueKind != JsonValueKind.Number || !v.TryGetInt32(out int i)) throw Error($"{path}.{name}", $"expected a whole number, found {(v.ValueKind == JsonValueKind.Number ? v.GetRawText() : Kind(v))}");
+        if (i < min || i > max) throw Error($"{path}.{name}", $"{i} is out of range", $"expected {min} to {max}");
+        return i;
+    }
+
+    string String(JsonElement e, string path)
+    {
+        if (e.ValueKind != JsonValueKind.String) throw Error(path, $"expected a string, found {Kind(e)}");
+        return e.GetString()!;
+    }
+
+    bool Bool(JsonElement obj, string name, string path, bool fallback)
+    {
+        if (!TryGet(obj, name, out var v)) return fallback;
+        if (v.ValueKind is not (JsonValueKind.True or JsonValueKind.False)) throw Error($"{path}.{name}", $"expected true or false, found {Kind(v)}");
+        return v.GetBoolean();
+    }
+
+    Vector3 Vec3(JsonElement obj, string name, string path, Vector3 fallback)
+    {
+        if (!TryGet(obj, name, out var v)) return fallback;
+        return Vec3(v, $"{path}.{name}");
+    }
+
+    Vector3 Vec3(JsonElement v, string path)
+    {
+        if (v.ValueKind != JsonValueKind.Array || v.GetArrayLength() != 3)
+            throw Error(path, $"expected [x, y, z], found {Kind(v)}");
+        return new Vector3((float)Number(v[0], $"{path}[0]"), (float)Number(v[1], $"{path}[1]"), (float)Number(v[2], $"{path}[2]"));
+    }
+
+    // ---- the scene ----------------------------------------------------------------------------
+
+    static readonly string[] TopKeys = ["name", "description", "bands", "integration", "observer", "white", "spectra", "materials", "lights", "objects", "background", "ambient", "max_depth", "camera", "output"];
+
+    Scene Build(JsonElement root)
+    {
+        Object(root, "$");
+        Keys(root, "$", TopKeys);
+
+        _grid = _overrides.Bands is { } b ? BandGrid.Parse(b) :
+            TryGet(root, "bands", out var bands) ? ParseGrid(bands, "$.bands") : BandGrid.Default;
+        var integration = ParseIntegration(_overrides.Integration, root);
+        var observer = TryGet(root, "observer", out var obs)
+            ? Observer.FromDegrees(obs.ValueKind == JsonValueKind.Number ? obs.GetRawText() : obs.ValueKind == JsonValueKind.String ? obs.GetString()! : "?", Where("$.observer"))
+            : Observer.Cie1931;
+
+        if (TryGet(root, "spectra", out var spectra))
+            foreach (var p in Object(spectra, "$.spectra").EnumerateObject())
+                _namedSpectra[p.Name] = (p.Value, $"$.spectra.{p.Name}");
+
+        // The reference white fixes κ (eq. 3): the named one, else the first light's spectrum, else D65.
+        TabulatedSpectrum white;
+        if (TryGet(root, "white", out var w)) white = Spectrum(w, "$.white");
+        else if (TryGet(root, "lights", out var ls) && ls.ValueKind == JsonValueKind.Array && ls.GetArrayLength() > 0 &&
+                 ls[0].ValueKind == JsonValueKind.Object && TryGet(ls[0], "spectrum", out var ls0)) white = Spectrum(ls0, "$.lights[0].spectrum");
+        else white = SpectrumLibrary.Resolve("D65");
+        _colorimeter = new Colorimeter(_grid, observer, white, integration);
+
+        var camera = ParseCamera(Required(root, "camera", "$"), "$.camera");
+        var materials = new List<Material>();
+        var materialIndex = new Dictionary<string, int>(StringComparer.Ordinal);
+        if (TryGet(root, "materials", out var mats))
+            foreach (var p in Object(mats, "$.materials").EnumerateObject())
+            {
+                materialIndex[p.Name] = materials.Count;
+                materials.Add(ParseMaterial(p.Value, $"$.materials.{p.Name}", p.Name));
+            }
+
+        var lights = new List<Light>();
+        if (TryGet(root, "lights", out var lightArray))
+        {
+            if (lightArray.ValueKind != JsonValueKind.Array) throw Error("$.lights", $"expected an array of lights, found {Kind(lightArray)}");
+            int i = 0;
+            foreach (var l in lightArray.EnumerateArray()) { lights.Add(ParseLight(l, $"$.lights[{i}]", i)); i++; }
+        }
+
+        var objects = new List<SceneObject>();
+        var objectsElement = Required(root, "objects", "$");
+        if (objectsElement.ValueKind != JsonValueKind.Array) throw Error("$.objects", $"expected an array of objects, found {Kind(objectsElement)}");
+        {
+            int i = 0;
+            foreach (var o in objectsElement.EnumerateArray()) { ParseObject(o, $"$.objects[{i}]", i, objects, materials, materialIndex); i++; }
+        }
+        var names = new HashSet<string>(StringComparer.Ordinal);
+        foreach (var o in objects)
+            if (!names.Add(o.Name)) throw Error("$.objects", $"two objects are named '{o.Name}'", "object names must be unique (they label the object-id image)");
+
+        var output = ParseOutput(root);
+        int depth = Integer(root, "max_depth", "$", 5, 0, 64);
+        var background = TryGet(root, "background", out var bg) ? Bands(bg, "$.background") : new float[SpectralMath.Padded(_grid.Count)];
+        bool hasAmbient = TryGet(root, "ambient", out var amb);
+        var ambient = hasAmbient ? Bands(amb, "$.ambient") : new float[SpectralMath.Padded(_grid.Count)];
+
+        CheckFramebuffer(camera);
+
+        return new Scene
+        {
+            SourcePath = Path.GetFullPath(_file),
+            Grid = _grid,
+            Integration = integration,
+            Observer = observer,
+            ReferenceWhite = white,
+            Colorimeter = _colorimeter,
+            Camera = camera,
+            Materials = materials,
+            Lights = lights,
+            Objects = objects,
+            Background = background,
+            GlobalAmbient = ambient,
+            HasGlobalAmbient = hasAmbient && SpectralMath.Any(ambient),
+            MaxDepth = depth,
+            Output = output,
+            Resolved = JsonNode.Parse(root.GetRawText(), documentOptions: new JsonDocumentOptions { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true }) as JsonObject,
+        };
+    }
+
+    string Where(string path) => _locator.Locate(path) is { } pos ? $"{_file}:{pos}: {path}" : $"{_file}: {path}";
+
+    BandGrid ParseGrid(JsonElement e, string path)
+    {
+        if (e.ValueKind != JsonValueKind.String) throw Error(path, $"expected a string such as \"380:780:20\", found {Kind(e)}");
+        return BandGrid.Parse(e.GetString()!, Where(path));
+    }
+
+    BandIntegration ParseIntegration(string? fromCli, JsonElement root)
+    {
+        if (fromCli is not null) return ParseIntegration(fromCli, "--integration");
+        if (!TryGet(root, "integration", out var e)) return BandIntegration.Weighted;
+        return ParseIntegration(String(e, "$.integration"), Where("$.integration"));
+    }
+
+    static BandIntegration ParseIntegration(string s, string where) => s.ToLowerInvariant() switch
+    {
+        "weighted" => BandIntegration.Weighted,
+        "paper" => BandIntegration.Paper,
+        _ => throw new InputException(where, $"unknown band integration '{s}'", "use weighted or paper"),
+    };
+
+    void CheckFramebuffer(Camera camera)
+    {
+        long bytes = (long)camera.Width * camera.Height * _grid.Count * sizeof(float);
+        long available = GC.GetGCMemoryInfo().TotalAvailableMemoryBytes;
+        long elements = (long)camera.Width * camera.Height * _grid.Count;
+        if (elements > Array.MaxLength || bytes > available / 2)
+            throw Error("$.camera", $"a {camera.Width}×{camera.Height} framebuffer of {_grid.Count} bands needs {Size(bytes)}, more than this machine can hold ({Size(available)} of memory)",
+                "lower the width, height or band count");
+    }
+
+    static string Size(long bytes) => bytes >= 1L << 30 ? $"{bytes / (double)(1L << 30):0.#} GiB" : $"{bytes / (double)(1L << 20):0.#} MiB";
+
+    Camera ParseCamera(JsonElement e, string path)
+    {
+        Object(e, path);
+        Keys(e, path, "position", "look_at", "up", "fov", "width", "height", "spp");
+        var position = Vec3(Required(e, "position", path), $"{path}.position");
+        var lookAt = Vec3(Required(e, "look_at", path), $"{path}.look_at");
+        var up = Vec3(e, "up", path, Vector3.UnitY);
+        if (lookAt == position) throw Error($"{path}.look_at", "look_at equals position", "the camera needs a direction to look in");
+        if (Vector3.Cross(Vector3.Normalize(lookAt - position), up).LengthSquared() < 1e-12f)
+            throw Error($"{path}.up", "up is parallel to the viewing direction", "choose another up vector");
+        float fov = (float)Number(e, "fov", path, 40, 1e-3, 179);
+        int width = _overrides.Width ?? Integer(e, "width", path, 640, int.MinValue, int.MaxValue);
+        int height = _overrides.Height ?? Integer(e, "height", path, 480, int.MinValue, int.MaxValue);
+        if (width < 1 || height < 1)
+            throw Error(width < 1 ? $"{path}.width" : $"{path}.height", $"resolution {width}×{height} is not positive", "width and height must be at least 1");
+        if (width > MaxResolution || height > MaxResolution)
+            throw Error(width > MaxResolution ? $"{path}.width" : $"{path}.height", $"resolution {width}×{height} exceeds {MaxResolution} pixels on a side");
+        int spp = _overrides.SamplesPerPixel ?? Integer(e, "spp", path, 1, 1, 65536);
+        return new Camera(position, lookAt, up, fov, width, height, spp);
+    }
+
+    OutputOptions ParseOutput(JsonElement root)
+    {
+        var o = new OutputOptions();
+        if (TryGet(root, "output", out var e))
+        {
+            Object(e, "$.output");
+            Keys(e, "$.output", "rgb", "exposure", "adapt", "formats");
+            if (TryGet(e, "rgb", out var rgb)) o.Rgb = RgbSpace.Parse(String(rgb, "$.output.rgb"), Where("$.output.rgb"));
+            o.Exposure = Number(e, "exposure", "$.output", 1.0, 0, 1e12);
+            o.Adapt = Bool(e, "adapt", "$.output", false);
+            if (TryGet(e, "formats", out var f))
+            {
+                if (f.ValueKind != JsonValueKind.Array) throw Error("$.output.formats", $"expected an array of format names, found {Kind(f)}");
+                o.Formats = ParseFormats(f.EnumerateArray().Select((x, i) => String(x, $"$.output.formats[{i}]")), Where("$.output.formats"));
+            }
+        }
+        if (_overrides.Rgb is { } r) o.Rgb = RgbSpace.Parse(r);
+        if (_overrides.Formats is { } fs) o.Formats = ParseFormats(fs.Split(',', StringSplitOptions.RemoveEmptyEntries | StringSplitOptions.TrimEntries), "--formats");
+        return o;
+    }
+
+    public static HashSet<string> ParseFormats(IEnumerable<string> names, string where)
+    {
+        var set = new HashSet<string>(StringComparer.Ordinal);
+        foreach (var n in names)
+        {
+            var f = n.ToLowerInvariant();
+            if (f == "all") { set.UnionWith(OutputFormats.All); continue; }
+            if (Array.IndexOf(OutputFormats.All, f) < 0)
+                throw new InputException(where, $"unknown output format '{n}'", InputException.DidYouMean(n, OutputFormats.All) ?? $"formats: {string.Join(", ", OutputFormats.All)}, all");
+            set.Add(f);
+        }
+        return set;
+    }
+}
