@@ -191,6 +191,10 @@ public sealed partial class SceneLoader
         else if (TryGet(root, "lights", out var ls) && ls.ValueKind == JsonValueKind.Array && ls.GetArrayLength() > 0 &&
                  ls[0].ValueKind == JsonValueKind.Object && TryGet(ls[0], "spectrum", out var ls0)) white = Spectrum(ls0, "$.lights[0].spectrum");
         else white = SpectrumLibrary.Resolve("D65");
+        string whitePath = TryGet(root, "white", out _) ? "$.white" : "$.lights[0].spectrum";
+        if (!white.Covers(_grid.Start, _grid.End))
+            throw Error(whitePath, $"spectrum '{white.Name}' covers {white.First:0.###}–{white.Last:0.###} nm but the bands need {_grid.Start:0.###}–{_grid.End:0.###} nm",
+                "choose bands inside its range or give it \"extrapolate\": \"clamp\" or \"zero\"");
         _colorimeter = new Colorimeter(_grid, observer, white, integration);
 
         var camera = ParseCamera(Required(root, "camera", "$"), "$.camera");

@@ -1,0 +1,74 @@
+using System.Numerics;
+using SpectralRenderer.Color;
+using SpectralRenderer.Rendering;
+using SpectralRenderer.Scenes;
+using SpectralRenderer.Spectra;
+
+namespace SpectralRenderer.Tests.Rendering;
+
+public class RendererTests
+{
+    static string ScenePath(string name)
+    {
+        for (var d = new DirectoryInfo(AppContext.BaseDirectory); d is not null; d = d.Parent)
+        {
+            var p = Path.Combine(d.FullName, "scenes", name);
+            if (File.Exists(p)) return p;
+        }
+        throw new FileNotFoundException(name);
+    }
+
+    [Theory]
+    [InlineData("weighted")]
+    [InlineData("paper")]
+    public void Rendering_the_chart_adds_no_colour_error(string integration)
+    {
+        var scene = SceneLoader.Load(ScenePath("paper-3.1-colorchecker-d65.json"), new SceneOverrides { Width = 180, Height = 120, Integration = integration });
+        var result = Renderer.Render(scene);
+        var c = scene.Colorimeter;
+        int checkedPatches = 0;
+        for (int p = 1; p <= 24; p++)
+        {
+            int obj = scene.Objects.FindIndex(o => o.Name == $"patch-{p:00}");
+            var sum = new double[scene.Bands];
+            int n = 0;
+            for (int i = 0; i < result.ObjectIds.Length; i++)
+            {
+                if (result.ObjectIds[i] != obj) continue;
+                for (int b = 0; b < scene.Bands; b++) sum[b] += result.Image.Data[i * scene.Bands + b];
+                n++;
+            }
+            Assert.True(n > 100, $"patch {p} covers {n} pixels");
+            for (int b = 0; b < sum.Length; b++) sum[b] /= n;
+            var rendered = c.ToXyz(sum);
+            var expected = c.OfReflectance(ColorChecker.Patch(p));
+            Assert.True(Math.Abs(rendered.X / expected.X - 1) < 1e-5 && Math.Abs(rendered.Y / expected.Y - 1) < 1e-5 && Math.Abs(rendered.Z / expected.Z - 1) < 1e-5,
+                $"patch {p}: rendered {rendered} vs {expected}");
+            checkedPatches++;
+        }
+        Assert.Equal(24, checkedPatches);
+    }
+
+    [Fact]
+    public void One_thread_and_all_threads_give_byte_identical_bands()
+    {
+        const string json = """
+        { "bands": "400:700:12",
+          "camera": { "position": [0, 1, 6], "look_at": [0, 0.5, 0], "width": 67, "height": 45, "spp": 3 },
+          "materials": { "glass": { "diffuse": 0.05, "specular": 1, "shininess": 40, "mirror": 0.2, "transmit": 0.7, "ior": { "cauchy": [1.5, 8000] } },
+                         "floor": { "diffuse": "colorchecker:14", "mirror": 0.1 } },
+          "lights": [ { "type": "point", "position": [2, 4, 3], "spectrum": "D65", "intensity": 0.2, "attenuation": [1, 0.1, 0.01] },
+                      { "type": "spot", "position": [-2, 4, 1], "look_at": [0, 0, 0], "cutoff": 25, "exponent": 4, "spectrum": "A", "intensity": 0.1 } ],
+          "ambient": 0.02,
+          "objects": [ { "type": "sphere", "center": [0, 1, 0], "radius": 1, "material": "glass" },
+                       { "type": "plane", "material": "floor" } ],
+          "max_depth": 4 }
+        """;
+        var one = SceneText.Render(json, threads: 1);
+        var all = SceneText.Render(json, threads: Math.Max(2, Environment.ProcessorCount));
+        Assert.Equal(one.Image.Data.Length, all.Image.Data.Length);
+        Assert.True(one.Image.Data.AsSpan().SequenceEqual(all.Image.Data), "band data differ between 1 and N threads");
+        Assert.Equal(one.ObjectIds, all.ObjectIds);
+        Assert.True(one.Image.Max() > 0);
+    }
+}
