@@ -30,6 +30,20 @@ public class EnviTests
     }
 
     [Fact]
+    public void Uneven_grid_comes_back_equal()
+    {
+        var dir = Reference.TempDir();
+        var grid = new BandGrid(400, 700, 31);
+        var img = Synthetic.Image(grid);
+        EnviWriter.Write(Path.Combine(dir, "spectral.img"), img);
+        var back = EnviReader.Read(Path.Combine(dir, "spectral.img"));
+        Assert.Equal(grid, back.Grid);
+        Synthetic.AssertBitExact(img.Data, back.Data, "31 bands");
+        WavelengthsCsv.Write(Path.Combine(dir, "wavelengths.csv"), grid);
+        Assert.Equal(grid, WavelengthsCsv.Read(Path.Combine(dir, "wavelengths.csv")));
+    }
+
+    [Fact]
     public void Header_has_the_ENVI_keys_wavelengths_and_fwhm()
     {
         var h = EnviWriter.Header(Synthetic.Image(), "a {braced} description");

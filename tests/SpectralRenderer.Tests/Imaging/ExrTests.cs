@@ -48,6 +48,28 @@ public class ExrTests
         }
     }
 
+    [Theory]
+    [InlineData(true)]
+    [InlineData(false)]
+    public void Uneven_grid_round_trips_with_or_without_the_edges_attribute(bool keepEdges)
+    {
+        var grid = new BandGrid(400, 700, 31);       // 9.677… nm bands, centres like 404,838710
+        var img = Synthetic.Image(grid);
+        var ms = new MemoryStream();
+        ExrWriter.Write(ms, img, new ExrOptions { Rgb = false });
+        var bytes = ms.ToArray();
+        Assert.Equal("S0.404,838710nm", ExrWriter.SpectralChannelName(grid.Centre(0)));
+        if (!keepEdges)
+        {   // Rename the attribute so the reader must infer the grid from the channel names.
+            int at = ExrTests.IndexOf(bytes, "spectralBandEdges\0"u8);
+            bytes[at] = (byte)'x';
+        }
+        var f = ExrReader.Read(bytes);
+        Assert.Equal(keepEdges, f.StringAttributes.ContainsKey("spectralBandEdges"));
+        Assert.Equal(grid, f.Image.Grid);
+        Synthetic.AssertBitExact(img.Data, f.Image.Data, "31 bands");
+    }
+
     [Fact]
     public void Zip_and_uncompressed_files_read_back_identical()
     {

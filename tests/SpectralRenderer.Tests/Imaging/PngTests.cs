@@ -80,6 +80,18 @@ public class PngTests
     }
 
     [Fact]
+    public void Rgb16_round_trips()
+    {
+        var rgb = new ushort[W * H * 3];
+        for (int i = 0; i < rgb.Length; i++) rgb[i] = (ushort)(i % 3 == 0 ? i * 97 : i % 3 == 1 ? 65535 - i : (i * 40503) & 0xffff);
+        var ms = new MemoryStream();
+        PngWriter.WriteRgb16(ms, W, H, rgb);
+        var png = PngReader.Read(new MemoryStream(ms.ToArray()));
+        Assert.Equal((16, 2, 3), (png.BitDepth, png.ColourType, png.Channels));
+        Assert.Equal(rgb, png.Samples);
+    }
+
+    [Fact]
     public void Gray8_round_trips()
     {
         var g = Gray8();
@@ -116,6 +128,24 @@ public class PngTests
         var e = Assert.Throws<SpectralRenderer.Diagnostics.InputException>(() => PngReader.Read(new MemoryStream(b)));
         Assert.Contains("CRC", e.Message);
         Assert.Throws<SpectralRenderer.Diagnostics.InputException>(() => PngReader.Read(new MemoryStream(b[..50])));
+        // A valid chunk structure around a cut zlib stream.
+        var cut = new MemoryStream();
+        PngWriter.WriteGray8(cut, W, H, Gray8(), filter: PngFilter.None);
+        var c = cut.ToArray();
+        int len = BinaryPrimitives.ReadInt32BigEndian(c.AsSpan(33));
+        var idat = c.AsSpan(41, len / 2).ToArray();
+        var forged = new MemoryStream();
+        forged.Write(c, 0, 33);
+        var head = new byte[8];
+        BinaryPrimitives.WriteInt32BigEndian(head, idat.Length);
+        "IDAT"u8.CopyTo(head.AsSpan(4));
+        forged.Write(head);
+        forged.Write(idat);
+        var crc = new byte[4];
+        BinaryPrimitives.WriteUInt32BigEndian(crc, Crc32.Update(Crc32.Compute("IDAT"u8), idat));
+        forged.Write(crc);
+        forged.Write(c.AsSpan(c.Length - 12));
+        Assert.Contains("truncated or corrupt", Assert.Throws<SpectralRenderer.Diagnostics.InputException>(() => PngReader.Read(new MemoryStream(forged.ToArray()))).Message);
     }
 
     static byte[] Inflate(byte[] png)
