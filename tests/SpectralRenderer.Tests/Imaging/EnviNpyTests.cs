@@ -127,6 +127,9 @@ public class NpyTests
         var back = NpyReader.ReadImage(Path.Combine(dir, "spectral.npy"), grid);
         Synthetic.AssertBitExact(img.Data, back.Data, "NPY");
         Assert.Equal((37, 23), (back.Width, back.Height));
+        var auto = NpyReader.ReadImage(Path.Combine(dir, "spectral.npy"));
+        Assert.Equal(img.Grid, auto.Grid);
+        Synthetic.AssertBitExact(img.Data, auto.Data, "NPY + wavelengths.csv");
     }
 
     [Fact]
