@@ -103,6 +103,9 @@ public static class EnviReader
         return image;
     }
 
+    /// <summary>Rounds a band edge recovered as centre ± width/2 to 1e-9 nm, undoing the last-bit error of the sum.</summary>
+    internal static double Snap(double nm) => Math.Round(nm, 9);
+
     static BandGrid Grid(IReadOnlyDictionary<string, string> h, int bands, string where)
     {
         double[] Numbers(string key) => h.TryGetValue(key, out var v)
@@ -122,7 +125,7 @@ public static class EnviReader
             : bands > 1 ? (centres[^1] - centres[0]) / (bands - 1)
             : throw new InputException(where, "one band and no 'fwhm': the band width is unknown");
         BandGrid grid;
-        try { grid = new BandGrid(centres[0] - width / 2, centres[^1] + (fwhm.Length == bands ? fwhm[^1] : width) / 2, bands); }
+        try { grid = new BandGrid(Snap(centres[0] - width / 2), Snap(centres[^1] + (fwhm.Length == bands ? fwhm[^1] : width) / 2), bands); }
         catch (ArgumentOutOfRangeException e) { throw new InputException(where, $"wavelengths: {e.Message}"); }
         for (int b = 0; b < bands; b++)
             if (Math.Abs(centres[b] - grid.Centre(b)) > 1e-6 * Math.Max(1, grid.Width))

@@ -9,19 +9,20 @@ using SpectralRenderer.Spectra;
 namespace SpectralRenderer.Imaging;
 
 /// <summary>A spectral OpenEXR file read back: the spectral bands, every other channel and the header.</summary>
+/// <param name="Image">The spectral channels as bands, in wavelength order.</param>
+/// <param name="Reflective">True when the bands came from T.&lt;λ&gt;nm (reflective) channels.</param>
+/// <param name="OtherChannels">Non-spectral channels (R, G, B, X, Y, Z, …) as row-major Height × Width planes.</param>
+/// <param name="ChannelTypes">Pixel type of every channel in the file (UINT channels are reported as Float).</param>
+/// <param name="StringAttributes">The string attributes of the header (spectralLayoutVersion, emissiveUnits, …).</param>
+/// <param name="Kappa">The spectralKappa attribute, when present.</param>
+/// <param name="Compression">The compression attribute (0 none, 2 ZIPS, 3 ZIP).</param>
 public sealed record ExrSpectralFile(
     SpectralImage Image,
-    /// <summary>True when the bands came from T.&lt;λ&gt;nm (reflective) channels.</summary>
     bool Reflective,
-    /// <summary>Non-spectral channels (R, G, B, X, Y, Z, …) as row-major Height × Width planes.</summary>
     IReadOnlyDictionary<string, float[]> OtherChannels,
-    /// <summary>Pixel type of every channel in the file.</summary>
     IReadOnlyDictionary<string, ExrPixelType> ChannelTypes,
-    /// <summary>The string attributes of the header (spectralLayoutVersion, emissiveUnits, …).</summary>
     IReadOnlyDictionary<string, string> StringAttributes,
-    /// <summary>The spectralKappa attribute, when present.</summary>
     double? Kappa,
-    /// <summary>The compression attribute (0 none, 2 ZIPS, 3 ZIP).</summary>
     int Compression);
 
 /// <summary>
@@ -244,7 +245,8 @@ public static class ExrReader
         {
             if (n < 2) throw new InputException(where, "one spectral channel and no spectralBandEdges attribute: the band width is unknown");
             double width = (centres[^1] - centres[0]) / (n - 1);
-            try { grid = new BandGrid(centres[0] - width / 2, centres[^1] + width / 2, n); }
+            // Names carry 6 decimals, so the recovered edges are good to ~1e-6 nm: round them to 1e-5 nm.
+            try { grid = new BandGrid(Math.Round(centres[0] - width / 2, 5), Math.Round(centres[^1] + width / 2, 5), n); }
             catch (ArgumentOutOfRangeException e) { throw new InputException(where, $"spectral channels: {e.Message}"); }
         }
         // The channel names carry centres with 6 decimals.

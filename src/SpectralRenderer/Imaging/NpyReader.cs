@@ -15,6 +15,14 @@ public static class NpyReader
     static readonly Regex Fortran = new(@"'fortran_order'\s*:\s*(True|False)", RegexOptions.CultureInvariant);
     static readonly Regex Shape = new(@"'shape'\s*:\s*\(([^)]*)\)", RegexOptions.CultureInvariant);
 
+    /// <summary>Reads an H × W × N array with its band grid from the wavelengths.csv beside it.</summary>
+    public static SpectralImage ReadImage(string path)
+    {
+        var csv = Path.Combine(Path.GetDirectoryName(Path.GetFullPath(path))!, "wavelengths.csv");
+        if (!File.Exists(csv)) throw new InputException(path, "no wavelengths.csv beside the .npy file", "pass the band grid explicitly");
+        return ReadImage(path, WavelengthsCsv.Read(csv));
+    }
+
     /// <summary>Reads an H × W × N array as a <see cref="SpectralImage"/> on <paramref name="grid"/> (N must equal its band count).</summary>
     public static SpectralImage ReadImage(string path, BandGrid grid)
     {

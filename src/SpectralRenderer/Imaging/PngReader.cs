@@ -65,8 +65,9 @@ public static class PngReader
         int channels = type == 2 ? 3 : 1, bpp = channels * depth / 8, rowBytes = width * bpp;
         var raw = new byte[(long)height * rowBytes];
         idat.Position = 0;
-        using (var z = new ZLibStream(idat, CompressionMode.Decompress))
+        try
         {
+            using var z = new ZLibStream(idat, CompressionMode.Decompress);
             var prior = new byte[rowBytes];
             var line = new byte[rowBytes + 1];
             for (int y = 0; y < height; y++)
@@ -89,6 +90,10 @@ public static class PngReader
                 }
                 x.CopyTo(prior);
             }
+        }
+        catch (Exception e) when (e is EndOfStreamException or InvalidDataException)
+        {
+            throw new InputException(where, "the image data is truncated or corrupt");
         }
         var samples = new ushort[(long)width * height * channels];
         for (int i = 0; i < samples.Length; i++)

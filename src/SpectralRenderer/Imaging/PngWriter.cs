@@ -17,7 +17,7 @@ public enum PngFilter
 }
 
 /// <summary>
-/// A minimal PNG encoder (W3C PNG Specification, 3rd edition): non-interlaced 8-bit RGB (colour type 2),
+/// A minimal PNG encoder (W3C PNG Specification, 3rd edition): non-interlaced 8- and 16-bit RGB (colour type 2),
 /// 8- and 16-bit greyscale (colour type 0), chunks IHDR, optional tEXt, IDAT, IEND.
 /// </summary>
 public static class PngWriter
@@ -49,9 +49,30 @@ public static class PngWriter
         IReadOnlyDictionary<string, string>? text = null, PngFilter filter = PngFilter.Adaptive)
     {
         Check(width, height, gray.Length, 1);
-        var bytes = new byte[gray.Length * 2];
-        for (int i = 0; i < gray.Length; i++) BinaryPrimitives.WriteUInt16BigEndian(bytes.AsSpan(2 * i), gray[i]);
-        Write(stream, width, height, 16, 0, 2, bytes, text, filter);
+        Write(stream, width, height, 16, 0, 2, BigEndian(gray), text, filter);
+    }
+
+    /// <summary>16-bit RGB, width·height·3 samples, stored big-endian (§7.1).</summary>
+    public static void WriteRgb16(Stream stream, int width, int height, ReadOnlySpan<ushort> rgb,
+        IReadOnlyDictionary<string, string>? text = null, PngFilter filter = PngFilter.Adaptive)
+    {
+        Check(width, height, rgb.Length, 3);
+        Write(stream, width, height, 16, 2, 6, BigEndian(rgb), text, filter);
+    }
+
+    static byte[] BigEndian(ReadOnlySpan<ushort> samples)
+    {
+        var bytes = new byte[samples.Length * 2];
+        for (int i = 0; i < samples.Length; i++) BinaryPrimitives.WriteUInt16BigEndian(bytes.AsSpan(2 * i), samples[i]);
+        return bytes;
+    }
+
+    public static void WriteRgb16(string path, int width, int height, ReadOnlySpan<ushort> rgb,
+        IReadOnlyDictionary<string, string>? text = null, PngFilter filter = PngFilter.Adaptive)
+    {
+        var ms = new MemoryStream();
+        WriteRgb16(ms, width, height, rgb, text, filter);
+        AtomicFile.Write(path, ms.WriteTo);
     }
 
     public static void WriteRgb8(string path, int width, int height, ReadOnlySpan<byte> rgb,
