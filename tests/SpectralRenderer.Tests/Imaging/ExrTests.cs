@@ -187,7 +187,7 @@ public class ExrTests
     public void Incompressible_zip_chunks_are_stored_raw_and_read_back()
     {
         var rng = new Random(7);
-        var img = new Rendering.SpectralImage(Synthetic.W, Synthetic.H, BandGrid.Default);
+        var img = new global::SpectralRenderer.Rendering.SpectralImage(Synthetic.W, Synthetic.H, BandGrid.Default);
         for (int i = 0; i < img.Data.Length; i++) img.Data[i] = BitConverter.Int32BitsToSingle(rng.Next(0, 0x7f000000));
         var ms = new MemoryStream();
         ExrWriter.Write(ms, img, new ExrOptions { Rgb = false });
