@@ -1,0 +1,97 @@
+using System.Globalization;
+using System.Text.Json.Nodes;
+
+namespace SpectralRenderer.Tests.Cli;
+
+/// <summary>The README's main job through the real command line: render the §3.1 chart, then colorcheck it.</summary>
+public class EndToEndTests
+{
+    static string Scene()
+    {
+        for (var d = new DirectoryInfo(AppContext.BaseDirectory); d is not null; d = d.Parent)
+        {
+            var p = Path.Combine(d.FullName, "scenes", "paper-3.1-colorchecker-d65.json");
+            if (File.Exists(p)) return p;
+        }
+        throw new FileNotFoundException("scenes/paper-3.1-colorchecker-d65.json");
+    }
+
+    static List<Dictionary<string, string>> Csv(string text)
+    {
+        var lines = text.Trim().Split('\n');
+        var h = lines[0].Split(',');
+        return lines.Skip(1).Select(l => h.Zip(l.Split(',')).ToDictionary(p => p.First, p => p.Second)).ToList();
+    }
+
+    [Fact]
+    public void Paper_scheme_render_reproduces_the_20_band_reference_and_its_delta_E()
+    {
+        var outDir = Path.Combine(Reference.TempDir(), "chart");
+        var (code, _, err) = CliRunner.Run("render", Scene(), "-o", outDir, "--width", "240", "--height", "160", "--integration", "paper", "--quiet");
+        Assert.True(code == 0, err);
+        (code, var stdout, err) = CliRunner.Run("colorcheck", outDir, "--csv");
+        Assert.True(code == 0, err);
+        var rows = Csv(stdout);
+        var reference = Reference.Rows("colorchecker-ohta-d65-2deg-bands20.csv");
+        Assert.Equal(24, rows.Count);
+        for (int p = 0; p < 24; p++)
+        {
+            foreach (var k in new[] { "X", "Y", "Z" })
+                Assert.True(Math.Abs(rows[p].D(k) - reference[p].D(k)) < 1e-6, $"patch {p + 1} {k}: {rows[p][k]} vs {reference[p][k]}");
+            Assert.Equal(reference[p].D("dE00_vs_1nm"), rows[p].D("dE00"), 4);
+        }
+    }
+
+    [Fact]
+    public void Default_render_matches_1nm_within_the_bar_and_writes_every_output()
+    {
+        var outDir = Path.Combine(Reference.TempDir(), "chart");
+        var (code, _, err) = CliRunner.Run("render", Scene(), "-o", outDir, "--width", "180", "--height", "120", "--quiet");
+        Assert.True(code == 0, err);
+        foreach (var f in new[] { "preview.png", "bands.png", "bands/band-08-520-540nm.png", "spectral.exr", "spectral.hdr", "spectral.img", "spectral.npy", "wavelengths.csv", "object-id.png", "render.json" })
+            Assert.True(File.Exists(Path.Combine(outDir, f)), f);
+        Assert.Equal(20, Directory.GetFiles(Path.Combine(outDir, "bands"), "band-*.png").Length);
+        var json = JsonNode.Parse(File.ReadAllText(Path.Combine(outDir, "render.json")))!;
+        Assert.Equal(21, json["bands"]!["edges_nm"]!.AsArray().Count);
+        Assert.Equal(1.0, (double)json["colour"]!["white_xyz"]![1]!, 12);
+        Assert.Equal(180L * 120, (long)json["rays"]!["primary"]!);
+
+        (code, var stdout, _) = CliRunner.Run("colorcheck", outDir, "--csv");
+        Assert.Equal(0, code);
+        var rows = Csv(stdout);
+        var de = rows.Select(r => r.D("dE00")).ToList();
+        Assert.True(de.Average() < 0.35 && de.Max() < 0.7, $"mean {de.Average():F3}, max {de.Max():F3}");
+        (code, stdout, _) = CliRunner.Run("colorcheck", outDir);
+        Assert.Equal(0, code);
+        Assert.Contains("ΔE00 against 1 nm: mean 0.301, max 0.677 over 24 patches", stdout);
+    }
+
+    [Theory]
+    [InlineData("D65", 0.6, 1.6)]
+    [InlineData("led-blue", 0.6, 1.6)]
+    [InlineData("FL11", 0.6, 1.6)]
+    public void Colors_command_prints_the_table_under_any_light(string light, double meanBar, double maxBar)
+    {
+        var (code, stdout, err) = CliRunner.Run("colors", "--illuminant", light, "--csv");
+        Assert.True(code == 0, err);
+        var rows = Csv(stdout);
+        Assert.Equal(24, rows.Count);
+        var de = rows.Select(r => r.D("dE00_vs_1nm")).ToList();
+        Assert.True(de.Average() <= meanBar && de.Max() <= maxBar);
+        (code, stdout, _) = CliRunner.Run("colors", "--illuminant", light, "--integration", "paper", "--rgb", "paper", "--observer", "10");
+        Assert.Equal(0, code);
+        Assert.Contains("CIE 1964 10°", stdout);
+    }
+
+    [Fact]
+    public void Help_exists_for_the_tool_and_every_command()
+    {
+        Assert.Equal(0, CliRunner.Run("--help").Exit);
+        foreach (var c in new[] { "render", "colorcheck", "colors" })
+        {
+            var (code, stdout, _) = CliRunner.Run(c, "--help");
+            Assert.Equal(0, code);
+            Assert.StartsWith($"usage: spectral {c}", stdout.TrimStart());
+        }
+    }
+}
