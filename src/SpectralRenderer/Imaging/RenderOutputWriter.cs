@@ -54,6 +54,7 @@ public static class RenderOutputWriter
             for (int i = 0; i < ids.Length; i++) ids[i] = (ushort)(result.ObjectIds[i] + 1);
             AtomicFile.Write(Path.Combine(outDir, "object-id.png"), s => PngWriter.WriteGray16(s, image.Width, image.Height, ids));
             Done("object-id.png");
+            AnalysisImages.Write(scene, result, outDir, Done);
         }
         SpectralFiles.Write(scene, image, outDir, formats, Done);
 
@@ -100,6 +101,9 @@ public static class RenderOutputWriter
             });
         }
         var white = scene.ReferenceWhite;
+        var lights = new JsonArray();
+        for (int k = 0; k < scene.Lights.Count; k++)
+            lights.Add(new JsonObject { ["index"] = k, ["name"] = scene.Lights[k].Name, ["kind"] = scene.Lights[k].Kind.ToString().ToLowerInvariant(), ["spectrum"] = scene.Lights[k].Spectrum?.Name });
         return new JsonObject
         {
             ["tool"] = "spectral",
@@ -131,6 +135,8 @@ public static class RenderOutputWriter
                 ["adapt"] = scene.Output.Adapt,
             },
             ["objects"] = objects,
+            ["lights"] = lights,
+            ["aov"] = new JsonObject { ["highlight_fraction"] = scene.Output.HighlightFraction },
             ["timings_s"] = new JsonObject { ["render"] = result.Elapsed.TotalSeconds },
             ["rays"] = new JsonObject
             {

@@ -9,6 +9,11 @@ public sealed class RenderResult
     public required SpectralImage Image { get; init; }
     /// <summary>Per pixel, the index of the object the centre ray hits, or −1 for background.</summary>
     public required int[] ObjectIds { get; init; }
+    /// <summary>Per pixel, bit k set when light k reaches the surface the centre ray sees.</summary>
+    public required uint[] LitMasks { get; init; }
+    /// <summary>Per pixel, the luminance of the specular and diffuse terms of eq. 2 at the centre ray's hit.</summary>
+    public required float[] SpecularY { get; init; }
+    public required float[] DiffuseY { get; init; }
     public required RayCounters Rays { get; init; }
     public required TimeSpan Elapsed { get; init; }
     public required int Threads { get; init; }
@@ -39,6 +44,9 @@ public sealed class Renderer
         int width = cam.Width, height = cam.Height, bands = scene.Bands, padded = scene.PaddedBands;
         var image = new SpectralImage(width, height, scene.Grid);
         var ids = new int[width * height];
+        var lit = new uint[width * height];
+        var specY = new float[width * height];
+        var diffY = new float[width * height];
         int tilesX = (width + TileSize - 1) / TileSize, tilesY = (height + TileSize - 1) / TileSize;
         int tiles = tilesX * tilesY;
         if (threads <= 0) threads = Environment.ProcessorCount;
@@ -64,10 +72,11 @@ public sealed class Renderer
                 for (int x = x0; x < x1; x++)
                 {
                     int id;
+                    var info = new PixelInfo();
                     if (spp == 1)
                     {
                         counters.Primary++;
-                        id = integrator.Radiance(cam.Generate(x + 0.5f, y + 0.5f), 0, -1, sum, scratch, ref counters);
+                        id = integrator.Radiance(cam.Generate(x + 0.5f, y + 0.5f), 0, -1, sum, scratch, ref counters, ref info);
                     }
                     else
                     {
@@ -82,12 +91,16 @@ public sealed class Renderer
                             integrator.Radiance(cam.Generate(x + jx, y + jy), 0, -1, sample, scratch, ref counters);
                             SpectralMath.AddScaled(sum, sample, inv);
                         }
+                        // The analysis images describe the pixel centre.
                         counters.Primary++;
-                        var centre = cam.Generate(x + 0.5f, y + 0.5f);
-                        id = integrator.Geometry.Intersect(ref centre, out var hit) ? hit.Object : -1;
+                        id = integrator.Radiance(cam.Generate(x + 0.5f, y + 0.5f), 0, -1, sample, scratch, ref counters, ref info);
                     }
                     sum[..bands].CopyTo(image.Data.AsSpan(image.Offset(x, y), bands));
-                    ids[y * width + x] = id;
+                    int i = y * width + x;
+                    ids[i] = id;
+                    lit[i] = info.LitMask;
+                    specY[i] = info.SpecularY;
+                    diffY[i] = info.DiffuseY;
                 }
                 lock (gate)
                 {
@@ -99,7 +112,7 @@ public sealed class Renderer
             },
             _ => { });
 
-        return new RenderResult { Image = image, ObjectIds = ids, Rays = total, Elapsed = clock.Elapsed, Threads = threads, Tiles = tiles };
+        return new RenderResult { Image = image, ObjectIds = ids, LitMasks = lit, SpecularY = specY, DiffuseY = diffY, Rays = total, Elapsed = clock.Elapsed, Threads = threads, Tiles = tiles };
     }
 
     sealed class TileState(int scratch, int padded)

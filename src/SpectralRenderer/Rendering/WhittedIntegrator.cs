@@ -19,6 +19,8 @@ public sealed class WhittedIntegrator
     readonly Light[] _lights;
     readonly int[] _objectMaterial;
     readonly int _padded;
+    // Luminance (eq. 3's Y weights) of I_k ⊙ m_diff and I_k ⊙ m_spec per (light, material), for the highlight mask.
+    readonly float[] _diffuseY, _specularY;
 
     public WhittedIntegrator(Scene scene, SceneGeometry geometry)
     {
@@ -28,6 +30,21 @@ public sealed class WhittedIntegrator
         _lights = scene.Lights.ToArray();
         _objectMaterial = scene.Objects.Select(o => o.Material).ToArray();
         _padded = scene.PaddedBands;
+        _diffuseY = new float[_lights.Length * _materials.Length];
+        _specularY = new float[_diffuseY.Length];
+        var wy = scene.Colorimeter.Wy;
+        for (int k = 0; k < _lights.Length; k++)
+        for (int m = 0; m < _materials.Length; m++)
+        {
+            double d = 0, sp = 0;
+            for (int b = 0; b < scene.Bands; b++)
+            {
+                d += wy[b] * _lights[k].Intensity[b] * _materials[m].Diffuse[b];
+                sp += wy[b] * _lights[k].Intensity[b] * _materials[m].Specular[b];
+            }
+            _diffuseY[k * _materials.Length + m] = (float)d;
+            _specularY[k * _materials.Length + m] = (float)sp;
+        }
     }
 
     public SceneGeometry Geometry => _geometry;
@@ -43,13 +60,21 @@ public sealed class WhittedIntegrator
     /// </summary>
     public int Radiance(Ray ray, int depth, int band, Span<float> result, Span<float> scratch, ref RayCounters counters)
     {
+        PixelInfo unused = default;
+        return Radiance(ray, depth, band, result, scratch, ref counters, ref unused);
+    }
+
+    /// <summary>As above; at depth 0 also records which lights reach the point and the Y of its diffuse and specular terms.</summary>
+    public int Radiance(Ray ray, int depth, int band, Span<float> result, Span<float> scratch, ref RayCounters counters, ref PixelInfo info)
+    {
         result.Clear();
         if (!_geometry.Intersect(ref ray, out var hit))
         {
             _scene.Background.AsSpan().CopyTo(result);
             return -1;
         }
-        var m = _materials[_objectMaterial[hit.Object]];
+        int mi = _objectMaterial[hit.Object];
+        var m = _materials[mi];
         var v = -ray.Direction;
         bool outside = Vector3.Dot(hit.Normal, v) >= 0;
         var n = outside ? hit.Normal : -hit.Normal;   // faces the viewer
@@ -59,8 +84,9 @@ public sealed class WhittedIntegrator
 
         if (_scene.HasGlobalAmbient && m.HasAmbient) SpectralMath.AddProduct(result, _scene.GlobalAmbient, m.Ambient);
 
-        foreach (var light in _lights)
+        for (int k = 0; k < _lights.Length; k++)
         {
+            var light = _lights[k];
             Vector3 l;
             float dist;
             if (light.Kind == LightKind.Directional) { l = -light.Direction; dist = float.PositiveInfinity; }
@@ -82,9 +108,9 @@ public sealed class WhittedIntegrator
             if (_geometry.Occluded(shadowRay)) continue;
 
             float d = light.Attenuation(dist) * spot;
+            float s = 0;
             if (m.HasSpecular)
             {
-                float s;
                 if (m.Model == SpecularModel.BlinnPhong)
                 {
                     var h = Vector3.Normalize(l + v);
@@ -98,6 +124,12 @@ public sealed class WhittedIntegrator
                 SpectralMath.AddProduct2(result, light.Intensity, m.Diffuse, d * nl, m.Specular, d * s);
             }
             else SpectralMath.AddProduct(result, light.Intensity, m.Diffuse, d * nl);
+            if (depth == 0)
+            {
+                if (k < 32) info.LitMask |= 1u << k;
+                info.DiffuseY += d * nl * _diffuseY[k * _materials.Length + mi];
+                info.SpecularY += d * s * _specularY[k * _materials.Length + mi];
+            }
         }
 
         if (depth >= _scene.MaxDepth || !(m.HasMirror || m.HasTransmission)) return hit.Object;

@@ -18,6 +18,8 @@ public sealed class OutputOptions
     public double Exposure { get; set; } = 1.0;
     /// <summary>Bradford-adapt from the scene's reference white to the RGB space's white (off by default: §3.3 is about seeing the light's colour).</summary>
     public bool Adapt { get; set; }
+    /// <summary>A pixel is in a highlight when its specular term's luminance exceeds this fraction of the diffuse term's.</summary>
+    public double HighlightFraction { get; set; } = 0.1;
     public HashSet<string> Formats { get; set; } = new(OutputFormats.Default, StringComparer.Ordinal);
 }
 

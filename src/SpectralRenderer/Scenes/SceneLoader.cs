@@ -316,7 +316,8 @@ public sealed partial class SceneLoader
         if (TryGet(root, "output", out var e))
         {
             Object(e, "$.output");
-            Keys(e, "$.output", "rgb", "exposure", "adapt", "formats");
+            Keys(e, "$.output", "rgb", "exposure", "adapt", "formats", "highlight_fraction");
+            o.HighlightFraction = Number(e, "highlight_fraction", "$.output", 0.1, 0, 1e6);
             if (TryGet(e, "rgb", out var rgb)) o.Rgb = RgbSpace.Parse(String(rgb, "$.output.rgb"), Where("$.output.rgb"));
             o.Exposure = Number(e, "exposure", "$.output", 1.0, 0, 1e12);
             o.Adapt = Bool(e, "adapt", "$.output", false);

@@ -1,0 +1,52 @@
+using SpectralRenderer.Rendering;
+using SpectralRenderer.Scenes;
+
+namespace SpectralRenderer.Imaging;
+
+/// <summary>
+/// The auxiliary images for analysis (§3.4): per light, where it reaches the surface seen
+/// (mask-lit-K.png); where the specular term exceeds a fraction of the diffuse (mask-highlight.png);
+/// and the ground-truth diffuse reflectance of what each pixel sees (reflectance.exr with T.λ channels,
+/// reflectance.npy).
+/// </summary>
+public static class AnalysisImages
+{
+    public static void Write(Scene scene, RenderResult result, string outDir, Action<string> done)
+    {
+        var image = result.Image;
+        int n = image.Width * image.Height;
+        var mask = new byte[n];
+        for (int k = 0; k < Math.Min(32, scene.Lights.Count); k++)
+        {
+            for (int i = 0; i < n; i++) mask[i] = (result.LitMasks[i] & (1u << k)) != 0 ? (byte)255 : (byte)0;
+            var name = $"mask-lit-{k}.png";
+            AtomicFile.Write(Path.Combine(outDir, name), s => PngWriter.WriteGray8(s, image.Width, image.Height, mask));
+            done(name);
+        }
+        float f = (float)scene.Output.HighlightFraction;
+        for (int i = 0; i < n; i++) mask[i] = result.SpecularY[i] > 0 && result.SpecularY[i] > f * result.DiffuseY[i] ? (byte)255 : (byte)0;
+        AtomicFile.Write(Path.Combine(outDir, "mask-highlight.png"), s => PngWriter.WriteGray8(s, image.Width, image.Height, mask));
+        done("mask-highlight.png");
+
+        var truth = GroundTruthReflectance(scene, result);
+        ExrWriter.Write(Path.Combine(outDir, "reflectance.exr"), truth, new ExrOptions { Reflective = true, Rgb = false, Colorimeter = scene.Colorimeter });
+        done("reflectance.exr");
+        NpyWriter.Write(Path.Combine(outDir, "reflectance.npy"), truth);
+        done("reflectance.npy");
+    }
+
+    /// <summary>m_diff of the material each pixel's centre ray hits (0 for background), band values.</summary>
+    public static SpectralImage GroundTruthReflectance(Scene scene, RenderResult result)
+    {
+        var image = result.Image;
+        var truth = new SpectralImage(image.Width, image.Height, image.Grid);
+        int bands = image.Bands;
+        for (int i = 0; i < result.ObjectIds.Length; i++)
+        {
+            int id = result.ObjectIds[i];
+            if (id < 0) continue;
+            scene.Materials[scene.Objects[id].Material].Diffuse.AsSpan(0, bands).CopyTo(truth.Data.AsSpan(i * bands, bands));
+        }
+        return truth;
+    }
+}
