@@ -1,0 +1,153 @@
+using System.Numerics;
+using System.Runtime.CompilerServices;
+using System.Runtime.InteropServices;
+using SpectralRenderer.Geometry;
+
+namespace SpectralRenderer.Acceleration;
+
+/// <summary>
+/// A bounding volume hierarchy over primitives given by their bounds, flattened into an array of 32-byte
+/// nodes in depth-first order (see <see cref="BvhBuilder"/> for the binned-SAH build). Traversal is
+/// front-to-back with a fixed stack and allocates nothing; the primitives are tested through a struct
+/// <see cref="IPrimitiveIntersector"/> that receives positions in <see cref="PrimitiveOrder"/>.
+/// </summary>
+public sealed class Bvh
+{
+    const int StackSize = 128;
+    /// <summary>Widening of the slab exit distance, 1 + 2γ₃, so rounding never culls a box the ray touches (Ize 2013; pbrt-v4 §6.8.2).</summary>
+    const float ExitScale = 1 + 2 * (3 * UnitRoundoff) / (1 - 3 * UnitRoundoff);
+    const float UnitRoundoff = 5.96046448e-8f; // 2^-24
+
+    readonly BvhNode[] _nodes;
+
+    Bvh(BvhNode[] nodes, int[] order, int maxDepth)
+    {
+        if (maxDepth > StackSize) throw new InvalidOperationException($"BVH depth {maxDepth} exceeds the traversal stack ({StackSize})");
+        _nodes = nodes;
+        PrimitiveOrder = order;
+        MaxDepth = maxDepth;
+    }
+
+    /// <summary>Builds the hierarchy (in parallel on large inputs; the result does not depend on the thread count).</summary>
+    /// <param name="maxLeafSize">Most primitives in one leaf; smaller leaves are made when the SAH prefers them.</param>
+    public static Bvh Build(ReadOnlySpan<Bounds3> primitiveBounds, int maxLeafSize = 4) => Build(primitiveBounds, maxLeafSize, parallel: true);
+
+    /// <summary>As <see cref="Build(ReadOnlySpan{Bounds3}, int)"/>, optionally on the calling thread only.</summary>
+    public static Bvh Build(ReadOnlySpan<Bounds3> primitiveBounds, int maxLeafSize, bool parallel)
+    {
+        var (nodes, order, depth) = BvhBuilder.Build(primitiveBounds, maxLeafSize, parallel);
+        return new Bvh(nodes, order, depth);
+    }
+
+    /// <summary>k → original primitive index: traversal hands k to the intersector, so store primitive data permuted by this.</summary>
+    public int[] PrimitiveOrder { get; }
+    public int NodeCount => _nodes.Length;
+    public int MaxDepth { get; }
+    public ReadOnlySpan<BvhNode> Nodes => _nodes;
+    public Bounds3 Bounds => _nodes.Length == 0 ? Bounds3.Empty : new Bounds3(_nodes[0].Min, _nodes[0].Max);
+
+    /// <summary>Closest hit: shortens ray.TMax to each hit found, nearer child first (by the ray's sign on the split axis).</summary>
+    public bool Intersect<T>(ref T prims, ref Ray ray, ref Hit hit) where T : struct, IPrimitiveIntersector
+    {
+        if (_nodes.Length == 0) return false;
+        var inv = InverseDirection(ray.Direction);
+        int negative = (ray.Direction.X < 0 ? 1 : 0) | (ray.Direction.Y < 0 ? 2 : 0) | (ray.Direction.Z < 0 ? 4 : 0);
+        Span<int> stack = stackalloc int[StackSize];
+        ref BvhNode root = ref MemoryMarshal.GetArrayDataReference(_nodes);
+        int sp = 0, current = 0;
+        bool found = false;
+        while (true)
+        {
+            ref BvhNode node = ref Unsafe.Add(ref root, current);
+            if (SlabHit(in node, ray.Origin, inv, ray.TMax))
+            {
+                if (node.Count > 0)
+                {
+                    int last = node.Offset + node.Count;
+                    for (int k = node.Offset; k < last; k++)
+                        if (prims.Intersect(k, ref ray, ref hit)) found = true;
+                }
+                else if (((negative >> node.Axis) & 1) != 0)
+                {
+                    stack[sp++] = current + 1;
+                    current = node.Offset;
+                    continue;
+                }
+                else
+                {
+                    stack[sp++] = node.Offset;
+                    current++;
+                    continue;
+                }
+            }
+            if (sp == 0) return found;
+            current = stack[--sp];
+        }
+    }
+
+    /// <summary>Whether anything is hit in (0, ray.TMax); stops at the first hit.</summary>
+    public bool Occluded<T>(ref T prims, in Ray ray) where T : struct, IPrimitiveIntersector
+    {
+        if (_nodes.Length == 0) return false;
+        var inv = InverseDirection(ray.Direction);
+        int negative = (ray.Direction.X < 0 ? 1 : 0) | (ray.Direction.Y < 0 ? 2 : 0) | (ray.Direction.Z < 0 ? 4 : 0);
+        Span<int> stack = stackalloc int[StackSize];
+        ref BvhNode root = ref MemoryMarshal.GetArrayDataReference(_nodes);
+        int sp = 0, current = 0;
+        while (true)
+        {
+            ref BvhNode node = ref Unsafe.Add(ref root, current);
+            if (SlabHit(in node, ray.Origin, inv, ray.TMax))
+            {
+                if (node.Count > 0)
+                {
+                    int last = node.Offset + node.Count;
+                    for (int k = node.Offset; k < last; k++)
+                        if (prims.Occluded(k, in ray)) return true;
+                }
+                else if (((negative >> node.Axis) & 1) != 0)
+                {
+                    stack[sp++] = current + 1;
+                    current = node.Offset;
+                    continue;
+                }
+                else
+                {
+                    stack[sp++] = node.Offset;
+                    current++;
+                    continue;
+                }
+            }
+            if (sp == 0) return false;
+            current = stack[--sp];
+        }
+    }
+
+    /// <summary>
+    /// 1/d per component. A zero component (either sign) gives ±float.MaxValue rather than ±∞: then
+    /// (bound − o)·(1/d) is never 0·∞ = NaN, an origin on a slab plane counts as inside, and one off the slab
+    /// still overflows to ±∞, as the IEEE infinity would give.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    internal static Vector3 InverseDirection(Vector3 d) => new(Inverse(d.X), Inverse(d.Y), Inverse(d.Z));
+
+    static float Inverse(float x) => x != 0 ? 1 / x : float.IsNegative(x) ? -float.MaxValue : float.MaxValue;
+
+    /// <summary>The slab test (Kay &amp; Kajiya 1986): the ray's parameter intervals inside the three slabs overlap within [0, tMax].</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    internal static bool SlabHit(in BvhNode node, Vector3 origin, Vector3 inv, float tMax)
+    {
+        var t0 = (node.Min - origin) * inv;
+        var t1 = (node.Max - origin) * inv;
+        var near = Vector3.Min(t0, t1);
+        var far = Vector3.Max(t0, t1);
+        float entry = Max(Max(near.X, near.Y), Max(near.Z, 0));
+        float exit = Min(Min(far.X, far.Y), far.Z) * ExitScale;
+        return entry <= exit && entry <= tMax;
+    }
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    static float Max(float a, float b) => a > b ? a : b;
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    static float Min(float a, float b) => a < b ? a : b;
+}

@@ -1,0 +1,93 @@
+using System.Numerics;
+using System.Runtime.CompilerServices;
+using SpectralRenderer.Geometry;
+
+namespace SpectralRenderer.Acceleration;
+
+/// <summary>
+/// The triangles of one or more meshes, copied into BVH order (three corners per triangle, contiguous) so a
+/// leaf's triangles sit together in memory, and tested with <see cref="TriangleIntersection"/>.
+/// Hit.Primitive is the position k in this order; <see cref="MeshOf"/>[k] and <see cref="TriangleOf"/>[k] lead
+/// back to the source mesh and its triangle.
+/// </summary>
+public readonly struct TriangleSet : IPrimitiveIntersector
+{
+    readonly Vector3[] _corners; // 3 per triangle, in BVH order
+
+    public Bvh Bvh { get; }
+    /// <summary>k → index of the mesh (in the list given to <see cref="Build"/>).</summary>
+    public int[] MeshOf { get; }
+    /// <summary>k → triangle index within its mesh.</summary>
+    public int[] TriangleOf { get; }
+    public int Count => MeshOf.Length;
+
+    TriangleSet(Vector3[] corners, Bvh bvh, int[] meshOf, int[] triangleOf)
+    {
+        _corners = corners; Bvh = bvh; MeshOf = meshOf; TriangleOf = triangleOf;
+    }
+
+    /// <summary>Builds the BVH over all triangles of the meshes and stores the triangles in its order.</summary>
+    public static TriangleSet Build(IReadOnlyList<TriangleMesh> meshes, int maxLeafSize = 4, bool parallel = true)
+    {
+        int total = meshes.Sum(m => m.TriangleCount);
+        var bounds = new Bounds3[total];
+        var meshOf = new int[total];
+        var triangleOf = new int[total];
+        int i = 0;
+        for (int m = 0; m < meshes.Count; m++)
+            for (int t = 0; t < meshes[m].TriangleCount; t++, i++)
+            {
+                var (p0, p1, p2) = meshes[m].Triangle(t);
+                var b = new Bounds3(p0, p0);
+                b.Include(p1); b.Include(p2);
+                bounds[i] = b; meshOf[i] = m; triangleOf[i] = t;
+            }
+        var bvh = Bvh.Build(bounds, maxLeafSize, parallel);
+        var corners = new Vector3[3 * total];
+        var orderedMesh = new int[total];
+        var orderedTriangle = new int[total];
+        for (int k = 0; k < total; k++)
+        {
+            int original = bvh.PrimitiveOrder[k];
+            orderedMesh[k] = meshOf[original];
+            orderedTriangle[k] = triangleOf[original];
+            var (p0, p1, p2) = meshes[orderedMesh[k]].Triangle(orderedTriangle[k]);
+            corners[3 * k] = p0; corners[3 * k + 1] = p1; corners[3 * k + 2] = p2;
+        }
+        return new TriangleSet(corners, bvh, orderedMesh, orderedTriangle);
+    }
+
+    public (Vector3 P0, Vector3 P1, Vector3 P2) Corners(int k) => (_corners[3 * k], _corners[3 * k + 1], _corners[3 * k + 2]);
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public bool Intersect(int k, ref Ray ray, ref Hit hit)
+    {
+        ref Vector3 c = ref _corners[3 * k];
+        if (!TriangleIntersection.Intersect(ray, c, Unsafe.Add(ref c, 1), Unsafe.Add(ref c, 2), out float t, out float b1, out float b2))
+            return false;
+        ray.TMax = t;
+        hit.Primitive = k; hit.U = b1; hit.V = b2;
+        return true;
+    }
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public bool Occluded(int k, in Ray ray)
+    {
+        ref Vector3 c = ref _corners[3 * k];
+        return TriangleIntersection.Intersect(ray, c, Unsafe.Add(ref c, 1), Unsafe.Add(ref c, 2), out _, out _, out _);
+    }
+
+    /// <summary>The closest hit among all triangles, through the BVH.</summary>
+    public bool Intersect(ref Ray ray, ref Hit hit)
+    {
+        var self = this;
+        return Bvh.Intersect(ref self, ref ray, ref hit);
+    }
+
+    /// <summary>Whether any triangle is hit in (0, ray.TMax).</summary>
+    public bool Occluded(in Ray ray)
+    {
+        var self = this;
+        return Bvh.Occluded(ref self, in ray);
+    }
+}
