@@ -1,28 +1,64 @@
 using System.Numerics;
+using SpectralRenderer.Acceleration;
 using SpectralRenderer.Geometry;
 using SpectralRenderer.Scenes;
 
 namespace SpectralRenderer.Rendering;
 
 /// <summary>
-/// Ray queries against every object of a scene: closest hit for camera and secondary rays, any hit
-/// for shadow rays.
+/// Ray queries against every object of a scene: all mesh triangles in one SAH BVH, the finite analytic
+/// shapes in another, infinite planes tested directly. Closest hit for camera and secondary rays,
+/// any hit (early exit) for shadow rays.
 /// </summary>
 public sealed class SceneGeometry
 {
-    readonly AnalyticShape[] _shapes;
-    readonly int[] _shapeObject;
+    readonly TriangleSet _triangles;
+    readonly bool _hasTriangles;
+    readonly int[] _meshObject;
+    readonly TriangleMesh[] _meshes;
+    readonly bool[] _meshSmooth;
+    readonly AnalyticSet _analytic;
+    readonly Bvh? _analyticBvh;
+    readonly int[] _analyticObject;
+    readonly AnalyticShape[] _planes;
+    readonly int[] _planeObject;
 
     public SceneGeometry(Scene scene)
     {
-        var shapes = new List<AnalyticShape>();
-        var owner = new List<int>();
+        var meshes = new List<TriangleMesh>();
+        var meshObject = new List<int>();
+        var finite = new List<(AnalyticShape Shape, int Object)>();
+        var planes = new List<(AnalyticShape Shape, int Object)>();
         for (int i = 0; i < scene.Objects.Count; i++)
-            if (scene.Objects[i].Shape is { } s) { shapes.Add(s); owner.Add(i); }
-        _shapes = shapes.ToArray();
-        _shapeObject = owner.ToArray();
+        {
+            var o = scene.Objects[i];
+            if (o.Mesh is { } m) { meshes.Add(m); meshObject.Add(i); }
+            else if (o.Shape is { IsInfinite: true } p) planes.Add((p, i));
+            else if (o.Shape is { } s) finite.Add((s, i));
+        }
+        _meshes = meshes.ToArray();
+        _meshObject = meshObject.ToArray();
+        _meshSmooth = meshObject.Select(i => scene.Objects[i].Smooth).ToArray();
+        var clock = System.Diagnostics.Stopwatch.StartNew();
+        _hasTriangles = meshes.Count > 0 && meshes.Sum(m => m.TriangleCount) > 0;
+        _triangles = _hasTriangles ? TriangleSet.Build(_meshes) : default;
+        TriangleCount = _hasTriangles ? _triangles.Count : 0;
+
+        if (finite.Count > 0)
+        {
+            _analyticBvh = Bvh.Build(finite.Select(f => f.Shape.Bounds).ToArray(), 2);
+            var order = _analyticBvh.PrimitiveOrder;
+            _analytic = new AnalyticSet(order.Select(k => finite[k].Shape).ToArray());
+            _analyticObject = order.Select(k => finite[k].Object).ToArray();
+        }
+        else _analyticObject = [];
+        BuildTime = clock.Elapsed;
+        _planes = planes.Select(p => p.Shape).ToArray();
+        _planeObject = planes.Select(p => p.Object).ToArray();
+
         var b = Bounds3.Empty;
-        foreach (var s in _shapes) if (!s.IsInfinite) b.Include(s.Bounds);
+        if (_hasTriangles) b.Include(_triangles.Bvh.Bounds);
+        if (_analyticBvh is not null) b.Include(_analyticBvh.Bounds);
         SceneBounds = b;
         float extent = b.IsEmpty ? 1 : Math.Max(b.Extent.Length(), Vector3.Max(Vector3.Abs(b.Min), Vector3.Abs(b.Max)).Length());
         Epsilon = 1e-5f * Math.Max(1f, extent);
@@ -31,33 +67,83 @@ public sealed class SceneGeometry
     public Bounds3 SceneBounds { get; }
     /// <summary>Offset for secondary-ray origins, scaled to the scene's size.</summary>
     public float Epsilon { get; }
+    public int TriangleCount { get; }
+    /// <summary>Time spent building the acceleration structures.</summary>
+    public TimeSpan BuildTime { get; }
 
     public bool Intersect(ref Ray ray, out SurfaceHit hit)
     {
         hit = default;
-        int found = -1;
-        Vector3 normal = default;
-        for (int i = 0; i < _shapes.Length; i++)
+        var h = new Hit();
+        int kind = 0; // 1 triangle, 2 analytic, 3 plane
+        if (_hasTriangles)
         {
-            if (_shapes[i].Intersect(ray, 0, out float t, out var n))
-            {
-                ray.TMax = t;
-                found = i;
-                normal = n;
-            }
+            var t = _triangles;
+            if (t.Bvh.Intersect(ref t, ref ray, ref h)) kind = 1;
         }
-        if (found < 0) return false;
+        var ah = new Hit();
+        if (_analyticBvh is not null)
+        {
+            var a = _analytic;
+            if (_analyticBvh.Intersect(ref a, ref ray, ref ah)) kind = 2;
+        }
+        int plane = -1;
+        for (int i = 0; i < _planes.Length; i++)
+            if (_planes[i].Intersect(ray, 0, out float tp, out _)) { ray.TMax = tp; plane = i; kind = 3; }
+        if (kind == 0) return false;
+
         hit.T = ray.TMax;
         hit.Position = ray.At(ray.TMax);
-        hit.Normal = normal;
-        hit.Object = _shapeObject[found];
+        switch (kind)
+        {
+            case 1:
+            {
+                int k = h.Primitive;
+                int mesh = _triangles.MeshOf[k];
+                var (p0, p1, p2) = _triangles.Corners(k);
+                var ng = Vector3.Normalize(Vector3.Cross(p1 - p0, p2 - p0));
+                hit.GeometricNormal = ng;
+                hit.Normal = ng;
+                var m = _meshes[mesh];
+                if (_meshSmooth[mesh] && m.Normals is { } normals)
+                {
+                    int tri = _triangles.TriangleOf[k];
+                    var idx = m.Indices;
+                    var n = (1 - h.U - h.V) * normals[idx[3 * tri]] + h.U * normals[idx[3 * tri + 1]] + h.V * normals[idx[3 * tri + 2]];
+                    if (n.LengthSquared() > 0) hit.Normal = Vector3.Normalize(n);
+                }
+                hit.Object = _meshObject[mesh];
+                break;
+            }
+            case 2:
+                // Re-intersect the one winning shape for its normal (cheaper than carrying normals through the BVH).
+                _analytic[ah.Primitive].Intersect(new Ray(ray.Origin, ray.Direction, float.PositiveInfinity), 0, out _, out var na);
+                hit.Normal = hit.GeometricNormal = na;
+                hit.Object = _analyticObject[ah.Primitive];
+                break;
+            default:
+                _planes[plane].Intersect(new Ray(ray.Origin, ray.Direction, float.PositiveInfinity), 0, out _, out var np);
+                hit.Normal = hit.GeometricNormal = np;
+                hit.Object = _planeObject[plane];
+                break;
+        }
         return true;
     }
 
     public bool Occluded(in Ray ray)
     {
-        for (int i = 0; i < _shapes.Length; i++)
-            if (_shapes[i].Intersect(ray, 0, out _, out _)) return true;
+        if (_hasTriangles)
+        {
+            var t = _triangles;
+            if (t.Bvh.Occluded(ref t, ray)) return true;
+        }
+        if (_analyticBvh is not null)
+        {
+            var a = _analytic;
+            if (_analyticBvh.Occluded(ref a, ray)) return true;
+        }
+        for (int i = 0; i < _planes.Length; i++)
+            if (_planes[i].Intersect(ray, 0, out _, out _)) return true;
         return false;
     }
 }

@@ -76,11 +76,13 @@ public sealed class WhittedIntegrator
         int mi = _objectMaterial[hit.Object];
         var m = _materials[mi];
         var v = -ray.Direction;
-        bool outside = Vector3.Dot(hit.Normal, v) >= 0;
-        var n = outside ? hit.Normal : -hit.Normal;   // faces the viewer
+        // The face normal decides which side the viewer is on; the shading normal follows it.
+        bool outside = Vector3.Dot(hit.GeometricNormal, v) >= 0;
+        var ng = outside ? hit.GeometricNormal : -hit.GeometricNormal;
+        var n = outside ? hit.Normal : -hit.Normal;
         float eps = _geometry.Epsilon;
         var p = hit.Position;
-        var pAbove = p + eps * n;
+        var pAbove = p + eps * ng;
 
         if (_scene.HasGlobalAmbient && m.HasAmbient) SpectralMath.AddProduct(result, _scene.GlobalAmbient, m.Ambient);
 
@@ -148,7 +150,7 @@ public sealed class WhittedIntegrator
         if (m.HasTransmission)
         {
             if (!m.Dispersive || band >= 0)
-                Refract(m, band < 0 ? 0 : band, band, ray, n, v, cosI, outside, p, depth, result, incoming, rest, ref counters, allBands: band < 0);
+                Refract(m, band < 0 ? 0 : band, band, ray, n, ng, v, cosI, outside, p, depth, result, incoming, rest, ref counters, allBands: band < 0);
             else
             {
                 // Dispersion: every band bends by its own index, so each gets its own refracted ray.
@@ -156,7 +158,7 @@ public sealed class WhittedIntegrator
                 for (int b = 0; b < _scene.Bands; b++)
                 {
                     one.Clear();
-                    Refract(m, b, b, ray, n, v, cosI, outside, p, depth, one, incoming, rest, ref counters, allBands: false);
+                    Refract(m, b, b, ray, n, ng, v, cosI, outside, p, depth, one, incoming, rest, ref counters, allBands: false);
                     result[b] += one[b];
                 }
             }
@@ -164,7 +166,7 @@ public sealed class WhittedIntegrator
         return hit.Object;
     }
 
-    void Refract(Material m, int iorBand, int band, in Ray ray, Vector3 n, Vector3 v, float cosI, bool outside, Vector3 p, int depth,
+    void Refract(Material m, int iorBand, int band, in Ray ray, Vector3 n, Vector3 ng, Vector3 v, float cosI, bool outside, Vector3 p, int depth,
         Span<float> result, Span<float> incoming, Span<float> rest, ref RayCounters counters, bool allBands)
     {
         float eta = outside ? 1f / m.Ior[iorBand] : m.Ior[iorBand];   // n_i / n_t
@@ -175,13 +177,13 @@ public sealed class WhittedIntegrator
         if (sin2T >= 1)
         {   // total internal reflection: the transmitted share goes into the mirror direction
             dir = Vector3.Normalize(ray.Direction + 2 * cosI * n);
-            origin = p + _geometry.Epsilon * n;
+            origin = p + _geometry.Epsilon * ng;
         }
         else
         {
             float cosT = MathF.Sqrt(1 - sin2T);
             dir = Vector3.Normalize(eta * ray.Direction + (eta * cosI - cosT) * n);
-            origin = p - _geometry.Epsilon * n;
+            origin = p - _geometry.Epsilon * ng;
             if (m.Fresnel) weight = 1 - FresnelDielectric(cosI, eta);
         }
         counters.Secondary++;

@@ -9,6 +9,10 @@ public sealed class SceneObject
     public required string Name { get; init; }
     public required int Material { get; init; }
     public Geometry.AnalyticShape? Shape { get; init; }
+    /// <summary>A triangle mesh in world space.</summary>
+    public Geometry.TriangleMesh? Mesh { get; init; }
+    /// <summary>Interpolate vertex normals (true) or shade with the face normal.</summary>
+    public bool Smooth { get; init; } = true;
 }
 
 /// <summary>Output choices of a render (the scene's "output" block, overridable on the command line).</summary>

@@ -195,6 +195,46 @@ public sealed partial class SceneLoader
         return m;
     }
 
-    SceneObject MeshObject(JsonElement e, string path, string name, Matrix4x4 user, int material) =>
-        throw Error($"{path}.type", "mesh objects are not supported yet");
+    /// <summary>A triangle mesh from an OBJ or PLY file found along the model search path, fitted and transformed.</summary>
+    SceneObject MeshObject(JsonElement e, string path, string name, Matrix4x4 user, int material)
+    {
+        var file = String(Required(e, "file", path), $"{path}.file");
+        var full = ModelSearch.Find(file, _dir, _overrides.ModelDirectories)
+            ?? throw Error($"{path}.file", $"mesh '{file}' not found in {ModelSearch.Describe(_dir, _overrides.ModelDirectories)}",
+                "download the meshes (README, 'Meshes') and pass --models DIR or set SPECTRAL_MODELS");
+        var ext = Path.GetExtension(full).ToLowerInvariant();
+        TriangleMesh mesh = ext switch
+        {
+            ".obj" => ObjReader.Read(full),
+            ".ply" => PlyReader.Read(full),
+            _ => throw Error($"{path}.file", $"'{file}' is neither .obj nor .ply"),
+        };
+        if (TryGet(e, "fit", out var fit))
+        {
+            Object(fit, $"{path}.fit");
+            Keys(fit, $"{path}.fit", "min", "max");
+            var lo = Vec3(Required(fit, "min", $"{path}.fit"), $"{path}.fit.min");
+            var hi = Vec3(Required(fit, "max", $"{path}.fit"), $"{path}.fit.max");
+            if (hi.X < lo.X || hi.Y < lo.Y || hi.Z < lo.Z) throw Error($"{path}.fit", "max is below min on some axis");
+            mesh.Fit(lo, hi);
+        }
+        if (!user.IsIdentity) mesh.Transform(user);
+        bool smooth = true;
+        if (TryGet(e, "shading", out var sh))
+            smooth = String(sh, $"{path}.shading").ToLowerInvariant() switch
+            {
+                "smooth" => true,
+                "flat" => false,
+                var other => throw Error($"{path}.shading", $"unknown shading '{other}'", "use smooth or flat"),
+            };
+        bool recompute = TryGet(e, "normals", out var nm) && String(nm, $"{path}.normals").ToLowerInvariant() switch
+        {
+            "file" => false,
+            "computed" or "angle" => true,
+            var other => throw Error($"{path}.normals", $"unknown normals '{other}'", "use file or computed"),
+        };
+        if (smooth && (mesh.Normals is null || recompute)) mesh.ComputeVertexNormals();
+        if (mesh.TriangleCount == 0) throw Error($"{path}.file", $"'{file}' has no triangles left after dropping {mesh.DegenerateCount} degenerate ones");
+        return new SceneObject { Name = name, Material = material, Mesh = mesh, Smooth = smooth };
+    }
 }

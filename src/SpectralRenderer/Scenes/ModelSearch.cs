@@ -1,0 +1,40 @@
+namespace SpectralRenderer.Scenes;
+
+/// <summary>
+/// The model search path for mesh files: the scene's folder, then each --models folder, then the
+/// folders in $SPECTRAL_MODELS (separated by ':' on Unix, ';' on Windows). The meshes are third-party
+/// scans kept outside the repository.
+/// </summary>
+public static class ModelSearch
+{
+    public const string Variable = "SPECTRAL_MODELS";
+
+    public static IEnumerable<string> Folders(string sceneDir, IEnumerable<string> extra)
+    {
+        yield return sceneDir;
+        foreach (var d in extra) yield return d;
+        var env = Environment.GetEnvironmentVariable(Variable);
+        if (!string.IsNullOrEmpty(env))
+            foreach (var d in env.Split(Path.PathSeparator, StringSplitOptions.RemoveEmptyEntries)) yield return d;
+    }
+
+    public static string? Find(string file, string sceneDir, IEnumerable<string> extra)
+    {
+        if (Path.IsPathRooted(file)) return File.Exists(file) ? file : null;
+        foreach (var d in Folders(sceneDir, extra))
+        {
+            var p = Path.Combine(d, file);
+            if (File.Exists(p)) return p;
+        }
+        return null;
+    }
+
+    public static string Describe(string sceneDir, IEnumerable<string> extra)
+    {
+        var env = Environment.GetEnvironmentVariable(Variable);
+        var list = new List<string> { sceneDir };
+        list.AddRange(extra.Select(d => $"--models {d}"));
+        list.Add(string.IsNullOrEmpty(env) ? "$SPECTRAL_MODELS (unset)" : $"$SPECTRAL_MODELS={env}");
+        return string.Join(", ", list);
+    }
+}
