@@ -26,7 +26,7 @@ static class ExrZip
             p = v;
         }
         var ms = new MemoryStream(n / 2 + 64);
-        using (var z = new ZLibStream(ms, CompressionLevel.Optimal, leaveOpen: true)) z.Write(t);
+        using (var z = new ZLibStream(ms, CompressionLevel.Fastest, leaveOpen: true)) z.Write(t);
         return ms.ToArray();
     }
 

@@ -136,7 +136,7 @@ public static class PngWriter
         // §10: the filtered scanlines form one zlib datastream (RFC 1950) split over IDAT chunks.
         int rowBytes = checked(width * bpp);
         var zlibData = new MemoryStream();
-        using (var z = new ZLibStream(zlibData, CompressionLevel.Optimal, leaveOpen: true))
+        using (var z = new ZLibStream(zlibData, CompressionLevel.Fastest, leaveOpen: true))
         {
             var prior = new byte[rowBytes];                    // §9.2: the row above the first is all zeros
             var candidates = new byte[5][];

@@ -21,7 +21,8 @@ public static class RenderOutputWriter
         var encoder = new DisplayEncoder(scene.Colorimeter, scene.Output.Rgb, scene.Output.Exposure, scene.Output.Adapt);
         Directory.CreateDirectory(outDir);
 
-        void Done(string name) { written.Add(name); cancel.ThrowIfCancellationRequested(); }
+        var sw = System.Diagnostics.Stopwatch.StartNew();
+        void Done(string name) { written.Add(name); if (Environment.GetEnvironmentVariable("SPECTRAL_TIMING") == "1") Console.Error.WriteLine($"  {name} {sw.Elapsed.TotalMilliseconds:0} ms"); sw.Restart(); cancel.ThrowIfCancellationRequested(); }
 
         if (formats.Contains("png"))
         {
@@ -34,16 +35,17 @@ public static class RenderOutputWriter
         {
             var dir = Path.Combine(outDir, "bands");
             Directory.CreateDirectory(dir);
-            var plane = new float[image.Width * image.Height];
-            var grey = new ushort[plane.Length];
-            for (int b = 0; b < image.Bands; b++)
+            var names = new string[image.Bands];
+            Parallel.For(0, image.Bands, new ParallelOptions { CancellationToken = cancel }, b =>
             {
+                var plane = new float[image.Width * image.Height];
+                var grey = new ushort[plane.Length];
                 image.CopyBand(b, plane);
                 for (int i = 0; i < plane.Length; i++) grey[i] = scale > 0 ? RgbSpace.To16(Math.Clamp(plane[i] / scale, 0, 1)) : (ushort)0;
-                var name = BandFileName(scene, b);
-                AtomicFile.Write(Path.Combine(dir, name), s => PngWriter.WriteGray16(s, image.Width, image.Height, grey));
-                Done($"bands/{name}");
-            }
+                names[b] = BandFileName(scene, b);
+                AtomicFile.Write(Path.Combine(dir, names[b]), s => PngWriter.WriteGray16(s, image.Width, image.Height, grey));
+            });
+            foreach (var name in names) Done($"bands/{name}");
             var (mw, mh, mosaic) = BandMosaic.Build(image, scale);
             AtomicFile.Write(Path.Combine(outDir, "bands.png"), s => PngWriter.WriteGray8(s, mw, mh, mosaic));
             Done("bands.png");

@@ -1,0 +1,85 @@
+using System.Diagnostics;
+using System.Globalization;
+using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Rendering;
+using SpectralRenderer.Scenes;
+
+namespace SpectralRenderer.Cli.Commands;
+
+/// <summary>`spectral bench`: load, BVH build and render times, rays and Mrays/s, peak working set.</summary>
+public static class BenchCommand
+{
+    const string Help = """
+        usage: spectral bench [SCENE] [--width W] [--height H] [--repeat N] [--threads N] [--bands N|S:E:N]
+                              [--spp N] [--models DIR]
+
+        Measures a scene (default: scenes/paper-3.2-bunny-14.json at 1024 × 1024): scene and mesh load,
+        BVH build, and the render itself (median of N repeats, after one warm-up), with the rays traced
+        (primary, shadow, secondary), Mrays/s and the process's peak working set. Writes no files.
+        Prints a table and one machine-readable line starting with "bench:".
+        """;
+
+    public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
+    {
+        var a = new Arguments("bench", argv, ["--width", "--height", "--repeat", "--threads", "--bands", "--band-range", "--spp", "--models", "--rgb", "--integration", "--formats"], []);
+        if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
+        if (a.Positionals.Count > 1) throw new InputException("", $"unexpected argument '{a.Positionals[1]}'", "usage: spectral bench [SCENE]");
+        var scenePath = a.Positionals.Count == 1 ? a.Positionals[0] : DefaultScene();
+        int repeat = a.Int("--repeat", 1, 1000) ?? 5;
+        int threads = a.Int("--threads", 1, 1024) ?? Environment.ProcessorCount;
+        var overrides = RenderCommand.Overrides(a, scenePath) with
+        {
+            Width = a.Int("--width", 1, SceneLoader.MaxResolution) ?? (a.Positionals.Count == 0 ? 1024 : null),
+            Height = a.Int("--height", 1, SceneLoader.MaxResolution) ?? (a.Positionals.Count == 0 ? 1024 : null),
+        };
+
+        var clock = Stopwatch.StartNew();
+        var scene = SceneLoader.Load(scenePath, overrides);
+        double load = clock.Elapsed.TotalSeconds;
+        clock.Restart();
+        var geometry = new SceneGeometry(scene);
+        var integrator = new WhittedIntegrator(scene, geometry);
+        double build = clock.Elapsed.TotalSeconds;
+
+        Renderer.Render(scene, integrator, threads);   // warm-up: JIT and caches
+        var times = new List<double>();
+        RenderResult? last = null;
+        for (int i = 0; i < repeat; i++)
+        {
+            GC.Collect();
+            last = Renderer.Render(scene, integrator, threads);
+            times.Add(last.Elapsed.TotalSeconds);
+        }
+        times.Sort();
+        double median = times.Count % 2 == 1 ? times[times.Count / 2] : 0.5 * (times[times.Count / 2 - 1] + times[times.Count / 2]);
+        var rays = last!.Rays;
+        double mrays = rays.Total / median / 1e6;
+        long peak = Process.GetCurrentProcess().PeakWorkingSet64;
+        var inv = CultureInfo.InvariantCulture;
+        int tris = geometry.TriangleCount;
+
+        stdout.WriteLine($"scene            {scenePath}");
+        stdout.WriteLine(string.Create(inv, $"image            {scene.Camera.Width} × {scene.Camera.Height}, {scene.Bands} bands ({scene.Grid}), {scene.Camera.SamplesPerPixel} spp, {threads} threads"));
+        stdout.WriteLine(string.Create(inv, $"triangles        {tris:N0}"));
+        stdout.WriteLine(string.Create(inv, $"load (+meshes)   {load:0.000} s"));
+        stdout.WriteLine(string.Create(inv, $"BVH build        {build:0.000} s"));
+        stdout.WriteLine(string.Create(inv, $"render median    {median:0.0000} s  (min {times[0]:0.0000}, max {times[^1]:0.0000}, {repeat} runs)"));
+        stdout.WriteLine(string.Create(inv, $"rays             {rays.Total:N0} (primary {rays.Primary:N0}, shadow {rays.Shadow:N0}, secondary {rays.Secondary:N0})"));
+        stdout.WriteLine(string.Create(inv, $"throughput       {mrays:0.00} Mrays/s"));
+        stdout.WriteLine(string.Create(inv, $"peak working set {peak / 1048576.0:0.0} MB (framebuffer {(long)scene.Camera.Width * scene.Camera.Height * scene.Bands * 4 / 1048576.0:0.0} MB)"));
+        stdout.WriteLine(string.Create(inv,
+            $"bench: scene={Path.GetFileName(scenePath)} width={scene.Camera.Width} height={scene.Camera.Height} bands={scene.Bands} spp={scene.Camera.SamplesPerPixel} threads={threads} triangles={tris} load_s={load:0.0000} build_s={build:0.0000} render_s={median:0.0000} rays={rays.Total} primary={rays.Primary} shadow={rays.Shadow} secondary={rays.Secondary} mrays_per_s={mrays:0.00} peak_ws_mb={peak / 1048576.0:0.0}"));
+        return CommandLine.Success;
+    }
+
+    static string DefaultScene()
+    {
+        foreach (var root in new[] { Directory.GetCurrentDirectory(), AppContext.BaseDirectory })
+            for (var d = new DirectoryInfo(root); d is not null; d = d.Parent)
+            {
+                var p = Path.Combine(d.FullName, "scenes", "paper-3.2-bunny-14.json");
+                if (File.Exists(p)) return p;
+            }
+        throw new InputException("bench", "the default scene scenes/paper-3.2-bunny-14.json was not found", "name a scene file");
+    }
+}
