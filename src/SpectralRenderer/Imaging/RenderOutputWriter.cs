@@ -21,8 +21,7 @@ public static class RenderOutputWriter
         var encoder = new DisplayEncoder(scene.Colorimeter, scene.Output.Rgb, scene.Output.Exposure, scene.Output.Adapt);
         Directory.CreateDirectory(outDir);
 
-        var sw = System.Diagnostics.Stopwatch.StartNew();
-        void Done(string name) { written.Add(name); if (Environment.GetEnvironmentVariable("SPECTRAL_TIMING") == "1") Console.Error.WriteLine($"  {name} {sw.Elapsed.TotalMilliseconds:0} ms"); sw.Restart(); cancel.ThrowIfCancellationRequested(); }
+        void Done(string name) { written.Add(name); cancel.ThrowIfCancellationRequested(); }
 
         if (formats.Contains("png"))
         {
