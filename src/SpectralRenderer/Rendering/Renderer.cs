@@ -58,10 +58,16 @@ public sealed class Renderer
         int strata = (int)Math.Ceiling(Math.Sqrt(spp));
         float inv = 1f / spp;
 
-        Parallel.For(0, tiles, new ParallelOptions { MaxDegreeOfParallelism = threads, CancellationToken = cancel },
-            () => new TileState(integrator.ScratchLength, padded),
-            (tile, _, state) =>
+        // One worker per thread, each with its own scratch spectra, pulling tiles from a shared counter:
+        // the loop allocates per worker, never per tile, ray or pixel.
+        int next = -1;
+        void Worker()
+        {
+            var state = new TileState(integrator.ScratchLength, padded);
+            int tile;
+            while ((tile = Interlocked.Increment(ref next)) < tiles)
             {
+                cancel.ThrowIfCancellationRequested();
                 int x0 = tile % tilesX * TileSize, y0 = tile / tilesX * TileSize;
                 int x1 = Math.Min(width, x0 + TileSize), y1 = Math.Min(height, y0 + TileSize);
                 var counters = new RayCounters();
@@ -108,9 +114,12 @@ public sealed class Renderer
                     done++;
                     progress?.Invoke(new RenderProgress(done, tiles, total.Total, clock.Elapsed));
                 }
-                return state;
-            },
-            _ => { });
+            }
+        }
+        var workers = new Task[Math.Min(threads, tiles)];
+        for (int w = 0; w < workers.Length; w++) workers[w] = Task.Factory.StartNew(Worker, cancel, TaskCreationOptions.None, TaskScheduler.Default);
+        try { Task.WaitAll(workers); }
+        catch (AggregateException e) when (e.InnerExceptions.All(x => x is OperationCanceledException)) { throw new OperationCanceledException(cancel); }
 
         return new RenderResult { Image = image, ObjectIds = ids, LitMasks = lit, SpecularY = specY, DiffuseY = diffY, Rays = total, Elapsed = clock.Elapsed, Threads = threads, Tiles = tiles };
     }

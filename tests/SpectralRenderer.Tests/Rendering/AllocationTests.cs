@@ -1,0 +1,46 @@
+using SpectralRenderer.Rendering;
+using SpectralRenderer.Scenes;
+
+namespace SpectralRenderer.Tests.Rendering;
+
+/// <summary>The render loop allocates per tile-worker, never per ray or per pixel.</summary>
+public class AllocationTests
+{
+    const string Json = """
+    { "camera": { "position": [0, 1, 6], "look_at": [0, 0.5, 0], "width": 64, "height": 64, "spp": 2 },
+      "materials": { "m": { "diffuse": "colorchecker:14", "specular": 0.3, "mirror": 0.2 }, "glass": { "diffuse": 0, "transmit": 0.8, "ior": 1.5 } },
+      "ambient": 0.05,
+      "lights": [ { "type": "point", "position": [2, 4, 3], "spectrum": "D65", "intensity": 0.2 } ],
+      "objects": [ { "type": "sphere", "center": [0, 1, 0], "radius": 1, "material": "m" },
+                   { "type": "sphere", "center": [1.5, 0.5, 1], "radius": 0.5, "material": "glass" },
+                   { "type": "box", "center": [-1.5, 0.5, 0], "size": [1, 1, 1], "material": "m" },
+                   { "type": "plane", "material": "m" } ],
+      "max_depth": 3 }
+    """;
+
+    static (long Allocated, long Outputs, int Tiles, long Rays) Measure(int size)
+    {
+        var scene = SceneText.Load(Json, new SceneOverrides { Width = size, Height = size });
+        var integrator = new WhittedIntegrator(scene, new SceneGeometry(scene));
+        Renderer.Render(scene, integrator, 2);   // JIT, thread pool warm-up
+        long before = GC.GetTotalAllocatedBytes(true);
+        var r = Renderer.Render(scene, integrator, 2);
+        long allocated = GC.GetTotalAllocatedBytes(true) - before;
+        // The results themselves: the framebuffer and four per-pixel analysis arrays.
+        long outputs = (long)size * size * (scene.Bands * 4 + 4 + 4 + 4 + 4);
+        return (allocated, outputs, r.Tiles, r.Rays.Total);
+    }
+
+    [Fact]
+    public void Allocated_bytes_beyond_the_result_buffers_are_O_tiles_not_O_pixels()
+    {
+        var small = Measure(64);
+        var large = Measure(256);
+        long smallLoop = small.Allocated - small.Outputs, largeLoop = large.Allocated - large.Outputs;
+        Assert.True(large.Rays > 15 * small.Rays, $"{large.Rays} vs {small.Rays} rays");
+        // 16× the pixels and rays: the loop's own allocation may grow with the tile count only (~1 KB per tile).
+        // 16× the pixels and rays, the same allocation: one scratch set per worker thread, nothing per tile, ray or pixel.
+        Assert.True(largeLoop <= 64 * 1024, $"render loop allocated {largeLoop} bytes for {large.Tiles} tiles ({large.Rays} rays)");
+        Assert.True(largeLoop <= smallLoop + 4096, $"allocation grew from {smallLoop} to {largeLoop} bytes with 16× the pixels");
+    }
+}
