@@ -50,7 +50,8 @@ public sealed class SvgPlot
         if (YFromZero) { y0 = Math.Min(0, y0); y1 = Math.Max(0, y1); }
         var xt = Ticks(x0, x1, 8);
         var yt = Ticks(y0, y1, 6);
-        x0 = Math.Min(x0, xt[0]); x1 = Math.Max(x1, xt[^1]);
+        if (x1 > x0) xt = xt.Where(t => t >= x0 - 1e-9 * (x1 - x0) && t <= x1 + 1e-9 * (x1 - x0)).ToArray(); // x: the data's range
+        else { x0 = xt[0]; x1 = xt[^1]; }
         y0 = Math.Min(y0, yt[0]); y1 = Math.Max(y1, yt[^1]);
         double Sx(double v) => left + (x1 > x0 ? (v - x0) / (x1 - x0) : 0.5) * pw;
         double Sy(double v) => top + ph - (y1 > y0 ? (v - y0) / (y1 - y0) : 0.5) * ph;
