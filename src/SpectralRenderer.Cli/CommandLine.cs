@@ -14,6 +14,8 @@ public static class CommandLine
         ("colorcheck", "a rendered ColorChecker's patches against their 1 nm reference (ΔE00)", ColorCheckCommand.Run),
         ("bench", "load, BVH build and render times, Mrays/s, peak memory", BenchCommand.Run),
         ("colors", "the 24 ColorChecker patches' XYZ, Lab, RGB and ΔE00 under a light", ColorsCommand.Run),
+        ("probe", "the spectra of chosen pixels of a render, as CSV and an SVG plot (Fig. 6b)", ProbeCommand.Run),
+        ("reconstruct", "white-board reflectance reconstruction against the truth, by region (§3.4, Fig. 7)", ReconstructCommand.Run),
     ];
 
     public static string Version => typeof(CommandLine).Assembly.GetName().Version?.ToString(3) ?? "0.0.0";
