@@ -46,8 +46,8 @@ public static class ReconstructCommand
         var folder = RenderFolder.Open(dir);
         var img = folder.Image;
         var chosen = PixelOption.ParseAll(a.Values("--pixel"), "reconstruct", img.Width, img.Height);
-        var white = obj is not null ? Reconstruction.WhiteObject(folder, obj) : ParseRegion(folder, region!);
         var aovs = RenderAovs.Open(folder);
+        var white = obj is not null ? Reconstruction.WhiteObject(folder, obj, aovs) : ParseRegion(folder, region!);
         var rec = Reconstruction.Compute(folder, aovs, white);
 
         var surface = rec.SurfacePixels();

@@ -69,14 +69,25 @@ public sealed class Reconstruction
 
     static double Divide(double pixel, double white) => white > 0 ? pixel / white : 0;
 
-    /// <summary>The mean radiance of every pixel showing the object called <paramref name="name"/>.</summary>
-    public static WhiteReference WhiteObject(RenderFolder folder, string name)
+    /// <summary>
+    /// The mean radiance of the pixels showing the object called <paramref name="name"/>: those lit by
+    /// every light and outside highlights when the render has masks (a white board's shadowed part is
+    /// not a white reference), else all of them.
+    /// </summary>
+    public static WhiteReference WhiteObject(RenderFolder folder, string name, RenderAovs? aovs = null)
     {
         int index = folder.ObjectIndex(name);
         if (index < 0)
             throw new InputException("--white-object", $"no object '{name}' in {folder.Path}",
                 InputException.DidYouMean(name, folder.ObjectNames) ?? $"objects: {string.Join(", ", folder.ObjectNames.Take(12))}");
         var mask = folder.ObjectIds.Select(id => id == index).ToArray();
+        if (aovs is { HasMasks: true })
+        {
+            var lit = (bool[])mask.Clone();
+            for (int i = 0; i < lit.Length; i++)
+                lit[i] &= !aovs.Highlight![i] && aovs.Lit!.All(l => l[i]);
+            if (lit.Any(v => v)) return Mean(folder, lit, $"object '{name}', its fully lit pixels");
+        }
         return Mean(folder, mask, $"object '{name}'");
     }
 
