@@ -12,6 +12,7 @@ public static class CommandLine
     [
         ("render", "render a scene file: band images, spectral cubes, sRGB preview", RenderCommand.Run),
         ("colorcheck", "a rendered ColorChecker's patches against their 1 nm reference (ΔE00)", ColorCheckCommand.Run),
+        ("experiments", "every scene of the paper rendered and analysed into report.html (Figs. 2–7)", ExperimentsCommand.Run),
         ("bench", "load, BVH build and render times, Mrays/s, peak memory", BenchCommand.Run),
         ("colors", "the 24 ColorChecker patches' XYZ, Lab, RGB and ΔE00 under a light", ColorsCommand.Run),
         ("probe", "the spectra of chosen pixels of a render, as CSV and an SVG plot (Fig. 6b)", ProbeCommand.Run),

@@ -302,6 +302,11 @@ public sealed partial class SceneLoader
         float fov = (float)Number(e, "fov", path, 40, 1e-3, 179);
         int width = _overrides.Width ?? Integer(e, "width", path, 640, int.MinValue, int.MaxValue);
         int height = _overrides.Height ?? Integer(e, "height", path, 480, int.MinValue, int.MaxValue);
+        if (_overrides.ResolutionScale != 1 && width > 0 && height > 0)
+        {
+            width = Math.Max(8, (int)Math.Round(width * _overrides.ResolutionScale));
+            height = Math.Max(8, (int)Math.Round(height * _overrides.ResolutionScale));
+        }
         if (width < 1 || height < 1)
             throw Error(width < 1 ? $"{path}.width" : $"{path}.height", $"resolution {width}×{height} is not positive", "width and height must be at least 1");
         if (width > MaxResolution || height > MaxResolution)

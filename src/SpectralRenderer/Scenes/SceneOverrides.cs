@@ -7,6 +7,8 @@ public sealed record SceneOverrides
     public int? Height { get; init; }
     public string? Bands { get; init; }
     public int? SamplesPerPixel { get; init; }
+    /// <summary>Multiplies the scene's own width and height (after the overrides above), at least 8 pixels.</summary>
+    public double ResolutionScale { get; init; } = 1;
     public string? Rgb { get; init; }
     public string? Integration { get; init; }
     public string? Formats { get; init; }

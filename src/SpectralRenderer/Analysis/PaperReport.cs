@@ -1,0 +1,255 @@
+using System.Globalization;
+using System.Net;
+using System.Text;
+using SpectralRenderer.Color;
+using SpectralRenderer.Imaging;
+using SpectralRenderer.Spectra;
+
+namespace SpectralRenderer.Analysis;
+
+/// <summary>
+/// report.html: one self-contained page (images embedded, inline SVG plots, no network) reproducing the
+/// paper's Figs. 2–7 from a <see cref="PaperExperiments"/> run, with the ColorChecker ΔE00 table, the
+/// probed spectra and the reconstruction metrics, and notes where our numbers differ from the paper's.
+/// A small script checks on load that every image decoded and every plot has content, and records any
+/// script error in the page (data-selfcheck on &lt;body&gt;), so a headless browser can verify it.
+/// </summary>
+public static class PaperReport
+{
+    static readonly CultureInfo Inv = CultureInfo.InvariantCulture;
+
+    public static string Write(string outDir, IReadOnlyList<ExperimentRun> runs, double totalSeconds)
+    {
+        var h = new StringBuilder();
+        h.Append("""
+            <!DOCTYPE html>
+            <html lang="en"><head><meta charset="utf-8">
+            <title>SpectralRenderer — the paper's experiments (Li et al. 2010, §3)</title>
+            <style>
+            body { font: 15px/1.45 system-ui, sans-serif; max-width: 1180px; margin: 2em auto; padding: 0 1em; color: #222; }
+            h1 { font-size: 1.6em; } h2 { margin-top: 2.2em; border-bottom: 1px solid #ccc; }
+            figure { margin: 1.2em 0; } figcaption { color: #444; font-size: 0.93em; margin-top: .4em; }
+            .row { display: flex; flex-wrap: wrap; gap: 12px; align-items: flex-start; } .row figure { margin: 0; }
+            img { max-width: 100%; image-rendering: auto; border: 1px solid #ddd; }
+            table { border-collapse: collapse; font-size: 0.88em; } td, th { padding: 2px 7px; border-bottom: 1px solid #eee; text-align: right; }
+            th { background: #f4f4f4; } td.l, th.l { text-align: left; } .note { background: #fff8e0; padding: .6em .9em; border-left: 4px solid #e0b000; }
+            .skip { background: #fbeaea; padding: .5em .8em; border-left: 4px solid #c33; }
+            </style></head><body>
+            """);
+        h.Append("<h1>Spectral-based rendering: the paper's experiments, reproduced</h1>\n");
+        h.Append(Inv, $"<p>Li, Feng, Yang &amp; Bai (2010), <i>Spectral-based rendering method and its application in multispectral colour reproduction</i>, §3, rendered by SpectralRenderer {Esc(typeof(PaperReport).Assembly.GetName().Version?.ToString(3) ?? "")} on {DateTime.UtcNow:yyyy-MM-dd HH:mm} UTC, {Environment.ProcessorCount} cores, in {totalSeconds:0.0} s. Every image carries light in bands; colours come from eq. 3 (CIE 1931 2°) and sRGB unless noted.</p>\n");
+
+        var byName = runs.ToDictionary(r => r.Name);
+        Chart(h, byName.GetValueOrDefault("paper-3.1-colorchecker-d65"));
+        Gallery(h, "Fig. 4 — §3.2 materials on a complex object", runs.Where(r => r.Section == "3.2").ToList(),
+            "The Stanford bunny (69,451 triangles) wearing ColorChecker patches #19, #14, #7 and #5 under D65 from a fixed point light, on a neutral floor; hard shadows, a little D65 ambient.");
+        Gallery(h, "Fig. 5 — §3.3 one material under different lights", runs.Where(r => r.Section == "3.3").ToList(),
+            "The statue (the Igea scan, from triangle strips) with patch #20 (neutral 8) and a constant specular reflectance, under CIE A, D65, the blue and the green LED. κ is set by each light and nothing is white-balanced, so the body takes the light's colour and the highlights on the lips and nose are the light's own colour, as in the paper.");
+        Analysis(h, byName.GetValueOrDefault("paper-3.4-bunny-analysis"));
+        Timings(h, runs, totalSeconds);
+
+        h.Append("""
+            <script>
+            (function () {
+              var errors = [];
+              window.addEventListener('error', function (e) { errors.push(String(e.message || e)); });
+              var origError = console.error;
+              console.error = function () { errors.push(Array.prototype.join.call(arguments, ' ')); origError.apply(console, arguments); };
+              window.addEventListener('load', function () {
+                var imgs = document.querySelectorAll('img'), bad = [];
+                imgs.forEach(function (i) { if (!(i.complete && i.naturalWidth > 0)) bad.push(i.alt || i.src.slice(0, 40)); });
+                var svgs = document.querySelectorAll('svg.plot, svg.marked');
+                svgs.forEach(function (s, k) { if (s.querySelectorAll('polyline, image').length === 0) bad.push('plot ' + k); });
+                var r = { images: imgs.length, plots: svgs.length, empty: bad, errors: errors };
+                document.body.setAttribute('data-selfcheck', JSON.stringify(r));
+                var p = document.getElementById('selfcheck');
+                if (p) p.textContent = 'self-check: ' + imgs.length + ' images, ' + svgs.length + ' plots, ' + bad.length + ' empty, ' + errors.length + ' script errors';
+              });
+            })();
+            </script>
+            <p id="selfcheck" style="color:#888">self-check: not run</p>
+            </body></html>
+            """);
+        var path = Path.Combine(outDir, "report.html");
+        AtomicFile.WriteAllText(path, h.ToString());
+        return path;
+    }
+
+    static string Esc(string s) => WebUtility.HtmlEncode(s);
+
+    static string Img(string file, string alt, int? width = null)
+    {
+        var data = Convert.ToBase64String(File.ReadAllBytes(file));
+        return $"<img alt=\"{Esc(alt)}\" src=\"data:image/png;base64,{data}\"{(width is { } w ? $" width=\"{w}\"" : "")}>";
+    }
+
+    static void Skipped(StringBuilder h, ExperimentRun? r, string what)
+    {
+        h.Append($"<p class=\"skip\">{Esc(what)} was not rendered: {Esc(r?.Skipped ?? "the scene did not run")}. The meshes are third-party scans outside the repository; see the README, “Meshes”.</p>\n");
+    }
+
+    // ---- §3.1 -------------------------------------------------------------------------------------
+
+    static void Chart(StringBuilder h, ExperimentRun? r)
+    {
+        h.Append("<h2>Fig. 2 — §3.1 the band images</h2>\n");
+        if (r is not { Done: true }) { Skipped(h, r, "The ColorChecker"); return; }
+        h.Append($"<figure>{Img(Path.Combine(r.OutDir, "bands.png"), "band mosaic")}<figcaption>The Macbeth ColorChecker (Ohta / MCSL reflectances) under D65, {r.Bands} bands of {(400.0 / r.Bands).ToString("0.#", Inv)} nm from 380 nm (top left) to 780 nm, all on one scale. Blue patches are bright in the first bands, red ones in the last; the white patch #19 is bright throughout.</figcaption></figure>\n");
+
+        h.Append("<h2>Fig. 3 — §3.1 the synthesised colours</h2>\n<div class=\"row\">");
+        h.Append($"<figure>{Img(Path.Combine(r.OutDir, "preview.png"), "chart sRGB", 540)}<figcaption>sRGB (IEC 61966-2-1).</figcaption></figure>");
+        var eq4 = Path.Combine(r.OutDir, "preview-eq4.png");
+        if (File.Exists(eq4)) h.Append($"<figure>{Img(eq4, "chart eq. 4", 540)}<figcaption>The paper's eq. 4 (NTSC 1953 matrix, illuminant C white), linear and clipped.</figcaption></figure>");
+        h.Append("</div>\n");
+
+        var folder = RenderFolder.Open(r.OutDir);
+        var rows = ColorCheckerReport.Compute(folder);
+        h.Append("<table><tr><th>#</th><th class=l>patch</th><th>X</th><th>Y</th><th>Z</th><th>L*</th><th>a*</th><th>b*</th><th>L* 1 nm</th><th>a* 1 nm</th><th>b* 1 nm</th><th>sRGB</th><th>eq. 4 RGB (linear)</th><th>ΔE00</th></tr>\n");
+        foreach (var p in rows)
+        {
+            var (er, eg, eb) = RgbSpace.Paper.Linear(p.Rendered);
+            h.Append(Inv, $"<tr><td>{p.Patch}</td><td class=l>{Esc(ColorChecker.Name(p.Patch))}</td><td>{p.Rendered.X:0.0000}</td><td>{p.Rendered.Y:0.0000}</td><td>{p.Rendered.Z:0.0000}</td><td>{p.RenderedLab.L:0.00}</td><td>{p.RenderedLab.A:0.00}</td><td>{p.RenderedLab.B:0.00}</td><td>{p.ReferenceLab.L:0.00}</td><td>{p.ReferenceLab.A:0.00}</td><td>{p.ReferenceLab.B:0.00}</td><td><span style=\"display:inline-block;width:1.4em;height:.9em;background:rgb({p.Srgb8.R},{p.Srgb8.G},{p.Srgb8.B})\"></span> {p.Srgb8.R} {p.Srgb8.G} {p.Srgb8.B}</td><td>{er:0.000} {eg:0.000} {eb:0.000}</td><td>{p.DeltaE00:0.000}</td></tr>\n");
+        }
+        h.Append(Inv, $"</table><p>CIEDE2000 of the rendered patches against the same reflectances under D65 integrated at 1 nm: mean <b>{rows.Average(x => x.DeltaE00):0.000}</b>, max <b>{rows.Max(x => x.DeltaE00):0.000}</b> ({folder.Integration} band integration). The paper compared with a photograph instead; its Fig. 3 has no numbers.</p>\n");
+
+        var greys = rows.Where(x => x.Patch is 19 or 20 or 21).ToList();
+        if (greys.Count == 3)
+        {
+            var sb = new StringBuilder();
+            foreach (var g in greys)
+            {
+                var (er, eg, eb) = RgbSpace.Paper.Linear(g.Rendered);
+                sb.Append(Inv, $"#{g.Patch}: ({er:0.000}, {eg:0.000}, {eb:0.000}), B/G = {eb / eg:0.000}; ");
+            }
+            h.Append($"<p class=\"note\"><b>Where we differ from the paper.</b> The paper reports that with eq. 4 patch #21 came out slightly bluish and #19 and #20 saturated to white. Eq. 4 applied to the rendered XYZ gives {Esc(sb.ToString().TrimEnd(' ', ';'))}: no channel of #19 or #20 reaches 1, and every grey has less blue than green — under D65 the NTSC/illuminant-C matrix tints neutrals slightly yellow-green, not blue. The paper's bluish greys and clipped whites must come from its display or exposure, not from eq. 4 itself. In sRGB the greys are neutral (a*, b* within 1 of zero).</p>\n");
+        }
+    }
+
+    // ---- §3.2, §3.3 -------------------------------------------------------------------------------
+
+    static void Gallery(StringBuilder h, string heading, List<ExperimentRun> runs, string caption)
+    {
+        h.Append($"<h2>{Esc(heading)}</h2>\n<div class=\"row\">");
+        foreach (var r in runs)
+        {
+            if (!r.Done) { h.Append($"<div class=\"skip\">{Esc(r.Title)}: skipped</div>"); continue; }
+            h.Append($"<figure>{Img(Path.Combine(r.OutDir, "preview.png"), r.Title, r.Section == "3.3" ? 270 : 280)}<figcaption>{Esc(r.Title)}</figcaption></figure>");
+        }
+        h.Append($"</div><p>{Esc(caption)}</p>\n");
+        var missing = runs.FirstOrDefault(r => !r.Done);
+        if (missing is not null) Skipped(h, missing, heading);
+    }
+
+    // ---- §3.4 -------------------------------------------------------------------------------------
+
+    static void Analysis(StringBuilder h, ExperimentRun? r)
+    {
+        h.Append("<h2>Fig. 6 — §3.4 pixel spectra</h2>\n");
+        if (r is not { Done: true }) { Skipped(h, r, "The §3.4 analysis scene"); return; }
+        var folder = RenderFolder.Open(r.OutDir);
+        var aovs = RenderAovs.Open(folder);
+        var white = Reconstruction.WhiteObject(folder, "board", aovs);
+        var rec = Reconstruction.Compute(folder, aovs, white);
+        var surface = rec.SurfacePixels();
+        var picks = LabelledPixels(rec, surface, folder);
+        var img = folder.Image;
+        var centres = Enumerable.Range(0, img.Bands).Select(img.Grid.Centre).ToArray();
+
+        // The render with the labelled pixels marked.
+        var png = Convert.ToBase64String(File.ReadAllBytes(Path.Combine(r.OutDir, "preview.png")));
+        h.Append(Inv, $"<div class=\"row\"><figure><svg class=\"marked\" xmlns=\"http://www.w3.org/2000/svg\" width=\"{img.Width}\" height=\"{img.Height}\" viewBox=\"0 0 {img.Width} {img.Height}\"><image width=\"{img.Width}\" height=\"{img.Height}\" href=\"data:image/png;base64,{png}\"/>");
+        for (int k = 0; k < picks.Count; k++)
+        {
+            var p = picks[k];
+            var colour = SvgPlot.Palette[k % SvgPlot.Palette.Length];
+            h.Append(Inv, $"<circle cx=\"{p.X + 0.5}\" cy=\"{p.Y + 0.5}\" r=\"6\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"2.5\"/><text x=\"{p.X + 9}\" y=\"{p.Y - 6}\" fill=\"{colour}\" font-size=\"15\" font-weight=\"bold\" stroke=\"white\" stroke-width=\"0.6\">{k + 1}</text>");
+        }
+        h.Append("</svg><figcaption>(a) The bunny with patch #14 on an ideal white board (reflectance 1.0) under D65, with a glossy highlight; the labelled pixels.</figcaption></figure>");
+
+        var probe = new SvgPlot { Title = "(b) spectra of the labelled pixels", XLabel = "wavelength (nm)", YLabel = "spectral radiance (relative, W·m⁻²·sr⁻¹·nm⁻¹)", Width = 560, Height = 380 };
+        for (int k = 0; k < picks.Count; k++) probe.Add($"{k + 1}: {picks[k].Label}", centres, picks[k].Radiance);
+        h.Append($"<figure>{PlotSvg(probe)}</figure></div>\n");
+
+        h.Append("<h2>Fig. 7 — §3.4 reflectance reconstructed from the white board</h2>\n");
+        var plot = new SvgPlot { Title = "reconstructed reflectance = pixel ÷ white board", XLabel = "wavelength (nm)", YLabel = "reflectance", Width = 720, Height = 420 };
+        var truth = picks.First(p => p.Object == "bunny");
+        for (int k = 0; k < picks.Count; k++)
+            if (picks[k].Object == "bunny") plot.Add($"{k + 1}: {picks[k].Label}", centres, picks[k].Reflectance);
+        plot.Add("truth: patch #14 (Ohta)", centres, truth.Truth, dashed: true);
+        h.Append($"<figure>{PlotSvg(plot)}<figcaption>White reference: {Esc(white.Description)} ({white.Pixels} pixels). The dashed curve is the reflectance the bunny was given.</figcaption></figure>\n");
+
+        h.Append("<table><tr><th class=l>pixel</th><th>x</th><th>y</th><th class=l>object</th><th class=l>region</th><th>RMSE</th><th>GFC</th><th>ΔE00 (D65)</th><th>scale c</th><th>residual after c</th></tr>\n");
+        for (int k = 0; k < picks.Count; k++)
+        {
+            var p = picks[k];
+            h.Append(Inv, $"<tr><td class=l>{k + 1}: {Esc(p.Label)}</td><td>{p.X}</td><td>{p.Y}</td><td class=l>{Esc(p.Object)}</td><td class=l>{Reconstruction.Name(p.Region)}</td><td>{p.Rmse:0.00000}</td><td>{p.Gfc:0.000000}</td><td>{p.DeltaE00:0.00}</td><td>{p.Scale:0.0000}</td><td>{p.Residual:0.00000}</td></tr>\n");
+        }
+        h.Append("</table>\n<p>Per region, over every surface pixel but the white reference:</p>\n<table><tr><th class=l>region</th><th>pixels</th><th>mean RMSE</th><th>mean GFC</th><th>mean ΔE00</th><th>mean c</th><th>mean residual</th></tr>\n");
+        foreach (var s in Reconstruction.Summarise(surface))
+            h.Append(Inv, $"<tr><td class=l>{Esc(s.Region)}</td><td>{s.Count}</td><td>{s.MeanRmse:0.00000}</td><td>{s.MeanGfc:0.000000}</td><td>{s.MeanDeltaE00:0.00}</td><td>{s.MeanScale:0.0000}</td><td>{s.MeanResidual:0.00000}</td></tr>\n");
+        h.Append("</table>\n");
+
+        var shadow = picks.FirstOrDefault(p => p.Region == PixelRegion.Shadow && p.Object == "bunny");
+        var high = picks.FirstOrDefault(p => p.Region == PixelRegion.Highlight);
+        var sb = new StringBuilder("<p class=\"note\"><b>The paper's two findings, measured.</b> ");
+        if (shadow is not null)
+            sb.Append(Inv, $"In shadow the reconstruction is the truth times a factor: c = {shadow.Scale:0.0000} with a residual of {shadow.Residual:0.0e0} after scaling (GFC {shadow.Gfc:0.000000}); eq. 2 predicts c = ambient ÷ lit irradiance of the board. ");
+        if (high is not null)
+            sb.Append(Inv, $"In a highlight the light's spectrum is added: the highlight pixel's reconstruction has GFC {high.Gfc:0.0000} with the truth and c = {high.Scale:0.000}; the excess follows the light ÷ white-board spectrum. ");
+        sb.Append("Lit pixels whose irradiance matches the board's reconstruct the truth exactly; elsewhere on the lit bunny the shape is right (GFC ≈ 1) and only the scale differs with the angle to the light.</p>\n");
+        h.Append(sb);
+    }
+
+    /// <summary>Fig. 6's labelled pixels: a lit bunny pixel whose irradiance matches the board's, a typical lit one, the strongest highlight, a shadowed bunny pixel and the board.</summary>
+    static List<PixelReconstruction> LabelledPixels(Reconstruction rec, List<PixelReconstruction> surface, RenderFolder folder)
+    {
+        var picks = new List<PixelReconstruction>();
+        var bunnyLit = surface.Where(p => p.Object == "bunny" && p.Region == PixelRegion.Lit).ToList();
+        if (bunnyLit.Count > 0)
+        {
+            picks.Add(bunnyLit.MinBy(p => Math.Abs(p.Scale - 1))! with { Label = "lit, c ≈ 1" });
+            var sorted = bunnyLit.OrderBy(p => p.Scale).ToList();
+            picks.Add(sorted[sorted.Count / 2] with { Label = "lit, typical" });
+        }
+        var high = surface.Where(p => p.Region == PixelRegion.Highlight && p.Object == "bunny").ToList();
+        if (high.Count > 0) picks.Add(high.MaxBy(p => p.Radiance.Sum())! with { Label = "highlight" });
+        var shadow = surface.Where(p => p.Object == "bunny" && p.Region == PixelRegion.Shadow).ToList();
+        if (shadow.Count > 0) picks.Add(shadow.OrderBy(p => p.Rmse).ElementAt(shadow.Count / 2) with { Label = "shadow" });
+        int board = folder.ObjectIndex("board");
+        if (board >= 0)
+        {
+            // The lit board pixel nearest the lower left of the picture, away from the bunny.
+            int w = folder.Image.Width, h = folder.Image.Height, best = -1;
+            double bestD = double.MaxValue;
+            for (int i = 0; i < rec.White.Mask.Length; i++)
+            {
+                if (!rec.White.Mask[i]) continue;
+                double dx = i % w - 0.2 * w, dy = i / w - 0.85 * h, d = dx * dx + dy * dy;
+                if (d < bestD) { bestD = d; best = i; }
+            }
+            if (best >= 0) picks.Add(rec.At(best % w, best / w, "white board"));
+        }
+        return picks;
+    }
+
+    static string PlotSvg(SvgPlot plot)
+    {
+        var svg = plot.ToSvg();
+        int start = svg.IndexOf("<svg", StringComparison.Ordinal);
+        svg = svg[start..];
+        return svg.Replace("<svg ", "<svg class=\"plot\" ", StringComparison.Ordinal);
+    }
+
+    // ---- timings ----------------------------------------------------------------------------------
+
+    static void Timings(StringBuilder h, IReadOnlyList<ExperimentRun> runs, double total)
+    {
+        h.Append("<h2>The run</h2>\n<table><tr><th class=l>scene</th><th>size</th><th>bands</th><th>triangles</th><th>load s</th><th>render s</th><th>Mrays/s</th><th>write s</th></tr>\n");
+        foreach (var r in runs)
+        {
+            if (!r.Done) { h.Append($"<tr><td class=l>{Esc(r.Name)}</td><td colspan=7 class=l>skipped: {Esc(r.Skipped!)}</td></tr>\n"); continue; }
+            h.Append(Inv, $"<tr><td class=l>{Esc(r.Name)}</td><td>{r.Width}×{r.Height}</td><td>{r.Bands}</td><td>{r.Triangles:N0}</td><td>{r.LoadSeconds:0.000}</td><td>{r.RenderSeconds:0.000}</td><td>{r.Rays / Math.Max(1e-9, r.RenderSeconds) / 1e6:0.0}</td><td>{r.WriteSeconds:0.000}</td></tr>\n");
+        }
+        h.Append(Inv, $"</table><p>Total {total:0.0} s including writing every output. Each scene's folder beside this page holds its band PNGs, spectral.npy, masks and render.json.</p>\n");
+    }
+}
