@@ -86,4 +86,17 @@ public class BadSceneTests
         Assert.Equal(2, code);
         Assert.Contains("exists and is a file", err);
     }
+
+    [Fact]
+    public void An_output_folder_that_cannot_be_created_is_exit_2()
+    {
+        var dir = Reference.TempDir();
+        var scene = Path.Combine(dir, "scene.json");
+        File.WriteAllText(scene, Good);
+        File.WriteAllText(Path.Combine(dir, "file"), "x");
+        var (code, _, err) = CliRunner.Run("render", scene, "-o", Path.Combine(dir, "file", "sub"), "--quiet");
+        Assert.Equal(2, code);
+        Assert.Contains("cannot be written", err);
+        Assert.Single(err.TrimEnd('\n').Split('\n'));
+    }
 }
