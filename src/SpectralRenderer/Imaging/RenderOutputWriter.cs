@@ -15,54 +15,63 @@ public static class RenderOutputWriter
 {
     public static List<string> Write(Scene scene, RenderResult result, string outDir, JsonObject? run = null, CancellationToken cancel = default)
     {
-        var written = new List<string>();
         var formats = scene.Output.Formats;
         var image = result.Image;
-        var encoder = new DisplayEncoder(scene.Colorimeter, scene.Output.Rgb, scene.Output.Exposure, scene.Output.Adapt);
         Directory.CreateDirectory(outDir);
-
-        void Done(string name) { written.Add(name); cancel.ThrowIfCancellationRequested(); }
-
-        if (formats.Contains("png"))
-        {
-            var rgb = Preview(image, encoder);
-            AtomicFile.Write(Path.Combine(outDir, "preview.png"), s => PngWriter.WriteRgb8(s, image.Width, image.Height, rgb));
-            Done("preview.png");
-        }
         float scale = image.Max();
-        if (formats.Contains("bands"))
-        {
-            var dir = Path.Combine(outDir, "bands");
-            Directory.CreateDirectory(dir);
-            var names = new string[image.Bands];
-            Parallel.For(0, image.Bands, new ParallelOptions { CancellationToken = cancel }, b =>
-            {
-                var plane = new float[image.Width * image.Height];
-                var grey = new ushort[plane.Length];
-                image.CopyBand(b, plane);
-                for (int i = 0; i < plane.Length; i++) grey[i] = scale > 0 ? RgbSpace.To16(Math.Clamp(plane[i] / scale, 0, 1)) : (ushort)0;
-                names[b] = BandFileName(scene, b);
-                AtomicFile.Write(Path.Combine(dir, names[b]), s => PngWriter.WriteGray16(s, image.Width, image.Height, grey));
-            });
-            foreach (var name in names) Done($"bands/{name}");
-            var (mw, mh, mosaic) = BandMosaic.Build(image, scale);
-            AtomicFile.Write(Path.Combine(outDir, "bands.png"), s => PngWriter.WriteGray8(s, mw, mh, mosaic));
-            Done("bands.png");
-        }
-        if (formats.Contains("aov"))
-        {
-            var ids = new ushort[result.ObjectIds.Length];
-            for (int i = 0; i < ids.Length; i++) ids[i] = (ushort)(result.ObjectIds[i] + 1);
-            AtomicFile.Write(Path.Combine(outDir, "object-id.png"), s => PngWriter.WriteGray16(s, image.Width, image.Height, ids));
-            Done("object-id.png");
-            AnalysisImages.Write(scene, result, outDir, Done);
-        }
-        SpectralFiles.Write(scene, image, outDir, formats, Done);
 
+        // The groups are independent files: write them side by side; each keeps its own list, in a fixed order.
+        var groups = new List<string>[4];
+        for (int g = 0; g < groups.Length; g++) groups[g] = [];
+        Action<string> Done(int g) => name => { lock (groups[g]) groups[g].Add(name); cancel.ThrowIfCancellationRequested(); };
+        Parallel.Invoke(new ParallelOptions { CancellationToken = cancel },
+            () => { if (formats.Contains("png")) WritePreview(scene, image, outDir, Done(0)); },
+            () => { if (formats.Contains("bands")) WriteBands(scene, image, scale, outDir, Done(1), cancel); },
+            () =>
+            {
+                if (!formats.Contains("aov")) return;
+                var ids = new ushort[result.ObjectIds.Length];
+                for (int i = 0; i < ids.Length; i++) ids[i] = (ushort)(result.ObjectIds[i] + 1);
+                AtomicFile.Write(Path.Combine(outDir, "object-id.png"), s => PngWriter.WriteGray16(s, image.Width, image.Height, ids));
+                Done(2)("object-id.png");
+                AnalysisImages.Write(scene, result, outDir, Done(2));
+            },
+            () => SpectralFiles.Write(scene, image, outDir, formats, Done(3)));
+
+        var written = groups.SelectMany(g => g).ToList();
         var json = Describe(scene, result, scale, written, run);
         AtomicFile.WriteAllText(Path.Combine(outDir, "render.json"), json.ToJsonString(new JsonSerializerOptions { WriteIndented = true }));
         written.Add("render.json");
         return written;
+    }
+
+    static void WritePreview(Scene scene, SpectralImage image, string outDir, Action<string> done)
+    {
+        var encoder = new DisplayEncoder(scene.Colorimeter, scene.Output.Rgb, scene.Output.Exposure, scene.Output.Adapt);
+        var rgb = Preview(image, encoder);
+        AtomicFile.Write(Path.Combine(outDir, "preview.png"), s => PngWriter.WriteRgb8(s, image.Width, image.Height, rgb));
+        done("preview.png");
+    }
+
+    /// <summary>bands/: one 16-bit PNG per band, all on the scale of the brightest band value, and the mosaic (Fig. 2).</summary>
+    static void WriteBands(Scene scene, SpectralImage image, float scale, string outDir, Action<string> done, CancellationToken cancel)
+    {
+        var dir = Path.Combine(outDir, "bands");
+        Directory.CreateDirectory(dir);
+        var names = new string[image.Bands];
+        Parallel.For(0, image.Bands, new ParallelOptions { CancellationToken = cancel }, b =>
+        {
+            var plane = new float[image.Width * image.Height];
+            var grey = new ushort[plane.Length];
+            image.CopyBand(b, plane);
+            for (int i = 0; i < plane.Length; i++) grey[i] = scale > 0 ? RgbSpace.To16(Math.Clamp(plane[i] / scale, 0, 1)) : (ushort)0;
+            names[b] = BandFileName(scene, b);
+            AtomicFile.Write(Path.Combine(dir, names[b]), s => PngWriter.WriteGray16(s, image.Width, image.Height, grey));
+        });
+        foreach (var name in names) done($"bands/{name}");
+        var (mw, mh, mosaic) = BandMosaic.Build(image, scale);
+        AtomicFile.Write(Path.Combine(outDir, "bands.png"), s => PngWriter.WriteGray8(s, mw, mh, mosaic));
+        done("bands.png");
     }
 
     public static string BandFileName(Scene scene, int b) =>
