@@ -95,3 +95,33 @@ public class EndToEndTests
         }
     }
 }
+
+public class BenchCommandTests
+{
+    [Fact]
+    public void Bench_counts_rays_and_prints_one_machine_readable_line()
+    {
+        var dir = Reference.TempDir();
+        var scene = Path.Combine(dir, "scene.json");
+        File.WriteAllText(scene, """
+        { "camera": { "position": [0, 1, 6], "look_at": [0, 0.5, 0], "width": 10, "height": 10 },
+          "materials": { "m": { "diffuse": 0.5, "mirror": 0.5 } },
+          "lights": [ { "type": "point", "position": [2, 4, 3], "spectrum": "D65" }, { "type": "directional", "direction": [0, -1, 0], "spectrum": "A" } ],
+          "objects": [ { "type": "sphere", "center": [0, 1, 0], "radius": 1, "material": "m" }, { "type": "plane", "material": "m" } ],
+          "max_depth": 1 }
+        """);
+        var (code, stdout, err) = CliRunner.Run("bench", scene, "--width", "40", "--height", "30", "--repeat", "3");
+        Assert.True(code == 0, err);
+        var line = stdout.Split('\n').Single(l => l.StartsWith("bench: ", StringComparison.Ordinal));
+        var kv = line[7..].Split(' ').Select(p => p.Split('=')).ToDictionary(p => p[0], p => p[1]);
+        Assert.Equal("40", kv["width"]);
+        Assert.Equal("30", kv["height"]);
+        Assert.Equal(1200, long.Parse(kv["primary"]));
+        // Every primary ray hits the floor or the sphere: at most one mirror ray and two shadow rays per hit, and at most two per mirror hit.
+        long secondary = long.Parse(kv["secondary"]), shadow = long.Parse(kv["shadow"]);
+        Assert.True(secondary > 0 && secondary <= 1200, $"{secondary} secondary");
+        Assert.True(shadow > 1200 && shadow <= 2 * (1200 + secondary), $"{shadow} shadow");
+        Assert.Equal(long.Parse(kv["primary"]) + secondary + shadow, long.Parse(kv["rays"]));
+        Assert.True(double.Parse(kv["peak_ws_mb"], System.Globalization.CultureInfo.InvariantCulture) > 0);
+    }
+}
