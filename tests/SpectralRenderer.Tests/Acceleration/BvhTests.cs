@@ -65,10 +65,14 @@ public class BvhTests(ITestOutputHelper output)
     [Fact]
     public void Leaves_hold_at_most_the_leaf_size_and_cover_every_primitive_once()
     {
-        var bounds = Soup(5000, 3).Let(m => Enumerable.Range(0, m.TriangleCount).Select(t =>
+        var soup = Soup(5000, 3);
+        var bounds = new Bounds3[soup.TriangleCount];
+        for (int t = 0; t < bounds.Length; t++)
         {
-            var (a, b, c) = m.Triangle(t); var box = new Bounds3(a, a); box.Include(b); box.Include(c); return box;
-        }).ToArray());
+            var (a, b, c) = soup.Triangle(t);
+            bounds[t] = new Bounds3(a, a);
+            bounds[t].Include(b); bounds[t].Include(c);
+        }
         foreach (int leafSize in new[] { 1, 4, 8 })
         {
             var bvh = Bvh.Build(bounds, leafSize);
@@ -142,9 +146,4 @@ public class BvhTests(ITestOutputHelper output)
         public bool Intersect(int k, ref Ray ray, ref Hit hit) => throw new InvalidOperationException();
         public bool Occluded(int k, in Ray ray) => throw new InvalidOperationException();
     }
-}
-
-static class Functional
-{
-    public static TResult Let<T, TResult>(this T value, Func<T, TResult> f) => f(value);
 }
