@@ -1,4 +1,3 @@
-using System.Numerics;
 using System.Runtime.CompilerServices;
 using System.Runtime.InteropServices;
 using SpectralRenderer.Geometry;
@@ -14,9 +13,6 @@ namespace SpectralRenderer.Acceleration;
 public sealed class Bvh
 {
     const int StackSize = 128;
-    /// <summary>Widening of the slab exit distance, 1 + 2γ₃, so rounding never culls a box the ray touches (Ize 2013; pbrt-v4 §6.8.2).</summary>
-    const float ExitScale = 1 + 2 * (3 * UnitRoundoff) / (1 - 3 * UnitRoundoff);
-    const float UnitRoundoff = 5.96046448e-8f; // 2^-24
 
     readonly BvhNode[] _nodes;
 
@@ -50,8 +46,8 @@ public sealed class Bvh
     public bool Intersect<T>(ref T prims, ref Ray ray, ref Hit hit) where T : struct, IPrimitiveIntersector
     {
         if (_nodes.Length == 0) return false;
-        var inv = InverseDirection(ray.Direction);
-        int negative = (ray.Direction.X < 0 ? 1 : 0) | (ray.Direction.Y < 0 ? 2 : 0) | (ray.Direction.Z < 0 ? 4 : 0);
+        var slabs = new SlabRay(ray);
+        int negative = slabs.NegativeAxes;
         Span<int> stack = stackalloc int[StackSize];
         ref BvhNode root = ref MemoryMarshal.GetArrayDataReference(_nodes);
         int sp = 0, current = 0;
@@ -59,7 +55,7 @@ public sealed class Bvh
         while (true)
         {
             ref BvhNode node = ref Unsafe.Add(ref root, current);
-            if (SlabHit(in node, ray.Origin, inv, ray.TMax))
+            if (slabs.Hits(in node, ray.TMax))
             {
                 if (node.Count > 0)
                 {
@@ -89,15 +85,15 @@ public sealed class Bvh
     public bool Occluded<T>(ref T prims, in Ray ray) where T : struct, IPrimitiveIntersector
     {
         if (_nodes.Length == 0) return false;
-        var inv = InverseDirection(ray.Direction);
-        int negative = (ray.Direction.X < 0 ? 1 : 0) | (ray.Direction.Y < 0 ? 2 : 0) | (ray.Direction.Z < 0 ? 4 : 0);
+        var slabs = new SlabRay(ray);
+        int negative = slabs.NegativeAxes;
         Span<int> stack = stackalloc int[StackSize];
         ref BvhNode root = ref MemoryMarshal.GetArrayDataReference(_nodes);
         int sp = 0, current = 0;
         while (true)
         {
             ref BvhNode node = ref Unsafe.Add(ref root, current);
-            if (SlabHit(in node, ray.Origin, inv, ray.TMax))
+            if (slabs.Hits(in node, ray.TMax))
             {
                 if (node.Count > 0)
                 {
@@ -123,31 +119,4 @@ public sealed class Bvh
         }
     }
 
-    /// <summary>
-    /// 1/d per component. A zero component (either sign) gives ±float.MaxValue rather than ±∞: then
-    /// (bound − o)·(1/d) is never 0·∞ = NaN, an origin on a slab plane counts as inside, and one off the slab
-    /// still overflows to ±∞, as the IEEE infinity would give.
-    /// </summary>
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    internal static Vector3 InverseDirection(Vector3 d) => new(Inverse(d.X), Inverse(d.Y), Inverse(d.Z));
-
-    static float Inverse(float x) => x != 0 ? 1 / x : float.IsNegative(x) ? -float.MaxValue : float.MaxValue;
-
-    /// <summary>The slab test (Kay &amp; Kajiya 1986): the ray's parameter intervals inside the three slabs overlap within [0, tMax].</summary>
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    internal static bool SlabHit(in BvhNode node, Vector3 origin, Vector3 inv, float tMax)
-    {
-        var t0 = (node.Min - origin) * inv;
-        var t1 = (node.Max - origin) * inv;
-        var near = Vector3.Min(t0, t1);
-        var far = Vector3.Max(t0, t1);
-        float entry = Max(Max(near.X, near.Y), Max(near.Z, 0));
-        float exit = Min(Min(far.X, far.Y), far.Z) * ExitScale;
-        return entry <= exit && entry <= tMax;
-    }
-
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    static float Max(float a, float b) => a > b ? a : b;
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    static float Min(float a, float b) => a < b ? a : b;
 }

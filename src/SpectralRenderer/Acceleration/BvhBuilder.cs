@@ -1,4 +1,5 @@
 using System.Numerics;
+using System.Runtime.CompilerServices;
 using SpectralRenderer.Geometry;
 
 namespace SpectralRenderer.Acceleration;
@@ -71,6 +72,7 @@ sealed class BvhBuilder
         return index;
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     Node Subtree(int start, int end, int depth)
     {
         Interlocked.Increment(ref _nodeCount);
@@ -122,9 +124,11 @@ sealed class BvhBuilder
         return node;
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     static int Bin(float c, float min, float scale) => Math.Clamp((int)((c - min) * scale), 0, Bins - 1);
 
     /// <summary>The SAH-cheapest (axis, last bin on the left) and its cost, in units of one primitive test.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     (int axis, int split, float cost) BestSplit(int start, int end, in Bounds3 centroidBounds, float nodeArea)
     {
         Span<int> counts = stackalloc int[3 * Bins];
@@ -171,6 +175,7 @@ sealed class BvhBuilder
     }
 
     /// <summary>Moves primitives whose centroid bin is ≤ split to the front; returns the first of the rest.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     int Partition(int start, int end, int axis, int split, in Bounds3 centroidBounds)
     {
         float min = centroidBounds.Min[axis];

@@ -1,5 +1,6 @@
 using System.Globalization;
 using System.Numerics;
+using System.Runtime.CompilerServices;
 using SpectralRenderer.Diagnostics;
 
 namespace SpectralRenderer.Geometry;
@@ -24,6 +25,7 @@ public static class ObjReader
 
     public static TriangleMesh Parse(TextReader reader, string path) => Parse(reader.ReadToEnd(), path);
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public static TriangleMesh Parse(ReadOnlySpan<char> text, string path)
     {
         var positions = new List<Vector3>();
@@ -82,6 +84,7 @@ public static class ObjReader
     }
 
     /// <summary>Per-vertex normals from per-corner ones, or null when some vertex has none or several.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     static Vector3[]? MapNormals(int vertexCount, List<int> indices, List<int> cornerNormals, List<Vector3> normals)
     {
         if (normals.Count == 0) return null;
@@ -106,6 +109,7 @@ public static class ObjReader
         return result;
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     static Vector3 ReadVector(ref Tokens tokens, string path, int line, string keyword)
     {
         float x = ReadFloat(ref tokens, path, line, keyword);
@@ -114,6 +118,7 @@ public static class ObjReader
         return new Vector3(x, y, z); // extra values (w, vertex colours) are ignored
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     static float ReadFloat(ref Tokens tokens, string path, int line, string keyword)
     {
         var token = tokens.Next();
@@ -125,6 +130,7 @@ public static class ObjReader
     }
 
     /// <summary>One face corner "v[/[vt][/vn]]" as 0-based (position, normal or -1).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     static (int position, int normal) ReadCorner(ReadOnlySpan<char> corner, int positions, int texCoords, int normals,
         string path, int line)
     {
@@ -140,6 +146,7 @@ public static class ObjReader
     }
 
     /// <summary>A 1-based (or negative, relative) OBJ index to a 0-based one, checked against what is defined so far.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     static int Resolve(ReadOnlySpan<char> token, int count, string what, string path, int line)
     {
         if (!int.TryParse(token, NumberStyles.AllowLeadingSign, CultureInfo.InvariantCulture, out int index))
@@ -156,6 +163,7 @@ public static class ObjReader
     {
         ReadOnlySpan<char> _rest = line;
 
+        [MethodImpl(MethodImplOptions.AggressiveOptimization)]
         public ReadOnlySpan<char> Next()
         {
             int i = 0;

@@ -1,5 +1,6 @@
 using System.Buffers.Binary;
 using System.Globalization;
+using System.Runtime.CompilerServices;
 using SpectralRenderer.Diagnostics;
 
 namespace SpectralRenderer.Geometry;
@@ -24,6 +25,7 @@ ref struct PlyCursor(ReadOnlySpan<byte> data, int start, PlyFormat format, strin
     public InputException Error(string what) =>
         new($"{_path}: element '{Element}' #{Instance} at byte {_valueStart}", what);
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public double ReadReal(PlyType type)
     {
         if (_format == PlyFormat.Ascii)
@@ -43,6 +45,7 @@ ref struct PlyCursor(ReadOnlySpan<byte> data, int start, PlyFormat format, strin
         };
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public long ReadInteger(PlyType type)
     {
         if (_format == PlyFormat.Ascii)
@@ -68,6 +71,7 @@ ref struct PlyCursor(ReadOnlySpan<byte> data, int start, PlyFormat format, strin
         return DecodeInteger(type, bytes, le);
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     static long DecodeInteger(PlyType type, ReadOnlySpan<byte> b, bool le) => type switch
     {
         PlyType.Int8 => (sbyte)b[0],
@@ -79,6 +83,7 @@ ref struct PlyCursor(ReadOnlySpan<byte> data, int start, PlyFormat format, strin
     };
 
     /// <summary>Skips one property value (a scalar, or a list with its items).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public void Skip(PlyProperty p)
     {
         if (!p.IsList) { SkipValue(p.Type); return; }
@@ -88,6 +93,7 @@ ref struct PlyCursor(ReadOnlySpan<byte> data, int start, PlyFormat format, strin
     }
 
     /// <summary>A list's item count, checked non-negative.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public long ReadCount(PlyProperty list)
     {
         long n = ReadInteger(list.CountType);
@@ -95,12 +101,14 @@ ref struct PlyCursor(ReadOnlySpan<byte> data, int start, PlyFormat format, strin
         return n;
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     void SkipValue(PlyType type)
     {
         if (_format == PlyFormat.Ascii) NextToken();
         else Take(PlyHeader.SizeOf(type));
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     ReadOnlySpan<byte> Take(int size)
     {
         _valueStart = _pos;
@@ -111,6 +119,7 @@ ref struct PlyCursor(ReadOnlySpan<byte> data, int start, PlyFormat format, strin
         return bytes;
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     ReadOnlySpan<byte> NextToken()
     {
         int i = _pos;

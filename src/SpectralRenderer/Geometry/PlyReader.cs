@@ -1,4 +1,5 @@
 using System.Numerics;
+using System.Runtime.CompilerServices;
 using SpectralRenderer.Diagnostics;
 
 namespace SpectralRenderer.Geometry;
@@ -33,6 +34,9 @@ public static class PlyReader
         if (!header.Elements.Any(e => e.Name is "face" or "tristrips"))
             throw new InputException(path, "the header declares no 'face' or 'tristrips' element (a point cloud is not a mesh)");
 
+        // Header checks come before any data is read.
+        var indexLists = header.Elements.Where(e => e.Name is "face" or "tristrips").ToDictionary(e => e, e => IndexList(e, path));
+
         int vertexCount = vertexElement.Count;
         var cursor = new PlyCursor(data, header.DataStart, header.Format, path);
         Vector3[] positions = [];
@@ -46,8 +50,8 @@ public static class PlyReader
             if (element.Count > data.Length - cursor.Position)
                 throw cursor.Error($"{element.Count} instances cannot fit in the {data.Length - cursor.Position} bytes left (truncated file?)");
             if (element == vertexElement) (positions, normals) = ReadVertices(ref cursor, element);
-            else if (element.Name == "face" && IndexList(element, path) is int f) ReadFaces(ref cursor, element, f, vertexCount, indices);
-            else if (element.Name == "tristrips" && IndexList(element, path) is int s) ReadStrips(ref cursor, element, s, vertexCount, indices);
+            else if (element.Name == "face") ReadFaces(ref cursor, element, indexLists[element], vertexCount, indices);
+            else if (element.Name == "tristrips") ReadStrips(ref cursor, element, indexLists[element], vertexCount, indices);
             else SkipElement(ref cursor, element);
         }
 
@@ -70,6 +74,7 @@ public static class PlyReader
         return i;
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     static (Vector3[] positions, Vector3[]? normals) ReadVertices(ref PlyCursor cursor, PlyElement e)
     {
         // Role of each property: 0..2 position x y z, 3..5 normal x y z, -1 skipped.
@@ -104,6 +109,7 @@ public static class PlyReader
         return len > 0 ? n / len : Vector3.UnitZ;
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     static void ReadFaces(ref PlyCursor cursor, PlyElement e, int listIndex, int vertexCount, List<int> indices)
     {
         var list = e.Properties[listIndex];
@@ -127,6 +133,7 @@ public static class PlyReader
         }
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     static void ReadStrips(ref PlyCursor cursor, PlyElement e, int listIndex, int vertexCount, List<int> indices)
     {
         var list = e.Properties[listIndex];
@@ -156,9 +163,11 @@ public static class PlyReader
         }
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     static int ReadIndex(ref PlyCursor cursor, PlyType type, int vertexCount) =>
         CheckIndex(ref cursor, cursor.ReadInteger(type), vertexCount);
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     static int CheckIndex(ref PlyCursor cursor, long index, int vertexCount)
     {
         if (index < 0 || index >= vertexCount)
@@ -166,6 +175,7 @@ public static class PlyReader
         return (int)index;
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     static void SkipElement(ref PlyCursor cursor, PlyElement e)
     {
         for (int k = 0; k < e.Count; k++)

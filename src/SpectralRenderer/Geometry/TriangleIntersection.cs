@@ -20,24 +20,21 @@ public static class TriangleIntersection
     public static bool Intersect(in Ray ray, Vector3 p0, Vector3 p1, Vector3 p2, out float t, out float b1, out float b2)
     {
         t = b1 = b2 = 0;
-        var d = ray.Direction;
-        // kz: the dimension where |d| is largest; kx, ky follow cyclically, swapped if d[kz] < 0 to keep the winding.
-        var ad = Vector3.Abs(d);
+        // The ray's dominant axis becomes z; x, y follow cyclically, swapped when d.z < 0 to keep the winding.
+        var ad = Vector3.Abs(ray.Direction);
         int kz = ad.X > ad.Y ? (ad.X > ad.Z ? 0 : 2) : (ad.Y > ad.Z ? 1 : 2);
-        int kx = kz == 2 ? 0 : kz + 1;
-        int ky = kx == 2 ? 0 : kx + 1;
-        float dz = d[kz];
-        if (dz < 0) (kx, ky) = (ky, kx);
-        float sx = d[kx] / dz, sy = d[ky] / dz, sz = 1 / dz;
+        int permutation = 2 * kz + (ray.Direction[kz] < 0 ? 1 : 0);
+        var d = Permute(ray.Direction, permutation);
+        float sz = 1 / d.Z;
+        var shear = new Vector3(d.X * sz, d.Y * sz, 0);
 
-        // Vertices relative to the origin, sheared and scaled so the ray is the +z axis.
-        var a = p0 - ray.Origin;
-        var b = p1 - ray.Origin;
-        var c = p2 - ray.Origin;
-        float az = a[kz], bz = b[kz], cz = c[kz];
-        float ax = a[kx] - sx * az, ay = a[ky] - sy * az;
-        float bx = b[kx] - sx * bz, by = b[ky] - sy * bz;
-        float cx = c[kx] - sx * cz, cy = c[ky] - sy * cz;
+        // Vertices relative to the origin, permuted and sheared so the ray is the +z axis: (x, y) = A.xy − S·A.z.
+        var a = Permute(p0 - ray.Origin, permutation);
+        var b = Permute(p1 - ray.Origin, permutation);
+        var c = Permute(p2 - ray.Origin, permutation);
+        float az = a.Z, bz = b.Z, cz = c.Z;
+        a -= shear * az; b -= shear * bz; c -= shear * cz;
+        float ax = a.X, ay = a.Y, bx = b.X, by = b.Y, cx = c.X, cy = c.Y;
 
         // Scaled barycentrics: the 2D edge functions.
         float u = cx * by - cy * bx;
@@ -64,4 +61,16 @@ public static class TriangleIntersection
         b2 = w * inv;
         return true;
     }
+
+    /// <summary>(v[kx], v[ky], v[kz]) for permutation = 2·kz + (swap x and y ? 1 : 0).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    static Vector3 Permute(Vector3 v, int permutation) => permutation switch
+    {
+        0 => new(v.Y, v.Z, v.X),
+        1 => new(v.Z, v.Y, v.X),
+        2 => new(v.Z, v.X, v.Y),
+        3 => new(v.X, v.Z, v.Y),
+        4 => v,
+        _ => new(v.Y, v.X, v.Z),
+    };
 }

@@ -1,4 +1,5 @@
 using System.Numerics;
+using System.Runtime.CompilerServices;
 
 namespace SpectralRenderer.Geometry;
 
@@ -29,6 +30,7 @@ public sealed class TriangleMesh
         (Indices, DegenerateCount) = DropDegenerate(positions, indices);
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     static (int[] kept, int dropped) DropDegenerate(Vector3[] p, int[] indices)
     {
         int write = 0;
@@ -62,6 +64,7 @@ public sealed class TriangleMesh
     /// Angle-weighted vertex normals (Thürmer &amp; Wüthrich 1998): each triangle adds its unit normal weighted by
     /// its interior angle at the vertex. Vertices used by no triangle get +Z.
     /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public void ComputeVertexNormals()
     {
         var n = new Vector3[Positions.Length];
@@ -83,6 +86,7 @@ public sealed class TriangleMesh
     }
 
     /// <summary>The angle between two edge vectors, by atan2 (accurate for small and near-π angles).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     static float Angle(Vector3 u, Vector3 v) => MathF.Atan2(Vector3.Cross(u, v).Length(), Vector3.Dot(u, v));
 
     /// <summary>
