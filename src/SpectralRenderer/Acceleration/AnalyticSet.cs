@@ -11,6 +11,8 @@ public readonly struct AnalyticSet : IPrimitiveIntersector
 
     public AnalyticShape this[int k] => _shapes[k];
 
+    public void Prepare(in Ray ray) { }
+
     public bool Intersect(int k, ref Ray ray, ref Hit hit)
     {
         if (!_shapes[k].Intersect(ray, 0, out float t, out _)) return false;

@@ -42,42 +42,52 @@ public sealed class Bvh
     public ReadOnlySpan<BvhNode> Nodes => _nodes;
     public Bounds3 Bounds => _nodes.Length == 0 ? Bounds3.Empty : new Bounds3(_nodes[0].Min, _nodes[0].Max);
 
-    /// <summary>Closest hit: shortens ray.TMax to each hit found, nearer child first (by the ray's sign on the split axis).</summary>
+    /// <summary>
+    /// Closest hit: shortens ray.TMax to each hit found. At an interior node both children's boxes are
+    /// tested; the nearer (by entry distance) is visited first and the farther pushed with its distance,
+    /// to be skipped when popped if a closer hit was found meanwhile.
+    /// </summary>
     public bool Intersect<T>(ref T prims, ref Ray ray, ref Hit hit) where T : struct, IPrimitiveIntersector
     {
         if (_nodes.Length == 0) return false;
         var slabs = new SlabRay(ray);
-        int negative = slabs.NegativeAxes;
-        Span<int> stack = stackalloc int[StackSize];
         ref BvhNode root = ref MemoryMarshal.GetArrayDataReference(_nodes);
+        if (!slabs.Hits(in root, ray.TMax)) return false;
+        prims.Prepare(ray);
+        Span<int> stack = stackalloc int[StackSize];
+        Span<float> entries = stackalloc float[StackSize];
         int sp = 0, current = 0;
         bool found = false;
         while (true)
         {
             ref BvhNode node = ref Unsafe.Add(ref root, current);
-            if (slabs.Hits(in node, ray.TMax))
+            if (node.Count > 0)
             {
-                if (node.Count > 0)
-                {
-                    int last = node.Offset + node.Count;
-                    for (int k = node.Offset; k < last; k++)
-                        if (prims.Intersect(k, ref ray, ref hit)) found = true;
-                }
-                else if (((negative >> node.Axis) & 1) != 0)
-                {
-                    stack[sp++] = current + 1;
-                    current = node.Offset;
-                    continue;
-                }
-                else
-                {
-                    stack[sp++] = node.Offset;
-                    current++;
-                    continue;
-                }
+                int last = node.Offset + node.Count;
+                for (int k = node.Offset; k < last; k++)
+                    if (prims.Intersect(k, ref ray, ref hit)) found = true;
             }
-            if (sp == 0) return found;
-            current = stack[--sp];
+            else
+            {
+                int left = current + 1, right = node.Offset;
+                bool hitLeft = slabs.Hits(in Unsafe.Add(ref root, left), ray.TMax, out float tLeft);
+                bool hitRight = slabs.Hits(in Unsafe.Add(ref root, right), ray.TMax, out float tRight);
+                if (hitLeft && hitRight)
+                {
+                    if (tRight < tLeft) { (left, right) = (right, left); tRight = tLeft; }
+                    stack[sp] = right; entries[sp] = tRight; sp++;
+                    current = left;
+                    continue;
+                }
+                if (hitLeft) { current = left; continue; }
+                if (hitRight) { current = right; continue; }
+            }
+            while (true)
+            {
+                if (sp == 0) return found;
+                sp--;
+                if (entries[sp] <= ray.TMax) { current = stack[sp]; break; }
+            }
         }
     }
 
@@ -86,6 +96,7 @@ public sealed class Bvh
     {
         if (_nodes.Length == 0) return false;
         var slabs = new SlabRay(ray);
+        prims.Prepare(ray);
         int negative = slabs.NegativeAxes;
         Span<int> stack = stackalloc int[StackSize];
         ref BvhNode root = ref MemoryMarshal.GetArrayDataReference(_nodes);

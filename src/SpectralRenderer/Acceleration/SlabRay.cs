@@ -34,14 +34,19 @@ readonly struct SlabRay
 
     /// <summary>Whether the ray's interval [0, tMax] overlaps the node's box.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    public bool Hits(in BvhNode node, float tMax)
+    public bool Hits(in BvhNode node, float tMax) => Hits(node, tMax, out _);
+
+    /// <summary>As <see cref="Hits(in BvhNode, float)"/>, also giving the distance at which the ray enters the box.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public bool Hits(in BvhNode node, float tMax, out float entry)
     {
         var min = node.Min.AsVector128();
         var max = node.Max.AsVector128();
         var near = (Vector128.ConditionalSelect(_negative, max, min) - _origin) * _inverse;
         var far = (Vector128.ConditionalSelect(_negative, min, max) - _origin) * _inverse * Vector128.Create(ExitScale);
         // "candidate > current ? candidate : current" keeps current when the candidate is NaN.
-        float entry = 0, exit = tMax;
+        float exit = tMax;
+        entry = 0;
         float n = near.GetElement(0); if (n > entry) entry = n;
         n = near.GetElement(1); if (n > entry) entry = n;
         n = near.GetElement(2); if (n > entry) entry = n;

@@ -10,9 +10,10 @@ namespace SpectralRenderer.Acceleration;
 /// Hit.Primitive is the position k in this order; <see cref="MeshOf"/>[k] and <see cref="TriangleOf"/>[k] lead
 /// back to the source mesh and its triangle.
 /// </summary>
-public readonly struct TriangleSet : IPrimitiveIntersector
+public struct TriangleSet : IPrimitiveIntersector
 {
     readonly Vector3[] _corners; // 3 per triangle, in BVH order
+    ShearedRay _ray;              // the current query's ray, prepared once (Woop et al. 2013)
 
     public Bvh Bvh { get; }
     /// <summary>k → index of the mesh (in the list given to <see cref="Build"/>).</summary>
@@ -23,8 +24,10 @@ public readonly struct TriangleSet : IPrimitiveIntersector
 
     TriangleSet(Vector3[] corners, Bvh bvh, int[] meshOf, int[] triangleOf)
     {
-        _corners = corners; Bvh = bvh; MeshOf = meshOf; TriangleOf = triangleOf;
+        _corners = corners; Bvh = bvh; MeshOf = meshOf; TriangleOf = triangleOf; _ray = default;
     }
+
+    public void Prepare(in Ray ray) => _ray = new ShearedRay(ray);
 
     /// <summary>Builds the BVH over all triangles of the meshes and stores the triangles in its order.</summary>
     public static TriangleSet Build(IReadOnlyList<TriangleMesh> meshes, int maxLeafSize = 4, bool parallel = true)
@@ -63,7 +66,7 @@ public readonly struct TriangleSet : IPrimitiveIntersector
     public bool Intersect(int k, ref Ray ray, ref Hit hit)
     {
         ref Vector3 c = ref _corners[3 * k];
-        if (!TriangleIntersection.Intersect(ray, c, Unsafe.Add(ref c, 1), Unsafe.Add(ref c, 2), out float t, out float b1, out float b2))
+        if (!TriangleIntersection.Intersect(_ray, c, Unsafe.Add(ref c, 1), Unsafe.Add(ref c, 2), ray.TMax, out float t, out float b1, out float b2))
             return false;
         ray.TMax = t;
         hit.Primitive = k; hit.U = b1; hit.V = b2;
@@ -74,7 +77,7 @@ public readonly struct TriangleSet : IPrimitiveIntersector
     public bool Occluded(int k, in Ray ray)
     {
         ref Vector3 c = ref _corners[3 * k];
-        return TriangleIntersection.Intersect(ray, c, Unsafe.Add(ref c, 1), Unsafe.Add(ref c, 2), out _, out _, out _);
+        return TriangleIntersection.Intersect(_ray, c, Unsafe.Add(ref c, 1), Unsafe.Add(ref c, 2), ray.TMax, out _, out _, out _);
     }
 
     /// <summary>The closest hit among all triangles, through the BVH.</summary>

@@ -17,24 +17,21 @@ public static class TriangleIntersection
     /// Rays leaving a surface should start slightly off it (no epsilon is applied here).
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    public static bool Intersect(in Ray ray, Vector3 p0, Vector3 p1, Vector3 p2, out float t, out float b1, out float b2)
+    public static bool Intersect(in Ray ray, Vector3 p0, Vector3 p1, Vector3 p2, out float t, out float b1, out float b2) =>
+        Intersect(new ShearedRay(ray), p0, p1, p2, ray.TMax, out t, out b1, out b2);
+
+    /// <summary>As above with the ray's shear computed once (<see cref="ShearedRay"/>), for testing many triangles.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static bool Intersect(in ShearedRay ray, Vector3 p0, Vector3 p1, Vector3 p2, float tMax, out float t, out float b1, out float b2)
     {
         t = b1 = b2 = 0;
-        // The ray's dominant axis becomes z; x, y follow cyclically, swapped when d.z < 0 to keep the winding.
-        var ad = Vector3.Abs(ray.Direction);
-        int kz = ad.X > ad.Y ? (ad.X > ad.Z ? 0 : 2) : (ad.Y > ad.Z ? 1 : 2);
-        int permutation = 2 * kz + (ray.Direction[kz] < 0 ? 1 : 0);
-        var d = Permute(ray.Direction, permutation);
-        float sz = 1 / d.Z;
-        var shear = new Vector3(d.X * sz, d.Y * sz, 0);
-
-        // Vertices relative to the origin, permuted and sheared so the ray is the +z axis: (x, y) = A.xy − S·A.z.
-        var a = Permute(p0 - ray.Origin, permutation);
-        var b = Permute(p1 - ray.Origin, permutation);
-        var c = Permute(p2 - ray.Origin, permutation);
-        float az = a.Z, bz = b.Z, cz = c.Z;
-        a -= shear * az; b -= shear * bz; c -= shear * cz;
-        float ax = a.X, ay = a.Y, bx = b.X, by = b.Y, cx = c.X, cy = c.Y;
+        // Vertices relative to the origin, sheared so the ray is the +z axis: (x, y) = A.xy − S·A.z, z = S_z·A.z.
+        var a = p0 - ray.Origin;
+        var b = p1 - ray.Origin;
+        var c = p2 - ray.Origin;
+        float ax = Vector3.Dot(ray.RowX, a), ay = Vector3.Dot(ray.RowY, a);
+        float bx = Vector3.Dot(ray.RowX, b), by = Vector3.Dot(ray.RowY, b);
+        float cx = Vector3.Dot(ray.RowX, c), cy = Vector3.Dot(ray.RowY, c);
 
         // Scaled barycentrics: the 2D edge functions.
         float u = cx * by - cy * bx;
@@ -51,26 +48,44 @@ public static class TriangleIntersection
         if (det == 0) return false;
 
         // Scaled hit distance, compared against the scaled interval before the one division.
-        float tScaled = sz * (u * az + v * bz + w * cz);
-        if (det < 0 ? (tScaled >= 0 || tScaled < ray.TMax * det) : (tScaled <= 0 || tScaled > ray.TMax * det)) return false;
+        float az = Vector3.Dot(ray.RowZ, a), bz = Vector3.Dot(ray.RowZ, b), cz = Vector3.Dot(ray.RowZ, c);
+        float tScaled = u * az + v * bz + w * cz;
+        if (det < 0 ? (tScaled >= 0 || tScaled < tMax * det) : (tScaled <= 0 || tScaled > tMax * det)) return false;
 
         float inv = 1 / det;
         t = tScaled * inv;
-        if (!(t < ray.TMax) || !(t > 0)) return false; // rounding of the division
+        if (!(t < tMax) || !(t > 0)) return false; // rounding of the division
         b1 = v * inv;
         b2 = w * inv;
         return true;
     }
+}
 
-    /// <summary>(v[kx], v[ky], v[kz]) for permutation = 2·kz + (swap x and y ? 1 : 0).</summary>
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    static Vector3 Permute(Vector3 v, int permutation) => permutation switch
+/// <summary>
+/// A ray prepared for the watertight test (Woop et al. 2013 §3): its dominant axis k_z, the other two
+/// k_x, k_y (swapped when d[k_z] &lt; 0 to keep the winding) and the shear S = (d[k_x]/d[k_z], d[k_y]/d[k_z],
+/// 1/d[k_z]), folded into three rows so a vertex A relative to the origin maps to
+/// x = A[k_x] − S_x·A[k_z], y = A[k_y] − S_y·A[k_z], z = S_z·A[k_z] (the zero terms add exactly).
+/// </summary>
+public readonly struct ShearedRay
+{
+    public readonly Vector3 Origin;
+    public readonly Vector3 RowX, RowY, RowZ;
+
+    public ShearedRay(in Ray ray)
     {
-        0 => new(v.Y, v.Z, v.X),
-        1 => new(v.Z, v.Y, v.X),
-        2 => new(v.Z, v.X, v.Y),
-        3 => new(v.X, v.Z, v.Y),
-        4 => v,
-        _ => new(v.Y, v.X, v.Z),
-    };
+        Origin = ray.Origin;
+        var d = ray.Direction;
+        var ad = Vector3.Abs(d);
+        int kz = ad.X > ad.Y ? (ad.X > ad.Z ? 0 : 2) : (ad.Y > ad.Z ? 1 : 2);
+        int kx = kz == 2 ? 0 : kz + 1, ky = kx == 2 ? 0 : kx + 1;
+        if (d[kz] < 0) (kx, ky) = (ky, kx);
+        float sz = 1 / d[kz];
+        float sx = d[kx] * sz, sy = d[ky] * sz;
+        RowX = Unit(kx) - sx * Unit(kz);
+        RowY = Unit(ky) - sy * Unit(kz);
+        RowZ = sz * Unit(kz);
+    }
+
+    static Vector3 Unit(int axis) => axis == 0 ? Vector3.UnitX : axis == 1 ? Vector3.UnitY : Vector3.UnitZ;
 }

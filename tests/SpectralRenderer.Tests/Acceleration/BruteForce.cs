@@ -9,12 +9,14 @@ static class BruteForce
     public static bool Intersect<T>(ref T prims, int count, ref Ray ray, ref Hit hit) where T : struct, IPrimitiveIntersector
     {
         bool found = false;
+        prims.Prepare(ray);
         for (int k = 0; k < count; k++) found |= prims.Intersect(k, ref ray, ref hit);
         return found;
     }
 
     public static bool Occluded<T>(ref T prims, int count, in Ray ray) where T : struct, IPrimitiveIntersector
     {
+        prims.Prepare(ray);
         for (int k = 0; k < count; k++) if (prims.Occluded(k, ray)) return true;
         return false;
     }
@@ -50,6 +52,7 @@ static class BruteForce
     static bool SameDistance(TriangleSet s, Ray ray, int k, float t)
     {
         var h = new Hit();
+        s.Prepare(ray);
         return s.Intersect(k, ref ray, ref h) && Math.Abs(ray.TMax - t) <= 1e-5f * t;
     }
 }

@@ -143,6 +143,7 @@ public class BvhTests(ITestOutputHelper output)
 
     struct TriangleSetStub : IPrimitiveIntersector
     {
+        public void Prepare(in Ray ray) { }
         public bool Intersect(int k, ref Ray ray, ref Hit hit) => throw new InvalidOperationException();
         public bool Occluded(int k, in Ray ray) => throw new InvalidOperationException();
     }
