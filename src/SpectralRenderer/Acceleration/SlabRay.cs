@@ -1,5 +1,6 @@
 using System.Runtime.CompilerServices;
 using System.Runtime.Intrinsics;
+using System.Runtime.Intrinsics.X86;
 using SpectralRenderer.Geometry;
 
 namespace SpectralRenderer.Acceleration;
@@ -44,6 +45,19 @@ readonly struct SlabRay
         var max = node.Max.AsVector128();
         var near = (Vector128.ConditionalSelect(_negative, max, min) - _origin) * _inverse;
         var far = (Vector128.ConditionalSelect(_negative, min, max) - _origin) * _inverse * Vector128.Create(ExitScale);
+        if (Sse.IsSupported)
+        {
+            // maxps/minps return the second operand when the first is NaN: NaN slabs (a ray in a face's plane)
+            // and the unused fourth lane drop out, as in the scalar form below.
+            var e = Sse.Max(near, Vector128<float>.Zero);
+            var x = Sse.Min(far, Vector128.Create(tMax));
+            e = Sse.Max(e, Sse.Shuffle(e, e, 0b01_00_11_10));
+            e = Sse.Max(e, Sse.Shuffle(e, e, 0b10_11_00_01));
+            x = Sse.Min(x, Sse.Shuffle(x, x, 0b01_00_11_10));
+            x = Sse.Min(x, Sse.Shuffle(x, x, 0b10_11_00_01));
+            entry = e.ToScalar();
+            return entry <= x.ToScalar();
+        }
         // "candidate > current ? candidate : current" keeps current when the candidate is NaN.
         float exit = tMax;
         entry = 0;
