@@ -7,30 +7,41 @@ namespace SpectralRenderer.Acceleration;
 /// <summary>
 /// Top-down BVH construction with the binned surface area heuristic (Wald, "On fast Construction of SAH-based
 /// Bounding Volume Hierarchies", 2007; pbrt-v4 §7.3.2): at each node the primitive centroids are binned into
-/// 16 buckets along each axis, and the split plane between buckets minimising
+/// 16 buckets along each axis (one per primitive in smaller nodes), and the split plane between buckets minimising
 /// 1/2 + (N_left·A_left + N_right·A_right) / A_node is chosen, or a leaf when that is not cheaper than N.
-/// Subtrees over many primitives are built in parallel; each subtree's result depends only on its primitives,
-/// and the tree is flattened depth-first afterwards, so the node array is the same for any thread count.
+/// The primitives' bounds and centroids are kept in arrays permuted in place as the ranges are partitioned,
+/// so every pass reads memory in order; the partition also yields both children's bounds. Large ranges are
+/// binned in parallel chunks and large subtrees built in parallel. Bin counts and box unions are exact
+/// whatever the chunking, and each subtree depends only on its range, so the node array is the same for
+/// any thread count.
 /// </summary>
+[SkipLocalsInit]
 sealed class BvhBuilder
 {
     const int Bins = 16;
     const int ParallelThreshold = 8192;
+    const int ParallelBinning = 65536;
     /// <summary>Below this depth the SAH may cut off single primitives; deeper, the median is taken, which bounds the depth.</summary>
     const int SahDepthLimit = 40;
     const float TraversalCost = 0.5f;
+    /// <summary>Ranges this small become leaves without weighing a split: two triangles are tested as fast as a box pair.</summary>
+    const int LeafAtOnce = 2;
+    const int SmallRange = 64;
 
-    readonly Bounds3[] _bounds;
-    readonly Vector3[] _centroids;
+    readonly Bounds3[] _bounds;     // permuted with _order
+    readonly Vector3[] _centroids;  // permuted with _order
     readonly int[] _order;
     readonly int _maxLeafSize;
     readonly bool _parallel;
     int _nodeCount;
+    // The tree while it is built: plain structs (no object graph for the GC to trace), indices handed out
+    // as nodes are made (in any order when subtrees run in parallel); Flatten lays them out depth-first.
+    readonly Node[] _tree;
 
-    sealed class Node
+    struct Node
     {
         public Bounds3 Bounds;
-        public Node? Left, Right;
+        public int Left, Right;   // Left = −1 for a leaf
         public int Start, Count, Axis;
     }
 
@@ -38,11 +49,11 @@ sealed class BvhBuilder
     {
         _bounds = bounds.ToArray();
         _centroids = new Vector3[bounds.Length];
-        for (int i = 0; i < bounds.Length; i++) _centroids[i] = bounds[i].Centre;
         _order = new int[bounds.Length];
-        for (int i = 0; i < _order.Length; i++) _order[i] = i;
+        for (int i = 0; i < bounds.Length; i++) { _centroids[i] = bounds[i].Centre; _order[i] = i; }
         _maxLeafSize = maxLeafSize;
         _parallel = parallel;
+        _tree = new Node[Math.Max(1, 2 * bounds.Length - 1)];
     }
 
     public static (BvhNode[] nodes, int[] order, int maxDepth) Build(ReadOnlySpan<Bounds3> bounds, int maxLeafSize, bool parallel)
@@ -50,123 +61,171 @@ sealed class BvhBuilder
         if (maxLeafSize < 1 || maxLeafSize > ushort.MaxValue) throw new ArgumentOutOfRangeException(nameof(maxLeafSize));
         if (bounds.Length == 0) return ([], [], 0);
         var builder = new BvhBuilder(bounds, maxLeafSize, parallel);
-        var root = builder.Subtree(0, bounds.Length, 0);
+        var (b, c) = builder.RangeBounds(0, bounds.Length);
+        int root = builder.Subtree(0, bounds.Length, 0, b, c);
         var nodes = new BvhNode[builder._nodeCount];
         int next = 0, maxDepth = 0;
-        Flatten(root, nodes, ref next, 1, ref maxDepth);
+        builder.Flatten(root, nodes, ref next, 1, ref maxDepth);
         return (nodes, builder._order, maxDepth);
     }
 
-    static int Flatten(Node n, BvhNode[] nodes, ref int next, int depth, ref int maxDepth)
+    int Flatten(int at, BvhNode[] nodes, ref int next, int depth, ref int maxDepth)
     {
+        ref readonly var n = ref _tree[at];
         int index = next++;
         maxDepth = Math.Max(maxDepth, depth);
-        if (n.Left is null)
+        if (n.Left < 0)
         {
             nodes[index] = BvhNode.Leaf(n.Bounds.Min, n.Bounds.Max, n.Start, n.Count);
             return index;
         }
         Flatten(n.Left, nodes, ref next, depth + 1, ref maxDepth);
-        int second = Flatten(n.Right!, nodes, ref next, depth + 1, ref maxDepth);
+        int second = Flatten(n.Right, nodes, ref next, depth + 1, ref maxDepth);
         nodes[index] = BvhNode.Interior(n.Bounds.Min, n.Bounds.Max, second, n.Axis);
         return index;
     }
 
+    /// <summary>The union of the primitives' bounds and of their centroids over [start, end).</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    Node Subtree(int start, int end, int depth)
+    (Bounds3, Bounds3) RangeBounds(int start, int end)
     {
-        Interlocked.Increment(ref _nodeCount);
-        var node = new Node { Start = start, Count = end - start };
-        var bounds = Bounds3.Empty;
-        var centroidBounds = Bounds3.Empty;
-        for (int i = start; i < end; i++)
-        {
-            int p = _order[i];
-            bounds.Include(_bounds[p]);
-            centroidBounds.Include(_centroids[p]);
-        }
-        node.Bounds = bounds;
-        int count = end - start;
-        if (count == 1) return node;
-
-        int mid;
-        var extent = centroidBounds.Extent;
-        int longest = extent.X >= extent.Y ? (extent.X >= extent.Z ? 0 : 2) : (extent.Y >= extent.Z ? 1 : 2);
-        if (!(extent[longest] > 0))
-        {
-            // All centroids coincide: nothing separates them.
-            if (count <= _maxLeafSize) return node;
-            mid = (start + end) / 2;
-            node.Axis = longest;
-        }
-        else if (depth >= SahDepthLimit)
-        {
-            mid = (start + end) / 2;
-            MedianSplit(start, end, longest);
-            node.Axis = longest;
-        }
-        else
-        {
-            var (axis, split, cost) = BestSplit(start, end, centroidBounds, bounds.HalfArea);
-            if (count <= _maxLeafSize && count <= cost) return node;
-            mid = Partition(start, end, axis, split, centroidBounds);
-            node.Axis = axis;
-            if (mid == start || mid == end) { mid = (start + end) / 2; MedianSplit(start, end, axis); }
-        }
-
-        if (_parallel && count >= ParallelThreshold)
-            Parallel.Invoke(() => node.Left = Subtree(start, mid, depth + 1), () => node.Right = Subtree(mid, end, depth + 1));
-        else
-        {
-            node.Left = Subtree(start, mid, depth + 1);
-            node.Right = Subtree(mid, end, depth + 1);
-        }
-        return node;
+        var b = Bounds3.Empty;
+        var c = Bounds3.Empty;
+        for (int i = start; i < end; i++) { b.Include(_bounds[i]); c.Include(_centroids[i]); }
+        return (b, c);
     }
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    static int Bin(float c, float min, float scale) => Math.Clamp((int)((c - min) * scale), 0, Bins - 1);
+    int Subtree(int start, int end, int depth, Bounds3 bounds, Bounds3 centroidBounds)
+    {
+        int at = Interlocked.Increment(ref _nodeCount) - 1;
+        ref var node = ref _tree[at];
+        node = new Node { Start = start, Count = end - start, Bounds = bounds, Left = -1, Right = -1 };
+        int count = end - start;
+        if (count <= LeafAtOnce) return at;
+
+        int mid;
+        Bounds3 lb, lc, rb, rc;
+        var extent = centroidBounds.Extent;
+        int longest = extent.X >= extent.Y ? (extent.X >= extent.Z ? 0 : 2) : (extent.Y >= extent.Z ? 1 : 2);
+        int axis;
+        if (!(extent[longest] > 0) || depth >= SahDepthLimit)
+        {
+            // All centroids coincide (nothing separates them), or deep enough: split at the median.
+            if (!(extent[longest] > 0) && count <= _maxLeafSize) return at;
+            MedianSplit(start, end, longest);
+            mid = (start + end) / 2;
+            axis = longest;
+            (lb, lc) = RangeBounds(start, mid);
+            (rb, rc) = RangeBounds(mid, end);
+        }
+        else
+        {
+            (axis, int split, float cost) = BestSplit(start, end, centroidBounds, bounds.HalfArea);
+            if (count <= _maxLeafSize && count <= cost) return at;
+            mid = Partition(start, end, axis, split, centroidBounds, out lb, out lc, out rb, out rc);
+            if (mid == start || mid == end)
+            {
+                MedianSplit(start, end, axis);
+                mid = (start + end) / 2;
+                (lb, lc) = RangeBounds(start, mid);
+                (rb, rc) = RangeBounds(mid, end);
+            }
+        }
+
+        int left, right;
+        if (_parallel && count >= ParallelThreshold)
+        {
+            int l = 0, r = 0;
+            Parallel.Invoke(() => l = Subtree(start, mid, depth + 1, lb, lc), () => r = Subtree(mid, end, depth + 1, rb, rc));
+            (left, right) = (l, r);
+        }
+        else
+        {
+            left = Subtree(start, mid, depth + 1, lb, lc);
+            right = Subtree(mid, end, depth + 1, rb, rc);
+        }
+        // _tree is never reallocated, so the reference is still good; set the fields after the children exist.
+        _tree[at].Left = left;
+        _tree[at].Right = right;
+        _tree[at].Axis = axis;
+        return at;
+    }
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    static int Bin(float c, float min, float scale, int bins) => Math.Clamp((int)((c - min) * scale), 0, bins - 1);
+
+    /// <summary><see cref="Bins"/> buckets, or one per primitive in a node with fewer primitives than that.</summary>
+    static int BinsFor(int count) => Math.Clamp(count, 2, Bins);
+
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    void Fill(Span<int> counts, Span<Bounds3> bb, int start, int end, Vector3 min, Vector3 scale, int bins)
+    {
+        for (int i = start; i < end; i++)
+        {
+            var c = _centroids[i];
+            ref readonly var b = ref _bounds[i];
+            int bx = Bin(c.X, min.X, scale.X, bins), by = bins + Bin(c.Y, min.Y, scale.Y, bins), bz = 2 * bins + Bin(c.Z, min.Z, scale.Z, bins);
+            counts[bx]++; counts[by]++; counts[bz]++;
+            bb[bx].Include(b); bb[by].Include(b); bb[bz].Include(b);
+        }
+    }
 
     /// <summary>The SAH-cheapest (axis, last bin on the left) and its cost, in units of one primitive test.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     (int axis, int split, float cost) BestSplit(int start, int end, in Bounds3 centroidBounds, float nodeArea)
     {
-        Span<int> counts = stackalloc int[3 * Bins];
-        Span<Bounds3> binBounds = stackalloc Bounds3[3 * Bins];
-        binBounds.Fill(Bounds3.Empty);
-        var scale = new Vector3(Bins) / centroidBounds.Extent; // inf on a flat axis: every centroid lands in bin 0
+        int count = end - start;
+        int nb = BinsFor(count);
+        var scale = new Vector3(nb) / centroidBounds.Extent; // inf on a flat axis: every centroid lands in bin 0
         var min = centroidBounds.Min;
-        for (int i = start; i < end; i++)
+        // Bin counts and box unions (exact, so parallel chunks merge to the same result).
+        Span<int> counts = stackalloc int[3 * nb];
+        Span<Bounds3> binBounds = stackalloc Bounds3[3 * nb];
+        counts.Clear();
+        binBounds.Fill(Bounds3.Empty);
+        if (_parallel && count >= ParallelBinning)
         {
-            int p = _order[i];
-            var c = _centroids[p];
-            int bx = Bin(c.X, min.X, scale.X), by = Bins + Bin(c.Y, min.Y, scale.Y), bz = 2 * Bins + Bin(c.Z, min.Z, scale.Z);
-            counts[bx]++; counts[by]++; counts[bz]++;
-            binBounds[bx].Include(_bounds[p]); binBounds[by].Include(_bounds[p]); binBounds[bz].Include(_bounds[p]);
+            int chunks = Math.Min(Environment.ProcessorCount, 8);
+            var partCounts = new int[chunks][];
+            var partBounds = new Bounds3[chunks][];
+            Parallel.For(0, chunks, k =>
+            {
+                partCounts[k] = new int[3 * nb];
+                partBounds[k] = new Bounds3[3 * nb];
+                Array.Fill(partBounds[k], Bounds3.Empty);
+                Fill(partCounts[k], partBounds[k], start + (int)((long)count * k / chunks), start + (int)((long)count * (k + 1) / chunks), min, scale, nb);
+            });
+            for (int k = 0; k < chunks; k++)
+                for (int i = 0; i < counts.Length; i++) { counts[i] += partCounts[k][i]; binBounds[i].Include(partBounds[k][i]); }
         }
+        else Fill(counts, binBounds, start, end, min, scale, nb);
 
         int bestAxis = 0, bestSplit = -1;
         float bestCost = float.PositiveInfinity;
-        Span<float> rightCost = stackalloc float[Bins];
+        Span<float> rightCost = stackalloc float[nb];
         float invArea = nodeArea > 0 ? 1 / nodeArea : 0;
+        // Small ranges weigh splits along the longest centroid axis only; large ones along all three.
+        var ext = centroidBounds.Extent;
+        int longest = ext.X >= ext.Y ? (ext.X >= ext.Z ? 0 : 2) : (ext.Y >= ext.Z ? 1 : 2);
         for (int axis = 0; axis < 3; axis++)
         {
-            if (!(centroidBounds.Extent[axis] > 0)) continue;
-            var ac = counts.Slice(axis * Bins, Bins);
-            var ab = binBounds.Slice(axis * Bins, Bins);
+            if (!(centroidBounds.Extent[axis] > 0) || (count < SmallRange && axis != longest)) continue;
+            var ac = counts.Slice(axis * nb, nb);
+            var ab = binBounds.Slice(axis * nb, nb);
             // Sweep from the right: N·A of bins (s+1 .. Bins-1).
             var acc = Bounds3.Empty;
             int n = 0;
-            for (int s = Bins - 1; s > 0; s--)
+            for (int s = nb - 1; s > 0; s--)
             {
                 acc.Include(ab[s]); n += ac[s];
                 rightCost[s - 1] = n * acc.HalfArea;
             }
             acc = Bounds3.Empty; n = 0;
-            for (int s = 0; s < Bins - 1; s++)
+            for (int s = 0; s < nb - 1; s++)
             {
                 acc.Include(ab[s]); n += ac[s];
-                if (n == 0 || n == end - start) continue;
+                if (n == 0 || n == count) continue;
                 float cost = TraversalCost + (n * acc.HalfArea + rightCost[s]) * invArea;
                 if (cost < bestCost) { bestCost = cost; bestAxis = axis; bestSplit = s; }
             }
@@ -174,17 +233,34 @@ sealed class BvhBuilder
         return (bestAxis, bestSplit, bestCost);
     }
 
-    /// <summary>Moves primitives whose centroid bin is ≤ split to the front; returns the first of the rest.</summary>
+    /// <summary>
+    /// Moves primitives whose centroid bin is ≤ split to the front (bounds, centroids and order together);
+    /// returns the first of the rest, and both sides' bounds and centroid bounds.
+    /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    int Partition(int start, int end, int axis, int split, in Bounds3 centroidBounds)
+    int Partition(int start, int end, int axis, int split, in Bounds3 centroidBounds, out Bounds3 lb, out Bounds3 lc, out Bounds3 rb, out Bounds3 rc)
     {
         float min = centroidBounds.Min[axis];
-        float scale = Bins / centroidBounds.Extent[axis];
+        int nb = BinsFor(end - start);
+        float scale = nb / centroidBounds.Extent[axis];
+        lb = lc = rb = rc = Bounds3.Empty;
         int i = start, j = end - 1;
         while (i <= j)
         {
-            if (Bin(_centroids[_order[i]][axis], min, scale) <= split) i++;
-            else { (_order[i], _order[j]) = (_order[j], _order[i]); j--; }
+            var c = _centroids[i];
+            if (Bin(axis == 0 ? c.X : axis == 1 ? c.Y : c.Z, min, scale, nb) <= split)
+            {
+                lb.Include(_bounds[i]); lc.Include(c);
+                i++;
+            }
+            else
+            {
+                rb.Include(_bounds[i]); rc.Include(c);
+                (_bounds[i], _bounds[j]) = (_bounds[j], _bounds[i]);
+                (_centroids[i], _centroids[j]) = (_centroids[j], _centroids[i]);
+                (_order[i], _order[j]) = (_order[j], _order[i]);
+                j--;
+            }
         }
         return i;
     }
@@ -192,11 +268,13 @@ sealed class BvhBuilder
     /// <summary>Orders the range by centroid along the axis (ties by primitive index, so the result is unique).</summary>
     void MedianSplit(int start, int end, int axis)
     {
-        var centroids = _centroids;
-        Array.Sort(_order, start, end - start, Comparer<int>.Create((a, b) =>
-        {
-            int c = centroids[a][axis].CompareTo(centroids[b][axis]);
-            return c != 0 ? c : a.CompareTo(b);
-        }));
+        int n = end - start;
+        var keys = new (float Key, int Primitive, int At)[n];
+        for (int i = 0; i < n; i++) keys[i] = (_centroids[start + i][axis], _order[start + i], start + i);
+        Array.Sort(keys, (a, b) => a.Key != b.Key ? a.Key.CompareTo(b.Key) : a.Primitive.CompareTo(b.Primitive));
+        var bounds = new Bounds3[n];
+        var centroids = new Vector3[n];
+        for (int i = 0; i < n; i++) { bounds[i] = _bounds[keys[i].At]; centroids[i] = _centroids[keys[i].At]; }
+        for (int i = 0; i < n; i++) { _bounds[start + i] = bounds[i]; _centroids[start + i] = centroids[i]; _order[start + i] = keys[i].Primitive; }
     }
 }
