@@ -102,7 +102,7 @@ sealed class BvhBuilder
         ref var node = ref _tree[at];
         node = new Node { Start = start, Count = end - start, Bounds = bounds, Left = -1, Right = -1 };
         int count = end - start;
-        if (count <= LeafAtOnce) return at;
+        if (count <= Math.Min(LeafAtOnce, _maxLeafSize)) return at;
 
         int mid;
         Bounds3 lb, lc, rb, rc;

@@ -1,4 +1,5 @@
 using System.Buffers.Binary;
+using System.Runtime.InteropServices;
 using System.Globalization;
 using System.Text;
 using SpectralRenderer.Color;
@@ -56,7 +57,8 @@ public static class ExrWriter
             var cm = options.Colorimeter!;
             var planes = new float[6][];
             for (int i = 0; i < 6; i++) planes[i] = new float[w * h];
-            for (int y = 0; y < h; y++)
+            Parallel.For(0, h, y =>
+            {
                 for (int x = 0; x < w; x++)
                 {
                     int i = y * w + x;
@@ -65,6 +67,7 @@ public static class ExrWriter
                     planes[0][i] = (float)r; planes[1][i] = (float)g; planes[2][i] = (float)bl;
                     planes[3][i] = (float)xyz.X; planes[4][i] = (float)xyz.Y; planes[5][i] = (float)xyz.Z;
                 }
+            });
             if (options.Rgb) { channels.Add(("R", planes[0])); channels.Add(("G", planes[1])); channels.Add(("B", planes[2])); }
             if (options.Xyz) { channels.Add(("X", planes[3])); channels.Add(("Y", planes[4])); channels.Add(("Z", planes[5])); }
         }
@@ -86,12 +89,20 @@ public static class ExrWriter
             int at = 0;
             for (int y = y0; y < y1; y++)
                 foreach (var (_, plane) in channels)
+                {
+                    var row = plane.AsSpan(y * w, w);
+                    if (sampleBytes == 4 && BitConverter.IsLittleEndian)
+                    {
+                        MemoryMarshal.AsBytes(row).CopyTo(raw.AsSpan(at));
+                        at += 4 * w;
+                        continue;
+                    }
                     for (int x = 0; x < w; x++, at += sampleBytes)
                     {
-                        float v = plane[y * w + x];
-                        if (sampleBytes == 4) BinaryPrimitives.WriteSingleLittleEndian(raw.AsSpan(at), v);
-                        else BinaryPrimitives.WriteUInt16LittleEndian(raw.AsSpan(at), BitConverter.HalfToUInt16Bits((Half)v));
+                        if (sampleBytes == 4) BinaryPrimitives.WriteSingleLittleEndian(raw.AsSpan(at), row[x]);
+                        else BinaryPrimitives.WriteUInt16LittleEndian(raw.AsSpan(at), BitConverter.HalfToUInt16Bits((Half)row[x]));
                     }
+                }
             if (options.Compression == ExrCompression.Zip)
             {
                 var z = ExrZip.Compress(raw);

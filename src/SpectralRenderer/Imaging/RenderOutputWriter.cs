@@ -66,7 +66,8 @@ public static class RenderOutputWriter
             image.CopyBand(b, plane);
             for (int i = 0; i < plane.Length; i++) grey[i] = scale > 0 ? RgbSpace.To16(Math.Clamp(plane[i] / scale, 0, 1)) : (ushort)0;
             names[b] = BandFileName(scene, b);
-            AtomicFile.Write(Path.Combine(dir, names[b]), s => PngWriter.WriteGray16(s, image.Width, image.Height, grey));
+            // The Up filter alone: one pass per row instead of trying all five (band images are smooth).
+            AtomicFile.Write(Path.Combine(dir, names[b]), s => PngWriter.WriteGray16(s, image.Width, image.Height, grey, filter: PngFilter.Up));
         });
         foreach (var name in names) done($"bands/{name}");
         var (mw, mh, mosaic) = BandMosaic.Build(image, scale);
