@@ -64,6 +64,7 @@ public static class RenderCommand
             var geometry = new SceneGeometry(scene);
             var integrator = new WhittedIntegrator(scene, geometry);
             double buildSeconds = setup.Elapsed.TotalSeconds;
+            int degenerate = scene.Objects.Sum(o => o.Mesh?.DegenerateCount ?? 0);
             var result = Renderer.Render(scene, integrator, threads ?? 0, progress is null ? null : progress.Report, cancel.Token);
             progress?.Finish();
             var writeClock = System.Diagnostics.Stopwatch.StartNew();
@@ -72,13 +73,15 @@ public static class RenderCommand
                 ["command_line"] = "spectral render " + string.Join(' ', argv),
                 ["load_s"] = loadSeconds,
                 ["build_s"] = buildSeconds,
+                ["triangles"] = geometry.TriangleCount,
+                ["degenerate_triangles_skipped"] = degenerate,
             };
             var files = RenderOutputWriter.Write(scene, result, outDir, run, cancel.Token);
             if (!quiet)
             {
                 double secs = result.Elapsed.TotalSeconds;
                 stderr.WriteLine(string.Create(CultureInfo.InvariantCulture,
-                    $"rendered {result.Image.Width}×{result.Image.Height}, {scene.Grid.Count} bands ({scene.Grid}), {scene.Camera.SamplesPerPixel} spp in {secs:0.###} s ({result.Rays.Total / Math.Max(secs, 1e-9) / 1e6:0.##} Mrays/s, {result.Threads} threads); wrote {files.Count} files to {outDir} in {writeClock.Elapsed.TotalSeconds:0.##} s"));
+                    $"rendered {result.Image.Width}×{result.Image.Height}, {scene.Grid.Count} bands ({scene.Grid}), {scene.Camera.SamplesPerPixel} spp{(geometry.TriangleCount > 0 ? $", {geometry.TriangleCount:N0} triangles ({degenerate} degenerate skipped)" : "")} in {secs:0.###} s ({result.Rays.Total / Math.Max(secs, 1e-9) / 1e6:0.##} Mrays/s, {result.Threads} threads); wrote {files.Count} files to {outDir} in {writeClock.Elapsed.TotalSeconds:0.##} s"));
             }
             return CommandLine.Success;
         }
