@@ -167,7 +167,7 @@ public sealed partial class SceneLoader
 
     // ---- the scene ----------------------------------------------------------------------------
 
-    static readonly string[] TopKeys = ["name", "description", "bands", "integration", "observer", "white", "spectra", "materials", "lights", "objects", "background", "ambient", "max_depth", "camera", "output"];
+    static readonly string[] TopKeys = ["name", "description", "bands", "integration", "observer", "white", "scaling", "spectra", "materials", "lights", "objects", "background", "ambient", "max_depth", "camera", "output"];
 
     Scene Build(JsonElement root)
     {
@@ -195,7 +195,15 @@ public sealed partial class SceneLoader
         if (!white.Covers(_grid.Start, _grid.End))
             throw Error(whitePath, $"spectrum '{white.Name}' covers {white.First:0.###}–{white.Last:0.###} nm but the bands need {_grid.Start:0.###}–{_grid.End:0.###} nm",
                 "choose bands inside its range or give it \"extrapolate\": \"clamp\" or \"zero\"");
-        _colorimeter = new Colorimeter(_grid, observer, white, integration);
+        bool absolute = false;
+        if (TryGet(root, "scaling", out var scaling))
+            absolute = String(scaling, "$.scaling").ToLowerInvariant() switch
+            {
+                "relative" => false,
+                "absolute" => true,
+                var other => throw Error("$.scaling", $"unknown scaling '{other}'", "relative (white Y = 1) or absolute (κ = 683 lm/W)"),
+            };
+        _colorimeter = new Colorimeter(_grid, observer, white, integration, absolute);
 
         var camera = ParseCamera(Required(root, "camera", "$"), "$.camera");
         var materials = new List<Material>();

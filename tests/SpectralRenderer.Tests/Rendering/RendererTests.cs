@@ -71,4 +71,22 @@ public class RendererTests
         Assert.Equal(one.ObjectIds, all.ObjectIds);
         Assert.True(one.Image.Max() > 0);
     }
+
+    [Fact]
+    public void Absolute_scaling_gives_683_lm_per_W_luminance()
+    {
+        var json = """
+        { "scaling": "absolute", "white": "E",
+          "camera": { "position": [0, 0, 3], "look_at": [0, 0, 0], "width": 5, "height": 5, "fov": 10 },
+          "materials": { "white": { "diffuse": 1 } },
+          "lights": [ { "type": "directional", "direction": [0, 0, -1], "spectrum": "constant:0.01" } ],
+          "objects": [ { "type": "quad", "size": 10, "material": "white" } ] }
+        """;
+        var scene = SceneText.Load(json);
+        Assert.Equal(683.0, scene.Colorimeter.Kappa);
+        var img = Renderer.Render(scene).Image;
+        // L = 0.01 W·m⁻²·sr⁻¹·nm⁻¹ at every wavelength → Y = 683 · 0.01 · ∫ȳ dλ over 380–780 nm.
+        double integral = SpectralRenderer.Color.Observer.Cie1931.YBar.Integrate(380, 780);
+        Assert.Equal(683 * 0.01 * integral, scene.Colorimeter.ToXyz(img.Pixel(2, 2)).Y, 3);
+    }
 }
