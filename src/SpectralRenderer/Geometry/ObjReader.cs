@@ -16,11 +16,7 @@ public static class ObjReader
 {
     public static TriangleMesh Read(string path)
     {
-        string text;
-        try { text = File.ReadAllText(path); }
-        catch (FileNotFoundException) { throw new InputException(path, "file not found"); }
-        catch (DirectoryNotFoundException) { throw new InputException(path, "file not found"); }
-        return Parse(text, path);
+        return Parse(InputFile.ReadAllText(path), path);
     }
 
     public static TriangleMesh Parse(TextReader reader, string path) => Parse(reader.ReadToEnd(), path);

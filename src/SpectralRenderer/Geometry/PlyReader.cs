@@ -15,11 +15,7 @@ public static class PlyReader
 {
     public static TriangleMesh Read(string path)
     {
-        byte[] data;
-        try { data = File.ReadAllBytes(path); }
-        catch (FileNotFoundException) { throw new InputException(path, "file not found"); }
-        catch (DirectoryNotFoundException) { throw new InputException(path, "file not found"); }
-        return Parse(data, path);
+        return Parse(InputFile.ReadAllBytes(path), path);
     }
 
     public static TriangleMesh Parse(ReadOnlySpan<byte> data, string path)

@@ -38,12 +38,7 @@ public sealed partial class SceneLoader
 
     public static Scene Load(string path, SceneOverrides? overrides = null)
     {
-        byte[] bytes;
-        try { bytes = File.ReadAllBytes(path); }
-        catch (FileNotFoundException) { throw new InputException(path, "scene file not found", "check the path"); }
-        catch (DirectoryNotFoundException) { throw new InputException(path, "scene file not found", "check the path"); }
-        catch (UnauthorizedAccessException e) { throw new InputException(path, $"cannot be read: {e.Message}"); }
-        return Parse(bytes, path, overrides ?? new SceneOverrides());
+        return Parse(InputFile.ReadAllBytes(path, "scene file"), path, overrides ?? new SceneOverrides());
     }
 
     public static Scene Parse(byte[] utf8, string path, SceneOverrides? overrides = null)

@@ -13,13 +13,7 @@ public static class CsvSpectrumReader
 {
     public static SpectralTable Read(string path)
     {
-        string text;
-        try { text = File.ReadAllText(path); }
-        catch (FileNotFoundException) { throw new InputException(path, "file not found", "check the path"); }
-        catch (DirectoryNotFoundException) { throw new InputException(path, "file not found", "check the path"); }
-        catch (IOException e) { throw new InputException(path, $"cannot be read: {e.Message}"); }
-        catch (UnauthorizedAccessException e) { throw new InputException(path, $"cannot be read: {e.Message}"); }
-        return Parse(text, path);
+        return Parse(InputFile.ReadAllText(path), path);
     }
 
     public static SpectralTable Parse(string text, string path)

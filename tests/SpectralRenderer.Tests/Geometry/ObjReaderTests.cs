@@ -35,7 +35,7 @@ public class ObjReaderTests
     public void A_missing_file_names_the_file()
     {
         var e = Assert.Throws<InputException>(() => ObjReader.Read("/nonexistent/bunny.obj"));
-        Assert.Equal("/nonexistent/bunny.obj: file not found", e.Message);
+        Assert.Equal("/nonexistent/bunny.obj: file not found (hint: check the path)", e.Message);
     }
 
     [Fact]
