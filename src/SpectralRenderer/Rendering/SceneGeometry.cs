@@ -20,7 +20,7 @@ public sealed class SceneGeometry
     readonly AnalyticSet _analytic;
     readonly Bvh? _analyticBvh;
     readonly int[] _analyticObject;
-    readonly AnalyticShape[] _planes;
+    readonly (Vector3 Normal, float Offset)[] _planes;   // n·x = offset, world space
     readonly int[] _planeObject;
 
     public SceneGeometry(Scene scene)
@@ -53,7 +53,12 @@ public sealed class SceneGeometry
         }
         else _analyticObject = [];
         BuildTime = clock.Elapsed;
-        _planes = planes.Select(p => p.Shape).ToArray();
+        // Planes are tested directly in world space (an affine map keeps a plane a plane).
+        _planes = planes.Select(p =>
+        {
+            var n = Vector3.Normalize(Vector3.TransformNormal(Vector3.UnitY, p.Shape.NormalToWorld));
+            return (n, Vector3.Dot(n, Vector3.Transform(Vector3.Zero, p.Shape.ObjectToWorld)));
+        }).ToArray();
         _planeObject = planes.Select(p => p.Object).ToArray();
 
         var b = Bounds3.Empty;
@@ -89,7 +94,7 @@ public sealed class SceneGeometry
         }
         int plane = -1;
         for (int i = 0; i < _planes.Length; i++)
-            if (_planes[i].Intersect(ray, 0, out float tp, out _)) { ray.TMax = tp; plane = i; kind = 3; }
+            if (HitPlane(i, ray, out float tp)) { ray.TMax = tp; plane = i; kind = 3; }
         if (kind == 0) return false;
 
         hit.T = ray.TMax;
@@ -122,8 +127,7 @@ public sealed class SceneGeometry
                 hit.Object = _analyticObject[ah.Primitive];
                 break;
             default:
-                _planes[plane].Intersect(new Ray(ray.Origin, ray.Direction, float.PositiveInfinity), 0, out _, out var np);
-                hit.Normal = hit.GeometricNormal = np;
+                hit.Normal = hit.GeometricNormal = _planes[plane].Normal;
                 hit.Object = _planeObject[plane];
                 break;
         }
@@ -143,7 +147,16 @@ public sealed class SceneGeometry
             if (_analyticBvh.Occluded(ref a, ray)) return true;
         }
         for (int i = 0; i < _planes.Length; i++)
-            if (_planes[i].Intersect(ray, 0, out _, out _)) return true;
+            if (HitPlane(i, ray, out _)) return true;
         return false;
+    }
+
+    /// <summary>The ray meets plane i at t in (0, TMax).</summary>
+    bool HitPlane(int i, in Ray ray, out float t)
+    {
+        var (n, offset) = _planes[i];
+        float denominator = Vector3.Dot(n, ray.Direction);
+        t = (offset - Vector3.Dot(n, ray.Origin)) / denominator;
+        return denominator != 0 && t > 0 && t < ray.TMax;
     }
 }
