@@ -53,7 +53,7 @@ public sealed class Arguments
         var v = Value(name);
         if (v is null) return null;
         if (!int.TryParse(v, NumberStyles.Integer, CultureInfo.InvariantCulture, out int n) || n < min || n > max)
-            throw new InputException(Command, $"{name} '{v}' is not a whole number in {min}–{max}");
+            throw new InputException("", $"{name} '{v}' is not a whole number in {min}–{max}");
         return n;
     }
 
@@ -62,7 +62,7 @@ public sealed class Arguments
         var v = Value(name);
         if (v is null) return null;
         if (!double.TryParse(v, NumberStyles.Float, CultureInfo.InvariantCulture, out double d) || !double.IsFinite(d))
-            throw new InputException(Command, $"{name} '{v}' is not a number");
+            throw new InputException("", $"{name} '{v}' is not a number");
         return d;
     }
 }

@@ -39,6 +39,12 @@ public static class CommandLine
         {
             return cmd.Run(args[1..], stdout, stderr);
         }
+        catch (AggregateException e) when (e.Flatten().InnerExceptions.Count > 0)
+        {
+            var inner = e.Flatten().InnerExceptions[0];
+            stderr.WriteLine($"spectral {cmd.Name}: {inner.Message}");
+            return inner is InputException ? BadInput : Failure;
+        }
         catch (InputException e)
         {
             stderr.WriteLine($"spectral {cmd.Name}: {e.Message}");

@@ -46,6 +46,10 @@ public sealed class RenderFolder
             var w = Arr(colour["white_xyz"]);
             var objects = json["objects"]!.AsArray();
             var image = SpectralFiles.Read(dir, grid);
+            int width = (int)json["width"]!, height = (int)json["height"]!;
+            if (image.Width != width || image.Height != height || image.Bands != grid.Count)
+                throw new InputException(dir, $"its spectral cube is {image.Width}×{image.Height}×{image.Bands} but render.json describes {width}×{height}×{grid.Count}",
+                    "the folder mixes two renders; render again into an empty folder");
             int[] ids = ReadIds(dir, image);
             return new RenderFolder
             {

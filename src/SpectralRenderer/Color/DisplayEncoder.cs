@@ -16,7 +16,9 @@ public sealed class DisplayEncoder
         _colorimeter = colorimeter;
         Space = space;
         _exposure = exposure;
-        _toRgb = adapt ? Matrix3.Multiply(space.FromXyz, ChromaticAdaptation.BradfordMatrix(colorimeter.White, space.White)) : space.FromXyz;
+        // The scene white is taken at Y = 1 for the adaptation, so absolute scaling keeps its luminance.
+        var white = colorimeter.White * (1 / colorimeter.White.Y);
+        _toRgb = adapt ? Matrix3.Multiply(space.FromXyz, ChromaticAdaptation.BradfordMatrix(white, space.White)) : space.FromXyz;
     }
 
     public RgbSpace Space { get; }

@@ -18,12 +18,15 @@ public static class RenderOutputWriter
         var formats = scene.Output.Formats;
         var image = result.Image;
         Directory.CreateDirectory(outDir);
+        ClearPrevious(outDir);
         float scale = image.Max();
 
         // The groups are independent files: write them side by side; each keeps its own list, in a fixed order.
         var groups = new List<string>[4];
         for (int g = 0; g < groups.Length; g++) groups[g] = [];
         Action<string> Done(int g) => name => { lock (groups[g]) groups[g].Add(name); cancel.ThrowIfCancellationRequested(); };
+        try
+        {
         Parallel.Invoke(new ParallelOptions { CancellationToken = cancel },
             () => { if (formats.Contains("png")) WritePreview(scene, image, outDir, Done(0)); },
             () => { if (formats.Contains("bands")) WriteBands(scene, image, scale, outDir, Done(1), cancel); },
@@ -37,12 +40,36 @@ public static class RenderOutputWriter
                 AnalysisImages.Write(scene, result, outDir, Done(2));
             },
             () => SpectralFiles.Write(scene, image, outDir, formats, Done(3)));
+        }
+        catch (AggregateException e)
+        {
+            // Report the one cause (interruption first) as if the writes had run in sequence.
+            var first = e.Flatten().InnerExceptions.OrderBy(x => x is OperationCanceledException ? 0 : 1).First();
+            System.Runtime.ExceptionServices.ExceptionDispatchInfo.Capture(first).Throw();
+        }
 
         var written = groups.SelectMany(g => g).ToList();
         var json = Describe(scene, result, scale, written, run);
         AtomicFile.WriteAllText(Path.Combine(outDir, "render.json"), json.ToJsonString(new JsonSerializerOptions { WriteIndented = true }));
         written.Add("render.json");
         return written;
+    }
+
+    /// <summary>
+    /// Removes a previous render's files from the folder (render.json first, so a folder is never
+    /// described by a render.json that did not write it); files of other names are left alone.
+    /// </summary>
+    public static void ClearPrevious(string outDir)
+    {
+        File.Delete(Path.Combine(outDir, "render.json"));
+        string[] patterns = ["preview.png", "preview-eq4.png", "bands.png", "object-id.png", "mask-lit-*.png", "mask-highlight.png",
+            "spectral.exr", "spectral.hdr", "spectral.img", "spectral.img.aux.xml", "spectral.npy", "wavelengths.csv",
+            "reflectance.exr", "reflectance.npy", "probe.csv", "probe.svg", "reconstructed.exr", "reconstructed.npy", "reconstruction*.csv", "reconstruction.svg"];
+        foreach (var pattern in patterns)
+            foreach (var f in Directory.EnumerateFiles(outDir, pattern)) File.Delete(f);
+        var bands = Path.Combine(outDir, "bands");
+        if (Directory.Exists(bands))
+            foreach (var f in Directory.EnumerateFiles(bands, "band-*.png")) File.Delete(f);
     }
 
     static void WritePreview(Scene scene, SpectralImage image, string outDir, Action<string> done)

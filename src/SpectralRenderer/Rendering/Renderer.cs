@@ -55,7 +55,11 @@ public sealed class Renderer
         int done = 0;
         var clock = Stopwatch.StartNew();
         int spp = cam.SamplesPerPixel;
-        int strata = (int)Math.Ceiling(Math.Sqrt(spp));
+        // Stratified jitter over an m × n grid of cells with m·n = spp exactly (m the largest divisor ≤ √spp),
+        // so every part of the pixel is sampled equally for any spp.
+        int strataX = 1;
+        for (int m = (int)Math.Sqrt(spp); m >= 1; m--) if (spp % m == 0) { strataX = m; break; }
+        int strataY = spp / strataX;
         float inv = 1f / spp;
 
         // One worker per thread, each with its own scratch spectra, pulling tiles from a shared counter:
@@ -89,10 +93,10 @@ public sealed class Renderer
                         sum.Clear();
                         for (int s = 0; s < spp; s++)
                         {
-                            // Stratified jitter: sample s in cell (s mod m, s div m) of an m×m grid.
+                            // Sample s in cell (s mod m, s div m), jittered inside it.
                             uint h = Hash((uint)x, (uint)y, (uint)s);
-                            float jx = ((s % strata) + (h & 0xFFFF) / 65536f) / strata;
-                            float jy = ((s / strata % strata) + (h >> 16) / 65536f) / strata;
+                            float jx = ((s % strataX) + (h & 0xFFFF) / 65536f) / strataX;
+                            float jy = ((s / strataX) + (h >> 16) / 65536f) / strataY;
                             counters.Primary++;
                             integrator.Radiance(cam.Generate(x + jx, y + jy), 0, -1, sample, scratch, ref counters);
                             SpectralMath.AddScaled(sum, sample, inv);

@@ -220,7 +220,12 @@ public sealed partial class SceneLoader
         if (type == "spot")
         {
             if (TryGet(e, "direction", out var d)) direction = Direction(d, $"{path}.direction");
-            else if (TryGet(e, "look_at", out var la)) direction = Vector3.Normalize(Vec3(la, $"{path}.look_at") - position);
+            else if (TryGet(e, "look_at", out var la))
+            {
+                var towards = Vec3(la, $"{path}.look_at") - position;
+                if (towards.LengthSquared() == 0) throw Error($"{path}.look_at", "look_at equals position", "a spot light needs a direction to shine in");
+                direction = Vector3.Normalize(towards);
+            }
             else throw Error($"{path}.direction", "a spot light needs a direction or look_at");
             cosCutoff = MathF.Cos((float)Number(e, "cutoff", path, 30, 0, 180) * MathF.PI / 180);
             exponent = (float)Number(e, "exponent", path, 0, 0, 1e6);

@@ -199,6 +199,9 @@ public sealed partial class SceneLoader
                 var other => throw Error("$.scaling", $"unknown scaling '{other}'", "relative (white Y = 1) or absolute (κ = 683 lm/W)"),
             };
         _colorimeter = new Colorimeter(_grid, observer, white, integration, absolute);
+        // κ = 1 / Y(white): a white that is (nearly) dark in these bands makes every colour meaningless.
+        if (!absolute && !(_colorimeter.Kappa > 0 && _colorimeter.Kappa < 1e12))
+            throw Error(whitePath, $"the reference white '{white.Name}' has no luminance over the bands {_grid}", "choose a white (or first light) that emits visible light inside the bands");
 
         var camera = ParseCamera(Required(root, "camera", "$"), "$.camera");
         var materials = new List<Material>();

@@ -59,7 +59,7 @@ public static class CsvSpectrumReader
                 var cell = cells[c].Trim();
                 if (!double.TryParse(cell, NumberStyles.Float, CultureInfo.InvariantCulture, out double v))
                     throw new InputException($"{path}:{lineNo}", $"'{cell}' in column '{header[c]}' is not a number");
-                if (!double.IsFinite(v))
+                if (!double.IsFinite(v) || Math.Abs(v) > float.MaxValue)
                     throw new InputException($"{path}:{lineNo}", $"{cell} in column '{header[c]}' is not finite", "spectral values must be finite numbers");
                 if (c == 0)
                 {

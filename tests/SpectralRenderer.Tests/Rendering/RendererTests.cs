@@ -89,4 +89,29 @@ public class RendererTests
         double integral = SpectralRenderer.Color.Observer.Cie1931.YBar.Integrate(380, 780);
         Assert.Equal(683 * 0.01 * integral, scene.Colorimeter.ToXyz(img.Pixel(2, 2)).Y, 3);
     }
+
+    [Theory]
+    [InlineData(2)]
+    [InlineData(4)]
+    [InlineData(8)]
+    public void Stratified_samples_cover_the_pixel_evenly(int spp)
+    {
+        // A lit quad whose lower edge runs exactly through the middle of pixel row 10: with samples spread
+        // evenly over the pixel, every pixel of that row is half covered.
+        var probe = SceneText.Load(Json(0, spp));
+        var ray = probe.Camera.Generate(16, 10.5f);
+        float edge = ray.Origin.Y + ray.Direction.Y * (-ray.Origin.Z / ray.Direction.Z);
+        var scene = SceneText.Load(Json(edge, spp));
+        var img = Renderer.Render(scene).Image;
+        for (int x = 2; x < 30; x++)
+            for (int b = 0; b < scene.Bands; b++)
+                Assert.Equal(0.5 * img[x, 5, b], img[x, 10, b], 5);
+
+        static string Json(float edge, int spp) => $$"""
+        { "camera": { "position": [0, 0, 10], "look_at": [0, 0, 0], "fov": 20, "width": 32, "height": 24, "spp": {{spp}} },
+          "materials": { "m": { "diffuse": 0.5 } },
+          "lights": [ { "type": "directional", "direction": [0, 0, -1], "spectrum": "E" } ],
+          "objects": [ { "type": "quad", "center": [0, {{(edge + 50).ToString(System.Globalization.CultureInfo.InvariantCulture)}}, 0], "size": [100, 100], "material": "m" } ] }
+        """;
+    }
 }

@@ -48,6 +48,8 @@ public class BadSceneTests
     [InlineData("\"spectrum\": \"D65\"", "\"spectrum\": [[400, 1], [700, 1]]", "$.lights[0].spectrum", "covers 400–700 nm but the bands need 380–780 nm")]
     [InlineData("\"spectrum\": \"D65\"", "\"spectrum\": [[400, 1], [700, -1]]", "$.lights[0].spectrum[1][1]", "negative value -1")]
     [InlineData("\"radius\": 1", "\"radius\": 1, \"radiu\": 2", "$.objects[0].radiu", "did you mean 'radius'?")]
+    [InlineData("\"spectrum\": \"D65\"", "\"spectrum\": 0", "$.lights[0].spectrum", "has no luminance over the bands")]
+    [InlineData("\"type\": \"point\", \"position\": [0, 3, 3]", "\"type\": \"spot\", \"position\": [0, 3, 3], \"look_at\": [0, 3, 3]", "$.lights[0].look_at", "look_at equals position")]
     public void Broken_scenes_give_one_located_line_exit_2_and_write_nothing(string find, string replace, string where, string what)
     {
         Assert.Contains(find, Good);
@@ -98,5 +100,38 @@ public class BadSceneTests
         Assert.Equal(2, code);
         Assert.Contains("cannot be written", err);
         Assert.Single(err.TrimEnd('\n').Split('\n'));
+    }
+
+    [Fact]
+    public void A_write_that_fails_is_one_line_exit_1_and_leaves_no_render_json()
+    {
+        var dir = Reference.TempDir();
+        var scene = Path.Combine(dir, "scene.json");
+        File.WriteAllText(scene, Good);
+        var outDir = Path.Combine(dir, "out");
+        Directory.CreateDirectory(outDir);
+        File.WriteAllText(Path.Combine(outDir, "bands"), "a file where the bands folder goes");
+        var (code, _, err) = CliRunner.Run("render", scene, "-o", outDir, "--quiet");
+        Assert.Equal(1, code);
+        Assert.Single(err.TrimEnd('\n').Split('\n'));
+        Assert.False(File.Exists(Path.Combine(outDir, "render.json")));
+    }
+
+    [Fact]
+    public void Rendering_again_into_a_folder_replaces_the_previous_render_whole()
+    {
+        var dir = Reference.TempDir();
+        var scene = Path.Combine(dir, "scene.json");
+        File.WriteAllText(scene, Good);
+        var outDir = Path.Combine(dir, "out");
+        Assert.Equal(0, CliRunner.Run("render", scene, "-o", outDir, "--quiet").Exit);
+        File.WriteAllText(Path.Combine(outDir, "notes.txt"), "mine");
+        Assert.Equal(0, CliRunner.Run("render", scene, "-o", outDir, "--bands", "5", "--formats", "png,bands,npy,aov", "--quiet").Exit);
+        Assert.Equal(5, Directory.GetFiles(Path.Combine(outDir, "bands"), "band-*.png").Length);
+        Assert.False(File.Exists(Path.Combine(outDir, "spectral.exr")));
+        Assert.True(File.Exists(Path.Combine(outDir, "notes.txt")));
+        var (code, stdout, _) = CliRunner.Run("probe", outDir, "--pixel", "4,3", "--csv");
+        Assert.Equal(0, code);
+        Assert.Equal(1 + 5, stdout.Trim().Split('\n').Length);   // header + 5 bands
     }
 }
