@@ -47,6 +47,7 @@ public sealed class Bvh
     /// tested; the nearer (by entry distance) is visited first and the farther pushed with its distance,
     /// to be skipped when popped if a closer hit was found meanwhile.
     /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public bool Intersect<T>(ref T prims, ref Ray ray, ref Hit hit) where T : struct, IPrimitiveIntersector
     {
         if (_nodes.Length == 0) return false;
@@ -92,6 +93,7 @@ public sealed class Bvh
     }
 
     /// <summary>Whether anything is hit in (0, ray.TMax); stops at the first hit.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public bool Occluded<T>(ref T prims, in Ray ray) where T : struct, IPrimitiveIntersector
     {
         if (_nodes.Length == 0) return false;

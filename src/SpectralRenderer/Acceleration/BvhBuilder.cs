@@ -189,7 +189,7 @@ sealed class BvhBuilder
             int chunks = Math.Min(Environment.ProcessorCount, 8);
             var partCounts = new int[chunks][];
             var partBounds = new Bounds3[chunks][];
-            Parallel.For(0, chunks, k =>
+            Parallel.For(0, chunks, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (k) =>
             {
                 partCounts[k] = new int[3 * nb];
                 partBounds[k] = new Bounds3[3 * nb];

@@ -41,7 +41,7 @@ public struct TriangleSet : IPrimitiveIntersector
         {
             var mesh = meshes[m];
             int offset = first;
-            Parallel.For(0, (mesh.TriangleCount + 4095) / 4096, chunk =>
+            Parallel.For(0, (mesh.TriangleCount + 4095) / 4096, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (chunk) =>
             {
                 int t1 = Math.Min(mesh.TriangleCount, (chunk + 1) * 4096);
                 for (int t = chunk * 4096; t < t1; t++)
@@ -58,7 +58,7 @@ public struct TriangleSet : IPrimitiveIntersector
         var corners = new Vector3[3 * total];
         var orderedMesh = new int[total];
         var orderedTriangle = new int[total];
-        Parallel.For(0, (total + 4095) / 4096, chunk =>
+        Parallel.For(0, (total + 4095) / 4096, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (chunk) =>
         {
             int k1 = Math.Min(total, (chunk + 1) * 4096);
             for (int k = chunk * 4096; k < k1; k++)

@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Color;
@@ -83,6 +84,7 @@ public sealed class Colorimeter
         : BandProjection.Means(s, Grid);
 
     /// <summary>Eq. 3: XYZ of band values.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public Xyz ToXyz(ReadOnlySpan<double> bands)
     {
         double x = 0, y = 0, z = 0;
@@ -90,6 +92,7 @@ public sealed class Colorimeter
         return new Xyz(x, y, z);
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public Xyz ToXyz(ReadOnlySpan<float> bands)
     {
         double x = 0, y = 0, z = 0;

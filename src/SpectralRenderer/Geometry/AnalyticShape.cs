@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using System.Numerics;
 
 namespace SpectralRenderer.Geometry;
@@ -40,6 +41,7 @@ public sealed class AnalyticShape
     public Bounds3 Bounds { get; }
 
     /// <summary>Closest hit in (tMin, ray.TMax); on a hit returns t and the world-space unit normal.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public bool Intersect(in Ray ray, float tMin, out float t, out Vector3 normal)
     {
         var o = Vector3.Transform(ray.Origin, WorldToObject);

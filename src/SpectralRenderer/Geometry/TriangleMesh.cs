@@ -94,6 +94,7 @@ public sealed class TriangleMesh
     /// transpose; a mirroring transform (negative determinant) also reverses the winding so the geometric normal
     /// keeps its side.
     /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public TriangleMesh Transform(Matrix4x4 m)
     {
         if (!Matrix4x4.Invert(m, out var inverse)) throw new ArgumentException("the transform is singular", nameof(m));

@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
 
@@ -11,6 +12,7 @@ namespace SpectralRenderer.Imaging;
 /// </summary>
 public static class AnalysisImages
 {
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public static void Write(Scene scene, RenderResult result, string outDir, Action<string> done)
     {
         var image = result.Image;
@@ -36,6 +38,7 @@ public static class AnalysisImages
     }
 
     /// <summary>m_diff of the material each pixel's centre ray hits (0 for background), band values.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public static SpectralImage GroundTruthReflectance(Scene scene, RenderResult result)
     {
         var image = result.Image;

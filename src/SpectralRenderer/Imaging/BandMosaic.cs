@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using SpectralRenderer.Color;
 using SpectralRenderer.Rendering;
 
@@ -9,6 +10,7 @@ public static class BandMosaic
     const int Gap = 4;
 
     /// <summary>An 8-bit grey mosaic (sRGB-encoded for viewing), bands in reading order, each thumbnail at most 256 px wide.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public static (int Width, int Height, byte[] Pixels) Build(SpectralImage image, float scale, int maxThumb = 256)
     {
         int n = image.Bands;

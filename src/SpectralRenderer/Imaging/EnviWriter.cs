@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using System.Buffers.Binary;
 using System.Globalization;
 using System.Text;
@@ -25,6 +26,7 @@ public static class EnviWriter
     public static string HeaderPath(string imagePath) => Path.ChangeExtension(imagePath, ".hdr");
 
     /// <summary>The BSQ float32 little-endian samples.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public static void WriteData(Stream stream, SpectralImage image)
     {
         int n = image.Width * image.Height;

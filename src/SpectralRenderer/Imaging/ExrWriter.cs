@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using System.Buffers.Binary;
 using System.Runtime.InteropServices;
 using System.Globalization;
@@ -57,7 +58,7 @@ public static class ExrWriter
             var cm = options.Colorimeter!;
             var planes = new float[6][];
             for (int i = 0; i < 6; i++) planes[i] = new float[w * h];
-            Parallel.For(0, h, y =>
+            Parallel.For(0, h, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (y) =>
             {
                 for (int x = 0; x < w; x++)
                 {
@@ -81,7 +82,7 @@ public static class ExrWriter
         int chunkCount = (h + lines - 1) / lines;
         int sampleBytes = options.PixelType == ExrPixelType.Float ? 4 : 2;
         var chunks = new byte[chunkCount][];
-        Parallel.For(0, chunkCount, c =>
+        Parallel.For(0, chunkCount, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (c) =>
         {
             int y0 = c * lines, y1 = Math.Min(h, y0 + lines);
             // File layout, "Scan Line Blocks": per scanline, per channel (sorted), all pixels of that channel.

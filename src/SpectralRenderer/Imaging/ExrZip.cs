@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using System.IO.Compression;
 
 namespace SpectralRenderer.Imaging;
@@ -9,6 +10,7 @@ namespace SpectralRenderer.Imaging;
 /// </summary>
 static class ExrZip
 {
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public static byte[] Compress(ReadOnlySpan<byte> raw)
     {
         int n = raw.Length;
@@ -33,6 +35,7 @@ static class ExrZip
     }
 
     /// <summary>Inverse of <see cref="Compress"/>; returns false when the stream does not inflate to exactly <paramref name="output"/>.Length bytes.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public static bool TryDecompress(ReadOnlySpan<byte> compressed, Span<byte> output)
     {
         int n = output.Length;

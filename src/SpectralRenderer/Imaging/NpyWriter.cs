@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using System.Buffers.Binary;
 using System.Globalization;
 using System.Text;
@@ -21,6 +22,7 @@ public static class NpyWriter
         Write(stream, [image.Height, image.Width, image.Bands], image.Data);
 
     /// <summary>Any C-order float32 array.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public static void Write(Stream stream, ReadOnlySpan<int> shape, ReadOnlySpan<float> data)
     {
         long count = 1;

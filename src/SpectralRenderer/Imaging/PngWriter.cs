@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using System.Buffers.Binary;
 using System.IO.Compression;
 using System.Text;
@@ -107,6 +108,7 @@ public static class PngWriter
             throw new ArgumentException($"pixel buffer has {length} samples, {width}×{height}×{samples} expected");
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     static void Write(Stream stream, int width, int height, byte bitDepth, byte colourType, int bpp,
         ReadOnlySpan<byte> pixels, IReadOnlyDictionary<string, string>? text, PngFilter filter)
     {

@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using System.Globalization;
 using System.Text.Json;
 using System.Text.Json.Nodes;
@@ -86,7 +87,7 @@ public static class RenderOutputWriter
         var dir = Path.Combine(outDir, "bands");
         Directory.CreateDirectory(dir);
         var names = new string[image.Bands];
-        Parallel.For(0, image.Bands, new ParallelOptions { CancellationToken = cancel }, b =>
+        Parallel.For(0, image.Bands, new ParallelOptions { CancellationToken = cancel }, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (b) =>
         {
             var plane = new float[image.Width * image.Height];
             var grey = new ushort[plane.Length];
@@ -108,7 +109,7 @@ public static class RenderOutputWriter
     public static byte[] Preview(SpectralImage image, DisplayEncoder encoder)
     {
         var rgb = new byte[image.Width * image.Height * 3];
-        Parallel.For(0, image.Height, y =>
+        Parallel.For(0, image.Height, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (y) =>
         {
             for (int x = 0; x < image.Width; x++)
             {

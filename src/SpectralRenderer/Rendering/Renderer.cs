@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using System.Diagnostics;
 using SpectralRenderer.Scenes;
 
@@ -65,6 +66,7 @@ public sealed class Renderer
         // One worker per thread, each with its own scratch spectra, pulling tiles from a shared counter:
         // the loop allocates per worker, never per tile, ray or pixel.
         int next = -1;
+        [MethodImpl(MethodImplOptions.AggressiveOptimization)]
         void Worker()
         {
             var state = new TileState(integrator.ScratchLength, padded);

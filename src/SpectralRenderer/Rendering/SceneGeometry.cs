@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using System.Numerics;
 using SpectralRenderer.Acceleration;
 using SpectralRenderer.Geometry;
@@ -76,6 +77,7 @@ public sealed class SceneGeometry
     /// <summary>Time spent building the acceleration structures.</summary>
     public TimeSpan BuildTime { get; }
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public bool Intersect(ref Ray ray, out SurfaceHit hit)
     {
         hit = default;
@@ -134,6 +136,7 @@ public sealed class SceneGeometry
         return true;
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public bool Occluded(in Ray ray)
     {
         if (_hasTriangles)

@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Rendering;
@@ -32,12 +33,14 @@ public sealed class SpectralImage
     public float this[int x, int y, int band] { get => Data[Offset(x, y) + band]; set => Data[Offset(x, y) + band] = value; }
 
     /// <summary>Copies band b into a row-major Height × Width plane.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public void CopyBand(int band, Span<float> plane)
     {
         for (int i = 0, p = band; i < Width * Height; i++, p += Bands) plane[i] = Data[p];
     }
 
     /// <summary>The maximum value over all pixels and bands (the common scale of the band images).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public float Max()
     {
         float m = 0;

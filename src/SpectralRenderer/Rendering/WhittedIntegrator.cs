@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using System.Numerics;
 using SpectralRenderer.Geometry;
 using SpectralRenderer.Scenes;
@@ -65,6 +66,7 @@ public sealed class WhittedIntegrator
     }
 
     /// <summary>As above; at depth 0 also records which lights reach the point and the Y of its diffuse and specular terms.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public int Radiance(Ray ray, int depth, int band, Span<float> result, Span<float> scratch, ref RayCounters counters, ref PixelInfo info)
     {
         result.Clear();
@@ -166,6 +168,7 @@ public sealed class WhittedIntegrator
         return hit.Object;
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     void Refract(Material m, int iorBand, int band, in Ray ray, Vector3 n, Vector3 ng, Vector3 v, float cosI, bool outside, Vector3 p, int depth,
         Span<float> result, Span<float> incoming, Span<float> rest, ref RayCounters counters, bool allBands)
     {
