@@ -51,6 +51,10 @@ public class ExperimentsTests
         var shot = Path.Combine(outDir, "report.png");
         RunChromium(chromium!, [.. flags, $"--screenshot={shot}", $"file://{report}"]);
         Assert.True(new FileInfo(shot).Length > 10_000);
+        // Kept beside the TRX results as the run's artefact.
+        var results = Path.Combine(Repo(), "TestResults");
+        Directory.CreateDirectory(results);
+        File.Copy(shot, Path.Combine(results, "report.png"), overwrite: true);
     }
 
     static string RunChromium(string exe, string[] args)
