@@ -45,6 +45,7 @@ sealed class BvhBuilder
         public int Start, Count, Axis;
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     BvhBuilder(ReadOnlySpan<Bounds3> bounds, int maxLeafSize, bool parallel)
     {
         _bounds = bounds.ToArray();
@@ -69,6 +70,7 @@ sealed class BvhBuilder
         return (nodes, builder._order, maxDepth);
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     int Flatten(int at, BvhNode[] nodes, ref int next, int depth, ref int maxDepth)
     {
         ref readonly var n = ref _tree[at];

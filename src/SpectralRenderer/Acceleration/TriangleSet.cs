@@ -27,6 +27,7 @@ public struct TriangleSet : IPrimitiveIntersector
         _corners = corners; Bvh = bvh; MeshOf = meshOf; TriangleOf = triangleOf; _ray = default;
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public void Prepare(in Ray ray) => _ray = new ShearedRay(ray);
 
     /// <summary>Builds the BVH over all triangles of the meshes and stores the triangles in its order.</summary>

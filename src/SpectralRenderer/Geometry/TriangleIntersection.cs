@@ -72,6 +72,7 @@ public readonly struct ShearedRay
     public readonly Vector3 Origin;
     public readonly Vector3 RowX, RowY, RowZ;
 
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public ShearedRay(in Ray ray)
     {
         Origin = ray.Origin;
@@ -87,5 +88,6 @@ public readonly struct ShearedRay
         RowZ = sz * Unit(kz);
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     static Vector3 Unit(int axis) => axis == 0 ? Vector3.UnitX : axis == 1 ? Vector3.UnitY : Vector3.UnitZ;
 }

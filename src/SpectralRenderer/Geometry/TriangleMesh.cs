@@ -48,6 +48,7 @@ public sealed class TriangleMesh
 
     public Bounds3 Bounds
     {
+        [MethodImpl(MethodImplOptions.AggressiveOptimization)]
         get
         {
             var b = Bounds3.Empty;

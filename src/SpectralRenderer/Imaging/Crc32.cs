@@ -1,3 +1,5 @@
+using System.Runtime.CompilerServices;
+
 namespace SpectralRenderer.Imaging;
 
 /// <summary>
@@ -21,6 +23,7 @@ public static class Crc32
     }
 
     /// <summary>Continues a running CRC (start with 0) over <paramref name="data"/>.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public static uint Update(uint crc, ReadOnlySpan<byte> data)
     {
         uint c = ~crc;

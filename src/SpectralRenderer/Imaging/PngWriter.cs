@@ -179,6 +179,7 @@ public static class PngWriter
     }
 
     /// <summary>§9.2: filter types 0–4 on one row; out[0] receives the type byte.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     static void FilterRow(int type, ReadOnlySpan<byte> x, ReadOnlySpan<byte> b, int bpp, Span<byte> output)
     {
         output[0] = (byte)type;

@@ -155,6 +155,7 @@ public sealed class SceneGeometry
     }
 
     /// <summary>The ray meets plane i at t in (0, TMax).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     bool HitPlane(int i, in Ray ray, out float t)
     {
         var (n, offset) = _planes[i];

@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using System.Numerics;
 using SpectralRenderer.Geometry;
 
@@ -30,6 +31,7 @@ public sealed class Camera
     public Camera With(int width, int height, int spp) => new(Position, LookAt, Up, Fov, width, height, spp);
 
     /// <summary>The ray through film position (px, py) in pixels, (0,0) the top-left corner.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public Ray Generate(float px, float py)
     {
         float aspect = (float)Width / Height;

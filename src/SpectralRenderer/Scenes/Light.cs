@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using System.Numerics;
 
 namespace SpectralRenderer.Scenes;
@@ -29,9 +30,11 @@ public sealed class Light
     public Spectra.TabulatedSpectrum? Spectrum { get; init; }
 
     /// <summary>d_k of eq. 2.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public float Attenuation(float r) => Kind == LightKind.Directional ? 1f : 1f / (C0 + C1 * r + C2 * r * r);
 
     /// <summary>c_spot,k of eq. 2 for the unit direction from the light to the point.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public float SpotFactor(Vector3 fromLight)
     {
         if (Kind != LightKind.Spot) return 1f;
