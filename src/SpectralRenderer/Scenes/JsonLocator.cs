@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using System.Text;
 using System.Text.Json;
 
@@ -12,6 +13,7 @@ public sealed class JsonLocator
     readonly Dictionary<string, long> _offsets = new(StringComparer.Ordinal);
     readonly List<long> _lineStarts = [0];
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     public JsonLocator(ReadOnlySpan<byte> utf8, JsonReaderOptions options)
     {
         for (int i = 0; i < utf8.Length; i++) if (utf8[i] == (byte)'\n') _lineStarts.Add(i + 1);
@@ -44,12 +46,14 @@ public sealed class JsonLocator
     readonly byte[] _utf8;
 
     /// <summary>"line:column" (1-based, column in characters) of the value at <paramref name="path"/>, or null.</summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     public string? Locate(string path)
     {
         if (!_offsets.TryGetValue(path, out long offset)) return null;
         return Position(offset);
     }
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     public string Position(long offset)
     {
         int line = _lineStarts.BinarySearch(offset);

@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using System.Numerics;
 using System.Text.Json;
 using SpectralRenderer.Diagnostics;
@@ -10,6 +11,7 @@ public sealed partial class SceneLoader
 {
     static readonly string[] ObjectTypes = ["sphere", "plane", "quad", "box", "mesh", "colorchecker"];
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     void ParseObject(JsonElement e, string path, int index, List<SceneObject> objects, List<Material> materials, Dictionary<string, int> materialIndex)
     {
         Object(e, path);
@@ -86,6 +88,7 @@ public sealed partial class SceneLoader
         objects.Add(new SceneObject { Name = name, Material = material, Shape = new AnalyticShape(kind, local * user) });
     }
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     Vector2 Size2(JsonElement e, string path)
     {
         if (!TryGet(e, "size", out var s)) return Vector2.One;
@@ -94,6 +97,7 @@ public sealed partial class SceneLoader
         return new Vector2((float)Number(s[0], $"{path}.size[0]", 1e-9), (float)Number(s[1], $"{path}.size[1]", 1e-9));
     }
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     int MaterialOf(JsonElement e, string path, List<Material> materials, Dictionary<string, int> materialIndex)
     {
         var m = Required(e, "material", path);
@@ -115,6 +119,7 @@ public sealed partial class SceneLoader
     }
 
     /// <summary>The Macbeth chart as 24 quads, 4 rows × 6 columns in the standard order, on an optional black frame.</summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     void ColorCheckerChart(JsonElement e, string path, string name, Matrix4x4 user, List<SceneObject> objects, List<Material> materials)
     {
         if (TryGet(e, "material", out _)) throw Error($"{path}.material", "a colorchecker chooses its own materials (the 24 Ohta reflectances)");
@@ -147,6 +152,7 @@ public sealed partial class SceneLoader
     }
 
     /// <summary>A rotation taking the canonical normal (+z, or +y for planes) to <paramref name="normal"/>, with its height axis towards <paramref name="up"/>.</summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     Matrix4x4 Basis(Vector3 normal, Vector3 up, bool axisIsY, string? path = null)
     {
         if (axisIsY)
@@ -164,6 +170,7 @@ public sealed partial class SceneLoader
         return Rows(xAxis, yAxis, normal);
     }
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     static Matrix4x4 Rows(Vector3 x, Vector3 y, Vector3 z) => new(
         x.X, x.Y, x.Z, 0,
         y.X, y.Y, y.Z, 0,
@@ -171,6 +178,7 @@ public sealed partial class SceneLoader
         0, 0, 0, 1);
 
     /// <summary>{"translate": [x,y,z], "rotate": [rx,ry,rz] degrees about x then y then z, "scale": s | [sx,sy,sz]}: scale, then rotate, then translate.</summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     Matrix4x4 Transform(JsonElement e, string path)
     {
         Object(e, path);
@@ -196,6 +204,7 @@ public sealed partial class SceneLoader
     }
 
     /// <summary>A triangle mesh from an OBJ or PLY file found along the model search path, fitted and transformed.</summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     SceneObject MeshObject(JsonElement e, string path, string name, Matrix4x4 user, int material)
     {
         var file = String(Required(e, "file", path), $"{path}.file");

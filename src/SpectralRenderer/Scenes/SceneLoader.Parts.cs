@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using System.Globalization;
 using System.Numerics;
 using System.Text.Json;
@@ -16,6 +17,7 @@ public sealed partial class SceneLoader
     /// A spectrum value: a number (constant), a name (the scene's "spectra" first, then built-ins and
     /// file.csv:column), inline pairs [[λ, v], …], or an object {name|csv+column|values, scale, extrapolate}.
     /// </summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     TabulatedSpectrum Spectrum(JsonElement e, string path, int depth = 0)
     {
         if (depth > 16) throw Error(path, "spectrum names refer to each other in a cycle");
@@ -82,6 +84,7 @@ public sealed partial class SceneLoader
         return s;
     }
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     TabulatedSpectrum Inline(JsonElement e, string path)
     {
         int n = e.GetArrayLength();
@@ -104,6 +107,7 @@ public sealed partial class SceneLoader
     /// <summary>A spectrum as padded band values on the scene's grid (the scheme's projection).</summary>
     float[] Bands(JsonElement e, string path) => Bands(Spectrum(e, path), path);
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     float[] Bands(TabulatedSpectrum s, string path)
     {
         if (!s.Covers(_grid.Start, _grid.End))
@@ -112,11 +116,13 @@ public sealed partial class SceneLoader
         return SpectralMath.ToPadded(_colorimeter!.Project(s));
     }
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     float[] OptionalBands(JsonElement obj, string name, string path, float[]? fallback = null) =>
         TryGet(obj, name, out var v) ? Bands(v, $"{path}.{name}") : fallback ?? new float[SpectralMath.Padded(_grid.Count)];
 
     // ---- materials ------------------------------------------------------------------------------
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     Material ParseMaterial(JsonElement e, string path, string name)
     {
         if (e.ValueKind == JsonValueKind.String || e.ValueKind == JsonValueKind.Number || e.ValueKind == JsonValueKind.Array)
@@ -163,6 +169,7 @@ public sealed partial class SceneLoader
         return MakeMaterial(name, ambient, diffuse, specular, shininess, model, mirror, transmit, ior, dispersive, fresnel, diffuseSpectrum);
     }
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     Material MakeMaterial(string name, float[] ambient, float[] diffuse, float[] specular, float shininess, SpecularModel model,
         float[] mirror, float[] transmit, float[] ior, bool dispersive, bool fresnel, TabulatedSpectrum? diffuseSpectrum) => new()
     {
@@ -173,6 +180,7 @@ public sealed partial class SceneLoader
     };
 
     float[] Zero() => new float[SpectralMath.Padded(_grid.Count)];
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     float[] Const(float v)
     {
         var a = new float[SpectralMath.Padded(_grid.Count)];
@@ -184,6 +192,7 @@ public sealed partial class SceneLoader
 
     static readonly string[] LightTypes = ["point", "spot", "directional"];
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     Light ParseLight(JsonElement e, string path, int index)
     {
         Object(e, path);
@@ -238,6 +247,7 @@ public sealed partial class SceneLoader
         };
     }
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     Vector3 Direction(JsonElement e, string path)
     {
         var v = Vec3(e, path);

@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using System.Globalization;
 using System.Numerics;
 using System.Text.Json;
@@ -36,11 +37,13 @@ public sealed partial class SceneLoader
         _overrides = overrides;
     }
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     public static Scene Load(string path, SceneOverrides? overrides = null)
     {
         return Parse(InputFile.ReadAllBytes(path, "scene file"), path, overrides ?? new SceneOverrides());
     }
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     public static Scene Parse(byte[] utf8, string path, SceneOverrides? overrides = null)
     {
         var span = utf8.AsSpan();
@@ -67,6 +70,7 @@ public sealed partial class SceneLoader
 
     // ---- errors -------------------------------------------------------------------------------
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     InputException Error(string jsonPath, string what, string? hint = null)
     {
         // Point at the nearest located ancestor when the path itself is absent (a missing field).
@@ -82,6 +86,7 @@ public sealed partial class SceneLoader
         return new InputException(pos is null ? $"{_file}: {jsonPath}" : $"{_file}:{pos}: {jsonPath}", what, hint);
     }
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     static string Kind(JsonElement e) => e.ValueKind switch
     {
         JsonValueKind.Object => "an object",
@@ -92,6 +97,7 @@ public sealed partial class SceneLoader
         _ => "null",
     };
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     void Keys(JsonElement obj, string path, params string[] allowed)
     {
         foreach (var p in obj.EnumerateObject())
@@ -100,6 +106,7 @@ public sealed partial class SceneLoader
                     InputException.DidYouMean(p.Name, allowed) ?? $"allowed here: {string.Join(", ", allowed)}");
     }
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     JsonElement Object(JsonElement e, string path)
     {
         if (e.ValueKind != JsonValueKind.Object) throw Error(path, $"expected an object, found {Kind(e)}");
@@ -108,12 +115,14 @@ public sealed partial class SceneLoader
 
     static bool TryGet(JsonElement obj, string name, out JsonElement value) => obj.TryGetProperty(name, out value) && value.ValueKind != JsonValueKind.Null;
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     JsonElement Required(JsonElement obj, string name, string path)
     {
         if (!TryGet(obj, name, out var v)) throw Error($"{path}.{name}", $"missing required field '{name}'");
         return v;
     }
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     double Number(JsonElement e, string path, double min = double.NegativeInfinity, double max = double.PositiveInfinity)
     {
         if (e.ValueKind != JsonValueKind.Number) throw Error(path, $"expected a number, found {Kind(e)}");
@@ -123,9 +132,11 @@ public sealed partial class SceneLoader
         return v;
     }
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     double Number(JsonElement obj, string name, string path, double fallback, double min = double.NegativeInfinity, double max = double.PositiveInfinity) =>
         TryGet(obj, name, out var v) ? Number(v, $"{path}.{name}", min, max) : fallback;
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     int Integer(JsonElement obj, string name, string path, int fallback, int min, int max)
     {
         if (!TryGet(obj, name, out var v)) return fallback;
@@ -134,12 +145,14 @@ public sealed partial class SceneLoader
         return i;
     }
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     string String(JsonElement e, string path)
     {
         if (e.ValueKind != JsonValueKind.String) throw Error(path, $"expected a string, found {Kind(e)}");
         return e.GetString()!;
     }
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     bool Bool(JsonElement obj, string name, string path, bool fallback)
     {
         if (!TryGet(obj, name, out var v)) return fallback;
@@ -147,12 +160,14 @@ public sealed partial class SceneLoader
         return v.GetBoolean();
     }
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     Vector3 Vec3(JsonElement obj, string name, string path, Vector3 fallback)
     {
         if (!TryGet(obj, name, out var v)) return fallback;
         return Vec3(v, $"{path}.{name}");
     }
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     Vector3 Vec3(JsonElement v, string path)
     {
         if (v.ValueKind != JsonValueKind.Array || v.GetArrayLength() != 3)
@@ -164,6 +179,7 @@ public sealed partial class SceneLoader
 
     static readonly string[] TopKeys = ["name", "description", "bands", "integration", "observer", "white", "scaling", "spectra", "materials", "lights", "objects", "background", "ambient", "max_depth", "camera", "output"];
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     Scene Build(JsonElement root)
     {
         Object(root, "$");
@@ -263,12 +279,14 @@ public sealed partial class SceneLoader
 
     string Where(string path) => _locator.Locate(path) is { } pos ? $"{_file}:{pos}: {path}" : $"{_file}: {path}";
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     BandGrid ParseGrid(JsonElement e, string path)
     {
         if (e.ValueKind != JsonValueKind.String) throw Error(path, $"expected a string such as \"380:780:20\", found {Kind(e)}");
         return BandGrid.Parse(e.GetString()!, Where(path));
     }
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     BandIntegration ParseIntegration(string? fromCli, JsonElement root)
     {
         if (fromCli is not null) return ParseIntegration(fromCli, "--integration");
@@ -276,6 +294,7 @@ public sealed partial class SceneLoader
         return ParseIntegration(String(e, "$.integration"), Where("$.integration"));
     }
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     static BandIntegration ParseIntegration(string s, string where) => s.ToLowerInvariant() switch
     {
         "weighted" => BandIntegration.Weighted,
@@ -283,6 +302,7 @@ public sealed partial class SceneLoader
         _ => throw new InputException(where, $"unknown band integration '{s}'", "use weighted or paper"),
     };
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     void CheckFramebuffer(Camera camera)
     {
         long bytes = (long)camera.Width * camera.Height * _grid.Count * sizeof(float);
@@ -295,6 +315,7 @@ public sealed partial class SceneLoader
 
     static string Size(long bytes) => bytes >= 1L << 30 ? $"{bytes / (double)(1L << 30):0.#} GiB" : $"{bytes / (double)(1L << 20):0.#} MiB";
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     Camera ParseCamera(JsonElement e, string path)
     {
         Object(e, path);
@@ -321,6 +342,7 @@ public sealed partial class SceneLoader
         return new Camera(position, lookAt, up, fov, width, height, spp);
     }
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     OutputOptions ParseOutput(JsonElement root)
     {
         var o = new OutputOptions();
@@ -343,6 +365,7 @@ public sealed partial class SceneLoader
         return o;
     }
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     public static HashSet<string> ParseFormats(IEnumerable<string> names, string where)
     {
         var set = new HashSet<string>(StringComparer.Ordinal);
