@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using SpectralRenderer.Diagnostics;
 using System.Globalization;
 
@@ -15,6 +16,7 @@ public sealed class Arguments
     public List<string> Positionals { get; } = [];
     public string Command { get; }
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
     public Arguments(string command, IReadOnlyList<string> args, IEnumerable<string> valueOptions, IEnumerable<string> flagOptions,
         IReadOnlyDictionary<string, string>? aliases = null)
     {

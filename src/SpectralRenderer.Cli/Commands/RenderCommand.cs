@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using System.Globalization;
 using System.Text.Json.Nodes;
 using SpectralRenderer.Diagnostics;
@@ -38,6 +39,7 @@ public static class RenderCommand
 
     static readonly string[] Values = ["-o", "--out", "--width", "--height", "--bands", "--band-range", "--spp", "--threads", "--rgb", "--integration", "--formats", "--models"];
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
     public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
     {
         var a = new Arguments("render", argv, Values, ["--quiet"], new Dictionary<string, string> { ["-o"] = "--out" });
@@ -88,6 +90,7 @@ public static class RenderCommand
         finally { Console.CancelKeyPress -= onCancel; }
     }
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
     public static SceneOverrides Overrides(Arguments a, string scenePath)
     {
         string? bands = a.Value("--band-range") ?? a.Value("--bands");

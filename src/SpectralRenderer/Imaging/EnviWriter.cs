@@ -41,6 +41,7 @@ public static class EnviWriter
     }
 
     /// <summary>The header text. Keys per the ENVI header format; lists in braces; no braces inside the description.</summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
     public static string Header(SpectralImage image, string? description = null)
     {
         var inv = CultureInfo.InvariantCulture;

@@ -145,6 +145,7 @@ public static class ExrWriter
     }
 
     /// <summary>File layout §"Header": attributes (name, type name, size, value), then a null byte.</summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
     static byte[] Header(SpectralImage image, ExrOptions options, List<string> channelNames, out bool longNames)
     {
         var attrs = new SortedDictionary<string, (string Type, byte[] Value)>(StringComparer.Ordinal);

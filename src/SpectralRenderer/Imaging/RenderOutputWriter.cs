@@ -121,6 +121,7 @@ public static class RenderOutputWriter
         return rgb;
     }
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
     static JsonObject Describe(Scene scene, RenderResult result, float bandScale, List<string> written, JsonObject? run)
     {
         var g = scene.Grid;
