@@ -15,7 +15,7 @@ public static class ReconstructCommand
 
         The paper's §3.4 white-board calibration: reflectance = pixel radiance ÷ white radiance, band by
         band, the white being the mean over the pixels of object NAME or of the rectangle X0..X1 × Y0..Y1
-        (inclusive). Compares it with the ground-truth reflectance the render wrote (reflectance.npy/.exr)
+        (inclusive). Compares it with the ground-truth reflectance the render wrote (reflectance.exr)
         by RMSE, GFC (goodness-of-fit coefficient), CIEDE2000 under D65, and the least-squares scale c with
         the RMSE left after scaling (c·truth ≈ reconstruction: a shadow is a scale error).
 

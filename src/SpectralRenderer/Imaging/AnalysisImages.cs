@@ -8,7 +8,7 @@ namespace SpectralRenderer.Imaging;
 /// The auxiliary images for analysis (§3.4): per light, where it reaches the surface seen
 /// (mask-lit-K.png); where the specular term exceeds a fraction of the diffuse (mask-highlight.png);
 /// and the ground-truth diffuse reflectance of what each pixel sees (reflectance.exr with T.λ channels,
-/// reflectance.npy).
+/// lossless and compact: the truth is constant over each object).
 /// </summary>
 public static class AnalysisImages
 {
@@ -33,8 +33,6 @@ public static class AnalysisImages
         var truth = GroundTruthReflectance(scene, result);
         ExrWriter.Write(Path.Combine(outDir, "reflectance.exr"), truth, new ExrOptions { Reflective = true, Rgb = false, Colorimeter = scene.Colorimeter });
         done("reflectance.exr");
-        NpyWriter.Write(Path.Combine(outDir, "reflectance.npy"), truth);
-        done("reflectance.npy");
     }
 
     /// <summary>m_diff of the material each pixel's centre ray hits (0 for background), band values.</summary>
