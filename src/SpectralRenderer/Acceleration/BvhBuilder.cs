@@ -7,8 +7,10 @@ namespace SpectralRenderer.Acceleration;
 /// <summary>
 /// Top-down BVH construction with the binned surface area heuristic (Wald, "On fast Construction of SAH-based
 /// Bounding Volume Hierarchies", 2007; pbrt-v4 §7.3.2): at each node the primitive centroids are binned into
-/// 16 buckets along each axis (one per primitive in smaller nodes), and the split plane between buckets minimising
-/// 1/2 + (N_left·A_left + N_right·A_right) / A_node is chosen, or a leaf when that is not cheaper than N.
+/// 16 buckets along each axis (one per primitive in smaller nodes; ranges under 64 primitives weigh their
+/// longest centroid axis only), and the split plane between buckets minimising
+/// 1/2 + (N_left·A_left + N_right·A_right) / A_node is chosen, or a leaf when that is not cheaper than N;
+/// two primitives always make a leaf.
 /// The primitives' bounds and centroids are kept in arrays permuted in place as the ranges are partitioned,
 /// so every pass reads memory in order; the partition also yields both children's bounds. Large ranges are
 /// binned in parallel chunks and large subtrees built in parallel. Bin counts and box unions are exact
