@@ -59,8 +59,6 @@ public sealed class RgbSpace
     /// <summary>The sRGB transfer function (IEC 61966-2-1 eq. 5).</summary>
     public static double SrgbCurve(double c) => c <= 0.0031308 ? 12.92 * c : 1.055 * Math.Pow(c, 1 / 2.4) - 0.055;
 
-    public static double SrgbCurveInverse(double v) => v <= 0.04045 ? v / 12.92 : Math.Pow((v + 0.055) / 1.055, 2.4);
-
     /// <summary>8-bit code value: round(255 · encoded).</summary>
     public (byte R, byte G, byte B) Encode8(Xyz xyz)
     {

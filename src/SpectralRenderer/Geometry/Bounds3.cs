@@ -21,7 +21,6 @@ public struct Bounds3
     // minps/maxps (MinNative/MaxNative): bounds hold no NaN, so IEEE NaN handling would only cost time.
     public void Include(Vector3 p) { Min = Lo(Min, p); Max = Hi(Max, p); }
     public void Include(in Bounds3 b) { Min = Lo(Min, b.Min); Max = Hi(Max, b.Max); }
-    public static Bounds3 Union(in Bounds3 a, in Bounds3 b) => new(Lo(a.Min, b.Min), Hi(a.Max, b.Max));
 
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     static Vector3 Lo(Vector3 a, Vector3 b) => Vector128.MinNative(a.AsVector128(), b.AsVector128()).AsVector3();

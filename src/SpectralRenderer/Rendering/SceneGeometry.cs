@@ -40,7 +40,6 @@ public sealed class SceneGeometry
         _meshes = meshes.ToArray();
         _meshObject = meshObject.ToArray();
         _meshSmooth = meshObject.Select(i => scene.Objects[i].Smooth).ToArray();
-        var clock = System.Diagnostics.Stopwatch.StartNew();
         _hasTriangles = meshes.Count > 0 && meshes.Sum(m => m.TriangleCount) > 0;
         _triangles = _hasTriangles ? TriangleSet.Build(_meshes) : default;
         TriangleCount = _hasTriangles ? _triangles.Count : 0;
@@ -53,7 +52,6 @@ public sealed class SceneGeometry
             _analyticObject = order.Select(k => finite[k].Object).ToArray();
         }
         else _analyticObject = [];
-        BuildTime = clock.Elapsed;
         // Planes are tested directly in world space (an affine map keeps a plane a plane).
         _planes = planes.Select(p =>
         {
@@ -65,17 +63,13 @@ public sealed class SceneGeometry
         var b = Bounds3.Empty;
         if (_hasTriangles) b.Include(_triangles.Bvh.Bounds);
         if (_analyticBvh is not null) b.Include(_analyticBvh.Bounds);
-        SceneBounds = b;
         float extent = b.IsEmpty ? 1 : Math.Max(b.Extent.Length(), Vector3.Max(Vector3.Abs(b.Min), Vector3.Abs(b.Max)).Length());
         Epsilon = 1e-5f * Math.Max(1f, extent);
     }
 
-    public Bounds3 SceneBounds { get; }
     /// <summary>Offset for secondary-ray origins, scaled to the scene's size.</summary>
     public float Epsilon { get; }
     public int TriangleCount { get; }
-    /// <summary>Time spent building the acceleration structures.</summary>
-    public TimeSpan BuildTime { get; }
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public bool Intersect(ref Ray ray, out SurfaceHit hit)

@@ -35,7 +35,6 @@ public sealed class TabulatedSpectrum
     public ReadOnlySpan<double> Values => _values;
     public double First => _wavelengths[0];
     public double Last => _wavelengths[^1];
-    public bool IsConstant => _wavelengths.Length == 2 && _values[0] == _values[1] && Extrapolation == Extrapolation.Clamp;
 
     public TabulatedSpectrum WithExtrapolation(Extrapolation e) => new(Name, _wavelengths, _values, e);
     public TabulatedSpectrum Scaled(double s, string? name = null)

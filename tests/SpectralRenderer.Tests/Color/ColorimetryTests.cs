@@ -43,6 +43,10 @@ public class ColorimetryTests
             Assert.Equal(r.D("srgb_linear_b"), lb, 6);
             var rgb8 = RgbSpace.Srgb.Encode8(xyz);
             Assert.Equal(((int)r.D("srgb8_r"), (int)r.D("srgb8_g"), (int)r.D("srgb8_b")), ((int)rgb8.R, (int)rgb8.G, (int)rgb8.B));
+            // 16-bit: the same encoded value at 65535 levels, within half a step of 257 × the 8-bit code.
+            var rgb16 = RgbSpace.Srgb.Encode16(xyz);
+            Assert.Equal(RgbSpace.To16(RgbSpace.Srgb.Encode(lr)), rgb16.R);
+            Assert.InRange(rgb16.G / 257.0, rgb8.G - 0.5, rgb8.G + 0.5);
         }
     }
 
