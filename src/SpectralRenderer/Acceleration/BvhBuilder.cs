@@ -1,5 +1,6 @@
 using System.Numerics;
 using System.Runtime.CompilerServices;
+using System.Runtime.Intrinsics;
 using SpectralRenderer.Geometry;
 
 namespace SpectralRenderer.Acceleration;
@@ -11,11 +12,12 @@ namespace SpectralRenderer.Acceleration;
 /// longest centroid axis only), and the split plane between buckets minimising
 /// 1/2 + (N_left·A_left + N_right·A_right) / A_node is chosen, or a leaf when that is not cheaper than N;
 /// two primitives always make a leaf.
-/// The primitives' bounds and centroids are kept in arrays permuted in place as the ranges are partitioned,
-/// so every pass reads memory in order; the partition also yields both children's bounds. Large ranges are
-/// binned in parallel chunks and large subtrees built in parallel. Bin counts and box unions are exact
-/// whatever the chunking, and each subtree depends only on its range, so the node array is the same for
-/// any thread count.
+/// Each primitive is a 32-byte box of two 4-lane vectors (Wald's "primitive reference"), so binning all three
+/// axes and growing a box are a few SIMD instructions; centroids are used doubled (lower + upper), which bins
+/// alike. The boxes are permuted in place as ranges are partitioned (Hoare's two-pointer scheme, which also
+/// yields both children's bounds), so every pass reads memory in order. Large ranges are binned in parallel
+/// chunks and large subtrees built in parallel. Bin counts and box unions are exact whatever the chunking, and
+/// each subtree depends only on its range, so the node array is the same for any thread count.
 /// </summary>
 [SkipLocalsInit]
 sealed class BvhBuilder
@@ -30,8 +32,49 @@ sealed class BvhBuilder
     const int LeafAtOnce = 2;
     const int SmallRange = 64;
 
-    readonly Bounds3[] _bounds;     // permuted with _order
-    readonly Vector3[] _centroids;  // permuted with _order
+    /// <summary>An axis-aligned box as two 4-lane vectors with w = 0.</summary>
+    struct Box
+    {
+        public Vector128<float> Lo, Hi;
+        /// <summary>Twice the centroid.</summary>
+        public readonly Vector128<float> Centroid2 => Lo + Hi;
+    }
+
+    /// <summary>What a range of primitives spans: the union of their boxes, and of their (doubled) centroids.</summary>
+    struct Extent
+    {
+        public Vector128<float> Lo, Hi, CLo, CHi;
+
+        public static Extent Empty => new()
+        {
+            Lo = Vector128.Create(float.PositiveInfinity), Hi = Vector128.Create(float.NegativeInfinity),
+            CLo = Vector128.Create(float.PositiveInfinity), CHi = Vector128.Create(float.NegativeInfinity),
+        };
+
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        public void Add(in Box b)
+        {
+            Lo = Vector128.MinNative(Lo, b.Lo); Hi = Vector128.MaxNative(Hi, b.Hi);
+            var c = b.Centroid2;
+            CLo = Vector128.MinNative(CLo, c); CHi = Vector128.MaxNative(CHi, c);
+        }
+
+        public readonly float HalfArea => BvhBuilder.HalfArea(Lo, Hi);
+    }
+
+    /// <summary>The binning of one range: bucket = clamp(⌊(2c − min)·scale⌋, 0, last) on every axis at once.</summary>
+    readonly struct Binning(Vector128<float> min, Vector128<float> scale, int bins)
+    {
+        public readonly int Count = bins;
+        readonly Vector128<int> _last = Vector128.Create(bins - 1);
+
+        // NaN (0·∞ on a flat axis) converts to int.MinValue (x86) or 0 (Arm): either way the clamp gives bucket 0.
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        public Vector128<int> Of(in Box b) =>
+            Vector128.Min(Vector128.Max(Vector128.ConvertToInt32Native((b.Centroid2 - min) * scale), Vector128<int>.Zero), _last);
+    }
+
+    readonly Box[] _boxes;      // permuted with _order
     readonly int[] _order;
     readonly int _maxLeafSize;
     readonly bool _parallel;
@@ -40,23 +83,28 @@ sealed class BvhBuilder
     // as nodes are made (in any order when subtrees run in parallel); Flatten lays them out depth-first.
     readonly Node[] _tree;
 
+    /// <summary>32 bytes. A leaf has First = its first primitive and Second = −count; an interior node the indices of its children, Second·4 + axis.</summary>
     struct Node
     {
-        public Bounds3 Bounds;
-        public int Left, Right;   // Left = −1 for a leaf
-        public int Start, Count, Axis;
+        public Vector3 Min;
+        public int First;
+        public Vector3 Max;
+        public int Second;
     }
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     BvhBuilder(ReadOnlySpan<Bounds3> bounds, int maxLeafSize, bool parallel)
     {
-        _bounds = bounds.ToArray();
-        _centroids = new Vector3[bounds.Length];
-        _order = new int[bounds.Length];
-        for (int i = 0; i < bounds.Length; i++) { _centroids[i] = bounds[i].Centre; _order[i] = i; }
+        _boxes = GC.AllocateUninitializedArray<Box>(bounds.Length);
+        _order = GC.AllocateUninitializedArray<int>(bounds.Length);
+        for (int i = 0; i < bounds.Length; i++)
+        {
+            _boxes[i] = new Box { Lo = bounds[i].Min.AsVector128(), Hi = bounds[i].Max.AsVector128() };
+            _order[i] = i;
+        }
         _maxLeafSize = maxLeafSize;
         _parallel = parallel;
-        _tree = new Node[Math.Max(1, 2 * bounds.Length - 1)];
+        _tree = GC.AllocateUninitializedArray<Node>(Math.Max(1, 2 * bounds.Length - 1));
     }
 
     public static (BvhNode[] nodes, int[] order, int maxDepth) Build(ReadOnlySpan<Bounds3> bounds, int maxLeafSize, bool parallel)
@@ -64,8 +112,7 @@ sealed class BvhBuilder
         if (maxLeafSize < 1 || maxLeafSize > ushort.MaxValue) throw new ArgumentOutOfRangeException(nameof(maxLeafSize));
         if (bounds.Length == 0) return ([], [], 0);
         var builder = new BvhBuilder(bounds, maxLeafSize, parallel);
-        var (b, c) = builder.RangeBounds(0, bounds.Length);
-        int root = builder.Subtree(0, bounds.Length, 0, b, c);
+        int root = builder.Subtree(0, bounds.Length, 0, builder.RangeExtent(0, bounds.Length));
         var nodes = new BvhNode[builder._nodeCount];
         int next = 0, maxDepth = 0;
         builder.Flatten(root, nodes, ref next, 1, ref maxDepth);
@@ -78,159 +125,184 @@ sealed class BvhBuilder
         ref readonly var n = ref _tree[at];
         int index = next++;
         maxDepth = Math.Max(maxDepth, depth);
-        if (n.Left < 0)
+        if (n.Second < 0)
         {
-            nodes[index] = BvhNode.Leaf(n.Bounds.Min, n.Bounds.Max, n.Start, n.Count);
+            nodes[index] = BvhNode.Leaf(n.Min, n.Max, n.First, -n.Second);
             return index;
         }
-        Flatten(n.Left, nodes, ref next, depth + 1, ref maxDepth);
-        int second = Flatten(n.Right, nodes, ref next, depth + 1, ref maxDepth);
-        nodes[index] = BvhNode.Interior(n.Bounds.Min, n.Bounds.Max, second, n.Axis);
+        Flatten(n.First, nodes, ref next, depth + 1, ref maxDepth);
+        int second = Flatten(n.Second >> 2, nodes, ref next, depth + 1, ref maxDepth);
+        nodes[index] = BvhNode.Interior(n.Min, n.Max, second, n.Second & 3);
         return index;
     }
 
-    /// <summary>The union of the primitives' bounds and of their centroids over [start, end).</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    (Bounds3, Bounds3) RangeBounds(int start, int end)
+    Extent RangeExtent(int start, int end)
     {
-        var b = Bounds3.Empty;
-        var c = Bounds3.Empty;
-        for (int i = start; i < end; i++) { b.Include(_bounds[i]); c.Include(_centroids[i]); }
-        return (b, c);
-    }
-
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    int Subtree(int start, int end, int depth, Bounds3 bounds, Bounds3 centroidBounds)
-    {
-        int at = Interlocked.Increment(ref _nodeCount) - 1;
-        ref var node = ref _tree[at];
-        node = new Node { Start = start, Count = end - start, Bounds = bounds, Left = -1, Right = -1 };
-        int count = end - start;
-        if (count <= Math.Min(LeafAtOnce, _maxLeafSize)) return at;
-
-        int mid;
-        Bounds3 lb, lc, rb, rc;
-        var extent = centroidBounds.Extent;
-        int longest = extent.X >= extent.Y ? (extent.X >= extent.Z ? 0 : 2) : (extent.Y >= extent.Z ? 1 : 2);
-        int axis;
-        if (!(extent[longest] > 0) || depth >= SahDepthLimit)
-        {
-            // All centroids coincide (nothing separates them), or deep enough: split at the median.
-            if (!(extent[longest] > 0) && count <= _maxLeafSize) return at;
-            MedianSplit(start, end, longest);
-            mid = (start + end) / 2;
-            axis = longest;
-            (lb, lc) = RangeBounds(start, mid);
-            (rb, rc) = RangeBounds(mid, end);
-        }
-        else
-        {
-            (axis, int split, float cost) = BestSplit(start, end, centroidBounds, bounds.HalfArea);
-            if (count <= _maxLeafSize && count <= cost) return at;
-            mid = Partition(start, end, axis, split, centroidBounds, out lb, out lc, out rb, out rc);
-            if (mid == start || mid == end)
-            {
-                MedianSplit(start, end, axis);
-                mid = (start + end) / 2;
-                (lb, lc) = RangeBounds(start, mid);
-                (rb, rc) = RangeBounds(mid, end);
-            }
-        }
-
-        int left, right;
-        if (_parallel && count >= ParallelThreshold)
-        {
-            int l = 0, r = 0;
-            Parallel.Invoke(() => l = Subtree(start, mid, depth + 1, lb, lc), () => r = Subtree(mid, end, depth + 1, rb, rc));
-            (left, right) = (l, r);
-        }
-        else
-        {
-            left = Subtree(start, mid, depth + 1, lb, lc);
-            right = Subtree(mid, end, depth + 1, rb, rc);
-        }
-        // _tree is never reallocated, so the reference is still good; set the fields after the children exist.
-        _tree[at].Left = left;
-        _tree[at].Right = right;
-        _tree[at].Axis = axis;
-        return at;
+        var e = Extent.Empty;
+        for (int i = start; i < end; i++) e.Add(in _boxes[i]);
+        return e;
     }
 
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    static int Bin(float c, float min, float scale, int bins) => Math.Clamp((int)((c - min) * scale), 0, bins - 1);
+    static float HalfArea(Vector128<float> lo, Vector128<float> hi)
+    {
+        var d = hi - lo;
+        float x = d.ToScalar(), y = d.GetElement(1), z = d.GetElement(2);
+        return x * y + y * z + z * x;
+    }
 
-    /// <summary><see cref="Bins"/> buckets, or one per primitive in a node with fewer primitives than that.</summary>
-    static int BinsFor(int count) => Math.Clamp(count, 2, Bins);
+    static int LongestAxis(Vector128<float> extent)
+    {
+        float x = extent.ToScalar(), y = extent.GetElement(1), z = extent.GetElement(2);
+        return x >= y ? (x >= z ? 0 : 2) : (y >= z ? 1 : 2);
+    }
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    void Fill(Span<int> counts, Span<Bounds3> bb, int start, int end, Vector3 min, Vector3 scale, int bins)
+    int Subtree(int start, int end, int depth, Extent extent)
     {
+        int at = Interlocked.Increment(ref _nodeCount) - 1;
+        int count = end - start;
+        _tree[at] = new Node { Min = extent.Lo.AsVector3(), Max = extent.Hi.AsVector3(), First = start, Second = -count };
+        if (count <= Math.Min(LeafAtOnce, _maxLeafSize)) return at;
+
+        int mid, axis;
+        Extent left, right;
+        var spread = extent.CHi - extent.CLo;
+        int longest = LongestAxis(spread);
+        if (!(spread.GetElement(longest) > 0) || depth >= SahDepthLimit)
+        {
+            // All centroids coincide (nothing separates them), or deep enough: split at the median.
+            if (!(spread.GetElement(longest) > 0) && count <= _maxLeafSize) return at;
+            axis = longest;
+            mid = MedianSplit(start, end, axis, out left, out right);
+        }
+        else
+        {
+            int nb = Math.Clamp(count, 2, Bins);
+            var binning = new Binning(extent.CLo, Vector128.Create((float)nb) / spread, nb); // ∞ on a flat axis
+            (axis, int split, float cost) = BestSplit(start, end, binning, extent, longest);
+            if (count <= _maxLeafSize && count <= cost) return at;
+            mid = Partition(start, end, axis, split, binning, out left, out right);
+            if (mid == start || mid == end) mid = MedianSplit(start, end, axis, out left, out right);
+        }
+
+        int l, r;
+        if (_parallel && count >= ParallelThreshold)
+        {
+            int pl = 0, pr = 0;
+            Parallel.Invoke(() => pl = Subtree(start, mid, depth + 1, left), () => pr = Subtree(mid, end, depth + 1, right));
+            (l, r) = (pl, pr);
+        }
+        else
+        {
+            l = Subtree(start, mid, depth + 1, left);
+            r = Subtree(mid, end, depth + 1, right);
+        }
+        // _tree is never reallocated: set the links once the children exist.
+        _tree[at].First = l;
+        _tree[at].Second = r << 2 | axis;
+        return at;
+    }
+
+    /// <summary>Counts and box unions per bucket of every axis over [start, end): 3·nb entries, axis-major.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    void Fill(Span<int> counts, Span<Box> buckets, int start, int end, in Binning binning)
+    {
+        int nb = binning.Count;
         for (int i = start; i < end; i++)
         {
-            var c = _centroids[i];
-            ref readonly var b = ref _bounds[i];
-            int bx = Bin(c.X, min.X, scale.X, bins), by = bins + Bin(c.Y, min.Y, scale.Y, bins), bz = 2 * bins + Bin(c.Z, min.Z, scale.Z, bins);
-            counts[bx]++; counts[by]++; counts[bz]++;
-            bb[bx].Include(b); bb[by].Include(b); bb[bz].Include(b);
+            ref readonly var b = ref _boxes[i];
+            var bin = binning.Of(in b);
+            int x = bin.ToScalar(), y = nb + bin.GetElement(1), z = 2 * nb + bin.GetElement(2);
+            counts[x]++; counts[y]++; counts[z]++;
+            ref var bx = ref buckets[x]; bx.Lo = Vector128.MinNative(bx.Lo, b.Lo); bx.Hi = Vector128.MaxNative(bx.Hi, b.Hi);
+            ref var by = ref buckets[y]; by.Lo = Vector128.MinNative(by.Lo, b.Lo); by.Hi = Vector128.MaxNative(by.Hi, b.Hi);
+            ref var bz = ref buckets[z]; bz.Lo = Vector128.MinNative(bz.Lo, b.Lo); bz.Hi = Vector128.MaxNative(bz.Hi, b.Hi);
         }
     }
 
-    /// <summary>The SAH-cheapest (axis, last bin on the left) and its cost, in units of one primitive test.</summary>
+    /// <summary>As <see cref="Fill"/> along one axis only (nb entries).</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    (int axis, int split, float cost) BestSplit(int start, int end, in Bounds3 centroidBounds, float nodeArea)
+    void FillAxis(Span<int> counts, Span<Box> buckets, int start, int end, in Binning binning, int axis)
+    {
+        for (int i = start; i < end; i++)
+        {
+            ref readonly var b = ref _boxes[i];
+            int k = Bucket(binning.Of(in b), axis);
+            counts[k]++;
+            ref var bk = ref buckets[k]; bk.Lo = Vector128.MinNative(bk.Lo, b.Lo); bk.Hi = Vector128.MaxNative(bk.Hi, b.Hi);
+        }
+    }
+
+    static void Clear(Span<int> counts, Span<Box> buckets)
+    {
+        counts.Clear();
+        buckets.Fill(new Box { Lo = Vector128.Create(float.PositiveInfinity), Hi = Vector128.Create(float.NegativeInfinity) });
+    }
+
+    /// <summary>The SAH-cheapest (axis, last bucket on the left) and its cost, in units of one primitive test.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    (int axis, int split, float cost) BestSplit(int start, int end, in Binning binning, in Extent extent, int longest)
     {
         int count = end - start;
-        int nb = BinsFor(count);
-        var scale = new Vector3(nb) / centroidBounds.Extent; // inf on a flat axis: every centroid lands in bin 0
-        var min = centroidBounds.Min;
-        // Bin counts and box unions (exact, so parallel chunks merge to the same result).
+        int nb = binning.Count;
         Span<int> counts = stackalloc int[3 * nb];
-        Span<Bounds3> binBounds = stackalloc Bounds3[3 * nb];
-        counts.Clear();
-        binBounds.Fill(Bounds3.Empty);
+        Span<Box> buckets = stackalloc Box[3 * nb];
+        Clear(counts, buckets);
         if (_parallel && count >= ParallelBinning)
         {
             int chunks = Math.Min(Environment.ProcessorCount, 8);
             var partCounts = new int[chunks][];
-            var partBounds = new Bounds3[chunks][];
+            var partBuckets = new Box[chunks][];
+            var b = binning;
             Parallel.For(0, chunks, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (k) =>
             {
                 partCounts[k] = new int[3 * nb];
-                partBounds[k] = new Bounds3[3 * nb];
-                Array.Fill(partBounds[k], Bounds3.Empty);
-                Fill(partCounts[k], partBounds[k], start + (int)((long)count * k / chunks), start + (int)((long)count * (k + 1) / chunks), min, scale, nb);
+                partBuckets[k] = new Box[3 * nb];
+                Clear(partCounts[k], partBuckets[k]);
+                Fill(partCounts[k], partBuckets[k], start + (int)((long)count * k / chunks), start + (int)((long)count * (k + 1) / chunks), b);
             });
             for (int k = 0; k < chunks; k++)
-                for (int i = 0; i < counts.Length; i++) { counts[i] += partCounts[k][i]; binBounds[i].Include(partBounds[k][i]); }
+                for (int i = 0; i < counts.Length; i++)
+                {
+                    counts[i] += partCounts[k][i];
+                    buckets[i].Lo = Vector128.MinNative(buckets[i].Lo, partBuckets[k][i].Lo);
+                    buckets[i].Hi = Vector128.MaxNative(buckets[i].Hi, partBuckets[k][i].Hi);
+                }
         }
-        else Fill(counts, binBounds, start, end, min, scale, nb);
+        else if (count < SmallRange) FillAxis(counts.Slice(longest * nb, nb), buckets.Slice(longest * nb, nb), start, end, binning, longest);
+        else Fill(counts, buckets, start, end, binning);
 
         int bestAxis = 0, bestSplit = -1;
         float bestCost = float.PositiveInfinity;
         Span<float> rightCost = stackalloc float[nb];
-        float invArea = nodeArea > 0 ? 1 / nodeArea : 0;
+        float area = extent.HalfArea;
+        float invArea = area > 0 ? 1 / area : 0;
+        var spread = extent.CHi - extent.CLo;
         // Small ranges weigh splits along the longest centroid axis only; large ones along all three.
-        var ext = centroidBounds.Extent;
-        int longest = ext.X >= ext.Y ? (ext.X >= ext.Z ? 0 : 2) : (ext.Y >= ext.Z ? 1 : 2);
         for (int axis = 0; axis < 3; axis++)
         {
-            if (!(centroidBounds.Extent[axis] > 0) || (count < SmallRange && axis != longest)) continue;
+            if (!(spread.GetElement(axis) > 0) || (count < SmallRange && axis != longest)) continue;
             var ac = counts.Slice(axis * nb, nb);
-            var ab = binBounds.Slice(axis * nb, nb);
-            // Sweep from the right: N·A of bins (s+1 .. Bins-1).
-            var acc = Bounds3.Empty;
+            var ab = buckets.Slice(axis * nb, nb);
+            // Sweep from the right: N·A of buckets (s+1 .. nb−1); an empty union (n = 0) costs nothing.
+            var lo = Vector128.Create(float.PositiveInfinity);
+            var hi = Vector128.Create(float.NegativeInfinity);
             int n = 0;
             for (int s = nb - 1; s > 0; s--)
             {
-                acc.Include(ab[s]); n += ac[s];
-                rightCost[s - 1] = n * acc.HalfArea;
+                lo = Vector128.MinNative(lo, ab[s].Lo); hi = Vector128.MaxNative(hi, ab[s].Hi); n += ac[s];
+                rightCost[s - 1] = n == 0 ? 0 : n * HalfArea(lo, hi);
             }
-            acc = Bounds3.Empty; n = 0;
+            lo = Vector128.Create(float.PositiveInfinity);
+            hi = Vector128.Create(float.NegativeInfinity);
+            n = 0;
             for (int s = 0; s < nb - 1; s++)
             {
-                acc.Include(ab[s]); n += ac[s];
+                lo = Vector128.MinNative(lo, ab[s].Lo); hi = Vector128.MaxNative(hi, ab[s].Hi); n += ac[s];
                 if (n == 0 || n == count) continue;
-                float cost = TraversalCost + (n * acc.HalfArea + rightCost[s]) * invArea;
+                float cost = TraversalCost + (n * HalfArea(lo, hi) + rightCost[s]) * invArea;
                 if (cost < bestCost) { bestCost = cost; bestAxis = axis; bestSplit = s; }
             }
         }
@@ -238,47 +310,48 @@ sealed class BvhBuilder
     }
 
     /// <summary>
-    /// Moves primitives whose centroid bin is ≤ split to the front (bounds, centroids and order together);
-    /// returns the first of the rest, and both sides' bounds and centroid bounds.
+    /// Moves the primitives whose bucket on the axis is ≤ split to the front, swapping only misplaced pairs
+    /// (Hoare); returns the first of the rest, and both sides' extents.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    int Partition(int start, int end, int axis, int split, in Bounds3 centroidBounds, out Bounds3 lb, out Bounds3 lc, out Bounds3 rb, out Bounds3 rc)
+    int Partition(int start, int end, int axis, int split, in Binning binning, out Extent left, out Extent right)
     {
-        float min = centroidBounds.Min[axis];
-        int nb = BinsFor(end - start);
-        float scale = nb / centroidBounds.Extent[axis];
-        lb = lc = rb = rc = Bounds3.Empty;
+        var l = Extent.Empty;
+        var r = Extent.Empty;
+        var boxes = _boxes;
         int i = start, j = end - 1;
-        while (i <= j)
+        while (true)
         {
-            var c = _centroids[i];
-            if (Bin(axis == 0 ? c.X : axis == 1 ? c.Y : c.Z, min, scale, nb) <= split)
-            {
-                lb.Include(_bounds[i]); lc.Include(c);
-                i++;
-            }
-            else
-            {
-                rb.Include(_bounds[i]); rc.Include(c);
-                (_bounds[i], _bounds[j]) = (_bounds[j], _bounds[i]);
-                (_centroids[i], _centroids[j]) = (_centroids[j], _centroids[i]);
-                (_order[i], _order[j]) = (_order[j], _order[i]);
-                j--;
-            }
+            while (i <= j && Bucket(binning.Of(in boxes[i]), axis) <= split) l.Add(in boxes[i++]);
+            while (i <= j && Bucket(binning.Of(in boxes[j]), axis) > split) r.Add(in boxes[j--]);
+            if (i > j) break;
+            // boxes[i] belongs right and boxes[j] left (i < j): exchange them.
+            (boxes[i], boxes[j]) = (boxes[j], boxes[i]);
+            (_order[i], _order[j]) = (_order[j], _order[i]);
+            l.Add(in boxes[i++]);
+            r.Add(in boxes[j--]);
         }
+        left = l;
+        right = r;
         return i;
     }
 
-    /// <summary>Orders the range by centroid along the axis (ties by primitive index, so the result is unique).</summary>
-    void MedianSplit(int start, int end, int axis)
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    static int Bucket(Vector128<int> buckets, int axis) => axis == 0 ? buckets.ToScalar() : axis == 1 ? buckets.GetElement(1) : buckets.GetElement(2);
+
+    /// <summary>Orders the range by centroid along the axis (ties by primitive index, so the result is unique); returns the middle.</summary>
+    int MedianSplit(int start, int end, int axis, out Extent left, out Extent right)
     {
         int n = end - start;
         var keys = new (float Key, int Primitive, int At)[n];
-        for (int i = 0; i < n; i++) keys[i] = (_centroids[start + i][axis], _order[start + i], start + i);
+        for (int i = 0; i < n; i++) keys[i] = (_boxes[start + i].Centroid2.GetElement(axis), _order[start + i], start + i);
         Array.Sort(keys, (a, b) => a.Key != b.Key ? a.Key.CompareTo(b.Key) : a.Primitive.CompareTo(b.Primitive));
-        var bounds = new Bounds3[n];
-        var centroids = new Vector3[n];
-        for (int i = 0; i < n; i++) { bounds[i] = _bounds[keys[i].At]; centroids[i] = _centroids[keys[i].At]; }
-        for (int i = 0; i < n; i++) { _bounds[start + i] = bounds[i]; _centroids[start + i] = centroids[i]; _order[start + i] = keys[i].Primitive; }
+        var boxes = new Box[n];
+        for (int i = 0; i < n; i++) boxes[i] = _boxes[keys[i].At];
+        for (int i = 0; i < n; i++) { _boxes[start + i] = boxes[i]; _order[start + i] = keys[i].Primitive; }
+        int mid = (start + end) / 2;
+        left = RangeExtent(start, mid);
+        right = RangeExtent(mid, end);
+        return mid;
     }
 }
