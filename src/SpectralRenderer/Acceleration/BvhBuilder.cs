@@ -188,12 +188,7 @@ sealed class BvhBuilder
         }
 
         int l, r;
-        if (_parallel && count >= ParallelThreshold)
-        {
-            int pl = 0, pr = 0;
-            Parallel.Invoke(() => pl = Subtree(start, mid, depth + 1, left), () => pr = Subtree(mid, end, depth + 1, right));
-            (l, r) = (pl, pr);
-        }
+        if (_parallel && count >= ParallelThreshold) (l, r) = ChildrenInParallel(start, mid, end, depth + 1, left, right);
         else
         {
             l = Subtree(start, mid, depth + 1, left);
@@ -203,6 +198,38 @@ sealed class BvhBuilder
         _tree[at].First = l;
         _tree[at].Second = r << 2 | axis;
         return at;
+    }
+
+    // The lambdas live in their own methods: a closure captured in Subtree or BestSplit would be allocated on
+    // every call, parallel or not.
+    (int, int) ChildrenInParallel(int start, int mid, int end, int depth, Extent left, Extent right)
+    {
+        int l = 0, r = 0;
+        Parallel.Invoke(() => l = Subtree(start, mid, depth, left), () => r = Subtree(mid, end, depth, right));
+        return (l, r);
+    }
+
+    /// <summary>As <see cref="Fill"/>, in parallel chunks whose exact counts and unions are merged.</summary>
+    void FillInParallel(Span<int> counts, Span<Box> buckets, int start, int end, Binning binning)
+    {
+        int count = end - start, n = counts.Length;
+        int chunks = Math.Min(Environment.ProcessorCount, 8);
+        var partCounts = new int[chunks][];
+        var partBuckets = new Box[chunks][];
+        Parallel.For(0, chunks, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (k) =>
+        {
+            partCounts[k] = new int[n];
+            partBuckets[k] = new Box[n];
+            Clear(partCounts[k], partBuckets[k]);
+            Fill(partCounts[k], partBuckets[k], start + (int)((long)count * k / chunks), start + (int)((long)count * (k + 1) / chunks), binning);
+        });
+        for (int k = 0; k < chunks; k++)
+            for (int i = 0; i < n; i++)
+            {
+                counts[i] += partCounts[k][i];
+                buckets[i].Lo = Vector128.MinNative(buckets[i].Lo, partBuckets[k][i].Lo);
+                buckets[i].Hi = Vector128.MaxNative(buckets[i].Hi, partBuckets[k][i].Hi);
+            }
     }
 
     /// <summary>Counts and box unions per bucket of every axis over [start, end): 3·nb entries, axis-major.</summary>
@@ -250,27 +277,7 @@ sealed class BvhBuilder
         Span<int> counts = stackalloc int[3 * nb];
         Span<Box> buckets = stackalloc Box[3 * nb];
         Clear(counts, buckets);
-        if (_parallel && count >= ParallelBinning)
-        {
-            int chunks = Math.Min(Environment.ProcessorCount, 8);
-            var partCounts = new int[chunks][];
-            var partBuckets = new Box[chunks][];
-            var b = binning;
-            Parallel.For(0, chunks, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (k) =>
-            {
-                partCounts[k] = new int[3 * nb];
-                partBuckets[k] = new Box[3 * nb];
-                Clear(partCounts[k], partBuckets[k]);
-                Fill(partCounts[k], partBuckets[k], start + (int)((long)count * k / chunks), start + (int)((long)count * (k + 1) / chunks), b);
-            });
-            for (int k = 0; k < chunks; k++)
-                for (int i = 0; i < counts.Length; i++)
-                {
-                    counts[i] += partCounts[k][i];
-                    buckets[i].Lo = Vector128.MinNative(buckets[i].Lo, partBuckets[k][i].Lo);
-                    buckets[i].Hi = Vector128.MaxNative(buckets[i].Hi, partBuckets[k][i].Hi);
-                }
-        }
+        if (_parallel && count >= ParallelBinning) FillInParallel(counts, buckets, start, end, binning);
         else if (count < SmallRange) FillAxis(counts.Slice(longest * nb, nb), buckets.Slice(longest * nb, nb), start, end, binning, longest);
         else Fill(counts, buckets, start, end, binning);
 

@@ -33,45 +33,48 @@ public struct TriangleSet : IPrimitiveIntersector
     /// <summary>Builds the BVH over all triangles of the meshes and stores the triangles in its order.</summary>
     public static TriangleSet Build(IReadOnlyList<TriangleMesh> meshes, int maxLeafSize = 4, bool parallel = true)
     {
-        int total = meshes.Sum(m => m.TriangleCount);
-        var bounds = new Bounds3[total];
-        var meshOf = new int[total];
-        var triangleOf = new int[total];
-        int first = 0;
-        for (int m = 0; m < meshes.Count; m++)
-        {
-            var mesh = meshes[m];
-            int offset = first;
-            Parallel.For(0, (mesh.TriangleCount + 4095) / 4096, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (chunk) =>
-            {
-                int t1 = Math.Min(mesh.TriangleCount, (chunk + 1) * 4096);
-                for (int t = chunk * 4096; t < t1; t++)
-                {
-                    var (p0, p1, p2) = mesh.Triangle(t);
-                    var b = new Bounds3(p0, p0);
-                    b.Include(p1); b.Include(p2);
-                    bounds[offset + t] = b; meshOf[offset + t] = m; triangleOf[offset + t] = t;
-                }
-            });
-            first += mesh.TriangleCount;
-        }
+        // Triangle i of the concatenation is triangle i − firsts[m] of mesh m, firsts[m] ≤ i < firsts[m + 1].
+        var firsts = new int[meshes.Count + 1];
+        for (int m = 0; m < meshes.Count; m++) firsts[m + 1] = firsts[m] + meshes[m].TriangleCount;
+        int total = firsts[^1];
+        var bounds = GC.AllocateUninitializedArray<Bounds3>(total);
+        for (int m = 0; m < meshes.Count; m++) BoundTriangles(meshes[m], bounds, firsts[m]);
         var bvh = Bvh.Build(bounds, maxLeafSize, parallel);
-        var corners = new Vector3[3 * total];
-        var orderedMesh = new int[total];
-        var orderedTriangle = new int[total];
+        var corners = GC.AllocateUninitializedArray<Vector3>(3 * total);
+        var orderedMesh = GC.AllocateUninitializedArray<int>(total);
+        var orderedTriangle = GC.AllocateUninitializedArray<int>(total);
         Parallel.For(0, (total + 4095) / 4096, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (chunk) =>
         {
             int k1 = Math.Min(total, (chunk + 1) * 4096);
             for (int k = chunk * 4096; k < k1; k++)
             {
                 int original = bvh.PrimitiveOrder[k];
-                orderedMesh[k] = meshOf[original];
-                orderedTriangle[k] = triangleOf[original];
-                var (p0, p1, p2) = meshes[orderedMesh[k]].Triangle(orderedTriangle[k]);
+                int m = Array.BinarySearch(firsts, original);
+                if (m < 0) m = ~m - 1;
+                while (m + 1 < firsts.Length && firsts[m + 1] == original) m++;   // skip empty meshes
+                orderedMesh[k] = m;
+                orderedTriangle[k] = original - firsts[m];
+                var (p0, p1, p2) = meshes[m].Triangle(orderedTriangle[k]);
                 corners[3 * k] = p0; corners[3 * k + 1] = p1; corners[3 * k + 2] = p2;
             }
         });
         return new TriangleSet(corners, bvh, orderedMesh, orderedTriangle);
+    }
+
+    /// <summary>The box of each triangle of the mesh, into bounds[offset ..].</summary>
+    static void BoundTriangles(TriangleMesh mesh, Bounds3[] bounds, int offset)
+    {
+        Parallel.For(0, (mesh.TriangleCount + 4095) / 4096, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (chunk) =>
+        {
+            int t1 = Math.Min(mesh.TriangleCount, (chunk + 1) * 4096);
+            for (int t = chunk * 4096; t < t1; t++)
+            {
+                var (p0, p1, p2) = mesh.Triangle(t);
+                var b = new Bounds3(p0, p0);
+                b.Include(p1); b.Include(p2);
+                bounds[offset + t] = b;
+            }
+        });
     }
 
     public (Vector3 P0, Vector3 P1, Vector3 P2) Corners(int k) => (_corners[3 * k], _corners[3 * k + 1], _corners[3 * k + 2]);

@@ -48,6 +48,29 @@ public class BvhTests(ITestOutputHelper output)
         return rays;
     }
 
+    [Fact]
+    public void Each_triangle_of_several_meshes_maps_back_to_its_mesh_and_index()
+    {
+        // Three meshes, the middle one with no triangles (all degenerate): positions k in BVH order lead back to
+        // (mesh, triangle) and hold exactly that triangle's corners.
+        var a = Soup(700, 3);
+        var empty = new TriangleMesh([Vector3.Zero, Vector3.UnitX], [0, 0, 1], source: "empty");
+        var c = Soup(500, 4);
+        var meshes = new[] { a, empty, c };
+        var set = TriangleSet.Build(meshes);
+        Assert.Equal(0, empty.TriangleCount);
+        Assert.Equal(1200, set.Count);
+        var seen = new HashSet<(int, int)>();
+        for (int k = 0; k < set.Count; k++)
+        {
+            int m = set.MeshOf[k], t = set.TriangleOf[k];
+            Assert.NotEqual(1, m);
+            Assert.InRange(t, 0, meshes[m].TriangleCount - 1);
+            Assert.Equal(meshes[m].Triangle(t), set.Corners(k));
+            Assert.True(seen.Add((m, t)));
+        }
+    }
+
     /// <summary>100k rays against brute force: rays × triangles tests, so the soup is kept to 2,000 triangles.</summary>
     const int SoupRays = 100_000;
 
