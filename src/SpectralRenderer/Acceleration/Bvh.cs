@@ -10,6 +10,7 @@ namespace SpectralRenderer.Acceleration;
 /// front-to-back with a fixed stack and allocates nothing; the primitives are tested through a struct
 /// <see cref="IPrimitiveIntersector"/> that receives positions in <see cref="PrimitiveOrder"/>.
 /// </summary>
+[SkipLocalsInit]
 public sealed class Bvh
 {
     const int StackSize = 128;
