@@ -206,25 +206,31 @@ public static class PlyReader
                 if (!float.IsFinite(positions[k].X + positions[k].Y + positions[k].Z))
                     CheckFinite(data, start + 12 * k, e, k, offsets, types, targets, le, path);
         }
-        else
-        {
-            Span<float> v = stackalloc float[6];
-            for (int k = 0; k < e.Count; k++)
-            {
-                var record = data.Slice(start + k * stride, stride);
-                for (int j = 0; j < offsets.Length; j++)
-                {
-                    float value = (float)PlyCursor.DecodeReal(types[j], record[offsets[j]..], le);
-                    if (!float.IsFinite(value)) CheckFinite(data, start + k * stride, e, k, offsets, types, targets, le, path);
-                    v[targets[j]] = value;
-                }
-                positions[k] = new Vector3(v[0], v[1], v[2]);
-                if (normals is not null) normals[k] = SafeNormalize(new Vector3(v[3], v[4], v[5]));
-            }
-        }
+        else ReadRecords(data, start, stride, e, offsets, types, targets, le, path, positions, normals);
         mesh.Positions = positions;
         mesh.Normals = normals;
         return start + e.Count * stride;
+    }
+
+    /// <summary>Vertex records of any layout: each role's value decoded at its offset (a method of its own, so
+    /// the common x y z layout does not compile it).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    static void ReadRecords(ReadOnlySpan<byte> data, int start, int stride, PlyElement e, ReadOnlySpan<int> offsets,
+        ReadOnlySpan<PlyType> types, ReadOnlySpan<int> targets, bool le, string path, Vector3[] positions, Vector3[]? normals)
+    {
+        Span<float> v = stackalloc float[6];
+        for (int k = 0; k < positions.Length; k++)
+        {
+            var record = data.Slice(start + k * stride, stride);
+            for (int j = 0; j < offsets.Length; j++)
+            {
+                float value = (float)PlyCursor.DecodeReal(types[j], record[offsets[j]..], le);
+                if (!float.IsFinite(value)) CheckFinite(data, start + k * stride, e, k, offsets, types, targets, le, path);
+                v[targets[j]] = value;
+            }
+            positions[k] = new Vector3(v[0], v[1], v[2]);
+            if (normals is not null) normals[k] = SafeNormalize(new Vector3(v[3], v[4], v[5]));
+        }
     }
 
     /// <summary>Throws for the first value of vertex record <paramref name="k"/> that is not finite.</summary>
