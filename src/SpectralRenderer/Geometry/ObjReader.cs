@@ -1,6 +1,7 @@
 using System.Globalization;
 using System.Numerics;
 using System.Runtime.CompilerServices;
+using System.Text;
 using SpectralRenderer.Diagnostics;
 
 namespace SpectralRenderer.Geometry;
@@ -10,58 +11,98 @@ namespace SpectralRenderer.Geometry;
 /// <c>v//vn</c>, <c>v/vt/vn</c>; negative indices count back from the last element read; polygons are
 /// fan-triangulated). Every other keyword (<c>vt</c>, <c>g</c>, <c>o</c>, <c>s</c>, <c>mtllib</c>, ...) is ignored.
 /// A vertex gets the file's normal when all corners using it name the same <c>vn</c>; otherwise the mesh's
-/// normals are computed. Errors name "file:line".
+/// normals are computed. The file is parsed as UTF-8 bytes; numbers read exactly as float.Parse and int.Parse
+/// read them. Errors name "file:line".
 /// </summary>
 public static class ObjReader
 {
     public static TriangleMesh Read(string path)
     {
-        return Parse(InputFile.ReadAllText(path), path);
+        var data = InputFile.ReadAllBytes(path);
+        // A UTF-16 or UTF-32 file (by its byte order mark) is decoded as File.ReadAllText would.
+        var start = data.AsSpan();
+        if (start.StartsWith((ReadOnlySpan<byte>)[0xFE, 0xFF]) || start.StartsWith((ReadOnlySpan<byte>)[0xFF, 0xFE])
+            || start.StartsWith((ReadOnlySpan<byte>)[0, 0, 0xFE, 0xFF]))
+            data = Encoding.UTF8.GetBytes(InputFile.ReadAllText(path));
+        return Parse(data, path);
     }
 
     public static TriangleMesh Parse(TextReader reader, string path) => Parse(reader.ReadToEnd(), path);
 
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public static TriangleMesh Parse(ReadOnlySpan<char> text, string path)
     {
-        var positions = new List<Vector3>();
-        var normals = new List<Vector3>();
-        var indices = new List<int>();
-        var cornerNormals = new List<int>(); // vn index (0-based) per corner of `indices`, -1 when none
-        int texCoordCount = 0, faceCount = 0;
-        Span<int> vertex = stackalloc int[3];   // the fan's first and previous corner: position and normal
-        Span<int> normal = stackalloc int[3];
+        var data = new byte[Encoding.UTF8.GetByteCount(text)];
+        Encoding.UTF8.GetBytes(text, data);
+        return Parse(data, path);
+    }
+
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    public static TriangleMesh Parse(ReadOnlySpan<byte> text, string path)
+    {
+        if (text.StartsWith("\uFEFF"u8)) text = text[3..]; // UTF-8 byte order mark
+        // Growing arrays, first sized for a typical scan (~65 bytes of file per vertex, two triangles per vertex).
+        int guess = text.Length / 64 + 16;
+        var positions = new Vector3[guess];
+        var normals = Array.Empty<Vector3>();
+        var indices = new int[6 * guess];
+        var cornerNormals = new int[6 * guess]; // vn index (0-based) per corner of `indices`, -1 when none
+        int positionCount = 0, normalCount = 0, indexCount = 0, texCoordCount = 0, faceCount = 0;
 
         int lineNumber = 0;
         while (text.Length > 0)
         {
             lineNumber++;
-            int eol = text.IndexOf('\n');
+            int eol = text.IndexOf((byte)'\n');
             var line = eol < 0 ? text : text[..eol];
-            text = eol < 0 ? [] : text[(eol + 1)..];
-            int hash = line.IndexOf('#');
+            text = eol < 0 ? default : text[(eol + 1)..];
+            int hash = line.IndexOf((byte)'#');
             if (hash >= 0) line = line[..hash];
+            if (line.ContainsAnyExceptInRange((byte)0, (byte)0x7F)) line = SpacesToAscii(line);
 
             var tokens = new Tokens(line);
             var keyword = tokens.Next();
             if (keyword.Length == 0) continue;
-            if (keyword.SequenceEqual("v"))
-                positions.Add(ReadVector(ref tokens, path, lineNumber, "v"));
-            else if (keyword.SequenceEqual("vn"))
-                normals.Add(ReadVector(ref tokens, path, lineNumber, "vn"));
-            else if (keyword.SequenceEqual("vt"))
-                texCoordCount++;
-            else if (keyword.SequenceEqual("f"))
+            if (keyword.SequenceEqual("v"u8) || keyword.SequenceEqual("vn"u8))
             {
-                int corners = 0;
+                bool isPosition = keyword.Length == 1;
+                var name = isPosition ? "v" : "vn";
+                float x = ReadFloat(ref tokens, path, lineNumber, name);
+                float y = ReadFloat(ref tokens, path, lineNumber, name);
+                float z = ReadFloat(ref tokens, path, lineNumber, name);
+                // Extra values (w, vertex colours) are ignored.
+                if (isPosition)
+                {
+                    if (positionCount == positions.Length) Array.Resize(ref positions, 2 * positions.Length);
+                    positions[positionCount++] = new Vector3(x, y, z);
+                }
+                else
+                {
+                    if (normalCount == normals.Length) Array.Resize(ref normals, Math.Max(2 * normals.Length, guess));
+                    normals[normalCount++] = new Vector3(x, y, z);
+                }
+            }
+            else if (keyword.SequenceEqual("vt"u8))
+                texCoordCount++;
+            else if (keyword.SequenceEqual("f"u8))
+            {
+                int corners = 0, firstVertex = 0, firstNormal = 0, previousVertex = 0, previousNormal = 0;
                 for (var corner = tokens.Next(); corner.Length > 0; corner = tokens.Next(), corners++)
                 {
-                    var (p, n) = ReadCorner(corner, positions.Count, texCoordCount, normals.Count, path, lineNumber);
-                    if (corners < 2) { vertex[corners] = p; normal[corners] = n; continue; }
-                    // Fan: (first, previous, this).
-                    indices.Add(vertex[0]); indices.Add(vertex[1]); indices.Add(p);
-                    cornerNormals.Add(normal[0]); cornerNormals.Add(normal[1]); cornerNormals.Add(n);
-                    vertex[1] = p; normal[1] = n;
+                    var (p, n) = ReadCorner(corner, positionCount, texCoordCount, normalCount, path, lineNumber);
+                    if (corners == 0) (firstVertex, firstNormal) = (p, n);
+                    if (corners >= 2)
+                    {
+                        // Fan: (first, previous, this).
+                        if (indexCount + 3 > indices.Length)
+                        {
+                            Array.Resize(ref indices, 2 * indices.Length);
+                            Array.Resize(ref cornerNormals, indices.Length);
+                        }
+                        indices[indexCount] = firstVertex; indices[indexCount + 1] = previousVertex; indices[indexCount + 2] = p;
+                        cornerNormals[indexCount] = firstNormal; cornerNormals[indexCount + 1] = previousNormal; cornerNormals[indexCount + 2] = n;
+                        indexCount += 3;
+                    }
+                    (previousVertex, previousNormal) = (p, n);
                 }
                 if (corners < 3)
                     throw new InputException($"{path}:{lineNumber}", $"face has {corners} vertices (a face needs at least 3)");
@@ -70,23 +111,32 @@ public static class ObjReader
         }
         if (faceCount == 0) throw new InputException(path, "no faces (empty mesh)", "the file must contain 'f' lines");
 
-        var positionArray = positions.ToArray();
-        var mapped = MapNormals(positionArray.Length, indices, cornerNormals, normals);
-        var mesh = new TriangleMesh(positionArray, indices.ToArray(), mapped, path);
+        var positionArray = positions[..positionCount];
+        var mapped = MapNormals(positionCount, indices.AsSpan(0, indexCount), cornerNormals, normals.AsSpan(0, normalCount));
+        var mesh = new TriangleMesh(positionArray, indices, indexCount, mapped, path);
         if (mesh.TriangleCount == 0)
             throw new InputException(path, $"all {mesh.DegenerateCount} triangles are degenerate (zero area)");
         if (mesh.Normals is null) mesh.ComputeVertexNormals();
         return mesh;
     }
 
+    /// <summary>A line with non-ASCII bytes, its Unicode white space (no-break space, em space, ...) made ' '.</summary>
+    static byte[] SpacesToAscii(ReadOnlySpan<byte> line)
+    {
+        var chars = Encoding.UTF8.GetString(line).ToCharArray();
+        for (int i = 0; i < chars.Length; i++)
+            if (char.IsWhiteSpace(chars[i])) chars[i] = ' ';
+        return Encoding.UTF8.GetBytes(chars);
+    }
+
     /// <summary>Per-vertex normals from per-corner ones, or null when some vertex has none or several.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    static Vector3[]? MapNormals(int vertexCount, List<int> indices, List<int> cornerNormals, List<Vector3> normals)
+    static Vector3[]? MapNormals(int vertexCount, ReadOnlySpan<int> indices, int[] cornerNormals, ReadOnlySpan<Vector3> normals)
     {
-        if (normals.Count == 0) return null;
+        if (normals.Length == 0) return null;
         var chosen = new int[vertexCount];
         Array.Fill(chosen, -1);
-        for (int i = 0; i < indices.Count; i++)
+        for (int i = 0; i < indices.Length; i++)
         {
             int n = cornerNormals[i];
             if (n < 0) return null;
@@ -106,35 +156,83 @@ public static class ObjReader
     }
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    static Vector3 ReadVector(ref Tokens tokens, string path, int line, string keyword)
-    {
-        float x = ReadFloat(ref tokens, path, line, keyword);
-        float y = ReadFloat(ref tokens, path, line, keyword);
-        float z = ReadFloat(ref tokens, path, line, keyword);
-        return new Vector3(x, y, z); // extra values (w, vertex colours) are ignored
-    }
-
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     static float ReadFloat(ref Tokens tokens, string path, int line, string keyword)
     {
         var token = tokens.Next();
         if (token.Length == 0)
             throw new InputException($"{path}:{line}", $"'{keyword}' needs 3 coordinates x y z");
-        if (!float.TryParse(token, NumberStyles.Float, CultureInfo.InvariantCulture, out float value) || !float.IsFinite(value))
-            throw new InputException($"{path}:{line}", $"coordinate '{token}' is not a finite number");
+        if (!TryParseFloat(token, out float value) || !float.IsFinite(value))
+            throw new InputException($"{path}:{line}", $"coordinate '{Encoding.UTF8.GetString(token)}' is not a finite number");
         return value;
+    }
+
+    /// <summary>10^k, exact in double for k ≤ 22.</summary>
+    static readonly double[] PowersOfTen =
+        [1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22];
+
+    /// <summary>
+    /// A float exactly as float.TryParse (NumberStyles.Float, invariant) reads it. A plain decimal
+    /// "[±]digits[.digits]" of at most 15 digits is m / 10^k with m and 10^k exact doubles, so one division
+    /// rounds it correctly to double (Clinger 1990); rounding that to float is correct too unless the double
+    /// lies exactly halfway between two floats. Those, and every other form, go to float.TryParse.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    internal static bool TryParseFloat(ReadOnlySpan<byte> s, out float value)
+    {
+        int i = 0;
+        bool negative = false;
+        if (s.Length > 0 && (s[0] == '-' || s[0] == '+')) { negative = s[0] == '-'; i = 1; }
+        long m = 0;
+        int scale = 0, digits = 0;
+        for (; i < s.Length && (uint)(s[i] - '0') <= 9; i++, digits++)
+        {
+            if (m >= 100_000_000_000_000) goto Slow;
+            m = 10 * m + (s[i] - '0');
+        }
+        if (i < s.Length && s[i] == '.')
+            for (i++; i < s.Length && (uint)(s[i] - '0') <= 9; i++, digits++, scale++)
+            {
+                if (m >= 100_000_000_000_000 || scale == 22) goto Slow;
+                m = 10 * m + (s[i] - '0');
+            }
+        if (i != s.Length || digits == 0) goto Slow;
+        double x = m / PowersOfTen[scale];
+        // Halfway between two floats: the 29 bits of the double's mantissa below a float's are 1000…0.
+        if ((BitConverter.DoubleToUInt64Bits(x) & 0x1FFF_FFFF) == 0x1000_0000) goto Slow;
+        value = negative ? -(float)x : (float)x;
+        return true;
+    Slow:
+        return float.TryParse(s, NumberStyles.Float, CultureInfo.InvariantCulture, out value);
+    }
+
+    /// <summary>An int exactly as int.TryParse (NumberStyles.AllowLeadingSign, invariant) reads it.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    internal static bool TryParseInt(ReadOnlySpan<byte> s, out int value)
+    {
+        int i = s.Length > 0 && (s[0] == '-' || s[0] == '+') ? 1 : 0;
+        if (s.Length - i is >= 1 and <= 9)
+        {
+            int v = 0;
+            for (; i < s.Length && (uint)(s[i] - '0') <= 9; i++) v = 10 * v + (s[i] - '0');
+            if (i == s.Length)
+            {
+                value = s[0] == '-' ? -v : v;
+                return true;
+            }
+        }
+        return int.TryParse(s, NumberStyles.AllowLeadingSign, CultureInfo.InvariantCulture, out value);
     }
 
     /// <summary>One face corner "v[/[vt][/vn]]" as 0-based (position, normal or -1).</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    static (int position, int normal) ReadCorner(ReadOnlySpan<char> corner, int positions, int texCoords, int normals,
+    static (int position, int normal) ReadCorner(ReadOnlySpan<byte> corner, int positions, int texCoords, int normals,
         string path, int line)
     {
-        int slash = corner.IndexOf('/');
+        int slash = corner.IndexOf((byte)'/');
         int p = Resolve(slash < 0 ? corner : corner[..slash], positions, "vertex", path, line);
         if (slash < 0) return (p, -1);
         var rest = corner[(slash + 1)..];
-        slash = rest.IndexOf('/');
+        slash = rest.IndexOf((byte)'/');
         var vt = slash < 0 ? rest : rest[..slash];
         if (vt.Length > 0) Resolve(vt, texCoords, "texture coordinate", path, line);
         if (slash < 0 || slash == rest.Length - 1) return (p, -1);
@@ -143,10 +241,10 @@ public static class ObjReader
 
     /// <summary>A 1-based (or negative, relative) OBJ index to a 0-based one, checked against what is defined so far.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    static int Resolve(ReadOnlySpan<char> token, int count, string what, string path, int line)
+    static int Resolve(ReadOnlySpan<byte> token, int count, string what, string path, int line)
     {
-        if (!int.TryParse(token, NumberStyles.AllowLeadingSign, CultureInfo.InvariantCulture, out int index))
-            throw new InputException($"{path}:{line}", $"{what} index '{token}' is not an integer");
+        if (!TryParseInt(token, out int index))
+            throw new InputException($"{path}:{line}", $"{what} index '{Encoding.UTF8.GetString(token)}' is not an integer");
         int resolved = index > 0 ? index - 1 : count + index;
         if (index == 0 || resolved < 0 || resolved >= count)
             throw new InputException($"{path}:{line}", $"{what} index {index} out of range ({count} defined so far)",
@@ -154,21 +252,25 @@ public static class ObjReader
         return resolved;
     }
 
-    /// <summary>Whitespace-separated tokens of one line, as spans (no allocation).</summary>
-    ref struct Tokens(ReadOnlySpan<char> line)
+    /// <summary>White-space-separated tokens of one line, as spans (no allocation).</summary>
+    ref struct Tokens(ReadOnlySpan<byte> line)
     {
-        ReadOnlySpan<char> _rest = line;
+        ReadOnlySpan<byte> _rest = line;
 
         [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-        public ReadOnlySpan<char> Next()
+        public ReadOnlySpan<byte> Next()
         {
             int i = 0;
-            while (i < _rest.Length && char.IsWhiteSpace(_rest[i])) i++;
+            while (i < _rest.Length && IsSpace(_rest[i])) i++;
             int start = i;
-            while (i < _rest.Length && !char.IsWhiteSpace(_rest[i])) i++;
+            while (i < _rest.Length && !IsSpace(_rest[i])) i++;
             var token = _rest[start..i];
             _rest = _rest[i..];
             return token;
         }
     }
+
+    /// <summary>char.IsWhiteSpace for ASCII: tab, line feed, vertical tab, form feed, carriage return and space.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    internal static bool IsSpace(byte b) => b == ' ' || (uint)(b - '\t') <= '\r' - '\t';
 }

@@ -7,7 +7,8 @@ namespace SpectralRenderer.Geometry;
 
 /// <summary>
 /// Reads PLY body values one at a time from the file's bytes, in any of the three formats, and knows which
-/// element instance it is in so errors can say "element 'face' #12 at byte 345".
+/// element instance it is in so errors can say "element 'face' #12 at byte 345". The reader uses it for ascii
+/// files, and for the binary elements its bulk path does not take (lists in the vertex element, truncated data).
 /// </summary>
 ref struct PlyCursor(ReadOnlySpan<byte> data, int start, PlyFormat format, string path)
 {
@@ -21,9 +22,13 @@ ref struct PlyCursor(ReadOnlySpan<byte> data, int start, PlyFormat format, strin
     public int Instance;
 
     public readonly int Position => _pos;
+    public readonly int Remaining => _data.Length - _pos;
 
-    public InputException Error(string what) =>
-        new($"{_path}: element '{Element}' #{Instance} at byte {_valueStart}", what);
+    public InputException Error(string what) => Error(_path, Element, Instance, _valueStart, what);
+
+    /// <summary>"file: element 'face' #12 at byte 345: what".</summary>
+    public static InputException Error(string path, string element, int instance, int at, string what) =>
+        new($"{path}: element '{element}' #{instance} at byte {at}", what);
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public double ReadReal(PlyType type)
@@ -35,14 +40,7 @@ ref struct PlyCursor(ReadOnlySpan<byte> data, int start, PlyFormat format, strin
                 throw Error($"'{System.Text.Encoding.ASCII.GetString(token)}' is not a number");
             return v;
         }
-        var bytes = Take(PlyHeader.SizeOf(type));
-        bool le = _format == PlyFormat.BinaryLittleEndian;
-        return type switch
-        {
-            PlyType.Float32 => le ? BinaryPrimitives.ReadSingleLittleEndian(bytes) : BinaryPrimitives.ReadSingleBigEndian(bytes),
-            PlyType.Float64 => le ? BinaryPrimitives.ReadDoubleLittleEndian(bytes) : BinaryPrimitives.ReadDoubleBigEndian(bytes),
-            _ => DecodeInteger(type, bytes, le),
-        };
+        return DecodeReal(type, Take(PlyHeader.SizeOf(type)), _format == PlyFormat.BinaryLittleEndian);
     }
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
@@ -71,8 +69,18 @@ ref struct PlyCursor(ReadOnlySpan<byte> data, int start, PlyFormat format, strin
         return DecodeInteger(type, bytes, le);
     }
 
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    static long DecodeInteger(PlyType type, ReadOnlySpan<byte> b, bool le) => type switch
+    /// <summary>A binary value of any type at the start of <paramref name="b"/>, as a real.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static double DecodeReal(PlyType type, ReadOnlySpan<byte> b, bool le) => type switch
+    {
+        PlyType.Float32 => le ? BinaryPrimitives.ReadSingleLittleEndian(b) : BinaryPrimitives.ReadSingleBigEndian(b),
+        PlyType.Float64 => le ? BinaryPrimitives.ReadDoubleLittleEndian(b) : BinaryPrimitives.ReadDoubleBigEndian(b),
+        _ => DecodeInteger(type, b, le),
+    };
+
+    /// <summary>A binary value of an integer type at the start of <paramref name="b"/>.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static long DecodeInteger(PlyType type, ReadOnlySpan<byte> b, bool le) => type switch
     {
         PlyType.Int8 => (sbyte)b[0],
         PlyType.UInt8 => b[0],

@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using System.Text;
 using SpectralRenderer.Diagnostics;
 
@@ -15,10 +16,27 @@ sealed record PlyProperty(string Name, PlyType Type, bool IsList, PlyType CountT
 /// <summary>A PLY element (vertex, face, tristrips, ...): how many instances and the properties of each.</summary>
 sealed record PlyElement(string Name, int Count, List<PlyProperty> Properties, int HeaderLine)
 {
-    public int IndexOf(string name) => Properties.FindIndex(p => p.Name == name);
+    public int IndexOf(string name)
+    {
+        for (int i = 0; i < Properties.Count; i++)
+            if (Properties[i].Name == name) return i;
+        return -1;
+    }
 
     /// <summary>Bytes per instance in a binary file, or -1 when a list makes it vary.</summary>
-    public int FixedSize => Properties.Any(p => p.IsList) ? -1 : Properties.Sum(p => PlyHeader.SizeOf(p.Type));
+    public int FixedSize
+    {
+        get
+        {
+            int size = 0;
+            foreach (var p in Properties)
+            {
+                if (p.IsList) return -1;
+                size += PlyHeader.SizeOf(p.Type);
+            }
+            return size;
+        }
+    }
 }
 
 /// <summary>
@@ -46,6 +64,7 @@ sealed class PlyHeader
         ["char", "uchar", "short", "ushort", "int", "uint", "float", "double",
          "int8", "uint8", "int16", "uint16", "int32", "uint32", "float32", "float64"];
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     static bool TryParseType(string name, out PlyType type)
     {
         int i = Array.IndexOf(TypeNames, name);
@@ -53,6 +72,8 @@ sealed class PlyHeader
         return i >= 0;
     }
 
+    // The header is a few lines: compiled quickly (NoOptimization), like the scene loader.
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     public static PlyHeader Parse(ReadOnlySpan<byte> data, string path)
     {
         if (!data.StartsWith("ply"u8))
@@ -108,6 +129,7 @@ sealed class PlyHeader
         }
     }
 
+    [MethodImpl(MethodImplOptions.NoOptimization)]
     static PlyProperty ParseProperty(string[] words, string line, string where)
     {
         bool isList = words.Length >= 2 && words[1] == "list";

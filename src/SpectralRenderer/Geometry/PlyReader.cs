@@ -1,5 +1,7 @@
+using System.Buffers.Binary;
 using System.Numerics;
 using System.Runtime.CompilerServices;
+using System.Runtime.InteropServices;
 using SpectralRenderer.Diagnostics;
 
 namespace SpectralRenderer.Geometry;
@@ -9,7 +11,8 @@ namespace SpectralRenderer.Geometry;
 /// element's x y z (and nx ny nz when all three are present), of any scalar type; polygons from the 'face'
 /// element's vertex_indices (or vertex_index) list, fan-triangulated; triangle strips from a 'tristrips'
 /// element's vertex_indices list, where −1 restarts a strip and every second triangle is flipped to keep the
-/// winding. Other properties and elements are skipped. The whole file is read into memory and parsed as bytes.
+/// winding. Other properties and elements are skipped. The whole file is read into memory and parsed as bytes:
+/// binary elements in bulk, by offsets into the bytes; ascii ones value by value with a <see cref="PlyCursor"/>.
 /// </summary>
 public static class PlyReader
 {
@@ -18,44 +21,127 @@ public static class PlyReader
         return Parse(InputFile.ReadAllBytes(path), path);
     }
 
+    [MethodImpl(MethodImplOptions.NoOptimization)] // runs once per file: the loops it calls are the hot part
     public static TriangleMesh Parse(ReadOnlySpan<byte> data, string path)
     {
         var header = PlyHeader.Parse(data, path);
-        var vertexElement = header.Elements.Find(e => e.Name == "vertex")
-            ?? throw new InputException(path, "the header declares no 'vertex' element");
-        var xyz = new[] { vertexElement.IndexOf("x"), vertexElement.IndexOf("y"), vertexElement.IndexOf("z") };
+        var elements = header.Elements;
+        PlyElement? vertexElement = null;
+        foreach (var e in elements)
+            if (e.Name == "vertex") { vertexElement = e; break; }
+        if (vertexElement is null) throw new InputException(path, "the header declares no 'vertex' element");
         for (int a = 0; a < 3; a++)
-            if (xyz[a] < 0 || vertexElement.Properties[xyz[a]].IsList)
+        {
+            int i = vertexElement.IndexOf("xyz"[a..(a + 1)]);
+            if (i < 0 || vertexElement.Properties[i].IsList)
                 throw new InputException($"{path}:{vertexElement.HeaderLine}", $"element 'vertex' has no scalar property '{"xyz"[a]}'");
-        if (!header.Elements.Any(e => e.Name is "face" or "tristrips"))
+        }
+        bool hasFaces = false;
+        foreach (var e in elements) hasFaces |= e.Name is "face" or "tristrips";
+        if (!hasFaces)
             throw new InputException(path, "the header declares no 'face' or 'tristrips' element (a point cloud is not a mesh)");
 
         // Header checks come before any data is read.
-        var indexLists = header.Elements.Where(e => e.Name is "face" or "tristrips").ToDictionary(e => e, e => IndexList(e, path));
+        var listIndex = new int[elements.Count]; // the vertex-index list of each face/tristrips element
+        for (int i = 0; i < elements.Count; i++)
+            listIndex[i] = elements[i].Name is "face" or "tristrips" ? IndexList(elements[i], path) : -1;
 
         int vertexCount = vertexElement.Count;
-        var cursor = new PlyCursor(data, header.DataStart, header.Format, path);
-        Vector3[] positions = [];
-        Vector3[]? normals = null;
-        var indices = new List<int>();
-        foreach (var element in header.Elements)
+        bool binary = header.Format != PlyFormat.Ascii;
+        bool le = header.Format == PlyFormat.BinaryLittleEndian;
+        var mesh = new MeshData();
+        long faces = 0;
+        foreach (var e in elements) if (e.Name == "face") faces += e.Count;
+        mesh.Indices = new int[Math.Min(3 * faces, data.Length)]; // exact for triangles; strips reserve per list
+        int pos = header.DataStart;
+        for (int i = 0; i < elements.Count; i++)
         {
-            cursor.Element = element.Name;
-            cursor.Instance = 0;
+            var element = elements[i];
             // Each instance takes at least one byte: refuse absurd counts before allocating for them.
-            if (element.Count > data.Length - cursor.Position)
-                throw cursor.Error($"{element.Count} instances cannot fit in the {data.Length - cursor.Position} bytes left (truncated file?)");
-            if (element == vertexElement) (positions, normals) = ReadVertices(ref cursor, element);
-            else if (element.Name == "face") ReadFaces(ref cursor, element, indexLists[element], vertexCount, indices);
-            else if (element.Name == "tristrips") ReadStrips(ref cursor, element, indexLists[element], vertexCount, indices);
-            else SkipElement(ref cursor, element);
+            if (element.Count > data.Length - pos)
+                throw PlyCursor.Error(path, element.Name, 0, pos,
+                    $"{element.Count} instances cannot fit in the {data.Length - pos} bytes left (truncated file?)");
+            bool strips = element.Name == "tristrips";
+            int end = !binary ? -1
+                : ReferenceEquals(element, vertexElement) ? ReadVertices(data, pos, element, le, path, mesh)
+                : ReadLists(data, pos, element, listIndex[i], strips, le, vertexCount, path, mesh);
+            if (end < 0)
+            {
+                // Ascii, or a binary element the bulk path leaves to the cursor (which says where the data ends).
+                var cursor = new PlyCursor(data, pos, header.Format, path) { Element = element.Name };
+                if (ReferenceEquals(element, vertexElement)) ReadVertices(ref cursor, element, mesh);
+                else if (listIndex[i] >= 0) ReadLists(ref cursor, element, listIndex[i], strips, vertexCount, mesh);
+                else SkipElement(ref cursor, element);
+                end = cursor.Position;
+            }
+            pos = end;
         }
 
-        var mesh = new TriangleMesh(positions, indices.ToArray(), normals, path);
-        if (mesh.TriangleCount == 0)
-            throw new InputException(path, mesh.DegenerateCount == 0 ? "no faces (empty mesh)" : $"all {mesh.DegenerateCount} triangles are degenerate");
-        if (mesh.Normals is null) mesh.ComputeVertexNormals();
-        return mesh;
+        var result = new TriangleMesh(mesh.Positions, mesh.Indices, mesh.IndexCount, mesh.Normals, path);
+        if (result.TriangleCount == 0)
+            throw new InputException(path, result.DegenerateCount == 0 ? "no faces (empty mesh)" : $"all {result.DegenerateCount} triangles are degenerate");
+        if (result.Normals is null) result.ComputeVertexNormals();
+        return result;
+    }
+
+    /// <summary>What the body gives: vertices, triangles (three indices each, growing) and a list buffer.</summary>
+    sealed class MeshData
+    {
+        public Vector3[] Positions = [];
+        public Vector3[]? Normals;
+        public int[] Indices = [];
+        public int IndexCount;
+        int[] _list = new int[64];
+
+        /// <summary>Room for <paramref name="triangles"/> more triangles at the end of <see cref="Indices"/>.</summary>
+        public Span<int> Reserve(int triangles)
+        {
+            long need = IndexCount + 3L * triangles;
+            if (need > Indices.Length) Array.Resize(ref Indices, (int)Math.Min(Math.Max(need, 2L * Indices.Length), Array.MaxLength));
+            return Indices.AsSpan(IndexCount);
+        }
+
+        /// <summary>A scratch buffer for one list's vertex indices.</summary>
+        public Span<int> List(int count)
+        {
+            if (count > _list.Length) _list = new int[Math.Max(count, 2 * _list.Length)];
+            return _list.AsSpan(0, count);
+        }
+
+        /// <summary>A polygon, fan-triangulated: (first, previous, this) for each corner after the second.</summary>
+        public void AddFan(ReadOnlySpan<int> corners)
+        {
+            var into = Reserve(corners.Length - 2);
+            int w = 0;
+            for (int c = 2; c < corners.Length; c++)
+            {
+                into[w] = corners[0]; into[w + 1] = corners[c - 1]; into[w + 2] = corners[c];
+                w += 3;
+            }
+            IndexCount += w;
+        }
+
+        /// <summary>Triangle strips separated by −1: triangle i of a strip is (v[i], v[i+1], v[i+2]) for even i
+        /// and (v[i+1], v[i], v[i+2]) for odd i, so all keep the first one's winding.</summary>
+        [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+        public void AddStrips(ReadOnlySpan<int> items)
+        {
+            var into = Reserve(Math.Max(items.Length - 2, 0));
+            int w = 0, a = -1, b = -1, inStrip = 0; // the two previous vertices of the current strip
+            foreach (int v in items)
+            {
+                if (v < 0) { inStrip = 0; continue; }
+                if (inStrip >= 2)
+                {
+                    if ((inStrip & 1) == 0) { into[w] = a; into[w + 1] = b; }
+                    else { into[w] = b; into[w + 1] = a; }
+                    into[w + 2] = v;
+                    w += 3;
+                }
+                a = b; b = v; inStrip++;
+            }
+            IndexCount += w;
+        }
     }
 
     /// <summary>Which property of a face/tristrips element holds the vertex indices.</summary>
@@ -70,17 +156,181 @@ public static class PlyReader
         return i;
     }
 
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    static (Vector3[] positions, Vector3[]? normals) ReadVertices(ref PlyCursor cursor, PlyElement e)
+    /// <summary>Role of each vertex property: 0..2 position x y z, 3..5 normal x y z, -1 skipped.</summary>
+    static int[] VertexRoles(PlyElement e)
     {
-        // Role of each property: 0..2 position x y z, 3..5 normal x y z, -1 skipped.
         var roles = new int[e.Properties.Count];
         string[] names = ["x", "y", "z", "nx", "ny", "nz"];
         for (int i = 0; i < roles.Length; i++) roles[i] = e.Properties[i].IsList ? -1 : Array.IndexOf(names, e.Properties[i].Name);
-        bool hasNormals = roles.Contains(3) && roles.Contains(4) && roles.Contains(5);
+        return roles;
+    }
+
+    static bool HasNormals(int[] roles) => Array.IndexOf(roles, 3) >= 0 && Array.IndexOf(roles, 4) >= 0 && Array.IndexOf(roles, 5) >= 0;
+
+    /// <summary>
+    /// The binary vertex element in bulk: each instance is a fixed-size record, each role a value at a fixed
+    /// offset in it. Returns where the element ends, or -1 when the cursor must read it (a list property, a
+    /// repeated name, or data that ends inside the element).
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    static int ReadVertices(ReadOnlySpan<byte> data, int start, PlyElement e, bool le, string path, MeshData mesh)
+    {
+        int stride = e.FixedSize;
+        if (stride < 0 || (long)e.Count * stride > data.Length - start) return -1;
+        var roles = VertexRoles(e);
+        // The properties with a role, in file order: offset in the record, type, role.
+        int used = 0, offset = 0, seen = 0;
+        Span<int> offsets = stackalloc int[6], targets = stackalloc int[6];
+        Span<PlyType> types = stackalloc PlyType[6];
+        for (int i = 0; i < roles.Length; i++)
+        {
+            if (roles[i] >= 0)
+            {
+                if ((seen & (1 << roles[i])) != 0) return -1;
+                seen |= 1 << roles[i];
+                offsets[used] = offset; types[used] = e.Properties[i].Type; targets[used] = roles[i]; used++;
+            }
+            offset += PlyHeader.SizeOf(e.Properties[i].Type);
+        }
+        offsets = offsets[..used]; types = types[..used]; targets = targets[..used];
 
         var positions = new Vector3[e.Count];
-        var normals = hasNormals ? new Vector3[e.Count] : null;
+        var normals = HasNormals(roles) ? new Vector3[e.Count] : null;
+        bool justXyz = le && used == 3 && stride == 12 && offsets[1] == 4 && offsets[2] == 8 && targets[0] == 0 && targets[1] == 1
+            && types[0] == PlyType.Float32 && types[1] == PlyType.Float32 && types[2] == PlyType.Float32;
+        if (justXyz && BitConverter.IsLittleEndian)
+        {
+            // Records of three little-endian floats are the positions as they lie in memory.
+            MemoryMarshal.Cast<byte, Vector3>(data.Slice(start, 12 * e.Count)).CopyTo(positions);
+            for (int k = 0; k < positions.Length; k++)
+                if (!float.IsFinite(positions[k].X + positions[k].Y + positions[k].Z))
+                    CheckFinite(data, start + 12 * k, e, k, offsets, types, targets, le, path);
+        }
+        else ReadRecords(data, start, stride, e, offsets, types, targets, le, path, positions, normals);
+        mesh.Positions = positions;
+        mesh.Normals = normals;
+        return start + e.Count * stride;
+    }
+
+    /// <summary>Vertex records of any layout: each role's value decoded at its offset (a method of its own, so
+    /// the common x y z layout does not compile it).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    static void ReadRecords(ReadOnlySpan<byte> data, int start, int stride, PlyElement e, ReadOnlySpan<int> offsets,
+        ReadOnlySpan<PlyType> types, ReadOnlySpan<int> targets, bool le, string path, Vector3[] positions, Vector3[]? normals)
+    {
+        Span<float> v = stackalloc float[6];
+        for (int k = 0; k < positions.Length; k++)
+        {
+            var record = data.Slice(start + k * stride, stride);
+            for (int j = 0; j < offsets.Length; j++)
+            {
+                float value = (float)PlyCursor.DecodeReal(types[j], record[offsets[j]..], le);
+                if (!float.IsFinite(value)) CheckFinite(data, start + k * stride, e, k, offsets, types, targets, le, path);
+                v[targets[j]] = value;
+            }
+            positions[k] = new Vector3(v[0], v[1], v[2]);
+            if (normals is not null) normals[k] = SafeNormalize(new Vector3(v[3], v[4], v[5]));
+        }
+    }
+
+    /// <summary>Throws for the first value of vertex record <paramref name="k"/> that is not finite.</summary>
+    static void CheckFinite(ReadOnlySpan<byte> data, int record, PlyElement e, int k, ReadOnlySpan<int> offsets,
+        ReadOnlySpan<PlyType> types, ReadOnlySpan<int> targets, bool le, string path)
+    {
+        for (int j = 0; j < offsets.Length; j++)
+        {
+            float value = (float)PlyCursor.DecodeReal(types[j], data[(record + offsets[j])..], le);
+            if (!float.IsFinite(value))
+            {
+                string name = new[] { "x", "y", "z", "nx", "ny", "nz" }[targets[j]];
+                throw PlyCursor.Error(path, e.Name, k, record + offsets[j], $"property '{name}' is {value}, not a finite number");
+            }
+        }
+    }
+
+    /// <summary>
+    /// A binary element in bulk: with <paramref name="listIndex"/> ≥ 0 a face or tristrips element whose
+    /// vertex indices are triangulated, otherwise one to skip. Returns where the element ends, or -1 when the
+    /// data ends inside it (the cursor then reads it again and says where).
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    static int ReadLists(ReadOnlySpan<byte> data, int start, PlyElement e, int listIndex, bool strips, bool le, int vertexCount,
+        string path, MeshData mesh)
+    {
+        int stride = e.FixedSize;
+        if (stride >= 0) return (long)e.Count * stride > data.Length - start ? -1 : start + e.Count * stride; // no list: skip
+        var properties = e.Properties;
+        int pos = start;
+        for (int k = 0; k < e.Count; k++)
+        {
+            for (int i = 0; i < properties.Count; i++)
+            {
+                var p = properties[i];
+                int size = PlyHeader.SizeOf(p.Type);
+                if (!p.IsList)
+                {
+                    if (data.Length - pos < size) return -1;
+                    pos += size;
+                    continue;
+                }
+                int countSize = PlyHeader.SizeOf(p.CountType);
+                if (data.Length - pos < countSize) return -1;
+                long n = PlyCursor.DecodeInteger(p.CountType, data[pos..], le);
+                if (n < 0) throw PlyCursor.Error(path, e.Name, k, pos, $"list '{p.Name}' has negative length {n}");
+                if (i == listIndex && !strips && n < 3)
+                    throw PlyCursor.Error(path, e.Name, k, pos, $"face has {n} vertices (a face needs at least 3)");
+                pos += countSize;
+                if (n * size > data.Length - pos) return -1;
+                int bytes = (int)n * size;
+                if (i == listIndex)
+                {
+                    var items = mesh.List((int)n);
+                    Decode(data.Slice(pos, bytes), p.Type, le, items);
+                    for (int j = 0; j < items.Length; j++)
+                        if ((uint)items[j] >= (uint)vertexCount && !(strips && items[j] == -1))
+                            throw PlyCursor.Error(path, e.Name, k, pos + j * size,
+                                $"vertex index {PlyCursor.DecodeInteger(p.Type, data[(pos + j * size)..], le)} out of range ({vertexCount} vertices)");
+                    if (strips) mesh.AddStrips(items);
+                    else mesh.AddFan(items);
+                }
+                pos += bytes;
+            }
+        }
+        return pos;
+    }
+
+    /// <summary>
+    /// Binary integers to ints: −1 (or the largest uint32, its two's-complement twin) stays −1, the strip
+    /// restart; a uint32 above int.MaxValue becomes negative, an index out of range either way.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    static void Decode(ReadOnlySpan<byte> bytes, PlyType type, bool le, Span<int> into)
+    {
+        switch (type)
+        {
+            case PlyType.Int32 or PlyType.UInt32:
+                var ints = MemoryMarshal.Cast<byte, int>(bytes);
+                if (le == BitConverter.IsLittleEndian) ints.CopyTo(into);
+                else BinaryPrimitives.ReverseEndianness(ints, into);
+                break;
+            case PlyType.Int8:
+                for (int i = 0; i < into.Length; i++) into[i] = (sbyte)bytes[i];
+                break;
+            case PlyType.UInt8:
+                for (int i = 0; i < into.Length; i++) into[i] = bytes[i];
+                break;
+            default: // 16-bit
+                for (int i = 0; i < into.Length; i++) into[i] = (int)PlyCursor.DecodeInteger(type, bytes[(2 * i)..], le);
+                break;
+        }
+    }
+
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    static void ReadVertices(ref PlyCursor cursor, PlyElement e, MeshData mesh)
+    {
+        var roles = VertexRoles(e);
+        var positions = new Vector3[e.Count];
+        var normals = HasNormals(roles) ? new Vector3[e.Count] : null;
         Span<float> v = stackalloc float[6];
         for (int k = 0; k < e.Count; k++)
         {
@@ -96,7 +346,8 @@ public static class PlyReader
             positions[k] = new Vector3(v[0], v[1], v[2]);
             if (normals is not null) normals[k] = SafeNormalize(new Vector3(v[3], v[4], v[5]));
         }
-        return (positions, normals);
+        mesh.Positions = positions;
+        mesh.Normals = normals;
     }
 
     static Vector3 SafeNormalize(Vector3 n)
@@ -105,8 +356,9 @@ public static class PlyReader
         return len > 0 ? n / len : Vector3.UnitZ;
     }
 
+    /// <summary>A face or tristrips element, value by value.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    static void ReadFaces(ref PlyCursor cursor, PlyElement e, int listIndex, int vertexCount, List<int> indices)
+    static void ReadLists(ref PlyCursor cursor, PlyElement e, int listIndex, bool strips, int vertexCount, MeshData mesh)
     {
         var list = e.Properties[listIndex];
         for (int k = 0; k < e.Count; k++)
@@ -116,59 +368,21 @@ public static class PlyReader
             {
                 if (i != listIndex) { cursor.Skip(e.Properties[i]); continue; }
                 long n = cursor.ReadCount(list);
-                if (n < 3) throw cursor.Error($"face has {n} vertices (a face needs at least 3)");
-                int first = ReadIndex(ref cursor, list.Type, vertexCount);
-                int previous = ReadIndex(ref cursor, list.Type, vertexCount);
-                for (long c = 2; c < n; c++)
-                {
-                    int current = ReadIndex(ref cursor, list.Type, vertexCount);
-                    indices.Add(first); indices.Add(previous); indices.Add(current); // fan
-                    previous = current;
-                }
-            }
-        }
-    }
-
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    static void ReadStrips(ref PlyCursor cursor, PlyElement e, int listIndex, int vertexCount, List<int> indices)
-    {
-        var list = e.Properties[listIndex];
-        for (int k = 0; k < e.Count; k++)
-        {
-            cursor.Instance = k;
-            for (int i = 0; i < e.Properties.Count; i++)
-            {
-                if (i != listIndex) { cursor.Skip(e.Properties[i]); continue; }
-                long n = cursor.ReadCount(list);
-                int a = -1, b = -1, inStrip = 0; // the two previous vertices of the current strip
-                for (long c = 0; c < n; c++)
+                if (!strips && n < 3) throw cursor.Error($"face has {n} vertices (a face needs at least 3)");
+                // Each item takes at least one byte: refuse absurd counts before allocating for them.
+                var items = mesh.List((int)Math.Min(n, cursor.Remaining + 1));
+                for (int c = 0; c < n; c++)
                 {
                     long raw = cursor.ReadInteger(list.Type);
-                    if (raw == -1 || (list.Type == PlyType.UInt32 && raw == uint.MaxValue)) { inStrip = 0; continue; }
-                    int v = CheckIndex(ref cursor, raw, vertexCount);
-                    if (inStrip >= 2)
-                    {
-                        // Triangle i of a strip is (v[i], v[i+1], v[i+2]) for even i and (v[i+1], v[i], v[i+2]) for odd i.
-                        if ((inStrip & 1) == 0) { indices.Add(a); indices.Add(b); }
-                        else { indices.Add(b); indices.Add(a); }
-                        indices.Add(v);
-                    }
-                    a = b; b = v; inStrip++;
+                    if (strips && (raw == -1 || (list.Type == PlyType.UInt32 && raw == uint.MaxValue))) { items[c] = -1; continue; }
+                    if (raw < 0 || raw >= vertexCount)
+                        throw cursor.Error($"vertex index {raw} out of range ({vertexCount} vertices)");
+                    items[c] = (int)raw;
                 }
+                if (strips) mesh.AddStrips(items);
+                else mesh.AddFan(items);
             }
         }
-    }
-
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    static int ReadIndex(ref PlyCursor cursor, PlyType type, int vertexCount) =>
-        CheckIndex(ref cursor, cursor.ReadInteger(type), vertexCount);
-
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    static int CheckIndex(ref PlyCursor cursor, long index, int vertexCount)
-    {
-        if (index < 0 || index >= vertexCount)
-            throw cursor.Error($"vertex index {index} out of range ({vertexCount} vertices)");
-        return (int)index;
     }
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]

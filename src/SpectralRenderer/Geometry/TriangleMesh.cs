@@ -20,21 +20,26 @@ public sealed class TriangleMesh
 
     /// <param name="indices">Three per triangle, each in [0, positions.Length).</param>
     public TriangleMesh(Vector3[] positions, int[] indices, Vector3[]? normals = null, string source = "")
+        : this(positions, indices, indices.Length, normals, source) { }
+
+    /// <summary>A mesh from the first <paramref name="indexCount"/> entries of <paramref name="indices"/> (a reader's
+    /// buffer, which the mesh takes over).</summary>
+    internal TriangleMesh(Vector3[] positions, int[] indices, int indexCount, Vector3[]? normals, string source)
     {
-        if (indices.Length % 3 != 0) throw new ArgumentException("indices must come in threes", nameof(indices));
+        if (indexCount % 3 != 0) throw new ArgumentException("indices must come in threes", nameof(indices));
         if (normals is not null && normals.Length != positions.Length)
             throw new ArgumentException("one normal per position", nameof(normals));
         Positions = positions;
         Normals = normals;
         Source = source;
-        (Indices, DegenerateCount) = DropDegenerate(positions, indices);
+        (Indices, DegenerateCount) = DropDegenerate(positions, indices, indexCount);
     }
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    static (int[] kept, int dropped) DropDegenerate(Vector3[] p, int[] indices)
+    static (int[] kept, int dropped) DropDegenerate(Vector3[] p, int[] indices, int count)
     {
         int write = 0;
-        for (int read = 0; read < indices.Length; read += 3)
+        for (int read = 0; read < count; read += 3)
         {
             int a = indices[read], b = indices[read + 1], c = indices[read + 2];
             if ((uint)a >= (uint)p.Length || (uint)b >= (uint)p.Length || (uint)c >= (uint)p.Length)
@@ -42,7 +47,7 @@ public sealed class TriangleMesh
             if (a == b || b == c || a == c || Vector3.Cross(p[b] - p[a], p[c] - p[a]) == Vector3.Zero) continue;
             indices[write++] = a; indices[write++] = b; indices[write++] = c;
         }
-        int dropped = (indices.Length - write) / 3;
+        int dropped = (count - write) / 3;
         return (write == indices.Length ? indices : indices[..write], dropped);
     }
 
@@ -63,27 +68,43 @@ public sealed class TriangleMesh
 
     /// <summary>
     /// Angle-weighted vertex normals (Thürmer &amp; Wüthrich 1998): each triangle adds its unit normal weighted by
-    /// its interior angle at the vertex. Vertices used by no triangle get +Z.
+    /// its interior angle at the vertex. Vertices used by no triangle get +Z. Parallel over ranges of vertices,
+    /// each summing its vertices' corners in triangle order, so the result is the same bits for any thread count.
     /// </summary>
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    public void ComputeVertexNormals()
+    public void ComputeVertexNormals() => ComputeVertexNormals(Math.Min(Environment.ProcessorCount, 1 + TriangleCount / 20_000));
+
+    /// <summary>The normals computed in <paramref name="parts"/> vertex ranges, in parallel.</summary>
+    internal void ComputeVertexNormals(int parts)
     {
         var n = new Vector3[Positions.Length];
-        for (int i = 0; i < Indices.Length; i += 3)
-        {
-            int a = Indices[i], b = Indices[i + 1], c = Indices[i + 2];
-            Vector3 pa = Positions[a], pb = Positions[b], pc = Positions[c];
-            var face = Vector3.Normalize(Vector3.Cross(pb - pa, pc - pa));
-            n[a] += Angle(pb - pa, pc - pa) * face;
-            n[b] += Angle(pc - pb, pa - pb) * face;
-            n[c] += Angle(pa - pc, pb - pc) * face;
-        }
-        for (int i = 0; i < n.Length; i++)
-        {
-            float len = n[i].Length();
-            n[i] = len > 0 && float.IsFinite(len) ? n[i] / len : Vector3.UnitZ;
-        }
+        var (positions, indices) = (Positions, Indices);
+        if (parts <= 1) AccumulateNormals(positions, indices, n, 0, n.Length);
+        else Parallel.For(0, parts, part => AccumulateNormals(positions, indices, n, (int)((long)n.Length * part / parts), (int)((long)n.Length * (part + 1) / parts)));
         Normals = n;
+    }
+
+    /// <summary>The normals of vertices [<paramref name="first"/>, <paramref name="end"/>): every triangle is
+    /// visited, and only the corners at those vertices are added.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    static void AccumulateNormals(Vector3[] positions, int[] indices, Vector3[] n, int first, int end)
+    {
+        uint range = (uint)(end - first);
+        for (int i = 0; i + 2 < indices.Length; i += 3)
+        {
+            int a = indices[i], b = indices[i + 1], c = indices[i + 2];
+            bool hasA = (uint)(a - first) < range, hasB = (uint)(b - first) < range, hasC = (uint)(c - first) < range;
+            if (!(hasA | hasB | hasC)) continue;
+            Vector3 pa = positions[a], pb = positions[b], pc = positions[c];
+            var face = Vector3.Normalize(Vector3.Cross(pb - pa, pc - pa));
+            if (hasA) n[a] += Angle(pb - pa, pc - pa) * face;
+            if (hasB) n[b] += Angle(pc - pb, pa - pb) * face;
+            if (hasC) n[c] += Angle(pa - pc, pb - pc) * face;
+        }
+        for (int v = first; v < end; v++)
+        {
+            float len = n[v].Length();
+            n[v] = len > 0 && float.IsFinite(len) ? n[v] / len : Vector3.UnitZ;
+        }
     }
 
     /// <summary>The angle between two edge vectors, by atan2 (accurate for small and near-π angles).</summary>

@@ -1,4 +1,6 @@
+using System.Globalization;
 using System.Numerics;
+using System.Text;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Geometry;
 
@@ -114,5 +116,72 @@ public class ObjReaderTests
         Assert.Equal(-2 / MathF.Sqrt(5), n.Y, 6);
         var (p0, p1, _) = m.Triangle(0);
         Assert.Equal(0, Vector3.Dot(n, p1 - p0), 6);
+    }
+
+    static void SameAsFloatParse(string text)
+    {
+        var bytes = Encoding.UTF8.GetBytes(text);
+        bool expectedOk = float.TryParse(text, NumberStyles.Float, CultureInfo.InvariantCulture, out float expected);
+        bool ok = ObjReader.TryParseFloat(bytes, out float value);
+        Assert.True(expectedOk == ok, $"'{text}': parsed {ok}, float.TryParse {expectedOk}");
+        if (ok) Assert.True(BitConverter.SingleToInt32Bits(expected) == BitConverter.SingleToInt32Bits(value), $"'{text}': {value:R} != {expected:R}");
+    }
+
+    [Theory]
+    [InlineData("0"), InlineData("-0"), InlineData("+0.5"), InlineData(".5"), InlineData("5."), InlineData("-.25"), InlineData("007.50")]
+    [InlineData("-0.037830"), InlineData("90.848602"), InlineData("-235.313995"), InlineData("0.1"), InlineData("0.3"), InlineData("3.14159265358979")]
+    // Exactly halfway between two floats: ties go to even.
+    [InlineData("16777217"), InlineData("16777219"), InlineData("-16777217.0"), InlineData("33554434"), InlineData("0.000000059604644775390625")]
+    [InlineData("999999999999999"), InlineData("9999999999999999"), InlineData("123456789012345678901234567890"), InlineData("0.0000000000000000000001")]
+    [InlineData("1e5"), InlineData("1E-5"), InlineData("-2.5e+3"), InlineData("1e39"), InlineData("1e-46"), InlineData("340282356779733661637539395458142568448")]
+    [InlineData("Infinity"), InlineData("-Infinity"), InlineData("NaN"), InlineData("∞")]
+    [InlineData(""), InlineData("-"), InlineData("+"), InlineData("."), InlineData("-."), InlineData("1.2.3"), InlineData("1-"), InlineData("0x10"), InlineData("1,5"), InlineData("--1"), InlineData("١")]
+    public void Coordinates_parse_exactly_as_float_Parse(string text) => SameAsFloatParse(text);
+
+    [Fact]
+    public void Random_decimals_parse_exactly_as_float_Parse()
+    {
+        var rng = new Random(11);
+        var s = new StringBuilder();
+        for (int n = 0; n < 200_000; n++)
+        {
+            s.Clear();
+            if (rng.Next(3) == 0) s.Append(rng.Next(2) == 0 ? '-' : '+');
+            int digits = rng.Next(1, 19), dot = rng.Next(-1, digits + 1);
+            for (int d = 0; d < digits; d++)
+            {
+                if (d == dot) s.Append('.');
+                s.Append((char)('0' + (d == 0 && rng.Next(4) == 0 ? 0 : rng.Next(10))));
+            }
+            if (rng.Next(50) == 0) s.Append('e').Append(rng.Next(-40, 40));
+            SameAsFloatParse(s.ToString());
+        }
+        // Floats printed shortest (as OBJ writers do) come back as themselves.
+        for (int n = 0; n < 100_000; n++)
+        {
+            float f = BitConverter.Int32BitsToSingle(rng.Next()) * (rng.Next(2) == 0 ? 1 : -1);
+            if (float.IsFinite(f) && MathF.Abs(f) is > 1e-6f and < 1e8f) SameAsFloatParse(f.ToString("0.##########", CultureInfo.InvariantCulture));
+        }
+    }
+
+    [Theory]
+    [InlineData("0"), InlineData("-0"), InlineData("+7"), InlineData("123456789"), InlineData("1234567890"), InlineData("2147483647"), InlineData("2147483648")]
+    [InlineData("-2147483648"), InlineData("-2147483649"), InlineData("0000000000012"), InlineData(""), InlineData("-"), InlineData("+"), InlineData("1a"), InlineData("a1"), InlineData("1.0"), InlineData("١")]
+    public void Indices_parse_exactly_as_int_Parse(string text)
+    {
+        bool expectedOk = int.TryParse(text, NumberStyles.AllowLeadingSign, CultureInfo.InvariantCulture, out int expected);
+        Assert.Equal(expectedOk, ObjReader.TryParseInt(Encoding.UTF8.GetBytes(text), out int value));
+        if (expectedOk) Assert.Equal(expected, value);
+    }
+
+    [Fact]
+    public void White_space_is_what_char_IsWhiteSpace_says_in_ASCII_and_Unicode()
+    {
+        for (int b = 0; b < 128; b++) Assert.Equal(char.IsWhiteSpace((char)b), ObjReader.IsSpace((byte)b));
+        // No-break space, em space, ideographic space and tabs separate values too; a UTF-8 BOM is skipped.
+        var m = Parse("\uFEFFv\u00A00\u20030\t0\nv 1\u3000 0 0\r\nv 0 1 0\nf 1 2 3\n");
+        Assert.Equal(new Vector3(1, 0, 0), m.Positions[1]);
+        var e = Assert.Throws<InputException>(() => Parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1é\n"));
+        Assert.Equal("bad.obj:4: coordinate '1é' is not a finite number", e.Message);
     }
 }

@@ -140,4 +140,99 @@ public class PlyReaderTests
         Assert.Equal([0, 1, 2, 2, 1, 3], m.Indices);
         Assert.Equal(2, m.DegenerateCount);
     }
+
+    /// <summary>A binary body writer for the tests below.</summary>
+    sealed class Body(bool littleEndian)
+    {
+        readonly List<byte> _bytes = [];
+        public byte[] Bytes => [.. _bytes];
+        public int Length => _bytes.Count;
+        public Body Value(string type, double v)
+        {
+            var b = new byte[8];
+            int n = type switch { "char" or "uchar" => 1, "short" or "ushort" => 2, "double" => 8, _ => 4 };
+            switch (type)
+            {
+                case "char": b[0] = (byte)(sbyte)v; break;
+                case "uchar": b[0] = (byte)v; break;
+                case "short": if (littleEndian) BinaryPrimitives.WriteInt16LittleEndian(b, (short)v); else BinaryPrimitives.WriteInt16BigEndian(b, (short)v); break;
+                case "ushort": if (littleEndian) BinaryPrimitives.WriteUInt16LittleEndian(b, (ushort)v); else BinaryPrimitives.WriteUInt16BigEndian(b, (ushort)v); break;
+                case "int": if (littleEndian) BinaryPrimitives.WriteInt32LittleEndian(b, (int)v); else BinaryPrimitives.WriteInt32BigEndian(b, (int)v); break;
+                case "uint": if (littleEndian) BinaryPrimitives.WriteUInt32LittleEndian(b, (uint)v); else BinaryPrimitives.WriteUInt32BigEndian(b, (uint)v); break;
+                case "float": if (littleEndian) BinaryPrimitives.WriteSingleLittleEndian(b, (float)v); else BinaryPrimitives.WriteSingleBigEndian(b, (float)v); break;
+                default: if (littleEndian) BinaryPrimitives.WriteDoubleLittleEndian(b, v); else BinaryPrimitives.WriteDoubleBigEndian(b, v); break;
+            }
+            _bytes.AddRange(b[..n]);
+            return this;
+        }
+    }
+
+    // Four vertices of the unit square (z = 0) and, for strips, two strips: 0 1 2 3 and 3 2 1.
+    static readonly float[] Square = [0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0];
+
+    [Theory]
+    [InlineData("char"), InlineData("uchar"), InlineData("short"), InlineData("ushort"), InlineData("int"), InlineData("uint")]
+    public void Binary_strips_and_faces_of_every_index_type_and_byte_order_triangulate_alike(string type)
+    {
+        foreach (bool le in new[] { true, false })
+        {
+            string format = le ? "binary_little_endian" : "binary_big_endian";
+            string vertices = "element vertex 4\nproperty float x\nproperty float y\nproperty float z\n";
+            // Unsigned 8/16-bit lists cannot hold −1: there each strip is its own instance.
+            bool restarts = type is "char" or "short" or "int" or "uint";
+            var strips = new Body(le);
+            foreach (float v in Square) strips.Value("float", v);
+            int[][] lists = restarts ? [[0, 1, 2, 3, -1, 3, 2, 1]] : [[0, 1, 2, 3], [3, 2, 1]];
+            foreach (var list in lists)
+            {
+                strips.Value("uchar", list.Length);
+                foreach (int i in list) strips.Value(type, i == -1 && type == "uint" ? uint.MaxValue : i);
+            }
+            var m = PlyReader.Parse(File($"ply\nformat {format} 1.0\n{vertices}element tristrips {lists.Length}\nproperty list uchar {type} vertex_indices\nend_header\n", strips.Bytes), "s.ply");
+            Assert.Equal([0, 1, 2, 2, 1, 3, 3, 2, 1], m.Indices);
+
+            // A quad and a triangle as faces, with a scalar before and a list after the indices.
+            var faces = new Body(le);
+            foreach (float v in Square) faces.Value("float", v);
+            foreach (int[] face in new[] { new[] { 0, 1, 3, 2 }, new[] { 3, 2, 1 } })
+            {
+                faces.Value("short", 7).Value("uint", face.Length);
+                foreach (int i in face) faces.Value(type, i);
+                faces.Value("ushort", 2).Value("double", 1).Value("double", 2);
+            }
+            m = PlyReader.Parse(File($"ply\nformat {format} 1.0\n{vertices}element face 2\nproperty short flags\nproperty list uint {type} vertex_indices\nproperty list ushort double junk\nend_header\n", faces.Bytes), "f.ply");
+            Assert.Equal([0, 1, 3, 0, 3, 2, 3, 2, 1], m.Indices);
+        }
+    }
+
+    [Fact]
+    public void Binary_vertices_that_are_not_finite_name_the_property_and_its_byte()
+    {
+        // Three floats per vertex (read as they lie in memory), and with normals and a double (read value by value).
+        var header = "ply\nformat binary_little_endian 1.0\n" + TriangleVertices + "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+        var e = Fails(File(header, Le(0, 0, 0, 1, float.NaN, 0, 0, 1, 0), [3], LeInts(0, 1, 2)));
+        Assert.Equal($": element 'vertex' #1 at byte {header.Length + 16}: property 'y' is NaN, not a finite number", Tail(e));
+
+        header = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty double z\nproperty float nx\nproperty float ny\nproperty float nz\n" +
+                 "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+        var body = new Body(true);
+        foreach (var (x, y, z) in new[] { (0.0, 0.0, 0.0), (1.0, 0.0, 1e300), (0.0, 1.0, 0.0) })
+            body.Value("float", x).Value("float", y).Value("double", z).Value("float", 0).Value("float", 0).Value("float", 2);
+        body.Value("uchar", 3).Value("int", 0).Value("int", 1).Value("int", 2);
+        e = Fails(File(header, body.Bytes));
+        Assert.StartsWith($": element 'vertex' #1 at byte {header.Length + 28 + 8}: property 'z' is ", Tail(e));
+        Assert.EndsWith(", not a finite number", Tail(e));
+        var m = PlyReader.Parse(File(header, body.Bytes.Select((b, i) => i >= 36 && i < 44 ? (byte)0 : b).ToArray()), "n.ply");
+        Assert.Equal(new System.Numerics.Vector3(0, 0, 1), m.Normals![1]);
+    }
+
+    [Fact]
+    public void A_uint32_index_past_int_range_is_reported_as_written()
+    {
+        var header = "ply\nformat binary_big_endian 1.0\n" + TriangleVertices + "element face 1\nproperty list uchar uint vertex_indices\nend_header\n";
+        var body = new Body(false);
+        foreach (float v in Square[..9]) body.Value("float", v);
+        body.Value("uchar", 3).Value("uint", 0).Value("uint", 3_000_000_000).Value("uint", 2);
+        Assert.Equal($": element 'face' #0 at byte {header.Length + 36 + 1 + 4}: vertex index 3000000000 out of range (3 vertices)", Tail(Fails(File(header, body.Bytes))));
+    }
 }
