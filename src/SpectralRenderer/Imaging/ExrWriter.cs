@@ -5,6 +5,7 @@ using System.Globalization;
 using System.Text;
 using SpectralRenderer.Color;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Imaging;
 
@@ -35,27 +36,42 @@ public static class ExrWriter
     public static void Write(string path, SpectralImage image, ExrOptions? options = null)
     {
         options ??= new ExrOptions();
-        Validate(image, options);
-        AtomicFile.Write(path, s => Write(s, image, options));
+        Validate(image.Grid, options);
+        var bands = image.BandPlanes();
+        AtomicFile.Write(path, s => Write(s, image.Width, image.Height, image.Grid, bands, image, options));
     }
 
     public static void Write(Stream stream, SpectralImage image, ExrOptions? options = null)
     {
         options ??= new ExrOptions();
-        Validate(image, options);
-        int w = image.Width, h = image.Height;
+        Validate(image.Grid, options);
+        Write(stream, image.Width, image.Height, image.Grid, image.BandPlanes(), image, options);
+    }
+
+    /// <summary>
+    /// Writes band-sequential planes (<see cref="SpectralImage.CopyBands"/>) that the caller already holds;
+    /// <paramref name="pixels"/>, the same image pixel-interleaved, is needed only for the R,G,B / X,Y,Z channels.
+    /// </summary>
+    internal static void Write(string path, int width, int height, BandGrid grid, float[] bands, SpectralImage? pixels, ExrOptions options)
+    {
+        Validate(grid, options);
+        AtomicFile.Write(path, s => Write(s, width, height, grid, bands, pixels, options));
+    }
+
+    static void Write(Stream stream, int w, int h, BandGrid grid, float[] bands, SpectralImage? pixels, ExrOptions options)
+    {
+        int n = w * h;
+        if (bands.Length != n * grid.Count) throw new ArgumentException($"band planes hold {bands.Length} values, {w}×{h}×{grid.Count} expected");
+        if ((options.Rgb || options.Xyz) && pixels is null) throw new ArgumentException("EXR R,G,B / X,Y,Z channels need the pixel-interleaved image");
 
         // Channels, each a row-major H × W plane, sorted by name in byte order as OpenEXR's ChannelList is.
-        var channels = new List<(string Name, float[] Plane)>();
-        for (int b = 0; b < image.Bands; b++)
-        {
-            var plane = new float[w * h];
-            image.CopyBand(b, plane);
-            channels.Add((SpectralChannelName(image.Grid.Centre(b), options.Reflective), plane));
-        }
+        var channels = new List<(string Name, ReadOnlyMemory<float> Plane)>();
+        for (int b = 0; b < grid.Count; b++)
+            channels.Add((SpectralChannelName(grid.Centre(b), options.Reflective), bands.AsMemory(b * n, n)));
         if (options.Rgb || options.Xyz)
         {
             var cm = options.Colorimeter!;
+            var image = pixels!;
             var planes = new float[6][];
             for (int i = 0; i < 6; i++) planes[i] = new float[w * h];
             Parallel.For(0, h, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (y) =>
@@ -76,7 +92,7 @@ public static class ExrWriter
         if (channels.Select(c => c.Name).Distinct().Count() != channels.Count)
             throw new ArgumentException("two EXR channels have the same name (are two bands centred on the same wavelength?)");
 
-        var header = Header(image, options, channels.Select(c => c.Name).ToList(), out bool longNames);
+        var header = Header(w, h, grid, options, channels.Select(c => c.Name).ToList(), out bool longNames);
 
         int lines = LinesPerChunk(options.Compression);
         int chunkCount = (h + lines - 1) / lines;
@@ -91,7 +107,7 @@ public static class ExrWriter
             for (int y = y0; y < y1; y++)
                 foreach (var (_, plane) in channels)
                 {
-                    var row = plane.AsSpan(y * w, w);
+                    var row = plane.Span.Slice(y * w, w);
                     if (sampleBytes == 4 && BitConverter.IsLittleEndian)
                     {
                         MemoryMarshal.AsBytes(row).CopyTo(raw.AsSpan(at));
@@ -134,19 +150,19 @@ public static class ExrWriter
         bw.Flush();
     }
 
-    static void Validate(SpectralImage image, ExrOptions options)
+    static void Validate(BandGrid grid, ExrOptions options)
     {
         if (!Enum.IsDefined(options.Compression)) throw new ArgumentException($"unsupported EXR compression {options.Compression}");
         if (!Enum.IsDefined(options.PixelType)) throw new ArgumentException($"unsupported EXR pixel type {options.PixelType}");
         if ((options.Rgb || options.Xyz) && options.Colorimeter is null)
             throw new ArgumentException("EXR R,G,B / X,Y,Z channels need ExrOptions.Colorimeter (or set Rgb = false)");
-        if (options.Colorimeter is { } cm && !cm.Grid.Equals(image.Grid))
-            throw new ArgumentException($"the colorimeter's band grid {cm.Grid} differs from the image's {image.Grid}");
+        if (options.Colorimeter is { } cm && !cm.Grid.Equals(grid))
+            throw new ArgumentException($"the colorimeter's band grid {cm.Grid} differs from the image's {grid}");
     }
 
     /// <summary>File layout §"Header": attributes (name, type name, size, value), then a null byte.</summary>
     [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
-    static byte[] Header(SpectralImage image, ExrOptions options, List<string> channelNames, out bool longNames)
+    static byte[] Header(int width, int height, BandGrid grid, ExrOptions options, List<string> channelNames, out bool longNames)
     {
         var attrs = new SortedDictionary<string, (string Type, byte[] Value)>(StringComparer.Ordinal);
 
@@ -163,7 +179,7 @@ public static class ExrWriter
         cw.Write((byte)0);
         attrs["channels"] = ("chlist", chlist.ToArray());
         attrs["compression"] = ("compression", [(byte)options.Compression]);
-        var box = Box(0, 0, image.Width - 1, image.Height - 1);
+        var box = Box(0, 0, width - 1, height - 1);
         attrs["dataWindow"] = ("box2i", box);
         attrs["displayWindow"] = ("box2i", box);
         attrs["lineOrder"] = ("lineOrder", [0]);          // INCREASING_Y
@@ -177,7 +193,7 @@ public static class ExrWriter
         attrs["spectralLayoutVersion"] = ("string", Encoding.UTF8.GetBytes(LayoutVersion));
         if (!options.Reflective) attrs["emissiveUnits"] = ("string", Encoding.UTF8.GetBytes(EmissiveUnits));
         attrs["spectralBandEdges"] = ("string", Encoding.UTF8.GetBytes(
-            string.Join(",", image.Grid.Edges().Select(e => e.ToString("R", CultureInfo.InvariantCulture)))));
+            string.Join(",", grid.Edges().Select(e => e.ToString("R", CultureInfo.InvariantCulture)))));
         if (options.Colorimeter is { } cm)
         {
             attrs["spectralKappa"] = ("double", BitConverter.GetBytes(cm.Kappa));

@@ -21,6 +21,8 @@ public static class RenderOutputWriter
         Directory.CreateDirectory(outDir);
         ClearPrevious(outDir);
         float scale = image.Max();
+        // Band-sequential planes, transposed once and shared by the band PNGs, the mosaic, spectral.exr and the ENVI cube.
+        float[]? bands = formats.Contains("bands") || formats.Contains("exr") || formats.Contains("envi") ? image.BandPlanes() : null;
 
         // The groups are independent files: write them side by side; each keeps its own list, in a fixed order.
         var groups = new List<string>[4];
@@ -30,7 +32,7 @@ public static class RenderOutputWriter
         {
         Parallel.Invoke(new ParallelOptions { CancellationToken = cancel },
             () => { if (formats.Contains("png")) WritePreview(scene, image, outDir, Done(0)); },
-            () => { if (formats.Contains("bands")) WriteBands(scene, image, scale, outDir, Done(1), cancel); },
+            () => { if (formats.Contains("bands")) WriteBands(scene, image, bands!, scale, outDir, Done(1), cancel); },
             () =>
             {
                 if (!formats.Contains("aov")) return;
@@ -40,7 +42,7 @@ public static class RenderOutputWriter
                 Done(2)("object-id.png");
                 AnalysisImages.Write(scene, result, outDir, Done(2));
             },
-            () => SpectralFiles.Write(scene, image, outDir, formats, Done(3)));
+            () => SpectralFiles.Write(scene, image, bands, outDir, formats, Done(3)));
         }
         catch (AggregateException e)
         {
@@ -82,23 +84,23 @@ public static class RenderOutputWriter
     }
 
     /// <summary>bands/: one 16-bit PNG per band, all on the scale of the brightest band value, and the mosaic (Fig. 2).</summary>
-    static void WriteBands(Scene scene, SpectralImage image, float scale, string outDir, Action<string> done, CancellationToken cancel)
+    static void WriteBands(Scene scene, SpectralImage image, float[] bands, float scale, string outDir, Action<string> done, CancellationToken cancel)
     {
         var dir = Path.Combine(outDir, "bands");
         Directory.CreateDirectory(dir);
+        int n = image.Width * image.Height;
         var names = new string[image.Bands];
         Parallel.For(0, image.Bands, new ParallelOptions { CancellationToken = cancel }, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (b) =>
         {
-            var plane = new float[image.Width * image.Height];
-            var grey = new ushort[plane.Length];
-            image.CopyBand(b, plane);
+            var plane = bands.AsSpan(b * n, n);
+            var grey = new ushort[n];
             for (int i = 0; i < plane.Length; i++) grey[i] = scale > 0 ? RgbSpace.To16(Math.Clamp(plane[i] / scale, 0, 1)) : (ushort)0;
             names[b] = BandFileName(scene, b);
             // The Up filter alone: one pass per row instead of trying all five (band images are smooth).
             AtomicFile.Write(Path.Combine(dir, names[b]), s => PngWriter.WriteGray16(s, image.Width, image.Height, grey, filter: PngFilter.Up));
         });
         foreach (var name in names) done($"bands/{name}");
-        var (mw, mh, mosaic) = BandMosaic.Build(image, scale);
+        var (mw, mh, mosaic) = BandMosaic.Build(image.Width, image.Height, bands, scale);
         AtomicFile.Write(Path.Combine(outDir, "bands.png"), s => PngWriter.WriteGray8(s, mw, mh, mosaic));
         done("bands.png");
     }

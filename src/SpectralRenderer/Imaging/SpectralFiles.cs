@@ -9,11 +9,16 @@ namespace SpectralRenderer.Imaging;
 /// </summary>
 public static class SpectralFiles
 {
-    public static void Write(Scene scene, SpectralImage image, string outDir, IReadOnlySet<string> formats, Action<string> done)
+    public static void Write(Scene scene, SpectralImage image, string outDir, IReadOnlySet<string> formats, Action<string> done) =>
+        Write(scene, image, null, outDir, formats, done);
+
+    /// <param name="bands">The image's band planes (<see cref="SpectralImage.CopyBands"/>) when the caller has them already.</param>
+    internal static void Write(Scene scene, SpectralImage image, float[]? bands, string outDir, IReadOnlySet<string> formats, Action<string> done)
     {
+        if (bands is null && (formats.Contains("exr") || formats.Contains("envi"))) bands = image.BandPlanes();
         if (formats.Contains("exr"))
         {
-            ExrWriter.Write(Path.Combine(outDir, "spectral.exr"), image, new ExrOptions
+            ExrWriter.Write(Path.Combine(outDir, "spectral.exr"), image.Width, image.Height, image.Grid, bands!, image, new ExrOptions
             {
                 Colorimeter = scene.Colorimeter,
                 Xyz = true,
@@ -23,7 +28,7 @@ public static class SpectralFiles
         }
         if (formats.Contains("envi"))
         {
-            EnviWriter.Write(Path.Combine(outDir, "spectral.img"), image, $"SpectralRenderer render of {Path.GetFileName(scene.SourcePath)}; spectral radiance, {scene.Integration.ToString().ToLowerInvariant()} band integration");
+            EnviWriter.Write(Path.Combine(outDir, "spectral.img"), image, bands!, $"SpectralRenderer render of {Path.GetFileName(scene.SourcePath)}; spectral radiance, {scene.Integration.ToString().ToLowerInvariant()} band integration");
             done("spectral.img");
             done("spectral.hdr");
         }
