@@ -1,3 +1,4 @@
+using System.Buffers;
 using System.Runtime.CompilerServices;
 using System.Buffers.Binary;
 using System.Runtime.InteropServices;
@@ -72,8 +73,8 @@ public static class ExrWriter
         {
             var cm = options.Colorimeter!;
             var image = pixels!;
-            var planes = new float[6][];
-            for (int i = 0; i < 6; i++) planes[i] = new float[w * h];
+            var preview = new float[6][];
+            for (int i = 0; i < 6; i++) preview[i] = new float[w * h];
             Parallel.For(0, h, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (y) =>
             {
                 for (int x = 0; x < w; x++)
@@ -81,12 +82,12 @@ public static class ExrWriter
                     int i = y * w + x;
                     var xyz = cm.ToXyz((ReadOnlySpan<float>)image.Pixel(x, y));
                     var (r, g, bl) = RgbSpace.Srgb.Linear(xyz);
-                    planes[0][i] = (float)r; planes[1][i] = (float)g; planes[2][i] = (float)bl;
-                    planes[3][i] = (float)xyz.X; planes[4][i] = (float)xyz.Y; planes[5][i] = (float)xyz.Z;
+                    preview[0][i] = (float)r; preview[1][i] = (float)g; preview[2][i] = (float)bl;
+                    preview[3][i] = (float)xyz.X; preview[4][i] = (float)xyz.Y; preview[5][i] = (float)xyz.Z;
                 }
             });
-            if (options.Rgb) { channels.Add(("R", planes[0])); channels.Add(("G", planes[1])); channels.Add(("B", planes[2])); }
-            if (options.Xyz) { channels.Add(("X", planes[3])); channels.Add(("Y", planes[4])); channels.Add(("Z", planes[5])); }
+            if (options.Rgb) { channels.Add(("R", preview[0])); channels.Add(("G", preview[1])); channels.Add(("B", preview[2])); }
+            if (options.Xyz) { channels.Add(("X", preview[3])); channels.Add(("Y", preview[4])); channels.Add(("Z", preview[5])); }
         }
         channels.Sort((a, b) => string.CompareOrdinal(a.Name, b.Name));
         if (channels.Select(c => c.Name).Distinct().Count() != channels.Count)
@@ -97,57 +98,76 @@ public static class ExrWriter
         int lines = LinesPerChunk(options.Compression);
         int chunkCount = (h + lines - 1) / lines;
         int sampleBytes = options.PixelType == ExrPixelType.Float ? 4 : 2;
-        var chunks = new byte[chunkCount][];
-        Parallel.For(0, chunkCount, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (c) =>
+        // A float chunk stored raw is its planes' rows as they are in memory (little-endian): it is not kept, but
+        // streamed from the planes when the file is written. Other stored chunks and all deflated ones are kept.
+        bool rowsAreRaw = sampleBytes == 4 && BitConverter.IsLittleEndian;
+        var chunks = new byte[]?[chunkCount];
+        var planes = channels.Select(c => c.Plane).ToArray();
+        Parallel.For(0, chunkCount, (c) =>
         {
             int y0 = c * lines, y1 = Math.Min(h, y0 + lines);
-            // File layout, "Scan Line Blocks": per scanline, per channel (sorted), all pixels of that channel.
-            var raw = new byte[(y1 - y0) * channels.Count * w * sampleBytes];
-            int at = 0;
-            for (int y = y0; y < y1; y++)
-                foreach (var (_, plane) in channels)
-                {
-                    var row = plane.Span.Slice(y * w, w);
-                    if (sampleBytes == 4 && BitConverter.IsLittleEndian)
-                    {
-                        MemoryMarshal.AsBytes(row).CopyTo(raw.AsSpan(at));
-                        at += 4 * w;
-                        continue;
-                    }
-                    for (int x = 0; x < w; x++, at += sampleBytes)
-                    {
-                        if (sampleBytes == 4) BinaryPrimitives.WriteSingleLittleEndian(raw.AsSpan(at), row[x]);
-                        else BinaryPrimitives.WriteUInt16LittleEndian(raw.AsSpan(at), BitConverter.HalfToUInt16Bits((Half)row[x]));
-                    }
-                }
-            if (options.Compression == ExrCompression.Zip)
+            int size = (y1 - y0) * planes.Length * w * sampleBytes;
+            if (options.Compression == ExrCompression.None && rowsAreRaw) return;
+            var raw = ArrayPool<byte>.Shared.Rent(size);
+            try
             {
-                var z = ExrZip.Compress(raw);
-                // A chunk whose compressed form is not smaller is stored raw (readers tell by its size).
-                if (z.Length < raw.Length) raw = z;
+                var chunk = raw.AsSpan(0, size);
+                ScanLineBlock(planes, w, y0, y1, sampleBytes, chunk);
+                byte[]? z = options.Compression == ExrCompression.Zip ? ExrZip.CompressChunk(chunk, sampleBytes, options.DeflateEveryChunk) : null;
+                chunks[c] = z ?? (rowsAreRaw ? null : chunk.ToArray());
             }
-            chunks[c] = raw;
+            finally { ArrayPool<byte>.Shared.Return(raw); }
         });
 
-        var bw = new BinaryWriter(stream, Encoding.ASCII, leaveOpen: true);
-        bw.Write(Magic);
+        Span<byte> word = stackalloc byte[8];
+        stream.Write(word[..WriteInt32(word, Magic)]);
         // Version field: version 2 in bits 0–7; bit 10 "long names"; bits 9 (tiled), 11 (deep), 12 (multipart) clear.
-        bw.Write(2 | (longNames ? 0x400 : 0));
-        bw.Write(header);
+        stream.Write(word[..WriteInt32(word, 2 | (longNames ? 0x400 : 0))]);
+        stream.Write(header);
         // Offset table: one unsigned 64-bit file offset per chunk, in increasing y order.
         long offset = 8 + header.Length + 8L * chunkCount;
-        foreach (var chunk in chunks)
+        var sizes = new int[chunkCount];
+        for (int c = 0; c < chunkCount; c++)
         {
-            bw.Write((ulong)offset);
-            offset += 8 + chunk.Length;
+            sizes[c] = chunks[c]?.Length ?? (Math.Min(h, (c + 1) * lines) - c * lines) * planes.Length * w * 4;
+            BinaryPrimitives.WriteUInt64LittleEndian(word, (ulong)offset);
+            stream.Write(word);
+            offset += 8 + sizes[c];
         }
         for (int c = 0; c < chunkCount; c++)
         {
-            bw.Write(c * lines);            // y coordinate of the chunk's first scanline (data window starts at 0)
-            bw.Write(chunks[c].Length);     // pixel data size
-            bw.Write(chunks[c]);
+            BinaryPrimitives.WriteInt32LittleEndian(word, c * lines);    // y coordinate of the chunk's first scanline (data window starts at 0)
+            BinaryPrimitives.WriteInt32LittleEndian(word[4..], sizes[c]); // pixel data size
+            stream.Write(word);
+            if (chunks[c] is { } bytes) { stream.Write(bytes); continue; }
+            for (int y = c * lines; y < Math.Min(h, (c + 1) * lines); y++)
+                foreach (var plane in planes) stream.Write(MemoryMarshal.AsBytes(plane.Span.Slice(y * w, w)));
         }
-        bw.Flush();
+
+        static int WriteInt32(Span<byte> b, int v) { BinaryPrimitives.WriteInt32LittleEndian(b, v); return 4; }
+    }
+
+    /// <summary>File layout, "Scan Line Blocks": per scanline y0 … y1 − 1, per channel (sorted), all pixels of that channel, little-endian.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    static void ScanLineBlock(ReadOnlyMemory<float>[] planes, int w, int y0, int y1, int sampleBytes, Span<byte> raw)
+    {
+        int at = 0;
+        for (int y = y0; y < y1; y++)
+            foreach (var plane in planes)
+            {
+                var row = plane.Span.Slice(y * w, w);
+                if (sampleBytes == 4 && BitConverter.IsLittleEndian)
+                {
+                    MemoryMarshal.AsBytes(row).CopyTo(raw[at..]);
+                    at += 4 * w;
+                    continue;
+                }
+                for (int x = 0; x < w; x++, at += sampleBytes)
+                {
+                    if (sampleBytes == 4) BinaryPrimitives.WriteSingleLittleEndian(raw[at..], row[x]);
+                    else BinaryPrimitives.WriteUInt16LittleEndian(raw[at..], BitConverter.HalfToUInt16Bits((Half)row[x]));
+                }
+            }
     }
 
     static void Validate(BandGrid grid, ExrOptions options)
