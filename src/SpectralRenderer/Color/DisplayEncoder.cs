@@ -36,6 +36,6 @@ public sealed class DisplayEncoder
     public (byte R, byte G, byte B) Encode8(ReadOnlySpan<float> bands)
     {
         var (r, g, b) = Linear(bands);
-        return (RgbSpace.To8(Space.Encode(r)), RgbSpace.To8(Space.Encode(g)), RgbSpace.To8(Space.Encode(b)));
+        return (Space.Encode8(r), Space.Encode8(g), Space.Encode8(b));
     }
 }

@@ -40,7 +40,7 @@ public static class BandMosaic
                     for (int y = y0; y < y1; y++)
                         foreach (float v in band.Slice(y * width + x0, x1 - x0)) sum += v;
                     double mean = scale > 0 ? sum / ((y1 - y0) * (x1 - x0)) / scale : 0;
-                    px[(oy + ty) * w + ox + tx] = RgbSpace.To8(RgbSpace.SrgbCurve(Math.Clamp(mean, 0, 1)));
+                    px[(oy + ty) * w + ox + tx] = RgbSpace.Srgb.Encode8(mean);   // = To8(SrgbCurve(clamp(mean, 0, 1)))
                 }
             }
         }
