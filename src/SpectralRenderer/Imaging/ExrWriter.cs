@@ -39,31 +39,30 @@ public static class ExrWriter
         options ??= new ExrOptions();
         Validate(image.Grid, options);
         var bands = image.BandPlanes();
-        AtomicFile.Write(path, s => Write(s, image.Width, image.Height, image.Grid, bands, image, options));
+        AtomicFile.Write(path, s => Write(s, image.Width, image.Height, image.Grid, bands, null, options));
     }
 
     public static void Write(Stream stream, SpectralImage image, ExrOptions? options = null)
     {
         options ??= new ExrOptions();
         Validate(image.Grid, options);
-        Write(stream, image.Width, image.Height, image.Grid, image.BandPlanes(), image, options);
+        Write(stream, image.Width, image.Height, image.Grid, image.BandPlanes(), null, options);
     }
 
     /// <summary>
-    /// Writes band-sequential planes (<see cref="SpectralImage.CopyBands"/>) that the caller already holds;
-    /// <paramref name="pixels"/>, the same image pixel-interleaved, is needed only for the R,G,B / X,Y,Z channels.
+    /// Writes band-sequential planes (<see cref="SpectralImage.CopyBands"/>) that the caller already holds, and their
+    /// <see cref="XyzPlanes"/> (of options.Colorimeter) when it has them: the R,G,B / X,Y,Z channels are made from them.
     /// </summary>
-    internal static void Write(string path, int width, int height, BandGrid grid, float[] bands, SpectralImage? pixels, ExrOptions options)
+    internal static void Write(string path, int width, int height, BandGrid grid, float[] bands, XyzPlanes? xyz, ExrOptions options)
     {
         Validate(grid, options);
-        AtomicFile.Write(path, s => Write(s, width, height, grid, bands, pixels, options));
+        AtomicFile.Write(path, s => Write(s, width, height, grid, bands, xyz, options));
     }
 
-    static void Write(Stream stream, int w, int h, BandGrid grid, float[] bands, SpectralImage? pixels, ExrOptions options)
+    static void Write(Stream stream, int w, int h, BandGrid grid, float[] bands, XyzPlanes? xyz, ExrOptions options)
     {
         int n = w * h;
         if (bands.Length != n * grid.Count) throw new ArgumentException($"band planes hold {bands.Length} values, {w}×{h}×{grid.Count} expected");
-        if ((options.Rgb || options.Xyz) && pixels is null) throw new ArgumentException("EXR R,G,B / X,Y,Z channels need the pixel-interleaved image");
 
         // Channels, each a row-major H × W plane, sorted by name in byte order as OpenEXR's ChannelList is.
         var channels = new List<(string Name, ReadOnlyMemory<float> Plane)>();
@@ -71,19 +70,16 @@ public static class ExrWriter
             channels.Add((SpectralChannelName(grid.Centre(b), options.Reflective), bands.AsMemory(b * n, n)));
         if (options.Rgb || options.Xyz)
         {
-            var cm = options.Colorimeter!;
-            var image = pixels!;
+            xyz ??= XyzPlanes.Compute(options.Colorimeter!, bands, n);
             var preview = new float[6][];
-            for (int i = 0; i < 6; i++) preview[i] = new float[w * h];
+            for (int i = 0; i < 6; i++) preview[i] = new float[n];
             Parallel.For(0, h, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (y) =>
             {
-                for (int x = 0; x < w; x++)
+                for (int i = y * w; i < (y + 1) * w; i++)
                 {
-                    int i = y * w + x;
-                    var xyz = cm.ToXyz((ReadOnlySpan<float>)image.Pixel(x, y));
-                    var (r, g, bl) = RgbSpace.Srgb.Linear(xyz);
+                    var (r, g, bl) = RgbSpace.Srgb.Linear(xyz[i]);
                     preview[0][i] = (float)r; preview[1][i] = (float)g; preview[2][i] = (float)bl;
-                    preview[3][i] = (float)xyz.X; preview[4][i] = (float)xyz.Y; preview[5][i] = (float)xyz.Z;
+                    preview[3][i] = (float)xyz.X[i]; preview[4][i] = (float)xyz.Y[i]; preview[5][i] = (float)xyz.Z[i];
                 }
             });
             if (options.Rgb) { channels.Add(("R", preview[0])); channels.Add(("G", preview[1])); channels.Add(("B", preview[2])); }

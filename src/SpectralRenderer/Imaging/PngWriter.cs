@@ -56,6 +56,13 @@ public static class PngWriter
         Write(stream, width, height, 16, 0, 2, BigEndian(gray), text, filter);
     }
 
+    /// <summary>16-bit greyscale from samples already big-endian (§7.1), two bytes per pixel.</summary>
+    internal static void WriteGray16BigEndian(Stream stream, int width, int height, ReadOnlySpan<byte> samples, PngFilter filter)
+    {
+        Check(width, height, samples.Length, 2);
+        Write(stream, width, height, 16, 0, 2, samples, null, filter);
+    }
+
     /// <summary>16-bit RGB, width·height·3 samples, stored big-endian (§7.1).</summary>
     public static void WriteRgb16(Stream stream, int width, int height, ReadOnlySpan<ushort> rgb,
         IReadOnlyDictionary<string, string>? text = null, PngFilter filter = PngFilter.Adaptive)

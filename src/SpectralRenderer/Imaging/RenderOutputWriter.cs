@@ -1,3 +1,5 @@
+using System.Buffers;
+using System.Buffers.Binary;
 using System.Runtime.CompilerServices;
 using System.Globalization;
 using System.Text.Json;
@@ -21,28 +23,40 @@ public static class RenderOutputWriter
         Directory.CreateDirectory(outDir);
         ClearPrevious(outDir);
         float scale = image.Max();
-        // Band-sequential planes, transposed once and shared by the band PNGs, the mosaic, spectral.exr and the ENVI cube.
-        float[]? bands = formats.Contains("bands") || formats.Contains("exr") || formats.Contains("envi") ? image.BandPlanes() : null;
+        int n = image.Width * image.Height;
+        // Band-sequential planes, transposed once and shared by the band PNGs, the mosaic, spectral.exr and the ENVI cube;
+        // eq. 3's XYZ of every pixel, computed once for the preview and spectral.exr's R, G, B and X, Y, Z.
+        float[]? bands = formats.Contains("bands") || formats.Contains("exr") || formats.Contains("envi") || formats.Contains("png") ? image.BandPlanes() : null;
+        var xyz = formats.Contains("png") || formats.Contains("exr") ? XyzPlanes.Compute(scene.Colorimeter, bands, n) : null;
 
         // The groups are independent files: write them side by side; each keeps its own list, in a fixed order.
-        var groups = new List<string>[4];
+        var groups = new List<string>[5];
         for (int g = 0; g < groups.Length; g++) groups[g] = [];
         Action<string> Done(int g) => name => { lock (groups[g]) groups[g].Add(name); cancel.ThrowIfCancellationRequested(); };
+        JsonObject? json = null;
         try
         {
         Parallel.Invoke(new ParallelOptions { CancellationToken = cancel },
-            () => { if (formats.Contains("png")) WritePreview(scene, image, outDir, Done(0)); },
+            () => { if (formats.Contains("png")) WritePreview(scene, image, xyz!, outDir, Done(0)); },
             () => { if (formats.Contains("bands")) WriteBands(scene, image, bands!, scale, outDir, Done(1), cancel); },
+            () =>
+            {
+                if (!formats.Contains("bands")) return;
+                var (mw, mh, mosaic) = BandMosaic.Build(image.Width, image.Height, bands!, scale);
+                AtomicFile.Write(Path.Combine(outDir, "bands.png"), s => PngWriter.WriteGray8(s, mw, mh, mosaic));
+                Done(2)("bands.png");
+            },
             () =>
             {
                 if (!formats.Contains("aov")) return;
                 var ids = new ushort[result.ObjectIds.Length];
                 for (int i = 0; i < ids.Length; i++) ids[i] = (ushort)(result.ObjectIds[i] + 1);
                 AtomicFile.Write(Path.Combine(outDir, "object-id.png"), s => PngWriter.WriteGray16(s, image.Width, image.Height, ids));
-                Done(2)("object-id.png");
-                AnalysisImages.Write(scene, result, outDir, Done(2));
+                Done(3)("object-id.png");
+                AnalysisImages.Write(scene, result, outDir, Done(3));
             },
-            () => SpectralFiles.Write(scene, image, bands, outDir, formats, Done(3)));
+            () => SpectralFiles.Write(scene, image, bands, xyz, outDir, formats, Done(4)),
+            () => json = Describe(scene, result, scale, run));
         }
         catch (AggregateException e)
         {
@@ -52,7 +66,7 @@ public static class RenderOutputWriter
         }
 
         var written = groups.SelectMany(g => g).ToList();
-        var json = Describe(scene, result, scale, written, run);
+        json!["files"] = new JsonArray(written.Select(f => (JsonNode)JsonValue.Create(f)!).ToArray());
         AtomicFile.WriteAllText(Path.Combine(outDir, "render.json"), json.ToJsonString(new JsonSerializerOptions { WriteIndented = true }));
         written.Add("render.json");
         return written;
@@ -75,15 +89,15 @@ public static class RenderOutputWriter
             foreach (var f in Directory.EnumerateFiles(bands, "band-*.png")) File.Delete(f);
     }
 
-    static void WritePreview(Scene scene, SpectralImage image, string outDir, Action<string> done)
+    static void WritePreview(Scene scene, SpectralImage image, XyzPlanes xyz, string outDir, Action<string> done)
     {
         var encoder = new DisplayEncoder(scene.Colorimeter, scene.Output.Rgb, scene.Output.Exposure, scene.Output.Adapt);
-        var rgb = Preview(image, encoder);
+        var rgb = Preview(image.Width, image.Height, xyz, encoder);
         AtomicFile.Write(Path.Combine(outDir, "preview.png"), s => PngWriter.WriteRgb8(s, image.Width, image.Height, rgb));
         done("preview.png");
     }
 
-    /// <summary>bands/: one 16-bit PNG per band, all on the scale of the brightest band value, and the mosaic (Fig. 2).</summary>
+    /// <summary>bands/: one 16-bit PNG per band, all on the scale of the brightest band value.</summary>
     static void WriteBands(Scene scene, SpectralImage image, float[] bands, float scale, string outDir, Action<string> done, CancellationToken cancel)
     {
         var dir = Path.Combine(outDir, "bands");
@@ -93,38 +107,46 @@ public static class RenderOutputWriter
         Parallel.For(0, image.Bands, new ParallelOptions { CancellationToken = cancel }, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (b) =>
         {
             var plane = bands.AsSpan(b * n, n);
-            var grey = new ushort[n];
-            for (int i = 0; i < plane.Length; i++) grey[i] = scale > 0 ? RgbSpace.To16(Math.Clamp(plane[i] / scale, 0, 1)) : (ushort)0;
-            names[b] = BandFileName(scene, b);
-            // The Up filter alone: one pass per row instead of trying all five (band images are smooth).
-            AtomicFile.Write(Path.Combine(dir, names[b]), s => PngWriter.WriteGray16(s, image.Width, image.Height, grey, filter: PngFilter.Up));
+            var grey = ArrayPool<byte>.Shared.Rent(2 * n);
+            try
+            {
+                // 16-bit sample round(65535 · clamp(v / scale)), stored big-endian as PNG §7.1 requires.
+                if (scale > 0)
+                    for (int i = 0; i < plane.Length; i++) BinaryPrimitives.WriteUInt16BigEndian(grey.AsSpan(2 * i), RgbSpace.To16(Math.Clamp(plane[i] / scale, 0, 1)));
+                else
+                    grey.AsSpan(0, 2 * n).Clear();
+                names[b] = BandFileName(scene, b);
+                // The Up filter alone: one pass per row instead of trying all five (band images are smooth).
+                AtomicFile.Write(Path.Combine(dir, names[b]), s => PngWriter.WriteGray16BigEndian(s, image.Width, image.Height, grey.AsSpan(0, 2 * n), PngFilter.Up));
+            }
+            finally { ArrayPool<byte>.Shared.Return(grey); }
         });
         foreach (var name in names) done($"bands/{name}");
-        var (mw, mh, mosaic) = BandMosaic.Build(image.Width, image.Height, bands, scale);
-        AtomicFile.Write(Path.Combine(outDir, "bands.png"), s => PngWriter.WriteGray8(s, mw, mh, mosaic));
-        done("bands.png");
     }
 
     public static string BandFileName(Scene scene, int b) =>
         string.Create(CultureInfo.InvariantCulture, $"band-{b + 1:00}-{scene.Grid.Lower(b):0.###}-{scene.Grid.Upper(b):0.###}nm.png");
 
-    public static byte[] Preview(SpectralImage image, DisplayEncoder encoder)
+    public static byte[] Preview(SpectralImage image, DisplayEncoder encoder) =>
+        Preview(image.Width, image.Height, XyzPlanes.Compute(encoder.Colorimeter, image.BandPlanes(), image.Width * image.Height), encoder);
+
+    /// <summary>8-bit display RGB, from the pixels' XYZ (of the encoder's colorimeter).</summary>
+    internal static byte[] Preview(int width, int height, XyzPlanes xyz, DisplayEncoder encoder)
     {
-        var rgb = new byte[image.Width * image.Height * 3];
-        Parallel.For(0, image.Height, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (y) =>
+        var rgb = new byte[width * height * 3];
+        Parallel.For(0, height, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (y) =>
         {
-            for (int x = 0; x < image.Width; x++)
+            for (int i = y * width; i < (y + 1) * width; i++)
             {
-                var (r, g, b) = encoder.Encode8(image.Pixel(x, y));
-                int o = (y * image.Width + x) * 3;
-                rgb[o] = r; rgb[o + 1] = g; rgb[o + 2] = b;
+                var (r, g, b) = encoder.Encode8(xyz[i]);
+                rgb[3 * i] = r; rgb[3 * i + 1] = g; rgb[3 * i + 2] = b;
             }
         });
         return rgb;
     }
 
     [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
-    static JsonObject Describe(Scene scene, RenderResult result, float bandScale, List<string> written, JsonObject? run)
+    static JsonObject Describe(Scene scene, RenderResult result, float bandScale, JsonObject? run)
     {
         var g = scene.Grid;
         var c = scene.Colorimeter;
@@ -188,7 +210,7 @@ public static class RenderOutputWriter
             ["threads"] = result.Threads,
             ["tiles"] = result.Tiles,
             ["run"] = run,
-            ["files"] = new JsonArray(written.Select(f => (JsonNode)JsonValue.Create(f)!).ToArray()),
+            ["files"] = null,   // filled in when the files are written
             ["resolved_scene"] = scene.Resolved?.DeepClone(),
         };
     }

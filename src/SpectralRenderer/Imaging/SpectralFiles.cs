@@ -10,15 +10,16 @@ namespace SpectralRenderer.Imaging;
 public static class SpectralFiles
 {
     public static void Write(Scene scene, SpectralImage image, string outDir, IReadOnlySet<string> formats, Action<string> done) =>
-        Write(scene, image, null, outDir, formats, done);
+        Write(scene, image, null, null, outDir, formats, done);
 
     /// <param name="bands">The image's band planes (<see cref="SpectralImage.CopyBands"/>) when the caller has them already.</param>
-    internal static void Write(Scene scene, SpectralImage image, float[]? bands, string outDir, IReadOnlySet<string> formats, Action<string> done)
+    /// <param name="xyz">Their <see cref="XyzPlanes"/> of scene.Colorimeter, likewise.</param>
+    internal static void Write(Scene scene, SpectralImage image, float[]? bands, XyzPlanes? xyz, string outDir, IReadOnlySet<string> formats, Action<string> done)
     {
         if (bands is null && (formats.Contains("exr") || formats.Contains("envi"))) bands = image.BandPlanes();
         if (formats.Contains("exr"))
         {
-            ExrWriter.Write(Path.Combine(outDir, "spectral.exr"), image.Width, image.Height, image.Grid, bands!, image, new ExrOptions
+            ExrWriter.Write(Path.Combine(outDir, "spectral.exr"), image.Width, image.Height, image.Grid, bands!, xyz, new ExrOptions
             {
                 Colorimeter = scene.Colorimeter,
                 Xyz = true,
