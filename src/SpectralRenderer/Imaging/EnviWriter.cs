@@ -53,7 +53,12 @@ public static class EnviWriter
     {
         var inv = CultureInfo.InvariantCulture;
         var g = image.Grid;
-        string List(Func<int, string> item) => "{" + string.Join(", ", Enumerable.Range(0, g.Count).Select(item)) + "}";
+        string List(Func<int, string> item)
+        {
+            var list = new StringBuilder("{");
+            for (int b = 0; b < g.Count; b++) list.Append(b > 0 ? ", " : "").Append(item(b));
+            return list.Append('}').ToString();
+        }
         description ??= $"SpectralRenderer spectral radiance, bands {g}";
         description = description.Replace('{', '(').Replace('}', ')').Replace("\r", " ").Replace("\n", " ");
         var sb = new StringBuilder();

@@ -65,9 +65,13 @@ public static class ExrWriter
         if (bands.Length != n * grid.Count) throw new ArgumentException($"band planes hold {bands.Length} values, {w}×{h}×{grid.Count} expected");
 
         // Channels, each a row-major H × W plane, sorted by name in byte order as OpenEXR's ChannelList is.
-        var channels = new List<(string Name, ReadOnlyMemory<float> Plane)>();
-        for (int b = 0; b < grid.Count; b++)
-            channels.Add((SpectralChannelName(grid.Centre(b), options.Reflective), bands.AsMemory(b * n, n)));
+        // (Plain arrays and a small sort of our own: no generic collection code to compile at startup.)
+        int count = grid.Count + (options.Rgb ? 3 : 0) + (options.Xyz ? 3 : 0);
+        var names = new string[count];
+        var planes = new ReadOnlyMemory<float>[count];
+        int c0 = 0;
+        for (int b = 0; b < grid.Count; b++, c0++)
+            (names[c0], planes[c0]) = (SpectralChannelName(grid.Centre(b), options.Reflective), bands.AsMemory(b * n, n));
         if (options.Rgb || options.Xyz)
         {
             xyz ??= XyzPlanes.Compute(options.Colorimeter!, bands, n);
@@ -82,14 +86,15 @@ public static class ExrWriter
                     preview[3][i] = (float)xyz.X[i]; preview[4][i] = (float)xyz.Y[i]; preview[5][i] = (float)xyz.Z[i];
                 }
             });
-            if (options.Rgb) { channels.Add(("R", preview[0])); channels.Add(("G", preview[1])); channels.Add(("B", preview[2])); }
-            if (options.Xyz) { channels.Add(("X", preview[3])); channels.Add(("Y", preview[4])); channels.Add(("Z", preview[5])); }
+            string[] previewNames = ["R", "G", "B", "X", "Y", "Z"];
+            for (int i = 0; i < 6; i++)
+                if (i < 3 ? options.Rgb : options.Xyz) (names[c0], planes[c0++]) = (previewNames[i], preview[i]);
         }
-        channels.Sort((a, b) => string.CompareOrdinal(a.Name, b.Name));
-        if (channels.Select(c => c.Name).Distinct().Count() != channels.Count)
-            throw new ArgumentException("two EXR channels have the same name (are two bands centred on the same wavelength?)");
+        SortByName(names, planes);
+        for (int c = 1; c < count; c++)
+            if (names[c] == names[c - 1]) throw new ArgumentException("two EXR channels have the same name (are two bands centred on the same wavelength?)");
 
-        var header = Header(w, h, grid, options, channels.Select(c => c.Name).ToList(), out bool longNames);
+        var header = Header(w, h, grid, options, names, out bool longNames);
 
         int lines = LinesPerChunk(options.Compression);
         int chunkCount = (h + lines - 1) / lines;
@@ -98,7 +103,6 @@ public static class ExrWriter
         // streamed from the planes when the file is written. Other stored chunks and all deflated ones are kept.
         bool rowsAreRaw = sampleBytes == 4 && BitConverter.IsLittleEndian;
         var chunks = new byte[]?[chunkCount];
-        var planes = channels.Select(c => c.Plane).ToArray();
         Parallel.For(0, chunkCount, (c) =>
         {
             int y0 = c * lines, y1 = Math.Min(h, y0 + lines);
@@ -176,11 +180,29 @@ public static class ExrWriter
             throw new ArgumentException($"the colorimeter's band grid {cm.Grid} differs from the image's {grid}");
     }
 
-    /// <summary>File layout §"Header": attributes (name, type name, size, value), then a null byte.</summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
-    static byte[] Header(int width, int height, BandGrid grid, ExrOptions options, List<string> channelNames, out bool longNames)
+    /// <summary>Insertion sort by name in ordinal (byte) order, <paramref name="items"/> moving with their names.</summary>
+    static void SortByName<T>(string[] names, T[] items)
     {
-        var attrs = new SortedDictionary<string, (string Type, byte[] Value)>(StringComparer.Ordinal);
+        for (int i = 1; i < names.Length; i++)
+            for (int j = i; j > 0 && string.CompareOrdinal(names[j - 1], names[j]) > 0; j--)
+            {
+                (names[j - 1], names[j]) = (names[j], names[j - 1]);
+                (items[j - 1], items[j]) = (items[j], items[j - 1]);
+            }
+    }
+
+    /// <summary>One header attribute: name, type name, value bytes.</summary>
+    sealed class Attr(string name, string type, byte[] value)
+    {
+        public readonly string Name = name, Type = type;
+        public readonly byte[] Value = value;
+    }
+
+    /// <summary>File layout §"Header": attributes (name, type name, size, value) sorted by name, then a null byte.</summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
+    static byte[] Header(int width, int height, BandGrid grid, ExrOptions options, string[] channelNames, out bool longNames)
+    {
+        var attrs = new List<Attr>();
 
         // chlist: per channel name\0, int pixel type, uchar pLinear, 3 reserved zero bytes, int xSampling, int ySampling; then \0.
         var chlist = new MemoryStream();
@@ -193,43 +215,52 @@ public static class ExrWriter
             cw.Write(1); cw.Write(1);        // x and y sampling
         }
         cw.Write((byte)0);
-        attrs["channels"] = ("chlist", chlist.ToArray());
-        attrs["compression"] = ("compression", [(byte)options.Compression]);
+        attrs.Add(new("channels", "chlist", chlist.ToArray()));
+        attrs.Add(new("compression", "compression", [(byte)options.Compression]));
         var box = Box(0, 0, width - 1, height - 1);
-        attrs["dataWindow"] = ("box2i", box);
-        attrs["displayWindow"] = ("box2i", box);
-        attrs["lineOrder"] = ("lineOrder", [0]);          // INCREASING_Y
-        attrs["pixelAspectRatio"] = ("float", Floats(1f));
-        attrs["screenWindowCenter"] = ("v2f", Floats(0f, 0f));
-        attrs["screenWindowWidth"] = ("float", Floats(1f));
+        attrs.Add(new("dataWindow", "box2i", box));
+        attrs.Add(new("displayWindow", "box2i", box));
+        attrs.Add(new("lineOrder", "lineOrder", [0]));          // INCREASING_Y
+        attrs.Add(new("pixelAspectRatio", "float", Floats(1f)));
+        attrs.Add(new("screenWindowCenter", "v2f", Floats(0f, 0f)));
+        attrs.Add(new("screenWindowWidth", "float", Floats(1f)));
         if (options.Rgb)  // R, G, B are linear sRGB: ITU-R BT.709 primaries, D65 white (x, y pairs R, G, B, W).
-            attrs["chromaticities"] = ("chromaticities", Floats(0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f));
+            attrs.Add(new("chromaticities", "chromaticities", Floats(0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f)));
 
         // JCGT 2021 §3: the layout version and, for emissive images, the radiometric units.
-        attrs["spectralLayoutVersion"] = ("string", Encoding.UTF8.GetBytes(LayoutVersion));
-        if (!options.Reflective) attrs["emissiveUnits"] = ("string", Encoding.UTF8.GetBytes(EmissiveUnits));
-        attrs["spectralBandEdges"] = ("string", Encoding.UTF8.GetBytes(
-            string.Join(",", grid.Edges().Select(e => e.ToString("R", CultureInfo.InvariantCulture)))));
+        attrs.Add(new("spectralLayoutVersion", "string", Encoding.UTF8.GetBytes(LayoutVersion)));
+        if (!options.Reflective) attrs.Add(new("emissiveUnits", "string", Encoding.UTF8.GetBytes(EmissiveUnits)));
+        var edges = new StringBuilder();
+        foreach (double e in grid.Edges()) edges.Append(edges.Length > 0 ? "," : "").Append(e.ToString("R", CultureInfo.InvariantCulture));
+        attrs.Add(new("spectralBandEdges", "string", Encoding.UTF8.GetBytes(edges.ToString())));
         if (options.Colorimeter is { } cm)
         {
-            attrs["spectralKappa"] = ("double", BitConverter.GetBytes(cm.Kappa));
-            attrs["spectralIntegration"] = ("string", Encoding.UTF8.GetBytes(
-                $"{cm.Scheme.ToString().ToLowerInvariant()}; observer {cm.Observer.Name}; reference light {cm.ReferenceLight.Name}; {(cm.Absolute ? "absolute" : "relative")}"));
+            attrs.Add(new("spectralKappa", "double", BitConverter.GetBytes(cm.Kappa)));
+            attrs.Add(new("spectralIntegration", "string", Encoding.UTF8.GetBytes(
+                $"{cm.Scheme.ToString().ToLowerInvariant()}; observer {cm.Observer.Name}; reference light {cm.ReferenceLight.Name}; {(cm.Absolute ? "absolute" : "relative")}")));
         }
         if (options.Attributes is not null)
             foreach (var (k, v) in options.Attributes)
-                if (!attrs.ContainsKey(k)) attrs[k] = ("string", Encoding.UTF8.GetBytes(v));
+            {
+                bool taken = false;
+                foreach (var a in attrs) taken |= a.Name == k;
+                if (!taken) attrs.Add(new(k, "string", Encoding.UTF8.GetBytes(v)));
+            }
+        var sorted = attrs.ToArray();
+        SortByName(Array.ConvertAll(sorted, a => a.Name), sorted);
 
-        longNames = channelNames.Concat(attrs.Keys).Concat(attrs.Values.Select(a => a.Type)).Any(n => Encoding.UTF8.GetByteCount(n) > 31);
+        longNames = false;
+        foreach (var name in channelNames) longNames |= Encoding.UTF8.GetByteCount(name) > 31;
+        foreach (var a in sorted) longNames |= Encoding.UTF8.GetByteCount(a.Name) > 31 || Encoding.UTF8.GetByteCount(a.Type) > 31;
         var ms = new MemoryStream();
         var bw = new BinaryWriter(ms);
-        foreach (var (name, (type, value)) in attrs)
+        foreach (var a in sorted)
         {
-            if (Encoding.UTF8.GetByteCount(name) > 255) throw new ArgumentException($"EXR attribute name '{name}' is longer than 255 bytes");
-            bw.Write(Encoding.UTF8.GetBytes(name)); bw.Write((byte)0);
-            bw.Write(Encoding.ASCII.GetBytes(type)); bw.Write((byte)0);
-            bw.Write(value.Length);
-            bw.Write(value);
+            if (Encoding.UTF8.GetByteCount(a.Name) > 255) throw new ArgumentException($"EXR attribute name '{a.Name}' is longer than 255 bytes");
+            bw.Write(Encoding.UTF8.GetBytes(a.Name)); bw.Write((byte)0);
+            bw.Write(Encoding.ASCII.GetBytes(a.Type)); bw.Write((byte)0);
+            bw.Write(a.Value.Length);
+            bw.Write(a.Value);
         }
         bw.Write((byte)0);
         return ms.ToArray();

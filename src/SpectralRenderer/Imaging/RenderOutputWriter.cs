@@ -65,8 +65,11 @@ public static class RenderOutputWriter
             System.Runtime.ExceptionServices.ExceptionDispatchInfo.Capture(first).Throw();
         }
 
-        var written = groups.SelectMany(g => g).ToList();
-        json!["files"] = new JsonArray(written.Select(f => (JsonNode)JsonValue.Create(f)!).ToArray());
+        var written = new List<string>();
+        var files = new JsonArray();
+        foreach (var g in groups)
+            foreach (var f in g) { written.Add(f); files.Add(JsonValue.Create(f)); }
+        json!["files"] = files;
         AtomicFile.WriteAllText(Path.Combine(outDir, "render.json"), json.ToJsonString(new JsonSerializerOptions { WriteIndented = true }));
         written.Add("render.json");
         return written;
@@ -150,7 +153,18 @@ public static class RenderOutputWriter
     {
         var g = scene.Grid;
         var c = scene.Colorimeter;
-        JsonArray Arr(IEnumerable<double> v) => new(v.Select(x => (JsonNode)JsonValue.Create(x)!).ToArray());
+        static double[] Centres(Spectra.BandGrid g)
+        {
+            var c = new double[g.Count];
+            for (int b = 0; b < c.Length; b++) c[b] = g.Centre(b);
+            return c;
+        }
+        static JsonArray Arr(ReadOnlySpan<double> v)
+        {
+            var a = new JsonArray();
+            foreach (double x in v) a.Add(JsonValue.Create(x));
+            return a;
+        }
         var objects = new JsonArray();
         for (int i = 0; i < scene.Objects.Count; i++)
         {
@@ -182,7 +196,7 @@ public static class RenderOutputWriter
                 ["grid"] = g.ToString(),
                 ["count"] = g.Count,
                 ["edges_nm"] = Arr(g.Edges()),
-                ["centres_nm"] = Arr(Enumerable.Range(0, g.Count).Select(g.Centre)),
+                ["centres_nm"] = Arr(Centres(g)),
                 ["band_image_scale"] = bandScale,
             },
             ["colour"] = new JsonObject
@@ -190,7 +204,7 @@ public static class RenderOutputWriter
                 ["integration"] = scene.Integration.ToString().ToLowerInvariant(),
                 ["observer"] = c.Observer.Degrees,
                 ["reference_white"] = white.Name,
-                ["reference_white_spd"] = new JsonObject { ["wavelengths_nm"] = Arr(white.Wavelengths.ToArray()), ["values"] = Arr(white.Values.ToArray()) },
+                ["reference_white_spd"] = new JsonObject { ["wavelengths_nm"] = Arr(white.Wavelengths), ["values"] = Arr(white.Values) },
                 ["kappa"] = c.Kappa,
                 ["white_xyz"] = Arr([c.White.X, c.White.Y, c.White.Z]),
                 ["weights_x"] = Arr(c.Wx), ["weights_y"] = Arr(c.Wy), ["weights_z"] = Arr(c.Wz),

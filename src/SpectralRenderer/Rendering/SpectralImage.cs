@@ -1,3 +1,4 @@
+using System.Numerics;
 using System.Runtime.CompilerServices;
 using SpectralRenderer.Spectra;
 
@@ -84,8 +85,20 @@ public sealed class SpectralImage
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public float Max()
     {
+        // Per lane "take v when v > m", as the scalar loop does: NaNs never compare greater and are skipped.
         float m = 0;
-        foreach (var v in Data) if (v > m) m = v;
+        int i = 0;
+        if (Vector.IsHardwareAccelerated && Data.Length >= Vector<float>.Count)
+        {
+            var acc = Vector<float>.Zero;
+            for (; i + Vector<float>.Count <= Data.Length; i += Vector<float>.Count)
+            {
+                var v = new Vector<float>(Data.AsSpan(i));
+                acc = Vector.ConditionalSelect(Vector.GreaterThan(v, acc), v, acc);
+            }
+            for (int k = 0; k < Vector<float>.Count; k++) if (acc[k] > m) m = acc[k];
+        }
+        for (; i < Data.Length; i++) if (Data[i] > m) m = Data[i];
         return m;
     }
 }

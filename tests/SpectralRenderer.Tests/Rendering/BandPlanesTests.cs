@@ -42,6 +42,25 @@ public class BandPlanesTests
     }
 
     [Fact]
+    public void Max_is_the_largest_value_skipping_NaN_and_at_least_zero()
+    {
+        static float Scalar(float[] data) { float m = 0; foreach (var v in data) if (v > m) m = v; return m; }
+        var img = Noise(37, 23, BandGrid.Default, 8);   // random non-negative bit patterns: NaNs among them
+        Assert.Equal(Scalar(img.Data), img.Max());
+        Assert.True(img.Max() > 1e38f);
+        img.Data[100] = float.PositiveInfinity;
+        Assert.Equal(float.PositiveInfinity, img.Max());
+        var rng = new Random(1);
+        for (int i = 0; i < img.Data.Length; i++) img.Data[i] = rng.Next(5) == 0 ? float.NaN : (float)(rng.NextDouble() - 0.3);
+        img.Data[img.Data.Length - 1] = 0.75f;          // in the scalar tail
+        Assert.Equal(Scalar(img.Data), img.Max());
+        img.Data[3] = 0.9f;
+        Assert.Equal(0.9f, img.Max());
+        Array.Fill(img.Data, -1f);
+        Assert.Equal(0f, img.Max());
+    }
+
+    [Fact]
     public void A_pixel_range_copies_that_range_of_every_band_only()
     {
         var img = Noise(37, 23, BandGrid.Default, 5);
