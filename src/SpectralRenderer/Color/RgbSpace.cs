@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using SpectralRenderer.Diagnostics;
 
 namespace SpectralRenderer.Color;
@@ -67,7 +68,8 @@ public sealed class RgbSpace
     }
 
     /// <summary>The 8-bit code of a linear value, To8(Encode(linear)) exactly; the sRGB curve without pow (<see cref="Srgb8"/>).</summary>
-    public byte Encode8(double linear) => UsesSrgbCurve ? Srgb8.Encode(linear) : To8(Encode(linear));
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public byte Encode8(double linear) => UsesSrgbCurve ? Srgb8.Table.Encode(linear) : To8(Encode(linear));
 
     public (ushort R, ushort G, ushort B) Encode16(Xyz xyz)
     {
@@ -77,54 +79,49 @@ public sealed class RgbSpace
 
     /// <summary>
     /// To8(SrgbCurve(c)) by table: the 8-bit code rises by one at 255 thresholds, each found once as the least double
-    /// whose code the exact formula puts at k. A value's code is that of the lower edge of its 1/4096-wide bucket,
-    /// raised past any threshold inside the bucket (the curve's slope is at most 12.92, so thresholds are ≥ 1/3295 apart:
-    /// at most one compare).
+    /// whose code the exact formula puts at k. A value's code is that of the lower edge of its 1/4096-wide bucket, plus
+    /// one if it reaches the next threshold: the curve's slope is at most 12.92, so thresholds are ≥ 1/3295 apart and
+    /// a bucket holds at most one (checked when the table is built). Instance fields, so callers pay no static-init checks.
     /// </summary>
-    static class Srgb8
+    sealed class Srgb8
     {
-        const int Buckets = 4096;                           // a power of two: c · Buckets is exact, so bucket i is [i, i + 1) / Buckets
-        static readonly double[] Threshold = Thresholds();  // [k] = least c with code k, k = 1 … 255; [256] = +∞
-        static readonly byte[] BucketCode = Codes();
+        const int Buckets = 4096;          // a power of two: c · Buckets is exact, so bucket i is [i, i + 1) / Buckets
+        readonly double[] _threshold;      // [k] = least c with code k, k = 1 … 255; [0] = −∞, [256] = +∞
+        readonly byte[] _bucketCode;
 
-        internal static byte Encode(double linear)
+        public static readonly Srgb8 Table = new();
+
+        Srgb8()
         {
-            if (!(linear > 0)) return 0;                    // negative, zero or NaN, as Encode clips them
-            if (linear >= 1) return 255;
-            int code = BucketCode[(int)(linear * Buckets)];
-            while (linear >= Threshold[code + 1]) code++;
-            return (byte)code;
-        }
-
-        static int Code(double c) => To8(SrgbCurve(c));
-
-        static double[] Thresholds()
-        {
-            var t = new double[257];
-            t[256] = double.PositiveInfinity;
+            _threshold = new double[257];
+            _threshold[0] = double.NegativeInfinity;
+            _threshold[256] = double.PositiveInfinity;
             for (int k = 1; k <= 255; k++)
             {
                 // Start at the curve's inverse of the rounding midpoint (k − ½)/255, then step by ulps to the exact boundary.
                 double m = (k - 0.5) / 255;
                 double c = m <= 12.92 * 0.0031308 ? m / 12.92 : Math.Pow((m + 0.055) / 1.055, 2.4);
-                while (c > 0 && Code(c) >= k) c = Math.BitDecrement(c);
-                while (Code(c) < k) c = Math.BitIncrement(c);
-                t[k] = c;
+                while (c > 0 && To8(SrgbCurve(c)) >= k) c = Math.BitDecrement(c);
+                while (To8(SrgbCurve(c)) < k) c = Math.BitIncrement(c);
+                _threshold[k] = c;
             }
-            return t;
-        }
-
-        static byte[] Codes()
-        {
-            var codes = new byte[Buckets + 1];
-            int k = 0;
-            for (int i = 0; i <= Buckets; i++)
+            _bucketCode = new byte[Buckets + 1];
+            for (int i = 0, k = 0; i <= Buckets; i++)
             {
                 double edge = i / (double)Buckets;
-                while (k < 255 && Threshold[k + 1] <= edge) k++;
-                codes[i] = (byte)k;
+                while (k < 255 && _threshold[k + 1] <= edge) k++;
+                _bucketCode[i] = (byte)k;
+                if (i > 0 && _bucketCode[i] > _bucketCode[i - 1] + 1) throw new InvalidOperationException("two sRGB code thresholds in one bucket");
             }
-            return codes;
+        }
+
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        public byte Encode(double linear)
+        {
+            if (!(linear > 0)) return 0;                    // negative, zero or NaN, as Encode clips them
+            if (linear >= 1) return 255;
+            int code = _bucketCode[(int)(linear * Buckets)];
+            return (byte)(linear >= _threshold[code + 1] ? code + 1 : code);
         }
     }
 
