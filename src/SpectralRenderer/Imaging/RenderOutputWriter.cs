@@ -23,7 +23,8 @@ public static class RenderOutputWriter
         var formats = scene.Output.Formats;
         var image = result.Image;
         Directory.CreateDirectory(outDir);
-        ClearPrevious(outDir);
+        // The previous render's files go while the planes are computed, and before any file is written.
+        var clearing = Task.Run(() => ClearPrevious(outDir));
         float scale = image.Max();
         int n = image.Width * image.Height;
         // Band-sequential planes, transposed once and shared by the band PNGs, the mosaic, spectral.exr and the ENVI cube;
@@ -31,8 +32,10 @@ public static class RenderOutputWriter
         float[]? bands = formats.Contains("bands") || formats.Contains("exr") || formats.Contains("envi") || formats.Contains("png") ? image.BandPlanes() : null;
         var xyz = formats.Contains("png") || formats.Contains("exr") ? XyzPlanes.Compute(scene.Colorimeter, bands, n) : null;
 
+        clearing.GetAwaiter().GetResult();
+
         // The groups are independent files: write them side by side; each keeps its own list, in a fixed order.
-        var groups = new List<string>[5];
+        var groups = new List<string>[8];
         for (int g = 0; g < groups.Length; g++) groups[g] = [];
         Action<string> Done(int g) => name => { lock (groups[g]) groups[g].Add(name); cancel.ThrowIfCancellationRequested(); };
         JsonObject? json = null;
@@ -57,7 +60,10 @@ public static class RenderOutputWriter
                 Done(3)("object-id.png");
                 AnalysisImages.Write(scene, result, outDir, Done(3));
             },
-            () => SpectralFiles.Write(scene, image, bands, xyz, outDir, formats, Done(4)),
+            () => { if (formats.Contains("exr")) SpectralFiles.WriteExr(scene, image, bands!, xyz, outDir, Done(4)); },
+            () => { if (formats.Contains("envi")) SpectralFiles.WriteEnvi(scene, image, bands!, outDir, Done(5)); },
+            () => { if (formats.Contains("npy")) SpectralFiles.WriteNpy(image, outDir, Done(6)); },
+            () => { if (formats.Contains("npy") || formats.Contains("envi") || formats.Contains("exr")) SpectralFiles.WriteWavelengths(image, outDir, Done(7)); },
             () => json = Describe(scene, result, scale, run));
         }
         catch (AggregateException e)

@@ -17,32 +17,42 @@ public static class SpectralFiles
     internal static void Write(Scene scene, SpectralImage image, float[]? bands, XyzPlanes? xyz, string outDir, IReadOnlySet<string> formats, Action<string> done)
     {
         if (bands is null && (formats.Contains("exr") || formats.Contains("envi"))) bands = image.BandPlanes();
-        if (formats.Contains("exr"))
+        if (formats.Contains("exr")) WriteExr(scene, image, bands!, xyz, outDir, done);
+        if (formats.Contains("envi")) WriteEnvi(scene, image, bands!, outDir, done);
+        if (formats.Contains("npy")) WriteNpy(image, outDir, done);
+        if (formats.Contains("npy") || formats.Contains("envi") || formats.Contains("exr")) WriteWavelengths(image, outDir, done);
+    }
+
+    /// <summary>spectral.exr: the bands, R, G, B and X, Y, Z.</summary>
+    internal static void WriteExr(Scene scene, SpectralImage image, float[] bands, XyzPlanes? xyz, string outDir, Action<string> done)
+    {
+        ExrWriter.Write(Path.Combine(outDir, "spectral.exr"), image.Width, image.Height, image.Grid, bands, xyz, new ExrOptions
         {
-            ExrWriter.Write(Path.Combine(outDir, "spectral.exr"), image.Width, image.Height, image.Grid, bands!, xyz, new ExrOptions
-            {
-                Colorimeter = scene.Colorimeter,
-                Xyz = true,
-                Attributes = new Dictionary<string, string> { ["software"] = $"spectral {typeof(SpectralFiles).Assembly.GetName().Version?.ToString(3)}" },
-            });
-            done("spectral.exr");
-        }
-        if (formats.Contains("envi"))
-        {
-            EnviWriter.Write(Path.Combine(outDir, "spectral.img"), image, bands!, $"SpectralRenderer render of {Path.GetFileName(scene.SourcePath)}; spectral radiance, {scene.Integration.ToString().ToLowerInvariant()} band integration");
-            done("spectral.img");
-            done("spectral.hdr");
-        }
-        if (formats.Contains("npy"))
-        {
-            NpyWriter.Write(Path.Combine(outDir, "spectral.npy"), image);
-            done("spectral.npy");
-        }
-        if (formats.Contains("npy") || formats.Contains("envi") || formats.Contains("exr"))
-        {
-            WavelengthsCsv.Write(Path.Combine(outDir, "wavelengths.csv"), image.Grid);
-            done("wavelengths.csv");
-        }
+            Colorimeter = scene.Colorimeter,
+            Xyz = true,
+            Attributes = new Dictionary<string, string> { ["software"] = $"spectral {typeof(SpectralFiles).Assembly.GetName().Version?.ToString(3)}" },
+        });
+        done("spectral.exr");
+    }
+
+    /// <summary>spectral.img and spectral.hdr.</summary>
+    internal static void WriteEnvi(Scene scene, SpectralImage image, float[] bands, string outDir, Action<string> done)
+    {
+        EnviWriter.Write(Path.Combine(outDir, "spectral.img"), image, bands, $"SpectralRenderer render of {Path.GetFileName(scene.SourcePath)}; spectral radiance, {scene.Integration.ToString().ToLowerInvariant()} band integration");
+        done("spectral.img");
+        done("spectral.hdr");
+    }
+
+    internal static void WriteNpy(SpectralImage image, string outDir, Action<string> done)
+    {
+        NpyWriter.Write(Path.Combine(outDir, "spectral.npy"), image);
+        done("spectral.npy");
+    }
+
+    internal static void WriteWavelengths(SpectralImage image, string outDir, Action<string> done)
+    {
+        WavelengthsCsv.Write(Path.Combine(outDir, "wavelengths.csv"), image.Grid);
+        done("wavelengths.csv");
     }
 
     /// <summary>Reads the spectral cube of a render folder: spectral.npy, else spectral.exr, else spectral.img.</summary>
