@@ -40,7 +40,10 @@ public static class BandMosaic
                     double sum = 0;
                     for (int y = y0; y < y1; y++)
                         for (int x = y * width + x0; x < y * width + x1; x++) sum += band[x];
-                    double mean = scale > 0 ? sum / ((y1 - y0) * (x1 - x0)) / scale : 0;
+                    int count = (y1 - y0) * (x1 - x0);
+                    // Dividing by a power of two is exact, so multiplying by its reciprocal gives the same double.
+                    double average = (count & (count - 1)) == 0 ? sum * (1.0 / count) : sum / count;
+                    double mean = scale > 0 ? average / scale : 0;
                     px[(oy + ty) * w + ox + tx] = RgbSpace.Srgb.Encode8(mean);   // = To8(SrgbCurve(clamp(mean, 0, 1)))
                 }
             }
