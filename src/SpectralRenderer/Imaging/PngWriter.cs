@@ -279,7 +279,17 @@ public static class PngWriter
                 break;
             case 4: // Paeth: x − PaethPredictor(a, b, c)
                 for (int i = 0; i < Math.Min(bpp, n); i++) o[i] = (byte)(x[i] - b[i]);   // a = c = 0: the predictor is b
-                for (int i = bpp; i < n; i++) o[i] = (byte)(x[i] - Paeth(x[i - bpp], b[i], b[i - bpp]));
+                v = bpp;
+                if (Vector.IsHardwareAccelerated)
+                    for (; v + Vector<byte>.Count <= n; v += Vector<byte>.Count)
+                    {
+                        Vector.Widen(new Vector<byte>(x[(v - bpp)..]), out var a0, out var a1);
+                        Vector.Widen(new Vector<byte>(b[v..]), out var b0, out var b1);
+                        Vector.Widen(new Vector<byte>(b[(v - bpp)..]), out var c0, out var c1);
+                        var predictor = Vector.Narrow(PaethVector(a0, b0, c0), PaethVector(a1, b1, c1));
+                        (new Vector<byte>(x[v..]) - predictor).CopyTo(o[v..]);
+                    }
+                for (int i = v; i < n; i++) o[i] = (byte)(x[i] - Paeth(x[i - bpp], b[i], b[i - bpp]));
                 break;
         }
     }
@@ -293,6 +303,18 @@ public static class PngWriter
             for (; v + Vector<byte>.Count <= n; v += Vector<byte>.Count)
                 (new Vector<byte>(x[v..]) - new Vector<byte>(x[(v - bpp)..])).CopyTo(o[v..]);
         for (int i = v; i < n; i++) o[i] = (byte)(x[i] - x[i - bpp]);
+    }
+
+    /// <summary><see cref="Paeth"/> on 16-bit lanes holding bytes.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    static Vector<ushort> PaethVector(Vector<ushort> a, Vector<ushort> b, Vector<ushort> c)
+    {
+        Vector<short> sa = Vector.AsVectorInt16(a), sb = Vector.AsVectorInt16(b), sc = Vector.AsVectorInt16(c);
+        Vector<short> dbc = sb - sc, dac = sa - sc;
+        Vector<short> pa = Vector.Abs(dbc), pb = Vector.Abs(dac), pc = Vector.Abs(dbc + dac);
+        var useA = Vector.LessThanOrEqual(pa, pb) & Vector.LessThanOrEqual(pa, pc);
+        var useB = Vector.LessThanOrEqual(pb, pc);
+        return Vector.AsVectorUInt16(Vector.ConditionalSelect(useA, sa, Vector.ConditionalSelect(useB, sb, sc)));
     }
 
     /// <summary>§9.4: the Paeth predictor, ties broken in the order a, b, c.</summary>
