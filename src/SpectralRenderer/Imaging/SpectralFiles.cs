@@ -9,21 +9,18 @@ namespace SpectralRenderer.Imaging;
 /// </summary>
 public static class SpectralFiles
 {
-    public static void Write(Scene scene, SpectralImage image, string outDir, IReadOnlySet<string> formats, Action<string> done) =>
-        Write(scene, image, null, null, outDir, formats, done);
-
-    /// <param name="bands">The image's band planes (<see cref="SpectralImage.CopyBands"/>) when the caller has them already.</param>
-    /// <param name="xyz">Their <see cref="XyzPlanes"/> of scene.Colorimeter, likewise.</param>
-    internal static void Write(Scene scene, SpectralImage image, float[]? bands, XyzPlanes? xyz, string outDir, IReadOnlySet<string> formats, Action<string> done)
+    /// <summary>The cubes <paramref name="formats"/> asks for, one after another (RenderOutputWriter writes them side by side).</summary>
+    public static void Write(Scene scene, SpectralImage image, string outDir, IReadOnlySet<string> formats, Action<string> done)
     {
-        if (bands is null && (formats.Contains("exr") || formats.Contains("envi"))) bands = image.BandPlanes();
-        if (formats.Contains("exr")) WriteExr(scene, image, bands!, xyz, outDir, done);
+        var bands = formats.Contains("exr") || formats.Contains("envi") ? image.BandPlanes() : null;
+        if (formats.Contains("exr")) WriteExr(scene, image, bands!, null, outDir, done);
         if (formats.Contains("envi")) WriteEnvi(scene, image, bands!, outDir, done);
         if (formats.Contains("npy")) WriteNpy(image, outDir, done);
         if (formats.Contains("npy") || formats.Contains("envi") || formats.Contains("exr")) WriteWavelengths(image, outDir, done);
     }
 
-    /// <summary>spectral.exr: the bands, R, G, B and X, Y, Z.</summary>
+    /// <param name="bands">The image's band planes (<see cref="SpectralImage.CopyBands"/>).</param>
+    /// <param name="xyz">Their <see cref="XyzPlanes"/> of scene.Colorimeter when the caller has them already.</param>
     internal static void WriteExr(Scene scene, SpectralImage image, float[] bands, XyzPlanes? xyz, string outDir, Action<string> done)
     {
         ExrWriter.Write(Path.Combine(outDir, "spectral.exr"), image.Width, image.Height, image.Grid, bands, xyz, new ExrOptions
