@@ -23,6 +23,9 @@ public sealed class DisplayEncoder
 
     public RgbSpace Space { get; }
 
+    /// <summary>The colorimeter of eq. 3, whose <see cref="Colorimeter.ToXyz(ReadOnlySpan{float})"/> <see cref="Encode8(Xyz)"/> expects.</summary>
+    public Colorimeter Colorimeter => _colorimeter;
+
     public Xyz Xyz(ReadOnlySpan<float> bands) => _colorimeter.ToXyz(bands) * _exposure;
 
     /// <summary>Linear RGB (unclipped) of a pixel spectrum.</summary>
@@ -33,9 +36,12 @@ public sealed class DisplayEncoder
     }
 
     /// <summary>8-bit display RGB of a pixel spectrum.</summary>
-    public (byte R, byte G, byte B) Encode8(ReadOnlySpan<float> bands)
+    public (byte R, byte G, byte B) Encode8(ReadOnlySpan<float> bands) => Encode8(_colorimeter.ToXyz(bands));
+
+    /// <summary>8-bit display RGB of a pixel whose eq. 3 XYZ (before exposure) is <paramref name="xyz"/>: the same bytes as from its spectrum.</summary>
+    public (byte R, byte G, byte B) Encode8(Xyz xyz)
     {
-        var (r, g, b) = Linear(bands);
-        return (RgbSpace.To8(Space.Encode(r)), RgbSpace.To8(Space.Encode(g)), RgbSpace.To8(Space.Encode(b)));
+        var v = Matrix3.Apply(_toRgb, xyz * _exposure);
+        return (Space.Encode8(v.X), Space.Encode8(v.Y), Space.Encode8(v.Z));
     }
 }

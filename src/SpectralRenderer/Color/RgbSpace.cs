@@ -1,3 +1,4 @@
+using System.Runtime.CompilerServices;
 using SpectralRenderer.Diagnostics;
 
 namespace SpectralRenderer.Color;
@@ -63,13 +64,65 @@ public sealed class RgbSpace
     public (byte R, byte G, byte B) Encode8(Xyz xyz)
     {
         var (r, g, b) = Linear(xyz);
-        return (To8(Encode(r)), To8(Encode(g)), To8(Encode(b)));
+        return (Encode8(r), Encode8(g), Encode8(b));
     }
+
+    /// <summary>The 8-bit code of a linear value, To8(Encode(linear)) exactly; the sRGB curve without pow (<see cref="Srgb8"/>).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public byte Encode8(double linear) => UsesSrgbCurve ? Srgb8.Table.Encode(linear) : To8(Encode(linear));
 
     public (ushort R, ushort G, ushort B) Encode16(Xyz xyz)
     {
         var (r, g, b) = Linear(xyz);
         return (To16(Encode(r)), To16(Encode(g)), To16(Encode(b)));
+    }
+
+    /// <summary>
+    /// To8(SrgbCurve(c)) by table: the 8-bit code rises by one at 255 thresholds, each found once as the least double
+    /// whose code the exact formula puts at k. A value's code is that of the lower edge of its 1/4096-wide bucket, plus
+    /// one if it reaches the next threshold: the curve's slope is at most 12.92, so thresholds are ≥ 1/3295 apart and
+    /// a bucket holds at most one (checked when the table is built). Instance fields, so callers pay no static-init checks.
+    /// </summary>
+    sealed class Srgb8
+    {
+        const int Buckets = 4096;          // a power of two: c · Buckets is exact, so bucket i is [i, i + 1) / Buckets
+        readonly double[] _threshold;      // [k] = least c with code k, k = 1 … 255; [0] = −∞, [256] = +∞
+        readonly byte[] _bucketCode;
+
+        public static readonly Srgb8 Table = new();
+
+        Srgb8()
+        {
+            _threshold = new double[257];
+            _threshold[0] = double.NegativeInfinity;
+            _threshold[256] = double.PositiveInfinity;
+            for (int k = 1; k <= 255; k++)
+            {
+                // Start at the curve's inverse of the rounding midpoint (k − ½)/255, then step by ulps to the exact boundary.
+                double m = (k - 0.5) / 255;
+                double c = m <= 12.92 * 0.0031308 ? m / 12.92 : Math.Pow((m + 0.055) / 1.055, 2.4);
+                while (c > 0 && To8(SrgbCurve(c)) >= k) c = Math.BitDecrement(c);
+                while (To8(SrgbCurve(c)) < k) c = Math.BitIncrement(c);
+                _threshold[k] = c;
+            }
+            _bucketCode = new byte[Buckets + 1];
+            for (int i = 0, k = 0; i <= Buckets; i++)
+            {
+                double edge = i / (double)Buckets;
+                while (k < 255 && _threshold[k + 1] <= edge) k++;
+                _bucketCode[i] = (byte)k;
+                if (i > 0 && _bucketCode[i] > _bucketCode[i - 1] + 1) throw new InvalidOperationException("two sRGB code thresholds in one bucket");
+            }
+        }
+
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        public byte Encode(double linear)
+        {
+            if (!(linear > 0)) return 0;                    // negative, zero or NaN, as Encode clips them
+            if (linear >= 1) return 255;
+            int code = _bucketCode[(int)(linear * Buckets)];
+            return (byte)(linear >= _threshold[code + 1] ? code + 1 : code);
+        }
     }
 
     public static byte To8(double v) => (byte)Math.Round(255 * v, MidpointRounding.AwayFromZero);

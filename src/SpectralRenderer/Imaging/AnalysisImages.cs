@@ -30,9 +30,26 @@ public static class AnalysisImages
         AtomicFile.Write(Path.Combine(outDir, "mask-highlight.png"), s => PngWriter.WriteGray8(s, image.Width, image.Height, mask));
         done("mask-highlight.png");
 
-        var truth = GroundTruthReflectance(scene, result);
-        ExrWriter.Write(Path.Combine(outDir, "reflectance.exr"), truth, new ExrOptions { Reflective = true, Rgb = false, Colorimeter = scene.Colorimeter });
+        ExrWriter.Write(Path.Combine(outDir, "reflectance.exr"), image.Width, image.Height, image.Grid, GroundTruthBands(scene, result), null,
+            new ExrOptions { Reflective = true, Rgb = false, Colorimeter = scene.Colorimeter });
         done("reflectance.exr");
+    }
+
+    /// <summary><see cref="GroundTruthReflectance"/> as band-sequential planes (<see cref="SpectralImage.CopyBands"/>), built directly.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    internal static float[] GroundTruthBands(Scene scene, RenderResult result)
+    {
+        var ids = result.ObjectIds;
+        int n = ids.Length, bands = result.Image.Bands;
+        var planes = new float[n * bands];
+        var value = new float[scene.Objects.Count + 1];  // per band: index id + 1, 0 for background (id −1)
+        for (int b = 0; b < bands; b++)
+        {
+            for (int o = 0; o < scene.Objects.Count; o++) value[o + 1] = scene.Materials[scene.Objects[o].Material].Diffuse[b];
+            var plane = planes.AsSpan(b * n, n);
+            for (int i = 0; i < plane.Length; i++) plane[i] = value[ids[i] + 1];
+        }
+        return planes;
     }
 
     /// <summary>m_diff of the material each pixel's centre ray hits (0 for background), band values.</summary>

@@ -1,6 +1,7 @@
 using System.Runtime.CompilerServices;
 using System.Buffers.Binary;
 using System.Globalization;
+using System.Runtime.InteropServices;
 using System.Text;
 using SpectralRenderer.Rendering;
 
@@ -16,9 +17,13 @@ namespace SpectralRenderer.Imaging;
 public static class EnviWriter
 {
     /// <summary>Writes <paramref name="imagePath"/> (e.g. spectral.img) and its header (spectral.hdr).</summary>
-    public static void Write(string imagePath, SpectralImage image, string? description = null)
+    public static void Write(string imagePath, SpectralImage image, string? description = null) =>
+        Write(imagePath, image, image.BandPlanes(), description);
+
+    /// <summary>As <see cref="Write(string, SpectralImage, string?)"/>, from the image's band planes (<see cref="SpectralImage.CopyBands"/>) — already BSQ.</summary>
+    internal static void Write(string imagePath, SpectralImage image, float[] bands, string? description = null)
     {
-        AtomicFile.Write(imagePath, s => WriteData(s, image));
+        AtomicFile.Write(imagePath, s => WriteData(s, bands));
         AtomicFile.WriteAllText(HeaderPath(imagePath), Header(image, description));
     }
 
@@ -26,17 +31,19 @@ public static class EnviWriter
     public static string HeaderPath(string imagePath) => Path.ChangeExtension(imagePath, ".hdr");
 
     /// <summary>The BSQ float32 little-endian samples.</summary>
+    public static void WriteData(Stream stream, SpectralImage image) => WriteData(stream, image.BandPlanes());
+
+    /// <summary>Band-sequential planes as float32 little-endian: one large write on a little-endian machine.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    public static void WriteData(Stream stream, SpectralImage image)
+    static void WriteData(Stream stream, ReadOnlySpan<float> bands)
     {
-        int n = image.Width * image.Height;
-        var plane = new float[n];
-        var bytes = new byte[n * 4];
-        for (int b = 0; b < image.Bands; b++)
+        if (BitConverter.IsLittleEndian) { stream.Write(MemoryMarshal.AsBytes(bands)); return; }
+        var bytes = new byte[4 << 14];
+        for (int at = 0; at < bands.Length; at += bytes.Length / 4)
         {
-            image.CopyBand(b, plane);
-            for (int i = 0; i < n; i++) BinaryPrimitives.WriteSingleLittleEndian(bytes.AsSpan(4 * i), plane[i]);
-            stream.Write(bytes);
+            int n = Math.Min(bytes.Length / 4, bands.Length - at);
+            for (int i = 0; i < n; i++) BinaryPrimitives.WriteSingleLittleEndian(bytes.AsSpan(4 * i), bands[at + i]);
+            stream.Write(bytes, 0, 4 * n);
         }
     }
 
@@ -46,7 +53,12 @@ public static class EnviWriter
     {
         var inv = CultureInfo.InvariantCulture;
         var g = image.Grid;
-        string List(Func<int, string> item) => "{" + string.Join(", ", Enumerable.Range(0, g.Count).Select(item)) + "}";
+        string List(Func<int, string> item)
+        {
+            var list = new StringBuilder("{");
+            for (int b = 0; b < g.Count; b++) list.Append(b > 0 ? ", " : "").Append(item(b));
+            return list.Append('}').ToString();
+        }
         description ??= $"SpectralRenderer spectral radiance, bands {g}";
         description = description.Replace('{', '(').Replace('}', ')').Replace("\r", " ").Replace("\n", " ");
         var sb = new StringBuilder();

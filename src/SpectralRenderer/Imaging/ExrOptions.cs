@@ -25,6 +25,12 @@ public enum ExrPixelType
 public sealed record ExrOptions
 {
     public ExrCompression Compression { get; init; } = ExrCompression.Zip;
+    /// <summary>
+    /// ZIP only: deflate every chunk (the smallest file) rather than only the chunks whose samples mostly repeat
+    /// (<see cref="ExrZip.MinRepeatFraction"/>), which is several times faster on noisy radiance: the others are stored
+    /// raw, as OpenEXR allows per chunk.
+    /// </summary>
+    public bool DeflateEveryChunk { get; init; }
     /// <summary>Pixel type of every channel (spectral and preview).</summary>
     public ExrPixelType PixelType { get; init; } = ExrPixelType.Float;
     /// <summary>Adds R, G, B: linear sRGB (IEC 61966-2-1 matrix) of each pixel's XYZ, so ordinary viewers show a picture.</summary>

@@ -1,3 +1,4 @@
+using System.Buffers;
 using System.Runtime.CompilerServices;
 using System.Buffers.Binary;
 using System.Runtime.InteropServices;
@@ -5,6 +6,7 @@ using System.Globalization;
 using System.Text;
 using SpectralRenderer.Color;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Imaging;
 
@@ -35,120 +37,172 @@ public static class ExrWriter
     public static void Write(string path, SpectralImage image, ExrOptions? options = null)
     {
         options ??= new ExrOptions();
-        Validate(image, options);
-        AtomicFile.Write(path, s => Write(s, image, options));
+        Validate(image.Grid, options);
+        var bands = image.BandPlanes();
+        AtomicFile.Write(path, s => Write(s, image.Width, image.Height, image.Grid, bands, null, options));
     }
 
     public static void Write(Stream stream, SpectralImage image, ExrOptions? options = null)
     {
         options ??= new ExrOptions();
-        Validate(image, options);
-        int w = image.Width, h = image.Height;
+        Validate(image.Grid, options);
+        Write(stream, image.Width, image.Height, image.Grid, image.BandPlanes(), null, options);
+    }
+
+    /// <summary>
+    /// Writes band-sequential planes (<see cref="SpectralImage.CopyBands"/>) that the caller already holds, and their
+    /// <see cref="XyzPlanes"/> (of options.Colorimeter) when it has them: the R,G,B / X,Y,Z channels are made from them.
+    /// </summary>
+    internal static void Write(string path, int width, int height, BandGrid grid, float[] bands, XyzPlanes? xyz, ExrOptions options)
+    {
+        Validate(grid, options);
+        AtomicFile.Write(path, s => Write(s, width, height, grid, bands, xyz, options));
+    }
+
+    static void Write(Stream stream, int w, int h, BandGrid grid, float[] bands, XyzPlanes? xyz, ExrOptions options)
+    {
+        int n = w * h;
+        if (bands.Length != n * grid.Count) throw new ArgumentException($"band planes hold {bands.Length} values, {w}×{h}×{grid.Count} expected");
 
         // Channels, each a row-major H × W plane, sorted by name in byte order as OpenEXR's ChannelList is.
-        var channels = new List<(string Name, float[] Plane)>();
-        for (int b = 0; b < image.Bands; b++)
-        {
-            var plane = new float[w * h];
-            image.CopyBand(b, plane);
-            channels.Add((SpectralChannelName(image.Grid.Centre(b), options.Reflective), plane));
-        }
+        // (Plain arrays and a small sort of our own: no generic collection code to compile at startup.)
+        int count = grid.Count + (options.Rgb ? 3 : 0) + (options.Xyz ? 3 : 0);
+        var names = new string[count];
+        var planes = new ReadOnlyMemory<float>[count];
+        int c0 = 0;
+        for (int b = 0; b < grid.Count; b++, c0++)
+            (names[c0], planes[c0]) = (SpectralChannelName(grid.Centre(b), options.Reflective), bands.AsMemory(b * n, n));
         if (options.Rgb || options.Xyz)
         {
-            var cm = options.Colorimeter!;
-            var planes = new float[6][];
-            for (int i = 0; i < 6; i++) planes[i] = new float[w * h];
+            xyz ??= XyzPlanes.Compute(options.Colorimeter!, bands, n);
+            var preview = new float[6][];
+            for (int i = 0; i < 6; i++) preview[i] = new float[n];
             Parallel.For(0, h, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (y) =>
             {
-                for (int x = 0; x < w; x++)
+                for (int i = y * w; i < (y + 1) * w; i++)
                 {
-                    int i = y * w + x;
-                    var xyz = cm.ToXyz((ReadOnlySpan<float>)image.Pixel(x, y));
-                    var (r, g, bl) = RgbSpace.Srgb.Linear(xyz);
-                    planes[0][i] = (float)r; planes[1][i] = (float)g; planes[2][i] = (float)bl;
-                    planes[3][i] = (float)xyz.X; planes[4][i] = (float)xyz.Y; planes[5][i] = (float)xyz.Z;
+                    var (r, g, bl) = RgbSpace.Srgb.Linear(xyz[i]);
+                    preview[0][i] = (float)r; preview[1][i] = (float)g; preview[2][i] = (float)bl;
+                    preview[3][i] = (float)xyz.X[i]; preview[4][i] = (float)xyz.Y[i]; preview[5][i] = (float)xyz.Z[i];
                 }
             });
-            if (options.Rgb) { channels.Add(("R", planes[0])); channels.Add(("G", planes[1])); channels.Add(("B", planes[2])); }
-            if (options.Xyz) { channels.Add(("X", planes[3])); channels.Add(("Y", planes[4])); channels.Add(("Z", planes[5])); }
+            string[] previewNames = ["R", "G", "B", "X", "Y", "Z"];
+            for (int i = 0; i < 6; i++)
+                if (i < 3 ? options.Rgb : options.Xyz) (names[c0], planes[c0++]) = (previewNames[i], preview[i]);
         }
-        channels.Sort((a, b) => string.CompareOrdinal(a.Name, b.Name));
-        if (channels.Select(c => c.Name).Distinct().Count() != channels.Count)
-            throw new ArgumentException("two EXR channels have the same name (are two bands centred on the same wavelength?)");
+        SortByName(names, planes);
+        for (int c = 1; c < count; c++)
+            if (names[c] == names[c - 1]) throw new ArgumentException("two EXR channels have the same name (are two bands centred on the same wavelength?)");
 
-        var header = Header(image, options, channels.Select(c => c.Name).ToList(), out bool longNames);
+        var header = Header(w, h, grid, options, names, out bool longNames);
 
         int lines = LinesPerChunk(options.Compression);
         int chunkCount = (h + lines - 1) / lines;
         int sampleBytes = options.PixelType == ExrPixelType.Float ? 4 : 2;
-        var chunks = new byte[chunkCount][];
-        Parallel.For(0, chunkCount, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (c) =>
+        // A float chunk stored raw is its planes' rows as they are in memory (little-endian): it is not kept, but
+        // streamed from the planes when the file is written. Other stored chunks and all deflated ones are kept.
+        bool rowsAreRaw = sampleBytes == 4 && BitConverter.IsLittleEndian;
+        var chunks = new byte[]?[chunkCount];
+        Parallel.For(0, chunkCount, (c) =>
         {
             int y0 = c * lines, y1 = Math.Min(h, y0 + lines);
-            // File layout, "Scan Line Blocks": per scanline, per channel (sorted), all pixels of that channel.
-            var raw = new byte[(y1 - y0) * channels.Count * w * sampleBytes];
-            int at = 0;
-            for (int y = y0; y < y1; y++)
-                foreach (var (_, plane) in channels)
-                {
-                    var row = plane.AsSpan(y * w, w);
-                    if (sampleBytes == 4 && BitConverter.IsLittleEndian)
-                    {
-                        MemoryMarshal.AsBytes(row).CopyTo(raw.AsSpan(at));
-                        at += 4 * w;
-                        continue;
-                    }
-                    for (int x = 0; x < w; x++, at += sampleBytes)
-                    {
-                        if (sampleBytes == 4) BinaryPrimitives.WriteSingleLittleEndian(raw.AsSpan(at), row[x]);
-                        else BinaryPrimitives.WriteUInt16LittleEndian(raw.AsSpan(at), BitConverter.HalfToUInt16Bits((Half)row[x]));
-                    }
-                }
-            if (options.Compression == ExrCompression.Zip)
+            int size = (y1 - y0) * planes.Length * w * sampleBytes;
+            if (options.Compression == ExrCompression.None && rowsAreRaw) return;
+            var raw = ArrayPool<byte>.Shared.Rent(size);
+            try
             {
-                var z = ExrZip.Compress(raw);
-                // A chunk whose compressed form is not smaller is stored raw (readers tell by its size).
-                if (z.Length < raw.Length) raw = z;
+                var chunk = raw.AsSpan(0, size);
+                ScanLineBlock(planes, w, y0, y1, sampleBytes, chunk);
+                byte[]? z = options.Compression == ExrCompression.Zip ? ExrZip.CompressChunk(chunk, sampleBytes, options.DeflateEveryChunk) : null;
+                chunks[c] = z ?? (rowsAreRaw ? null : chunk.ToArray());
             }
-            chunks[c] = raw;
+            finally { ArrayPool<byte>.Shared.Return(raw); }
         });
 
-        var bw = new BinaryWriter(stream, Encoding.ASCII, leaveOpen: true);
-        bw.Write(Magic);
+        Span<byte> word = stackalloc byte[8];
+        stream.Write(word[..WriteInt32(word, Magic)]);
         // Version field: version 2 in bits 0–7; bit 10 "long names"; bits 9 (tiled), 11 (deep), 12 (multipart) clear.
-        bw.Write(2 | (longNames ? 0x400 : 0));
-        bw.Write(header);
+        stream.Write(word[..WriteInt32(word, 2 | (longNames ? 0x400 : 0))]);
+        stream.Write(header);
         // Offset table: one unsigned 64-bit file offset per chunk, in increasing y order.
         long offset = 8 + header.Length + 8L * chunkCount;
-        foreach (var chunk in chunks)
+        var sizes = new int[chunkCount];
+        for (int c = 0; c < chunkCount; c++)
         {
-            bw.Write((ulong)offset);
-            offset += 8 + chunk.Length;
+            sizes[c] = chunks[c]?.Length ?? (Math.Min(h, (c + 1) * lines) - c * lines) * planes.Length * w * 4;
+            BinaryPrimitives.WriteUInt64LittleEndian(word, (ulong)offset);
+            stream.Write(word);
+            offset += 8 + sizes[c];
         }
         for (int c = 0; c < chunkCount; c++)
         {
-            bw.Write(c * lines);            // y coordinate of the chunk's first scanline (data window starts at 0)
-            bw.Write(chunks[c].Length);     // pixel data size
-            bw.Write(chunks[c]);
+            BinaryPrimitives.WriteInt32LittleEndian(word, c * lines);    // y coordinate of the chunk's first scanline (data window starts at 0)
+            BinaryPrimitives.WriteInt32LittleEndian(word[4..], sizes[c]); // pixel data size
+            stream.Write(word);
+            if (chunks[c] is { } bytes) { stream.Write(bytes); continue; }
+            for (int y = c * lines; y < Math.Min(h, (c + 1) * lines); y++)
+                foreach (var plane in planes) stream.Write(MemoryMarshal.AsBytes(plane.Span.Slice(y * w, w)));
         }
-        bw.Flush();
+
+        static int WriteInt32(Span<byte> b, int v) { BinaryPrimitives.WriteInt32LittleEndian(b, v); return 4; }
     }
 
-    static void Validate(SpectralImage image, ExrOptions options)
+    /// <summary>File layout, "Scan Line Blocks": per scanline y0 … y1 − 1, per channel (sorted), all pixels of that channel, little-endian.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    static void ScanLineBlock(ReadOnlyMemory<float>[] planes, int w, int y0, int y1, int sampleBytes, Span<byte> raw)
+    {
+        int at = 0;
+        for (int y = y0; y < y1; y++)
+            foreach (var plane in planes)
+            {
+                var row = plane.Span.Slice(y * w, w);
+                if (sampleBytes == 4 && BitConverter.IsLittleEndian)
+                {
+                    MemoryMarshal.AsBytes(row).CopyTo(raw[at..]);
+                    at += 4 * w;
+                    continue;
+                }
+                for (int x = 0; x < w; x++, at += sampleBytes)
+                {
+                    if (sampleBytes == 4) BinaryPrimitives.WriteSingleLittleEndian(raw[at..], row[x]);
+                    else BinaryPrimitives.WriteUInt16LittleEndian(raw[at..], BitConverter.HalfToUInt16Bits((Half)row[x]));
+                }
+            }
+    }
+
+    static void Validate(BandGrid grid, ExrOptions options)
     {
         if (!Enum.IsDefined(options.Compression)) throw new ArgumentException($"unsupported EXR compression {options.Compression}");
         if (!Enum.IsDefined(options.PixelType)) throw new ArgumentException($"unsupported EXR pixel type {options.PixelType}");
         if ((options.Rgb || options.Xyz) && options.Colorimeter is null)
             throw new ArgumentException("EXR R,G,B / X,Y,Z channels need ExrOptions.Colorimeter (or set Rgb = false)");
-        if (options.Colorimeter is { } cm && !cm.Grid.Equals(image.Grid))
-            throw new ArgumentException($"the colorimeter's band grid {cm.Grid} differs from the image's {image.Grid}");
+        if (options.Colorimeter is { } cm && !cm.Grid.Equals(grid))
+            throw new ArgumentException($"the colorimeter's band grid {cm.Grid} differs from the image's {grid}");
     }
 
-    /// <summary>File layout §"Header": attributes (name, type name, size, value), then a null byte.</summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
-    static byte[] Header(SpectralImage image, ExrOptions options, List<string> channelNames, out bool longNames)
+    /// <summary>Insertion sort by name in ordinal (byte) order, <paramref name="items"/> moving with their names.</summary>
+    static void SortByName<T>(string[] names, T[] items)
     {
-        var attrs = new SortedDictionary<string, (string Type, byte[] Value)>(StringComparer.Ordinal);
+        for (int i = 1; i < names.Length; i++)
+            for (int j = i; j > 0 && string.CompareOrdinal(names[j - 1], names[j]) > 0; j--)
+            {
+                (names[j - 1], names[j]) = (names[j], names[j - 1]);
+                (items[j - 1], items[j]) = (items[j], items[j - 1]);
+            }
+    }
+
+    /// <summary>One header attribute: name, type name, value bytes.</summary>
+    sealed class Attr(string name, string type, byte[] value)
+    {
+        public readonly string Name = name, Type = type;
+        public readonly byte[] Value = value;
+    }
+
+    /// <summary>File layout §"Header": attributes (name, type name, size, value) sorted by name, then a null byte.</summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
+    static byte[] Header(int width, int height, BandGrid grid, ExrOptions options, string[] channelNames, out bool longNames)
+    {
+        var attrs = new List<Attr>();
 
         // chlist: per channel name\0, int pixel type, uchar pLinear, 3 reserved zero bytes, int xSampling, int ySampling; then \0.
         var chlist = new MemoryStream();
@@ -161,43 +215,52 @@ public static class ExrWriter
             cw.Write(1); cw.Write(1);        // x and y sampling
         }
         cw.Write((byte)0);
-        attrs["channels"] = ("chlist", chlist.ToArray());
-        attrs["compression"] = ("compression", [(byte)options.Compression]);
-        var box = Box(0, 0, image.Width - 1, image.Height - 1);
-        attrs["dataWindow"] = ("box2i", box);
-        attrs["displayWindow"] = ("box2i", box);
-        attrs["lineOrder"] = ("lineOrder", [0]);          // INCREASING_Y
-        attrs["pixelAspectRatio"] = ("float", Floats(1f));
-        attrs["screenWindowCenter"] = ("v2f", Floats(0f, 0f));
-        attrs["screenWindowWidth"] = ("float", Floats(1f));
+        attrs.Add(new("channels", "chlist", chlist.ToArray()));
+        attrs.Add(new("compression", "compression", [(byte)options.Compression]));
+        var box = Box(0, 0, width - 1, height - 1);
+        attrs.Add(new("dataWindow", "box2i", box));
+        attrs.Add(new("displayWindow", "box2i", box));
+        attrs.Add(new("lineOrder", "lineOrder", [0]));          // INCREASING_Y
+        attrs.Add(new("pixelAspectRatio", "float", Floats(1f)));
+        attrs.Add(new("screenWindowCenter", "v2f", Floats(0f, 0f)));
+        attrs.Add(new("screenWindowWidth", "float", Floats(1f)));
         if (options.Rgb)  // R, G, B are linear sRGB: ITU-R BT.709 primaries, D65 white (x, y pairs R, G, B, W).
-            attrs["chromaticities"] = ("chromaticities", Floats(0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f));
+            attrs.Add(new("chromaticities", "chromaticities", Floats(0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f)));
 
         // JCGT 2021 §3: the layout version and, for emissive images, the radiometric units.
-        attrs["spectralLayoutVersion"] = ("string", Encoding.UTF8.GetBytes(LayoutVersion));
-        if (!options.Reflective) attrs["emissiveUnits"] = ("string", Encoding.UTF8.GetBytes(EmissiveUnits));
-        attrs["spectralBandEdges"] = ("string", Encoding.UTF8.GetBytes(
-            string.Join(",", image.Grid.Edges().Select(e => e.ToString("R", CultureInfo.InvariantCulture)))));
+        attrs.Add(new("spectralLayoutVersion", "string", Encoding.UTF8.GetBytes(LayoutVersion)));
+        if (!options.Reflective) attrs.Add(new("emissiveUnits", "string", Encoding.UTF8.GetBytes(EmissiveUnits)));
+        var edges = new StringBuilder();
+        foreach (double e in grid.Edges()) edges.Append(edges.Length > 0 ? "," : "").Append(e.ToString("R", CultureInfo.InvariantCulture));
+        attrs.Add(new("spectralBandEdges", "string", Encoding.UTF8.GetBytes(edges.ToString())));
         if (options.Colorimeter is { } cm)
         {
-            attrs["spectralKappa"] = ("double", BitConverter.GetBytes(cm.Kappa));
-            attrs["spectralIntegration"] = ("string", Encoding.UTF8.GetBytes(
-                $"{cm.Scheme.ToString().ToLowerInvariant()}; observer {cm.Observer.Name}; reference light {cm.ReferenceLight.Name}; {(cm.Absolute ? "absolute" : "relative")}"));
+            attrs.Add(new("spectralKappa", "double", BitConverter.GetBytes(cm.Kappa)));
+            attrs.Add(new("spectralIntegration", "string", Encoding.UTF8.GetBytes(
+                $"{cm.Scheme.ToString().ToLowerInvariant()}; observer {cm.Observer.Name}; reference light {cm.ReferenceLight.Name}; {(cm.Absolute ? "absolute" : "relative")}")));
         }
         if (options.Attributes is not null)
             foreach (var (k, v) in options.Attributes)
-                if (!attrs.ContainsKey(k)) attrs[k] = ("string", Encoding.UTF8.GetBytes(v));
+            {
+                bool taken = false;
+                foreach (var a in attrs) taken |= a.Name == k;
+                if (!taken) attrs.Add(new(k, "string", Encoding.UTF8.GetBytes(v)));
+            }
+        var sorted = attrs.ToArray();
+        SortByName(Array.ConvertAll(sorted, a => a.Name), sorted);
 
-        longNames = channelNames.Concat(attrs.Keys).Concat(attrs.Values.Select(a => a.Type)).Any(n => Encoding.UTF8.GetByteCount(n) > 31);
+        longNames = false;
+        foreach (var name in channelNames) longNames |= Encoding.UTF8.GetByteCount(name) > 31;
+        foreach (var a in sorted) longNames |= Encoding.UTF8.GetByteCount(a.Name) > 31 || Encoding.UTF8.GetByteCount(a.Type) > 31;
         var ms = new MemoryStream();
         var bw = new BinaryWriter(ms);
-        foreach (var (name, (type, value)) in attrs)
+        foreach (var a in sorted)
         {
-            if (Encoding.UTF8.GetByteCount(name) > 255) throw new ArgumentException($"EXR attribute name '{name}' is longer than 255 bytes");
-            bw.Write(Encoding.UTF8.GetBytes(name)); bw.Write((byte)0);
-            bw.Write(Encoding.ASCII.GetBytes(type)); bw.Write((byte)0);
-            bw.Write(value.Length);
-            bw.Write(value);
+            if (Encoding.UTF8.GetByteCount(a.Name) > 255) throw new ArgumentException($"EXR attribute name '{a.Name}' is longer than 255 bytes");
+            bw.Write(Encoding.UTF8.GetBytes(a.Name)); bw.Write((byte)0);
+            bw.Write(Encoding.ASCII.GetBytes(a.Type)); bw.Write((byte)0);
+            bw.Write(a.Value.Length);
+            bw.Write(a.Value);
         }
         bw.Write((byte)0);
         return ms.ToArray();

@@ -1,6 +1,7 @@
 using System.Runtime.CompilerServices;
 using System.Buffers.Binary;
 using System.Globalization;
+using System.Runtime.InteropServices;
 using System.Text;
 using SpectralRenderer.Rendering;
 
@@ -42,6 +43,7 @@ public static class NpyWriter
         BinaryPrimitives.WriteUInt16LittleEndian(len, (ushort)header.Length);
         stream.Write(len);
         stream.Write(Encoding.ASCII.GetBytes(header));
+        if (BitConverter.IsLittleEndian) { stream.Write(MemoryMarshal.AsBytes(data)); return; }  // '<f4' is the memory layout: one write
         var buffer = new byte[4 * Math.Min(data.Length, 1 << 16)];
         for (int at = 0; at < data.Length; at += buffer.Length / 4)
         {

@@ -1,5 +1,8 @@
 using System.Runtime.CompilerServices;
+using System.Buffers;
 using System.Buffers.Binary;
+using System.Numerics;
+using System.Runtime.InteropServices;
 using System.IO.Compression;
 using System.Text;
 
@@ -53,6 +56,13 @@ public static class PngWriter
         Write(stream, width, height, 16, 0, 2, BigEndian(gray), text, filter);
     }
 
+    /// <summary>16-bit greyscale from samples already big-endian (§7.1), two bytes per pixel.</summary>
+    internal static void WriteGray16BigEndian(Stream stream, int width, int height, ReadOnlySpan<byte> samples, PngFilter filter)
+    {
+        Check(width, height, samples.Length, 2);
+        Write(stream, width, height, 16, 0, 2, samples, null, filter);
+    }
+
     /// <summary>16-bit RGB, width·height·3 samples, stored big-endian (§7.1).</summary>
     public static void WriteRgb16(Stream stream, int width, int height, ReadOnlySpan<ushort> rgb,
         IReadOnlyDictionary<string, string>? text = null, PngFilter filter = PngFilter.Adaptive)
@@ -64,7 +74,8 @@ public static class PngWriter
     static byte[] BigEndian(ReadOnlySpan<ushort> samples)
     {
         var bytes = new byte[samples.Length * 2];
-        for (int i = 0; i < samples.Length; i++) BinaryPrimitives.WriteUInt16BigEndian(bytes.AsSpan(2 * i), samples[i]);
+        if (BitConverter.IsLittleEndian) BinaryPrimitives.ReverseEndianness(samples, MemoryMarshal.Cast<byte, ushort>(bytes.AsSpan()));
+        else samples.CopyTo(MemoryMarshal.Cast<byte, ushort>(bytes.AsSpan()));
         return bytes;
     }
 
@@ -136,37 +147,37 @@ public static class PngWriter
 
         // §7.3 / §9: each scanline is a filter-type byte followed by the filtered row;
         // §10: the filtered scanlines form one zlib datastream (RFC 1950) split over IDAT chunks.
-        int rowBytes = checked(width * bpp);
-        var zlibData = new MemoryStream();
-        using (var z = new ZLibStream(zlibData, CompressionLevel.Fastest, leaveOpen: true))
+        // Rows are filtered in batches of about 1 MiB, each handed to zlib in one call.
+        int rowBytes = checked(width * bpp), stride = rowBytes + 1;
+        int batchRows = Math.Clamp((1 << 20) / stride, 1, height);
+        var batch = ArrayPool<byte>.Shared.Rent(checked(batchRows * stride));
+        var scratch = filter == PngFilter.Adaptive ? ArrayPool<byte>.Shared.Rent(2 * stride) : null;
+        var zlibData = new MemoryStream((int)Math.Min(int.MaxValue / 2, (long)height * stride / 4 + 256));
+        try
         {
-            var prior = new byte[rowBytes];                    // §9.2: the row above the first is all zeros
-            var candidates = new byte[5][];
-            for (int f = 0; f < 5; f++) candidates[f] = new byte[rowBytes + 1];
-            for (int y = 0; y < height; y++)
+            using (var z = new ZLibStream(zlibData, CompressionLevel.Fastest, leaveOpen: true))
             {
-                var row = pixels.Slice(y * rowBytes, rowBytes);
-                byte[] best;
-                if (filter == PngFilter.Adaptive)
+                for (int y0 = 0; y0 < height; y0 += batchRows)
                 {
-                    best = candidates[0];
-                    long bestSum = long.MaxValue;
-                    for (int f = 0; f < 5; f++)
+                    int rows = Math.Min(batchRows, height - y0);
+                    for (int r = 0; r < rows; r++)
                     {
-                        FilterRow(f, row, prior, bpp, candidates[f]);
-                        long sum = 0;
-                        for (int i = 1; i <= rowBytes; i++) sum += Math.Abs((int)(sbyte)candidates[f][i]);
-                        if (sum < bestSum) { bestSum = sum; best = candidates[f]; }
+                        int y = y0 + r;
+                        var row = pixels.Slice(y * rowBytes, rowBytes);
+                        // §9.2: the row above the first is all zeros
+                        var prior = y == 0 ? ReadOnlySpan<byte>.Empty : pixels.Slice((y - 1) * rowBytes, rowBytes);
+                        var output = batch.AsSpan(r * stride, stride);
+                        if (filter == PngFilter.Adaptive) FilterAdaptive(row, prior, bpp, output, scratch!);
+                        else FilterRow((int)filter, row, prior, bpp, output);
                     }
+                    z.Write(batch, 0, rows * stride);
                 }
-                else
-                {
-                    best = candidates[(int)filter];
-                    FilterRow((int)filter, row, prior, bpp, best);
-                }
-                z.Write(best);
-                row.CopyTo(prior);
             }
+        }
+        finally
+        {
+            ArrayPool<byte>.Shared.Return(batch);
+            if (scratch is not null) ArrayPool<byte>.Shared.Return(scratch);
         }
         var data = zlibData.GetBuffer().AsSpan(0, (int)zlibData.Length);
         int at = 0;
@@ -178,41 +189,140 @@ public static class PngWriter
         WriteChunk(stream, "IEND", []);
     }
 
-    /// <summary>§9.2: filter types 0–4 on one row; out[0] receives the type byte.</summary>
+    /// <summary>
+    /// §12.7 heuristic: the filter whose output has the least sum of absolute values, bytes taken as signed; the first
+    /// of equal sums wins (None, Sub, Up, Average, Paeth). The best so far is kept in <paramref name="output"/>.
+    /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    static void FilterRow(int type, ReadOnlySpan<byte> x, ReadOnlySpan<byte> b, int bpp, Span<byte> output)
+    static void FilterAdaptive(ReadOnlySpan<byte> row, ReadOnlySpan<byte> prior, int bpp, Span<byte> output, byte[] scratch)
+    {
+        int stride = row.Length + 1;
+        FilterRow(0, row, prior, bpp, output);
+        long bestSum = SignedAbsSum(output[1..]);
+        var candidate = scratch.AsSpan(0, stride);
+        for (int f = 1; f < 5; f++)
+        {
+            FilterRow(f, row, prior, bpp, candidate);
+            long sum = SignedAbsSum(candidate[1..]);
+            if (sum < bestSum) { bestSum = sum; candidate.CopyTo(output); }
+        }
+    }
+
+    /// <summary>Σ |(sbyte) b|.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    internal static long SignedAbsSum(ReadOnlySpan<byte> bytes)
+    {
+        long sum = 0;
+        int i = 0;
+        if (Vector.IsHardwareAccelerated)
+        {
+            var signed = MemoryMarshal.Cast<byte, sbyte>(bytes);
+            var acc = Vector<ushort>.Zero;   // each step adds at most 2 · 128 per lane: flush every 255 steps
+            for (int steps = 0; i + Vector<sbyte>.Count <= signed.Length; i += Vector<sbyte>.Count)
+            {
+                // |−128| = 128 still fits the byte read as unsigned
+                Vector.Widen(Vector.AsVectorByte(Vector.Abs(new Vector<sbyte>(signed[i..]))), out var lo, out var hi);
+                acc += lo + hi;
+                if (++steps == 255) { sum += Total(acc); acc = Vector<ushort>.Zero; steps = 0; }
+            }
+            sum += Total(acc);
+        }
+        for (; i < bytes.Length; i++) sum += Math.Abs((int)(sbyte)bytes[i]);
+        return sum;
+
+        static long Total(Vector<ushort> v)
+        {
+            Vector.Widen(v, out var lo, out var hi);
+            return Vector.Sum(lo + hi);
+        }
+    }
+
+    /// <summary>§9.2: filter types 0–4 on one row (<paramref name="b"/>, the row above, is empty for the first row: zeros); out[0] receives the type byte.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    internal static void FilterRow(int type, ReadOnlySpan<byte> x, ReadOnlySpan<byte> b, int bpp, Span<byte> output)
     {
         output[0] = (byte)type;
-        var o = output[1..];
+        var o = output.Slice(1, x.Length);
+        if (b.IsEmpty && type >= 2)
+        {
+            // First row: Up is None, Average is x − floor(a / 2), Paeth is Sub (the predictor of (a, 0, 0) is a).
+            if (type == 2) { x.CopyTo(o); return; }
+            if (type == 4) { Sub(x, bpp, o); return; }
+            for (int i = 0; i < x.Length; i++) o[i] = (byte)(x[i] - (i >= bpp ? x[i - bpp] : 0) / 2);
+            return;
+        }
+        int n = x.Length, v = 0;
         switch (type)
         {
             case 0:
                 x.CopyTo(o);
                 break;
             case 1: // Sub: x − a
-                for (int i = 0; i < x.Length; i++) o[i] = (byte)(x[i] - (i >= bpp ? x[i - bpp] : 0));
+                Sub(x, bpp, o);
                 break;
             case 2: // Up: x − b
-                for (int i = 0; i < x.Length; i++) o[i] = (byte)(x[i] - b[i]);
+                if (Vector.IsHardwareAccelerated)
+                    for (; v + Vector<byte>.Count <= n; v += Vector<byte>.Count)
+                        (new Vector<byte>(x[v..]) - new Vector<byte>(b[v..])).CopyTo(o[v..]);
+                for (int i = v; i < n; i++) o[i] = (byte)(x[i] - b[i]);
                 break;
-            case 3: // Average: x − floor((a + b) / 2)
-                for (int i = 0; i < x.Length; i++) o[i] = (byte)(x[i] - ((i >= bpp ? x[i - bpp] : 0) + b[i]) / 2);
+            case 3: // Average: x − floor((a + b) / 2); floor((a + b) / 2) = (a & b) + ((a ^ b) >> 1) without overflow
+                for (int i = 0; i < Math.Min(bpp, n); i++) o[i] = (byte)(x[i] - b[i] / 2);
+                v = bpp;
+                if (Vector.IsHardwareAccelerated)
+                    for (; v + Vector<byte>.Count <= n; v += Vector<byte>.Count)
+                    {
+                        Vector<byte> a = new(x[(v - bpp)..]), up = new(b[v..]);
+                        (new Vector<byte>(x[v..]) - ((a & up) + Vector.ShiftRightLogical(a ^ up, 1))).CopyTo(o[v..]);
+                    }
+                for (int i = v; i < n; i++) o[i] = (byte)(x[i] - (x[i - bpp] + b[i]) / 2);
                 break;
             case 4: // Paeth: x − PaethPredictor(a, b, c)
-                for (int i = 0; i < x.Length; i++)
-                {
-                    int a = i >= bpp ? x[i - bpp] : 0, c = i >= bpp ? b[i - bpp] : 0;
-                    o[i] = (byte)(x[i] - Paeth(a, b[i], c));
-                }
+                for (int i = 0; i < Math.Min(bpp, n); i++) o[i] = (byte)(x[i] - b[i]);   // a = c = 0: the predictor is b
+                v = bpp;
+                if (Vector.IsHardwareAccelerated)
+                    for (; v + Vector<byte>.Count <= n; v += Vector<byte>.Count)
+                    {
+                        Vector.Widen(new Vector<byte>(x[(v - bpp)..]), out var a0, out var a1);
+                        Vector.Widen(new Vector<byte>(b[v..]), out var b0, out var b1);
+                        Vector.Widen(new Vector<byte>(b[(v - bpp)..]), out var c0, out var c1);
+                        var predictor = Vector.Narrow(PaethVector(a0, b0, c0), PaethVector(a1, b1, c1));
+                        (new Vector<byte>(x[v..]) - predictor).CopyTo(o[v..]);
+                    }
+                for (int i = v; i < n; i++) o[i] = (byte)(x[i] - Paeth(x[i - bpp], b[i], b[i - bpp]));
                 break;
         }
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    static void Sub(ReadOnlySpan<byte> x, int bpp, Span<byte> o)
+    {
+        int n = x.Length, v = Math.Min(bpp, n);
+        x[..v].CopyTo(o);
+        if (Vector.IsHardwareAccelerated)
+            for (; v + Vector<byte>.Count <= n; v += Vector<byte>.Count)
+                (new Vector<byte>(x[v..]) - new Vector<byte>(x[(v - bpp)..])).CopyTo(o[v..]);
+        for (int i = v; i < n; i++) o[i] = (byte)(x[i] - x[i - bpp]);
+    }
+
+    /// <summary><see cref="Paeth"/> on 16-bit lanes holding bytes.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    static Vector<ushort> PaethVector(Vector<ushort> a, Vector<ushort> b, Vector<ushort> c)
+    {
+        Vector<short> sa = Vector.AsVectorInt16(a), sb = Vector.AsVectorInt16(b), sc = Vector.AsVectorInt16(c);
+        Vector<short> dbc = sb - sc, dac = sa - sc;
+        Vector<short> pa = Vector.Abs(dbc), pb = Vector.Abs(dac), pc = Vector.Abs(dbc + dac);
+        var useA = Vector.LessThanOrEqual(pa, pb) & Vector.LessThanOrEqual(pa, pc);
+        var useB = Vector.LessThanOrEqual(pb, pc);
+        return Vector.AsVectorUInt16(Vector.ConditionalSelect(useA, sa, Vector.ConditionalSelect(useB, sb, sc)));
+    }
+
     /// <summary>§9.4: the Paeth predictor, ties broken in the order a, b, c.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     internal static int Paeth(int a, int b, int c)
     {
-        int p = a + b - c;
-        int pa = Math.Abs(p - a), pb = Math.Abs(p - b), pc = Math.Abs(p - c);
+        int pa = b - c, pb = a - c, pc = pa + pb;      // p − a, p − b, p − c with p = a + b − c
+        pa = pa < 0 ? -pa : pa; pb = pb < 0 ? -pb : pb; pc = pc < 0 ? -pc : pc;
         if (pa <= pb && pa <= pc) return a;
         return pb <= pc ? b : c;
     }

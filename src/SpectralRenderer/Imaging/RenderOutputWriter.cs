@@ -1,4 +1,8 @@
+using System.Buffers;
+using System.Buffers.Binary;
+using System.Numerics;
 using System.Runtime.CompilerServices;
+using System.Runtime.InteropServices;
 using System.Globalization;
 using System.Text.Json;
 using System.Text.Json.Nodes;
@@ -19,28 +23,48 @@ public static class RenderOutputWriter
         var formats = scene.Output.Formats;
         var image = result.Image;
         Directory.CreateDirectory(outDir);
-        ClearPrevious(outDir);
+        // The previous render's files go while the planes are computed, and before any file is written.
+        var clearing = Task.Run(() => ClearPrevious(outDir));
         float scale = image.Max();
+        int n = image.Width * image.Height;
+        // Band-sequential planes, transposed once and shared by the band PNGs, the mosaic, spectral.exr and the ENVI cube;
+        // eq. 3's XYZ of every pixel, computed once for the preview and spectral.exr's R, G, B and X, Y, Z.
+        float[]? bands = formats.Contains("bands") || formats.Contains("exr") || formats.Contains("envi") || formats.Contains("png") ? image.BandPlanes() : null;
+        var xyz = formats.Contains("png") || formats.Contains("exr") ? XyzPlanes.Compute(scene.Colorimeter, bands, n) : null;
+
+        clearing.GetAwaiter().GetResult();
 
         // The groups are independent files: write them side by side; each keeps its own list, in a fixed order.
-        var groups = new List<string>[4];
+        var groups = new List<string>[8];
         for (int g = 0; g < groups.Length; g++) groups[g] = [];
         Action<string> Done(int g) => name => { lock (groups[g]) groups[g].Add(name); cancel.ThrowIfCancellationRequested(); };
+        JsonObject? json = null;
         try
         {
         Parallel.Invoke(new ParallelOptions { CancellationToken = cancel },
-            () => { if (formats.Contains("png")) WritePreview(scene, image, outDir, Done(0)); },
-            () => { if (formats.Contains("bands")) WriteBands(scene, image, scale, outDir, Done(1), cancel); },
+            () => { if (formats.Contains("png")) WritePreview(scene, image, xyz!, outDir, Done(0)); },
+            () => { if (formats.Contains("bands")) WriteBands(scene, image, bands!, scale, outDir, Done(1), cancel); },
+            () =>
+            {
+                if (!formats.Contains("bands")) return;
+                var (mw, mh, mosaic) = BandMosaic.Build(image.Width, image.Height, bands!, scale);
+                AtomicFile.Write(Path.Combine(outDir, "bands.png"), s => PngWriter.WriteGray8(s, mw, mh, mosaic));
+                Done(2)("bands.png");
+            },
             () =>
             {
                 if (!formats.Contains("aov")) return;
                 var ids = new ushort[result.ObjectIds.Length];
                 for (int i = 0; i < ids.Length; i++) ids[i] = (ushort)(result.ObjectIds[i] + 1);
                 AtomicFile.Write(Path.Combine(outDir, "object-id.png"), s => PngWriter.WriteGray16(s, image.Width, image.Height, ids));
-                Done(2)("object-id.png");
-                AnalysisImages.Write(scene, result, outDir, Done(2));
+                Done(3)("object-id.png");
+                AnalysisImages.Write(scene, result, outDir, Done(3));
             },
-            () => SpectralFiles.Write(scene, image, outDir, formats, Done(3)));
+            () => { if (formats.Contains("exr")) SpectralFiles.WriteExr(scene, image, bands!, xyz, outDir, Done(4)); },
+            () => { if (formats.Contains("envi")) SpectralFiles.WriteEnvi(scene, image, bands!, outDir, Done(5)); },
+            () => { if (formats.Contains("npy")) SpectralFiles.WriteNpy(image, outDir, Done(6)); },
+            () => { if (formats.Contains("npy") || formats.Contains("envi") || formats.Contains("exr")) SpectralFiles.WriteWavelengths(image, outDir, Done(7)); },
+            () => json = Describe(scene, result, scale, run));
         }
         catch (AggregateException e)
         {
@@ -49,8 +73,11 @@ public static class RenderOutputWriter
             System.Runtime.ExceptionServices.ExceptionDispatchInfo.Capture(first).Throw();
         }
 
-        var written = groups.SelectMany(g => g).ToList();
-        var json = Describe(scene, result, scale, written, run);
+        var written = new List<string>();
+        var files = new JsonArray();
+        foreach (var g in groups)
+            foreach (var f in g) { written.Add(f); files.Add(JsonValue.Create(f)); }
+        json!["files"] = files;
         AtomicFile.WriteAllText(Path.Combine(outDir, "render.json"), json.ToJsonString(new JsonSerializerOptions { WriteIndented = true }));
         written.Add("render.json");
         return written;
@@ -73,60 +100,110 @@ public static class RenderOutputWriter
             foreach (var f in Directory.EnumerateFiles(bands, "band-*.png")) File.Delete(f);
     }
 
-    static void WritePreview(Scene scene, SpectralImage image, string outDir, Action<string> done)
+    static void WritePreview(Scene scene, SpectralImage image, XyzPlanes xyz, string outDir, Action<string> done)
     {
         var encoder = new DisplayEncoder(scene.Colorimeter, scene.Output.Rgb, scene.Output.Exposure, scene.Output.Adapt);
-        var rgb = Preview(image, encoder);
+        var rgb = Preview(image.Width, image.Height, xyz, encoder);
         AtomicFile.Write(Path.Combine(outDir, "preview.png"), s => PngWriter.WriteRgb8(s, image.Width, image.Height, rgb));
         done("preview.png");
     }
 
-    /// <summary>bands/: one 16-bit PNG per band, all on the scale of the brightest band value, and the mosaic (Fig. 2).</summary>
-    static void WriteBands(Scene scene, SpectralImage image, float scale, string outDir, Action<string> done, CancellationToken cancel)
+    /// <summary>bands/: one 16-bit PNG per band, all on the scale of the brightest band value.</summary>
+    static void WriteBands(Scene scene, SpectralImage image, float[] bands, float scale, string outDir, Action<string> done, CancellationToken cancel)
     {
         var dir = Path.Combine(outDir, "bands");
         Directory.CreateDirectory(dir);
+        int n = image.Width * image.Height;
         var names = new string[image.Bands];
         Parallel.For(0, image.Bands, new ParallelOptions { CancellationToken = cancel }, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (b) =>
         {
-            var plane = new float[image.Width * image.Height];
-            var grey = new ushort[plane.Length];
-            image.CopyBand(b, plane);
-            for (int i = 0; i < plane.Length; i++) grey[i] = scale > 0 ? RgbSpace.To16(Math.Clamp(plane[i] / scale, 0, 1)) : (ushort)0;
-            names[b] = BandFileName(scene, b);
-            // The Up filter alone: one pass per row instead of trying all five (band images are smooth).
-            AtomicFile.Write(Path.Combine(dir, names[b]), s => PngWriter.WriteGray16(s, image.Width, image.Height, grey, filter: PngFilter.Up));
+            var plane = bands.AsSpan(b * n, n);
+            var grey = ArrayPool<byte>.Shared.Rent(2 * n);
+            try
+            {
+                BandSamples16(plane, scale, grey.AsSpan(0, 2 * n));
+                names[b] = BandFileName(scene, b);
+                // The Up filter alone: one pass per row instead of trying all five (band images are smooth).
+                AtomicFile.Write(Path.Combine(dir, names[b]), s => PngWriter.WriteGray16BigEndian(s, image.Width, image.Height, grey.AsSpan(0, 2 * n), PngFilter.Up));
+            }
+            finally { ArrayPool<byte>.Shared.Return(grey); }
         });
         foreach (var name in names) done($"bands/{name}");
-        var (mw, mh, mosaic) = BandMosaic.Build(image, scale);
-        AtomicFile.Write(Path.Combine(outDir, "bands.png"), s => PngWriter.WriteGray8(s, mw, mh, mosaic));
-        done("bands.png");
+    }
+
+    /// <summary>
+    /// A band image's 16-bit samples RgbSpace.To16(clamp(v / scale, 0, 1)) (0 when scale is not positive), big-endian as PNG
+    /// §7.1 stores them. Vectorised: for a float f in [0, 1], 65535·f is exact in double (≤ 40 significant bits), so
+    /// floor(65535·f + ½) is exact too and equals To16's rounding half away from zero; NaN gives 0 as To16 does.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    internal static void BandSamples16(ReadOnlySpan<float> plane, float scale, Span<byte> bigEndian)
+    {
+        var samples = MemoryMarshal.Cast<byte, ushort>(bigEndian[..(2 * plane.Length)]);
+        if (!(scale > 0)) { samples.Clear(); return; }
+        int i = 0;
+        if (Vector.IsHardwareAccelerated && BitConverter.IsLittleEndian)
+        {
+            var s = new Vector<float>(scale);
+            var half = new Vector<double>(0.5);
+            var full = new Vector<double>(65535.0);
+            var magic = new Vector<double>(4503599627370496.0);   // 2⁵²: an integer t < 2³² added to it sits in the low bits
+            for (; i + 2 * Vector<float>.Count <= plane.Length; i += 2 * Vector<float>.Count)
+            {
+                var a = Clamp01(new Vector<float>(plane[i..]) / s);
+                var b = Clamp01(new Vector<float>(plane[(i + Vector<float>.Count)..]) / s);
+                Vector.Widen(a, out var a0, out var a1);
+                Vector.Widen(b, out var b0, out var b1);
+                var q = Vector.Narrow(Vector.Narrow(Bits(a0), Bits(a1)), Vector.Narrow(Bits(b0), Bits(b1)));
+                ((q << 8) | (q >>> 8)).CopyTo(samples[i..]);   // big-endian
+            }
+
+            Vector<ulong> Bits(Vector<double> f) => Vector.AsVectorUInt64(Vector.Floor(f * full + half) + magic);
+        }
+        for (; i < plane.Length; i++) BinaryPrimitives.WriteUInt16BigEndian(bigEndian[(2 * i)..], RgbSpace.To16(Math.Clamp(plane[i] / scale, 0, 1)));
+
+        static Vector<float> Clamp01(Vector<float> v) =>
+            Vector.ConditionalSelect(Vector.Equals(v, v), Vector.Min(Vector.Max(v, Vector<float>.Zero), Vector<float>.One), Vector<float>.Zero);
     }
 
     public static string BandFileName(Scene scene, int b) =>
         string.Create(CultureInfo.InvariantCulture, $"band-{b + 1:00}-{scene.Grid.Lower(b):0.###}-{scene.Grid.Upper(b):0.###}nm.png");
 
-    public static byte[] Preview(SpectralImage image, DisplayEncoder encoder)
+    public static byte[] Preview(SpectralImage image, DisplayEncoder encoder) =>
+        Preview(image.Width, image.Height, XyzPlanes.Compute(encoder.Colorimeter, image.BandPlanes(), image.Width * image.Height), encoder);
+
+    /// <summary>8-bit display RGB, from the pixels' XYZ (of the encoder's colorimeter).</summary>
+    internal static byte[] Preview(int width, int height, XyzPlanes xyz, DisplayEncoder encoder)
     {
-        var rgb = new byte[image.Width * image.Height * 3];
-        Parallel.For(0, image.Height, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (y) =>
+        var rgb = new byte[width * height * 3];
+        Parallel.For(0, height, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (y) =>
         {
-            for (int x = 0; x < image.Width; x++)
+            for (int i = y * width; i < (y + 1) * width; i++)
             {
-                var (r, g, b) = encoder.Encode8(image.Pixel(x, y));
-                int o = (y * image.Width + x) * 3;
-                rgb[o] = r; rgb[o + 1] = g; rgb[o + 2] = b;
+                var (r, g, b) = encoder.Encode8(xyz[i]);
+                rgb[3 * i] = r; rgb[3 * i + 1] = g; rgb[3 * i + 2] = b;
             }
         });
         return rgb;
     }
 
     [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
-    static JsonObject Describe(Scene scene, RenderResult result, float bandScale, List<string> written, JsonObject? run)
+    static JsonObject Describe(Scene scene, RenderResult result, float bandScale, JsonObject? run)
     {
         var g = scene.Grid;
         var c = scene.Colorimeter;
-        JsonArray Arr(IEnumerable<double> v) => new(v.Select(x => (JsonNode)JsonValue.Create(x)!).ToArray());
+        static double[] Centres(Spectra.BandGrid g)
+        {
+            var c = new double[g.Count];
+            for (int b = 0; b < c.Length; b++) c[b] = g.Centre(b);
+            return c;
+        }
+        static JsonArray Arr(ReadOnlySpan<double> v)
+        {
+            var a = new JsonArray();
+            foreach (double x in v) a.Add(JsonValue.Create(x));
+            return a;
+        }
         var objects = new JsonArray();
         for (int i = 0; i < scene.Objects.Count; i++)
         {
@@ -158,7 +235,7 @@ public static class RenderOutputWriter
                 ["grid"] = g.ToString(),
                 ["count"] = g.Count,
                 ["edges_nm"] = Arr(g.Edges()),
-                ["centres_nm"] = Arr(Enumerable.Range(0, g.Count).Select(g.Centre)),
+                ["centres_nm"] = Arr(Centres(g)),
                 ["band_image_scale"] = bandScale,
             },
             ["colour"] = new JsonObject
@@ -166,7 +243,7 @@ public static class RenderOutputWriter
                 ["integration"] = scene.Integration.ToString().ToLowerInvariant(),
                 ["observer"] = c.Observer.Degrees,
                 ["reference_white"] = white.Name,
-                ["reference_white_spd"] = new JsonObject { ["wavelengths_nm"] = Arr(white.Wavelengths.ToArray()), ["values"] = Arr(white.Values.ToArray()) },
+                ["reference_white_spd"] = new JsonObject { ["wavelengths_nm"] = Arr(white.Wavelengths), ["values"] = Arr(white.Values) },
                 ["kappa"] = c.Kappa,
                 ["white_xyz"] = Arr([c.White.X, c.White.Y, c.White.Z]),
                 ["weights_x"] = Arr(c.Wx), ["weights_y"] = Arr(c.Wy), ["weights_z"] = Arr(c.Wz),
@@ -186,7 +263,7 @@ public static class RenderOutputWriter
             ["threads"] = result.Threads,
             ["tiles"] = result.Tiles,
             ["run"] = run,
-            ["files"] = new JsonArray(written.Select(f => (JsonNode)JsonValue.Create(f)!).ToArray()),
+            ["files"] = null,   // filled in when the files are written
             ["resolved_scene"] = scene.Resolved?.DeepClone(),
         };
     }

@@ -9,34 +9,47 @@ namespace SpectralRenderer.Imaging;
 /// </summary>
 public static class SpectralFiles
 {
+    /// <summary>The cubes <paramref name="formats"/> asks for, one after another (RenderOutputWriter writes them side by side).</summary>
     public static void Write(Scene scene, SpectralImage image, string outDir, IReadOnlySet<string> formats, Action<string> done)
     {
-        if (formats.Contains("exr"))
+        var bands = formats.Contains("exr") || formats.Contains("envi") ? image.BandPlanes() : null;
+        if (formats.Contains("exr")) WriteExr(scene, image, bands!, null, outDir, done);
+        if (formats.Contains("envi")) WriteEnvi(scene, image, bands!, outDir, done);
+        if (formats.Contains("npy")) WriteNpy(image, outDir, done);
+        if (formats.Contains("npy") || formats.Contains("envi") || formats.Contains("exr")) WriteWavelengths(image, outDir, done);
+    }
+
+    /// <param name="bands">The image's band planes (<see cref="SpectralImage.CopyBands"/>).</param>
+    /// <param name="xyz">Their <see cref="XyzPlanes"/> of scene.Colorimeter when the caller has them already.</param>
+    internal static void WriteExr(Scene scene, SpectralImage image, float[] bands, XyzPlanes? xyz, string outDir, Action<string> done)
+    {
+        ExrWriter.Write(Path.Combine(outDir, "spectral.exr"), image.Width, image.Height, image.Grid, bands, xyz, new ExrOptions
         {
-            ExrWriter.Write(Path.Combine(outDir, "spectral.exr"), image, new ExrOptions
-            {
-                Colorimeter = scene.Colorimeter,
-                Xyz = true,
-                Attributes = new Dictionary<string, string> { ["software"] = $"spectral {typeof(SpectralFiles).Assembly.GetName().Version?.ToString(3)}" },
-            });
-            done("spectral.exr");
-        }
-        if (formats.Contains("envi"))
-        {
-            EnviWriter.Write(Path.Combine(outDir, "spectral.img"), image, $"SpectralRenderer render of {Path.GetFileName(scene.SourcePath)}; spectral radiance, {scene.Integration.ToString().ToLowerInvariant()} band integration");
-            done("spectral.img");
-            done("spectral.hdr");
-        }
-        if (formats.Contains("npy"))
-        {
-            NpyWriter.Write(Path.Combine(outDir, "spectral.npy"), image);
-            done("spectral.npy");
-        }
-        if (formats.Contains("npy") || formats.Contains("envi") || formats.Contains("exr"))
-        {
-            WavelengthsCsv.Write(Path.Combine(outDir, "wavelengths.csv"), image.Grid);
-            done("wavelengths.csv");
-        }
+            Colorimeter = scene.Colorimeter,
+            Xyz = true,
+            Attributes = new Dictionary<string, string> { ["software"] = $"spectral {typeof(SpectralFiles).Assembly.GetName().Version?.ToString(3)}" },
+        });
+        done("spectral.exr");
+    }
+
+    /// <summary>spectral.img and spectral.hdr.</summary>
+    internal static void WriteEnvi(Scene scene, SpectralImage image, float[] bands, string outDir, Action<string> done)
+    {
+        EnviWriter.Write(Path.Combine(outDir, "spectral.img"), image, bands, $"SpectralRenderer render of {Path.GetFileName(scene.SourcePath)}; spectral radiance, {scene.Integration.ToString().ToLowerInvariant()} band integration");
+        done("spectral.img");
+        done("spectral.hdr");
+    }
+
+    internal static void WriteNpy(SpectralImage image, string outDir, Action<string> done)
+    {
+        NpyWriter.Write(Path.Combine(outDir, "spectral.npy"), image);
+        done("spectral.npy");
+    }
+
+    internal static void WriteWavelengths(SpectralImage image, string outDir, Action<string> done)
+    {
+        WavelengthsCsv.Write(Path.Combine(outDir, "wavelengths.csv"), image.Grid);
+        done("wavelengths.csv");
     }
 
     /// <summary>Reads the spectral cube of a render folder: spectral.npy, else spectral.exr, else spectral.img.</summary>

@@ -163,6 +163,98 @@ public class PngTests
         return outp.ToArray();
     }
 
+    /// <summary>§9.2 filters and §9.4 Paeth written out as the standard gives them, byte by byte, the row above as zeros when absent.</summary>
+    static byte[] ReferenceFilter(int type, byte[] x, byte[]? above, int bpp)
+    {
+        var b = above ?? new byte[x.Length];
+        var o = new byte[x.Length + 1];
+        o[0] = (byte)type;
+        for (int i = 0; i < x.Length; i++)
+        {
+            int a = i >= bpp ? x[i - bpp] : 0, c = i >= bpp ? b[i - bpp] : 0;
+            int p = a + b[i] - c, pa = Math.Abs(p - a), pb = Math.Abs(p - b[i]), pc = Math.Abs(p - c);
+            int paeth = pa <= pb && pa <= pc ? a : pb <= pc ? b[i] : c;
+            o[i + 1] = (byte)(x[i] - type switch { 0 => 0, 1 => a, 2 => b[i], 3 => (a + b[i]) / 2, _ => paeth });
+        }
+        return o;
+    }
+
+    [Fact]
+    public void Vector_filters_equal_the_standard_byte_by_byte()
+    {
+        var rng = new Random(9);
+        foreach (int bpp in new[] { 1, 2, 3, 4, 6, 8 })
+            foreach (int n in new[] { bpp, 5 * bpp, 31 * bpp, 64 * bpp, 100 * bpp + bpp })
+            {
+                var x = new byte[n]; var above = new byte[n];
+                rng.NextBytes(x); rng.NextBytes(above);
+                for (int i = 0; i < n / 3; i++) x[rng.Next(n)] = (byte)(rng.Next(2) * 255);   // some 0 / 255 extremes
+                for (int type = 0; type < 5; type++)
+                    foreach (var b in new[] { above, null })
+                    {
+                        var o = new byte[n + 2];
+                        o[^1] = 0x5A;
+                        PngWriter.FilterRow(type, x, b ?? ReadOnlySpan<byte>.Empty, bpp, o);
+                        Assert.True(ReferenceFilter(type, x, b, bpp).AsSpan().SequenceEqual(o.AsSpan(0, n + 1)), $"filter {type}, bpp {bpp}, {n} bytes, first row {b is null}");
+                        Assert.Equal(0x5A, o[^1]);
+                        long sum = 0;
+                        for (int i = 1; i <= n; i++) sum += Math.Abs((int)(sbyte)o[i]);
+                        Assert.Equal(sum, PngWriter.SignedAbsSum(o.AsSpan(1, n)));
+                    }
+            }
+        var big = new byte[100_000];
+        Array.Fill(big, (byte)0x80);   // |−128| everywhere: the 16-bit lanes must not wrap
+        Assert.Equal(128L * big.Length, PngWriter.SignedAbsSum(big));
+    }
+
+    [Fact]
+    public void Adaptive_rows_are_the_least_signed_sum_filter_of_each_row()
+    {
+        var rgb = Rgb();
+        var ms = new MemoryStream();
+        PngWriter.WriteRgb8(ms, W, H, rgb);
+        var raw = Inflate(ms.ToArray());
+        int rowBytes = 3 * W;
+        byte[]? above = null;
+        var counts = new int[5];
+        for (int y = 0; y < H; y++)
+        {
+            var x = rgb.AsSpan(y * rowBytes, rowBytes).ToArray();
+            byte[] best = null!;
+            long bestSum = long.MaxValue;
+            for (int f = 0; f < 5; f++)
+            {
+                var o = ReferenceFilter(f, x, above, 3);
+                long sum = o.Skip(1).Sum(v => (long)Math.Abs((int)(sbyte)v));
+                if (sum < bestSum) { bestSum = sum; best = o; }
+            }
+            Assert.Equal(best, raw.AsSpan(y * (rowBytes + 1), rowBytes + 1).ToArray());
+            counts[best[0]]++;
+            above = x;
+        }
+        Assert.True(counts.Count(c => c > 0) >= 2, "the test image should exercise more than one filter");
+    }
+
+    [Fact]
+    public void Slicing_by_8_crc_equals_the_bitwise_definition_at_every_length_and_split()
+    {
+        static uint Bitwise(ReadOnlySpan<byte> data)
+        {
+            uint c = 0xFFFFFFFF;
+            foreach (byte v in data) { c ^= v; for (int k = 0; k < 8; k++) c = (c & 1) != 0 ? 0xEDB88320u ^ (c >> 1) : c >> 1; }
+            return ~c;
+        }
+        var rng = new Random(4);
+        var data = new byte[300];
+        rng.NextBytes(data);
+        for (int n = 0; n <= data.Length; n++)
+        {
+            Assert.Equal(Bitwise(data.AsSpan(0, n)), Crc32.Compute(data.AsSpan(0, n)));
+            int split = n / 3;
+            Assert.Equal(Bitwise(data.AsSpan(0, n)), Crc32.Update(Crc32.Compute(data.AsSpan(0, split)), data.AsSpan(split, n - split)));
+        }
+    }
+
     static int[] FilterTypes(byte[] png, int rowBytes)
     {
         var raw = Inflate(png);
