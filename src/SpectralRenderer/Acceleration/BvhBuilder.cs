@@ -78,19 +78,12 @@ sealed class BvhBuilder
     readonly int[] _order;
     readonly int _maxLeafSize;
     readonly bool _parallel;
-    int _nodeCount;
-    // The tree while it is built: plain structs (no object graph for the GC to trace), indices handed out
-    // as nodes are made (in any order when subtrees run in parallel); Flatten lays them out depth-first.
-    readonly Node[] _tree;
-
-    /// <summary>32 bytes. A leaf has First = its first primitive and Second = −count; an interior node the indices of its children, Second·4 + axis.</summary>
-    struct Node
-    {
-        public Vector3 Min;
-        public int First;
-        public Vector3 Max;
-        public int Second;
-    }
+    // The nodes, written in place: the subtree over primitives [start, end) owns the 2(end − start) − 1 slots
+    // from its root on (a binary tree over n primitives has at most 2n − 1 nodes), its left child the next
+    // 2·n_left − 1 and its right child the rest. So the first child directly follows its parent, parallel
+    // subtrees write disjoint slots (no shared counter, no false sharing), and the array is the same for any
+    // thread count; the slots a leaf of several primitives leaves unused are zero.
+    readonly BvhNode[] _nodes;
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     BvhBuilder(ReadOnlySpan<Bounds3> bounds, int maxLeafSize, bool parallel)
@@ -104,7 +97,7 @@ sealed class BvhBuilder
         }
         _maxLeafSize = maxLeafSize;
         _parallel = parallel;
-        _tree = GC.AllocateUninitializedArray<Node>(Math.Max(1, 2 * bounds.Length - 1));
+        _nodes = GC.AllocateUninitializedArray<BvhNode>(2 * bounds.Length - 1);   // each slot is written once, used or not
     }
 
     public static (BvhNode[] nodes, int[] order, int maxDepth) Build(ReadOnlySpan<Bounds3> bounds, int maxLeafSize, bool parallel)
@@ -112,28 +105,8 @@ sealed class BvhBuilder
         if (maxLeafSize < 1 || maxLeafSize > ushort.MaxValue) throw new ArgumentOutOfRangeException(nameof(maxLeafSize));
         if (bounds.Length == 0) return ([], [], 0);
         var builder = new BvhBuilder(bounds, maxLeafSize, parallel);
-        int root = builder.Subtree(0, bounds.Length, 0, builder.RangeExtent(0, bounds.Length));
-        var nodes = new BvhNode[builder._nodeCount];
-        int next = 0, maxDepth = 0;
-        builder.Flatten(root, nodes, ref next, 1, ref maxDepth);
-        return (nodes, builder._order, maxDepth);
-    }
-
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    int Flatten(int at, BvhNode[] nodes, ref int next, int depth, ref int maxDepth)
-    {
-        ref readonly var n = ref _tree[at];
-        int index = next++;
-        maxDepth = Math.Max(maxDepth, depth);
-        if (n.Second < 0)
-        {
-            nodes[index] = BvhNode.Leaf(n.Min, n.Max, n.First, -n.Second);
-            return index;
-        }
-        Flatten(n.First, nodes, ref next, depth + 1, ref maxDepth);
-        int second = Flatten(n.Second >> 2, nodes, ref next, depth + 1, ref maxDepth);
-        nodes[index] = BvhNode.Interior(n.Min, n.Max, second, n.Second & 3);
-        return index;
+        int depth = builder.Subtree(0, bounds.Length, 0, 1, builder.RangeExtent(0, bounds.Length));
+        return (builder._nodes, builder._order, depth);
     }
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
@@ -158,22 +131,23 @@ sealed class BvhBuilder
         return x >= y ? (x >= z ? 0 : 2) : (y >= z ? 1 : 2);
     }
 
+    /// <summary>Builds the subtree over [start, end) with its root in slot <paramref name="at"/>; returns its depth.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    int Subtree(int start, int end, int depth, Extent extent)
+    int Subtree(int start, int end, int at, int depth, Extent extent)
     {
-        int at = Interlocked.Increment(ref _nodeCount) - 1;
         int count = end - start;
-        _tree[at] = new Node { Min = extent.Lo.AsVector3(), Max = extent.Hi.AsVector3(), First = start, Second = -count };
-        if (count <= Math.Min(LeafAtOnce, _maxLeafSize)) return at;
+        var min = extent.Lo.AsVector3();
+        var max = extent.Hi.AsVector3();
+        if (count <= Math.Min(LeafAtOnce, _maxLeafSize)) return Leaf(at, min, max, start, count, depth);
 
         int mid, axis;
         Extent left, right;
         var spread = extent.CHi - extent.CLo;
         int longest = LongestAxis(spread);
-        if (!(spread.GetElement(longest) > 0) || depth >= SahDepthLimit)
+        if (!(spread.GetElement(longest) > 0) || depth > SahDepthLimit)
         {
             // All centroids coincide (nothing separates them), or deep enough: split at the median.
-            if (!(spread.GetElement(longest) > 0) && count <= _maxLeafSize) return at;
+            if (!(spread.GetElement(longest) > 0) && count <= _maxLeafSize) return Leaf(at, min, max, start, count, depth);
             axis = longest;
             mid = MedianSplit(start, end, axis, out left, out right);
         }
@@ -182,31 +156,32 @@ sealed class BvhBuilder
             int nb = Math.Clamp(count, 2, Bins);
             var binning = new Binning(extent.CLo, Vector128.Create((float)nb) / spread, nb); // ∞ on a flat axis
             (axis, int split, float cost) = BestSplit(start, end, binning, extent, longest);
-            if (count <= _maxLeafSize && count <= cost) return at;
+            if (count <= _maxLeafSize && count <= cost) return Leaf(at, min, max, start, count, depth);
             mid = Partition(start, end, axis, split, binning, out left, out right);
             if (mid == start || mid == end) mid = MedianSplit(start, end, axis, out left, out right);
         }
 
-        int l, r;
-        if (_parallel && count >= ParallelThreshold) (l, r) = ChildrenInParallel(start, mid, end, depth + 1, left, right);
-        else
-        {
-            l = Subtree(start, mid, depth + 1, left);
-            r = Subtree(mid, end, depth + 1, right);
-        }
-        // _tree is never reallocated: set the links once the children exist.
-        _tree[at].First = l;
-        _tree[at].Second = r << 2 | axis;
-        return at;
+        int second = at + 2 * (mid - start);
+        _nodes[at] = BvhNode.Interior(min, max, second, axis);
+        if (_parallel && count >= ParallelThreshold) return ChildrenInParallel(start, mid, end, at, depth + 1, left, right);
+        return Math.Max(Subtree(start, mid, at + 1, depth + 1, left), Subtree(mid, end, second, depth + 1, right));
+    }
+
+    /// <summary>A leaf in slot <paramref name="at"/>; the 2·count − 2 slots after it, which its range owns, are cleared.</summary>
+    int Leaf(int at, Vector3 min, Vector3 max, int start, int count, int depth)
+    {
+        _nodes[at] = BvhNode.Leaf(min, max, start, count);
+        _nodes.AsSpan(at + 1, 2 * count - 2).Clear();
+        return depth;
     }
 
     // The lambdas live in their own methods: a closure captured in Subtree or BestSplit would be allocated on
     // every call, parallel or not.
-    (int, int) ChildrenInParallel(int start, int mid, int end, int depth, Extent left, Extent right)
+    int ChildrenInParallel(int start, int mid, int end, int at, int depth, Extent left, Extent right)
     {
         int l = 0, r = 0;
-        Parallel.Invoke(() => l = Subtree(start, mid, depth, left), () => r = Subtree(mid, end, depth, right));
-        return (l, r);
+        Parallel.Invoke(() => l = Subtree(start, mid, at + 1, depth, left), () => r = Subtree(mid, end, at + 2 * (mid - start), depth, right));
+        return Math.Max(l, r);
     }
 
     /// <summary>As <see cref="Fill"/>, in parallel chunks whose exact counts and unions are merged.</summary>
