@@ -203,6 +203,30 @@ public sealed partial class SceneLoader
         return m;
     }
 
+    readonly Dictionary<string, Task<TriangleMesh>> _meshReads = new(StringComparer.Ordinal);
+
+    static TriangleMesh ReadMesh(string full) =>
+        Path.GetExtension(full).Equals(".obj", StringComparison.OrdinalIgnoreCase) ? ObjReader.Read(full) : PlyReader.Read(full);
+
+    /// <summary>
+    /// Starts reading every mesh file the objects name on the thread pool, so parsing (the bulk of a large
+    /// scene's load) overlaps the spectra, colorimetry, camera and materials, which the main thread resolves
+    /// first. Only files that are found and are .obj or .ply are started; everything else is reported by
+    /// <see cref="MeshObject"/> in document order, as before.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
+    void StartMeshReads(JsonElement root)
+    {
+        if (!TryGet(root, "objects", out var objects) || objects.ValueKind != JsonValueKind.Array) return;
+        foreach (var o in objects.EnumerateArray())
+        {
+            if (o.ValueKind != JsonValueKind.Object || !o.TryGetProperty("file", out var f) || f.ValueKind != JsonValueKind.String) continue;
+            var full = ModelSearch.Find(f.GetString()!, _dir, _overrides.ModelDirectories);
+            if (full is null || _meshReads.ContainsKey(full) || Path.GetExtension(full).ToLowerInvariant() is not (".obj" or ".ply")) continue;
+            _meshReads[full] = Task.Run(() => ReadMesh(full));
+        }
+    }
+
     /// <summary>A triangle mesh from an OBJ or PLY file found along the model search path, fitted and transformed.</summary>
     [MethodImpl(MethodImplOptions.NoOptimization)]
     SceneObject MeshObject(JsonElement e, string path, string name, Matrix4x4 user, int material)
@@ -212,12 +236,10 @@ public sealed partial class SceneLoader
             ?? throw Error($"{path}.file", $"mesh '{file}' not found in {ModelSearch.Describe(_dir, _overrides.ModelDirectories)}",
                 "download the meshes (README, 'Meshes') and pass --models DIR or set SPECTRAL_MODELS");
         var ext = Path.GetExtension(full).ToLowerInvariant();
-        TriangleMesh mesh = ext switch
-        {
-            ".obj" => ObjReader.Read(full),
-            ".ply" => PlyReader.Read(full),
-            _ => throw Error($"{path}.file", $"'{file}' is neither .obj nor .ply"),
-        };
+        if (ext is not (".obj" or ".ply")) throw Error($"{path}.file", $"'{file}' is neither .obj nor .ply");
+        // The read started with the scene (StartMeshReads); a second object on the same file reads it again,
+        // since fitting and transforming change the mesh. Its errors surface here, as if read in place.
+        TriangleMesh mesh = _meshReads.Remove(full, out var read) ? read.GetAwaiter().GetResult() : ReadMesh(full);
         if (TryGet(e, "fit", out var fit))
         {
             Object(fit, $"{path}.fit");

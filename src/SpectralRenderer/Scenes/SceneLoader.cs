@@ -184,6 +184,7 @@ public sealed partial class SceneLoader
     {
         Object(root, "$");
         Keys(root, "$", TopKeys);
+        StartMeshReads(root);
 
         _grid = _overrides.Bands is { } b ? BandGrid.Parse(b) :
             TryGet(root, "bands", out var bands) ? ParseGrid(bands, "$.bands") : BandGrid.Default;

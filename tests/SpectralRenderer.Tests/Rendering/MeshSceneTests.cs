@@ -75,6 +75,40 @@ public class MeshSceneTests
     }
 
     [Fact]
+    public void Two_objects_on_one_file_each_get_their_own_fitted_mesh()
+    {
+        // The first object takes the read started with the scene; the second reads the file again (fitting changes
+        // a mesh in place), so each ends up exactly in its own box.
+        var dir = Reference.TempDir();
+        File.WriteAllText(Path.Combine(dir, "cube.obj"), Obj);
+        var path = Path.Combine(dir, "scene.json");
+        File.WriteAllText(path, Scene("""
+            { "type": "mesh", "name": "a", "file": "cube.obj", "fit": { "min": [-2, 0, 0], "max": [-1, 1, 1] }, "material": "m" },
+            { "type": "mesh", "name": "b", "file": "cube.obj", "fit": { "min": [1, 0, 0], "max": [3, 2, 2] }, "material": "m" }
+            """));
+        var scene = SceneLoader.Load(path);
+        var a = scene.Objects[0].Mesh!.Bounds;
+        var b = scene.Objects[1].Mesh!.Bounds;
+        Assert.NotSame(scene.Objects[0].Mesh, scene.Objects[1].Mesh);
+        Assert.Equal(new System.Numerics.Vector3(-2, 0, 0), a.Min);
+        Assert.Equal(new System.Numerics.Vector3(-1, 1, 1), a.Max);
+        Assert.Equal(new System.Numerics.Vector3(1, 0, 0), b.Min);
+        Assert.Equal(new System.Numerics.Vector3(3, 2, 2), b.Max);
+    }
+
+    [Fact]
+    public void A_broken_mesh_read_ahead_reports_its_file_and_line()
+    {
+        var dir = Reference.TempDir();
+        File.WriteAllText(Path.Combine(dir, "broken.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
+        var path = Path.Combine(dir, "scene.json");
+        File.WriteAllText(path, Scene("""{ "type": "mesh", "name": "x", "file": "broken.obj", "material": "m" }"""));
+        var e = Assert.Throws<SpectralRenderer.Diagnostics.InputException>(() => SceneLoader.Load(path));
+        Assert.Contains("broken.obj:4", e.Message);
+        Assert.Contains("out of range", e.Message);
+    }
+
+    [Fact]
     public void A_missing_mesh_names_the_search_path()
     {
         var dir = Reference.TempDir();
