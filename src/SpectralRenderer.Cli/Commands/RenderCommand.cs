@@ -14,7 +14,7 @@ public static class RenderCommand
     public const string Help = """
         usage: spectral render SCENE.json [-o OUTDIR] [--width W] [--height H] [--bands N | S:E:N]
                                [--spp N] [--threads N] [--rgb srgb|paper] [--integration weighted|paper]
-                               [--formats LIST] [--models DIR] [--quiet]
+                               [--formats LIST] [--exr-compression zip|zip-all|none] [--models DIR] [--quiet]
 
         Renders a scene file (docs/scene-format.md) with the paper's eq. 2 in every band and writes:
           preview.png        8-bit sRGB (or eq. 4 with --rgb paper)
@@ -33,11 +33,13 @@ public static class RenderCommand
           --rgb MODE         srgb (default) or paper (the paper's eq. 4, linear, clipped)
           --integration S    weighted (default, spectral prefiltering) or paper
           --formats LIST     comma-separated from png,bands,exr,envi,npy,aov or all (default: all)
+          --exr-compression  zip (default: deflate the chunks whose samples repeat, store noisy ones),
+                             zip-all (deflate every chunk: smallest file, slower) or none
           --models DIR       a folder to search for mesh files (after the scene's folder, before $SPECTRAL_MODELS)
           --quiet            no progress or summary on stderr
         """;
 
-    static readonly string[] Values = ["-o", "--out", "--width", "--height", "--bands", "--band-range", "--spp", "--threads", "--rgb", "--integration", "--formats", "--models"];
+    static readonly string[] Values = ["-o", "--out", "--width", "--height", "--bands", "--band-range", "--spp", "--threads", "--rgb", "--integration", "--formats", "--exr-compression", "--models"];
 
     [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
     public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
@@ -114,6 +116,7 @@ public static class RenderCommand
             Rgb = a.Value("--rgb"),
             Integration = a.Value("--integration"),
             Formats = a.Value("--formats"),
+            ExrCompression = a.Value("--exr-compression"),
             ModelDirectories = models,
         };
     }

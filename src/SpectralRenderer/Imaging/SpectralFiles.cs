@@ -27,6 +27,8 @@ public static class SpectralFiles
         {
             Colorimeter = scene.Colorimeter,
             Xyz = true,
+            Compression = scene.Output.ExrCompression == "none" ? ExrCompression.None : ExrCompression.Zip,
+            DeflateEveryChunk = scene.Output.ExrCompression == "zip-all",
             Attributes = new Dictionary<string, string> { ["software"] = $"spectral {typeof(SpectralFiles).Assembly.GetName().Version?.ToString(3)}" },
         });
         done("spectral.exr");

@@ -25,6 +25,9 @@ public sealed class OutputOptions
     /// <summary>A pixel is in a highlight when its specular term's luminance exceeds this fraction of the diffuse term's.</summary>
     public double HighlightFraction { get; set; } = 0.1;
     public HashSet<string> Formats { get; set; } = new(OutputFormats.Default, StringComparer.Ordinal);
+    /// <summary>How spectral.exr is compressed: "zip" (deflate the chunks whose samples repeat, store the rest), "zip-all" (deflate every chunk: smallest, slowest) or "none".</summary>
+    public string ExrCompression { get; set; } = "zip";
+    public static readonly string[] ExrCompressions = ["zip", "zip-all", "none"];
 }
 
 public static class OutputFormats

@@ -350,7 +350,7 @@ public sealed partial class SceneLoader
         if (TryGet(root, "output", out var e))
         {
             Object(e, "$.output");
-            Keys(e, "$.output", "rgb", "exposure", "adapt", "formats", "highlight_fraction");
+            Keys(e, "$.output", "rgb", "exposure", "adapt", "formats", "highlight_fraction", "exr_compression");
             o.HighlightFraction = Number(e, "highlight_fraction", "$.output", 0.1, 0, 1e6);
             if (TryGet(e, "rgb", out var rgb)) o.Rgb = RgbSpace.Parse(String(rgb, "$.output.rgb"), Where("$.output.rgb"));
             o.Exposure = Number(e, "exposure", "$.output", 1.0, 0, 1e12);
@@ -360,10 +360,22 @@ public sealed partial class SceneLoader
                 if (f.ValueKind != JsonValueKind.Array) throw Error("$.output.formats", $"expected an array of format names, found {Kind(f)}");
                 o.Formats = ParseFormats(f.EnumerateArray().Select((x, i) => String(x, $"$.output.formats[{i}]")), Where("$.output.formats"));
             }
+            if (TryGet(e, "exr_compression", out var c)) o.ExrCompression = ParseExrCompression(String(c, "$.output.exr_compression"), Where("$.output.exr_compression"));
         }
+        if (_overrides.ExrCompression is { } ec) o.ExrCompression = ParseExrCompression(ec, "--exr-compression");
         if (_overrides.Rgb is { } r) o.Rgb = RgbSpace.Parse(r);
         if (_overrides.Formats is { } fs) o.Formats = ParseFormats(fs.Split(',', StringSplitOptions.RemoveEmptyEntries | StringSplitOptions.TrimEntries), "--formats");
         return o;
+    }
+
+    [MethodImpl(MethodImplOptions.NoOptimization)]
+    static string ParseExrCompression(string name, string where)
+    {
+        var n = name.ToLowerInvariant();
+        if (Array.IndexOf(OutputOptions.ExrCompressions, n) < 0)
+            throw new InputException(where, $"unknown EXR compression '{name}'",
+                InputException.DidYouMean(name, OutputOptions.ExrCompressions) ?? "zip (deflate where samples repeat), zip-all (smallest file) or none");
+        return n;
     }
 
     [MethodImpl(MethodImplOptions.NoOptimization)]

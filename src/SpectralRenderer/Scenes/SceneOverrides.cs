@@ -12,5 +12,6 @@ public sealed record SceneOverrides
     public string? Rgb { get; init; }
     public string? Integration { get; init; }
     public string? Formats { get; init; }
+    public string? ExrCompression { get; init; }
     public IReadOnlyList<string> ModelDirectories { get; init; } = [];
 }
