@@ -25,7 +25,8 @@ readonly struct SlabRay
     public SlabRay(in Ray ray)
     {
         _origin = ray.Origin.AsVector128();
-        _inverse = Vector128<float>.One / ray.Direction.AsVector128();
+        // Lane 3 is NaN, so whatever the node holds beside its corners (Offset, Count) drops out of the test below.
+        _inverse = (Vector128<float>.One / ray.Direction.AsVector128()).WithElement(3, float.NaN);
         _negative = Vector128.ShiftRightArithmetic(ray.Direction.AsVector128().AsInt32(), 31).AsSingle();
         NegativeAxes = (int)(Vector128.ExtractMostSignificantBits(ray.Direction.AsVector128()) & 7);
     }
@@ -41,8 +42,10 @@ readonly struct SlabRay
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public bool Hits(in BvhNode node, float tMax, out float entry)
     {
-        var min = node.Min.AsVector128();
-        var max = node.Max.AsVector128();
+        // One 16-byte load per corner: Min with Offset, Max with Count and Axis in lane 3 (BvhNode's layout).
+        ref float at = ref Unsafe.As<BvhNode, float>(ref Unsafe.AsRef(in node));
+        var min = Unsafe.ReadUnaligned<Vector128<float>>(ref Unsafe.As<float, byte>(ref at));
+        var max = Unsafe.ReadUnaligned<Vector128<float>>(ref Unsafe.As<float, byte>(ref Unsafe.Add(ref at, 4)));
         var near = (Vector128.ConditionalSelect(_negative, max, min) - _origin) * _inverse;
         var far = (Vector128.ConditionalSelect(_negative, min, max) - _origin) * _inverse * Vector128.Create(ExitScale);
         if (Sse.IsSupported)
