@@ -220,11 +220,24 @@ public sealed partial class SceneLoader
         if (!TryGet(root, "objects", out var objects) || objects.ValueKind != JsonValueKind.Array) return;
         foreach (var o in objects.EnumerateArray())
         {
-            if (o.ValueKind != JsonValueKind.Object || !o.TryGetProperty("file", out var f) || f.ValueKind != JsonValueKind.String) continue;
+            if (o.ValueKind != JsonValueKind.Object || !o.TryGetProperty("type", out var type) || type.ValueKind != JsonValueKind.String ||
+                !type.GetString()!.Equals("mesh", StringComparison.OrdinalIgnoreCase) ||
+                !o.TryGetProperty("file", out var f) || f.ValueKind != JsonValueKind.String) continue;
             var full = ModelSearch.Find(f.GetString()!, _dir, _overrides.ModelDirectories);
             if (full is null || _meshReads.ContainsKey(full) || Path.GetExtension(full).ToLowerInvariant() is not (".obj" or ".ply")) continue;
             _meshReads[full] = Task.Run(() => ReadMesh(full));
         }
+    }
+
+    /// <summary>
+    /// Reads that were started but not used because the load stopped at an error: they finish in the
+    /// background, and a read that failed too is observed here so it is not reported a second time.
+    /// </summary>
+    void AbandonMeshReads()
+    {
+        foreach (var read in _meshReads.Values)
+            read.ContinueWith(static t => _ = t.Exception, CancellationToken.None, TaskContinuationOptions.OnlyOnFaulted | TaskContinuationOptions.ExecuteSynchronously, TaskScheduler.Default);
+        _meshReads.Clear();
     }
 
     /// <summary>A triangle mesh from an OBJ or PLY file found along the model search path, fitted and transformed.</summary>

@@ -64,7 +64,8 @@ public sealed partial class SceneLoader
         using (doc)
         {
             var loader = new SceneLoader(path, new JsonLocator(span, ReaderOptions), overrides ?? new SceneOverrides());
-            return loader.Build(doc.RootElement);
+            try { return loader.Build(doc.RootElement); }
+            finally { loader.AbandonMeshReads(); }
         }
     }
 

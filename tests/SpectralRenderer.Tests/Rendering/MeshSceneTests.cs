@@ -109,6 +109,23 @@ public class MeshSceneTests
     }
 
     [Fact]
+    public void Errors_come_in_document_order_although_meshes_are_read_ahead()
+    {
+        // Object 0 has a bad material and object 1 a broken mesh, read ahead on the thread pool: the load reports
+        // object 0, as a load in document order would.
+        var dir = Reference.TempDir();
+        File.WriteAllText(Path.Combine(dir, "broken.obj"), "v 0 0 0\nf 1 2 3\n");
+        var path = Path.Combine(dir, "scene.json");
+        File.WriteAllText(path, Scene("""
+            { "type": "sphere", "name": "s", "center": [0, 0, 0], "radius": 1, "material": "nope" },
+            { "type": "mesh", "name": "x", "file": "broken.obj", "material": "m" }
+            """));
+        var e = Assert.Throws<SpectralRenderer.Diagnostics.InputException>(() => SceneLoader.Load(path));
+        Assert.Contains("$.objects[0].material", e.Message);
+        Assert.DoesNotContain("broken.obj", e.Message);
+    }
+
+    [Fact]
     public void A_missing_mesh_names_the_search_path()
     {
         var dir = Reference.TempDir();
