@@ -29,8 +29,10 @@ public static class RenderOutputWriter
         int n = image.Width * image.Height;
         // Band-sequential planes, transposed once and shared by the band PNGs, the mosaic, spectral.exr and the ENVI cube;
         // eq. 3's XYZ of every pixel, computed once for the preview and spectral.exr's R, G, B and X, Y, Z.
-        float[]? bands = formats.Contains("bands") || formats.Contains("exr") || formats.Contains("envi") || formats.Contains("png") ? image.BandPlanes() : null;
-        var xyz = formats.Contains("png") || formats.Contains("exr") ? XyzPlanes.Compute(scene.Colorimeter, bands, n) : null;
+        // Without a writer of planes, the preview takes XYZ from the cube itself (no second copy of the cube).
+        float[]? bands = formats.Contains("bands") || formats.Contains("exr") || formats.Contains("envi") ? image.BandPlanes() : null;
+        var xyz = bands is not null && (formats.Contains("png") || formats.Contains("exr")) ? XyzPlanes.Compute(scene.Colorimeter, bands, n)
+            : formats.Contains("png") ? XyzPlanes.Compute(scene.Colorimeter, image) : null;
 
         clearing.GetAwaiter().GetResult();
 

@@ -34,6 +34,22 @@ public sealed class XyzPlanes
         return xyz;
     }
 
+    /// <summary>The same planes from the pixel-interleaved cube, pixel by pixel (for a preview without band planes).</summary>
+    public static XyzPlanes Compute(Colorimeter cm, Rendering.SpectralImage image)
+    {
+        int pixels = image.Width * image.Height, count = image.Bands;
+        var xyz = new XyzPlanes(new double[pixels], new double[pixels], new double[pixels]);
+        Parallel.For(0, image.Height, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (row) =>
+        {
+            for (int p = row * image.Width; p < (row + 1) * image.Width; p++)
+            {
+                var v = cm.ToXyz((ReadOnlySpan<float>)image.Data.AsSpan(p * count, count));
+                xyz.X[p] = v.X; xyz.Y[p] = v.Y; xyz.Z[p] = v.Z;
+            }
+        });
+        return xyz;
+    }
+
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     void Accumulate(Colorimeter cm, ReadOnlySpan<float> bands, int pixels, int p0, int n)
     {
