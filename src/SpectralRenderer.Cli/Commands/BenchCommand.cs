@@ -21,7 +21,7 @@ public static class BenchCommand
 
     public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
     {
-        var a = new Arguments("bench", argv, ["--width", "--height", "--repeat", "--threads", "--bands", "--band-range", "--spp", "--models", "--rgb", "--integration", "--formats", "--exr-compression"], []);
+        var a = new Arguments("bench", argv, ["--width", "--height", "--repeat", "--threads", "--bands", "--band-range", "--spp", "--models", "--rgb", "--integration", "--formats"], []);
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
         if (a.Positionals.Count > 1) throw new InputException("", $"unexpected argument '{a.Positionals[1]}'", "usage: spectral bench [SCENE]");
         var scenePath = a.Positionals.Count == 1 ? a.Positionals[0] : DefaultScene();

@@ -66,12 +66,13 @@ sealed class BvhBuilder
     readonly struct Binning(Vector128<float> min, Vector128<float> scale, int bins)
     {
         public readonly int Count = bins;
-        readonly Vector128<int> _last = Vector128.Create(bins - 1);
+        readonly Vector128<float> _last = Vector128.Create((float)(bins - 1));
 
-        // NaN (0·∞ on a flat axis) converts to int.MinValue (x86) or 0 (Arm): either way the clamp gives bucket 0.
+        // Clamped before the conversion, so every platform gives the same bucket: NaN (0·∞ on a flat axis) becomes 0
+        // (x86's maxps returns its second operand; Arm's NaN converts to 0) and ∞ (a subnormal spread) the last.
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
         public Vector128<int> Of(in Box b) =>
-            Vector128.Min(Vector128.Max(Vector128.ConvertToInt32Native((b.Centroid2 - min) * scale), Vector128<int>.Zero), _last);
+            Vector128.ConvertToInt32Native(Vector128.MinNative(Vector128.MaxNative((b.Centroid2 - min) * scale, Vector128<float>.Zero), _last));
     }
 
     readonly Box[] _boxes;      // permuted with _order
@@ -157,8 +158,17 @@ sealed class BvhBuilder
             var binning = new Binning(extent.CLo, Vector128.Create((float)nb) / spread, nb); // ∞ on a flat axis
             (axis, int split, float cost) = BestSplit(start, end, binning, extent, longest);
             if (count <= _maxLeafSize && count <= cost) return Leaf(at, min, max, start, count, depth);
-            mid = Partition(start, end, axis, split, binning, out left, out right);
-            if (mid == start || mid == end) mid = MedianSplit(start, end, axis, out left, out right);
+            if (split < 0)
+            {
+                // No bucket boundary separates anything: split at the median of the longest axis.
+                axis = longest;
+                mid = MedianSplit(start, end, axis, out left, out right);
+            }
+            else
+            {
+                mid = Partition(start, end, axis, split, binning, out left, out right);
+                if (mid == start || mid == end) mid = MedianSplit(start, end, axis, out left, out right);
+            }
         }
 
         int second = at + 2 * (mid - start);

@@ -4,7 +4,7 @@ using System.Runtime.InteropServices;
 namespace SpectralRenderer.Acceleration;
 
 /// <summary>
-/// One node of the flattened BVH, 32 bytes (pbrt-v4's LinearBVHNode): its bounds; for a leaf, the first
+/// One node of the BVH's node array, 32 bytes (pbrt-v4's LinearBVHNode): its bounds; for a leaf, the first
 /// primitive (in BVH order) and the count; for an interior node, the index of the second child (the first
 /// child follows the node directly) and the split axis.
 /// </summary>

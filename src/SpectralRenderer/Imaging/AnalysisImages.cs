@@ -51,20 +51,4 @@ public static class AnalysisImages
         }
         return planes;
     }
-
-    /// <summary>m_diff of the material each pixel's centre ray hits (0 for background), band values.</summary>
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    public static SpectralImage GroundTruthReflectance(Scene scene, RenderResult result)
-    {
-        var image = result.Image;
-        var truth = new SpectralImage(image.Width, image.Height, image.Grid);
-        int bands = image.Bands;
-        for (int i = 0; i < result.ObjectIds.Length; i++)
-        {
-            int id = result.ObjectIds[i];
-            if (id < 0) continue;
-            scene.Materials[scene.Objects[id].Material].Diffuse.AsSpan(0, bands).CopyTo(truth.Data.AsSpan(i * bands, bands));
-        }
-        return truth;
-    }
 }

@@ -30,9 +30,6 @@ public static class EnviWriter
     /// <summary>The header path ENVI and GDAL look for: the image path with its extension replaced by .hdr.</summary>
     public static string HeaderPath(string imagePath) => Path.ChangeExtension(imagePath, ".hdr");
 
-    /// <summary>The BSQ float32 little-endian samples.</summary>
-    public static void WriteData(Stream stream, SpectralImage image) => WriteData(stream, image.BandPlanes());
-
     /// <summary>Band-sequential planes as float32 little-endian: one large write on a little-endian machine.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     static void WriteData(Stream stream, ReadOnlySpan<float> bands)

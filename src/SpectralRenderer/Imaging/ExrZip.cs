@@ -18,7 +18,8 @@ static class ExrZip
     /// A chunk is deflated when at least this fraction of its samples equal the sample before them. Measured on
     /// 512² renders (16 lines × 26 float channels per chunk): piecewise-constant chunks (ground truth, background)
     /// shrink 50–100× at level 1 in well under 1 ms; chunks of noisy radiance (repeat fraction ≈ 0) cost 5–10 ms each
-    /// and shrink by 0–20% — deflate's run-length strategy left them larger than raw, so they were stored anyway.
+    /// to deflate for a file only a sixth smaller (20.1 → 16.8 MB at 512², 26 channels), so they are stored raw unless
+    /// <see cref="ExrOptions.DeflateEveryChunk"/> (--exr-compression zip-all) asks for the smallest file.
     /// </summary>
     public const double MinRepeatFraction = 0.3;
 

@@ -9,16 +9,6 @@ namespace SpectralRenderer.Imaging;
 /// </summary>
 public static class SpectralFiles
 {
-    /// <summary>The cubes <paramref name="formats"/> asks for, one after another (RenderOutputWriter writes them side by side).</summary>
-    public static void Write(Scene scene, SpectralImage image, string outDir, IReadOnlySet<string> formats, Action<string> done)
-    {
-        var bands = formats.Contains("exr") || formats.Contains("envi") ? image.BandPlanes() : null;
-        if (formats.Contains("exr")) WriteExr(scene, image, bands!, null, outDir, done);
-        if (formats.Contains("envi")) WriteEnvi(scene, image, bands!, outDir, done);
-        if (formats.Contains("npy")) WriteNpy(image, outDir, done);
-        if (formats.Contains("npy") || formats.Contains("envi") || formats.Contains("exr")) WriteWavelengths(image, outDir, done);
-    }
-
     /// <param name="bands">The image's band planes (<see cref="SpectralImage.CopyBands"/>).</param>
     /// <param name="xyz">Their <see cref="XyzPlanes"/> of scene.Colorimeter when the caller has them already.</param>
     internal static void WriteExr(Scene scene, SpectralImage image, float[] bands, XyzPlanes? xyz, string outDir, Action<string> done)

@@ -79,7 +79,7 @@ public class BvhTests(ITestOutputHelper output)
     {
         var set = TriangleSet.Build([Soup(2_000, 1)]);
         var (closest, occluded, hits) = BruteForce.Compare(set, Rays(set.Bvh.Bounds, SoupRays, 2));
-        output.WriteLine($"soup: 2,000 triangles, {set.Bvh.NodeCount} nodes, depth {set.Bvh.MaxDepth}; {SoupRays} rays, {hits} hit");
+        output.WriteLine($"soup: 2,000 triangles, {set.Bvh.NodeCount} node slots, depth {set.Bvh.MaxDepth}; {SoupRays} rays, {hits} hit");
         Assert.Equal(0, closest);
         Assert.Equal(0, occluded);
         Assert.InRange(hits, SoupRays / 20, SoupRays - 1); // the comparison is not vacuous (12,529 of 100k hit)
@@ -115,6 +115,55 @@ public class BvhTests(ITestOutputHelper output)
         }
     }
 
+    /// <summary>
+    /// The slot layout walked from the root: a subtree over n primitives owns 2n − 1 slots, its first child right
+    /// after it and its second 2·n_left − 1 slots further; every primitive is in exactly one reachable leaf, each
+    /// node's box holds its children's, and the slots no node uses are zero. Soups, identical boxes (the median
+    /// path), flat boxes and a single primitive, for several leaf sizes.
+    /// </summary>
+    [Fact]
+    public void Every_range_owns_its_slots_and_the_unused_ones_are_zero()
+    {
+        var soup = Soup(3_000, 9);
+        var cases = new List<Bounds3[]>
+        {
+            Enumerable.Range(0, soup.TriangleCount).Select(t => { var (a, b, c) = soup.Triangle(t); var x = new Bounds3(a, a); x.Include(b); x.Include(c); return x; }).ToArray(),
+            Enumerable.Repeat(new Bounds3(new Vector3(1, 2, 3), new Vector3(2, 3, 4)), 500).ToArray(),
+            Enumerable.Range(0, 700).Select(i => new Bounds3(new Vector3(i % 37, i / 37, 0), new Vector3(i % 37 + 0.5f, i / 37 + 0.5f, 0))).ToArray(),
+            new[] { new Bounds3(Vector3.Zero, Vector3.One) },
+        };
+        foreach (var bounds in cases)
+            foreach (int leafSize in new[] { 1, 2, 4 })
+            {
+                var bvh = Bvh.Build(bounds, leafSize);
+                var nodes = bvh.Nodes.ToArray();
+                Assert.Equal(2 * bounds.Length - 1, nodes.Length);
+                var used = new bool[nodes.Length];
+                var seen = new int[bounds.Length];
+                int Walk(int at, int first)   // returns how many primitives the subtree at `at` holds; they are [first, first + n)
+                {
+                    used[at] = true;
+                    var n = nodes[at];
+                    if (n.IsLeaf)
+                    {
+                        Assert.Equal(first, n.Offset);
+                        for (int k = n.Offset; k < n.Offset + n.Count; k++) seen[k]++;
+                        return n.Count;
+                    }
+                    int left = Walk(at + 1, first);
+                    Assert.Equal(at + 2 * left, n.Offset);   // the left range owned 2·n_left − 1 slots from at + 1
+                    int right = Walk(n.Offset, first + left);
+                    foreach (var c in new[] { nodes[at + 1], nodes[n.Offset] })
+                        Assert.True(Vector3.Min(c.Min, n.Min) == n.Min && Vector3.Max(c.Max, n.Max) == n.Max, "a node's box holds its children's");
+                    return left + right;
+                }
+                Assert.Equal(bounds.Length, Walk(0, 0));
+                Assert.All(seen, s => Assert.Equal(1, s));
+                for (int i = 0; i < nodes.Length; i++)
+                    if (!used[i]) Assert.Equal(default(BvhNode), nodes[i]);
+            }
+    }
+
     [Fact]
     public void The_node_array_does_not_depend_on_parallelism()
     {
@@ -123,7 +172,7 @@ public class BvhTests(ITestOutputHelper output)
         var one = TriangleSet.Build([mesh], parallel: false).Bvh;
         var many = TriangleSet.Build([mesh]).Bvh;
         var again = TriangleSet.Build([mesh]).Bvh;
-        output.WriteLine($"{one.NodeCount} nodes, depth {one.MaxDepth}");
+        output.WriteLine($"{one.NodeCount} node slots, depth {one.MaxDepth}");
         Assert.True(one.Nodes.SequenceEqual(many.Nodes));
         Assert.True(many.Nodes.SequenceEqual(again.Nodes));
         Assert.Equal(one.PrimitiveOrder, many.PrimitiveOrder);

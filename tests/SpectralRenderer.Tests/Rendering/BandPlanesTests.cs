@@ -93,7 +93,11 @@ public class BandPlanesTests
                        { "type": "box", "center": [-1.5, 0.5, 0], "size": [1, 1, 1], "material": "b" } ] }
         """);
         var result = Renderer.Render(scene, 2);
-        var truth = AnalysisImages.GroundTruthReflectance(scene, result);
+        // The definition, pixel by pixel: m_diff of the material the centre ray hit, zero for the background.
+        var truth = new SpectralImage(result.Image.Width, result.Image.Height, result.Image.Grid);
+        for (int i = 0; i < result.ObjectIds.Length; i++)
+            if (result.ObjectIds[i] >= 0)
+                scene.Materials[scene.Objects[result.ObjectIds[i]].Material].Diffuse.AsSpan(0, truth.Bands).CopyTo(truth.Data.AsSpan(i * truth.Bands));
         var planes = AnalysisImages.GroundTruthBands(scene, result);
         Synthetic.AssertBitExact(PerBand(truth), planes, "ground truth planes");
         Assert.Contains(result.ObjectIds, id => id < 0);                       // background (0) and both objects are in view
