@@ -172,7 +172,7 @@ public static class RenderOutputWriter
         string.Create(CultureInfo.InvariantCulture, $"band-{b + 1:00}-{scene.Grid.Lower(b):0.###}-{scene.Grid.Upper(b):0.###}nm.png");
 
     public static byte[] Preview(SpectralImage image, DisplayEncoder encoder) =>
-        Preview(image.Width, image.Height, XyzPlanes.Compute(encoder.Colorimeter, image.BandPlanes(), image.Width * image.Height), encoder);
+        Preview(image.Width, image.Height, XyzPlanes.Compute(encoder.Colorimeter, image), encoder);
 
     /// <summary>8-bit display RGB, from the pixels' XYZ (of the encoder's colorimeter).</summary>
     internal static byte[] Preview(int width, int height, XyzPlanes xyz, DisplayEncoder encoder)
