@@ -66,7 +66,7 @@ public static class RenderCommand
             var progress = quiet ? null : ProgressBar.For(stderr);
             var setup = System.Diagnostics.Stopwatch.StartNew();
             var geometry = new SceneGeometry(scene);
-            var integrator = new WhittedIntegrator(scene, geometry);
+            var integrator = Integrators.Create(scene, geometry);
             double buildSeconds = setup.Elapsed.TotalSeconds;
             int degenerate = scene.Objects.Sum(o => o.Mesh?.DegenerateCount ?? 0);
             var result = Renderer.Render(scene, integrator, threads ?? 0, progress is null ? null : progress.Report, cancel.Token);

@@ -56,7 +56,7 @@ public static class PaperExperiments
             }
             double load = clock.Elapsed.TotalSeconds;
             var geometry = new SceneGeometry(scene);
-            var result = Renderer.Render(scene, new WhittedIntegrator(scene, geometry), threads);
+            var result = Renderer.Render(scene, Integrators.Create(scene, geometry), threads);
             clock.Restart();
             RenderOutputWriter.Write(scene, result, dir);
             if (file.StartsWith("paper-3.1", StringComparison.Ordinal))

@@ -222,7 +222,7 @@ public static class RenderOutputWriter
         var white = scene.ReferenceWhite;
         var lights = new JsonArray();
         for (int k = 0; k < scene.Lights.Count; k++)
-            lights.Add(new JsonObject { ["index"] = k, ["name"] = scene.Lights[k].Name, ["kind"] = scene.Lights[k].Kind.ToString().ToLowerInvariant(), ["spectrum"] = scene.Lights[k].Spectrum?.Name });
+            lights.Add(new JsonObject { ["index"] = k, ["name"] = scene.Lights[k].Name, ["kind"] = scene.Lights[k].Type, ["spectrum"] = scene.Lights[k].Spectrum?.Name });
         return new JsonObject
         {
             ["tool"] = "spectral",

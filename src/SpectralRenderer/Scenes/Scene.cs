@@ -38,7 +38,7 @@ public static class OutputFormats
 
 /// <summary>
 /// The resolved scene: every spectrum already turned into band values on the scene's band grid,
-/// ready for the <see cref="Rendering.WhittedIntegrator"/>.
+/// ready for an integrator (<see cref="Rendering.IIntegrator"/>).
 /// </summary>
 public sealed class Scene
 {
