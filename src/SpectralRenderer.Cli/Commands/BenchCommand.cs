@@ -3,6 +3,7 @@ using System.Globalization;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Scenes.Loading;
 
 namespace SpectralRenderer.Cli.Commands;
 

@@ -5,6 +5,8 @@ using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Output;
+using SpectralRenderer.Scenes.Loading;
 
 namespace SpectralRenderer.Cli.Commands;
 

@@ -1,6 +1,7 @@
 using System.Runtime.CompilerServices;
 using System.Diagnostics;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Rendering;
 

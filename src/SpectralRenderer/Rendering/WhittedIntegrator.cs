@@ -2,6 +2,7 @@ using System.Runtime.CompilerServices;
 using System.Numerics;
 using SpectralRenderer.Geometry;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Rendering;
 

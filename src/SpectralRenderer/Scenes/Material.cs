@@ -12,13 +12,13 @@ namespace SpectralRenderer.Scenes;
 public sealed class Material
 {
     public required string Name { get; init; }
-    public required float[] Ambient { get; init { field = value; HasAmbient = Rendering.SpectralMath.Any(value); } }
+    public required float[] Ambient { get; init { field = value; HasAmbient = Spectra.SpectralMath.Any(value); } }
     public required float[] Diffuse { get; init; }
-    public required float[] Specular { get; init { field = value; HasSpecular = Rendering.SpectralMath.Any(value); } }
+    public required float[] Specular { get; init { field = value; HasSpecular = Spectra.SpectralMath.Any(value); } }
     public float Shininess { get; init; } = 32;
     public SpecularModel Model { get; init; } = SpecularModels.Default;
-    public required float[] Mirror { get; init { field = value; HasMirror = Rendering.SpectralMath.Any(value); } }
-    public required float[] Transmit { get; init { field = value; HasTransmission = Rendering.SpectralMath.Any(value); } }
+    public required float[] Mirror { get; init { field = value; HasMirror = Spectra.SpectralMath.Any(value); } }
+    public required float[] Transmit { get; init { field = value; HasTransmission = Spectra.SpectralMath.Any(value); } }
     /// <summary>Index of refraction per band.</summary>
     public required float[] Ior { get; init; }
     public bool Dispersive { get; init; }

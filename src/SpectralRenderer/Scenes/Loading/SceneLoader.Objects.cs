@@ -5,7 +5,7 @@ using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Geometry;
 using SpectralRenderer.Spectra;
 
-namespace SpectralRenderer.Scenes;
+namespace SpectralRenderer.Scenes.Loading;
 
 public sealed partial class SceneLoader
 {
@@ -247,7 +247,7 @@ public sealed partial class SceneLoader
         var file = String(Required(e, "file", path), $"{path}.file");
         var full = ModelSearch.Find(file, _dir, _overrides.ModelDirectories)
             ?? throw Error($"{path}.file", $"mesh '{file}' not found in {ModelSearch.Describe(_dir, _overrides.ModelDirectories)}",
-                "download the meshes (README, 'Meshes') and pass --models DIR or set SPECTRAL_MODELS");
+                "download the meshes (README, 'Meshes') and pass --models DIR or set SPECTRAL_MODELS", InputProblem.MissingFile);
         var ext = Path.GetExtension(full).ToLowerInvariant();
         if (ext is not (".obj" or ".ply")) throw Error($"{path}.file", $"'{file}' is neither .obj nor .ply");
         // The read started with the scene (StartMeshReads); a second object on the same file reads it again,

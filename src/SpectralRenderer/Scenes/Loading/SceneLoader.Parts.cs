@@ -4,10 +4,9 @@ using System.Numerics;
 using System.Text.Json;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Geometry;
-using SpectralRenderer.Rendering;
 using SpectralRenderer.Spectra;
 
-namespace SpectralRenderer.Scenes;
+namespace SpectralRenderer.Scenes.Loading;
 
 public sealed partial class SceneLoader
 {
