@@ -24,7 +24,7 @@ public sealed class RenderFolder
     public Xyz White => Manifest.White;
     public TabulatedSpectrum ReferenceWhite => Manifest.ReferenceWhite;
     public int ObserverDegrees => Manifest.ObserverDegrees;
-    public string Integration => Manifest.Integration;
+    public BandIntegration Integration => Manifest.Integration;
 
     public static RenderFolder Open(string dir)
     {

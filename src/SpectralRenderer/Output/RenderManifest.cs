@@ -35,8 +35,7 @@ public sealed record RenderManifest
     public required BandGrid Grid { get; init; }
     /// <summary>The radiance that band PNG level 65535 stands for (the brightest band value of the render).</summary>
     public required float BandImageScale { get; init; }
-    /// <summary>"weighted" or "paper" (<see cref="BandIntegration"/>).</summary>
-    public required string Integration { get; init; }
+    public required BandIntegration Integration { get; init; }
     public required int ObserverDegrees { get; init; }
     public required TabulatedSpectrum ReferenceWhite { get; init; }
     /// <summary>κ of eq. 3.</summary>
@@ -64,12 +63,7 @@ public sealed record RenderManifest
     public JsonObject? ResolvedScene { get; init; }
 
     /// <summary>Eq. 3 with the render's own weights.</summary>
-    public Xyz ToXyz(ReadOnlySpan<double> bands)
-    {
-        double x = 0, y = 0, z = 0;
-        for (int b = 0; b < Wx.Length; b++) { x += Wx[b] * bands[b]; y += Wy[b] * bands[b]; z += Wz[b] * bands[b]; }
-        return new Xyz(x, y, z);
-    }
+    public Xyz ToXyz(ReadOnlySpan<double> bands) => Colorimeter.ToXyz(Wx, Wy, Wz, bands);
 
     public JsonObject ToJson()
     {
@@ -106,7 +100,7 @@ public sealed record RenderManifest
             },
             ["colour"] = new JsonObject
             {
-                ["integration"] = Integration,
+                ["integration"] = BandIntegrations.Name(Integration),
                 ["observer"] = ObserverDegrees,
                 ["reference_white"] = ReferenceWhite.Name,
                 ["reference_white_spd"] = new JsonObject { ["wavelengths_nm"] = Arr(ReferenceWhite.Wavelengths), ["values"] = Arr(ReferenceWhite.Values) },
@@ -173,7 +167,7 @@ public sealed record RenderManifest
             SamplesPerPixel = r.OptInt(json, "spp") ?? 1,
             Grid = BandGrid.Parse(grid, $"{path}: $.bands.grid"),
             BandImageScale = (float)(r.OptNumber(bands, "band_image_scale") ?? 0),
-            Integration = r.Str(colour, "integration", "$.colour"),
+            Integration = BandIntegrations.Parse(r.Str(colour, "integration", "$.colour"), $"{path}: $.colour.integration"),
             ObserverDegrees = r.Int(colour, "observer", "$.colour"),
             ReferenceWhite = new TabulatedSpectrum(r.OptStr(colour, "reference_white") ?? "white",
                 r.Numbers(spd, "wavelengths_nm", "$.colour.reference_white_spd"), r.Numbers(spd, "values", "$.colour.reference_white_spd"), Extrapolation.Clamp),

@@ -212,7 +212,7 @@ public static class RenderOutputWriter
             SamplesPerPixel = scene.Camera.SamplesPerPixel,
             Grid = scene.Grid,
             BandImageScale = bandScale,
-            Integration = scene.Integration.ToString().ToLowerInvariant(),
+            Integration = scene.Integration,
             ObserverDegrees = c.Observer.Degrees,
             ReferenceWhite = scene.ReferenceWhite,
             Kappa = c.Kappa,

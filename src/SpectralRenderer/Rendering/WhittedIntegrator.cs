@@ -49,9 +49,6 @@ public sealed class WhittedIntegrator : IIntegrator
         }
     }
 
-    public SceneGeometry Geometry => _geometry;
-    public int PaddedBands => _padded;
-
     /// <summary>Scratch floats a thread needs: two spectra per recursion level.</summary>
     public int ScratchLength => (_scene.MaxDepth + 2) * 2 * _padded;
 
