@@ -61,6 +61,13 @@ public sealed record RenderManifest
     public IReadOnlyList<string>? Files { get; init; }
     /// <summary>The resolved scene.</summary>
     public JsonObject? ResolvedScene { get; init; }
+    /// <summary>What the render computes (<see cref="Output.SceneHash"/>): equal for the shards of one render.</summary>
+    public string? SceneHash { get; init; }
+    /// <summary>
+    /// A partial render (--crop, --shard): the film pixels this folder holds, X1 and Y1 exclusive; null for the whole
+    /// film. Its images are crop-sized; the ENVI and NPY cubes start at film pixel (X0, Y0), the EXRs say it in dataWindow.
+    /// </summary>
+    public Rendering.PixelRect? Crop { get; init; }
 
     /// <summary>Eq. 3 with the render's own weights.</summary>
     public Xyz ToXyz(ReadOnlySpan<double> bands) => Colorimeter.ToXyz(Wx, Wy, Wz, bands);
@@ -81,7 +88,7 @@ public sealed record RenderManifest
         foreach (var l in Lights) lights.Add(new JsonObject { ["index"] = l.Index, ["name"] = l.Name, ["kind"] = l.Kind, ["spectrum"] = l.Spectrum });
         JsonArray? files = null;
         if (Files is not null) { files = []; foreach (var f in Files) files.Add(JsonValue.Create(f)); }
-        return new JsonObject
+        var json = new JsonObject
         {
             ["tool"] = Tool,
             ["version"] = Version,
@@ -126,6 +133,9 @@ public sealed record RenderManifest
             ["files"] = files,
             ["resolved_scene"] = ResolvedScene?.DeepClone(),
         };
+        if (SceneHash is not null) json["scene_hash"] = SceneHash;
+        if (Crop is { } c) json["crop"] = new JsonObject { ["x0"] = c.X0, ["y0"] = c.Y0, ["x1"] = c.X1, ["y1"] = c.Y1 };
+        return json;
     }
 
     public string ToJsonText() => ToJson().ToJsonString(new JsonSerializerOptions { WriteIndented = true });
@@ -191,6 +201,10 @@ public sealed record RenderManifest
             Run = json["run"] as JsonObject,
             Files = json["files"] is JsonArray fs ? fs.Select(f => (string?)f ?? "").ToArray() : null,
             ResolvedScene = json["resolved_scene"] as JsonObject,
+            SceneHash = r.OptStr(json, "scene_hash"),
+            Crop = json["crop"] is JsonObject crop
+                ? new Rendering.PixelRect(r.Int(crop, "x0", "$.crop"), r.Int(crop, "y0", "$.crop"), r.Int(crop, "x1", "$.crop"), r.Int(crop, "y1", "$.crop"))
+                : null,
         };
     }
 

@@ -65,7 +65,7 @@ public static class RenderOutputWriter
                 Done(3)("object-id.png");
                 AnalysisImages.Write(scene, result, outDir, Done(3));
             },
-            () => { if (Has(OutputProducts.Exr)) SpectralFiles.WriteExr(scene, image, bands!, xyz, outDir, Done(4)); },
+            () => { if (Has(OutputProducts.Exr)) SpectralFiles.WriteExr(scene, image, bands!, xyz, result.Crop, outDir, Done(4)); },
             () => { if (Has(OutputProducts.Envi)) SpectralFiles.WriteEnvi(scene, image, bands!, outDir, Done(5)); },
             () => { if (Has(OutputProducts.Npy)) SpectralFiles.WriteNpy(image, outDir, Done(6)); },
             () => { if (Has(OutputProducts.Npy) || Has(OutputProducts.Envi) || Has(OutputProducts.Exr)) SpectralFiles.WriteWavelengths(image, outDir, Done(7)); },
@@ -202,13 +202,14 @@ public static class RenderOutputWriter
         }
         var lights = new ManifestLight[scene.Lights.Count];
         for (int k = 0; k < lights.Length; k++) lights[k] = new ManifestLight(k, scene.Lights[k].Name, scene.Lights[k].Type, scene.Lights[k].Spectrum?.Name);
-        return new RenderManifest
+        var manifest = new RenderManifest
         {
             Version = typeof(RenderOutputWriter).Assembly.GetName().Version?.ToString(3),
             Scene = scene.SourcePath,
             CreatedUtc = RenderManifest.Now(),
-            Width = result.Image.Width,
-            Height = result.Image.Height,
+            // The film's size; a crop or shard holds the pixels of Crop only.
+            Width = scene.Camera.Width,
+            Height = scene.Camera.Height,
             SamplesPerPixel = scene.Camera.SamplesPerPixel,
             Grid = scene.Grid,
             BandImageScale = bandScale,
@@ -231,6 +232,8 @@ public static class RenderOutputWriter
             Tiles = result.Tiles,
             Run = run,
             ResolvedScene = scene.Resolved,
+            Crop = result.Crop.IsWhole(scene.Camera.Width, scene.Camera.Height) ? null : result.Crop,
         };
+        return manifest with { SceneHash = Output.SceneHash.Of(manifest.ToJson(), scene.Output.Products, scene.Output.ExrCompression) };
     }
 }

@@ -1,4 +1,5 @@
 using SpectralRenderer.Imaging;
+using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Spectra;
 
@@ -12,7 +13,8 @@ public static class SpectralFiles
 {
     /// <param name="bands">The image's band planes (<see cref="SpectralImage.CopyBands"/>).</param>
     /// <param name="xyz">Their <see cref="XyzPlanes"/> of scene.Colorimeter when the caller has them already.</param>
-    internal static void WriteExr(Scene scene, SpectralImage image, float[] bands, XyzPlanes? xyz, string outDir, Action<string> done)
+    /// <param name="crop">The film pixels the image holds: the EXR's data window inside the film's display window.</param>
+    internal static void WriteExr(Scene scene, SpectralImage image, float[] bands, XyzPlanes? xyz, PixelRect crop, string outDir, Action<string> done)
     {
         ExrWriter.Write(Path.Combine(outDir, "spectral.exr"), image.Width, image.Height, image.Grid, bands, xyz, new ExrOptions
         {
@@ -20,6 +22,7 @@ public static class SpectralFiles
             Xyz = true,
             Compression = scene.Output.ExrCompression == ExrCompressionChoice.None ? ExrCompression.None : ExrCompression.Zip,
             DeflateEveryChunk = scene.Output.ExrCompression == ExrCompressionChoice.ZipAll,
+            DataX = crop.X0, DataY = crop.Y0, DisplayWidth = scene.Camera.Width, DisplayHeight = scene.Camera.Height,
             Attributes = new Dictionary<string, string> { ["software"] = $"spectral {typeof(SpectralFiles).Assembly.GetName().Version?.ToString(3)}" },
         });
         done("spectral.exr");

@@ -20,6 +20,8 @@ public sealed class RenderResult
     public required TimeSpan Elapsed { get; init; }
     public required int Threads { get; init; }
     public required int Tiles { get; init; }
+    /// <summary>The part of the camera's film rendered (the whole film unless cropped); Image is its size.</summary>
+    public required PixelRect Crop { get; init; }
 }
 
 /// <summary>Progress of a render, reported after each tile.</summary>
@@ -34,22 +36,31 @@ public sealed class Renderer
 {
     public const int TileSize = 32;
 
-    public static RenderResult Render(Scene scene, int threads = 0, Action<RenderProgress>? progress = null, CancellationToken cancel = default)
+    public static RenderResult Render(Scene scene, int threads = 0, Action<RenderProgress>? progress = null, CancellationToken cancel = default, PixelRect? crop = null)
     {
         var geometry = new SceneGeometry(scene);
-        return Render(scene, Integrators.Create(scene, geometry), threads, progress, cancel);
+        return Render(scene, Integrators.Create(scene, geometry), threads, progress, cancel, crop);
     }
 
-    public static RenderResult Render(Scene scene, IIntegrator integrator, int threads = 0, Action<RenderProgress>? progress = null, CancellationToken cancel = default)
+    /// <param name="crop">Renders only these pixels of the film (--crop, --shard): the tiles are the whole film's
+    /// 32 × 32 grid clipped to the crop, and each pixel is computed from its own film coordinates, so a crop holds the
+    /// same values as the same pixels of a whole render.</param>
+    public static RenderResult Render(Scene scene, IIntegrator integrator, int threads = 0, Action<RenderProgress>? progress = null, CancellationToken cancel = default, PixelRect? crop = null)
     {
         var cam = scene.Camera;
-        int width = cam.Width, height = cam.Height, bands = scene.Bands, padded = scene.PaddedBands;
+        var region = crop ?? PixelRect.Whole(cam.Width, cam.Height);
+        if (region.X0 < 0 || region.Y0 < 0 || region.X1 > cam.Width || region.Y1 > cam.Height || region.Width < 1 || region.Height < 1)
+            throw new ArgumentOutOfRangeException(nameof(crop), $"crop {region} is not inside the {cam.Width}×{cam.Height} film");
+        // width × height: the framebuffer (the crop); (ox, oy): its first pixel on the film.
+        int width = region.Width, height = region.Height, ox = region.X0, oy = region.Y0, bands = scene.Bands, padded = scene.PaddedBands;
         var image = new SpectralImage(width, height, scene.Grid);
         var ids = new int[width * height];
         var lit = new uint[width * height];
         var specY = new float[width * height];
         var diffY = new float[width * height];
-        int tilesX = (width + TileSize - 1) / TileSize, tilesY = (height + TileSize - 1) / TileSize;
+        // The film's tile grid, clipped to the crop: tile columns tx0 … and rows ty0 … that meet it.
+        int tx0 = ox / TileSize, ty0 = oy / TileSize;
+        int tilesX = (region.X1 + TileSize - 1) / TileSize - tx0, tilesY = (region.Y1 + TileSize - 1) / TileSize - ty0;
         int tiles = tilesX * tilesY;
         if (threads <= 0) threads = Environment.ProcessorCount;
         var total = new RayCounters();
@@ -75,8 +86,9 @@ public sealed class Renderer
             while ((tile = Interlocked.Increment(ref next)) < tiles)
             {
                 cancel.ThrowIfCancellationRequested();
-                int x0 = tile % tilesX * TileSize, y0 = tile / tilesX * TileSize;
-                int x1 = Math.Min(width, x0 + TileSize), y1 = Math.Min(height, y0 + TileSize);
+                // Film coordinates of the tile, clipped to the crop.
+                int x0 = Math.Max(region.X0, (tx0 + tile % tilesX) * TileSize), y0 = Math.Max(region.Y0, (ty0 + tile / tilesX) * TileSize);
+                int x1 = Math.Min(region.X1, (tx0 + tile % tilesX + 1) * TileSize), y1 = Math.Min(region.Y1, (ty0 + tile / tilesX + 1) * TileSize);
                 var counters = new RayCounters();
                 var sum = state.Sum.AsSpan();
                 var sample = state.Sample.AsSpan();
@@ -109,8 +121,8 @@ public sealed class Renderer
                         counters.Primary++;
                         id = integrator.Radiance(cam.Generate(x + 0.5f, y + 0.5f), sample, scratch, ref counters, ref info);
                     }
-                    sum[..bands].CopyTo(image.Data.AsSpan(image.Offset(x, y), bands));
-                    int i = y * width + x;
+                    sum[..bands].CopyTo(image.Data.AsSpan(image.Offset(x - ox, y - oy), bands));
+                    int i = (y - oy) * width + (x - ox);
                     ids[i] = id;
                     lit[i] = info.LitMask;
                     specY[i] = info.SpecularY;
@@ -129,7 +141,7 @@ public sealed class Renderer
         try { Task.WaitAll(workers); }
         catch (AggregateException e) when (e.InnerExceptions.All(x => x is OperationCanceledException)) { throw new OperationCanceledException(cancel); }
 
-        return new RenderResult { Image = image, ObjectIds = ids, LitMasks = lit, SpecularY = specY, DiffuseY = diffY, Rays = total, Elapsed = clock.Elapsed, Threads = threads, Tiles = tiles };
+        return new RenderResult { Image = image, ObjectIds = ids, LitMasks = lit, SpecularY = specY, DiffuseY = diffY, Rays = total, Elapsed = clock.Elapsed, Threads = threads, Tiles = tiles, Crop = region };
     }
 
     sealed class TileState(int scratch, int padded)

@@ -47,6 +47,9 @@ public static class OutputNames
 
     public static string[] ProductNames => Products.Select(p => p.Name).ToArray();
     public static string[] ExrCompressionNames => ExrCompressions.Select(p => p.Name).ToArray();
+
+    /// <summary>The scene-file name of an EXR compression choice.</summary>
+    public static string Name(ExrCompressionChoice c) => ExrCompressions.First(p => p.Choice == c).Name;
 }
 
 /// <summary>Output choices of a render (the scene's "output" block, overridable on the command line).</summary>
