@@ -40,7 +40,7 @@ public static class NamespaceDependencies
                 var body = pe.GetMethodBody(method.RelativeVirtualAddress);
                 if (!body.LocalSignature.IsNil)
                     md.GetStandaloneSignature(body.LocalSignature).DecodeLocalSignature(provider, null);
-                foreach (var token in Tokens(body.GetILBytes()))
+                foreach (var token in Tokens(body.GetILBytes() ?? []))
                     Add(md, MetadataTokens.EntityHandle(token), provider);
             }
             if (!graph.TryGetValue(from, out var edges)) graph[from] = edges = new SortedSet<string>(StringComparer.Ordinal);
