@@ -10,7 +10,7 @@ namespace SpectralRenderer.Tests.Rendering;
 /// Issue 11's bars: physical radiometry against closed forms, band values against the band mean of the true spectral
 /// radiance (integrated here by a fine midpoint sum, not by the engine's product integrals), and Fresnel furnaces.
 /// </summary>
-public class GroundTruthTests
+public class GroundTruthTests(Xunit.Abstractions.ITestOutputHelper output)
 {
     static TabulatedSpectrum S(string name) => SpectrumLibrary.Resolve(name);
 
@@ -78,6 +78,7 @@ public class GroundTruthTests
             }
         }
         Assert.True(lit > 150, $"{lit} lit pixels");
+        output.WriteLine($"{light}: {lit} lit pixels, worst band relative error {worst:E2}");
     }
 
     [Fact]
@@ -153,6 +154,7 @@ public class GroundTruthTests
         var img = result.Image;
         double max = 0, min = double.MaxValue;
         for (int i = 0; i < img.Data.Length; i++) { max = Math.Max(max, img.Data[i]); min = Math.Min(min, img.Data[i]); }
+        output.WriteLine($"{shape} ior {ior}: max band {max:G7}, min band {min:G7}");
         Assert.True(max <= 1 + 1e-5, $"{shape} ior {ior}: a band reaches {max:G7} > 1");
         if (shape == "plane")   // one interface, then the ray leaves: no path is cut, every band of every pixel is 1
             Assert.True(min >= 1 - 1e-5, $"half-space: a band is {min:G7} < 1");
