@@ -15,7 +15,7 @@ public static class RenderCommand
 {
     public const string Help = """
         usage: spectral render SCENE.json [-o OUTDIR] [--width W] [--height H] [--bands N | S:E:N]
-                               [--spp N] [--threads N] [--rgb srgb|paper] [--integration weighted|paper]
+                               [--spp N] [--threads N] [--rgb srgb|paper] [--integration exact|weighted|paper]
                                [--formats LIST] [--exr-compression zip|zip-all|none] [--models DIR] [--quiet]
                                [--crop X0,Y0,X1,Y1 | --shard I/N|none] [--shards N]
 
@@ -34,7 +34,8 @@ public static class RenderCommand
           --spp N            samples per pixel (1 = pixel centre; more = stratified jitter)
           --threads N        worker threads (default: all cores); output is identical for any N
           --rgb MODE         srgb (default) or paper (the paper's eq. 4, linear, clipped)
-          --integration S    weighted (default, spectral prefiltering) or paper
+          --integration S    exact (default: band values and colour integrated on the full tables),
+                             weighted (band products, prefiltered colour weights) or paper (eq. 3)
           --formats LIST     comma-separated from png,bands,exr,envi,npy,aov or all (default: all)
           --exr-compression  zip (default: deflate the chunks whose samples repeat, store noisy ones),
                              zip-all (deflate every chunk: smallest file, slower) or none
@@ -72,6 +73,10 @@ public static class RenderCommand
         if (shard is not null && (products & OutputProducts.Bands) != 0 && (products & (OutputProducts.Envi | OutputProducts.Npy)) == 0)
             throw new InputException("--shard", "band images need a float cube in each shard: merge rescales them to the whole image's brightest value",
                 "add envi or npy to --formats");
+        if (crop is not null && scene.Output.ExposureAuto)
+            throw new InputException(scenePath, "output.exposure \"auto\" is chosen from the whole image, which a shard or crop does not see",
+                "give a fixed \"exposure\" (a whole render's render.json states the one auto chose, $.colour.exposure)");
+        foreach (var w in scene.Warnings) stderr.WriteLine(w);
         PrepareOutputFolder(outDir);
 
         using var cancel = new CancellationTokenSource();

@@ -183,7 +183,8 @@ public static class ShardMerge
         if (bandFiles.Count > 0) Directory.CreateDirectory(Path.Combine(outDir, "bands"));
         var full = new float[width * height];
         var grey = new byte[2 * width * height];
-        var thumbs = mosaic ? BandMosaic.Blank(width, height, bands) : default;
+        var grid = parts[0].Manifest.Grid;
+        var thumbs = mosaic ? BandMosaic.Blank(width, height, bands, 256, grid) : default;
         for (int b = 0; b < bands; b++)
         {
             cancel.ThrowIfCancellationRequested();
@@ -191,9 +192,11 @@ public static class ShardMerge
             if (bandFiles.Count > 0)
             {
                 RenderOutputWriter.BandSamples16(full, scale, grey);
-                AtomicFile.Write(Path.Combine(outDir, bandFiles[b]), s => PngWriter.WriteGray16BigEndian(s, width, height, grey, PngFilter.Up));
+                var m = parts[0].Manifest;
+                var text = RenderOutputWriter.BandText(grid, b, scale, m.Radiometry, m.BandUnit ?? "");
+                AtomicFile.Write(Path.Combine(outDir, bandFiles[b]), s => PngWriter.WriteGray16BigEndian(s, width, height, grey, PngFilter.Up, text, gamma: 1.0));
             }
-            if (mosaic) BandMosaic.Draw(thumbs, width, height, bands, b, full, scale);
+            if (mosaic) BandMosaic.Draw(thumbs, width, height, bands, b, full, scale, 256, grid);
         }
         if (mosaic) AtomicFile.Write(Path.Combine(outDir, "bands.png"), s => PngWriter.WriteGray8(s, thumbs.Width, thumbs.Height, thumbs.Pixels));
     }
@@ -404,8 +407,8 @@ public static class ShardMerge
     // ---- render.json -------------------------------------------------------------------------------------------
 
     /// <summary>
-    /// The first shard's manifest as the whole render's: the band images' scale of the whole image, ray counts and
-    /// tiles summed (each pixel's rays are the same wherever it is rendered), threads the most any shard used, the crop
+    /// The first shard's manifest as the whole render's: the band images' scale of the whole image, ray counts,
+    /// tiles and pixels whose colour fell back to the bands summed (each pixel's rays are the same wherever it is rendered), threads the most any shard used, the crop
     /// removed; timings_s.render is the shards' summed render time and run the merge's.
     /// </summary>
     static RenderManifest Manifest(List<Part> parts, float scale, string commandLine)
@@ -427,6 +430,7 @@ public static class ShardMerge
             Rays = new ManifestRays(Sum(r => r.Primary), Sum(r => r.Shadow), Sum(r => r.Secondary), total, total / Math.Max(1e-9, render) / 1e6),
             Threads = parts.Max(p => p.Manifest.Threads),
             Tiles = parts.Sum(p => p.Manifest.Tiles),
+            FallbackPixels = parts.Sum(p => p.Manifest.FallbackPixels),
             Run = run,
             Crop = null,
         };

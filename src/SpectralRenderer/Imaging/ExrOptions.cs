@@ -50,6 +50,8 @@ public sealed record ExrOptions
     public int DataY { get; init; }
     public int DisplayWidth { get; init; }
     public int DisplayHeight { get; init; }
+    /// <summary>The emissiveUnits attribute of emissive files (JCGT 2021 §3), or null to omit it when the values have no unit.</summary>
+    public string? EmissiveUnits { get; init; } = ExrWriter.EmissiveUnits;
     /// <summary>Extra string attributes (e.g. "software", "comments").</summary>
     public IReadOnlyDictionary<string, string>? Attributes { get; init; }
 }

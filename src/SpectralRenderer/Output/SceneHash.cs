@@ -25,6 +25,8 @@ public static class SceneHash
             var value = manifest[key]?.DeepClone();
             // The band images' scale is the brightest value of the pixels present: a property of the crop, not the scene.
             if (key == "bands" && value is JsonObject b) b.Remove("band_image_scale");
+            // How many pixels fell back to products of band means is a count over the pixels present, too.
+            if (key == "colour" && value is JsonObject c) c.Remove("fallback_pixels");
             identity[key] = value;
         }
         identity["formats"] = new JsonArray(OutputNames.Products.Where(p => (products & p.Product) != 0).Select(p => (JsonNode)JsonValue.Create(p.Name)!).ToArray());

@@ -23,7 +23,7 @@ public class LayeringTests
         [R + "Scenes.Loading"] = ["Scenes", "Spectra", "Color", "Geometry", "Diagnostics"],
         [R + "Rendering"] = ["Scenes", "Acceleration", "Geometry", "Spectra", "Color", "Diagnostics"],
         [R + "Imaging"] = ["Spectra", "Color", "Diagnostics"],
-        [R + "Output"] = ["Rendering", "Scenes", "Imaging", "Spectra", "Color", "Diagnostics"],
+        [R + "Output"] = ["Rendering", "Scenes", "Geometry", "Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Analysis"] = ["Output", "Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Distributed"] = ["Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Cli"] = ["*"],
