@@ -37,10 +37,13 @@ public sealed class ChannelWeights
         for (int c = 0; c < m; c++)
         {
             var qe = sensor.Channels[c].QuantumEfficiency;
+            bool perEnergy = sensor.Channels[c].PerEnergy;   // η·λ = R·555 nm: no λ factor left to integrate
             for (int b = 0; b < n; b++)
             {
                 double lo = grid.Lower(b), hi = grid.Upper(b), width = hi - lo;
-                double w = e[b] > 1e-12 * peak
+                double w = perEnergy
+                    ? SensorChannel.EnergyReferenceNm * (e[b] > 1e-12 * peak ? TabulatedSpectrum.IntegrateProduct(qe, light, lo, hi) / e[b] * width : qe.Integrate(lo, hi))
+                    : e[b] > 1e-12 * peak
                     ? IntegrateTimesWavelength(qe, light, lo, hi) / e[b] * width
                     : IntegrateTimesWavelength(qe, null, lo, hi);
                 values[c * n + b] = factor * w;

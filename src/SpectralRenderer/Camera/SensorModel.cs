@@ -13,8 +13,15 @@ public enum Arrangement
     Wheel,
 }
 
-/// <summary>One channel: its quantum efficiency η(λ) (electrons per photon reaching the pixel) and where it comes from.</summary>
-public sealed record SensorChannel(string Name, TabulatedSpectrum QuantumEfficiency, string Source);
+/// <summary>
+/// One channel: its quantum efficiency η(λ) (electrons per photon reaching the pixel) and where it comes from.
+/// With <paramref name="PerEnergy"/> the table is instead a response per unit energy R(λ), in the units of
+/// a quantum efficiency at 555 nm: η(λ) = R(λ)·555 nm/λ exactly (an ideal colorimetric sensor's CMFs).
+/// </summary>
+public sealed record SensorChannel(string Name, TabulatedSpectrum QuantumEfficiency, string Source, bool PerEnergy = false)
+{
+    public const double EnergyReferenceNm = 555;
+}
 
 /// <summary>
 /// A camera: optics, pixel, channels and read-out, in the units of ISETCam's sensor model (Farrell, Catrysse &amp;

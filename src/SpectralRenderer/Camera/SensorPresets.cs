@@ -91,17 +91,12 @@ public static class SensorPresets
     public static SensorChannel Box(string name, double lo, double hi) =>
         new(name, new TabulatedSpectrum(name, [lo, hi], [1.0, 1.0], Extrapolation.Zero), $"box {lo:0.##}–{hi:0.##} nm");
 
-    /// <summary>Quantum-corrected CMFs: η(λ) = CMF(λ)·555/λ at the table's 1 nm knots.</summary>
+    /// <summary>The CMFs as responses per unit energy: η(λ) = CMF(λ)·555 nm/λ, applied exactly in the weights.</summary>
     public static SensorChannel[] CieXyz(int observerDegrees = 2)
     {
         var obs = observerDegrees == 10 ? Observer.Cie1964 : Observer.Cie1931;
-        SensorChannel Of(string n, TabulatedSpectrum cmf)
-        {
-            var wl = cmf.Wavelengths.ToArray();
-            var v = cmf.Values.ToArray();
-            for (int i = 0; i < v.Length; i++) v[i] *= 555.0 / wl[i];
-            return new SensorChannel(n, new TabulatedSpectrum(n, wl, v, Extrapolation.Zero), $"{obs.Name} {n.ToLowerInvariant()}̄ × 555/λ");
-        }
+        SensorChannel Of(string n, TabulatedSpectrum cmf) =>
+            new(n, cmf.WithExtrapolation(Extrapolation.Zero), $"{obs.Name} {n.ToLowerInvariant()}-bar per unit energy (η = CMF·555/λ)", PerEnergy: true);
         return Scale([Of("X", obs.XBar), Of("Y", obs.YBar), Of("Z", obs.ZBar)], DefaultPeakQe);
     }
 
