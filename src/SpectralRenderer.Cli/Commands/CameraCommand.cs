@@ -124,6 +124,7 @@ public static class CameraCommand
             a.Value("--radiance-scale") is not null ? "given with --radiance-scale"
             : relative ? "default 1: the render's radiometry is relative (the paper's eq. 2 has no units), so its band values are taken as W·m⁻²·sr⁻¹·nm⁻¹"
             : "default 1: the render's physical radiometry is in W·m⁻²·sr⁻¹·nm⁻¹");
+        manifest["sensor_argument"] = File.Exists(sensorName) ? Path.GetFullPath(sensorName) : sensorName;
         manifest["render_folder"] = Path.GetRelativePath(Path.GetFullPath(outDir), Path.GetFullPath(dir));
         manifest["render_radiometry"] = scene.Radiometry ?? "paper";
         manifest["processing"]!["demosaic"] = image.Demosaicked?.ToString().ToLowerInvariant();
