@@ -69,13 +69,20 @@ public sealed class CameraCapture
 
     /// <summary>
     /// Per channel, the temporal noise variance of ė = (DN − black)/(K t) at the mean signal ė̄ of the surface pixels:
-    /// [K²(ė̄t + (p ė̄ t)² + dark·t + σ_read²) + 1/12] / (K t)² — shot, PRNU, dark, read and quantisation; 0 with noise off.
+    /// [K²(ė̄t + (p ė̄ t)² + dark·t + σ_read²) + 1/12] / (K t)² — shot, PRNU, dark, read and quantisation. With noise
+    /// off only the quantisation step's 1/12 DN² remains: the resolution a real raw file has, and the floor that keeps the
+    /// estimators from amplifying model errors (demosaicking, highlights) without bound.
     /// </summary>
     public double[] NoiseVariance()
     {
         int c = Sensor.ChannelCount;
         var v = new double[c];
-        if (!Raw.Options.Noise) return v;
+        double kq = Sensor.SystemGain;
+        if (!Raw.Options.Noise)
+        {
+            for (int k = 0; k < c; k++) { double t = Raw.ExposureOf(k); v[k] = 1.0 / 12 / (kq * t * kq * t); }
+            return v;
+        }
         var mean = new double[c];
         int count = 0;
         for (int i = 0; i < Scene.Width * Scene.Height; i++)
