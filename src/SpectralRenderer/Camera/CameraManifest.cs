@@ -91,7 +91,7 @@ public static class CameraManifest
                 ["light"] = lightName,
                 ["bands"] = grid.ToString(),
                 ["weights"] = "w_c,b = s·A·ff·πT/(1+4N²)·Δλ·∫_b η_c λ E dλ / (h c ∫_b E dλ): photo-electrons per second per band unit, prefiltered by the light E",
-                ["electrons_formula"] = "e = Poisson(t·Σ_b w_c,b·L_b·(1 + PRNU)) + Poisson(t·dark), clipped at the full well",
+                ["electrons_formula"] = "e = Poisson(t·Σ_b w_c,b·L_b·(1 + PRNU) + t·dark), clipped at the full well",
                 ["dn_formula"] = "DN = round(black + (e·g + DSNU + read)·G/V_swing·(white − black)), clipped to [0, white]",
             },
             ["processing"] = new JsonObject

@@ -1,3 +1,4 @@
+using System.Numerics;
 using System.Runtime.CompilerServices;
 using SpectralRenderer.Spectra;
 
@@ -37,7 +38,7 @@ public sealed record RawFrame(int Width, int Height, int Planes, float[] Dn, dou
 /// <summary>
 /// The sensor model of <see cref="SensorModel"/> applied to a radiance cube: photo-electron rate from the channel
 /// weights, exposure (given, or auto), then per photosite, from its own counter-based random stream:
-/// e = Poisson(ė·t·(1 + PRNU)) + Poisson(dark·t), clipped at the full well; V = e·g + DSNU + N(0, σ_read);
+/// e = Poisson(ė·t·(1 + PRNU) + dark·t) (photo and dark electrons, both Poisson), clipped at the full well; V = e·g + DSNU + N(0, σ_read);
 /// DN = round(black + V·G/V_swing·(white − black)), clipped to [0, white].
 /// </summary>
 public static class SensorSimulation
@@ -51,7 +52,8 @@ public static class SensorSimulation
         int w = cube.Width, h = cube.Height, planes = sensor.Planes;
         var rates = new float[w * h * planes];
         var parallel = new ParallelOptions { MaxDegreeOfParallelism = options.Threads };
-        Parallel.For(0, h, parallel, y => Rates(sensor, cube, weights, rates, y));
+        var padded = PaddedWeights(weights);
+        Parallel.For(0, h, parallel, y => Rates(sensor, cube, padded, rates, y));
 
         // Exposure: given, or auto so that the brightest expected pixel of each exposure reaches a fraction of the full well.
         int exposures = sensor.Exposures;
@@ -74,23 +76,46 @@ public static class SensorSimulation
         return new RawFrame(w, h, planes, dn, t, peakElectrons, weights, sensor, options);
     }
 
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    static void Rates(SensorModel sensor, RadianceCube cube, ChannelWeights weights, float[] rates, int y)
+    /// <summary>Each channel's weights as float, padded with zeros to whole <see cref="Vector{T}"/>s.</summary>
+    static float[] PaddedWeights(ChannelWeights w)
     {
-        int n = cube.Bands, planes = sensor.Planes, w = cube.Width;
+        int vc = Vector<float>.Count, stride = (w.Bands + vc - 1) / vc * vc;
+        var p = new float[w.Channels * stride];
+        for (int c = 0; c < w.Channels; c++) for (int b = 0; b < w.Bands; b++) p[c * stride + b] = (float)w[c, b];
+        return p;
+    }
+
+    /// <summary>
+    /// ė = Σ_b w_c,b·L_b per photosite, in SIMD over the bands: whole vectors of the pixel's spectrum times the padded
+    /// weights (the lanes past the last band read the next pixel's values and multiply zeros). A pixel too close to the
+    /// end of the cube for that takes the scalar sum; which path a pixel takes depends only on its position.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    static void Rates(SensorModel sensor, RadianceCube cube, float[] padded, float[] rates, int y)
+    {
+        int n = cube.Bands, planes = sensor.Planes, w = cube.Width, vc = Vector<float>.Count, nv = (n + vc - 1) / vc, stride = nv * vc;
         bool mosaic = sensor.Arrangement == Arrangement.Mosaic;
-        var wv = weights.Values;
+        var data = cube.Data;
         for (int x = 0; x < w; x++)
         {
-            int p = y * w + x;
-            var l = cube.Data.AsSpan(p * n, n);
+            int p = y * w + x, off = p * n;
+            bool vector = off + stride <= data.Length;
             for (int k = 0; k < planes; k++)
             {
                 int c = mosaic ? sensor.ChannelAt(x, y) : k;
-                var row = wv.AsSpan(c * n, n);
-                double s = 0;
-                for (int b = 0; b < n; b++) s += row[b] * l[b];
-                rates[p * planes + k] = (float)Math.Max(0, s);
+                float s;
+                if (vector)
+                {
+                    var acc = Vector<float>.Zero;
+                    for (int j = 0; j < nv; j++) acc += new Vector<float>(data, off + j * vc) * new Vector<float>(padded, c * stride + j * vc);
+                    s = Vector.Sum(acc);
+                }
+                else
+                {
+                    s = 0;
+                    for (int b = 0; b < n; b++) s += padded[c * stride + b] * data[off + b];
+                }
+                rates[p * planes + k] = Math.Max(0, s);
             }
         }
     }
@@ -122,7 +147,8 @@ public static class SensorSimulation
                 if (prnu > 0) { var f = new NoiseStream(sensor.FixedPatternSeed, KindPrnu, p, c); gain = Math.Max(0, 1 + prnu * f.Normal()); }
                 if (dsnu > 0) { var f = new NoiseStream(sensor.FixedPatternSeed, KindDsnu, p, c); offset = dsnu * f.Normal(); }
                 var r = new NoiseStream(o.Seed, KindTemporal, p, c);
-                double electrons = r.Poisson(mean * gain) + r.Poisson(dark * te);
+                // Photo-electrons and dark electrons are independent Poisson counts: their sum is one Poisson count.
+                double electrons = r.Poisson(mean * gain + dark * te);
                 electrons = Math.Min(electrons, fullWell);
                 double volts = electrons * sensor.ConversionGain + offset + read * r.Normal();
                 v = Math.Round(black + volts * voltToDn, MidpointRounding.AwayFromZero);
