@@ -124,6 +124,17 @@ public class RecoveryTests
     }
 
     [Fact]
+    public void ReportComparison_HasEverySensorNoiseAndMethod_AndAgreesWithTheCommand()
+    {
+        var rows = SpectralRenderer.Analysis.Recovery.RecoveryComparison.Rows(Chart.Value);
+        Assert.Equal(3 * 2 * 4, rows.Count);
+        var mosaic = Recover("mosaic-16", "off", "--range", "400:700");
+        var row = rows.Single(r => r.Sensor == "mosaic-16" && !r.Noise && r.Method == "wiener");
+        Assert.Equal(mosaic[("wiener", "colorchecker")].Rmse, row.Rmse400To700, 9);
+        Assert.Contains("<table>", SpectralRenderer.Analysis.Recovery.RecoveryComparison.HtmlSection(Chart.Value));
+    }
+
+    [Fact]
     public void BadMethodAndTraining_AreOneLineErrors()
     {
         var cam = Path.Combine(Chart.Value, "camera-bad");

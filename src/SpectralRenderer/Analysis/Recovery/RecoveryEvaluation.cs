@@ -21,9 +21,10 @@ public sealed record RecoveryResult(RecoveryMethod Method, SpectralEstimator Est
 /// </summary>
 public static class RecoveryEvaluation
 {
+    /// <param name="regions">false: only the ColorChecker patches are scored (much faster on large images).</param>
     /// <param name="metricRange">RMSE and GFC over the bands inside [lo, hi] nm only (null: every band); ΔE00 always uses the whole spectrum.</param>
     public static RecoveryResult Run(CameraCapture capture, RecoveryMethod method, TrainingSet training, bool[]? whiteMask = null, string? whiteDescription = null,
-        (double Lo, double Hi)? metricRange = null)
+        (double Lo, double Hi)? metricRange = null, bool regions = true)
     {
         var scene = capture.Scene;
         var truth = scene.Aovs.Reflectance ?? throw new InputException(scene.Folder.Path, "has no ground-truth reflectance (reflectance.exr)", "render with --formats including aov");
@@ -80,7 +81,7 @@ public static class RecoveryEvaluation
         var est = new double[n];
         var tru = new double[n];
         var medianCandidates = new Dictionary<string, List<(double Rmse, int Pixel)>>();
-        for (int i = 0; i < pixels; i++)
+        for (int i = 0; i < (regions ? pixels : 0); i++)
         {
             var region = RegionOf(scene, i, whiteMask);
             if (region is PixelRegion.Background or PixelRegion.White) continue;
