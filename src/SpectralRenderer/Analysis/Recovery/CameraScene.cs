@@ -23,10 +23,10 @@ public sealed class CameraScene
     public int Height => Folder.Image.Height;
     public BandGrid Grid => Folder.Image.Grid;
     public TabulatedSpectrum Light => Folder.ReferenceWhite;
-    public string LightName => (string?)Folder.Json["colour"]?["reference_white"] ?? Light.Name;
+    public string LightName => Light.Name;
     public Observer Observer => Folder.ObserverDegrees == 10 ? Observer.Cie1964 : Observer.Cie1931;
     /// <summary>The radiometry the render used ("paper" relative, or "physical" in W·m⁻²·sr⁻¹·nm⁻¹), if it says.</summary>
-    public string? Radiometry => (string?)Folder.Json["resolved_scene"]?["radiometry"] ?? (string?)Folder.Json["radiometry"];
+    public string? Radiometry => (string?)Folder.Manifest.ResolvedScene?["radiometry"];
 
     public static CameraScene Open(string dir)
     {

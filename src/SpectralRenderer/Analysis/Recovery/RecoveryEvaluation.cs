@@ -60,7 +60,7 @@ public static class RecoveryEvaluation
             }
         });
 
-        var scheme = scene.Folder.Integration == "paper" ? BandIntegration.Paper : BandIntegration.Weighted;
+        var scheme = scene.Folder.Integration;
         var observer = scene.Observer;
         var d65 = new ReflectanceDifference(new Colorimeter(scene.Grid, observer, SpectrumLibrary.Resolve("D65"), scheme));
         var illA = new ReflectanceDifference(new Colorimeter(scene.Grid, observer, SpectrumLibrary.Resolve("A"), scheme));
