@@ -6,13 +6,13 @@ namespace SpectralRenderer.Tests.Camera;
 /// <summary>
 /// The EMVA 1288 (release 4.0) photon-transfer method on simulated frames of a uniformly lit 64 × 64 region:
 /// temporal variance from the difference of two frames, σ²_y = var(A − B)/2, which cancels PRNU and DSNU; the
-/// system gain K from the slope of σ²_y − σ²_y,dark against μ_y − μ_y,dark below 70 % of saturation; the read
+/// system gain K from the slope (through the origin) of σ²_y − σ²_y,dark against μ_y − μ_y,dark below 70 % of saturation; the read
 /// noise from the dark variance, σ_d = √(σ²_y,dark − 1/12)/K; the dark current from the slope of the dark mean
 /// against the exposure time. The photon count is computed here from the radiometry, not from the code's weights.
 /// </summary>
-public class PhotonTransferTests
+public class PhotonTransferTests(Xunit.Abstractions.ITestOutputHelper output)
 {
-    const int Size = 64, Pairs = 4;
+    const int Size = 64, Pairs = 8;
     // 500–600 nm, one band; flat QE 1: photons/s = L·A·ff·πT/(1+4N²)·∫λ/(hc)dλ.
     static readonly BandGrid Grid = new(500, 600, 1);
     static readonly TabulatedSpectrum Flat = TabulatedSpectrum.Constant(1);
@@ -81,8 +81,10 @@ public class PhotonTransferTests
             mus.Add(m - md);
             if (m - md < 0.7 * (s.WhiteLevel - s.BlackLevel) * s.AnalogGain) { mu.Add(m - md); var.Add(v - vd); }
         }
-        var (k, _) = Fit(mu, var);
+        // EMVA 1288's model σ²_y − σ²_y,dark = K (μ_y − μ_y,dark) has no offset: least squares through the origin.
+        double k = mu.Zip(var, (x, y) => x * y).Sum() / mu.Sum(x => x * x);
         double configuredK = baseSensor.SystemGain;
+        output.WriteLine($"K measured {k:G5} DN/e⁻, configured {configuredK:G5} ({k / configuredK - 1:P2})");
         Assert.InRange(k / configuredK, 0.98, 1.02);
 
         // Electrons counted from the radiometry: μ_e = ė·t, so μ_y − μ_y,dark = K·μ_e.
@@ -90,6 +92,7 @@ public class PhotonTransferTests
         Assert.InRange(mus[0] / (configuredK * rate * t5), 0.995, 1.005);
 
         double readNoise = Math.Sqrt(darkVar - 1.0 / 12) / k;   // electrons (dark shot noise is negligible at these exposures)
+        output.WriteLine($"read noise measured {readNoise:G5} e⁻, configured {baseSensor.ReadNoiseElectrons:G5} ({readNoise / baseSensor.ReadNoiseElectrons - 1:P2})");
         Assert.InRange(readNoise / baseSensor.ReadNoiseElectrons, 0.98, 1.02);
         Assert.True(darkMean > baseSensor.BlackLevel - 1);
     }
@@ -102,6 +105,7 @@ public class PhotonTransferTests
         var (slope, _) = Fit(times, means);
         var s = Sensor(1);
         double darkCurrent = slope / s.SystemGain;   // e⁻/s
+        output.WriteLine($"dark current measured {darkCurrent:G5} e⁻/s, configured {s.DarkCurrentElectronsPerSecond:G5} ({darkCurrent / s.DarkCurrentElectronsPerSecond - 1:P2})");
         Assert.InRange(darkCurrent / s.DarkCurrentElectronsPerSecond, 0.95, 1.05);
     }
 
@@ -116,6 +120,7 @@ public class PhotonTransferTests
         var (m2, v2) = Stats(Sensor(2 * tSat), radiance, 77);
         var (m4, v4) = Stats(Sensor(4 * tSat), radiance, 99);
         var (m5, v5) = Stats(Sensor(0.5 * tSat), radiance, 55);
+        output.WriteLine($"plateau configured {plateau:F2} DN; measured {m2:F2} (2× saturation), {m4:F2} (4×); variance {v2:F2} DN² vs read+quantisation {Math.Pow(s0.SystemGain * s0.ReadNoiseElectrons, 2) + 1.0 / 12:F2}");
         Assert.InRange(m2, plateau - 1, plateau + 1);
         Assert.InRange(m4, plateau - 1, plateau + 1);
         // At the plateau only read noise and quantisation remain: far below the shot-noise variance at half the well.
