@@ -20,6 +20,8 @@ public static class CommandLine
         ("merge", "the shards of a render (render --shard I/N) assembled into the whole render, byte for byte", MergeCommand.Run),
         ("sweep", "a plan's jobs (scene × lights × materials × …) rendered into a dataset with an index, locally or as a job array", SweepCommand.Run),
         ("reconstruct", "white-board reflectance reconstruction against the truth, by region (§3.4, Fig. 7)", ReconstructCommand.Run),
+        ("camera", "a render seen by a simulated camera: raw (NPY, PNG, DNG), processed sRGB, ΔE00 and SNR per patch", CameraCommand.Run),
+        ("recover", "spectral reflectance from a camera's signals (pinv, Wiener, linear model, Tikhonov) against the truth", RecoverCommand.Run),
     ];
 
     public static string Version => typeof(CommandLine).Assembly.GetName().Version?.ToString(3) ?? "0.0.0";

@@ -45,6 +45,7 @@ public static class PaperReport
         Gallery(h, "Fig. 4 — §3.2 materials on a complex object", runs.Where(r => r.Section == "3.2").ToList());
         Gallery(h, "Fig. 5 — §3.3 one material under different lights", runs.Where(r => r.Section == "3.3").ToList());
         Analysis(h, byName.GetValueOrDefault("paper-3.4-bunny-analysis"));
+        h.Append(global::SpectralRenderer.Analysis.Recovery.RecoveryComparison.HtmlSection(byName.GetValueOrDefault("paper-3.1-colorchecker-d65") is { Done: true } c ? c.OutDir : null));
         Timings(h, runs, totalSeconds);
 
         h.Append("""

@@ -24,7 +24,8 @@ public class LayeringTests
         [R + "Rendering"] = ["Scenes", "Acceleration", "Geometry", "Spectra", "Color", "Diagnostics"],
         [R + "Imaging"] = ["Spectra", "Color", "Diagnostics"],
         [R + "Output"] = ["Rendering", "Scenes", "Geometry", "Imaging", "Spectra", "Color", "Diagnostics"],
-        [R + "Analysis"] = ["Output", "Imaging", "Spectra", "Color", "Diagnostics"],
+        [R + "Camera"] = ["Imaging", "Spectra", "Color", "Diagnostics"],
+        [R + "Analysis"] = ["Output", "Camera", "Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Distributed"] = ["Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Cli"] = ["*"],
     };

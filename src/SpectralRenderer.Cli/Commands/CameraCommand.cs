@@ -1,0 +1,189 @@
+using System.Diagnostics;
+using System.Globalization;
+using System.Text;
+using System.Text.Json;
+using System.Text.Json.Nodes;
+using SpectralRenderer.Analysis.Recovery;
+using SpectralRenderer.Camera;
+using SpectralRenderer.Color;
+using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Imaging;
+
+namespace SpectralRenderer.Cli.Commands;
+
+/// <summary>`spectral camera OUTDIR --sensor NAME|FILE`: the render seen by a simulated camera (ISETCam's sensor model).</summary>
+public static class CameraCommand
+{
+    const string Help = """
+        usage: spectral camera OUTDIR --sensor NAME|FILE [--exposure auto|SECONDS] [--seed N] [--noise on|off]
+                                      [--radiance-scale S] [--demosaic malvar|bilinear] [--threads N]
+                                      [-o DIR] [--bench N]
+
+        Simulates a camera looking at a render (docs/camera.md): optics (thin lens), pixel, channel quantum
+        efficiencies, exposure, photon shot noise, dark current, read noise, PRNU/DSNU, full well, gain, ADC.
+        The scene light (render.json's reference white) prefilters the channel weights per band.
+
+          --sensor NAME|FILE   isetcam, nikon-d5100, sigma-sd-merrill, canon-5d-mark-ii, wheel-6, mosaic-16,
+                               cie-xyz, or a sensor JSON file
+          --exposure           auto (default: brightest expected pixel at 0.8 of the full well) or seconds
+          --seed N             temporal noise seed (default 1); the same seed gives the same raw file
+          --noise off          the expected signal: no noise, no dark current, no quantisation
+          --radiance-scale S   W·m⁻²·sr⁻¹·nm⁻¹ per band unit of the render (default 1; the paper's radiometry
+                               has no unit, so this states one)
+          --demosaic           malvar (Malvar–He–Cutler, Bayer; default) or bilinear (any mosaic)
+          -o DIR               output folder (default OUTDIR/camera-<sensor>)
+          --bench N            time the sensor simulation N times and print the figures (nothing written)
+
+        Writes raw.npy (H×W, or H×W×C for full and wheel sensors, float32 digital numbers), raw.png (16-bit;
+        raw-<channel>.png per plane for full and wheel), raw.dng (Bayer sensors: CFA, black/white levels,
+        colour matrix), processed.png (demosaicked, white-balanced, colour-corrected sRGB), patches.csv (per
+        ColorChecker patch: ΔE00 of the corrected colour against the exact colour, SNR per channel) and
+        camera.json (every parameter, per-band channel weights, exposures, the colour matrix).
+        """;
+
+    public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
+    {
+        var a = new Arguments("camera", argv,
+            ["--sensor", "--exposure", "--seed", "--noise", "--radiance-scale", "--demosaic", "--threads", "-o", "--bench"], [],
+            new Dictionary<string, string> { ["--output"] = "-o" });
+        if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
+        if (a.Positionals.Count != 1) throw new InputException("", "give one render folder", "usage: spectral camera OUTDIR --sensor nikon-d5100");
+        var sensorName = a.Value("--sensor") ?? throw new InputException("", "--sensor is required", $"one of {string.Join(", ", SensorPresets.Names)}, or a JSON file");
+        var sensor = SensorFile.Resolve(sensorName);
+        if (a.Value("--exposure") is { } ex)
+        {
+            if (ex == "auto") sensor = sensor with { ExposureSeconds = null };
+            else sensor = sensor with { ExposureSeconds = a.Double("--exposure") is { } t && t > 0 ? t : throw new InputException("", $"--exposure '{ex}' must be auto or positive seconds") };
+        }
+        bool noise = a.Value("--noise") switch
+        {
+            null or "on" => true, "off" => false,
+            var v => throw new InputException("", $"--noise '{v}' is not on or off"),
+        };
+        var demosaic = a.Value("--demosaic") switch
+        {
+            null or "malvar" => DemosaicMethod.Malvar, "bilinear" => DemosaicMethod.Bilinear,
+            var v => throw new InputException("", $"--demosaic '{v}' is not malvar or bilinear"),
+        };
+        ulong seed = a.Value("--seed") is { } sv ? ulong.TryParse(sv, NumberStyles.None, CultureInfo.InvariantCulture, out var s) ? s : throw new InputException("", $"--seed '{sv}' is not a whole number ≥ 0") : 1;
+        double scale = a.Double("--radiance-scale") ?? 1;
+        if (!(scale > 0)) throw new InputException("", "--radiance-scale must be positive", "W·m⁻²·sr⁻¹·nm⁻¹ per band unit");
+        int threads = a.Int("--threads", 1, 1024) ?? -1;
+
+        var dir = a.Positionals[0];
+        var scene = CameraScene.Open(dir);
+        var options = new SimulationOptions { Seed = seed, Noise = noise, Threads = threads };
+        var cube = scene.Cube(scale);
+
+        if (a.Int("--bench", 1, 1000) is int repeat)
+        {
+            SensorSimulation.Run(sensor, cube, scene.Light, options);   // warm-up (JIT)
+            var times = new List<double>();
+            for (int i = 0; i < repeat; i++)
+            {
+                var sw = Stopwatch.StartNew();
+                SensorSimulation.Run(sensor, cube, scene.Light, options);
+                times.Add(sw.Elapsed.TotalSeconds);
+            }
+            times.Sort();
+            stdout.WriteLine(string.Create(CultureInfo.InvariantCulture,
+                $"camera {sensor.Name}: {cube.Width}×{cube.Height}×{cube.Bands} bands, noise {(noise ? "on" : "off")}, {Environment.ProcessorCount} CPUs; sensor simulation min {times[0]:F3} s, median {times[times.Count / 2]:F3} s over {repeat} runs"));
+            return CommandLine.Success;
+        }
+
+        var raw = SensorSimulation.Run(sensor, cube, scene.Light, options);
+        var colour = ColourCorrection.Fit(raw.Weights, scene.Grid, scene.Light, scene.Observer);
+        var image = ImageProcessing.Run(raw, colour, demosaic);
+        var patches = CameraPatchMetrics.Compute(scene, raw, image, colour);
+
+        var outDir = a.Value("-o") ?? Path.Combine(dir, $"camera-{sensor.Name}");
+        Directory.CreateDirectory(outDir);
+        var written = new List<string>();
+        void Done(string f) => written.Add(f);
+
+        int[] shape = raw.Planes == 1 ? [raw.Height, raw.Width] : [raw.Height, raw.Width, raw.Planes];
+        AtomicFile.Write(Path.Combine(outDir, "raw.npy"), st => NpyWriter.Write(st, shape, raw.Dn)); Done("raw.npy");
+        if (raw.Planes == 1) { PngWriter.WriteGray16(Path.Combine(outDir, "raw.png"), raw.Width, raw.Height, Plane(raw, 0)); Done("raw.png"); }
+        else
+            for (int c = 0; c < raw.Planes; c++)
+            {
+                var name = $"raw-{sensor.Channels[c].Name}.png";
+                PngWriter.WriteGray16(Path.Combine(outDir, name), raw.Width, raw.Height, Plane(raw, c)); Done(name);
+            }
+        if (sensor.IsBayer)
+        {
+            var (matrix, neutral) = DngColour(colour);
+            DngWriter.Write(Path.Combine(outDir, "raw.dng"), raw, matrix, neutral, DngWriter.IlluminantCode(scene.LightName), $"SpectralRenderer {CommandLine.Version}");
+            Done("raw.dng");
+        }
+        PngWriter.WriteRgb8(Path.Combine(outDir, "processed.png"), raw.Width, raw.Height, image.Srgb8); Done("processed.png");
+        AtomicFile.WriteAllText(Path.Combine(outDir, "patches.csv"), PatchesCsv(sensor, patches)); Done("patches.csv");
+
+        bool relative = scene.Radiometry != "physical";
+        var manifest = CameraManifest.Build(raw, colour, scene.Grid, scene.LightName, scale,
+            a.Value("--radiance-scale") is not null ? "given with --radiance-scale"
+            : relative ? "default 1: the render's radiometry is relative (the paper's eq. 2 has no units), so its band values are taken as W·m⁻²·sr⁻¹·nm⁻¹"
+            : "default 1: the render's physical radiometry is in W·m⁻²·sr⁻¹·nm⁻¹");
+        manifest["sensor_argument"] = File.Exists(sensorName) ? Path.GetFullPath(sensorName) : sensorName;
+        manifest["render_folder"] = Path.GetRelativePath(Path.GetFullPath(outDir), Path.GetFullPath(dir));
+        manifest["render_radiometry"] = scene.Radiometry ?? "paper";
+        manifest["processing"]!["demosaic"] = image.Demosaicked?.ToString().ToLowerInvariant();
+        manifest["patches"] = new JsonArray(patches.Select(p => (JsonNode)new JsonObject
+        {
+            ["patch"] = p.Patch, ["object"] = p.Object, ["pixels"] = p.Pixels,
+            ["camera_xyz"] = new JsonArray(p.Camera.X, p.Camera.Y, p.Camera.Z),
+            ["exact_xyz"] = new JsonArray(p.Exact.X, p.Exact.Y, p.Exact.Z),
+            ["delta_e00"] = p.DeltaE00,
+            ["snr_db"] = new JsonArray(p.SnrDb.Select(v => double.IsFinite(v) ? (JsonNode?)v : null).ToArray()),
+        }).ToArray());
+        manifest["files"] = new JsonArray(written.Append("camera.json").Select(f => (JsonNode)f).ToArray());
+        AtomicFile.WriteAllText(Path.Combine(outDir, "camera.json"), manifest.ToJsonString(new JsonSerializerOptions { WriteIndented = true }) + "\n");
+
+        var inv = CultureInfo.InvariantCulture;
+        stdout.WriteLine(string.Create(inv, $"camera {sensor.Name} ({sensor.Arrangement.ToString().ToLowerInvariant()}, {sensor.ChannelCount} channels) on {dir}: exposure {string.Join(", ", raw.ExposureSeconds.Select(t => t.ToString("G4", inv)))} s, noise {(noise ? "on" : "off")}, K = {sensor.SystemGain:G4} DN/e⁻"));
+        if (patches.Count > 0)
+        {
+            stdout.WriteLine($"{"patch",5} {"object",-12} {"ΔE00",7}  SNR dB per channel");
+            foreach (var p in patches)
+                stdout.WriteLine(string.Create(inv, $"{p.Patch,5} {p.Object,-12} {p.DeltaE00,7:F3}  {string.Join(" ", p.SnrDb.Select(v => double.IsFinite(v) ? v.ToString("F1", inv) : "inf"))}"));
+            stdout.WriteLine(string.Create(inv, $"mean ΔE00 {patches.Average(p => p.DeltaE00):F3}, max {patches.Max(p => p.DeltaE00):F3} (corrected colour vs 1 nm CIE XYZ under {scene.LightName})"));
+        }
+        stdout.WriteLine($"wrote {string.Join(", ", written)}, camera.json in {outDir}");
+        return CommandLine.Success;
+    }
+
+    static ushort[] Plane(RawFrame raw, int plane)
+    {
+        var v = new ushort[raw.Width * raw.Height];
+        for (int i = 0; i < v.Length; i++) v[i] = (ushort)Math.Clamp(Math.Round(raw.Dn[i * raw.Planes + plane]), 0, 65535);
+        return v;
+    }
+
+    /// <summary>ColorMatrix1 = (M·diag(1/ė_white))⁻¹, XYZ → camera, scaled so the white's largest camera value is 1; AsShotNeutral = ė_white / max.</summary>
+    static (double[,] Matrix, double[] Neutral) DngColour(ColourCorrection colour)
+    {
+        var m = (double[,])colour.Matrix.Clone();
+        for (int c = 0; c < 3; c++) for (int i = 0; i < 3; i++) m[i, c] /= colour.WhiteRate[c];
+        var inv = Dense.Inverse(m);
+        var w = Dense.Multiply(inv, [colour.White.X, colour.White.Y, colour.White.Z]);
+        double max = w.Max();
+        for (int i = 0; i < 3; i++) for (int j = 0; j < 3; j++) inv[i, j] /= max;
+        double wmax = colour.WhiteRate.Max();
+        return (inv, colour.WhiteRate.Select(v => v / wmax).ToArray());
+    }
+
+    static string PatchesCsv(SensorModel sensor, List<PatchMetrics> patches)
+    {
+        var inv = CultureInfo.InvariantCulture;
+        var sb = new StringBuilder("patch,object,pixels,camera_X,camera_Y,camera_Z,exact_X,exact_Y,exact_Z,dE00");
+        foreach (var c in sensor.Channels) sb.Append(",snr_db_").Append(c.Name);
+        sb.Append('\n');
+        foreach (var p in patches)
+        {
+            sb.Append(inv, $"{p.Patch},{p.Object},{p.Pixels},{p.Camera.X:R},{p.Camera.Y:R},{p.Camera.Z:R},{p.Exact.X:R},{p.Exact.Y:R},{p.Exact.Z:R},{p.DeltaE00:R}");
+            foreach (var v in p.SnrDb) sb.Append(',').Append(double.IsFinite(v) ? v.ToString("R", inv) : double.IsNaN(v) ? "" : "inf");
+            sb.Append('\n');
+        }
+        return sb.ToString();
+    }
+}

@@ -1,0 +1,149 @@
+using SpectralRenderer.Color;
+using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Spectra;
+
+namespace SpectralRenderer.Analysis.Recovery;
+
+/// <summary>A region's (or the ColorChecker's) mean recovery metrics for one method.</summary>
+public sealed record RecoveryRow(string Method, string Region, int Count, double Rmse, double Gfc, double DeltaE00D65, double DeltaE00A);
+
+/// <summary>One method's recovered cube, its metrics and the spectra a figure shows.</summary>
+public sealed record RecoveryResult(RecoveryMethod Method, SpectralEstimator Estimator, float[] Reflectance, List<RecoveryRow> Rows,
+    List<(string Label, double[] Recovered, double[] Truth)> Examples, string? WhiteDescription);
+
+/// <summary>
+/// Reflectance recovered from a camera capture and scored against the render's ground truth (reflectance.exr):
+/// RMSE, GFC, CIEDE2000 under D65 and under A (<see cref="SpectralMetrics"/>, <see cref="ReflectanceDifference"/>),
+/// averaged per region (lit, shadow, partial, highlight from the render's masks; "all" surfaces) and, when the render
+/// shows ColorChecker patches, over the patches (each patch's mean recovered spectrum against its truth).
+/// Optionally calibrated on a white reference as in §3.4: each channel of A is scaled so A·1 matches the signal
+/// measured on the white, which absorbs the light's level and the geometry.
+/// </summary>
+public static class RecoveryEvaluation
+{
+    /// <param name="regions">false: only the ColorChecker patches are scored (much faster on large images).</param>
+    /// <param name="metricRange">RMSE and GFC over the bands inside [lo, hi] nm only (null: every band); ΔE00 always uses the whole spectrum.</param>
+    public static RecoveryResult Run(CameraCapture capture, RecoveryMethod method, TrainingSet training, bool[]? whiteMask = null, string? whiteDescription = null,
+        (double Lo, double Hi)? metricRange = null, bool regions = true)
+    {
+        var scene = capture.Scene;
+        var truth = scene.Aovs.Reflectance ?? throw new InputException(scene.Folder.Path, "has no ground-truth reflectance (reflectance.exr)", "render with --formats including aov");
+        int c = capture.Sensor.ChannelCount, n = scene.Grid.Count, pixels = scene.Width * scene.Height;
+        var a = capture.ForwardMatrix();
+        if (whiteMask is not null)
+        {
+            var measured = new double[c];
+            int count = 0;
+            for (int i = 0; i < pixels; i++)
+            {
+                if (!whiteMask[i]) continue;
+                for (int k = 0; k < c; k++) measured[k] += capture.Image.Rates[i * c + k];
+                count++;
+            }
+            for (int k = 0; k < c; k++)
+            {
+                double predicted = 0;
+                for (int b = 0; b < n; b++) predicted += a[k, b];
+                double scale = count > 0 && predicted > 0 ? measured[k] / count / predicted : 1;
+                for (int b = 0; b < n; b++) a[k, b] *= scale;
+            }
+        }
+        var estimator = SpectralEstimator.Build(method, a, training, capture.NoiseVariance());
+        var cube = new float[pixels * n];
+        Parallel.For(0, scene.Height, y =>
+        {
+            Span<double> r = stackalloc double[n];
+            for (int i = y * scene.Width; i < (y + 1) * scene.Width; i++)
+            {
+                estimator.Apply(capture.Image.Rates.AsSpan(i * c, c), r);
+                for (int b = 0; b < n; b++) cube[i * n + b] = (float)r[b];
+            }
+        });
+
+        var scheme = scene.Folder.Integration;
+        var observer = scene.Observer;
+        var d65 = new ReflectanceDifference(new Colorimeter(scene.Grid, observer, SpectrumLibrary.Resolve("D65"), scheme));
+        var illA = new ReflectanceDifference(new Colorimeter(scene.Grid, observer, SpectrumLibrary.Resolve("A"), scheme));
+        string name = SpectralEstimator.Name(method);
+
+        var (first, bands) = BandsInside(scene.Grid, metricRange);
+        (double Rmse, double Gfc, double D65, double A) Score(double[] est, double[] tru) =>
+            (SpectralMetrics.Rmse(est.AsSpan(first, bands), tru.AsSpan(first, bands)), SpectralMetrics.Gfc(est.AsSpan(first, bands), tru.AsSpan(first, bands)),
+             d65.DeltaE00(est, tru), illA.DeltaE00(est, tru));
+
+        // Per pixel, by region.
+        var sums = new Dictionary<string, (int N, double R, double G, double D, double A)>();
+        void Add(string region, (double R, double G, double D, double A) s)
+        {
+            sums.TryGetValue(region, out var v);
+            sums[region] = (v.N + 1, v.R + s.R, v.G + s.G, v.D + s.D, v.A + s.A);
+        }
+        var est = new double[n];
+        var tru = new double[n];
+        var medianCandidates = new Dictionary<string, List<(double Rmse, int Pixel)>>();
+        for (int i = 0; i < (regions ? pixels : 0); i++)
+        {
+            var region = RegionOf(scene, i, whiteMask);
+            if (region is PixelRegion.Background or PixelRegion.White) continue;
+            for (int b = 0; b < n; b++) { est[b] = cube[i * n + b]; tru[b] = truth.Data[i * n + b]; }
+            var s = Score(est, tru);
+            var key = Reconstruction.Name(region);
+            Add(key, s);
+            Add("all", s);
+            if (!medianCandidates.TryGetValue(key, out var list)) medianCandidates[key] = list = [];
+            list.Add((s.Rmse, i));
+        }
+        var rows = sums.OrderBy(kv => kv.Key == "all" ? 1 : 0).ThenBy(kv => Enum.TryParse<PixelRegion>(kv.Key, true, out var r) ? (int)r : 99)
+            .Select(kv => new RecoveryRow(name, kv.Key, kv.Value.N, kv.Value.R / kv.Value.N, kv.Value.G / kv.Value.N, kv.Value.D / kv.Value.N, kv.Value.A / kv.Value.N)).ToList();
+
+        var examples = new List<(string, double[], double[])>();
+        if (scene.Patches.Count > 0)
+        {
+            double sr = 0, sg = 0, sd = 0, sa = 0;
+            foreach (var p in scene.Patches)
+            {
+                var (me, mt) = (new double[n], new double[n]);
+                foreach (int i in p.Pixels) for (int b = 0; b < n; b++) { me[b] += cube[i * n + b]; mt[b] += truth.Data[i * n + b]; }
+                for (int b = 0; b < n; b++) { me[b] /= p.Pixels.Length; mt[b] /= p.Pixels.Length; }
+                var s = Score(me, mt);
+                sr += s.Rmse; sg += s.Gfc; sd += s.D65; sa += s.A;
+                if (p.Number is 2 or 13 or 14 or 15 or 16) examples.Add(($"patch {p.Number} {ColorChecker.Name(p.Number)}", me, mt));
+            }
+            int np = scene.Patches.Count;
+            rows.Add(new RecoveryRow(name, "colorchecker", np, sr / np, sg / np, sd / np, sa / np));
+        }
+        else
+        {
+            foreach (var (key, list) in medianCandidates.OrderBy(kv => kv.Key))
+            {
+                list.Sort((x, y) => x.Rmse.CompareTo(y.Rmse));
+                int i = list[list.Count / 2].Pixel;
+                examples.Add(($"{key} ({i % scene.Width},{i / scene.Width})",
+                    Enumerable.Range(0, n).Select(b => (double)cube[i * n + b]).ToArray(), Enumerable.Range(0, n).Select(b => (double)truth.Data[i * n + b]).ToArray()));
+            }
+        }
+        return new RecoveryResult(method, estimator, cube, rows, examples, whiteDescription);
+    }
+
+    /// <summary>The first band and the number of bands lying wholly inside [lo, hi] (all bands without a range).</summary>
+    public static (int First, int Count) BandsInside(BandGrid grid, (double Lo, double Hi)? range)
+    {
+        if (range is null) return (0, grid.Count);
+        var (lo, hi) = range.Value;
+        var inside = Enumerable.Range(0, grid.Count).Where(b => grid.Lower(b) >= lo - 1e-9 && grid.Upper(b) <= hi + 1e-9).ToList();
+        if (inside.Count == 0) throw new InputException("--range", $"no band of {grid} lies inside {lo}–{hi} nm", "e.g. --range 400:700");
+        return (inside[0], inside.Count);
+    }
+
+    /// <summary>The §3.4 regions (<see cref="PixelRegion"/>) from the render's masks.</summary>
+    public static PixelRegion RegionOf(CameraScene scene, int i, bool[]? whiteMask)
+    {
+        if (scene.Folder.ObjectIds[i] < 0) return PixelRegion.Background;
+        if (whiteMask is not null && whiteMask[i]) return PixelRegion.White;
+        var aovs = scene.Aovs;
+        if (!aovs.HasMasks) return PixelRegion.Unclassified;
+        if (aovs.Highlight![i]) return PixelRegion.Highlight;
+        int lit = aovs.Lit!.Count(m => m[i]);
+        return lit == aovs.Lit!.Length ? PixelRegion.Lit : lit == 0 ? PixelRegion.Shadow : PixelRegion.Partial;
+    }
+}

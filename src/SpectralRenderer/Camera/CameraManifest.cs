@@ -1,0 +1,108 @@
+using System.Text.Json.Nodes;
+using SpectralRenderer.Spectra;
+
+namespace SpectralRenderer.Camera;
+
+/// <summary>camera.json: every parameter the simulation used, the per-band channel weights, the exposures, the colour matrix.</summary>
+public static class CameraManifest
+{
+    public const int Version = 1;
+
+    public static JsonObject Build(RawFrame raw, ColourCorrection colour, BandGrid grid, string lightName, double radianceScale, string radianceScaleSource)
+    {
+        var s = raw.Sensor;
+        var w = raw.Weights;
+        var channels = new JsonArray();
+        for (int c = 0; c < s.ChannelCount; c++)
+        {
+            var qe = s.Channels[c].QuantumEfficiency;
+            channels.Add(new JsonObject
+            {
+                ["name"] = s.Channels[c].Name,
+                ["source"] = s.Channels[c].Source,
+                ["peak_qe"] = qe.Values.ToArray().Max(),
+                ["weights_e_per_s_per_band_unit"] = Array(w.Row(c).ToArray()),
+                ["white_rate_e_per_s"] = colour.WhiteRate[c],
+                ["exposure_s"] = raw.ExposureOf(c),
+            });
+        }
+        JsonNode? pattern = null;
+        if (s.Pattern is { } p)
+        {
+            var rows = new JsonArray();
+            for (int y = 0; y < p.GetLength(0); y++)
+            {
+                var r = new JsonArray();
+                for (int x = 0; x < p.GetLength(1); x++) r.Add(p[y, x]);
+                rows.Add(r);
+            }
+            pattern = rows;
+        }
+        var matrix = new JsonArray();
+        for (int i = 0; i < 3; i++)
+        {
+            var r = new JsonArray();
+            for (int c = 0; c < s.ChannelCount; c++) r.Add(colour.Matrix[i, c]);
+            matrix.Add(r);
+        }
+        return new JsonObject
+        {
+            ["tool"] = "SpectralRenderer camera",
+            ["manifest_version"] = Version,
+            ["sensor"] = new JsonObject
+            {
+                ["name"] = s.Name,
+                ["source"] = s.Source,
+                ["arrangement"] = s.Arrangement.ToString().ToLowerInvariant(),
+                ["pattern"] = pattern,
+                ["pattern_name"] = s.PatternName,
+                ["f_number"] = s.FNumber,
+                ["transmittance"] = s.OpticsTransmittance,
+                ["pixel_size_um"] = s.PixelSizeMicrons,
+                ["fill_factor"] = s.FillFactor,
+                ["etendue_m2_sr"] = s.Etendue,
+                ["conversion_gain_v_per_e"] = s.ConversionGain,
+                ["voltage_swing_v"] = s.VoltageSwing,
+                ["full_well_e"] = s.FullWellElectrons,
+                ["read_noise_v"] = s.ReadNoiseVolts,
+                ["read_noise_e"] = s.ReadNoiseElectrons,
+                ["dark_voltage_v_per_s"] = s.DarkVoltage,
+                ["dark_current_e_per_s"] = s.DarkCurrentElectronsPerSecond,
+                ["prnu_percent"] = s.PrnuPercent,
+                ["dsnu_v"] = s.DsnuVolts,
+                ["analog_gain"] = s.AnalogGain,
+                ["adc_bits"] = s.AdcBits,
+                ["black_level_dn"] = s.BlackLevel,
+                ["white_level_dn"] = s.WhiteLevel,
+                ["system_gain_dn_per_e"] = s.SystemGain,
+                ["exposure"] = s.ExposureSeconds is null ? $"auto: brightest expected pixel at {s.AutoExposureFraction} of the full well" : "given",
+                ["fixed_pattern_seed"] = s.FixedPatternSeed,
+                ["channels"] = channels,
+            },
+            ["simulation"] = new JsonObject
+            {
+                ["seed"] = raw.Options.Seed,
+                ["noise"] = raw.Options.Noise ? "on: shot (Poisson), dark current (Poisson), read (Gaussian), PRNU, DSNU, full-well clip, quantisation"
+                    : "off: expected signal only (no noise, no dark current, no quantisation); full-well and white clipping kept",
+                ["exposure_s"] = Array(raw.ExposureSeconds),
+                ["peak_expected_electrons"] = Array(raw.PeakElectrons),
+                ["radiance_scale_w_m2_sr_nm_per_band_unit"] = radianceScale,
+                ["radiance_scale_source"] = radianceScaleSource,
+                ["light"] = lightName,
+                ["bands"] = grid.ToString(),
+                ["weights"] = "w_c,b = s·A·ff·πT/(1+4N²)·Δλ·∫_b η_c λ E dλ / (h c ∫_b E dλ): photo-electrons per second per band unit, prefiltered by the light E",
+                ["electrons_formula"] = "e = Poisson(t·Σ_b w_c,b·L_b·(1 + PRNU) + t·dark), clipped at the full well",
+                ["dn_formula"] = "DN = round(black + (e·g + DSNU + read)·G/V_swing·(white − black)), clipped to [0, white]",
+            },
+            ["processing"] = new JsonObject
+            {
+                ["white_balance"] = "each channel divided by its expected response to the white diffuser under the light",
+                ["colour_matrix_xyz_from_balanced"] = matrix,
+                ["colour_matrix_fit"] = "least squares on the 24 ColorChecker (Ohta) patches under the light: simulated balanced signals → 1 nm CIE XYZ (white Y = 1)",
+                ["output"] = "sRGB (IEC 61966-2-1), no chromatic adaptation",
+            },
+        };
+    }
+
+    static JsonArray Array(IEnumerable<double> values) => new(values.Select(v => (JsonNode)v).ToArray());
+}

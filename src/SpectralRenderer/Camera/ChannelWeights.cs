@@ -1,0 +1,81 @@
+using SpectralRenderer.Spectra;
+
+namespace SpectralRenderer.Camera;
+
+/// <summary>
+/// Per channel c and band b, the photo-electron rate per unit of band radiance (e⁻/s per band unit):
+/// <code>  w_c,b = s · A·ff·πT/(1 + 4N²) · Δλ · ∫_b η_c(λ) λ E(λ) dλ / (h c ∫_b E(λ) dλ)</code>
+/// with s the radiance scale (W·m⁻²·sr⁻¹·nm⁻¹ per band unit) and E the scene light. A band value is the mean
+/// radiance over the band, and within the band the radiance is taken to have the light's spectral shape —
+/// spectral prefiltering, as the colorimeter's eq. 3 weights do — so a narrow-band light's peak meets the
+/// sensitivity at full resolution instead of at the band's mean. The integral of the three piecewise-linear
+/// factors η·λ·E is a cubic between merged knots, which Simpson's rule integrates exactly.
+/// A band where the light is dark falls back to the plain ∫_b η λ dλ.
+/// </summary>
+public sealed class ChannelWeights
+{
+    /// <summary>Planck constant (J·s) and speed of light (m/s), CODATA 2018 exact values.</summary>
+    public const double H = 6.62607015e-34, C = 299792458;
+
+    ChannelWeights(int channels, int bands, double[] values) { Channels = channels; Bands = bands; Values = values; }
+
+    public int Channels { get; }
+    public int Bands { get; }
+    /// <summary>Row-major [channel, band], e⁻/s per band unit.</summary>
+    public double[] Values { get; }
+    public double this[int c, int b] => Values[c * Bands + b];
+    public ReadOnlySpan<double> Row(int c) => Values.AsSpan(c * Bands, Bands);
+
+    public static ChannelWeights Compute(SensorModel sensor, BandGrid grid, TabulatedSpectrum light, double radianceScale)
+    {
+        int n = grid.Count, m = sensor.ChannelCount;
+        var values = new double[m * n];
+        double factor = radianceScale * sensor.Etendue * 1e-9 / (H * C);   // λ in nm → m
+        var e = new double[n];
+        double peak = 0;
+        for (int b = 0; b < n; b++) { e[b] = light.Integrate(grid.Lower(b), grid.Upper(b)); peak = Math.Max(peak, e[b]); }
+        for (int c = 0; c < m; c++)
+        {
+            var qe = sensor.Channels[c].QuantumEfficiency;
+            bool perEnergy = sensor.Channels[c].PerEnergy;   // η·λ = R·555 nm: no λ factor left to integrate
+            for (int b = 0; b < n; b++)
+            {
+                double lo = grid.Lower(b), hi = grid.Upper(b), width = hi - lo;
+                double w = perEnergy
+                    ? SensorChannel.EnergyReferenceNm * (e[b] > 1e-12 * peak ? TabulatedSpectrum.IntegrateProduct(qe, light, lo, hi) / e[b] * width : qe.Integrate(lo, hi))
+                    : e[b] > 1e-12 * peak
+                    ? IntegrateTimesWavelength(qe, light, lo, hi) / e[b] * width
+                    : IntegrateTimesWavelength(qe, null, lo, hi);
+                values[c * n + b] = factor * w;
+            }
+        }
+        return new ChannelWeights(m, n, values);
+    }
+
+    /// <summary>∫_lo^hi a(λ)·b(λ)·λ dλ of piecewise-linear a, b (b null = 1), exactly (Simpson on each interval between merged knots).</summary>
+    public static double IntegrateTimesWavelength(TabulatedSpectrum a, TabulatedSpectrum? b, double lo, double hi)
+    {
+        var knots = new List<double> { lo, hi };
+        foreach (var x in a.Wavelengths) if (x > lo && x < hi) knots.Add(x);
+        if (b is not null) foreach (var x in b.Wavelengths) if (x > lo && x < hi) knots.Add(x);
+        knots.Sort();
+        double sum = 0;
+        for (int i = 0; i + 1 < knots.Count; i++)
+        {
+            double x0 = knots[i], x1 = knots[i + 1];
+            if (x1 <= x0) continue;
+            double xm = 0.5 * (x0 + x1);
+            if (Outside(a, xm) || (b is not null && Outside(b, xm))) continue;
+            sum += (x1 - x0) / 6 * (F(x0) + 4 * F(xm) + F(x1));
+        }
+        return sum;
+
+        double F(double x) => Value(a, x) * (b is null ? 1 : Value(b, x)) * x;
+    }
+
+    /// <summary>Knots include the table's ends, so an interval lies wholly inside or outside; outside a zero-extrapolated table the factor is 0.</summary>
+    static bool Outside(TabulatedSpectrum s, double x) => s.Extrapolation == Extrapolation.Zero && (x < s.First || x > s.Last);
+
+    /// <summary>The interpolant at λ, its end values beyond the table.</summary>
+    static double Value(TabulatedSpectrum s, double x) => x <= s.First ? s.Values[0] : x >= s.Last ? s.Values[^1] : s.Evaluate(x);
+}

@@ -1,0 +1,159 @@
+using System.Globalization;
+using System.Text.Json;
+using System.Text.Json.Nodes;
+using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Spectra;
+
+namespace SpectralRenderer.Camera;
+
+/// <summary>
+/// A sensor as JSON (docs/camera.md): a preset name, or an object whose keys override a preset's (<c>"preset"</c>,
+/// default <c>isetcam</c>). Errors name the file and the JSON path.
+/// </summary>
+public static class SensorFile
+{
+    static readonly string[] Keys =
+    [
+        "name", "preset", "source", "channels", "peak_qe", "arrangement", "pattern", "f_number", "transmittance", "pixel_size_um",
+        "fill_factor", "conversion_gain_v_per_e", "voltage_swing_v", "read_noise_v", "dark_voltage_v_per_s", "prnu_percent",
+        "dsnu_v", "analog_gain", "adc_bits", "black_level_dn", "exposure_s", "auto_exposure_fraction", "fixed_pattern_seed",
+    ];
+
+    /// <summary>A preset name, or a path to a JSON file.</summary>
+    public static SensorModel Resolve(string nameOrFile)
+    {
+        if (!nameOrFile.EndsWith(".json", StringComparison.OrdinalIgnoreCase) && !File.Exists(nameOrFile)) return SensorPresets.Get(nameOrFile);
+        var text = InputFile.ReadAllText(nameOrFile, "sensor file");
+        JsonNode? node;
+        try { node = JsonNode.Parse(text, documentOptions: new JsonDocumentOptions { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true }); }
+        catch (JsonException e) { throw new InputException($"{nameOrFile}:{(e.LineNumber ?? 0) + 1}:{(e.BytePositionInLine ?? 0) + 1}", $"broken JSON: {e.Message}"); }
+        if (node is not JsonObject obj) throw new InputException(nameOrFile, "is not a JSON object", "a sensor file is { \"preset\": …, \"channels\": […], … }");
+        return Parse(obj, nameOrFile, Path.GetDirectoryName(Path.GetFullPath(nameOrFile)));
+    }
+
+    public static SensorModel Parse(JsonObject o, string file, string? baseDirectory = null)
+    {
+        foreach (var (key, _) in o)
+            if (!Keys.Contains(key)) throw new InputException($"{file}: $.{key}", "unknown key", InputException.DidYouMean(key, Keys) ?? $"keys: {string.Join(", ", Keys)}");
+        var s = SensorPresets.Get(Str(o, "preset", file) ?? "isetcam", $"{file}: $.preset");
+        double peak = Num(o, "peak_qe", file, 0, 1) ?? SensorPresets.DefaultPeakQe;
+        if (o["channels"] is JsonNode ch)
+        {
+            if (ch is not JsonArray arr || arr.Count == 0) throw new InputException($"{file}: $.channels", "must be a non-empty array of channels");
+            var channels = arr.Select((c, i) => Channel(c, $"{file}: $.channels[{i}]", baseDirectory)).ToArray();
+            s = s with { Channels = SensorPresets.Scale(channels, peak) };
+        }
+        else if (o["peak_qe"] is not null) s = s with { Channels = SensorPresets.Scale(s.Channels, peak) };
+        if (Str(o, "arrangement", file) is { } a)
+            s = s with
+            {
+                Arrangement = a switch
+                {
+                    "full" => Arrangement.Full, "mosaic" => Arrangement.Mosaic, "wheel" => Arrangement.Wheel,
+                    _ => throw new InputException($"{file}: $.arrangement", $"'{a}' is not an arrangement", "full, mosaic or wheel"),
+                },
+            };
+        if (o["pattern"] is JsonNode p) s = s with { Pattern = Pattern(p, s, $"{file}: $.pattern"), PatternName = p is JsonValue ? (string?)p : "custom" };
+        if (s.Arrangement == Arrangement.Mosaic)
+        {
+            if (s.Pattern is null) throw new InputException($"{file}: $.pattern", "a mosaic needs a pattern", "e.g. \"RGGB\" or [[0,1],[1,2]]");
+            foreach (var v in s.Pattern)
+                if (v < 0 || v >= s.ChannelCount) throw new InputException($"{file}: $.pattern", $"channel {v} does not exist", $"channels 0–{s.ChannelCount - 1}");
+        }
+        double? exposure = null;
+        bool auto = false;
+        if (o["exposure_s"] is JsonNode e)
+        {
+            if (e is JsonValue v && v.TryGetValue(out string? t) && t == "auto") auto = true;
+            else exposure = Num(o, "exposure_s", file, 1e-9, 1e6);
+        }
+        return s with
+        {
+            Name = Str(o, "name", file) ?? (file.EndsWith(".json", StringComparison.OrdinalIgnoreCase) ? Path.GetFileNameWithoutExtension(file) : s.Name),
+            Source = Str(o, "source", file) ?? $"{file} (over preset {s.Name})",
+            FNumber = Num(o, "f_number", file, 0.1, 1000) ?? s.FNumber,
+            OpticsTransmittance = Num(o, "transmittance", file, 0, 1) ?? s.OpticsTransmittance,
+            PixelSizeMicrons = Num(o, "pixel_size_um", file, 0.01, 1000) ?? s.PixelSizeMicrons,
+            FillFactor = Num(o, "fill_factor", file, 0, 1) ?? s.FillFactor,
+            ConversionGain = Num(o, "conversion_gain_v_per_e", file, 1e-12, 1) ?? s.ConversionGain,
+            VoltageSwing = Num(o, "voltage_swing_v", file, 1e-6, 1000) ?? s.VoltageSwing,
+            ReadNoiseVolts = Num(o, "read_noise_v", file, 0, 10) ?? s.ReadNoiseVolts,
+            DarkVoltage = Num(o, "dark_voltage_v_per_s", file, 0, 1000) ?? s.DarkVoltage,
+            PrnuPercent = Num(o, "prnu_percent", file, 0, 100) ?? s.PrnuPercent,
+            DsnuVolts = Num(o, "dsnu_v", file, 0, 10) ?? s.DsnuVolts,
+            AnalogGain = Num(o, "analog_gain", file, 1e-6, 1e6) ?? s.AnalogGain,
+            AdcBits = (int?)Num(o, "adc_bits", file, 1, 16, whole: true) ?? s.AdcBits,
+            BlackLevel = Num(o, "black_level_dn", file, 0, 65535) ?? s.BlackLevel,
+            ExposureSeconds = auto ? null : exposure ?? s.ExposureSeconds,
+            AutoExposureFraction = Num(o, "auto_exposure_fraction", file, 1e-6, 1) ?? s.AutoExposureFraction,
+            FixedPatternSeed = (ulong?)Num(o, "fixed_pattern_seed", file, 0, 1e15, whole: true) ?? s.FixedPatternSeed,
+        };
+    }
+
+    static SensorChannel Channel(JsonNode? node, string where, string? baseDirectory)
+    {
+        if (node is not JsonObject c) throw new InputException(where, "a channel is an object", "{ \"name\": \"F1\", \"gaussian\": { \"centre_nm\": 450, \"fwhm_nm\": 40 } }");
+        var name = (string?)c["name"] ?? throw new InputException(where, "a channel needs a \"name\"");
+        if (c["gaussian"] is JsonObject g)
+        {
+            double centre = Num(g, "centre_nm", where + ".gaussian", 100, 3000) ?? throw new InputException(where + ".gaussian", "needs centre_nm");
+            double fwhm = Num(g, "fwhm_nm", where + ".gaussian", 0.1, 2000) ?? throw new InputException(where + ".gaussian", "needs fwhm_nm");
+            return SensorPresets.Gaussian(name, centre, fwhm);
+        }
+        if (c["box"] is JsonArray box && box.Count == 2)
+        {
+            double lo = box[0]!.GetValue<double>(), hi = box[1]!.GetValue<double>();
+            if (!(hi > lo)) throw new InputException(where + ".box", $"[{lo}, {hi}] is empty", "[lower_nm, upper_nm]");
+            return SensorPresets.Box(name, lo, hi);
+        }
+        if ((string?)c["spectrum"] is { } spec)
+        {
+            var s = SpectrumLibrary.Resolve(spec, baseDirectory, where + ".spectrum");
+            return new SensorChannel(name, s.WithExtrapolation(Extrapolation.Zero), spec);
+        }
+        throw new InputException(where, "a channel needs one of \"gaussian\", \"box\" or \"spectrum\"", "e.g. \"spectrum\": \"my-camera.csv:red\"");
+    }
+
+    static int[,] Pattern(JsonNode node, SensorModel s, string where)
+    {
+        if (node is JsonValue v && v.TryGetValue(out string? text))
+        {
+            // Letters name channels by their first letter (RGGB, GRBG …), row by row of a square tile.
+            int side = (int)Math.Round(Math.Sqrt(text.Length));
+            if (side * side != text.Length || side == 0) throw new InputException(where, $"'{text}' is not a square pattern", "e.g. RGGB");
+            var p = new int[side, side];
+            for (int i = 0; i < text.Length; i++)
+            {
+                int c = Array.FindIndex(s.Channels, ch => char.ToUpperInvariant(ch.Name[0]) == char.ToUpperInvariant(text[i]));
+                if (c < 0) throw new InputException(where, $"'{text[i]}' names no channel", $"channels: {string.Join(", ", s.Channels.Select(ch => ch.Name))}");
+                p[i / side, i % side] = c;
+            }
+            return p;
+        }
+        if (node is JsonArray rows && rows.Count > 0 && rows.All(r => r is JsonArray ra && ra.Count == ((JsonArray)rows[0]!).Count))
+        {
+            var p = new int[rows.Count, ((JsonArray)rows[0]!).Count];
+            for (int y = 0; y < rows.Count; y++)
+                for (int x = 0; x < p.GetLength(1); x++) p[y, x] = rows[y]![x]!.GetValue<int>();
+            return p;
+        }
+        throw new InputException(where, "a pattern is letters (\"RGGB\") or rows of channel indices", "e.g. [[0,1],[1,2]]");
+    }
+
+    static string? Str(JsonObject o, string key, string file) => o[key] switch
+    {
+        null => null,
+        JsonValue v when v.TryGetValue(out string? s) => s,
+        _ => throw new InputException($"{file}: $.{key}", "must be a string"),
+    };
+
+    static double? Num(JsonObject o, string key, string where, double min, double max, bool whole = false)
+    {
+        if (o[key] is not JsonNode n) return null;
+        string path = where.Contains("$.") ? $"{where}.{key}" : $"{where}: $.{key}";
+        if (n is not JsonValue v || !v.TryGetValue(out double d) || !double.IsFinite(d)) throw new InputException(path, "must be a number");
+        if (d < min || d > max || (whole && d != Math.Floor(d)))
+            throw new InputException(path, string.Create(CultureInfo.InvariantCulture, $"{d} is outside {min}–{max}{(whole ? " or not whole" : "")}"));
+        return d;
+    }
+}
