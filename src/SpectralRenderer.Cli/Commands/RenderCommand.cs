@@ -32,7 +32,8 @@ public static class RenderCommand
           --threads N        worker threads (default: all cores); output is identical for any N
           --rgb MODE         srgb (default) or paper (the paper's eq. 4, linear, clipped)
           --integration S    weighted (default, spectral prefiltering) or paper
-          --formats LIST     comma-separated from png,bands,exr,envi,npy,aov or all (default: all)
+          --formats LIST     comma-separated from png,bands,exr,envi,npy,aov,lights or all (default: all but lights);
+                             lights = the per-light transfer in lights/, for 'spectral relight' and 'spectral view' 
           --exr-compression  zip (default: deflate the chunks whose samples repeat, store noisy ones),
                              zip-all (deflate every chunk: smallest file, slower) or none
           --models DIR       a folder to search for mesh files (after the scene's folder, before $SPECTRAL_MODELS)
@@ -80,7 +81,16 @@ public static class RenderCommand
                 ["triangles"] = geometry.TriangleCount,
                 ["degenerate_triangles_skipped"] = degenerate,
             };
-            var files = RenderOutputWriter.Write(scene, result, outDir, run, cancel.Token);
+            // The per-light transfer (opt-in): the same camera rays traced once more, recording eq. 2's factors per light.
+            LightTransfer? transfer = null;
+            if (scene.Output.Formats.Contains("lights"))
+            {
+                var transferClock = System.Diagnostics.Stopwatch.StartNew();
+                transfer = LightTransfer.Trace(scene, geometry, threads ?? 0, cancel.Token);
+                run["light_transfer_s"] = transferClock.Elapsed.TotalSeconds;
+            }
+            run["overrides"] = OverridesJson(overrides);
+            var files = RenderOutputWriter.Write(scene, result, outDir, run, cancel.Token, transfer);
             if (!quiet)
             {
                 double secs = result.Elapsed.TotalSeconds;
@@ -120,6 +130,14 @@ public static class RenderCommand
             ModelDirectories = models,
         };
     }
+
+    /// <summary>The command-line overrides as render.json records them (relight rebuilds the same scene from them).</summary>
+    public static JsonObject OverridesJson(SceneOverrides o) => new()
+    {
+        ["width"] = o.Width, ["height"] = o.Height, ["bands"] = o.Bands, ["spp"] = o.SamplesPerPixel, ["rgb"] = o.Rgb,
+        ["integration"] = o.Integration, ["formats"] = o.Formats, ["exr_compression"] = o.ExrCompression,
+        ["models"] = new JsonArray(o.ModelDirectories.Select(d => (JsonNode)JsonValue.Create(Path.GetFullPath(d))).ToArray()),
+    };
 
     static Spectra.BandGrid SceneRange(string scenePath)
     {

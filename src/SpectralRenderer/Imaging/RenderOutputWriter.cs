@@ -18,7 +18,8 @@ namespace SpectralRenderer.Imaging;
 /// </summary>
 public static class RenderOutputWriter
 {
-    public static List<string> Write(Scene scene, RenderResult result, string outDir, JsonObject? run = null, CancellationToken cancel = default)
+    public static List<string> Write(Scene scene, RenderResult result, string outDir, JsonObject? run = null, CancellationToken cancel = default,
+        LightTransfer? transfer = null)
     {
         var formats = scene.Output.Formats;
         var image = result.Image;
@@ -37,7 +38,7 @@ public static class RenderOutputWriter
         clearing.GetAwaiter().GetResult();
 
         // The groups are independent files: write them side by side; each keeps its own list, in a fixed order.
-        var groups = new List<string>[8];
+        var groups = new List<string>[9];
         for (int g = 0; g < groups.Length; g++) groups[g] = [];
         Action<string> Done(int g) => name => { lock (groups[g]) groups[g].Add(name); cancel.ThrowIfCancellationRequested(); };
         JsonObject? json = null;
@@ -66,6 +67,7 @@ public static class RenderOutputWriter
             () => { if (formats.Contains("envi")) SpectralFiles.WriteEnvi(scene, image, bands!, outDir, Done(5)); },
             () => { if (formats.Contains("npy")) SpectralFiles.WriteNpy(image, outDir, Done(6)); },
             () => { if (formats.Contains("npy") || formats.Contains("envi") || formats.Contains("exr")) SpectralFiles.WriteWavelengths(image, outDir, Done(7)); },
+            () => { if (transfer is not null && formats.Contains("lights")) LightTransferFiles.Write(scene, transfer, outDir, Done(8)); },
             () => json = Describe(scene, result, scale, run));
         }
         catch (AggregateException e)
@@ -100,6 +102,10 @@ public static class RenderOutputWriter
         var bands = Path.Combine(outDir, "bands");
         if (Directory.Exists(bands))
             foreach (var f in Directory.EnumerateFiles(bands, "band-*.png")) File.Delete(f);
+        var lights = Path.Combine(outDir, LightTransferFiles.Folder);
+        if (Directory.Exists(lights))
+            foreach (var f in new[] { "lights.json", "factors.npy", "static.npy", "centre.npy", "ids.npy" })
+                File.Delete(Path.Combine(lights, f));
     }
 
     static void WritePreview(Scene scene, SpectralImage image, XyzPlanes xyz, string outDir, Action<string> done)

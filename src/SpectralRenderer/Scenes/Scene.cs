@@ -32,7 +32,8 @@ public sealed class OutputOptions
 
 public static class OutputFormats
 {
-    public static readonly string[] All = ["png", "bands", "exr", "envi", "npy", "aov"];
+    /// <summary>Every format; "lights" (the per-light transfer, lights/) is opt-in: not in the default set.</summary>
+    public static readonly string[] All = ["png", "bands", "exr", "envi", "npy", "aov", "lights"];
     public static readonly string[] Default = ["png", "bands", "exr", "envi", "npy", "aov"];
 }
 

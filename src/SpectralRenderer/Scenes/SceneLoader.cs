@@ -351,7 +351,7 @@ public sealed partial class SceneLoader
         if (TryGet(root, "output", out var e))
         {
             Object(e, "$.output");
-            Keys(e, "$.output", "rgb", "exposure", "adapt", "formats", "highlight_fraction", "exr_compression");
+            Keys(e, "$.output", "rgb", "exposure", "adapt", "formats", "highlight_fraction", "exr_compression", "light_groups");
             o.HighlightFraction = Number(e, "highlight_fraction", "$.output", 0.1, 0, 1e6);
             if (TryGet(e, "rgb", out var rgb)) o.Rgb = RgbSpace.Parse(String(rgb, "$.output.rgb"), Where("$.output.rgb"));
             o.Exposure = Number(e, "exposure", "$.output", 1.0, 0, 1e12);
@@ -361,6 +361,8 @@ public sealed partial class SceneLoader
                 if (f.ValueKind != JsonValueKind.Array) throw Error("$.output.formats", $"expected an array of format names, found {Kind(f)}");
                 o.Formats = ParseFormats(f.EnumerateArray().Select((x, i) => String(x, $"$.output.formats[{i}]")), Where("$.output.formats"));
             }
+            // "light_groups": true adds the per-light transfer outputs (lights/) to the formats.
+            if (Bool(e, "light_groups", "$.output", false)) o.Formats.Add("lights");
             if (TryGet(e, "exr_compression", out var c)) o.ExrCompression = ParseExrCompression(String(c, "$.output.exr_compression"), Where("$.output.exr_compression"));
         }
         if (_overrides.ExrCompression is { } ec) o.ExrCompression = ParseExrCompression(ec, "--exr-compression");

@@ -1,0 +1,165 @@
+using System.Globalization;
+using System.Text;
+using System.Text.Json;
+using System.Text.Json.Nodes;
+using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Imaging;
+using SpectralRenderer.Rendering;
+using SpectralRenderer.Scenes;
+
+namespace SpectralRenderer.Analysis;
+
+/// <summary>What to change: per light (by name) a new spectrum and/or intensity, and the reference white.</summary>
+public sealed record LightChange(string Light, string? Spectrum, double? Intensity);
+
+/// <summary>
+/// Relighting a render folder that has the per-light transfer (lights/): the scene is rebuilt from the
+/// resolved scene and the command-line overrides render.json recorded, with the lights' spectra, intensities
+/// and the reference white changed as asked (so the band grid, κ, eq. 3 weights and every output option are
+/// exactly what a fresh render of the changed scene has), and the image is S + Σ_c F_c · P_c under the new
+/// light band values (<see cref="LightTransfer.Relight"/>). No ray is traced. The result is written as a
+/// complete render folder, its render.json saying it was relit and from what.
+/// </summary>
+public static class Relighting
+{
+    public sealed record Source(string Dir, JsonObject Json, JsonObject Scene, string ScenePath, SceneOverrides Overrides, string[] LightNames);
+
+    public static Source Open(string dir)
+    {
+        var jsonPath = Path.Combine(dir, "render.json");
+        if (!Directory.Exists(dir)) throw new InputException(dir, "no such render folder", "give the -o folder of a 'spectral render' run");
+        if (!File.Exists(jsonPath)) throw new InputException(dir, "has no render.json", "give the -o folder of a 'spectral render' run");
+        JsonObject json;
+        try { json = JsonNode.Parse(File.ReadAllText(jsonPath))!.AsObject(); }
+        catch (JsonException e) { throw new InputException($"{jsonPath}:{(e.LineNumber ?? 0) + 1}", $"broken JSON: {e.Message}"); }
+        if (json["resolved_scene"] is not JsonObject scene)
+            throw new InputException(jsonPath, "has no resolved_scene", "render again with this version of spectral");
+        var o = json["run"]?["overrides"] as JsonObject;
+        var overrides = new SceneOverrides
+        {
+            Width = (int?)o?["width"], Height = (int?)o?["height"], Bands = (string?)o?["bands"], SamplesPerPixel = (int?)o?["spp"],
+            Rgb = (string?)o?["rgb"], Integration = (string?)o?["integration"], Formats = (string?)o?["formats"],
+            ExrCompression = (string?)o?["exr_compression"],
+            ModelDirectories = o?["models"]?.AsArray().Select(d => (string)d!).Where(Directory.Exists).ToList() ?? [],
+        };
+        var names = (scene["lights"] as JsonArray ?? []).Select((l, i) => (string?)l?["name"] ?? $"light-{i}").ToArray();
+        return new Source(dir, json, scene, (string?)json["scene"] ?? Path.Combine(dir, "scene.json"), overrides, names);
+    }
+
+    /// <summary>The scene of <paramref name="src"/> with the changes applied, loaded as a render would load it.</summary>
+    public static Scene ChangedScene(Source src, IReadOnlyList<LightChange> changes, string? white)
+    {
+        var scene = (JsonObject)src.Scene.DeepClone();
+        var lights = scene["lights"] as JsonArray ?? [];
+        foreach (var c in changes)
+        {
+            int k = Array.IndexOf(src.LightNames, c.Light);
+            if (k < 0)
+                throw new InputException($"--light {c.Light}", $"the render has no light named '{c.Light}'",
+                    InputException.DidYouMean(c.Light, src.LightNames) is { } d ? d : $"its lights are: {string.Join(", ", src.LightNames)}");
+            var l = lights[k]!.AsObject();
+            if (c.Spectrum is not null) Check(src, c.Spectrum, $"--light {c.Light}");
+            if (c.Spectrum is not null) l["spectrum"] = c.Spectrum;
+            if (c.Intensity is not null) l["intensity"] = c.Intensity;
+        }
+        if (white is not null) { Check(src, white, "--white"); scene["white"] = white; }
+        var bytes = Encoding.UTF8.GetBytes(scene.ToJsonString());
+        return SceneLoader.Parse(bytes, src.ScenePath, src.Overrides);
+    }
+
+    /// <summary>A spectrum named on the command line resolves (or is one of the scene's own named spectra).</summary>
+    static void Check(Source src, string spectrum, string where)
+    {
+        if (src.Scene["spectra"] is JsonObject named && named.ContainsKey(spectrum)) return;
+        Spectra.SpectrumLibrary.Resolve(spectrum, Path.GetDirectoryName(Path.GetFullPath(src.ScenePath)), where);
+    }
+
+    /// <summary>Relights <paramref name="src"/> into <paramref name="outDir"/>: every file a render writes.</summary>
+    public static (Scene Scene, List<string> Files, TimeSpan Compute) Write(Source src, IReadOnlyList<LightChange> changes, string? white, string outDir,
+        string commandLine, CancellationToken cancel = default)
+    {
+        var scene = ChangedScene(src, changes, white);
+        var clock = System.Diagnostics.Stopwatch.StartNew();
+        var transfer = LightTransferFiles.Read(src.Dir, scene);
+        if (transfer.Width != scene.Camera.Width || transfer.Height != scene.Camera.Height || transfer.Bands != scene.Bands)
+            throw new InputException(src.Dir, $"its lights/ are {transfer.Width}×{transfer.Height}×{transfer.Bands} but the scene rebuilds as {scene.Camera.Width}×{scene.Camera.Height}×{scene.Bands}",
+                "the scene file changed since the render; render again");
+        var lightBands = scene.Lights.Select(l => l.Intensity).ToList();
+        var image = transfer.Relight(scene.Materials, lightBands);
+        var (dy, sy) = transfer.CentreLuminance(scene, lightBands);
+        var result = new RenderResult
+        {
+            Image = image, ObjectIds = transfer.ObjectIds, LitMasks = transfer.LitMasks, DiffuseY = dy, SpecularY = sy,
+            Rays = new RayCounters(), Elapsed = clock.Elapsed, Threads = Environment.ProcessorCount, Tiles = 0,
+        };
+        var compute = clock.Elapsed;
+        var run = new JsonObject
+        {
+            ["command_line"] = commandLine,
+            ["overrides"] = src.Json["run"]?["overrides"]?.DeepClone(),
+            ["relit"] = new JsonObject
+            {
+                ["from"] = Path.GetFullPath(src.Dir),
+                ["from_created_utc"] = (string?)src.Json["created_utc"],
+                ["method"] = "per-light transfer (lights/): L_b = static_b + sum_c F_c * I_k,b * M_c,b; no rays traced",
+                ["changes"] = new JsonArray(changes.Select(c => (JsonNode)new JsonObject
+                    { ["light"] = c.Light, ["spectrum"] = c.Spectrum, ["intensity"] = c.Intensity }).ToArray()),
+                ["white"] = white,
+            },
+        };
+        if (Path.GetFullPath(outDir) == Path.GetFullPath(src.Dir))
+            throw new InputException(outDir, "is the folder being relit", "write the relit render to another folder with -o");
+        Directory.CreateDirectory(outDir);
+        var files = RenderOutputWriter.Write(scene, result, outDir, run, cancel, transfer: new LightTransfer
+        {
+            Width = transfer.Width, Height = transfer.Height, Bands = transfer.Bands, Components = transfer.Components,
+            Factors = transfer.Factors, Static = transfer.Static, CentreDiffuse = transfer.CentreDiffuse, CentreSpecular = transfer.CentreSpecular,
+            ObjectIds = transfer.ObjectIds, LitMasks = transfer.LitMasks, Rays = transfer.Rays,
+        });
+        return (scene, files, compute);
+    }
+
+    /// <summary>
+    /// A sweep file: a CSV whose header names columns <c>LIGHT</c> (its spectrum), <c>LIGHT.intensity</c> and
+    /// optionally <c>white</c>; every row is one relit render (an empty cell keeps the render's value).
+    /// </summary>
+    public static List<(List<LightChange> Changes, string? White)> ReadSweep(string path, string[] lightNames)
+    {
+        var lines = InputFile.ReadAllText(path).Replace("\r\n", "\n").Split('\n').Where(l => l.Trim().Length > 0).ToArray();
+        if (lines.Length < 2) throw new InputException($"{path}:1", "a sweep needs a header and at least one row", "e.g. header 'D65,D65.intensity' then 'A,1'");
+        var header = lines[0].Split(',').Select(h => h.Trim()).ToArray();
+        for (int c = 0; c < header.Length; c++)
+        {
+            var h = header[c];
+            var light = h.EndsWith(".intensity", StringComparison.Ordinal) ? h[..^".intensity".Length] : h;
+            if (h != "white" && Array.IndexOf(lightNames, light) < 0)
+                throw new InputException($"{path}:1:{c + 1}", $"column '{h}' names no light of the render",
+                    $"columns: white, a light's name (its spectrum) or NAME.intensity; lights: {string.Join(", ", lightNames)}");
+        }
+        var rows = new List<(List<LightChange>, string?)>();
+        for (int r = 1; r < lines.Length; r++)
+        {
+            var cells = lines[r].Split(',').Select(x => x.Trim()).ToArray();
+            if (cells.Length != header.Length)
+                throw new InputException($"{path}:{r + 1}", $"{cells.Length} cells, the header names {header.Length}");
+            var changes = new Dictionary<string, LightChange>();
+            string? white = null;
+            for (int c = 0; c < cells.Length; c++)
+            {
+                if (cells[c].Length == 0) continue;
+                var h = header[c];
+                if (h == "white") { white = cells[c]; continue; }
+                if (h.EndsWith(".intensity", StringComparison.Ordinal))
+                {
+                    var name = h[..^".intensity".Length];
+                    if (!double.TryParse(cells[c], NumberStyles.Float, CultureInfo.InvariantCulture, out double f) || !(f >= 0) || !double.IsFinite(f))
+                        throw new InputException($"{path}:{r + 1}:{c + 1}", $"'{cells[c]}' is not a non-negative intensity");
+                    changes[name] = (changes.GetValueOrDefault(name) ?? new LightChange(name, null, null)) with { Intensity = f };
+                }
+                else changes[h] = (changes.GetValueOrDefault(h) ?? new LightChange(h, null, null)) with { Spectrum = cells[c] };
+            }
+            rows.Add((changes.Values.ToList(), white));
+        }
+        return rows;
+    }
+}
