@@ -84,9 +84,8 @@ public static class Relighting
         if (transfer.Width != scene.Camera.Width || transfer.Height != scene.Camera.Height || transfer.Bands != scene.Bands)
             throw new InputException(src.Dir, $"its lights/ are {transfer.Width}×{transfer.Height}×{transfer.Bands} but the scene rebuilds as {scene.Camera.Width}×{scene.Camera.Height}×{scene.Bands}",
                 "the scene file changed since the render; render again");
-        var lightBands = scene.Lights.Select(l => l.Intensity).ToList();
-        var image = transfer.Relight(scene.Materials, lightBands);
-        var (dy, sy) = transfer.CentreLuminance(scene, lightBands);
+        var image = transfer.Relight(scene);
+        var (dy, sy) = transfer.CentreLuminance(scene);
         var result = new RenderResult
         {
             Image = image, ObjectIds = transfer.ObjectIds, LitMasks = transfer.LitMasks, DiffuseY = dy, SpecularY = sy,
@@ -110,12 +109,7 @@ public static class Relighting
         if (Path.GetFullPath(outDir) == Path.GetFullPath(src.Dir))
             throw new InputException(outDir, "is the folder being relit", "write the relit render to another folder with -o");
         Directory.CreateDirectory(outDir);
-        var files = RenderOutputWriter.Write(scene, result, outDir, run, cancel, transfer: new LightTransfer
-        {
-            Width = transfer.Width, Height = transfer.Height, Bands = transfer.Bands, Components = transfer.Components,
-            Factors = transfer.Factors, Static = transfer.Static, CentreDiffuse = transfer.CentreDiffuse, CentreSpecular = transfer.CentreSpecular,
-            ObjectIds = transfer.ObjectIds, LitMasks = transfer.LitMasks, Rays = transfer.Rays,
-        });
+        var files = RenderOutputWriter.Write(scene, result, outDir, run, cancel, transfer);
         return (scene, files, compute);
     }
 

@@ -10,16 +10,16 @@ namespace SpectralRenderer.Imaging;
 /// <summary>
 /// The per-light transfer outputs (<c>--formats …,lights</c> or <c>output.light_groups</c>), in <c>lights/</c>:
 /// <list type="bullet">
-/// <item><c>lights.json</c>: the layout, the lights (name, spectrum, intensity, band values I_k,b) and the components
-/// c in file order (light, lobe, material, the mirror/transmit chain, and M_c,b = m_lobe,b · Π k_chain,b, so that
-/// P_c,b = I_k,b · M_c,b).</item>
+/// <item><c>lights.json</c>: the layout, the lights (name, spectrum, band values I_k,b = spectrum × intensity) and the
+/// components c in file order (light, lobe, material, the mirror/transmit chain, their band values P_c,b in this render
+/// and the light-independent part M_c,b = m_lobe,b · Π k_chain,b, so that P_c,b = I_k,b · M_c,b for the terms that
+/// follow a light).</item>
 /// <item><c>factors.npy</c>: float32 C × H × W, the geometric factor F_c of every component at every pixel.</item>
-/// <item><c>static.npy</c>: float32 H × W × N, the radiance no light's spectrum enters (ambient, background).</item>
 /// <item><c>centre.npy</c>: float32 2K × H × W, per light the centre ray's diffuse then specular factor at its first
 /// hit; <c>ids.npy</c>: float32 2 × H × W, the object index + 1 seen by the centre ray (0 = background) and the
 /// lit mask (bit k: light k reaches the point; exact for the first 24 lights).</item>
 /// </list>
-/// A pixel's band values are L_b = static_b + Σ_c F_c · I_k(c),b · M_c,b (<see cref="LightTransfer"/>).
+/// A pixel's band values are L_b = Σ_c F_c · P_c,b (<see cref="LightTransfer"/>).
 /// </summary>
 public static class LightTransferFiles
 {
@@ -34,8 +34,6 @@ public static class LightTransferFiles
         for (int c = 0; c < t.Components.Length; c++) t.Factors[c].CopyTo(factors, c * n);
         AtomicFile.Write(Path.Combine(dir, "factors.npy"), s => NpyWriter.Write(s, [t.Components.Length, t.Height, t.Width], factors));
         done($"{Folder}/factors.npy");
-        NpyWriter.Write(Path.Combine(dir, "static.npy"), t.Static);
-        done($"{Folder}/static.npy");
         int k = t.CentreDiffuse.Length;
         var centre = new float[2 * k * n];
         for (int i = 0; i < k; i++) { t.CentreDiffuse[i].CopyTo(centre, 2 * i * n); t.CentreSpecular[i].CopyTo(centre, (2 * i + 1) * n); }
@@ -64,33 +62,41 @@ public static class LightTransferFiles
             });
         }
         var comps = new JsonArray();
-        var m = new float[scene.PaddedBands];
-        var ones = Enumerable.Repeat(1f, scene.PaddedBands).ToArray();
+        var m = new float[scene.Bands];
+        var p = new float[scene.Bands];
+        var lightBands = scene.Lights.Select(l => l.Intensity).ToList();
         for (int c = 0; c < t.Components.Length; c++)
         {
             var comp = t.Components[c];
-            comp.BandValues(scene.Materials, ones, m);
+            comp.MaterialBandValues(scene, m);
+            comp.BandValues(scene, lightBands, p);
             comps.Add(new JsonObject
             {
-                ["index"] = c, ["key"] = comp.Key, ["light"] = comp.Light, ["lobe"] = comp.Lobe.ToString().ToLowerInvariant(),
-                ["material"] = scene.Materials[comp.Material].Name,
+                ["index"] = c, ["key"] = comp.Key, ["light"] = comp.Light, ["lobe"] = TransferComponent.LobeName(comp.Lobe),
+                ["follows_light"] = comp.FollowsLight,
+                ["material"] = comp.Material < 0 ? null : scene.Materials[comp.Material].Name,
                 ["chain"] = new JsonArray(comp.Chain.Select(x => (JsonNode)new JsonObject
                     { ["material"] = scene.Materials[x.Material].Name, ["weight"] = x.Transmit ? "transmit" : "mirror" }).ToArray()),
-                ["material_band_values"] = Arr(m.AsSpan(0, scene.Bands)),
+                ["band_values"] = Arr(p),
+                ["material_band_values"] = Arr(m),
             });
         }
+        var materials = new JsonArray(scene.Materials.Select(mt => (JsonNode)new JsonObject
+        {
+            ["name"] = mt.Name, ["diffuse_spectrum"] = mt.DiffuseSpectrum?.Name, ["diffuse_band_values"] = Arr(mt.Diffuse.AsSpan(0, scene.Bands)),
+        }).ToArray());
         return new JsonObject
         {
-            ["layout"] = "L_b = static[y,x,b] + sum_c factors[c,y,x] * lights[c.light].band_values[b] * components[c].material_band_values[b]",
+            ["layout"] = "L_b = sum_c factors[c,y,x] * components[c].band_values[b]; for components that follow a light, band_values[b] = lights[c.light].band_values[b] * material_band_values[b]",
             ["width"] = t.Width, ["height"] = t.Height, ["bands"] = t.Bands,
             ["band_scheme"] = scene.Integration.ToString().ToLowerInvariant(),
             ["exact_for"] = "the render's own band scheme: band values are products of band means (light × material × path weights)",
             ["lights"] = lights,
+            ["materials"] = materials,
             ["components"] = comps,
             ["files"] = new JsonObject
             {
                 ["factors"] = "factors.npy: float32 [C, H, W]",
-                ["static"] = "static.npy: float32 [H, W, N]",
                 ["centre"] = "centre.npy: float32 [2K, H, W], light k's centre-ray diffuse (2k) and specular (2k+1) factor",
                 ["ids"] = "ids.npy: float32 [2, H, W], object index + 1 (0 = background), lit mask",
             },
@@ -117,10 +123,10 @@ public static class LightTransferFiles
         int width = (int)json["width"]!, height = (int)json["height"]!, bands = (int)json["bands"]!;
         int n = width * height;
         var materialIndex = scene.Materials.Select((m, i) => (m.Name, i)).ToDictionary(p => p.Name, p => p.i);
-        int Mat(JsonNode? name) => materialIndex.TryGetValue((string)name!, out int i) ? i
+        int Mat(JsonNode? name) => name is null ? -1 : materialIndex.TryGetValue((string)name!, out int i) ? i
             : throw new InputException(jsonPath, $"names material '{(string?)name}' which the scene does not have", "relight the folder with the scene it was rendered from");
         var comps = json["components"]!.AsArray().Select(c => new TransferComponent(
-            (int)c!["light"]!, (string)c["lobe"]! == "specular" ? TransferLobe.Specular : TransferLobe.Diffuse, Mat(c["material"]),
+            (int)c!["light"]!, TransferComponent.ParseLobe((string)c["lobe"]!), Mat(c["material"]),
             c["chain"]!.AsArray().Select(x => (Mat(x!["material"]), (string)x["weight"]! == "transmit")).ToArray())).ToArray();
 
         float[] Load(string file, int[] expected)
@@ -134,15 +140,13 @@ public static class LightTransferFiles
             return data;
         }
         var f = Load("factors.npy", [comps.Length, height, width]);
-        var st = Load("static.npy", [height, width, bands]);
         int k = scene.Lights.Count;
         var centre = Load("centre.npy", [2 * k, height, width]);
         var ids = Load("ids.npy", [2, height, width]);
         return new LightTransfer
         {
-            Width = width, Height = height, Bands = bands, Components = comps,
+            Width = width, Height = height, Bands = bands, Grid = scene.Grid, Components = comps,
             Factors = Enumerable.Range(0, comps.Length).Select(c => f.AsSpan(c * n, n).ToArray()).ToArray(),
-            Static = new SpectralImage(width, height, scene.Grid, st),
             CentreDiffuse = Enumerable.Range(0, k).Select(i => centre.AsSpan(2 * i * n, n).ToArray()).ToArray(),
             CentreSpecular = Enumerable.Range(0, k).Select(i => centre.AsSpan((2 * i + 1) * n, n).ToArray()).ToArray(),
             ObjectIds = Enumerable.Range(0, n).Select(i => (int)ids[i] - 1).ToArray(),

@@ -7,29 +7,80 @@ using SpectralRenderer.Scenes;
 
 namespace SpectralRenderer.Rendering;
 
-/// <summary>The lobe of eq. 2 a light term goes through: L_diff,k or L_spec,k.</summary>
-public enum TransferLobe { Diffuse, Specular }
+/// <summary>
+/// Which term of eq. 2 a component is: light k through the diffuse or specular lobe (these follow the light's spectrum),
+/// light k's own ambient spectrum I_amb,k·m_amb, the global ambient a_glob·m_amb, or the background radiance.
+/// </summary>
+public enum TransferLobe { Diffuse, Specular, Ambient, GlobalAmbient, Background }
 
 /// <summary>
-/// One spectral component of a light's contribution: light k's spectrum through material <see cref="Material"/>'s
-/// diffuse or specular reflectance, reached from the camera through the mirror (k_r) and transmission (k_t)
-/// weights of the materials in <see cref="Chain"/> (first bounce first). Its band values are
-/// P_b = I_k,b · m_lobe,b · Π k_chain,b, the products eq. 2 and the Whitted recursion form in every band.
+/// One spectral component of a pixel's radiance: a term of eq. 2 (<see cref="Lobe"/>) of light <see cref="Light"/>
+/// (−1 for the global ambient and the background) at material <see cref="Material"/> (−1 for the background), reached
+/// from the camera through the mirror (k_r) and transmission (k_t) weights of the materials in <see cref="Chain"/>
+/// (first bounce first). Its band values are P_b = E_b · m_b · Π k_chain,b with E the light's spectrum × intensity
+/// (diffuse, specular), its ambient spectrum, or a_glob, and m the lobe's reflectance — the products eq. 2 and the
+/// Whitted recursion form in every band.
 /// </summary>
 public sealed record TransferComponent(int Light, TransferLobe Lobe, int Material, (int Material, bool Transmit)[] Chain)
 {
+    /// <summary>Does the component follow light k's spectrum and intensity (diffuse and specular terms)?</summary>
+    public bool FollowsLight => Lobe is TransferLobe.Diffuse or TransferLobe.Specular;
+
+    public static string LobeName(TransferLobe l) => l switch
+    {
+        TransferLobe.Diffuse => "diffuse", TransferLobe.Specular => "specular", TransferLobe.Ambient => "ambient",
+        TransferLobe.GlobalAmbient => "global-ambient", _ => "background",
+    };
+
+    public static TransferLobe ParseLobe(string s) => s switch
+    {
+        "diffuse" => TransferLobe.Diffuse, "specular" => TransferLobe.Specular, "ambient" => TransferLobe.Ambient,
+        "global-ambient" => TransferLobe.GlobalAmbient, "background" => TransferLobe.Background,
+        _ => throw new InputException("lights.json", $"unknown component lobe '{s}'"),
+    };
+
     /// <summary>A stable text key such as <c>0:diffuse:2</c> or <c>1:specular:3&lt;mirror:1</c>.</summary>
-    public string Key => $"{Light}:{(Lobe == TransferLobe.Diffuse ? "diffuse" : "specular")}:{Material}" +
+    public string Key => $"{Light}:{LobeName(Lobe)}:{Material}" +
         string.Concat(Chain.Reverse().Select(c => $"<{(c.Transmit ? "transmit" : "mirror")}:{c.Material}"));
 
-    /// <summary>P_b into <paramref name="dst"/> for the light's band values <paramref name="light"/> (spectrum × intensity).</summary>
-    public void BandValues(IReadOnlyList<Material> materials, ReadOnlySpan<float> light, Span<float> dst)
+    /// <summary>
+    /// P_b into <paramref name="dst"/>, with <paramref name="lightBands"/> the band values (spectrum × intensity) of
+    /// each light for the terms that follow a light; the others take theirs from the scene.
+    /// </summary>
+    public void BandValues(Scene scene, IReadOnlyList<float[]> lightBands, Span<float> dst)
     {
-        var m = materials[Material];
-        var lobe = Lobe == TransferLobe.Diffuse ? m.Diffuse : m.Specular;
+        var materials = scene.Materials;
+        ReadOnlySpan<float> e, m;
+        switch (Lobe)
+        {
+            case TransferLobe.Diffuse: e = lightBands[Light]; m = materials[Material].Diffuse; break;
+            case TransferLobe.Specular: e = lightBands[Light]; m = materials[Material].Specular; break;
+            case TransferLobe.Ambient: e = scene.Lights[Light].Ambient; m = materials[Material].Ambient; break;
+            case TransferLobe.GlobalAmbient: e = scene.GlobalAmbient; m = materials[Material].Ambient; break;
+            default: e = scene.Background; m = default; break;
+        }
         for (int b = 0; b < dst.Length; b++)
         {
-            float v = light[b] * lobe[b];
+            float v = m.IsEmpty ? e[b] : e[b] * m[b];
+            foreach (var (cm, t) in Chain) v *= t ? materials[cm].Transmit[b] : materials[cm].Mirror[b];
+            dst[b] = v;
+        }
+    }
+
+    /// <summary>The light-independent part of P_b: m_b · Π k_chain,b (1 for the background's m).</summary>
+    public void MaterialBandValues(Scene scene, Span<float> dst)
+    {
+        var materials = scene.Materials;
+        ReadOnlySpan<float> m = Lobe switch
+        {
+            TransferLobe.Diffuse => materials[Material].Diffuse,
+            TransferLobe.Specular => materials[Material].Specular,
+            TransferLobe.Background => default,
+            _ => materials[Material].Ambient,
+        };
+        for (int b = 0; b < dst.Length; b++)
+        {
+            float v = m.IsEmpty ? 1 : m[b];
             foreach (var (cm, t) in Chain) v *= t ? materials[cm].Transmit[b] : materials[cm].Mirror[b];
             dst[b] = v;
         }
@@ -38,11 +89,12 @@ public sealed record TransferComponent(int Light, TransferLobe Lobe, int Materia
 
 /// <summary>
 /// Per-light transfer of a render: light transport in eq. 2 and the Whitted recursion is linear in each light's
-/// spectrum, so a pixel's band values are L_b = S_b + Σ_c F_c · P_c,b, where S is the part no light's spectrum
-/// enters (global ambient, each light's own ambient spectrum, the background, all carried along mirror and
-/// glass paths), F_c the per-pixel geometric factor of component c (c_spot · d_k · max(0, n·l) for diffuse,
-/// c_spot · d_k · (n·h)^shininess for specular, times the Fresnel weights along the path, averaged over the
-/// pixel's samples) and P_c its band values (<see cref="TransferComponent"/>). Changing a light's spectrum or
+/// spectrum, so a pixel's band values are L_b = Σ_c F_c · P_c,b over the spectral components c the pixel's rays
+/// meet (<see cref="TransferComponent"/>: each light's diffuse and specular terms, each light's own ambient, the
+/// global ambient and the background, per material and mirror/glass chain), with F_c the per-pixel geometric
+/// factor (c_spot · d_k · max(0, n·l) for diffuse, c_spot · d_k · (n·h)^shininess for specular, c_spot for a light's
+/// ambient, 1 for the global ambient and the background, times the Fresnel weights along the path, averaged over
+/// the pixel's samples). Changing a light's spectrum or
 /// intensity changes only P: <see cref="Relight"/> recomputes the image exactly as a render with those lights
 /// computes it (the band values of this band scheme are products of band means, so P carries them exactly).
 /// The tracer follows <see cref="WhittedIntegrator"/> ray for ray (same camera rays, jitter, shadow rays,
@@ -58,8 +110,7 @@ public sealed class LightTransfer
     public required TransferComponent[] Components { get; init; }
     /// <summary>Per component, its W × H factor plane (row-major, row 0 at the top).</summary>
     public required float[][] Factors { get; init; }
-    /// <summary>S: the light-independent radiance, H × W × N.</summary>
-    public required SpectralImage Static { get; init; }
+    public required Spectra.BandGrid Grid { get; init; }
     /// <summary>Per light, the centre ray's diffuse factor d·c_spot·(n·l) at its first hit (for the highlight mask), W × H.</summary>
     public required float[][] CentreDiffuse { get; init; }
     public required float[][] CentreSpecular { get; init; }
@@ -76,25 +127,27 @@ public sealed class LightTransfer
             throw new InputException("output.formats", "the 'lights' output does not support dispersive materials (their paths split per band)", "render those scenes without 'lights'");
         if (scene.MaxDepth > MaxChain)
             throw new InputException("max_depth", $"the 'lights' output supports max_depth ≤ {MaxChain}, the scene has {scene.MaxDepth}", $"set max_depth to {MaxChain} or less");
-        if (scene.Lights.Count > 255 || scene.Materials.Count > 4095)
+        if (scene.Lights.Count > 254 || scene.Materials.Count > 4094)
             throw new InputException("lights", "the 'lights' output supports at most 255 lights and 4095 materials");
         var t = new Tracer(scene, geometry);
         return t.Run(threads, cancel);
     }
 
     /// <summary>
-    /// The image under new light band values (spectrum × intensity per light, padded): S + Σ_c F_c · P_c, on all cores.
+    /// The image of <paramref name="scene"/> (the render's scene with its lights changed): Σ_c F_c · P_c with the
+    /// scene's light band values (spectrum × intensity), on all cores.
     /// </summary>
-    public SpectralImage Relight(IReadOnlyList<Material> materials, IReadOnlyList<float[]> lightBands)
+    public SpectralImage Relight(Scene scene)
     {
         int n = Width * Height, bands = Bands;
+        var lightBands = scene.Lights.Select(l => l.Intensity).ToList();
         var p = new float[Components.Length][];
         for (int c = 0; c < p.Length; c++)
         {
             p[c] = new float[bands];
-            Components[c].BandValues(materials, lightBands[Components[c].Light], p[c]);
+            Components[c].BandValues(scene, lightBands, p[c]);
         }
-        var image = new SpectralImage(Width, Height, Static.Grid, (float[])Static.Data.Clone());
+        var image = new SpectralImage(Width, Height, Grid);
         var data = image.Data;
         Parallel.For(0, (n + 4095) / 4096, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (chunk) =>
         {
@@ -116,8 +169,9 @@ public sealed class LightTransfer
     }
 
     /// <summary>The highlight-mask luminances of eq. 2's terms at the centre rays, under new light band values.</summary>
-    public (float[] DiffuseY, float[] SpecularY) CentreLuminance(Scene scene, IReadOnlyList<float[]> lightBands)
+    public (float[] DiffuseY, float[] SpecularY) CentreLuminance(Scene scene)
     {
+        var lightBands = scene.Lights.Select(l => l.Intensity).ToList();
         int n = Width * Height, lights = lightBands.Count, mats = scene.Materials.Count;
         var wy = scene.Colorimeter.Wy;
         var dy = new float[lights * mats]; var sy = new float[lights * mats];
@@ -173,11 +227,8 @@ public sealed class LightTransfer
             _centreSpecular = _lights.Select(_ => new float[_width * _height]).ToArray();
         }
 
-        sealed class Worker(int padded, int depth)
+        sealed class Worker
         {
-            public readonly float[] Static = new float[padded];
-            /// <summary>Spectral throughput Π k·weight per recursion level.</summary>
-            public readonly float[] Throughput = new float[(depth + 2) * padded];
             public readonly int[] Chain = new int[MaxChain + 1];
             public int ChainLength;
             public readonly Dictionary<Key, float[]> Planes = new();
@@ -192,7 +243,6 @@ public sealed class LightTransfer
         {
             var cam = _scene.Camera;
             int width = _width, height = _height, bands = _scene.Bands, padded = _padded;
-            var image = new SpectralImage(width, height, _scene.Grid);
             var ids = new int[width * height];
             var lit = new uint[width * height];
             int tilesX = (width + Renderer.TileSize - 1) / Renderer.TileSize, tilesY = (height + Renderer.TileSize - 1) / Renderer.TileSize;
@@ -209,7 +259,7 @@ public sealed class LightTransfer
 
             void Work()
             {
-                var w = new Worker(padded, _scene.MaxDepth);
+                var w = new Worker();
                 int tile;
                 while ((tile = Interlocked.Increment(ref next)) < tiles)
                 {
@@ -220,7 +270,6 @@ public sealed class LightTransfer
                     for (int x = x0; x < x1; x++)
                     {
                         int i = y * width + x;
-                        Array.Clear(w.Static);
                         w.Terms = 0;
                         uint mask = 0;
                         int id;
@@ -244,7 +293,6 @@ public sealed class LightTransfer
                             w.Counters.Primary++;
                             id = Centre(cam.Generate(x + 0.5f, y + 0.5f), i, ref mask, ref w.Counters);
                         }
-                        w.Static.AsSpan(0, bands).CopyTo(image.Data.AsSpan(image.Offset(x, y), bands));
                         for (int t = 0; t < w.Terms; t++) w.TermPlanes[t]![i] = w.TermFactors[t];
                         ids[i] = id;
                         lit[i] = mask;
@@ -258,12 +306,13 @@ public sealed class LightTransfer
             catch (AggregateException e) when (e.InnerExceptions.All(x => x is OperationCanceledException)) { throw new OperationCanceledException(cancel); }
 
             var order = _components.OrderBy(c => c.Value.Light).ThenBy(c => c.Value.Key, StringComparer.Ordinal).ToArray();
+            _ = bands;
             return new LightTransfer
             {
-                Width = width, Height = height, Bands = bands,
+                Width = width, Height = height, Bands = bands, Grid = _scene.Grid,
                 Components = order.Select(c => c.Value).ToArray(),
                 Factors = order.Select(c => _planes[c.Key]).ToArray(),
-                Static = image, CentreDiffuse = _centreDiffuse, CentreSpecular = _centreSpecular,
+                CentreDiffuse = _centreDiffuse, CentreSpecular = _centreSpecular,
                 ObjectIds = ids, LitMasks = lit, Rays = total,
             };
         }
@@ -271,8 +320,6 @@ public sealed class LightTransfer
         /// <summary>A camera sample of weight <paramref name="weight"/> (1/spp): radiance terms into the worker.</summary>
         int Primary(Ray ray, Worker w, float weight, int pixel, ref uint mask, bool centre)
         {
-            var tp = w.Throughput.AsSpan(0, _padded);
-            tp.Fill(weight);
             w.ChainLength = 0;
             return Radiance(ray, 0, w, weight, pixel, ref mask, centre);
         }
@@ -341,22 +388,21 @@ public sealed class LightTransfer
 
         /// <summary>
         /// Eq. 2 at the hit, as <see cref="WhittedIntegrator.Radiance(Ray, int, int, Span{float}, Span{float}, ref RayCounters, ref PixelInfo)"/>
-        /// computes it: light-independent terms into S (times the path's spectral throughput), light terms as factors
-        /// (times the path's scalar Fresnel weight <paramref name="weight"/>).
+        /// computes it, each term recorded as its component's factor times the path's scalar weight <paramref name="weight"/>
+        /// (1/spp times the Fresnel factors along it).
         /// </summary>
         int Radiance(Ray ray, int depth, Worker w, float weight, int pixel, ref uint mask, bool centre)
         {
-            var tp = w.Throughput.AsSpan(depth * _padded, _padded);
             if (!_geometry.Intersect(ref ray, out var hit))
             {
-                SpectralMath.AddProduct(w.Static, tp, _scene.Background);
+                if (SpectralMath.Any(_scene.Background)) AddTerm(w, -1, TransferLobe.Background, -1, weight);
                 return -1;
             }
             int mi = _objectMaterial[hit.Object];
             var m = _materials[mi];
             Local(ray, hit, m, out var n, out var v, out var pAbove, out bool outside);
             var p = hit.Position;
-            if (_scene.HasGlobalAmbient && m.HasAmbient) AddStatic(w.Static, tp, _scene.GlobalAmbient, m.Ambient, 1);
+            if (_scene.HasGlobalAmbient && m.HasAmbient) AddTerm(w, -1, TransferLobe.GlobalAmbient, mi, weight);
 
             for (int k = 0; k < _lights.Length; k++)
             {
@@ -369,7 +415,7 @@ public sealed class LightTransfer
                     if (light.Kind == LightKind.Directional) l0 = -light.Direction;
                     else { var toLight = light.Position - p; dist0 = toLight.Length(); l0 = toLight / dist0; }
                     float spot = dist0 == 0 ? 0 : light.SpotFactor(-l0);
-                    if (spot != 0) AddStatic(w.Static, tp, light.Ambient, m.Ambient, spot);
+                    if (spot != 0) AddTerm(w, k, TransferLobe.Ambient, mi, weight * spot);
                 }
                 if (!Reaches(k, p, pAbove, n, ref w.Counters, out float d, out float nl, out var l)) continue;
                 float s = Specular(m, n, l, v, nl);
@@ -384,7 +430,6 @@ public sealed class LightTransfer
             }
 
             if (depth >= _scene.MaxDepth || !(m.HasMirror || m.HasTransmission)) return hit.Object;
-            var next = w.Throughput.AsSpan((depth + 1) * _padded, _padded);
             float cosI = Vector3.Dot(n, v);
             if (m.HasMirror)
             {
@@ -420,23 +465,16 @@ public sealed class LightTransfer
 
         void Follow(Ray ray, int depth, Worker w, float weight, float f, float[] k, int mi, bool transmit, int pixel)
         {
-            var tp = w.Throughput.AsSpan(depth * _padded, _padded);
-            var next = w.Throughput.AsSpan((depth + 1) * _padded, _padded);
-            for (int b = 0; b < _padded; b++) next[b] = tp[b] * k[b] * f;
             w.Chain[w.ChainLength++] = mi << 1 | (transmit ? 1 : 0);
             uint unused = 0;
             Radiance(ray, depth + 1, w, weight * f, pixel, ref unused, centre: false);
             w.ChainLength--;
         }
 
-        static void AddStatic(Span<float> dst, ReadOnlySpan<float> tp, ReadOnlySpan<float> a, ReadOnlySpan<float> b, float s)
-        {
-            for (int i = 0; i < dst.Length; i++) dst[i] += tp[i] * (a[i] * b[i] * s);
-        }
-
         void AddTerm(Worker w, int light, TransferLobe lobe, int material, float factor)
         {
-            ulong a = (ulong)light | (ulong)lobe << 8 | (ulong)material << 10 | (ulong)w.ChainLength << 22;
+            // light + 1 (8 bits), lobe (3), material + 1 (12), chain length (3), then 16 bits per chain element.
+            ulong a = (ulong)(light + 1) | (ulong)lobe << 8 | (ulong)(material + 1) << 11 | (ulong)w.ChainLength << 23;
             ulong b = 0;
             for (int c = 0; c < w.ChainLength; c++)
             {
