@@ -14,7 +14,10 @@ namespace SpectralRenderer.Imaging;
 /// components c in file order (light, lobe, material, the mirror/transmit chain, their band values P_c,b in this render
 /// and the light-independent part M_c,b = m_lobe,b · Π k_chain,b, so that P_c,b = I_k,b · M_c,b for the terms that
 /// follow a light).</item>
-/// <item><c>factors.npy</c>: float32 C × H × W, the geometric factor F_c of every component at every pixel.</item>
+/// <item><c>factors.npy</c> (float32 [nnz]) and <c>pixels.npy</c> (int32 [nnz]): component c's geometric factors F_c and
+/// the pixels they belong to (y·W + x, ascending) are entries offset … offset + count − 1 (<c>components[c].offset</c>,
+/// <c>.count</c> in lights.json): a sparse layout, since most components (a light's term seen through a mirror or
+/// glass) cover few pixels.</item>
 /// <item><c>centre.npy</c>: float32 2K × H × W, per light the centre ray's diffuse then specular factor at its first
 /// hit; <c>ids.npy</c>: float32 2 × H × W, the object index + 1 seen by the centre ray (0 = background) and the
 /// lit mask (bit k: light k reaches the point; exact for the first 24 lights).</item>
@@ -30,10 +33,18 @@ public static class LightTransferFiles
         var dir = Path.Combine(outDir, Folder);
         Directory.CreateDirectory(dir);
         int n = t.Width * t.Height;
-        var factors = new float[t.Components.Length * n];
-        for (int c = 0; c < t.Components.Length; c++) t.Factors[c].CopyTo(factors, c * n);
-        AtomicFile.Write(Path.Combine(dir, "factors.npy"), s => NpyWriter.Write(s, [t.Components.Length, t.Height, t.Width], factors));
+        int nnz = t.Factors.Sum(f => f.Length);
+        var factors = new float[nnz];
+        var pixels = new int[nnz];
+        for (int c = 0, at = 0; c < t.Components.Length; at += t.Factors[c].Length, c++)
+        {
+            t.Factors[c].CopyTo(factors, at);
+            t.Pixels[c].CopyTo(pixels, at);
+        }
+        AtomicFile.Write(Path.Combine(dir, "factors.npy"), s => NpyWriter.Write(s, [nnz], factors));
         done($"{Folder}/factors.npy");
+        AtomicFile.Write(Path.Combine(dir, "pixels.npy"), s => NpyWriter.WriteInt32(s, [nnz], pixels));
+        done($"{Folder}/pixels.npy");
         int k = t.CentreDiffuse.Length;
         var centre = new float[2 * k * n];
         for (int i = 0; i < k; i++) { t.CentreDiffuse[i].CopyTo(centre, 2 * i * n); t.CentreSpecular[i].CopyTo(centre, (2 * i + 1) * n); }
@@ -65,14 +76,15 @@ public static class LightTransferFiles
         var m = new float[scene.Bands];
         var p = new float[scene.Bands];
         var lightBands = scene.Lights.Select(l => l.Intensity).ToList();
-        for (int c = 0; c < t.Components.Length; c++)
+        for (int c = 0, offset = 0; c < t.Components.Length; offset += t.Factors[c].Length, c++)
         {
             var comp = t.Components[c];
             comp.MaterialBandValues(scene, m);
             comp.BandValues(scene, lightBands, p);
             comps.Add(new JsonObject
             {
-                ["index"] = c, ["key"] = comp.Key, ["light"] = comp.Light, ["lobe"] = TransferComponent.LobeName(comp.Lobe),
+                ["index"] = c, ["key"] = comp.Key, ["offset"] = offset, ["count"] = t.Factors[c].Length, ["merged_chains"] = t.Merged[c],
+                ["light"] = comp.Light, ["lobe"] = TransferComponent.LobeName(comp.Lobe),
                 ["follows_light"] = comp.FollowsLight,
                 ["material"] = comp.Material < 0 ? null : scene.Materials[comp.Material].Name,
                 ["chain"] = new JsonArray(comp.Chain.Select(x => (JsonNode)new JsonObject
@@ -87,7 +99,7 @@ public static class LightTransferFiles
         }).ToArray());
         return new JsonObject
         {
-            ["layout"] = "L_b = sum_c factors[c,y,x] * components[c].band_values[b]; for components that follow a light, band_values[b] = lights[c.light].band_values[b] * material_band_values[b]",
+            ["layout"] = "L_b(pixel) = sum over components c and entries j in [c.offset, c.offset + c.count) with pixels[j] = pixel of factors[j] * c.band_values[b]; for components that follow a light, band_values[b] = lights[c.light].band_values[b] * material_band_values[b]",
             ["width"] = t.Width, ["height"] = t.Height, ["bands"] = t.Bands,
             ["band_scheme"] = scene.Integration.ToString().ToLowerInvariant(),
             ["exact_for"] = "the render's own band scheme: band values are products of band means (light × material × path weights)",
@@ -96,7 +108,8 @@ public static class LightTransferFiles
             ["components"] = comps,
             ["files"] = new JsonObject
             {
-                ["factors"] = "factors.npy: float32 [C, H, W]",
+                ["factors"] = "factors.npy: float32 [nnz], the factors of component c at entries offset .. offset + count - 1",
+                ["pixels"] = "pixels.npy: int32 [nnz], the pixel (y * width + x) of each factor, ascending within a component",
                 ["centre"] = "centre.npy: float32 [2K, H, W], light k's centre-ray diffuse (2k) and specular (2k+1) factor",
                 ["ids"] = "ids.npy: float32 [2, H, W], object index + 1 (0 = background), lit mask",
             },
@@ -139,14 +152,35 @@ public static class LightTransferFiles
                 throw new InputException(path, $"has shape ({string.Join(", ", shape)}), lights.json says ({string.Join(", ", expected)})", "the folder mixes two renders; render again");
             return data;
         }
-        var f = Load("factors.npy", [comps.Length, height, width]);
+        var nodes = json["components"]!.AsArray();
+        long nnz = nodes.Sum(c => (long)(int)c!["count"]!);
+        var f = Load("factors.npy", [(int)nnz]);
+        int[] pix;
+        {
+            var path = Path.Combine(dir, "pixels.npy");
+            if (!File.Exists(path)) throw new InputException(outDir, $"misses {Folder}/pixels.npy", "render again with the lights output");
+            using var s = File.OpenRead(path);
+            var (shape, data) = NpyReader.ReadInt32(s, path);
+            if (shape.Length != 1 || shape[0] != nnz) throw new InputException(path, $"holds {string.Join("×", shape)} entries, lights.json says {nnz}", "the folder mixes two renders; render again");
+            pix = data;
+        }
+        foreach (int p in pix) if ((uint)p >= (uint)n) throw new InputException(Path.Combine(dir, "pixels.npy"), $"pixel {p} is outside the {width}×{height} image");
+        var offsets = nodes.Select(c => (Offset: (int)c!["offset"]!, Count: (int)c["count"]!)).ToArray();
+        foreach (var (o, c) in offsets)
+        {
+            if (o < 0 || c < 0 || (long)o + c > nnz) throw new InputException(jsonPath, $"a component's entries {o}…{o + c - 1} lie outside the {nnz} stored", "the folder mixes two renders; render again");
+            for (int j = o + 1; j < o + c; j++)
+                if (pix[j] <= pix[j - 1]) throw new InputException(Path.Combine(dir, "pixels.npy"), $"entry {j}: pixels of a component must ascend", "render again");
+        }
         int k = scene.Lights.Count;
         var centre = Load("centre.npy", [2 * k, height, width]);
         var ids = Load("ids.npy", [2, height, width]);
         return new LightTransfer
         {
             Width = width, Height = height, Bands = bands, Grid = scene.Grid, Components = comps,
-            Factors = Enumerable.Range(0, comps.Length).Select(c => f.AsSpan(c * n, n).ToArray()).ToArray(),
+            Factors = offsets.Select(o => f.AsSpan(o.Offset, o.Count).ToArray()).ToArray(),
+            Pixels = offsets.Select(o => pix.AsSpan(o.Offset, o.Count).ToArray()).ToArray(),
+            Merged = nodes.Select(c => (int?)c!["merged_chains"] ?? 1).ToArray(),
             CentreDiffuse = Enumerable.Range(0, k).Select(i => centre.AsSpan(2 * i * n, n).ToArray()).ToArray(),
             CentreSpecular = Enumerable.Range(0, k).Select(i => centre.AsSpan((2 * i + 1) * n, n).ToArray()).ToArray(),
             ObjectIds = Enumerable.Range(0, n).Select(i => (int)ids[i] - 1).ToArray(),

@@ -104,7 +104,7 @@ public static class RenderOutputWriter
             foreach (var f in Directory.EnumerateFiles(bands, "band-*.png")) File.Delete(f);
         var lights = Path.Combine(outDir, LightTransferFiles.Folder);
         if (Directory.Exists(lights))
-            foreach (var f in new[] { "lights.json", "factors.npy", "centre.npy", "ids.npy" })
+            foreach (var f in new[] { "lights.json", "factors.npy", "pixels.npy", "centre.npy", "ids.npy" })
                 File.Delete(Path.Combine(lights, f));
     }
 

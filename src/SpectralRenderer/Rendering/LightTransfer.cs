@@ -108,8 +108,12 @@ public sealed class LightTransfer
     public required int Bands { get; init; }
     /// <summary>Components in a fixed order (sorted by light, then key), whatever the thread count.</summary>
     public required TransferComponent[] Components { get; init; }
-    /// <summary>Per component, its W × H factor plane (row-major, row 0 at the top).</summary>
+    /// <summary>Per component, the pixels (y·W + x, ascending) where its factor is not zero …</summary>
+    public required int[][] Pixels { get; init; }
+    /// <summary>… and the factors there.</summary>
     public required float[][] Factors { get; init; }
+    /// <summary>Per component, how many traced components (chains with the same weights) were merged into it.</summary>
+    public required int[] Merged { get; init; }
     public required Spectra.BandGrid Grid { get; init; }
     /// <summary>Per light, the centre ray's diffuse factor d·c_spot·(n·l) at its first hit (for the highlight mask), W × H.</summary>
     public required float[][] CentreDiffuse { get; init; }
@@ -149,18 +153,22 @@ public sealed class LightTransfer
         }
         var image = new SpectralImage(Width, Height, Grid);
         var data = image.Data;
-        Parallel.For(0, (n + 4095) / 4096, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (chunk) =>
+        // Pixel ranges in parallel: each component's run inside a range is found by binary search (pixels ascend).
+        const int Chunk = 8192;
+        Parallel.For(0, (n + Chunk - 1) / Chunk, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (chunk) =>
         {
-            int i0 = chunk * 4096, i1 = Math.Min(n, i0 + 4096);
+            int i0 = chunk * Chunk, i1 = Math.Min(n, i0 + Chunk);
             for (int c = 0; c < p.Length; c++)
             {
+                var pix = Pixels[c];
                 var f = Factors[c];
                 var pc = p[c];
-                for (int i = i0; i < i1; i++)
+                int j = Array.BinarySearch(pix, i0);
+                if (j < 0) j = ~j;
+                for (; j < pix.Length && pix[j] < i1; j++)
                 {
-                    float fi = f[i];
-                    if (fi == 0) continue;
-                    var px = data.AsSpan(i * bands, bands);
+                    float fi = f[j];
+                    var px = data.AsSpan(pix[j] * bands, bands);
                     for (int b = 0; b < bands; b++) px[b] += fi * pc[b];
                 }
             }
@@ -211,8 +219,10 @@ public sealed class LightTransfer
         readonly Light[] _lights;
         readonly int[] _objectMaterial;
         readonly int _padded, _width, _height;
-        readonly ConcurrentDictionary<Key, TransferComponent> _components = new();
-        readonly ConcurrentDictionary<Key, float[]> _planes = new();
+        readonly ConcurrentDictionary<Key, int> _index = new();
+        readonly List<TransferComponent> _registered = [];
+        // Per tile, its terms in pixel order: (component, pixel, factor).
+        readonly ConcurrentBag<(int[] Comp, int[] Pixel, float[] Factor, int Count)> _tiles = [];
         readonly float[][] _centreDiffuse, _centreSpecular;
 
         public Tracer(Scene scene, SceneGeometry geometry)
@@ -231,12 +241,30 @@ public sealed class LightTransfer
         {
             public readonly int[] Chain = new int[MaxChain + 1];
             public int ChainLength;
-            public readonly Dictionary<Key, float[]> Planes = new();
-            // The current pixel's terms: plane and accumulated factor (few distinct ones per pixel).
-            public float[]?[] TermPlanes = new float[]?[64];
+            public readonly Dictionary<Key, int> Index = new();
+            // The current pixel's terms: component and accumulated factor (few distinct ones per pixel).
+            public int[] TermComps = new int[64];
             public float[] TermFactors = new float[64];
             public int Terms;
+            // The current tile's terms.
+            public int[] TileComp = new int[4096], TilePixel = new int[4096];
+            public float[] TileFactor = new float[4096];
+            public int TileCount;
             public RayCounters Counters;
+
+            public void Emit(int pixel)
+            {
+                if (TileCount + Terms > TileComp.Length)
+                {
+                    int size = Math.Max(TileComp.Length * 2, TileCount + Terms);
+                    Array.Resize(ref TileComp, size); Array.Resize(ref TilePixel, size); Array.Resize(ref TileFactor, size);
+                }
+                for (int t = 0; t < Terms; t++)
+                {
+                    if (TermFactors[t] == 0) continue;
+                    TileComp[TileCount] = TermComps[t]; TilePixel[TileCount] = pixel; TileFactor[TileCount++] = TermFactors[t];
+                }
+            }
         }
 
         public LightTransfer Run(int threads, CancellationToken cancel)
@@ -264,6 +292,7 @@ public sealed class LightTransfer
                 while ((tile = Interlocked.Increment(ref next)) < tiles)
                 {
                     cancel.ThrowIfCancellationRequested();
+                    w.TileCount = 0;
                     int x0 = tile % tilesX * Renderer.TileSize, y0 = tile / tilesX * Renderer.TileSize;
                     int x1 = Math.Min(width, x0 + Renderer.TileSize), y1 = Math.Min(height, y0 + Renderer.TileSize);
                     for (int y = y0; y < y1; y++)
@@ -293,10 +322,11 @@ public sealed class LightTransfer
                             w.Counters.Primary++;
                             id = Centre(cam.Generate(x + 0.5f, y + 0.5f), i, ref mask, ref w.Counters);
                         }
-                        for (int t = 0; t < w.Terms; t++) w.TermPlanes[t]![i] = w.TermFactors[t];
+                        w.Emit(i);
                         ids[i] = id;
                         lit[i] = mask;
                     }
+                    _tiles.Add((w.TileComp[..w.TileCount], w.TilePixel[..w.TileCount], w.TileFactor[..w.TileCount], w.TileCount));
                 }
                 lock (gate) total.Add(w.Counters);
             }
@@ -305,16 +335,66 @@ public sealed class LightTransfer
             try { Task.WaitAll(workers); }
             catch (AggregateException e) when (e.InnerExceptions.All(x => x is OperationCanceledException)) { throw new OperationCanceledException(cancel); }
 
-            var order = _components.OrderBy(c => c.Value.Light).ThenBy(c => c.Value.Key, StringComparer.Ordinal).ToArray();
-            _ = bands;
+            var (components, pixels, factors, merged) = Assemble(width * height);
             return new LightTransfer
             {
                 Width = width, Height = height, Bands = bands, Grid = _scene.Grid,
-                Components = order.Select(c => c.Value).ToArray(),
-                Factors = order.Select(c => _planes[c.Key]).ToArray(),
+                Components = components, Pixels = pixels, Factors = factors, Merged = merged,
                 CentreDiffuse = _centreDiffuse, CentreSpecular = _centreSpecular,
                 ObjectIds = ids, LitMasks = lit, Rays = total,
             };
+        }
+
+        /// <summary>
+        /// The tiles' terms gathered per component (pixels ascending), components that the renderer cannot tell apart
+        /// merged (same light, term and material, and the same band values of the chain's weights: glass paths that
+        /// differ only in which of two unit weights they took), in a fixed order whatever the thread count.
+        /// </summary>
+        (TransferComponent[], int[][], float[][], int[]) Assemble(int n)
+        {
+            int registered = _registered.Count;
+            var groupKey = new string[registered];
+            var weights = new float[_padded];
+            for (int c = 0; c < registered; c++)
+            {
+                var comp = _registered[c];
+                Array.Fill(weights, 1f);
+                foreach (var (m, t) in comp.Chain)
+                    for (int b = 0; b < _scene.Bands; b++) weights[b] *= t ? _materials[m].Transmit[b] : _materials[m].Mirror[b];
+                groupKey[c] = $"{comp.Light}:{(int)comp.Lobe}:{comp.Material}:{Convert.ToHexString(System.Runtime.InteropServices.MemoryMarshal.AsBytes(weights.AsSpan(0, _scene.Bands)))}";
+            }
+            // One representative per group: the component with the smallest key (shortest chains first).
+            var groups = Enumerable.Range(0, registered).GroupBy(c => groupKey[c])
+                .Select(g => g.OrderBy(c => _registered[c].Chain.Length).ThenBy(c => _registered[c].Key, StringComparer.Ordinal).ToArray())
+                .OrderBy(g => _registered[g[0]].Light).ThenBy(g => _registered[g[0]].Key, StringComparer.Ordinal).ToArray();
+            var groupOf = new int[registered];
+            for (int g = 0; g < groups.Length; g++) foreach (int c in groups[g]) groupOf[c] = g;
+            // Count, then fill per group its (pixel, factor) pairs, sort by pixel and sum the terms a merge brought together.
+            var counts = new int[groups.Length];
+            foreach (var t in _tiles) for (int j = 0; j < t.Count; j++) counts[groupOf[t.Comp[j]]]++;
+            var pix = counts.Select(c => new int[c]).ToArray();
+            var fac = counts.Select(c => new float[c]).ToArray();
+            var fill = new int[groups.Length];
+            foreach (var t in _tiles.OrderBy(t => t.Count == 0 ? -1 : t.Pixel[0]))
+                for (int j = 0; j < t.Count; j++)
+                {
+                    int g = groupOf[t.Comp[j]], at = fill[g]++;
+                    pix[g][at] = t.Pixel[j]; fac[g][at] = t.Factor[j];
+                }
+            Parallel.For(0, groups.Length, g =>
+            {
+                // Stable: within a pixel the terms keep their trace order, so the sum is the same for any thread count.
+                var order = Enumerable.Range(0, pix[g].Length).OrderBy(j => pix[g][j]).ToArray();
+                var p2 = new List<int>(order.Length); var f2 = new List<float>(order.Length);
+                foreach (int j in order)
+                {
+                    if (p2.Count > 0 && p2[^1] == pix[g][j]) f2[^1] += fac[g][j];
+                    else { p2.Add(pix[g][j]); f2.Add(fac[g][j]); }
+                }
+                pix[g] = p2.ToArray(); fac[g] = f2.ToArray();
+            });
+            _ = n;
+            return (groups.Select(g => _registered[g[0]]).ToArray(), pix, fac, groups.Select(g => g.Length).ToArray());
         }
 
         /// <summary>A camera sample of weight <paramref name="weight"/> (1/spp): radiance terms into the worker.</summary>
@@ -482,22 +562,29 @@ public sealed class LightTransfer
                 if (c < 2) a |= e << (26 + 16 * c); else b |= e << (16 * (c - 2));
             }
             var key = new Key(a, b);
-            if (!w.Planes.TryGetValue(key, out var plane))
+            if (!w.Index.TryGetValue(key, out int index))
             {
                 var chain = new (int, bool)[w.ChainLength];
                 for (int c = 0; c < chain.Length; c++) chain[c] = (w.Chain[c] >> 1, (w.Chain[c] & 1) == 1);
-                _components.TryAdd(key, new TransferComponent(light, lobe, material, chain));
-                plane = _planes.GetOrAdd(key, _ => new float[_width * _height]);
-                w.Planes[key] = plane;
+                lock (_registered)
+                {
+                    if (!_index.TryGetValue(key, out index))
+                    {
+                        index = _registered.Count;
+                        _registered.Add(new TransferComponent(light, lobe, material, chain));
+                        _index[key] = index;
+                    }
+                }
+                w.Index[key] = index;
             }
             for (int t = 0; t < w.Terms; t++)
-                if (ReferenceEquals(w.TermPlanes[t], plane)) { w.TermFactors[t] += factor; return; }
-            if (w.Terms == w.TermPlanes.Length)
+                if (w.TermComps[t] == index) { w.TermFactors[t] += factor; return; }
+            if (w.Terms == w.TermComps.Length)
             {
-                Array.Resize(ref w.TermPlanes, w.Terms * 2);
+                Array.Resize(ref w.TermComps, w.Terms * 2);
                 Array.Resize(ref w.TermFactors, w.Terms * 2);
             }
-            w.TermPlanes[w.Terms] = plane;
+            w.TermComps[w.Terms] = index;
             w.TermFactors[w.Terms++] = factor;
         }
     }

@@ -1,0 +1,169 @@
+using System.Globalization;
+using System.Text;
+using System.Text.Json;
+using System.Text.Json.Nodes;
+using SpectralRenderer.Color;
+using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Imaging;
+using SpectralRenderer.Spectra;
+
+namespace SpectralRenderer.Analysis;
+
+/// <summary>
+/// The spectral viewer of a render folder: <c>viewer.html</c> (a self-contained page: no network reference, its
+/// script inline) and <c>viewer-data.js</c> beside it (the data, so the page also opens from file://). The data are
+/// the band grid and the render's eq. 3 weights, the object seen per pixel with its ground-truth reflectance, and
+/// either the per-light transfer (lights/: factors and component band values, plus candidate light spectra as band
+/// values of the render's scheme, with their CIE 13.3 Ra and CIE 224 Rf) or, without it, the spectral cube.
+/// </summary>
+public static class SpectralViewer
+{
+    /// <summary>Lights offered in the page's light picker besides each light's own spectrum.</summary>
+    public static readonly string[] Presets =
+    [
+        "D65", "A", "D50", "E", "FL2", "FL11", "led-blue", "led-green", "led-rgb", "led-yag",
+        "blackbody:2700", "blackbody:3000", "blackbody:4000", "blackbody:5000", "daylight:5000", "daylight:6504", "daylight:7500",
+    ];
+
+    public static IReadOnlyList<string> Write(string dir)
+    {
+        var folder = RenderFolderJson(dir);
+        var json = folder.Json;
+        var grid = BandGrid.Parse((string)json["bands"]!["grid"]!);
+        var colour = json["colour"]!.AsObject();
+        double[] Arr(JsonNode? n) => n!.AsArray().Select(v => (double)v!).ToArray();
+        var spd = colour["reference_white_spd"]!;
+        var white = new TabulatedSpectrum((string?)colour["reference_white"] ?? "white", Arr(spd["wavelengths_nm"]), Arr(spd["values"]), Extrapolation.Clamp);
+        var scheme = (string?)colour["integration"] == "paper" ? BandIntegration.Paper : BandIntegration.Weighted;
+        var observer = (int?)colour["observer"] == 10 ? Observer.Cie1964 : Observer.Cie1931;
+        var cm = new Colorimeter(grid, observer, white, scheme);
+        int width = (int)json["width"]!, height = (int)json["height"]!, n = width * height;
+
+        var data = new JsonObject
+        {
+            ["title"] = Path.GetFileName(Path.GetFullPath(dir).TrimEnd(Path.DirectorySeparatorChar)),
+            ["width"] = width, ["height"] = height, ["bands"] = grid.Count,
+            ["edges"] = new JsonArray(grid.Edges().Select(e => (JsonNode)JsonValue.Create(e)).ToArray()),
+            ["centres"] = new JsonArray(Enumerable.Range(0, grid.Count).Select(b => (JsonNode)JsonValue.Create(grid.Centre(b))).ToArray()),
+            ["wx"] = colour["weights_x"]!.DeepClone(), ["wy"] = colour["weights_y"]!.DeepClone(), ["wz"] = colour["weights_z"]!.DeepClone(),
+            ["white"] = colour["white_xyz"]!.DeepClone(),
+        };
+
+        var lightsJson = Path.Combine(dir, LightTransferFiles.Folder, "lights.json");
+        JsonObject? transfer = File.Exists(lightsJson) ? JsonNode.Parse(File.ReadAllText(lightsJson))!.AsObject() : null;
+        var objectMaterial = json["objects"]!.AsArray().Select(o => (string?)o!["material"]).ToArray();
+        var objects = new JsonArray();
+        foreach (var o in json["objects"]!.AsArray())
+        {
+            var mat = (string?)o!["material"];
+            JsonNode? reflectance = transfer?["materials"]?.AsArray().FirstOrDefault(m => (string?)m!["name"] == mat && m["diffuse_spectrum"] is not null)?["diffuse_band_values"]?.DeepClone();
+            if (reflectance is null && (string?)o["reflectance"] is { } name)
+            {
+                try { reflectance = Numbers(cm.Project(SpectrumLibrary.Resolve(name))); }
+                catch (InputException) { /* a scene-named or inline spectrum: no ground truth in the page */ }
+            }
+            objects.Add(new JsonObject { ["name"] = (string?)o["name"], ["material"] = mat, ["reflectance"] = reflectance });
+        }
+        data["objects"] = objects;
+
+        var ids = new ushort[n];
+        // Large arrays go into the data file as base64 strings, written in pieces (no one giant JSON string).
+        var binary = new Dictionary<string, byte[]>();
+        if (transfer is not null)
+        {
+            var resolvedLights = json["resolved_scene"]?["lights"] as JsonArray;
+            var lights = new JsonArray();
+            var presets = new JsonArray();
+            var seen = new HashSet<string>();
+            void Preset(string name, double[] unitBands, TabulatedSpectrum? spectrum)
+            {
+                if (!seen.Add(name)) return;
+                double? ra = null, rf = null;
+                if (spectrum is not null)
+                {
+                    try { ra = ColorRenderingIndex.Of(spectrum).Ra; rf = ColorFidelityIndex.Of(spectrum).Rf; }
+                    catch (Exception e) when (e is ArgumentException or InvalidOperationException) { }
+                }
+                presets.Add(new JsonObject { ["name"] = name, ["band_values"] = Numbers(unitBands), ["ra"] = ra, ["rf"] = rf });
+            }
+            var tl = transfer["lights"]!.AsArray();
+            for (int k = 0; k < tl.Count; k++)
+            {
+                var l = tl[k]!;
+                double intensity = (double?)resolvedLights?[k]?["intensity"] ?? 1;
+                var bands = Arr(l["band_values"]);
+                string spectrumName = (string?)l["spectrum"] ?? $"light {k}";
+                string preset = "render: " + spectrumName;
+                TabulatedSpectrum? s = null;
+                try { s = SpectrumLibrary.Resolve(spectrumName); } catch (InputException) { }
+                Preset(preset, intensity > 0 ? bands.Select(v => v / intensity).ToArray() : s is not null ? cm.Project(s) : bands, s);
+                lights.Add(new JsonObject { ["name"] = (string?)l["name"], ["preset"] = preset, ["intensity"] = intensity });
+            }
+            foreach (var p in Presets) { var s = SpectrumLibrary.Resolve(p); Preset(p, cm.Project(s), s); }
+            data["lights"] = lights;
+            data["presets"] = presets;
+            data["components"] = new JsonArray(transfer["components"]!.AsArray().Select(c => (JsonNode)new JsonObject
+            {
+                ["light"] = (int)c!["light"]!, ["follows_light"] = (bool)c["follows_light"]!, ["key"] = (string?)c["key"],
+                ["offset"] = (int)c["offset"]!, ["count"] = (int)c["count"]!,
+                ["band_values"] = c["band_values"]!.DeepClone(), ["material_band_values"] = c["material_band_values"]!.DeepClone(),
+            }).ToArray());
+            var (_, f) = ReadNpy(Path.Combine(dir, LightTransferFiles.Folder, "factors.npy"));
+            using (var ps = File.OpenRead(Path.Combine(dir, LightTransferFiles.Folder, "pixels.npy")))
+                binary["pixels"] = System.Runtime.InteropServices.MemoryMarshal.AsBytes(NpyReader.ReadInt32(ps).Data.AsSpan()).ToArray();
+            binary["factors"] = System.Runtime.InteropServices.MemoryMarshal.AsBytes(f.AsSpan()).ToArray();
+            var (_, idp) = ReadNpy(Path.Combine(dir, LightTransferFiles.Folder, "ids.npy"));
+            for (int i = 0; i < n; i++) ids[i] = (ushort)idp[i];
+        }
+        else
+        {
+            var image = SpectralFiles.Read(dir, grid);
+            binary["cube"] = System.Runtime.InteropServices.MemoryMarshal.AsBytes(image.Data.AsSpan()).ToArray();
+            var idPath = Path.Combine(dir, "object-id.png");
+            if (File.Exists(idPath))
+            {
+                var png = PngReader.Read(idPath);
+                for (int i = 0; i < n; i++) ids[i] = png.Samples[i * png.Channels];
+            }
+        }
+        binary["ids"] = System.Runtime.InteropServices.MemoryMarshal.AsBytes(ids.AsSpan()).ToArray();
+
+        AtomicFile.Write(Path.Combine(dir, "viewer-data.js"), stream =>
+        {
+            using var w = new StreamWriter(stream, new UTF8Encoding(false), 1 << 16, leaveOpen: true);
+            w.Write("// The data of viewer.html, written by `spectral view` (see its help). Arrays: little-endian, base64.\nwindow.SPECTRAL_VIEWER = ");
+            w.Write(data.ToJsonString());
+            w.Write(";\n");
+            foreach (var (name, bytes) in binary)
+            {
+                w.Write($"window.SPECTRAL_VIEWER.{name} = \"");
+                const int Piece = 3 << 16;
+                for (int at = 0; at < bytes.Length; at += Piece) w.Write(Convert.ToBase64String(bytes, at, Math.Min(Piece, bytes.Length - at)));
+                w.Write("\";\n");
+            }
+        });
+        using var page = typeof(SpectralViewer).Assembly.GetManifestResourceStream("SpectralViewer.html")!;
+        using var reader = new StreamReader(page);
+        AtomicFile.WriteAllText(Path.Combine(dir, "viewer.html"), reader.ReadToEnd());
+        return ["viewer.html", "viewer-data.js"];
+    }
+
+    static JsonArray Numbers(IEnumerable<double> v) => new(v.Select(x => (JsonNode)JsonValue.Create(x)).ToArray());
+
+    static (int[], float[]) ReadNpy(string path)
+    {
+        using var s = File.OpenRead(path);
+        return NpyReader.Read(s, path);
+    }
+
+    static (JsonObject Json, string Dir) RenderFolderJsonInner(string dir)
+    {
+        var jsonPath = Path.Combine(dir, "render.json");
+        if (!Directory.Exists(dir)) throw new InputException(dir, "no such render folder", "give the -o folder of a 'spectral render' run");
+        if (!File.Exists(jsonPath)) throw new InputException(dir, "has no render.json", "give the -o folder of a 'spectral render' run");
+        try { return (JsonNode.Parse(File.ReadAllText(jsonPath))!.AsObject(), dir); }
+        catch (JsonException e) { throw new InputException($"{jsonPath}:{(e.LineNumber ?? 0) + 1}", $"broken JSON: {e.Message}"); }
+    }
+
+    static (JsonObject Json, string Dir) RenderFolderJson(string dir) => RenderFolderJsonInner(dir);
+}
