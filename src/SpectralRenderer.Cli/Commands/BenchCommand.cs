@@ -3,6 +3,7 @@ using System.Globalization;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Scenes.Loading;
 
 namespace SpectralRenderer.Cli.Commands;
 
@@ -38,7 +39,7 @@ public static class BenchCommand
         double load = clock.Elapsed.TotalSeconds;
         clock.Restart();
         var geometry = new SceneGeometry(scene);
-        var integrator = new WhittedIntegrator(scene, geometry);
+        var integrator = Integrators.Create(scene, geometry);
         double build = clock.Elapsed.TotalSeconds;
 
         Renderer.Render(scene, integrator, threads);   // warm-up: JIT and caches

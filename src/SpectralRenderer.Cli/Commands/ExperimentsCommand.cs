@@ -2,6 +2,7 @@ using System.Diagnostics;
 using System.Globalization;
 using SpectralRenderer.Analysis;
 using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Cli.Paper;
 
 namespace SpectralRenderer.Cli.Commands;
 

@@ -3,7 +3,8 @@ using System.Text;
 using SpectralRenderer.Analysis;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
-using SpectralRenderer.Rendering;
+using SpectralRenderer.Spectra;
+using SpectralRenderer.Output;
 
 namespace SpectralRenderer.Cli.Commands;
 

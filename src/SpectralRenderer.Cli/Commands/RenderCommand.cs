@@ -5,6 +5,8 @@ using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Output;
+using SpectralRenderer.Scenes.Loading;
 
 namespace SpectralRenderer.Cli.Commands;
 
@@ -67,7 +69,7 @@ public static class RenderCommand
             var progress = quiet ? null : ProgressBar.For(stderr);
             var setup = System.Diagnostics.Stopwatch.StartNew();
             var geometry = new SceneGeometry(scene);
-            var integrator = new WhittedIntegrator(scene, geometry);
+            var integrator = Integrators.Create(scene, geometry);
             double buildSeconds = setup.Elapsed.TotalSeconds;
             int degenerate = scene.Objects.Sum(o => o.Mesh?.DegenerateCount ?? 0);
             var result = Renderer.Render(scene, integrator, threads ?? 0, progress is null ? null : progress.Report, cancel.Token);
@@ -83,7 +85,7 @@ public static class RenderCommand
             };
             // The per-light transfer (opt-in): the same camera rays traced once more, recording eq. 2's factors per light.
             LightTransfer? transfer = null;
-            if (scene.Output.Formats.Contains("lights"))
+            if ((scene.Output.Products & OutputProducts.Lights) != 0)
             {
                 var transferClock = System.Diagnostics.Stopwatch.StartNew();
                 transfer = LightTransfer.Trace(scene, geometry, threads ?? 0, cancel.Token);

@@ -1,6 +1,6 @@
 using SpectralRenderer.Color;
 using SpectralRenderer.Diagnostics;
-using SpectralRenderer.Rendering;
+using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Analysis;
 

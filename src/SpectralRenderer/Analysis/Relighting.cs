@@ -4,8 +4,10 @@ using System.Text.Json;
 using System.Text.Json.Nodes;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
+using SpectralRenderer.Output;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Scenes.Loading;
 
 namespace SpectralRenderer.Analysis;
 
@@ -22,19 +24,16 @@ public sealed record LightChange(string Light, string? Spectrum, double? Intensi
 /// </summary>
 public static class Relighting
 {
-    public sealed record Source(string Dir, JsonObject Json, JsonObject Scene, string ScenePath, SceneOverrides Overrides, string[] LightNames);
+    public sealed record Source(string Dir, RenderManifest Manifest, JsonObject Scene, string ScenePath, SceneOverrides Overrides, string[] LightNames);
 
+    /// <summary>A render folder read through its manifest: the resolved scene and the overrides it was rendered with.</summary>
     public static Source Open(string dir)
     {
-        var jsonPath = Path.Combine(dir, "render.json");
         if (!Directory.Exists(dir)) throw new InputException(dir, "no such render folder", "give the -o folder of a 'spectral render' run");
-        if (!File.Exists(jsonPath)) throw new InputException(dir, "has no render.json", "give the -o folder of a 'spectral render' run");
-        JsonObject json;
-        try { json = JsonNode.Parse(File.ReadAllText(jsonPath))!.AsObject(); }
-        catch (JsonException e) { throw new InputException($"{jsonPath}:{(e.LineNumber ?? 0) + 1}", $"broken JSON: {e.Message}"); }
-        if (json["resolved_scene"] is not JsonObject scene)
-            throw new InputException(jsonPath, "has no resolved_scene", "render again with this version of spectral");
-        var o = json["run"]?["overrides"] as JsonObject;
+        var manifest = RenderManifest.Read(dir);
+        if (manifest.ResolvedScene is not JsonObject scene)
+            throw new InputException(Path.Combine(dir, RenderManifest.FileName), "has no resolved_scene", "render again with this version of spectral");
+        var o = manifest.Run?["overrides"] as JsonObject;
         var overrides = new SceneOverrides
         {
             Width = (int?)o?["width"], Height = (int?)o?["height"], Bands = (string?)o?["bands"], SamplesPerPixel = (int?)o?["spp"],
@@ -43,7 +42,7 @@ public static class Relighting
             ModelDirectories = o?["models"]?.AsArray().Select(d => (string)d!).Where(Directory.Exists).ToList() ?? [],
         };
         var names = (scene["lights"] as JsonArray ?? []).Select((l, i) => (string?)l?["name"] ?? $"light-{i}").ToArray();
-        return new Source(dir, json, scene, (string?)json["scene"] ?? Path.Combine(dir, "scene.json"), overrides, names);
+        return new Source(dir, manifest, scene, manifest.Scene.Length > 0 ? manifest.Scene : Path.Combine(dir, "scene.json"), overrides, names);
     }
 
     /// <summary>The scene of <paramref name="src"/> with the changes applied, loaded as a render would load it.</summary>
@@ -95,11 +94,11 @@ public static class Relighting
         var run = new JsonObject
         {
             ["command_line"] = commandLine,
-            ["overrides"] = src.Json["run"]?["overrides"]?.DeepClone(),
+            ["overrides"] = src.Manifest.Run?["overrides"]?.DeepClone(),
             ["relit"] = new JsonObject
             {
                 ["from"] = Path.GetFullPath(src.Dir),
-                ["from_created_utc"] = (string?)src.Json["created_utc"],
+                ["from_created_utc"] = src.Manifest.CreatedUtc,
                 ["method"] = "per-light transfer (lights/): L_b = static_b + sum_c F_c * I_k,b * M_c,b; no rays traced",
                 ["changes"] = new JsonArray(changes.Select(c => (JsonNode)new JsonObject
                     { ["light"] = c.Light, ["spectrum"] = c.Spectrum, ["intensity"] = c.Intensity }).ToArray()),

@@ -1,8 +1,6 @@
-using System.Globalization;
-using System.Text.Json.Nodes;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
-using SpectralRenderer.Rendering;
+using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Analysis;
 
@@ -31,24 +29,10 @@ public sealed class RenderAovs
         var image = folder.Image;
         var names = new List<string>();
         var files = new List<string>();
-        if (folder.Json["lights"] is JsonArray lights)
+        foreach (var light in folder.Manifest.Lights)
         {
-            for (int i = 0; i < lights.Count; i++)
-            {
-                int k = (int?)lights[i]?["index"] ?? i;
-                names.Add((string?)lights[i]?["name"] ?? $"light {k}");
-                files.Add(Path.Combine(dir, $"mask-lit-{k}.png"));
-            }
-        }
-        else
-        {
-            foreach (var f in Directory.GetFiles(dir, "mask-lit-*.png")
-                .Select(f => (File: f, K: int.TryParse(Path.GetFileNameWithoutExtension(f)["mask-lit-".Length..], NumberStyles.None, CultureInfo.InvariantCulture, out int k) ? k : -1))
-                .Where(p => p.K >= 0).OrderBy(p => p.K))
-            {
-                names.Add($"light {f.K}");
-                files.Add(f.File);
-            }
+            names.Add(light.Name);
+            files.Add(Path.Combine(dir, $"mask-lit-{light.Index}.png"));
         }
         bool[][]? lit = files.Count > 0 && files.All(File.Exists) ? files.Select(f => ReadMask(f, image)).ToArray() : null;
         var hl = Path.Combine(dir, "mask-highlight.png");
@@ -57,7 +41,7 @@ public sealed class RenderAovs
             Lit = lit,
             LightNames = names.ToArray(),
             Highlight = File.Exists(hl) ? ReadMask(hl, image) : null,
-            HighlightFraction = (double?)folder.Json["aov"]?["highlight_fraction"],
+            HighlightFraction = folder.Manifest.HighlightFraction,
             Reflectance = ReadReflectance(dir, image),
         };
     }

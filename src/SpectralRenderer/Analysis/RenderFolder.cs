@@ -1,10 +1,8 @@
-using System.Text.Json;
-using System.Text.Json.Nodes;
 using SpectralRenderer.Color;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
-using SpectralRenderer.Rendering;
 using SpectralRenderer.Spectra;
+using SpectralRenderer.Output;
 
 namespace SpectralRenderer.Analysis;
 
@@ -15,61 +13,29 @@ namespace SpectralRenderer.Analysis;
 public sealed class RenderFolder
 {
     public required string Path { get; init; }
+    public required RenderManifest Manifest { get; init; }
     public required SpectralImage Image { get; init; }
     public required int[] ObjectIds { get; init; }
-    public required string[] ObjectNames { get; init; }
-    public required string?[] ObjectReflectances { get; init; }
-    public required double[] Wx { get; init; }
-    public required double[] Wy { get; init; }
-    public required double[] Wz { get; init; }
-    public required Xyz White { get; init; }
-    public required TabulatedSpectrum ReferenceWhite { get; init; }
-    public required int ObserverDegrees { get; init; }
-    public required string Integration { get; init; }
-    public required JsonObject Json { get; init; }
+    public string[] ObjectNames => Manifest.Objects.Select(o => o.Name).ToArray();
+    public string?[] ObjectReflectances => Manifest.Objects.Select(o => o.Reflectance).ToArray();
+    public double[] Wx => Manifest.Wx;
+    public double[] Wy => Manifest.Wy;
+    public double[] Wz => Manifest.Wz;
+    public Xyz White => Manifest.White;
+    public TabulatedSpectrum ReferenceWhite => Manifest.ReferenceWhite;
+    public int ObserverDegrees => Manifest.ObserverDegrees;
+    public string Integration => Manifest.Integration;
 
     public static RenderFolder Open(string dir)
     {
         if (!Directory.Exists(dir)) throw new InputException(dir, "no such render folder", "give the -o folder of a 'spectral render' run");
-        var jsonPath = System.IO.Path.Combine(dir, "render.json");
-        if (!File.Exists(jsonPath)) throw new InputException(dir, "has no render.json", "give the -o folder of a 'spectral render' run");
-        JsonObject json;
-        try { json = JsonNode.Parse(File.ReadAllText(jsonPath)) as JsonObject ?? throw new InputException(jsonPath, "is not a JSON object"); }
-        catch (JsonException e) { throw new InputException($"{jsonPath}:{(e.LineNumber ?? 0) + 1}", $"broken JSON: {e.Message}"); }
-        try
-        {
-            var grid = BandGrid.Parse((string)json["bands"]!["grid"]!, $"{jsonPath}: $.bands.grid");
-            var colour = json["colour"]!.AsObject();
-            double[] Arr(JsonNode? n) => n!.AsArray().Select(v => (double)v!).ToArray();
-            var spd = colour["reference_white_spd"]!;
-            var white = new TabulatedSpectrum((string?)colour["reference_white"] ?? "white", Arr(spd["wavelengths_nm"]), Arr(spd["values"]), Extrapolation.Clamp);
-            var w = Arr(colour["white_xyz"]);
-            var objects = json["objects"]!.AsArray();
-            var image = SpectralFiles.Read(dir, grid);
-            int width = (int)json["width"]!, height = (int)json["height"]!;
-            if (image.Width != width || image.Height != height || image.Bands != grid.Count)
-                throw new InputException(dir, $"its spectral cube is {image.Width}×{image.Height}×{image.Bands} but render.json describes {width}×{height}×{grid.Count}",
-                    "the folder mixes two renders; render again into an empty folder");
-            int[] ids = ReadIds(dir, image);
-            return new RenderFolder
-            {
-                Path = dir,
-                Image = image,
-                ObjectIds = ids,
-                ObjectNames = objects.Select(o => (string)o!["name"]!).ToArray(),
-                ObjectReflectances = objects.Select(o => (string?)o!["reflectance"]).ToArray(),
-                Wx = Arr(colour["weights_x"]), Wy = Arr(colour["weights_y"]), Wz = Arr(colour["weights_z"]),
-                White = new Xyz(w[0], w[1], w[2]),
-                ReferenceWhite = white,
-                ObserverDegrees = (int)colour["observer"]!,
-                Integration = (string)colour["integration"]!,
-                Json = json,
-            };
-        }
-        catch (Exception e) when (e is NullReferenceException or InvalidOperationException or FormatException)
-        {
-            throw new InputException(jsonPath, $"is missing a field this tool writes ({e.Message})", "re-render the scene with this version");
-        }
+        var manifest = RenderManifest.Read(dir);
+        var grid = manifest.Grid;
+        var image = SpectralFiles.Read(dir, grid);
+        if (image.Width != manifest.Width || image.Height != manifest.Height || image.Bands != grid.Count)
+            throw new InputException(dir, $"its spectral cube is {image.Width}×{image.Height}×{image.Bands} but render.json describes {manifest.Width}×{manifest.Height}×{grid.Count}",
+                "the folder mixes two renders; render again into an empty folder");
+        return new RenderFolder { Path = dir, Manifest = manifest, Image = image, ObjectIds = ReadIds(dir, image) };
     }
 
     static int[] ReadIds(string dir, SpectralImage image)
@@ -86,12 +52,7 @@ public sealed class RenderFolder
     public int ObjectIndex(string name) => Array.IndexOf(ObjectNames, name);
 
     /// <summary>Eq. 3 with the render's own weights.</summary>
-    public Xyz ToXyz(ReadOnlySpan<double> bands)
-    {
-        double x = 0, y = 0, z = 0;
-        for (int b = 0; b < Wx.Length; b++) { x += Wx[b] * bands[b]; y += Wy[b] * bands[b]; z += Wz[b] * bands[b]; }
-        return new Xyz(x, y, z);
-    }
+    public Xyz ToXyz(ReadOnlySpan<double> bands) => Manifest.ToXyz(bands);
 
     /// <summary>The mean spectrum of all pixels showing object <paramref name="index"/>, and their count.</summary>
     public (double[] Mean, int Pixels) MeanSpectrum(int index)

@@ -5,6 +5,7 @@ using System.Text.Json.Nodes;
 using SpectralRenderer.Color;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
+using SpectralRenderer.Output;
 using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Analysis;
@@ -27,17 +28,14 @@ public static class SpectralViewer
 
     public static IReadOnlyList<string> Write(string dir)
     {
-        var folder = RenderFolderJson(dir);
-        var json = folder.Json;
-        var grid = BandGrid.Parse((string)json["bands"]!["grid"]!);
-        var colour = json["colour"]!.AsObject();
-        double[] Arr(JsonNode? n) => n!.AsArray().Select(v => (double)v!).ToArray();
-        var spd = colour["reference_white_spd"]!;
-        var white = new TabulatedSpectrum((string?)colour["reference_white"] ?? "white", Arr(spd["wavelengths_nm"]), Arr(spd["values"]), Extrapolation.Clamp);
-        var scheme = (string?)colour["integration"] == "paper" ? BandIntegration.Paper : BandIntegration.Weighted;
-        var observer = (int?)colour["observer"] == 10 ? Observer.Cie1964 : Observer.Cie1931;
-        var cm = new Colorimeter(grid, observer, white, scheme);
-        int width = (int)json["width"]!, height = (int)json["height"]!, n = width * height;
+        if (!Directory.Exists(dir)) throw new InputException(dir, "no such render folder", "give the -o folder of a 'spectral render' run");
+        var manifest = RenderManifest.Read(dir);
+        var grid = manifest.Grid;
+        var scheme = manifest.Integration == "paper" ? BandIntegration.Paper : BandIntegration.Weighted;
+        var observer = manifest.ObserverDegrees == 10 ? Observer.Cie1964 : Observer.Cie1931;
+        var cm = new Colorimeter(grid, observer, manifest.ReferenceWhite, scheme);
+        int width = manifest.Width, height = manifest.Height, n = width * height;
+        static JsonArray Nums(IEnumerable<double> v) => new(v.Select(x => (JsonNode)JsonValue.Create(x)).ToArray());
 
         var data = new JsonObject
         {
@@ -45,24 +43,23 @@ public static class SpectralViewer
             ["width"] = width, ["height"] = height, ["bands"] = grid.Count,
             ["edges"] = new JsonArray(grid.Edges().Select(e => (JsonNode)JsonValue.Create(e)).ToArray()),
             ["centres"] = new JsonArray(Enumerable.Range(0, grid.Count).Select(b => (JsonNode)JsonValue.Create(grid.Centre(b))).ToArray()),
-            ["wx"] = colour["weights_x"]!.DeepClone(), ["wy"] = colour["weights_y"]!.DeepClone(), ["wz"] = colour["weights_z"]!.DeepClone(),
-            ["white"] = colour["white_xyz"]!.DeepClone(),
+            ["wx"] = Nums(manifest.Wx), ["wy"] = Nums(manifest.Wy), ["wz"] = Nums(manifest.Wz),
+            ["white"] = Nums([manifest.White.X, manifest.White.Y, manifest.White.Z]),
         };
 
         var lightsJson = Path.Combine(dir, LightTransferFiles.Folder, "lights.json");
         JsonObject? transfer = File.Exists(lightsJson) ? JsonNode.Parse(File.ReadAllText(lightsJson))!.AsObject() : null;
-        var objectMaterial = json["objects"]!.AsArray().Select(o => (string?)o!["material"]).ToArray();
         var objects = new JsonArray();
-        foreach (var o in json["objects"]!.AsArray())
+        foreach (var o in manifest.Objects)
         {
-            var mat = (string?)o!["material"];
+            var mat = o.Material;
             JsonNode? reflectance = transfer?["materials"]?.AsArray().FirstOrDefault(m => (string?)m!["name"] == mat && m["diffuse_spectrum"] is not null)?["diffuse_band_values"]?.DeepClone();
-            if (reflectance is null && (string?)o["reflectance"] is { } name)
+            if (reflectance is null && o.Reflectance is { } name)
             {
                 try { reflectance = Numbers(cm.Project(SpectrumLibrary.Resolve(name))); }
                 catch (InputException) { /* a scene-named or inline spectrum: no ground truth in the page */ }
             }
-            objects.Add(new JsonObject { ["name"] = (string?)o["name"], ["material"] = mat, ["reflectance"] = reflectance });
+            objects.Add(new JsonObject { ["name"] = o.Name, ["material"] = mat, ["reflectance"] = reflectance });
         }
         data["objects"] = objects;
 
@@ -71,7 +68,7 @@ public static class SpectralViewer
         var binary = new Dictionary<string, byte[]>();
         if (transfer is not null)
         {
-            var resolvedLights = json["resolved_scene"]?["lights"] as JsonArray;
+            var resolvedLights = manifest.ResolvedScene?["lights"] as JsonArray;
             var lights = new JsonArray();
             var presets = new JsonArray();
             var seen = new HashSet<string>();
@@ -91,7 +88,7 @@ public static class SpectralViewer
             {
                 var l = tl[k]!;
                 double intensity = (double?)resolvedLights?[k]?["intensity"] ?? 1;
-                var bands = Arr(l["band_values"]);
+                var bands = l["band_values"]!.AsArray().Select(v => (double)v!).ToArray();
                 string spectrumName = (string?)l["spectrum"] ?? $"light {k}";
                 string preset = "render: " + spectrumName;
                 TabulatedSpectrum? s = null;
@@ -155,15 +152,4 @@ public static class SpectralViewer
         using var s = File.OpenRead(path);
         return NpyReader.Read(s, path);
     }
-
-    static (JsonObject Json, string Dir) RenderFolderJsonInner(string dir)
-    {
-        var jsonPath = Path.Combine(dir, "render.json");
-        if (!Directory.Exists(dir)) throw new InputException(dir, "no such render folder", "give the -o folder of a 'spectral render' run");
-        if (!File.Exists(jsonPath)) throw new InputException(dir, "has no render.json", "give the -o folder of a 'spectral render' run");
-        try { return (JsonNode.Parse(File.ReadAllText(jsonPath))!.AsObject(), dir); }
-        catch (JsonException e) { throw new InputException($"{jsonPath}:{(e.LineNumber ?? 0) + 1}", $"broken JSON: {e.Message}"); }
-    }
-
-    static (JsonObject Json, string Dir) RenderFolderJson(string dir) => RenderFolderJsonInner(dir);
 }

@@ -1,5 +1,14 @@
 namespace SpectralRenderer.Diagnostics;
 
+/// <summary>What kind of bad input an <see cref="InputException"/> reports, for callers that treat kinds differently.</summary>
+public enum InputProblem
+{
+    /// <summary>The input is there but wrong.</summary>
+    Invalid,
+    /// <summary>A file the input names (a scene, a mesh) does not exist.</summary>
+    MissingFile,
+}
+
 /// <summary>
 /// Bad input from the user (a file, a name, an argument). Its message is one line:
 /// "where: what is wrong (hint)". The CLI prints it and exits with code 2.
@@ -17,6 +26,7 @@ public sealed class InputException : Exception
     public string Where { get; }
     public string What { get; }
     public string? Hint { get; }
+    public InputProblem Problem { get; init; } = InputProblem.Invalid;
 
     static string Format(string where, string what, string? hint)
     {

@@ -12,7 +12,7 @@ public static class InputFile
         try { return read(path); }
         catch (Exception e) when (e is FileNotFoundException or DirectoryNotFoundException)
         {
-            throw new InputException(path, $"{what} not found", "check the path");
+            throw new InputException(path, $"{what} not found", "check the path") { Problem = InputProblem.MissingFile };
         }
         catch (Exception e) when (e is IOException or UnauthorizedAccessException)
         {

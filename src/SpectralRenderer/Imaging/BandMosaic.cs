@@ -1,6 +1,6 @@
 using System.Runtime.CompilerServices;
 using SpectralRenderer.Color;
-using SpectralRenderer.Rendering;
+using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Imaging;
 

@@ -5,7 +5,6 @@ using System.Runtime.InteropServices;
 using System.Globalization;
 using System.Text;
 using SpectralRenderer.Color;
-using SpectralRenderer.Rendering;
 using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Imaging;

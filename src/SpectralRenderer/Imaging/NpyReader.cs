@@ -3,7 +3,6 @@ using System.Globalization;
 using System.Text;
 using System.Text.RegularExpressions;
 using SpectralRenderer.Diagnostics;
-using SpectralRenderer.Rendering;
 using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Imaging;

@@ -3,7 +3,7 @@ using System.Buffers.Binary;
 using System.Globalization;
 using System.Runtime.InteropServices;
 using System.Text;
-using SpectralRenderer.Rendering;
+using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Imaging;
 

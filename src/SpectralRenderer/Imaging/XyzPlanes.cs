@@ -5,7 +5,7 @@ using SpectralRenderer.Color;
 namespace SpectralRenderer.Imaging;
 
 /// <summary>
-/// Eq. 3 for every pixel at once: X, Y, Z planes (double) from band-sequential planes (<see cref="Rendering.SpectralImage.CopyBands"/>).
+/// Eq. 3 for every pixel at once: X, Y, Z planes (double) from band-sequential planes (<see cref="Spectra.SpectralImage.CopyBands"/>).
 /// Each pixel's value is bit-equal to <see cref="Colorimeter.ToXyz(ReadOnlySpan{float})"/> of its spectrum: the same
 /// products W[b]·(double)v[b], summed from zero in band order, a vector lane per pixel and no fused multiply-add.
 /// Shared by the preview and the R, G, B / X, Y, Z channels of spectral.exr.
@@ -35,7 +35,7 @@ public sealed class XyzPlanes
     }
 
     /// <summary>The same planes from the pixel-interleaved cube, pixel by pixel (for a preview without band planes).</summary>
-    public static XyzPlanes Compute(Colorimeter cm, Rendering.SpectralImage image)
+    public static XyzPlanes Compute(Colorimeter cm, Spectra.SpectralImage image)
     {
         int pixels = image.Width * image.Height, count = image.Bands;
         var xyz = new XyzPlanes(new double[pixels], new double[pixels], new double[pixels]);

@@ -4,6 +4,7 @@ using System.Runtime.CompilerServices;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Geometry;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Rendering;
 
@@ -411,10 +412,11 @@ public sealed class LightTransfer
             Local(ray, hit, m, out var n, out var v, out var pAbove, out _);
             for (int k = 0; k < _lights.Length; k++)
             {
-                if (!Reaches(k, hit.Position, pAbove, n, ref counters, out float d, out float nl, out var l)) continue;
+                if (!_lights[k].Illuminate(hit.Position, out var ls) || !Lit(ls, pAbove, n, ref counters, out float nl)) continue;
+                float d = ls.Attenuation * ls.Spot;
                 if (k < 32) mask |= 1u << k;
                 _centreDiffuse[k][pixel] = d * nl;
-                _centreSpecular[k][pixel] = d * Specular(m, n, l, v, nl);
+                _centreSpecular[k][pixel] = m.HasSpecular ? d * m.SpecularFactor(n, ls.Direction, v, nl) : 0;
             }
             return hit.Object;
         }
@@ -428,42 +430,14 @@ public sealed class LightTransfer
             pAbove = hit.Position + _geometry.Epsilon * ng;
         }
 
-        /// <summary>Does light k reach the point (spot cone, n·l &gt; 0, shadow ray)? Its d·c_spot and n·l.</summary>
-        bool Reaches(int k, Vector3 p, Vector3 pAbove, Vector3 n, ref RayCounters counters, out float d, out float nl, out Vector3 l)
+        /// <summary>Is the lit side facing the light (n·l &gt; 0) and the shadow ray unblocked? n·l, as the integrator tests it.</summary>
+        bool Lit(in LightSample ls, Vector3 pAbove, Vector3 n, ref RayCounters counters, out float nl)
         {
-            var light = _lights[k];
-            float dist;
-            d = 0; nl = 0;
-            if (light.Kind == LightKind.Directional) { l = -light.Direction; dist = float.PositiveInfinity; }
-            else
-            {
-                var toLight = light.Position - p;
-                dist = toLight.Length();
-                l = default;
-                if (dist == 0) return false;
-                l = toLight / dist;
-            }
-            float spot = light.SpotFactor(-l);
-            if (spot == 0) return false;
-            nl = Vector3.Dot(n, l);
+            nl = Vector3.Dot(n, ls.Direction);
             if (nl <= 0) return false;
             counters.Shadow++;
-            var shadowRay = new Ray(pAbove, l, float.IsInfinity(dist) ? float.PositiveInfinity : dist - 2 * _geometry.Epsilon);
-            if (_geometry.Occluded(shadowRay)) return false;
-            d = light.Attenuation(dist) * spot;
-            return true;
-        }
-
-        static float Specular(Material m, Vector3 n, Vector3 l, Vector3 v, float nl)
-        {
-            if (!m.HasSpecular) return 0;
-            if (m.Model == SpecularModel.BlinnPhong)
-            {
-                var h = Vector3.Normalize(l + v);
-                return MathF.Pow(MathF.Max(0, Vector3.Dot(n, h)), m.Shininess);
-            }
-            var r = 2 * nl * n - l;
-            return MathF.Pow(MathF.Max(0, Vector3.Dot(r, v)), m.Shininess);
+            var shadowRay = new Ray(pAbove, ls.Direction, float.IsInfinity(ls.Distance) ? float.PositiveInfinity : ls.Distance - 2 * _geometry.Epsilon);
+            return !_geometry.Occluded(shadowRay);
         }
 
         /// <summary>
@@ -487,18 +461,12 @@ public sealed class LightTransfer
             for (int k = 0; k < _lights.Length; k++)
             {
                 var light = _lights[k];
-                // The light's own ambient spectrum enters wherever the spot cone admits the point (before n·l and shadows).
-                if (light.HasAmbient && m.HasAmbient)
-                {
-                    Vector3 l0;
-                    float dist0 = 1;
-                    if (light.Kind == LightKind.Directional) l0 = -light.Direction;
-                    else { var toLight = light.Position - p; dist0 = toLight.Length(); l0 = toLight / dist0; }
-                    float spot = dist0 == 0 ? 0 : light.SpotFactor(-l0);
-                    if (spot != 0) AddTerm(w, k, TransferLobe.Ambient, mi, weight * spot);
-                }
-                if (!Reaches(k, p, pAbove, n, ref w.Counters, out float d, out float nl, out var l)) continue;
-                float s = Specular(m, n, l, v, nl);
+                if (!light.Illuminate(p, out var ls)) continue;
+                // The light's own ambient spectrum enters wherever the light reaches the point (before n·l and shadows).
+                if (light.HasAmbient && m.HasAmbient) AddTerm(w, k, TransferLobe.Ambient, mi, weight * ls.Spot);
+                if (!Lit(ls, pAbove, n, ref w.Counters, out float nl)) continue;
+                float d = ls.Attenuation * ls.Spot;
+                float s = m.HasSpecular ? m.SpecularFactor(n, ls.Direction, v, nl) : 0;
                 AddTerm(w, k, TransferLobe.Diffuse, mi, weight * d * nl);
                 if (m.HasSpecular) AddTerm(w, k, TransferLobe.Specular, mi, weight * d * s);
                 if (depth == 0 && centre)
@@ -515,12 +483,12 @@ public sealed class LightTransfer
             {
                 var dir = Vector3.Normalize(ray.Direction + 2 * cosI * n);
                 w.Counters.Secondary++;
-                float f = m.Fresnel ? WhittedIntegrator.FresnelDielectric(cosI, outside ? 1 / m.Ior[0] : m.Ior[0]) : 1f;
+                float f = m.MirrorFactor(cosI, outside, -1);
                 Follow(new Ray(pAbove, dir), depth, w, weight, f, m.Mirror, mi, transmit: false, pixel);
             }
             if (m.HasTransmission)
             {
-                float eta = outside ? 1f / m.Ior[0] : m.Ior[0];
+                float eta = m.Eta(outside, -1);
                 float sin2T = eta * eta * (1 - cosI * cosI);
                 var ng = outside ? hit.GeometricNormal : -hit.GeometricNormal;
                 Vector3 dir, origin;
@@ -535,7 +503,7 @@ public sealed class LightTransfer
                     float cosT = MathF.Sqrt(1 - sin2T);
                     dir = Vector3.Normalize(eta * ray.Direction + (eta * cosI - cosT) * n);
                     origin = p - _geometry.Epsilon * ng;
-                    if (m.Fresnel) f = 1 - WhittedIntegrator.FresnelDielectric(cosI, eta);
+                    f = m.TransmitFactor(cosI, eta);
                 }
                 w.Counters.Secondary++;
                 Follow(new Ray(origin, dir), depth, w, weight, f, m.Transmit, mi, transmit: true, pixel);

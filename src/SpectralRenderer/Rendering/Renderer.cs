@@ -1,6 +1,7 @@
 using System.Runtime.CompilerServices;
 using System.Diagnostics;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Rendering;
 
@@ -36,10 +37,10 @@ public sealed class Renderer
     public static RenderResult Render(Scene scene, int threads = 0, Action<RenderProgress>? progress = null, CancellationToken cancel = default)
     {
         var geometry = new SceneGeometry(scene);
-        return Render(scene, new WhittedIntegrator(scene, geometry), threads, progress, cancel);
+        return Render(scene, Integrators.Create(scene, geometry), threads, progress, cancel);
     }
 
-    public static RenderResult Render(Scene scene, WhittedIntegrator integrator, int threads = 0, Action<RenderProgress>? progress = null, CancellationToken cancel = default)
+    public static RenderResult Render(Scene scene, IIntegrator integrator, int threads = 0, Action<RenderProgress>? progress = null, CancellationToken cancel = default)
     {
         var cam = scene.Camera;
         int width = cam.Width, height = cam.Height, bands = scene.Bands, padded = scene.PaddedBands;
@@ -88,7 +89,7 @@ public sealed class Renderer
                     if (spp == 1)
                     {
                         counters.Primary++;
-                        id = integrator.Radiance(cam.Generate(x + 0.5f, y + 0.5f), 0, -1, sum, scratch, ref counters, ref info);
+                        id = integrator.Radiance(cam.Generate(x + 0.5f, y + 0.5f), sum, scratch, ref counters, ref info);
                     }
                     else
                     {
@@ -100,12 +101,13 @@ public sealed class Renderer
                             float jx = ((s % strataX) + (h & 0xFFFF) / 65536f) / strataX;
                             float jy = ((s / strataX) + (h >> 16) / 65536f) / strataY;
                             counters.Primary++;
-                            integrator.Radiance(cam.Generate(x + jx, y + jy), 0, -1, sample, scratch, ref counters);
+                            PixelInfo unused = default;
+                            integrator.Radiance(cam.Generate(x + jx, y + jy), sample, scratch, ref counters, ref unused);
                             SpectralMath.AddScaled(sum, sample, inv);
                         }
                         // The analysis images describe the pixel centre.
                         counters.Primary++;
-                        id = integrator.Radiance(cam.Generate(x + 0.5f, y + 0.5f), 0, -1, sample, scratch, ref counters, ref info);
+                        id = integrator.Radiance(cam.Generate(x + 0.5f, y + 0.5f), sample, scratch, ref counters, ref info);
                     }
                     sum[..bands].CopyTo(image.Data.AsSpan(image.Offset(x, y), bands));
                     int i = y * width + x;

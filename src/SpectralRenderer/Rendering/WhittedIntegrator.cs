@@ -2,6 +2,7 @@ using System.Runtime.CompilerServices;
 using System.Numerics;
 using SpectralRenderer.Geometry;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Rendering;
 
@@ -12,7 +13,7 @@ namespace SpectralRenderer.Rendering;
 /// (r·v)^shininess (Phong), hard shadows, then k_r·L(reflected) and k_t·L(refracted) to the maximum
 /// depth. One ray carries all bands; a wavelength-dependent index of refraction splits it per band.
 /// </summary>
-public sealed class WhittedIntegrator
+public sealed class WhittedIntegrator : IIntegrator
 {
     readonly Scene _scene;
     readonly SceneGeometry _geometry;
@@ -54,6 +55,10 @@ public sealed class WhittedIntegrator
     /// <summary>Scratch floats a thread needs: two spectra per recursion level.</summary>
     public int ScratchLength => (_scene.MaxDepth + 2) * 2 * _padded;
 
+    /// <inheritdoc/>
+    public int Radiance(Ray ray, Span<float> result, Span<float> scratch, ref RayCounters counters, ref PixelInfo info) =>
+        Radiance(ray, 0, -1, result, scratch, ref counters, ref info);
+
     /// <summary>
     /// The radiance along <paramref name="ray"/> into <paramref name="result"/> (padded band values).
     /// <paramref name="band"/> ≥ 0 marks a ray that carries only that band (after dispersion).
@@ -91,18 +96,9 @@ public sealed class WhittedIntegrator
         for (int k = 0; k < _lights.Length; k++)
         {
             var light = _lights[k];
-            Vector3 l;
-            float dist;
-            if (light.Kind == LightKind.Directional) { l = -light.Direction; dist = float.PositiveInfinity; }
-            else
-            {
-                var toLight = light.Position - p;
-                dist = toLight.Length();
-                if (dist == 0) continue;
-                l = toLight / dist;
-            }
-            float spot = light.SpotFactor(-l);
-            if (spot == 0) continue;
+            if (!light.Illuminate(p, out var ls)) continue;
+            var l = ls.Direction;
+            float dist = ls.Distance, spot = ls.Spot;
             if (light.HasAmbient && m.HasAmbient) SpectralMath.AddProduct(result, light.Ambient, m.Ambient, spot);
 
             float nl = Vector3.Dot(n, l);
@@ -111,20 +107,11 @@ public sealed class WhittedIntegrator
             var shadowRay = new Ray(pAbove, l, float.IsInfinity(dist) ? float.PositiveInfinity : dist - 2 * eps);
             if (_geometry.Occluded(shadowRay)) continue;
 
-            float d = light.Attenuation(dist) * spot;
+            float d = ls.Attenuation * spot;
             float s = 0;
             if (m.HasSpecular)
             {
-                if (m.Model == SpecularModel.BlinnPhong)
-                {
-                    var h = Vector3.Normalize(l + v);
-                    s = MathF.Pow(MathF.Max(0, Vector3.Dot(n, h)), m.Shininess);
-                }
-                else
-                {
-                    var r = 2 * nl * n - l;
-                    s = MathF.Pow(MathF.Max(0, Vector3.Dot(r, v)), m.Shininess);
-                }
+                s = m.SpecularFactor(n, l, v, nl);
                 SpectralMath.AddProduct2(result, light.Intensity, m.Diffuse, d * nl, m.Specular, d * s);
             }
             else SpectralMath.AddProduct(result, light.Intensity, m.Diffuse, d * nl);
@@ -146,13 +133,14 @@ public sealed class WhittedIntegrator
             var dir = Vector3.Normalize(ray.Direction + 2 * cosI * n);
             counters.Secondary++;
             Radiance(new Ray(pAbove, dir), depth + 1, band, incoming, rest, ref counters);
-            float f = m.Fresnel ? FresnelDielectric(cosI, outside ? 1 / IorOf(m, band) : IorOf(m, band)) : 1f;
+            float f = m.MirrorFactor(cosI, outside, band);
             SpectralMath.AddProduct(result, m.Mirror, incoming, f);
         }
         if (m.HasTransmission)
         {
+            var at = new SurfacePoint(p, n, ng, ray.Direction, cosI, outside);
             if (!m.Dispersive || band >= 0)
-                Refract(m, band < 0 ? 0 : band, band, ray, n, ng, v, cosI, outside, p, depth, result, incoming, rest, ref counters, allBands: band < 0);
+                Refract(m, band, at, depth, result, incoming, rest, ref counters);
             else
             {
                 // Dispersion: every band bends by its own index, so each gets its own refracted ray.
@@ -160,7 +148,7 @@ public sealed class WhittedIntegrator
                 for (int b = 0; b < _scene.Bands; b++)
                 {
                     one.Clear();
-                    Refract(m, b, b, ray, n, ng, v, cosI, outside, p, depth, one, incoming, rest, ref counters, allBands: false);
+                    Refract(m, b, at, depth, one, incoming, rest, ref counters);
                     result[b] += one[b];
                 }
             }
@@ -168,43 +156,40 @@ public sealed class WhittedIntegrator
         return hit.Object;
     }
 
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    void Refract(Material m, int iorBand, int band, in Ray ray, Vector3 n, Vector3 ng, Vector3 v, float cosI, bool outside, Vector3 p, int depth,
-        Span<float> result, Span<float> incoming, Span<float> rest, ref RayCounters counters, bool allBands)
+    /// <summary>A shading point: position, shading and face normals on the viewer's side, incident direction, cos θ_i = n·v.</summary>
+    readonly struct SurfacePoint(Vector3 p, Vector3 n, Vector3 ng, Vector3 incident, float cosI, bool outside)
     {
-        float eta = outside ? 1f / m.Ior[iorBand] : m.Ior[iorBand];   // n_i / n_t
+        public readonly Vector3 P = p, N = n, Ng = ng, Incident = incident;
+        public readonly float CosI = cosI;
+        public readonly bool Outside = outside;
+    }
+
+    /// <summary>k_t·L(refracted) into <paramref name="result"/>: all bands when <paramref name="band"/> is −1, else that band only.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    void Refract(Material m, int band, in SurfacePoint at, int depth,
+        Span<float> result, Span<float> incoming, Span<float> rest, ref RayCounters counters)
+    {
+        float eta = m.Eta(at.Outside, band);   // n_i / n_t
+        float cosI = at.CosI;
         float sin2T = eta * eta * (1 - cosI * cosI);
         Vector3 dir;
         Vector3 origin;
         float weight = 1;
         if (sin2T >= 1)
         {   // total internal reflection: the transmitted share goes into the mirror direction
-            dir = Vector3.Normalize(ray.Direction + 2 * cosI * n);
-            origin = p + _geometry.Epsilon * ng;
+            dir = Vector3.Normalize(at.Incident + 2 * cosI * at.N);
+            origin = at.P + _geometry.Epsilon * at.Ng;
         }
         else
         {
             float cosT = MathF.Sqrt(1 - sin2T);
-            dir = Vector3.Normalize(eta * ray.Direction + (eta * cosI - cosT) * n);
-            origin = p - _geometry.Epsilon * ng;
-            if (m.Fresnel) weight = 1 - FresnelDielectric(cosI, eta);
+            dir = Vector3.Normalize(eta * at.Incident + (eta * cosI - cosT) * at.N);
+            origin = at.P - _geometry.Epsilon * at.Ng;
+            weight = m.TransmitFactor(cosI, eta);
         }
         counters.Secondary++;
-        Radiance(new Ray(origin, dir), depth + 1, allBands ? -1 : band, incoming, rest, ref counters);
-        if (allBands) SpectralMath.AddProduct(result, m.Transmit, incoming, weight);
+        Radiance(new Ray(origin, dir), depth + 1, band, incoming, rest, ref counters);
+        if (band < 0) SpectralMath.AddProduct(result, m.Transmit, incoming, weight);
         else result[band] += m.Transmit[band] * incoming[band] * weight;
-    }
-
-    static float IorOf(Material m, int band) => m.Ior[band < 0 ? 0 : band];
-
-    /// <summary>Unpolarised Fresnel reflectance of a dielectric interface, eta = n_i / n_t (Hecht, Optics §4.6).</summary>
-    public static float FresnelDielectric(float cosI, float eta)
-    {
-        float sin2T = eta * eta * (1 - cosI * cosI);
-        if (sin2T >= 1) return 1;
-        float cosT = MathF.Sqrt(1 - sin2T);
-        float rs = (eta * cosI - cosT) / (eta * cosI + cosT);
-        float rp = (cosI - eta * cosT) / (cosI + eta * cosT);
-        return 0.5f * (rs * rs + rp * rp);
     }
 }

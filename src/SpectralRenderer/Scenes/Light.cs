@@ -1,44 +1,52 @@
-using System.Runtime.CompilerServices;
 using System.Numerics;
 
 namespace SpectralRenderer.Scenes;
 
-public enum LightKind { Point, Spot, Directional }
+/// <summary>
+/// What a light gives a surface point for eq. 2: the unit direction l towards the light, the distance
+/// along it (∞ for a directional light), the spot factor c_spot,k and the distance attenuation d_k.
+/// </summary>
+public readonly struct LightSample
+{
+    public readonly Vector3 Direction;
+    public readonly float Distance;
+    public readonly float Spot;
+    public readonly float Attenuation;
+
+    public LightSample(Vector3 direction, float distance, float spot, float attenuation)
+    {
+        Direction = direction; Distance = distance; Spot = spot; Attenuation = attenuation;
+    }
+}
 
 /// <summary>
-/// A light of eq. 2: its spectral intensity I_k (band values, spectrum × intensity), its ambient
-/// contribution I_amb,k, distance attenuation d = 1/(c0 + c1·r + c2·r²) and, for spots, the factor
-/// c_spot = (cos θ)^e inside the cone and 0 outside.
+/// A light of eq. 2: its spectral intensity I_k (band values, spectrum × intensity) and its ambient
+/// contribution I_amb,k. Each kind of light (one file each) answers <see cref="Illuminate"/>;
+/// the integrator never asks which kind it has.
 /// </summary>
-public sealed class Light
+public abstract class Light
 {
     public required string Name { get; init; }
-    public required LightKind Kind { get; init; }
-    public Vector3 Position { get; init; }
-    /// <summary>Unit direction the light shines towards (spot, directional).</summary>
-    public Vector3 Direction { get; init; }
     public required float[] Intensity { get; init; }
     public required float[] Ambient { get; init; }
     public bool HasAmbient { get; init; }
-    public float C0 { get; init; } = 1;
-    public float C1 { get; init; }
-    public float C2 { get; init; }
-    /// <summary>cos of the spot's cutoff half-angle.</summary>
-    public float CosCutoff { get; init; } = -1;
-    public float SpotExponent { get; init; }
     /// <summary>The light's spectrum as given (for reports and the reference white).</summary>
     public Spectra.TabulatedSpectrum? Spectrum { get; init; }
 
-    /// <summary>d_k of eq. 2.</summary>
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    public float Attenuation(float r) => Kind == LightKind.Directional ? 1f : 1f / (C0 + C1 * r + C2 * r * r);
+    /// <summary>The scene-file name of this kind of light ("point", "spot", "directional").</summary>
+    public abstract string Type { get; }
 
-    /// <summary>c_spot,k of eq. 2 for the unit direction from the light to the point.</summary>
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    public float SpotFactor(Vector3 fromLight)
-    {
-        if (Kind != LightKind.Spot) return 1f;
-        float c = Vector3.Dot(fromLight, Direction);
-        return c < CosCutoff ? 0f : MathF.Pow(Math.Max(c, 0f), SpotExponent);
-    }
+    /// <summary>
+    /// Direction, distance, c_spot,k and d_k of eq. 2 at point <paramref name="p"/>; false when the light
+    /// cannot reach it at all (the point is at the light, or outside its cone), so it adds nothing, not even ambient.
+    /// </summary>
+    public abstract bool Illuminate(Vector3 p, out LightSample sample);
+}
+
+/// <summary>Distance attenuation d = 1/(c0 + c1·r + c2·r²) of eq. 2.</summary>
+public readonly record struct DistanceFalloff(float C0, float C1, float C2)
+{
+    public static readonly DistanceFalloff None = new(1, 0, 0);
+
+    public float At(float r) => 1f / (C0 + C1 * r + C2 * r * r);
 }

@@ -15,31 +15,9 @@ public sealed class SceneObject
     public bool Smooth { get; init; } = true;
 }
 
-/// <summary>Output choices of a render (the scene's "output" block, overridable on the command line).</summary>
-public sealed class OutputOptions
-{
-    public RgbSpace Rgb { get; set; } = RgbSpace.Srgb;
-    public double Exposure { get; set; } = 1.0;
-    /// <summary>Bradford-adapt from the scene's reference white to the RGB space's white (off by default: §3.3 is about seeing the light's colour).</summary>
-    public bool Adapt { get; set; }
-    /// <summary>A pixel is in a highlight when its specular term's luminance exceeds this fraction of the diffuse term's.</summary>
-    public double HighlightFraction { get; set; } = 0.1;
-    public HashSet<string> Formats { get; set; } = new(OutputFormats.Default, StringComparer.Ordinal);
-    /// <summary>How spectral.exr is compressed: "zip" (deflate the chunks whose samples repeat, store the rest), "zip-all" (deflate every chunk: smallest, slowest) or "none".</summary>
-    public string ExrCompression { get; set; } = "zip";
-    public static readonly string[] ExrCompressions = ["zip", "zip-all", "none"];
-}
-
-public static class OutputFormats
-{
-    /// <summary>Every format; "lights" (the per-light transfer, lights/) is opt-in: not in the default set.</summary>
-    public static readonly string[] All = ["png", "bands", "exr", "envi", "npy", "aov", "lights"];
-    public static readonly string[] Default = ["png", "bands", "exr", "envi", "npy", "aov"];
-}
-
 /// <summary>
 /// The resolved scene: every spectrum already turned into band values on the scene's band grid,
-/// ready for the <see cref="Rendering.WhittedIntegrator"/>.
+/// ready for an integrator.
 /// </summary>
 public sealed class Scene
 {
@@ -64,5 +42,5 @@ public sealed class Scene
     public System.Text.Json.Nodes.JsonObject? Resolved { get; init; }
 
     public int Bands => Grid.Count;
-    public int PaddedBands => Rendering.SpectralMath.Padded(Grid.Count);
+    public int PaddedBands => SpectralMath.Padded(Grid.Count);
 }

@@ -1,6 +1,6 @@
 using SpectralRenderer.Imaging;
-using SpectralRenderer.Rendering;
 using SpectralRenderer.Tests.Cli;
+using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Tests.Analysis;
 

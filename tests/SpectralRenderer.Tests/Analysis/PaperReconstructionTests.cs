@@ -4,6 +4,7 @@ using SpectralRenderer.Analysis;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Spectra;
 using SpectralRenderer.Tests.Cli;
+using SpectralRenderer.Scenes.Loading;
 
 namespace SpectralRenderer.Tests.Analysis;
 

@@ -58,9 +58,9 @@ public class ExrCompressionTests
         var path = Scene();
         var text = File.ReadAllText(path).TrimEnd().TrimEnd('}') + ",\n  \"output\": { \"exr_compression\": \"zip-all\" } }";
         File.WriteAllText(path, text);
-        Assert.Equal("zip-all", SpectralRenderer.Scenes.SceneLoader.Load(path).Output.ExrCompression);
+        Assert.Equal(SpectralRenderer.Scenes.ExrCompressionChoice.ZipAll, SpectralRenderer.Scenes.Loading.SceneLoader.Load(path).Output.ExrCompression);
         File.WriteAllText(path, text.Replace("\"zip-all\"", "\"lzw\""));
-        var e = Assert.Throws<SpectralRenderer.Diagnostics.InputException>(() => SpectralRenderer.Scenes.SceneLoader.Load(path));
+        var e = Assert.Throws<SpectralRenderer.Diagnostics.InputException>(() => SpectralRenderer.Scenes.Loading.SceneLoader.Load(path));
         int line = text.Split('\n').Length;
         Assert.StartsWith($"{path}:{line}:", e.Message);
         Assert.Contains("$.output.exr_compression: unknown EXR compression 'lzw'", e.Message);

@@ -1,6 +1,5 @@
 using SpectralRenderer.Color;
 using SpectralRenderer.Imaging;
-using SpectralRenderer.Rendering;
 using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Tests.Imaging;

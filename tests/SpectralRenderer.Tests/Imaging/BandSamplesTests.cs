@@ -1,6 +1,7 @@
 using System.Buffers.Binary;
 using SpectralRenderer.Color;
 using SpectralRenderer.Imaging;
+using SpectralRenderer.Output;
 
 namespace SpectralRenderer.Tests.Imaging;
 

@@ -187,7 +187,7 @@ public class ExrTests
     public void Incompressible_zip_chunks_are_stored_raw_and_read_back()
     {
         var rng = new Random(7);
-        var img = new global::SpectralRenderer.Rendering.SpectralImage(Synthetic.W, Synthetic.H, BandGrid.Default);
+        var img = new global::SpectralRenderer.Spectra.SpectralImage(Synthetic.W, Synthetic.H, BandGrid.Default);
         for (int i = 0; i < img.Data.Length; i++) img.Data[i] = BitConverter.Int32BitsToSingle(rng.Next(0, 0x7f000000));
         var ms = new MemoryStream();
         ExrWriter.Write(ms, img, new ExrOptions { Rgb = false });
@@ -294,7 +294,7 @@ public class ExrTests
         // 64 × 40: the top 32 rows constant per 16-pixel block (like ground truth over objects), the bottom 8 rows noise.
         const int w = 64, h = 40;
         var rng = new Random(5);
-        var img = new global::SpectralRenderer.Rendering.SpectralImage(w, h, BandGrid.Default);
+        var img = new global::SpectralRenderer.Spectra.SpectralImage(w, h, BandGrid.Default);
         for (int y = 0; y < h; y++)
             for (int x = 0; x < w; x++)
                 for (int b = 0; b < 20; b++)

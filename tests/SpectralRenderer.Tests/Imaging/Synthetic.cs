@@ -1,6 +1,5 @@
 using System.Diagnostics;
 using SpectralRenderer.Color;
-using SpectralRenderer.Rendering;
 using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Tests.Imaging;

@@ -1,7 +1,7 @@
 using SpectralRenderer.Color;
 using SpectralRenderer.Imaging;
-using SpectralRenderer.Rendering;
 using SpectralRenderer.Spectra;
+using SpectralRenderer.Output;
 
 namespace SpectralRenderer.Tests.Imaging;
 

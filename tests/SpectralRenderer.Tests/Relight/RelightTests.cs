@@ -128,9 +128,9 @@ public class RelightTests
         var scene = File.ReadAllText(Path.Combine(Repo(), "scenes", "paper-3.2-bunny-14.json"));
         var underA = Write(dir, "a.json", scene.Replace("\"spectrum\": \"D65\"", "\"spectrum\": \"A\""));
         string[] size = ["--width", "96", "--height", "72", "--models", Path.GetDirectoryName(ModelFiles.Require("stanford-bunny.obj"))!];
-        Render(underA, Path.Combine(dir, "A"), [.. size, "--formats", "all"]);
+        Render(underA, Path.Combine(dir, "A"), [.. size, "--formats", "all,lights"]);
         var target = Write(dir, "t.json", scene.Replace("\"spectrum\": \"D65\"", $"\"spectrum\": \"{light}\""));
-        Render(target, Path.Combine(dir, "direct"), [.. size, "--formats", "all"]);
+        Render(target, Path.Combine(dir, "direct"), [.. size, "--formats", "all,lights"]);
         Relight(Path.Combine(dir, "A"), Path.Combine(dir, "relit"), "--light", $"D65={light}");
         AssertSameRender(Path.Combine(dir, "direct"), Path.Combine(dir, "relit"));
     }

@@ -1,5 +1,6 @@
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Scenes.Loading;
 
 namespace SpectralRenderer.Tests.Rendering;
 
@@ -26,7 +27,7 @@ public class AllocationTests
     static (long Allocated, long Outputs, int Tiles, long Rays) Measure(int size)
     {
         var scene = SceneText.Load(Json, new SceneOverrides { Width = size, Height = size });
-        var integrator = new WhittedIntegrator(scene, new SceneGeometry(scene));
+        var integrator = Integrators.Create(scene, new SceneGeometry(scene));
         Renderer.Render(scene, integrator, 2);   // JIT, thread pool warm-up
         // The counter is process-wide: take the least of three renders, so a background thread's
         // allocation (a JIT rejit, another test's leftovers) cannot be charged to the render.

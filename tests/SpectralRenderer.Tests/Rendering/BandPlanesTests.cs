@@ -3,6 +3,7 @@ using SpectralRenderer.Imaging;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Spectra;
 using SpectralRenderer.Tests.Imaging;
+using SpectralRenderer.Output;
 
 namespace SpectralRenderer.Tests.Rendering;
 

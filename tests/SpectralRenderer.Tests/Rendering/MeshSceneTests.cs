@@ -1,5 +1,6 @@
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Scenes.Loading;
 
 namespace SpectralRenderer.Tests.Rendering;
 

@@ -3,6 +3,7 @@ using SpectralRenderer.Color;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Spectra;
+using SpectralRenderer.Scenes.Loading;
 
 namespace SpectralRenderer.Tests.Rendering;
 

@@ -1,4 +1,4 @@
-namespace SpectralRenderer.Scenes;
+namespace SpectralRenderer.Scenes.Loading;
 
 /// <summary>Command-line overrides applied while a scene is loaded (before spectra become band values).</summary>
 public sealed record SceneOverrides

@@ -2,7 +2,7 @@ using System.Numerics;
 using System.Runtime.CompilerServices;
 using System.Runtime.InteropServices;
 
-namespace SpectralRenderer.Rendering;
+namespace SpectralRenderer.Spectra;
 
 /// <summary>
 /// Band-wise arithmetic on spectra held as float spans whose length is padded to a multiple of

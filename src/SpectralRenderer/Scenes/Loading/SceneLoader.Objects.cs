@@ -5,7 +5,7 @@ using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Geometry;
 using SpectralRenderer.Spectra;
 
-namespace SpectralRenderer.Scenes;
+namespace SpectralRenderer.Scenes.Loading;
 
 public sealed partial class SceneLoader
 {
@@ -137,14 +137,14 @@ public sealed partial class SceneLoader
             var local = Matrix4x4.CreateScale(patch, patch, 1) * Matrix4x4.CreateTranslation(offset) * basis * Matrix4x4.CreateTranslation(centre);
             var spectrum = ColorChecker.Patch(p);
             var bands = Bands(spectrum, $"{path} (patch {p})");
-            materials.Add(MakeMaterial($"colorchecker:{p}", bands, bands, Zero(), 32, SpecularModel.BlinnPhong, Zero(), Zero(), Const(1), false, false, spectrum));
+            materials.Add(DiffuseMaterial($"colorchecker:{p}", bands, spectrum));
             objects.Add(new SceneObject { Name = $"{name}-{p:00}", Material = materials.Count - 1, Shape = new AnalyticShape(ShapeKind.Quad, local * user) });
         }
         if (TryGet(e, "frame", out var frame) && !(frame.ValueKind == JsonValueKind.False))
         {
             var spectrum = frame.ValueKind == JsonValueKind.True ? TabulatedSpectrum.Constant(0.03, "chart frame") : Spectrum(frame, $"{path}.frame");
             var bands = Bands(spectrum, $"{path}.frame");
-            materials.Add(MakeMaterial($"{name}-frame", bands, bands, Zero(), 32, SpecularModel.BlinnPhong, Zero(), Zero(), Const(1), false, false, spectrum));
+            materials.Add(DiffuseMaterial($"{name}-frame", bands, spectrum));
             // Behind the patches by a hair, so the patches win at every pixel they cover.
             var local = Matrix4x4.CreateScale(6 * pitch + gap, 4 * pitch + gap, 1) * Matrix4x4.CreateTranslation(0, 0, -1e-3f * pitch) * basis * Matrix4x4.CreateTranslation(centre);
             objects.Add(new SceneObject { Name = $"{name}-frame", Material = materials.Count - 1, Shape = new AnalyticShape(ShapeKind.Quad, local * user) });
@@ -247,7 +247,7 @@ public sealed partial class SceneLoader
         var file = String(Required(e, "file", path), $"{path}.file");
         var full = ModelSearch.Find(file, _dir, _overrides.ModelDirectories)
             ?? throw Error($"{path}.file", $"mesh '{file}' not found in {ModelSearch.Describe(_dir, _overrides.ModelDirectories)}",
-                "download the meshes (README, 'Meshes') and pass --models DIR or set SPECTRAL_MODELS");
+                "download the meshes (README, 'Meshes') and pass --models DIR or set SPECTRAL_MODELS", InputProblem.MissingFile);
         var ext = Path.GetExtension(full).ToLowerInvariant();
         if (ext is not (".obj" or ".ply")) throw Error($"{path}.file", $"'{file}' is neither .obj nor .ply");
         // The read started with the scene (StartMeshReads); a second object on the same file reads it again,

@@ -1,8 +1,10 @@
 using System.Runtime.CompilerServices;
+using SpectralRenderer.Imaging;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Spectra;
 
-namespace SpectralRenderer.Imaging;
+namespace SpectralRenderer.Output;
 
 /// <summary>
 /// The auxiliary images for analysis (§3.4): per light, where it reaches the surface seen

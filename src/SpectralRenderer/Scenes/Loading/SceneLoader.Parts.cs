@@ -4,10 +4,9 @@ using System.Numerics;
 using System.Text.Json;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Geometry;
-using SpectralRenderer.Rendering;
 using SpectralRenderer.Spectra;
 
-namespace SpectralRenderer.Scenes;
+namespace SpectralRenderer.Scenes.Loading;
 
 public sealed partial class SceneLoader
 {
@@ -129,7 +128,7 @@ public sealed partial class SceneLoader
         {   // shorthand: a bare spectrum is a diffuse material
             var d = Spectrum(e, path);
             var bands = Bands(d, path);
-            return MakeMaterial(name, bands, bands, Zero(), 32, SpecularModel.BlinnPhong, Zero(), Zero(), Const(1), false, false, d);
+            return DiffuseMaterial(name, bands, d);
         }
         Object(e, path);
         Keys(e, path, "diffuse", "ambient", "specular", "shininess", "model", "mirror", "transmit", "ior", "fresnel");
@@ -138,14 +137,13 @@ public sealed partial class SceneLoader
         var ambient = OptionalBands(e, "ambient", path, diffuse);  // m_amb defaults to m_diff
         var specular = OptionalBands(e, "specular", path);
         float shininess = (float)Number(e, "shininess", path, 32, 0, 1e6);
-        var model = SpecularModel.BlinnPhong;
+        var model = SpecularModels.Default;
         if (TryGet(e, "model", out var m))
-            model = String(m, $"{path}.model").ToLowerInvariant() switch
-            {
-                "blinn-phong" or "blinn" => SpecularModel.BlinnPhong,
-                "phong" => SpecularModel.Phong,
-                var other => throw Error($"{path}.model", $"unknown specular model '{other}'", "use blinn-phong or phong"),
-            };
+        {
+            var given = String(m, $"{path}.model").ToLowerInvariant();
+            if (!SpecularModels.ByName.TryGetValue(given, out model))
+                throw Error($"{path}.model", $"unknown specular model '{given}'", $"use {string.Join(" or ", SpecularModels.ByName.Values.Select(x => x.Name).Distinct())}");
+        }
         var mirror = OptionalBands(e, "mirror", path);
         var transmit = OptionalBands(e, "transmit", path);
         float[] ior = Const(1.5f);
@@ -166,17 +164,18 @@ public sealed partial class SceneLoader
             else throw Error($"{path}.ior", $"expected a number or {{\"cauchy\": [A, B]}}, found {Kind(iorE)}");
         }
         bool fresnel = Bool(e, "fresnel", path, false);
-        return MakeMaterial(name, ambient, diffuse, specular, shininess, model, mirror, transmit, ior, dispersive, fresnel, diffuseSpectrum);
+        return new Material
+        {
+            Name = name, Ambient = ambient, Diffuse = diffuse, Specular = specular, Shininess = shininess, Model = model,
+            Mirror = mirror, Transmit = transmit, Ior = ior, Dispersive = dispersive, Fresnel = fresnel, DiffuseSpectrum = diffuseSpectrum,
+        };
     }
 
+    /// <summary>A purely diffuse material (m_amb = m_diff, no specular, mirror or transmission lobe).</summary>
     [MethodImpl(MethodImplOptions.NoOptimization)]
-    Material MakeMaterial(string name, float[] ambient, float[] diffuse, float[] specular, float shininess, SpecularModel model,
-        float[] mirror, float[] transmit, float[] ior, bool dispersive, bool fresnel, TabulatedSpectrum? diffuseSpectrum) => new()
+    Material DiffuseMaterial(string name, float[] bands, TabulatedSpectrum? spectrum) => new()
     {
-        Name = name, Ambient = ambient, Diffuse = diffuse, Specular = specular, Shininess = shininess, Model = model,
-        Mirror = mirror, Transmit = transmit, Ior = ior, Dispersive = dispersive, Fresnel = fresnel, DiffuseSpectrum = diffuseSpectrum,
-        HasAmbient = SpectralMath.Any(ambient), HasSpecular = SpectralMath.Any(specular),
-        HasMirror = SpectralMath.Any(mirror), HasTransmission = SpectralMath.Any(transmit),
+        Name = name, Ambient = bands, Diffuse = bands, Specular = Zero(), Mirror = Zero(), Transmit = Zero(), Ior = Const(1), DiffuseSpectrum = spectrum,
     };
 
     float[] Zero() => new float[SpectralMath.Padded(_grid.Count)];
@@ -213,37 +212,41 @@ public sealed partial class SceneLoader
         var bands = Bands(spectrum, $"{path}.spectrum");
         for (int i = 0; i < bands.Length; i++) bands[i] *= intensity;
         var ambient = OptionalBands(e, "ambient", path);
-        float c0 = 1, c1 = 0, c2 = 0;
+        var falloff = DistanceFalloff.None;
         if (TryGet(e, "attenuation", out var att))
         {
             if (att.ValueKind != JsonValueKind.Array || att.GetArrayLength() != 3) throw Error($"{path}.attenuation", "expected [c0, c1, c2] with d = 1/(c0 + c1·r + c2·r²)");
-            c0 = (float)Number(att[0], $"{path}.attenuation[0]", 0);
-            c1 = (float)Number(att[1], $"{path}.attenuation[1]", 0);
-            c2 = (float)Number(att[2], $"{path}.attenuation[2]", 0);
+            float c0 = (float)Number(att[0], $"{path}.attenuation[0]", 0);
+            float c1 = (float)Number(att[1], $"{path}.attenuation[1]", 0);
+            float c2 = (float)Number(att[2], $"{path}.attenuation[2]", 0);
             if (c0 + c1 + c2 <= 0) throw Error($"{path}.attenuation", "all attenuation coefficients are zero", "use [1, 0, 0] for no attenuation");
+            falloff = new DistanceFalloff(c0, c1, c2);
         }
-        Vector3 position = default, direction = default;
-        float cosCutoff = -1, exponent = 0;
-        if (type != "directional") position = Vec3(Required(e, "position", path), $"{path}.position");
-        if (type == "directional") direction = Direction(Required(e, "direction", path), $"{path}.direction");
-        if (type == "spot")
-        {
-            if (TryGet(e, "direction", out var d)) direction = Direction(d, $"{path}.direction");
-            else if (TryGet(e, "look_at", out var la))
+        bool hasAmbient = SpectralMath.Any(ambient);
+        if (type == "directional")
+            return new DirectionalLight
             {
-                var towards = Vec3(la, $"{path}.look_at") - position;
-                if (towards.LengthSquared() == 0) throw Error($"{path}.look_at", "look_at equals position", "a spot light needs a direction to shine in");
-                direction = Vector3.Normalize(towards);
-            }
-            else throw Error($"{path}.direction", "a spot light needs a direction or look_at");
-            cosCutoff = MathF.Cos((float)Number(e, "cutoff", path, 30, 0, 180) * MathF.PI / 180);
-            exponent = (float)Number(e, "exponent", path, 0, 0, 1e6);
-        }
-        return new Light
+                Name = name, Direction = Direction(Required(e, "direction", path), $"{path}.direction"),
+                Intensity = bands, Ambient = ambient, HasAmbient = hasAmbient, Spectrum = spectrum,
+            };
+        var position = Vec3(Required(e, "position", path), $"{path}.position");
+        if (type == "point")
+            return new PointLight { Name = name, Position = position, Falloff = falloff, Intensity = bands, Ambient = ambient, HasAmbient = hasAmbient, Spectrum = spectrum };
+        Vector3 direction;
+        if (TryGet(e, "direction", out var d)) direction = Direction(d, $"{path}.direction");
+        else if (TryGet(e, "look_at", out var la))
         {
-            Name = name, Kind = type switch { "point" => LightKind.Point, "spot" => LightKind.Spot, _ => LightKind.Directional },
-            Position = position, Direction = direction, Intensity = bands, Ambient = ambient, HasAmbient = SpectralMath.Any(ambient),
-            C0 = c0, C1 = c1, C2 = c2, CosCutoff = cosCutoff, SpotExponent = exponent, Spectrum = spectrum,
+            var towards = Vec3(la, $"{path}.look_at") - position;
+            if (towards.LengthSquared() == 0) throw Error($"{path}.look_at", "look_at equals position", "a spot light needs a direction to shine in");
+            direction = Vector3.Normalize(towards);
+        }
+        else throw Error($"{path}.direction", "a spot light needs a direction or look_at");
+        float cosCutoff = MathF.Cos((float)Number(e, "cutoff", path, 30, 0, 180) * MathF.PI / 180);
+        float exponent = (float)Number(e, "exponent", path, 0, 0, 1e6);
+        return new SpotLight
+        {
+            Name = name, Position = position, Direction = direction, Falloff = falloff, CosCutoff = cosCutoff, Exponent = exponent,
+            Intensity = bands, Ambient = ambient, HasAmbient = hasAmbient, Spectrum = spectrum,
         };
     }
 

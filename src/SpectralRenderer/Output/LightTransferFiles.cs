@@ -4,8 +4,10 @@ using System.Text.Json.Nodes;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Imaging;
+using SpectralRenderer.Spectra;
 
-namespace SpectralRenderer.Imaging;
+namespace SpectralRenderer.Output;
 
 /// <summary>
 /// The per-light transfer outputs (<c>--formats …,lights</c> or <c>output.light_groups</c>), in <c>lights/</c>:
@@ -67,7 +69,7 @@ public static class LightTransferFiles
             var l = scene.Lights[k];
             lights.Add(new JsonObject
             {
-                ["index"] = k, ["name"] = l.Name, ["kind"] = l.Kind.ToString().ToLowerInvariant(),
+                ["index"] = k, ["name"] = l.Name, ["kind"] = l.Type,
                 ["spectrum"] = l.Spectrum?.Name,
                 ["band_values"] = Arr(l.Intensity.AsSpan(0, scene.Bands)),
             });

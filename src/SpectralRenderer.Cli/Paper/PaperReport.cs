@@ -1,11 +1,12 @@
 using System.Globalization;
 using System.Net;
 using System.Text;
+using SpectralRenderer.Analysis;
 using SpectralRenderer.Color;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Spectra;
 
-namespace SpectralRenderer.Analysis;
+namespace SpectralRenderer.Cli.Paper;
 
 /// <summary>
 /// report.html: one self-contained page (images embedded, inline SVG plots, no network) reproducing the
@@ -41,10 +42,8 @@ public static class PaperReport
 
         var byName = runs.ToDictionary(r => r.Name);
         Chart(h, byName.GetValueOrDefault("paper-3.1-colorchecker-d65"));
-        Gallery(h, "Fig. 4 — §3.2 materials on a complex object", runs.Where(r => r.Section == "3.2").ToList(),
-            "The Stanford bunny (69,451 triangles) wearing ColorChecker patches #19, #14, #7 and #5 under D65 from a fixed point light, on a neutral floor; hard shadows, a little D65 ambient.");
-        Gallery(h, "Fig. 5 — §3.3 one material under different lights", runs.Where(r => r.Section == "3.3").ToList(),
-            "The statue (the Igea scan, from triangle strips) with patch #20 (neutral 8) and a constant specular reflectance, under CIE A, D65, the blue and the green LED. κ is set by each light and nothing is white-balanced, so the body takes the light's colour and the highlights on the lips and nose are the light's own colour, as in the paper.");
+        Gallery(h, "Fig. 4 — §3.2 materials on a complex object", runs.Where(r => r.Section == "3.2").ToList());
+        Gallery(h, "Fig. 5 — §3.3 one material under different lights", runs.Where(r => r.Section == "3.3").ToList());
         Analysis(h, byName.GetValueOrDefault("paper-3.4-bunny-analysis"));
         Timings(h, runs, totalSeconds);
 
@@ -94,7 +93,9 @@ public static class PaperReport
     {
         h.Append("<h2>Fig. 2 — §3.1 the band images</h2>\n");
         if (r is not { Done: true }) { Skipped(h, r, "The ColorChecker"); return; }
-        h.Append($"<figure>{Img(Path.Combine(r.OutDir, "bands.png"), "band mosaic")}<figcaption>The Macbeth ColorChecker (Ohta / MCSL reflectances) under D65, {r.Bands} bands of {(400.0 / r.Bands).ToString("0.#", Inv)} nm from 380 nm (top left) to 780 nm, all on one scale. Blue patches are bright in the first bands, red ones in the last; the white patch #19 is bright throughout.</figcaption></figure>\n");
+        var folder = RenderFolder.Open(r.OutDir);
+        var grid = folder.Manifest.Grid;
+        h.Append(Inv, $"<figure>{Img(Path.Combine(r.OutDir, "bands.png"), "band mosaic")}<figcaption>{Esc(r.Title)}: {grid.Count} bands of {grid.Width.ToString("0.###", Inv)} nm from {grid.Start:0.###} nm (top left) to {grid.End:0.###} nm, all on one scale. {Esc(Brightest(folder))}</figcaption></figure>\n");
 
         h.Append("<h2>Fig. 3 — §3.1 the synthesised colours</h2>\n<div class=\"row\">");
         h.Append($"<figure>{Img(Path.Combine(r.OutDir, "preview.png"), "chart sRGB", 540)}<figcaption>sRGB (IEC 61966-2-1).</figcaption></figure>");
@@ -102,7 +103,6 @@ public static class PaperReport
         if (File.Exists(eq4)) h.Append($"<figure>{Img(eq4, "chart eq. 4", 540)}<figcaption>The paper's eq. 4 (NTSC 1953 matrix, illuminant C white), linear and clipped.</figcaption></figure>");
         h.Append("</div>\n");
 
-        var folder = RenderFolder.Open(r.OutDir);
         var rows = ColorCheckerReport.Compute(folder);
         h.Append("<table><tr><th>#</th><th class=l>patch</th><th>X</th><th>Y</th><th>Z</th><th>L*</th><th>a*</th><th>b*</th><th>L* 1 nm</th><th>a* 1 nm</th><th>b* 1 nm</th><th>sRGB</th><th>eq. 4 RGB (linear)</th><th>ΔE00</th></tr>\n");
         foreach (var p in rows)
@@ -121,13 +121,43 @@ public static class PaperReport
                 var (er, eg, eb) = RgbSpace.Paper.Linear(g.Rendered);
                 sb.Append(Inv, $"#{g.Patch}: ({er:0.000}, {eg:0.000}, {eb:0.000}), B/G = {eb / eg:0.000}; ");
             }
-            h.Append($"<p class=\"note\"><b>Where we differ from the paper.</b> The paper reports that with eq. 4 patch #21 came out slightly bluish and #19 and #20 saturated to white. Eq. 4 applied to the rendered XYZ gives {Esc(sb.ToString().TrimEnd(' ', ';'))}: no channel of #19 or #20 reaches 1, and every grey has less blue than green — under D65 the NTSC/illuminant-C matrix tints neutrals slightly yellow-green, not blue. The paper's bluish greys and clipped whites must come from its display or exposure, not from eq. 4 itself. In sRGB the greys are neutral (a*, b* within 1 of zero).</p>\n");
+            // The paper: with eq. 4 patch #21 came out slightly bluish and #19, #20 saturated to white. Measured here:
+            var bright = greys.Where(g => g.Patch is 19 or 20).Select(g => RgbSpace.Paper.Linear(g.Rendered)).ToList();
+            bool clipped = bright.Any(c => c.Item1 >= 1 || c.Item2 >= 1 || c.Item3 >= 1);
+            var g21 = RgbSpace.Paper.Linear(greys.First(g => g.Patch == 21).Rendered);
+            bool bluish = g21.Item3 > g21.Item2 && g21.Item3 > g21.Item1;
+            var verdict = new StringBuilder();
+            verdict.Append(clipped ? "#19 or #20 reaches 1 in some channel, as the paper reports; " : "no channel of #19 or #20 reaches 1, unlike the paper; ");
+            verdict.Append(bluish ? "#21 has more blue than red and green, as the paper reports." : "#21 has no more blue than red or green, unlike the paper's bluish #21.");
+            var neutral = greys.All(g => Math.Abs(g.RenderedLab.A) < 1 && Math.Abs(g.RenderedLab.B) < 1);
+            h.Append($"<p class=\"note\"><b>Against the paper.</b> The paper reports that with eq. 4 patch #21 came out slightly bluish and #19 and #20 saturated to white. Eq. 4 applied to the rendered XYZ gives {Esc(sb.ToString().TrimEnd(' ', ';'))}: {Esc(verdict.ToString())} In sRGB the greys are {(neutral ? "neutral (a*, b* within 1 of zero)" : "not neutral (|a*| or |b*| of 1 or more)")}.</p>\n");
         }
+    }
+
+    /// <summary>Which objects are brightest in the first band, the last band and their darkest band (from the mean spectra).</summary>
+    static string Brightest(RenderFolder folder)
+    {
+        var names = folder.ObjectNames;
+        var reflectances = folder.ObjectReflectances;
+        int bands = folder.Image.Bands, first = -1, last = -1, flat = -1;
+        double bf = double.NegativeInfinity, bl = double.NegativeInfinity, bm = double.NegativeInfinity;
+        for (int o = 0; o < names.Length; o++)
+        {
+            var (mean, pixels) = folder.MeanSpectrum(o);
+            if (pixels == 0) continue;
+            if (mean[0] > bf) { bf = mean[0]; first = o; }
+            if (mean[bands - 1] > bl) { bl = mean[bands - 1]; last = o; }
+            if (mean.Min() > bm) { bm = mean.Min(); flat = o; }
+        }
+        if (first < 0) return "";
+        string Name(int o) => reflectances[o] is { } r && r.StartsWith("colorchecker:", StringComparison.Ordinal) && int.TryParse(r["colorchecker:".Length..], out int p)
+            ? $"#{p} ({ColorChecker.Name(p)})" : names[o];
+        return $"Brightest in the first band: {Name(first)}; in the last: {Name(last)}; in its own darkest band: {Name(flat)}.";
     }
 
     // ---- §3.2, §3.3 -------------------------------------------------------------------------------
 
-    static void Gallery(StringBuilder h, string heading, List<ExperimentRun> runs, string caption)
+    static void Gallery(StringBuilder h, string heading, List<ExperimentRun> runs)
     {
         h.Append($"<h2>{Esc(heading)}</h2>\n<div class=\"row\">");
         foreach (var r in runs)
@@ -135,7 +165,17 @@ public static class PaperReport
             if (!r.Done) { h.Append($"<div class=\"skip\">{Esc(r.Title)}: skipped</div>"); continue; }
             h.Append($"<figure>{Img(Path.Combine(r.OutDir, "preview.png"), r.Title, r.Section == "3.3" ? 270 : 280)}<figcaption>{Esc(r.Title)}</figcaption></figure>");
         }
-        h.Append($"</div><p>{Esc(caption)}</p>\n");
+        h.Append("</div>");
+        var done = runs.Where(r => r.Done).ToList();
+        if (done.Count > 0)
+        {
+            var triangles = done.Select(r => r.Triangles).Distinct().ToList();
+            var adapted = done.Select(r => RenderFolder.Open(r.OutDir).Manifest.Adapt).Distinct().ToList();
+            h.Append(Inv, $"<p>{(triangles.Count == 1 ? $"The same mesh size in every image: {triangles[0]:N0} triangles." : $"Triangles: {string.Join(", ", triangles.Select(t => t.ToString("N0", Inv)))}.")} ");
+            h.Append(adapted.Count == 1 && !adapted[0]
+                ? "κ is set by each scene's reference white and no image is chromatically adapted, so a coloured light shows as colour.</p>\n"
+                : "Some images are chromatically adapted to the display white (Bradford).</p>\n");
+        }
         var missing = runs.FirstOrDefault(r => !r.Done);
         if (missing is not null) Skipped(h, missing, heading);
     }
@@ -148,10 +188,14 @@ public static class PaperReport
         if (r is not { Done: true }) { Skipped(h, r, "The §3.4 analysis scene"); return; }
         var folder = RenderFolder.Open(r.OutDir);
         var aovs = RenderAovs.Open(folder);
-        var white = Reconstruction.WhiteObject(folder, "board", aovs);
+        var (whiteIndex, subjectIndex, whiteLevel) = Cast(folder, aovs);
+        if (whiteIndex < 0 || subjectIndex < 0) { Skipped(h, r, "The §3.4 analysis (no ground-truth reflectance or fewer than two objects)"); return; }
+        string whiteName = folder.ObjectNames[whiteIndex], subjectName = folder.ObjectNames[subjectIndex];
+        string subjectTruth = folder.ObjectReflectances[subjectIndex] ?? "its diffuse reflectance";
+        var white = Reconstruction.WhiteObject(folder, whiteName, aovs);
         var rec = Reconstruction.Compute(folder, aovs, white);
         var surface = rec.SurfacePixels();
-        var picks = LabelledPixels(rec, surface, folder);
+        var picks = LabelledPixels(rec, surface, folder, subjectName, whiteIndex);
         var img = folder.Image;
         var centres = Enumerable.Range(0, img.Bands).Select(img.Grid.Centre).ToArray();
 
@@ -164,19 +208,19 @@ public static class PaperReport
             var colour = SvgPlot.Palette[k % SvgPlot.Palette.Length];
             h.Append(Inv, $"<circle cx=\"{p.X + 0.5}\" cy=\"{p.Y + 0.5}\" r=\"6\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"2.5\"/><text x=\"{p.X + 9}\" y=\"{p.Y - 6}\" fill=\"{colour}\" font-size=\"15\" font-weight=\"bold\" stroke=\"white\" stroke-width=\"0.6\">{k + 1}</text>");
         }
-        h.Append("</svg><figcaption>(a) The bunny with patch #14 on an ideal white board (reflectance 1.0) under D65, with a glossy highlight; the labelled pixels.</figcaption></figure>");
+        h.Append(Inv, $"</svg><figcaption>(a) {Esc(subjectName)} ({Esc(subjectTruth)}) with {Esc(whiteName)} (ground-truth reflectance ≥ {whiteLevel:0.000} in every band) under {Esc(LightsOf(folder))}; the labelled pixels.</figcaption></figure>");
 
         var probe = new SvgPlot { Title = "(b) spectra of the labelled pixels", XLabel = "wavelength (nm)", YLabel = "spectral radiance (relative, W·m⁻²·sr⁻¹·nm⁻¹)", Width = 560, Height = 380 };
         for (int k = 0; k < picks.Count; k++) probe.Add($"{k + 1}: {picks[k].Label}", centres, picks[k].Radiance);
         h.Append($"<figure>{PlotSvg(probe)}</figure></div>\n");
 
-        h.Append("<h2>Fig. 7 — §3.4 reflectance reconstructed from the white board</h2>\n");
-        var plot = new SvgPlot { Title = "reconstructed reflectance = pixel ÷ white board", XLabel = "wavelength (nm)", YLabel = "reflectance", Width = 720, Height = 420 };
-        var truth = picks.First(p => p.Object == "bunny");
+        h.Append($"<h2>Fig. 7 — §3.4 reflectance reconstructed from the white reference ({Esc(whiteName)})</h2>\n");
+        var plot = new SvgPlot { Title = $"reconstructed reflectance = pixel ÷ {whiteName}", XLabel = "wavelength (nm)", YLabel = "reflectance", Width = 720, Height = 420 };
+        var truth = picks.FirstOrDefault(p => p.Object == subjectName);
         for (int k = 0; k < picks.Count; k++)
-            if (picks[k].Object == "bunny") plot.Add($"{k + 1}: {picks[k].Label}", centres, picks[k].Reflectance);
-        plot.Add("truth: patch #14 (Ohta)", centres, truth.Truth, dashed: true);
-        h.Append($"<figure>{PlotSvg(plot)}<figcaption>White reference: {Esc(white.Description)} ({white.Pixels} pixels). The dashed curve is the reflectance the bunny was given.</figcaption></figure>\n");
+            if (picks[k].Object == subjectName) plot.Add($"{k + 1}: {picks[k].Label}", centres, picks[k].Reflectance);
+        if (truth is not null) plot.Add($"truth: {subjectTruth}", centres, truth.Truth, dashed: true);
+        h.Append($"<figure>{PlotSvg(plot)}<figcaption>White reference: {Esc(white.Description)} ({white.Pixels} pixels). The dashed curve is the reflectance {Esc(subjectName)} was given.</figcaption></figure>\n");
 
         h.Append("<table><tr><th class=l>pixel</th><th>x</th><th>y</th><th class=l>object</th><th class=l>region</th><th>RMSE</th><th>GFC</th><th>ΔE00 (D65)</th><th>scale c</th><th>residual after c</th></tr>\n");
         for (int k = 0; k < picks.Count; k++)
@@ -189,36 +233,87 @@ public static class PaperReport
             h.Append(Inv, $"<tr><td class=l>{Esc(s.Region)}</td><td>{s.Count}</td><td>{s.MeanRmse:0.00000}</td><td>{s.MeanGfc:0.000000}</td><td>{s.MeanDeltaE00:0.00}</td><td>{s.MeanScale:0.0000}</td><td>{s.MeanResidual:0.00000}</td></tr>\n");
         h.Append("</table>\n");
 
-        var shadow = picks.FirstOrDefault(p => p.Region == PixelRegion.Shadow && p.Object == "bunny");
+        var summaries = Reconstruction.Summarise(surface).ToList();
+        var shadow = picks.FirstOrDefault(p => p.Region == PixelRegion.Shadow && p.Object == subjectName);
         var high = picks.FirstOrDefault(p => p.Region == PixelRegion.Highlight);
+        var lit = summaries.FirstOrDefault(x => x.Region == Reconstruction.Name(PixelRegion.Lit));
+        var best = picks.FirstOrDefault(p => p.Region == PixelRegion.Lit && p.Object == subjectName);
         var sb = new StringBuilder("<p class=\"note\"><b>The paper's two findings, measured.</b> ");
+        // The words follow the numbers: a scale is "a factor" only when the residual after scaling is small,
+        // a shape is "right" only when GFC is at least 0.999 (Romero et al.'s "good" colorimetric match).
+        const double SmallResidual = 1e-3, GoodGfc = 0.999;
         if (shadow is not null)
-            sb.Append(Inv, $"In shadow the reconstruction is the truth times a factor: c = {shadow.Scale:0.0000} with a residual of {shadow.Residual:0.0e0} after scaling (GFC {shadow.Gfc:0.000000}); eq. 2 predicts c = ambient ÷ lit irradiance of the board. ");
+            { if (shadow.Residual <= SmallResidual) sb.Append(Inv, $"In shadow the reconstruction is the truth times a factor: c = {shadow.Scale:0.0000} with a residual of {shadow.Residual:0.0e0} after scaling (GFC {shadow.Gfc:0.000000}); eq. 2 predicts c = ambient ÷ lit irradiance of the reference. "); else sb.Append(Inv, $"In shadow the reconstruction is not a scaled truth: c = {shadow.Scale:0.0000} leaves a residual of {shadow.Residual:0.0e0} (GFC {shadow.Gfc:0.000000}). "); }
         if (high is not null)
-            sb.Append(Inv, $"In a highlight the light's spectrum is added: the highlight pixel's reconstruction has GFC {high.Gfc:0.0000} with the truth and c = {high.Scale:0.000}; the excess follows the light ÷ white-board spectrum. ");
-        sb.Append("Lit pixels whose irradiance matches the board's reconstruct the truth exactly; elsewhere on the lit bunny the shape is right (GFC ≈ 1) and only the scale differs with the angle to the light.</p>\n");
+            { if (high.Scale > 1 && high.Gfc < GoodGfc) sb.Append(Inv, $"In a highlight light is added to the truth: the highlight pixel's reconstruction has GFC {high.Gfc:0.0000} with the truth and c = {high.Scale:0.000} > 1. "); else sb.Append(Inv, $"The highlight pixel's reconstruction has GFC {high.Gfc:0.0000} with the truth and c = {high.Scale:0.000}. "); }
+        if (best is not null)
+            sb.Append(Inv, $"The lit pixel whose irradiance is closest to the reference's (c = {best.Scale:0.0000}) reconstructs the truth with RMSE {best.Rmse:0.0e0}. ");
+        if (lit is not null)
+            { if (lit.MeanGfc >= GoodGfc) sb.Append(Inv, $"Over all {lit.Count} lit pixels the shape is right (mean GFC {lit.MeanGfc:0.000000}) and the scale varies (mean c = {lit.MeanScale:0.000}) with the angle to the light."); else sb.Append(Inv, $"Over all {lit.Count} lit pixels the mean GFC is {lit.MeanGfc:0.000000} (mean c = {lit.MeanScale:0.000}): the shape is not preserved everywhere."); }
+        sb.Append("</p>\n");
         h.Append(sb);
     }
 
-    /// <summary>Fig. 6's labelled pixels: a lit bunny pixel whose irradiance matches the board's, a typical lit one, the strongest highlight, a shadowed bunny pixel and the board.</summary>
-    static List<PixelReconstruction> LabelledPixels(Reconstruction rec, List<PixelReconstruction> surface, RenderFolder folder)
+    /// <summary>
+    /// The §3.4 cast, chosen from the numbers rather than by name: the white reference is the object whose ground-truth
+    /// reflectance, averaged over its pixels, is highest in its darkest band; the subject is the other object seen in
+    /// most pixels. Returns −1 for either when there is no ground truth or no such object.
+    /// </summary>
+    static (int White, int Subject, double WhiteLevel) Cast(RenderFolder folder, RenderAovs aovs)
+    {
+        var truth = aovs.Reflectance;
+        int objects = folder.ObjectNames.Length, bands = folder.Image.Bands;
+        if (truth is null || objects < 2) return (-1, -1, 0);
+        var count = new int[objects];
+        var sum = new double[objects * bands];
+        for (int i = 0; i < folder.ObjectIds.Length; i++)
+        {
+            int o = folder.ObjectIds[i];
+            if (o < 0) continue;
+            count[o]++;
+            var px = truth.Data.AsSpan(i * bands, bands);
+            for (int b = 0; b < bands; b++) sum[o * bands + b] += px[b];
+        }
+        int white = -1;
+        double level = double.NegativeInfinity;
+        for (int o = 0; o < objects; o++)
+        {
+            if (count[o] == 0) continue;
+            double min = double.PositiveInfinity;
+            for (int b = 0; b < bands; b++) min = Math.Min(min, sum[o * bands + b] / count[o]);
+            if (min > level) { level = min; white = o; }
+        }
+        int subject = -1;
+        for (int o = 0; o < objects; o++)
+            if (o != white && count[o] > 0 && (subject < 0 || count[o] > count[subject])) subject = o;
+        return (white, subject, level);
+    }
+
+    static string LightsOf(RenderFolder folder)
+    {
+        var lights = folder.Manifest.Lights;
+        if (lights.Count == 0) return "no light";
+        return string.Join(" and ", lights.Select(l => $"{l.Kind} light {l.Name}" + (l.Spectrum is { } s && s != l.Name ? $" ({s})" : "")));
+    }
+
+    /// <summary>Fig. 6's labelled pixels: a lit subject pixel whose irradiance matches the white reference's, a typical lit one, the strongest highlight, a shadowed subject pixel and the white reference.</summary>
+    static List<PixelReconstruction> LabelledPixels(Reconstruction rec, List<PixelReconstruction> surface, RenderFolder folder, string subject, int whiteIndex)
     {
         var picks = new List<PixelReconstruction>();
-        var bunnyLit = surface.Where(p => p.Object == "bunny" && p.Region == PixelRegion.Lit).ToList();
-        if (bunnyLit.Count > 0)
+        var subjectLit = surface.Where(p => p.Object == subject && p.Region == PixelRegion.Lit).ToList();
+        if (subjectLit.Count > 0)
         {
-            picks.Add(bunnyLit.MinBy(p => Math.Abs(p.Scale - 1))! with { Label = "lit, c ≈ 1" });
-            var sorted = bunnyLit.OrderBy(p => p.Scale).ToList();
+            picks.Add(subjectLit.MinBy(p => Math.Abs(p.Scale - 1))! with { Label = "lit, c ≈ 1" });
+            var sorted = subjectLit.OrderBy(p => p.Scale).ToList();
             picks.Add(sorted[sorted.Count / 2] with { Label = "lit, typical" });
         }
-        var high = surface.Where(p => p.Region == PixelRegion.Highlight && p.Object == "bunny").ToList();
+        var high = surface.Where(p => p.Region == PixelRegion.Highlight && p.Object == subject).ToList();
         if (high.Count > 0) picks.Add(high.MaxBy(p => p.Radiance.Sum())! with { Label = "highlight" });
-        var shadow = surface.Where(p => p.Object == "bunny" && p.Region == PixelRegion.Shadow).ToList();
+        var shadow = surface.Where(p => p.Object == subject && p.Region == PixelRegion.Shadow).ToList();
         if (shadow.Count > 0) picks.Add(shadow.OrderBy(p => p.Rmse).ElementAt(shadow.Count / 2) with { Label = "shadow" });
-        int board = folder.ObjectIndex("board");
-        if (board >= 0)
+        if (whiteIndex >= 0)
         {
-            // The lit board pixel nearest the lower left of the picture, away from the bunny.
+            // The lit reference pixel nearest the lower left of the picture.
             int w = folder.Image.Width, h = folder.Image.Height, best = -1;
             double bestD = double.MaxValue;
             for (int i = 0; i < rec.White.Mask.Length; i++)
@@ -227,7 +322,7 @@ public static class PaperReport
                 double dx = i % w - 0.2 * w, dy = i / w - 0.85 * h, d = dx * dx + dy * dy;
                 if (d < bestD) { bestD = d; best = i; }
             }
-            if (best >= 0) picks.Add(rec.At(best % w, best / w, "white board"));
+            if (best >= 0) picks.Add(rec.At(best % w, best / w, "white reference"));
         }
         return picks;
     }

@@ -2,7 +2,7 @@ using System.Numerics;
 using System.Runtime.CompilerServices;
 using SpectralRenderer.Spectra;
 
-namespace SpectralRenderer.Rendering;
+namespace SpectralRenderer.Spectra;
 
 /// <summary>
 /// A multispectral image: Height × Width pixels × Grid.Count bands of float32 spectral radiance,

@@ -1,4 +1,4 @@
-namespace SpectralRenderer.Scenes;
+namespace SpectralRenderer.Scenes.Loading;
 
 /// <summary>
 /// The model search path for mesh files: the scene's folder, then each --models folder, then the

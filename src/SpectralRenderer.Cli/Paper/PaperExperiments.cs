@@ -1,11 +1,14 @@
 using System.Diagnostics;
+using SpectralRenderer.Analysis;
 using SpectralRenderer.Color;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Output;
+using SpectralRenderer.Scenes.Loading;
 
-namespace SpectralRenderer.Analysis;
+namespace SpectralRenderer.Cli.Paper;
 
 /// <summary>One scene of the paper rendered: where its outputs are, what it cost, or why it was skipped.</summary>
 public sealed record ExperimentRun(string Section, string Name, string Title, string OutDir, int Width, int Height, int Bands,
@@ -15,30 +18,39 @@ public sealed record ExperimentRun(string Section, string Name, string Title, st
 }
 
 /// <summary>
-/// Renders every scene of the paper (§3.1 chart, §3.2 four bunnies, §3.3 the statue under four lights,
-/// §3.4 the analysis bunny) into one folder each, for <see cref="PaperReport"/>.
+/// Renders every scene of the paper (§3.1 the chart, §3.2 one mesh in four materials, §3.3 one material under
+/// four lights, §3.4 the reconstruction scene) into one folder each, for <see cref="PaperReport"/>.
 /// </summary>
 public static class PaperExperiments
 {
-    public static readonly (string Section, string File, string Title)[] Scenes =
+    /// <summary>The paper's scene files by section; each image's title is taken from its scene (<see cref="Describe"/>).</summary>
+    public static readonly (string Section, string File)[] Scenes =
     [
-        ("3.1", "paper-3.1-colorchecker-d65", "ColorChecker under D65"),
-        ("3.2", "paper-3.2-bunny-19", "bunny, patch #19 (white)"),
-        ("3.2", "paper-3.2-bunny-14", "bunny, patch #14 (green)"),
-        ("3.2", "paper-3.2-bunny-07", "bunny, patch #7 (orange)"),
-        ("3.2", "paper-3.2-bunny-05", "bunny, patch #5 (blue flower)"),
-        ("3.3", "paper-3.3-statue-A", "statue under CIE A"),
-        ("3.3", "paper-3.3-statue-D65", "statue under D65"),
-        ("3.3", "paper-3.3-statue-led-blue", "statue under the blue LED"),
-        ("3.3", "paper-3.3-statue-led-green", "statue under the green LED"),
-        ("3.4", "paper-3.4-bunny-analysis", "bunny #14 on a white board"),
+        ("3.1", "paper-3.1-colorchecker-d65"),
+        ("3.2", "paper-3.2-bunny-19"), ("3.2", "paper-3.2-bunny-14"), ("3.2", "paper-3.2-bunny-07"), ("3.2", "paper-3.2-bunny-05"),
+        ("3.3", "paper-3.3-statue-A"), ("3.3", "paper-3.3-statue-D65"), ("3.3", "paper-3.3-statue-led-blue"), ("3.3", "paper-3.3-statue-led-green"),
+        ("3.4", "paper-3.4-bunny-analysis"),
     ];
+
+    /// <summary>
+    /// A title from what the scene holds: its meshes (or, without meshes, how many objects) with their diffuse
+    /// reflectances, and its lights' spectra.
+    /// </summary>
+    public static string Describe(Scene scene)
+    {
+        var meshes = scene.Objects.Where(o => o.Mesh is not null).ToList();
+        string what = meshes.Count > 0
+            ? string.Join(", ", meshes.Select(o => $"{o.Name} in {scene.Materials[o.Material].DiffuseSpectrum?.Name ?? scene.Materials[o.Material].Name}"))
+            : $"{scene.Objects.Count} objects";
+        var lights = scene.Lights.Select(l => l.Spectrum?.Name ?? l.Name).Distinct().ToList();
+        return lights.Count == 0 ? what : $"{what} under {string.Join(" and ", lights)}";
+    }
 
     /// <summary>Renders each scene from <paramref name="sceneDir"/> into <paramref name="outDir"/>/NAME, at <paramref name="scale"/> × its resolution.</summary>
     public static List<ExperimentRun> Run(string sceneDir, string outDir, double scale, IReadOnlyList<string> models, int threads, Action<string>? log = null)
     {
         var runs = new List<ExperimentRun>();
-        foreach (var (section, file, title) in Scenes)
+        foreach (var (section, file) in Scenes)
         {
             var path = Path.Combine(sceneDir, file + ".json");
             var dir = Path.Combine(outDir, file);
@@ -48,15 +60,15 @@ public static class PaperExperiments
             {
                 scene = SceneLoader.Load(path, new SceneOverrides { ModelDirectories = models, ResolutionScale = scale, Formats = "png,bands,npy,aov" });
             }
-            catch (InputException e) when (e.What.Contains("not found", StringComparison.Ordinal))
+            catch (InputException e) when (e.Problem == InputProblem.MissingFile)
             {
-                runs.Add(new ExperimentRun(section, file, title, dir, 0, 0, 0, 0, 0, 0, 0, 0, e.Message));
+                runs.Add(new ExperimentRun(section, file, file, dir, 0, 0, 0, 0, 0, 0, 0, 0, e.Message));
                 log?.Invoke($"{file}: skipped — {e.Message}");
                 continue;
             }
             double load = clock.Elapsed.TotalSeconds;
             var geometry = new SceneGeometry(scene);
-            var result = Renderer.Render(scene, new WhittedIntegrator(scene, geometry), threads);
+            var result = Renderer.Render(scene, Integrators.Create(scene, geometry), threads);
             clock.Restart();
             RenderOutputWriter.Write(scene, result, dir);
             if (file.StartsWith("paper-3.1", StringComparison.Ordinal))
@@ -65,7 +77,7 @@ public static class PaperExperiments
                 AtomicFile.Write(Path.Combine(dir, "preview-eq4.png"), s => PngWriter.WriteRgb8(s, result.Image.Width, result.Image.Height, eq4));
             }
             double write = clock.Elapsed.TotalSeconds;
-            runs.Add(new ExperimentRun(section, file, title, dir, result.Image.Width, result.Image.Height, scene.Bands,
+            runs.Add(new ExperimentRun(section, file, Describe(scene), dir, result.Image.Width, result.Image.Height, scene.Bands,
                 load, result.Elapsed.TotalSeconds, write, result.Rays.Total, geometry.TriangleCount, null));
             log?.Invoke($"{file}: {result.Image.Width}×{result.Image.Height} in {result.Elapsed.TotalSeconds:0.00} s");
         }

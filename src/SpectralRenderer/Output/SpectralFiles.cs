@@ -1,7 +1,8 @@
-using SpectralRenderer.Rendering;
+using SpectralRenderer.Imaging;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Spectra;
 
-namespace SpectralRenderer.Imaging;
+namespace SpectralRenderer.Output;
 
 /// <summary>
 /// The multispectral cubes of a render: spectral.exr (spectral OpenEXR layout), spectral.hdr/.img (ENVI),
@@ -17,8 +18,8 @@ public static class SpectralFiles
         {
             Colorimeter = scene.Colorimeter,
             Xyz = true,
-            Compression = scene.Output.ExrCompression == "none" ? ExrCompression.None : ExrCompression.Zip,
-            DeflateEveryChunk = scene.Output.ExrCompression == "zip-all",
+            Compression = scene.Output.ExrCompression == ExrCompressionChoice.None ? ExrCompression.None : ExrCompression.Zip,
+            DeflateEveryChunk = scene.Output.ExrCompression == ExrCompressionChoice.ZipAll,
             Attributes = new Dictionary<string, string> { ["software"] = $"spectral {typeof(SpectralFiles).Assembly.GetName().Version?.ToString(3)}" },
         });
         done("spectral.exr");

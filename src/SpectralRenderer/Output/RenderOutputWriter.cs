@@ -6,11 +6,13 @@ using System.Runtime.InteropServices;
 using System.Globalization;
 using System.Text.Json;
 using System.Text.Json.Nodes;
+using SpectralRenderer.Imaging;
 using SpectralRenderer.Color;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Spectra;
 
-namespace SpectralRenderer.Imaging;
+namespace SpectralRenderer.Output;
 
 /// <summary>
 /// Writes a render's files into its output folder (guide §6): preview.png, bands/ with bands.png,
@@ -21,7 +23,8 @@ public static class RenderOutputWriter
     public static List<string> Write(Scene scene, RenderResult result, string outDir, JsonObject? run = null, CancellationToken cancel = default,
         LightTransfer? transfer = null)
     {
-        var formats = scene.Output.Formats;
+        var products = scene.Output.Products;
+        bool Has(OutputProducts p) => (products & p) != 0;
         var image = result.Image;
         Directory.CreateDirectory(outDir);
         // The previous render's files go while the planes are computed, and before any file is written.
@@ -31,9 +34,9 @@ public static class RenderOutputWriter
         // Band-sequential planes, transposed once and shared by the band PNGs, the mosaic, spectral.exr and the ENVI cube;
         // eq. 3's XYZ of every pixel, computed once for the preview and spectral.exr's R, G, B and X, Y, Z.
         // Without a writer of planes, the preview takes XYZ from the cube itself (no second copy of the cube).
-        float[]? bands = formats.Contains("bands") || formats.Contains("exr") || formats.Contains("envi") ? image.BandPlanes() : null;
-        var xyz = bands is not null && (formats.Contains("png") || formats.Contains("exr")) ? XyzPlanes.Compute(scene.Colorimeter, bands, n)
-            : formats.Contains("png") ? XyzPlanes.Compute(scene.Colorimeter, image) : null;
+        float[]? bands = Has(OutputProducts.Bands) || Has(OutputProducts.Exr) || Has(OutputProducts.Envi) ? image.BandPlanes() : null;
+        var xyz = bands is not null && (Has(OutputProducts.Png) || Has(OutputProducts.Exr)) ? XyzPlanes.Compute(scene.Colorimeter, bands, n)
+            : Has(OutputProducts.Png) ? XyzPlanes.Compute(scene.Colorimeter, image) : null;
 
         clearing.GetAwaiter().GetResult();
 
@@ -41,34 +44,34 @@ public static class RenderOutputWriter
         var groups = new List<string>[9];
         for (int g = 0; g < groups.Length; g++) groups[g] = [];
         Action<string> Done(int g) => name => { lock (groups[g]) groups[g].Add(name); cancel.ThrowIfCancellationRequested(); };
-        JsonObject? json = null;
+        RenderManifest? manifest = null;
         try
         {
         Parallel.Invoke(new ParallelOptions { CancellationToken = cancel },
-            () => { if (formats.Contains("png")) WritePreview(scene, image, xyz!, outDir, Done(0)); },
-            () => { if (formats.Contains("bands")) WriteBands(scene, image, bands!, scale, outDir, Done(1), cancel); },
+            () => { if (Has(OutputProducts.Png)) WritePreview(scene, image, xyz!, outDir, Done(0)); },
+            () => { if (Has(OutputProducts.Bands)) WriteBands(scene, image, bands!, scale, outDir, Done(1), cancel); },
             () =>
             {
-                if (!formats.Contains("bands")) return;
+                if (!Has(OutputProducts.Bands)) return;
                 var (mw, mh, mosaic) = BandMosaic.Build(image.Width, image.Height, bands!, scale);
                 AtomicFile.Write(Path.Combine(outDir, "bands.png"), s => PngWriter.WriteGray8(s, mw, mh, mosaic));
                 Done(2)("bands.png");
             },
             () =>
             {
-                if (!formats.Contains("aov")) return;
+                if (!Has(OutputProducts.Aov)) return;
                 var ids = new ushort[result.ObjectIds.Length];
                 for (int i = 0; i < ids.Length; i++) ids[i] = (ushort)(result.ObjectIds[i] + 1);
                 AtomicFile.Write(Path.Combine(outDir, "object-id.png"), s => PngWriter.WriteGray16(s, image.Width, image.Height, ids));
                 Done(3)("object-id.png");
                 AnalysisImages.Write(scene, result, outDir, Done(3));
             },
-            () => { if (formats.Contains("exr")) SpectralFiles.WriteExr(scene, image, bands!, xyz, outDir, Done(4)); },
-            () => { if (formats.Contains("envi")) SpectralFiles.WriteEnvi(scene, image, bands!, outDir, Done(5)); },
-            () => { if (formats.Contains("npy")) SpectralFiles.WriteNpy(image, outDir, Done(6)); },
-            () => { if (formats.Contains("npy") || formats.Contains("envi") || formats.Contains("exr")) SpectralFiles.WriteWavelengths(image, outDir, Done(7)); },
-            () => { if (transfer is not null && formats.Contains("lights")) LightTransferFiles.Write(scene, transfer, outDir, Done(8)); },
-            () => json = Describe(scene, result, scale, run));
+            () => { if (Has(OutputProducts.Exr)) SpectralFiles.WriteExr(scene, image, bands!, xyz, outDir, Done(4)); },
+            () => { if (Has(OutputProducts.Envi)) SpectralFiles.WriteEnvi(scene, image, bands!, outDir, Done(5)); },
+            () => { if (Has(OutputProducts.Npy)) SpectralFiles.WriteNpy(image, outDir, Done(6)); },
+            () => { if (Has(OutputProducts.Npy) || Has(OutputProducts.Envi) || Has(OutputProducts.Exr)) SpectralFiles.WriteWavelengths(image, outDir, Done(7)); },
+            () => { if (transfer is not null && Has(OutputProducts.Lights)) LightTransferFiles.Write(scene, transfer, outDir, Done(8)); },
+            () => manifest = Describe(scene, result, scale, run));
         }
         catch (AggregateException e)
         {
@@ -78,12 +81,9 @@ public static class RenderOutputWriter
         }
 
         var written = new List<string>();
-        var files = new JsonArray();
-        foreach (var g in groups)
-            foreach (var f in g) { written.Add(f); files.Add(JsonValue.Create(f)); }
-        json!["files"] = files;
-        AtomicFile.WriteAllText(Path.Combine(outDir, "render.json"), json.ToJsonString(new JsonSerializerOptions { WriteIndented = true }));
-        written.Add("render.json");
+        foreach (var g in groups) written.AddRange(g);
+        AtomicFile.WriteAllText(Path.Combine(outDir, RenderManifest.FileName), (manifest! with { Files = written.ToArray() }).ToJsonText());
+        written.Add(RenderManifest.FileName);
         return written;
     }
 
@@ -196,83 +196,47 @@ public static class RenderOutputWriter
     }
 
     [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
-    static JsonObject Describe(Scene scene, RenderResult result, float bandScale, JsonObject? run)
+    static RenderManifest Describe(Scene scene, RenderResult result, float bandScale, JsonObject? run)
     {
-        var g = scene.Grid;
         var c = scene.Colorimeter;
-        static double[] Centres(Spectra.BandGrid g)
-        {
-            var c = new double[g.Count];
-            for (int b = 0; b < c.Length; b++) c[b] = g.Centre(b);
-            return c;
-        }
-        static JsonArray Arr(ReadOnlySpan<double> v)
-        {
-            var a = new JsonArray();
-            foreach (double x in v) a.Add(JsonValue.Create(x));
-            return a;
-        }
-        var objects = new JsonArray();
-        for (int i = 0; i < scene.Objects.Count; i++)
+        var objects = new ManifestObject[scene.Objects.Count];
+        for (int i = 0; i < objects.Length; i++)
         {
             var o = scene.Objects[i];
             var m = scene.Materials[o.Material];
-            objects.Add(new JsonObject
-            {
-                ["id"] = i + 1,
-                ["name"] = o.Name,
-                ["material"] = m.Name,
-                ["reflectance"] = m.DiffuseSpectrum?.Name,
-            });
+            objects[i] = new ManifestObject(i + 1, o.Name, m.Name, m.DiffuseSpectrum?.Name);
         }
-        var white = scene.ReferenceWhite;
-        var lights = new JsonArray();
-        for (int k = 0; k < scene.Lights.Count; k++)
-            lights.Add(new JsonObject { ["index"] = k, ["name"] = scene.Lights[k].Name, ["kind"] = scene.Lights[k].Kind.ToString().ToLowerInvariant(), ["spectrum"] = scene.Lights[k].Spectrum?.Name });
-        return new JsonObject
+        var lights = new ManifestLight[scene.Lights.Count];
+        for (int k = 0; k < lights.Length; k++) lights[k] = new ManifestLight(k, scene.Lights[k].Name, scene.Lights[k].Type, scene.Lights[k].Spectrum?.Name);
+        return new RenderManifest
         {
-            ["tool"] = "spectral",
-            ["version"] = typeof(RenderOutputWriter).Assembly.GetName().Version?.ToString(3),
-            ["scene"] = scene.SourcePath,
-            ["created_utc"] = DateTime.UtcNow.ToString("yyyy-MM-ddTHH:mm:ssZ", CultureInfo.InvariantCulture),
-            ["width"] = result.Image.Width,
-            ["height"] = result.Image.Height,
-            ["spp"] = scene.Camera.SamplesPerPixel,
-            ["bands"] = new JsonObject
-            {
-                ["grid"] = g.ToString(),
-                ["count"] = g.Count,
-                ["edges_nm"] = Arr(g.Edges()),
-                ["centres_nm"] = Arr(Centres(g)),
-                ["band_image_scale"] = bandScale,
-            },
-            ["colour"] = new JsonObject
-            {
-                ["integration"] = scene.Integration.ToString().ToLowerInvariant(),
-                ["observer"] = c.Observer.Degrees,
-                ["reference_white"] = white.Name,
-                ["reference_white_spd"] = new JsonObject { ["wavelengths_nm"] = Arr(white.Wavelengths), ["values"] = Arr(white.Values) },
-                ["kappa"] = c.Kappa,
-                ["white_xyz"] = Arr([c.White.X, c.White.Y, c.White.Z]),
-                ["weights_x"] = Arr(c.Wx), ["weights_y"] = Arr(c.Wy), ["weights_z"] = Arr(c.Wz),
-                ["rgb"] = scene.Output.Rgb.Name,
-                ["exposure"] = scene.Output.Exposure,
-                ["adapt"] = scene.Output.Adapt,
-            },
-            ["objects"] = objects,
-            ["lights"] = lights,
-            ["aov"] = new JsonObject { ["highlight_fraction"] = scene.Output.HighlightFraction },
-            ["timings_s"] = new JsonObject { ["render"] = result.Elapsed.TotalSeconds },
-            ["rays"] = new JsonObject
-            {
-                ["primary"] = result.Rays.Primary, ["shadow"] = result.Rays.Shadow, ["secondary"] = result.Rays.Secondary, ["total"] = result.Rays.Total,
-                ["mrays_per_s"] = result.Rays.Total / Math.Max(1e-9, result.Elapsed.TotalSeconds) / 1e6,
-            },
-            ["threads"] = result.Threads,
-            ["tiles"] = result.Tiles,
-            ["run"] = run,
-            ["files"] = null,   // filled in when the files are written
-            ["resolved_scene"] = scene.Resolved?.DeepClone(),
+            Version = typeof(RenderOutputWriter).Assembly.GetName().Version?.ToString(3),
+            Scene = scene.SourcePath,
+            CreatedUtc = RenderManifest.Now(),
+            Width = result.Image.Width,
+            Height = result.Image.Height,
+            SamplesPerPixel = scene.Camera.SamplesPerPixel,
+            Grid = scene.Grid,
+            BandImageScale = bandScale,
+            Integration = scene.Integration.ToString().ToLowerInvariant(),
+            ObserverDegrees = c.Observer.Degrees,
+            ReferenceWhite = scene.ReferenceWhite,
+            Kappa = c.Kappa,
+            White = c.White,
+            Wx = c.Wx, Wy = c.Wy, Wz = c.Wz,
+            Rgb = scene.Output.Rgb.Name,
+            Exposure = scene.Output.Exposure,
+            Adapt = scene.Output.Adapt,
+            Objects = objects,
+            Lights = lights,
+            HighlightFraction = scene.Output.HighlightFraction,
+            RenderSeconds = result.Elapsed.TotalSeconds,
+            Rays = new ManifestRays(result.Rays.Primary, result.Rays.Shadow, result.Rays.Secondary, result.Rays.Total,
+                result.Rays.Total / Math.Max(1e-9, result.Elapsed.TotalSeconds) / 1e6),
+            Threads = result.Threads,
+            Tiles = result.Tiles,
+            Run = run,
+            ResolvedScene = scene.Resolved,
         };
     }
 }

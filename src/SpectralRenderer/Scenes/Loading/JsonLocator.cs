@@ -2,7 +2,7 @@ using System.Runtime.CompilerServices;
 using System.Text;
 using System.Text.Json;
 
-namespace SpectralRenderer.Scenes;
+namespace SpectralRenderer.Scenes.Loading;
 
 /// <summary>
 /// Maps JSON paths ($.objects[3].type) to line:column in the source text, so semantic errors in a

@@ -6,10 +6,9 @@ using System.Text.Json.Nodes;
 using SpectralRenderer.Color;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Geometry;
-using SpectralRenderer.Rendering;
 using SpectralRenderer.Spectra;
 
-namespace SpectralRenderer.Scenes;
+namespace SpectralRenderer.Scenes.Loading;
 
 /// <summary>
 /// Reads a scene file (docs/scene-format.md): JSON with comments and trailing commas. Every error
@@ -72,7 +71,7 @@ public sealed partial class SceneLoader
     // ---- errors -------------------------------------------------------------------------------
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
-    InputException Error(string jsonPath, string what, string? hint = null)
+    InputException Error(string jsonPath, string what, string? hint = null, InputProblem problem = InputProblem.Invalid)
     {
         // Point at the nearest located ancestor when the path itself is absent (a missing field).
         string p = jsonPath;
@@ -84,7 +83,7 @@ public sealed partial class SceneLoader
             p = p[..cut];
             pos = _locator.Locate(p);
         }
-        return new InputException(pos is null ? $"{_file}: {jsonPath}" : $"{_file}:{pos}: {jsonPath}", what, hint);
+        return new InputException(pos is null ? $"{_file}: {jsonPath}" : $"{_file}:{pos}: {jsonPath}", what, hint) { Problem = problem };
     }
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
@@ -359,39 +358,40 @@ public sealed partial class SceneLoader
             if (TryGet(e, "formats", out var f))
             {
                 if (f.ValueKind != JsonValueKind.Array) throw Error("$.output.formats", $"expected an array of format names, found {Kind(f)}");
-                o.Formats = ParseFormats(f.EnumerateArray().Select((x, i) => String(x, $"$.output.formats[{i}]")), Where("$.output.formats"));
+                o.Products = ParseFormats(f.EnumerateArray().Select((x, i) => String(x, $"$.output.formats[{i}]")), Where("$.output.formats"));
             }
             // "light_groups": true adds the per-light transfer outputs (lights/) to the formats.
-            if (Bool(e, "light_groups", "$.output", false)) o.Formats.Add("lights");
+            if (Bool(e, "light_groups", "$.output", false)) o.Products |= OutputProducts.Lights;
             if (TryGet(e, "exr_compression", out var c)) o.ExrCompression = ParseExrCompression(String(c, "$.output.exr_compression"), Where("$.output.exr_compression"));
         }
         if (_overrides.ExrCompression is { } ec) o.ExrCompression = ParseExrCompression(ec, "--exr-compression");
         if (_overrides.Rgb is { } r) o.Rgb = RgbSpace.Parse(r);
-        if (_overrides.Formats is { } fs) o.Formats = ParseFormats(fs.Split(',', StringSplitOptions.RemoveEmptyEntries | StringSplitOptions.TrimEntries), "--formats");
+        if (_overrides.Formats is { } fs) o.Products = ParseFormats(fs.Split(',', StringSplitOptions.RemoveEmptyEntries | StringSplitOptions.TrimEntries), "--formats");
         return o;
     }
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
-    static string ParseExrCompression(string name, string where)
+    static ExrCompressionChoice ParseExrCompression(string name, string where)
     {
         var n = name.ToLowerInvariant();
-        if (Array.IndexOf(OutputOptions.ExrCompressions, n) < 0)
-            throw new InputException(where, $"unknown EXR compression '{name}'",
-                InputException.DidYouMean(name, OutputOptions.ExrCompressions) ?? "zip (deflate where samples repeat), zip-all (smallest file) or none");
-        return n;
+        foreach (var (choice, known) in OutputNames.ExrCompressions) if (known == n) return choice;
+        throw new InputException(where, $"unknown EXR compression '{name}'",
+            InputException.DidYouMean(name, OutputNames.ExrCompressionNames) ?? "zip (deflate where samples repeat), zip-all (smallest file) or none");
     }
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
-    public static HashSet<string> ParseFormats(IEnumerable<string> names, string where)
+    public static OutputProducts ParseFormats(IEnumerable<string> names, string where)
     {
-        var set = new HashSet<string>(StringComparer.Ordinal);
+        var set = OutputProducts.None;
+        var all = OutputNames.ProductNames;
         foreach (var n in names)
         {
             var f = n.ToLowerInvariant();
-            if (f == "all") { set.UnionWith(OutputFormats.All); continue; }
-            if (Array.IndexOf(OutputFormats.All, f) < 0)
-                throw new InputException(where, $"unknown output format '{n}'", InputException.DidYouMean(n, OutputFormats.All) ?? $"formats: {string.Join(", ", OutputFormats.All)}, all");
-            set.Add(f);
+            if (f == "all") { set |= OutputProducts.All; continue; }
+            int i = Array.IndexOf(all, f);
+            if (i < 0)
+                throw new InputException(where, $"unknown output format '{n}'", InputException.DidYouMean(n, all) ?? $"formats: {string.Join(", ", all)}, all");
+            set |= OutputNames.Products[i].Product;
         }
         return set;
     }

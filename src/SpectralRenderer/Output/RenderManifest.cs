@@ -1,0 +1,240 @@
+using System.Globalization;
+using System.Text.Json;
+using System.Text.Json.Nodes;
+using SpectralRenderer.Color;
+using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Spectra;
+
+namespace SpectralRenderer.Output;
+
+/// <summary>An object of the scene as render.json lists it: its id in object-id.png (1-based, 0 = background).</summary>
+public sealed record ManifestObject(int Id, string Name, string Material, string? Reflectance);
+
+/// <summary>A light as render.json lists it: k in mask-lit-&lt;k&gt;.png, its kind ("point", "spot", "directional") and spectrum name.</summary>
+public sealed record ManifestLight(int Index, string Name, string Kind, string? Spectrum);
+
+/// <summary>Rays traced, by kind, and the rate (million rays per second of render time).</summary>
+public sealed record ManifestRays(long Primary, long Shadow, long Secondary, long Total, double MraysPerSecond);
+
+/// <summary>
+/// render.json, typed: what a render folder holds and how to read it (the band grid, eq. 3's weights, the
+/// reference white, the objects of object-id.png, the lights of the masks). <see cref="ToJson"/> is the one place
+/// its keys are written and <see cref="Read"/> the one place they are read back.
+/// </summary>
+public sealed record RenderManifest
+{
+    public const string FileName = "render.json";
+
+    public string Tool { get; init; } = "spectral";
+    public string? Version { get; init; }
+    public required string Scene { get; init; }
+    public required string CreatedUtc { get; init; }
+    public required int Width { get; init; }
+    public required int Height { get; init; }
+    public required int SamplesPerPixel { get; init; }
+    public required BandGrid Grid { get; init; }
+    /// <summary>The radiance that band PNG level 65535 stands for (the brightest band value of the render).</summary>
+    public required float BandImageScale { get; init; }
+    /// <summary>"weighted" or "paper" (<see cref="BandIntegration"/>).</summary>
+    public required string Integration { get; init; }
+    public required int ObserverDegrees { get; init; }
+    public required TabulatedSpectrum ReferenceWhite { get; init; }
+    /// <summary>κ of eq. 3.</summary>
+    public required double Kappa { get; init; }
+    public required Xyz White { get; init; }
+    /// <summary>Eq. 3's weights per band: X = Σ_b Wx[b]·L[b] and so on.</summary>
+    public required double[] Wx { get; init; }
+    public required double[] Wy { get; init; }
+    public required double[] Wz { get; init; }
+    public required string Rgb { get; init; }
+    public required double Exposure { get; init; }
+    public required bool Adapt { get; init; }
+    public required IReadOnlyList<ManifestObject> Objects { get; init; }
+    public required IReadOnlyList<ManifestLight> Lights { get; init; }
+    public required double HighlightFraction { get; init; }
+    public required double RenderSeconds { get; init; }
+    public required ManifestRays Rays { get; init; }
+    public required int Threads { get; init; }
+    public required int Tiles { get; init; }
+    /// <summary>How the command ran (command line, load and build times), as the command gives it.</summary>
+    public JsonObject? Run { get; init; }
+    /// <summary>The files the render wrote, relative to its folder.</summary>
+    public IReadOnlyList<string>? Files { get; init; }
+    /// <summary>The resolved scene.</summary>
+    public JsonObject? ResolvedScene { get; init; }
+
+    /// <summary>Eq. 3 with the render's own weights.</summary>
+    public Xyz ToXyz(ReadOnlySpan<double> bands)
+    {
+        double x = 0, y = 0, z = 0;
+        for (int b = 0; b < Wx.Length; b++) { x += Wx[b] * bands[b]; y += Wy[b] * bands[b]; z += Wz[b] * bands[b]; }
+        return new Xyz(x, y, z);
+    }
+
+    public JsonObject ToJson()
+    {
+        static JsonArray Arr(ReadOnlySpan<double> v)
+        {
+            var a = new JsonArray();
+            foreach (double x in v) a.Add(JsonValue.Create(x));
+            return a;
+        }
+        var centres = new double[Grid.Count];
+        for (int b = 0; b < centres.Length; b++) centres[b] = Grid.Centre(b);
+        var objects = new JsonArray();
+        foreach (var o in Objects) objects.Add(new JsonObject { ["id"] = o.Id, ["name"] = o.Name, ["material"] = o.Material, ["reflectance"] = o.Reflectance });
+        var lights = new JsonArray();
+        foreach (var l in Lights) lights.Add(new JsonObject { ["index"] = l.Index, ["name"] = l.Name, ["kind"] = l.Kind, ["spectrum"] = l.Spectrum });
+        JsonArray? files = null;
+        if (Files is not null) { files = []; foreach (var f in Files) files.Add(JsonValue.Create(f)); }
+        return new JsonObject
+        {
+            ["tool"] = Tool,
+            ["version"] = Version,
+            ["scene"] = Scene,
+            ["created_utc"] = CreatedUtc,
+            ["width"] = Width,
+            ["height"] = Height,
+            ["spp"] = SamplesPerPixel,
+            ["bands"] = new JsonObject
+            {
+                ["grid"] = Grid.ToString(),
+                ["count"] = Grid.Count,
+                ["edges_nm"] = Arr(Grid.Edges()),
+                ["centres_nm"] = Arr(centres),
+                ["band_image_scale"] = BandImageScale,
+            },
+            ["colour"] = new JsonObject
+            {
+                ["integration"] = Integration,
+                ["observer"] = ObserverDegrees,
+                ["reference_white"] = ReferenceWhite.Name,
+                ["reference_white_spd"] = new JsonObject { ["wavelengths_nm"] = Arr(ReferenceWhite.Wavelengths), ["values"] = Arr(ReferenceWhite.Values) },
+                ["kappa"] = Kappa,
+                ["white_xyz"] = Arr([White.X, White.Y, White.Z]),
+                ["weights_x"] = Arr(Wx), ["weights_y"] = Arr(Wy), ["weights_z"] = Arr(Wz),
+                ["rgb"] = Rgb,
+                ["exposure"] = Exposure,
+                ["adapt"] = Adapt,
+            },
+            ["objects"] = objects,
+            ["lights"] = lights,
+            ["aov"] = new JsonObject { ["highlight_fraction"] = HighlightFraction },
+            ["timings_s"] = new JsonObject { ["render"] = RenderSeconds },
+            ["rays"] = new JsonObject
+            {
+                ["primary"] = Rays.Primary, ["shadow"] = Rays.Shadow, ["secondary"] = Rays.Secondary, ["total"] = Rays.Total,
+                ["mrays_per_s"] = Rays.MraysPerSecond,
+            },
+            ["threads"] = Threads,
+            ["tiles"] = Tiles,
+            ["run"] = Run?.DeepClone(),
+            ["files"] = files,
+            ["resolved_scene"] = ResolvedScene?.DeepClone(),
+        };
+    }
+
+    public string ToJsonText() => ToJson().ToJsonString(new JsonSerializerOptions { WriteIndented = true });
+
+    /// <summary>The render.json of folder <paramref name="dir"/>; a missing or broken one is bad input (file, JSON path, hint).</summary>
+    public static RenderManifest Read(string dir)
+    {
+        var path = Path.Combine(dir, FileName);
+        if (!File.Exists(path)) throw new InputException(dir, $"has no {FileName}", "give the -o folder of a 'spectral render' run");
+        JsonObject json;
+        try { json = JsonNode.Parse(File.ReadAllText(path)) as JsonObject ?? throw new InputException(path, "is not a JSON object"); }
+        catch (JsonException e) { throw new InputException($"{path}:{(e.LineNumber ?? 0) + 1}", $"broken JSON: {e.Message}"); }
+        return Parse(json, path);
+    }
+
+    /// <summary>A manifest from render.json's JSON; <paramref name="path"/> names it in errors.</summary>
+    public static RenderManifest Parse(JsonObject json, string path)
+    {
+        var r = new Reader(path);
+        var bands = r.Obj(json, "bands", "$");
+        var colour = r.Obj(json, "colour", "$");
+        var spd = r.Obj(colour, "reference_white_spd", "$.colour");
+        var w = r.Numbers(colour, "white_xyz", "$.colour");
+        if (w.Length != 3) throw r.Missing("$.colour.white_xyz", "three numbers X, Y, Z");
+        var objects = r.Arr(json, "objects", "$").Select((o, i) => new ManifestObject(
+            r.Int(o, "id", $"$.objects[{i}]"), r.Str(o, "name", $"$.objects[{i}]"), r.Str(o, "material", $"$.objects[{i}]"), r.OptStr(o, "reflectance"))).ToArray();
+        var lights = r.Arr(json, "lights", "$").Select((l, i) => new ManifestLight(
+            r.OptInt(l, "index") ?? i, r.OptStr(l, "name") ?? $"light {i}", r.OptStr(l, "kind") ?? "point", r.OptStr(l, "spectrum"))).ToArray();
+        var rays = json["rays"] as JsonObject;
+        string grid = r.Str(bands, "grid", "$.bands");
+        return new RenderManifest
+        {
+            Tool = r.OptStr(json, "tool") ?? "spectral",
+            Version = r.OptStr(json, "version"),
+            Scene = r.OptStr(json, "scene") ?? "",
+            CreatedUtc = r.OptStr(json, "created_utc") ?? "",
+            Width = r.Int(json, "width", "$"),
+            Height = r.Int(json, "height", "$"),
+            SamplesPerPixel = r.OptInt(json, "spp") ?? 1,
+            Grid = BandGrid.Parse(grid, $"{path}: $.bands.grid"),
+            BandImageScale = (float)(r.OptNumber(bands, "band_image_scale") ?? 0),
+            Integration = r.Str(colour, "integration", "$.colour"),
+            ObserverDegrees = r.Int(colour, "observer", "$.colour"),
+            ReferenceWhite = new TabulatedSpectrum(r.OptStr(colour, "reference_white") ?? "white",
+                r.Numbers(spd, "wavelengths_nm", "$.colour.reference_white_spd"), r.Numbers(spd, "values", "$.colour.reference_white_spd"), Extrapolation.Clamp),
+            Kappa = r.OptNumber(colour, "kappa") ?? 0,
+            White = new Xyz(w[0], w[1], w[2]),
+            Wx = r.Numbers(colour, "weights_x", "$.colour"),
+            Wy = r.Numbers(colour, "weights_y", "$.colour"),
+            Wz = r.Numbers(colour, "weights_z", "$.colour"),
+            Rgb = r.OptStr(colour, "rgb") ?? "srgb",
+            Exposure = r.OptNumber(colour, "exposure") ?? 1,
+            Adapt = (bool?)r.Value(colour, "adapt") ?? false,
+            Objects = objects,
+            Lights = lights,
+            HighlightFraction = json["aov"] is JsonObject aov ? r.OptNumber(aov, "highlight_fraction") ?? 0.1 : 0.1,
+            RenderSeconds = json["timings_s"] is JsonObject t ? r.OptNumber(t, "render") ?? 0 : 0,
+            Rays = rays is null ? new ManifestRays(0, 0, 0, 0, 0)
+                : new ManifestRays(r.OptLong(rays, "primary") ?? 0, r.OptLong(rays, "shadow") ?? 0, r.OptLong(rays, "secondary") ?? 0,
+                    r.OptLong(rays, "total") ?? 0, r.OptNumber(rays, "mrays_per_s") ?? 0),
+            Threads = r.OptInt(json, "threads") ?? 0,
+            Tiles = r.OptInt(json, "tiles") ?? 0,
+            Run = json["run"] as JsonObject,
+            Files = json["files"] is JsonArray fs ? fs.Select(f => (string?)f ?? "").ToArray() : null,
+            ResolvedScene = json["resolved_scene"] as JsonObject,
+        };
+    }
+
+    /// <summary>Typed reads of render.json's fields; a missing or mistyped field is bad input naming its JSON path.</summary>
+    sealed class Reader(string path)
+    {
+        public InputException Missing(string at, string what) =>
+            new($"{path}: {at}", $"is missing or not {what}", "re-render the scene with this version");
+
+        public JsonValue? Value(JsonObject o, string key) => o[key] as JsonValue;
+
+        public JsonObject Obj(JsonObject o, string key, string at) => o[key] as JsonObject ?? throw Missing($"{at}.{key}", "an object");
+
+        public JsonObject[] Arr(JsonObject o, string key, string at) =>
+            (o[key] as JsonArray ?? throw Missing($"{at}.{key}", "an array")).Select((e, i) => e as JsonObject ?? throw Missing($"{at}.{key}[{i}]", "an object")).ToArray();
+
+        public string Str(JsonObject o, string key, string at) => OptStr(o, key) ?? throw Missing($"{at}.{key}", "a string");
+
+        public string? OptStr(JsonObject o, string key) => Value(o, key) is { } v && v.TryGetValue(out string? s) ? s : null;
+
+        public int Int(JsonObject o, string key, string at) => OptInt(o, key) ?? throw Missing($"{at}.{key}", "an integer");
+
+        public int? OptInt(JsonObject o, string key) => OptNumber(o, key) is { } d && d == Math.Floor(d) && Math.Abs(d) <= int.MaxValue ? (int)d : null;
+
+        public long? OptLong(JsonObject o, string key) => OptNumber(o, key) is { } d && d == Math.Floor(d) ? (long)d : null;
+
+        public double? OptNumber(JsonObject o, string key) => Value(o, key) is { } v && v.TryGetValue(out double d) ? d : null;
+
+        public double[] Numbers(JsonObject o, string key, string at)
+        {
+            var a = o[key] as JsonArray ?? throw Missing($"{at}.{key}", "an array of numbers");
+            var r = new double[a.Count];
+            for (int i = 0; i < r.Length; i++)
+                r[i] = a[i] is JsonValue v && v.TryGetValue(out double d) ? d : throw Missing($"{at}.{key}[{i}]", "a number");
+            return r;
+        }
+    }
+
+    /// <summary>"yyyy-MM-ddTHH:mm:ssZ" of now, as render.json records it.</summary>
+    public static string Now() => DateTime.UtcNow.ToString("yyyy-MM-ddTHH:mm:ssZ", CultureInfo.InvariantCulture);
+}

@@ -1,0 +1,67 @@
+using SpectralRenderer.Color;
+
+namespace SpectralRenderer.Scenes;
+
+/// <summary>The products a render can write (the scene's "output.formats", or --formats), as flags.</summary>
+[Flags]
+public enum OutputProducts
+{
+    None = 0,
+    /// <summary>preview.png: eq. 3 then eq. 4 / sRGB, 8 bits.</summary>
+    Png = 1,
+    /// <summary>bands/: one 16-bit PNG per band, and the mosaic bands.png (Fig. 2).</summary>
+    Bands = 2,
+    /// <summary>spectral.exr: the spectral OpenEXR layout with R, G, B and X, Y, Z.</summary>
+    Exr = 4,
+    /// <summary>spectral.hdr / spectral.img: the ENVI cube.</summary>
+    Envi = 8,
+    /// <summary>spectral.npy: the H × W × N NumPy array.</summary>
+    Npy = 16,
+    /// <summary>object-id.png and the analysis images (lit and highlight masks, ground-truth reflectance).</summary>
+    Aov = 32,
+    /// <summary>lights/: the per-light transfer for relighting (opt-in: not in <see cref="All"/>; "light_groups" in a scene).</summary>
+    Lights = 64,
+    All = Png | Bands | Exr | Envi | Npy | Aov,
+}
+
+/// <summary>How spectral.exr is compressed.</summary>
+public enum ExrCompressionChoice
+{
+    /// <summary>"zip": deflate the chunks whose samples repeat, store the rest.</summary>
+    Zip,
+    /// <summary>"zip-all": deflate every chunk (smallest, slowest).</summary>
+    ZipAll,
+    /// <summary>"none": no compression.</summary>
+    None,
+}
+
+/// <summary>The names a scene file and the command line use for <see cref="OutputProducts"/> and <see cref="ExrCompressionChoice"/>.</summary>
+public static class OutputNames
+{
+    public static readonly IReadOnlyList<(OutputProducts Product, string Name)> Products =
+    [
+        (OutputProducts.Png, "png"), (OutputProducts.Bands, "bands"), (OutputProducts.Exr, "exr"),
+        (OutputProducts.Envi, "envi"), (OutputProducts.Npy, "npy"), (OutputProducts.Aov, "aov"), (OutputProducts.Lights, "lights"),
+    ];
+
+    public static readonly IReadOnlyList<(ExrCompressionChoice Choice, string Name)> ExrCompressions =
+        [(ExrCompressionChoice.Zip, "zip"), (ExrCompressionChoice.ZipAll, "zip-all"), (ExrCompressionChoice.None, "none")];
+
+    public static string[] ProductNames => Products.Select(p => p.Name).ToArray();
+    public static string[] ExrCompressionNames => ExrCompressions.Select(p => p.Name).ToArray();
+
+    public static string Name(ExrCompressionChoice c) => ExrCompressions.First(p => p.Choice == c).Name;
+}
+
+/// <summary>Output choices of a render (the scene's "output" block, overridable on the command line).</summary>
+public sealed class OutputOptions
+{
+    public RgbSpace Rgb { get; set; } = RgbSpace.Srgb;
+    public double Exposure { get; set; } = 1.0;
+    /// <summary>Bradford-adapt from the scene's reference white to the RGB space's white (off by default: §3.3 is about seeing the light's colour).</summary>
+    public bool Adapt { get; set; }
+    /// <summary>A pixel is in a highlight when its specular term's luminance exceeds this fraction of the diffuse term's.</summary>
+    public double HighlightFraction { get; set; } = 0.1;
+    public OutputProducts Products { get; set; } = OutputProducts.All;
+    public ExrCompressionChoice ExrCompression { get; set; } = ExrCompressionChoice.Zip;
+}

@@ -1,0 +1,29 @@
+using System.Numerics;
+
+namespace SpectralRenderer.Scenes;
+
+/// <summary>
+/// The shape of the specular lobe of eq. 2: the scalar factor that multiplies I_k·m_spec·d_k·c_spot,k.
+/// A new model is one subclass (one file) plus one line in <see cref="SpecularModels.ByName"/>.
+/// </summary>
+public abstract class SpecularModel
+{
+    /// <summary>The name a scene file gives it (its "model" key) and render.json reports.</summary>
+    public abstract string Name { get; }
+
+    /// <summary>The factor for unit normal n, unit light direction l, unit view direction v, n·l > 0.</summary>
+    public abstract float Evaluate(Vector3 n, Vector3 l, Vector3 v, float nl, float shininess);
+}
+
+/// <summary>The specular models a scene file can name: the one registration point for a new model.</summary>
+public static class SpecularModels
+{
+    public static readonly SpecularModel Default = new BlinnPhongModel();
+
+    public static readonly IReadOnlyDictionary<string, SpecularModel> ByName = new Dictionary<string, SpecularModel>(StringComparer.Ordinal)
+    {
+        ["blinn-phong"] = Default,
+        ["blinn"] = Default,
+        ["phong"] = new PhongModel(),
+    };
+}

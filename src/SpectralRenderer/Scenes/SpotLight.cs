@@ -1,0 +1,35 @@
+using System.Numerics;
+using System.Runtime.CompilerServices;
+
+namespace SpectralRenderer.Scenes;
+
+/// <summary>
+/// A spot light at <see cref="Position"/> shining towards <see cref="Direction"/>: c_spot = (cos θ)^e inside
+/// the cone of half-angle θ_c and 0 outside, θ the angle between the axis and the direction to the point.
+/// </summary>
+public sealed class SpotLight : Light
+{
+    public Vector3 Position { get; init; }
+    /// <summary>Unit direction the light shines towards.</summary>
+    public Vector3 Direction { get; init; }
+    public DistanceFalloff Falloff { get; init; } = DistanceFalloff.None;
+    /// <summary>cos of the cutoff half-angle θ_c.</summary>
+    public float CosCutoff { get; init; } = -1;
+    public float Exponent { get; init; }
+
+    public override string Type => "spot";
+
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]   // hot: once per light per hit, compiled for this CPU at first call
+    public override bool Illuminate(Vector3 p, out LightSample sample)
+    {
+        var toLight = Position - p;
+        float dist = toLight.Length();
+        if (dist == 0) { sample = default; return false; }
+        var l = toLight / dist;
+        float c = Vector3.Dot(-l, Direction);
+        float spot = c < CosCutoff ? 0f : MathF.Pow(Math.Max(c, 0f), Exponent);
+        if (spot == 0) { sample = default; return false; }
+        sample = new LightSample(l, dist, spot, Falloff.At(dist));
+        return true;
+    }
+}
