@@ -10,7 +10,7 @@ public static class ColorsCommand
 {
     const string Help = """
         usage: spectral colors [--illuminant NAME] [--observer 2|10] [--bands 380:780:20]
-                               [--integration weighted|paper] [--rgb srgb|paper] [--csv]
+                               [--integration exact|weighted|paper] [--rgb srgb|paper] [--csv]
 
         Prints the 24 ColorChecker patches (Ohta reflectances) lit by a light: XYZ (white Y = 1),
         CIELAB, linear RGB and 8-bit RGB, computed with the band scheme, and each patch's
@@ -20,7 +20,8 @@ public static class ColorsCommand
                               led-yag, or file.csv:column
           --observer 2|10     CIE 1931 2° (default) or CIE 1964 10°
           --bands S:E:N       band grid, default 380:780:20
-          --integration       weighted (default: spectral prefiltering) or paper (eq. 3 with band means)
+          --integration       exact (default: ∫x̄·E·R dλ on the full tables), weighted (spectral
+                              prefiltering) or paper (eq. 3 with band means)
           --rgb srgb|paper    sRGB (IEC 61966-2-1, default) or the paper's eq. 4 matrix
           --csv               machine-readable CSV instead of a table
         """;
@@ -35,7 +36,7 @@ public static class ColorsCommand
         var light = SpectrumLibrary.Resolve(lightName, Directory.GetCurrentDirectory(), "--illuminant");
         var observer = Observer.FromDegrees(a.Value("--observer") ?? "2");
         var grid = BandGrid.Parse(a.Value("--bands") ?? "380:780:20");
-        var scheme = ParseScheme(a.Value("--integration") ?? "weighted", "--integration");
+        var scheme = ParseScheme(a.Value("--integration") ?? "exact", "--integration");
         var rgb = RgbSpace.Parse(a.Value("--rgb") ?? "srgb");
         light.RequireCoverage(grid.Start, grid.End, "--illuminant");
         for (int p = 1; p <= ColorChecker.PatchCount; p++) ColorChecker.Patch(p).RequireCoverage(grid.Start, grid.End, "--bands");
@@ -75,8 +76,9 @@ public static class ColorsCommand
 
     public static BandIntegration ParseScheme(string s, string where) => s.ToLowerInvariant() switch
     {
+        "exact" => BandIntegration.Exact,
         "weighted" => BandIntegration.Weighted,
         "paper" => BandIntegration.Paper,
-        _ => throw new InputException(where, $"unknown band integration '{s}'", "use weighted or paper"),
+        _ => throw new InputException(where, $"unknown band integration '{s}'", "use exact, weighted or paper"),
     };
 }

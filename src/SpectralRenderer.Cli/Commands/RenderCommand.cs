@@ -15,7 +15,7 @@ public static class RenderCommand
 {
     public const string Help = """
         usage: spectral render SCENE.json [-o OUTDIR] [--width W] [--height H] [--bands N | S:E:N]
-                               [--spp N] [--threads N] [--rgb srgb|paper] [--integration weighted|paper]
+                               [--spp N] [--threads N] [--rgb srgb|paper] [--integration exact|weighted|paper]
                                [--formats LIST] [--exr-compression zip|zip-all|none] [--models DIR] [--quiet]
 
         Renders a scene file (docs/scene-format.md) with the paper's eq. 2 in every band and writes:
@@ -33,9 +33,10 @@ public static class RenderCommand
           --spp N            samples per pixel (1 = pixel centre; more = stratified jitter)
           --threads N        worker threads (default: all cores); output is identical for any N
           --rgb MODE         srgb (default) or paper (the paper's eq. 4, linear, clipped)
-          --integration S    weighted (default, spectral prefiltering) or paper
-          --formats LIST     comma-separated from png,bands,exr,envi,npy,aov,lights or all (default: all but lights);
-                             lights = the per-light transfer in lights/, for 'spectral relight' and 'spectral view' 
+          --integration S    exact (default: band values and colour integrated on the full tables),
+                             weighted (band products, prefiltered colour weights) or paper (eq. 3)
+          --formats LIST     comma-separated from png,bands,exr,envi,npy,aov,lights, or all (every one but lights,
+                             the default); lights = the per-light transfer in lights/ for 'relight' and 'view'
           --exr-compression  zip (default: deflate the chunks whose samples repeat, store noisy ones),
                              zip-all (deflate every chunk: smallest file, slower) or none
           --models DIR       a folder to search for mesh files (after the scene's folder, before $SPECTRAL_MODELS)
@@ -59,6 +60,7 @@ public static class RenderCommand
         var loadClock = System.Diagnostics.Stopwatch.StartNew();
         var scene = SceneLoader.Load(scenePath, overrides);
         double loadSeconds = loadClock.Elapsed.TotalSeconds;
+        foreach (var w in scene.Warnings) stderr.WriteLine(w);
         PrepareOutputFolder(outDir);
 
         using var cancel = new CancellationTokenSource();

@@ -73,7 +73,8 @@ public static class PaperExperiments
             RenderOutputWriter.Write(scene, result, dir);
             if (file.StartsWith("paper-3.1", StringComparison.Ordinal))
             {   // Fig. 3 also in the paper's own eq. 4.
-                var eq4 = RenderOutputWriter.Preview(result.Image, new DisplayEncoder(scene.Colorimeter, RgbSpace.Paper, scene.Output.Exposure));
+                // The pixels' own colours (exact on the tables by default), as preview.png uses them.
+                var eq4 = RenderOutputWriter.Preview(result.Image.Width, result.Image.Height, XyzPlanes.FromPixels(result.Xyz!), new DisplayEncoder(scene.Colorimeter, RgbSpace.Paper, scene.Output.Exposure));
                 AtomicFile.Write(Path.Combine(dir, "preview-eq4.png"), s => PngWriter.WriteRgb8(s, result.Image.Width, result.Image.Height, eq4));
             }
             double write = clock.Elapsed.TotalSeconds;

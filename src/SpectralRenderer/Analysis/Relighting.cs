@@ -83,11 +83,11 @@ public static class Relighting
         if (transfer.Width != scene.Camera.Width || transfer.Height != scene.Camera.Height || transfer.Bands != scene.Bands)
             throw new InputException(src.Dir, $"its lights/ are {transfer.Width}×{transfer.Height}×{transfer.Bands} but the scene rebuilds as {scene.Camera.Width}×{scene.Camera.Height}×{scene.Bands}",
                 "the scene file changed since the render; render again");
-        var image = transfer.Relight(scene);
+        var (image, xyz, fallback) = transfer.Relight(scene);
         var (dy, sy) = transfer.CentreLuminance(scene);
         var result = new RenderResult
         {
-            Image = image, ObjectIds = transfer.ObjectIds, LitMasks = transfer.LitMasks, DiffuseY = dy, SpecularY = sy,
+            Image = image, Xyz = xyz, FallbackPixels = fallback, ObjectIds = transfer.ObjectIds, LitMasks = transfer.LitMasks, DiffuseY = dy, SpecularY = sy,
             Rays = new RayCounters(), Elapsed = clock.Elapsed, Threads = Environment.ProcessorCount, Tiles = 0,
         };
         var compute = clock.Elapsed;
@@ -99,7 +99,7 @@ public static class Relighting
             {
                 ["from"] = Path.GetFullPath(src.Dir),
                 ["from_created_utc"] = src.Manifest.CreatedUtc,
-                ["method"] = "per-light transfer (lights/): L_b = static_b + sum_c F_c * I_k,b * M_c,b; no rays traced",
+                ["method"] = "per-light transfer (lights/): L_b = sum_c F_c * P_c,b and XYZ = sum_c F_c * XYZ_c with P_c rebuilt from the new lights' term tables; no rays traced",
                 ["changes"] = new JsonArray(changes.Select(c => (JsonNode)new JsonObject
                     { ["light"] = c.Light, ["spectrum"] = c.Spectrum, ["intensity"] = c.Intensity }).ToArray()),
                 ["white"] = white,

@@ -25,6 +25,11 @@ public sealed class RenderFolder
     public TabulatedSpectrum ReferenceWhite => Manifest.ReferenceWhite;
     public int ObserverDegrees => Manifest.ObserverDegrees;
     public string Integration => Manifest.Integration;
+    /// <summary>
+    /// Each pixel's colour as the render computed it (spectral.exr's X, Y, Z planes: with exact integration the colour of
+    /// the pixel's full-resolution spectrum), or null when the folder has no EXR (then eq. 3 on the cube stands in).
+    /// </summary>
+    public (float[] X, float[] Y, float[] Z)? PixelXyz { get; init; }
 
     public static RenderFolder Open(string dir)
     {
@@ -35,7 +40,15 @@ public sealed class RenderFolder
         if (image.Width != manifest.Width || image.Height != manifest.Height || image.Bands != grid.Count)
             throw new InputException(dir, $"its spectral cube is {image.Width}×{image.Height}×{image.Bands} but render.json describes {manifest.Width}×{manifest.Height}×{grid.Count}",
                 "the folder mixes two renders; render again into an empty folder");
-        return new RenderFolder { Path = dir, Manifest = manifest, Image = image, ObjectIds = ReadIds(dir, image) };
+        (float[], float[], float[])? pixelXyz = null;
+        var exr = System.IO.Path.Combine(dir, "spectral.exr");
+        if (File.Exists(exr))
+        {
+            var f = ExrReader.Read(exr);
+            if (f.OtherChannels.TryGetValue("X", out var px) && f.OtherChannels.TryGetValue("Y", out var py) && f.OtherChannels.TryGetValue("Z", out var pz))
+                pixelXyz = (px, py, pz);
+        }
+        return new RenderFolder { Path = dir, Manifest = manifest, Image = image, ObjectIds = ReadIds(dir, image), PixelXyz = pixelXyz };
     }
 
     static int[] ReadIds(string dir, SpectralImage image)
@@ -53,6 +66,17 @@ public sealed class RenderFolder
 
     /// <summary>Eq. 3 with the render's own weights.</summary>
     public Xyz ToXyz(ReadOnlySpan<double> bands) => Manifest.ToXyz(bands);
+
+    /// <summary>The mean colour of the pixels showing object <paramref name="index"/>: of the render's own pixel XYZ when it has them, else eq. 3 on the mean spectrum.</summary>
+    public Xyz MeanXyz(int index)
+    {
+        if (PixelXyz is not { } p) return ToXyz(MeanSpectrum(index).Mean);
+        double x = 0, y = 0, z = 0;
+        int count = 0;
+        for (int i = 0; i < ObjectIds.Length; i++)
+            if (ObjectIds[i] == index) { x += p.X[i]; y += p.Y[i]; z += p.Z[i]; count++; }
+        return count == 0 ? new Xyz(0, 0, 0) : new Xyz(x / count, y / count, z / count);
+    }
 
     /// <summary>The mean spectrum of all pixels showing object <paramref name="index"/>, and their count.</summary>
     public (double[] Mean, int Pixels) MeanSpectrum(int index)

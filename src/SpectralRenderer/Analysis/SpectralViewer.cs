@@ -14,8 +14,9 @@ namespace SpectralRenderer.Analysis;
 /// The spectral viewer of a render folder: <c>viewer.html</c> (a self-contained page: no network reference, its
 /// script inline) and <c>viewer-data.js</c> beside it (the data, so the page also opens from file://). The data are
 /// the band grid and the render's eq. 3 weights, the object seen per pixel with its ground-truth reflectance, and
-/// either the per-light transfer (lights/: factors and component band values, plus candidate light spectra as band
-/// values of the render's scheme, with their CIE 13.3 Ra and CIE 224 Rf) or, without it, the spectral cube.
+/// either the per-light transfer (lights/: factors and each component's band values and XYZ, plus the same under
+/// candidate lights — computed from the render's term tables with each light given that spectrum, so the page's colour
+/// is the render's exact colour — with their CIE 13.3 Ra and CIE 224 Rf) or, without it, the spectral cube.
 /// </summary>
 public static class SpectralViewer
 {
@@ -68,42 +69,58 @@ public static class SpectralViewer
         var binary = new Dictionary<string, byte[]>();
         if (transfer is not null)
         {
+            // Candidate lights: P of every component that follows a light, per unit intensity, from the term tables of
+            // the render's scene with every light given that spectrum (so the page's colour is exact, not eq. 3 on bands).
+            var src = Relighting.Open(dir);
             var resolvedLights = manifest.ResolvedScene?["lights"] as JsonArray;
-            var lights = new JsonArray();
+            var comps = transfer["components"]!.AsArray();
+            var components = LightTransferFiles.Read(dir, Relighting.ChangedScene(src, [], null)).Components;
             var presets = new JsonArray();
-            var seen = new HashSet<string>();
-            void Preset(string name, double[] unitBands, TabulatedSpectrum? spectrum)
+            var lights = new JsonArray();
+            JsonArray PresetComponents(Func<int, float[]?> p) => new(Enumerable.Range(0, comps.Count).Select(c => p(c) is { } v ? (JsonNode)Numbers(v.Select(x => (double)x)) : null).ToArray());
+            void Add(string name, JsonArray values, TabulatedSpectrum? spectrum)
             {
-                if (!seen.Add(name)) return;
                 double? ra = null, rf = null;
                 if (spectrum is not null)
                 {
                     try { ra = ColorRenderingIndex.Of(spectrum).Ra; rf = ColorFidelityIndex.Of(spectrum).Rf; }
                     catch (Exception e) when (e is ArgumentException or InvalidOperationException) { }
                 }
-                presets.Add(new JsonObject { ["name"] = name, ["band_values"] = Numbers(unitBands), ["ra"] = ra, ["rf"] = rf });
+                presets.Add(new JsonObject { ["name"] = name, ["components"] = values, ["ra"] = ra, ["rf"] = rf });
             }
             var tl = transfer["lights"]!.AsArray();
             for (int k = 0; k < tl.Count; k++)
             {
                 var l = tl[k]!;
                 double intensity = (double?)resolvedLights?[k]?["intensity"] ?? 1;
-                var bands = l["band_values"]!.AsArray().Select(v => (double)v!).ToArray();
                 string spectrumName = (string?)l["spectrum"] ?? $"light {k}";
-                string preset = "render: " + spectrumName;
+                string preset = $"render: {spectrumName} ({l["name"]})";
                 TabulatedSpectrum? s = null;
                 try { s = SpectrumLibrary.Resolve(spectrumName); } catch (InputException) { }
-                Preset(preset, intensity > 0 ? bands.Select(v => v / intensity).ToArray() : s is not null ? cm.Project(s) : bands, s);
+                int kk = k;
+                Add(preset, PresetComponents(c => components[c].FollowsLight && components[c].Light == kk && intensity > 0
+                    ? comps[c]!["band_values"]!.AsArray().Concat(comps[c]!["xyz"]!.AsArray()).Select(v => (float)((double)v! / intensity)).ToArray() : null), s);
                 lights.Add(new JsonObject { ["name"] = (string?)l["name"], ["preset"] = preset, ["intensity"] = intensity });
             }
-            foreach (var p in Presets) { var s = SpectrumLibrary.Resolve(p); Preset(p, cm.Project(s), s); }
+            foreach (var name in Presets)
+            {
+                var scene = Relighting.ChangedScene(src, src.LightNames.Select(l => new LightChange(l, name, 1)).ToList(), null);
+                var tables = new Rendering.TermTables(scene);
+                var p = new float[scene.PaddedBands];
+                Add(name, PresetComponents(c =>
+                {
+                    if (!components[c].FollowsLight) return null;
+                    components[c].BandValues(tables, p);
+                    return p.AsSpan(0, grid.Count + 3).ToArray();
+                }), SpectrumLibrary.Resolve(name));
+            }
             data["lights"] = lights;
             data["presets"] = presets;
-            data["components"] = new JsonArray(transfer["components"]!.AsArray().Select(c => (JsonNode)new JsonObject
+            data["components"] = new JsonArray(comps.Select(c => (JsonNode)new JsonObject
             {
                 ["light"] = (int)c!["light"]!, ["follows_light"] = (bool)c["follows_light"]!, ["key"] = (string?)c["key"],
                 ["offset"] = (int)c["offset"]!, ["count"] = (int)c["count"]!,
-                ["band_values"] = c["band_values"]!.DeepClone(), ["material_band_values"] = c["material_band_values"]!.DeepClone(),
+                ["band_values"] = c["band_values"]!.DeepClone(), ["xyz"] = c["xyz"]!.DeepClone(),
             }).ToArray());
             var (_, f) = ReadNpy(Path.Combine(dir, LightTransferFiles.Folder, "factors.npy"));
             using (var ps = File.OpenRead(Path.Combine(dir, LightTransferFiles.Folder, "pixels.npy")))
@@ -111,6 +128,8 @@ public static class SpectralViewer
             binary["factors"] = System.Runtime.InteropServices.MemoryMarshal.AsBytes(f.AsSpan()).ToArray();
             var (_, idp) = ReadNpy(Path.Combine(dir, LightTransferFiles.Folder, "ids.npy"));
             for (int i = 0; i < n; i++) ids[i] = (ushort)idp[i];
+            var fallback = Enumerable.Range(0, n).Where(i => idp[2 * n + i] != 0).ToArray();
+            binary["fallback"] = System.Runtime.InteropServices.MemoryMarshal.AsBytes(fallback.AsSpan()).ToArray();
         }
         else
         {

@@ -13,9 +13,12 @@ public sealed class Colorimeter
     /// <summary>K_m, the maximum luminous efficacy of photopic vision (CIE 015:2018).</summary>
     public const double Km = 683.0;
 
+    /// <param name="whiteRadiance">The radiance of a perfect white diffuser per unit irradiance head-on: 1 in the paper's
+    /// radiometry (eq. 2 without units), 1/π in physical radiometry — so that relative κ gives that diffuser Y = 1 in both.</param>
     public Colorimeter(BandGrid grid, Observer observer, TabulatedSpectrum referenceLight,
-        BandIntegration scheme = BandIntegration.Weighted, bool absolute = false)
+        BandIntegration scheme = BandIntegration.Exact, bool absolute = false, double whiteRadiance = 1.0)
     {
+        WhiteRadiance = whiteRadiance;
         Grid = grid;
         Observer = observer;
         ReferenceLight = referenceLight;
@@ -58,12 +61,49 @@ public sealed class Colorimeter
         }
 
         var light = Project(referenceLight);
+        for (int b = 0; b < n; b++) light[b] *= whiteRadiance;
         double yWhite = 0;
         for (int b = 0; b < n; b++) yWhite += Wy[b] * light[b];
         Kappa = absolute ? Km : 1.0 / yWhite;
         for (int b = 0; b < n; b++) { Wx[b] *= Kappa; Wy[b] *= Kappa; Wz[b] *= Kappa; }
-        White = ToXyz(light);
+        White = scheme == BandIntegration.Exact ? OfProduct(referenceLight, null) * whiteRadiance : ToXyz(light);
     }
+
+    /// <summary>1 (paper radiometry) or 1/π (physical): the white diffuser's radiance per unit irradiance.</summary>
+    public double WhiteRadiance { get; }
+
+    /// <summary>
+    /// κ·∫ x̄·a·b dλ (and ȳ, z̄) over the band range, exactly on the tables: the colour of the radiance a·b
+    /// (a light on a material component; b null for a radiance a alone) at full resolution, whatever the bands.
+    /// </summary>
+    public Xyz OfProduct(TabulatedSpectrum a, TabulatedSpectrum? b)
+    {
+        double lo = Grid.Start, hi = Grid.End;
+        return new Xyz(
+            Kappa * TabulatedSpectrum.IntegrateProduct(Observer.XBar, a, b, lo, hi),
+            Kappa * TabulatedSpectrum.IntegrateProduct(Observer.YBar, a, b, lo, hi),
+            Kappa * TabulatedSpectrum.IntegrateProduct(Observer.ZBar, a, b, lo, hi));
+    }
+
+    /// <summary>
+    /// The band values of the radiance a·b as this scheme defines them: the exact band means of the product
+    /// (<see cref="BandIntegration.Exact"/>) or the product of the factors' band values (weighted, paper).
+    /// </summary>
+    public double[] ProjectProduct(TabulatedSpectrum a, TabulatedSpectrum b)
+    {
+        if (Scheme == BandIntegration.Exact) return BandProjection.MeansOfProduct(a, b, Grid);
+        var pa = Project(a);
+        var pb = Project(b);
+        for (int i = 0; i < pa.Length; i++) pa[i] *= pb[i];
+        return pa;
+    }
+
+    /// <summary>
+    /// The colour of the radiance a·b as this scheme defines it: exact (<see cref="OfProduct"/>) or eq. 3 on its
+    /// band values.
+    /// </summary>
+    public Xyz XyzOfProduct(TabulatedSpectrum a, TabulatedSpectrum b) =>
+        Scheme == BandIntegration.Exact ? OfProduct(a, b) : ToXyz(ProjectProduct(a, b));
 
     public BandGrid Grid { get; }
     public Observer Observer { get; }
@@ -100,12 +140,10 @@ public sealed class Colorimeter
         return new Xyz(x, y, z);
     }
 
-    /// <summary>XYZ of a reflectance lit head-on by the reference light: L_b = E_b · R_b.</summary>
-    public Xyz OfReflectance(TabulatedSpectrum reflectance)
-    {
-        var e = Project(ReferenceLight);
-        var r = Project(reflectance);
-        for (int b = 0; b < e.Length; b++) e[b] *= r[b];
-        return ToXyz(e);
-    }
+    /// <summary>XYZ of a reflectance lit head-on by the reference light at unit intensity (the white diffuser's radiance factor included).</summary>
+    public Xyz OfReflectance(TabulatedSpectrum reflectance) => OfReflectance(reflectance, ReferenceLight);
+
+    /// <summary>XYZ of a reflectance lit head-on by <paramref name="light"/> (an irradiance; radiance = light · R · <see cref="WhiteRadiance"/>).</summary>
+    public Xyz OfReflectance(TabulatedSpectrum reflectance, TabulatedSpectrum light) =>
+        XyzOfProduct(light, reflectance) * WhiteRadiance;
 }

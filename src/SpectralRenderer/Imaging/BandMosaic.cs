@@ -15,21 +15,34 @@ public static class BandMosaic
 
     /// <summary>As <see cref="Build(SpectralImage, float, int)"/>, from band-sequential planes (<see cref="SpectralImage.CopyBands"/>).</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    internal static (int Width, int Height, byte[] Pixels) Build(int width, int height, float[] bands, float scale, int maxThumb = 256)
+    internal static (int Width, int Height, byte[] Pixels) Build(int width, int height, float[] bands, float scale, int maxThumb = 256) =>
+        Build(width, height, bands, scale, maxThumb, null);
+
+    /// <summary>
+    /// As above, each thumbnail with its band's wavelengths ("380-400 nm") written in a strip above it in a 3 × 5 pixel
+    /// font (twice the size when the thumbnail is wide enough), white on the mosaic's dark grey.
+    /// </summary>
+    internal static (int Width, int Height, byte[] Pixels) Build(int width, int height, float[] bands, float scale, int maxThumb, Spectra.BandGrid? labels)
     {
         int plane = width * height, n = bands.Length / plane;
         int cols = (int)Math.Ceiling(Math.Sqrt(n * 1.25));
         int rows = (n + cols - 1) / cols;
         int step = Math.Max(1, (int)Math.Ceiling(Math.Max(width, height) / (double)maxThumb));
         int tw = (width + step - 1) / step, th = (height + step - 1) / step;
-        int w = cols * tw + (cols + 1) * Gap, h = rows * th + (rows + 1) * Gap;
+        string[]? text = labels is null ? null : Enumerable.Range(0, n).Select(b => Label(labels, b)).ToArray();
+        int glyph = text is not null && text.Max(t => t.Length) * 8 <= tw ? 2 : 1;
+        int strip = text is null ? 0 : 5 * glyph + 2;
+        int w = cols * tw + (cols + 1) * Gap, h = rows * (th + strip) + (rows + 1) * Gap;
         var px = new byte[w * h];
         Array.Fill(px, (byte)40);
+        if (text is not null)
+            for (int b = 0; b < n; b++)
+                DrawText(px, w, Gap + b % cols * (tw + Gap), Gap + b / cols * (th + Gap + strip), tw, text[b], glyph);
         // Bands fill disjoint thumbnails: one task each.
         Parallel.For(0, n, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (b) =>
         {
             var band = bands.AsSpan(b * plane, plane);
-            int ox = Gap + b % cols * (tw + Gap), oy = Gap + b / cols * (th + Gap);
+            int ox = Gap + b % cols * (tw + Gap), oy = Gap + b / cols * (th + Gap + strip) + strip;
             for (int ty = 0; ty < th; ty++)
             {
                 int y0 = ty * step, y1 = Math.Min(height, y0 + step);
@@ -49,5 +62,38 @@ public static class BandMosaic
             }
         });
         return (w, h, px);
+    }
+
+    static string Label(Spectra.BandGrid g, int b) =>
+        string.Create(System.Globalization.CultureInfo.InvariantCulture, $"{g.Lower(b):0.#}-{g.Upper(b):0.#} nm");
+
+    // 3 × 5 glyphs, one row of 3 bits per entry (bit 2 = left column).
+    static readonly Dictionary<char, byte[]> Font = new()
+    {
+        ['0'] = [7, 5, 5, 5, 7], ['1'] = [2, 6, 2, 2, 7], ['2'] = [7, 1, 7, 4, 7], ['3'] = [7, 1, 3, 1, 7], ['4'] = [5, 5, 7, 1, 1],
+        ['5'] = [7, 4, 7, 1, 7], ['6'] = [7, 4, 7, 5, 7], ['7'] = [7, 1, 1, 2, 2], ['8'] = [7, 5, 7, 5, 7], ['9'] = [7, 5, 7, 1, 7],
+        ['-'] = [0, 0, 7, 0, 0], ['.'] = [0, 0, 0, 0, 2], ['n'] = [0, 6, 5, 5, 5], ['m'] = [0, 7, 7, 5, 5], [' '] = [0, 0, 0, 0, 0],
+    };
+
+    /// <summary>Writes <paramref name="text"/> at (x0, y0), clipped to <paramref name="maxWidth"/> pixels.</summary>
+    static void DrawText(byte[] px, int stride, int x0, int y0, int maxWidth, string text, int size)
+    {
+        int x = x0;
+        foreach (char ch in text)
+        {
+            if (!Font.TryGetValue(ch, out var rows)) rows = Font[' '];
+            for (int r = 0; r < 5; r++)
+                for (int c = 0; c < 3; c++)
+                {
+                    if ((rows[r] >> (2 - c) & 1) == 0) continue;
+                    for (int dy = 0; dy < size; dy++)
+                        for (int dx = 0; dx < size; dx++)
+                        {
+                            int xx = x + c * size + dx;
+                            if (xx < x0 + maxWidth) px[(y0 + r * size + dy) * stride + xx] = 230;
+                        }
+                }
+            x += 4 * size;
+        }
     }
 }

@@ -21,10 +21,11 @@ public static class EnviWriter
         Write(imagePath, image, image.BandPlanes(), description);
 
     /// <summary>As <see cref="Write(string, SpectralImage, string?)"/>, from the image's band planes (<see cref="SpectralImage.CopyBands"/>) — already BSQ.</summary>
-    internal static void Write(string imagePath, SpectralImage image, float[] bands, string? description = null)
+    /// <param name="extra">Further header keys (e.g. "radiometry", "data units"), written after the standard ones.</param>
+    internal static void Write(string imagePath, SpectralImage image, float[] bands, string? description = null, IReadOnlyDictionary<string, string>? extra = null)
     {
         AtomicFile.Write(imagePath, s => WriteData(s, bands));
-        AtomicFile.WriteAllText(HeaderPath(imagePath), Header(image, description));
+        AtomicFile.WriteAllText(HeaderPath(imagePath), Header(image, description, extra));
     }
 
     /// <summary>The header path ENVI and GDAL look for: the image path with its extension replaced by .hdr.</summary>
@@ -46,7 +47,7 @@ public static class EnviWriter
 
     /// <summary>The header text. Keys per the ENVI header format; lists in braces; no braces inside the description.</summary>
     [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
-    public static string Header(SpectralImage image, string? description = null)
+    public static string Header(SpectralImage image, string? description = null, IReadOnlyDictionary<string, string>? extra = null)
     {
         var inv = CultureInfo.InvariantCulture;
         var g = image.Grid;
@@ -73,6 +74,8 @@ public static class EnviWriter
         sb.Append($"wavelength = {List(b => g.Centre(b).ToString("R", inv))}\n");
         sb.Append($"fwhm = {List(b => (g.Upper(b) - g.Lower(b)).ToString("R", inv))}\n");
         sb.Append($"band names = {List(b => string.Create(inv, $"{g.Lower(b):0.###}-{g.Upper(b):0.###} nm"))}\n");
+        if (extra is not null)
+            foreach (var (k, v) in extra) sb.Append($"{k} = {v.Replace('{', '(').Replace('}', ')').Replace("\n", " ")}\n");
         return sb.ToString();
     }
 }

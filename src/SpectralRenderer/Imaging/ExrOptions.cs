@@ -40,6 +40,8 @@ public sealed record ExrOptions
     /// <summary>Names spectral channels T.&lt;λ&gt;nm (reflectance) instead of S0.&lt;λ&gt;nm (emitted radiance).</summary>
     public bool Reflective { get; init; }
     public Colorimeter? Colorimeter { get; init; }
+    /// <summary>The emissiveUnits attribute of emissive files (JCGT 2021 §3), or null to omit it when the values have no unit.</summary>
+    public string? EmissiveUnits { get; init; } = ExrWriter.EmissiveUnits;
     /// <summary>Extra string attributes (e.g. "software", "comments").</summary>
     public IReadOnlyDictionary<string, string>? Attributes { get; init; }
 }

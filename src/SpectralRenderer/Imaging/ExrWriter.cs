@@ -228,7 +228,7 @@ public static class ExrWriter
 
         // JCGT 2021 §3: the layout version and, for emissive images, the radiometric units.
         attrs.Add(new("spectralLayoutVersion", "string", Encoding.UTF8.GetBytes(LayoutVersion)));
-        if (!options.Reflective) attrs.Add(new("emissiveUnits", "string", Encoding.UTF8.GetBytes(EmissiveUnits)));
+        if (!options.Reflective && options.EmissiveUnits is { } units) attrs.Add(new("emissiveUnits", "string", Encoding.UTF8.GetBytes(units)));
         var edges = new StringBuilder();
         foreach (double e in grid.Edges()) edges.Append(edges.Length > 0 ? "," : "").Append(e.ToString("R", CultureInfo.InvariantCulture));
         attrs.Add(new("spectralBandEdges", "string", Encoding.UTF8.GetBytes(edges.ToString())));

@@ -56,11 +56,15 @@ public static class PngWriter
         Write(stream, width, height, 16, 0, 2, BigEndian(gray), text, filter);
     }
 
-    /// <summary>16-bit greyscale from samples already big-endian (§7.1), two bytes per pixel.</summary>
-    internal static void WriteGray16BigEndian(Stream stream, int width, int height, ReadOnlySpan<byte> samples, PngFilter filter)
+    /// <summary>
+    /// 16-bit greyscale from samples already big-endian (§7.1), two bytes per pixel; with <paramref name="gamma"/> a gAMA
+    /// chunk (§11.3.3.2: the encoding exponent × 100000; 1 = linear samples) and with <paramref name="text"/> tEXt chunks.
+    /// </summary>
+    internal static void WriteGray16BigEndian(Stream stream, int width, int height, ReadOnlySpan<byte> samples, PngFilter filter,
+        IReadOnlyDictionary<string, string>? text = null, double? gamma = null)
     {
         Check(width, height, samples.Length, 2);
-        Write(stream, width, height, 16, 0, 2, samples, null, filter);
+        Write(stream, width, height, 16, 0, 2, samples, text, filter, gamma);
     }
 
     /// <summary>16-bit RGB, width·height·3 samples, stored big-endian (§7.1).</summary>
@@ -121,7 +125,7 @@ public static class PngWriter
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     static void Write(Stream stream, int width, int height, byte bitDepth, byte colourType, int bpp,
-        ReadOnlySpan<byte> pixels, IReadOnlyDictionary<string, string>? text, PngFilter filter)
+        ReadOnlySpan<byte> pixels, IReadOnlyDictionary<string, string>? text, PngFilter filter, double? gamma = null)
     {
         stream.Write(Signature);
 
@@ -131,6 +135,14 @@ public static class PngWriter
         BinaryPrimitives.WriteInt32BigEndian(ihdr[4..], height);
         ihdr[8] = bitDepth; ihdr[9] = colourType; ihdr[10] = 0; ihdr[11] = 0; ihdr[12] = 0;
         WriteChunk(stream, "IHDR", ihdr);
+
+        // §11.3.3.2 gAMA (before IDAT): the image gamma × 100000 as a 4-byte unsigned integer.
+        if (gamma is { } gm)
+        {
+            Span<byte> g = stackalloc byte[4];
+            BinaryPrimitives.WriteUInt32BigEndian(g, (uint)Math.Round(gm * 100000));
+            WriteChunk(stream, "gAMA", g);
+        }
 
         // §11.3.3.2 tEXt: Latin-1 keyword (1–79 bytes), a null separator, Latin-1 text.
         if (text is not null)

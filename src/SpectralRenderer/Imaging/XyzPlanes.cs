@@ -20,6 +20,15 @@ public sealed class XyzPlanes
 
     public Xyz this[int pixel] => new(X[pixel], Y[pixel], Z[pixel]);
 
+    /// <summary>The planes of colours the renderer computed per pixel (X, Y, Z interleaved, <see cref="Rendering.RenderResult.Xyz"/>).</summary>
+    public static XyzPlanes FromPixels(float[] interleaved)
+    {
+        int pixels = interleaved.Length / 3;
+        var xyz = new XyzPlanes(new double[pixels], new double[pixels], new double[pixels]);
+        for (int i = 0; i < pixels; i++) { xyz.X[i] = interleaved[3 * i]; xyz.Y[i] = interleaved[3 * i + 1]; xyz.Z[i] = interleaved[3 * i + 2]; }
+        return xyz;
+    }
+
     public static XyzPlanes Compute(Colorimeter cm, ReadOnlyMemory<float> bands, int pixels)
     {
         int count = cm.Grid.Count;

@@ -13,18 +13,18 @@ namespace SpectralRenderer.Output;
 /// The per-light transfer outputs (<c>--formats …,lights</c> or <c>output.light_groups</c>), in <c>lights/</c>:
 /// <list type="bullet">
 /// <item><c>lights.json</c>: the layout, the lights (name, spectrum, band values I_k,b = spectrum × intensity) and the
-/// components c in file order (light, lobe, material, the mirror/transmit chain, their band values P_c,b in this render
-/// and the light-independent part M_c,b = m_lobe,b · Π k_chain,b, so that P_c,b = I_k,b · M_c,b for the terms that
-/// follow a light).</item>
+/// components c in file order (light, lobe, material, the mirror/transmit chain, and their band values P_c,b and XYZ in
+/// this render: the scene's term table times the chain's weights; relighting rebuilds them from the new spectra).</item>
 /// <item><c>factors.npy</c> (float32 [nnz]) and <c>pixels.npy</c> (int32 [nnz]): component c's geometric factors F_c and
 /// the pixels they belong to (y·W + x, ascending) are entries offset … offset + count − 1 (<c>components[c].offset</c>,
 /// <c>.count</c> in lights.json): a sparse layout, since most components (a light's term seen through a mirror or
 /// glass) cover few pixels.</item>
 /// <item><c>centre.npy</c>: float32 2K × H × W, per light the centre ray's diffuse then specular factor at its first
-/// hit; <c>ids.npy</c>: float32 2 × H × W, the object index + 1 seen by the centre ray (0 = background) and the
-/// lit mask (bit k: light k reaches the point; exact for the first 24 lights).</item>
+/// hit; <c>ids.npy</c>: float32 3 × H × W, the object index + 1 seen by the centre ray (0 = background), the lit mask
+/// (bit k: light k reaches the point; exact for the first 24 lights) and 1 where a path met a coloured mirror or
+/// transmittance (the pixel's colour is then eq. 3 on its band values, as in the render).</item>
 /// </list>
-/// A pixel's band values are L_b = Σ_c F_c · P_c,b (<see cref="LightTransfer"/>).
+/// A pixel's band values are L_b = Σ_c F_c · P_c,b and its colour Σ_c F_c · XYZ_c (<see cref="LightTransfer"/>).
 /// </summary>
 public static class LightTransferFiles
 {
@@ -52,9 +52,9 @@ public static class LightTransferFiles
         for (int i = 0; i < k; i++) { t.CentreDiffuse[i].CopyTo(centre, 2 * i * n); t.CentreSpecular[i].CopyTo(centre, (2 * i + 1) * n); }
         AtomicFile.Write(Path.Combine(dir, "centre.npy"), s => NpyWriter.Write(s, [2 * k, t.Height, t.Width], centre));
         done($"{Folder}/centre.npy");
-        var ids = new float[2 * n];
-        for (int i = 0; i < n; i++) { ids[i] = t.ObjectIds[i] + 1; ids[n + i] = t.LitMasks[i]; }
-        AtomicFile.Write(Path.Combine(dir, "ids.npy"), s => NpyWriter.Write(s, [2, t.Height, t.Width], ids));
+        var ids = new float[3 * n];
+        for (int i = 0; i < n; i++) { ids[i] = t.ObjectIds[i] + 1; ids[n + i] = t.LitMasks[i]; ids[2 * n + i] = t.Fallback[i] ? 1 : 0; }
+        AtomicFile.Write(Path.Combine(dir, "ids.npy"), s => NpyWriter.Write(s, [3, t.Height, t.Width], ids));
         done($"{Folder}/ids.npy");
         AtomicFile.WriteAllText(Path.Combine(dir, "lights.json"), Describe(scene, t).ToJsonString(new JsonSerializerOptions { WriteIndented = true }));
         done($"{Folder}/lights.json");
@@ -75,14 +75,12 @@ public static class LightTransferFiles
             });
         }
         var comps = new JsonArray();
-        var m = new float[scene.Bands];
-        var p = new float[scene.Bands];
-        var lightBands = scene.Lights.Select(l => l.Intensity).ToList();
+        var tables = new TermTables(scene);
+        var p = new float[scene.PaddedBands];
         for (int c = 0, offset = 0; c < t.Components.Length; offset += t.Factors[c].Length, c++)
         {
             var comp = t.Components[c];
-            comp.MaterialBandValues(scene, m);
-            comp.BandValues(scene, lightBands, p);
+            comp.BandValues(tables, p);
             comps.Add(new JsonObject
             {
                 ["index"] = c, ["key"] = comp.Key, ["offset"] = offset, ["count"] = t.Factors[c].Length, ["merged_chains"] = t.Merged[c],
@@ -91,8 +89,9 @@ public static class LightTransferFiles
                 ["material"] = comp.Material < 0 ? null : scene.Materials[comp.Material].Name,
                 ["chain"] = new JsonArray(comp.Chain.Select(x => (JsonNode)new JsonObject
                     { ["material"] = scene.Materials[x.Material].Name, ["weight"] = x.Transmit ? "transmit" : "mirror" }).ToArray()),
-                ["band_values"] = Arr(p),
-                ["material_band_values"] = Arr(m),
+                ["band_values"] = Arr(p.AsSpan(0, scene.Bands)),
+                ["xyz"] = Arr(p.AsSpan(scene.Bands, 3)),
+                ["coloured_chain"] = comp.Coloured(tables),
             });
         }
         var materials = new JsonArray(scene.Materials.Select(mt => (JsonNode)new JsonObject
@@ -101,10 +100,10 @@ public static class LightTransferFiles
         }).ToArray());
         return new JsonObject
         {
-            ["layout"] = "L_b(pixel) = sum over components c and entries j in [c.offset, c.offset + c.count) with pixels[j] = pixel of factors[j] * c.band_values[b]; for components that follow a light, band_values[b] = lights[c.light].band_values[b] * material_band_values[b]",
+            ["layout"] = "L_b(pixel) = sum over components c and entries j in [c.offset, c.offset + c.count) with pixels[j] = pixel of factors[j] * c.band_values[b]; the pixel's XYZ the same sum of factors[j] * c.xyz (eq. 3 on L_b where ids[2] marks a colour fallback)",
             ["width"] = t.Width, ["height"] = t.Height, ["bands"] = t.Bands,
             ["band_scheme"] = scene.Integration.ToString().ToLowerInvariant(),
-            ["exact_for"] = "the render's own band scheme: band values are products of band means (light × material × path weights)",
+            ["exact_for"] = "every band scheme: a component's band values and XYZ are the scene's term tables (exact band means of E·m and their exact XYZ under 'exact') times the chain's weights, as the integrator multiplies them",
             ["lights"] = lights,
             ["materials"] = materials,
             ["components"] = comps,
@@ -113,7 +112,7 @@ public static class LightTransferFiles
                 ["factors"] = "factors.npy: float32 [nnz], the factors of component c at entries offset .. offset + count - 1",
                 ["pixels"] = "pixels.npy: int32 [nnz], the pixel (y * width + x) of each factor, ascending within a component",
                 ["centre"] = "centre.npy: float32 [2K, H, W], light k's centre-ray diffuse (2k) and specular (2k+1) factor",
-                ["ids"] = "ids.npy: float32 [2, H, W], object index + 1 (0 = background), lit mask",
+                ["ids"] = "ids.npy: float32 [3, H, W], object index + 1 (0 = background), lit mask, colour fallback (1: eq. 3 on the band values)",
             },
         };
     }
@@ -176,7 +175,7 @@ public static class LightTransferFiles
         }
         int k = scene.Lights.Count;
         var centre = Load("centre.npy", [2 * k, height, width]);
-        var ids = Load("ids.npy", [2, height, width]);
+        var ids = Load("ids.npy", [3, height, width]);
         return new LightTransfer
         {
             Width = width, Height = height, Bands = bands, Grid = scene.Grid, Components = comps,
@@ -187,6 +186,7 @@ public static class LightTransferFiles
             CentreSpecular = Enumerable.Range(0, k).Select(i => centre.AsSpan((2 * i + 1) * n, n).ToArray()).ToArray(),
             ObjectIds = Enumerable.Range(0, n).Select(i => (int)ids[i] - 1).ToArray(),
             LitMasks = Enumerable.Range(0, n).Select(i => (uint)ids[n + i]).ToArray(),
+            Fallback = Enumerable.Range(0, n).Select(i => ids[2 * n + i] != 0).ToArray(),
             Rays = new RayCounters(),
         };
     }

@@ -8,10 +8,15 @@ using SpectralRenderer.Spectra;
 namespace SpectralRenderer.Output;
 
 /// <summary>An object of the scene as render.json lists it: its id in object-id.png (1-based, 0 = background).</summary>
-public sealed record ManifestObject(int Id, string Name, string Material, string? Reflectance);
+/// <param name="FlatNormal">The world normal of a flat shape (quad, plane), so analysis can tell a chart lit head-on; null otherwise.</param>
+public sealed record ManifestObject(int Id, string Name, string Material, string? Reflectance, double[]? FlatNormal = null);
 
 /// <summary>A light as render.json lists it: k in mask-lit-&lt;k&gt;.png, its kind ("point", "spot", "directional") and spectrum name.</summary>
-public sealed record ManifestLight(int Index, string Name, string Kind, string? Spectrum);
+/// <param name="Intensity">The scene's intensity, the factor on <paramref name="Spd"/>; <paramref name="IntensityUnit"/> says what it is in.</param>
+/// <param name="Position">Point and spot lights; <paramref name="Direction"/> the direction spot and directional lights shine towards.</param>
+/// <param name="Attenuation">[c0, c1, c2] of d = 1/(c0 + c1·r + c2·r²); null for directional lights (no attenuation).</param>
+public sealed record ManifestLight(int Index, string Name, string Kind, string? Spectrum, double Intensity = 1, string? IntensityUnit = null,
+    bool HasAmbient = false, double[]? Position = null, double[]? Direction = null, double[]? Attenuation = null, TabulatedSpectrum? Spd = null);
 
 /// <summary>Rays traced, by kind, and the rate (million rays per second of render time).</summary>
 public sealed record ManifestRays(long Primary, long Shadow, long Secondary, long Total, double MraysPerSecond);
@@ -35,7 +40,7 @@ public sealed record RenderManifest
     public required BandGrid Grid { get; init; }
     /// <summary>The radiance that band PNG level 65535 stands for (the brightest band value of the render).</summary>
     public required float BandImageScale { get; init; }
-    /// <summary>"weighted" or "paper" (<see cref="BandIntegration"/>).</summary>
+    /// <summary>"exact", "weighted" or "paper" (<see cref="BandIntegration"/>).</summary>
     public required string Integration { get; init; }
     public required int ObserverDegrees { get; init; }
     public required TabulatedSpectrum ReferenceWhite { get; init; }
@@ -49,6 +54,22 @@ public sealed record RenderManifest
     public required string Rgb { get; init; }
     public required double Exposure { get; init; }
     public required bool Adapt { get; init; }
+    /// <summary>"fixed" or "auto (…)": how <see cref="Exposure"/> was chosen for preview.png.</summary>
+    public string ExposureMode { get; init; } = "fixed";
+    /// <summary>The preview's gamut mapping, "clip" or "desaturate".</summary>
+    public string Gamut { get; init; } = "clip";
+    /// <summary>"paper" or "physical" (docs/scene-format.md, Radiometry).</summary>
+    public string Radiometry { get; init; } = "paper";
+    /// <summary>What a band value is, with its unit.</summary>
+    public string? BandUnit { get; init; }
+    /// <summary>What X, Y, Z mean (relative to the white, or absolute in cd/m²).</summary>
+    public string? XyzUnit { get; init; }
+    /// <summary>How the pixels' colours (preview, spectral.exr X Y Z) were computed.</summary>
+    public string? PixelXyz { get; init; }
+    /// <summary>Pixels whose colour fell back to eq. 3 on their bands (a term with more than a light and a material spectrum).</summary>
+    public long FallbackPixels { get; init; }
+    /// <summary>True when the scene has a global ambient a_glob.</summary>
+    public bool GlobalAmbient { get; init; }
     public required IReadOnlyList<ManifestObject> Objects { get; init; }
     public required IReadOnlyList<ManifestLight> Lights { get; init; }
     public required double HighlightFraction { get; init; }
@@ -82,9 +103,26 @@ public sealed record RenderManifest
         var centres = new double[Grid.Count];
         for (int b = 0; b < centres.Length; b++) centres[b] = Grid.Centre(b);
         var objects = new JsonArray();
-        foreach (var o in Objects) objects.Add(new JsonObject { ["id"] = o.Id, ["name"] = o.Name, ["material"] = o.Material, ["reflectance"] = o.Reflectance });
+        foreach (var o in Objects)
+        {
+            var e = new JsonObject { ["id"] = o.Id, ["name"] = o.Name, ["material"] = o.Material, ["reflectance"] = o.Reflectance };
+            if (o.FlatNormal is { } fn) e["flat_normal"] = Arr(fn);
+            objects.Add(e);
+        }
         var lights = new JsonArray();
-        foreach (var l in Lights) lights.Add(new JsonObject { ["index"] = l.Index, ["name"] = l.Name, ["kind"] = l.Kind, ["spectrum"] = l.Spectrum });
+        foreach (var l in Lights)
+        {
+            var e = new JsonObject
+            {
+                ["index"] = l.Index, ["name"] = l.Name, ["kind"] = l.Kind, ["spectrum"] = l.Spectrum,
+                ["intensity"] = l.Intensity, ["intensity_unit"] = l.IntensityUnit, ["has_ambient"] = l.HasAmbient,
+            };
+            if (l.Position is { } lp) e["position"] = Arr(lp);
+            if (l.Direction is { } ld) e["direction"] = Arr(ld);
+            if (l.Attenuation is { } la) e["attenuation"] = Arr(la);
+            if (l.Spd is { } spd) e["spd"] = new JsonObject { ["wavelengths_nm"] = Arr(spd.Wavelengths), ["values"] = Arr(spd.Values) };
+            lights.Add(e);
+        }
         JsonArray? files = null;
         if (Files is not null) { files = []; foreach (var f in Files) files.Add(JsonValue.Create(f)); }
         return new JsonObject
@@ -104,9 +142,17 @@ public sealed record RenderManifest
                 ["centres_nm"] = Arr(centres),
                 ["band_image_scale"] = BandImageScale,
             },
+            ["radiometry"] = new JsonObject
+            {
+                ["mode"] = Radiometry,
+                ["band_values"] = BandUnit,
+                ["xyz"] = XyzUnit,
+            },
             ["colour"] = new JsonObject
             {
                 ["integration"] = Integration,
+                ["pixel_xyz"] = PixelXyz,
+                ["fallback_pixels"] = FallbackPixels,
                 ["observer"] = ObserverDegrees,
                 ["reference_white"] = ReferenceWhite.Name,
                 ["reference_white_spd"] = new JsonObject { ["wavelengths_nm"] = Arr(ReferenceWhite.Wavelengths), ["values"] = Arr(ReferenceWhite.Values) },
@@ -115,10 +161,13 @@ public sealed record RenderManifest
                 ["weights_x"] = Arr(Wx), ["weights_y"] = Arr(Wy), ["weights_z"] = Arr(Wz),
                 ["rgb"] = Rgb,
                 ["exposure"] = Exposure,
+                ["exposure_mode"] = ExposureMode,
+                ["gamut"] = Gamut,
                 ["adapt"] = Adapt,
             },
             ["objects"] = objects,
             ["lights"] = lights,
+            ["global_ambient"] = GlobalAmbient,
             ["aov"] = new JsonObject { ["highlight_fraction"] = HighlightFraction },
             ["timings_s"] = new JsonObject { ["render"] = RenderSeconds },
             ["rays"] = new JsonObject
@@ -157,9 +206,19 @@ public sealed record RenderManifest
         var w = r.Numbers(colour, "white_xyz", "$.colour");
         if (w.Length != 3) throw r.Missing("$.colour.white_xyz", "three numbers X, Y, Z");
         var objects = r.Arr(json, "objects", "$").Select((o, i) => new ManifestObject(
-            r.Int(o, "id", $"$.objects[{i}]"), r.Str(o, "name", $"$.objects[{i}]"), r.Str(o, "material", $"$.objects[{i}]"), r.OptStr(o, "reflectance"))).ToArray();
-        var lights = r.Arr(json, "lights", "$").Select((l, i) => new ManifestLight(
-            r.OptInt(l, "index") ?? i, r.OptStr(l, "name") ?? $"light {i}", r.OptStr(l, "kind") ?? "point", r.OptStr(l, "spectrum"))).ToArray();
+            r.Int(o, "id", $"$.objects[{i}]"), r.Str(o, "name", $"$.objects[{i}]"), r.Str(o, "material", $"$.objects[{i}]"), r.OptStr(o, "reflectance"),
+            r.OptNumbers(o, "flat_normal", $"$.objects[{i}]"))).ToArray();
+        var lights = r.Arr(json, "lights", "$").Select((l, i) =>
+        {
+            string at = $"$.lights[{i}]";
+            string name = r.OptStr(l, "name") ?? $"light {i}";
+            TabulatedSpectrum? spd = l["spd"] is JsonObject so
+                ? new TabulatedSpectrum(name, r.Numbers(so, "wavelengths_nm", $"{at}.spd"), r.Numbers(so, "values", $"{at}.spd"), Extrapolation.Clamp) : null;
+            return new ManifestLight(r.OptInt(l, "index") ?? i, name, r.OptStr(l, "kind") ?? "point", r.OptStr(l, "spectrum"),
+                r.OptNumber(l, "intensity") ?? 1, r.OptStr(l, "intensity_unit"), (bool?)r.Value(l, "has_ambient") ?? false,
+                r.OptNumbers(l, "position", at), r.OptNumbers(l, "direction", at), r.OptNumbers(l, "attenuation", at), spd);
+        }).ToArray();
+        var radiometry = json["radiometry"] as JsonObject;
         var rays = json["rays"] as JsonObject;
         string grid = r.Str(bands, "grid", "$.bands");
         return new RenderManifest
@@ -185,6 +244,14 @@ public sealed record RenderManifest
             Rgb = r.OptStr(colour, "rgb") ?? "srgb",
             Exposure = r.OptNumber(colour, "exposure") ?? 1,
             Adapt = (bool?)r.Value(colour, "adapt") ?? false,
+            ExposureMode = r.OptStr(colour, "exposure_mode") ?? "fixed",
+            Gamut = r.OptStr(colour, "gamut") ?? "clip",
+            Radiometry = radiometry is null ? "paper" : r.OptStr(radiometry, "mode") ?? "paper",
+            BandUnit = radiometry is null ? null : r.OptStr(radiometry, "band_values"),
+            XyzUnit = radiometry is null ? null : r.OptStr(radiometry, "xyz"),
+            PixelXyz = r.OptStr(colour, "pixel_xyz"),
+            FallbackPixels = r.OptLong(colour, "fallback_pixels") ?? 0,
+            GlobalAmbient = (bool?)r.Value(json, "global_ambient") ?? false,
             Objects = objects,
             Lights = lights,
             HighlightFraction = json["aov"] is JsonObject aov ? r.OptNumber(aov, "highlight_fraction") ?? 0.1 : 0.1,
@@ -224,6 +291,8 @@ public sealed record RenderManifest
         public long? OptLong(JsonObject o, string key) => OptNumber(o, key) is { } d && d == Math.Floor(d) ? (long)d : null;
 
         public double? OptNumber(JsonObject o, string key) => Value(o, key) is { } v && v.TryGetValue(out double d) ? d : null;
+
+        public double[]? OptNumbers(JsonObject o, string key, string at) => o[key] is null ? null : Numbers(o, key, at);
 
         public double[] Numbers(JsonObject o, string key, string at)
         {

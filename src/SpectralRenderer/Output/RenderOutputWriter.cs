@@ -35,9 +35,14 @@ public static class RenderOutputWriter
         // eq. 3's XYZ of every pixel, computed once for the preview and spectral.exr's R, G, B and X, Y, Z.
         // Without a writer of planes, the preview takes XYZ from the cube itself (no second copy of the cube).
         float[]? bands = Has(OutputProducts.Bands) || Has(OutputProducts.Exr) || Has(OutputProducts.Envi) ? image.BandPlanes() : null;
-        var xyz = bands is not null && (Has(OutputProducts.Png) || Has(OutputProducts.Exr)) ? XyzPlanes.Compute(scene.Colorimeter, bands, n)
-            : Has(OutputProducts.Png) ? XyzPlanes.Compute(scene.Colorimeter, image) : null;
+        // The pixels' colours are the renderer's own (exact on the tables under "exact" integration), else eq. 3 on the cube.
+        bool colour = Has(OutputProducts.Png) || Has(OutputProducts.Exr);
+        var xyz = !colour ? null
+            : result.Xyz is { } px ? XyzPlanes.FromPixels(px)
+            : bands is not null ? XyzPlanes.Compute(scene.Colorimeter, bands, n)
+            : XyzPlanes.Compute(scene.Colorimeter, image);
 
+        var encoder = Has(OutputProducts.Png) ? PreviewEncoder(scene, xyz!) : null;
         clearing.GetAwaiter().GetResult();
 
         // The groups are independent files: write them side by side; each keeps its own list, in a fixed order.
@@ -48,12 +53,12 @@ public static class RenderOutputWriter
         try
         {
         Parallel.Invoke(new ParallelOptions { CancellationToken = cancel },
-            () => { if (Has(OutputProducts.Png)) WritePreview(scene, image, xyz!, outDir, Done(0)); },
+            () => { if (Has(OutputProducts.Png)) WritePreview(image, xyz!, encoder!, outDir, Done(0)); },
             () => { if (Has(OutputProducts.Bands)) WriteBands(scene, image, bands!, scale, outDir, Done(1), cancel); },
             () =>
             {
                 if (!Has(OutputProducts.Bands)) return;
-                var (mw, mh, mosaic) = BandMosaic.Build(image.Width, image.Height, bands!, scale);
+                var (mw, mh, mosaic) = BandMosaic.Build(image.Width, image.Height, bands!, scale, 256, scene.Grid);
                 AtomicFile.Write(Path.Combine(outDir, "bands.png"), s => PngWriter.WriteGray8(s, mw, mh, mosaic));
                 Done(2)("bands.png");
             },
@@ -71,7 +76,7 @@ public static class RenderOutputWriter
             () => { if (Has(OutputProducts.Npy)) SpectralFiles.WriteNpy(image, outDir, Done(6)); },
             () => { if (Has(OutputProducts.Npy) || Has(OutputProducts.Envi) || Has(OutputProducts.Exr)) SpectralFiles.WriteWavelengths(image, outDir, Done(7)); },
             () => { if (transfer is not null && Has(OutputProducts.Lights)) LightTransferFiles.Write(scene, transfer, outDir, Done(8)); },
-            () => manifest = Describe(scene, result, scale, run));
+            () => manifest = Describe(scene, result, scale, run, encoder));
         }
         catch (AggregateException e)
         {
@@ -108,12 +113,21 @@ public static class RenderOutputWriter
                 File.Delete(Path.Combine(lights, f));
     }
 
-    static void WritePreview(Scene scene, SpectralImage image, XyzPlanes xyz, string outDir, Action<string> done)
+    static void WritePreview(SpectralImage image, XyzPlanes xyz, DisplayEncoder encoder, string outDir, Action<string> done)
     {
-        var encoder = new DisplayEncoder(scene.Colorimeter, scene.Output.Rgb, scene.Output.Exposure, scene.Output.Adapt);
         var rgb = Preview(image.Width, image.Height, xyz, encoder);
         AtomicFile.Write(Path.Combine(outDir, "preview.png"), s => PngWriter.WriteRgb8(s, image.Width, image.Height, rgb));
         done("preview.png");
+    }
+
+    /// <summary>The preview's encoder: the scene's exposure (or the automatic one, from the pixels' XYZ) and gamut mapping.</summary>
+    public static DisplayEncoder PreviewEncoder(Scene scene, XyzPlanes xyz)
+    {
+        var o = scene.Output;
+        double exposure = o.ExposureAuto
+            ? DisplayEncoder.AutoExposure(scene.Colorimeter, o.Rgb, o.Adapt, xyz.X.Length, i => xyz[i])
+            : o.Exposure;
+        return new DisplayEncoder(scene.Colorimeter, o.Rgb, exposure, o.Adapt, o.Gamut);
     }
 
     /// <summary>bands/: one 16-bit PNG per band, all on the scale of the brightest band value.</summary>
@@ -132,12 +146,33 @@ public static class RenderOutputWriter
                 BandSamples16(plane, scale, grey.AsSpan(0, 2 * n));
                 names[b] = BandFileName(scene, b);
                 // The Up filter alone: one pass per row instead of trying all five (band images are smooth).
-                AtomicFile.Write(Path.Combine(dir, names[b]), s => PngWriter.WriteGray16BigEndian(s, image.Width, image.Height, grey.AsSpan(0, 2 * n), PngFilter.Up));
+                // Linear samples (gAMA 1) on the common scale, which a text chunk states with its unit.
+                var text = BandText(scene, b, scale);
+                AtomicFile.Write(Path.Combine(dir, names[b]), s => PngWriter.WriteGray16BigEndian(s, image.Width, image.Height, grey.AsSpan(0, 2 * n), PngFilter.Up, text, gamma: 1.0));
             }
             finally { ArrayPool<byte>.Shared.Return(grey); }
         });
         foreach (var name in names) done($"bands/{name}");
     }
+
+    /// <summary>The tEXt chunks of band image b: what it shows and the scale from its samples to band values.</summary>
+    internal static Dictionary<string, string> BandText(Scene scene, int b, float scale)
+    {
+        var inv = CultureInfo.InvariantCulture;
+        var g = scene.Grid;
+        return new Dictionary<string, string>
+        {
+            ["Title"] = string.Create(inv, $"band {b + 1} of {g.Count}: {g.Lower(b):0.###}-{g.Upper(b):0.###} nm"),
+            ["Software"] = $"spectral {typeof(RenderOutputWriter).Assembly.GetName().Version?.ToString(3)}",
+            ["Scale"] = string.Create(inv, $"band value = sample / 65535 * {scale:R} {RadianceUnit(scene)} (linear samples, gAMA 1.0; values above the scale clip)"),
+            ["Radiometry"] = scene.Radiometry.ToString().ToLowerInvariant(),
+        };
+    }
+
+    /// <summary>What a band value is, in ASCII: spectral radiance in W m^-2 sr^-1 nm^-1 (physical) or eq. 2's relative units (paper).</summary>
+    public static string RadianceUnit(Scene scene) => scene.Radiometry == Radiometry.Physical
+        ? "W.m^-2.sr^-1.nm^-1 (spectral radiance, band mean)"
+        : "relative units (paper radiometry: eq. 2 without units; a white diffuser lit head-on by the reference white at intensity 1 has band value E_b)";
 
     /// <summary>
     /// A band image's 16-bit samples RgbSpace.To16(clamp(v / scale, 0, 1)) (0 when scale is not positive), big-endian as PNG
@@ -181,7 +216,7 @@ public static class RenderOutputWriter
         Preview(image.Width, image.Height, XyzPlanes.Compute(encoder.Colorimeter, image), encoder);
 
     /// <summary>8-bit display RGB, from the pixels' XYZ (of the encoder's colorimeter).</summary>
-    internal static byte[] Preview(int width, int height, XyzPlanes xyz, DisplayEncoder encoder)
+    public static byte[] Preview(int width, int height, XyzPlanes xyz, DisplayEncoder encoder)
     {
         var rgb = new byte[width * height * 3];
         Parallel.For(0, height, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (y) =>
@@ -196,7 +231,7 @@ public static class RenderOutputWriter
     }
 
     [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
-    static RenderManifest Describe(Scene scene, RenderResult result, float bandScale, JsonObject? run)
+    static RenderManifest Describe(Scene scene, RenderResult result, float bandScale, JsonObject? run, DisplayEncoder? preview)
     {
         var c = scene.Colorimeter;
         var objects = new ManifestObject[scene.Objects.Count];
@@ -204,10 +239,31 @@ public static class RenderOutputWriter
         {
             var o = scene.Objects[i];
             var m = scene.Materials[o.Material];
-            objects[i] = new ManifestObject(i + 1, o.Name, m.Name, m.DiffuseSpectrum?.Name);
+            double[]? normal = null;
+            // A flat shape's world normal (front side +), so analysis can tell a head-on lit chart from a shaded one.
+            if (o.Shape is { Kind: Geometry.ShapeKind.Quad or Geometry.ShapeKind.Plane } shape)
+            {
+                var nrm = System.Numerics.Vector3.Normalize(System.Numerics.Vector3.TransformNormal(
+                    shape.Kind == Geometry.ShapeKind.Quad ? System.Numerics.Vector3.UnitZ : System.Numerics.Vector3.UnitY, shape.NormalToWorld));
+                normal = [nrm.X, nrm.Y, nrm.Z];
+            }
+            objects[i] = new ManifestObject(i + 1, o.Name, m.Name, m.DiffuseSpectrum?.Name, normal);
         }
         var lights = new ManifestLight[scene.Lights.Count];
-        for (int k = 0; k < lights.Length; k++) lights[k] = new ManifestLight(k, scene.Lights[k].Name, scene.Lights[k].Type, scene.Lights[k].Spectrum?.Name);
+        for (int k = 0; k < lights.Length; k++)
+        {
+            var l = scene.Lights[k];
+            string unit = scene.Radiometry != Radiometry.Physical ? "relative (paper radiometry)"
+                : l is DirectionalLight ? "W.m^-2.nm^-1 (irradiance facing the light) per unit of the spectrum" : "W.sr^-1.nm^-1 (radiant intensity) per unit of the spectrum";
+            static double[] V(System.Numerics.Vector3 v) => [v.X, v.Y, v.Z];
+            lights[k] = l switch
+            {
+                PointLight pl => new ManifestLight(k, l.Name, l.Type, l.Spectrum?.Name, l.Scale, unit, l.HasAmbient, V(pl.Position), null, [pl.Falloff.C0, pl.Falloff.C1, pl.Falloff.C2], l.Spectrum),
+                SpotLight sl => new ManifestLight(k, l.Name, l.Type, l.Spectrum?.Name, l.Scale, unit, l.HasAmbient, V(sl.Position), V(sl.Direction), [sl.Falloff.C0, sl.Falloff.C1, sl.Falloff.C2], l.Spectrum),
+                DirectionalLight dl => new ManifestLight(k, l.Name, l.Type, l.Spectrum?.Name, l.Scale, unit, l.HasAmbient, null, V(dl.Direction), null, l.Spectrum),
+                _ => new ManifestLight(k, l.Name, l.Type, l.Spectrum?.Name, l.Scale, unit, l.HasAmbient, null, null, null, l.Spectrum),
+            };
+        }
         return new RenderManifest
         {
             Version = typeof(RenderOutputWriter).Assembly.GetName().Version?.ToString(3),
@@ -225,7 +281,18 @@ public static class RenderOutputWriter
             White = c.White,
             Wx = c.Wx, Wy = c.Wy, Wz = c.Wz,
             Rgb = scene.Output.Rgb.Name,
-            Exposure = scene.Output.Exposure,
+            Exposure = preview?.Exposure ?? scene.Output.Exposure,
+            ExposureMode = scene.Output.ExposureAuto ? "auto (99th percentile of the display-linear maximum channel of non-black pixels → 1)" : "fixed",
+            Gamut = scene.Output.Gamut.ToString().ToLowerInvariant(),
+            Radiometry = scene.Radiometry.ToString().ToLowerInvariant(),
+            BandUnit = RadianceUnit(scene),
+            XyzUnit = c.Absolute ? (scene.Radiometry == Radiometry.Physical ? "absolute: Y in cd/m^2 (683 lm/W)" : "absolute: κ = 683 applied to relative radiance (no photometric unit)")
+                : "relative: Y = 1 for a perfect white diffuser lit head-on by the reference white at intensity 1",
+            PixelXyz = scene.Integration == BandIntegration.Exact
+                ? "exact: each term's κ∫x̄·E·m dλ on the full tables (spectral.exr X Y Z, R G B and preview.png); the weights give the cube's own colour, which differs"
+                : "eq. 3 on the band values with the weights",
+            FallbackPixels = result.FallbackPixels,
+            GlobalAmbient = scene.HasGlobalAmbient,
             Adapt = scene.Output.Adapt,
             Objects = objects,
             Lights = lights,

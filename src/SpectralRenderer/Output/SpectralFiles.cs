@@ -20,7 +20,13 @@ public static class SpectralFiles
             Xyz = true,
             Compression = scene.Output.ExrCompression == ExrCompressionChoice.None ? ExrCompression.None : ExrCompression.Zip,
             DeflateEveryChunk = scene.Output.ExrCompression == ExrCompressionChoice.ZipAll,
-            Attributes = new Dictionary<string, string> { ["software"] = $"spectral {typeof(SpectralFiles).Assembly.GetName().Version?.ToString(3)}" },
+            // JCGT 2021's emissiveUnits names the unit of the S0 channels: only true for physical radiometry.
+            EmissiveUnits = scene.Radiometry == Radiometry.Physical ? ExrWriter.EmissiveUnits : null,
+            Attributes = new Dictionary<string, string>
+            {
+                ["software"] = $"spectral {typeof(SpectralFiles).Assembly.GetName().Version?.ToString(3)}",
+                ["spectralRadiometry"] = $"{scene.Radiometry.ToString().ToLowerInvariant()}: {RenderOutputWriter.RadianceUnit(scene)}",
+            },
         });
         done("spectral.exr");
     }
@@ -28,7 +34,12 @@ public static class SpectralFiles
     /// <summary>spectral.img and spectral.hdr.</summary>
     internal static void WriteEnvi(Scene scene, SpectralImage image, float[] bands, string outDir, Action<string> done)
     {
-        EnviWriter.Write(Path.Combine(outDir, "spectral.img"), image, bands, $"SpectralRenderer render of {Path.GetFileName(scene.SourcePath)}; spectral radiance, {scene.Integration.ToString().ToLowerInvariant()} band integration");
+        EnviWriter.Write(Path.Combine(outDir, "spectral.img"), image, bands, $"SpectralRenderer render of {Path.GetFileName(scene.SourcePath)}; {scene.Radiometry.ToString().ToLowerInvariant()} radiometry, band values in {RenderOutputWriter.RadianceUnit(scene)}; {scene.Integration.ToString().ToLowerInvariant()} band integration",
+            new Dictionary<string, string>
+            {
+                ["radiometry"] = scene.Radiometry.ToString().ToLowerInvariant(),
+                ["data units"] = scene.Radiometry == Radiometry.Physical ? "W.m^-2.sr^-1.nm^-1" : "relative",
+            });
         done("spectral.img");
         done("spectral.hdr");
     }

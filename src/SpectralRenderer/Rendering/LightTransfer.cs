@@ -45,47 +45,31 @@ public sealed record TransferComponent(int Light, TransferLobe Lobe, int Materia
         string.Concat(Chain.Reverse().Select(c => $"<{(c.Transmit ? "transmit" : "mirror")}:{c.Material}"));
 
     /// <summary>
-    /// P_b into <paramref name="dst"/>, with <paramref name="lightBands"/> the band values (spectrum × intensity) of
-    /// each light for the terms that follow a light; the others take theirs from the scene.
+    /// P into <paramref name="dst"/> (padded: the bands, then X, Y, Z in the colour lanes): the scene's term table of this
+    /// component (<see cref="TermTables"/>: exact band means of E·m and κ∫x̄E·m dλ, with the radiometry's constants) times
+    /// the mirror and transmission weights along the chain, as the integrator multiplies them.
     /// </summary>
-    public void BandValues(Scene scene, IReadOnlyList<float[]> lightBands, Span<float> dst)
+    public void BandValues(TermTables tables, Span<float> dst)
     {
-        var materials = scene.Materials;
-        ReadOnlySpan<float> e, m;
-        switch (Lobe)
+        ReadOnlySpan<float> t = Lobe switch
         {
-            case TransferLobe.Diffuse: e = lightBands[Light]; m = materials[Material].Diffuse; break;
-            case TransferLobe.Specular: e = lightBands[Light]; m = materials[Material].Specular; break;
-            case TransferLobe.Ambient: e = scene.Lights[Light].Ambient; m = materials[Material].Ambient; break;
-            case TransferLobe.GlobalAmbient: e = scene.GlobalAmbient; m = materials[Material].Ambient; break;
-            default: e = scene.Background; m = default; break;
-        }
-        for (int b = 0; b < dst.Length; b++)
+            TransferLobe.Diffuse => tables.Diffuse[tables.Index(Light, Material)],
+            TransferLobe.Specular => tables.Specular[tables.Index(Light, Material)],
+            TransferLobe.Ambient => tables.Ambient[tables.Index(Light, Material)],
+            TransferLobe.GlobalAmbient => tables.GlobalAmbient[Material],
+            _ => tables.Background,
+        };
+        t.CopyTo(dst);
+        foreach (var (cm, tr) in Chain)
         {
-            float v = m.IsEmpty ? e[b] : e[b] * m[b];
-            foreach (var (cm, t) in Chain) v *= t ? materials[cm].Transmit[b] : materials[cm].Mirror[b];
-            dst[b] = v;
+            var w = tr ? tables.Transmit[cm] : tables.Mirror[cm];
+            for (int b = 0; b < dst.Length; b++) dst[b] *= w[b];
         }
     }
 
-    /// <summary>The light-independent part of P_b: m_b · Π k_chain,b (1 for the background's m).</summary>
-    public void MaterialBandValues(Scene scene, Span<float> dst)
-    {
-        var materials = scene.Materials;
-        ReadOnlySpan<float> m = Lobe switch
-        {
-            TransferLobe.Diffuse => materials[Material].Diffuse,
-            TransferLobe.Specular => materials[Material].Specular,
-            TransferLobe.Background => default,
-            _ => materials[Material].Ambient,
-        };
-        for (int b = 0; b < dst.Length; b++)
-        {
-            float v = m.IsEmpty ? 1 : m[b];
-            foreach (var (cm, t) in Chain) v *= t ? materials[cm].Transmit[b] : materials[cm].Mirror[b];
-            dst[b] = v;
-        }
-    }
+    /// <summary>Does the chain pass a mirror or transmittance that varies over the bands (so the colour lanes cannot be exact)?</summary>
+    public bool Coloured(TermTables tables) => Chain.Any(c => c.Transmit ? tables.TransmitColoured[c.Material] : tables.MirrorColoured[c.Material]);
+
 }
 
 /// <summary>
@@ -121,6 +105,8 @@ public sealed class LightTransfer
     public required float[][] CentreSpecular { get; init; }
     public required int[] ObjectIds { get; init; }
     public required uint[] LitMasks { get; init; }
+    /// <summary>Per pixel: did a path meet a coloured mirror or transmittance (the renderer's colour fallback to eq. 3)?</summary>
+    public required bool[] Fallback { get; init; }
     public required RayCounters Rays { get; init; }
 
     public const int MaxChain = 6;
@@ -142,18 +128,19 @@ public sealed class LightTransfer
     /// The image of <paramref name="scene"/> (the render's scene with its lights changed): Σ_c F_c · P_c with the
     /// scene's light band values (spectrum × intensity), on all cores.
     /// </summary>
-    public SpectralImage Relight(Scene scene)
+    public (SpectralImage Image, float[] Xyz, long FallbackPixels) Relight(Scene scene)
     {
-        int n = Width * Height, bands = Bands;
-        var lightBands = scene.Lights.Select(l => l.Intensity).ToList();
+        int n = Width * Height, bands = Bands, padded = scene.PaddedBands;
+        var tables = new TermTables(scene);
         var p = new float[Components.Length][];
         for (int c = 0; c < p.Length; c++)
         {
-            p[c] = new float[bands];
-            Components[c].BandValues(scene, lightBands, p[c]);
+            p[c] = new float[padded];
+            Components[c].BandValues(tables, p[c]);
         }
         var image = new SpectralImage(Width, Height, Grid);
         var data = image.Data;
+        var xyz = new float[3 * n];
         // Pixel ranges in parallel: each component's run inside a range is found by binary search (pixels ascend).
         const int Chunk = 8192;
         Parallel.For(0, (n + Chunk - 1) / Chunk, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (chunk) =>
@@ -164,37 +151,36 @@ public sealed class LightTransfer
                 var pix = Pixels[c];
                 var f = Factors[c];
                 var pc = p[c];
+                float cx = pc[bands], cy = pc[bands + 1], cz = pc[bands + 2];
                 int j = Array.BinarySearch(pix, i0);
                 if (j < 0) j = ~j;
                 for (; j < pix.Length && pix[j] < i1; j++)
                 {
                     float fi = f[j];
-                    var px = data.AsSpan(pix[j] * bands, bands);
+                    int i = pix[j];
+                    var px = data.AsSpan(i * bands, bands);
                     for (int b = 0; b < bands; b++) px[b] += fi * pc[b];
+                    xyz[3 * i] += fi * cx; xyz[3 * i + 1] += fi * cy; xyz[3 * i + 2] += fi * cz;
                 }
             }
         });
-        return image;
+        // Where a path met a coloured weight the renderer takes eq. 3 on the band values; so does the relit render.
+        long fallback = 0;
+        for (int i = 0; i < n; i++)
+        {
+            if (!Fallback[i]) continue;
+            var c = scene.Colorimeter.ToXyz((ReadOnlySpan<float>)data.AsSpan(i * bands, bands));
+            xyz[3 * i] = (float)c.X; xyz[3 * i + 1] = (float)c.Y; xyz[3 * i + 2] = (float)c.Z;
+            fallback++;
+        }
+        return (image, xyz, fallback);
     }
 
     /// <summary>The highlight-mask luminances of eq. 2's terms at the centre rays, under new light band values.</summary>
     public (float[] DiffuseY, float[] SpecularY) CentreLuminance(Scene scene)
     {
-        var lightBands = scene.Lights.Select(l => l.Intensity).ToList();
-        int n = Width * Height, lights = lightBands.Count, mats = scene.Materials.Count;
-        var wy = scene.Colorimeter.Wy;
-        var dy = new float[lights * mats]; var sy = new float[lights * mats];
-        for (int k = 0; k < lights; k++)
-        for (int m = 0; m < mats; m++)
-        {
-            double d = 0, s = 0;
-            for (int b = 0; b < scene.Bands; b++)
-            {
-                d += wy[b] * lightBands[k][b] * scene.Materials[m].Diffuse[b];
-                s += wy[b] * lightBands[k][b] * scene.Materials[m].Specular[b];
-            }
-            dy[k * mats + m] = (float)d; sy[k * mats + m] = (float)s;
-        }
+        var tables = new TermTables(scene);
+        int n = Width * Height, lights = scene.Lights.Count, y = scene.Bands + 1;   // the Y colour lane
         var diffuse = new float[n]; var specular = new float[n];
         for (int i = 0; i < n; i++)
         {
@@ -203,8 +189,9 @@ public sealed class LightTransfer
             int m = scene.Objects[o].Material;
             for (int k = 0; k < lights; k++)
             {
-                diffuse[i] += CentreDiffuse[k][i] * dy[k * mats + m];
-                specular[i] += CentreSpecular[k][i] * sy[k * mats + m];
+                int term = tables.Index(k, m);
+                diffuse[i] += CentreDiffuse[k][i] * tables.Diffuse[term][y];
+                specular[i] += CentreSpecular[k][i] * tables.Specular[term][y];
             }
         }
         return (diffuse, specular);
@@ -225,6 +212,9 @@ public sealed class LightTransfer
         // Per tile, its terms in pixel order: (component, pixel, factor).
         readonly ConcurrentBag<(int[] Comp, int[] Pixel, float[] Factor, int Count)> _tiles = [];
         readonly float[][] _centreDiffuse, _centreSpecular;
+        readonly TermTables _tables;
+        readonly bool _physical;
+        readonly bool[] _fallback;
 
         public Tracer(Scene scene, SceneGeometry geometry)
         {
@@ -236,6 +226,9 @@ public sealed class LightTransfer
             _width = scene.Camera.Width; _height = scene.Camera.Height;
             _centreDiffuse = _lights.Select(_ => new float[_width * _height]).ToArray();
             _centreSpecular = _lights.Select(_ => new float[_width * _height]).ToArray();
+            _tables = new TermTables(scene);
+            _physical = scene.Radiometry == Radiometry.Physical;
+            _fallback = new bool[_width * _height];
         }
 
         sealed class Worker
@@ -247,6 +240,7 @@ public sealed class LightTransfer
             public int[] TermComps = new int[64];
             public float[] TermFactors = new float[64];
             public int Terms;
+            public bool Fallback;
             // The current tile's terms.
             public int[] TileComp = new int[4096], TilePixel = new int[4096];
             public float[] TileFactor = new float[4096];
@@ -301,6 +295,7 @@ public sealed class LightTransfer
                     {
                         int i = y * width + x;
                         w.Terms = 0;
+                        w.Fallback = false;
                         uint mask = 0;
                         int id;
                         if (spp == 1)
@@ -319,11 +314,12 @@ public sealed class LightTransfer
                                 uint unused = 0;
                                 Primary(cam.Generate(x + jx, y + jy), w, inv, i, ref unused, centre: false);
                             }
-                            // The centre ray only for the analysis data (no radiance).
+                            // The centre ray for the analysis data, traced as the renderer traces it (its radiance weighs 0).
                             w.Counters.Primary++;
-                            id = Centre(cam.Generate(x + 0.5f, y + 0.5f), i, ref mask, ref w.Counters);
+                            id = Primary(cam.Generate(x + 0.5f, y + 0.5f), w, 0f, i, ref mask, centre: true);
                         }
                         w.Emit(i);
+                        _fallback[i] = w.Fallback;
                         ids[i] = id;
                         lit[i] = mask;
                     }
@@ -341,7 +337,7 @@ public sealed class LightTransfer
             {
                 Width = width, Height = height, Bands = bands, Grid = _scene.Grid,
                 Components = components, Pixels = pixels, Factors = factors, Merged = merged,
-                CentreDiffuse = _centreDiffuse, CentreSpecular = _centreSpecular,
+                CentreDiffuse = _centreDiffuse, CentreSpecular = _centreSpecular, Fallback = _fallback,
                 ObjectIds = ids, LitMasks = lit, Rays = total,
             };
         }
@@ -405,22 +401,6 @@ public sealed class LightTransfer
             return Radiance(ray, 0, w, weight, pixel, ref mask, centre);
         }
 
-        int Centre(Ray ray, int pixel, ref uint mask, ref RayCounters counters)
-        {
-            if (!_geometry.Intersect(ref ray, out var hit)) return -1;
-            var m = _materials[_objectMaterial[hit.Object]];
-            Local(ray, hit, m, out var n, out var v, out var pAbove, out _);
-            for (int k = 0; k < _lights.Length; k++)
-            {
-                if (!_lights[k].Illuminate(hit.Position, out var ls) || !Lit(ls, pAbove, n, ref counters, out float nl)) continue;
-                float d = ls.Attenuation * ls.Spot;
-                if (k < 32) mask |= 1u << k;
-                _centreDiffuse[k][pixel] = d * nl;
-                _centreSpecular[k][pixel] = m.HasSpecular ? d * m.SpecularFactor(n, ls.Direction, v, nl) : 0;
-            }
-            return hit.Object;
-        }
-
         void Local(in Ray ray, in SurfaceHit hit, Material m, out Vector3 n, out Vector3 v, out Vector3 pAbove, out bool outside)
         {
             v = -ray.Direction;
@@ -466,7 +446,8 @@ public sealed class LightTransfer
                 if (light.HasAmbient && m.HasAmbient) AddTerm(w, k, TransferLobe.Ambient, mi, weight * ls.Spot);
                 if (!Lit(ls, pAbove, n, ref w.Counters, out float nl)) continue;
                 float d = ls.Attenuation * ls.Spot;
-                float s = m.HasSpecular ? m.SpecularFactor(n, ls.Direction, v, nl) : 0;
+                // Physical: the specular lobe is a BRDF, weighted by cos θ_i like the diffuse one (as the integrator does).
+                float s = m.HasSpecular ? m.SpecularFactor(n, ls.Direction, v, nl) * (_physical ? nl : 1f) : 0;
                 AddTerm(w, k, TransferLobe.Diffuse, mi, weight * d * nl);
                 if (m.HasSpecular) AddTerm(w, k, TransferLobe.Specular, mi, weight * d * s);
                 if (depth == 0 && centre)
@@ -495,6 +476,8 @@ public sealed class LightTransfer
                 float f = 1;
                 if (sin2T >= 1)
                 {
+                    // Total internal reflection: with Fresnel nothing is transmitted (F = 1 on the mirror lobe).
+                    if (m.Fresnel) return hit.Object;
                     dir = Vector3.Normalize(ray.Direction + 2 * cosI * n);
                     origin = p + _geometry.Epsilon * ng;
                 }
@@ -513,6 +496,7 @@ public sealed class LightTransfer
 
         void Follow(Ray ray, int depth, Worker w, float weight, float f, float[] k, int mi, bool transmit, int pixel)
         {
+            if (transmit ? _tables.TransmitColoured[mi] : _tables.MirrorColoured[mi]) w.Fallback = true;
             w.Chain[w.ChainLength++] = mi << 1 | (transmit ? 1 : 0);
             uint unused = 0;
             Radiance(ray, depth + 1, w, weight * f, pixel, ref unused, centre: false);
@@ -521,6 +505,7 @@ public sealed class LightTransfer
 
         void AddTerm(Worker w, int light, TransferLobe lobe, int material, float factor)
         {
+            if (factor == 0) return;
             // light + 1 (8 bits), lobe (3), material + 1 (12), chain length (3), then 16 bits per chain element.
             ulong a = (ulong)(light + 1) | (ulong)lobe << 8 | (ulong)(material + 1) << 11 | (ulong)w.ChainLength << 23;
             ulong b = 0;

@@ -16,6 +16,13 @@ public sealed class RenderResult
     /// <summary>Per pixel, the luminance of the specular and diffuse terms of eq. 2 at the centre ray's hit.</summary>
     public required float[] SpecularY { get; init; }
     public required float[] DiffuseY { get; init; }
+    /// <summary>
+    /// Per pixel X, Y, Z (3 floats, κ included): the colour of its spectrum as the scene's integration defines it — with
+    /// <see cref="Color.BandIntegration.Exact"/> the sum of each term's exact XYZ from the tables, not eq. 3 on the band values.
+    /// </summary>
+    public float[]? Xyz { get; init; }
+    /// <summary>Pixels whose colour fell back to eq. 3 on their band values because a term multiplied more than two spectra.</summary>
+    public long FallbackPixels { get; init; }
     public required RayCounters Rays { get; init; }
     public required TimeSpan Elapsed { get; init; }
     public required int Threads { get; init; }
@@ -49,6 +56,10 @@ public sealed class Renderer
         var lit = new uint[width * height];
         var specY = new float[width * height];
         var diffY = new float[width * height];
+        var xyz = new float[3 * width * height];
+        long fallbackPixels = 0;
+        var colorimeter = scene.Colorimeter;
+        int lane = bands;   // the colour lanes follow the bands (SpectralMath.ColourLanes)
         int tilesX = (width + TileSize - 1) / TileSize, tilesY = (height + TileSize - 1) / TileSize;
         int tiles = tilesX * tilesY;
         if (threads <= 0) threads = Environment.ProcessorCount;
@@ -86,6 +97,7 @@ public sealed class Renderer
                 {
                     int id;
                     var info = new PixelInfo();
+                    long fallbackBefore = counters.Fallback;
                     if (spp == 1)
                     {
                         counters.Primary++;
@@ -111,6 +123,13 @@ public sealed class Renderer
                     }
                     sum[..bands].CopyTo(image.Data.AsSpan(image.Offset(x, y), bands));
                     int i = y * width + x;
+                    if (counters.Fallback == fallbackBefore) { xyz[3 * i] = sum[lane]; xyz[3 * i + 1] = sum[lane + 1]; xyz[3 * i + 2] = sum[lane + 2]; }
+                    else
+                    {   // a term multiplied more spectra than the tables hold: eq. 3 on this pixel's band values
+                        var c = colorimeter.ToXyz((ReadOnlySpan<float>)sum[..bands]);
+                        xyz[3 * i] = (float)c.X; xyz[3 * i + 1] = (float)c.Y; xyz[3 * i + 2] = (float)c.Z;
+                        Interlocked.Increment(ref fallbackPixels);
+                    }
                     ids[i] = id;
                     lit[i] = info.LitMask;
                     specY[i] = info.SpecularY;
@@ -129,7 +148,7 @@ public sealed class Renderer
         try { Task.WaitAll(workers); }
         catch (AggregateException e) when (e.InnerExceptions.All(x => x is OperationCanceledException)) { throw new OperationCanceledException(cancel); }
 
-        return new RenderResult { Image = image, ObjectIds = ids, LitMasks = lit, SpecularY = specY, DiffuseY = diffY, Rays = total, Elapsed = clock.Elapsed, Threads = threads, Tiles = tiles };
+        return new RenderResult { Image = image, ObjectIds = ids, LitMasks = lit, SpecularY = specY, DiffuseY = diffY, Xyz = xyz, FallbackPixels = fallbackPixels, Rays = total, Elapsed = clock.Elapsed, Threads = threads, Tiles = tiles };
     }
 
     sealed class TileState(int scratch, int padded)

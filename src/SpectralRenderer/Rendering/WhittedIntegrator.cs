@@ -12,6 +12,11 @@ namespace SpectralRenderer.Rendering;
 /// with L_diff = I_k·m_diff·max(0, n·l), L_spec = I_k·m_spec·max(0, n·h)^shininess (Blinn–Phong) or
 /// (r·v)^shininess (Phong), hard shadows, then k_r·L(reflected) and k_t·L(refracted) to the maximum
 /// depth. One ray carries all bands; a wavelength-dependent index of refraction splits it per band.
+/// Each term adds a precomputed table (<see cref="TermTables"/>: the exact band means of I_k·m and their XYZ in the
+/// colour lanes) times its scalar. Physical radiometry reads the same terms in units: the tables carry 1/π and the
+/// specular normalisation, the specular term gains the cos θ_i of a BRDF, and point lights fall off as 1/r².
+/// With Fresnel, k_r·F and k_t·(1 − F), F = 1 under total internal reflection (nothing is transmitted), F per band
+/// for a dispersive material.
 /// </summary>
 public sealed class WhittedIntegrator : IIntegrator
 {
@@ -21,8 +26,8 @@ public sealed class WhittedIntegrator : IIntegrator
     readonly Light[] _lights;
     readonly int[] _objectMaterial;
     readonly int _padded;
-    // Luminance (eq. 3's Y weights) of I_k ⊙ m_diff and I_k ⊙ m_spec per (light, material), for the highlight mask.
-    readonly float[] _diffuseY, _specularY;
+    readonly TermTables _tables;
+    readonly bool _physical;
 
     public WhittedIntegrator(Scene scene, SceneGeometry geometry)
     {
@@ -32,21 +37,8 @@ public sealed class WhittedIntegrator : IIntegrator
         _lights = scene.Lights.ToArray();
         _objectMaterial = scene.Objects.Select(o => o.Material).ToArray();
         _padded = scene.PaddedBands;
-        _diffuseY = new float[_lights.Length * _materials.Length];
-        _specularY = new float[_diffuseY.Length];
-        var wy = scene.Colorimeter.Wy;
-        for (int k = 0; k < _lights.Length; k++)
-        for (int m = 0; m < _materials.Length; m++)
-        {
-            double d = 0, sp = 0;
-            for (int b = 0; b < scene.Bands; b++)
-            {
-                d += wy[b] * _lights[k].Intensity[b] * _materials[m].Diffuse[b];
-                sp += wy[b] * _lights[k].Intensity[b] * _materials[m].Specular[b];
-            }
-            _diffuseY[k * _materials.Length + m] = (float)d;
-            _specularY[k * _materials.Length + m] = (float)sp;
-        }
+        _tables = new TermTables(scene);
+        _physical = scene.Radiometry == Radiometry.Physical;
     }
 
     public SceneGeometry Geometry => _geometry;
@@ -77,7 +69,7 @@ public sealed class WhittedIntegrator : IIntegrator
         result.Clear();
         if (!_geometry.Intersect(ref ray, out var hit))
         {
-            _scene.Background.AsSpan().CopyTo(result);
+            _tables.Background.AsSpan().CopyTo(result);
             return -1;
         }
         int mi = _objectMaterial[hit.Object];
@@ -91,7 +83,7 @@ public sealed class WhittedIntegrator : IIntegrator
         var p = hit.Position;
         var pAbove = p + eps * ng;
 
-        if (_scene.HasGlobalAmbient && m.HasAmbient) SpectralMath.AddProduct(result, _scene.GlobalAmbient, m.Ambient);
+        if (_scene.HasGlobalAmbient && m.HasAmbient) SpectralMath.AddScaled(result, _tables.GlobalAmbient[mi], 1f);
 
         for (int k = 0; k < _lights.Length; k++)
         {
@@ -99,7 +91,8 @@ public sealed class WhittedIntegrator : IIntegrator
             if (!light.Illuminate(p, out var ls)) continue;
             var l = ls.Direction;
             float dist = ls.Distance, spot = ls.Spot;
-            if (light.HasAmbient && m.HasAmbient) SpectralMath.AddProduct(result, light.Ambient, m.Ambient, spot);
+            int term = _tables.Index(k, mi);
+            if (light.HasAmbient && m.HasAmbient) SpectralMath.AddScaled(result, _tables.Ambient[term], spot);
 
             float nl = Vector3.Dot(n, l);
             if (nl <= 0) continue;
@@ -109,17 +102,20 @@ public sealed class WhittedIntegrator : IIntegrator
 
             float d = ls.Attenuation * spot;
             float s = 0;
+            var diffuse = _tables.Diffuse[term];
             if (m.HasSpecular)
             {
-                s = m.SpecularFactor(n, l, v, nl);
-                SpectralMath.AddProduct2(result, light.Intensity, m.Diffuse, d * nl, m.Specular, d * s);
+                // Physical: the lobe is a BRDF, so it is weighted by cos θ_i like the diffuse one (paper: eq. 2 as written).
+                s = m.SpecularFactor(n, l, v, nl) * (_physical ? nl : 1f);
+                SpectralMath.AddScaled2(result, diffuse, d * nl, _tables.Specular[term], d * s);
             }
-            else SpectralMath.AddProduct(result, light.Intensity, m.Diffuse, d * nl);
+            else SpectralMath.AddScaled(result, diffuse, d * nl);
             if (depth == 0)
             {
                 if (k < 32) info.LitMask |= 1u << k;
-                info.DiffuseY += d * nl * _diffuseY[k * _materials.Length + mi];
-                info.SpecularY += d * s * _specularY[k * _materials.Length + mi];
+                int y = _scene.Bands + 1;   // the Y colour lane
+                info.DiffuseY += d * nl * diffuse[y];
+                info.SpecularY += d * s * _tables.Specular[term][y];
             }
         }
 
@@ -133,14 +129,22 @@ public sealed class WhittedIntegrator : IIntegrator
             var dir = Vector3.Normalize(ray.Direction + 2 * cosI * n);
             counters.Secondary++;
             Radiance(new Ray(pAbove, dir), depth + 1, band, incoming, rest, ref counters);
-            float f = m.MirrorFactor(cosI, outside, band);
-            SpectralMath.AddProduct(result, m.Mirror, incoming, f);
+            if (m.Fresnel && m.Dispersive && band < 0)
+            {   // F from each band's own index: reflection + transmission = 1 in every band; the colour lanes cannot follow.
+                for (int b = 0; b < _scene.Bands; b++) result[b] += _tables.Mirror[mi][b] * incoming[b] * m.MirrorFactor(cosI, outside, b);
+                counters.Fallback++;
+            }
+            else
+            {
+                SpectralMath.AddProduct(result, _tables.Mirror[mi], incoming, m.MirrorFactor(cosI, outside, band));
+                if (_tables.MirrorColoured[mi]) counters.Fallback++;
+            }
         }
         if (m.HasTransmission)
         {
             var at = new SurfacePoint(p, n, ng, ray.Direction, cosI, outside);
             if (!m.Dispersive || band >= 0)
-                Refract(m, band, at, depth, result, incoming, rest, ref counters);
+                Refract(m, mi, band, at, depth, result, incoming, rest, ref counters);
             else
             {
                 // Dispersion: every band bends by its own index, so each gets its own refracted ray.
@@ -148,9 +152,10 @@ public sealed class WhittedIntegrator : IIntegrator
                 for (int b = 0; b < _scene.Bands; b++)
                 {
                     one.Clear();
-                    Refract(m, b, at, depth, one, incoming, rest, ref counters);
+                    Refract(m, mi, b, at, depth, one, incoming, rest, ref counters);
                     result[b] += one[b];
                 }
+                counters.Fallback++;   // per-band paths: the colour comes from the band values
             }
         }
         return hit.Object;
@@ -166,7 +171,7 @@ public sealed class WhittedIntegrator : IIntegrator
 
     /// <summary>k_t·L(refracted) into <paramref name="result"/>: all bands when <paramref name="band"/> is −1, else that band only.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    void Refract(Material m, int band, in SurfacePoint at, int depth,
+    void Refract(Material m, int mi, int band, in SurfacePoint at, int depth,
         Span<float> result, Span<float> incoming, Span<float> rest, ref RayCounters counters)
     {
         float eta = m.Eta(at.Outside, band);   // n_i / n_t
@@ -176,7 +181,10 @@ public sealed class WhittedIntegrator : IIntegrator
         Vector3 origin;
         float weight = 1;
         if (sin2T >= 1)
-        {   // total internal reflection: the transmitted share goes into the mirror direction
+        {
+            // Total internal reflection. With Fresnel, F = 1: the mirror lobe already reflects everything (k_r·F) and
+            // k_t·(1 − F) = 0 — nothing more to add. Without Fresnel the constant k_t share goes into the mirror direction.
+            if (m.Fresnel) return;
             dir = Vector3.Normalize(at.Incident + 2 * cosI * at.N);
             origin = at.P + _geometry.Epsilon * at.Ng;
         }
@@ -189,7 +197,11 @@ public sealed class WhittedIntegrator : IIntegrator
         }
         counters.Secondary++;
         Radiance(new Ray(origin, dir), depth + 1, band, incoming, rest, ref counters);
-        if (band < 0) SpectralMath.AddProduct(result, m.Transmit, incoming, weight);
+        if (band < 0)
+        {
+            SpectralMath.AddProduct(result, _tables.Transmit[mi], incoming, weight);
+            if (_tables.TransmitColoured[mi]) counters.Fallback++;
+        }
         else result[band] += m.Transmit[band] * incoming[band] * weight;
     }
 }

@@ -30,6 +30,8 @@ public abstract class Light
     public required float[] Intensity { get; init; }
     public required float[] Ambient { get; init; }
     public bool HasAmbient { get; init; }
+    /// <summary>The scene's "intensity": the factor on <see cref="Spectrum"/> in <see cref="Intensity"/>.</summary>
+    public float Scale { get; init; } = 1;
     /// <summary>The light's spectrum as given (for reports and the reference white).</summary>
     public Spectra.TabulatedSpectrum? Spectrum { get; init; }
 

@@ -8,6 +8,9 @@ public sealed class PhongModel : SpecularModel
 {
     public override string Name => "phong";
 
+    /// <summary>(n + 2)/(2π): the energy-conserving modified Phong lobe (Lafortune &amp; Willems 1994), albedo m_spec at normal incidence.</summary>
+    public override double EnergyNormalisation(double shininess) => (shininess + 2) / (2 * Math.PI);
+
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]   // hot: once per light per specular hit
     public override float Evaluate(Vector3 n, Vector3 l, Vector3 v, float nl, float shininess)
     {

@@ -15,6 +15,20 @@ public sealed class SceneObject
     public bool Smooth { get; init; } = true;
 }
 
+/// <summary>What eq. 2's terms mean (docs/scene-format.md, "Radiometry").</summary>
+public enum Radiometry
+{
+    /// <summary>Eq. 2 as the paper and OpenGL write it: relative units, the diffuse lobe ρ·cosθ, unnormalised specular lobes.</summary>
+    Paper,
+    /// <summary>
+    /// Eq. 2 in units: point/spot spectrum × intensity = radiant intensity (W·sr⁻¹·nm⁻¹, inverse square by default),
+    /// directional = irradiance facing it (W·m⁻²·nm⁻¹), diffuse ρ/π, energy-normalised Blinn–Phong ((n+8)/8π) and
+    /// Phong ((n+2)/2π), ambient = radiance of a uniform surround (a Lambertian surface returns ρ·a).
+    /// Band values are spectral radiance, W·m⁻²·sr⁻¹·nm⁻¹.
+    /// </summary>
+    Physical,
+}
+
 /// <summary>
 /// The resolved scene: every spectrum already turned into band values on the scene's band grid,
 /// ready for an integrator.
@@ -27,6 +41,15 @@ public sealed class Scene
     public required Observer Observer { get; init; }
     public required TabulatedSpectrum ReferenceWhite { get; init; }
     public required Colorimeter Colorimeter { get; init; }
+    public Radiometry Radiometry { get; init; } = Radiometry.Paper;
+    /// <summary>One-line warnings about the scene (reflectances above 1, a scene that can only render black), for stderr.</summary>
+    public List<string> Warnings { get; init; } = [];
+    /// <summary>
+    /// The tabulated spectrum behind each band array of the scene (lights' I_k with their intensity, the ambient and
+    /// background radiances, every material lobe), by array identity: the integrator integrates their products exactly.
+    /// An array without an entry (a zero lobe, a hand-made scene) is used as band values only.
+    /// </summary>
+    public IReadOnlyDictionary<float[], TabulatedSpectrum> Spectra { get; init; } = new Dictionary<float[], TabulatedSpectrum>(ReferenceEqualityComparer.Instance);
     public required Camera Camera { get; set; }
     public required List<Material> Materials { get; init; }
     public required List<Light> Lights { get; init; }

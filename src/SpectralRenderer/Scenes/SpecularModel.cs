@@ -13,6 +13,12 @@ public abstract class SpecularModel
 
     /// <summary>The factor for unit normal n, unit light direction l, unit view direction v, n·l > 0.</summary>
     public abstract float Evaluate(Vector3 n, Vector3 l, Vector3 v, float nl, float shininess);
+
+    /// <summary>
+    /// Physical radiometry: the constant that makes m_spec · factor · cos θ_i an energy-conserving BRDF lobe times cos θ_i
+    /// (its directional albedo at most m_spec), e.g. (n + 8)/(8π) for Blinn–Phong, (n + 2)/(2π) for Phong.
+    /// </summary>
+    public abstract double EnergyNormalisation(double shininess);
 }
 
 /// <summary>The specular models a scene file can name: the one registration point for a new model.</summary>

@@ -14,6 +14,17 @@ public static class BandProjection
     }
 
     /// <summary>
+    /// The exact band mean of a product, ∫_b a·b dλ / Δλ: the band value of the radiance of a light a on a
+    /// surface b (not the product of their band means, which differs wherever both vary inside a band).
+    /// </summary>
+    public static double[] MeansOfProduct(TabulatedSpectrum a, TabulatedSpectrum b, BandGrid grid)
+    {
+        var v = new double[grid.Count];
+        for (int i = 0; i < grid.Count; i++) v[i] = TabulatedSpectrum.MeanOfProduct(a, b, grid.Lower(i), grid.Upper(i));
+        return v;
+    }
+
+    /// <summary>
     /// The paper's band value: the mean of the spectrum's 1 nm samples (of its linear interpolant at
     /// whole nanometres) in [lo, hi), the last band also taking its upper edge — the definition used by
     /// data/reference/colorchecker-ohta-d65-2deg-bands20.csv. A band narrower than 1 nm that holds no

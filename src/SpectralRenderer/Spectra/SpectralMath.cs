@@ -10,8 +10,15 @@ namespace SpectralRenderer.Spectra;
 /// </summary>
 public static class SpectralMath
 {
-    /// <summary>The padded length for <paramref name="bands"/> bands.</summary>
-    public static int Padded(int bands) => (bands + Vector<float>.Count - 1) / Vector<float>.Count * Vector<float>.Count;
+    /// <summary>
+    /// Lanes after the bands that carry a radiance's colour, X, Y, Z (κ included), through every operation: a term of
+    /// eq. 2 adds its table's exact XYZ there while its band values go in the bands, so a pixel's colour is exact at the
+    /// tables' full resolution (<see cref="Color.BandIntegration.Exact"/>). Lane <c>bands + 0</c> is X, <c>+ 1</c> Y, <c>+ 2</c> Z.
+    /// </summary>
+    public const int ColourLanes = 3;
+
+    /// <summary>The padded length for <paramref name="bands"/> bands and the <see cref="ColourLanes"/> after them.</summary>
+    public static int Padded(int bands) => (bands + ColourLanes + Vector<float>.Count - 1) / Vector<float>.Count * Vector<float>.Count;
 
     /// <summary>Pads band values (double) to a SIMD-ready float array.</summary>
     public static float[] ToPadded(ReadOnlySpan<double> values)
@@ -51,6 +58,15 @@ public static class SpectralMath
     {
         var d = V(dst); var va = V(a); var vb = V(b);
         for (int i = 0; i < d.Length; i++) d[i] += va[i] * vb[i];
+    }
+
+    /// <summary>dst += a·s + b·t: the diffuse and specular terms of eq. 2 from their precomputed tables.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static void AddScaled2(Span<float> dst, ReadOnlySpan<float> a, float s, ReadOnlySpan<float> b, float t)
+    {
+        var d = V(dst); var va = V(a); var vb = V(b);
+        var vs = new Vector<float>(s); var vt = new Vector<float>(t);
+        for (int i = 0; i < d.Length; i++) d[i] += va[i] * vs + vb[i] * vt;
     }
 
     /// <summary>dst += a · s</summary>

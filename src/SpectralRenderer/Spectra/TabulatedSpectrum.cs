@@ -81,31 +81,58 @@ public sealed class TabulatedSpectrum
     public double Mean(double lo, double hi) => Integrate(lo, hi) / (hi - lo);
 
     /// <summary>
-    /// ∫_lo^hi a(λ)·b(λ) dλ of two piecewise-linear spectra, exactly: on each interval between
-    /// the merged knots the product is a quadratic, which Simpson's rule integrates without error.
+    /// ∫_lo^hi a(λ)·b(λ) dλ of two piecewise-linear spectra, exactly (see the three-factor overload).
     /// With <paramref name="b"/> null the integral of <paramref name="a"/> alone.
     /// </summary>
-    public static double IntegrateProduct(TabulatedSpectrum a, TabulatedSpectrum? b, double lo, double hi)
+    public static double IntegrateProduct(TabulatedSpectrum a, TabulatedSpectrum? b, double lo, double hi) =>
+        IntegrateProduct(a, b, null, lo, hi);
+
+    /// <summary>
+    /// ∫_lo^hi a(λ)·b(λ)·c(λ) dλ of up to three piecewise-linear spectra, exactly: on each interval between
+    /// the merged knots the product is a polynomial of degree ≤ 3, which Simpson's rule integrates without
+    /// error. A null factor is 1. This is the band integral of a light × a reflectance (× a CMF) at the
+    /// tables' full resolution.
+    /// </summary>
+    public static double IntegrateProduct(TabulatedSpectrum a, TabulatedSpectrum? b, TabulatedSpectrum? c, double lo, double hi)
     {
         if (hi <= lo) return 0;
         double sum = 0;
         double x0 = lo;
-        int ia = a.FirstKnotAbove(lo), ib = b?.FirstKnotAbove(lo) ?? int.MaxValue;
+        int ia = a.FirstKnotAbove(lo), ib = b?.FirstKnotAbove(lo) ?? int.MaxValue, ic = c?.FirstKnotAbove(lo) ?? int.MaxValue;
         while (x0 < hi)
         {
             double na = ia < a._wavelengths.Length ? a._wavelengths[ia] : double.PositiveInfinity;
             double nb = b is not null && ib < b._wavelengths.Length ? b._wavelengths[ib] : double.PositiveInfinity;
-            double x1 = Math.Min(hi, Math.Min(na, nb));
+            double nc = c is not null && ic < c._wavelengths.Length ? c._wavelengths[ic] : double.PositiveInfinity;
+            double x1 = Math.Min(hi, Math.Min(na, Math.Min(nb, nc)));
             if (x1 == na) ia++;
             if (x1 == nb) ib++;
+            if (x1 == nc) ic++;
             var (fa0, fa1) = a.Ends(x0, x1);
             var (fb0, fb1) = b?.Ends(x0, x1) ?? (1.0, 1.0);
-            // Inside one knot interval both are linear, so their midpoint values are the means of the ends.
-            double fam = 0.5 * (fa0 + fa1), fbm = 0.5 * (fb0 + fb1);
-            sum += (x1 - x0) / 6 * (fa0 * fb0 + 4 * fam * fbm + fa1 * fb1);
+            var (fc0, fc1) = c?.Ends(x0, x1) ?? (1.0, 1.0);
+            // Inside one knot interval all are linear, so their midpoint values are the means of the ends.
+            double fam = 0.5 * (fa0 + fa1), fbm = 0.5 * (fb0 + fb1), fcm = 0.5 * (fc0 + fc1);
+            sum += (x1 - x0) / 6 * (fa0 * fb0 * fc0 + 4 * fam * fbm * fcm + fa1 * fb1 * fc1);
             x0 = x1;
         }
         return sum;
+    }
+
+    /// <summary>The band mean of a product, ∫_lo^hi a·b dλ / (hi − lo), exactly.</summary>
+    public static double MeanOfProduct(TabulatedSpectrum a, TabulatedSpectrum b, double lo, double hi) =>
+        IntegrateProduct(a, b, null, lo, hi) / (hi - lo);
+
+    /// <summary>The largest and smallest value the interpolant takes on [lo, hi] (at knots inside it or at its ends).</summary>
+    public (double Min, double Max) Range(double lo, double hi)
+    {
+        double min = double.PositiveInfinity, max = double.NegativeInfinity;
+        void Take(double v) { min = Math.Min(min, v); max = Math.Max(max, v); }
+        if (Covers(lo, lo)) Take(Evaluate(Math.Max(lo, Extrapolation == Extrapolation.Error ? First : lo)));
+        if (Covers(hi, hi)) Take(Evaluate(Math.Min(hi, Extrapolation == Extrapolation.Error ? Last : hi)));
+        for (int i = 0; i < _wavelengths.Length; i++)
+            if (_wavelengths[i] >= lo && _wavelengths[i] <= hi) Take(_values[i]);
+        return (min, max);
     }
 
     /// <summary>The interpolant's values at both ends of [x0, x1], an interval between knots (zero outside the table under <see cref="Extrapolation.Zero"/>).</summary>

@@ -32,7 +32,7 @@ public class ExrTests
         Assert.Equal("1.0", f.StringAttributes["spectralLayoutVersion"]);
         Assert.Equal("W.m^-2.sr^-1", f.StringAttributes["emissiveUnits"]);
         Assert.StartsWith("380,400,420,", f.StringAttributes["spectralBandEdges"]);
-        Assert.StartsWith("weighted", f.StringAttributes["spectralIntegration"]);
+        Assert.StartsWith("exact", f.StringAttributes["spectralIntegration"]);
         Assert.Equal(["B", "G", "R", "X", "Y", "Z"], f.OtherChannels.Keys.Order(StringComparer.Ordinal));
 
         // R, G, B are linear sRGB of each pixel's XYZ; X, Y, Z its eq. 3 tristimulus values.

@@ -39,8 +39,8 @@ public class AllocationTests
             r = Renderer.Render(scene, integrator, 2);
             allocated = Math.Min(allocated, GC.GetTotalAllocatedBytes(true) - before);
         }
-        // The results themselves: the framebuffer and four per-pixel analysis arrays.
-        long outputs = (long)size * size * (scene.Bands * 4 + 4 + 4 + 4 + 4);
+        // The results themselves: the framebuffer, four per-pixel analysis arrays and the pixel colours (X, Y, Z).
+        long outputs = (long)size * size * (scene.Bands * 4 + 4 + 4 + 4 + 4 + 3 * 4);
         return (allocated, outputs, r.Tiles, r.Rays.Total);
     }
 

@@ -112,7 +112,9 @@ public sealed partial class SceneLoader
         if (!s.Covers(_grid.Start, _grid.End))
             throw Error(path, $"spectrum '{s.Name}' covers {s.First:0.###}–{s.Last:0.###} nm but the bands need {_grid.Start:0.###}–{_grid.End:0.###} nm",
                 "choose bands inside its range or give it \"extrapolate\": \"clamp\" or \"zero\"");
-        return SpectralMath.ToPadded(_colorimeter!.Project(s));
+        var bands = SpectralMath.ToPadded(_colorimeter!.Project(s));
+        _spectra[bands] = s;
+        return bands;
     }
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
@@ -126,13 +128,15 @@ public sealed partial class SceneLoader
     {
         if (e.ValueKind == JsonValueKind.String || e.ValueKind == JsonValueKind.Number || e.ValueKind == JsonValueKind.Array)
         {   // shorthand: a bare spectrum is a diffuse material
-            var d = Spectrum(e, path);
+            var d = Reflectance(Spectrum(e, path), path);
             var bands = Bands(d, path);
             return DiffuseMaterial(name, bands, d);
         }
         Object(e, path);
         Keys(e, path, "diffuse", "ambient", "specular", "shininess", "model", "mirror", "transmit", "ior", "fresnel");
-        TabulatedSpectrum? diffuseSpectrum = TryGet(e, "diffuse", out var ds) ? Spectrum(ds, $"{path}.diffuse") : null;
+        foreach (var component in new[] { "ambient", "specular", "mirror", "transmit" })
+            if (TryGet(e, component, out var c)) Reflectance(Spectrum(c, $"{path}.{component}"), $"{path}.{component}");
+        TabulatedSpectrum? diffuseSpectrum = TryGet(e, "diffuse", out var ds) ? Reflectance(Spectrum(ds, $"{path}.diffuse"), $"{path}.diffuse") : null;
         var diffuse = diffuseSpectrum is null ? Zero() : Bands(diffuseSpectrum, $"{path}.diffuse");
         var ambient = OptionalBands(e, "ambient", path, diffuse);  // m_amb defaults to m_diff
         var specular = OptionalBands(e, "specular", path);
@@ -169,6 +173,28 @@ public sealed partial class SceneLoader
             Name = name, Ambient = ambient, Diffuse = diffuse, Specular = specular, Shininess = shininess, Model = model,
             Mirror = mirror, Transmit = transmit, Ior = ior, Dispersive = dispersive, Fresnel = fresnel, DiffuseSpectrum = diffuseSpectrum,
         };
+    }
+
+    /// <summary>
+    /// A reflectance (or transmittance) must lie in [0, 1]: a maximum ≥ 2 over the bands is the symptom of percent and
+    /// is refused, as is a value below −1e-9; a maximum in (1, 2) — a fluorescent or glossy sample measured as a
+    /// reflectance factor — is rendered as given with a one-line warning.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
+    TabulatedSpectrum Reflectance(TabulatedSpectrum s, string path)
+    {
+        if (!s.Covers(_grid.Start, _grid.End)) return s;   // Bands() reports the coverage
+        var (min, max) = s.Range(_grid.Start, _grid.End);
+        var inv = CultureInfo.InvariantCulture;
+        if (max >= 2)
+            throw Error(path, $"reflectance '{s.Name}' reaches {max.ToString("0.###", inv)} over {_grid.Start:0.###}–{_grid.End:0.###} nm: a reflectance cannot exceed 1 (this looks like percent)",
+                $"give the spectrum as an object with \"scale\": 0.01, e.g. {{ \"csv\": \"…\", \"column\": \"…\", \"scale\": 0.01 }}");
+        if (min < -1e-9)
+            throw Error(path, $"reflectance '{s.Name}' goes down to {min.ToString("G4", inv)}: a reflectance cannot be negative",
+                "fix the table (noise below zero should be clipped to 0 before use)");
+        if (max > 1)
+            _warnings.Add($"{Where(path)}: warning: reflectance '{s.Name}' reaches {max.ToString("0.###", inv)} > 1 (a reflectance factor of a fluorescent or glossy sample?); rendered as given");
+        return s;
     }
 
     /// <summary>A purely diffuse material (m_amb = m_diff, no specular, mirror or transmission lobe).</summary>
@@ -211,8 +237,10 @@ public sealed partial class SceneLoader
         float intensity = (float)Number(e, "intensity", path, 1, 0);
         var bands = Bands(spectrum, $"{path}.spectrum");
         for (int i = 0; i < bands.Length; i++) bands[i] *= intensity;
+        _spectra[bands] = spectrum.Scaled(intensity);
         var ambient = OptionalBands(e, "ambient", path);
-        var falloff = DistanceFalloff.None;
+        // Physical radiometry: a point or spot light's spectrum × intensity is radiant intensity, so irradiance falls as 1/r².
+        var falloff = _radiometry == Radiometry.Physical ? new DistanceFalloff(0, 0, 1) : DistanceFalloff.None;
         if (TryGet(e, "attenuation", out var att))
         {
             if (att.ValueKind != JsonValueKind.Array || att.GetArrayLength() != 3) throw Error($"{path}.attenuation", "expected [c0, c1, c2] with d = 1/(c0 + c1·r + c2·r²)");
@@ -227,11 +255,11 @@ public sealed partial class SceneLoader
             return new DirectionalLight
             {
                 Name = name, Direction = Direction(Required(e, "direction", path), $"{path}.direction"),
-                Intensity = bands, Ambient = ambient, HasAmbient = hasAmbient, Spectrum = spectrum,
+                Intensity = bands, Ambient = ambient, HasAmbient = hasAmbient, Spectrum = spectrum, Scale = intensity,
             };
         var position = Vec3(Required(e, "position", path), $"{path}.position");
         if (type == "point")
-            return new PointLight { Name = name, Position = position, Falloff = falloff, Intensity = bands, Ambient = ambient, HasAmbient = hasAmbient, Spectrum = spectrum };
+            return new PointLight { Name = name, Position = position, Falloff = falloff, Intensity = bands, Ambient = ambient, HasAmbient = hasAmbient, Spectrum = spectrum, Scale = intensity };
         Vector3 direction;
         if (TryGet(e, "direction", out var d)) direction = Direction(d, $"{path}.direction");
         else if (TryGet(e, "look_at", out var la))
@@ -246,7 +274,7 @@ public sealed partial class SceneLoader
         return new SpotLight
         {
             Name = name, Position = position, Direction = direction, Falloff = falloff, CosCutoff = cosCutoff, Exponent = exponent,
-            Intensity = bands, Ambient = ambient, HasAmbient = hasAmbient, Spectrum = spectrum,
+            Intensity = bands, Ambient = ambient, HasAmbient = hasAmbient, Spectrum = spectrum, Scale = intensity,
         };
     }
 

@@ -27,6 +27,9 @@ public sealed partial class SceneLoader
     readonly Dictionary<string, TabulatedSpectrum> _resolvedNamed = new(StringComparer.Ordinal);
     BandGrid _grid = BandGrid.Default;
     Colorimeter? _colorimeter;
+    Radiometry _radiometry;
+    readonly List<string> _warnings = [];
+    readonly Dictionary<float[], TabulatedSpectrum> _spectra = new(ReferenceEqualityComparer.Instance);
 
     SceneLoader(string file, JsonLocator locator, SceneOverrides overrides)
     {
@@ -177,7 +180,7 @@ public sealed partial class SceneLoader
 
     // ---- the scene ----------------------------------------------------------------------------
 
-    static readonly string[] TopKeys = ["name", "description", "bands", "integration", "observer", "white", "scaling", "spectra", "materials", "lights", "objects", "background", "ambient", "max_depth", "camera", "output"];
+    static readonly string[] TopKeys = ["name", "description", "bands", "integration", "radiometry", "observer", "white", "scaling", "spectra", "materials", "lights", "objects", "background", "ambient", "max_depth", "camera", "output"];
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
     Scene Build(JsonElement root)
@@ -215,7 +218,17 @@ public sealed partial class SceneLoader
                 "absolute" => true,
                 var other => throw Error("$.scaling", $"unknown scaling '{other}'", "relative (white Y = 1) or absolute (κ = 683 lm/W)"),
             };
-        _colorimeter = new Colorimeter(_grid, observer, white, integration, absolute);
+        _radiometry = Radiometry.Paper;
+        if (TryGet(root, "radiometry", out var rad))
+            _radiometry = String(rad, "$.radiometry").ToLowerInvariant() switch
+            {
+                "paper" => Radiometry.Paper,
+                "physical" => Radiometry.Physical,
+                var other => throw Error("$.radiometry", $"unknown radiometry '{other}'", "paper (eq. 2 as the paper writes it, relative units) or physical (W·sr⁻¹·nm⁻¹ lights, ρ/π, radiance out)"),
+            };
+        // Relative κ gives a perfect white diffuser lit head-on by the reference white at unit intensity Y = 1 in both
+        // radiometries: its radiance per unit irradiance is 1 (paper) or 1/π (physical).
+        _colorimeter = new Colorimeter(_grid, observer, white, integration, absolute, _radiometry == Radiometry.Physical ? 1 / Math.PI : 1);
         // κ = 1 / Y(white): a white that is (nearly) dark in these bands makes every colour meaningless.
         if (!absolute && !(_colorimeter.Kappa > 0 && _colorimeter.Kappa < 1e12))
             throw Error(whitePath, $"the reference white '{white.Name}' has no luminance over the bands {_grid}", "choose a white (or first light) that emits visible light inside the bands");
@@ -256,6 +269,7 @@ public sealed partial class SceneLoader
         var ambient = hasAmbient ? Bands(amb, "$.ambient") : new float[SpectralMath.Padded(_grid.Count)];
 
         CheckFramebuffer(camera);
+        WarnIfBlack(lights, materials, objects, hasAmbient && SpectralMath.Any(ambient), SpectralMath.Any(background));
 
         return new Scene
         {
@@ -265,6 +279,9 @@ public sealed partial class SceneLoader
             Observer = observer,
             ReferenceWhite = white,
             Colorimeter = _colorimeter,
+            Radiometry = _radiometry,
+            Warnings = _warnings,
+            Spectra = _spectra,
             Camera = camera,
             Materials = materials,
             Lights = lights,
@@ -276,6 +293,23 @@ public sealed partial class SceneLoader
             Output = output,
             Resolved = JsonNode.Parse(root.GetRawText(), documentOptions: new JsonDocumentOptions { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true }) as JsonObject,
         };
+    }
+
+    /// <summary>A scene whose every pixel must be black is almost always a mistake: say so on stderr (the render still runs).</summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
+    void WarnIfBlack(List<Light> lights, List<Material> materials, List<SceneObject> objects, bool globalAmbient, bool background)
+    {
+        if (background) return;
+        bool lit = globalAmbient || lights.Any(l => SpectralMath.Any(l.Intensity) || l.HasAmbient);
+        if (!lit)
+        {
+            _warnings.Add($"{_file}: warning: the scene can only render black: {(lights.Count == 0 ? "it has no light" : "no light emits inside the bands " + _grid)}, no ambient light and a black background " +
+                "(add a light with a spectrum and \"intensity\" > 0, an \"ambient\" or a \"background\")");
+            return;
+        }
+        bool reflects = objects.Any(o => materials[o.Material] is var m && (m.HasAmbient || SpectralMath.Any(m.Diffuse) || m.HasSpecular || m.HasMirror || m.HasTransmission));
+        if (!reflects)
+            _warnings.Add($"{_file}: warning: the scene can only render black: no object's material reflects or transmits light and the background is black");
     }
 
     string Where(string path) => _locator.Locate(path) is { } pos ? $"{_file}:{pos}: {path}" : $"{_file}: {path}";
@@ -291,16 +325,17 @@ public sealed partial class SceneLoader
     BandIntegration ParseIntegration(string? fromCli, JsonElement root)
     {
         if (fromCli is not null) return ParseIntegration(fromCli, "--integration");
-        if (!TryGet(root, "integration", out var e)) return BandIntegration.Weighted;
+        if (!TryGet(root, "integration", out var e)) return BandIntegration.Exact;
         return ParseIntegration(String(e, "$.integration"), Where("$.integration"));
     }
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
     static BandIntegration ParseIntegration(string s, string where) => s.ToLowerInvariant() switch
     {
+        "exact" => BandIntegration.Exact,
         "weighted" => BandIntegration.Weighted,
         "paper" => BandIntegration.Paper,
-        _ => throw new InputException(where, $"unknown band integration '{s}'", "use weighted or paper"),
+        _ => throw new InputException(where, $"unknown band integration '{s}'", "use exact (default), weighted or paper"),
     };
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
@@ -350,10 +385,23 @@ public sealed partial class SceneLoader
         if (TryGet(root, "output", out var e))
         {
             Object(e, "$.output");
-            Keys(e, "$.output", "rgb", "exposure", "adapt", "formats", "highlight_fraction", "exr_compression", "light_groups");
+            Keys(e, "$.output", "rgb", "exposure", "gamut", "adapt", "formats", "highlight_fraction", "exr_compression", "light_groups");
             o.HighlightFraction = Number(e, "highlight_fraction", "$.output", 0.1, 0, 1e6);
             if (TryGet(e, "rgb", out var rgb)) o.Rgb = RgbSpace.Parse(String(rgb, "$.output.rgb"), Where("$.output.rgb"));
-            o.Exposure = Number(e, "exposure", "$.output", 1.0, 0, 1e12);
+            if (TryGet(e, "exposure", out var ex) && ex.ValueKind == JsonValueKind.String)
+            {
+                if (!string.Equals(ex.GetString(), "auto", StringComparison.OrdinalIgnoreCase))
+                    throw Error("$.output.exposure", $"unknown exposure '{ex.GetString()}'", "a number (XYZ multiplier) or \"auto\" (the 99th percentile of the brightest channel → 1)");
+                o.ExposureAuto = true;
+            }
+            else o.Exposure = Number(e, "exposure", "$.output", 1.0, 0, 1e12);
+            if (TryGet(e, "gamut", out var gm))
+                o.Gamut = String(gm, "$.output.gamut").ToLowerInvariant() switch
+                {
+                    "clip" => GamutMapping.Clip,
+                    "desaturate" => GamutMapping.Desaturate,
+                    var other => throw Error("$.output.gamut", $"unknown gamut mapping '{other}'", "clip (per channel, colorimetric in gamut) or desaturate (toward white at constant luminance, then scale: keeps hue)"),
+                };
             o.Adapt = Bool(e, "adapt", "$.output", false);
             if (TryGet(e, "formats", out var f))
             {
