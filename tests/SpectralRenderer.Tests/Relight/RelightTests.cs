@@ -12,7 +12,7 @@ namespace SpectralRenderer.Tests.Relight;
 /// scene again; relight traces nothing). Bars (issue 15): ≤ 1e-5 relative in every band of every pixel, and
 /// ΔE00 ≤ 0.01 between the X Y Z channels of the two spectral.exr files.
 /// </summary>
-public class RelightTests
+public class RelightTests(Xunit.Abstractions.ITestOutputHelper output)
 {
     /// <summary>Two lights (a point light with fall-off and a spot), diffuse + Blinn–Phong, a tinted mirror, Fresnel glass with
     /// total internal reflection, global and per-light ambient, a background, 2 spp.</summary>
@@ -63,8 +63,9 @@ public class RelightTests
     }
 
     /// <summary>Every band of every pixel (spectral.npy) within 1e-5 relative, and ΔE00 of the EXR's X Y Z within 0.01.</summary>
-    static void AssertSameRender(string direct, string relit)
+    void AssertSameRender(string direct, string relit)
     {
+        double worstRel = 0;
         using (var a = File.OpenRead(Path.Combine(direct, "spectral.npy")))
         using (var b = File.OpenRead(Path.Combine(relit, "spectral.npy")))
         {
@@ -77,7 +78,7 @@ public class RelightTests
                 double tol = 1e-5 * Math.Abs(da[i]) + 1e-30;
                 if (Math.Abs(da[i] - db[i]) > tol)
                     Assert.Fail($"value {i} (pixel {i / sa[2]}, band {i % sa[2]}): direct {da[i]:R}, relit {db[i]:R}, relative {Math.Abs(da[i] - db[i]) / Math.Abs(da[i]):0.###e0}");
-                if (da[i] != 0) nonzero++;
+                if (da[i] != 0) { nonzero++; worstRel = Math.Max(worstRel, Math.Abs(da[i] - db[i]) / Math.Abs(da[i])); }
             }
             Assert.True(nonzero > da.Length / 2, "the images are mostly black: the comparison would prove nothing");
         }
@@ -94,6 +95,7 @@ public class RelightTests
             worst = Math.Max(worst, DeltaE2000.Between(Lab.FromXyz(xa, white), Lab.FromXyz(xb, white)));
         }
         Assert.True(worst <= 0.01, $"worst ΔE00 {worst}");
+        output.WriteLine($"relit vs direct: worst relative band difference {worstRel:0.###e0}, worst ΔE00 of the EXR's XYZ {worst:0.###e0}");
         // Every file the render wrote, the relit folder has too (and render.json says it was relit).
         var files = (JsonArray)json["files"]!;
         foreach (var f in files) Assert.True(File.Exists(Path.Combine(relit, (string)f!)), $"relit folder misses {f}");
@@ -115,6 +117,29 @@ public class RelightTests
         Relight(Path.Combine(dir, "A"), Path.Combine(dir, "relit"), "--light", $"key={first}", "--light", $"blue={second}",
             "--intensity", $"blue={intensity.ToString(System.Globalization.CultureInfo.InvariantCulture)}");
         AssertSameRender(Path.Combine(dir, "direct"), Path.Combine(dir, "relit"));
+    }
+
+    [Fact]
+    public void Physical_radiometry_scene_relit_equals_a_direct_render()
+    {
+        var dir = Reference.TempDir();
+        string Physical(string a, string b) => TwoLightScene(a, b).Replace("\"bands\": \"380:780:20\",", "\"bands\": \"380:780:20\", \"radiometry\": \"physical\",");
+        var underA = Write(dir, "a.json", Physical("A", "A"));
+        Render(underA, Path.Combine(dir, "A"), "--formats", "npy,exr,lights");
+        Render(Write(dir, "t.json", Physical("FL11", "led-blue")), Path.Combine(dir, "direct"), "--formats", "npy,exr,lights");
+        Relight(Path.Combine(dir, "A"), Path.Combine(dir, "relit"), "--light", "key=FL11", "--light", "blue=led-blue");
+        AssertSameRender(Path.Combine(dir, "direct"), Path.Combine(dir, "relit"));
+    }
+
+    [Fact]
+    public void Light_transfer_is_the_same_for_any_thread_count()
+    {
+        var dir = Reference.TempDir();
+        var s = Write(dir, "s.json", TwoLightScene("A", "led-blue"));
+        Render(s, Path.Combine(dir, "t1"), "--formats", "lights", "--threads", "1");
+        Render(s, Path.Combine(dir, "t2"), "--formats", "lights", "--threads", "3");
+        foreach (var f in new[] { "factors.npy", "pixels.npy", "centre.npy", "ids.npy" })
+            Assert.Equal(File.ReadAllBytes(Path.Combine(dir, "t1", "lights", f)), File.ReadAllBytes(Path.Combine(dir, "t2", "lights", f)));
     }
 
     [SkippableTheory]
