@@ -124,7 +124,7 @@ public static class SpectralViewer
             }).ToArray());
             var (_, f) = ReadNpy(Path.Combine(dir, LightTransferFiles.Folder, "factors.npy"));
             using (var ps = File.OpenRead(Path.Combine(dir, LightTransferFiles.Folder, "pixels.npy")))
-                binary["pixels"] = System.Runtime.InteropServices.MemoryMarshal.AsBytes(NpyReader.ReadInt32(ps).Data.AsSpan()).ToArray();
+                binary["pixels"] = System.Runtime.InteropServices.MemoryMarshal.AsBytes(NpyInt32.Read(ps).Data.AsSpan()).ToArray();
             binary["factors"] = System.Runtime.InteropServices.MemoryMarshal.AsBytes(f.AsSpan()).ToArray();
             var (_, idp) = ReadNpy(Path.Combine(dir, LightTransferFiles.Folder, "ids.npy"));
             for (int i = 0; i < n; i++) ids[i] = (ushort)idp[i];

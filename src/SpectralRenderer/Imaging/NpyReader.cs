@@ -37,33 +37,6 @@ public static class NpyReader
         return new SpectralImage(shape[1], shape[0], grid, data);
     }
 
-    /// <summary>A little-endian int32 ('&lt;i4') array, as <see cref="NpyWriter.WriteInt32"/> writes it.</summary>
-    public static (int[] Shape, int[] Data) ReadInt32(Stream stream, string where = "NPY")
-    {
-        Span<byte> pre = stackalloc byte[10];
-        try { stream.ReadExactly(pre); }
-        catch (EndOfStreamException) { throw new InputException(where, "not a .npy file (too short)"); }
-        if (!pre[..6].SequenceEqual(NpyWriter.Magic) || pre[6] != 1) throw new InputException(where, "not a version 1.0 .npy file");
-        var hb = new byte[BinaryPrimitives.ReadUInt16LittleEndian(pre[8..])];
-        try { stream.ReadExactly(hb); }
-        catch (EndOfStreamException) { throw new InputException(where, "file is truncated (in the header)"); }
-        var header = Encoding.Latin1.GetString(hb);
-        if (!header.Contains("'descr': '<i4'") || header.Contains("'fortran_order': True"))
-            throw new InputException(where, $"expected a C-order int32 array, header {header.Trim()}");
-        var s = Shape.Match(header);
-        if (!s.Success) throw new InputException(where, "header has no shape");
-        var shape = s.Groups[1].Value.Split(',', StringSplitOptions.TrimEntries | StringSplitOptions.RemoveEmptyEntries)
-            .Select(t => int.TryParse(t, NumberStyles.Integer, CultureInfo.InvariantCulture, out int v) && v >= 0 ? v : throw new InputException(where, $"bad shape entry '{t}'")).ToArray();
-        long count = 1;
-        foreach (int v in shape) count *= v;
-        if (count > Array.MaxLength) throw new InputException(where, "array too large");
-        var data = new int[count];
-        try { stream.ReadExactly(System.Runtime.InteropServices.MemoryMarshal.AsBytes(data.AsSpan())); }
-        catch (EndOfStreamException) { throw new InputException(where, $"file is truncated: {count} int32 values expected"); }
-        if (!BitConverter.IsLittleEndian) for (int i = 0; i < data.Length; i++) data[i] = BinaryPrimitives.ReverseEndianness(data[i]);
-        return (shape, data);
-    }
-
     public static (int[] Shape, float[] Data) Read(Stream stream, string where = "NPY")
     {
         Span<byte> pre = stackalloc byte[8];

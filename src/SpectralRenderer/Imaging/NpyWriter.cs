@@ -22,24 +22,15 @@ public static class NpyWriter
     public static void Write(Stream stream, SpectralImage image) =>
         Write(stream, [image.Height, image.Width, image.Bands], image.Data);
 
-    /// <summary>A C-order int32 array ('&lt;i4').</summary>
-    public static void WriteInt32(Stream stream, ReadOnlySpan<int> shape, ReadOnlySpan<int> data)
-    {
-        if (!BitConverter.IsLittleEndian) throw new PlatformNotSupportedException("int32 NPY output needs a little-endian machine");
-        Write(stream, shape, MemoryMarshal.Cast<int, float>(data), "<i4");
-    }
-
     /// <summary>Any C-order float32 array.</summary>
-    public static void Write(Stream stream, ReadOnlySpan<int> shape, ReadOnlySpan<float> data) => Write(stream, shape, data, "<f4");
-
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    static void Write(Stream stream, ReadOnlySpan<int> shape, ReadOnlySpan<float> data, string descr)
+    public static void Write(Stream stream, ReadOnlySpan<int> shape, ReadOnlySpan<float> data)
     {
         long count = 1;
         foreach (int d in shape) count *= d;
         if (count != data.Length) throw new ArgumentException($"shape holds {count} values, data {data.Length}");
         string dims = shape.Length == 1 ? $"{shape[0]}," : string.Join(", ", shape.ToArray().Select(d => d.ToString(CultureInfo.InvariantCulture)));
-        string dict = $"{{'descr': '{descr}', 'fortran_order': False, 'shape': ({dims}), }}";
+        string dict = $"{{'descr': '<f4', 'fortran_order': False, 'shape': ({dims}), }}";
         int preamble = Magic.Length + 2 + 2;
         int total = (preamble + dict.Length + 1 + 63) / 64 * 64;
         string header = dict.PadRight(total - preamble - 1) + "\n";

@@ -45,7 +45,7 @@ public static class LightTransferFiles
         }
         AtomicFile.Write(Path.Combine(dir, "factors.npy"), s => NpyWriter.Write(s, [nnz], factors));
         done($"{Folder}/factors.npy");
-        AtomicFile.Write(Path.Combine(dir, "pixels.npy"), s => NpyWriter.WriteInt32(s, [nnz], pixels));
+        AtomicFile.Write(Path.Combine(dir, "pixels.npy"), s => NpyInt32.Write(s, [nnz], pixels));
         done($"{Folder}/pixels.npy");
         int k = t.CentreDiffuse.Length;
         var centre = new float[2 * k * n];
@@ -161,7 +161,7 @@ public static class LightTransferFiles
             var path = Path.Combine(dir, "pixels.npy");
             if (!File.Exists(path)) throw new InputException(outDir, $"misses {Folder}/pixels.npy", "render again with the lights output");
             using var s = File.OpenRead(path);
-            var (shape, data) = NpyReader.ReadInt32(s, path);
+            var (shape, data) = NpyInt32.Read(s, path);
             if (shape.Length != 1 || shape[0] != nnz) throw new InputException(path, $"holds {string.Join("×", shape)} entries, lights.json says {nnz}", "the folder mixes two renders; render again");
             pix = data;
         }

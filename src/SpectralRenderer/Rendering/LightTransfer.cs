@@ -507,7 +507,7 @@ public sealed class LightTransfer
         {
             if (factor == 0) return;
             // light + 1 (8 bits), lobe (3), material + 1 (12), chain length (3), then 16 bits per chain element.
-            ulong a = (ulong)(light + 1) | (ulong)lobe << 8 | (ulong)(material + 1) << 11 | (ulong)w.ChainLength << 23;
+            ulong a = (uint)(light + 1) | (ulong)(uint)lobe << 8 | (ulong)(uint)(material + 1) << 11 | (ulong)(uint)w.ChainLength << 23;
             ulong b = 0;
             for (int c = 0; c < w.ChainLength; c++)
             {
