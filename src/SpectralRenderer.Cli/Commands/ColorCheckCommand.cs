@@ -1,4 +1,5 @@
 using System.Globalization;
+using SpectralRenderer.Color;
 using SpectralRenderer.Analysis;
 using SpectralRenderer.Diagnostics;
 
@@ -32,7 +33,7 @@ public static class ColorCheckCommand
                 stdout.WriteLine(string.Create(inv, $"{r.Patch},{r.Object},{r.Pixels},{r.Rendered.X:R},{r.Rendered.Y:R},{r.Rendered.Z:R},{r.RenderedLab.L:R},{r.RenderedLab.A:R},{r.RenderedLab.B:R},{r.Srgb8.R},{r.Srgb8.G},{r.Srgb8.B},{r.Reference.X:R},{r.Reference.Y:R},{r.Reference.Z:R},{r.ReferenceLab.L:R},{r.ReferenceLab.A:R},{r.ReferenceLab.B:R},{r.DeltaE00:R}"));
             return CommandLine.Success;
         }
-        stdout.WriteLine($"ColorChecker in {folder.Path}: {folder.Image.Grid} bands, {folder.Integration} integration, reference white {folder.ReferenceWhite.Name}, {folder.ObserverDegrees}° observer; reference: 1 nm");
+        stdout.WriteLine($"ColorChecker in {folder.Path}: {folder.Image.Grid} bands, {BandIntegrations.Name(folder.Integration)} integration, reference white {folder.ReferenceWhite.Name}, {folder.ObserverDegrees}° observer; reference: 1 nm");
         stdout.WriteLine($"{"#",2} {"name",-18} {"pixels",7} {"X",8} {"Y",8} {"Z",8} {"L*",7} {"a*",7} {"b*",7}  {"sRGB8",-11} {"ref L*",7} {"ref a*",7} {"ref b*",7} {"ΔE00",6}");
         foreach (var r in rows)
             stdout.WriteLine(string.Create(inv, $"{r.Patch,2} {Spectra.ColorChecker.Name(r.Patch)[..Math.Min(18, Spectra.ColorChecker.Name(r.Patch).Length)],-18} {r.Pixels,7} {r.Rendered.X,8:F5} {r.Rendered.Y,8:F5} {r.Rendered.Z,8:F5} {r.RenderedLab.L,7:F2} {r.RenderedLab.A,7:F2} {r.RenderedLab.B,7:F2}  {r.Srgb8.R,3} {r.Srgb8.G,3} {r.Srgb8.B,3} {r.ReferenceLab.L,7:F2} {r.ReferenceLab.A,7:F2} {r.ReferenceLab.B,7:F2} {r.DeltaE00,6:F3}"));

@@ -74,11 +74,5 @@ public static class ColorsCommand
 
     static string Trunc(string s, int n) => s.Length <= n ? s : s[..n];
 
-    public static BandIntegration ParseScheme(string s, string where) => s.ToLowerInvariant() switch
-    {
-        "exact" => BandIntegration.Exact,
-        "weighted" => BandIntegration.Weighted,
-        "paper" => BandIntegration.Paper,
-        _ => throw new InputException(where, $"unknown band integration '{s}'", "use exact, weighted or paper"),
-    };
+    public static BandIntegration ParseScheme(string s, string where) => BandIntegrations.Parse(s, where);
 }

@@ -71,7 +71,7 @@ public static class ProbeCommand
         var g = image.Grid;
         for (int b = 0; b < image.Bands; b++)
         {
-            sb.Append(inv, $"{b},{g.Lower(b).ToString("R", inv)},{g.Centre(b).ToString("R", inv)},{g.Upper(b).ToString("R", inv)}");
+            WavelengthsCsv.AppendRow(sb, g, b);
             foreach (var p in pixels) sb.Append(',').Append(image[p.X, p.Y, b].ToString("R", inv));
             sb.Append('\n');
         }

@@ -100,7 +100,7 @@ public static class ReconstructCommand
         sb.Append('\n');
         for (int b = 0; b < g.Count; b++)
         {
-            sb.Append(inv, $"{b},{g.Lower(b).ToString("R", inv)},{g.Centre(b).ToString("R", inv)},{g.Upper(b).ToString("R", inv)},{rec.White.Spectrum[b].ToString("R", inv)}");
+            WavelengthsCsv.AppendRow(sb, g, b).Append(',').Append(rec.White.Spectrum[b].ToString("R", inv));
             foreach (var p in pixels) sb.Append(inv, $",{p.Reflectance[b].ToString("R", inv)},{p.Truth[b].ToString("R", inv)}");
             sb.Append('\n');
         }

@@ -17,6 +17,7 @@ public static class RenderCommand
         usage: spectral render SCENE.json [-o OUTDIR] [--width W] [--height H] [--bands N | S:E:N]
                                [--spp N] [--threads N] [--rgb srgb|paper] [--integration exact|weighted|paper]
                                [--formats LIST] [--exr-compression zip|zip-all|none] [--models DIR] [--quiet]
+                               [--crop X0,Y0,X1,Y1 | --shard I/N|none] [--shards N]
 
         Renders a scene file (docs/scene-format.md) with the paper's eq. 2 in every band and writes:
           preview.png        8-bit sRGB (or eq. 4 with --rgb paper)
@@ -41,9 +42,17 @@ public static class RenderCommand
                              zip-all (deflate every chunk: smallest file, slower) or none
           --models DIR       a folder to search for mesh files (after the scene's folder, before $SPECTRAL_MODELS)
           --quiet            no progress or summary on stderr
+          --crop X0,Y0,X1,Y1 render only film columns X0…X1−1 and rows Y0…Y1−1: every file holds the crop
+                             (EXR data window inside the full display window; "crop" in render.json)
+          --shard I/N        render strip I (from 0) of N: whole 32-row tile strips, full width; `spectral merge`
+                             assembles the N folders into the whole render, byte for byte. Without --shard, a job
+                             array task takes I and N from SLURM_ARRAY_TASK_ID/_MIN/_MAX/_STEP (or _COUNT),
+                             JOB_COMPLETION_INDEX (Kubernetes, with --shards N) or AWS_BATCH_JOB_ARRAY_INDEX/_SIZE;
+                             --shard none renders the whole film even there
+          --shards N         the shard count where the scheduler gives none (Kubernetes Indexed Jobs)
         """;
 
-    static readonly string[] Values = ["-o", "--out", "--width", "--height", "--bands", "--band-range", "--spp", "--threads", "--rgb", "--integration", "--formats", "--exr-compression", "--models"];
+    static readonly string[] Values = ["-o", "--out", "--width", "--height", "--bands", "--band-range", "--spp", "--threads", "--rgb", "--integration", "--formats", "--exr-compression", "--models", "--crop", "--shard", "--shards"];
 
     [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
     public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
@@ -60,6 +69,16 @@ public static class RenderCommand
         var loadClock = System.Diagnostics.Stopwatch.StartNew();
         var scene = SceneLoader.Load(scenePath, overrides);
         double loadSeconds = loadClock.Elapsed.TotalSeconds;
+        var (crop, shard) = Region(a, scene.Camera.Width, scene.Camera.Height);
+        var products = scene.Output.Products;
+        if (shard is not null && (products & OutputProducts.Bands) != 0 && (products & (OutputProducts.Envi | OutputProducts.Npy)) == 0)
+            throw new InputException("--shard", "band images need a float cube in each shard: merge rescales them to the whole image's brightest value",
+                "add envi or npy to --formats");
+        if (crop is not null && (scene.Output.Products & OutputProducts.Lights) != 0)
+            throw new InputException("--formats", "the per-light outputs (lights) are written for whole renders only, not for a crop or shard", "render lights without --crop/--shard");
+        if (crop is not null && scene.Output.ExposureAuto)
+            throw new InputException(scenePath, "output.exposure \"auto\" is chosen from the whole image, which a shard or crop does not see",
+                "give a fixed \"exposure\" (a whole render's render.json states the one auto chose, $.colour.exposure)");
         foreach (var w in scene.Warnings) stderr.WriteLine(w);
         PrepareOutputFolder(outDir);
 
@@ -74,7 +93,7 @@ public static class RenderCommand
             var integrator = Integrators.Create(scene, geometry);
             double buildSeconds = setup.Elapsed.TotalSeconds;
             int degenerate = scene.Objects.Sum(o => o.Mesh?.DegenerateCount ?? 0);
-            var result = Renderer.Render(scene, integrator, threads ?? 0, progress is null ? null : progress.Report, cancel.Token);
+            var result = Renderer.Render(scene, integrator, threads ?? 0, progress is null ? null : progress.Report, cancel.Token, crop);
             progress?.Finish();
             var writeClock = System.Diagnostics.Stopwatch.StartNew();
             var run = new JsonObject
@@ -85,6 +104,7 @@ public static class RenderCommand
                 ["triangles"] = geometry.TriangleCount,
                 ["degenerate_triangles_skipped"] = degenerate,
             };
+            if (shard is not null) run["shard"] = shard;
             // The per-light transfer (opt-in): the same camera rays traced once more, recording eq. 2's factors per light.
             LightTransfer? transfer = null;
             if ((scene.Output.Products & OutputProducts.Lights) != 0)
@@ -99,11 +119,31 @@ public static class RenderCommand
             {
                 double secs = result.Elapsed.TotalSeconds;
                 stderr.WriteLine(string.Create(CultureInfo.InvariantCulture,
-                    $"rendered {result.Image.Width}×{result.Image.Height}, {scene.Grid.Count} bands ({scene.Grid}), {scene.Camera.SamplesPerPixel} spp{(geometry.TriangleCount > 0 ? $", {geometry.TriangleCount:N0} triangles ({degenerate} degenerate skipped)" : "")} in {secs:0.###} s ({result.Rays.Total / Math.Max(secs, 1e-9) / 1e6:0.##} Mrays/s, {result.Threads} threads); wrote {files.Count} files to {outDir} in {writeClock.Elapsed.TotalSeconds:0.##} s"));
+                    $"rendered {result.Image.Width}×{result.Image.Height}{(crop is { } c ? $" (film {scene.Camera.Width}×{scene.Camera.Height}, crop {c}{(shard is null ? "" : $", shard {shard}")})" : "")}, {scene.Grid.Count} bands ({scene.Grid}), {scene.Camera.SamplesPerPixel} spp{(geometry.TriangleCount > 0 ? $", {geometry.TriangleCount:N0} triangles ({degenerate} degenerate skipped)" : "")} in {secs:0.###} s ({result.Rays.Total / Math.Max(secs, 1e-9) / 1e6:0.##} Mrays/s, {result.Threads} threads); wrote {files.Count} files to {outDir} in {writeClock.Elapsed.TotalSeconds:0.##} s"));
             }
             return CommandLine.Success;
         }
         finally { Console.CancelKeyPress -= onCancel; }
+    }
+
+    /// <summary>The film pixels to render (null: all) from --crop, --shard or a job array's variables, and the shard's description.</summary>
+    static (PixelRect? Crop, string? Shard) Region(Arguments a, int width, int height)
+    {
+        string? crop = a.Value("--crop"), shard = a.Value("--shard");
+        int? shards = a.Int("--shards", 1, 1 << 20);
+        if (crop is not null && shard is not null) throw new InputException("--crop", "cannot be combined with --shard", "a shard is a crop: give one of them");
+        if (crop is not null) return (PixelRect.Parse(crop, width, height), null);
+        if (shard == "none") return (null, null);
+        if (shard is not null)
+        {
+            var s = Distributed.Shard.Parse(shard);
+            if (shards is { } n && n != s.Count) throw new InputException("--shards", $"{n} disagrees with --shard {shard}");
+            return (s.Strip(width, height), $"{s} (--shard)");
+        }
+        if (Distributed.SchedulerEnvironment.Resolve(shards) is { } env)
+            return (env.Shard.Strip(width, height), $"{env.Shard} ({env.Source})");
+        if (shards is not null) throw new InputException("--shards", "is given but no job array variable is set", "use --shard I/N outside a job array");
+        return (null, null);
     }
 
     [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed

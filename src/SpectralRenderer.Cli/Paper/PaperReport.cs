@@ -110,7 +110,7 @@ public static class PaperReport
             var (er, eg, eb) = RgbSpace.Paper.Linear(p.Rendered);
             h.Append(Inv, $"<tr><td>{p.Patch}</td><td class=l>{Esc(ColorChecker.Name(p.Patch))}</td><td>{p.Rendered.X:0.0000}</td><td>{p.Rendered.Y:0.0000}</td><td>{p.Rendered.Z:0.0000}</td><td>{p.RenderedLab.L:0.00}</td><td>{p.RenderedLab.A:0.00}</td><td>{p.RenderedLab.B:0.00}</td><td>{p.ReferenceLab.L:0.00}</td><td>{p.ReferenceLab.A:0.00}</td><td>{p.ReferenceLab.B:0.00}</td><td><span style=\"display:inline-block;width:1.4em;height:.9em;background:rgb({p.Srgb8.R},{p.Srgb8.G},{p.Srgb8.B})\"></span> {p.Srgb8.R} {p.Srgb8.G} {p.Srgb8.B}</td><td>{er:0.000} {eg:0.000} {eb:0.000}</td><td>{p.DeltaE00:0.000}</td></tr>\n");
         }
-        h.Append(Inv, $"</table><p>CIEDE2000 of the rendered patches against the same reflectances under D65 integrated at 1 nm: mean <b>{rows.Average(x => x.DeltaE00):0.000}</b>, max <b>{rows.Max(x => x.DeltaE00):0.000}</b> ({folder.Integration} band integration). The paper compared with a photograph instead; its Fig. 3 has no numbers.</p>\n");
+        h.Append(Inv, $"</table><p>CIEDE2000 of the rendered patches against the same reflectances under D65 integrated at 1 nm: mean <b>{rows.Average(x => x.DeltaE00):0.000}</b>, max <b>{rows.Max(x => x.DeltaE00):0.000}</b> ({BandIntegrations.Name(folder.Integration)} band integration). The paper compared with a photograph instead; its Fig. 3 has no numbers.</p>\n");
 
         var greys = rows.Where(x => x.Patch is 19 or 20 or 21).ToList();
         if (greys.Count == 3)
@@ -129,30 +129,41 @@ public static class PaperReport
             var verdict = new StringBuilder();
             verdict.Append(clipped ? "#19 or #20 reaches 1 in some channel, as the paper reports; " : "no channel of #19 or #20 reaches 1, unlike the paper; ");
             verdict.Append(bluish ? "#21 has more blue than red and green, as the paper reports." : "#21 has no more blue than red or green, unlike the paper's bluish #21.");
-            var neutral = greys.All(g => Math.Abs(g.RenderedLab.A) < 1 && Math.Abs(g.RenderedLab.B) < 1);
-            h.Append($"<p class=\"note\"><b>Against the paper.</b> The paper reports that with eq. 4 patch #21 came out slightly bluish and #19 and #20 saturated to white. Eq. 4 applied to the rendered XYZ gives {Esc(sb.ToString().TrimEnd(' ', ';'))}: {Esc(verdict.ToString())} In sRGB the greys are {(neutral ? "neutral (a*, b* within 1 of zero)" : "not neutral (|a*| or |b*| of 1 or more)")}.</p>\n");
+            double chroma = greys.Max(g => Math.Max(Math.Abs(g.RenderedLab.A), Math.Abs(g.RenderedLab.B)));
+            h.Append($"<p class=\"note\"><b>Against the paper.</b> The paper reports that with eq. 4 patch #21 came out slightly bluish and #19 and #20 saturated to white. Eq. 4 applied to the rendered XYZ gives {Esc(sb.ToString().TrimEnd(' ', ';'))}: {Esc(verdict.ToString())} In CIELAB (D65 white) the greys' largest |a*| or |b*| is {chroma.ToString("0.00", Inv)}{(chroma < 1 ? ": neutral within 1" : "")}.</p>\n");
         }
     }
 
-    /// <summary>Which objects are brightest in the first band, the last band and their darkest band (from the mean spectra).</summary>
+    /// <summary>
+    /// From the objects' mean spectra divided by the reference white's (the light's shape taken out): which object is
+    /// brightest in the first quarter of the bands and which in the last, relative to its own mean (the most violet- and
+    /// the most red-weighted), and which is brightest in its own darkest band (the whitest).
+    /// </summary>
     static string Brightest(RenderFolder folder)
     {
         var names = folder.ObjectNames;
         var reflectances = folder.ObjectReflectances;
-        int bands = folder.Image.Bands, first = -1, last = -1, flat = -1;
+        var grid = folder.Image.Grid;
+        int bands = grid.Count, first = -1, last = -1, flat = -1;
         double bf = double.NegativeInfinity, bl = double.NegativeInfinity, bm = double.NegativeInfinity;
+        var white = Enumerable.Range(0, bands).Select(b => folder.ReferenceWhite.Integrate(grid.Lower(b), grid.Upper(b))).ToArray();
+        int quarter = Math.Max(1, bands / 4);
         for (int o = 0; o < names.Length; o++)
         {
             var (mean, pixels) = folder.MeanSpectrum(o);
             if (pixels == 0) continue;
-            if (mean[0] > bf) { bf = mean[0]; first = o; }
-            if (mean[bands - 1] > bl) { bl = mean[bands - 1]; last = o; }
-            if (mean.Min() > bm) { bm = mean.Min(); flat = o; }
+            var relative = mean.Select((v, b) => white[b] > 0 ? v / white[b] : 0).ToArray();
+            double average = relative.Average();
+            if (!(average > 0)) continue;
+            double low = relative[..quarter].Average() / average, high = relative[^quarter..].Average() / average;
+            if (low > bf) { bf = low; first = o; }
+            if (high > bl) { bl = high; last = o; }
+            if (relative.Min() > bm) { bm = relative.Min(); flat = o; }
         }
         if (first < 0) return "";
         string Name(int o) => reflectances[o] is { } r && r.StartsWith("colorchecker:", StringComparison.Ordinal) && int.TryParse(r["colorchecker:".Length..], out int p)
             ? $"#{p} ({ColorChecker.Name(p)})" : names[o];
-        return $"Brightest in the first band: {Name(first)}; in the last: {Name(last)}; in its own darkest band: {Name(flat)}.";
+        return string.Create(Inv, $"Relative to its own mean, {Name(first)} is the brightest in the first quarter of the bands ({bf:0.00}× its mean) and {Name(last)} in the last quarter ({bl:0.00}×); {Name(flat)} is the brightest in its own darkest band.");
     }
 
     // ---- §3.2, §3.3 -------------------------------------------------------------------------------

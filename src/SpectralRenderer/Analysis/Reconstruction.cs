@@ -42,8 +42,7 @@ public sealed class Reconstruction
     Reconstruction(RenderFolder folder, RenderAovs aovs, WhiteReference white, SpectralImage reflectance, SpectralImage truth)
     {
         Folder = folder; Aovs = aovs; White = white; Reflectance = reflectance; Truth = truth;
-        var scheme = folder.Integration == "paper" ? BandIntegration.Paper : BandIntegration.Weighted;
-        Colour = ReflectanceDifference.UnderD65(folder.Image.Grid, scheme, folder.ObserverDegrees);
+        Colour = ReflectanceDifference.UnderD65(folder.Image.Grid, folder.Integration, folder.ObserverDegrees);
     }
 
     public RenderFolder Folder { get; }

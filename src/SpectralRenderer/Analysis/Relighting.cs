@@ -89,6 +89,7 @@ public static class Relighting
         {
             Image = image, Xyz = xyz, FallbackPixels = fallback, ObjectIds = transfer.ObjectIds, LitMasks = transfer.LitMasks, DiffuseY = dy, SpecularY = sy,
             Rays = new RayCounters(), Elapsed = clock.Elapsed, Threads = Environment.ProcessorCount, Tiles = 0,
+            Crop = PixelRect.Whole(transfer.Width, transfer.Height),
         };
         var compute = clock.Elapsed;
         var run = new JsonObject

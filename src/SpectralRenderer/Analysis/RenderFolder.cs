@@ -24,7 +24,7 @@ public sealed class RenderFolder
     public Xyz White => Manifest.White;
     public TabulatedSpectrum ReferenceWhite => Manifest.ReferenceWhite;
     public int ObserverDegrees => Manifest.ObserverDegrees;
-    public string Integration => Manifest.Integration;
+    public BandIntegration Integration => Manifest.Integration;
     /// <summary>
     /// Each pixel's colour as the render computed it (spectral.exr's X, Y, Z planes: with exact integration the colour of
     /// the pixel's full-resolution spectrum), or null when the folder has no EXR (then eq. 3 on the cube stands in).

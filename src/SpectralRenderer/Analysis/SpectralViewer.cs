@@ -32,7 +32,7 @@ public static class SpectralViewer
         if (!Directory.Exists(dir)) throw new InputException(dir, "no such render folder", "give the -o folder of a 'spectral render' run");
         var manifest = RenderManifest.Read(dir);
         var grid = manifest.Grid;
-        var scheme = manifest.Integration == "paper" ? BandIntegration.Paper : BandIntegration.Weighted;
+        var scheme = manifest.Integration;
         var observer = manifest.ObserverDegrees == 10 ? Observer.Cie1964 : Observer.Cie1931;
         var cm = new Colorimeter(grid, observer, manifest.ReferenceWhite, scheme);
         int width = manifest.Width, height = manifest.Height, n = width * height;

@@ -1,3 +1,5 @@
+using SpectralRenderer.Diagnostics;
+
 namespace SpectralRenderer.Color;
 
 /// <summary>How spectra become band values and band values become XYZ (eq. 3).</summary>
@@ -24,4 +26,24 @@ public enum BandIntegration
     /// in the band [lo, hi) (last band closed) — as in data/reference. Fine for smooth lights only.
     /// </summary>
     Paper,
+}
+
+/// <summary>The names of <see cref="BandIntegration"/> in scene files, on the command line and in render.json.</summary>
+public static class BandIntegrations
+{
+    public static string Name(BandIntegration scheme) => scheme switch
+    {
+        BandIntegration.Paper => "paper",
+        BandIntegration.Weighted => "weighted",
+        _ => "exact",
+    };
+
+    /// <summary>The scheme named <paramref name="name"/> (any case); bad input naming <paramref name="where"/> otherwise.</summary>
+    public static BandIntegration Parse(string name, string where) => name.ToLowerInvariant() switch
+    {
+        "exact" => BandIntegration.Exact,
+        "weighted" => BandIntegration.Weighted,
+        "paper" => BandIntegration.Paper,
+        _ => throw new InputException(where, $"unknown band integration '{name}'", "use exact (default), weighted or paper"),
+    };
 }

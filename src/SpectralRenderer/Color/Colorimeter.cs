@@ -1,3 +1,4 @@
+using System.Numerics;
 using System.Runtime.CompilerServices;
 using SpectralRenderer.Spectra;
 
@@ -124,19 +125,21 @@ public sealed class Colorimeter
         : BandProjection.Means(s, Grid);
 
     /// <summary>Eq. 3: XYZ of band values.</summary>
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    public Xyz ToXyz(ReadOnlySpan<double> bands)
-    {
-        double x = 0, y = 0, z = 0;
-        for (int b = 0; b < Wx.Length; b++) { x += Wx[b] * bands[b]; y += Wy[b] * bands[b]; z += Wz[b] * bands[b]; }
-        return new Xyz(x, y, z);
-    }
+    public Xyz ToXyz(ReadOnlySpan<double> bands) => ToXyz(Wx, Wy, Wz, bands);
 
+    /// <summary>Eq. 3: XYZ of band values.</summary>
+    public Xyz ToXyz(ReadOnlySpan<float> bands) => ToXyz<float>(Wx, Wy, Wz, bands);
+
+    /// <summary>Eq. 3 with given weights, X = Σ_b Wx[b]·L[b] (and Y, Z), summed in double: the one XYZ sum of band values.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    public Xyz ToXyz(ReadOnlySpan<float> bands)
+    public static Xyz ToXyz<T>(ReadOnlySpan<double> wx, ReadOnlySpan<double> wy, ReadOnlySpan<double> wz, ReadOnlySpan<T> bands) where T : struct, INumberBase<T>
     {
         double x = 0, y = 0, z = 0;
-        for (int b = 0; b < Wx.Length; b++) { x += Wx[b] * bands[b]; y += Wy[b] * bands[b]; z += Wz[b] * bands[b]; }
+        for (int b = 0; b < wx.Length; b++)
+        {
+            double v = double.CreateTruncating(bands[b]);
+            x += wx[b] * v; y += wy[b] * v; z += wz[b] * v;
+        }
         return new Xyz(x, y, z);
     }
 

@@ -40,6 +40,16 @@ public sealed record ExrOptions
     /// <summary>Names spectral channels T.&lt;λ&gt;nm (reflectance) instead of S0.&lt;λ&gt;nm (emitted radiance).</summary>
     public bool Reflective { get; init; }
     public Colorimeter? Colorimeter { get; init; }
+    /// <summary>
+    /// A partial image (a crop or shard of a render): the file's pixels are the data window whose top-left pixel is
+    /// (<see cref="DataX"/>, <see cref="DataY"/>) inside a display window of <see cref="DisplayWidth"/> ×
+    /// <see cref="DisplayHeight"/> (OpenEXR "dataWindow"/"displayWindow", as pbrt's --cropwindow writes). 0: the
+    /// display window is the data window.
+    /// </summary>
+    public int DataX { get; init; }
+    public int DataY { get; init; }
+    public int DisplayWidth { get; init; }
+    public int DisplayHeight { get; init; }
     /// <summary>The emissiveUnits attribute of emissive files (JCGT 2021 §3), or null to omit it when the values have no unit.</summary>
     public string? EmissiveUnits { get; init; } = ExrWriter.EmissiveUnits;
     /// <summary>Extra string attributes (e.g. "software", "comments").</summary>

@@ -135,7 +135,7 @@ public static class ExrWriter
         }
         for (int c = 0; c < chunkCount; c++)
         {
-            BinaryPrimitives.WriteInt32LittleEndian(word, c * lines);    // y coordinate of the chunk's first scanline (data window starts at 0)
+            BinaryPrimitives.WriteInt32LittleEndian(word, options.DataY + c * lines);    // y of the chunk's first scanline: chunks start at the data window's yMin
             BinaryPrimitives.WriteInt32LittleEndian(word[4..], sizes[c]); // pixel data size
             stream.Write(word);
             if (chunks[c] is { } bytes) { stream.Write(bytes); continue; }
@@ -216,9 +216,9 @@ public static class ExrWriter
         cw.Write((byte)0);
         attrs.Add(new("channels", "chlist", chlist.ToArray()));
         attrs.Add(new("compression", "compression", [(byte)options.Compression]));
-        var box = Box(0, 0, width - 1, height - 1);
-        attrs.Add(new("dataWindow", "box2i", box));
-        attrs.Add(new("displayWindow", "box2i", box));
+        attrs.Add(new("dataWindow", "box2i", Box(options.DataX, options.DataY, options.DataX + width - 1, options.DataY + height - 1)));
+        attrs.Add(new("displayWindow", "box2i", options.DisplayWidth > 0
+            ? Box(0, 0, options.DisplayWidth - 1, options.DisplayHeight - 1) : Box(0, 0, width - 1, height - 1)));
         attrs.Add(new("lineOrder", "lineOrder", [0]));          // INCREASING_Y
         attrs.Add(new("pixelAspectRatio", "float", Floats(1f)));
         attrs.Add(new("screenWindowCenter", "v2f", Floats(0f, 0f)));

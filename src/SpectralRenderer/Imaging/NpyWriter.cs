@@ -22,6 +22,27 @@ public static class NpyWriter
     public static void Write(Stream stream, SpectralImage image) =>
         Write(stream, [image.Height, image.Width, image.Bands], image.Data);
 
+    /// <summary>
+    /// Magic, version 1.0, header length and the header dict of a C-order float32 array of this shape: the bytes before
+    /// the data (a multiple of 64), which the data follows as they are in memory.
+    /// </summary>
+    public static byte[] Preamble(ReadOnlySpan<int> shape)
+    {
+        string dims = shape.Length == 1 ? $"{shape[0]}," : string.Join(", ", shape.ToArray().Select(d => d.ToString(CultureInfo.InvariantCulture)));
+        string dict = $"{{'descr': '<f4', 'fortran_order': False, 'shape': ({dims}), }}";
+        int preamble = Magic.Length + 2 + 2;
+        int total = (preamble + dict.Length + 1 + 63) / 64 * 64;
+        string header = dict.PadRight(total - preamble - 1) + "\n";
+        if (header.Length > ushort.MaxValue) throw new ArgumentException("NPY header too long for format 1.0");
+        var bytes = new byte[preamble + header.Length];
+        Magic.CopyTo(bytes);
+        bytes[6] = 1;  // major version
+        bytes[7] = 0;  // minor version
+        BinaryPrimitives.WriteUInt16LittleEndian(bytes.AsSpan(8), (ushort)header.Length);
+        Encoding.ASCII.GetBytes(header, bytes.AsSpan(preamble));
+        return bytes;
+    }
+
     /// <summary>Any C-order float32 array.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public static void Write(Stream stream, ReadOnlySpan<int> shape, ReadOnlySpan<float> data)
@@ -29,20 +50,7 @@ public static class NpyWriter
         long count = 1;
         foreach (int d in shape) count *= d;
         if (count != data.Length) throw new ArgumentException($"shape holds {count} values, data {data.Length}");
-        string dims = shape.Length == 1 ? $"{shape[0]}," : string.Join(", ", shape.ToArray().Select(d => d.ToString(CultureInfo.InvariantCulture)));
-        string dict = $"{{'descr': '<f4', 'fortran_order': False, 'shape': ({dims}), }}";
-        int preamble = Magic.Length + 2 + 2;
-        int total = (preamble + dict.Length + 1 + 63) / 64 * 64;
-        string header = dict.PadRight(total - preamble - 1) + "\n";
-        if (header.Length > ushort.MaxValue) throw new ArgumentException("NPY header too long for format 1.0");
-
-        stream.Write(Magic);
-        stream.WriteByte(1);  // major version
-        stream.WriteByte(0);  // minor version
-        Span<byte> len = stackalloc byte[2];
-        BinaryPrimitives.WriteUInt16LittleEndian(len, (ushort)header.Length);
-        stream.Write(len);
-        stream.Write(Encoding.ASCII.GetBytes(header));
+        stream.Write(Preamble(shape));
         if (BitConverter.IsLittleEndian) { stream.Write(MemoryMarshal.AsBytes(data)); return; }  // '<f4' is the memory layout: one write
         var buffer = new byte[4 * Math.Min(data.Length, 1 << 16)];
         for (int at = 0; at < data.Length; at += buffer.Length / 4)

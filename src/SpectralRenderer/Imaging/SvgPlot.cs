@@ -27,8 +27,6 @@ public sealed class SvgPlot
     /// <summary>Forces the y axis to include 0 (spectra are non-negative).</summary>
     public bool YFromZero { get; init; } = true;
 
-    public IReadOnlyList<Series> AllSeries => _series;
-
     /// <summary>Adds a series; its colour is the next in <see cref="Palette"/>.</summary>
     public SvgPlot Add(string name, IReadOnlyList<double> x, IReadOnlyList<double> y, bool dashed = false)
     {

@@ -15,11 +15,16 @@ public static class WavelengthsCsv
 
     public static string Format(BandGrid grid)
     {
-        var inv = CultureInfo.InvariantCulture;
         var sb = new StringBuilder(Header).Append('\n');
-        for (int b = 0; b < grid.Count; b++)
-            sb.Append(inv, $"{b},{grid.Lower(b).ToString("R", inv)},{grid.Centre(b).ToString("R", inv)},{grid.Upper(b).ToString("R", inv)}\n");
+        for (int b = 0; b < grid.Count; b++) AppendRow(sb, grid, b).Append('\n');
         return sb.ToString();
+    }
+
+    /// <summary>Band <paramref name="b"/>'s columns of <see cref="Header"/> (number, edges and centre in nm, round-trip exact), without a line end: the one writer of band rows.</summary>
+    public static StringBuilder AppendRow(StringBuilder sb, BandGrid grid, int b)
+    {
+        var inv = CultureInfo.InvariantCulture;
+        return sb.Append(inv, $"{b},{grid.Lower(b).ToString("R", inv)},{grid.Centre(b).ToString("R", inv)},{grid.Upper(b).ToString("R", inv)}");
     }
 
     public static void Write(string path, BandGrid grid) => AtomicFile.WriteAllText(path, Format(grid));

@@ -20,7 +20,7 @@ public sealed class XyzPlanes
 
     public Xyz this[int pixel] => new(X[pixel], Y[pixel], Z[pixel]);
 
-    /// <summary>The planes of colours the renderer computed per pixel (X, Y, Z interleaved, <see cref="Rendering.RenderResult.Xyz"/>).</summary>
+    /// <summary>The planes of colours the renderer computed per pixel (X, Y, Z interleaved, as the renderer's result holds them).</summary>
     public static XyzPlanes FromPixels(float[] interleaved)
     {
         int pixels = interleaved.Length / 3;

@@ -40,8 +40,7 @@ public sealed record RenderManifest
     public required BandGrid Grid { get; init; }
     /// <summary>The radiance that band PNG level 65535 stands for (the brightest band value of the render).</summary>
     public required float BandImageScale { get; init; }
-    /// <summary>"exact", "weighted" or "paper" (<see cref="BandIntegration"/>).</summary>
-    public required string Integration { get; init; }
+    public required BandIntegration Integration { get; init; }
     public required int ObserverDegrees { get; init; }
     public required TabulatedSpectrum ReferenceWhite { get; init; }
     /// <summary>κ of eq. 3.</summary>
@@ -83,14 +82,16 @@ public sealed record RenderManifest
     public IReadOnlyList<string>? Files { get; init; }
     /// <summary>The resolved scene.</summary>
     public JsonObject? ResolvedScene { get; init; }
+    /// <summary>What the render computes (<see cref="Output.SceneHash"/>): equal for the shards of one render.</summary>
+    public string? SceneHash { get; init; }
+    /// <summary>
+    /// A partial render (--crop, --shard): the film pixels this folder holds, X1 and Y1 exclusive; null for the whole
+    /// film. Its images are crop-sized; the ENVI and NPY cubes start at film pixel (X0, Y0), the EXRs say it in dataWindow.
+    /// </summary>
+    public Rendering.PixelRect? Crop { get; init; }
 
     /// <summary>Eq. 3 with the render's own weights.</summary>
-    public Xyz ToXyz(ReadOnlySpan<double> bands)
-    {
-        double x = 0, y = 0, z = 0;
-        for (int b = 0; b < Wx.Length; b++) { x += Wx[b] * bands[b]; y += Wy[b] * bands[b]; z += Wz[b] * bands[b]; }
-        return new Xyz(x, y, z);
-    }
+    public Xyz ToXyz(ReadOnlySpan<double> bands) => Colorimeter.ToXyz(Wx, Wy, Wz, bands);
 
     public JsonObject ToJson()
     {
@@ -125,7 +126,7 @@ public sealed record RenderManifest
         }
         JsonArray? files = null;
         if (Files is not null) { files = []; foreach (var f in Files) files.Add(JsonValue.Create(f)); }
-        return new JsonObject
+        var json = new JsonObject
         {
             ["tool"] = Tool,
             ["version"] = Version,
@@ -150,7 +151,7 @@ public sealed record RenderManifest
             },
             ["colour"] = new JsonObject
             {
-                ["integration"] = Integration,
+                ["integration"] = BandIntegrations.Name(Integration),
                 ["pixel_xyz"] = PixelXyz,
                 ["fallback_pixels"] = FallbackPixels,
                 ["observer"] = ObserverDegrees,
@@ -181,6 +182,9 @@ public sealed record RenderManifest
             ["files"] = files,
             ["resolved_scene"] = ResolvedScene?.DeepClone(),
         };
+        if (SceneHash is not null) json["scene_hash"] = SceneHash;
+        if (Crop is { } c) json["crop"] = new JsonObject { ["x0"] = c.X0, ["y0"] = c.Y0, ["x1"] = c.X1, ["y1"] = c.Y1 };
+        return json;
     }
 
     public string ToJsonText() => ToJson().ToJsonString(new JsonSerializerOptions { WriteIndented = true });
@@ -232,7 +236,7 @@ public sealed record RenderManifest
             SamplesPerPixel = r.OptInt(json, "spp") ?? 1,
             Grid = BandGrid.Parse(grid, $"{path}: $.bands.grid"),
             BandImageScale = (float)(r.OptNumber(bands, "band_image_scale") ?? 0),
-            Integration = r.Str(colour, "integration", "$.colour"),
+            Integration = BandIntegrations.Parse(r.Str(colour, "integration", "$.colour"), $"{path}: $.colour.integration"),
             ObserverDegrees = r.Int(colour, "observer", "$.colour"),
             ReferenceWhite = new TabulatedSpectrum(r.OptStr(colour, "reference_white") ?? "white",
                 r.Numbers(spd, "wavelengths_nm", "$.colour.reference_white_spd"), r.Numbers(spd, "values", "$.colour.reference_white_spd"), Extrapolation.Clamp),
@@ -264,6 +268,10 @@ public sealed record RenderManifest
             Run = json["run"] as JsonObject,
             Files = json["files"] is JsonArray fs ? fs.Select(f => (string?)f ?? "").ToArray() : null,
             ResolvedScene = json["resolved_scene"] as JsonObject,
+            SceneHash = r.OptStr(json, "scene_hash"),
+            Crop = json["crop"] is JsonObject crop
+                ? new Rendering.PixelRect(r.Int(crop, "x0", "$.crop"), r.Int(crop, "y0", "$.crop"), r.Int(crop, "x1", "$.crop"), r.Int(crop, "y1", "$.crop"))
+                : null,
         };
     }
 

@@ -71,7 +71,7 @@ public static class RenderOutputWriter
                 Done(3)("object-id.png");
                 AnalysisImages.Write(scene, result, outDir, Done(3));
             },
-            () => { if (Has(OutputProducts.Exr)) SpectralFiles.WriteExr(scene, image, bands!, xyz, outDir, Done(4)); },
+            () => { if (Has(OutputProducts.Exr)) SpectralFiles.WriteExr(scene, image, bands!, xyz, result.Crop, outDir, Done(4)); },
             () => { if (Has(OutputProducts.Envi)) SpectralFiles.WriteEnvi(scene, image, bands!, outDir, Done(5)); },
             () => { if (Has(OutputProducts.Npy)) SpectralFiles.WriteNpy(image, outDir, Done(6)); },
             () => { if (Has(OutputProducts.Npy) || Has(OutputProducts.Envi) || Has(OutputProducts.Exr)) SpectralFiles.WriteWavelengths(image, outDir, Done(7)); },
@@ -156,16 +156,19 @@ public static class RenderOutputWriter
     }
 
     /// <summary>The tEXt chunks of band image b: what it shows and the scale from its samples to band values.</summary>
-    internal static Dictionary<string, string> BandText(Scene scene, int b, float scale)
+    internal static Dictionary<string, string> BandText(Scene scene, int b, float scale) =>
+        BandText(scene.Grid, b, scale, scene.Radiometry.ToString().ToLowerInvariant(), RadianceUnit(scene));
+
+    /// <summary>As above, from the band grid, the radiometry's name and the unit of a band value (as render.json states them).</summary>
+    internal static Dictionary<string, string> BandText(BandGrid g, int b, float scale, string radiometry, string unit)
     {
         var inv = CultureInfo.InvariantCulture;
-        var g = scene.Grid;
         return new Dictionary<string, string>
         {
             ["Title"] = string.Create(inv, $"band {b + 1} of {g.Count}: {g.Lower(b):0.###}-{g.Upper(b):0.###} nm"),
             ["Software"] = $"spectral {typeof(RenderOutputWriter).Assembly.GetName().Version?.ToString(3)}",
-            ["Scale"] = string.Create(inv, $"band value = sample / 65535 * {scale:R} {RadianceUnit(scene)} (linear samples, gAMA 1.0; values above the scale clip)"),
-            ["Radiometry"] = scene.Radiometry.ToString().ToLowerInvariant(),
+            ["Scale"] = string.Create(inv, $"band value = sample / 65535 * {scale:R} {unit} (linear samples, gAMA 1.0; values above the scale clip)"),
+            ["Radiometry"] = radiometry,
         };
     }
 
@@ -264,17 +267,18 @@ public static class RenderOutputWriter
                 _ => new ManifestLight(k, l.Name, l.Type, l.Spectrum?.Name, l.Scale, unit, l.HasAmbient, null, null, null, l.Spectrum),
             };
         }
-        return new RenderManifest
+        var manifest = new RenderManifest
         {
             Version = typeof(RenderOutputWriter).Assembly.GetName().Version?.ToString(3),
             Scene = scene.SourcePath,
             CreatedUtc = RenderManifest.Now(),
-            Width = result.Image.Width,
-            Height = result.Image.Height,
+            // The film's size; a crop or shard holds the pixels of Crop only.
+            Width = scene.Camera.Width,
+            Height = scene.Camera.Height,
             SamplesPerPixel = scene.Camera.SamplesPerPixel,
             Grid = scene.Grid,
             BandImageScale = bandScale,
-            Integration = scene.Integration.ToString().ToLowerInvariant(),
+            Integration = scene.Integration,
             ObserverDegrees = c.Observer.Degrees,
             ReferenceWhite = scene.ReferenceWhite,
             Kappa = c.Kappa,
@@ -304,6 +308,8 @@ public static class RenderOutputWriter
             Tiles = result.Tiles,
             Run = run,
             ResolvedScene = scene.Resolved,
+            Crop = result.Crop.IsWhole(scene.Camera.Width, scene.Camera.Height) ? null : result.Crop,
         };
+        return manifest with { SceneHash = Output.SceneHash.Of(manifest.ToJson(), scene.Output.Products, scene.Output.ExrCompression) };
     }
 }

@@ -1,4 +1,5 @@
 using SpectralRenderer.Imaging;
+using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Spectra;
 
@@ -12,7 +13,8 @@ public static class SpectralFiles
 {
     /// <param name="bands">The image's band planes (<see cref="SpectralImage.CopyBands"/>).</param>
     /// <param name="xyz">Their <see cref="XyzPlanes"/> of scene.Colorimeter when the caller has them already.</param>
-    internal static void WriteExr(Scene scene, SpectralImage image, float[] bands, XyzPlanes? xyz, string outDir, Action<string> done)
+    /// <param name="crop">The film pixels the image holds: the EXR's data window inside the film's display window.</param>
+    internal static void WriteExr(Scene scene, SpectralImage image, float[] bands, XyzPlanes? xyz, PixelRect crop, string outDir, Action<string> done)
     {
         ExrWriter.Write(Path.Combine(outDir, "spectral.exr"), image.Width, image.Height, image.Grid, bands, xyz, new ExrOptions
         {
@@ -22,6 +24,7 @@ public static class SpectralFiles
             DeflateEveryChunk = scene.Output.ExrCompression == ExrCompressionChoice.ZipAll,
             // JCGT 2021's emissiveUnits names the unit of the S0 channels: only true for physical radiometry.
             EmissiveUnits = scene.Radiometry == Radiometry.Physical ? ExrWriter.EmissiveUnits : null,
+            DataX = crop.X0, DataY = crop.Y0, DisplayWidth = scene.Camera.Width, DisplayHeight = scene.Camera.Height,
             Attributes = new Dictionary<string, string>
             {
                 ["software"] = $"spectral {typeof(SpectralFiles).Assembly.GetName().Version?.ToString(3)}",

@@ -12,8 +12,6 @@ public static class Integrators
         ["whitted"] = (scene, geometry) => new WhittedIntegrator(scene, geometry),
     };
 
-    public static IReadOnlyCollection<string> Names => Factories.Keys;
-
     /// <summary>The integrator <paramref name="name"/> for a scene whose geometry is built.</summary>
     public static IIntegrator Create(Scene scene, SceneGeometry geometry, string name = Default) =>
         Factories.TryGetValue(name, out var make) ? make(scene, geometry)

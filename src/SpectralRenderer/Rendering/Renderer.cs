@@ -27,6 +27,8 @@ public sealed class RenderResult
     public required TimeSpan Elapsed { get; init; }
     public required int Threads { get; init; }
     public required int Tiles { get; init; }
+    /// <summary>The part of the camera's film rendered (the whole film unless cropped); Image is its size.</summary>
+    public required PixelRect Crop { get; init; }
 }
 
 /// <summary>Progress of a render, reported after each tile.</summary>
@@ -41,16 +43,23 @@ public sealed class Renderer
 {
     public const int TileSize = 32;
 
-    public static RenderResult Render(Scene scene, int threads = 0, Action<RenderProgress>? progress = null, CancellationToken cancel = default)
+    public static RenderResult Render(Scene scene, int threads = 0, Action<RenderProgress>? progress = null, CancellationToken cancel = default, PixelRect? crop = null)
     {
         var geometry = new SceneGeometry(scene);
-        return Render(scene, Integrators.Create(scene, geometry), threads, progress, cancel);
+        return Render(scene, Integrators.Create(scene, geometry), threads, progress, cancel, crop);
     }
 
-    public static RenderResult Render(Scene scene, IIntegrator integrator, int threads = 0, Action<RenderProgress>? progress = null, CancellationToken cancel = default)
+    /// <param name="crop">Renders only these pixels of the film (--crop, --shard): the tiles are the whole film's
+    /// 32 × 32 grid clipped to the crop, and each pixel is computed from its own film coordinates, so a crop holds the
+    /// same values as the same pixels of a whole render.</param>
+    public static RenderResult Render(Scene scene, IIntegrator integrator, int threads = 0, Action<RenderProgress>? progress = null, CancellationToken cancel = default, PixelRect? crop = null)
     {
         var cam = scene.Camera;
-        int width = cam.Width, height = cam.Height, bands = scene.Bands, padded = scene.PaddedBands;
+        var region = crop ?? PixelRect.Whole(cam.Width, cam.Height);
+        if (region.X0 < 0 || region.Y0 < 0 || region.X1 > cam.Width || region.Y1 > cam.Height || region.Width < 1 || region.Height < 1)
+            throw new ArgumentOutOfRangeException(nameof(crop), $"crop {region} is not inside the {cam.Width}×{cam.Height} film");
+        // width × height: the framebuffer (the crop); (ox, oy): its first pixel on the film.
+        int width = region.Width, height = region.Height, ox = region.X0, oy = region.Y0, bands = scene.Bands, padded = scene.PaddedBands;
         var image = new SpectralImage(width, height, scene.Grid);
         var ids = new int[width * height];
         var lit = new uint[width * height];
@@ -60,7 +69,9 @@ public sealed class Renderer
         long fallbackPixels = 0;
         var colorimeter = scene.Colorimeter;
         int lane = bands;   // the colour lanes follow the bands (SpectralMath.ColourLanes)
-        int tilesX = (width + TileSize - 1) / TileSize, tilesY = (height + TileSize - 1) / TileSize;
+        // The film's tile grid, clipped to the crop: tile columns tx0 … and rows ty0 … that meet it.
+        int tx0 = ox / TileSize, ty0 = oy / TileSize;
+        int tilesX = (region.X1 + TileSize - 1) / TileSize - tx0, tilesY = (region.Y1 + TileSize - 1) / TileSize - ty0;
         int tiles = tilesX * tilesY;
         if (threads <= 0) threads = Environment.ProcessorCount;
         var total = new RayCounters();
@@ -86,8 +97,9 @@ public sealed class Renderer
             while ((tile = Interlocked.Increment(ref next)) < tiles)
             {
                 cancel.ThrowIfCancellationRequested();
-                int x0 = tile % tilesX * TileSize, y0 = tile / tilesX * TileSize;
-                int x1 = Math.Min(width, x0 + TileSize), y1 = Math.Min(height, y0 + TileSize);
+                // Film coordinates of the tile, clipped to the crop.
+                int x0 = Math.Max(region.X0, (tx0 + tile % tilesX) * TileSize), y0 = Math.Max(region.Y0, (ty0 + tile / tilesX) * TileSize);
+                int x1 = Math.Min(region.X1, (tx0 + tile % tilesX + 1) * TileSize), y1 = Math.Min(region.Y1, (ty0 + tile / tilesX + 1) * TileSize);
                 var counters = new RayCounters();
                 var sum = state.Sum.AsSpan();
                 var sample = state.Sample.AsSpan();
@@ -121,8 +133,8 @@ public sealed class Renderer
                         counters.Primary++;
                         id = integrator.Radiance(cam.Generate(x + 0.5f, y + 0.5f), sample, scratch, ref counters, ref info);
                     }
-                    sum[..bands].CopyTo(image.Data.AsSpan(image.Offset(x, y), bands));
-                    int i = y * width + x;
+                    sum[..bands].CopyTo(image.Data.AsSpan(image.Offset(x - ox, y - oy), bands));
+                    int i = (y - oy) * width + (x - ox);
                     if (counters.Fallback == fallbackBefore) { xyz[3 * i] = sum[lane]; xyz[3 * i + 1] = sum[lane + 1]; xyz[3 * i + 2] = sum[lane + 2]; }
                     else
                     {   // a term multiplied more spectra than the tables hold: eq. 3 on this pixel's band values
@@ -148,7 +160,7 @@ public sealed class Renderer
         try { Task.WaitAll(workers); }
         catch (AggregateException e) when (e.InnerExceptions.All(x => x is OperationCanceledException)) { throw new OperationCanceledException(cancel); }
 
-        return new RenderResult { Image = image, ObjectIds = ids, LitMasks = lit, SpecularY = specY, DiffuseY = diffY, Xyz = xyz, FallbackPixels = fallbackPixels, Rays = total, Elapsed = clock.Elapsed, Threads = threads, Tiles = tiles };
+        return new RenderResult { Image = image, ObjectIds = ids, LitMasks = lit, SpecularY = specY, DiffuseY = diffY, Xyz = xyz, FallbackPixels = fallbackPixels, Rays = total, Elapsed = clock.Elapsed, Threads = threads, Tiles = tiles, Crop = region };
     }
 
     sealed class TileState(int scratch, int padded)

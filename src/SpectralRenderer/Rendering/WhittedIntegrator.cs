@@ -41,9 +41,6 @@ public sealed class WhittedIntegrator : IIntegrator
         _physical = scene.Radiometry == Radiometry.Physical;
     }
 
-    public SceneGeometry Geometry => _geometry;
-    public int PaddedBands => _padded;
-
     /// <summary>Scratch floats a thread needs: two spectra per recursion level.</summary>
     public int ScratchLength => (_scene.MaxDepth + 2) * 2 * _padded;
 

@@ -50,6 +50,7 @@ public static class OutputNames
     public static string[] ProductNames => Products.Select(p => p.Name).ToArray();
     public static string[] ExrCompressionNames => ExrCompressions.Select(p => p.Name).ToArray();
 
+    /// <summary>The scene-file name of an EXR compression choice.</summary>
     public static string Name(ExrCompressionChoice c) => ExrCompressions.First(p => p.Choice == c).Name;
 }
 

@@ -43,13 +43,6 @@ public sealed class BandGrid : IEquatable<BandGrid>
         return e;
     }
 
-    /// <summary>The band containing <paramref name="wavelength"/>, or -1 outside the grid.</summary>
-    public int BandOf(double wavelength)
-    {
-        if (wavelength < Start || wavelength > End) return -1;
-        return Math.Min(Count - 1, (int)((wavelength - Start) / Width));
-    }
-
     /// <summary>Parses "start:end:count", e.g. "380:780:20" or "400:700:31".</summary>
     public static BandGrid Parse(string text, string where = "--bands")
     {

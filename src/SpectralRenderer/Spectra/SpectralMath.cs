@@ -13,7 +13,7 @@ public static class SpectralMath
     /// <summary>
     /// Lanes after the bands that carry a radiance's colour, X, Y, Z (κ included), through every operation: a term of
     /// eq. 2 adds its table's exact XYZ there while its band values go in the bands, so a pixel's colour is exact at the
-    /// tables' full resolution (<see cref="Color.BandIntegration.Exact"/>). Lane <c>bands + 0</c> is X, <c>+ 1</c> Y, <c>+ 2</c> Z.
+    /// tables' full resolution (exact band integration). Lane <c>bands + 0</c> is X, <c>+ 1</c> Y, <c>+ 2</c> Z.
     /// </summary>
     public const int ColourLanes = 3;
 

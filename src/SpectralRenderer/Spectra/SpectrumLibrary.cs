@@ -30,9 +30,6 @@ public static class SpectrumLibrary
     public static SpectralTable Table(string path) => Tables.GetOrAdd(System.IO.Path.GetFullPath(path), CsvSpectrumReader.Read);
     public static SpectralTable DataTable(string file) => Table(DataDirectory.File_(file));
 
-    public static bool IsBuiltin(string name) =>
-        Builtins.Any(b => string.Equals(b.Name, name, StringComparison.OrdinalIgnoreCase));
-
     /// <summary>Resolves a name. <paramref name="baseDirectory"/> anchors relative CSV paths; <paramref name="where"/> names the place for errors.</summary>
     public static TabulatedSpectrum Resolve(string name, string? baseDirectory = null, string where = "spectrum")
     {

@@ -215,23 +215,15 @@ public sealed partial class SceneLoader
 
     // ---- lights ---------------------------------------------------------------------------------
 
-    static readonly string[] LightTypes = ["point", "spot", "directional"];
-
     [MethodImpl(MethodImplOptions.NoOptimization)]
     Light ParseLight(JsonElement e, string path, int index)
     {
         Object(e, path);
         var type = String(Required(e, "type", path), $"{path}.type").ToLowerInvariant();
-        if (Array.IndexOf(LightTypes, type) < 0)
-            throw Error($"{path}.type", $"unknown light type '{type}'", InputException.DidYouMean(type, LightTypes) ?? "use point, spot or directional");
-        var common = new[] { "type", "name", "spectrum", "intensity", "ambient", "attenuation" };
-        string[] specific = type switch
-        {
-            "point" => ["position"],
-            "spot" => ["position", "direction", "look_at", "cutoff", "exponent"],
-            _ => ["direction"],
-        };
-        Keys(e, path, [.. common, .. specific]);
+        var names = LightTypes.ByName.Keys.ToArray();
+        if (!LightTypes.ByName.TryGetValue(type, out var kind))
+            throw Error($"{path}.type", $"unknown light type '{type}'", InputException.DidYouMean(type, names) ?? $"use {string.Join(", ", names)}");
+        Keys(e, path, [.. LightTypes.CommonKeys, .. kind.Keys]);
         var name = TryGet(e, "name", out var n) ? String(n, $"{path}.name") : $"light-{index}";
         var spectrum = Spectrum(Required(e, "spectrum", path), $"{path}.spectrum");
         float intensity = (float)Number(e, "intensity", path, 1, 0);
@@ -250,32 +242,42 @@ public sealed partial class SceneLoader
             if (c0 + c1 + c2 <= 0) throw Error($"{path}.attenuation", "all attenuation coefficients are zero", "use [1, 0, 0] for no attenuation");
             falloff = new DistanceFalloff(c0, c1, c2);
         }
-        bool hasAmbient = SpectralMath.Any(ambient);
-        if (type == "directional")
-            return new DirectionalLight
-            {
-                Name = name, Direction = Direction(Required(e, "direction", path), $"{path}.direction"),
-                Intensity = bands, Ambient = ambient, HasAmbient = hasAmbient, Spectrum = spectrum, Scale = intensity,
-            };
-        var position = Vec3(Required(e, "position", path), $"{path}.position");
-        if (type == "point")
-            return new PointLight { Name = name, Position = position, Falloff = falloff, Intensity = bands, Ambient = ambient, HasAmbient = hasAmbient, Spectrum = spectrum, Scale = intensity };
-        Vector3 direction;
-        if (TryGet(e, "direction", out var d)) direction = Direction(d, $"{path}.direction");
-        else if (TryGet(e, "look_at", out var la))
+        return kind.Make(new LightSource(this, e, path)
         {
-            var towards = Vec3(la, $"{path}.look_at") - position;
-            if (towards.LengthSquared() == 0) throw Error($"{path}.look_at", "look_at equals position", "a spot light needs a direction to shine in");
-            direction = Vector3.Normalize(towards);
-        }
-        else throw Error($"{path}.direction", "a spot light needs a direction or look_at");
-        float cosCutoff = MathF.Cos((float)Number(e, "cutoff", path, 30, 0, 180) * MathF.PI / 180);
-        float exponent = (float)Number(e, "exponent", path, 0, 0, 1e6);
-        return new SpotLight
-        {
-            Name = name, Position = position, Direction = direction, Falloff = falloff, CosCutoff = cosCutoff, Exponent = exponent,
-            Intensity = bands, Ambient = ambient, HasAmbient = hasAmbient, Spectrum = spectrum, Scale = intensity,
-        };
+            Name = name, Intensity = bands, Ambient = ambient, HasAmbient = SpectralMath.Any(ambient), Spectrum = spectrum, Falloff = falloff, Scale = intensity,
+        });
+    }
+
+    /// <summary>
+    /// What a light type's factory (<see cref="LightTypes"/>) gets: the parts every light has, already parsed, and
+    /// readers for its own keys that report bad input with the file, line:column and JSON path.
+    /// </summary>
+    public sealed class LightSource
+    {
+        readonly SceneLoader _loader;
+        readonly JsonElement _e;
+        readonly string _path;
+
+        internal LightSource(SceneLoader loader, JsonElement e, string path) { _loader = loader; _e = e; _path = path; }
+
+        public required string Name { get; init; }
+        /// <summary>I_k: the spectrum's band values × intensity.</summary>
+        public required float[] Intensity { get; init; }
+        public required float[] Ambient { get; init; }
+        public required bool HasAmbient { get; init; }
+        public required TabulatedSpectrum Spectrum { get; init; }
+        /// <summary>The "intensity" factor the spectrum's band values were multiplied by.</summary>
+        public required float Scale { get; init; }
+        /// <summary>The "attenuation" [c0, c1, c2], or none.</summary>
+        public required DistanceFalloff Falloff { get; init; }
+
+        public bool Has(string key) => TryGet(_e, key, out _);
+        /// <summary>A required point [x, y, z].</summary>
+        public Vector3 Point(string key) => _loader.Vec3(_loader.Required(_e, key, _path), $"{_path}.{key}");
+        /// <summary>A required non-zero vector, normalised.</summary>
+        public Vector3 Direction(string key) => _loader.Direction(_loader.Required(_e, key, _path), $"{_path}.{key}");
+        public double Number(string key, double fallback, double min, double max) => _loader.Number(_e, key, _path, fallback, min, max);
+        public InputException Error(string key, string what, string? hint = null) => _loader.Error($"{_path}.{key}", what, hint);
     }
 
     [MethodImpl(MethodImplOptions.NoOptimization)]

@@ -330,13 +330,7 @@ public sealed partial class SceneLoader
     }
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
-    static BandIntegration ParseIntegration(string s, string where) => s.ToLowerInvariant() switch
-    {
-        "exact" => BandIntegration.Exact,
-        "weighted" => BandIntegration.Weighted,
-        "paper" => BandIntegration.Paper,
-        _ => throw new InputException(where, $"unknown band integration '{s}'", "use exact (default), weighted or paper"),
-    };
+    static BandIntegration ParseIntegration(string s, string where) => BandIntegrations.Parse(s, where);
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
     void CheckFramebuffer(Camera camera)

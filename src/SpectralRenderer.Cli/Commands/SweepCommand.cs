@@ -1,0 +1,213 @@
+using System.Globalization;
+using System.Runtime.CompilerServices;
+using System.Text;
+using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Distributed;
+using SpectralRenderer.Imaging;
+using SpectralRenderer.Scenes;
+using SpectralRenderer.Scenes.Loading;
+
+namespace SpectralRenderer.Cli.Commands;
+
+/// <summary>`spectral sweep PLAN.json`: a plan's jobs rendered into a dataset with an index, locally or as a job array.</summary>
+public static class SweepCommand
+{
+    public const string Help = """
+        usage: spectral sweep PLAN.json [-o OUTDIR] [--shard I/N | --shards N] [--layout folders|pairs]
+                                        [--formats LIST] [--threads N] [--models DIR] [--quiet]
+               spectral sweep PLAN.json --emit slurm|k8s [-o OUTDIR] [--shards N] [--image IMAGE]
+
+        Renders every job of a sweep plan (docs/sweep-format.md: a base scene and axes of scene edits whose product
+        is the job list, plus extra jobs) into OUTDIR/jobs/ID/ — a render folder with the job's scene.json and job.json
+        (status, seconds, parameters) — and writes the dataset index OUTDIR/index.csv and OUTDIR/index.jsonl (job id,
+        status done/failed/pending, seconds, path, one column per axis). Jobs run one after another, each on all cores.
+        A rerun skips finished jobs (same scene and formats), so an interrupted or pre-empted run resumes; a job
+        interrupted midway left no job.json and runs again.
+
+          -o, --out DIR      the dataset folder (default: out/<plan name>)
+          --shard I/N        run slice I (from 0) of N: the jobs whose number mod N is I. Without it, a job array task
+                             takes I and N from SLURM_ARRAY_TASK_ID/_MIN/_MAX/_STEP (or _COUNT), JOB_COMPLETION_INDEX
+                             (Kubernetes, with --shards N) or AWS_BATCH_JOB_ARRAY_INDEX/_SIZE; --shard none runs all
+          --shards N         the slice count where the scheduler gives none; with --emit, the array's task count
+                             (default: one task per job)
+          --layout pairs     also OUTDIR/cube/ID.npy and OUTDIR/rgb/ID.png for each job (cube + RGB pairs, as the
+                             spectral-recovery challenges use; adds npy and png to the formats)
+          --formats LIST     the render formats of every job (default: the plan's "formats", else the scene's)
+          --threads N        worker threads of each render (default: all cores)
+          --models DIR       a folder to search for mesh files
+          --emit slurm       write OUTDIR/sweep.sbatch, an sbatch array script running this plan (sbatch it)
+          --emit k8s         write OUTDIR/sweep-job.yaml, a Kubernetes Indexed Job running it (--image: the image
+                             with spectral on its PATH; the plan and OUTDIR on a shared volume at the same paths)
+          --quiet            no progress or summary on stderr
+        """;
+
+    static readonly string[] Values = ["-o", "--out", "--shard", "--shards", "--layout", "--formats", "--threads", "--models", "--emit", "--image"];
+
+    [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
+    public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
+    {
+        var a = new Arguments("sweep", argv, Values, ["--quiet"], new Dictionary<string, string> { ["-o"] = "--out" });
+        if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
+        if (a.Positionals.Count != 1) throw new InputException("", a.Positionals.Count == 0 ? "no sweep plan given" : $"unexpected argument '{a.Positionals[1]}'", "usage: spectral sweep PLAN.json -o OUTDIR");
+        var planPath = a.Positionals[0];
+        var outDir = a.Value("--out") ?? Path.Combine("out", Path.GetFileNameWithoutExtension(planPath));
+        string layout = a.Value("--layout") ?? "folders";
+        if (!SweepRunner.Layouts.Contains(layout)) throw new InputException("--layout", $"'{layout}' is not a layout", "folders (default) or pairs");
+        int? shards = a.Int("--shards", 1, 1 << 20);
+        bool quiet = a.Flag("--quiet");
+        var models = a.Values("--models").Select(Path.GetFullPath).ToList();
+        foreach (var m in models)
+            if (!Directory.Exists(m)) throw new InputException("--models", $"folder '{m}' does not exist");
+        var plan = SweepPlan.Load(planPath);
+
+        if (a.Value("--emit") is { } emit)
+        {
+            int tasks = shards ?? plan.Jobs.Count;
+            RenderCommand.PrepareOutputFolder(outDir);
+            var file = emit switch
+            {
+                "slurm" => EmitSlurm(plan, outDir, tasks, layout, a, models),
+                "k8s" => EmitKubernetes(plan, outDir, tasks, layout, a, models),
+                _ => throw new InputException("--emit", $"'{emit}' is not a scheduler", "slurm or k8s"),
+            };
+            if (!quiet) stderr.WriteLine($"wrote {file}: {plan.Jobs.Count} jobs in {tasks} array tasks");
+            return CommandLine.Success;
+        }
+
+        Shard slice;
+        string? sliceText = a.Value("--shard");
+        if (sliceText == "none") slice = new Shard(0, 1);
+        else if (sliceText is not null) slice = Shard.Parse(sliceText);
+        else slice = SchedulerEnvironment.Resolve(shards)?.Shard ?? (shards is null ? new Shard(0, 1)
+            : throw new InputException("--shards", "is given but no job array variable is set", "use --shard I/N outside a job array"));
+
+        RenderCommand.PrepareOutputFolder(outDir);
+        var overrides = new SceneOverrides { Formats = a.Value("--formats"), ModelDirectories = models };
+        using var cancel = new CancellationTokenSource();
+        ConsoleCancelEventHandler onCancel = (_, e) => { e.Cancel = true; cancel.Cancel(); };
+        Console.CancelKeyPress += onCancel;
+        try
+        {
+            bool terminal = ReferenceEquals(stderr, Console.Error) && !Console.IsErrorRedirected;
+            Action<SweepProgress>? progress = quiet ? null : p =>
+            {
+                double f = (double)p.Finished / p.Jobs, secs = p.Elapsed.TotalSeconds;
+                int filled = (int)(f * 30);
+                string line = string.Create(CultureInfo.InvariantCulture,
+                    $"[{new string('#', filled)}{new string('.', 30 - filled)}] {p.Finished}/{p.Jobs} jobs  job {p.Job.Id} {p.Status} {p.Seconds:0.0} s  ({string.Join(", ", p.Job.Parameters.Where(x => x.Label.Length > 0).Select(x => $"{x.Axis}={x.Label}"))})  ETA {(f > 0 ? secs / f - secs : 0):0} s");
+                if (terminal) stderr.Write("\r" + line.PadRight(110)[..Math.Max(110, line.Length)]);
+                else stderr.WriteLine(line);
+            };
+            SweepSummary s;
+            try { s = SweepRunner.Run(plan, outDir, slice, overrides, layout, a.Int("--threads", 1, 1024) ?? 0, progress, cancel.Token); }
+            catch (OperationCanceledException)
+            {
+                if (terminal && !quiet) stderr.WriteLine();
+                stderr.WriteLine($"spectral sweep: interrupted; finished jobs are kept and listed in {Path.Combine(outDir, "index.csv")}; run the same command again to resume");
+                return CommandLine.Failure;
+            }
+            if (terminal && !quiet) stderr.WriteLine();
+            if (!quiet)
+                stderr.WriteLine($"sweep {Path.GetFileName(planPath)}{(slice.Count > 1 ? $" slice {slice}" : "")}: {s.InSlice} of {s.Jobs} jobs here — {s.Rendered} rendered, {s.Skipped} already done, {s.Failed} failed; {s.DoneInIndex}/{s.Jobs} done in {Path.Combine(outDir, "index.csv")}");
+            if (s.Failed > 0)
+            {
+                stderr.WriteLine($"spectral sweep: {s.Failed} jobs failed (their errors are in index.jsonl and jobs/ID/job.json)");
+                return CommandLine.Failure;
+            }
+            return CommandLine.Success;
+        }
+        finally { Console.CancelKeyPress -= onCancel; }
+    }
+
+    /// <summary>How this process was started (the same spectral binary, or `dotnet spectral.dll`), for the emitted scripts.</summary>
+    static string SpectralCommand()
+    {
+        var exe = Environment.ProcessPath ?? "spectral";
+        var dll = typeof(SweepCommand).Assembly.Location;
+        return Path.GetFileNameWithoutExtension(exe) == "dotnet" && dll.Length > 0 ? $"{Quote(exe)} {Quote(dll)}" : Quote(exe);
+    }
+
+    static string Quote(string s) => s.Length > 0 && s.All(c => char.IsLetterOrDigit(c) || "/._-+=:,".Contains(c)) ? s : "'" + s.Replace("'", "'\\''") + "'";
+
+    static string Common(SweepPlan plan, string outDir, string layout, Arguments a, List<string> models)
+    {
+        var sb = new StringBuilder($"sweep {Quote(plan.PlanPath)} -o {Quote(Path.GetFullPath(outDir))}");
+        if (layout != "folders") sb.Append($" --layout {layout}");
+        if (a.Value("--formats") is { } f) sb.Append($" --formats {Quote(f)}");
+        if (a.Value("--threads") is { } t) sb.Append($" --threads {t}");
+        foreach (var m in models) sb.Append($" --models {Quote(m)}");
+        return sb.ToString();
+    }
+
+    static string EmitSlurm(SweepPlan plan, string outDir, int tasks, string layout, Arguments a, List<string> models)
+    {
+        var logs = Path.Combine(Path.GetFullPath(outDir), "logs");
+        Directory.CreateDirectory(logs);
+        var script = $"""
+            #!/bin/bash
+            # {plan.Jobs.Count} jobs of {Path.GetFileName(plan.PlanPath)} as a Slurm job array of {tasks} tasks: task I runs the
+            # jobs whose number mod {tasks} is I (spectral reads SLURM_ARRAY_TASK_ID/_MIN/_MAX/_STEP). Finished jobs are
+            # skipped, so resubmitting after a failure or pre-emption resumes. Submit with: sbatch {Path.Combine(Path.GetFullPath(outDir), "sweep.sbatch")}
+            #SBATCH --job-name=spectral-sweep
+            #SBATCH --array=0-{tasks - 1}
+            #SBATCH --output={logs}/%A_%a.out
+            #SBATCH --cpus-per-task=1
+            set -euo pipefail
+            exec {SpectralCommand()} {Common(plan, outDir, layout, a, models)}{(a.Value("--threads") is null ? " --threads \"${SLURM_CPUS_PER_TASK:-1}\"" : "")}
+
+            """;
+        var path = Path.Combine(outDir, "sweep.sbatch");
+        AtomicFile.WriteAllText(path, script);
+        if (!OperatingSystem.IsWindows()) File.SetUnixFileMode(path, (UnixFileMode)0b111_101_101);
+        return path;
+    }
+
+    static string EmitKubernetes(SweepPlan plan, string outDir, int tasks, string layout, Arguments a, List<string> models)
+    {
+        string image = a.Value("--image") ?? "spectral:latest";
+        var args = ("spectral " + Common(plan, outDir, layout, a, models) + $" --shards {tasks} --quiet").Split(' ');
+        string name = "spectral-sweep-" + new string(Path.GetFileNameWithoutExtension(plan.PlanPath).ToLowerInvariant().Select(c => char.IsAsciiLetterOrDigit(c) ? c : '-').ToArray()).Trim('-');
+        if (name.Length > 52) name = name[..52].TrimEnd('-');
+        var command = string.Join(", ", args.Select(x => "\"" + x.Replace("\\", "\\\\").Replace("\"", "\\\"") + "\""));
+        string shared = Path.GetDirectoryName(plan.PlanPath)!;
+        var yaml = $"""
+            # {plan.Jobs.Count} jobs of {Path.GetFileName(plan.PlanPath)} as a Kubernetes Indexed Job of {tasks} completions: pod I runs
+            # the jobs whose number mod {tasks} is I (spectral reads JOB_COMPLETION_INDEX; the count is --shards {tasks}).
+            # The plan, its scene and the output folder must be at the same paths in the pod: mount the shared volume there
+            # (the persistentVolumeClaim below is an example). Apply with: kubectl apply -f sweep-job.yaml
+            apiVersion: batch/v1
+            kind: Job
+            metadata:
+              name: {name}
+            spec:
+              completionMode: Indexed
+              completions: {tasks}
+              parallelism: {Math.Min(tasks, 16)}
+              backoffLimitPerIndex: 2
+              maxFailedIndexes: {tasks}
+              template:
+                spec:
+                  restartPolicy: Never
+                  containers:
+                    - name: spectral
+                      image: {image}
+                      command: [{command}]
+                      volumeMounts:
+                        - name: data
+                          mountPath: {shared}
+                        - name: out
+                          mountPath: {Path.GetFullPath(outDir)}
+                  volumes:
+                    - name: data
+                      persistentVolumeClaim:
+                        claimName: spectral-data
+                    - name: out
+                      persistentVolumeClaim:
+                        claimName: spectral-out
+
+            """;
+        var path = Path.Combine(outDir, "sweep-job.yaml");
+        AtomicFile.WriteAllText(path, yaml);
+        return path;
+    }
+}

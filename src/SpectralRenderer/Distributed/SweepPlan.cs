@@ -1,0 +1,213 @@
+using System.Globalization;
+using System.Security.Cryptography;
+using System.Text;
+using System.Text.Json;
+using System.Text.Json.Nodes;
+using System.Text.RegularExpressions;
+using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Scenes;
+using SpectralRenderer.Scenes.Loading;
+
+namespace SpectralRenderer.Distributed;
+
+/// <summary>One job of a sweep: its number, id (its folder's name), the label of each axis value, and the scene edits.</summary>
+public sealed record SweepJob(int Index, string Id, IReadOnlyList<(string Axis, string Label)> Parameters, IReadOnlyList<(string Path, JsonNode? Value)> Edits);
+
+/// <summary>
+/// A parameter sweep (docs/sweep-format.md): a base scene file and axes of scene edits whose Cartesian product is the
+/// job list (first axis slowest), then any extra jobs. An edit puts a JSON value at a path into the scene:
+/// <c>materials.patch.diffuse</c>, <c>lights[0].spectrum</c>, <c>objects[name=bunny].file</c>, <c>camera.fov</c>,
+/// <c>bands</c> — so an axis can vary lights, the materials of named objects, meshes, cameras or band grids.
+/// </summary>
+public sealed class SweepPlan
+{
+    public required string PlanPath { get; init; }
+    public required string ScenePath { get; init; }
+    public required JsonObject BaseScene { get; init; }
+    public required IReadOnlyList<string> AxisNames { get; init; }
+    public required IReadOnlyList<SweepJob> Jobs { get; init; }
+    /// <summary>The plan's "formats" for every job (null: the scene's own).</summary>
+    public string? Formats { get; init; }
+
+    static readonly JsonDocumentOptions Options = new() { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true };
+
+    public static SweepPlan Load(string planPath)
+    {
+        var bytes = InputFile.ReadAllBytes(planPath, "sweep plan");
+        var locator = new JsonLocator(bytes, new JsonReaderOptions { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true });
+        InputException Bad(string path, string what, string? hint = null) =>
+            new(locator.Locate(path) is { } pos ? $"{planPath}:{pos}: {path}" : $"{planPath}: {path}", what, hint);
+        JsonObject plan;
+        try { plan = JsonNode.Parse(bytes, documentOptions: Options) as JsonObject ?? throw Bad("$", "is not a JSON object", "a plan is { \"scene\": …, \"axes\": [ … ] }"); }
+        catch (JsonException e) { throw new InputException(planPath, $"is not valid JSON: {e.Message.Split(" LineNumber:")[0]}"); }
+        foreach (var (k, _) in plan)
+            if (k is not ("scene" or "axes" or "set" or "extra" or "formats" or "name"))
+                throw Bad($"$.{k}", "is not a plan key", InputException.DidYouMean(k, ["scene", "axes", "set", "extra", "formats", "name"]) ?? "keys: scene, set, axes, extra, formats");
+        if (plan["scene"] is not JsonValue sv || sv.GetValueKind() != JsonValueKind.String)
+            throw Bad("$.scene", "is missing or not a file name", "\"scene\": \"../scenes/paper-3.2-bunny-19.json\" (relative to the plan)");
+        var scenePath = Path.GetFullPath(Path.Combine(Path.GetDirectoryName(Path.GetFullPath(planPath))!, sv.GetValue<string>()));
+        var sceneBytes = InputFile.ReadAllBytes(scenePath, "base scene");
+        JsonObject scene;
+        try { scene = JsonNode.Parse(sceneBytes, documentOptions: Options) as JsonObject ?? throw new JsonException("not an object"); }
+        catch (JsonException e) { throw new InputException(scenePath, $"is not a valid scene: {e.Message.Split(" LineNumber:")[0]}"); }
+
+        var fixedEdits = plan["set"] is JsonObject set ? Edits(set, "$.set", Bad) : [];
+        var axes = new List<(string Name, List<(string Label, List<(string, JsonNode?)> Edits)> Values)>();
+        if (plan["axes"] is JsonArray axisArray)
+            for (int a = 0; a < axisArray.Count; a++)
+            {
+                string at = $"$.axes[{a}]";
+                if (axisArray[a] is not JsonObject axis) throw Bad(at, "is not an object", "{ \"name\": …, \"path\": …, \"values\": [ … ] }");
+                foreach (var (k, _) in axis)
+                    if (k is not ("name" or "path" or "values" or "labels")) throw Bad($"{at}.{k}", "is not an axis key", "keys: name, path, values, labels");
+                string name = axis["name"] is JsonValue n && n.GetValueKind() == JsonValueKind.String ? n.GetValue<string>() : throw Bad($"{at}.name", "is missing", "every axis has a name (a column of index.csv)");
+                if (axes.Any(x => x.Name == name) || name is "job" or "status" or "seconds" or "path") throw Bad($"{at}.name", $"'{name}' is taken", "axis names are unique and not job, status, seconds or path");
+                if (axis["values"] is not JsonArray values || values.Count == 0) throw Bad($"{at}.values", "is missing or empty", "a list of the values the axis takes");
+                var labels = axis["labels"] as JsonArray;
+                if (labels is not null && labels.Count != values.Count) throw Bad($"{at}.labels", $"has {labels.Count} labels for {values.Count} values");
+                string? path = axis["path"] is JsonValue p && p.GetValueKind() == JsonValueKind.String ? p.GetValue<string>() : null;
+                if (path is not null && !PathSyntax.IsMatch(path))
+                    throw Bad($"{at}.path", $"'{path}' is not a scene path", "e.g. materials.patch.diffuse, lights[0].spectrum, objects[name=bunny].file");
+                var list = new List<(string, List<(string, JsonNode?)>)>();
+                for (int v = 0; v < values.Count; v++)
+                {
+                    var edits = path is not null ? [(path, values[v]?.DeepClone())]
+                        : values[v] is JsonObject o ? Edits(o, $"{at}.values[{v}]", Bad)
+                        : throw Bad($"{at}.values[{v}]", "is not an object of path: value edits, and the axis has no path", "give the axis a \"path\", or make each value { \"path\": value, … }");
+                    list.Add((Label(labels?[v] ?? values[v], v), edits));
+                }
+                axes.Add((name, list));
+            }
+        else if (plan["axes"] is not null) throw Bad("$.axes", "is not a list of axes");
+
+        var jobs = new List<SweepJob>();
+        int total = axes.Aggregate(1, (c, x) => checked(c * x.Values.Count));
+        if (axes.Count == 0) total = 0;
+        if (total + (plan["extra"] as JsonArray)?.Count > 100_000) throw Bad("$.axes", $"makes more than 100,000 jobs");
+        int digits = Math.Max(4, (total + ((plan["extra"] as JsonArray)?.Count ?? 0)).ToString(CultureInfo.InvariantCulture).Length);
+        string Id(int i) => i.ToString(CultureInfo.InvariantCulture).PadLeft(digits, '0');
+        for (int j = 0; j < total; j++)
+        {
+            var parameters = new List<(string, string)>();
+            var edits = new List<(string, JsonNode?)>(fixedEdits);
+            int rest = j;
+            var picks = new int[axes.Count];
+            for (int a = axes.Count - 1; a >= 0; a--) { picks[a] = rest % axes[a].Values.Count; rest /= axes[a].Values.Count; }
+            for (int a = 0; a < axes.Count; a++)
+            {
+                var (label, e) = axes[a].Values[picks[a]];
+                parameters.Add((axes[a].Name, label));
+                edits.AddRange(e);
+            }
+            jobs.Add(new SweepJob(j, Id(j), parameters, edits));
+        }
+        var axisNames = axes.Select(a => a.Name).ToList();
+        if (plan["extra"] is JsonArray extra)
+        {
+            if (extra.Count > 0) axisNames.Add("extra");
+            for (int x = 0; x < extra.Count; x++)
+            {
+                string at = $"$.extra[{x}]";
+                if (extra[x] is not JsonObject e || e["set"] is not JsonObject es) throw Bad(at, "is not { \"name\": …, \"set\": { path: value, … } }");
+                var parameters = new List<(string, string)> { ("extra", Label(e["name"] ?? JsonValue.Create(x), x)) };
+                jobs.Add(new SweepJob(jobs.Count, Id(jobs.Count), parameters, [.. fixedEdits, .. Edits(es, $"{at}.set", Bad)]));
+            }
+        }
+        else if (plan["extra"] is not null) throw Bad("$.extra", "is not a list of jobs");
+        if (jobs.Count == 0) throw Bad("$.axes", "makes no jobs", "give at least one axis with values, or extra jobs");
+
+        string? formats = plan["formats"] switch
+        {
+            null => null,
+            JsonArray fa => string.Join(',', fa.Select(f => f?.ToString())),
+            JsonValue fv when fv.GetValueKind() == JsonValueKind.String => fv.GetValue<string>(),
+            _ => throw Bad("$.formats", "is not a list of formats", "e.g. [\"npy\", \"png\"]"),
+        };
+        var result = new SweepPlan { PlanPath = Path.GetFullPath(planPath), ScenePath = scenePath, BaseScene = scene, AxisNames = axisNames, Jobs = jobs, Formats = formats };
+        // Every edit must land: check each job's paths now, before any job runs.
+        foreach (var job in jobs)
+            try { result.SceneFor(job); }
+            catch (InputException e) { throw new InputException(planPath, $"job {job.Id}: {e.What}", e.Hint); }
+        return result;
+    }
+
+    static List<(string, JsonNode?)> Edits(JsonObject o, string at, Func<string, string, string?, InputException> bad)
+    {
+        var list = new List<(string, JsonNode?)>();
+        foreach (var (path, value) in o)
+        {
+            if (!PathSyntax.IsMatch(path)) throw bad($"{at}", $"'{path}' is not a scene path", "e.g. materials.patch.diffuse, lights[0].spectrum, objects[name=bunny].file");
+            list.Add((path, value?.DeepClone()));
+        }
+        return list;
+    }
+
+    /// <summary>A value's label in the index: a string or number as it is, an object by its "name", else its position.</summary>
+    static string Label(JsonNode? v, int position) => v switch
+    {
+        JsonValue s when s.GetValueKind() == JsonValueKind.String => s.GetValue<string>(),
+        JsonValue n => n.ToJsonString(),
+        JsonObject o when o["name"] is JsonValue name => name.ToString(),
+        _ => position.ToString(CultureInfo.InvariantCulture),
+    };
+
+    static readonly Regex PathSyntax = new(@"^[A-Za-z_][\w-]*(\[(\d+|[A-Za-z_]\w*=[^\]]+)\])*(\.[A-Za-z_][\w-]*(\[(\d+|[A-Za-z_]\w*=[^\]]+)\])*)*$", RegexOptions.CultureInvariant);
+    static readonly Regex Segment = new(@"([A-Za-z_][\w-]*)|\[(\d+)\]|\[([A-Za-z_]\w*)=([^\]]+)\]", RegexOptions.CultureInvariant);
+
+    /// <summary>The job's scene: the base scene with the job's edits applied in order.</summary>
+    public JsonObject SceneFor(SweepJob job)
+    {
+        var scene = (JsonObject)BaseScene.DeepClone();
+        foreach (var (path, value) in job.Edits) Set(scene, path, value?.DeepClone());
+        return scene;
+    }
+
+    /// <summary>The job's scene file text (UTF-8), as the job renders it and as its folder keeps it.</summary>
+    public byte[] SceneBytes(SweepJob job) => Encoding.UTF8.GetBytes(SceneFor(job).ToJsonString(new JsonSerializerOptions { WriteIndented = true }));
+
+    /// <summary>SHA-256 of what a job computes (its scene text and the formats): a finished job is skipped only when it is unchanged.</summary>
+    public string JobHash(SweepJob job, string? formats) =>
+        "sha256:" + Convert.ToHexStringLower(SHA256.HashData([.. SceneBytes(job), .. Encoding.UTF8.GetBytes("\nformats=" + (formats ?? ""))]));
+
+    /// <summary>Puts <paramref name="value"/> at <paramref name="path"/>; missing object keys on the way are created, list elements must exist.</summary>
+    static void Set(JsonObject root, string path, JsonNode? value)
+    {
+        var segments = Segment.Matches(path).ToList();
+        JsonNode node = root;
+        string walked = "";
+        for (int i = 0; i < segments.Count; i++)
+        {
+            var s = segments[i];
+            bool last = i == segments.Count - 1;
+            if (s.Groups[1].Success)
+            {
+                string key = s.Groups[1].Value;
+                if (node is not JsonObject o) throw new InputException("", $"'{walked}' is not an object, so it has no '{key}' (path {path})");
+                if (last) { o[key] = value; return; }
+                node = o[key] ??= segments[i + 1].Groups[1].Success ? new JsonObject() : throw new InputException("", $"the scene has no list '{walked}{(walked.Length > 0 ? "." : "")}{key}' (path {path})");
+                walked += (walked.Length > 0 ? "." : "") + key;
+            }
+            else
+            {
+                if (node is not JsonArray list) throw new InputException("", $"'{walked}' is not a list (path {path})");
+                int index;
+                if (s.Groups[2].Success)
+                {
+                    index = int.Parse(s.Groups[2].Value, CultureInfo.InvariantCulture);
+                    if (index >= list.Count) throw new InputException("", $"'{walked}' has {list.Count} elements, so no [{index}] (path {path})", "lists count from 0");
+                }
+                else
+                {
+                    string key = s.Groups[3].Value, want = s.Groups[4].Value;
+                    index = list.Select((e, k) => (e, k)).FirstOrDefault(t => t.e is JsonObject eo && eo[key]?.ToString() == want, (null, -1)).Item2;
+                    if (index < 0)
+                        throw new InputException("", $"no element of '{walked}' has {key} '{want}' (path {path})",
+                            InputException.DidYouMean(want, list.OfType<JsonObject>().Select(e => e[key]?.ToString() ?? "")) ?? $"name the {walked} in the base scene");
+                }
+                walked += s.Value;
+                if (last) { list[index] = value; return; }
+                node = list[index] ?? throw new InputException("", $"'{walked}' is null (path {path})");
+            }
+        }
+    }
+}

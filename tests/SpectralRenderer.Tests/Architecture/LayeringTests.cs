@@ -1,0 +1,157 @@
+using SpectralRenderer.Tests.Architecture.Probe.ByUsing;
+
+namespace SpectralRenderer.Tests.Architecture;
+
+/// <summary>
+/// The layers are one-way (ARCHITECTURE.md): each namespace may use only the namespaces its rule lists.
+/// The graph is read from the compiled engine and CLI (<see cref="NamespaceDependencies"/>), so it holds
+/// every reference the compiler resolved, by using directive or by fully qualified name.
+/// </summary>
+public class LayeringTests
+{
+    const string R = "SpectralRenderer.";
+
+    /// <summary>The arrows: a layer → the layers it may use directly. A namespace inside a layer's (a.b.c in a.b) belongs to it unless listed itself.</summary>
+    public static readonly IReadOnlyDictionary<string, string[]> Allowed = new Dictionary<string, string[]>(StringComparer.Ordinal)
+    {
+        [R + "Diagnostics"] = [],
+        [R + "Spectra"] = ["Diagnostics"],
+        [R + "Color"] = ["Spectra", "Diagnostics"],
+        [R + "Geometry"] = ["Diagnostics"],
+        [R + "Acceleration"] = ["Geometry", "Diagnostics"],
+        [R + "Scenes"] = ["Spectra", "Color", "Geometry", "Diagnostics"],
+        [R + "Scenes.Loading"] = ["Scenes", "Spectra", "Color", "Geometry", "Diagnostics"],
+        [R + "Rendering"] = ["Scenes", "Acceleration", "Geometry", "Spectra", "Color", "Diagnostics"],
+        [R + "Imaging"] = ["Spectra", "Color", "Diagnostics"],
+        [R + "Output"] = ["Rendering", "Scenes", "Geometry", "Imaging", "Spectra", "Color", "Diagnostics"],
+        [R + "Analysis"] = ["Output", "Imaging", "Spectra", "Color", "Diagnostics"],
+        [R + "Distributed"] = ["Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra", "Color", "Diagnostics"],
+        [R + "Cli"] = ["*"],
+    };
+
+    /// <summary>The layer a namespace belongs to (its longest listed prefix), or null.</summary>
+    public static string? LayerOf(string ns, IReadOnlyDictionary<string, string[]> rules) =>
+        rules.Keys.Where(k => ns == k || ns.StartsWith(k + ".", StringComparison.Ordinal)).MaxBy(k => k.Length);
+
+    /// <summary>Every edge of <paramref name="graph"/> the rules do not allow, and every namespace of ours without a layer.</summary>
+    public static List<string> Violations(IReadOnlyDictionary<string, SortedSet<string>> graph, IReadOnlyDictionary<string, string[]> rules, string root = "SpectralRenderer")
+    {
+        var bad = new List<string>();
+        foreach (var (from, targets) in graph.OrderBy(p => p.Key, StringComparer.Ordinal))
+        {
+            if (from != root && !from.StartsWith(root + ".", StringComparison.Ordinal)) continue;
+            var layer = LayerOf(from, rules);
+            if (layer is null) { bad.Add($"{from}: no layer (add it to LayeringTests.Allowed and ARCHITECTURE.md)"); continue; }
+            var ok = rules[layer];
+            foreach (var to in targets)
+            {
+                if (to != root && !to.StartsWith(root + ".", StringComparison.Ordinal)) continue;   // the base library
+                var target = LayerOf(to, rules);
+                if (target == layer) continue;
+                string? targetShort = target is null ? null : target[(root.Length + 1)..];
+                if (ok.Contains("*") || (targetShort is not null && ok.Contains(targetShort))) continue;
+                bad.Add($"{from} → {to}: {layer[(root.Length + 1)..]} may use only {(ok.Length == 0 ? "nothing of ours" : string.Join(", ", ok))}");
+            }
+        }
+        return bad;
+    }
+
+    static Dictionary<string, SortedSet<string>> Graph()
+    {
+        var g = NamespaceDependencies.Read(typeof(global::SpectralRenderer.Scenes.Scene).Assembly.Location);
+        foreach (var (k, v) in NamespaceDependencies.Read(typeof(global::SpectralRenderer.Cli.CommandLine).Assembly.Location)) g[k] = v;
+        return g;
+    }
+
+    static Dictionary<string, SortedSet<string>> SourceGraph()
+    {
+        var d = new DirectoryInfo(AppContext.BaseDirectory);
+        while (d is not null && !File.Exists(Path.Combine(d.FullName, "SpectralRenderer.sln"))) d = d.Parent;
+        Assert.NotNull(d);
+        var src = Path.Combine(d.FullName, "src");
+        var files = Directory.EnumerateFiles(src, "*.cs", SearchOption.AllDirectories)
+            .Where(f => !f.Contains($"{Path.DirectorySeparatorChar}obj{Path.DirectorySeparatorChar}") && !f.Contains($"{Path.DirectorySeparatorChar}bin{Path.DirectorySeparatorChar}"));
+        return SourceDependencies.Read(files);
+    }
+
+    [Fact]
+    public void The_engine_and_the_CLI_have_no_edge_against_the_arrows()
+    {
+        var bad = Violations(Graph(), Allowed).Select(b => "compiled: " + b)
+            .Concat(Violations(SourceGraph(), Allowed).Select(b => "source: " + b)).ToList();
+        Assert.True(bad.Count == 0, "edges against the arrows:\n" + string.Join("\n", bad));
+    }
+
+    [Fact]
+    public void The_source_reader_sees_using_directives_qualified_names_and_constants()
+    {
+        // What the compiled graph cannot see: a constant and an enum value are folded into the IL.
+        const string snippet = """
+            using System.Text;
+            using SpectralRenderer.Spectra;
+            namespace SpectralRenderer.Imaging;
+            // a comment naming Rendering.Renderer is no dependency
+            static class Probe
+            {
+                public static int A => SpectralRenderer.Rendering.Renderer.TileSize;
+                public static int B => (int)Scenes.OutputProducts.Png;
+                public static int C => (int)global::SpectralRenderer.Output.RenderManifest.FileName.Length;
+            }
+            """;
+        var graph = new Dictionary<string, SortedSet<string>>
+        {
+            ["SpectralRenderer.Imaging"] = new(SourceDependencies.Scan(snippet).Select(e => e.To), StringComparer.Ordinal),
+        };
+        Assert.Equal(["SpectralRenderer.Output.RenderManifest.FileName.Length", "SpectralRenderer.Rendering.Renderer.TileSize",
+            "SpectralRenderer.Scenes.OutputProducts.Png", "SpectralRenderer.Spectra"], graph["SpectralRenderer.Imaging"]);
+        var bad = Violations(graph, Allowed);
+        Assert.Equal(3, bad.Count);
+        Assert.Contains(bad, b => b.StartsWith("SpectralRenderer.Imaging → SpectralRenderer.Rendering.Renderer.TileSize", StringComparison.Ordinal));
+        Assert.Contains(bad, b => b.StartsWith("SpectralRenderer.Imaging → SpectralRenderer.Scenes.OutputProducts.Png", StringComparison.Ordinal));
+        Assert.Contains(bad, b => b.StartsWith("SpectralRenderer.Imaging → SpectralRenderer.Output.RenderManifest", StringComparison.Ordinal));
+    }
+
+    [Fact]
+    public void The_graph_holds_the_edges_the_layers_are_built_on()
+    {
+        // Not empty, and not blind to any kind of layer: each of these is a real use in the code.
+        var graph = Graph();
+        Assert.Contains(R + "Scenes", graph[R + "Rendering"]);       // the integrator reads the scene
+        Assert.Contains(R + "Acceleration", graph[R + "Rendering"]); // through the BVH
+        Assert.Contains(R + "Imaging", graph[R + "Output"]);         // the writers use the codecs
+        Assert.Contains(R + "Output", graph[R + "Analysis"]);        // render folders are read through the manifest
+        Assert.Contains(R + "Spectra", graph[R + "Color"]);
+        Assert.Contains(R + "Cli.Paper", graph[R + "Cli.Commands"]);
+    }
+
+    [Fact]
+    public void A_back_edge_is_reported()
+    {
+        // The test of the test: the real graph plus one deliberate back edge (a codec reaching into the renderer).
+        var graph = Graph();
+        graph[R + "Imaging"].Add(R + "Rendering");
+        var bad = Violations(graph, Allowed);
+        var edge = Assert.Single(bad);
+        Assert.StartsWith($"{R}Imaging → {R}Rendering: Imaging may use only Spectra, Color, Diagnostics", edge);
+    }
+
+    [Fact]
+    public void The_reader_sees_fully_qualified_names_and_using_directives_alike()
+    {
+        // Probe.High uses Probe.ByUsing through a using directive and Probe.ByName only by a fully qualified name;
+        // with rules that forbid both, both edges are reported from the compiled test assembly.
+        var graph = NamespaceDependencies.Read(typeof(LayeringTests).Assembly.Location);
+        const string P = "SpectralRenderer.Tests.Architecture.Probe";
+        Assert.Contains($"{P}.ByUsing", graph[$"{P}.High"]);
+        Assert.Contains($"{P}.ByName", graph[$"{P}.High"]);
+        var rules = new Dictionary<string, string[]> { [$"{P}.High"] = [], [$"{P}.ByUsing"] = [], [$"{P}.ByName"] = [] };
+        var probeGraph = graph.Where(p => p.Key.StartsWith(P, StringComparison.Ordinal)).ToDictionary(p => p.Key, p => p.Value);
+        var bad = Violations(probeGraph, rules, P);
+        Assert.Equal(2, bad.Count);
+        Assert.Contains(bad, b => b.StartsWith($"{P}.High → {P}.ByUsing", StringComparison.Ordinal));
+        Assert.Contains(bad, b => b.StartsWith($"{P}.High → {P}.ByName", StringComparison.Ordinal));
+    }
+
+    // The probe's High must see ByUsing through the using directive at the top of this file.
+    internal static int ProbeUse() => Probe.High.Sum.Of(new Pair(1, 2));
+}
