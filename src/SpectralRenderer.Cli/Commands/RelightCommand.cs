@@ -1,6 +1,6 @@
 using System.Globalization;
 using System.Text;
-using SpectralRenderer.Analysis;
+using SpectralRenderer.Lighting;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
 
@@ -11,7 +11,7 @@ public static class RelightCommand
 {
     const string Help = """
         usage: spectral relight OUTDIR --light NAME=SPECTRUM [--light …] [--intensity NAME=F] [--white SPECTRUM]
-                                [-o NEWDIR] [--quiet]
+                                [-o NEWDIR] [--metrics] [--quiet]
                spectral relight OUTDIR --sweep FILE.csv [-o DIR] [--quiet]
 
         Relights a render that has the per-light outputs (rendered with --formats …,lights or
@@ -26,12 +26,15 @@ public static class RelightCommand
           -o NEWDIR               where to write (default: OUTDIR-relit)
           --sweep FILE.csv        one relit render per row into DIR/0001, DIR/0002, … with DIR/index.csv;
                                   columns: a light's name (its spectrum), NAME.intensity, white; empty = keep
+          --metrics               also write relight-metrics.csv (and render.json's relit.metrics): each relit
+                                  light's CIE 13.3 Ra, CIE 224 Rf and CCT, and per object the mean and maximum
+                                  ΔE00 between its pixels' colours in OUTDIR and in the relit render
           --quiet                 no summary on stderr
         """;
 
     public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
     {
-        var a = new Arguments("relight", argv, ["--light", "--intensity", "--white", "--out", "--sweep"], ["--quiet"], new Dictionary<string, string> { ["-o"] = "--out" });
+        var a = new Arguments("relight", argv, ["--light", "--intensity", "--white", "--out", "--sweep"], ["--quiet", "--metrics"], new Dictionary<string, string> { ["-o"] = "--out" });
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
         if (a.Positionals.Count != 1) throw new InputException("", a.Positionals.Count == 0 ? "no render folder given" : $"unexpected argument '{a.Positionals[1]}'", "usage: spectral relight OUTDIR --light NAME=SPECTRUM");
         var dir = a.Positionals[0];
@@ -52,7 +55,7 @@ public static class RelightCommand
             {
                 var folder = (r + 1).ToString("0000", CultureInfo.InvariantCulture);
                 var (changes, white) = rows[r];
-                Relighting.Write(src, changes, white, Path.Combine(outRoot, folder), commandLine);
+                Relighting.Write(src, changes, white, Path.Combine(outRoot, folder), commandLine, metrics: a.Flag("--metrics"));
                 index.Append(CultureInfo.InvariantCulture, $"{r + 1},{folder},{white},\"{string.Join("; ", changes.Select(Describe))}\"\n");
             }
             AtomicFile.WriteAllText(Path.Combine(outRoot, "index.csv"), index.ToString());
@@ -78,7 +81,8 @@ public static class RelightCommand
             throw new InputException("", "nothing to change", $"give --light NAME=SPECTRUM, --intensity NAME=F or --white; lights: {string.Join(", ", src.LightNames)}");
         var outDir = a.Value("--out") ?? dir.TrimEnd('/', '\\') + "-relit";
         RenderCommand.PrepareOutputFolder(outDir);
-        var (scene, files, compute) = Relighting.Write(src, byName.Values.ToList(), whiteArg, outDir, commandLine);
+        var (scene, files, compute) = Relighting.Write(src, byName.Values.ToList(), whiteArg, outDir, commandLine, metrics: a.Flag("--metrics"));
+        if (a.Flag("--metrics")) stdout.Write(File.ReadAllText(Path.Combine(outDir, "relight-metrics.csv")));
         if (!quiet)
             stderr.WriteLine(string.Create(CultureInfo.InvariantCulture,
                 $"relit {scene.Camera.Width}×{scene.Camera.Height}, {scene.Bands} bands ({string.Join(", ", byName.Values.Select(Describe))}{(whiteArg is null ? "" : $", white {whiteArg}")}) in {compute.TotalSeconds:0.###} s; wrote {files.Count} files to {outDir}; {clock.Elapsed.TotalSeconds:0.##} s in all"));

@@ -1,7 +1,7 @@
 using System.Globalization;
 using System.Net;
 using System.Net.Sockets;
-using SpectralRenderer.Analysis;
+using SpectralRenderer.Lighting;
 using SpectralRenderer.Diagnostics;
 
 namespace SpectralRenderer.Cli.Commands;

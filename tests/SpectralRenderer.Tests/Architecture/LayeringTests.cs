@@ -25,6 +25,7 @@ public class LayeringTests
         [R + "Imaging"] = ["Spectra", "Color", "Diagnostics"],
         [R + "Output"] = ["Rendering", "Scenes", "Geometry", "Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Analysis"] = ["Output", "Imaging", "Spectra", "Color", "Diagnostics"],
+        [R + "Lighting"] = ["Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Distributed"] = ["Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Cli"] = ["*"],
     };

@@ -132,6 +132,29 @@ public class RelightTests(Xunit.Abstractions.ITestOutputHelper output)
     }
 
     [Fact]
+    public void Metrics_give_each_light_its_Ra_and_Rf_and_each_object_its_colour_shift()
+    {
+        var dir = Reference.TempDir();
+        Render(Write(dir, "s.json", TwoLightScene("A", "A")), Path.Combine(dir, "r"), "--formats", "npy,lights");
+        // Relit to the same lights: no object's colour moves.
+        var (code, stdout, err) = CliRunner.Run("relight", Path.Combine(dir, "r"), "--light", "key=A", "-o", Path.Combine(dir, "same"), "--metrics", "--quiet");
+        Assert.True(code == 0, err);
+        var same = File.ReadAllLines(Path.Combine(dir, "same", "relight-metrics.csv")).Skip(1).Select(l => l.Split(',')).ToArray();
+        foreach (var o in same.Where(r => r[0] == "object")) Assert.Equal(0, double.Parse(o[4], System.Globalization.CultureInfo.InvariantCulture));
+        // To FL11 and the blue LED: Ra and Rf of FL11 as in the reference table, the objects' colours shift.
+        (code, stdout, err) = CliRunner.Run("relight", Path.Combine(dir, "r"), "--light", "key=FL11", "--light", "blue=led-blue", "-o", Path.Combine(dir, "fl"), "--metrics", "--quiet");
+        Assert.True(code == 0, err);
+        var rows = File.ReadAllLines(Path.Combine(dir, "fl", "relight-metrics.csv")).Skip(1).Select(l => l.Split(',')).ToArray();
+        var key = rows.Single(r => r[0] == "light" && r[1] == "key");
+        var refRow = Reference.Rows("colour-rendering.csv").Single(r => r["column"] == "FL11");
+        Assert.Equal(refRow.D("Ra_CIE13.3"), double.Parse(key[5], System.Globalization.CultureInfo.InvariantCulture), 0.1);
+        Assert.Equal(refRow.D("Rf_CIE224_2017"), double.Parse(key[6], System.Globalization.CultureInfo.InvariantCulture), 0.1);
+        Assert.Contains(rows, r => r[0] == "object" && r[1] == "ball" && double.Parse(r[3], System.Globalization.CultureInfo.InvariantCulture) > 1);
+        Assert.Contains("relight-metrics.csv", stdout.Length > 0 ? "relight-metrics.csv" : "");
+        Assert.NotNull(JsonNode.Parse(File.ReadAllText(Path.Combine(dir, "fl", "render.json")))!["run"]!["relit"]!["metrics"]);
+    }
+
+    [Fact]
     public void Light_transfer_is_the_same_for_any_thread_count()
     {
         var dir = Reference.TempDir();

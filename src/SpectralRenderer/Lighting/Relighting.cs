@@ -9,7 +9,7 @@ using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
 
-namespace SpectralRenderer.Analysis;
+namespace SpectralRenderer.Lighting;
 
 /// <summary>What to change: per light (by name) a new spectrum and/or intensity, and the reference white.</summary>
 public sealed record LightChange(string Light, string? Spectrum, double? Intensity);
@@ -75,7 +75,7 @@ public static class Relighting
 
     /// <summary>Relights <paramref name="src"/> into <paramref name="outDir"/>: every file a render writes.</summary>
     public static (Scene Scene, List<string> Files, TimeSpan Compute) Write(Source src, IReadOnlyList<LightChange> changes, string? white, string outDir,
-        string commandLine, CancellationToken cancel = default)
+        string commandLine, CancellationToken cancel = default, bool metrics = false)
     {
         var scene = ChangedScene(src, changes, white);
         var clock = System.Diagnostics.Stopwatch.StartNew();
@@ -109,8 +109,62 @@ public static class Relighting
         if (Path.GetFullPath(outDir) == Path.GetFullPath(src.Dir))
             throw new InputException(outDir, "is the folder being relit", "write the relit render to another folder with -o");
         Directory.CreateDirectory(outDir);
+        string? metricsCsv = null;
+        if (metrics)
+        {
+            var (mj, csv) = Metrics(src, scene, transfer, xyz);
+            ((JsonObject)run["relit"]!)["metrics"] = mj;
+            metricsCsv = csv;
+        }
         var files = RenderOutputWriter.Write(scene, result, outDir, run, cancel, transfer);
+        if (metricsCsv is not null)
+        {
+            AtomicFile.WriteAllText(Path.Combine(outDir, "relight-metrics.csv"), metricsCsv);
+            files.Add("relight-metrics.csv");
+        }
         return (scene, files, compute);
+    }
+
+    /// <summary>
+    /// The lighting designer's view of a relight: per light of the relit scene its CIE 13.3 Ra and CIE 224:2017 Rf, and per
+    /// object the ΔE00 (CIEDE2000, Lab on the relit scene's white) between each pixel's colour in the source render and
+    /// in the relit one (mean and maximum over the pixels whose centre ray sees the object).
+    /// </summary>
+    public static (JsonObject Json, string Csv) Metrics(Source src, Scene relit, LightTransfer transfer, float[] relitXyz)
+    {
+        var original = ChangedScene(src, [], null);
+        var (_, xyz0, _) = transfer.Relight(original);
+        var white = relit.Colorimeter.White;
+        int objects = relit.Objects.Count;
+        var sum = new double[objects]; var max = new double[objects]; var count = new int[objects];
+        for (int i = 0; i < transfer.ObjectIds.Length; i++)
+        {
+            int o = transfer.ObjectIds[i];
+            if (o < 0) continue;
+            var a = Color.Lab.FromXyz(new Color.Xyz(xyz0[3 * i], xyz0[3 * i + 1], xyz0[3 * i + 2]), white);
+            var b = Color.Lab.FromXyz(new Color.Xyz(relitXyz[3 * i], relitXyz[3 * i + 1], relitXyz[3 * i + 2]), white);
+            double d = Color.DeltaE2000.Between(a, b);
+            sum[o] += d; count[o]++; max[o] = Math.Max(max[o], d);
+        }
+        var csv = new StringBuilder("kind,name,pixels,mean_dE00,max_dE00,Ra_CIE13.3,Rf_CIE224_2017,CCT_K\n");
+        var lights = new JsonArray();
+        foreach (var l in relit.Lights)
+        {
+            double? ra = null, rf = null, cct = null;
+            if (l.Spectrum is { } sp)
+                try { var r = Color.ColorRenderingIndex.Of(sp); ra = r.Ra; cct = r.Cct; rf = Color.ColorFidelityIndex.Of(sp).Rf; }
+                catch (Exception e) when (e is ArgumentException or InvalidOperationException) { }
+            lights.Add(new JsonObject { ["light"] = l.Name, ["spectrum"] = l.Spectrum?.Name, ["Ra"] = ra, ["Rf"] = rf, ["cct_K"] = cct });
+            csv.Append(CultureInfo.InvariantCulture, $"light,{l.Name},,,,{ra:0.00},{rf:0.00},{cct:0}\n");
+        }
+        var objs = new JsonArray();
+        for (int o = 0; o < objects; o++)
+        {
+            if (count[o] == 0) continue;
+            objs.Add(new JsonObject { ["object"] = relit.Objects[o].Name, ["pixels"] = count[o], ["mean_dE00"] = sum[o] / count[o], ["max_dE00"] = max[o] });
+            csv.Append(CultureInfo.InvariantCulture, $"object,{relit.Objects[o].Name},{count[o]},{sum[o] / count[o]:0.0000},{max[o]:0.0000},,,\n");
+        }
+        return (new JsonObject { ["white"] = relit.ReferenceWhite.Name, ["lights"] = lights, ["objects"] = objs }, csv.ToString());
     }
 
     /// <summary>

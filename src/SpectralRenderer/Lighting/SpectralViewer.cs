@@ -8,7 +8,7 @@ using SpectralRenderer.Imaging;
 using SpectralRenderer.Output;
 using SpectralRenderer.Spectra;
 
-namespace SpectralRenderer.Analysis;
+namespace SpectralRenderer.Lighting;
 
 /// <summary>
 /// The spectral viewer of a render folder: <c>viewer.html</c> (a self-contained page: no network reference, its
