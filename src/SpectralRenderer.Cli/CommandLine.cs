@@ -17,6 +17,8 @@ public static class CommandLine
         ("bench", "load, BVH build and render times, Mrays/s, peak memory", BenchCommand.Run),
         ("colors", "the 24 ColorChecker patches' XYZ, Lab, RGB and ΔE00 under a light", ColorsCommand.Run),
         ("probe", "the spectra of chosen pixels of a render, as CSV and an SVG plot (Fig. 6b)", ProbeCommand.Run),
+        ("relight", "a render under other lights, exactly, from its per-light outputs (no rays traced)", RelightCommand.Run),
+        ("view", "the spectral viewer (viewer.html) of a render; --serve serves it on loopback", ViewCommand.Run),
         ("merge", "the shards of a render (render --shard I/N) assembled into the whole render, byte for byte", MergeCommand.Run),
         ("sweep", "a plan's jobs (scene × lights × materials × …) rendered into a dataset with an index, locally or as a job array", SweepCommand.Run),
         ("reconstruct", "white-board reflectance reconstruction against the truth, by region (§3.4, Fig. 7)", ReconstructCommand.Run),

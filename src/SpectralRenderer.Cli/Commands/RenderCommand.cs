@@ -36,7 +36,8 @@ public static class RenderCommand
           --rgb MODE         srgb (default) or paper (the paper's eq. 4, linear, clipped)
           --integration S    exact (default: band values and colour integrated on the full tables),
                              weighted (band products, prefiltered colour weights) or paper (eq. 3)
-          --formats LIST     comma-separated from png,bands,exr,envi,npy,aov or all (default: all)
+          --formats LIST     comma-separated from png,bands,exr,envi,npy,aov,lights, or all (every one but lights,
+                             the default); lights = the per-light transfer in lights/ for 'relight' and 'view'
           --exr-compression  zip (default: deflate the chunks whose samples repeat, store noisy ones),
                              zip-all (deflate every chunk: smallest file, slower) or none
           --models DIR       a folder to search for mesh files (after the scene's folder, before $SPECTRAL_MODELS)
@@ -73,6 +74,8 @@ public static class RenderCommand
         if (shard is not null && (products & OutputProducts.Bands) != 0 && (products & (OutputProducts.Envi | OutputProducts.Npy)) == 0)
             throw new InputException("--shard", "band images need a float cube in each shard: merge rescales them to the whole image's brightest value",
                 "add envi or npy to --formats");
+        if (crop is not null && (scene.Output.Products & OutputProducts.Lights) != 0)
+            throw new InputException("--formats", "the per-light outputs (lights) are written for whole renders only, not for a crop or shard", "render lights without --crop/--shard");
         if (crop is not null && scene.Output.ExposureAuto)
             throw new InputException(scenePath, "output.exposure \"auto\" is chosen from the whole image, which a shard or crop does not see",
                 "give a fixed \"exposure\" (a whole render's render.json states the one auto chose, $.colour.exposure)");
@@ -102,7 +105,16 @@ public static class RenderCommand
                 ["degenerate_triangles_skipped"] = degenerate,
             };
             if (shard is not null) run["shard"] = shard;
-            var files = RenderOutputWriter.Write(scene, result, outDir, run, cancel.Token);
+            // The per-light transfer (opt-in): the same camera rays traced once more, recording eq. 2's factors per light.
+            LightTransfer? transfer = null;
+            if ((scene.Output.Products & OutputProducts.Lights) != 0)
+            {
+                var transferClock = System.Diagnostics.Stopwatch.StartNew();
+                transfer = LightTransfer.Trace(scene, geometry, threads ?? 0, cancel.Token);
+                run["light_transfer_s"] = transferClock.Elapsed.TotalSeconds;
+            }
+            run["overrides"] = OverridesJson(overrides);
+            var files = RenderOutputWriter.Write(scene, result, outDir, run, cancel.Token, transfer);
             if (!quiet)
             {
                 double secs = result.Elapsed.TotalSeconds;
@@ -162,6 +174,14 @@ public static class RenderCommand
             ModelDirectories = models,
         };
     }
+
+    /// <summary>The command-line overrides as render.json records them (relight rebuilds the same scene from them).</summary>
+    public static JsonObject OverridesJson(SceneOverrides o) => new()
+    {
+        ["width"] = o.Width, ["height"] = o.Height, ["bands"] = o.Bands, ["spp"] = o.SamplesPerPixel, ["rgb"] = o.Rgb,
+        ["integration"] = o.Integration, ["formats"] = o.Formats, ["exr_compression"] = o.ExrCompression,
+        ["models"] = new JsonArray(o.ModelDirectories.Select(d => (JsonNode)JsonValue.Create(Path.GetFullPath(d))).ToArray()),
+    };
 
     static Spectra.BandGrid SceneRange(string scenePath)
     {

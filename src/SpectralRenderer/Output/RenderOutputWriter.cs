@@ -20,7 +20,8 @@ namespace SpectralRenderer.Output;
 /// </summary>
 public static class RenderOutputWriter
 {
-    public static List<string> Write(Scene scene, RenderResult result, string outDir, JsonObject? run = null, CancellationToken cancel = default)
+    public static List<string> Write(Scene scene, RenderResult result, string outDir, JsonObject? run = null, CancellationToken cancel = default,
+        LightTransfer? transfer = null)
     {
         var products = scene.Output.Products;
         bool Has(OutputProducts p) => (products & p) != 0;
@@ -45,7 +46,7 @@ public static class RenderOutputWriter
         clearing.GetAwaiter().GetResult();
 
         // The groups are independent files: write them side by side; each keeps its own list, in a fixed order.
-        var groups = new List<string>[8];
+        var groups = new List<string>[9];
         for (int g = 0; g < groups.Length; g++) groups[g] = [];
         Action<string> Done(int g) => name => { lock (groups[g]) groups[g].Add(name); cancel.ThrowIfCancellationRequested(); };
         RenderManifest? manifest = null;
@@ -74,6 +75,7 @@ public static class RenderOutputWriter
             () => { if (Has(OutputProducts.Envi)) SpectralFiles.WriteEnvi(scene, image, bands!, outDir, Done(5)); },
             () => { if (Has(OutputProducts.Npy)) SpectralFiles.WriteNpy(image, outDir, Done(6)); },
             () => { if (Has(OutputProducts.Npy) || Has(OutputProducts.Envi) || Has(OutputProducts.Exr)) SpectralFiles.WriteWavelengths(image, outDir, Done(7)); },
+            () => { if (transfer is not null && Has(OutputProducts.Lights)) LightTransferFiles.Write(scene, transfer, outDir, Done(8)); },
             () => manifest = Describe(scene, result, scale, run, encoder));
         }
         catch (AggregateException e)
@@ -105,6 +107,10 @@ public static class RenderOutputWriter
         var bands = Path.Combine(outDir, "bands");
         if (Directory.Exists(bands))
             foreach (var f in Directory.EnumerateFiles(bands, "band-*.png")) File.Delete(f);
+        var lights = Path.Combine(outDir, LightTransferFiles.Folder);
+        if (Directory.Exists(lights))
+            foreach (var f in new[] { "lights.json", "factors.npy", "pixels.npy", "centre.npy", "ids.npy" })
+                File.Delete(Path.Combine(lights, f));
     }
 
     static void WritePreview(SpectralImage image, XyzPlanes xyz, DisplayEncoder encoder, string outDir, Action<string> done)

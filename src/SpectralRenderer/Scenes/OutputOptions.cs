@@ -19,6 +19,8 @@ public enum OutputProducts
     Npy = 16,
     /// <summary>object-id.png and the analysis images (lit and highlight masks, ground-truth reflectance).</summary>
     Aov = 32,
+    /// <summary>lights/: the per-light transfer for relighting (opt-in: not in <see cref="All"/>; "light_groups" in a scene).</summary>
+    Lights = 64,
     All = Png | Bands | Exr | Envi | Npy | Aov,
 }
 
@@ -39,7 +41,7 @@ public static class OutputNames
     public static readonly IReadOnlyList<(OutputProducts Product, string Name)> Products =
     [
         (OutputProducts.Png, "png"), (OutputProducts.Bands, "bands"), (OutputProducts.Exr, "exr"),
-        (OutputProducts.Envi, "envi"), (OutputProducts.Npy, "npy"), (OutputProducts.Aov, "aov"),
+        (OutputProducts.Envi, "envi"), (OutputProducts.Npy, "npy"), (OutputProducts.Aov, "aov"), (OutputProducts.Lights, "lights"),
     ];
 
     public static readonly IReadOnlyList<(ExrCompressionChoice Choice, string Name)> ExrCompressions =

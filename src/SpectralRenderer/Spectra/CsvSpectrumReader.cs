@@ -16,7 +16,10 @@ public static class CsvSpectrumReader
         return Parse(InputFile.ReadAllText(path), path);
     }
 
-    public static SpectralTable Parse(string text, string path)
+    /// <summary>A table of basis functions that may go negative (the CIE daylight components S₁, S₂).</summary>
+    public static SpectralTable ReadSigned(string path) => Parse(InputFile.ReadAllText(path), path, allowNegative: true);
+
+    public static SpectralTable Parse(string text, string path, bool allowNegative = false)
     {
         var lines = text.Replace("\r\n", "\n").Split('\n');
         int n = lines.Length;
@@ -73,7 +76,7 @@ public static class CsvSpectrumReader
                 }
                 else
                 {
-                    if (v < 0)
+                    if (v < 0 && !allowNegative)
                         throw new InputException($"{path}:{lineNo}", $"negative value {cell} in column '{header[c]}'", "reflectances, powers and sensitivities cannot be negative");
                     cols[c - 1].Add(v);
                 }

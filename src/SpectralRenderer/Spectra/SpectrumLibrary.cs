@@ -8,7 +8,8 @@ namespace SpectralRenderer.Spectra;
 /// Resolves spectrum names (see docs/scene-format.md): the CIE illuminants <c>D65 A D50 E FL2 FL11</c>,
 /// the modelled LEDs <c>led-blue led-green</c>, the NIST sources <c>led-rgb led-yag</c>,
 /// ColorChecker patches <c>colorchecker:14</c> / <c>colorchecker:green</c> (Ohta),
-/// <c>constant:0.5</c>, and any CSV file with a column: <c>file.csv:column</c>.
+/// <c>constant:0.5</c>, a Planckian radiator <c>blackbody:3000</c> (<see cref="Planck"/>), CIE daylight
+/// <c>daylight:5000</c> (<see cref="CieDaylight"/>), and any CSV file with a column: <c>file.csv:column</c>.
 /// </summary>
 public static class SpectrumLibrary
 {
@@ -24,7 +25,7 @@ public static class SpectrumLibrary
 
     /// <summary>Every built-in name, for help texts and "did you mean".</summary>
     public static IEnumerable<string> KnownNames =>
-        Builtins.Select(b => b.Name).Concat(ColorChecker.PatchKeys.Select(k => "colorchecker:" + k)).Append("constant:<value>");
+        Builtins.Select(b => b.Name).Concat(ColorChecker.PatchKeys.Select(k => "colorchecker:" + k)).Append("constant:<value>").Append("blackbody:<K>").Append("daylight:<K>");
 
     public static SpectralTable Table(string path) => Tables.GetOrAdd(System.IO.Path.GetFullPath(path), CsvSpectrumReader.Read);
     public static SpectralTable DataTable(string file) => Table(DataDirectory.File_(file));
@@ -44,6 +45,11 @@ public static class SpectrumLibrary
                 throw new InputException(where, $"'{name}' needs a finite non-negative number after 'constant:'", "e.g. constant:0.5");
             return TabulatedSpectrum.Constant(c, name);
         }
+
+        if (name.StartsWith("blackbody:", StringComparison.OrdinalIgnoreCase))
+            return Planck.Parse(name, name["blackbody:".Length..], where);
+        if (name.StartsWith("daylight:", StringComparison.OrdinalIgnoreCase))
+            return CieDaylight.Parse(name, name["daylight:".Length..], where);
 
         if (name.StartsWith("colorchecker:", StringComparison.OrdinalIgnoreCase))
             return ColorChecker.Patch(name["colorchecker:".Length..], where);
@@ -65,7 +71,7 @@ public static class SpectrumLibrary
 
         throw new InputException(where, $"unknown spectrum '{name}'",
             InputException.DidYouMean(name, Builtins.Select(b => b.Name).Concat(ColorChecker.PatchKeys.Select(k => "colorchecker:" + k)))
-            ?? "built-in names: D65, A, D50, E, FL2, FL11, led-blue, led-green, led-rgb, led-yag, colorchecker:1..24, constant:<v>, file.csv:column");
+            ?? "built-in names: D65, A, D50, E, FL2, FL11, led-blue, led-green, led-rgb, led-yag, colorchecker:1..24, constant:<v>, blackbody:<K>, daylight:<K>, file.csv:column");
     }
 
     static TabulatedSpectrum Rename(TabulatedSpectrum s, string name) =>

@@ -26,6 +26,7 @@ public class LayeringTests
         [R + "Output"] = ["Rendering", "Scenes", "Geometry", "Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Camera"] = ["Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Analysis"] = ["Output", "Camera", "Imaging", "Spectra", "Color", "Diagnostics"],
+        [R + "Lighting"] = ["Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Distributed"] = ["Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Cli"] = ["*"],
     };

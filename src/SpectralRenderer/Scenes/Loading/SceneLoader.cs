@@ -379,7 +379,7 @@ public sealed partial class SceneLoader
         if (TryGet(root, "output", out var e))
         {
             Object(e, "$.output");
-            Keys(e, "$.output", "rgb", "exposure", "gamut", "adapt", "formats", "highlight_fraction", "exr_compression");
+            Keys(e, "$.output", "rgb", "exposure", "gamut", "adapt", "formats", "highlight_fraction", "exr_compression", "light_groups");
             o.HighlightFraction = Number(e, "highlight_fraction", "$.output", 0.1, 0, 1e6);
             if (TryGet(e, "rgb", out var rgb)) o.Rgb = RgbSpace.Parse(String(rgb, "$.output.rgb"), Where("$.output.rgb"));
             if (TryGet(e, "exposure", out var ex) && ex.ValueKind == JsonValueKind.String)
@@ -402,6 +402,8 @@ public sealed partial class SceneLoader
                 if (f.ValueKind != JsonValueKind.Array) throw Error("$.output.formats", $"expected an array of format names, found {Kind(f)}");
                 o.Products = ParseFormats(f.EnumerateArray().Select((x, i) => String(x, $"$.output.formats[{i}]")), Where("$.output.formats"));
             }
+            // "light_groups": true adds the per-light transfer outputs (lights/) to the formats.
+            if (Bool(e, "light_groups", "$.output", false)) o.Products |= OutputProducts.Lights;
             if (TryGet(e, "exr_compression", out var c)) o.ExrCompression = ParseExrCompression(String(c, "$.output.exr_compression"), Where("$.output.exr_compression"));
         }
         if (_overrides.ExrCompression is { } ec) o.ExrCompression = ParseExrCompression(ec, "--exr-compression");

@@ -1,0 +1,213 @@
+using System.Globalization;
+using System.Text;
+using System.Text.Json;
+using System.Text.Json.Nodes;
+using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Imaging;
+using SpectralRenderer.Output;
+using SpectralRenderer.Rendering;
+using SpectralRenderer.Scenes;
+using SpectralRenderer.Scenes.Loading;
+
+namespace SpectralRenderer.Lighting;
+
+/// <summary>What to change: per light (by name) a new spectrum and/or intensity, and the reference white.</summary>
+public sealed record LightChange(string Light, string? Spectrum, double? Intensity);
+
+/// <summary>
+/// Relighting a render folder that has the per-light transfer (lights/): the scene is rebuilt from the
+/// resolved scene and the command-line overrides render.json recorded, with the lights' spectra, intensities
+/// and the reference white changed as asked (so the band grid, κ, eq. 3 weights and every output option are
+/// exactly what a fresh render of the changed scene has), and the image is S + Σ_c F_c · P_c under the new
+/// light band values (<see cref="LightTransfer.Relight"/>). No ray is traced. The result is written as a
+/// complete render folder, its render.json saying it was relit and from what.
+/// </summary>
+public static class Relighting
+{
+    public sealed record Source(string Dir, RenderManifest Manifest, JsonObject Scene, string ScenePath, SceneOverrides Overrides, string[] LightNames);
+
+    /// <summary>A render folder read through its manifest: the resolved scene and the overrides it was rendered with.</summary>
+    public static Source Open(string dir)
+    {
+        if (!Directory.Exists(dir)) throw new InputException(dir, "no such render folder", "give the -o folder of a 'spectral render' run");
+        var manifest = RenderManifest.Read(dir);
+        if (manifest.ResolvedScene is not JsonObject scene)
+            throw new InputException(Path.Combine(dir, RenderManifest.FileName), "has no resolved_scene", "render again with this version of spectral");
+        var o = manifest.Run?["overrides"] as JsonObject;
+        var overrides = new SceneOverrides
+        {
+            Width = (int?)o?["width"], Height = (int?)o?["height"], Bands = (string?)o?["bands"], SamplesPerPixel = (int?)o?["spp"],
+            Rgb = (string?)o?["rgb"], Integration = (string?)o?["integration"], Formats = (string?)o?["formats"],
+            ExrCompression = (string?)o?["exr_compression"],
+            ModelDirectories = o?["models"]?.AsArray().Select(d => (string)d!).Where(Directory.Exists).ToList() ?? [],
+        };
+        var names = (scene["lights"] as JsonArray ?? []).Select((l, i) => (string?)l?["name"] ?? $"light-{i}").ToArray();
+        return new Source(dir, manifest, scene, manifest.Scene.Length > 0 ? manifest.Scene : Path.Combine(dir, "scene.json"), overrides, names);
+    }
+
+    /// <summary>The scene of <paramref name="src"/> with the changes applied, loaded as a render would load it.</summary>
+    public static Scene ChangedScene(Source src, IReadOnlyList<LightChange> changes, string? white)
+    {
+        var scene = (JsonObject)src.Scene.DeepClone();
+        var lights = scene["lights"] as JsonArray ?? [];
+        foreach (var c in changes)
+        {
+            int k = Array.IndexOf(src.LightNames, c.Light);
+            if (k < 0)
+                throw new InputException($"--light {c.Light}", $"the render has no light named '{c.Light}'",
+                    InputException.DidYouMean(c.Light, src.LightNames) is { } d ? d : $"its lights are: {string.Join(", ", src.LightNames)}");
+            var l = lights[k]!.AsObject();
+            if (c.Spectrum is not null) Check(src, c.Spectrum, $"--light {c.Light}");
+            if (c.Spectrum is not null) l["spectrum"] = c.Spectrum;
+            if (c.Intensity is not null) l["intensity"] = c.Intensity;
+        }
+        if (white is not null) { Check(src, white, "--white"); scene["white"] = white; }
+        var bytes = Encoding.UTF8.GetBytes(scene.ToJsonString());
+        return SceneLoader.Parse(bytes, src.ScenePath, src.Overrides);
+    }
+
+    /// <summary>A spectrum named on the command line resolves (or is one of the scene's own named spectra).</summary>
+    static void Check(Source src, string spectrum, string where)
+    {
+        if (src.Scene["spectra"] is JsonObject named && named.ContainsKey(spectrum)) return;
+        Spectra.SpectrumLibrary.Resolve(spectrum, Path.GetDirectoryName(Path.GetFullPath(src.ScenePath)), where);
+    }
+
+    /// <summary>Relights <paramref name="src"/> into <paramref name="outDir"/>: every file a render writes.</summary>
+    public static (Scene Scene, List<string> Files, TimeSpan Compute) Write(Source src, IReadOnlyList<LightChange> changes, string? white, string outDir,
+        string commandLine, CancellationToken cancel = default, bool metrics = false)
+    {
+        var scene = ChangedScene(src, changes, white);
+        var clock = System.Diagnostics.Stopwatch.StartNew();
+        var transfer = LightTransferFiles.Read(src.Dir, scene);
+        if (transfer.Width != scene.Camera.Width || transfer.Height != scene.Camera.Height || transfer.Bands != scene.Bands)
+            throw new InputException(src.Dir, $"its lights/ are {transfer.Width}×{transfer.Height}×{transfer.Bands} but the scene rebuilds as {scene.Camera.Width}×{scene.Camera.Height}×{scene.Bands}",
+                "the scene file changed since the render; render again");
+        var (image, xyz, fallback) = transfer.Relight(scene);
+        var (dy, sy) = transfer.CentreLuminance(scene);
+        var result = new RenderResult
+        {
+            Image = image, Xyz = xyz, FallbackPixels = fallback, ObjectIds = transfer.ObjectIds, LitMasks = transfer.LitMasks, DiffuseY = dy, SpecularY = sy,
+            Rays = new RayCounters(), Elapsed = clock.Elapsed, Threads = Environment.ProcessorCount, Tiles = 0,
+            Crop = PixelRect.Whole(transfer.Width, transfer.Height),
+        };
+        var compute = clock.Elapsed;
+        var run = new JsonObject
+        {
+            ["command_line"] = commandLine,
+            ["overrides"] = src.Manifest.Run?["overrides"]?.DeepClone(),
+            ["relit"] = new JsonObject
+            {
+                ["from"] = Path.GetFullPath(src.Dir),
+                ["from_created_utc"] = src.Manifest.CreatedUtc,
+                ["method"] = "per-light transfer (lights/): L_b = sum_c F_c * P_c,b and XYZ = sum_c F_c * XYZ_c with P_c rebuilt from the new lights' term tables; no rays traced",
+                ["changes"] = new JsonArray(changes.Select(c => (JsonNode)new JsonObject
+                    { ["light"] = c.Light, ["spectrum"] = c.Spectrum, ["intensity"] = c.Intensity }).ToArray()),
+                ["white"] = white,
+            },
+        };
+        if (Path.GetFullPath(outDir) == Path.GetFullPath(src.Dir))
+            throw new InputException(outDir, "is the folder being relit", "write the relit render to another folder with -o");
+        Directory.CreateDirectory(outDir);
+        string? metricsCsv = null;
+        if (metrics)
+        {
+            var (mj, csv) = Metrics(src, scene, transfer, xyz);
+            ((JsonObject)run["relit"]!)["metrics"] = mj;
+            metricsCsv = csv;
+        }
+        var files = RenderOutputWriter.Write(scene, result, outDir, run, cancel, transfer);
+        if (metricsCsv is not null)
+        {
+            AtomicFile.WriteAllText(Path.Combine(outDir, "relight-metrics.csv"), metricsCsv);
+            files.Add("relight-metrics.csv");
+        }
+        return (scene, files, compute);
+    }
+
+    /// <summary>
+    /// The lighting designer's view of a relight: per light of the relit scene its CIE 13.3 Ra and CIE 224:2017 Rf, and per
+    /// object the ΔE00 (CIEDE2000, Lab on the relit scene's white) between each pixel's colour in the source render and
+    /// in the relit one (mean and maximum over the pixels whose centre ray sees the object).
+    /// </summary>
+    public static (JsonObject Json, string Csv) Metrics(Source src, Scene relit, LightTransfer transfer, float[] relitXyz)
+    {
+        var original = ChangedScene(src, [], null);
+        var (_, xyz0, _) = transfer.Relight(original);
+        var white = relit.Colorimeter.White;
+        int objects = relit.Objects.Count;
+        var sum = new double[objects]; var max = new double[objects]; var count = new int[objects];
+        for (int i = 0; i < transfer.ObjectIds.Length; i++)
+        {
+            int o = transfer.ObjectIds[i];
+            if (o < 0) continue;
+            var a = Color.Lab.FromXyz(new Color.Xyz(xyz0[3 * i], xyz0[3 * i + 1], xyz0[3 * i + 2]), white);
+            var b = Color.Lab.FromXyz(new Color.Xyz(relitXyz[3 * i], relitXyz[3 * i + 1], relitXyz[3 * i + 2]), white);
+            double d = Color.DeltaE2000.Between(a, b);
+            sum[o] += d; count[o]++; max[o] = Math.Max(max[o], d);
+        }
+        var csv = new StringBuilder("kind,name,pixels,mean_dE00,max_dE00,Ra_CIE13.3,Rf_CIE224_2017,CCT_K\n");
+        var lights = new JsonArray();
+        foreach (var l in relit.Lights)
+        {
+            double? ra = null, rf = null, cct = null;
+            if (l.Spectrum is { } sp)
+                try { var r = Color.ColorRenderingIndex.Of(sp); ra = r.Ra; cct = r.Cct; rf = Color.ColorFidelityIndex.Of(sp).Rf; }
+                catch (Exception e) when (e is ArgumentException or InvalidOperationException) { }
+            lights.Add(new JsonObject { ["light"] = l.Name, ["spectrum"] = l.Spectrum?.Name, ["Ra"] = ra, ["Rf"] = rf, ["cct_K"] = cct });
+            csv.Append(CultureInfo.InvariantCulture, $"light,{l.Name},,,,{ra:0.00},{rf:0.00},{cct:0}\n");
+        }
+        var objs = new JsonArray();
+        for (int o = 0; o < objects; o++)
+        {
+            if (count[o] == 0) continue;
+            objs.Add(new JsonObject { ["object"] = relit.Objects[o].Name, ["pixels"] = count[o], ["mean_dE00"] = sum[o] / count[o], ["max_dE00"] = max[o] });
+            csv.Append(CultureInfo.InvariantCulture, $"object,{relit.Objects[o].Name},{count[o]},{sum[o] / count[o]:0.0000},{max[o]:0.0000},,,\n");
+        }
+        return (new JsonObject { ["white"] = relit.ReferenceWhite.Name, ["lights"] = lights, ["objects"] = objs }, csv.ToString());
+    }
+
+    /// <summary>
+    /// A sweep file: a CSV whose header names columns <c>LIGHT</c> (its spectrum), <c>LIGHT.intensity</c> and
+    /// optionally <c>white</c>; every row is one relit render (an empty cell keeps the render's value).
+    /// </summary>
+    public static List<(List<LightChange> Changes, string? White)> ReadSweep(string path, string[] lightNames)
+    {
+        var lines = InputFile.ReadAllText(path).Replace("\r\n", "\n").Split('\n').Where(l => l.Trim().Length > 0).ToArray();
+        if (lines.Length < 2) throw new InputException($"{path}:1", "a sweep needs a header and at least one row", "e.g. header 'D65,D65.intensity' then 'A,1'");
+        var header = lines[0].Split(',').Select(h => h.Trim()).ToArray();
+        for (int c = 0; c < header.Length; c++)
+        {
+            var h = header[c];
+            var light = h.EndsWith(".intensity", StringComparison.Ordinal) ? h[..^".intensity".Length] : h;
+            if (h != "white" && Array.IndexOf(lightNames, light) < 0)
+                throw new InputException($"{path}:1:{c + 1}", $"column '{h}' names no light of the render",
+                    $"columns: white, a light's name (its spectrum) or NAME.intensity; lights: {string.Join(", ", lightNames)}");
+        }
+        var rows = new List<(List<LightChange>, string?)>();
+        for (int r = 1; r < lines.Length; r++)
+        {
+            var cells = lines[r].Split(',').Select(x => x.Trim()).ToArray();
+            if (cells.Length != header.Length)
+                throw new InputException($"{path}:{r + 1}", $"{cells.Length} cells, the header names {header.Length}");
+            var changes = new Dictionary<string, LightChange>();
+            string? white = null;
+            for (int c = 0; c < cells.Length; c++)
+            {
+                if (cells[c].Length == 0) continue;
+                var h = header[c];
+                if (h == "white") { white = cells[c]; continue; }
+                if (h.EndsWith(".intensity", StringComparison.Ordinal))
+                {
+                    var name = h[..^".intensity".Length];
+                    if (!double.TryParse(cells[c], NumberStyles.Float, CultureInfo.InvariantCulture, out double f) || !(f >= 0) || !double.IsFinite(f))
+                        throw new InputException($"{path}:{r + 1}:{c + 1}", $"'{cells[c]}' is not a non-negative intensity");
+                    changes[name] = (changes.GetValueOrDefault(name) ?? new LightChange(name, null, null)) with { Intensity = f };
+                }
+                else changes[h] = (changes.GetValueOrDefault(h) ?? new LightChange(h, null, null)) with { Spectrum = cells[c] };
+            }
+            rows.Add((changes.Values.ToList(), white));
+        }
+        return rows;
+    }
+}

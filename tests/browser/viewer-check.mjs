@@ -1,0 +1,49 @@
+// Drives viewer.html in Debian's Chromium (headless) with playwright-core and prints one JSON line of what it read.
+// usage: node viewer-check.mjs URL_OR_FILE '{"hover":[x,y],"light":"NAME","preset":"PRESET","intensity":F,"read":[x,y],"timeRuns":N}'
+// Fails (exit 1) on any console error or page error.
+import { chromium } from "playwright-core";
+import { pathToFileURL } from "node:url";
+import { existsSync } from "node:fs";
+
+const [target, plan = "{}"] = process.argv.slice(2);
+const p = JSON.parse(plan);
+const url = /^https?:/.test(target) ? target : pathToFileURL(target).href;
+const executablePath = process.env.CHROMIUM ?? ["/usr/bin/chromium", "/usr/bin/chromium-browser"].find(existsSync);
+const browser = await chromium.launch({ executablePath, headless: true, args: ["--no-sandbox", "--disable-gpu"] });
+const errors = [];
+try {
+  const page = await browser.newPage({ viewport: { width: 1800, height: 1100 } });
+  page.on("console", m => { if (m.type() === "error") errors.push(m.text()); });
+  page.on("pageerror", e => errors.push(String(e)));
+  await page.goto(url);
+  await page.waitForFunction(() => window.viewer !== undefined, null, { timeout: 60000 });
+  const out = { title: await page.title(), lights: await page.evaluate(() => viewer.lights()) };
+  if (p.hover) {
+    // Hover the pixel's centre on the (zoomed) canvas and read the plotted spectrum back from the SVG.
+    const box = await page.locator("#image").boundingBox();
+    const zoom = box.width / (await page.evaluate(() => viewer.width));
+    await page.mouse.move(box.x + (p.hover[0] + 0.5) * zoom, box.y + (p.hover[1] + 0.5) * zoom);
+    out.plotted = (await page.locator("#spectrum-line").getAttribute("data-values")).split(",").map(Number);
+    const refl = page.locator("#reflectance-line");
+    out.reflectance = (await refl.count()) ? (await refl.getAttribute("data-values")).split(",").map(Number) : null;
+    out.where = await page.locator("#where").textContent();
+  }
+  if (p.light) {
+    if (p.storeA) await page.evaluate(() => viewer.storeA());
+    await page.evaluate(([l, pr, f]) => viewer.setLight(l, pr, f), [p.light, p.preset, p.intensity]);
+    if (p.read) out.rgb = await page.evaluate(([x, y]) => viewer.pixelRgb(x, y), p.read);
+    if (p.read) out.xyz = await page.evaluate(([x, y]) => viewer.pixelXyz(x, y), p.read);
+    if (p.storeA) { await page.evaluate(() => viewer.setMode("de")); out.de = await page.evaluate(() => viewer.deStats()); }
+  }
+  if (p.timeRuns) {
+    await page.evaluate(() => viewer.setMode("colour"));
+    out.relightMs = await page.evaluate(n => viewer.timeRelight(n), p.timeRuns);
+    out.drawMs = await page.evaluate(n => viewer.timeDraw(n), p.timeRuns);
+    out.size = await page.evaluate(() => [viewer.width, viewer.height, viewer.bands]);
+  }
+  out.errors = errors;
+  console.log(JSON.stringify(out));
+} finally {
+  await browser.close();
+}
+process.exit(errors.length ? 1 : 0);
