@@ -158,7 +158,7 @@ public static class ShardMerge
 
     /// <summary>
     /// The band images' common scale: the brightest band value over all pixels of all shards, as the single render's
-    /// <see cref="SpectralImage.Max"/> (values greater than 0 taken, NaN skipped). The maximum of the shards' maxima.
+    /// <see cref="Spectra.SpectralImage.Max()"/> (values greater than 0 taken, NaN skipped). The maximum of the shards' maxima.
     /// </summary>
     static float BandScale(List<Part> parts, int width, int bands, CancellationToken cancel)
     {

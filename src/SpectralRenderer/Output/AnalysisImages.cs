@@ -38,7 +38,7 @@ public static class AnalysisImages
         done("reflectance.exr");
     }
 
-    /// <summary><see cref="GroundTruthReflectance"/> as band-sequential planes (<see cref="SpectralImage.CopyBands"/>), built directly.</summary>
+    /// <summary>The ground-truth diffuse reflectance of what each pixel sees (reflectance.exr), as band-sequential planes (<see cref="SpectralImage.CopyBands"/>), built directly.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     internal static float[] GroundTruthBands(Scene scene, RenderResult result)
     {
