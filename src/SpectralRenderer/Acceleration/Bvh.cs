@@ -12,7 +12,7 @@ namespace SpectralRenderer.Acceleration;
 /// <see cref="IPrimitiveIntersector"/> that receives positions in <see cref="PrimitiveOrder"/>.
 /// </summary>
 [SkipLocalsInit]
-public sealed class Bvh
+public sealed partial class Bvh
 {
     const int StackSize = 128;
 

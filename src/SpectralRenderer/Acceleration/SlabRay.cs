@@ -15,7 +15,7 @@ namespace SpectralRenderer.Acceleration;
 readonly struct SlabRay
 {
     /// <summary>Widening of the exit distance, 1 + 2γ₃, so rounding never culls a box the ray touches (Ize 2013; pbrt-v4 §6.8.2).</summary>
-    const float ExitScale = 1 + 2 * (3 * UnitRoundoff) / (1 - 3 * UnitRoundoff);
+    internal const float ExitScale = 1 + 2 * (3 * UnitRoundoff) / (1 - 3 * UnitRoundoff);
     const float UnitRoundoff = 5.96046448e-8f; // 2^-24
 
     readonly Vector128<float> _origin;

@@ -10,7 +10,7 @@ namespace SpectralRenderer.Acceleration;
 /// Hit.Primitive is the position k in this order; <see cref="MeshOf"/>[k] and <see cref="TriangleOf"/>[k] lead
 /// back to the source mesh and its triangle.
 /// </summary>
-public struct TriangleSet : IPrimitiveIntersector
+public partial struct TriangleSet : IPrimitiveIntersector, IPacketIntersector
 {
     readonly Vector3[] _corners; // 3 per triangle, in BVH order
     ShearedRay _ray;              // the current query's ray, prepared once (Woop et al. 2013)
