@@ -10,7 +10,7 @@ namespace SpectralRenderer.Cli.Commands;
 public static class ExperimentsCommand
 {
     const string Help = """
-        usage: spectral experiments [--out DIR] [--scale F] [--scenes DIR] [--models DIR] [--threads N] [--quiet]
+        usage: spectral experiments [--out DIR] [--scale F] [--spp N] [--scenes DIR] [--models DIR] [--threads N] [--quiet]
 
         Renders every scene of the paper — §3.1 the ColorChecker, §3.2 four bunnies, §3.3 the statue under
         A, D65, blue and green LEDs, §3.4 the analysis bunny — and writes DIR/report.html: one self-contained
@@ -20,13 +20,14 @@ public static class ExperimentsCommand
 
           --out DIR      output folder (default: out/experiments)
           --scale F      multiply every scene's resolution (default 1; e.g. 0.5 for a quick run)
+          --spp N        samples per pixel for every scene (default: each scene's own, 4 for §3.2–3.4, anti-aliased)
           --scenes DIR   where the paper-*.json scenes are (default: the repository's scenes/)
           --models DIR   a folder to search for the meshes (also $SPECTRAL_MODELS)
         """;
 
     public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
     {
-        var a = new Arguments("experiments", argv, ["--out", "-o", "--scale", "--scenes", "--models", "--threads"], ["--quiet"], new Dictionary<string, string> { ["-o"] = "--out" });
+        var a = new Arguments("experiments", argv, ["--out", "-o", "--scale", "--spp", "--scenes", "--models", "--threads"], ["--quiet"], new Dictionary<string, string> { ["-o"] = "--out" });
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
         if (a.Positionals.Count > 0) throw new InputException("", $"unexpected argument '{a.Positionals[0]}'", "see 'spectral experiments --help'");
         var outDir = a.Value("--out") ?? Path.Combine("out", "experiments");
@@ -37,11 +38,12 @@ public static class ExperimentsCommand
         var models = a.Values("--models").ToList();
         foreach (var m in models) if (!Directory.Exists(m)) throw new InputException("--models", $"folder '{m}' does not exist");
         int threads = a.Int("--threads", 1, 1024) ?? Environment.ProcessorCount;
+        int? spp = a.Int("--spp", 1, 65536);
         bool quiet = a.Flag("--quiet");
         RenderCommand.PrepareOutputFolder(outDir);
 
         var clock = Stopwatch.StartNew();
-        var runs = PaperExperiments.Run(sceneDir, outDir, scale, models, threads, quiet ? null : stderr.WriteLine);
+        var runs = PaperExperiments.Run(sceneDir, outDir, scale, models, threads, quiet ? null : stderr.WriteLine, spp);
         var report = PaperReport.Write(outDir, runs, clock.Elapsed.TotalSeconds);
         int skipped = runs.Count(r => !r.Done);
         stdout.WriteLine(string.Create(CultureInfo.InvariantCulture,

@@ -46,8 +46,11 @@ public static class PaperExperiments
         return lights.Count == 0 ? what : $"{what} under {string.Join(" and ", lights)}";
     }
 
-    /// <summary>Renders each scene from <paramref name="sceneDir"/> into <paramref name="outDir"/>/NAME, at <paramref name="scale"/> × its resolution.</summary>
-    public static List<ExperimentRun> Run(string sceneDir, string outDir, double scale, IReadOnlyList<string> models, int threads, Action<string>? log = null)
+    /// <summary>
+    /// Renders each scene from <paramref name="sceneDir"/> into <paramref name="outDir"/>/NAME, at <paramref name="scale"/> × its
+    /// resolution and with <paramref name="samplesPerPixel"/> samples per pixel (null: the scene's own).
+    /// </summary>
+    public static List<ExperimentRun> Run(string sceneDir, string outDir, double scale, IReadOnlyList<string> models, int threads, Action<string>? log = null, int? samplesPerPixel = null)
     {
         var runs = new List<ExperimentRun>();
         foreach (var (section, file) in Scenes)
@@ -58,7 +61,7 @@ public static class PaperExperiments
             Scene scene;
             try
             {
-                scene = SceneLoader.Load(path, new SceneOverrides { ModelDirectories = models, ResolutionScale = scale, Formats = "png,bands,npy,aov" });
+                scene = SceneLoader.Load(path, new SceneOverrides { ModelDirectories = models, ResolutionScale = scale, SamplesPerPixel = samplesPerPixel, Formats = "png,bands,npy,aov" });
             }
             catch (InputException e) when (e.Problem == InputProblem.MissingFile)
             {

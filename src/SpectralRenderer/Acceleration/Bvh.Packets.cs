@@ -18,7 +18,8 @@ internal interface IPacketIntersector
 // Packet traversal: one stack for the whole packet, each entry carrying the lanes that entered the parent's
 // box, so a lane that leaves the packet (misses a box) is not tested further down while the others go on
 // together. A node's box is tested for its lanes when it is visited (the same slab arithmetic as SlabRay,
-// lane by lane); the child on the side most rays come from is visited first.
+// lane by lane); of two children, the one most lanes reach first (by the sign of their direction on the
+// split axis) is visited first.
 public sealed partial class Bvh
 {
     /// <summary>Closest hit for every active lane; returns the lanes that hit something (their TMax, Primitive, U, V are set).</summary>
@@ -26,6 +27,7 @@ public sealed partial class Bvh
         where TLanes : struct, ILanes<TLanes> where TPrims : struct, IPacketIntersector
     {
         if (_nodes.Length == 0 || packet.Active == 0) return 0;
+        packet.Prepare<TLanes>();
         return IntersectCore<TLanes, TPrims>(ref prims, ref packet);
     }
 
@@ -76,6 +78,7 @@ public sealed partial class Bvh
         where TLanes : struct, ILanes<TLanes> where TPrims : struct, IPacketIntersector
     {
         if (_nodes.Length == 0 || packet.Active == 0) return 0;
+        packet.Prepare<TLanes>();
         return OccludedCore<TLanes, TPrims>(ref prims, ref packet);
     }
 

@@ -31,6 +31,10 @@ internal interface ILanes<T> where T : struct, ILanes<T>
     static abstract T Equal(T a, T b);
     static abstract T And(T a, T b);
     static abstract T Or(T a, T b);
+    /// <summary>a and not b, bitwise.</summary>
+    static abstract T AndNot(T a, T b);
+    /// <summary>All bits set in lanes whose sign bit is set (−0 included), else zero.</summary>
+    static abstract T SignFill(T a);
     /// <summary>mask ? a : b, lane by lane.</summary>
     static abstract T Select(T mask, T a, T b);
     /// <summary>Bit i set when lane i of the mask is true.</summary>
@@ -61,6 +65,8 @@ internal readonly struct Lanes512 : ILanes<Lanes512>
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes512 Equal(Lanes512 a, Lanes512 b) => new(Vector512.Equals(a._v, b._v));
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes512 And(Lanes512 a, Lanes512 b) => new(a._v & b._v);
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes512 Or(Lanes512 a, Lanes512 b) => new(a._v | b._v);
+    [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes512 AndNot(Lanes512 a, Lanes512 b) => new(Vector512.AndNot(a._v, b._v));
+    [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes512 SignFill(Lanes512 a) => new(Vector512.ShiftRightArithmetic(a._v.AsInt32(), 31).AsSingle());
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes512 Select(Lanes512 mask, Lanes512 a, Lanes512 b) => new(Vector512.ConditionalSelect(mask._v, a._v, b._v));
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static uint Bits(Lanes512 mask) => (uint)mask._v.ExtractMostSignificantBits();
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
@@ -93,6 +99,8 @@ internal readonly struct Lanes256 : ILanes<Lanes256>
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes256 Equal(Lanes256 a, Lanes256 b) => new(Vector256.Equals(a._v, b._v));
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes256 And(Lanes256 a, Lanes256 b) => new(a._v & b._v);
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes256 Or(Lanes256 a, Lanes256 b) => new(a._v | b._v);
+    [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes256 AndNot(Lanes256 a, Lanes256 b) => new(Vector256.AndNot(a._v, b._v));
+    [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes256 SignFill(Lanes256 a) => new(Vector256.ShiftRightArithmetic(a._v.AsInt32(), 31).AsSingle());
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes256 Select(Lanes256 mask, Lanes256 a, Lanes256 b) => new(Vector256.ConditionalSelect(mask._v, a._v, b._v));
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static uint Bits(Lanes256 mask) => mask._v.ExtractMostSignificantBits();
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
@@ -125,6 +133,8 @@ internal readonly struct Lanes128 : ILanes<Lanes128>
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes128 Equal(Lanes128 a, Lanes128 b) => new(Vector128.Equals(a._v, b._v));
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes128 And(Lanes128 a, Lanes128 b) => new(a._v & b._v);
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes128 Or(Lanes128 a, Lanes128 b) => new(a._v | b._v);
+    [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes128 AndNot(Lanes128 a, Lanes128 b) => new(Vector128.AndNot(a._v, b._v));
+    [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes128 SignFill(Lanes128 a) => new(Vector128.ShiftRightArithmetic(a._v.AsInt32(), 31).AsSingle());
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes128 Select(Lanes128 mask, Lanes128 a, Lanes128 b) => new(Vector128.ConditionalSelect(mask._v, a._v, b._v));
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static uint Bits(Lanes128 mask) => mask._v.ExtractMostSignificantBits();
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
@@ -156,6 +166,10 @@ internal readonly struct Lanes1 : ILanes<Lanes1>
     public static Lanes1 And(Lanes1 a, Lanes1 b) => new(BitConverter.Int32BitsToSingle(BitConverter.SingleToInt32Bits(a._v) & BitConverter.SingleToInt32Bits(b._v)));
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static Lanes1 Or(Lanes1 a, Lanes1 b) => new(BitConverter.Int32BitsToSingle(BitConverter.SingleToInt32Bits(a._v) | BitConverter.SingleToInt32Bits(b._v)));
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static Lanes1 AndNot(Lanes1 a, Lanes1 b) => new(BitConverter.Int32BitsToSingle(BitConverter.SingleToInt32Bits(a._v) & ~BitConverter.SingleToInt32Bits(b._v)));
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static Lanes1 SignFill(Lanes1 a) => new(BitConverter.Int32BitsToSingle(BitConverter.SingleToInt32Bits(a._v) >> 31));
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes1 Select(Lanes1 mask, Lanes1 a, Lanes1 b) => BitConverter.SingleToInt32Bits(mask._v) < 0 ? a : b;
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static uint Bits(Lanes1 mask) => (uint)BitConverter.SingleToInt32Bits(mask._v) >> 31;
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes1 FromBits(uint bits) => new(Mask((bits & 1) != 0));

@@ -93,6 +93,8 @@ public partial struct TriangleSet
         var outside = L.And(L.Or(L.Or(L.Less(u, zero), L.Less(v, zero)), L.Less(w, zero)),
                             L.Or(L.Or(L.Greater(u, zero), L.Greater(v, zero)), L.Greater(w, zero)));
         var det = u + v + w;
+        uint inside = m & ~L.Bits(L.Or(outside, L.Equal(det, zero)));
+        if (inside == 0) { t = b1 = b2 = zero; return 0; }   // most tests end here: the rays pass beside the triangle
 
         // Scaled hit distance, compared against the scaled interval before the one division.
         var rzx = L.Load(ref p.RowZx[c]); var rzy = L.Load(ref p.RowZy[c]); var rzz = L.Load(ref p.RowZz[c]);
@@ -105,8 +107,7 @@ public partial struct TriangleSet
         var beyond = L.Select(L.Less(det, zero),
             L.Or(L.Greater(tScaled, zero), L.Or(L.Equal(tScaled, zero), L.Less(tScaled, bound))),     // tScaled ≥ 0 || tScaled < tMax·det
             L.Or(L.Less(tScaled, zero), L.Or(L.Equal(tScaled, zero), L.Greater(tScaled, bound))));   // tScaled ≤ 0 || tScaled > tMax·det
-        uint rejected = L.Bits(L.Or(L.Or(outside, L.Equal(det, zero)), beyond));
-        uint candidates = m & ~rejected;
+        uint candidates = inside & ~L.Bits(beyond);
         if (candidates == 0) { t = b1 = b2 = zero; return 0; }
 
         var inv = L.Splat(1) / det;

@@ -85,9 +85,29 @@ public sealed class Reconstruction
             var lit = (bool[])mask.Clone();
             for (int i = 0; i < lit.Length; i++)
                 lit[i] &= !aovs.Highlight![i] && aovs.Lit!.All(l => l[i]);
+            // Inside the lit area only: an anti-aliased pixel on its edge (spp > 1) mixes in shadow or another object,
+            // while its masks are those of its centre.
+            var inner = Interior(lit, folder.Image.Width);
+            if (inner.Any(v => v)) return Mean(folder, inner, $"object '{name}', its fully lit pixels away from edges") with { Mask = lit };
             if (lit.Any(v => v)) return Mean(folder, lit, $"object '{name}', its fully lit pixels");
         }
         return Mean(folder, mask, $"object '{name}'");
+    }
+
+    /// <summary>The pixels of the mask whose eight neighbours are in it too (the mask eroded by one pixel).</summary>
+    static bool[] Interior(bool[] mask, int width)
+    {
+        int height = mask.Length / width;
+        var inner = new bool[mask.Length];
+        for (int y = 1; y < height - 1; y++)
+            for (int x = 1; x < width - 1; x++)
+            {
+                bool all = true;
+                for (int dy = -1; dy <= 1 && all; dy++)
+                    for (int dx = -1; dx <= 1 && all; dx++) all = mask[(y + dy) * width + x + dx];
+                inner[y * width + x] = all;
+            }
+        return inner;
     }
 
     /// <summary>The mean radiance over the rectangle [x0, x1] × [y0, y1] (inclusive, pixels).</summary>

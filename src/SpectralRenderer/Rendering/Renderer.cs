@@ -39,7 +39,7 @@ public readonly record struct RenderProgress(int TilesDone, int Tiles, long Rays
 /// (its jitter comes from a hash of x, y and the sample index), so the framebuffer is identical
 /// whatever the thread count or tile order.
 /// </summary>
-public sealed class Renderer
+public sealed partial class Renderer
 {
     public const int TileSize = 32;
 
@@ -52,7 +52,8 @@ public sealed class Renderer
     /// <param name="crop">Renders only these pixels of the film (--crop, --shard): the tiles are the whole film's
     /// 32 × 32 grid clipped to the crop, and each pixel is computed from its own film coordinates, so a crop holds the
     /// same values as the same pixels of a whole render.</param>
-    public static RenderResult Render(Scene scene, IIntegrator integrator, int threads = 0, Action<RenderProgress>? progress = null, CancellationToken cancel = default, PixelRect? crop = null)
+    /// <param name="packets">Trace camera rays in packets when the integrator can (<see cref="IPacketIntegrator"/>; the default); false traces every ray alone (the same image).</param>
+    public static RenderResult Render(Scene scene, IIntegrator integrator, int threads = 0, Action<RenderProgress>? progress = null, CancellationToken cancel = default, PixelRect? crop = null, bool packets = true)
     {
         var cam = scene.Camera;
         var region = crop ?? PixelRect.Whole(cam.Width, cam.Height);
@@ -60,12 +61,13 @@ public sealed class Renderer
             throw new ArgumentOutOfRangeException(nameof(crop), $"crop {region} is not inside the {cam.Width}×{cam.Height} film");
         // width × height: the framebuffer (the crop); (ox, oy): its first pixel on the film.
         int width = region.Width, height = region.Height, ox = region.X0, oy = region.Y0, bands = scene.Bands, padded = scene.PaddedBands;
-        var image = new SpectralImage(width, height, scene.Grid);
-        var ids = new int[width * height];
-        var lit = new uint[width * height];
-        var specY = new float[width * height];
-        var diffY = new float[width * height];
-        var xyz = new float[3 * width * height];
+        // Every pixel of these is written by its tile, so they are not zeroed first (80 MB at 1024² × 20 bands).
+        var image = new SpectralImage(width, height, scene.Grid, GC.AllocateUninitializedArray<float>(width * height * bands));
+        var ids = GC.AllocateUninitializedArray<int>(width * height);
+        var lit = GC.AllocateUninitializedArray<uint>(width * height);
+        var specY = GC.AllocateUninitializedArray<float>(width * height);
+        var diffY = GC.AllocateUninitializedArray<float>(width * height);
+        var xyz = GC.AllocateUninitializedArray<float>(3 * width * height);
         long fallbackPixels = 0;
         var colorimeter = scene.Colorimeter;
         int lane = bands;   // the colour lanes follow the bands (SpectralMath.ColourLanes)
@@ -93,6 +95,7 @@ public sealed class Renderer
         void Worker()
         {
             var state = new TileState(integrator.ScratchLength, padded);
+            var packed = packets && integrator is IPacketIntegrator ? new PacketTileState(integrator.ScratchLength, padded, ox, oy) : null;
             int tile;
             while ((tile = Interlocked.Increment(ref next)) < tiles)
             {
@@ -104,6 +107,9 @@ public sealed class Renderer
                 var sum = state.Sum.AsSpan();
                 var sample = state.Sample.AsSpan();
                 var scratch = state.Scratch.AsSpan();
+                if (packed is not null)
+                    PacketTile((IPacketIntegrator)integrator, cam, x0, y0, x1, y1, strataX, strataY, packed, image, ids, lit, specY, diffY, xyz, colorimeter, ref fallbackPixels, ref counters);
+                else
                 for (int y = y0; y < y1; y++)
                 for (int x = x0; x < x1; x++)
                 {

@@ -11,7 +11,7 @@ namespace SpectralRenderer.Rendering;
 /// shapes in another, infinite planes tested directly. Closest hit for camera and secondary rays,
 /// any hit (early exit) for shadow rays.
 /// </summary>
-public sealed class SceneGeometry
+public sealed partial class SceneGeometry
 {
     readonly TriangleSet _triangles;
     readonly bool _hasTriangles;
@@ -92,7 +92,15 @@ public sealed class SceneGeometry
         for (int i = 0; i < _planes.Length; i++)
             if (HitPlane(i, ray, out float tp)) { ray.TMax = tp; plane = i; kind = 3; }
         if (kind == 0) return false;
+        Record(kind, ray, h, ah, plane, out hit);
+        return true;
+    }
 
+    /// <summary>The surface record of a closest hit found by kind (1 triangle h, 2 analytic shape ah, 3 plane) at ray.TMax.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    void Record(int kind, in Ray ray, in Hit h, in Hit ah, int plane, out SurfaceHit hit)
+    {
+        hit = default;
         hit.T = ray.TMax;
         hit.Position = ray.At(ray.TMax);
         switch (kind)
@@ -127,7 +135,6 @@ public sealed class SceneGeometry
                 hit.Object = _planeObject[plane];
                 break;
         }
-        return true;
     }
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]

@@ -83,4 +83,17 @@ public static class SpectralMath
         foreach (var v in V(a)) if (!Vector.EqualsAll(v, Vector<float>.Zero)) return true;
         return false;
     }
+
+    /// <summary>The first dst.Length values of a padded spectrum into dst, in whole vectors (the last one overlapping) when dst holds at least one.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static void CopyBands(ReadOnlySpan<float> padded, Span<float> dst)
+    {
+        int n = dst.Length, w = Vector<float>.Count;
+        if (n < w || padded.Length < n) { padded[..n].CopyTo(dst); return; }
+        ref float s = ref MemoryMarshal.GetReference(padded);
+        ref float d = ref MemoryMarshal.GetReference(dst);
+        int i = 0;
+        for (; i + w <= n; i += w) Vector.StoreUnsafe(Vector.LoadUnsafe(ref s, (nuint)i), ref d, (nuint)i);
+        if (i < n) Vector.StoreUnsafe(Vector.LoadUnsafe(ref s, (nuint)(n - w)), ref d, (nuint)(n - w));
+    }
 }

@@ -193,4 +193,39 @@ public class PacketTests(ITestOutputHelper output)
         Assert.True(t.Ties <= t.Hits / 10_000, $"{t.Ties} ties");     // a different triangle at exactly the same distance: an edge
         Assert.InRange(t.Hits, t.Lanes / 10, t.Lanes - 1);
     }
+
+    [SkippableTheory]
+    [MemberData(nameof(Widths))]
+    public void Prepared_lanes_hold_the_single_rays_shear_and_inverse_bit_for_bit(int width)
+    {
+        SkipUnsupported(width);
+        // Directions with ties between |d| components (the dominant axis is a choice), zeros, −0 and negatives.
+        float[] values = [1, -1, 0, -0f, 0.5f, -0.5f, 2, 1e-30f];
+        var dirs = new List<Vector3>();
+        foreach (var x in values) foreach (var y in values) foreach (var z in values) dirs.Add(new Vector3(x, y, z));
+        static int Bits(float f) => BitConverter.SingleToInt32Bits(f);
+        for (int first = 0; first < dirs.Count; first += RayPacket.Size)
+        {
+            var p = new RayPacket();
+            for (int lane = 0; lane < RayPacket.Size && first + lane < dirs.Count; lane++) p.Set(lane, new Ray(Vector3.One, dirs[first + lane]));
+            switch (width)
+            {
+                case 16: p.Prepare<Lanes512>(); break;
+                case 8: p.Prepare<Lanes256>(); break;
+                case 4: p.Prepare<Lanes128>(); break;
+                default: p.Prepare<Lanes1>(); break;
+            }
+            for (int lane = 0; lane < RayPacket.Size && first + lane < dirs.Count; lane++)
+            {
+                var d = dirs[first + lane];
+                var s = new ShearedRay(new Ray(Vector3.One, d));
+                float[] expected = [s.RowX.X, s.RowX.Y, s.RowX.Z, s.RowY.X, s.RowY.Y, s.RowY.Z, s.RowZ.X, s.RowZ.Y, s.RowZ.Z, 1 / d.X, 1 / d.Y, 1 / d.Z];
+                float[] actual = [p.RowXx[lane], p.RowXy[lane], p.RowXz[lane], p.RowYx[lane], p.RowYy[lane], p.RowYz[lane], p.RowZx[lane], p.RowZy[lane], p.RowZz[lane],
+                                  p.InverseX[lane], p.InverseY[lane], p.InverseZ[lane]];
+                Assert.True(expected.Select(Bits).SequenceEqual(actual.Select(Bits)), $"direction {d}: [{string.Join(", ", expected)}] vs [{string.Join(", ", actual)}]");
+                Assert.Equal(d.X < 0 || Bits(d.X) < 0, Bits(p.NegativeX[lane]) == -1);
+                Assert.Equal(Bits(d.Z) < 0, Bits(p.NegativeZ[lane]) == -1);
+            }
+        }
+    }
 }
