@@ -66,6 +66,18 @@ public class BandNotationTests
         Assert.Contains("--wave and --bands", err);
     }
 
+    [Fact]
+    public void Colors_takes_wave_for_the_same_bands_as_their_edges()
+    {
+        var (code, byWave, err) = CliRunner.Run("colors", "--wave", "390:20:770", "--csv");
+        Assert.True(code == 0, err);
+        var (_, byEdges, _) = CliRunner.Run("colors", "--bands", "380:780:20", "--csv");
+        Assert.Equal(byEdges, byWave);
+        (code, _, err) = CliRunner.Run("colors", "--wave", "390:20:770", "--bands", "380:780:20");
+        Assert.Equal(2, code);
+        Assert.Contains("--wave and --bands", err);
+    }
+
     static string WriteScene(string json)
     {
         var path = Path.Combine(Reference.TempDir(), "scene.json");
