@@ -18,6 +18,7 @@ public static class ProbeCommand
         start, centre and end wavelengths, and writes them to PREFIX.csv with a plot of spectral radiance
         against wavelength, one line per pixel, to PREFIX.svg (the paper's Fig. 6b). PREFIX defaults to
         OUTDIR/probe. Pixels are 0-based, x to the right, y down; LABEL names the column (default xXyY).
+        Bands are numbered from 1, as in wavelengths.csv and the band PNGs' names.
 
           --pixel X,Y[:LABEL]   a pixel to probe (repeatable)
           -o PREFIX             where to write PREFIX.csv and PREFIX.svg
