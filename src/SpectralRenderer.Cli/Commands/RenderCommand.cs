@@ -169,7 +169,7 @@ public static class RenderCommand
         if (bands is not null && !bands.Contains(':'))
         {
             if (!int.TryParse(bands, NumberStyles.Integer, CultureInfo.InvariantCulture, out int n) || n < 1 || n > Spectra.BandGrid.MaxBands)
-                throw new InputException("--bands", $"'{bands}' is neither a band count nor a grid start:end:count", "e.g. --bands 40 or --bands 400:700:31");
+                throw new InputException("--bands", $"'{bands}' is neither a band count nor a grid start:end:count", "e.g. --bands 40, --bands 395:705:31 (edges) or --wave 400:10:700 (centres)");
             // A count keeps the scene's range: peek at it without loading the scene twice.
             var range = SceneRange(sceneText());
             bands = string.Create(CultureInfo.InvariantCulture, $"{range.Start}:{range.End}:{n}");
