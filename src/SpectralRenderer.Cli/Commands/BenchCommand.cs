@@ -11,7 +11,7 @@ namespace SpectralRenderer.Cli.Commands;
 public static class BenchCommand
 {
     const string Help = """
-        usage: spectral bench [SCENE] [--width W] [--height H] [--repeat N] [--threads N] [--bands N|S:E:N]
+        usage: spectral bench [SCENE] [--width W] [--height H] [--repeat N] [--threads N] [--bands N|S:E:N | --wave S:STEP:E]
                               [--spp N] [--models DIR]
 
         Measures a scene (default: scenes/paper-3.2-bunny-14.json at 1024 × 1024): scene and mesh load,
@@ -22,7 +22,7 @@ public static class BenchCommand
 
     public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
     {
-        var a = new Arguments("bench", argv, ["--width", "--height", "--repeat", "--threads", "--bands", "--band-range", "--spp", "--models", "--rgb", "--integration", "--formats"], []);
+        var a = new Arguments("bench", argv, ["--width", "--height", "--repeat", "--threads", "--bands", "--band-range", "--wave", "--spp", "--models", "--rgb", "--integration", "--formats"], []);
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
         if (a.Positionals.Count > 1) throw new InputException("", $"unexpected argument '{a.Positionals[1]}'", "usage: spectral bench [SCENE]");
         var scenePath = a.Positionals.Count == 1 ? a.Positionals[0] : DefaultScene();

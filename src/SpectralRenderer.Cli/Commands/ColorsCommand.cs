@@ -9,7 +9,7 @@ namespace SpectralRenderer.Cli.Commands;
 public static class ColorsCommand
 {
     const string Help = """
-        usage: spectral colors [--illuminant NAME] [--observer 2|10] [--bands 380:780:20]
+        usage: spectral colors [--illuminant NAME] [--observer 2|10] [--bands 380:780:20 | --wave 390:20:770]
                                [--integration exact|weighted|paper] [--rgb srgb|paper] [--csv]
 
         Prints the 24 ColorChecker patches (Ohta reflectances) lit by a light: XYZ (white Y = 1),
@@ -19,7 +19,8 @@ public static class ColorsCommand
           --illuminant NAME   D65 (default), A, D50, E, FL2, FL11, led-blue, led-green, led-rgb,
                               led-yag, or file.csv:column
           --observer 2|10     CIE 1931 2° (default) or CIE 1964 10°
-          --bands S:E:N       band grid, default 380:780:20
+          --bands S:E:N       band edges, default 380:780:20
+          --wave S:STEP:E     or band centres, each STEP wide (390:20:770 is the same 20 bands)
           --integration       exact (default: ∫x̄·E·R dλ on the full tables), weighted (spectral
                               prefiltering) or paper (eq. 3 with band means)
           --rgb srgb|paper    sRGB (IEC 61966-2-1, default) or the paper's eq. 4 matrix
@@ -28,14 +29,16 @@ public static class ColorsCommand
 
     public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
     {
-        var a = new Arguments("colors", argv, ["--illuminant", "--observer", "--bands", "--integration", "--rgb"], ["--csv"]);
+        var a = new Arguments("colors", argv, ["--illuminant", "--observer", "--bands", "--wave", "--integration", "--rgb"], ["--csv"]);
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
         if (a.Positionals.Count > 0) throw new InputException("colors", $"unexpected argument '{a.Positionals[0]}'", "see 'spectral colors --help'");
 
         var lightName = a.Value("--illuminant") ?? "D65";
         var light = SpectrumLibrary.Resolve(lightName, Directory.GetCurrentDirectory(), "--illuminant");
         var observer = Observer.FromDegrees(a.Value("--observer") ?? "2");
-        var grid = BandGrid.Parse(a.Value("--bands") ?? "380:780:20");
+        if (a.Value("--bands") is not null && a.Value("--wave") is not null)
+            throw new InputException("--wave", "--wave and --bands both give the bands", "use one: --wave 390:20:770 (centres) or --bands 380:780:20 (edges)");
+        var grid = a.Value("--wave") is { } wave ? BandGrid.ParseWave(wave) : BandGrid.Parse(a.Value("--bands") ?? "380:780:20");
         var scheme = ParseScheme(a.Value("--integration") ?? "exact", "--integration");
         var rgb = RgbSpace.Parse(a.Value("--rgb") ?? "srgb");
         light.RequireCoverage(grid.Start, grid.End, "--illuminant");

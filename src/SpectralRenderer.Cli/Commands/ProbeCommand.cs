@@ -18,6 +18,7 @@ public static class ProbeCommand
         start, centre and end wavelengths, and writes them to PREFIX.csv with a plot of spectral radiance
         against wavelength, one line per pixel, to PREFIX.svg (the paper's Fig. 6b). PREFIX defaults to
         OUTDIR/probe. Pixels are 0-based, x to the right, y down; LABEL names the column (default xXyY).
+        Bands are numbered from 1, as in wavelengths.csv and the band PNGs' names.
 
           --pixel X,Y[:LABEL]   a pixel to probe (repeatable)
           -o PREFIX             where to write PREFIX.csv and PREFIX.svg
@@ -52,7 +53,7 @@ public static class ProbeCommand
         stdout.WriteLine($"{image.Width}×{image.Height}, {image.Grid} bands; radiance per band (relative units)");
         stdout.WriteLine($"{"band",4} {"nm",15}" + string.Concat(pixels.Select(p => $" {Fit(p.Label),14}")));
         for (int b = 0; b < image.Bands; b++)
-            stdout.WriteLine(string.Create(inv, $"{b,4} {image.Grid.Lower(b),7:0.##}–{image.Grid.Upper(b),-7:0.##}") + string.Concat(pixels.Select(p => $" {image[p.X, p.Y, b].ToString("G7", inv),14}")));
+            stdout.WriteLine(string.Create(inv, $"{Spectra.BandGrid.Number(b),4} {image.Grid.Lower(b),7:0.##}–{image.Grid.Upper(b),-7:0.##}") + string.Concat(pixels.Select(p => $" {image[p.X, p.Y, b].ToString("G7", inv),14}")));
         stdout.WriteLine($"wrote {prefix}.csv, {prefix}.svg");
         return CommandLine.Success;
     }

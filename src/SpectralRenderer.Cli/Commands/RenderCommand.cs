@@ -14,7 +14,7 @@ namespace SpectralRenderer.Cli.Commands;
 public static class RenderCommand
 {
     public const string Help = """
-        usage: spectral render SCENE.json [-o OUTDIR] [--width W] [--height H] [--bands N | S:E:N]
+        usage: spectral render SCENE.json|- [-o OUTDIR] [--width W] [--height H] [--bands N | S:E:N] [--wave S:STEP:E]
                                [--spp N] [--threads N] [--rgb srgb|paper] [--integration exact|weighted|paper]
                                [--formats LIST] [--exr-compression zip|zip-all|none] [--models DIR] [--quiet]
                                [--crop X0,Y0,X1,Y1 | --shard I/N|none] [--shards N]
@@ -28,9 +28,15 @@ public static class RenderCommand
           object-id.png      16-bit id of the object seen at each pixel (0 = background; ids in render.json)
           render.json        resolved scene, band edges, κ, white point, timings, ray counts, version
 
-          -o, --out DIR      output folder (default: out/<scene name>)
-          --width, --height  image size in pixels (override the scene's camera)
-          --bands N|S:E:N    band count over the scene's range, or a full grid such as 400:700:31
+          SCENE.json         the scene; - reads it from standard input (relative paths then resolve
+                             from the working folder)
+          -o, --out DIR      output folder (default: out/<scene file name>, out/stdin for -)
+          --width, --height  image size in pixels (override the scene's camera); one alone keeps its aspect ratio
+          --bands N|S:E:N    band count over the scene's range, or band edges start:end:count: 395:705:31 is
+                             31 bands of 10 nm from 395 to 705 nm
+          --wave S:STEP:E    band centres in MATLAB/ISETCam colon notation, each STEP wide: 400:10:700 is
+                             the same 31 bands, centred on 400, 410, …, 700 nm
+          Bands are numbered from 1 (the first band is band 1) in every file and table a person reads.
           --spp N            samples per pixel (1 = pixel centre; more = stratified jitter)
           --threads N        worker threads (default: all cores); output is identical for any N
           --rgb MODE         srgb (default) or paper (the paper's eq. 4, linear, clipped)
@@ -52,7 +58,7 @@ public static class RenderCommand
           --shards N         the shard count where the scheduler gives none (Kubernetes Indexed Jobs)
         """;
 
-    static readonly string[] Values = ["-o", "--out", "--width", "--height", "--bands", "--band-range", "--spp", "--threads", "--rgb", "--integration", "--formats", "--exr-compression", "--models", "--crop", "--shard", "--shards"];
+    static readonly string[] Values = ["-o", "--out", "--width", "--height", "--bands", "--band-range", "--wave", "--spp", "--threads", "--rgb", "--integration", "--formats", "--exr-compression", "--models", "--crop", "--shard", "--shards"];
 
     [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
     public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
@@ -61,13 +67,16 @@ public static class RenderCommand
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
         if (a.Positionals.Count != 1) throw new InputException("", a.Positionals.Count == 0 ? "no scene file given" : $"unexpected argument '{a.Positionals[1]}'", "usage: spectral render SCENE.json -o OUTDIR");
         var scenePath = a.Positionals[0];
-        var outDir = a.Value("--out") ?? Path.Combine("out", Path.GetFileNameWithoutExtension(scenePath));
+        bool fromStdin = scenePath == SceneLoader.StandardInput;
+        var outDir = a.Value("--out") ?? Path.Combine("out", fromStdin ? "stdin" : Path.GetFileNameWithoutExtension(scenePath));
         int? threads = a.Int("--threads", 1, 1024);
         bool quiet = a.Flag("--quiet");
 
-        var overrides = Overrides(a, scenePath);
         var loadClock = System.Diagnostics.Stopwatch.StartNew();
-        var scene = SceneLoader.Load(scenePath, overrides);
+        byte[]? text = null;
+        byte[] Text() => text ??= fromStdin ? SceneLoader.ReadAll(Console.OpenStandardInput()) : InputFile.ReadAllBytes(scenePath, "scene file");
+        var overrides = Overrides(a, Text);   // options are checked before the scene is read
+        var scene = SceneLoader.Parse(Text(), scenePath, overrides);
         double loadSeconds = loadClock.Elapsed.TotalSeconds;
         var (crop, shard) = Region(a, scene.Camera.Width, scene.Camera.Height);
         var products = scene.Output.Products;
@@ -147,15 +156,22 @@ public static class RenderCommand
     }
 
     [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
-    public static SceneOverrides Overrides(Arguments a, string scenePath)
+    public static SceneOverrides Overrides(Arguments a, string scenePath) => Overrides(a, () => InputFile.ReadAllBytes(scenePath, "scene file"));
+
+    /// <summary>The command-line overrides; <paramref name="sceneText"/> is read only for a bare band count (which keeps the scene's range).</summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
+    public static SceneOverrides Overrides(Arguments a, Func<byte[]> sceneText)
     {
         string? bands = a.Value("--band-range") ?? a.Value("--bands");
+        string? wave = a.Value("--wave");
+        if (bands is not null && wave is not null)
+            throw new InputException("--wave", "--wave and --bands both give the bands", "use one: --wave 400:10:700 (centres) or --bands 395:705:31 (edges)");
         if (bands is not null && !bands.Contains(':'))
         {
             if (!int.TryParse(bands, NumberStyles.Integer, CultureInfo.InvariantCulture, out int n) || n < 1 || n > Spectra.BandGrid.MaxBands)
-                throw new InputException("--bands", $"'{bands}' is neither a band count nor a grid start:end:count", "e.g. --bands 40 or --bands 400:700:31");
+                throw new InputException("--bands", $"'{bands}' is neither a band count nor a grid start:end:count", "e.g. --bands 40, --bands 395:705:31 (edges) or --wave 400:10:700 (centres)");
             // A count keeps the scene's range: peek at it without loading the scene twice.
-            var range = SceneRange(scenePath);
+            var range = SceneRange(sceneText());
             bands = string.Create(CultureInfo.InvariantCulture, $"{range.Start}:{range.End}:{n}");
         }
         var models = a.Values("--models").ToList();
@@ -166,6 +182,7 @@ public static class RenderCommand
             Width = a.Int("--width", int.MinValue, int.MaxValue),
             Height = a.Int("--height", int.MinValue, int.MaxValue),
             Bands = bands,
+            Wave = wave,
             SamplesPerPixel = a.Int("--spp", 1, 65536),
             Rgb = a.Value("--rgb"),
             Integration = a.Value("--integration"),
@@ -178,19 +195,20 @@ public static class RenderCommand
     /// <summary>The command-line overrides as render.json records them (relight rebuilds the same scene from them).</summary>
     public static JsonObject OverridesJson(SceneOverrides o) => new()
     {
-        ["width"] = o.Width, ["height"] = o.Height, ["bands"] = o.Bands, ["spp"] = o.SamplesPerPixel, ["rgb"] = o.Rgb,
+        ["width"] = o.Width, ["height"] = o.Height, ["bands"] = o.Bands, ["wave"] = o.Wave, ["spp"] = o.SamplesPerPixel, ["rgb"] = o.Rgb,
         ["integration"] = o.Integration, ["formats"] = o.Formats, ["exr_compression"] = o.ExrCompression,
         ["models"] = new JsonArray(o.ModelDirectories.Select(d => (JsonNode)JsonValue.Create(Path.GetFullPath(d))).ToArray()),
     };
 
-    static Spectra.BandGrid SceneRange(string scenePath)
+    static Spectra.BandGrid SceneRange(byte[] sceneText)
     {
         try
         {
-            var node = JsonNode.Parse(File.ReadAllText(scenePath), documentOptions: new System.Text.Json.JsonDocumentOptions { CommentHandling = System.Text.Json.JsonCommentHandling.Skip, AllowTrailingCommas = true });
+            var node = JsonNode.Parse(sceneText, documentOptions: new System.Text.Json.JsonDocumentOptions { CommentHandling = System.Text.Json.JsonCommentHandling.Skip, AllowTrailingCommas = true });
+            if (node?["wave"]?.GetValue<string>() is { } w) return Spectra.BandGrid.ParseWave(w);
             if (node?["bands"]?.GetValue<string>() is { } g) return Spectra.BandGrid.Parse(g);
         }
-        catch (Exception e) when (e is System.Text.Json.JsonException or InvalidOperationException or IOException or UnauthorizedAccessException) { /* the loader reports it */ }
+        catch (Exception e) when (e is System.Text.Json.JsonException or InvalidOperationException or InputException) { /* the loader reports it */ }
         return Spectra.BandGrid.Default;
     }
 

@@ -128,7 +128,7 @@ public static class EnviReader
         catch (ArgumentOutOfRangeException e) { throw new InputException(where, $"wavelengths: {e.Message}"); }
         for (int b = 0; b < bands; b++)
             if (Math.Abs(centres[b] - grid.Centre(b)) > 1e-6 * Math.Max(1, grid.Width))
-                throw new InputException(where, $"band {b} at {centres[b]} nm breaks the even spacing", "only equal-width band grids are supported");
+                throw new InputException(where, $"band {BandGrid.Number(b)} at {centres[b]} nm breaks the even spacing", "only equal-width band grids are supported");
         return grid;
     }
 }

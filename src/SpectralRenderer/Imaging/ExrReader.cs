@@ -251,7 +251,7 @@ public static class ExrReader
         // The channel names carry centres with 6 decimals.
         for (int b = 0; b < n; b++)
             if (Math.Abs(centres[b] - grid.Centre(b)) > Math.Max(1e-5, 1e-3 * grid.Width))
-                throw new InputException(where, $"spectral channel at {centres[b]} nm is not the centre of band {b} ({grid.Centre(b)} nm)",
+                throw new InputException(where, $"spectral channel at {centres[b]} nm is not the centre of band {BandGrid.Number(b)} ({grid.Centre(b)} nm)",
                     "only evenly spaced bands are supported");
         return grid;
     }

@@ -6,8 +6,9 @@ using SpectralRenderer.Spectra;
 namespace SpectralRenderer.Imaging;
 
 /// <summary>
-/// wavelengths.csv beside an .npy cube: header "band,start_nm,centre_nm,end_nm", one row per band,
-/// band numbered from 0 as the array's last axis is.
+/// wavelengths.csv beside an .npy cube: header "band,start_nm,centre_nm,end_nm", one row per band in the
+/// order of the array's last axis. Bands are numbered from 1 (<see cref="BandGrid.Number"/>), as in the band PNGs' names,
+/// the probe and reconstruction tables: band b is index b − 1 of the cube's last axis.
 /// </summary>
 public static class WavelengthsCsv
 {
@@ -20,11 +21,11 @@ public static class WavelengthsCsv
         return sb.ToString();
     }
 
-    /// <summary>Band <paramref name="b"/>'s columns of <see cref="Header"/> (number, edges and centre in nm, round-trip exact), without a line end: the one writer of band rows.</summary>
+    /// <summary>Band <paramref name="b"/>'s columns of <see cref="Header"/> (number from 1, edges and centre in nm, round-trip exact), without a line end: the one writer of band rows.</summary>
     public static StringBuilder AppendRow(StringBuilder sb, BandGrid grid, int b)
     {
         var inv = CultureInfo.InvariantCulture;
-        return sb.Append(inv, $"{b},{grid.Lower(b).ToString("R", inv)},{grid.Centre(b).ToString("R", inv)},{grid.Upper(b).ToString("R", inv)}");
+        return sb.Append(inv, $"{BandGrid.Number(b)},{grid.Lower(b).ToString("R", inv)},{grid.Centre(b).ToString("R", inv)},{grid.Upper(b).ToString("R", inv)}");
     }
 
     public static void Write(string path, BandGrid grid) => AtomicFile.WriteAllText(path, Format(grid));

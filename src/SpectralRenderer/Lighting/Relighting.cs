@@ -36,7 +36,7 @@ public static class Relighting
         var o = manifest.Run?["overrides"] as JsonObject;
         var overrides = new SceneOverrides
         {
-            Width = (int?)o?["width"], Height = (int?)o?["height"], Bands = (string?)o?["bands"], SamplesPerPixel = (int?)o?["spp"],
+            Width = (int?)o?["width"], Height = (int?)o?["height"], Bands = (string?)o?["bands"], Wave = (string?)o?["wave"], SamplesPerPixel = (int?)o?["spp"],
             Rgb = (string?)o?["rgb"], Integration = (string?)o?["integration"], Formats = (string?)o?["formats"],
             ExrCompression = (string?)o?["exr_compression"],
             ModelDirectories = o?["models"]?.AsArray().Select(d => (string)d!).Where(Directory.Exists).ToList() ?? [],

@@ -213,7 +213,7 @@ public static class RenderOutputWriter
     }
 
     public static string BandFileName(Scene scene, int b) =>
-        string.Create(CultureInfo.InvariantCulture, $"band-{b + 1:00}-{scene.Grid.Lower(b):0.###}-{scene.Grid.Upper(b):0.###}nm.png");
+        string.Create(CultureInfo.InvariantCulture, $"band-{Spectra.BandGrid.Number(b):00}-{scene.Grid.Lower(b):0.###}-{scene.Grid.Upper(b):0.###}nm.png");
 
     public static byte[] Preview(SpectralImage image, DisplayEncoder encoder) =>
         Preview(image.Width, image.Height, XyzPlanes.Compute(encoder.Colorimeter, image), encoder);

@@ -75,6 +75,7 @@ public class BvhTests(ITestOutputHelper output)
     const int SoupRays = 100_000;
 
     [Fact]
+    [Trait("Category", "Slow")]
     public void Closest_hits_and_occlusion_equal_brute_force_on_100k_random_rays()
     {
         var set = TriangleSet.Build([Soup(2_000, 1)]);

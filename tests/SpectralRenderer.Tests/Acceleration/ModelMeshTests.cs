@@ -7,6 +7,7 @@ using Xunit.Abstractions;
 namespace SpectralRenderer.Tests.Acceleration;
 
 /// <summary>The scanned meshes of the paper's scenes (skipped, with the reason, when SPECTRAL_MODELS does not lead to them).</summary>
+[Trait("Category", "Slow")]
 public class ModelMeshTests(ITestOutputHelper output)
 {
     [SkippableFact]

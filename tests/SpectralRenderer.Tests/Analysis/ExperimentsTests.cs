@@ -7,6 +7,7 @@ using SpectralRenderer.Tests.Cli;
 namespace SpectralRenderer.Tests.Analysis;
 
 /// <summary>The paper's experiments end to end: report.html checked in a real browser; the §3.4 bars on the real scene.</summary>
+[Trait("Category", "Slow")]
 public class ExperimentsTests
 {
     static string Repo()
@@ -21,6 +22,7 @@ public class ExperimentsTests
     static string? Chromium() => new[] { "/usr/bin/chromium", "/usr/bin/chromium-browser", "/usr/bin/google-chrome" }.FirstOrDefault(File.Exists);
 
     [SkippableFact]
+    [Trait("Category", "Interop")]
     public void Report_loads_in_headless_Chromium_with_every_figure_and_no_script_error()
     {
         var chromium = Chromium();

@@ -15,6 +15,7 @@ namespace SpectralRenderer.Tests.Analysis;
 /// a_glob / (a_glob + I) (eq. 2: ambient only vs the board's ambient + diffuse), and a highlight is the truth
 /// plus the light ÷ white.
 /// </summary>
+[Trait("Category", "Slow")]
 public class PaperReconstructionTests
 {
     const double Ambient = 0.05;

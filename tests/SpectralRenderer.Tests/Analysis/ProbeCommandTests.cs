@@ -23,7 +23,7 @@ public class ProbeCommandTests
         for (int b = 0; b < image.Bands; b++)
         {
             var f = lines[b + 1].Split(',');
-            Assert.Equal(b, int.Parse(f[0], CultureInfo.InvariantCulture));
+            Assert.Equal(b + 1, int.Parse(f[0], CultureInfo.InvariantCulture));   // bands are numbered from 1
             Assert.Equal(image.Grid.Centre(b), double.Parse(f[2], CultureInfo.InvariantCulture));
             // the quoted label spans one field in CSV but the values do not contain commas
             for (int k = 0; k < px.Length; k++)

@@ -1,9 +1,10 @@
 using SpectralRenderer.Color;
 using SpectralRenderer.Spectra;
+using Xunit.Abstractions;
 
 namespace SpectralRenderer.Tests.Color;
 
-public class ColorimetryTests
+public class ColorimetryTests(ITestOutputHelper output)
 {
     static readonly TabulatedSpectrum D65 = SpectrumLibrary.Resolve("D65");
 
@@ -76,7 +77,8 @@ public class ColorimetryTests
     public void Default_scheme_with_20_bands_meets_the_bar_against_1nm(string light)
     {
         var (mean, max) = PatchErrors(light, BandIntegration.Weighted, BandGrid.Default);
-        Console.WriteLine($"{light}: mean {mean:F3} max {max:F3}"); Assert.True(mean <= 0.6 && max <= 1.6, $"{light}: mean ΔE00 {mean:F3}, max {max:F3}");
+        output.WriteLine($"{light}: mean {mean:F3} max {max:F3}");
+        Assert.True(mean <= 0.6 && max <= 1.6, $"{light}: mean ΔE00 {mean:F3}, max {max:F3}");
     }
 
     [Theory]
@@ -86,7 +88,8 @@ public class ColorimetryTests
     {
         // The guide's diagnosis: the mean of a product is not the product of the means.
         var (mean, _) = PatchErrors(light, BandIntegration.Paper, BandGrid.Default);
-        Console.WriteLine($"paper {light}: {mean:F3}"); Assert.True(mean >= atLeastMean, $"{light}: paper scheme mean ΔE00 {mean:F2}");
+        output.WriteLine($"paper {light}: {mean:F3}");
+        Assert.True(mean >= atLeastMean, $"{light}: paper scheme mean ΔE00 {mean:F2}");
     }
 
     [Fact]

@@ -43,6 +43,7 @@ public class SrgbEncodeTests
     }
 
     [Fact]
+    [Trait("Category", "Slow")]
     public void A_million_random_values_special_values_and_bucket_edges_match_the_formula()
     {
         var rng = new Random(2024);

@@ -9,6 +9,7 @@ namespace SpectralRenderer.Tests.Distributed;
 /// </summary>
 [Collection("Alone")]
 [Trait("Category", "Slurm")]
+[Trait("Category", "Interop")]   // a real cluster: not part of the fast core (README)
 public class SlurmClusterTests
 {
     [SkippableFact]

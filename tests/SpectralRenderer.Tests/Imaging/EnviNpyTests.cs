@@ -120,8 +120,8 @@ public class NpyTests
         var lines = File.ReadAllLines(Path.Combine(dir, "wavelengths.csv"));
         Assert.Equal(21, lines.Length);
         Assert.Equal("band,start_nm,centre_nm,end_nm", lines[0]);
-        Assert.Equal("0,380,390,400", lines[1]);
-        Assert.Equal("19,760,770,780", lines[20]);
+        Assert.Equal("1,380,390,400", lines[1]);   // bands are numbered from 1
+        Assert.Equal("20,760,770,780", lines[20]);
         var grid = WavelengthsCsv.Read(Path.Combine(dir, "wavelengths.csv"));
         Assert.Equal(img.Grid, grid);
         var back = NpyReader.ReadImage(Path.Combine(dir, "spectral.npy"), grid);

@@ -11,6 +11,7 @@ namespace SpectralRenderer.Tests.Imaging;
 /// standard-library-only python3 script. Each test skips, saying why, when its tool is not installed
 /// (.ci/run installs Debian's openexr, openimageio-tools and gdal-bin).
 /// </summary>
+[Trait("Category", "Interop")]
 public class InteropTests(ITestOutputHelper output)
 {
     static string Require(string tool, string package)

@@ -15,6 +15,7 @@ namespace SpectralRenderer.Tests.Relight;
 /// render's own files (spectral.npy) and against `spectral relight` (preview.png): the page computes them itself.
 /// </summary>
 [Trait("Category", "Browser")]
+[Trait("Category", "Interop")]   // a real browser: not part of the fast core (README)
 public class ViewerBrowserTests(ITestOutputHelper output)
 {
     static string Repo()

@@ -260,9 +260,14 @@ public sealed partial class SceneLoader
             var lo = Vec3(Required(fit, "min", $"{path}.fit"), $"{path}.fit.min");
             var hi = Vec3(Required(fit, "max", $"{path}.fit"), $"{path}.fit.max");
             if (hi.X < lo.X || hi.Y < lo.Y || hi.Z < lo.Z) throw Error($"{path}.fit", "max is below min on some axis");
+            // The transform orients the mesh, then fit places it: the rotated (scaled, mirrored) mesh is what fills
+            // the box, so a rotation never moves it out. A translation would be undone by the fit.
+            if (TryGet(e, "transform", out var t) && TryGet(t, "translate", out _))
+                throw Error($"{path}.transform.translate", "has no effect with fit (the fit box places the mesh)", "move fit.min and fit.max instead, or drop fit");
+            if (!user.IsIdentity) mesh.Transform(user);
             mesh.Fit(lo, hi);
         }
-        if (!user.IsIdentity) mesh.Transform(user);
+        else if (!user.IsIdentity) mesh.Transform(user);
         bool smooth = true;
         if (TryGet(e, "shading", out var sh))
             smooth = String(sh, $"{path}.shading").ToLowerInvariant() switch

@@ -31,10 +31,15 @@ public sealed partial class SceneLoader
     readonly List<string> _warnings = [];
     readonly Dictionary<float[], TabulatedSpectrum> _spectra = new(ReferenceEqualityComparer.Instance);
 
+    /// <summary>The scene path that stands for standard input: its relative paths resolve from the working folder.</summary>
+    public const string StandardInput = "-";
+    const string StandardInputName = "<stdin>";
+
     SceneLoader(string file, JsonLocator locator, SceneOverrides overrides)
     {
-        _file = file;
-        _dir = Path.GetDirectoryName(Path.GetFullPath(file))!;
+        bool stdin = file == StandardInput;
+        _file = stdin ? StandardInputName : file;
+        _dir = stdin ? Directory.GetCurrentDirectory() : Path.GetDirectoryName(Path.GetFullPath(file))!;
         _locator = locator;
         _overrides = overrides;
     }
@@ -43,6 +48,14 @@ public sealed partial class SceneLoader
     public static Scene Load(string path, SceneOverrides? overrides = null)
     {
         return Parse(InputFile.ReadAllBytes(path, "scene file"), path, overrides ?? new SceneOverrides());
+    }
+
+    /// <summary>Reads a whole scene from a stream (standard input for <see cref="StandardInput"/>).</summary>
+    public static byte[] ReadAll(Stream input)
+    {
+        using var buffer = new MemoryStream();
+        input.CopyTo(buffer);
+        return buffer.ToArray();
     }
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
@@ -180,7 +193,7 @@ public sealed partial class SceneLoader
 
     // ---- the scene ----------------------------------------------------------------------------
 
-    static readonly string[] TopKeys = ["name", "description", "bands", "integration", "radiometry", "observer", "white", "scaling", "spectra", "materials", "lights", "objects", "background", "ambient", "max_depth", "camera", "output"];
+    static readonly string[] TopKeys = ["name", "description", "bands", "wave", "integration", "radiometry", "observer", "white", "scaling", "spectra", "materials", "lights", "objects", "background", "ambient", "max_depth", "camera", "output"];
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
     Scene Build(JsonElement root)
@@ -189,8 +202,7 @@ public sealed partial class SceneLoader
         Keys(root, "$", TopKeys);
         StartMeshReads(root);
 
-        _grid = _overrides.Bands is { } b ? BandGrid.Parse(b) :
-            TryGet(root, "bands", out var bands) ? ParseGrid(bands, "$.bands") : BandGrid.Default;
+        _grid = ParseBands(root);
         var integration = ParseIntegration(_overrides.Integration, root);
         var observer = TryGet(root, "observer", out var obs)
             ? Observer.FromDegrees(obs.ValueKind == JsonValueKind.Number ? obs.GetRawText() : obs.ValueKind == JsonValueKind.String ? obs.GetString()! : "?", Where("$.observer"))
@@ -273,7 +285,7 @@ public sealed partial class SceneLoader
 
         return new Scene
         {
-            SourcePath = Path.GetFullPath(_file),
+            SourcePath = _file == StandardInputName ? StandardInputName : Path.GetFullPath(_file),
             Grid = _grid,
             Integration = integration,
             Observer = observer,
@@ -313,6 +325,25 @@ public sealed partial class SceneLoader
     }
 
     string Where(string path) => _locator.Locate(path) is { } pos ? $"{_file}:{pos}: {path}" : $"{_file}: {path}";
+
+    /// <summary>The band grid: --wave or --bands, else the scene's "wave" (centres) or "bands" (edges), else 380:780:20.</summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
+    BandGrid ParseBands(JsonElement root)
+    {
+        if (_overrides.Wave is not null && _overrides.Bands is not null)
+            throw new InputException("--wave", "--wave and --bands both give the bands", "use one: --wave 400:10:700 (centres) or --bands 395:705:31 (edges)");
+        if (_overrides.Wave is { } w) return BandGrid.ParseWave(w);
+        if (_overrides.Bands is { } b) return BandGrid.Parse(b);
+        bool hasBands = TryGet(root, "bands", out var bands), hasWave = TryGet(root, "wave", out var wave);
+        if (hasBands && hasWave)
+            throw Error("$.wave", "the scene gives both \"bands\" and \"wave\"", "keep one: \"wave\": \"400:10:700\" (centres) or \"bands\": \"395:705:31\" (edges)");
+        if (hasWave)
+        {
+            if (wave.ValueKind != JsonValueKind.String) throw Error("$.wave", $"expected a string such as \"400:10:700\", found {Kind(wave)}");
+            return BandGrid.ParseWave(wave.GetString()!, Where("$.wave"));
+        }
+        return hasBands ? ParseGrid(bands, "$.bands") : BandGrid.Default;
+    }
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
     BandGrid ParseGrid(JsonElement e, string path)
@@ -357,8 +388,17 @@ public sealed partial class SceneLoader
         if (Vector3.Cross(Vector3.Normalize(lookAt - position), up).LengthSquared() < 1e-12f)
             throw Error($"{path}.up", "up is parallel to the viewing direction", "choose another up vector");
         float fov = (float)Number(e, "fov", path, 40, 1e-3, 179);
-        int width = _overrides.Width ?? Integer(e, "width", path, 640, int.MinValue, int.MaxValue);
-        int height = _overrides.Height ?? Integer(e, "height", path, 480, int.MinValue, int.MaxValue);
+        int sceneWidth = Integer(e, "width", path, 640, int.MinValue, int.MaxValue);
+        int sceneHeight = Integer(e, "height", path, 480, int.MinValue, int.MaxValue);
+        int width = _overrides.Width ?? sceneWidth, height = _overrides.Height ?? sceneHeight;
+        // One side given alone keeps the camera's aspect ratio (the field of view is vertical, so the view widens or narrows with it otherwise).
+        if (sceneWidth > 0 && sceneHeight > 0)
+        {
+            if (_overrides.Width is { } ow && _overrides.Height is null && ow > 0)
+                height = Math.Max(1, (int)Math.Round((double)ow * sceneHeight / sceneWidth, MidpointRounding.AwayFromZero));
+            else if (_overrides.Height is { } oh && _overrides.Width is null && oh > 0)
+                width = Math.Max(1, (int)Math.Round((double)oh * sceneWidth / sceneHeight, MidpointRounding.AwayFromZero));
+        }
         if (_overrides.ResolutionScale != 1 && width > 0 && height > 0)
         {
             width = Math.Max(8, (int)Math.Round(width * _overrides.ResolutionScale));

@@ -3,9 +3,13 @@ namespace SpectralRenderer.Scenes.Loading;
 /// <summary>Command-line overrides applied while a scene is loaded (before spectra become band values).</summary>
 public sealed record SceneOverrides
 {
+    /// <summary>Image size in pixels; one of the two alone keeps the aspect ratio of the scene's camera.</summary>
     public int? Width { get; init; }
     public int? Height { get; init; }
+    /// <summary>A band grid "start:end:count" (band edges).</summary>
     public string? Bands { get; init; }
+    /// <summary>Band centres "start:step:end" (MATLAB/ISETCam colon notation, width = step); excludes <see cref="Bands"/>.</summary>
+    public string? Wave { get; init; }
     public int? SamplesPerPixel { get; init; }
     /// <summary>Multiplies the scene's own width and height (after the overrides above), at least 8 pixels.</summary>
     public double ResolutionScale { get; init; } = 1;
