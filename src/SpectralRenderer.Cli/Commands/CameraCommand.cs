@@ -24,7 +24,8 @@ public static class CameraCommand
         The scene light (render.json's reference white) prefilters the channel weights per band.
 
           --sensor NAME|FILE   isetcam, nikon-d5100, sigma-sd-merrill, canon-5d-mark-ii, wheel-6, mosaic-16,
-                               cie-xyz, or a sensor JSON file
+                               cie-xyz, a sensor JSON file, or scene (the default: the "sensor" of the
+                               scene's camera object)
           --exposure           auto (default: brightest expected pixel at 0.8 of the full well) or seconds
           --seed N             temporal noise seed (default 1); the same seed gives the same raw file
           --noise off          the expected signal: no noise, no dark current, no quantisation
@@ -48,8 +49,15 @@ public static class CameraCommand
             new Dictionary<string, string> { ["--output"] = "-o" });
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
         if (a.Positionals.Count != 1) throw new InputException("", "give one render folder", "usage: spectral camera OUTDIR --sensor nikon-d5100");
-        var sensorName = a.Value("--sensor") ?? throw new InputException("", "--sensor is required", $"one of {string.Join(", ", SensorPresets.Names)}, or a JSON file");
-        var sensor = SensorFile.Resolve(sensorName);
+        var dir = a.Positionals[0];
+        var scene = CameraScene.Open(dir);
+        // --sensor, else the sensor written in the scene's camera object (render.json keeps the resolved scene).
+        var sensorName = a.Value("--sensor") ?? SensorFile.SceneArgument;
+        var sensor = sensorName == SensorFile.SceneArgument
+            ? SensorFile.FromScene(scene.Folder.Manifest.ResolvedScene, scene.Folder.Manifest.Scene)
+              ?? throw new InputException("", "--sensor is required: the scene's camera has no \"sensor\"",
+                  $"one of {string.Join(", ", SensorPresets.Names)}, a JSON file, or \"sensor\" in the scene's camera object")
+            : SensorFile.Resolve(sensorName);
         if (a.Value("--exposure") is { } ex)
         {
             if (ex == "auto") sensor = sensor with { ExposureSeconds = null };
@@ -70,8 +78,6 @@ public static class CameraCommand
         if (!(scale > 0)) throw new InputException("", "--radiance-scale must be positive", "W·m⁻²·sr⁻¹·nm⁻¹ per band unit");
         int threads = a.Int("--threads", 1, 1024) ?? -1;
 
-        var dir = a.Positionals[0];
-        var scene = CameraScene.Open(dir);
         var options = new SimulationOptions { Seed = seed, Noise = noise, Threads = threads };
         var cube = scene.Cube(scale);
 
@@ -124,7 +130,7 @@ public static class CameraCommand
             a.Value("--radiance-scale") is not null ? "given with --radiance-scale"
             : relative ? "default 1: the render's radiometry is relative (the paper's eq. 2 has no units), so its band values are taken as W·m⁻²·sr⁻¹·nm⁻¹"
             : "default 1: the render's physical radiometry is in W·m⁻²·sr⁻¹·nm⁻¹");
-        manifest["sensor_argument"] = File.Exists(sensorName) ? Path.GetFullPath(sensorName) : sensorName;
+        manifest["sensor_argument"] = sensorName != SensorFile.SceneArgument && File.Exists(sensorName) ? Path.GetFullPath(sensorName) : sensorName;
         manifest["render_folder"] = Path.GetRelativePath(Path.GetFullPath(outDir), Path.GetFullPath(dir));
         manifest["render_radiometry"] = scene.Radiometry ?? "paper";
         manifest["processing"]!["demosaic"] = image.Demosaicked?.ToString().ToLowerInvariant();

@@ -19,6 +19,31 @@ public static class SensorFile
         "dsnu_v", "analog_gain", "adc_bits", "black_level_dn", "exposure_s", "auto_exposure_fraction", "fixed_pattern_seed",
     ];
 
+    /// <summary>The name a sensor inline in a scene takes unless it says "name".</summary>
+    public const string InlineName = "scene-camera";
+    /// <summary>The --sensor value (and camera.json's sensor_argument) that means the sensor of the scene's camera object.</summary>
+    public const string SceneArgument = "scene";
+
+    /// <summary>
+    /// The sensor of a scene's camera object, <c>"camera": { …, "sensor": NAME | FILE | { … } }</c>, from the resolved
+    /// scene render.json keeps: a preset name, a sensor file (relative to the scene's folder) or a sensor object inline
+    /// (the keys of a sensor file; errors name <c>scene.json: $.camera.sensor.key</c>). Null when the camera has none.
+    /// </summary>
+    public static SensorModel? FromScene(JsonObject? resolvedScene, string sceneFile)
+    {
+        if ((resolvedScene?["camera"] as JsonObject)?["sensor"] is not JsonNode node) return null;
+        string? baseDirectory = sceneFile.Length > 0 ? Path.GetDirectoryName(Path.GetFullPath(sceneFile)) : null;
+        const string root = "$.camera.sensor";
+        return node switch
+        {
+            JsonObject o => Parse(o, sceneFile, baseDirectory, root),
+            JsonValue v when v.TryGetValue(out string? name) && name.Length > 0 =>
+                SensorPresets.Names.Contains(name.ToLowerInvariant()) || baseDirectory is null || Path.IsPathRooted(name)
+                    ? Resolve(name) : Resolve(Path.Combine(baseDirectory, name)),
+            _ => throw new InputException($"{sceneFile}: {root}", "must be a preset name, a sensor file or a sensor object", $"e.g. \"mosaic-16\" or {{ \"preset\": \"wheel-6\", \"f_number\": 2.8 }}"),
+        };
+    }
+
     /// <summary>A preset name, or a path to a JSON file.</summary>
     public static SensorModel Resolve(string nameOrFile)
     {
@@ -31,62 +56,64 @@ public static class SensorFile
         return Parse(obj, nameOrFile, Path.GetDirectoryName(Path.GetFullPath(nameOrFile)));
     }
 
-    public static SensorModel Parse(JsonObject o, string file, string? baseDirectory = null)
+    /// <param name="root">where the sensor object sits in <paramref name="file"/>: "$" for a sensor file, "$.camera.sensor" inline in a scene.</param>
+    public static SensorModel Parse(JsonObject o, string file, string? baseDirectory = null, string root = "$")
     {
+        string at = $"{file}: {root}";
         foreach (var (key, _) in o)
-            if (!Keys.Contains(key)) throw new InputException($"{file}: $.{key}", "unknown key", InputException.DidYouMean(key, Keys) ?? $"keys: {string.Join(", ", Keys)}");
-        var s = SensorPresets.Get(Str(o, "preset", file) ?? "isetcam", $"{file}: $.preset");
-        double peak = Num(o, "peak_qe", file, 0, 1) ?? SensorPresets.DefaultPeakQe;
+            if (!Keys.Contains(key)) throw new InputException($"{at}.{key}", "unknown key", InputException.DidYouMean(key, Keys) ?? $"keys: {string.Join(", ", Keys)}");
+        var s = SensorPresets.Get(Str(o, "preset", at) ?? "isetcam", $"{at}.preset");
+        double peak = Num(o, "peak_qe", at, 0, 1) ?? SensorPresets.DefaultPeakQe;
         if (o["channels"] is JsonNode ch)
         {
-            if (ch is not JsonArray arr || arr.Count == 0) throw new InputException($"{file}: $.channels", "must be a non-empty array of channels");
-            var channels = arr.Select((c, i) => Channel(c, $"{file}: $.channels[{i}]", baseDirectory)).ToArray();
+            if (ch is not JsonArray arr || arr.Count == 0) throw new InputException($"{at}.channels", "must be a non-empty array of channels");
+            var channels = arr.Select((c, i) => Channel(c, $"{at}.channels[{i}]", baseDirectory)).ToArray();
             s = s with { Channels = SensorPresets.Scale(channels, peak) };
         }
         else if (o["peak_qe"] is not null) s = s with { Channels = SensorPresets.Scale(s.Channels, peak) };
-        if (Str(o, "arrangement", file) is { } a)
+        if (Str(o, "arrangement", at) is { } a)
             s = s with
             {
                 Arrangement = a switch
                 {
                     "full" => Arrangement.Full, "mosaic" => Arrangement.Mosaic, "wheel" => Arrangement.Wheel,
-                    _ => throw new InputException($"{file}: $.arrangement", $"'{a}' is not an arrangement", "full, mosaic or wheel"),
+                    _ => throw new InputException($"{at}.arrangement", $"'{a}' is not an arrangement", "full, mosaic or wheel"),
                 },
             };
-        if (o["pattern"] is JsonNode p) s = s with { Pattern = Pattern(p, s, $"{file}: $.pattern"), PatternName = p is JsonValue ? (string?)p : "custom" };
+        if (o["pattern"] is JsonNode p) s = s with { Pattern = Pattern(p, s, $"{at}.pattern"), PatternName = p is JsonValue ? (string?)p : "custom" };
         if (s.Arrangement == Arrangement.Mosaic)
         {
-            if (s.Pattern is null) throw new InputException($"{file}: $.pattern", "a mosaic needs a pattern", "e.g. \"RGGB\" or [[0,1],[1,2]]");
+            if (s.Pattern is null) throw new InputException($"{at}.pattern", "a mosaic needs a pattern", "e.g. \"RGGB\" or [[0,1],[1,2]]");
             foreach (var v in s.Pattern)
-                if (v < 0 || v >= s.ChannelCount) throw new InputException($"{file}: $.pattern", $"channel {v} does not exist", $"channels 0–{s.ChannelCount - 1}");
+                if (v < 0 || v >= s.ChannelCount) throw new InputException($"{at}.pattern", $"channel {v} does not exist", $"channels 0–{s.ChannelCount - 1}");
         }
         double? exposure = null;
         bool auto = false;
         if (o["exposure_s"] is JsonNode e)
         {
             if (e is JsonValue v && v.TryGetValue(out string? t) && t == "auto") auto = true;
-            else exposure = Num(o, "exposure_s", file, 1e-9, 1e6);
+            else exposure = Num(o, "exposure_s", at, 1e-9, 1e6);
         }
         return s with
         {
-            Name = Str(o, "name", file) ?? (file.EndsWith(".json", StringComparison.OrdinalIgnoreCase) ? Path.GetFileNameWithoutExtension(file) : s.Name),
-            Source = Str(o, "source", file) ?? $"{file} (over preset {s.Name})",
-            FNumber = Num(o, "f_number", file, 0.1, 1000) ?? s.FNumber,
-            OpticsTransmittance = Num(o, "transmittance", file, 0, 1) ?? s.OpticsTransmittance,
-            PixelSizeMicrons = Num(o, "pixel_size_um", file, 0.01, 1000) ?? s.PixelSizeMicrons,
-            FillFactor = Num(o, "fill_factor", file, 0, 1) ?? s.FillFactor,
-            ConversionGain = Num(o, "conversion_gain_v_per_e", file, 1e-12, 1) ?? s.ConversionGain,
-            VoltageSwing = Num(o, "voltage_swing_v", file, 1e-6, 1000) ?? s.VoltageSwing,
-            ReadNoiseVolts = Num(o, "read_noise_v", file, 0, 10) ?? s.ReadNoiseVolts,
-            DarkVoltage = Num(o, "dark_voltage_v_per_s", file, 0, 1000) ?? s.DarkVoltage,
-            PrnuPercent = Num(o, "prnu_percent", file, 0, 100) ?? s.PrnuPercent,
-            DsnuVolts = Num(o, "dsnu_v", file, 0, 10) ?? s.DsnuVolts,
-            AnalogGain = Num(o, "analog_gain", file, 1e-6, 1e6) ?? s.AnalogGain,
-            AdcBits = (int?)Num(o, "adc_bits", file, 1, 16, whole: true) ?? s.AdcBits,
-            BlackLevel = Num(o, "black_level_dn", file, 0, 65535) ?? s.BlackLevel,
+            Name = Str(o, "name", at) ?? (root != "$" ? InlineName : file.EndsWith(".json", StringComparison.OrdinalIgnoreCase) ? Path.GetFileNameWithoutExtension(file) : s.Name),
+            Source = Str(o, "source", at) ?? $"{(root != "$" ? $"{file} {root}" : file)} (over preset {s.Name})",
+            FNumber = Num(o, "f_number", at, 0.1, 1000) ?? s.FNumber,
+            OpticsTransmittance = Num(o, "transmittance", at, 0, 1) ?? s.OpticsTransmittance,
+            PixelSizeMicrons = Num(o, "pixel_size_um", at, 0.01, 1000) ?? s.PixelSizeMicrons,
+            FillFactor = Num(o, "fill_factor", at, 0, 1) ?? s.FillFactor,
+            ConversionGain = Num(o, "conversion_gain_v_per_e", at, 1e-12, 1) ?? s.ConversionGain,
+            VoltageSwing = Num(o, "voltage_swing_v", at, 1e-6, 1000) ?? s.VoltageSwing,
+            ReadNoiseVolts = Num(o, "read_noise_v", at, 0, 10) ?? s.ReadNoiseVolts,
+            DarkVoltage = Num(o, "dark_voltage_v_per_s", at, 0, 1000) ?? s.DarkVoltage,
+            PrnuPercent = Num(o, "prnu_percent", at, 0, 100) ?? s.PrnuPercent,
+            DsnuVolts = Num(o, "dsnu_v", at, 0, 10) ?? s.DsnuVolts,
+            AnalogGain = Num(o, "analog_gain", at, 1e-6, 1e6) ?? s.AnalogGain,
+            AdcBits = (int?)Num(o, "adc_bits", at, 1, 16, whole: true) ?? s.AdcBits,
+            BlackLevel = Num(o, "black_level_dn", at, 0, 65535) ?? s.BlackLevel,
             ExposureSeconds = auto ? null : exposure ?? s.ExposureSeconds,
-            AutoExposureFraction = Num(o, "auto_exposure_fraction", file, 1e-6, 1) ?? s.AutoExposureFraction,
-            FixedPatternSeed = (ulong?)Num(o, "fixed_pattern_seed", file, 0, 1e15, whole: true) ?? s.FixedPatternSeed,
+            AutoExposureFraction = Num(o, "auto_exposure_fraction", at, 1e-6, 1) ?? s.AutoExposureFraction,
+            FixedPatternSeed = (ulong?)Num(o, "fixed_pattern_seed", at, 0, 1e15, whole: true) ?? s.FixedPatternSeed,
         };
     }
 
@@ -140,17 +167,17 @@ public static class SensorFile
         throw new InputException(where, "a pattern is letters (\"RGGB\") or rows of channel indices", "e.g. [[0,1],[1,2]]");
     }
 
-    static string? Str(JsonObject o, string key, string file) => o[key] switch
+    static string? Str(JsonObject o, string key, string at) => o[key] switch
     {
         null => null,
         JsonValue v when v.TryGetValue(out string? s) => s,
-        _ => throw new InputException($"{file}: $.{key}", "must be a string"),
+        _ => throw new InputException($"{at}.{key}", "must be a string"),
     };
 
     static double? Num(JsonObject o, string key, string where, double min, double max, bool whole = false)
     {
         if (o[key] is not JsonNode n) return null;
-        string path = where.Contains("$.") ? $"{where}.{key}" : $"{where}: $.{key}";
+        string path = where.Contains(": $") ? $"{where}.{key}" : $"{where}: $.{key}";
         if (n is not JsonValue v || !v.TryGetValue(out double d) || !double.IsFinite(d)) throw new InputException(path, "must be a number");
         if (d < min || d > max || (whole && d != Math.Floor(d)))
             throw new InputException(path, string.Create(CultureInfo.InvariantCulture, $"{d} is outside {min}–{max}{(whole ? " or not whole" : "")}"));

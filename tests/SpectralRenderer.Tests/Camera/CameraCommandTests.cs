@@ -12,14 +12,14 @@ namespace SpectralRenderer.Tests.Camera;
 public class CameraCommandTests
 {
     /// <summary>Three flat grey quads (reflectance 0.2, 0.5, 0.9) lit head-on by one light, so each band radiance is R·E_b exactly.</summary>
-    static string GreyChart(string light, string bands, int width = 24, int height = 8)
+    static string GreyChart(string light, string bands, int width = 24, int height = 8, string cameraExtra = "")
     {
         var dir = Reference.TempDir();
         var scene = Path.Combine(dir, "greys.json");
         File.WriteAllText(scene, $$"""
         {
           "bands": "{{bands}}", "white": "{{light}}",
-          "camera": { "position": [0, 0, 10], "look_at": [0, 0, 0], "fov": 30, "width": {{width}}, "height": {{height}} },
+          "camera": { "position": [0, 0, 10], "look_at": [0, 0, 0], "fov": 30, "width": {{width}}, "height": {{height}}{{cameraExtra}} },
           "materials": { "g2": { "diffuse": 0.2 }, "g5": { "diffuse": 0.5 }, "g9": { "diffuse": 0.9 } },
           "lights": [ { "type": "directional", "direction": [0, 0, -1], "spectrum": "{{light}}" } ],
           "objects": [
@@ -227,5 +227,53 @@ public class CameraCommandTests
         Assert.Equal(2, code);
         Assert.Contains("$.fill_factor", err);
         Assert.Single(err.Trim().Split('\n'));
+    }
+
+    const string MyWheel = """
+        { "preset": "wheel-6", "name": "my-wheel", "f_number": 2.8, "read_noise_v": 2e-3,
+          "channels": [ { "name": "F450", "gaussian": { "centre_nm": 450, "fwhm_nm": 30 } }, { "name": "F600", "box": [580, 620] } ] }
+        """;
+
+    [Fact]
+    public void SensorInlineInTheScenesCamera_IsTheSameSensorAsTheFile_AndRecoverReadsItBack()
+    {
+        // The same sensor object as a file (--sensor FILE) and inline in the scene's camera (no --sensor): identical raw
+        // files and the same channel weights in camera.json, and `spectral recover` re-resolves it from the render.
+        var inline = GreyChart("D65", "380:780:20", cameraExtra: $", \"sensor\": {MyWheel}");
+        var plain = GreyChart("D65", "380:780:20");
+        var file = Path.Combine(plain, "my-wheel.json");
+        File.WriteAllText(file, MyWheel);
+        string Run(string render, params string[] extra)
+        {
+            var o = Path.Combine(render, "cam");
+            var (code, _, err) = CliRunner.Run(["camera", render, "--seed", "3", "-o", o, .. extra]);
+            Assert.True(code == 0, err);
+            return o;
+        }
+        var a = Run(inline);
+        var b = Run(plain, "--sensor", file);
+        Assert.Equal(File.ReadAllBytes(Path.Combine(b, "raw.npy")), File.ReadAllBytes(Path.Combine(a, "raw.npy")));
+        var ja = JsonNode.Parse(File.ReadAllText(Path.Combine(a, "camera.json")))!;
+        var jb = JsonNode.Parse(File.ReadAllText(Path.Combine(b, "camera.json")))!;
+        Assert.Equal("scene", (string)ja["sensor_argument"]!);
+        Assert.Equal("my-wheel", (string)ja["sensor"]!["name"]!);
+        Assert.Equal(2, ja["sensor"]!["channels"]!.AsArray().Count);
+        Assert.Equal(jb["sensor"]!["channels"]!.ToJsonString(), ja["sensor"]!["channels"]!.ToJsonString());   // with the weights
+        var (rc, csv, rerr) = CliRunner.Run("recover", a, "--method", "wiener", "--csv");
+        Assert.True(rc == 0, rerr);
+        Assert.Contains("wiener,", csv);
+
+        // A preset name inline, and an inline error naming the scene file and the JSON path.
+        var named = GreyChart("D65", "380:780:20", cameraExtra: ", \"sensor\": \"nikon-d5100\"");
+        Assert.Equal("nikon-d5100", (string)JsonNode.Parse(File.ReadAllText(Path.Combine(Run(named), "camera.json")))!["sensor"]!["name"]!);
+        var bad = GreyChart("D65", "380:780:20", cameraExtra: ", \"sensor\": { \"preset\": \"wheel-6\", \"fill_factor\": 3 }");
+        var (code, _, err) = CliRunner.Run("camera", bad);
+        Assert.Equal(2, code);
+        Assert.Contains("greys.json: $.camera.sensor.fill_factor", err);
+        Assert.Single(err.Trim().Split('\n'));
+        // No sensor anywhere: --sensor is required.
+        (code, _, err) = CliRunner.Run("camera", plain);
+        Assert.Equal(2, code);
+        Assert.Contains("--sensor is required", err);
     }
 }

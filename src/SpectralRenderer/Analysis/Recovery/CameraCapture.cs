@@ -34,7 +34,11 @@ public sealed class CameraCapture
             var scene = CameraScene.Open(renderDir);
             var sim = m["simulation"]!;
             var exposures = sim["exposure_s"]!.AsArray().Select(v => (double)v!).ToArray();
-            var sensor = SensorFile.Resolve((string)m["sensor_argument"]!);
+            var argument = (string)m["sensor_argument"]!;
+            var sensor = argument == SensorFile.SceneArgument
+                ? SensorFile.FromScene(scene.Folder.Manifest.ResolvedScene, scene.Folder.Manifest.Scene)
+                  ?? throw new InputException(path, "names the scene's sensor but the render's scene has none", "run 'spectral camera' again")
+                : SensorFile.Resolve(argument);
             var options = new SimulationOptions { Seed = (ulong)sim["seed"]!, Noise = ((string)sim["noise"]!).StartsWith("on", StringComparison.Ordinal) };
             double scale = (double)sim["radiance_scale_w_m2_sr_nm_per_band_unit"]!;
             var weights = ChannelWeights.Compute(sensor, scene.Grid, scene.Light, scale);
