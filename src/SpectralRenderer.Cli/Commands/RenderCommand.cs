@@ -65,10 +65,11 @@ public static class RenderCommand
     {
         var a = new Arguments("render", argv, Values, ["--quiet"], new Dictionary<string, string> { ["-o"] = "--out" });
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
-        if (a.Positionals.Count != 1) throw new InputException("", a.Positionals.Count == 0 ? "no scene file given" : $"unexpected argument '{a.Positionals[1]}'", "usage: spectral render SCENE.json -o OUTDIR");
+        if (a.Positionals.Count != 1) throw new InputException("command line", a.Positionals.Count == 0 ? "no scene file given" : $"unexpected argument {MessageText.Quote(a.Positionals[1])}", "usage: spectral render SCENE.json -o OUTDIR");
         var scenePath = a.Positionals[0];
         bool fromStdin = scenePath == SceneLoader.StandardInput;
         var outDir = a.Value("--out") ?? Path.Combine("out", fromStdin ? "stdin" : Path.GetFileNameWithoutExtension(scenePath));
+        if (string.IsNullOrWhiteSpace(outDir)) throw new InputException("-o", "the output folder name is empty", "give a folder name, e.g. -o out/scene");
         int? threads = a.Int("--threads", 1, 1024);
         bool quiet = a.Flag("--quiet");
 
@@ -146,7 +147,7 @@ public static class RenderCommand
         if (shard is not null)
         {
             var s = Distributed.Shard.Parse(shard);
-            if (shards is { } n && n != s.Count) throw new InputException("--shards", $"{n} disagrees with --shard {shard}");
+            if (shards is { } n && n != s.Count) throw new InputException("--shards", $"{n} disagrees with --shard {shard}", "give --shard I/N alone, or --shards N equal to its N");
             return (s.Strip(width, height), $"{s} (--shard)");
         }
         if (Distributed.SchedulerEnvironment.Resolve(shards) is { } env)
@@ -174,9 +175,10 @@ public static class RenderCommand
             var range = SceneRange(sceneText());
             bands = string.Create(CultureInfo.InvariantCulture, $"{range.Start}:{range.End}:{n}");
         }
+        if (bands is not null) Spectra.BandGrid.Parse(bands, a.Value("--band-range") is not null ? "--band-range" : "--bands");  // reported under the option given
         var models = a.Values("--models").ToList();
         foreach (var m in models)
-            if (!Directory.Exists(m)) throw new InputException("--models", $"folder '{m}' does not exist");
+            if (!Directory.Exists(m)) throw new InputException("--models", $"folder {MessageText.Quote(m, 120)} does not exist", "pass the folder that holds the mesh files");
         return new SceneOverrides
         {
             Width = a.Int("--width", int.MinValue, int.MaxValue),
@@ -225,7 +227,8 @@ public static class RenderCommand
         }
         catch (Exception e) when (e is IOException or UnauthorizedAccessException)
         {
-            throw new InputException(outDir, $"cannot be written: {e.Message}", "choose a folder you can write to");
+            string reason = e is PathTooLongException ? "the path is too long" : e.Message.Replace(Path.GetFullPath(outDir), "it").Replace(outDir, "it");
+            throw new InputException(outDir, $"cannot be written: {reason}", "choose a folder you can write to");
         }
     }
 }

@@ -56,7 +56,7 @@ public sealed class RenderFolder
         var path = System.IO.Path.Combine(dir, "object-id.png");
         if (!File.Exists(path)) throw new InputException(dir, "has no object-id.png", "render with --formats including aov");
         var png = PngReader.Read(path);
-        if (png.Width != image.Width || png.Height != image.Height) throw new InputException(path, $"is {png.Width}×{png.Height} but the cube is {image.Width}×{image.Height}");
+        if (png.Width != image.Width || png.Height != image.Height) throw new InputException(path, $"is {png.Width}×{png.Height} but the cube is {image.Width}×{image.Height}", "the render folder mixes files of different renders: render it again");
         var ids = new int[png.Width * png.Height];
         for (int i = 0; i < ids.Length; i++) ids[i] = png.Samples[i * png.Channels] - 1;
         return ids;

@@ -195,8 +195,14 @@ public sealed record RenderManifest
         var path = Path.Combine(dir, FileName);
         if (!File.Exists(path)) throw new InputException(dir, $"has no {FileName}", "give the -o folder of a 'spectral render' run");
         JsonObject json;
-        try { json = JsonNode.Parse(File.ReadAllText(path)) as JsonObject ?? throw new InputException(path, "is not a JSON object"); }
-        catch (JsonException e) { throw new InputException($"{path}:{(e.LineNumber ?? 0) + 1}", $"broken JSON: {e.Message}"); }
+        try { json = JsonNode.Parse(InputFile.ReadAllText(path, FileName)) as JsonObject ?? throw new InputException($"{path}: $", "is not a JSON object", "render.json must be the manifest a render wrote: render the folder again"); }
+        catch (JsonException e)
+        {
+            string msg = e.Message;
+            int cut = msg.IndexOf(" LineNumber:", StringComparison.Ordinal);
+            if (cut > 0) msg = msg[..cut].TrimEnd('.', ' ');
+            throw new InputException($"{path}:{(e.LineNumber ?? 0) + 1}:{(e.BytePositionInLine ?? 0) + 1}", $"broken JSON: {msg}", "render.json is damaged: render the folder again");
+        }
         return Parse(json, path);
     }
 

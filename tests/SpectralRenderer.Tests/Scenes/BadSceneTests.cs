@@ -70,7 +70,7 @@ public class BadSceneTests
         Assert.Contains("/nonexistent/scene.json: scene file not found", err);
         (code, _, err) = CliRunner.Run("render", "x.json", "--spp", "zero");
         Assert.Equal(2, code);
-        Assert.Contains("--spp 'zero' is not a whole number", err);
+        Assert.Contains("--spp: 'zero' is not a whole number", err);
         (code, _, err) = CliRunner.Run("rendr");
         Assert.Equal(2, code);
         Assert.Contains("did you mean 'render'?", err);
