@@ -67,6 +67,7 @@ public static class CommandLine
         return e switch
         {
             InputException => (BadInput, e.Message),
+            WorkFailedException or InterruptedException => (Failure, e.Message),
             OperationCanceledException => (Failure, "interrupted; no output was left under a final name"),
             OutOfMemoryException or InsufficientExecutionStackException =>
                 (Failure, $"out of memory ({e.GetType().Name}) (hint: lower the resolution, band count or mesh size)"),

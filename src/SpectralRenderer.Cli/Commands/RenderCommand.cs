@@ -1,4 +1,5 @@
 using System.Runtime.CompilerServices;
+using System.Runtime.InteropServices;
 using System.Globalization;
 using System.Text.Json.Nodes;
 using SpectralRenderer.Diagnostics;
@@ -90,11 +91,14 @@ public static class RenderCommand
             throw new InputException(scenePath, "output.exposure \"auto\" is chosen from the whole image, which a shard or crop does not see",
                 "give a fixed \"exposure\" (a whole render's render.json states the one auto chose, $.colour.exposure)");
         foreach (var w in scene.Warnings) stderr.WriteLine(w);
-        PrepareOutputFolder(outDir);
+        var folder = OutputFolder.Begin(outDir);
 
+        // SIGINT and SIGTERM stop the render at the next pixel (and the writers at the next file): the staged files
+        // are removed, the output folder keeps what it held, and the message says so.
         using var cancel = new CancellationTokenSource();
-        ConsoleCancelEventHandler onCancel = (_, e) => { e.Cancel = true; cancel.Cancel(); };
-        Console.CancelKeyPress += onCancel;
+        using var onInterrupt = PosixSignalRegistration.Create(PosixSignal.SIGINT, c => { c.Cancel = true; cancel.Cancel(); });
+        using var onTerminate = PosixSignalRegistration.Create(PosixSignal.SIGTERM, c => { c.Cancel = true; cancel.Cancel(); });
+        int tilesDone = 0, tilesTotal = 0;
         try
         {
             var progress = quiet ? null : ProgressBar.For(stderr);
@@ -103,8 +107,24 @@ public static class RenderCommand
             var integrator = Integrators.Create(scene, geometry);
             double buildSeconds = setup.Elapsed.TotalSeconds;
             int degenerate = scene.Objects.Sum(o => o.Mesh?.DegenerateCount ?? 0);
-            var result = Renderer.Render(scene, integrator, threads ?? 0, progress is null ? null : progress.Report, cancel.Token, crop);
+            RenderResult result;
+            try
+            {
+                result = Renderer.Render(scene, integrator, threads ?? 0, p =>
+                {
+                    tilesDone = p.TilesDone; tilesTotal = p.Tiles;
+                    progress?.Report(p);
+                }, cancel.Token, crop);
+            }
+            catch (OperationCanceledException e)
+            {
+                folder.Abandon();
+                throw new InterruptedException($"interrupted while rendering ({tilesDone} of {(tilesTotal > 0 ? tilesTotal : "all")} tiles done): nothing was written; {folder.Final} {(folder.HoldsRender ? "still holds the previous render, unchanged" : "holds no render")}", e.CancellationToken);
+            }
             progress?.Finish();
+            if (result.Rays.OverBudgetRays > 0)
+                stderr.WriteLine(MessageText.Line($"spectral render: warning: {result.Rays.OverBudgetRays} camera rays reached the ray budget of {scene.RayBudget} rays; their deepest reflections and refractions are missing",
+                    " (hint: raise \"ray_budget\", or lower \"max_depth\" or raise \"min_ray_weight\" in the scene)"));
             var writeClock = System.Diagnostics.Stopwatch.StartNew();
             var run = new JsonObject
             {
@@ -113,6 +133,10 @@ public static class RenderCommand
                 ["build_s"] = buildSeconds,
                 ["triangles"] = geometry.TriangleCount,
                 ["degenerate_triangles_skipped"] = degenerate,
+                ["min_ray_weight"] = scene.MinRayWeight,
+                ["ray_budget"] = scene.RayBudget,
+                ["rays_pruned_by_weight"] = result.Rays.PrunedRays,
+                ["camera_rays_over_budget"] = result.Rays.OverBudgetRays,
             };
             if (shard is not null) run["shard"] = shard;
             // The per-light transfer (opt-in): the same camera rays traced once more, recording eq. 2's factors per light.
@@ -124,7 +148,7 @@ public static class RenderCommand
                 run["light_transfer_s"] = transferClock.Elapsed.TotalSeconds;
             }
             run["overrides"] = OverridesJson(overrides);
-            var files = RenderOutputWriter.Write(scene, result, outDir, run, cancel.Token, transfer);
+            var files = RenderOutputWriter.Write(scene, result, folder, run, cancel.Token, transfer);
             if (!quiet)
             {
                 double secs = result.Elapsed.TotalSeconds;
@@ -133,7 +157,11 @@ public static class RenderCommand
             }
             return CommandLine.Success;
         }
-        finally { Console.CancelKeyPress -= onCancel; }
+        catch (Exception e) when (e is not InterruptedException)
+        {
+            folder.Abandon();
+            throw;
+        }
     }
 
     /// <summary>The film pixels to render (null: all) from --crop, --shard or a job array's variables, and the shard's description.</summary>

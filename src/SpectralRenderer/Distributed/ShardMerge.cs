@@ -33,35 +33,46 @@ public static class ShardMerge
         int width = first.Width, height = first.Height, bands = first.Grid.Count;
         var files = first.Files!.ToList();
 
-        Directory.CreateDirectory(outDir);
-        RenderOutputWriter.ClearPrevious(outDir);
-        float scale = files.Any(f => f.StartsWith("bands", StringComparison.Ordinal)) ? BandScale(parts, width, bands, cancel) : 0;
-
-        var bandFiles = files.Where(f => f.StartsWith("bands/", StringComparison.Ordinal)).ToList();
-        bool mosaic = files.Contains("bands.png");
-        if (bandFiles.Count > 0 || mosaic) MergeBands(parts, outDir, width, height, bands, scale, bandFiles, mosaic, cancel);
-        foreach (var f in files)
+        // Merged into a staging folder beside OUTDIR and swapped in whole (OutputFolder), as a render is.
+        var folder = OutputFolder.Begin(outDir);
+        var staging = folder.Staging;
+        try
         {
-            cancel.ThrowIfCancellationRequested();
-            var target = Path.Combine(outDir, f);
-            switch (f)
+            float scale = files.Any(f => f.StartsWith("bands", StringComparison.Ordinal)) ? BandScale(parts, width, bands, cancel) : 0;
+
+            var bandFiles = files.Where(f => f.StartsWith("bands/", StringComparison.Ordinal)).ToList();
+            bool mosaic = files.Contains("bands.png");
+            if (bandFiles.Count > 0 || mosaic) MergeBands(parts, staging, width, height, bands, scale, bandFiles, mosaic, cancel);
+            foreach (var f in files)
             {
-                case "preview.png": MergePng(parts, f, target, width, height); break;
-                case "object-id.png": MergePng(parts, f, target, width, height); break;
-                case "mask-highlight.png": MergePng(parts, f, target, width, height); break;
-                case var m when m.StartsWith("mask-lit-", StringComparison.Ordinal): MergePng(parts, f, target, width, height); break;
-                case "spectral.exr" or "reflectance.exr": MergeExr(parts, f, target, width, height); break;
-                case "spectral.img": MergeEnvi(parts, target, width, bands); break;
-                case "spectral.hdr": MergeEnviHeader(parts[0], target, height); break;
-                case "spectral.npy": MergeNpy(parts, target, width, height, bands); break;
-                case "wavelengths.csv": AtomicFile.WriteAllBytes(target, File.ReadAllBytes(Path.Combine(parts[0].Dir, f))); break;
-                case var b when b.StartsWith("bands/", StringComparison.Ordinal) || b == "bands.png": break;   // above
-                default: throw new InputException(Path.Combine(parts[0].Dir, "render.json"), $"lists '{f}', a file merge does not know", "merge shards written by the same version");
+                cancel.ThrowIfCancellationRequested();
+                var target = Path.Combine(staging, f);
+                switch (f)
+                {
+                    case "preview.png": MergePng(parts, f, target, width, height); break;
+                    case "object-id.png": MergePng(parts, f, target, width, height); break;
+                    case "mask-highlight.png": MergePng(parts, f, target, width, height); break;
+                    case var m when m.StartsWith("mask-lit-", StringComparison.Ordinal): MergePng(parts, f, target, width, height); break;
+                    case "spectral.exr" or "reflectance.exr": MergeExr(parts, f, target, width, height); break;
+                    case "spectral.img": MergeEnvi(parts, target, width, bands); break;
+                    case "spectral.hdr": MergeEnviHeader(parts[0], target, height); break;
+                    case "spectral.npy": MergeNpy(parts, target, width, height, bands); break;
+                    case "wavelengths.csv": AtomicFile.WriteAllBytes(target, File.ReadAllBytes(Path.Combine(parts[0].Dir, f))); break;
+                    case var b when b.StartsWith("bands/", StringComparison.Ordinal) || b == "bands.png": break;   // above
+                    default: throw new InputException(Path.Combine(parts[0].Dir, "render.json"), $"lists '{f}', a file merge does not know", "merge shards written by the same version");
+                }
             }
+            var manifest = Manifest(parts, scale, commandLine);
+            AtomicFile.WriteAllText(Path.Combine(staging, RenderManifest.FileName), manifest.ToJsonText());
         }
-        var manifest = Manifest(parts, scale, commandLine);
-        AtomicFile.WriteAllText(Path.Combine(outDir, RenderManifest.FileName), manifest.ToJsonText());
-        return [.. files, RenderManifest.FileName];
+        catch
+        {
+            folder.Abandon();
+            throw;
+        }
+        List<string> written = [.. files, RenderManifest.FileName];
+        folder.Commit(written);
+        return written;
     }
 
     /// <summary>Reads and checks the shards: complete, of one scene and settings, full-width strips tiling the film once.</summary>

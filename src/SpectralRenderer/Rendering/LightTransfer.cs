@@ -421,7 +421,7 @@ public sealed class LightTransfer
         }
 
         /// <summary>
-        /// Eq. 2 at the hit, as <see cref="WhittedIntegrator.Radiance(Ray, int, int, Span{float}, Span{float}, ref RayCounters, ref PixelInfo)"/>
+        /// Eq. 2 at the hit, as <see cref="WhittedIntegrator.Radiance(Ray, int, int, float, Span{float}, Span{float}, ref RayCounters, ref PixelInfo)"/>
         /// computes it, each term recorded as its component's factor times the path's scalar weight <paramref name="weight"/>
         /// (1/spp times the Fresnel factors along it).
         /// </summary>

@@ -60,6 +60,16 @@ public sealed class Scene
     public required float[] GlobalAmbient { get; init; }
     public bool HasGlobalAmbient { get; init; }
     public int MaxDepth { get; init; } = 5;
+    /// <summary>
+    /// Adaptive tree depth (Hall &amp; Greenberg 1983): a reflected or refracted ray whose accumulated weight — the
+    /// product of the k_r, k_t (and Fresnel factors) along its path, at its largest band — falls below this is not
+    /// traced, since it cannot change the pixel by more than this fraction of what a directly seen surface shows.
+    /// </summary>
+    public float MinRayWeight { get; init; } = DefaultMinRayWeight;
+    public const float DefaultMinRayWeight = 1e-3f;
+    /// <summary>The most rays one camera ray may cost, itself and its shadow, reflected and refracted rays included; beyond it, its branches end and the ray is counted.</summary>
+    public int RayBudget { get; init; } = DefaultRayBudget;
+    public const int DefaultRayBudget = 100_000;
     public required OutputOptions Output { get; init; }
     /// <summary>The resolved scene as JSON (for render.json).</summary>
     public System.Text.Json.Nodes.JsonObject? Resolved { get; init; }

@@ -241,7 +241,7 @@ public sealed partial class SceneLoader
 
     // ---- the scene ----------------------------------------------------------------------------
 
-    static readonly string[] TopKeys = ["name", "description", "bands", "wave", "integration", "radiometry", "observer", "white", "scaling", "spectra", "materials", "lights", "objects", "background", "ambient", "max_depth", "camera", "output"];
+    static readonly string[] TopKeys = ["name", "description", "bands", "wave", "integration", "radiometry", "observer", "white", "scaling", "spectra", "materials", "lights", "objects", "background", "ambient", "max_depth", "min_ray_weight", "ray_budget", "camera", "output"];
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
     Scene Build(JsonElement root)
@@ -324,6 +324,8 @@ public sealed partial class SceneLoader
 
         var output = ParseOutput(root);
         int depth = Integer(root, "max_depth", "$", 5, 0, 64);
+        float minWeight = (float)Number(root, "min_ray_weight", "$", Scene.DefaultMinRayWeight, 0, 1);
+        int budget = Integer(root, "ray_budget", "$", Scene.DefaultRayBudget, 1, 1_000_000_000);
         var background = TryGet(root, "background", out var bg) ? Bands(bg, "$.background") : new float[SpectralMath.Padded(_grid.Count)];
         bool hasAmbient = TryGet(root, "ambient", out var amb);
         var ambient = hasAmbient ? Bands(amb, "$.ambient") : new float[SpectralMath.Padded(_grid.Count)];
@@ -350,6 +352,8 @@ public sealed partial class SceneLoader
             GlobalAmbient = ambient,
             HasGlobalAmbient = hasAmbient && SpectralMath.Any(ambient),
             MaxDepth = depth,
+            MinRayWeight = minWeight,
+            RayBudget = budget,
             Output = output,
             Resolved = Resolved(root),
         };
