@@ -91,6 +91,7 @@ public static class RenderCommand
             throw new InputException(scenePath, "output.exposure \"auto\" is chosen from the whole image, which a shard or crop does not see",
                 "give a fixed \"exposure\" (a whole render's render.json states the one auto chose, $.colour.exposure)");
         foreach (var w in scene.Warnings) stderr.WriteLine(w);
+        RenderMemory.Check(scene, threads ?? 0);
         var folder = OutputFolder.Begin(outDir);
 
         // SIGINT and SIGTERM stop the render at the next pixel (and the writers at the next file): the staged files

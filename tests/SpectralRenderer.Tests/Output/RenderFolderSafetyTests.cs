@@ -196,3 +196,57 @@ public class RenderFolderSafetyTests
         Assert.Empty(Directory.GetFiles(dir, "*.tmp", SearchOption.AllDirectories));
     }
 }
+
+/// <summary>The memory check counts what the render and its writers hold and respects the GC heap limit.</summary>
+public class RenderMemoryTests
+{
+    const string Big = """
+    {
+      "camera": { "position": [0, 0, 5], "look_at": [0, 0, 0], "width": 1024, "height": 1024 },
+      "materials": { "green": { "diffuse": "colorchecker:14" } },
+      "lights": [ { "type": "point", "position": [0, 3, 3], "spectrum": "D65" } ],
+      "objects": [ { "type": "sphere", "radius": 1, "material": "green" } ]
+    }
+    """;
+
+    static (int Exit, string Err) RunLimited(string dir, params string[] extra)
+    {
+        var scene = Path.Combine(dir, "big.json");
+        File.WriteAllText(scene, Big);
+        var psi = new ProcessStartInfo("dotnet") { RedirectStandardError = true, RedirectStandardOutput = true, UseShellExecute = false };
+        psi.Environment["DOTNET_GCHeapHardLimit"] = "0x20000000";   // 512 MiB
+        foreach (var a in new[] { Path.Combine(AppContext.BaseDirectory, "spectral.dll"), "render", scene, "-o", Path.Combine(dir, "out"), "--quiet" }.Concat(extra))
+            psi.ArgumentList.Add(a);
+        using var p = Process.Start(psi)!;
+        var err = p.StandardError.ReadToEndAsync();
+        _ = p.StandardOutput.ReadToEnd();
+        Assert.True(p.WaitForExit(120_000));
+        return (p.ExitCode, err.Result.Trim());
+    }
+
+    [Fact]
+    [Trait("Category", "Memory")]
+    public void Under_a_512_MiB_heap_limit_a_render_too_big_for_its_writers_is_refused_before_it_starts()
+    {
+        // 1024² × 20 bands: a 80 MiB framebuffer (the loader's own check passes), but with every writer about 560 MiB.
+        var dir = Reference.TempDir();
+        var (code, err) = RunLimited(dir);
+        Assert.Equal(2, code);
+        Assert.Contains("$.camera: a 1024×1024×20 render needs about", err);
+        Assert.Contains("the GC heap limit of 512 MiB", err);
+        Assert.True(err.Length <= 330, err);
+        Assert.Contains("(hint: ", err);
+        Assert.False(Directory.Exists(Path.Combine(dir, "out")));
+    }
+
+    [Fact]
+    [Trait("Category", "Memory")]
+    public void Under_a_512_MiB_heap_limit_a_render_the_check_passes_completes_with_every_writer()
+    {
+        // 768² × 20 bands with every format: about 314 MiB by the estimate; it must not run out of memory.
+        var dir = Reference.TempDir();
+        var (code, err) = RunLimited(dir, "--width", "768", "--height", "768");
+        Assert.True(code == 0, err);
+        Assert.True(File.Exists(Path.Combine(dir, "out", "spectral.npy")));
+    }
+}
