@@ -488,6 +488,9 @@ for label, data, pat in [
     ("npy-2d", npy((48, 20), body=b"\0" * 3840), r"array has 2 dimensions"),
     ("npy-wrong-bands", npy((6, 8, 10), body=b"\0" * 1920), r"array has 10 bands"),
     ("npy-overflow-shape", npy((2147483647, 2147483647, 2147483647)), r"too large|holds only"),
+    # Found by fuzzing (fuzz/run.sh npy): a header length that overflows int, and one cut short.
+    ("npy-fuzz-length-overflow", bytes.fromhex("934e554d5059030051657386"), r"header claims 2255709521 bytes"),
+    ("npy-fuzz-length-short", bytes.fromhex("934e554d5059010076"), r"truncated \(in the header length\)"),
     ("npy-ansi-dtype", npy((6, 8, 20), dtype="\x1b[31m", body=b"\0" * 3840), r"unsupported dtype"),
 ]:
     write(label + ".npy", data)
@@ -578,7 +581,7 @@ for label, data, pat in [
     folder_case(label, [f"copy {{in}}/{label}.png r/object-id.png"], pat, "object-id.png", PNGPLACE + r"|object-id\.png: ", cmd=COLORCHECK)
 
 
-MANIFEST_VALIDATION = False  # step 4: analysis commands validate the folder through the manifest
+MANIFEST_VALIDATION = True  # step 4: analysis commands validate the folder through the manifest
 MANIFESTPLACE = r"render\.json(:\d+)?: (\$|line)|render\.json:\d+"
 for label, text, pat in [] if not MANIFEST_VALIDATION else [
     ("manifest-not-json", "{ not json", r"render\.json.*(broken JSON|JSON syntax)"),

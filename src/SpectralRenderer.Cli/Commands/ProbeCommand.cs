@@ -79,11 +79,6 @@ public static class ProbeCommand
         return sb.ToString();
     }
 
-    /// <summary>A render folder's cube: the grid from wavelengths.csv when present, else from render.json.</summary>
-    public static SpectralImage OpenCube(string dir)
-    {
-        if (!Directory.Exists(dir)) throw new InputException(dir, "no such render folder", "give the -o folder of a 'spectral render' run");
-        var wl = Path.Combine(dir, "wavelengths.csv");
-        return File.Exists(wl) ? SpectralFiles.Read(dir, WavelengthsCsv.Read(wl)) : RenderFolder.Open(dir).Image;
-    }
+    /// <summary>A render folder's cube, through its manifest (present, consistent, every listed file there).</summary>
+    public static SpectralImage OpenCube(string dir) => RenderFolder.OpenCube(dir).Image;
 }

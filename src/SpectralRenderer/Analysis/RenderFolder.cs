@@ -33,13 +33,7 @@ public sealed class RenderFolder
 
     public static RenderFolder Open(string dir)
     {
-        if (!Directory.Exists(dir)) throw new InputException(dir, "no such render folder", "give the -o folder of a 'spectral render' run");
-        var manifest = RenderManifest.Read(dir);
-        var grid = manifest.Grid;
-        var image = SpectralFiles.Read(dir, grid);
-        if (image.Width != manifest.Width || image.Height != manifest.Height || image.Bands != grid.Count)
-            throw new InputException(dir, $"its spectral cube is {image.Width}×{image.Height}×{image.Bands} but render.json describes {manifest.Width}×{manifest.Height}×{grid.Count}",
-                "the folder mixes two renders; render again into an empty folder");
+        var (manifest, image) = OpenCube(dir);
         (float[], float[], float[])? pixelXyz = null;
         var exr = System.IO.Path.Combine(dir, "spectral.exr");
         if (File.Exists(exr))
@@ -49,6 +43,22 @@ public sealed class RenderFolder
                 pixelXyz = (px, py, pz);
         }
         return new RenderFolder { Path = dir, Manifest = manifest, Image = image, ObjectIds = ReadIds(dir, image), PixelXyz = pixelXyz };
+    }
+
+    /// <summary>
+    /// A render folder's manifest and spectral cube, validated: render.json present and consistent with itself
+    /// (a folder without one is not a render), and the cube of the size and band count it describes.
+    /// </summary>
+    public static (RenderManifest Manifest, SpectralImage Image) OpenCube(string dir)
+    {
+        if (!Directory.Exists(dir)) throw new InputException(dir, "no such render folder", "give the -o folder of a 'spectral render' run");
+        var manifest = RenderManifest.Read(dir);
+        var grid = manifest.Grid;
+        var image = SpectralFiles.Read(dir, grid);
+        if (image.Width != manifest.Width || image.Height != manifest.Height || image.Bands != grid.Count)
+            throw new InputException($"{System.IO.Path.Combine(dir, RenderManifest.FileName)}: $.width", $"describes {manifest.Width}×{manifest.Height}×{grid.Count} but the spectral cube is {image.Width}×{image.Height}×{image.Bands}",
+                "the folder mixes two renders; render again into an empty folder");
+        return (manifest, image);
     }
 
     static int[] ReadIds(string dir, SpectralImage image)

@@ -43,21 +43,14 @@ public static class NpyReader
         catch (EndOfStreamException) { throw new InputException($"{where}: byte 0", "not a .npy file (too short)", "the file was cut short: save it again with numpy.save"); }
         if (!pre[..6].SequenceEqual(NpyWriter.Magic)) throw new InputException($"{where}: byte 0", "not a .npy file (no \\x93NUMPY magic)", "save the array with numpy.save");
         int major = pre[6];
-        int headerLength;
-        if (major == 1)
-        {
-            Span<byte> l = stackalloc byte[2];
-            stream.ReadExactly(l);
-            headerLength = BinaryPrimitives.ReadUInt16LittleEndian(l);
-        }
-        else if (major is 2 or 3)
-        {
-            Span<byte> l = stackalloc byte[4];
-            stream.ReadExactly(l);
-            headerLength = checked((int)BinaryPrimitives.ReadUInt32LittleEndian(l));
-        }
-        else throw new InputException($"{where}: byte 6", $".npy format version {major}.{pre[7]} is not supported", "save with numpy.save (format 1.0, 2.0 or 3.0)");
-        if (stream.CanSeek && headerLength > stream.Length - stream.Position)
+        if (major is not (1 or 2 or 3))
+            throw new InputException($"{where}: byte 6", $".npy format version {major}.{pre[7]} is not supported", "save with numpy.save (format 1.0, 2.0 or 3.0)");
+        // The header length: uint16 (1.0) or uint32 (2.0, 3.0), little-endian (found by fuzzing: a short or huge one).
+        Span<byte> l = stackalloc byte[major == 1 ? 2 : 4];
+        try { stream.ReadExactly(l); }
+        catch (EndOfStreamException) { throw new InputException($"{where}: byte 8", "file is truncated (in the header length)", "the file was cut short: save it again with numpy.save"); }
+        long headerLength = major == 1 ? BinaryPrimitives.ReadUInt16LittleEndian(l) : BinaryPrimitives.ReadUInt32LittleEndian(l);
+        if (headerLength > InputFile.MaxTextBytes || (stream.CanSeek && headerLength > stream.Length - stream.Position))
             throw new InputException($"{where}: byte 8", $"the header claims {headerLength} bytes, more than the file holds", "the file was cut short: save it again with numpy.save");
         var hb = new byte[headerLength];
         try { stream.ReadExactly(hb); }

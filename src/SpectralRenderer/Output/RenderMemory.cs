@@ -24,7 +24,7 @@ public static class RenderMemory
             ("framebuffer", 4 * n * bands),
             ("per-pixel arrays", 16 * n),
         };
-        int triangles = scene.Objects.Sum(o => o.Mesh?.TriangleCount ?? 0);
+        int triangles = scene.TriangleCount;
         if (triangles > 0) parts.Add(("BVH", 160L * triangles));
         if (Has(OutputProducts.Bands) || Has(OutputProducts.Exr) || Has(OutputProducts.Envi)) parts.Add(("band planes", 4 * n * bands));
         if (Has(OutputProducts.Png) || Has(OutputProducts.Exr)) parts.Add(("XYZ planes", 24 * n));

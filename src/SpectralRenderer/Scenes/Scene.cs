@@ -69,11 +69,13 @@ public sealed class Scene
     public const float DefaultMinRayWeight = 1e-3f;
     /// <summary>The most rays one camera ray may cost, itself and its shadow, reflected and refracted rays included; beyond it, its branches end and the ray is counted.</summary>
     public int RayBudget { get; init; } = DefaultRayBudget;
-    public const int DefaultRayBudget = 100_000;
+    public const int DefaultRayBudget = 20_000;
     public required OutputOptions Output { get; init; }
     /// <summary>The resolved scene as JSON (for render.json).</summary>
     public System.Text.Json.Nodes.JsonObject? Resolved { get; init; }
 
     public int Bands => Grid.Count;
+    /// <summary>Triangles over all meshes of the scene.</summary>
+    public int TriangleCount => Objects.Sum(o => o.Mesh?.TriangleCount ?? 0);
     public int PaddedBands => SpectralMath.Padded(Grid.Count);
 }
