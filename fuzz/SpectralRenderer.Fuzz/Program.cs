@@ -3,7 +3,7 @@ using SharpFuzz;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Geometry;
 using SpectralRenderer.Imaging;
-using SpectralRenderer.Scenes;
+using SpectralRenderer.Scenes.Loading;
 using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Fuzz;

@@ -97,8 +97,11 @@ public static class RenderCommand
         // SIGINT and SIGTERM stop the render at the next pixel (and the writers at the next file): the staged files
         // are removed, the output folder keeps what it held, and the message says so.
         using var cancel = new CancellationTokenSource();
-        using var onInterrupt = PosixSignalRegistration.Create(PosixSignal.SIGINT, c => { c.Cancel = true; cancel.Cancel(); });
-        using var onTerminate = PosixSignalRegistration.Create(PosixSignal.SIGTERM, c => { c.Cancel = true; cancel.Cancel(); });
+        long signalledAt = 0;
+        void Stop(PosixSignalContext c) { c.Cancel = true; Interlocked.CompareExchange(ref signalledAt, System.Diagnostics.Stopwatch.GetTimestamp(), 0); cancel.Cancel(); }
+        using var onInterrupt = PosixSignalRegistration.Create(PosixSignal.SIGINT, Stop);
+        using var onTerminate = PosixSignalRegistration.Create(PosixSignal.SIGTERM, Stop);
+        string StoppedAfter() => signalledAt == 0 ? "" : string.Create(CultureInfo.InvariantCulture, $", {System.Diagnostics.Stopwatch.GetElapsedTime(signalledAt).TotalSeconds:0.000} s after the signal");
         int tilesDone = 0, tilesTotal = 0;
         try
         {
@@ -120,7 +123,7 @@ public static class RenderCommand
             catch (OperationCanceledException e)
             {
                 folder.Abandon();
-                throw new InterruptedException($"interrupted while rendering ({tilesDone} of {(tilesTotal > 0 ? tilesTotal : "all")} tiles done): nothing was written; {folder.Final} {(folder.HoldsRender ? "still holds the previous render, unchanged" : "holds no render")}", e.CancellationToken);
+                throw new InterruptedException($"interrupted while rendering ({tilesDone} of {(tilesTotal > 0 ? tilesTotal : "all")} tiles done{StoppedAfter()}): nothing was written; {folder.Final} {(folder.HoldsRender ? "still holds the previous render, unchanged" : "holds no render")}", e.CancellationToken);
             }
             progress?.Finish();
             if (result.Rays.OverBudgetRays > 0)
