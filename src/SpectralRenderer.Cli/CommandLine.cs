@@ -51,7 +51,9 @@ public static class CommandLine
         catch (Exception e)
         {
             var (code, message) = Describe(e);
-            stderr.WriteLine(MessageText.Line($"spectral {cmd.Name}: ", message));
+            // An InputException's message is one line of at most MessageText.MaxLine already, cut where its parts allow
+            // (never through its hint); other messages are made one such line here.
+            stderr.WriteLine($"spectral {cmd.Name}: " + (e is InputException ? MessageText.Escape(message) : MessageText.Line(message)));
             return code;
         }
     }

@@ -125,7 +125,7 @@ for label, path, value, pat in [
     ("bands-empty-range", ["bands"], "780:380:20", r"empty or not positive"),
     ("bands-zero-count", ["bands"], "380:780:0", r"outside 1"),
     ("bands-text", ["bands"], "a:b:c", r"non-numeric"),
-    ("integration-bad", ["integration"], "exact", r"unknown band integration"),
+    ("integration-bad", ["integration"], "bogus", r"unknown band integration"),
     ("observer-bad", ["observer"], 5, r"observer|unknown"),
     ("scaling-bad", ["scaling"], "photometric", r"unknown scaling"),
     ("white-unknown", ["white"], "D66", r"unknown spectrum 'D66'"),
@@ -166,7 +166,7 @@ for label, m, pat in [
     ("mat-spectrum-two-kinds", {"diffuse": {"name": "D65", "constant": 1}}, r"exactly one of"),
     ("mat-spectrum-none", {"diffuse": {"scale": 2}}, r"exactly one of"),
     ("mat-scale-1e39", {"diffuse": {"constant": 1, "scale": 1e39}}, r"out of range"),
-    ("mat-scale-overflow", {"diffuse": {"constant": 1e30, "scale": 1e30}}, r"beyond 1E\+30|beyond 1e\+30"),
+    ("mat-scale-overflow", {"diffuse": {"constant": 1e30, "scale": 1e30}}, r"beyond 1E\+30|beyond 1e\+30|reaches"),
     ("mat-extrapolate-bad", {"diffuse": {"values": [[400, 0.1], [700, 0.9]], "extrapolate": "mirror"}}, r"unknown extrapolation"),
     ("mat-inline-one-pair", {"diffuse": [[400, 0.5]]}, r"at least two"),
     ("mat-inline-unsorted", {"diffuse": [[700, 0.5], [400, 0.5]]}, r"does not follow"),
@@ -285,7 +285,7 @@ for opt, val, pat in [("--width", "abc", r"not a whole number"), ("--width", "0"
                       ("--threads", "0", r"not a whole number in 1–1024"), ("--threads", "5000", r"not a whole number"),
                       ("--bands", "0", r"neither a band count"), ("--bands", "abc", r"neither a band count"), ("--bands", "780:380:3", r"empty or not positive"),
                       ("--bands", "380:780:100000", r"outside 1"), ("--band-range", "1:2", r"not a band grid"),
-                      ("--rgb", "adobe", r"adobe"), ("--integration", "exact", r"unknown band integration"),
+                      ("--rgb", "adobe", r"adobe"), ("--integration", "bogus", r"unknown band integration"),
                       ("--formats", "", r"names no output format"), ("--formats", ",", r"names no output format"), ("--formats", "tiff", r"unknown output format 'tiff'"),
                       ("--exr-compression", "piz", r"unknown EXR compression"), ("--models", "{in}/no-such-folder", r"does not exist")]:
     file = "good.json" if opt in ("--width", "--height", "--bands", "--band-range") and pat in (r"not positive", r"exceeds 32768") else opt
