@@ -6,7 +6,7 @@ run in {tmp} before it, the exit code and a regular expression the one line on s
 input (exit 2) the file (or option) the message must name and a pattern for the place in it. The test
 (CorpusTests) runs every case through the real CLI in-process and checks all of that, plus: one printable line
 of at most ~300 characters, a hint, and nothing written to the output folder. Run this script after changing
-it; commit its output.
+it; commit its output. found/ keeps the inputs fuzzing found (fuzz/run.sh), each also a case here.
 """
 import json, os, shutil, struct, zlib
 
@@ -522,6 +522,9 @@ for label, data, pat in [
     ("exr-piz", exr_header([("channels", "chlist", chlist(chans)), ("compression", "compression", b"\4"), ("dataWindow", "box2i", box(0, 0, 7, 5))]), r"compression .* is not supported"),
     ("exr-bad-pixel-type", exr_header([("channels", "chlist", chlist(chans, ptype=7)), ("compression", "compression", b"\0"), ("dataWindow", "box2i", box(0, 0, 7, 5))]), r"unknown pixel type 7"),
     ("exr-missing-chunks", exr_header([("channels", "chlist", chlist(chans)), ("compression", "compression", b"\0"), ("dataWindow", "box2i", box(0, 0, 7, 5))]) + b"\0" * 48, r"chunk 0 of 6 is missing|truncated|more than"),
+    # Found by fuzzing (fuzz/run.sh exr): deflate data zlib rejects, and a channel listed twice.
+    ("exr-fuzz-zlib-error", open(os.path.join(HERE, "found", "exr-fuzz-zlib-error.exr"), "rb").read(), r"does not decompress|truncated|corrupt"),
+    ("exr-fuzz-duplicate-channel", open(os.path.join(HERE, "found", "exr-fuzz-duplicate-channel.exr"), "rb").read(), r"appears twice"),
     ("exr-negative-size", exr_header([("channels", "chlist", chlist(chans)), ("compression", "compression", b"\0"), ("dataWindow", "box2i", box(0, 0, 7, 5))])[:-1] + b"x\0int\0" + struct.pack("<i", -5) + b"\0", r"truncated"),
 ]:
     write(label + ".exr", data)

@@ -87,6 +87,8 @@ public static class ExrReader
                         int xs = c.Int(), ys = c.Int();
                         if (xs != 1 || ys != 1) throw new InputException($"{where}: header attribute 'channels'", $"channel {ch} is subsampled ({xs}×{ys})", "only full-resolution channels are supported");
                         if (pixelType is < 0 or > 2) throw new InputException($"{where}: header attribute 'channels'", $"channel {ch} has unknown pixel type {pixelType}", "pixel types are 0 (UINT), 1 (HALF) or 2 (FLOAT)");
+                        if (channels.Any(c => c.Name == ch))   // found by fuzzing
+                            throw new InputException($"{where}: header attribute 'channels'", $"channel {MessageText.Quote(ch)} appears twice", "the file is corrupt: write it again");
                         channels.Add((ch, pixelType));
                     }
                     break;

@@ -136,7 +136,7 @@ static class ExrZip
             z.ReadExactly(t);
             if (z.ReadByte() != -1) return false;
         }
-        catch (Exception e) when (e is InvalidDataException or EndOfStreamException)
+        catch (Exception e) when (e is InvalidDataException or EndOfStreamException or IOException)   // ZLibException is an IOException (found by fuzzing)
         {
             return false;
         }
