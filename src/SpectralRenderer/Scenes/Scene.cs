@@ -66,7 +66,7 @@ public sealed class Scene
     /// traced, since it cannot change the pixel by more than this fraction of what a directly seen surface shows.
     /// </summary>
     public float MinRayWeight { get; init; } = DefaultMinRayWeight;
-    public const float DefaultMinRayWeight = 1e-3f;
+    public const float DefaultMinRayWeight = 0f;   // off by default: relighting (LightTransfer) traces the full tree and must equal a render
     /// <summary>The most rays one camera ray may cost, itself and its shadow, reflected and refracted rays included; beyond it, its branches end and the ray is counted.</summary>
     public int RayBudget { get; init; } = DefaultRayBudget;
     public const int DefaultRayBudget = 20_000;

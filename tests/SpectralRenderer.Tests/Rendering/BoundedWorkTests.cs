@@ -33,12 +33,21 @@ public class BoundedWorkTests
     }
 
     [Fact]
-    public void The_default_threshold_keeps_every_reflection_worth_a_thousandth()
+    public void A_threshold_of_a_thousandth_keeps_nine_reflections()
     {
         // 0.5^9 = 0.00195 ≥ 1e-3 > 0.5^10: nine reflections.
-        var r = SceneText.Render(Inside(""));
+        var r = SceneText.Render(Inside(", \"min_ray_weight\": 0.001"));
         Assert.Equal(9L * 16, r.Rays.Secondary);
         foreach (var v in r.Image.Data) Assert.Equal(Geometric(9), v, 1e-6);
+    }
+
+    [Fact]
+    public void By_default_no_branch_is_pruned_and_max_depth_ends_the_tree()
+    {
+        var r = SceneText.Render(Inside(""));
+        Assert.Equal(64L * 16, r.Rays.Secondary);
+        Assert.Equal(0, r.Rays.PrunedRays);
+        foreach (var v in r.Image.Data) Assert.Equal(Geometric(64), v, 1e-6);
     }
 
     [Fact]
