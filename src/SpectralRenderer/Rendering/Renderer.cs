@@ -88,6 +88,7 @@ public sealed partial class Renderer
         int strataY = spp / strataX;
         float inv = 1f / spp;
         int budget = scene.RayBudget;
+        bool recursive = scene.MaxDepth > 0 && scene.Materials.Any(m => m.HasMirror || m.HasTransmission);
 
         // One worker per thread, each with its own scratch spectra, pulling tiles from a shared counter:
         // the loop allocates per worker, never per tile, ray or pixel.
@@ -96,7 +97,9 @@ public sealed partial class Renderer
         void Worker()
         {
             var state = new TileState(integrator.ScratchLength, padded);
-            var packed = packets && integrator is IPacketIntegrator ? new PacketTileState(integrator.ScratchLength, padded, ox, oy) : null;
+            // Packets trace the camera rays of a tile together; a scene with mirrors or glass is traced ray by ray, where each
+            // camera ray's tree has its ray budget and a stop request is seen at every pixel (bounded work, prompt SIGINT).
+            var packed = packets && integrator is IPacketIntegrator && !recursive ? new PacketTileState(integrator.ScratchLength, padded, ox, oy) : null;
             int tile;
             while ((tile = Interlocked.Increment(ref next)) < tiles)
             {
