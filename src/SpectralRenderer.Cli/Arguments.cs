@@ -35,9 +35,9 @@ public sealed class Arguments
                 if (a == "-h") a = "--help";
                 if (flags.Contains(a)) { _flags.Add(a); continue; }
                 if (!values.Contains(a))
-                    throw new InputException("", $"unknown option '{a}'",
+                    throw new InputException("command line", $"unknown option {MessageText.Quote(a)}",
                         InputException.DidYouMean(a, values.Concat(flags)) ?? $"see 'spectral {command} --help'");
-                var v = inline ?? (i + 1 < args.Count ? args[++i] : throw new InputException("", $"option {a} needs a value", $"see 'spectral {command} --help'"));
+                var v = inline ?? (i + 1 < args.Count ? args[++i] : throw new InputException("command line", $"option {a} needs a value", $"see 'spectral {command} --help'"));
                 if (!_options.TryGetValue(a, out var list)) _options[a] = list = [];
                 list.Add(v);
             }
@@ -55,7 +55,7 @@ public sealed class Arguments
         var v = Value(name);
         if (v is null) return null;
         if (!int.TryParse(v, NumberStyles.Integer, CultureInfo.InvariantCulture, out int n) || n < min || n > max)
-            throw new InputException("", $"{name} '{v}' is not a whole number in {min}–{max}");
+            throw new InputException(name, $"{MessageText.Quote(v)} is not a whole number in {min}–{max}", $"e.g. {name} {Math.Clamp(4, min, max)} (see 'spectral {Command} --help')");
         return n;
     }
 
@@ -64,7 +64,7 @@ public sealed class Arguments
         var v = Value(name);
         if (v is null) return null;
         if (!double.TryParse(v, NumberStyles.Float, CultureInfo.InvariantCulture, out double d) || !double.IsFinite(d))
-            throw new InputException("", $"{name} '{v}' is not a number");
+            throw new InputException(name, $"{MessageText.Quote(v)} is not a finite number", $"e.g. {name} 0.5 (see 'spectral {Command} --help')");
         return d;
     }
 }

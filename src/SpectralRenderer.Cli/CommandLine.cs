@@ -1,5 +1,6 @@
 using System.Runtime.CompilerServices;
 using SpectralRenderer.Cli.Commands;
+using System.Reflection;
 using SpectralRenderer.Diagnostics;
 
 namespace SpectralRenderer.Cli;
@@ -47,32 +48,35 @@ public static class CommandLine
         {
             return cmd.Run(args[1..], stdout, stderr);
         }
-        catch (AggregateException e) when (e.Flatten().InnerExceptions.Count > 0)
+        catch (Exception e)
         {
-            var inner = e.Flatten().InnerExceptions[0];
-            stderr.WriteLine($"spectral {cmd.Name}: {inner.Message}");
-            return inner is InputException ? BadInput : Failure;
+            var (code, message) = Describe(e);
+            // An InputException's message is one line of at most MessageText.MaxLine already, cut where its parts allow
+            // (never through its hint); other messages are made one such line here.
+            stderr.WriteLine($"spectral {cmd.Name}: " + (e is InputException ? MessageText.Escape(message) : MessageText.Line(message)));
+            return code;
         }
-        catch (InputException e)
+    }
+
+    /// <summary>
+    /// The exit code and the one line an exception ends a command with: bad input (2) says where and what with a
+    /// hint; a failure of the work (1) says what failed. A defect of the program is still one line, never a trace.
+    /// </summary>
+    public static (int Code, string Message) Describe(Exception e)
+    {
+        if (e is AggregateException agg && agg.Flatten().InnerExceptions.Count > 0) e = agg.Flatten().InnerExceptions[0];
+        if (e is TargetInvocationException { InnerException: { } inner }) e = inner;
+        return e switch
         {
-            stderr.WriteLine($"spectral {cmd.Name}: {e.Message}");
-            return BadInput;
-        }
-        catch (OperationCanceledException)
-        {
-            stderr.WriteLine($"spectral {cmd.Name}: interrupted; no output was left under a final name");
-            return Failure;
-        }
-        catch (IOException e)
-        {
-            stderr.WriteLine($"spectral {cmd.Name}: {e.Message}");
-            return Failure;
-        }
-        catch (UnauthorizedAccessException e)
-        {
-            stderr.WriteLine($"spectral {cmd.Name}: {e.Message}");
-            return BadInput;
-        }
+            InputException => (BadInput, e.Message),
+            WorkFailedException or InterruptedException => (Failure, e.Message),
+            OperationCanceledException => (Failure, "interrupted; no output was left under a final name"),
+            OutOfMemoryException or InsufficientExecutionStackException =>
+                (Failure, $"out of memory ({e.GetType().Name}) (hint: lower the resolution, band count or mesh size)"),
+            IOException => (Failure, e.Message),
+            UnauthorizedAccessException => (BadInput, $"{e.Message} (hint: choose files and folders you can read and write)"),
+            _ => (Failure, $"internal error {e.GetType().Name}: {e.Message} (hint: this is a defect of spectral; please report it with the input)"),
+        };
     }
 
     static string Usage()

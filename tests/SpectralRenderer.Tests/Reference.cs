@@ -23,3 +23,9 @@ static class Reference
         return d;
     }
 }
+
+static class InputExceptionText
+{
+    /// <summary>The message without its hint: "where: what".</summary>
+    public static string Unhinted(this SpectralRenderer.Diagnostics.InputException e) => string.IsNullOrEmpty(e.Where) ? e.What : $"{e.Where}: {e.What}";
+}

@@ -24,7 +24,7 @@ public static class BenchCommand
     {
         var a = new Arguments("bench", argv, ["--width", "--height", "--repeat", "--threads", "--bands", "--band-range", "--wave", "--spp", "--models", "--rgb", "--integration", "--formats"], []);
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
-        if (a.Positionals.Count > 1) throw new InputException("", $"unexpected argument '{a.Positionals[1]}'", "usage: spectral bench [SCENE]");
+        if (a.Positionals.Count > 1) throw new InputException("command line", $"unexpected argument {MessageText.Quote(a.Positionals[1])}", "usage: spectral bench [SCENE]");
         var scenePath = a.Positionals.Count == 1 ? a.Positionals[0] : DefaultScene();
         int repeat = a.Int("--repeat", 1, 1000) ?? 5;
         int threads = a.Int("--threads", 1, 1024) ?? Environment.ProcessorCount;

@@ -48,34 +48,34 @@ public static class CameraCommand
             ["--sensor", "--exposure", "--seed", "--noise", "--radiance-scale", "--demosaic", "--threads", "-o", "--bench"], [],
             new Dictionary<string, string> { ["--output"] = "-o" });
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
-        if (a.Positionals.Count != 1) throw new InputException("", "give one render folder", "usage: spectral camera OUTDIR --sensor nikon-d5100");
+        if (a.Positionals.Count != 1) throw new InputException("command line", "give one render folder", "usage: spectral camera OUTDIR --sensor nikon-d5100");
         var dir = a.Positionals[0];
         var scene = CameraScene.Open(dir);
         // --sensor, else the sensor written in the scene's camera object (render.json keeps the resolved scene).
         var sensorName = a.Value("--sensor") ?? SensorFile.SceneArgument;
         var sensor = sensorName == SensorFile.SceneArgument
             ? SensorFile.FromScene(scene.Folder.Manifest.ResolvedScene, scene.Folder.Manifest.Scene)
-              ?? throw new InputException("", "--sensor is required: the scene's camera has no \"sensor\"",
+              ?? throw new InputException("command line", "--sensor is required: the scene's camera has no \"sensor\"",
                   $"one of {string.Join(", ", SensorPresets.Names)}, a JSON file, or \"sensor\" in the scene's camera object")
             : SensorFile.Resolve(sensorName);
         if (a.Value("--exposure") is { } ex)
         {
             if (ex == "auto") sensor = sensor with { ExposureSeconds = null };
-            else sensor = sensor with { ExposureSeconds = a.Double("--exposure") is { } t && t > 0 ? t : throw new InputException("", $"--exposure '{ex}' must be auto or positive seconds") };
+            else sensor = sensor with { ExposureSeconds = a.Double("--exposure") is { } t && t > 0 ? t : throw new InputException("command line", $"--exposure '{ex}' must be auto or positive seconds", "e.g. --exposure auto or --exposure 0.01 (seconds)") };
         }
         bool noise = a.Value("--noise") switch
         {
             null or "on" => true, "off" => false,
-            var v => throw new InputException("", $"--noise '{v}' is not on or off"),
+            var v => throw new InputException("command line", $"--noise '{v}' is not on or off", "use --noise on or --noise off"),
         };
         var demosaic = a.Value("--demosaic") switch
         {
             null or "malvar" => DemosaicMethod.Malvar, "bilinear" => DemosaicMethod.Bilinear,
-            var v => throw new InputException("", $"--demosaic '{v}' is not malvar or bilinear"),
+            var v => throw new InputException("command line", $"--demosaic '{v}' is not malvar or bilinear", "use --demosaic malvar or --demosaic bilinear"),
         };
-        ulong seed = a.Value("--seed") is { } sv ? ulong.TryParse(sv, NumberStyles.None, CultureInfo.InvariantCulture, out var s) ? s : throw new InputException("", $"--seed '{sv}' is not a whole number ≥ 0") : 1;
+        ulong seed = a.Value("--seed") is { } sv ? ulong.TryParse(sv, NumberStyles.None, CultureInfo.InvariantCulture, out var s) ? s : throw new InputException("command line", $"--seed '{sv}' is not a whole number ≥ 0", "give a whole number, e.g. --seed 1") : 1;
         double scale = a.Double("--radiance-scale") ?? 1;
-        if (!(scale > 0)) throw new InputException("", "--radiance-scale must be positive", "W·m⁻²·sr⁻¹·nm⁻¹ per band unit");
+        if (!(scale > 0)) throw new InputException("command line", "--radiance-scale must be positive", "W·m⁻²·sr⁻¹·nm⁻¹ per band unit");
         int threads = a.Int("--threads", 1, 1024) ?? -1;
 
         var options = new SimulationOptions { Seed = seed, Noise = noise, Threads = threads };

@@ -21,7 +21,7 @@ public static class ColorCheckCommand
     {
         var a = new Arguments("colorcheck", argv, [], ["--csv"]);
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
-        if (a.Positionals.Count != 1) throw new InputException("", "give one render folder", "usage: spectral colorcheck OUTDIR");
+        if (a.Positionals.Count != 1) throw new InputException("command line", "give one render folder", "usage: spectral colorcheck OUTDIR");
         var folder = RenderFolder.Open(a.Positionals[0]);
         var rows = ColorCheckerReport.Compute(folder);
         if (rows.Count == 0) throw new InputException(a.Positionals[0], "shows no ColorChecker patch", "render a scene with colorchecker materials, e.g. scenes/paper-3.1-colorchecker-d65.json");

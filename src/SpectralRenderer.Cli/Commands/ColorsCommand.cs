@@ -31,7 +31,7 @@ public static class ColorsCommand
     {
         var a = new Arguments("colors", argv, ["--illuminant", "--observer", "--bands", "--wave", "--integration", "--rgb"], ["--csv"]);
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
-        if (a.Positionals.Count > 0) throw new InputException("colors", $"unexpected argument '{a.Positionals[0]}'", "see 'spectral colors --help'");
+        if (a.Positionals.Count > 0) throw new InputException("colors", $"unexpected argument {MessageText.Quote(a.Positionals[0])}", "see 'spectral colors --help'");
 
         var lightName = a.Value("--illuminant") ?? "D65";
         var light = SpectrumLibrary.Resolve(lightName, Directory.GetCurrentDirectory(), "--illuminant");

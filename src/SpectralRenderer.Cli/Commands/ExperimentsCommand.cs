@@ -29,14 +29,14 @@ public static class ExperimentsCommand
     {
         var a = new Arguments("experiments", argv, ["--out", "-o", "--scale", "--spp", "--scenes", "--models", "--threads"], ["--quiet"], new Dictionary<string, string> { ["-o"] = "--out" });
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
-        if (a.Positionals.Count > 0) throw new InputException("", $"unexpected argument '{a.Positionals[0]}'", "see 'spectral experiments --help'");
+        if (a.Positionals.Count > 0) throw new InputException("command line", $"unexpected argument {MessageText.Quote(a.Positionals[0])}", "see 'spectral experiments --help'");
         var outDir = a.Value("--out") ?? Path.Combine("out", "experiments");
         double scale = a.Double("--scale") ?? 1;
-        if (scale <= 0 || scale > 8) throw new InputException("--scale", $"{scale.ToString(CultureInfo.InvariantCulture)} is outside (0, 8]");
+        if (scale <= 0 || scale > 8) throw new InputException("--scale", $"{scale.ToString(CultureInfo.InvariantCulture)} is outside (0, 8]", "e.g. --scale 0.5 for half the paper's resolution");
         var sceneDir = a.Value("--scenes") ?? FindScenes();
-        if (!Directory.Exists(sceneDir)) throw new InputException("--scenes", $"folder '{sceneDir}' does not exist");
+        if (!Directory.Exists(sceneDir)) throw new InputException("--scenes", $"folder {MessageText.Quote(sceneDir, 120)} does not exist", "pass the repository's scenes/ folder");
         var models = a.Values("--models").ToList();
-        foreach (var m in models) if (!Directory.Exists(m)) throw new InputException("--models", $"folder '{m}' does not exist");
+        foreach (var m in models) if (!Directory.Exists(m)) throw new InputException("--models", $"folder {MessageText.Quote(m, 120)} does not exist", "pass the folder that holds the mesh files");
         int threads = a.Int("--threads", 1, 1024) ?? Environment.ProcessorCount;
         int? spp = a.Int("--spp", 1, 65536);
         bool quiet = a.Flag("--quiet");

@@ -29,8 +29,8 @@ public static class ProbeCommand
     {
         var a = new Arguments("probe", argv, ["--pixel", "--output"], ["--csv"], new Dictionary<string, string> { ["-o"] = "--output" });
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
-        if (a.Positionals.Count != 1) throw new InputException("", "give one render folder", "usage: spectral probe OUTDIR --pixel X,Y[:LABEL]");
-        if (a.Values("--pixel").Count == 0) throw new InputException("", "give at least one --pixel X,Y[:LABEL]", "e.g. --pixel 120,80:lit");
+        if (a.Positionals.Count != 1) throw new InputException("command line", "give one render folder", "usage: spectral probe OUTDIR --pixel X,Y[:LABEL]");
+        if (a.Values("--pixel").Count == 0) throw new InputException("command line", "give at least one --pixel X,Y[:LABEL]", "e.g. --pixel 120,80:lit");
         var dir = a.Positionals[0];
         var image = OpenCube(dir);
         var pixels = PixelOption.ParseAll(a.Values("--pixel"), "probe", image.Width, image.Height);
@@ -79,11 +79,6 @@ public static class ProbeCommand
         return sb.ToString();
     }
 
-    /// <summary>A render folder's cube: the grid from wavelengths.csv when present, else from render.json.</summary>
-    public static SpectralImage OpenCube(string dir)
-    {
-        if (!Directory.Exists(dir)) throw new InputException(dir, "no such render folder", "give the -o folder of a 'spectral render' run");
-        var wl = Path.Combine(dir, "wavelengths.csv");
-        return File.Exists(wl) ? SpectralFiles.Read(dir, WavelengthsCsv.Read(wl)) : RenderFolder.Open(dir).Image;
-    }
+    /// <summary>A render folder's cube, through its manifest (present, consistent, every listed file there).</summary>
+    public static SpectralImage OpenCube(string dir) => RenderFolder.OpenCube(dir).Image;
 }

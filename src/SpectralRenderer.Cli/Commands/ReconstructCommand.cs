@@ -38,10 +38,10 @@ public static class ReconstructCommand
     {
         var a = new Arguments("reconstruct", argv, ["--white-object", "--white-region", "--pixel"], ["--csv"]);
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
-        if (a.Positionals.Count != 1) throw new InputException("", "give one render folder", "usage: spectral reconstruct OUTDIR --white-object NAME");
+        if (a.Positionals.Count != 1) throw new InputException("command line", "give one render folder", "usage: spectral reconstruct OUTDIR --white-object NAME");
         string? obj = a.Value("--white-object"), region = a.Value("--white-region");
         if ((obj is null) == (region is null))
-            throw new InputException("", "give exactly one of --white-object NAME and --white-region X0,Y0,X1,Y1", "e.g. --white-object board");
+            throw new InputException("command line", "give exactly one of --white-object NAME and --white-region X0,Y0,X1,Y1", "e.g. --white-object board");
         var dir = a.Positionals[0];
         var folder = RenderFolder.Open(dir);
         var img = folder.Image;

@@ -38,12 +38,12 @@ public static class RecoverCommand
     {
         var a = new Arguments("recover", argv, ["--method", "--training", "--white-object", "--white-region", "--range"], ["--csv"]);
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
-        if (a.Positionals.Count != 1) throw new InputException("", "give one camera folder", "usage: spectral recover CAMERADIR --method wiener");
+        if (a.Positionals.Count != 1) throw new InputException("command line", "give one camera folder", "usage: spectral recover CAMERADIR --method wiener");
         var methodText = a.Value("--method") ?? "all";
         var methods = methodText == "all" ? Enum.GetValues<RecoveryMethod>().ToList()
             : methodText.Split(',').Select(m => SpectralEstimator.Parse(m.Trim())).Distinct().ToList();
         string? obj = a.Value("--white-object"), region = a.Value("--white-region");
-        if (obj is not null && region is not null) throw new InputException("", "give at most one of --white-object and --white-region");
+        if (obj is not null && region is not null) throw new InputException("command line", "give at most one of --white-object and --white-region", "see 'spectral recover --help'");
 
         var dir = a.Positionals[0];
         var capture = CameraCapture.Open(dir);

@@ -46,7 +46,7 @@ public static class RelightCommand
         if (a.Value("--sweep") is { } sweep)
         {
             if (a.Values("--light").Count + a.Values("--intensity").Count > 0 || a.Value("--white") is not null)
-                throw new InputException("--sweep", "give the lights either in the sweep file or with --light/--intensity/--white, not both");
+                throw new InputException("--sweep", "give the lights either in the sweep file or with --light/--intensity/--white, not both", "see 'spectral relight --help'");
             var rows = Relighting.ReadSweep(sweep, src.LightNames);
             var outRoot = a.Value("--out") ?? dir.TrimEnd('/', '\\') + "-sweep";
             RenderCommand.PrepareOutputFolder(outRoot);

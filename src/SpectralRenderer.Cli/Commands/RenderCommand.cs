@@ -1,4 +1,5 @@
 using System.Runtime.CompilerServices;
+using System.Runtime.InteropServices;
 using System.Globalization;
 using System.Text.Json.Nodes;
 using SpectralRenderer.Diagnostics;
@@ -65,10 +66,11 @@ public static class RenderCommand
     {
         var a = new Arguments("render", argv, Values, ["--quiet"], new Dictionary<string, string> { ["-o"] = "--out" });
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
-        if (a.Positionals.Count != 1) throw new InputException("", a.Positionals.Count == 0 ? "no scene file given" : $"unexpected argument '{a.Positionals[1]}'", "usage: spectral render SCENE.json -o OUTDIR");
+        if (a.Positionals.Count != 1) throw new InputException("command line", a.Positionals.Count == 0 ? "no scene file given" : $"unexpected argument {MessageText.Quote(a.Positionals[1])}", "usage: spectral render SCENE.json -o OUTDIR");
         var scenePath = a.Positionals[0];
         bool fromStdin = scenePath == SceneLoader.StandardInput;
         var outDir = a.Value("--out") ?? Path.Combine("out", fromStdin ? "stdin" : Path.GetFileNameWithoutExtension(scenePath));
+        if (string.IsNullOrWhiteSpace(outDir)) throw new InputException("-o", "the output folder name is empty", "give a folder name, e.g. -o out/scene");
         int? threads = a.Int("--threads", 1, 1024);
         bool quiet = a.Flag("--quiet");
 
@@ -89,11 +91,18 @@ public static class RenderCommand
             throw new InputException(scenePath, "output.exposure \"auto\" is chosen from the whole image, which a shard or crop does not see",
                 "give a fixed \"exposure\" (a whole render's render.json states the one auto chose, $.colour.exposure)");
         foreach (var w in scene.Warnings) stderr.WriteLine(w);
-        PrepareOutputFolder(outDir);
+        RenderMemory.Check(scene, threads ?? 0);
+        var folder = OutputFolder.Begin(outDir);
 
+        // SIGINT and SIGTERM stop the render at the next pixel (and the writers at the next file): the staged files
+        // are removed, the output folder keeps what it held, and the message says so.
         using var cancel = new CancellationTokenSource();
-        ConsoleCancelEventHandler onCancel = (_, e) => { e.Cancel = true; cancel.Cancel(); };
-        Console.CancelKeyPress += onCancel;
+        long signalledAt = 0;
+        void Stop(PosixSignalContext c) { c.Cancel = true; Interlocked.CompareExchange(ref signalledAt, System.Diagnostics.Stopwatch.GetTimestamp(), 0); cancel.Cancel(); }
+        using var onInterrupt = PosixSignalRegistration.Create(PosixSignal.SIGINT, Stop);
+        using var onTerminate = PosixSignalRegistration.Create(PosixSignal.SIGTERM, Stop);
+        string StoppedAfter() => signalledAt == 0 ? "" : string.Create(CultureInfo.InvariantCulture, $", {System.Diagnostics.Stopwatch.GetElapsedTime(signalledAt).TotalSeconds:0.000} s after the signal");
+        int tilesDone = 0, tilesTotal = 0;
         try
         {
             var progress = quiet ? null : ProgressBar.For(stderr);
@@ -102,8 +111,24 @@ public static class RenderCommand
             var integrator = Integrators.Create(scene, geometry);
             double buildSeconds = setup.Elapsed.TotalSeconds;
             int degenerate = scene.Objects.Sum(o => o.Mesh?.DegenerateCount ?? 0);
-            var result = Renderer.Render(scene, integrator, threads ?? 0, progress is null ? null : progress.Report, cancel.Token, crop);
+            RenderResult result;
+            try
+            {
+                result = Renderer.Render(scene, integrator, threads ?? 0, p =>
+                {
+                    tilesDone = p.TilesDone; tilesTotal = p.Tiles;
+                    progress?.Report(p);
+                }, cancel.Token, crop);
+            }
+            catch (OperationCanceledException e)
+            {
+                folder.Abandon();
+                throw new InterruptedException($"interrupted while rendering ({tilesDone} of {(tilesTotal > 0 ? tilesTotal : "all")} tiles done{StoppedAfter()}): nothing was written; {folder.Final} {(folder.HoldsRender ? "still holds the previous render, unchanged" : "holds no render")}", e.CancellationToken);
+            }
             progress?.Finish();
+            if (result.Rays.OverBudgetRays > 0)
+                stderr.WriteLine(MessageText.Line($"spectral render: warning: {result.Rays.OverBudgetRays} camera rays reached the ray budget of {scene.RayBudget} rays; their deepest reflections and refractions are missing",
+                    " (hint: raise \"ray_budget\", or lower \"max_depth\" or raise \"min_ray_weight\" in the scene)"));
             var writeClock = System.Diagnostics.Stopwatch.StartNew();
             var run = new JsonObject
             {
@@ -112,6 +137,10 @@ public static class RenderCommand
                 ["build_s"] = buildSeconds,
                 ["triangles"] = geometry.TriangleCount,
                 ["degenerate_triangles_skipped"] = degenerate,
+                ["min_ray_weight"] = scene.MinRayWeight,
+                ["ray_budget"] = scene.RayBudget,
+                ["rays_pruned_by_weight"] = result.Rays.PrunedRays,
+                ["camera_rays_over_budget"] = result.Rays.OverBudgetRays,
             };
             if (shard is not null) run["shard"] = shard;
             // The per-light transfer (opt-in): the same camera rays traced once more, recording eq. 2's factors per light.
@@ -123,7 +152,7 @@ public static class RenderCommand
                 run["light_transfer_s"] = transferClock.Elapsed.TotalSeconds;
             }
             run["overrides"] = OverridesJson(overrides);
-            var files = RenderOutputWriter.Write(scene, result, outDir, run, cancel.Token, transfer);
+            var files = RenderOutputWriter.Write(scene, result, folder, run, cancel.Token, transfer);
             if (!quiet)
             {
                 double secs = result.Elapsed.TotalSeconds;
@@ -132,7 +161,11 @@ public static class RenderCommand
             }
             return CommandLine.Success;
         }
-        finally { Console.CancelKeyPress -= onCancel; }
+        catch (Exception e) when (e is not InterruptedException)
+        {
+            folder.Abandon();
+            throw;
+        }
     }
 
     /// <summary>The film pixels to render (null: all) from --crop, --shard or a job array's variables, and the shard's description.</summary>
@@ -146,7 +179,7 @@ public static class RenderCommand
         if (shard is not null)
         {
             var s = Distributed.Shard.Parse(shard);
-            if (shards is { } n && n != s.Count) throw new InputException("--shards", $"{n} disagrees with --shard {shard}");
+            if (shards is { } n && n != s.Count) throw new InputException("--shards", $"{n} disagrees with --shard {shard}", "give --shard I/N alone, or --shards N equal to its N");
             return (s.Strip(width, height), $"{s} (--shard)");
         }
         if (Distributed.SchedulerEnvironment.Resolve(shards) is { } env)
@@ -174,9 +207,10 @@ public static class RenderCommand
             var range = SceneRange(sceneText());
             bands = string.Create(CultureInfo.InvariantCulture, $"{range.Start}:{range.End}:{n}");
         }
+        if (bands is not null) Spectra.BandGrid.Parse(bands, a.Value("--band-range") is not null ? "--band-range" : "--bands");  // reported under the option given
         var models = a.Values("--models").ToList();
         foreach (var m in models)
-            if (!Directory.Exists(m)) throw new InputException("--models", $"folder '{m}' does not exist");
+            if (!Directory.Exists(m)) throw new InputException("--models", $"folder {MessageText.Quote(m, 120)} does not exist", "pass the folder that holds the mesh files");
         return new SceneOverrides
         {
             Width = a.Int("--width", int.MinValue, int.MaxValue),
@@ -225,7 +259,8 @@ public static class RenderCommand
         }
         catch (Exception e) when (e is IOException or UnauthorizedAccessException)
         {
-            throw new InputException(outDir, $"cannot be written: {e.Message}", "choose a folder you can write to");
+            string reason = e is PathTooLongException ? "the path is too long" : e.Message.Replace(Path.GetFullPath(outDir), "it").Replace(outDir, "it");
+            throw new InputException(outDir, $"cannot be written: {reason}", "choose a folder you can write to");
         }
     }
 }

@@ -57,7 +57,7 @@ public static class SweepCommand
         bool quiet = a.Flag("--quiet");
         var models = a.Values("--models").Select(Path.GetFullPath).ToList();
         foreach (var m in models)
-            if (!Directory.Exists(m)) throw new InputException("--models", $"folder '{m}' does not exist");
+            if (!Directory.Exists(m)) throw new InputException("--models", $"folder '{m}' does not exist", "pass the folder that holds the mesh files");
         var plan = SweepPlan.Load(planPath);
 
         if (a.Value("--emit") is { } emit)

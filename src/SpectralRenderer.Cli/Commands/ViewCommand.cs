@@ -33,7 +33,7 @@ public static class ViewCommand
         var dir = a.Positionals[0];
         int? port = a.Int("--port", 1, 65535);
         double? seconds = a.Double("--for");
-        if (seconds is <= 0) throw new InputException("--for", "needs a positive number of seconds");
+        if (seconds is <= 0) throw new InputException("--for", "needs a positive number of seconds", "e.g. --for 10");
         var files = SpectralViewer.Write(dir);
         var page = Path.Combine(Path.GetFullPath(dir), "viewer.html");
         if (!a.Flag("--serve"))

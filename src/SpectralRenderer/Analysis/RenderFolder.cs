@@ -33,13 +33,7 @@ public sealed class RenderFolder
 
     public static RenderFolder Open(string dir)
     {
-        if (!Directory.Exists(dir)) throw new InputException(dir, "no such render folder", "give the -o folder of a 'spectral render' run");
-        var manifest = RenderManifest.Read(dir);
-        var grid = manifest.Grid;
-        var image = SpectralFiles.Read(dir, grid);
-        if (image.Width != manifest.Width || image.Height != manifest.Height || image.Bands != grid.Count)
-            throw new InputException(dir, $"its spectral cube is {image.Width}×{image.Height}×{image.Bands} but render.json describes {manifest.Width}×{manifest.Height}×{grid.Count}",
-                "the folder mixes two renders; render again into an empty folder");
+        var (manifest, image) = OpenCube(dir);
         (float[], float[], float[])? pixelXyz = null;
         var exr = System.IO.Path.Combine(dir, "spectral.exr");
         if (File.Exists(exr))
@@ -51,12 +45,28 @@ public sealed class RenderFolder
         return new RenderFolder { Path = dir, Manifest = manifest, Image = image, ObjectIds = ReadIds(dir, image), PixelXyz = pixelXyz };
     }
 
+    /// <summary>
+    /// A render folder's manifest and spectral cube, validated: render.json present and consistent with itself
+    /// (a folder without one is not a render), and the cube of the size and band count it describes.
+    /// </summary>
+    public static (RenderManifest Manifest, SpectralImage Image) OpenCube(string dir)
+    {
+        if (!Directory.Exists(dir)) throw new InputException(dir, "no such render folder", "give the -o folder of a 'spectral render' run");
+        var manifest = RenderManifest.Read(dir);
+        var grid = manifest.Grid;
+        var image = SpectralFiles.Read(dir, grid);
+        if (image.Width != manifest.Width || image.Height != manifest.Height || image.Bands != grid.Count)
+            throw new InputException($"{System.IO.Path.Combine(dir, RenderManifest.FileName)}: $.width", $"describes {manifest.Width}×{manifest.Height}×{grid.Count} but the spectral cube is {image.Width}×{image.Height}×{image.Bands}",
+                "the folder mixes two renders; render again into an empty folder");
+        return (manifest, image);
+    }
+
     static int[] ReadIds(string dir, SpectralImage image)
     {
         var path = System.IO.Path.Combine(dir, "object-id.png");
         if (!File.Exists(path)) throw new InputException(dir, "has no object-id.png", "render with --formats including aov");
         var png = PngReader.Read(path);
-        if (png.Width != image.Width || png.Height != image.Height) throw new InputException(path, $"is {png.Width}×{png.Height} but the cube is {image.Width}×{image.Height}");
+        if (png.Width != image.Width || png.Height != image.Height) throw new InputException(path, $"is {png.Width}×{png.Height} but the cube is {image.Width}×{image.Height}", "the render folder mixes files of different renders: render it again");
         var ids = new int[png.Width * png.Height];
         for (int i = 0; i < ids.Length; i++) ids[i] = png.Samples[i * png.Channels] - 1;
         return ids;

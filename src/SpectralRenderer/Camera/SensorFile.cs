@@ -51,7 +51,7 @@ public static class SensorFile
         var text = InputFile.ReadAllText(nameOrFile, "sensor file");
         JsonNode? node;
         try { node = JsonNode.Parse(text, documentOptions: new JsonDocumentOptions { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true }); }
-        catch (JsonException e) { throw new InputException($"{nameOrFile}:{(e.LineNumber ?? 0) + 1}:{(e.BytePositionInLine ?? 0) + 1}", $"broken JSON: {e.Message}"); }
+        catch (JsonException e) { throw new InputException($"{nameOrFile}:{(e.LineNumber ?? 0) + 1}:{(e.BytePositionInLine ?? 0) + 1}", $"broken JSON: {e.Message}", "check for a missing comma, quote or bracket just before this place"); }
         if (node is not JsonObject obj) throw new InputException(nameOrFile, "is not a JSON object", "a sensor file is { \"preset\": …, \"channels\": […], … }");
         return Parse(obj, nameOrFile, Path.GetDirectoryName(Path.GetFullPath(nameOrFile)));
     }
@@ -66,7 +66,7 @@ public static class SensorFile
         double peak = Num(o, "peak_qe", at, 0, 1) ?? SensorPresets.DefaultPeakQe;
         if (o["channels"] is JsonNode ch)
         {
-            if (ch is not JsonArray arr || arr.Count == 0) throw new InputException($"{at}.channels", "must be a non-empty array of channels");
+            if (ch is not JsonArray arr || arr.Count == 0) throw new InputException($"{at}.channels", "must be a non-empty array of channels", "e.g. \"channels\": [{\"name\": \"R\", \"gaussian\": {\"centre_nm\": 600, \"fwhm_nm\": 40}}]");
             var channels = arr.Select((c, i) => Channel(c, $"{at}.channels[{i}]", baseDirectory)).ToArray();
             s = s with { Channels = SensorPresets.Scale(channels, peak) };
         }
@@ -120,11 +120,11 @@ public static class SensorFile
     static SensorChannel Channel(JsonNode? node, string where, string? baseDirectory)
     {
         if (node is not JsonObject c) throw new InputException(where, "a channel is an object", "{ \"name\": \"F1\", \"gaussian\": { \"centre_nm\": 450, \"fwhm_nm\": 40 } }");
-        var name = (string?)c["name"] ?? throw new InputException(where, "a channel needs a \"name\"");
+        var name = (string?)c["name"] ?? throw new InputException(where, "a channel needs a \"name\"", "give each channel a \"name\"");
         if (c["gaussian"] is JsonObject g)
         {
-            double centre = Num(g, "centre_nm", where + ".gaussian", 100, 3000) ?? throw new InputException(where + ".gaussian", "needs centre_nm");
-            double fwhm = Num(g, "fwhm_nm", where + ".gaussian", 0.1, 2000) ?? throw new InputException(where + ".gaussian", "needs fwhm_nm");
+            double centre = Num(g, "centre_nm", where + ".gaussian", 100, 3000) ?? throw new InputException(where + ".gaussian", "needs centre_nm", "e.g. \"gaussian\": {\"centre_nm\": 550, \"fwhm_nm\": 40}");
+            double fwhm = Num(g, "fwhm_nm", where + ".gaussian", 0.1, 2000) ?? throw new InputException(where + ".gaussian", "needs fwhm_nm", "e.g. \"gaussian\": {\"centre_nm\": 550, \"fwhm_nm\": 40}");
             return SensorPresets.Gaussian(name, centre, fwhm);
         }
         if (c["box"] is JsonArray box && box.Count == 2)
@@ -171,16 +171,16 @@ public static class SensorFile
     {
         null => null,
         JsonValue v when v.TryGetValue(out string? s) => s,
-        _ => throw new InputException($"{at}.{key}", "must be a string"),
+        _ => throw new InputException($"{at}.{key}", "must be a string", "write it in double quotes"),
     };
 
     static double? Num(JsonObject o, string key, string where, double min, double max, bool whole = false)
     {
         if (o[key] is not JsonNode n) return null;
         string path = where.Contains(": $") ? $"{where}.{key}" : $"{where}: $.{key}";
-        if (n is not JsonValue v || !v.TryGetValue(out double d) || !double.IsFinite(d)) throw new InputException(path, "must be a number");
+        if (n is not JsonValue v || !v.TryGetValue(out double d) || !double.IsFinite(d)) throw new InputException(path, "must be a number", "write a plain finite number");
         if (d < min || d > max || (whole && d != Math.Floor(d)))
-            throw new InputException(path, string.Create(CultureInfo.InvariantCulture, $"{d} is outside {min}–{max}{(whole ? " or not whole" : "")}"));
+            throw new InputException(path, string.Create(CultureInfo.InvariantCulture, $"{d} is outside {min}–{max}{(whole ? " or not whole" : "")}"), $"give a value in {min}–{max}");
         return d;
     }
 }

@@ -11,11 +11,13 @@ public enum InputProblem
 
 /// <summary>
 /// Bad input from the user (a file, a name, an argument). Its message is one line:
-/// "where: what is wrong (hint)". The CLI prints it and exits with code 2.
+/// "where: what is wrong (hint: what to do)", made printable and at most <see cref="MessageText.MaxLine"/>
+/// characters by <see cref="MessageText.Line"/>. Every bad input names its place and carries a hint.
+/// The CLI prints it and exits with code 2.
 /// </summary>
 public sealed class InputException : Exception
 {
-    public InputException(string where, string what, string? hint = null)
+    public InputException(string where, string what, string hint)
         : base(Format(where, what, hint))
     {
         Where = where;
@@ -25,14 +27,13 @@ public sealed class InputException : Exception
 
     public string Where { get; }
     public string What { get; }
-    public string? Hint { get; }
+    public string Hint { get; }
     public InputProblem Problem { get; init; } = InputProblem.Invalid;
 
-    static string Format(string where, string what, string? hint)
-    {
-        var s = string.IsNullOrEmpty(where) ? what : $"{where}: {what}";
-        return hint is null ? s : $"{s} (hint: {hint})";
-    }
+    static string Format(string where, string what, string? hint) =>
+        string.IsNullOrEmpty(hint)
+            ? string.IsNullOrEmpty(where) ? MessageText.Line(what) : MessageText.Line(where, ": ", what)
+            : string.IsNullOrEmpty(where) ? MessageText.Line(what, " (hint: ", hint, ")") : MessageText.Line(where, ": ", what, " (hint: ", hint, ")");
 
     /// <summary>Suggests the closest known name ("did you mean 'green'?") by edit distance.</summary>
     public static string? DidYouMean(string name, IEnumerable<string> known)

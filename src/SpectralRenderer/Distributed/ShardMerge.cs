@@ -33,35 +33,46 @@ public static class ShardMerge
         int width = first.Width, height = first.Height, bands = first.Grid.Count;
         var files = first.Files!.ToList();
 
-        Directory.CreateDirectory(outDir);
-        RenderOutputWriter.ClearPrevious(outDir);
-        float scale = files.Any(f => f.StartsWith("bands", StringComparison.Ordinal)) ? BandScale(parts, width, bands, cancel) : 0;
-
-        var bandFiles = files.Where(f => f.StartsWith("bands/", StringComparison.Ordinal)).ToList();
-        bool mosaic = files.Contains("bands.png");
-        if (bandFiles.Count > 0 || mosaic) MergeBands(parts, outDir, width, height, bands, scale, bandFiles, mosaic, cancel);
-        foreach (var f in files)
+        // Merged into a staging folder beside OUTDIR and swapped in whole (OutputFolder), as a render is.
+        var folder = OutputFolder.Begin(outDir);
+        var staging = folder.Staging;
+        try
         {
-            cancel.ThrowIfCancellationRequested();
-            var target = Path.Combine(outDir, f);
-            switch (f)
+            float scale = files.Any(f => f.StartsWith("bands", StringComparison.Ordinal)) ? BandScale(parts, width, bands, cancel) : 0;
+
+            var bandFiles = files.Where(f => f.StartsWith("bands/", StringComparison.Ordinal)).ToList();
+            bool mosaic = files.Contains("bands.png");
+            if (bandFiles.Count > 0 || mosaic) MergeBands(parts, staging, width, height, bands, scale, bandFiles, mosaic, cancel);
+            foreach (var f in files)
             {
-                case "preview.png": MergePng(parts, f, target, width, height); break;
-                case "object-id.png": MergePng(parts, f, target, width, height); break;
-                case "mask-highlight.png": MergePng(parts, f, target, width, height); break;
-                case var m when m.StartsWith("mask-lit-", StringComparison.Ordinal): MergePng(parts, f, target, width, height); break;
-                case "spectral.exr" or "reflectance.exr": MergeExr(parts, f, target, width, height); break;
-                case "spectral.img": MergeEnvi(parts, target, width, bands); break;
-                case "spectral.hdr": MergeEnviHeader(parts[0], target, height); break;
-                case "spectral.npy": MergeNpy(parts, target, width, height, bands); break;
-                case "wavelengths.csv": AtomicFile.WriteAllBytes(target, File.ReadAllBytes(Path.Combine(parts[0].Dir, f))); break;
-                case var b when b.StartsWith("bands/", StringComparison.Ordinal) || b == "bands.png": break;   // above
-                default: throw new InputException(Path.Combine(parts[0].Dir, "render.json"), $"lists '{f}', a file merge does not know", "merge shards written by the same version");
+                cancel.ThrowIfCancellationRequested();
+                var target = Path.Combine(staging, f);
+                switch (f)
+                {
+                    case "preview.png": MergePng(parts, f, target, width, height); break;
+                    case "object-id.png": MergePng(parts, f, target, width, height); break;
+                    case "mask-highlight.png": MergePng(parts, f, target, width, height); break;
+                    case var m when m.StartsWith("mask-lit-", StringComparison.Ordinal): MergePng(parts, f, target, width, height); break;
+                    case "spectral.exr" or "reflectance.exr": MergeExr(parts, f, target, width, height); break;
+                    case "spectral.img": MergeEnvi(parts, target, width, bands); break;
+                    case "spectral.hdr": MergeEnviHeader(parts[0], target, height); break;
+                    case "spectral.npy": MergeNpy(parts, target, width, height, bands); break;
+                    case "wavelengths.csv": AtomicFile.WriteAllBytes(target, File.ReadAllBytes(Path.Combine(parts[0].Dir, f))); break;
+                    case var b when b.StartsWith("bands/", StringComparison.Ordinal) || b == "bands.png": break;   // above
+                    default: throw new InputException(Path.Combine(parts[0].Dir, "render.json"), $"lists '{f}', a file merge does not know", "merge shards written by the same version");
+                }
             }
+            var manifest = Manifest(parts, scale, commandLine);
+            AtomicFile.WriteAllText(Path.Combine(staging, RenderManifest.FileName), manifest.ToJsonText());
         }
-        var manifest = Manifest(parts, scale, commandLine);
-        AtomicFile.WriteAllText(Path.Combine(outDir, RenderManifest.FileName), manifest.ToJsonText());
-        return [.. files, RenderManifest.FileName];
+        catch
+        {
+            folder.Abandon();
+            throw;
+        }
+        List<string> written = [.. files, RenderManifest.FileName];
+        folder.Commit(written);
+        return written;
     }
 
     /// <summary>Reads and checks the shards: complete, of one scene and settings, full-width strips tiling the film once.</summary>
@@ -71,7 +82,7 @@ public static class ShardMerge
         var parts = new List<Part>();
         foreach (var dir in dirs)
         {
-            if (!Directory.Exists(dir)) throw new InputException(dir, "is not a folder");
+            if (!Directory.Exists(dir)) throw new InputException(dir, "is not a folder", "give the folders the shards were rendered into");
             if (Path.GetFullPath(dir).TrimEnd('/') == Path.GetFullPath(outDir).TrimEnd('/'))
                 throw new InputException(dir, "is also the output folder", "merge into a new folder with -o");
             var path = Path.Combine(dir, RenderManifest.FileName);
@@ -131,7 +142,7 @@ public static class ShardMerge
         if (File.Exists(img))
         {
             using var fs = new FileStream(img, FileMode.Open, FileAccess.Read, FileShare.Read, 1 << 16);
-            if (fs.Length != 4L * width * h * bands) throw new InputException(img, $"has {fs.Length} bytes, {4L * width * h * bands} expected (half-written shard)");
+            if (fs.Length != 4L * width * h * bands) throw new InputException(img, $"has {fs.Length} bytes, {4L * width * h * bands} expected (half-written shard)", "the shard was not finished: render it again");
             fs.Position = 4L * b * width * h;
             fs.ReadExactly(System.Runtime.InteropServices.MemoryMarshal.AsBytes(plane));
             if (!BitConverter.IsLittleEndian) throw new PlatformNotSupportedException("merging shards needs a little-endian machine");
@@ -142,7 +153,7 @@ public static class ShardMerge
         {
             using var fs = new FileStream(npy, FileMode.Open, FileAccess.Read, FileShare.Read, 1 << 16);
             long start = NpyWriter.Preamble([h, width, bands]).Length;
-            if (fs.Length != start + 4L * width * h * bands) throw new InputException(npy, $"has {fs.Length} bytes, {start + 4L * width * h * bands} expected (half-written shard)");
+            if (fs.Length != start + 4L * width * h * bands) throw new InputException(npy, $"has {fs.Length} bytes, {start + 4L * width * h * bands} expected (half-written shard)", "the shard was not finished: render it again");
             fs.Position = start;
             var row = new float[width * bands];
             for (int y = 0; y < h; y++)
@@ -179,7 +190,7 @@ public static class ShardMerge
     /// <summary>bands/*.png and bands.png of the whole image, one band plane at a time.</summary>
     static void MergeBands(List<Part> parts, string outDir, int width, int height, int bands, float scale, List<string> bandFiles, bool mosaic, CancellationToken cancel)
     {
-        if (bandFiles.Count > 0 && bandFiles.Count != bands) throw new InputException(parts[0].Dir, $"lists {bandFiles.Count} band images for {bands} bands");
+        if (bandFiles.Count > 0 && bandFiles.Count != bands) throw new InputException(parts[0].Dir, $"lists {bandFiles.Count} band images for {bands} bands", "the shards come from different renders: render them again with the same scene");
         if (bandFiles.Count > 0) Directory.CreateDirectory(Path.Combine(outDir, "bands"));
         var full = new float[width * height];
         var grey = new byte[2 * width * height];
@@ -212,7 +223,7 @@ public static class ShardMerge
             {
                 for (int i = 0; i < parts.Count; i++)
                     if (sources[i].Length != 4L * width * parts[i].Crop.Height * bands)
-                        throw new InputException(sources[i].Name, $"has {sources[i].Length} bytes, {4L * width * parts[i].Crop.Height * bands} expected (half-written shard)");
+                        throw new InputException(sources[i].Name, $"has {sources[i].Length} bytes, {4L * width * parts[i].Crop.Height * bands} expected (half-written shard)", "the shard was not finished: render it again");
                 for (int b = 0; b < bands; b++)
                     for (int i = 0; i < parts.Count; i++)
                     {
@@ -244,7 +255,7 @@ public static class ShardMerge
             {
                 using var fs = new FileStream(Path.Combine(p.Dir, "spectral.npy"), FileMode.Open, FileAccess.Read, FileShare.Read, 1 << 16);
                 long start = NpyWriter.Preamble([p.Crop.Height, width, bands]).Length, bytes = 4L * width * p.Crop.Height * bands;
-                if (fs.Length != start + bytes) throw new InputException(fs.Name, $"has {fs.Length} bytes, {start + bytes} expected (half-written shard)");
+                if (fs.Length != start + bytes) throw new InputException(fs.Name, $"has {fs.Length} bytes, {start + bytes} expected (half-written shard)", "the shard was not finished: render it again");
                 fs.Position = start;
                 Copy(fs, output, bytes, buffer);
             }
@@ -285,11 +296,11 @@ public static class ShardMerge
         {
             var other = (byte[])exrs[i].Head.Clone();
             window.CopyTo(other.AsSpan(exrs[i].WindowAt, 16));
-            if (!other.AsSpan().SequenceEqual(head)) throw new InputException(Path.Combine(parts[i].Dir, name), $"has another header than {Path.Combine(parts[0].Dir, name)}");
+            if (!other.AsSpan().SequenceEqual(head)) throw new InputException(Path.Combine(parts[i].Dir, name), $"has another header than {Path.Combine(parts[0].Dir, name)}", "the shards come from different renders: render them again with the same scene");
         }
         int chunks = exrs.Sum(e => e.Offsets.Length);
         int lines = exrs[0].LinesPerChunk;
-        if (chunks != (height + lines - 1) / lines) throw new InputException(Path.Combine(parts[0].Dir, name), $"the shards hold {chunks} chunks, {(height + lines - 1) / lines} expected");
+        if (chunks != (height + lines - 1) / lines) throw new InputException(Path.Combine(parts[0].Dir, name), $"the shards hold {chunks} chunks, {(height + lines - 1) / lines} expected", "a shard is missing or incomplete: render it again");
         var buffer = new byte[1 << 20];
         AtomicFile.Write(target, output =>
         {
@@ -385,10 +396,10 @@ public static class ShardMerge
         foreach (var p in parts)
         {
             var png = PngReader.Read(Path.Combine(p.Dir, name));
-            if (png.Width != width || png.Height != p.Crop.Height) throw new InputException(Path.Combine(p.Dir, name), $"is {png.Width}×{png.Height}, not the shard's {p.Crop.Width}×{p.Crop.Height}");
+            if (png.Width != width || png.Height != p.Crop.Height) throw new InputException(Path.Combine(p.Dir, name), $"is {png.Width}×{png.Height}, not the shard's {p.Crop.Width}×{p.Crop.Height}", "the shards come from different renders: render them again with the same scene");
             first ??= png;
-            if (png.BitDepth != first.BitDepth || png.Channels != first.Channels) throw new InputException(Path.Combine(p.Dir, name), "has another pixel format than the first shard's");
-            samples ??= new ushort[(long)width * height * first.Channels > Array.MaxLength ? throw new InputException(name, "is too large to merge") : width * height * first.Channels];
+            if (png.BitDepth != first.BitDepth || png.Channels != first.Channels) throw new InputException(Path.Combine(p.Dir, name), "has another pixel format than the first shard's", "the shards come from different renders: render them again with the same scene");
+            samples ??= new ushort[(long)width * height * first.Channels > Array.MaxLength ? throw new InputException(name, "is too large to merge", "render fewer pixels, or merge fewer formats") : width * height * first.Channels];
             png.Samples.CopyTo(samples, (long)p.Crop.Y0 * width * first.Channels);
         }
         // The writer's calls (RenderOutputWriter, AnalysisImages): RGB 8-bit preview, 16-bit object ids, 8-bit masks; adaptive filter, no text.
@@ -399,7 +410,7 @@ public static class ShardMerge
                 case (8, 3): PngWriter.WriteRgb8(s, width, height, Array.ConvertAll(samples!, v => (byte)v)); break;
                 case (8, 1): PngWriter.WriteGray8(s, width, height, Array.ConvertAll(samples!, v => (byte)v)); break;
                 case (16, 1): PngWriter.WriteGray16(s, width, height, samples!); break;
-                default: throw new InputException(name, $"has {first.BitDepth}-bit samples × {first.Channels}, which merge does not write");
+                default: throw new InputException(name, $"has {first.BitDepth}-bit samples × {first.Channels}, which merge does not write", "merge 8- or 16-bit grey or RGB images");
             }
         });
     }

@@ -36,10 +36,10 @@ public sealed class SweepPlan
         var bytes = InputFile.ReadAllBytes(planPath, "sweep plan");
         var locator = new JsonLocator(bytes, new JsonReaderOptions { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true });
         InputException Bad(string path, string what, string? hint = null) =>
-            new(locator.Locate(path) is { } pos ? $"{planPath}:{pos}: {path}" : $"{planPath}: {path}", what, hint);
+            new(locator.Locate(path) is { } pos ? $"{planPath}:{pos}: {path}" : $"{planPath}: {path}", what, hint ?? "see the sweep plan format in README.md");
         JsonObject plan;
         try { plan = JsonNode.Parse(bytes, documentOptions: Options) as JsonObject ?? throw Bad("$", "is not a JSON object", "a plan is { \"scene\": …, \"axes\": [ … ] }"); }
-        catch (JsonException e) { throw new InputException(planPath, $"is not valid JSON: {e.Message.Split(" LineNumber:")[0]}"); }
+        catch (JsonException e) { throw new InputException(planPath, $"is not valid JSON: {e.Message.Split(" LineNumber:")[0]}", "check for a missing comma, quote or bracket"); }
         foreach (var (k, _) in plan)
             if (k is not ("scene" or "axes" or "set" or "extra" or "formats" or "name"))
                 throw Bad($"$.{k}", "is not a plan key", InputException.DidYouMean(k, ["scene", "axes", "set", "extra", "formats", "name"]) ?? "keys: scene, set, axes, extra, formats");
@@ -49,7 +49,7 @@ public sealed class SweepPlan
         var sceneBytes = InputFile.ReadAllBytes(scenePath, "base scene");
         JsonObject scene;
         try { scene = JsonNode.Parse(sceneBytes, documentOptions: Options) as JsonObject ?? throw new JsonException("not an object"); }
-        catch (JsonException e) { throw new InputException(scenePath, $"is not a valid scene: {e.Message.Split(" LineNumber:")[0]}"); }
+        catch (JsonException e) { throw new InputException(scenePath, $"is not a valid scene: {e.Message.Split(" LineNumber:")[0]}", "check for a missing comma, quote or bracket"); }
 
         var fixedEdits = plan["set"] is JsonObject set ? Edits(set, "$.set", Bad) : [];
         var axes = new List<(string Name, List<(string Label, List<(string, JsonNode?)> Edits)> Values)>();
@@ -182,14 +182,14 @@ public sealed class SweepPlan
             if (s.Groups[1].Success)
             {
                 string key = s.Groups[1].Value;
-                if (node is not JsonObject o) throw new InputException("", $"'{walked}' is not an object, so it has no '{key}' (path {path})");
+                if (node is not JsonObject o) throw new InputException("", $"'{walked}' is not an object, so it has no '{key}' (path {path})", "check the path against the scene's structure");
                 if (last) { o[key] = value; return; }
-                node = o[key] ??= segments[i + 1].Groups[1].Success ? new JsonObject() : throw new InputException("", $"the scene has no list '{walked}{(walked.Length > 0 ? "." : "")}{key}' (path {path})");
+                node = o[key] ??= segments[i + 1].Groups[1].Success ? new JsonObject() : throw new InputException("", $"the scene has no list '{walked}{(walked.Length > 0 ? "." : "")}{key}' (path {path})", "check the path against the scene's structure");
                 walked += (walked.Length > 0 ? "." : "") + key;
             }
             else
             {
-                if (node is not JsonArray list) throw new InputException("", $"'{walked}' is not a list (path {path})");
+                if (node is not JsonArray list) throw new InputException("", $"'{walked}' is not a list (path {path})", "check the path against the scene's structure");
                 int index;
                 if (s.Groups[2].Success)
                 {
@@ -206,7 +206,7 @@ public sealed class SweepPlan
                 }
                 walked += s.Value;
                 if (last) { list[index] = value; return; }
-                node = list[index] ?? throw new InputException("", $"'{walked}' is null (path {path})");
+                node = list[index] ?? throw new InputException("", $"'{walked}' is null (path {path})", "check the path against the scene's structure");
             }
         }
     }

@@ -18,12 +18,12 @@ public static class ObjReader
 {
     public static TriangleMesh Read(string path)
     {
-        var data = InputFile.ReadAllBytes(path);
+        var data = InputFile.ReadAllBytes(path, "mesh file");
         // A UTF-16 or UTF-32 file (by its byte order mark) is decoded as File.ReadAllText would.
         var start = data.AsSpan();
         if (start.StartsWith((ReadOnlySpan<byte>)[0xFE, 0xFF]) || start.StartsWith((ReadOnlySpan<byte>)[0xFF, 0xFE])
             || start.StartsWith((ReadOnlySpan<byte>)[0, 0, 0xFE, 0xFF]))
-            data = Encoding.UTF8.GetBytes(InputFile.ReadAllText(path));
+            data = Encoding.UTF8.GetBytes(new StreamReader(new MemoryStream(data), Encoding.UTF8, true).ReadToEnd());
         return Parse(data, path);
     }
 
@@ -105,17 +105,17 @@ public static class ObjReader
                     (previousVertex, previousNormal) = (p, n);
                 }
                 if (corners < 3)
-                    throw new InputException($"{path}:{lineNumber}", $"face has {corners} vertices (a face needs at least 3)");
+                    throw new InputException($"{path}:{lineNumber}", $"face has {corners} vertices (a face needs at least 3)", "write 'f' with three or more vertex indices, e.g. f 1 2 3");
                 faceCount++;
             }
         }
-        if (faceCount == 0) throw new InputException(path, "no faces (empty mesh)", "the file must contain 'f' lines");
+        if (faceCount == 0) throw new InputException($"{path}:{Math.Max(1, lineNumber)}", "no faces before the end of the file (empty mesh)", "the file must contain 'f' lines");
 
         var positionArray = positions[..positionCount];
         var mapped = MapNormals(positionCount, indices.AsSpan(0, indexCount), cornerNormals, normals.AsSpan(0, normalCount));
         var mesh = new TriangleMesh(positionArray, indices, indexCount, mapped, path);
         if (mesh.TriangleCount == 0)
-            throw new InputException(path, $"all {mesh.DegenerateCount} triangles are degenerate (zero area)");
+            throw new InputException($"{path}:{Math.Max(1, lineNumber)}", $"at the end of the file, all {mesh.DegenerateCount} triangles are degenerate (zero area)", "check the vertex coordinates: every triangle has zero area");
         if (mesh.Normals is null) mesh.ComputeVertexNormals();
         return mesh;
     }
@@ -160,9 +160,9 @@ public static class ObjReader
     {
         var token = tokens.Next();
         if (token.Length == 0)
-            throw new InputException($"{path}:{line}", $"'{keyword}' needs 3 coordinates x y z");
+            throw new InputException($"{path}:{line}", $"'{keyword}' needs 3 coordinates x y z", "write vertices as 'v x y z' (and normals as 'vn x y z')");
         if (!TryParseFloat(token, out float value) || !float.IsFinite(value))
-            throw new InputException($"{path}:{line}", $"coordinate '{Encoding.UTF8.GetString(token)}' is not a finite number");
+            throw new InputException($"{path}:{line}", $"coordinate {MessageText.Quote(token)} is not a finite number", "coordinates are finite decimal numbers such as 0.25 or -1e-3");
         return value;
     }
 
@@ -244,11 +244,11 @@ public static class ObjReader
     static int Resolve(ReadOnlySpan<byte> token, int count, string what, string path, int line)
     {
         if (!TryParseInt(token, out int index))
-            throw new InputException($"{path}:{line}", $"{what} index '{Encoding.UTF8.GetString(token)}' is not an integer");
+            throw new InputException($"{path}:{line}", $"{what} index {MessageText.Quote(token)} is not an integer", "face corners are v, v/vt, v//vn or v/vt/vn with integer indices");
         int resolved = index > 0 ? index - 1 : count + index;
         if (index == 0 || resolved < 0 || resolved >= count)
             throw new InputException($"{path}:{line}", $"{what} index {index} out of range ({count} defined so far)",
-                index == 0 ? "OBJ indices start at 1; negative ones count back from the last" : null);
+                index == 0 ? "OBJ indices start at 1; negative ones count back from the last" : $"indices run from 1 to {count} (or -1 to -{count} counting back)");
         return resolved;
     }
 

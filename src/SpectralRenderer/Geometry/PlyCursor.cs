@@ -24,11 +24,11 @@ ref struct PlyCursor(ReadOnlySpan<byte> data, int start, PlyFormat format, strin
     public readonly int Position => _pos;
     public readonly int Remaining => _data.Length - _pos;
 
-    public InputException Error(string what) => Error(_path, Element, Instance, _valueStart, what);
+    public InputException Error(string what, string hint) => Error(_path, Element, Instance, _valueStart, what, hint);
 
     /// <summary>"file: element 'face' #12 at byte 345: what".</summary>
-    public static InputException Error(string path, string element, int instance, int at, string what) =>
-        new($"{path}: element '{element}' #{instance} at byte {at}", what);
+    public static InputException Error(string path, string element, int instance, int at, string what, string hint) =>
+        new($"{path}: element '{element}' #{instance} at byte {at}", what, hint);
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public double ReadReal(PlyType type)
@@ -37,7 +37,7 @@ ref struct PlyCursor(ReadOnlySpan<byte> data, int start, PlyFormat format, strin
         {
             var token = NextToken();
             if (!double.TryParse(token, NumberStyles.Float, CultureInfo.InvariantCulture, out double v))
-                throw Error($"'{System.Text.Encoding.ASCII.GetString(token)}' is not a number");
+                throw Error($"{MessageText.Quote(token)} is not a number", "ASCII PLY values are plain numbers separated by spaces");
             return v;
         }
         return DecodeReal(type, Take(PlyHeader.SizeOf(type)), _format == PlyFormat.BinaryLittleEndian);
@@ -54,7 +54,7 @@ ref struct PlyCursor(ReadOnlySpan<byte> data, int start, PlyFormat format, strin
             if (double.TryParse(token, NumberStyles.Float, CultureInfo.InvariantCulture, out double d) && d == Math.Floor(d)
                 && Math.Abs(d) < 1e15)
                 return (long)d;
-            throw Error($"'{System.Text.Encoding.ASCII.GetString(token)}' is not an integer");
+            throw Error($"{MessageText.Quote(token)} is not an integer", "list counts and indices are whole numbers");
         }
         var bytes = Take(PlyHeader.SizeOf(type));
         bool le = _format == PlyFormat.BinaryLittleEndian;
@@ -63,7 +63,7 @@ ref struct PlyCursor(ReadOnlySpan<byte> data, int start, PlyFormat format, strin
             double d = type == PlyType.Float32
                 ? (le ? BinaryPrimitives.ReadSingleLittleEndian(bytes) : BinaryPrimitives.ReadSingleBigEndian(bytes))
                 : (le ? BinaryPrimitives.ReadDoubleLittleEndian(bytes) : BinaryPrimitives.ReadDoubleBigEndian(bytes));
-            if (d != Math.Floor(d) || Math.Abs(d) >= 1e15) throw Error($"{d} is not an integer");
+            if (d != Math.Floor(d) || Math.Abs(d) >= 1e15) throw Error($"{d} is not an integer", "list counts and indices are whole numbers");
             return (long)d;
         }
         return DecodeInteger(type, bytes, le);
@@ -105,7 +105,7 @@ ref struct PlyCursor(ReadOnlySpan<byte> data, int start, PlyFormat format, strin
     public long ReadCount(PlyProperty list)
     {
         long n = ReadInteger(list.CountType);
-        if (n < 0) throw Error($"list '{list.Name}' has negative length {n}");
+        if (n < 0) throw Error($"list '{list.Name}' has negative length {n}", "the file is corrupt at this place: export the mesh again");
         return n;
     }
 
@@ -121,7 +121,7 @@ ref struct PlyCursor(ReadOnlySpan<byte> data, int start, PlyFormat format, strin
     {
         _valueStart = _pos;
         if (_data.Length - _pos < size)
-            throw Error($"unexpected end of file (truncated data: needs {size} more bytes, {_data.Length - _pos} left)");
+            throw Error($"unexpected end of file (truncated data: needs {size} more bytes, {_data.Length - _pos} left)", "the file was cut short or its header's counts are wrong: export the mesh again");
         var bytes = _data.Slice(_pos, size);
         _pos += size;
         return bytes;
@@ -136,7 +136,7 @@ ref struct PlyCursor(ReadOnlySpan<byte> data, int start, PlyFormat format, strin
         int start = i;
         while (i < _data.Length && !IsSpace(_data[i])) i++;
         _pos = i;
-        if (start == i) throw Error("unexpected end of file (truncated data)");
+        if (start == i) throw Error("unexpected end of file (truncated data)", "the file was cut short or its header's counts are wrong: export the mesh again");
         return _data[start..i];
     }
 

@@ -23,6 +23,9 @@ static class ExrZip
     /// </summary>
     public const double MinRepeatFraction = 0.3;
 
+    /// <summary>The most deflate can shrink data (RFC 1951: a 258-byte match per ≥ 2 bits), with room for headers: 1032:1.</summary>
+    public const long MaxRatio = 1032;
+
     /// <summary>
     /// The chunk's ZIP payload, or null when it should be stored raw (OpenEXR reads a chunk whose size equals its
     /// raw size as uncompressed): deflated when <paramref name="always"/> or when its samples repeat
@@ -133,7 +136,7 @@ static class ExrZip
             z.ReadExactly(t);
             if (z.ReadByte() != -1) return false;
         }
-        catch (Exception e) when (e is InvalidDataException or EndOfStreamException)
+        catch (Exception e) when (e is InvalidDataException or EndOfStreamException or IOException)   // ZLibException is an IOException (found by fuzzing)
         {
             return false;
         }

@@ -33,7 +33,7 @@ public static class WavelengthsCsv
     /// <summary>Reads the grid back (evenly spaced bands).</summary>
     public static BandGrid Read(string path)
     {
-        var lines = File.ReadAllLines(path).Where(l => l.Trim().Length > 0).ToArray();
+        var lines = InputFile.ReadAllText(path, "wavelengths.csv").Split('\n').Select(l => l.TrimEnd('\r')).Where(l => l.Trim().Length > 0).ToArray();
         if (lines.Length < 2 || lines[0].Trim() != Header)
             throw new InputException(path, "not a wavelengths.csv", $"the first line must be {Header}");
         var rows = lines.Skip(1).Select((l, i) =>
@@ -41,10 +41,10 @@ public static class WavelengthsCsv
             var p = l.Split(',');
             if (p.Length != 4 || !double.TryParse(p[1], NumberStyles.Float, CultureInfo.InvariantCulture, out var lo)
                 || !double.TryParse(p[3], NumberStyles.Float, CultureInfo.InvariantCulture, out var hi))
-                throw new InputException($"{path}:{i + 2}", $"bad row '{l}'", "band,start_nm,centre_nm,end_nm");
+                throw new InputException($"{path}:{i + 2}", $"bad row {MessageText.Quote(l)}", "band,start_nm,centre_nm,end_nm");
             return (lo, hi);
         }).ToArray();
         try { return new BandGrid(rows[0].lo, rows[^1].hi, rows.Length); }
-        catch (ArgumentOutOfRangeException e) { throw new InputException(path, e.Message); }
+        catch (ArgumentOutOfRangeException e) { throw new InputException(path, e.Message, "wavelengths.csv lists evenly spaced, ascending band edges: render the folder again"); }
     }
 }

@@ -189,7 +189,7 @@ public static class Relighting
         {
             var cells = lines[r].Split(',').Select(x => x.Trim()).ToArray();
             if (cells.Length != header.Length)
-                throw new InputException($"{path}:{r + 1}", $"{cells.Length} cells, the header names {header.Length}");
+                throw new InputException($"{path}:{r + 1}", $"{cells.Length} cells, the header names {header.Length}", "every row needs one cell per header column");
             var changes = new Dictionary<string, LightChange>();
             string? white = null;
             for (int c = 0; c < cells.Length; c++)
@@ -201,7 +201,7 @@ public static class Relighting
                 {
                     var name = h[..^".intensity".Length];
                     if (!double.TryParse(cells[c], NumberStyles.Float, CultureInfo.InvariantCulture, out double f) || !(f >= 0) || !double.IsFinite(f))
-                        throw new InputException($"{path}:{r + 1}:{c + 1}", $"'{cells[c]}' is not a non-negative intensity");
+                        throw new InputException($"{path}:{r + 1}:{c + 1}", $"'{cells[c]}' is not a non-negative intensity", "intensities are plain non-negative numbers");
                     changes[name] = (changes.GetValueOrDefault(name) ?? new LightChange(name, null, null)) with { Intensity = f };
                 }
                 else changes[h] = (changes.GetValueOrDefault(h) ?? new LightChange(h, null, null)) with { Spectrum = cells[c] };

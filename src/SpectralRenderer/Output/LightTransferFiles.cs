@@ -133,7 +133,7 @@ public static class LightTransferFiles
             throw new InputException(outDir, "has no per-light outputs (lights/lights.json)", "render with --formats …,lights or \"output\": { \"light_groups\": true }");
         JsonObject json;
         try { json = JsonNode.Parse(File.ReadAllText(jsonPath))!.AsObject(); }
-        catch (JsonException e) { throw new InputException($"{jsonPath}:{(e.LineNumber ?? 0) + 1}", $"broken JSON: {e.Message}"); }
+        catch (JsonException e) { throw new InputException($"{jsonPath}:{(e.LineNumber ?? 0) + 1}", $"broken JSON: {e.Message}", "the file is damaged: render the folder again"); }
         int width = (int)json["width"]!, height = (int)json["height"]!, bands = (int)json["bands"]!;
         int n = width * height;
         var materialIndex = scene.Materials.Select((m, i) => (m.Name, i)).ToDictionary(p => p.Name, p => p.i);
@@ -165,7 +165,7 @@ public static class LightTransferFiles
             if (shape.Length != 1 || shape[0] != nnz) throw new InputException(path, $"holds {string.Join("×", shape)} entries, lights.json says {nnz}", "the folder mixes two renders; render again");
             pix = data;
         }
-        foreach (int p in pix) if ((uint)p >= (uint)n) throw new InputException(Path.Combine(dir, "pixels.npy"), $"pixel {p} is outside the {width}×{height} image");
+        foreach (int p in pix) if ((uint)p >= (uint)n) throw new InputException(Path.Combine(dir, "pixels.npy"), $"pixel {p} is outside the {width}×{height} image", "the light-transfer files are damaged: render the folder again");
         var offsets = nodes.Select(c => (Offset: (int)c!["offset"]!, Count: (int)c["count"]!)).ToArray();
         foreach (var (o, c) in offsets)
         {

@@ -195,8 +195,14 @@ public sealed record RenderManifest
         var path = Path.Combine(dir, FileName);
         if (!File.Exists(path)) throw new InputException(dir, $"has no {FileName}", "give the -o folder of a 'spectral render' run");
         JsonObject json;
-        try { json = JsonNode.Parse(File.ReadAllText(path)) as JsonObject ?? throw new InputException(path, "is not a JSON object"); }
-        catch (JsonException e) { throw new InputException($"{path}:{(e.LineNumber ?? 0) + 1}", $"broken JSON: {e.Message}"); }
+        try { json = JsonNode.Parse(InputFile.ReadAllText(path, FileName)) as JsonObject ?? throw new InputException($"{path}: $", "is not a JSON object", "render.json must be the manifest a render wrote: render the folder again"); }
+        catch (JsonException e)
+        {
+            string msg = e.Message;
+            int cut = msg.IndexOf(" LineNumber:", StringComparison.Ordinal);
+            if (cut > 0) msg = msg[..cut].TrimEnd('.', ' ');
+            throw new InputException($"{path}:{(e.LineNumber ?? 0) + 1}:{(e.BytePositionInLine ?? 0) + 1}", $"broken JSON: {msg}", "render.json is damaged: render the folder again");
+        }
         return Parse(json, path);
     }
 
@@ -225,7 +231,13 @@ public sealed record RenderManifest
         var radiometry = json["radiometry"] as JsonObject;
         var rays = json["rays"] as JsonObject;
         string grid = r.Str(bands, "grid", "$.bands");
-        return new RenderManifest
+        var spdWavelengths = r.Numbers(spd, "wavelengths_nm", "$.colour.reference_white_spd");
+        var spdValues = r.Numbers(spd, "values", "$.colour.reference_white_spd");
+        if (spdWavelengths.Length == 0 || spdValues.Length != spdWavelengths.Length)
+            throw r.Missing("$.colour.reference_white_spd.values", $"as many values as wavelengths_nm ({spdWavelengths.Length})");
+        for (int i = 1; i < spdWavelengths.Length; i++)
+            if (!(spdWavelengths[i] > spdWavelengths[i - 1])) throw r.Missing($"$.colour.reference_white_spd.wavelengths_nm[{i}]", "ascending");
+        var parsed = new RenderManifest
         {
             Tool = r.OptStr(json, "tool") ?? "spectral",
             Version = r.OptStr(json, "version"),
@@ -239,7 +251,7 @@ public sealed record RenderManifest
             Integration = BandIntegrations.Parse(r.Str(colour, "integration", "$.colour"), $"{path}: $.colour.integration"),
             ObserverDegrees = r.Int(colour, "observer", "$.colour"),
             ReferenceWhite = new TabulatedSpectrum(r.OptStr(colour, "reference_white") ?? "white",
-                r.Numbers(spd, "wavelengths_nm", "$.colour.reference_white_spd"), r.Numbers(spd, "values", "$.colour.reference_white_spd"), Extrapolation.Clamp),
+                spdWavelengths, spdValues, Extrapolation.Clamp),
             Kappa = r.OptNumber(colour, "kappa") ?? 0,
             White = new Xyz(w[0], w[1], w[2]),
             Wx = r.Numbers(colour, "weights_x", "$.colour"),
@@ -247,7 +259,7 @@ public sealed record RenderManifest
             Wz = r.Numbers(colour, "weights_z", "$.colour"),
             Rgb = r.OptStr(colour, "rgb") ?? "srgb",
             Exposure = r.OptNumber(colour, "exposure") ?? 1,
-            Adapt = (bool?)r.Value(colour, "adapt") ?? false,
+            Adapt = r.Value(colour, "adapt") is { } adapt && adapt.TryGetValue(out bool b) && b,
             ExposureMode = r.OptStr(colour, "exposure_mode") ?? "fixed",
             Gamut = r.OptStr(colour, "gamut") ?? "clip",
             Radiometry = radiometry is null ? "paper" : r.OptStr(radiometry, "mode") ?? "paper",
@@ -255,7 +267,7 @@ public sealed record RenderManifest
             XyzUnit = radiometry is null ? null : r.OptStr(radiometry, "xyz"),
             PixelXyz = r.OptStr(colour, "pixel_xyz"),
             FallbackPixels = r.OptLong(colour, "fallback_pixels") ?? 0,
-            GlobalAmbient = (bool?)r.Value(json, "global_ambient") ?? false,
+            GlobalAmbient = r.Value(json, "global_ambient") is { } ga && ga.TryGetValue(out bool g) && g,
             Objects = objects,
             Lights = lights,
             HighlightFraction = json["aov"] is JsonObject aov ? r.OptNumber(aov, "highlight_fraction") ?? 0.1 : 0.1,
@@ -273,6 +285,15 @@ public sealed record RenderManifest
                 ? new Rendering.PixelRect(r.Int(crop, "x0", "$.crop"), r.Int(crop, "y0", "$.crop"), r.Int(crop, "x1", "$.crop"), r.Int(crop, "y1", "$.crop"))
                 : null,
         };
+        // Consistent with itself: what the analysis commands compute from these must mean something.
+        if (parsed.Width is < 1 or > 32768) throw r.Missing("$.width", "a width of 1 to 32768 pixels");
+        if (parsed.Height is < 1 or > 32768) throw r.Missing("$.height", "a height of 1 to 32768 pixels");
+        foreach (var (key, weights) in new[] { ("weights_x", parsed.Wx), ("weights_y", parsed.Wy), ("weights_z", parsed.Wz) })
+            if (weights.Length != parsed.Grid.Count) throw r.Missing($"$.colour.{key}", $"{parsed.Grid.Count} weights, one per band of {grid}");
+        if (!(w.All(double.IsFinite) && w[1] > 0)) throw r.Missing("$.colour.white_xyz", "a white with finite X, Y, Z and Y > 0");
+        for (int i = 0; i < objects.Length; i++)
+            if (objects[i].Id != i + 1) throw r.Missing($"$.objects[{i}].id", $"id {i + 1} (ids count from 1 in order)");
+        return parsed;
     }
 
     /// <summary>Typed reads of render.json's fields; a missing or mistyped field is bad input naming its JSON path.</summary>

@@ -6,6 +6,7 @@ using System.Runtime.InteropServices;
 using System.Globalization;
 using System.Text.Json;
 using System.Text.Json.Nodes;
+using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Color;
 using SpectralRenderer.Rendering;
@@ -21,14 +22,73 @@ namespace SpectralRenderer.Output;
 public static class RenderOutputWriter
 {
     public static List<string> Write(Scene scene, RenderResult result, string outDir, JsonObject? run = null, CancellationToken cancel = default,
+        LightTransfer? transfer = null) =>
+        Write(scene, result, OutputFolder.Begin(outDir), run, cancel, transfer);
+
+    /// <summary>
+    /// Writes the render into <paramref name="folder"/>'s staging folder and swaps it in whole (<see cref="OutputFolder"/>).
+    /// Interrupted or failed, the staged files are removed and the folder holds what it held before.
+    /// </summary>
+    public static List<string> Write(Scene scene, RenderResult result, OutputFolder folder, JsonObject? run = null, CancellationToken cancel = default,
         LightTransfer? transfer = null)
+    {
+        List<string> written;
+        try { written = WriteFiles(scene, result, folder.Staging, run, cancel, transfer); }
+        catch (OperationCanceledException e) when (e is not InterruptedException)
+        {
+            folder.Abandon();
+            throw new InterruptedException($"interrupted while writing: the new render's partial files were removed; {folder.Final} {(folder.HoldsRender ? "still holds the previous render, unchanged" : "holds no render")}", e.CancellationToken);
+        }
+        catch
+        {
+            folder.Abandon();
+            throw;
+        }
+        folder.Commit(written);
+        return written;
+    }
+
+    /// <summary>Every number the files will show must be finite: a render with NaN or ∞ radiance writes nothing.</summary>
+    static void CheckFinite(SpectralImage image)
+    {
+        var data = image.Data.AsSpan();
+        long bad = 0;
+        int first = -1;
+        for (int i = 0; i < data.Length; i++)
+            if (!float.IsFinite(data[i])) { bad++; if (first < 0) first = i; }
+        if (bad > 0)
+        {
+            int px = first / image.Bands;
+            throw new WorkFailedException($"the render produced {bad} non-finite band values (the first at pixel {px % image.Width},{px / image.Width}, band {first % image.Bands}); nothing was written");
+        }
+    }
+
+    /// <summary>The first JSON path in <paramref name="node"/> holding a number that is not finite, or null.</summary>
+    internal static string? NonFinite(JsonNode? node, string path = "$")
+    {
+        switch (node)
+        {
+            case JsonObject o:
+                foreach (var (k, v) in o) if (NonFinite(v, $"{path}.{k}") is { } p) return p;
+                return null;
+            case JsonArray a:
+                for (int i = 0; i < a.Count; i++) if (NonFinite(a[i], $"{path}[{i}]") is { } p) return p;
+                return null;
+            case JsonValue v:
+                if (v.TryGetValue<double>(out var d) && !double.IsFinite(d)) return path;
+                if (v.TryGetValue<float>(out var f) && !float.IsFinite(f)) return path;
+                return null;
+            default: return null;
+        }
+    }
+
+    static List<string> WriteFiles(Scene scene, RenderResult result, string outDir, JsonObject? run, CancellationToken cancel, LightTransfer? transfer)
     {
         var products = scene.Output.Products;
         bool Has(OutputProducts p) => (products & p) != 0;
         var image = result.Image;
+        CheckFinite(image);
         Directory.CreateDirectory(outDir);
-        // The previous render's files go while the planes are computed, and before any file is written.
-        var clearing = Task.Run(() => ClearPrevious(outDir));
         float scale = image.Max();
         int n = image.Width * image.Height;
         // Band-sequential planes, transposed once and shared by the band PNGs, the mosaic, spectral.exr and the ENVI cube;
@@ -43,7 +103,6 @@ public static class RenderOutputWriter
             : XyzPlanes.Compute(scene.Colorimeter, image);
 
         var encoder = Has(OutputProducts.Png) ? PreviewEncoder(scene, xyz!) : null;
-        clearing.GetAwaiter().GetResult();
 
         // The groups are independent files: write them side by side; each keeps its own list, in a fixed order.
         var groups = new List<string>[9];
@@ -87,30 +146,12 @@ public static class RenderOutputWriter
 
         var written = new List<string>();
         foreach (var g in groups) written.AddRange(g);
-        AtomicFile.WriteAllText(Path.Combine(outDir, RenderManifest.FileName), (manifest! with { Files = written.ToArray() }).ToJsonText());
+        var final = manifest! with { Files = written.ToArray() };
+        if (NonFinite(final.ToJson()) is { } bad)
+            throw new WorkFailedException($"render.json would hold a non-finite number at {bad}; nothing was written");
+        AtomicFile.WriteAllText(Path.Combine(outDir, RenderManifest.FileName), final.ToJsonText());
         written.Add(RenderManifest.FileName);
         return written;
-    }
-
-    /// <summary>
-    /// Removes a previous render's files from the folder (render.json first, so a folder is never
-    /// described by a render.json that did not write it); files of other names are left alone.
-    /// </summary>
-    public static void ClearPrevious(string outDir)
-    {
-        File.Delete(Path.Combine(outDir, "render.json"));
-        string[] patterns = ["preview.png", "preview-eq4.png", "bands.png", "object-id.png", "mask-lit-*.png", "mask-highlight.png",
-            "spectral.exr", "spectral.hdr", "spectral.img", "spectral.img.aux.xml", "spectral.npy", "wavelengths.csv",
-            "reflectance.exr", "reflectance.npy", "probe.csv", "probe.svg", "reconstructed.exr", "reconstructed.npy", "reconstruction*.csv", "reconstruction.svg"];
-        foreach (var pattern in patterns)
-            foreach (var f in Directory.EnumerateFiles(outDir, pattern)) File.Delete(f);
-        var bands = Path.Combine(outDir, "bands");
-        if (Directory.Exists(bands))
-            foreach (var f in Directory.EnumerateFiles(bands, "band-*.png")) File.Delete(f);
-        var lights = Path.Combine(outDir, LightTransferFiles.Folder);
-        if (Directory.Exists(lights))
-            foreach (var f in new[] { "lights.json", "factors.npy", "pixels.npy", "centre.npy", "ids.npy" })
-                File.Delete(Path.Combine(lights, f));
     }
 
     static void WritePreview(SpectralImage image, XyzPlanes xyz, DisplayEncoder encoder, string outDir, Action<string> done)

@@ -37,7 +37,7 @@ public sealed record TransferComponent(int Light, TransferLobe Lobe, int Materia
     {
         "diffuse" => TransferLobe.Diffuse, "specular" => TransferLobe.Specular, "ambient" => TransferLobe.Ambient,
         "global-ambient" => TransferLobe.GlobalAmbient, "background" => TransferLobe.Background,
-        _ => throw new InputException("lights.json", $"unknown component lobe '{s}'"),
+        _ => throw new InputException("lights.json", $"unknown component lobe '{s}'", "the light-transfer files are damaged: render the folder again"),
     };
 
     /// <summary>A stable text key such as <c>0:diffuse:2</c> or <c>1:specular:3&lt;mirror:1</c>.</summary>
@@ -119,7 +119,7 @@ public sealed class LightTransfer
         if (scene.MaxDepth > MaxChain)
             throw new InputException("max_depth", $"the 'lights' output supports max_depth ≤ {MaxChain}, the scene has {scene.MaxDepth}", $"set max_depth to {MaxChain} or less");
         if (scene.Lights.Count > 254 || scene.Materials.Count > 4094)
-            throw new InputException("lights", "the 'lights' output supports at most 255 lights and 4095 materials");
+            throw new InputException("lights", "the 'lights' output supports at most 255 lights and 4095 materials", "render fewer lights or materials with the 'lights' output");
         var t = new Tracer(scene, geometry);
         return t.Run(threads, cancel);
     }
@@ -421,7 +421,7 @@ public sealed class LightTransfer
         }
 
         /// <summary>
-        /// Eq. 2 at the hit, as <see cref="WhittedIntegrator.Radiance(Ray, int, int, Span{float}, Span{float}, ref RayCounters, ref PixelInfo)"/>
+        /// Eq. 2 at the hit, as <see cref="WhittedIntegrator.Radiance(Ray, int, int, float, Span{float}, Span{float}, ref RayCounters, ref PixelInfo)"/>
         /// computes it, each term recorded as its component's factor times the path's scalar weight <paramref name="weight"/>
         /// (1/spp times the Fresnel factors along it).
         /// </summary>

@@ -87,6 +87,8 @@ public sealed partial class Renderer
         for (int m = (int)Math.Sqrt(spp); m >= 1; m--) if (spp % m == 0) { strataX = m; break; }
         int strataY = spp / strataX;
         float inv = 1f / spp;
+        int budget = scene.RayBudget;
+        bool recursive = scene.MaxDepth > 0 && scene.Materials.Any(m => m.HasMirror || m.HasTransmission);
 
         // One worker per thread, each with its own scratch spectra, pulling tiles from a shared counter:
         // the loop allocates per worker, never per tile, ray or pixel.
@@ -95,7 +97,9 @@ public sealed partial class Renderer
         void Worker()
         {
             var state = new TileState(integrator.ScratchLength, padded);
-            var packed = packets && integrator is IPacketIntegrator ? new PacketTileState(integrator.ScratchLength, padded, ox, oy) : null;
+            // Packets trace the camera rays of a tile together; a scene with mirrors or glass is traced ray by ray, where each
+            // camera ray's tree has its ray budget and a stop request is seen at every pixel (bounded work, prompt SIGINT).
+            var packed = packets && integrator is IPacketIntegrator && !recursive ? new PacketTileState(integrator.ScratchLength, padded, ox, oy) : null;
             int tile;
             while ((tile = Interlocked.Increment(ref next)) < tiles)
             {
@@ -113,13 +117,18 @@ public sealed partial class Renderer
                 for (int y = y0; y < y1; y++)
                 for (int x = x0; x < x1; x++)
                 {
+                    // Inside the tile too: one pixel's work is bounded by the ray budget, so a request to stop
+                    // is seen within one pixel's time, however deep the scene's rays go.
+                    cancel.ThrowIfCancellationRequested();
                     int id;
                     var info = new PixelInfo();
                     long fallbackBefore = counters.Fallback;
                     if (spp == 1)
                     {
+                        counters.StartCameraRay(budget);
                         counters.Primary++;
                         id = integrator.Radiance(cam.Generate(x + 0.5f, y + 0.5f), sum, scratch, ref counters, ref info);
+                        counters.EndCameraRay();
                     }
                     else
                     {
@@ -130,14 +139,18 @@ public sealed partial class Renderer
                             uint h = Hash((uint)x, (uint)y, (uint)s);
                             float jx = ((s % strataX) + (h & 0xFFFF) / 65536f) / strataX;
                             float jy = ((s / strataX) + (h >> 16) / 65536f) / strataY;
-                            counters.Primary++;
                             PixelInfo unused = default;
+                            counters.StartCameraRay(budget);
+                            counters.Primary++;
                             integrator.Radiance(cam.Generate(x + jx, y + jy), sample, scratch, ref counters, ref unused);
+                            counters.EndCameraRay();
                             SpectralMath.AddScaled(sum, sample, inv);
                         }
                         // The analysis images describe the pixel centre.
+                        counters.StartCameraRay(budget);
                         counters.Primary++;
                         id = integrator.Radiance(cam.Generate(x + 0.5f, y + 0.5f), sample, scratch, ref counters, ref info);
+                        counters.EndCameraRay();
                     }
                     sum[..bands].CopyTo(image.Data.AsSpan(image.Offset(x - ox, y - oy), bands));
                     int i = (y - oy) * width + (x - ox);

@@ -49,7 +49,7 @@ public sealed partial class WhittedIntegrator
             {
                 // The recursion is traced ray by ray.
                 long before = counters.Fallback;
-                Radiance(packet.Ray(lane) with { TMax = float.PositiveInfinity }, 0, -1, result, scratch, ref counters, ref infos[lane]);
+                Radiance(packet.Ray(lane) with { TMax = float.PositiveInfinity }, 0, -1, 1f, result, scratch, ref counters, ref infos[lane]);
                 fallbacks[lane] = counters.Fallback != before;
                 continue;
             }

@@ -28,6 +28,9 @@ public sealed partial class WhittedIntegrator : IPacketIntegrator
     readonly int _padded;
     readonly TermTables _tables;
     readonly bool _physical;
+    // Per material, the largest mirror and transmit factor over the bands: a branch's weight grows by at most these.
+    readonly float[] _mirrorMax, _transmitMax;
+    readonly float _minWeight;
 
     public WhittedIntegrator(Scene scene, SceneGeometry geometry)
     {
@@ -39,6 +42,9 @@ public sealed partial class WhittedIntegrator : IPacketIntegrator
         _padded = scene.PaddedBands;
         _tables = new TermTables(scene);
         _physical = scene.Radiometry == Radiometry.Physical;
+        _mirrorMax = _tables.Mirror.Select(t => t.AsSpan(0, scene.Bands).ToArray().DefaultIfEmpty(0).Max()).ToArray();
+        _transmitMax = _tables.Transmit.Select(t => t.AsSpan(0, scene.Bands).ToArray().DefaultIfEmpty(0).Max()).ToArray();
+        _minWeight = scene.MinRayWeight;
     }
 
     /// <summary>Scratch floats a thread needs: two spectra per recursion level.</summary>
@@ -46,22 +52,23 @@ public sealed partial class WhittedIntegrator : IPacketIntegrator
 
     /// <inheritdoc/>
     public int Radiance(Ray ray, Span<float> result, Span<float> scratch, ref RayCounters counters, ref PixelInfo info) =>
-        Radiance(ray, 0, -1, result, scratch, ref counters, ref info);
+        Radiance(ray, 0, -1, 1f, result, scratch, ref counters, ref info);
 
     /// <summary>
     /// The radiance along <paramref name="ray"/> into <paramref name="result"/> (padded band values).
     /// <paramref name="band"/> ≥ 0 marks a ray that carries only that band (after dispersion).
-    /// Returns the object hit, or −1.
+    /// Returns the object hit, or −1. <paramref name="weight"/> is the largest factor by which this ray's radiance
+    /// enters the pixel (1 for a camera ray): below <see cref="Scene.MinRayWeight"/> a branch is not traced further.
     /// </summary>
-    public int Radiance(Ray ray, int depth, int band, Span<float> result, Span<float> scratch, ref RayCounters counters)
+    public int Radiance(Ray ray, int depth, int band, float weight, Span<float> result, Span<float> scratch, ref RayCounters counters)
     {
         PixelInfo unused = default;
-        return Radiance(ray, depth, band, result, scratch, ref counters, ref unused);
+        return Radiance(ray, depth, band, weight, result, scratch, ref counters, ref unused);
     }
 
     /// <summary>As above; at depth 0 also records which lights reach the point and the Y of its diffuse and specular terms.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    public int Radiance(Ray ray, int depth, int band, Span<float> result, Span<float> scratch, ref RayCounters counters, ref PixelInfo info)
+    public int Radiance(Ray ray, int depth, int band, float weight, Span<float> result, Span<float> scratch, ref RayCounters counters, ref PixelInfo info)
     {
         result.Clear();
         if (!_geometry.Intersect(ref ray, out var hit))
@@ -117,15 +124,19 @@ public sealed partial class WhittedIntegrator : IPacketIntegrator
         }
 
         if (depth >= _scene.MaxDepth || !(m.HasMirror || m.HasTransmission)) return hit.Object;
+        // Bounded work: a camera ray's tree ends where its budget is spent (the renderer counts those rays).
+        if (counters.BudgetSpent) { counters.OverBudget = true; return hit.Object; }
 
         var incoming = scratch[.._padded];
         var rest = scratch[(2 * _padded)..];
         float cosI = Vector3.Dot(n, v);
-        if (m.HasMirror)
+        float mirrorWeight = m.HasMirror ? weight * _mirrorMax[mi] * m.MirrorFactor(cosI, outside, band) : 0;
+        if (m.HasMirror && mirrorWeight < _minWeight) counters.PrunedRays++;   // adaptive depth (Hall & Greenberg 1983)
+        else if (m.HasMirror)
         {
             var dir = Vector3.Normalize(ray.Direction + 2 * cosI * n);
             counters.Secondary++;
-            Radiance(new Ray(pAbove, dir), depth + 1, band, incoming, rest, ref counters);
+            Radiance(new Ray(pAbove, dir), depth + 1, band, mirrorWeight, incoming, rest, ref counters);
             if (m.Fresnel && m.Dispersive && band < 0)
             {   // F from each band's own index: reflection + transmission = 1 in every band; the colour lanes cannot follow.
                 for (int b = 0; b < _scene.Bands; b++) result[b] += _tables.Mirror[mi][b] * incoming[b] * m.MirrorFactor(cosI, outside, b);
@@ -140,8 +151,9 @@ public sealed partial class WhittedIntegrator : IPacketIntegrator
         if (m.HasTransmission)
         {
             var at = new SurfacePoint(p, n, ng, ray.Direction, cosI, outside);
+            float wt = weight * _transmitMax[mi];
             if (!m.Dispersive || band >= 0)
-                Refract(m, mi, band, at, depth, result, incoming, rest, ref counters);
+                Refract(m, mi, band, at, depth, wt, result, incoming, rest, ref counters);
             else
             {
                 // Dispersion: every band bends by its own index, so each gets its own refracted ray.
@@ -149,7 +161,7 @@ public sealed partial class WhittedIntegrator : IPacketIntegrator
                 for (int b = 0; b < _scene.Bands; b++)
                 {
                     one.Clear();
-                    Refract(m, mi, b, at, depth, one, incoming, rest, ref counters);
+                    Refract(m, mi, b, at, depth, wt, one, incoming, rest, ref counters);
                     result[b] += one[b];
                 }
                 counters.Fallback++;   // per-band paths: the colour comes from the band values
@@ -168,7 +180,7 @@ public sealed partial class WhittedIntegrator : IPacketIntegrator
 
     /// <summary>k_t·L(refracted) into <paramref name="result"/>: all bands when <paramref name="band"/> is −1, else that band only.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    void Refract(Material m, int mi, int band, in SurfacePoint at, int depth,
+    void Refract(Material m, int mi, int band, in SurfacePoint at, int depth, float branch,
         Span<float> result, Span<float> incoming, Span<float> rest, ref RayCounters counters)
     {
         float eta = m.Eta(at.Outside, band);   // n_i / n_t
@@ -192,8 +204,9 @@ public sealed partial class WhittedIntegrator : IPacketIntegrator
             origin = at.P - _geometry.Epsilon * at.Ng;
             weight = m.TransmitFactor(cosI, eta);
         }
+        if (branch * weight < _minWeight) { counters.PrunedRays++; return; }   // adaptive depth (Hall & Greenberg 1983)
         counters.Secondary++;
-        Radiance(new Ray(origin, dir), depth + 1, band, incoming, rest, ref counters);
+        Radiance(new Ray(origin, dir), depth + 1, band, branch * weight, incoming, rest, ref counters);
         if (band < 0)
         {
             SpectralMath.AddProduct(result, _tables.Transmit[mi], incoming, weight);

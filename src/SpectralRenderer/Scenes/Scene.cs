@@ -60,10 +60,22 @@ public sealed class Scene
     public required float[] GlobalAmbient { get; init; }
     public bool HasGlobalAmbient { get; init; }
     public int MaxDepth { get; init; } = 5;
+    /// <summary>
+    /// Adaptive tree depth (Hall &amp; Greenberg 1983): a reflected or refracted ray whose accumulated weight — the
+    /// product of the k_r, k_t (and Fresnel factors) along its path, at its largest band — falls below this is not
+    /// traced, since it cannot change the pixel by more than this fraction of what a directly seen surface shows.
+    /// </summary>
+    public float MinRayWeight { get; init; } = DefaultMinRayWeight;
+    public const float DefaultMinRayWeight = 0f;   // off by default: relighting (LightTransfer) traces the full tree and must equal a render
+    /// <summary>The most rays one camera ray may cost, itself and its shadow, reflected and refracted rays included; beyond it, its branches end and the ray is counted.</summary>
+    public int RayBudget { get; init; } = DefaultRayBudget;
+    public const int DefaultRayBudget = 20_000;
     public required OutputOptions Output { get; init; }
     /// <summary>The resolved scene as JSON (for render.json).</summary>
     public System.Text.Json.Nodes.JsonObject? Resolved { get; init; }
 
     public int Bands => Grid.Count;
+    /// <summary>Triangles over all meshes of the scene.</summary>
+    public int TriangleCount => Objects.Sum(o => o.Mesh?.TriangleCount ?? 0);
     public int PaddedBands => SpectralMath.Padded(Grid.Count);
 }

@@ -36,10 +36,10 @@ public static class CsvSpectrumReader
                 throw new InputException($"{path}:1", $"column {c + 1} has no name", "every column needs a name in the header");
             for (int d = 0; d < c; d++)
                 if (header[d] == header[c])
-                    throw new InputException($"{path}:1", $"column name '{header[c]}' appears twice");
+                    throw new InputException($"{path}:1", $"column name '{header[c]}' appears twice", "give every column its own name");
         }
         if (n == 1)
-            throw new InputException($"{path}:2", "the file has a header but no data rows");
+            throw new InputException($"{path}:2", "the file has a header but no data rows", "add rows of wavelength_nm,value");
 
         var wl = new List<double>(n);
         var cols = new List<double>[header.Length - 1];
@@ -56,18 +56,18 @@ public static class CsvSpectrumReader
                 throw new InputException($"{path}:{lineNo}",
                     cells.Length < header.Length
                         ? $"missing column: {cells.Length} cells, the header names {header.Length} (first missing: '{header[cells.Length]}')"
-                        : $"{cells.Length} cells, the header names only {header.Length}");
+                        : $"{cells.Length} cells, the header names only {header.Length}", "every row needs one cell per header column");
             for (int c = 0; c < cells.Length; c++)
             {
                 var cell = cells[c].Trim();
                 if (!double.TryParse(cell, NumberStyles.Float, CultureInfo.InvariantCulture, out double v))
-                    throw new InputException($"{path}:{lineNo}", $"'{cell}' in column '{header[c]}' is not a number");
+                    throw new InputException($"{path}:{lineNo}", $"{MessageText.Quote(cell)} in column {MessageText.Quote(header[c])} is not a number", "cells are plain numbers with a '.' decimal point, e.g. 0.25");
                 if (!double.IsFinite(v) || Math.Abs(v) > float.MaxValue)
                     throw new InputException($"{path}:{lineNo}", $"{cell} in column '{header[c]}' is not finite", "spectral values must be finite numbers");
                 if (c == 0)
                 {
                     if (v <= 0)
-                        throw new InputException($"{path}:{lineNo}", $"wavelength {cell} nm is not positive");
+                        throw new InputException($"{path}:{lineNo}", $"wavelength {cell} nm is not positive", "wavelengths are in nm and positive");
                     if (wl.Count > 0 && v == wl[^1])
                         throw new InputException($"{path}:{lineNo}", $"wavelength {cell} nm appears twice", "each wavelength needs exactly one row");
                     if (wl.Count > 0 && v < wl[^1])

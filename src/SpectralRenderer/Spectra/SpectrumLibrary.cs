@@ -60,6 +60,8 @@ public static class SpectrumLibrary
             var file = name[..colon];
             var column = name[(colon + 1)..];
             var path = System.IO.Path.IsPathRooted(file) ? file : System.IO.Path.Combine(baseDirectory ?? ".", file);
+            if (!File.Exists(path) && !Directory.Exists(path))
+                throw new InputException(where, $"CSV file {MessageText.Quote(file, 80)} not found", "check the name: a relative path starts at the scene's folder");
             var table = Table(path);
             if (!table.TryGet(column, out var s))
                 throw new InputException(where, $"{file} has no column '{column}'",

@@ -26,15 +26,18 @@ public class InterruptTests
         foreach (var a in new[] { dll, "render", scene, "-o", outDir }) psi.ArgumentList.Add(a);
         using var p = Process.Start(psi)!;
         var err = p.StandardError.ReadToEndAsync();
-        // Wait until the output folder exists (the scene is loaded and rendering has begun), then interrupt.
+        // Wait until the render's staging folder exists beside OUTDIR (the scene is loaded and rendering has begun), then interrupt.
         var clock = Stopwatch.StartNew();
-        while (!Directory.Exists(outDir) && clock.Elapsed.TotalSeconds < 30 && !p.HasExited) Thread.Sleep(20);
+        while (!Directory.EnumerateDirectories(dir).Any(d => Path.GetFileName(d).StartsWith(".out.render-", StringComparison.Ordinal)) && clock.Elapsed.TotalSeconds < 30 && !p.HasExited)
+            Thread.Sleep(20);
         Thread.Sleep(300);
         Assert.False(p.HasExited, "the render finished before it could be interrupted");
         Process.Start("/bin/kill", ["-INT", p.Id.ToString()])!.WaitForExit();
         Assert.True(p.WaitForExit(60_000), "the process did not stop after SIGINT");
         Assert.Equal(1, p.ExitCode);
         Assert.Contains("interrupted", err.Result);
+        Assert.False(Directory.Exists(outDir));   // the render is staged beside OUTDIR and swapped in only when whole
+        Assert.Empty(Directory.GetFileSystemEntries(dir, ".out.*"));
         var files = Directory.Exists(outDir) ? Directory.GetFiles(outDir, "*", SearchOption.AllDirectories) : [];
         Assert.DoesNotContain(files, f => f.EndsWith(".tmp", StringComparison.Ordinal));
         Assert.DoesNotContain(files, f => f.EndsWith("render.json", StringComparison.Ordinal));

@@ -23,9 +23,9 @@ public class ObjReaderTests
     [InlineData("v 0 0\n", "bad.obj:1: ", "'v' needs 3 coordinates")]
     [InlineData("v 0 0 0\nvn 0 1\n", "bad.obj:2: ", "'vn' needs 3 coordinates")]
     [InlineData("v 0 0 0\nv 1 0 0\n\nf 1 2\n", "bad.obj:4: ", "face has 2 vertices (a face needs at least 3)")]
-    [InlineData("v 0 0 0\nv 1 0 0\nv 0 1 0\n", "bad.obj: ", "no faces (empty mesh)")]
-    [InlineData("", "bad.obj: ", "no faces (empty mesh)")]
-    [InlineData("v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\nf 1 1 2\n", "bad.obj: ", "all 2 triangles are degenerate")]
+    [InlineData("v 0 0 0\nv 1 0 0\nv 0 1 0\n", "bad.obj:3: ", "no faces before the end of the file (empty mesh)")]
+    [InlineData("", "bad.obj:1: ", "no faces before the end of the file (empty mesh)")]
+    [InlineData("v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\nf 1 1 2\n", "bad.obj:5: ", "all 2 triangles are degenerate")]
     public void Broken_files_are_rejected_with_file_and_line(string text, string where, string what)
     {
         var e = Assert.Throws<InputException>(() => Parse(text));
@@ -37,7 +37,7 @@ public class ObjReaderTests
     public void A_missing_file_names_the_file()
     {
         var e = Assert.Throws<InputException>(() => ObjReader.Read("/nonexistent/bunny.obj"));
-        Assert.Equal("/nonexistent/bunny.obj: file not found (hint: check the path)", e.Message);
+        Assert.Equal("/nonexistent/bunny.obj: mesh file not found (hint: check the path)", e.Message);
     }
 
     [Fact]
@@ -182,6 +182,6 @@ public class ObjReaderTests
         var m = Parse("\uFEFFv\u00A00\u20030\t0\nv 1\u3000 0 0\r\nv 0 1 0\nf 1 2 3\n");
         Assert.Equal(new Vector3(1, 0, 0), m.Positions[1]);
         var e = Assert.Throws<InputException>(() => Parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1é\n"));
-        Assert.Equal("bad.obj:4: coordinate '1é' is not a finite number", e.Message);
+        Assert.Equal("bad.obj:4: coordinate '1é' is not a finite number", e.Unhinted());
     }
 }

@@ -36,7 +36,7 @@ public class PlyReaderTests
         return e;
     }
 
-    static string Tail(InputException e) => e.Message[(e.Message.IndexOf("bad.ply", StringComparison.Ordinal) + "bad.ply".Length)..];
+    static string Tail(InputException e) => e.Unhinted()[(e.Unhinted().IndexOf("bad.ply", StringComparison.Ordinal) + "bad.ply".Length)..];
 
     [Theory]
     [InlineData("plx\nformat ascii 1.0\nend_header\n", ":1: not a PLY file")]
@@ -44,8 +44,8 @@ public class PlyReaderTests
     [InlineData("ply\nformat ascii 1.0\nelement vertex 3\nproperty float16 x\nend_header\n", ":4: unknown property type 'float16'")]
     [InlineData("ply\nformat ascii 1.0\nelement vertex 3\nproperty list float int x\nend_header\n", ":4: list count type 'float' is not an integer type")]
     [InlineData("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n", ":3: element 'vertex' has no scalar property 'z'")]
-    [InlineData("ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\n", ": the header has no 'end_header' line")]
-    [InlineData("ply\nformat ascii 1.0\n" + TriangleVertices + "end_header\n0 0 0 1 0 0 0 1 0\n", ": the header declares no 'face' or 'tristrips' element")]
+    [InlineData("ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\n", ":5: the header has no 'end_header' line")]
+    [InlineData("ply\nformat ascii 1.0\n" + TriangleVertices + "end_header\n0 0 0 1 0 0 0 1 0\n", ": header: the header declares no 'face' or 'tristrips' element")]
     [InlineData("ply\nformat ascii 1.0\n" + TriangleVertices + "element face 1\nproperty list uchar float vertex_indices\nend_header\n", ":7: element 'face': vertex indices must have an integer type")]
     [InlineData("ply\nformat ascii 1.0\n" + TriangleVertices + "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0 1 0 0 0 1 0\n3 0 1 2\nfoo", "")]
     public void Broken_headers_are_rejected_with_file_and_line(string text, string tail)
@@ -87,13 +87,13 @@ public class PlyReaderTests
         text = "ply\nformat ascii 1.0\n" + TriangleVertices + "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n";
         e = Fails(Encoding.ASCII.GetBytes(text));
         Assert.Contains("element 'face' #0 at byte", e.Message);
-        Assert.EndsWith("face has 2 vertices (a face needs at least 3)", e.Message);
+        Assert.EndsWith("face has 2 vertices (a face needs at least 3)", e.Unhinted());
 
         text = "ply\nformat ascii 1.0\n" + TriangleVertices + "element face 1\nproperty list int int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n-3 0 1 2\n";
-        Assert.EndsWith("list 'vertex_indices' has negative length -3", Fails(Encoding.ASCII.GetBytes(text)).Message);
+        Assert.EndsWith("list 'vertex_indices' has negative length -3", Fails(Encoding.ASCII.GetBytes(text)).Unhinted());
 
         text = "ply\nformat ascii 1.0\n" + TriangleVertices + "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n";
-        Assert.EndsWith($"element 'face' #0 at byte {text.Length}: unexpected end of file (truncated data)", Fails(Encoding.ASCII.GetBytes(text)).Message);
+        Assert.EndsWith($"element 'face' #0 at byte {text.Length}: unexpected end of file (truncated data)", Fails(Encoding.ASCII.GetBytes(text)).Unhinted());
     }
 
     [Fact]

@@ -203,7 +203,7 @@ public class ExrTests
     {
         var good = Write(new ExrOptions());
         var e = Assert.Throws<InputException>(() => ExrReader.Read("P6 not an exr"u8.ToArray(), "x.exr"));
-        Assert.Contains("x.exr: not an OpenEXR file", e.Message);
+        Assert.Contains("x.exr: byte 0: not an OpenEXR file", e.Message);
         e = Assert.Throws<InputException>(() => ExrReader.Read(good[..(good.Length - 100)], "t.exr"));
         Assert.Contains("truncated", e.Message);
         e = Assert.Throws<InputException>(() => ExrReader.Read(good[..300], "h.exr"));

@@ -70,7 +70,7 @@ public class BadSceneTests
         Assert.Contains("/nonexistent/scene.json: scene file not found", err);
         (code, _, err) = CliRunner.Run("render", "x.json", "--spp", "zero");
         Assert.Equal(2, code);
-        Assert.Contains("--spp 'zero' is not a whole number", err);
+        Assert.Contains("--spp: 'zero' is not a whole number", err);
         (code, _, err) = CliRunner.Run("rendr");
         Assert.Equal(2, code);
         Assert.Contains("did you mean 'render'?", err);
@@ -103,7 +103,7 @@ public class BadSceneTests
     }
 
     [Fact]
-    public void A_write_that_fails_is_one_line_exit_1_and_leaves_no_render_json()
+    public void A_file_where_the_bands_folder_goes_is_bad_input_exit_2_and_leaves_it_alone()
     {
         var dir = Reference.TempDir();
         var scene = Path.Combine(dir, "scene.json");
@@ -112,9 +112,12 @@ public class BadSceneTests
         Directory.CreateDirectory(outDir);
         File.WriteAllText(Path.Combine(outDir, "bands"), "a file where the bands folder goes");
         var (code, _, err) = CliRunner.Run("render", scene, "-o", outDir, "--quiet");
-        Assert.Equal(1, code);
+        Assert.Equal(2, code);
         Assert.Single(err.TrimEnd('\n').Split('\n'));
+        Assert.Contains("(hint: ", err);
         Assert.False(File.Exists(Path.Combine(outDir, "render.json")));
+        Assert.Equal("a file where the bands folder goes", File.ReadAllText(Path.Combine(outDir, "bands")));
+        Assert.Empty(Directory.GetFileSystemEntries(dir, ".out.*"));
     }
 
     [Fact]

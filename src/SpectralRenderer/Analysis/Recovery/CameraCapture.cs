@@ -26,8 +26,8 @@ public sealed class CameraCapture
         var path = Path.Combine(dir, "camera.json");
         if (!File.Exists(path)) throw new InputException(dir, "has no camera.json", "give the -o folder of a 'spectral camera' run");
         JsonObject m;
-        try { m = JsonNode.Parse(File.ReadAllText(path)) as JsonObject ?? throw new InputException(path, "is not a JSON object"); }
-        catch (JsonException e) { throw new InputException($"{path}:{(e.LineNumber ?? 0) + 1}", $"broken JSON: {e.Message}"); }
+        try { m = JsonNode.Parse(File.ReadAllText(path)) as JsonObject ?? throw new InputException(path, "is not a JSON object", "give the camera.json a 'spectral camera' run wrote"); }
+        catch (JsonException e) { throw new InputException($"{path}:{(e.LineNumber ?? 0) + 1}", $"broken JSON: {e.Message}", "camera.json is damaged: run 'spectral camera' again"); }
         try
         {
             var renderDir = Path.GetFullPath(Path.Combine(dir, (string)m["render_folder"]!));

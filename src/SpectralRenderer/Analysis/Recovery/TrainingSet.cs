@@ -40,7 +40,7 @@ public sealed class TrainingSet
             // Tiny negatives left by the source's processing (|v| ≤ 3e-16 in rawtoaces) count as 0.
             samples.Add(BandProjection.Means(s, grid).Select(v => Math.Max(0, v)).ToArray());
         }
-        if (samples.Count < 2) throw new InputException(path, "a training set needs at least two reflectances");
+        if (samples.Count < 2) throw new InputException(path, "a training set needs at least two reflectances", "list two or more reflectance spectra");
         return new TrainingSet(named.Name ?? Path.GetFileNameWithoutExtension(path), samples.ToArray());
     }
 

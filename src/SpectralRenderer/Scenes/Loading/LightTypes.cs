@@ -40,7 +40,7 @@ public static class LightTypes
             if (towards.LengthSquared() == 0) throw s.Error("look_at", "look_at equals position", "a spot light needs a direction to shine in");
             direction = Vector3.Normalize(towards);
         }
-        else throw s.Error("direction", "a spot light needs a direction or look_at");
+        else throw s.Error("direction", "a spot light needs a direction or look_at", "e.g. \"direction\": [0, -1, 0] or \"look_at\": [0, 0, 0]");
         return new SpotLight
         {
             Name = s.Name, Intensity = s.Intensity, Ambient = s.Ambient, HasAmbient = s.HasAmbient, Spectrum = s.Spectrum, Scale = s.Scale,

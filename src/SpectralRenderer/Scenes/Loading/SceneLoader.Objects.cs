@@ -42,7 +42,7 @@ public sealed partial class SceneLoader
         {
             case "sphere":
             {
-                float r = (float)Number(e, "radius", path, 1, 1e-9);
+                float r = (float)Number(e, "radius", path, 1, MinSize, MaxCoordinate);
                 local = Matrix4x4.CreateScale(r) * Matrix4x4.CreateTranslation(Vec3(e, "center", path, Vector3.Zero));
                 kind = ShapeKind.Sphere;
                 break;
@@ -79,7 +79,8 @@ public sealed partial class SceneLoader
                     centre = Vec3(e, "center", path, Vector3.Zero);
                     size = Vec3(e, "size", path, Vector3.One);
                 }
-                if (size.X <= 0 || size.Y <= 0 || size.Z <= 0) throw Error($"{path}.size", "a box needs a positive size on every axis");
+                if (!(size.X >= MinSize && size.Y >= MinSize && size.Z >= MinSize))
+            throw Error($"{path}.size", $"a box needs a size of at least {MinSize} on every axis, found [{size.X}, {size.Y}, {size.Z}]", "give size as [x, y, z] of positive numbers, or max above min");
                 local = Matrix4x4.CreateScale(size) * Matrix4x4.CreateTranslation(centre);
                 kind = ShapeKind.Box;
                 break;
@@ -88,13 +89,15 @@ public sealed partial class SceneLoader
         objects.Add(new SceneObject { Name = name, Material = material, Shape = new AnalyticShape(kind, local * user) });
     }
 
+    static bool Within(Vector3 p) => Math.Abs(p.X) <= MaxCoordinate && Math.Abs(p.Y) <= MaxCoordinate && Math.Abs(p.Z) <= MaxCoordinate;
+
     [MethodImpl(MethodImplOptions.NoOptimization)]
     Vector2 Size2(JsonElement e, string path)
     {
         if (!TryGet(e, "size", out var s)) return Vector2.One;
-        if (s.ValueKind == JsonValueKind.Number) { float v = (float)Number(s, $"{path}.size", 1e-9); return new Vector2(v, v); }
-        if (s.ValueKind != JsonValueKind.Array || s.GetArrayLength() != 2) throw Error($"{path}.size", $"expected [width, height], found {Kind(s)}");
-        return new Vector2((float)Number(s[0], $"{path}.size[0]", 1e-9), (float)Number(s[1], $"{path}.size[1]", 1e-9));
+        if (s.ValueKind == JsonValueKind.Number) { float v = (float)Number(s, $"{path}.size", MinSize, MaxCoordinate); return new Vector2(v, v); }
+        if (s.ValueKind != JsonValueKind.Array || s.GetArrayLength() != 2) throw Error($"{path}.size", $"expected [width, height], found {Kind(s)}", "e.g. \"size\": [2, 1] or \"size\": 2");
+        return new Vector2((float)Number(s[0], $"{path}.size[0]", MinSize, MaxCoordinate), (float)Number(s[1], $"{path}.size[1]", MinSize, MaxCoordinate));
     }
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
@@ -122,9 +125,9 @@ public sealed partial class SceneLoader
     [MethodImpl(MethodImplOptions.NoOptimization)]
     void ColorCheckerChart(JsonElement e, string path, string name, Matrix4x4 user, List<SceneObject> objects, List<Material> materials)
     {
-        if (TryGet(e, "material", out _)) throw Error($"{path}.material", "a colorchecker chooses its own materials (the 24 Ohta reflectances)");
-        float patch = (float)Number(e, "patch_size", path, 1, 1e-9);
-        float gap = (float)Number(e, "gap", path, 0.2 * patch, 0);
+        if (TryGet(e, "material", out _)) throw Error($"{path}.material", "a colorchecker chooses its own materials (the 24 Ohta reflectances)", "remove 'material' from the colorchecker");
+        float patch = (float)Number(e, "patch_size", path, 1, MinSize, MaxCoordinate);
+        float gap = (float)Number(e, "gap", path, 0.2 * patch, 0, MaxCoordinate);
         var normal = TryGet(e, "normal", out var nn) ? Direction(nn, $"{path}.normal") : Vector3.UnitZ;
         var up = TryGet(e, "up", out var u) ? Direction(u, $"{path}.up") : Vector3.UnitY;
         var centre = Vec3(e, "center", path, Vector3.Zero);
@@ -186,11 +189,12 @@ public sealed partial class SceneLoader
         var m = Matrix4x4.Identity;
         if (TryGet(e, "scale", out var s))
         {
-            if (s.ValueKind == JsonValueKind.Number) m *= Matrix4x4.CreateScale((float)Number(s, $"{path}.scale", 1e-9));
+            if (s.ValueKind == JsonValueKind.Number) m *= Matrix4x4.CreateScale((float)Number(s, $"{path}.scale", MinSize, 1 / MinSize));
             else
             {
                 var v = Vec3(s, $"{path}.scale");
-                if (v.X == 0 || v.Y == 0 || v.Z == 0) throw Error($"{path}.scale", "a zero scale flattens the object", "use a positive or negative scale");
+                if (!(Math.Abs(v.X) >= MinSize && Math.Abs(v.Y) >= MinSize && Math.Abs(v.Z) >= MinSize) || Math.Abs(v.X) > 1 / MinSize || Math.Abs(v.Y) > 1 / MinSize || Math.Abs(v.Z) > 1 / MinSize)
+                    throw Error($"{path}.scale", "a zero or extreme scale flattens or explodes the object", $"use scales of magnitude {MinSize} to {1 / MinSize}");
                 m *= Matrix4x4.CreateScale(v);
             }
         }
@@ -249,17 +253,21 @@ public sealed partial class SceneLoader
             ?? throw Error($"{path}.file", $"mesh '{file}' not found in {ModelSearch.Describe(_dir, _overrides.ModelDirectories)}",
                 "download the meshes (README, 'Meshes') and pass --models DIR or set SPECTRAL_MODELS", InputProblem.MissingFile);
         var ext = Path.GetExtension(full).ToLowerInvariant();
-        if (ext is not (".obj" or ".ply")) throw Error($"{path}.file", $"'{file}' is neither .obj nor .ply");
+        if (ext is not (".obj" or ".ply")) throw Error($"{path}.file", $"'{file}' is neither .obj nor .ply", "meshes are Wavefront .obj or Stanford .ply files");
         // The read started with the scene (StartMeshReads); a second object on the same file reads it again,
         // since fitting and transforming change the mesh. Its errors surface here, as if read in place.
         TriangleMesh mesh = _meshReads.Remove(full, out var read) ? read.GetAwaiter().GetResult() : ReadMesh(full);
+        var extent = mesh.Bounds.Extent;
+        if (!(float.IsFinite(extent.X) && float.IsFinite(extent.Y) && float.IsFinite(extent.Z)))
+            throw Error($"{path}.file", $"the vertices of {MessageText.Quote(file)} span more than single precision holds (coordinates near ±3.4e38)",
+                "check the mesh for stray vertices, or scale it down in a modelling tool");
         if (TryGet(e, "fit", out var fit))
         {
             Object(fit, $"{path}.fit");
             Keys(fit, $"{path}.fit", "min", "max");
             var lo = Vec3(Required(fit, "min", $"{path}.fit"), $"{path}.fit.min");
             var hi = Vec3(Required(fit, "max", $"{path}.fit"), $"{path}.fit.max");
-            if (hi.X < lo.X || hi.Y < lo.Y || hi.Z < lo.Z) throw Error($"{path}.fit", "max is below min on some axis");
+            if (hi.X < lo.X || hi.Y < lo.Y || hi.Z < lo.Z) throw Error($"{path}.fit", "max is below min on some axis", "give fit.min below fit.max on every axis");
             // The transform orients the mesh, then fit places it: the rotated (scaled, mirrored) mesh is what fills
             // the box, so a rotation never moves it out. A translation would be undone by the fit.
             if (TryGet(e, "transform", out var t) && TryGet(t, "translate", out _))
@@ -268,6 +276,10 @@ public sealed partial class SceneLoader
             mesh.Fit(lo, hi);
         }
         else if (!user.IsIdentity) mesh.Transform(user);
+        var placed = mesh.Bounds;
+        if (!(Within(placed.Min) && Within(placed.Max)))
+            throw Error(TryGet(e, "fit", out _) ? $"{path}.fit" : $"{path}.file", $"the placed mesh reaches [{placed.Min.X:g3}, {placed.Min.Y:g3}, {placed.Min.Z:g3}]–[{placed.Max.X:g3}, {placed.Max.Y:g3}, {placed.Max.Z:g3}], outside ±{MaxCoordinate:g}",
+                "use \"fit\" to place the mesh in a box, or a smaller \"transform\" scale");
         bool smooth = true;
         if (TryGet(e, "shading", out var sh))
             smooth = String(sh, $"{path}.shading").ToLowerInvariant() switch
@@ -283,7 +295,7 @@ public sealed partial class SceneLoader
             var other => throw Error($"{path}.normals", $"unknown normals '{other}'", "use file or computed"),
         };
         if (smooth && (mesh.Normals is null || recompute)) mesh.ComputeVertexNormals();
-        if (mesh.TriangleCount == 0) throw Error($"{path}.file", $"'{file}' has no triangles left after dropping {mesh.DegenerateCount} degenerate ones");
+        if (mesh.TriangleCount == 0) throw Error($"{path}.file", $"'{file}' has no triangles left after dropping {mesh.DegenerateCount} degenerate ones", "check the mesh: every triangle has zero area");
         return new SceneObject { Name = name, Material = material, Mesh = mesh, Smooth = smooth };
     }
 }

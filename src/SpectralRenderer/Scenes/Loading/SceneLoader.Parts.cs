@@ -17,9 +17,9 @@ public sealed partial class SceneLoader
     /// file.csv:column), inline pairs [[λ, v], …], or an object {name|csv+column|values, scale, extrapolate}.
     /// </summary>
     [MethodImpl(MethodImplOptions.NoOptimization)]
-    TabulatedSpectrum Spectrum(JsonElement e, string path, int depth = 0)
+    TabulatedSpectrum Spectrum(JsonElement e, string path)
     {
-        if (depth > 16) throw Error(path, "spectrum names refer to each other in a cycle");
+        RuntimeHelpers.EnsureSufficientExecutionStack();
         TabulatedSpectrum s;
         switch (e.ValueKind)
         {
@@ -32,7 +32,17 @@ public sealed partial class SceneLoader
                 if (_resolvedNamed.TryGetValue(name, out var cached)) return cached;
                 if (_namedSpectra.TryGetValue(name, out var named))
                 {
-                    s = Spectrum(named.Element, named.Path, depth + 1);
+                    // Depth-first search over the names: a name met again while it is still being resolved
+                    // closes a cycle (any chain without one resolves, however long).
+                    int onPath = _resolving.IndexOf(name);
+                    if (onPath >= 0)
+                    {
+                        var cycle = string.Join(" → ", _resolving.Skip(onPath).Append(name).Select(n => MessageText.Quote(n, 24)));
+                        throw Error(path, $"spectrum names refer to each other in a cycle: {cycle}", "a spectrum name must lead, through other names, to a value");
+                    }
+                    _resolving.Add(name);
+                    try { s = Spectrum(named.Element, named.Path); }
+                    finally { _resolving.RemoveAt(_resolving.Count - 1); }
                     s = new TabulatedSpectrum(name, s.Wavelengths.ToArray(), s.Values.ToArray(), s.Extrapolation);
                     _resolvedNamed[name] = s;
                     return s;
@@ -40,7 +50,7 @@ public sealed partial class SceneLoader
                 try { s = SpectrumLibrary.Resolve(name, _dir, Where(path)); }
                 catch (InputException ex) when (ex.What.StartsWith("unknown spectrum", StringComparison.Ordinal))
                 {
-                    throw Error(path, $"unknown spectrum '{name}'",
+                    throw Error(path, $"unknown spectrum {MessageText.Quote(name)}",
                         InputException.DidYouMean(name, _namedSpectra.Keys.Concat(SpectrumLibrary.KnownNames)) ??
                         "name one in \"spectra\", a built-in (D65, A, FL11, led-blue, colorchecker:14, …) or file.csv:column");
                 }
@@ -53,8 +63,8 @@ public sealed partial class SceneLoader
             {
                 Keys(e, path, "name", "csv", "column", "values", "constant", "scale", "extrapolate");
                 int given = (TryGet(e, "name", out _) ? 1 : 0) + (TryGet(e, "csv", out _) ? 1 : 0) + (TryGet(e, "values", out _) ? 1 : 0) + (TryGet(e, "constant", out _) ? 1 : 0);
-                if (given != 1) throw Error(path, "a spectrum object needs exactly one of name, csv (+ column), values, constant");
-                if (TryGet(e, "name", out var n)) s = Spectrum(n, $"{path}.name", depth + 1);
+                if (given != 1) throw Error(path, "a spectrum object needs exactly one of name, csv (+ column), values, constant", "e.g. {\"name\": \"D65\", \"scale\": 2}");
+                if (TryGet(e, "name", out var n)) s = Spectrum(n, $"{path}.name");
                 else if (TryGet(e, "values", out var v)) s = Inline(v, $"{path}.values");
                 else if (TryGet(e, "constant", out var c)) s = TabulatedSpectrum.Constant(Number(c, $"{path}.constant", 0));
                 else
@@ -78,7 +88,7 @@ public sealed partial class SceneLoader
                 break;
             }
             default:
-                throw Error(path, $"expected a spectrum (a name, a number, [[λ, v], …] or an object), found {Kind(e)}");
+                throw Error(path, $"expected a spectrum (a name, a number, [[λ, v], …] or an object), found {Kind(e)}", "e.g. \"D65\", 0.5, [[400, 0.1], [700, 0.9]] or {\"csv\": \"f.csv\", \"column\": \"r\"}");
         }
         return s;
     }
@@ -86,15 +96,18 @@ public sealed partial class SceneLoader
     [MethodImpl(MethodImplOptions.NoOptimization)]
     TabulatedSpectrum Inline(JsonElement e, string path)
     {
+        if (e.ValueKind != JsonValueKind.Array) throw Error(path, $"expected inline pairs [[λ, v], …], found {Kind(e)}", "e.g. [[400, 0.1], [700, 0.9]]");
         int n = e.GetArrayLength();
-        if (n < 2) throw Error(path, "an inline spectrum needs at least two [λ, v] pairs");
+        if (n < 2) throw Error(path, "an inline spectrum needs at least two [λ, v] pairs", "e.g. [[400, 0.1], [700, 0.9]]");
         var wl = new double[n];
         var v = new double[n];
-        for (int i = 0; i < n; i++)
+        int i = -1;
+        // Enumerated, not indexed: e[i] of an array of arrays walks from the start, which made long spectra quadratic.
+        foreach (var pair in e.EnumerateArray())
         {
-            var pair = e[i];
+            i++;
             string p = $"{path}[{i}]";
-            if (pair.ValueKind != JsonValueKind.Array || pair.GetArrayLength() != 2) throw Error(p, $"expected a pair [wavelength_nm, value], found {Kind(pair)}");
+            if (pair.ValueKind != JsonValueKind.Array || pair.GetArrayLength() != 2) throw Error(p, $"expected a pair [wavelength_nm, value], found {Kind(pair)}", "e.g. [550, 0.4]");
             wl[i] = Number(pair[0], $"{p}[0]", 1e-9);
             v[i] = Number(pair[1], $"{p}[1]");
             if (v[i] < 0) throw Error($"{p}[1]", $"negative value {v[i].ToString(CultureInfo.InvariantCulture)}", "reflectances and powers cannot be negative");
@@ -113,6 +126,10 @@ public sealed partial class SceneLoader
             throw Error(path, $"spectrum '{s.Name}' covers {s.First:0.###}–{s.Last:0.###} nm but the bands need {_grid.Start:0.###}–{_grid.End:0.###} nm",
                 "choose bands inside its range or give it \"extrapolate\": \"clamp\" or \"zero\"");
         var bands = SpectralMath.ToPadded(_colorimeter!.Project(s));
+        for (int i = 0; i < _grid.Count; i++)
+            if (!(Math.Abs(bands[i]) <= MaxMagnitude))
+                throw Error(path, $"spectrum {MessageText.Quote(s.Name)} is {bands[i]:g3} in band {i} ({_grid.Lower(i):0.#}–{_grid.Upper(i):0.#} nm), beyond {MaxMagnitude:g}",
+                    "lower its values or its \"scale\"");
         _spectra[bands] = s;
         return bands;
     }
@@ -159,13 +176,13 @@ public sealed partial class SceneLoader
             {
                 Keys(iorE, $"{path}.ior", "cauchy");
                 var c = Required(iorE, "cauchy", $"{path}.ior");
-                if (c.ValueKind != JsonValueKind.Array || c.GetArrayLength() != 2) throw Error($"{path}.ior.cauchy", "expected [A, B] with n(λ) = A + B/λ², λ in nm (B in nm²)");
+                if (c.ValueKind != JsonValueKind.Array || c.GetArrayLength() != 2) throw Error($"{path}.ior.cauchy", "expected [A, B] with n(λ) = A + B/λ², λ in nm (B in nm²)", "e.g. \"ior\": {\"cauchy\": [1.5, 4200]}");
                 double a = Number(c[0], $"{path}.ior.cauchy[0]", 1e-3, 100), b = Number(c[1], $"{path}.ior.cauchy[1]", -1e7, 1e7);
                 ior = new float[SpectralMath.Padded(_grid.Count)];
                 for (int i = 0; i < _grid.Count; i++) { double l = _grid.Centre(i); ior[i] = (float)(a + b / (l * l)); }
                 dispersive = b != 0 && _grid.Count > 1;
             }
-            else throw Error($"{path}.ior", $"expected a number or {{\"cauchy\": [A, B]}}, found {Kind(iorE)}");
+            else throw Error($"{path}.ior", $"expected a number or {{\"cauchy\": [A, B]}}, found {Kind(iorE)}", "e.g. \"ior\": 1.5");
         }
         bool fresnel = Bool(e, "fresnel", path, false);
         return new Material
@@ -228,14 +245,19 @@ public sealed partial class SceneLoader
         var spectrum = Spectrum(Required(e, "spectrum", path), $"{path}.spectrum");
         float intensity = (float)Number(e, "intensity", path, 1, 0);
         var bands = Bands(spectrum, $"{path}.spectrum");
-        for (int i = 0; i < bands.Length; i++) bands[i] *= intensity;
+        for (int i = 0; i < bands.Length; i++)
+        {
+            bands[i] *= intensity;
+            if (!(bands[i] <= MaxMagnitude))
+                throw Error($"{path}.intensity", $"intensity × spectrum is {bands[i]:g3} in band {i}, beyond {MaxMagnitude:g}", "lower the intensity or the spectrum's scale");
+        }
         _spectra[bands] = spectrum.Scaled(intensity);
         var ambient = OptionalBands(e, "ambient", path);
         // Physical radiometry: a point or spot light's spectrum × intensity is radiant intensity, so irradiance falls as 1/r².
         var falloff = _radiometry == Radiometry.Physical ? new DistanceFalloff(0, 0, 1) : DistanceFalloff.None;
         if (TryGet(e, "attenuation", out var att))
         {
-            if (att.ValueKind != JsonValueKind.Array || att.GetArrayLength() != 3) throw Error($"{path}.attenuation", "expected [c0, c1, c2] with d = 1/(c0 + c1·r + c2·r²)");
+            if (att.ValueKind != JsonValueKind.Array || att.GetArrayLength() != 3) throw Error($"{path}.attenuation", "expected [c0, c1, c2] with d = 1/(c0 + c1·r + c2·r²)", "e.g. \"attenuation\": [1, 0, 0.1]");
             float c0 = (float)Number(att[0], $"{path}.attenuation[0]", 0);
             float c1 = (float)Number(att[1], $"{path}.attenuation[1]", 0);
             float c2 = (float)Number(att[2], $"{path}.attenuation[2]", 0);
@@ -277,14 +299,14 @@ public sealed partial class SceneLoader
         /// <summary>A required non-zero vector, normalised.</summary>
         public Vector3 Direction(string key) => _loader.Direction(_loader.Required(_e, key, _path), $"{_path}.{key}");
         public double Number(string key, double fallback, double min, double max) => _loader.Number(_e, key, _path, fallback, min, max);
-        public InputException Error(string key, string what, string? hint = null) => _loader.Error($"{_path}.{key}", what, hint);
+        public InputException Error(string key, string what, string hint) => _loader.Error($"{_path}.{key}", what, hint);
     }
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
     Vector3 Direction(JsonElement e, string path)
     {
         var v = Vec3(e, path);
-        if (v.LengthSquared() == 0) throw Error(path, "the direction is the zero vector");
+        if (v.LengthSquared() == 0) throw Error(path, "the direction is the zero vector", "give a non-zero direction such as [0, -1, 0]");
         return Vector3.Normalize(v);
     }
 }

@@ -17,6 +17,17 @@ namespace SpectralRenderer.Scenes.Loading;
 public sealed partial class SceneLoader
 {
     public const int MaxResolution = 32768;
+
+    /// <summary>
+    /// The largest coordinate or length a scene may use, and the smallest size of a shape, in scene units:
+    /// single-precision ray tracing keeps about 7 digits, so a scene spans at most 1e7 of its smallest feature
+    /// of interest; beyond that, intersections and matrix inverses overflow or lose every digit.
+    /// </summary>
+    public const double MaxCoordinate = 1e7, MinSize = 1e-6;
+
+    /// <summary>The largest magnitude of any number in a scene (spectral values, scales, intensities): far beyond
+    /// any real one, and far enough below float's 3.4e38 that products of a few of them stay finite.</summary>
+    public const double MaxMagnitude = 1e30;
     static readonly JsonReaderOptions ReaderOptions = new() { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true };
 
     readonly string _file;
@@ -25,6 +36,7 @@ public sealed partial class SceneLoader
     readonly SceneOverrides _overrides;
     readonly Dictionary<string, (JsonElement Element, string Path)> _namedSpectra = new(StringComparer.Ordinal);
     readonly Dictionary<string, TabulatedSpectrum> _resolvedNamed = new(StringComparer.Ordinal);
+    readonly List<string> _resolving = [];  // the names being resolved, outermost first (the search path)
     BandGrid _grid = BandGrid.Default;
     Colorimeter? _colorimeter;
     Radiometry _radiometry;
@@ -63,6 +75,7 @@ public sealed partial class SceneLoader
     {
         var span = utf8.AsSpan();
         if (span.StartsWith((ReadOnlySpan<byte>)[0xEF, 0xBB, 0xBF])) span = span[3..];
+        CheckUtf8(span, path);
         JsonDocument doc;
         try
         {
@@ -73,21 +86,53 @@ public sealed partial class SceneLoader
             string msg = e.Message;
             int cut = msg.IndexOf(" LineNumber:", StringComparison.Ordinal);
             if (cut > 0) msg = msg[..cut].TrimEnd('.', ' ');
+            int eol = msg.IndexOfAny(['\r', '\n']);
+            if (eol > 0) msg = msg[..eol].TrimEnd('.', ' ');
             throw new InputException($"{path}:{(e.LineNumber ?? 0) + 1}:{(e.BytePositionInLine ?? 0) + 1}", $"JSON syntax error: {msg}",
                 "check for a missing comma, quote or bracket just before this place");
         }
         using (doc)
         {
-            var loader = new SceneLoader(path, new JsonLocator(span, ReaderOptions), overrides ?? new SceneOverrides());
+            var locator = new JsonLocator(span, ReaderOptions);
+            if (locator.Duplicate is { } dup)
+            {
+                string key = dup.Path[(dup.Path.LastIndexOf('.') + 1)..];
+                throw new InputException($"{path}:{locator.Position(dup.Offset)}: {dup.Path}", $"key {MessageText.Quote(key)} appears a second time in this object",
+                    "each key may appear once: remove or rename one of them");
+            }
+            var loader = new SceneLoader(path, locator, overrides ?? new SceneOverrides());
             try { return loader.Build(doc.RootElement); }
+            catch (InsufficientExecutionStackException)
+            {
+                throw new InputException(path, "the scene nests too deeply (spectrum names referring to names, thousands deep)", "refer to spectra by fewer levels of names");
+            }
             finally { loader.AbandonMeshReads(); }
         }
+    }
+
+    /// <summary>A scene file is UTF-8: any other encoding (Latin-1, UTF-16 without a byte order mark) is named at its first bad byte.</summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
+    static void CheckUtf8(ReadOnlySpan<byte> span, string path)
+    {
+        if (System.Text.Unicode.Utf8.IsValid(span)) return;
+        int at = 0, line = 1, column = 1;
+        var rest = span;
+        while (rest.Length > 0)
+        {
+            var status = System.Text.Rune.DecodeFromUtf8(rest, out var rune, out int used);
+            if (status != System.Buffers.OperationStatus.Done) break;
+            if (rune.Value == '\n') { line++; column = 1; } else column++;
+            at += used;
+            rest = rest[used..];
+        }
+        throw new InputException($"{path}:{line}:{column}", $"byte 0x{span[at]:X2} is not valid UTF-8",
+            "save the scene file as UTF-8 (it looks like Latin-1 or another legacy encoding)");
     }
 
     // ---- errors -------------------------------------------------------------------------------
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
-    InputException Error(string jsonPath, string what, string? hint = null, InputProblem problem = InputProblem.Invalid)
+    InputException Error(string jsonPath, string what, string hint, InputProblem problem = InputProblem.Invalid)
     {
         // Point at the nearest located ancestor when the path itself is absent (a missing field).
         string p = jsonPath;
@@ -118,14 +163,14 @@ public sealed partial class SceneLoader
     {
         foreach (var p in obj.EnumerateObject())
             if (Array.IndexOf(allowed, p.Name) < 0)
-                throw Error($"{path}.{p.Name}", $"unknown field '{p.Name}'",
+                throw Error($"{path}.{p.Name}", $"unknown field {MessageText.Quote(p.Name)}",
                     InputException.DidYouMean(p.Name, allowed) ?? $"allowed here: {string.Join(", ", allowed)}");
     }
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
     JsonElement Object(JsonElement e, string path)
     {
-        if (e.ValueKind != JsonValueKind.Object) throw Error(path, $"expected an object, found {Kind(e)}");
+        if (e.ValueKind != JsonValueKind.Object) throw Error(path, $"expected an object, found {Kind(e)}", "write it as { \"key\": value, … }");
         return e;
     }
 
@@ -134,29 +179,31 @@ public sealed partial class SceneLoader
     [MethodImpl(MethodImplOptions.NoOptimization)]
     JsonElement Required(JsonElement obj, string name, string path)
     {
-        if (!TryGet(obj, name, out var v)) throw Error($"{path}.{name}", $"missing required field '{name}'");
+        if (!TryGet(obj, name, out var v)) throw Error($"{path}.{name}", $"missing required field '{name}'", "see docs/scene-format.md for the required fields");
         return v;
     }
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
-    double Number(JsonElement e, string path, double min = double.NegativeInfinity, double max = double.PositiveInfinity)
+    double Number(JsonElement e, string path, double min = -MaxMagnitude, double max = MaxMagnitude)
     {
-        if (e.ValueKind != JsonValueKind.Number) throw Error(path, $"expected a number, found {Kind(e)}");
+        if (e.ValueKind != JsonValueKind.Number) throw Error(path, $"expected a number, found {Kind(e)}", "write a plain number such as 1.5");
         double v = e.GetDouble();
+        min = Math.Max(min, -MaxMagnitude);
+        max = Math.Min(max, MaxMagnitude);
         if (!double.IsFinite(v) || v < min || v > max)
             throw Error(path, $"{v.ToString(CultureInfo.InvariantCulture)} is out of range", $"expected {min.ToString(CultureInfo.InvariantCulture)} to {max.ToString(CultureInfo.InvariantCulture)}");
         return v;
     }
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
-    double Number(JsonElement obj, string name, string path, double fallback, double min = double.NegativeInfinity, double max = double.PositiveInfinity) =>
+    double Number(JsonElement obj, string name, string path, double fallback, double min = -MaxMagnitude, double max = MaxMagnitude) =>
         TryGet(obj, name, out var v) ? Number(v, $"{path}.{name}", min, max) : fallback;
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
     int Integer(JsonElement obj, string name, string path, int fallback, int min, int max)
     {
         if (!TryGet(obj, name, out var v)) return fallback;
-        if (v.ValueKind != JsonValueKind.Number || !v.TryGetInt32(out int i)) throw Error($"{path}.{name}", $"expected a whole number, found {(v.ValueKind == JsonValueKind.Number ? v.GetRawText() : Kind(v))}");
+        if (v.ValueKind != JsonValueKind.Number || !v.TryGetInt32(out int i)) throw Error($"{path}.{name}", $"expected a whole number, found {(v.ValueKind == JsonValueKind.Number ? v.GetRawText() : Kind(v))}", "write an integer such as 4");
         if (i < min || i > max) throw Error($"{path}.{name}", $"{i} is out of range", $"expected {min} to {max}");
         return i;
     }
@@ -164,7 +211,7 @@ public sealed partial class SceneLoader
     [MethodImpl(MethodImplOptions.NoOptimization)]
     string String(JsonElement e, string path)
     {
-        if (e.ValueKind != JsonValueKind.String) throw Error(path, $"expected a string, found {Kind(e)}");
+        if (e.ValueKind != JsonValueKind.String) throw Error(path, $"expected a string, found {Kind(e)}", "write it in double quotes");
         return e.GetString()!;
     }
 
@@ -172,7 +219,7 @@ public sealed partial class SceneLoader
     bool Bool(JsonElement obj, string name, string path, bool fallback)
     {
         if (!TryGet(obj, name, out var v)) return fallback;
-        if (v.ValueKind is not (JsonValueKind.True or JsonValueKind.False)) throw Error($"{path}.{name}", $"expected true or false, found {Kind(v)}");
+        if (v.ValueKind is not (JsonValueKind.True or JsonValueKind.False)) throw Error($"{path}.{name}", $"expected true or false, found {Kind(v)}", "write true or false without quotes");
         return v.GetBoolean();
     }
 
@@ -187,13 +234,14 @@ public sealed partial class SceneLoader
     Vector3 Vec3(JsonElement v, string path)
     {
         if (v.ValueKind != JsonValueKind.Array || v.GetArrayLength() != 3)
-            throw Error(path, $"expected [x, y, z], found {Kind(v)}");
-        return new Vector3((float)Number(v[0], $"{path}[0]"), (float)Number(v[1], $"{path}[1]"), (float)Number(v[2], $"{path}[2]"));
+            throw Error(path, $"expected [x, y, z], found {Kind(v)}", "e.g. [0, 1, 5]");
+        return new Vector3((float)Number(v[0], $"{path}[0]", -MaxCoordinate, MaxCoordinate), (float)Number(v[1], $"{path}[1]", -MaxCoordinate, MaxCoordinate),
+            (float)Number(v[2], $"{path}[2]", -MaxCoordinate, MaxCoordinate));
     }
 
     // ---- the scene ----------------------------------------------------------------------------
 
-    static readonly string[] TopKeys = ["name", "description", "bands", "wave", "integration", "radiometry", "observer", "white", "scaling", "spectra", "materials", "lights", "objects", "background", "ambient", "max_depth", "camera", "output"];
+    static readonly string[] TopKeys = ["name", "description", "bands", "wave", "integration", "radiometry", "observer", "white", "scaling", "spectra", "materials", "lights", "objects", "background", "ambient", "max_depth", "min_ray_weight", "ray_budget", "camera", "output"];
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
     Scene Build(JsonElement root)
@@ -258,14 +306,14 @@ public sealed partial class SceneLoader
         var lights = new List<Light>();
         if (TryGet(root, "lights", out var lightArray))
         {
-            if (lightArray.ValueKind != JsonValueKind.Array) throw Error("$.lights", $"expected an array of lights, found {Kind(lightArray)}");
+            if (lightArray.ValueKind != JsonValueKind.Array) throw Error("$.lights", $"expected an array of lights, found {Kind(lightArray)}", "e.g. \"lights\": [{\"type\": \"point\", …}]");
             int i = 0;
             foreach (var l in lightArray.EnumerateArray()) { lights.Add(ParseLight(l, $"$.lights[{i}]", i)); i++; }
         }
 
         var objects = new List<SceneObject>();
         var objectsElement = Required(root, "objects", "$");
-        if (objectsElement.ValueKind != JsonValueKind.Array) throw Error("$.objects", $"expected an array of objects, found {Kind(objectsElement)}");
+        if (objectsElement.ValueKind != JsonValueKind.Array) throw Error("$.objects", $"expected an array of objects, found {Kind(objectsElement)}", "e.g. \"objects\": [{\"type\": \"sphere\", …}]");
         {
             int i = 0;
             foreach (var o in objectsElement.EnumerateArray()) { ParseObject(o, $"$.objects[{i}]", i, objects, materials, materialIndex); i++; }
@@ -276,6 +324,8 @@ public sealed partial class SceneLoader
 
         var output = ParseOutput(root);
         int depth = Integer(root, "max_depth", "$", 5, 0, 64);
+        float minWeight = (float)Number(root, "min_ray_weight", "$", Scene.DefaultMinRayWeight, 0, 1);
+        int budget = Integer(root, "ray_budget", "$", Scene.DefaultRayBudget, 1, 1_000_000_000);
         var background = TryGet(root, "background", out var bg) ? Bands(bg, "$.background") : new float[SpectralMath.Padded(_grid.Count)];
         bool hasAmbient = TryGet(root, "ambient", out var amb);
         var ambient = hasAmbient ? Bands(amb, "$.ambient") : new float[SpectralMath.Padded(_grid.Count)];
@@ -302,8 +352,10 @@ public sealed partial class SceneLoader
             GlobalAmbient = ambient,
             HasGlobalAmbient = hasAmbient && SpectralMath.Any(ambient),
             MaxDepth = depth,
+            MinRayWeight = minWeight,
+            RayBudget = budget,
             Output = output,
-            Resolved = JsonNode.Parse(root.GetRawText(), documentOptions: new JsonDocumentOptions { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true }) as JsonObject,
+            Resolved = Resolved(root),
         };
     }
 
@@ -324,6 +376,42 @@ public sealed partial class SceneLoader
             _warnings.Add($"{_file}: warning: the scene can only render black: no object's material reflects or transmits light and the background is black");
     }
 
+    /// <summary>
+    /// The scene as the manifest records it: the fields the renderer read, with the named spectra it used.
+    /// "name" and "description" are short strings; named spectra nothing refers to are left out.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
+    JsonObject Resolved(JsonElement root)
+    {
+        var o = new JsonObject();
+        foreach (var p in root.EnumerateObject())
+        {
+            if (p.Value.ValueKind == JsonValueKind.Null) continue;
+            if (p.Name is "name" or "description")
+            {
+                var text = String(p.Value, $"$.{p.Name}");
+                if (text.Length > MaxDescription) throw Error($"$.{p.Name}", $"is {text.Length} characters long, more than {MaxDescription}", "keep names and descriptions short; long notes belong in a file beside the scene");
+                o[p.Name] = text;
+                continue;
+            }
+            if (p.Name == "spectra")
+            {
+                var used = new JsonObject();
+                foreach (var s in p.Value.EnumerateObject())
+                    if (_resolvedNamed.ContainsKey(s.Name)) used[s.Name] = JsonNode.Parse(s.Value.GetRawText(), documentOptions: NodeOptions);
+                o[p.Name] = used;
+                continue;
+            }
+            o[p.Name] = JsonNode.Parse(p.Value.GetRawText(), documentOptions: NodeOptions);
+        }
+        return o;
+    }
+
+    static readonly JsonDocumentOptions NodeOptions = new() { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true };
+
+    /// <summary>The longest scene name or description, in characters.</summary>
+    public const int MaxDescription = 4096;
+
     string Where(string path) => _locator.Locate(path) is { } pos ? $"{_file}:{pos}: {path}" : $"{_file}: {path}";
 
     /// <summary>The band grid: --wave or --bands, else the scene's "wave" (centres) or "bands" (edges), else 380:780:20.</summary>
@@ -339,7 +427,7 @@ public sealed partial class SceneLoader
             throw Error("$.wave", "the scene gives both \"bands\" and \"wave\"", "keep one: \"wave\": \"400:10:700\" (centres) or \"bands\": \"395:705:31\" (edges)");
         if (hasWave)
         {
-            if (wave.ValueKind != JsonValueKind.String) throw Error("$.wave", $"expected a string such as \"400:10:700\", found {Kind(wave)}");
+            if (wave.ValueKind != JsonValueKind.String) throw Error("$.wave", $"expected a string such as \"400:10:700\", found {Kind(wave)}", "give start:step:end in nm, e.g. \"400:10:700\"");
             return BandGrid.ParseWave(wave.GetString()!, Where("$.wave"));
         }
         return hasBands ? ParseGrid(bands, "$.bands") : BandGrid.Default;
@@ -348,7 +436,7 @@ public sealed partial class SceneLoader
     [MethodImpl(MethodImplOptions.NoOptimization)]
     BandGrid ParseGrid(JsonElement e, string path)
     {
-        if (e.ValueKind != JsonValueKind.String) throw Error(path, $"expected a string such as \"380:780:20\", found {Kind(e)}");
+        if (e.ValueKind != JsonValueKind.String) throw Error(path, $"expected a string such as \"380:780:20\", found {Kind(e)}", "give start:end:count in nm, e.g. \"380:780:20\"");
         return BandGrid.Parse(e.GetString()!, Where(path));
     }
 
@@ -407,7 +495,7 @@ public sealed partial class SceneLoader
         if (width < 1 || height < 1)
             throw Error(width < 1 ? $"{path}.width" : $"{path}.height", $"resolution {width}×{height} is not positive", "width and height must be at least 1");
         if (width > MaxResolution || height > MaxResolution)
-            throw Error(width > MaxResolution ? $"{path}.width" : $"{path}.height", $"resolution {width}×{height} exceeds {MaxResolution} pixels on a side");
+            throw Error(width > MaxResolution ? $"{path}.width" : $"{path}.height", $"resolution {width}×{height} exceeds {MaxResolution} pixels on a side", "lower the width or height");
         int spp = _overrides.SamplesPerPixel ?? Integer(e, "spp", path, 1, 1, 65536);
         return new Camera(position, lookAt, up, fov, width, height, spp);
     }
@@ -439,7 +527,7 @@ public sealed partial class SceneLoader
             o.Adapt = Bool(e, "adapt", "$.output", false);
             if (TryGet(e, "formats", out var f))
             {
-                if (f.ValueKind != JsonValueKind.Array) throw Error("$.output.formats", $"expected an array of format names, found {Kind(f)}");
+                if (f.ValueKind != JsonValueKind.Array) throw Error("$.output.formats", $"expected an array of format names, found {Kind(f)}", "e.g. \"formats\": [\"png\", \"exr\"]");
                 o.Products = ParseFormats(f.EnumerateArray().Select((x, i) => String(x, $"$.output.formats[{i}]")), Where("$.output.formats"));
             }
             // "light_groups": true adds the per-light transfer outputs (lights/) to the formats.
@@ -472,9 +560,11 @@ public sealed partial class SceneLoader
             if (f == "all") { set |= OutputProducts.All; continue; }
             int i = Array.IndexOf(all, f);
             if (i < 0)
-                throw new InputException(where, $"unknown output format '{n}'", InputException.DidYouMean(n, all) ?? $"formats: {string.Join(", ", all)}, all");
+                throw new InputException(where, $"unknown output format {MessageText.Quote(n)}", InputException.DidYouMean(n, all) ?? $"formats: {string.Join(", ", all)}, all");
             set |= OutputNames.Products[i].Product;
         }
+        if (set == OutputProducts.None)
+            throw new InputException(where, "names no output format", $"give at least one of {string.Join(", ", all)} or all");
         return set;
     }
 }

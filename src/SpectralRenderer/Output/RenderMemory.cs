@@ -1,0 +1,78 @@
+using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Scenes;
+
+namespace SpectralRenderer.Output;
+
+/// <summary>
+/// What a render and its writers hold at once, in bytes, by part — the framebuffer and the renderer's per-pixel
+/// arrays, then everything <see cref="RenderOutputWriter"/> keeps while its writers run side by side (band planes,
+/// XYZ, each PNG's rows and deflate stream, each EXR's chunks, the ground-truth cube) — checked before rendering
+/// against what this process may use: the GC's view of available memory, which is the GC heap hard limit when one
+/// is set (DOTNET_GCHeapHardLimit) and the container's memory limit (cgroup) otherwise, less what is already in use.
+/// </summary>
+public static class RenderMemory
+{
+    /// <summary>The parts of the estimate, largest first, in bytes.</summary>
+    public static List<(string Part, long Bytes)> Estimate(Scene scene, int threads)
+    {
+        long n = (long)scene.Camera.Width * scene.Camera.Height, bands = scene.Bands;
+        var p = scene.Output.Products;
+        bool Has(OutputProducts x) => (p & x) != 0;
+        if (threads <= 0) threads = Environment.ProcessorCount;
+        var parts = new List<(string, long)>
+        {
+            ("framebuffer", 4 * n * bands),
+            ("per-pixel arrays", 16 * n),
+        };
+        int triangles = scene.TriangleCount;
+        if (triangles > 0) parts.Add(("BVH", 160L * triangles));
+        if (Has(OutputProducts.Bands) || Has(OutputProducts.Exr) || Has(OutputProducts.Envi)) parts.Add(("band planes", 4 * n * bands));
+        if (Has(OutputProducts.Png) || Has(OutputProducts.Exr)) parts.Add(("XYZ planes", 24 * n));
+        if (Has(OutputProducts.Png)) parts.Add(("preview.png", 3 * n + 2 * 3 * n));
+        if (Has(OutputProducts.Bands))
+        {
+            parts.Add(("band PNGs", Math.Min(threads, bands) * (2 * n + 2 * 2 * n)));
+            parts.Add(("bands.png", 2 * n * bands));
+        }
+        if (Has(OutputProducts.Exr)) parts.Add(("spectral.exr", 4 * n * (bands + 6) + 24 * n));
+        if (Has(OutputProducts.Aov))
+        {
+            parts.Add(("ground truth", 2 * 4 * n * bands));
+            parts.Add(("masks", 2 * n + 2 * 2 * n + n + 2 * n));
+        }
+        parts.Sort((a, b) => b.Item2.CompareTo(a.Item2));
+        return parts;
+    }
+
+    /// <summary>Throws bad input (the camera's size) when the estimate exceeds what the process may still use.</summary>
+    public static void Check(Scene scene, int threads)
+    {
+        var parts = Estimate(scene, threads);   // never empty: the framebuffer comes first
+        long need = parts.Sum(x => x.Bytes);
+        var info = GC.GetGCMemoryInfo();
+        long available = info.TotalAvailableMemoryBytes;
+        long inUse = GC.GetTotalMemory(false);
+        // Keep a tenth for the runtime, the JIT, buffers and fragmentation.
+        long usable = (long)(0.9 * available) - inUse;
+        if (need <= usable) return;
+        string top = $"{parts[0].Part} {InputFile.Size(parts[0].Bytes)}";
+        throw new InputException($"{scene.SourcePath}: $.camera",
+            $"a {scene.Camera.Width}×{scene.Camera.Height}×{scene.Bands} render needs about {InputFile.Size(need)} ({top}, …), more than the {InputFile.Size(Math.Max(0, usable))} left of {LimitName()} {InputFile.Size(available)}",
+            "lower the width, height or band count, or write fewer --formats");
+    }
+
+    static string LimitName()
+    {
+        if (AppContext.GetData("GCHeapHardLimit") is not null || Environment.GetEnvironmentVariable("DOTNET_GCHeapHardLimit") is { Length: > 0 }
+            || Environment.GetEnvironmentVariable("DOTNET_GCHeapHardLimitPercent") is { Length: > 0 })
+            return "the GC heap limit of";
+        try
+        {
+            foreach (var f in new[] { "/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory/memory.limit_in_bytes" })
+                if (File.Exists(f) && long.TryParse(File.ReadAllText(f).Trim(), out long limit) && limit < (1L << 50))
+                    return "the container's memory limit of";
+        }
+        catch (Exception e) when (e is IOException or UnauthorizedAccessException) { }
+        return "the machine's memory of";
+    }
+}

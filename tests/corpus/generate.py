@@ -1,0 +1,629 @@
+#!/usr/bin/env python3
+"""Writes the corpus of broken inputs and faults (tests/corpus/inputs/*, tests/corpus/cases.json).
+
+Each case: the command line (placeholders {in} = inputs/, {tmp} = a fresh folder for the case), set-up steps
+run in {tmp} before it, the exit code and a regular expression the one line on stderr must match, and for bad
+input (exit 2) the file (or option) the message must name and a pattern for the place in it. The test
+(CorpusTests) runs every case through the real CLI in-process and checks all of that, plus: one printable line
+of at most ~300 characters, a hint, and nothing written to the output folder. Run this script after changing
+it; commit its output. found/ keeps the inputs fuzzing found (fuzz/run.sh), each also a case here.
+"""
+import json, os, shutil, struct, zlib
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+IN = os.path.join(HERE, "inputs")
+shutil.rmtree(IN, ignore_errors=True)
+os.makedirs(IN)
+cases = []
+
+def write(name, data):
+    path = os.path.join(IN, name)
+    with open(path, "wb") as f:
+        f.write(data if isinstance(data, bytes) else data.encode("utf-8"))
+    return name
+
+def case(name, args, stderr, exit=2, file=None, place=None, setup=None):
+    cases.append({"name": name, "args": args, "setup": setup or [], "exit": exit, "stderr": stderr,
+                  "file": file, "place": place})
+
+def render(scene, *extra):
+    return ["render", scene, "-o", "{tmp}/out", "--quiet", *extra]
+
+JSONPLACE = r"\.json:\d+:\d+|\.json: \$"
+BASE = {
+    "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0], "width": 8, "height": 6},
+    "materials": {"green": {"diffuse": "colorchecker:14"}},
+    "lights": [{"type": "point", "position": [0, 3, 3], "spectrum": "D65"}],
+    "objects": [{"type": "sphere", "radius": 1, "material": "green"}],
+}
+
+def scene_text(obj):
+    return json.dumps(obj, indent=2, ensure_ascii=False)
+
+def deep(obj):
+    return json.loads(json.dumps(obj))
+
+n = 0
+def scene_case(label, obj_or_text, stderr, exit=2, place=JSONPLACE, extra=(), setup=None, file=None):
+    global n
+    n += 1
+    fname = f"scene-{n:03d}-{label}.json"
+    data = obj_or_text if isinstance(obj_or_text, (str, bytes)) else scene_text(obj_or_text)
+    write(fname, data)
+    case(f"scene/{label}", render("{in}/" + fname, *extra), stderr, exit, file or fname if exit == 2 else None,
+         place if exit == 2 else None, setup)
+
+def mutate(path, value):
+    s = deep(BASE)
+    cur = s
+    for k in path[:-1]:
+        cur = cur[k]
+    if value is DELETE:
+        del cur[path[-1]]
+    else:
+        cur[path[-1]] = value
+    return s
+
+DELETE = object()
+
+# ---- A. scene JSON ---------------------------------------------------------------------------------
+good = scene_text(BASE)
+# syntax: the good text cut at many places
+for i, cut in enumerate(range(1, len(good) - 1, max(1, len(good) // 24))):
+    scene_case(f"truncated-at-{cut}", good[:cut], r"JSON syntax error|expected|missing")
+scene_case("empty-object", "{}", r"missing required field 'camera'")
+scene_case("array-root", "[]", r"expected an object, found an array")
+scene_case("number-root", "5", r"expected an object, found a number")
+scene_case("missing-comma", good.replace('"width": 8,', '"width": 8'), r"JSON syntax error")
+scene_case("extra-bracket", good + "}", r"JSON syntax error")
+scene_case("single-quotes", good.replace('"D65"', "'D65'"), r"JSON syntax error")
+scene_case("nan-literal", good.replace('"radius": 1', '"radius": NaN'), r"JSON syntax error")
+scene_case("infinity-literal", good.replace('"radius": 1', '"radius": Infinity'), r"JSON syntax error")
+scene_case("number-overflow", good.replace('"radius": 1', '"radius": 1e999'), r"out of range|not a finite|cannot be represented")
+scene_case("latin1-byte", good.replace('"green"', '"gr\u00fcn"', 1).encode("latin-1"), r"not valid UTF-8")
+scene_case("nul-byte", good.replace('"D65"', '"D\u000065"'), r"JSON syntax error|unknown spectrum")
+scene_case("raw-nul-outside", good.replace("{", "{\x00", 1), r"JSON syntax error")
+scene_case("utf16-no-bom", good.encode("utf-16-le"), r"not valid UTF-8|JSON syntax error")
+scene_case("duplicate-top-key", good.replace('"camera"', '"objects": [], "camera"', 1), r"key 'objects' appears a second time")
+scene_case("duplicate-camera-key", good.replace('"width": 8', '"width": 8, "width": 9'), r"key 'width' appears a second time")
+scene_case("duplicate-material", good.replace('"green": {', '"green": {"diffuse": 0.5}, "green": {'), r"key 'green' appears a second time")
+scene_case("comment-unclosed", good.replace("{", "{ /* no end", 1), r"JSON syntax error")
+# types
+for label, path, value, pat in [
+    ("camera-not-object", ["camera"], 5, r"expected an object, found a number"),
+    ("camera-missing", ["camera"], DELETE, r"missing required field 'camera'"),
+    ("objects-missing", ["objects"], DELETE, r"missing required field 'objects'"),
+    ("objects-not-array", ["objects"], {}, r"expected an array of objects"),
+    ("lights-not-array", ["lights"], "D65", r"expected an array of lights"),
+    ("materials-array", ["materials"], [], r"expected an object, found an array"),
+    ("position-string", ["camera", "position"], "0,0,5", r"expected \[x, y, z\]"),
+    ("position-two", ["camera", "position"], [0, 5], r"expected \[x, y, z\]"),
+    ("position-null-entry", ["camera", "position"], [0, None, 5], r"expected a number, found null"),
+    ("position-1e39", ["camera", "position"], [0, 0, 1e39], r"out of range"),
+    ("position-1e8", ["camera", "position"], [0, 0, 1e8], r"out of range"),
+    ("lookat-equals-position", ["camera", "look_at"], [0, 0, 5], r"look_at equals position"),
+    ("up-parallel", ["camera", "up"], [0, 0, 1], r"up is parallel"),
+    ("up-zero", ["camera", "up"], [0, 0, 0], r"up is parallel"),
+    ("fov-zero", ["camera", "fov"], 0, r"out of range"),
+    ("fov-180", ["camera", "fov"], 180, r"out of range"),
+    ("fov-string", ["camera", "fov"], "40", r"expected a number, found a string"),
+    ("width-zero", ["camera", "width"], 0, r"not positive"),
+    ("width-negative", ["camera", "width"], -8, r"not positive"),
+    ("width-fraction", ["camera", "width"], 8.5, r"expected a whole number"),
+    ("width-huge", ["camera", "width"], 40000, r"exceeds 32768"),
+    ("width-beyond-int", ["camera", "width"], 1e12, r"expected a whole number"),
+    ("framebuffer-too-big", ["camera"], {"position": [0, 0, 5], "look_at": [0, 0, 0], "width": 30000, "height": 30000}, r"framebuffer"),
+    ("spp-zero", ["camera", "spp"], 0, r"out of range"),
+    ("spp-huge", ["camera", "spp"], 10**9, r"out of range"),
+    ("camera-unknown-key", ["camera", "zoom"], 2, r"unknown field 'zoom'"),
+    ("top-unknown-key", ["colour"], 1, r"unknown field 'colour'"),
+    ("max-depth-negative", ["max_depth"], -1, r"out of range"),
+    ("max-depth-65", ["max_depth"], 65, r"out of range"),
+    ("max-depth-string", ["max_depth"], "5", r"expected a whole number"),
+    ("bands-number", ["bands"], 20, r"expected a string such as"),
+    ("bands-bad", ["bands"], "380-780-20", r"is not a band grid"),
+    ("bands-empty-range", ["bands"], "780:380:20", r"empty or not positive"),
+    ("bands-zero-count", ["bands"], "380:780:0", r"outside 1"),
+    ("bands-text", ["bands"], "a:b:c", r"non-numeric"),
+    ("integration-bad", ["integration"], "bogus", r"unknown band integration"),
+    ("observer-bad", ["observer"], 5, r"observer|unknown"),
+    ("scaling-bad", ["scaling"], "photometric", r"unknown scaling"),
+    ("white-unknown", ["white"], "D66", r"unknown spectrum 'D66'"),
+    ("white-dark", ["white"], 0, r"no luminance"),
+    ("name-object", ["name"], {"a": 1}, r"expected a string"),
+    ("description-array", ["description"], [1, 2, 3], r"expected a string"),
+    ("description-long", ["description"], "x" * 5000, r"more than 4096"),
+    ("output-not-object", ["output"], "png", r"expected an object"),
+    ("output-formats-empty", ["output"], {"formats": []}, r"names no output format"),
+    ("output-formats-unknown", ["output"], {"formats": ["tiff"]}, r"unknown output format 'tiff'"),
+    ("output-formats-string", ["output"], {"formats": "png"}, r"expected an array of format names"),
+    ("output-rgb-bad", ["output"], {"rgb": "adobe"}, r"adobe|unknown"),
+    ("output-exposure-negative", ["output"], {"exposure": -1}, r"out of range"),
+    ("output-exr-bad", ["output"], {"exr_compression": "piz"}, r"unknown EXR compression"),
+    ("output-unknown", ["output"], {"dpi": 300}, r"unknown field 'dpi'"),
+    ("background-bad", ["background"], "nothing", r"unknown spectrum"),
+    ("ambient-negative", ["ambient"], -1, r"out of range"),
+]:
+    scene_case(label, mutate(path, value), pat)
+
+def with_material(m, label, pat, exit=2):
+    s = deep(BASE); s["materials"]["green"] = m; scene_case(label, s, pat, exit)
+
+for label, m, pat in [
+    ("mat-unknown-key", {"diffuse": 0.5, "glossy": 1}, r"unknown field 'glossy'"),
+    ("mat-diffuse-unknown", {"diffuse": "colorchecker:99"}, r"ColorChecker patch 99 does not exist"),
+    ("mat-diffuse-negative", {"diffuse": -0.5}, r"out of range"),
+    ("mat-diffuse-1e39", {"diffuse": 1e39}, r"out of range"),
+    ("mat-shininess-negative", {"diffuse": 0.5, "shininess": -1}, r"out of range"),
+    ("mat-model-bad", {"diffuse": 0.5, "model": "cook"}, r"unknown specular model"),
+    ("mat-ior-zero", {"diffuse": 0.5, "ior": 0}, r"out of range"),
+    ("mat-ior-string", {"diffuse": 0.5, "ior": "glass"}, r"expected a number or"),
+    ("mat-cauchy-short", {"diffuse": 0.5, "ior": {"cauchy": [1.5]}}, r"expected \[A, B\]"),
+    ("mat-cauchy-key", {"diffuse": 0.5, "ior": {"sellmeier": [1]}}, r"unknown field 'sellmeier'"),
+    ("mat-fresnel-string", {"diffuse": 0.5, "fresnel": "yes"}, r"expected true or false"),
+    ("mat-values-number", {"diffuse": {"values": 5}}, r"expected inline pairs"),
+    ("mat-values-object", {"diffuse": {"values": {"a": 1}}}, r"expected inline pairs"),
+    ("mat-spectrum-two-kinds", {"diffuse": {"name": "D65", "constant": 1}}, r"exactly one of"),
+    ("mat-spectrum-none", {"diffuse": {"scale": 2}}, r"exactly one of"),
+    ("mat-scale-1e39", {"diffuse": {"constant": 1, "scale": 1e39}}, r"out of range"),
+    ("mat-scale-overflow", {"diffuse": {"constant": 1e30, "scale": 1e30}}, r"beyond 1E\+30|beyond 1e\+30|reaches"),
+    ("mat-extrapolate-bad", {"diffuse": {"values": [[400, 0.1], [700, 0.9]], "extrapolate": "mirror"}}, r"unknown extrapolation"),
+    ("mat-inline-one-pair", {"diffuse": [[400, 0.5]]}, r"at least two"),
+    ("mat-inline-unsorted", {"diffuse": [[700, 0.5], [400, 0.5]]}, r"does not follow"),
+    ("mat-inline-equal", {"diffuse": [[400, 0.5], [400, 0.5]]}, r"does not follow"),
+    ("mat-inline-negative-wl", {"diffuse": [[-400, 0.5], [700, 0.5]]}, r"out of range"),
+    ("mat-inline-triple", {"diffuse": [[400, 0.5, 1], [700, 0.5]]}, r"expected a pair"),
+    ("mat-inline-short-range", {"diffuse": [[400, 0.5], [700, 0.5]]}, r"covers 400–700 nm"),
+    ("mat-inline-string-value", {"diffuse": [[380, "a"], [780, 0.5]]}, r"expected a number, found a string"),
+    ("mat-csv-missing", {"diffuse": {"csv": "nothere.csv", "column": "r"}}, r"not found"),
+    ("mat-csv-no-column", {"diffuse": {"csv": "nothere.csv"}}, r"missing required field 'column'"),
+    ("mat-bool", {"diffuse": True}, r"expected a spectrum"),
+    ("mat-ansi-name", {"diffuse": "\x1b[31mred\x1b[0m"}, r"unknown spectrum '\\e\[31mred\\e\[0m'"),
+    ("mat-newline-name", {"diffuse": "line1\nline2"}, r"unknown spectrum 'line1\\nline2'"),
+    ("mat-long-name", {"diffuse": "z" * 10000}, r"unknown spectrum 'z+…z+'"),
+]:
+    with_material(m, label, pat)
+
+def with_light(l, label, pat, exit=2):
+    s = deep(BASE); s["lights"] = [l]; scene_case(label, s, pat, exit)
+
+for label, l, pat in [
+    ("light-no-type", {"position": [0, 3, 3], "spectrum": "D65"}, r"missing required field 'type'"),
+    ("light-type-bad", {"type": "area", "position": [0, 3, 3], "spectrum": "D65"}, r"unknown light type 'area'"),
+    ("light-no-spectrum", {"type": "point", "position": [0, 3, 3]}, r"missing required field 'spectrum'"),
+    ("light-no-position", {"type": "point", "spectrum": "D65"}, r"missing required field 'position'"),
+    ("light-intensity-negative", {"type": "point", "position": [0, 3, 3], "spectrum": "D65", "intensity": -1}, r"out of range"),
+    ("light-intensity-1e39", {"type": "point", "position": [0, 3, 3], "spectrum": "D65", "intensity": 1e39}, r"out of range"),
+    ("light-intensity-overflow", {"type": "point", "position": [0, 3, 3], "spectrum": {"constant": 1e30}, "intensity": 1e20}, r"beyond"),
+    ("light-attenuation-zero", {"type": "point", "position": [0, 3, 3], "spectrum": "D65", "attenuation": [0, 0, 0]}, r"all attenuation coefficients are zero"),
+    ("light-attenuation-two", {"type": "point", "position": [0, 3, 3], "spectrum": "D65", "attenuation": [1, 0]}, r"expected \[c0, c1, c2\]"),
+    ("light-attenuation-negative", {"type": "point", "position": [0, 3, 3], "spectrum": "D65", "attenuation": [1, -1, 0]}, r"out of range"),
+    ("spot-no-direction", {"type": "spot", "position": [0, 3, 3], "spectrum": "D65"}, r"needs a direction or look_at"),
+    ("spot-cutoff-200", {"type": "spot", "position": [0, 3, 3], "spectrum": "D65", "direction": [0, -1, 0], "cutoff": 200}, r"out of range"),
+    ("spot-lookat-self", {"type": "spot", "position": [0, 3, 3], "spectrum": "D65", "look_at": [0, 3, 3]}, r"look_at equals position"),
+    ("directional-zero", {"type": "directional", "direction": [0, 0, 0], "spectrum": "D65"}, r"zero vector"),
+    ("directional-position", {"type": "directional", "direction": [0, -1, 0], "position": [0, 1, 0], "spectrum": "D65"}, r"unknown field 'position'"),
+    ("light-name-number", {"type": "point", "position": [0, 3, 3], "spectrum": "D65", "name": 5}, r"expected a string"),
+    ("light-not-object", "D65", r"expected an object, found a string"),
+]:
+    with_light(l, label, pat)
+
+def with_object(o, label, pat, exit=2, setup=None):
+    s = deep(BASE); s["objects"] = [o]; scene_case(label, s, pat, exit, setup=setup)
+
+for label, o, pat in [
+    ("obj-no-type", {"radius": 1, "material": "green"}, r"missing required field 'type'"),
+    ("obj-type-bad", {"type": "cylinder", "material": "green"}, r"unknown object type 'cylinder'"),
+    ("obj-no-material", {"type": "sphere"}, r"missing required field 'material'"),
+    ("obj-material-unknown", {"type": "sphere", "material": "gren"}, r"did you mean 'green'"),
+    ("sphere-radius-zero", {"type": "sphere", "radius": 0, "material": "green"}, r"out of range"),
+    ("sphere-radius-negative", {"type": "sphere", "radius": -1, "material": "green"}, r"out of range"),
+    ("sphere-radius-1e300", {"type": "sphere", "radius": 1e300, "material": "green"}, r"out of range"),
+    ("sphere-radius-1e-20", {"type": "sphere", "radius": 1e-20, "material": "green"}, r"out of range"),
+    ("sphere-center-1e39", {"type": "sphere", "center": [1e39, 0, 0], "material": "green"}, r"out of range"),
+    ("box-size-1e-20", {"type": "box", "size": [1e-20, 1, 1], "material": "green"}, r"at least 1E-06|at least 1e-06"),
+    ("box-size-negative", {"type": "box", "size": [-1, 1, 1], "material": "green"}, r"at least"),
+    ("box-min-above-max", {"type": "box", "min": [1, 1, 1], "max": [0, 0, 0], "material": "green"}, r"at least"),
+    ("box-min-only", {"type": "box", "min": [0, 0, 0], "material": "green"}, r"missing required field 'max'"),
+    ("quad-size-three", {"type": "quad", "size": [1, 1, 1], "material": "green"}, r"expected \[width, height\]"),
+    ("quad-up-parallel", {"type": "quad", "normal": [0, 1, 0], "up": [0, 1, 0], "material": "green"}, r"up is parallel to the normal"),
+    ("plane-normal-zero", {"type": "plane", "normal": [0, 0, 0], "material": "green"}, r"zero vector"),
+    ("transform-scale-zero", {"type": "sphere", "material": "green", "transform": {"scale": [0, 1, 1]}}, r"zero or extreme scale"),
+    ("transform-scale-1e-20", {"type": "sphere", "material": "green", "transform": {"scale": 1e-20}}, r"out of range"),
+    ("transform-unknown", {"type": "sphere", "material": "green", "transform": {"shear": 1}}, r"unknown field 'shear'"),
+    ("colorchecker-material", {"type": "colorchecker", "material": "green"}, r"chooses its own materials"),
+    ("colorchecker-patch-zero", {"type": "colorchecker", "patch_size": 0}, r"out of range"),
+    ("mesh-no-file", {"type": "mesh", "material": "green"}, r"missing required field 'file'"),
+    ("mesh-not-found", {"type": "mesh", "file": "missing.obj", "material": "green"}, r"not found"),
+    ("mesh-wrong-extension", {"type": "mesh", "file": "scene-001-truncated-at-1.json", "material": "green"}, r"neither \.obj nor \.ply"),
+    ("mesh-shading-bad", {"type": "mesh", "file": "tri.obj", "material": "green", "shading": "phong"}, r"unknown shading"),
+    ("mesh-normals-bad", {"type": "mesh", "file": "tri.obj", "material": "green", "normals": "auto"}, r"unknown normals"),
+    ("mesh-fit-inverted", {"type": "mesh", "file": "tri.obj", "material": "green", "fit": {"min": [1, 1, 1], "max": [0, 0, 0]}}, r"max is below min"),
+    ("mesh-fit-1e39", {"type": "mesh", "file": "tri.obj", "material": "green", "fit": {"min": [-1e39, 0, 0], "max": [1, 1, 1]}}, r"out of range"),
+    ("mesh-transform-far", {"type": "mesh", "file": "tri.obj", "material": "green", "transform": {"scale": 1e6, "translate": [9.5e6, 0, 0]}}, r"outside ±10000000"),
+]:
+    with_object(o, label, pat)
+write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+s = deep(BASE); s["objects"] = [{"type": "sphere", "material": "green", "name": "a"}, {"type": "sphere", "material": "green", "name": "a"}]
+scene_case("objects-same-name", s, r"two objects are named 'a'")
+s = deep(BASE); s["objects"] = [{"type": "sphere", "material": "green", "name": "x\x1b[2J\ny"}, {"type": "sphere", "material": "green", "name": "x\x1b[2J\ny"}]
+scene_case("objects-same-name-ansi", s, r"two objects are named 'x\\e\[2J\\ny'")
+# named spectra: cycles by graph search, long valid chains
+for k in (1, 2, 3, 30):
+    s = deep(BASE); s["spectra"] = {f"s{i}": f"s{(i + 1) % k}" for i in range(k)}
+    s["materials"]["green"] = {"diffuse": "s0"}
+    scene_case(f"spectra-cycle-{k}", s, r"cycle: 's0' → .*'s0'")
+s = deep(BASE); s["spectra"] = {f"s{i}": f"s{i + 1}" for i in range(21)}; s["spectra"]["s21"] = "colorchecker:14"
+s["materials"]["green"] = {"diffuse": "s0"}
+scene_case("spectra-chain-21", s, r"^$", exit=0)
+s = deep(BASE); s["spectra"] = {f"s{i}": {"name": f"s{i + 1}", "scale": 1} for i in range(200)}; s["spectra"]["s200"] = "colorchecker:14"
+s["materials"]["green"] = {"diffuse": "s0"}
+scene_case("spectra-chain-200-objects", s, r"^$", exit=0)
+s = deep(BASE); s["spectra"] = {"a": "b", "b": "c", "c": "b"}; s["materials"]["green"] = {"diffuse": "a"}
+scene_case("spectra-cycle-tail", s, r"cycle: 'b' → 'c' → 'b'")
+s = deep(BASE); s["spectra"] = {"a": {"name": "a"}}; s["materials"]["green"] = {"diffuse": "a"}
+scene_case("spectra-cycle-object", s, r"cycle: 'a' → 'a'")
+s = deep(BASE); s["spectra"] = "D65"
+scene_case("spectra-not-object", s, r"expected an object, found a string")
+s = deep(BASE); s["spectra"] = {"x": [[380, 1], [780, 1]]}; s["materials"]["green"] = {"diffuse": "y"}
+scene_case("spectra-unknown-ref", s, r"unknown spectrum 'y'")
+
+# ---- B. CLI arguments and files --------------------------------------------------------------------
+write("good.json", good)
+def cli(label, args, pat, exit=2, file=None, place=None, setup=None):
+    case(f"cli/{label}", args, pat, exit, file, place, setup)
+OPT = r"--[a-z-]+|-o|command line"
+cli("no-command", [], r"usage|^$", exit=2)
+cli("unknown-command", ["rendr"], r"unknown command 'rendr'.*did you mean 'render'", file="rendr", place=r"command")
+cli("render-no-scene", ["render"], r"no scene file given", file="command line", place=OPT)
+cli("render-two-scenes", ["render", "{in}/good.json", "{in}/good.json"], r"unexpected argument", file="command line", place=OPT)
+cli("unknown-option", render("{in}/good.json", "--widht", "8"), r"unknown option '--widht'.*did you mean '--width'", file="command line", place=OPT)
+cli("option-no-value", ["render", "{in}/good.json", "--width"], r"option --width needs a value", file="command line", place=OPT)
+for opt, val, pat in [("--width", "abc", r"not a whole number"), ("--width", "0", r"not positive"), ("--width", "-5", r"not positive"),
+                      ("--width", "99999999999", r"not a whole number"), ("--width", "40000", r"exceeds 32768"), ("--height", "1e3", r"not a whole number"),
+                      ("--spp", "0", r"not a whole number in 1–65536"), ("--spp", "1000000", r"not a whole number in 1–65536"),
+                      ("--threads", "0", r"not a whole number in 1–1024"), ("--threads", "5000", r"not a whole number"),
+                      ("--bands", "0", r"neither a band count"), ("--bands", "abc", r"neither a band count"), ("--bands", "780:380:3", r"empty or not positive"),
+                      ("--bands", "380:780:100000", r"outside 1"), ("--band-range", "1:2", r"not a band grid"),
+                      ("--rgb", "adobe", r"adobe"), ("--integration", "bogus", r"unknown band integration"),
+                      ("--formats", "", r"names no output format"), ("--formats", ",", r"names no output format"), ("--formats", "tiff", r"unknown output format 'tiff'"),
+                      ("--exr-compression", "piz", r"unknown EXR compression"), ("--models", "{in}/no-such-folder", r"does not exist")]:
+    file = "good.json" if opt in ("--width", "--height", "--bands", "--band-range") and pat in (r"not positive", r"exceeds 32768") else opt
+    cli(f"{opt[2:]}-{val or 'empty'}".replace("/", "_").replace(":", "_").replace(",", "comma"), render("{in}/good.json", opt, val), pat, file=file, place=OPT + "|" + JSONPLACE)
+cli("out-empty", ["render", "{in}/good.json", "-o", "", "--quiet"], r"output folder name is empty", file="-o", place=OPT)
+cli("out-is-file", ["render", "{in}/good.json", "-o", "{in}/good.json", "--quiet"], r"exists and is a file", file="good.json", place=r".")
+cli("out-long", ["render", "{in}/good.json", "-o", "{tmp}/" + "d" * 5000 + "/x", "--quiet"], r"cannot be written", file="ddd", place=r".")
+cli("out-under-file", ["render", "{in}/good.json", "-o", "{in}/good.json/sub", "--quiet"], r"cannot be written|exists and is a file|Not a directory", file="good.json", place=r".")
+cli("out-unwritable", ["render", "{in}/good.json", "-o", "{tmp}/ro/out", "--quiet"], r"cannot be written", file="ro", place=r".", setup=["mkdir ro", "chmod-ro ro"])
+cli("scene-missing", render("{in}/missing.json"), r"scene file not found", file="missing.json", place=r".")
+cli("scene-folder", render("{in}"), r"is a folder", file="inputs", place=r".")
+cli("scene-empty", render("{tmp}/empty.json"), r"empty or not a regular file", file="empty.json", place=r".", setup=["touch empty.json"])
+cli("scene-fifo", render("{tmp}/fifo.json"), r"empty or not a regular file", file="fifo.json", place=r".", setup=["mkfifo fifo.json"])
+cli("scene-dev-zero", render("{tmp}/zero.json"), r"empty or not a regular file", file="zero.json", place=r".", setup=["symlink zero.json /dev/zero"])
+cli("scene-dangling-link", render("{tmp}/dangling.json"), r"symbolic link .* does not exist", file="dangling.json", place=r".", setup=["symlink dangling.json {tmp}/nowhere.json"])
+cli("scene-dev-null", render("/dev/null"), r"empty or not a regular file", file="/dev/null", place=r".")
+cli("probe-no-folder", ["probe"], r"give one render folder", file="command line", place=OPT)
+cli("probe-missing-folder", ["probe", "{tmp}/nothing", "--pixel", "1,1"], r"no such render folder", file="nothing", place=r".")
+cli("probe-no-pixel", ["probe", "{tmp}"], r"give at least one --pixel", file="command line", place=OPT)
+cli("colorcheck-missing", ["colorcheck", "{tmp}/nothing"], r"no such render folder", file="nothing", place=r".")
+cli("colorcheck-empty-folder", ["colorcheck", "{tmp}"], r"has no render.json", file="{tmp}", place=r".")
+cli("reconstruct-none", ["reconstruct"], r"give one render folder", file="command line", place=OPT)
+cli("bench-two", ["bench", "a", "b"], r"unexpected argument", file="command line", place=OPT)
+
+# mesh faults in the scene's folder (the loader looks there first)
+for label, step, pat in [("fifo", "mkfifo m.obj", r"empty or not a regular file"), ("dev-zero", "symlink m.obj /dev/zero", r"empty or not a regular file"),
+                         ("folder", "mkdir m.obj", r"not found"), ("empty", "touch m.obj", r"empty or not a regular file"),
+                         ("dangling", "symlink m.obj {tmp}/gone.obj", r"not found|does not exist")]:
+    s = deep(BASE); s["objects"] = [{"type": "mesh", "file": "m.obj", "material": "green"}]
+    write(f"mesh-scene-{label}.json", scene_text(s))
+    case(f"mesh/{label}", render("{tmp}/scene.json"), pat, 2, "m.obj", r".", [f"copy {{in}}/mesh-scene-{label}.json scene.json", step])
+
+# ---- C. CSV spectra ---------------------------------------------------------------------------------
+def csv_case(label, text, pat, column="r"):
+    fname = f"csv-{label}.csv"
+    write(fname, text)
+    s = deep(BASE); s["materials"]["green"] = {"diffuse": {"csv": fname, "column": column}}
+    sname = f"csv-{label}.json"
+    write(sname, scene_text(s))
+    scene_level = "has no column" in pat or "covers" in pat
+    case(f"csv/{label}", render("{in}/" + sname), pat, 2, sname if scene_level else fname, JSONPLACE if scene_level else r"\.csv:\d+")
+
+rows = "".join(f"{w},{0.5}\n" for w in range(380, 781, 10))
+for label, text, pat in [
+    ("empty-lines-only", "\n\n\n", r"the file is empty"),
+    ("header-only", "wavelength_nm,r\n", r"header but no data rows"),
+    ("one-column", "wavelength_nm\n380\n", r"fewer than two columns"),
+    ("duplicate-column", "wavelength_nm,r,r\n380,1,1\n", r"column name 'r' appears twice"),
+    ("empty-column-name", "wavelength_nm,,r\n380,1,1\n", r"column 2 has no name"),
+    ("not-a-number", "wavelength_nm,r\n380,abc\n", r"'abc' in column 'r' is not a number"),
+    ("nan", "wavelength_nm,r\n380,NaN\n780,1\n", r"not finite"),
+    ("infinity", "wavelength_nm,r\n380,Infinity\n780,1\n", r"not finite"),
+    ("1e39", "wavelength_nm,r\n380,1e39\n780,1\n", r"not finite"),
+    ("negative", "wavelength_nm,r\n380,-0.1\n780,1\n", r"negative value"),
+    ("unsorted", "wavelength_nm,r\n780,1\n380,1\n", r"not ascending"),
+    ("duplicate-wl", "wavelength_nm,r\n380,1\n380,1\n", r"appears twice"),
+    ("zero-wl", "wavelength_nm,r\n0,1\n780,1\n", r"not positive"),
+    ("missing-cell", "wavelength_nm,r,g\n380,1\n", r"missing column"),
+    ("extra-cell", "wavelength_nm,r\n380,1,2\n", r"cells, the header names only"),
+    ("blank-line-inside", "wavelength_nm,r\n380,1\n\n780,1\n", r"empty line inside the data"),
+    ("latin1", "wavelength_nm,r\n380,0.5\xb5\n".encode("latin-1"), r"is not a number"),
+    ("nul-byte", "wavelength_nm,r\n380,0.\x005\n", r"'0\.\\05' in column 'r' is not a number"),
+    ("ansi-cell", "wavelength_nm,r\n380,\x1b[31m1\n", r"'\\e\[31m1' in column"),
+    ("long-cell", "wavelength_nm,r\n380," + "9" * 2000 + "x\n", r"'9+…9+x' in column 'r' is not a number"),
+    ("comma-decimal", "wavelength_nm;r\n380;0,5\n", r"fewer than two columns|not a number|cells"),
+    ("short-range", "wavelength_nm,r\n400,1\n700,1\n", r"covers 400–700 nm"),
+    ("binary", bytes(range(256)) * 4, r"not a number|columns|cells|empty line"),
+    ("hex-number", "wavelength_nm,r\n380,0x10\n", r"not a number"),
+    ("space-in-number", "wavelength_nm,r\n380,1 2\n", r"not a number"),
+    ("missing-wavelength", "wavelength_nm,r\n,1\n", r"not a number"),
+]:
+    csv_case(label, text, pat)
+csv_case("no-such-column", "wavelength_nm,r\n" + rows, r"has no column 'x'", column="x")
+csv_case("column-ansi", "wavelength_nm,r\n" + rows, r"has no column '\\e\[1m'", column="\x1b[1m")
+
+# ---- D. OBJ -----------------------------------------------------------------------------------------
+def mesh_case(label, ext, data, pat, place, fit=False, scene_level=False):
+    fname = f"{ext}-{label}.{ext}"
+    write(fname, data)
+    o = {"type": "mesh", "file": fname, "material": "green"}
+    if fit:
+        o["fit"] = {"min": [-1, -1, -1], "max": [1, 1, 1]}
+    s = deep(BASE); s["objects"] = [o]
+    sname = f"{ext}-{label}.json"
+    write(sname, scene_text(s))
+    case(f"{ext}/{label}", render("{in}/" + sname), pat, 2, sname if scene_level else fname, place)
+
+OBJPLACE = r"\.obj:\d+"
+TRI = "v 0 0 0\nv 1 0 0\nv 0 1 0\n"
+for label, data, pat, fit in [
+    ("no-faces", TRI, r"no faces", False),
+    ("only-comments", "# nothing\n# here\n", r"no faces", False),
+    ("face-two", TRI + "f 1 2\n", r"face has 2 vertices", False),
+    ("face-zero-index", TRI + "f 0 1 2\n", r"index 0 out of range.*indices start at 1", False),
+    ("face-out-of-range", TRI + "f 1 2 4\n", r"vertex index 4 out of range", False),
+    ("face-negative-range", TRI + "f -1 -2 -4\n", r"vertex index -4 out of range", False),
+    ("face-not-int", TRI + "f 1 2 x\n", r"vertex index 'x' is not an integer", False),
+    ("face-float", TRI + "f 1 2 3.0\n", r"is not an integer", False),
+    ("face-huge-index", TRI + "f 1 2 99999999999\n", r"is not an integer|out of range", False),
+    ("vt-out-of-range", TRI + "vt 0 0\nf 1/1 2/2 3/1\n", r"texture coordinate index 2 out of range", False),
+    ("vn-out-of-range", TRI + "vn 0 0 1\nf 1//1 2//2 3//1\n", r"normal index 2 out of range", False),
+    ("v-two-coords", "v 0 0\n", r"needs 3 coordinates", False),
+    ("v-not-number", "v 0 a 0\n", r"coordinate 'a' is not a finite number", False),
+    ("v-nan", "v 0 nan 0\n" + "v 1 0 0\nv 0 1 0\nf 1 2 3\n", r"not a finite number", False),
+    ("v-inf", "v 0 inf 0\n", r"not a finite number", False),
+    ("v-1e39", "v 0 1e39 0\n", r"not a finite number", False),
+    ("vn-bad", TRI + "vn x 0 1\n", r"coordinate 'x' is not a finite number", False),
+    ("degenerate", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n", r"degenerate", False),
+    ("3e38-fit", "v -3e38 -3e38 -3e38\nv 3e38 3e38 3e38\nv 3e38 -3e38 0\nf 1 2 3\n", r"span more than single precision", True),
+    ("3e38-nofit", "v -3e38 -3e38 -3e38\nv 3e38 3e38 3e38\nv 3e38 -3e38 0\nf 1 2 3\n", r"span more than single precision", False),
+    ("1e20-nofit", "v -1e20 0 0\nv 1e20 0 0\nv 0 1e20 0\nf 1 2 3\n", r"outside ±10000000", False),
+    ("nul-token", "v 0 0\x000 0\n", r"not a finite number", False),
+    ("ansi-token", "v 0 \x1b[31m0 0\n", r"coordinate '\\e\[31m0' is not a finite number", False),
+    ("long-token", "v 0 " + "1" * 3000 + "z 0\n", r"coordinate '1+…", False),
+    ("binary", bytes(range(1, 256)) * 8, r"not a finite|not an integer|needs 3|no faces|face has", False),
+    ("utf16", ("\ufeff" + TRI + "f 1 2 4\n").encode("utf-16-le"), r"vertex index 4 out of range", False),
+    ("latin1-comment", ("# caf\xe9\n" + TRI + "f 1 2 5\n").encode("latin-1"), r"vertex index 5 out of range", False),
+    ("crlf-bad-index", (TRI + "f 1 2 7\r\n"), r"vertex index 7 out of range", False),
+]:
+    scene_level = "span" in pat or "outside" in pat
+    mesh_case(label, "obj", data, pat, JSONPLACE if scene_level else OBJPLACE, fit, scene_level)
+
+# ---- E. PLY -----------------------------------------------------------------------------------------
+PLYPLACE = r"\.ply:\d+|\.ply: element|\.ply: end of data|\.ply: header"
+def ply_header(fmt="ascii", nv=3, nf=1, extra=""):
+    return f"ply\nformat {fmt} 1.0\nelement vertex {nv}\nproperty float x\nproperty float y\nproperty float z\n{extra}element face {nf}\nproperty list uchar int vertex_indices\nend_header\n"
+ATRI = "0 0 0\n1 0 0\n0 1 0\n"
+for label, data, pat in [
+    ("no-magic", "plx\n", r"not a PLY file"),
+    ("no-format", "ply\nelement vertex 0\nend_header\n", r"no 'format' line"),
+    ("bad-format", "ply\nformat xml 1.0\nend_header\n", r"unknown format 'xml'"),
+    ("no-end-header", "ply\nformat ascii 1.0\nelement vertex 3\n", r"no 'end_header'"),
+    ("element-malformed", "ply\nformat ascii 1.0\nelement vertex\nend_header\n", r"malformed element line"),
+    ("element-negative", "ply\nformat ascii 1.0\nelement vertex -3\nend_header\n", r"malformed element line"),
+    ("property-first", "ply\nformat ascii 1.0\nproperty float x\nend_header\n", r"property before any element"),
+    ("property-type", "ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\nend_header\n", r"unknown property type 'quad'"),
+    ("property-malformed", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float\nend_header\n", r"malformed property line"),
+    ("list-float-count", "ply\nformat ascii 1.0\nelement vertex 1\nproperty list float int idx\nend_header\n", r"not an integer type"),
+    ("keyword", "ply\nformat ascii 1.0\nfoo bar\nend_header\n", r"unknown header keyword 'foo'"),
+    ("ansi-keyword", "ply\nformat ascii 1.0\n\x1b[31mfoo\nend_header\n", r"unknown header keyword '\\e\[31mfoo'"),
+    ("no-vertex", "ply\nformat ascii 1.0\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n", r"declares no 'vertex' element"),
+    ("no-x", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float y\nproperty float z\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n0 0\n", r"no scalar property 'x'"),
+    ("no-face", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n", r"no 'face' or 'tristrips'"),
+    ("face-no-indices", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int idx\nend_header\n0 0 0\n3 0 0 0\n", r"no list property 'vertex_indices'"),
+    ("ascii-not-number", ply_header() + "0 0 0\n1 a 0\n0 1 0\n3 0 1 2\n", r"'a' is not a number"),
+    ("ascii-nan", ply_header() + "0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n", r"not a finite number|not a number"),
+    ("ascii-truncated", ply_header() + "0 0 0\n1 0\n", r"unexpected end of file"),
+    ("ascii-index-range", ply_header() + ATRI + "3 0 1 3\n", r"vertex index 3 out of range"),
+    ("ascii-index-negative", ply_header() + ATRI + "3 0 1 -1\n", r"vertex index -1 out of range"),
+    ("ascii-face-two", ply_header() + ATRI + "2 0 1\n", r"face has 2 vertices"),
+    ("ascii-list-negative", ply_header().replace("uchar", "int") + ATRI + "-3 0 1 2\n", r"negative length"),
+    ("ascii-list-fraction", ply_header() + ATRI + "3.5 0 1 2\n", r"not an integer"),
+    ("ascii-degenerate", ply_header() + "0 0 0\n1 0 0\n2 0 0\n3 0 1 2\n", r"degenerate"),
+    ("ascii-huge-count", ply_header(nv=2000000000) + ATRI + "3 0 1 2\n", r"cannot fit|declares|unexpected end|more than"),
+    ("ascii-huge-faces", ply_header(nf=2000000000) + ATRI + "3 0 1 2\n", r"cannot fit|declares|unexpected end|more than"),
+    ("binary-truncated", ply_header("binary_little_endian").encode() + struct.pack("<3f", 0, 0, 0), r"unexpected end of file|truncated|more than"),
+    ("binary-huge-count", ply_header("binary_little_endian", nv=1000000000).encode() + struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0), r"declares|unexpected end|more than|truncated"),
+    ("binary-index-range", ply_header("binary_little_endian").encode() + struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack("<B3i", 3, 0, 1, 9), r"out of range"),
+    ("binary-nan", ply_header("binary_little_endian").encode() + struct.pack("<9f", 0, float("nan"), 0, 1, 0, 0, 0, 1, 0) + struct.pack("<B3i", 3, 0, 1, 2), r"not a finite number"),
+    ("binary-big-truncated", ply_header("binary_big_endian").encode() + struct.pack(">5f", 0, 0, 0, 1, 0), r"unexpected end of file|truncated|more than"),
+    ("binary-list-huge", ply_header("binary_little_endian").replace("uchar", "int").encode() + struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack("<i", 2000000000), r"unexpected end|truncated|more than|negative"),
+    ("binary-list-negative", ply_header("binary_little_endian").replace("uchar", "int").encode() + struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack("<i3i", -3, 0, 1, 2), r"negative length"),
+    ("binary-3e38-fit", ply_header("binary_little_endian").encode() + struct.pack("<9f", -3e38, -3e38, -3e38, 3e38, 3e38, 3e38, 3e38, -3e38, 0) + struct.pack("<B3i", 3, 0, 1, 2), r"span more than single precision"),
+    ("nul-in-header", "ply\nformat ascii 1.0\ncomment a\x00b\nelement\x00 vertex 1\nend_header\n", r"unknown header keyword|malformed"),
+    ("crlf-header", "ply\r\nformat ascii 1.0\r\nelement vertex 3\r\nproperty float x\r\nproperty float y\r\nproperty float z\r\nelement face 1\r\nproperty list uchar int vertex_indices\r\nend_header\r\n0 0 0\r\n1 0 0\r\n0 1 0\r\n3 0 1 5\r\n", r"vertex index 5 out of range"),
+]:
+    fit = "3e38" in label
+    scene_level = "span" in pat
+    mesh_case(label, "ply", data, pat, JSONPLACE if scene_level else PLYPLACE, fit, scene_level)
+
+# ---- F. render folders: the manifest and the cube, image and id readers -------------------------------
+# Set-up "base-render DIR" renders good.json into {tmp}/DIR (the test caches one render and copies it).
+def folder_case(label, steps, pat, file, place=r".", cmd=("probe", "{tmp}/r", "--pixel", "1,1"), exit=2):
+    case(f"folder/{label}", list(cmd), pat, exit, file, place, ["base-render r", *steps])
+
+def npy(shape, dtype="<f4", body=b"", fortran=False, version=1, header=None):
+    h = header or "{'descr': '%s', 'fortran_order': %s, 'shape': (%s), }" % (dtype, "True" if fortran else "False", ", ".join(map(str, shape)) + ("," if len(shape) == 1 else ""))
+    h = h.encode("latin-1")
+    pad = (64 - (10 + len(h) + 1) % 64) % 64
+    h = h + b" " * pad + b"\n"
+    if version == 1:
+        return b"\x93NUMPY\x01\x00" + struct.pack("<H", len(h)) + h + body
+    return b"\x93NUMPY" + bytes([version, 0]) + struct.pack("<I", len(h)) + h + body
+
+COLORCHECK = ("colorcheck", "{tmp}/r")
+NPYPLACE = r"\.npy: (header|byte|data)"
+for label, data, pat in [
+    ("npy-huge-shape", npy((10000, 10000, 20)), r"declares shape \(10000, 10000, 20\).*holds only"),
+    ("npy-truncated-data", npy((6, 8, 20), body=b"\0" * 100), r"holds only 100 bytes"),
+    ("npy-no-magic", b"NUMPY" + b"\0" * 100, r"not a \.npy file"),
+    ("npy-short", b"\x93NUM", r"too short"),
+    ("npy-version-9", b"\x93NUMPY\x09\x00" + b"\0" * 100, r"format version 9\.0 is not supported"),
+    ("npy-header-length", b"\x93NUMPY\x01\x00\xff\xff" + b"{}", r"header claims 65535 bytes"),
+    ("npy-header-length-v2", b"\x93NUMPY\x02\x00\xff\xff\xff\x7f" + b"{}", r"header claims 2147483647 bytes"),
+    ("npy-int-dtype", npy((6, 8, 20), dtype="<i4", body=b"\0" * 3840), r"unsupported dtype"),
+    ("npy-fortran", npy((6, 8, 20), fortran=True, body=b"\0" * 3840), r"Fortran-order"),
+    ("npy-no-shape", npy((), header="{'descr': '<f4', 'fortran_order': False}"), r"header has no shape"),
+    ("npy-bad-shape", npy((), header="{'descr': '<f4', 'fortran_order': False, 'shape': (6, x, 20), }"), r"bad shape entry 'x'"),
+    ("npy-negative-shape", npy((6, -8, 20)), r"bad shape entry '-8'"),
+    ("npy-2d", npy((48, 20), body=b"\0" * 3840), r"array has 2 dimensions"),
+    ("npy-wrong-bands", npy((6, 8, 10), body=b"\0" * 1920), r"array has 10 bands"),
+    ("npy-overflow-shape", npy((2147483647, 2147483647, 2147483647)), r"too large|holds only"),
+    # Found by fuzzing (fuzz/run.sh npy): a header length that overflows int, and one cut short.
+    ("npy-fuzz-length-overflow", bytes.fromhex("934e554d5059030051657386"), r"header claims 2255709521 bytes"),
+    ("npy-fuzz-length-short", bytes.fromhex("934e554d5059010076"), r"truncated \(in the header length\)"),
+    ("npy-ansi-dtype", npy((6, 8, 20), dtype="\x1b[31m", body=b"\0" * 3840), r"unsupported dtype"),
+]:
+    write(label + ".npy", data)
+    folder_case(label, [f"copy {{in}}/{label}.npy r/spectral.npy"], pat, "spectral.npy", NPYPLACE)
+
+def exr_header(attrs):
+    out = struct.pack("<ii", 20000630, 2)
+    for name, typ, value in attrs:
+        out += name.encode() + b"\0" + typ.encode() + b"\0" + struct.pack("<i", len(value)) + value
+    return out + b"\0"
+
+def chlist(names, ptype=2):
+    return b"".join(n.encode() + b"\0" + struct.pack("<iBBBBii", ptype, 0, 0, 0, 0, 1, 1) for n in names) + b"\0"
+
+def box(x0, y0, x1, y1):
+    return struct.pack("<4i", x0, y0, x1, y1)
+
+EXRPLACE = r"\.exr: (byte|header|attribute|chunk)"
+chans = [f"S0.{390 + 20 * i}nm" for i in range(20)]
+for label, data, pat in [
+    ("exr-no-magic", b"\0" * 64, r"not an OpenEXR file"),
+    ("exr-version-1", struct.pack("<ii", 20000630, 1) + b"\0" * 32, r"version 1 is not supported"),
+    ("exr-tiled", struct.pack("<ii", 20000630, 0x202) + b"\0" * 32, r"tiled"),
+    ("exr-truncated-header", struct.pack("<ii", 20000630, 2) + b"channels\0chlist\0", r"truncated"),
+    ("exr-no-channels", exr_header([("compression", "compression", b"\0"), ("dataWindow", "box2i", box(0, 0, 7, 5))]), r"lacks channels"),
+    ("exr-huge-window", exr_header([("channels", "chlist", chlist(chans)), ("compression", "compression", b"\0"), ("dataWindow", "box2i", box(0, 0, 99999, 99999))]), r"empty or too large|more than the"),
+    ("exr-big-window", exr_header([("channels", "chlist", chlist(chans)), ("compression", "compression", b"\3"), ("dataWindow", "box2i", box(0, 0, 4999, 4999))]) + b"\0" * 64, r"more than the \d+-byte file can hold"),
+    ("exr-empty-window", exr_header([("channels", "chlist", chlist(chans)), ("compression", "compression", b"\0"), ("dataWindow", "box2i", box(0, 0, -1, -1))]), r"empty or too large"),
+    ("exr-piz", exr_header([("channels", "chlist", chlist(chans)), ("compression", "compression", b"\4"), ("dataWindow", "box2i", box(0, 0, 7, 5))]), r"compression .* is not supported"),
+    ("exr-bad-pixel-type", exr_header([("channels", "chlist", chlist(chans, ptype=7)), ("compression", "compression", b"\0"), ("dataWindow", "box2i", box(0, 0, 7, 5))]), r"unknown pixel type 7"),
+    ("exr-missing-chunks", exr_header([("channels", "chlist", chlist(chans)), ("compression", "compression", b"\0"), ("dataWindow", "box2i", box(0, 0, 7, 5))]) + b"\0" * 48, r"chunk 0 of 6 is missing|truncated|more than"),
+    # Found by fuzzing (fuzz/run.sh exr): deflate data zlib rejects, and a channel listed twice.
+    ("exr-fuzz-zlib-error", open(os.path.join(HERE, "found", "exr-fuzz-zlib-error.exr"), "rb").read(), r"does not decompress|truncated|corrupt"),
+    ("exr-fuzz-duplicate-channel", open(os.path.join(HERE, "found", "exr-fuzz-duplicate-channel.exr"), "rb").read(), r"appears twice"),
+    ("exr-negative-size", exr_header([("channels", "chlist", chlist(chans)), ("compression", "compression", b"\0"), ("dataWindow", "box2i", box(0, 0, 7, 5))])[:-1] + b"x\0int\0" + struct.pack("<i", -5) + b"\0", r"truncated"),
+]:
+    write(label + ".exr", data)
+    folder_case(label, ["remove r/spectral.npy", f"copy {{in}}/{label}.exr r/spectral.exr"], pat, "spectral.exr", EXRPLACE)
+
+ENVIPLACE = r"\.(hdr|img): (header|key|byte|line|data)"
+def envi(samples=8, lines=6, bands=20, dtype=4, extra="", wl=True):
+    w = "wavelength = {" + ", ".join(str(390 + 20 * i) for i in range(bands)) + "}\n" if wl else ""
+    return f"ENVI\nsamples = {samples}\nlines = {lines}\nbands = {bands}\nheader offset = 0\ndata type = {dtype}\ninterleave = bsq\nbyte order = 0\n{w}{extra}"
+for label, hdr, img, pat in [
+    ("envi-huge", envi(100000, 100000), b"\0" * 3840, r"declares 100000×100000×20 samples.*holds only 3840 bytes"),
+    ("envi-not-envi", "NOPE\n", b"\0" * 3840, r"not an ENVI header"),
+    ("envi-no-samples", envi().replace("samples = 8\n", ""), b"\0" * 3840, r"lacks a numeric 'samples'"),
+    ("envi-samples-text", envi().replace("samples = 8", "samples = eight"), b"\0" * 3840, r"lacks a numeric 'samples'"),
+    ("envi-zero-size", envi(0), b"\0" * 3840, r"bad size 0×6×20"),
+    ("envi-dtype-int", envi(dtype=2), b"\0" * 3840, r"data type 2 is not supported"),
+    ("envi-interleave", envi().replace("bsq", "bxx"), b"\0" * 3840, r"unknown interleave 'bxx'"),
+    ("envi-truncated", envi(), b"\0" * 100, r"holds only 100 bytes"),
+    ("envi-offset-negative", envi().replace("header offset = 0", "header offset = -5"), b"\0" * 3840, r"'header offset' -5 is negative"),
+    ("envi-wavelength-count", envi().replace("390, ", "", 1), b"\0" * 3840, r"lists 19 values for 20 bands"),
+    ("envi-wavelength-text", envi().replace("410", "abc"), b"\0" * 3840, r"'wavelength' value 'abc' is not a number"),
+    ("envi-unclosed", envi().replace("}", ""), b"\0" * 3840, r"unclosed"),
+    ("envi-units", envi(extra="wavelength units = furlongs\n"), b"\0" * 3840, r"wavelength units 'furlongs'"),
+    ("envi-uneven", envi().replace("410", "415"), b"\0" * 3840, r"breaks the even spacing"),
+]:
+    write(label + ".hdr", hdr)
+    write(label + ".img", img)
+    folder_case(label, ["remove r/spectral.npy", "remove r/spectral.exr", f"copy {{in}}/{label}.hdr r/spectral.hdr", f"copy {{in}}/{label}.img r/spectral.img"], pat, "spectral.", ENVIPLACE)
+
+def png_chunk(t, data):
+    return struct.pack(">I", len(data)) + t + data + struct.pack(">I", zlib.crc32(t + data) & 0xffffffff)
+SIG = b"\x89PNG\r\n\x1a\n"
+def png(w, h, depth=16, ctype=0, interlace=0, idat=None, crc_ok=True):
+    ihdr = struct.pack(">IIBBBBB", w, h, depth, ctype, 0, 0, interlace)
+    raw = b"".join(b"\0" + b"\0" * (w * 2) for _ in range(h)) if idat is None and w * h < 10**6 else b""
+    body = idat if idat is not None else zlib.compress(raw)
+    c = png_chunk(b"IHDR", ihdr)
+    if not crc_ok:
+        c = c[:-1] + bytes([c[-1] ^ 1])
+    return SIG + c + png_chunk(b"IDAT", body) + png_chunk(b"IEND", b"")
+PNGPLACE = r"\.png: (byte|chunk|IHDR|IDAT|row|header)"
+for label, data, pat in [
+    ("png-no-signature", b"GIF89a" + b"\0" * 50, r"not a PNG file"),
+    ("png-truncated", png(8, 6)[:40], r"truncated"),
+    ("png-crc", png(8, 6, crc_ok=False), r"CRC mismatch in chunk IHDR"),
+    ("png-huge-ihdr", png(100000, 100000, idat=zlib.compress(b"\0" * 100)), r"declares 100000×100000 pixels"),
+    ("png-negative-ihdr", png(0x80000000, 6, idat=zlib.compress(b"\0" * 100)), r"declares"),
+    ("png-interlaced", png(8, 6, interlace=1), r"interlaced"),
+    ("png-palette", png(8, 6, depth=8, ctype=3), r"colour type 3"),
+    ("png-bad-zlib", png(8, 6, idat=b"\x78\x9c\xff\xff\xff"), r"truncated or corrupt"),
+    ("png-short-data", png(8, 6, idat=zlib.compress(b"\0" * 20)), r"truncated or corrupt"),
+    ("png-bad-filter", png(8, 6, idat=zlib.compress(b"\x09" + b"\0" * 16 + b"\0" * 17 * 5)), r"unknown filter type 9"),
+    ("png-no-ihdr", SIG + png_chunk(b"IEND", b""), r"no IHDR chunk"),
+    ("png-wrong-size", png(4, 3), r"is 4×3 but the cube is 8×6"),
+]:
+    write(label + ".png", data)
+    folder_case(label, [f"copy {{in}}/{label}.png r/object-id.png"], pat, "object-id.png", PNGPLACE + r"|object-id\.png: ", cmd=COLORCHECK)
+
+
+MANIFEST_VALIDATION = True  # step 4: analysis commands validate the folder through the manifest
+MANIFESTPLACE = r"render\.json(:\d+)?: (\$|line)|render\.json:\d+"
+for label, text, pat in [] if not MANIFEST_VALIDATION else [
+    ("manifest-not-json", "{ not json", r"render\.json.*(broken JSON|JSON syntax)"),
+    ("manifest-array", "[]", r"is not a JSON object|expected an object"),
+    ("manifest-empty-object", "{}", r"missing|lacks"),
+]:
+    write(label + ".json", text)
+    folder_case(label, [f"copy {{in}}/{label}.json r/render.json"], pat, "render.json", MANIFESTPLACE, cmd=COLORCHECK)
+if MANIFEST_VALIDATION:
+    folder_case("manifest-missing", ["remove r/render.json"], r"has no render\.json", "r", r".")
+folder_case("cube-missing", ["remove r/spectral.npy", "remove r/spectral.exr", "remove r/spectral.img", "remove r/spectral.hdr"], r"no spectral cube|has no", "r", r".")
+folder_case("ids-missing", ["remove r/object-id.png"], r"has no object-id\.png", "r", r".", cmd=COLORCHECK)
+for label, path, value, pat in [] if not MANIFEST_VALIDATION else [
+    ("manifest-white-xyz-empty", "colour.white_xyz", [], r"white_xyz"),
+    ("manifest-white-xyz-strings", "colour.white_xyz", ["a", "b", "c"], r"white_xyz"),
+    ("manifest-weights-short", "colour.weights_x", [1, 2, 3], r"weights_x"),
+    ("manifest-grid-bad", "bands.grid", "banana", r"not a band grid|grid"),
+    ("manifest-width-string", "width", "eight", r"width"),
+    ("manifest-width-wrong", "width", 9, r"describes 9×6|width"),
+    ("manifest-objects-number", "objects", 5, r"objects"),
+    ("manifest-object-name-number", "objects.0.name", 5, r"name"),
+    ("manifest-observer-text", "colour.observer", "two", r"observer"),
+]:
+    folder_case(label, [f"json-set r/render.json {path} {json.dumps(value)}"], pat, "render.json", MANIFESTPLACE + r"|render\.json: ", cmd=COLORCHECK)
+for label, args, pat in [
+    ("probe-pixel-outside", ["probe", "{tmp}/r", "--pixel", "100,100"], r"outside the 8×6 image"),
+    ("probe-pixel-text", ["probe", "{tmp}/r", "--pixel", "a,b"], r"is not X,Y"),
+    ("probe-pixel-negative", ["probe", "{tmp}/r", "--pixel", "-1,2"], r"outside|is not X,Y"),
+    ("reconstruct-no-white", ["reconstruct", "{tmp}/r"], r"exactly one of"),
+    ("reconstruct-white-unknown", ["reconstruct", "{tmp}/r", "--white-object", "board"], r"no object 'board'"),
+    ("reconstruct-region-outside", ["reconstruct", "{tmp}/r", "--white-region", "0,0,100,100"], r"outside the 8×6 image"),
+]:
+    named = next((a for a in args if a in ("--pixel", "--white-object", "--white-region")), "command line")
+    if "exactly one of" in pat: named = "command line"
+    folder_case(label, [], pat, named, OPT, cmd=args)
+
+names = [c["name"] for c in cases]
+assert len(names) == len(set(names)), [x for x in names if names.count(x) > 1]
+with open(os.path.join(HERE, "cases.json"), "w", encoding="utf-8") as f:
+    json.dump(cases, f, indent=1, ensure_ascii=True)
+    f.write("\n")
+print(f"{len(cases)} cases, {len(os.listdir(IN))} input files")
