@@ -1,6 +1,6 @@
+using System.Globalization;
 using System.Runtime.CompilerServices;
 using SpectralRenderer.Diagnostics;
-using System.Globalization;
 
 namespace SpectralRenderer.Cli;
 

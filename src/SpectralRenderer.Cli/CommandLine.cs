@@ -1,6 +1,6 @@
+using System.Reflection;
 using System.Runtime.CompilerServices;
 using SpectralRenderer.Cli.Commands;
-using System.Reflection;
 using SpectralRenderer.Diagnostics;
 
 namespace SpectralRenderer.Cli;

@@ -28,8 +28,11 @@ static class Repo
     {
         var psi = new ProcessStartInfo(exe)
         {
-            RedirectStandardOutput = true, RedirectStandardError = true, RedirectStandardInput = stdin is not null,
-            UseShellExecute = false, WorkingDirectory = workDir ?? Root,
+            RedirectStandardOutput = true,
+            RedirectStandardError = true,
+            RedirectStandardInput = stdin is not null,
+            UseShellExecute = false,
+            WorkingDirectory = workDir ?? Root,
         };
         foreach (var a in args) psi.ArgumentList.Add(a);
         if (env is not null)

@@ -65,12 +65,14 @@ public static class CameraCommand
         }
         bool noise = a.Value("--noise") switch
         {
-            null or "on" => true, "off" => false,
+            null or "on" => true,
+            "off" => false,
             var v => throw new InputException("command line", $"--noise '{v}' is not on or off", "use --noise on or --noise off"),
         };
         var demosaic = a.Value("--demosaic") switch
         {
-            null or "malvar" => DemosaicMethod.Malvar, "bilinear" => DemosaicMethod.Bilinear,
+            null or "malvar" => DemosaicMethod.Malvar,
+            "bilinear" => DemosaicMethod.Bilinear,
             var v => throw new InputException("command line", $"--demosaic '{v}' is not malvar or bilinear", "use --demosaic malvar or --demosaic bilinear"),
         };
         ulong seed = a.Value("--seed") is { } sv ? ulong.TryParse(sv, NumberStyles.None, CultureInfo.InvariantCulture, out var s) ? s : throw new InputException("command line", $"--seed '{sv}' is not a whole number ≥ 0", "give a whole number, e.g. --seed 1") : 1;
@@ -136,7 +138,9 @@ public static class CameraCommand
         manifest["processing"]!["demosaic"] = image.Demosaicked?.ToString().ToLowerInvariant();
         manifest["patches"] = new JsonArray(patches.Select(p => (JsonNode)new JsonObject
         {
-            ["patch"] = p.Patch, ["object"] = p.Object, ["pixels"] = p.Pixels,
+            ["patch"] = p.Patch,
+            ["object"] = p.Object,
+            ["pixels"] = p.Pixels,
             ["camera_xyz"] = new JsonArray(p.Camera.X, p.Camera.Y, p.Camera.Z),
             ["exact_xyz"] = new JsonArray(p.Exact.X, p.Exact.Y, p.Exact.Z),
             ["delta_e00"] = p.DeltaE00,

@@ -1,6 +1,6 @@
 using System.Globalization;
-using SpectralRenderer.Color;
 using SpectralRenderer.Analysis;
+using SpectralRenderer.Color;
 using SpectralRenderer.Diagnostics;
 
 namespace SpectralRenderer.Cli.Commands;

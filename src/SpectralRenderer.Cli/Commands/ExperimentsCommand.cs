@@ -1,8 +1,8 @@
 using System.Diagnostics;
 using System.Globalization;
 using SpectralRenderer.Analysis;
-using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Cli.Paper;
+using SpectralRenderer.Diagnostics;
 
 namespace SpectralRenderer.Cli.Commands;
 

@@ -3,8 +3,8 @@ using System.Text;
 using SpectralRenderer.Analysis;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
-using SpectralRenderer.Spectra;
 using SpectralRenderer.Output;
+using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Cli.Commands;
 

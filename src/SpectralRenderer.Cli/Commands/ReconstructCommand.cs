@@ -57,7 +57,8 @@ public static class ReconstructCommand
         NpyWriter.Write(Path.Combine(dir, "reconstructed.npy"), rec.Reflectance);
         ExrWriter.Write(Path.Combine(dir, "reconstructed.exr"), rec.Reflectance, new ExrOptions
         {
-            Reflective = true, Rgb = false,
+            Reflective = true,
+            Rgb = false,
             Attributes = new Dictionary<string, string> { ["comments"] = $"reflectance reconstructed by white-board calibration against {white.Description} (Li et al. 2010 §3.4)" },
         });
         AtomicFile.WriteAllText(Path.Combine(dir, "reconstruction.csv"), CurvesCsv(rec, pixels));

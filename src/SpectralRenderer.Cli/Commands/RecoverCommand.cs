@@ -78,7 +78,8 @@ public static class RecoverCommand
             var plot = new SvgPlot
             {
                 Title = $"Reflectance recovered by {name} from {capture.Sensor.Name} ({training.Name} prior{(white is null ? "" : ", white-calibrated")})",
-                XLabel = "wavelength (nm)", YLabel = "reflectance factor",
+                XLabel = "wavelength (nm)",
+                YLabel = "reflectance factor",
             };
             foreach (var (label, rec, _) in r.Examples) plot.Add(label, centres, rec);
             foreach (var (label, _, truth) in r.Examples) plot.Add($"truth: {label}", centres, truth, dashed: true);

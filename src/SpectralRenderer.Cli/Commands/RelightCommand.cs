@@ -1,8 +1,8 @@
 using System.Globalization;
 using System.Text;
-using SpectralRenderer.Lighting;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
+using SpectralRenderer.Lighting;
 
 namespace SpectralRenderer.Cli.Commands;
 

@@ -1,12 +1,12 @@
+using System.Globalization;
 using System.Runtime.CompilerServices;
 using System.Runtime.InteropServices;
-using System.Globalization;
 using System.Text.Json.Nodes;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
+using SpectralRenderer.Output;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
-using SpectralRenderer.Output;
 using SpectralRenderer.Scenes.Loading;
 
 namespace SpectralRenderer.Cli.Commands;
@@ -229,8 +229,15 @@ public static class RenderCommand
     /// <summary>The command-line overrides as render.json records them (relight rebuilds the same scene from them).</summary>
     public static JsonObject OverridesJson(SceneOverrides o) => new()
     {
-        ["width"] = o.Width, ["height"] = o.Height, ["bands"] = o.Bands, ["wave"] = o.Wave, ["spp"] = o.SamplesPerPixel, ["rgb"] = o.Rgb,
-        ["integration"] = o.Integration, ["formats"] = o.Formats, ["exr_compression"] = o.ExrCompression,
+        ["width"] = o.Width,
+        ["height"] = o.Height,
+        ["bands"] = o.Bands,
+        ["wave"] = o.Wave,
+        ["spp"] = o.SamplesPerPixel,
+        ["rgb"] = o.Rgb,
+        ["integration"] = o.Integration,
+        ["formats"] = o.Formats,
+        ["exr_compression"] = o.ExrCompression,
         ["models"] = new JsonArray(o.ModelDirectories.Select(d => (JsonNode)JsonValue.Create(Path.GetFullPath(d))).ToArray()),
     };
 

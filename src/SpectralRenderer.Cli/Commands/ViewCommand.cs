@@ -1,8 +1,8 @@
 using System.Globalization;
 using System.Net;
 using System.Net.Sockets;
-using SpectralRenderer.Lighting;
 using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Lighting;
 
 namespace SpectralRenderer.Cli.Commands;
 
@@ -93,8 +93,13 @@ public static class ViewCommand
         }
         res.ContentType = Path.GetExtension(path).ToLowerInvariant() switch
         {
-            ".html" => "text/html; charset=utf-8", ".js" => "text/javascript; charset=utf-8", ".json" => "application/json",
-            ".png" => "image/png", ".svg" => "image/svg+xml", ".csv" => "text/csv; charset=utf-8", _ => "application/octet-stream",
+            ".html" => "text/html; charset=utf-8",
+            ".js" => "text/javascript; charset=utf-8",
+            ".json" => "application/json",
+            ".png" => "image/png",
+            ".svg" => "image/svg+xml",
+            ".csv" => "text/csv; charset=utf-8",
+            _ => "application/octet-stream",
         };
         res.Headers["Cache-Control"] = "no-store";
         using var f = File.OpenRead(path);

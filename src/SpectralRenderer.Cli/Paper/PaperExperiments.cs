@@ -3,9 +3,9 @@ using SpectralRenderer.Analysis;
 using SpectralRenderer.Color;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
+using SpectralRenderer.Output;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
-using SpectralRenderer.Output;
 using SpectralRenderer.Scenes.Loading;
 
 namespace SpectralRenderer.Cli.Paper;

@@ -255,13 +255,13 @@ public static class PaperReport
         // a shape is "right" only when GFC is at least 0.999 (Romero et al.'s "good" colorimetric match).
         const double SmallResidual = 1e-3, GoodGfc = 0.999;
         if (shadow is not null)
-            { if (shadow.Residual <= SmallResidual) sb.Append(Inv, $"In shadow the reconstruction is the truth times a factor: c = {shadow.Scale:0.0000} with a residual of {shadow.Residual:0.0e0} after scaling (GFC {shadow.Gfc:0.000000}); eq. 2 predicts c = ambient ÷ lit irradiance of the reference. "); else sb.Append(Inv, $"In shadow the reconstruction is not a scaled truth: c = {shadow.Scale:0.0000} leaves a residual of {shadow.Residual:0.0e0} (GFC {shadow.Gfc:0.000000}). "); }
+        { if (shadow.Residual <= SmallResidual) sb.Append(Inv, $"In shadow the reconstruction is the truth times a factor: c = {shadow.Scale:0.0000} with a residual of {shadow.Residual:0.0e0} after scaling (GFC {shadow.Gfc:0.000000}); eq. 2 predicts c = ambient ÷ lit irradiance of the reference. "); else sb.Append(Inv, $"In shadow the reconstruction is not a scaled truth: c = {shadow.Scale:0.0000} leaves a residual of {shadow.Residual:0.0e0} (GFC {shadow.Gfc:0.000000}). "); }
         if (high is not null)
-            { if (high.Scale > 1 && high.Gfc < GoodGfc) sb.Append(Inv, $"In a highlight light is added to the truth: the highlight pixel's reconstruction has GFC {high.Gfc:0.0000} with the truth and c = {high.Scale:0.000} > 1. "); else sb.Append(Inv, $"The highlight pixel's reconstruction has GFC {high.Gfc:0.0000} with the truth and c = {high.Scale:0.000}. "); }
+        { if (high.Scale > 1 && high.Gfc < GoodGfc) sb.Append(Inv, $"In a highlight light is added to the truth: the highlight pixel's reconstruction has GFC {high.Gfc:0.0000} with the truth and c = {high.Scale:0.000} > 1. "); else sb.Append(Inv, $"The highlight pixel's reconstruction has GFC {high.Gfc:0.0000} with the truth and c = {high.Scale:0.000}. "); }
         if (best is not null)
             sb.Append(Inv, $"The lit pixel whose irradiance is closest to the reference's (c = {best.Scale:0.0000}) reconstructs the truth with RMSE {best.Rmse:0.0e0}. ");
         if (lit is not null)
-            { if (lit.MeanGfc >= GoodGfc) sb.Append(Inv, $"Over all {lit.Count} lit pixels the shape is right (mean GFC {lit.MeanGfc:0.000000}) and the scale varies (mean c = {lit.MeanScale:0.000}) with the angle to the light."); else sb.Append(Inv, $"Over all {lit.Count} lit pixels the mean GFC is {lit.MeanGfc:0.000000} (mean c = {lit.MeanScale:0.000}): the shape is not preserved everywhere."); }
+        { if (lit.MeanGfc >= GoodGfc) sb.Append(Inv, $"Over all {lit.Count} lit pixels the shape is right (mean GFC {lit.MeanGfc:0.000000}) and the scale varies (mean c = {lit.MeanScale:0.000}) with the angle to the light."); else sb.Append(Inv, $"Over all {lit.Count} lit pixels the mean GFC is {lit.MeanGfc:0.000000} (mean c = {lit.MeanScale:0.000}): the shape is not preserved everywhere."); }
         sb.Append("</p>\n");
         h.Append(sb);
     }

@@ -47,8 +47,10 @@ sealed class BvhBuilder
 
         public static Extent Empty => new()
         {
-            Lo = Vector128.Create(float.PositiveInfinity), Hi = Vector128.Create(float.NegativeInfinity),
-            CLo = Vector128.Create(float.PositiveInfinity), CHi = Vector128.Create(float.NegativeInfinity),
+            Lo = Vector128.Create(float.PositiveInfinity),
+            Hi = Vector128.Create(float.NegativeInfinity),
+            CLo = Vector128.Create(float.PositiveInfinity),
+            CHi = Vector128.Create(float.NegativeInfinity),
         };
 
         [MethodImpl(MethodImplOptions.AggressiveInlining)]

@@ -1,8 +1,8 @@
 using SpectralRenderer.Color;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
-using SpectralRenderer.Spectra;
 using SpectralRenderer.Output;
+using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Analysis;
 

@@ -17,7 +17,10 @@ public static class DngWriter
     /// <summary>EXIF LightSource codes for CalibrationIlluminant1 (DNG 1.4 table): 21 D65, 17 standard light A, 23 D50, 0 unknown.</summary>
     public static ushort IlluminantCode(string light) => light.ToUpperInvariant() switch
     {
-        "D65" => 21, "A" => 17, "D50" => 23, _ => 0,
+        "D65" => 21,
+        "A" => 17,
+        "D50" => 23,
+        _ => 0,
     };
 
     public static void Write(string path, RawFrame raw, double[,] xyzToCamera, double[] asShotNeutral, ushort illuminant, string software) =>

@@ -76,7 +76,9 @@ public static class SensorFile
             {
                 Arrangement = a switch
                 {
-                    "full" => Arrangement.Full, "mosaic" => Arrangement.Mosaic, "wheel" => Arrangement.Wheel,
+                    "full" => Arrangement.Full,
+                    "mosaic" => Arrangement.Mosaic,
+                    "wheel" => Arrangement.Wheel,
                     _ => throw new InputException($"{at}.arrangement", $"'{a}' is not an arrangement", "full, mosaic or wheel"),
                 },
             };

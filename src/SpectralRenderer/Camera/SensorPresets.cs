@@ -20,7 +20,8 @@ public static class SensorPresets
     {
         "isetcam" => new SensorModel
         {
-            Name = "isetcam", Arrangement = Arrangement.Full,
+            Name = "isetcam",
+            Arrangement = Arrangement.Full,
             Source = "ISETCam pixelCreate/sensorCreate defaults: monochrome, quantum efficiency 1 at every wavelength (pixel 'spectralQE' ones)",
             Channels = [new SensorChannel("Y", new TabulatedSpectrum("qe 1", [1.0, 1e5], [1.0, 1.0], Extrapolation.Clamp), "QE 1")],
         },
@@ -31,26 +32,31 @@ public static class SensorPresets
         // A Foveon X3 stacks three photodiodes in each pixel: every channel at every pixel, no mosaic.
         "sigma-sd-merrill" => new SensorModel
         {
-            Name = "sigma-sd-merrill", Arrangement = Arrangement.Full,
+            Name = "sigma-sd-merrill",
+            Arrangement = Arrangement.Full,
             Source = "Sigma SD Merrill (Foveon X3, three stacked layers per pixel) sensitivities, Darrodi et al., JOSA A 32(3) 381 (2015), NPL; 400–680 nm, zero outside",
             Channels = FromCsv("camera-sigma-sdmerill-npl.csv", ["red", "green", "blue"], ["R", "G", "B"]),
         },
         "wheel-6" => new SensorModel
         {
-            Name = "wheel-6", Arrangement = Arrangement.Wheel,
+            Name = "wheel-6",
+            Arrangement = Arrangement.Wheel,
             Source = "a monochrome sensor behind a wheel of 6 Gaussian filters, 420–670 nm every 50 nm, FWHM 40 nm (the 5–7 filter practice the paper cites)",
             Channels = Scale(Enumerable.Range(0, 6).Select(i => Gaussian($"F{420 + 50 * i}", 420 + 50 * i, 40)).ToArray(), DefaultPeakQe),
         },
         "mosaic-16" => new SensorModel
         {
-            Name = "mosaic-16", Arrangement = Arrangement.Mosaic, PatternName = "4x4",
+            Name = "mosaic-16",
+            Arrangement = Arrangement.Mosaic,
+            PatternName = "4x4",
             Source = "a 4 × 4 snapshot multispectral mosaic: 16 Gaussian filters 410–690 nm evenly spaced (18.67 nm), FWHM 25 nm, in raster order",
             Channels = Scale(Enumerable.Range(0, 16).Select(i => { double c = 410 + 280.0 / 15 * i; return Gaussian($"F{c:0}", c, 25); }).ToArray(), DefaultPeakQe),
             Pattern = new int[4, 4] { { 0, 1, 2, 3 }, { 4, 5, 6, 7 }, { 8, 9, 10, 11 }, { 12, 13, 14, 15 } },
         },
         "cie-xyz" => new SensorModel
         {
-            Name = "cie-xyz", Arrangement = Arrangement.Full,
+            Name = "cie-xyz",
+            Arrangement = Arrangement.Full,
             Source = "an ideal colorimetric sensor: η_c(λ) ∝ CMF_c(λ)·(555 nm / λ) (CIE 1931 2°), so the electron count ∝ ∫ L·CMF dλ, i.e. ∝ XYZ",
             Channels = CieXyz(),
         },
@@ -60,7 +66,10 @@ public static class SensorPresets
 
     static SensorModel Bayer(string name, string file, string[] columns, string source) => new()
     {
-        Name = name, Arrangement = Arrangement.Mosaic, PatternName = "RGGB", Source = source,
+        Name = name,
+        Arrangement = Arrangement.Mosaic,
+        PatternName = "RGGB",
+        Source = source,
         Channels = FromCsv(file, columns, ["R", "G", "B"]),
         Pattern = new int[2, 2] { { 0, 1 }, { 1, 2 } },
     };

@@ -1,5 +1,5 @@
-using SpectralRenderer.Spectra;
 using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Color;
 

@@ -1,5 +1,5 @@
-using System.Runtime.CompilerServices;
 using System.Numerics;
+using System.Runtime.CompilerServices;
 
 namespace SpectralRenderer.Geometry;
 
@@ -51,66 +51,66 @@ public sealed class AnalyticShape
         switch (Kind)
         {
             case ShapeKind.Sphere:
-            {
-                // |o + t d|² = 1, solved in double for a stable discriminant.
-                double a = Vector3.Dot(d, d), b = Vector3.Dot(o, d), c = Vector3.Dot(o, o) - 1.0;
-                double disc = b * b - a * c;
-                if (disc < 0) { normal = default; return false; }
-                double sq = Math.Sqrt(disc);
-                double q = b > 0 ? -(b + sq) : -(b - sq);
-                double t0 = q / a, t1 = c / q;
-                if (t0 > t1) (t0, t1) = (t1, t0);
-                double th = t0 > tMin ? t0 : t1;
-                if (!(th > tMin && th < ray.TMax)) { normal = default; return false; }
-                t = (float)th;
-                n = o + t * d;
-                break;
-            }
-            case ShapeKind.Plane:
-            {
-                if (d.Y == 0) { normal = default; return false; }
-                t = -o.Y / d.Y;
-                if (!(t > tMin && t < ray.TMax)) { normal = default; return false; }
-                n = Vector3.UnitY;
-                break;
-            }
-            case ShapeKind.Quad:
-            {
-                if (d.Z == 0) { normal = default; return false; }
-                t = -o.Z / d.Z;
-                if (!(t > tMin && t < ray.TMax)) { normal = default; return false; }
-                var p = o + t * d;
-                if (Math.Abs(p.X) > 0.5f || Math.Abs(p.Y) > 0.5f) { normal = default; return false; }
-                n = Vector3.UnitZ;
-                break;
-            }
-            case ShapeKind.Box:
-            {
-                float tNear = float.NegativeInfinity, tFar = float.PositiveInfinity;
-                int axisNear = 0, axisFar = 0;
-                for (int i = 0; i < 3; i++)
                 {
-                    float oi = Component(o, i), di = Component(d, i);
-                    float inv = 1f / di;
-                    float ta = (-0.5f - oi) * inv, tb = (0.5f - oi) * inv;
-                    if (ta > tb) (ta, tb) = (tb, ta);
-                    if (ta > tNear) { tNear = ta; axisNear = i; }
-                    if (tb < tFar) { tFar = tb; axisFar = i; }
+                    // |o + t d|² = 1, solved in double for a stable discriminant.
+                    double a = Vector3.Dot(d, d), b = Vector3.Dot(o, d), c = Vector3.Dot(o, o) - 1.0;
+                    double disc = b * b - a * c;
+                    if (disc < 0) { normal = default; return false; }
+                    double sq = Math.Sqrt(disc);
+                    double q = b > 0 ? -(b + sq) : -(b - sq);
+                    double t0 = q / a, t1 = c / q;
+                    if (t0 > t1) (t0, t1) = (t1, t0);
+                    double th = t0 > tMin ? t0 : t1;
+                    if (!(th > tMin && th < ray.TMax)) { normal = default; return false; }
+                    t = (float)th;
+                    n = o + t * d;
+                    break;
                 }
-                if (tNear > tFar) { normal = default; return false; }
-                int axis;
-                if (tNear > tMin) { t = tNear; axis = axisNear; }
-                else { t = tFar; axis = axisFar; }
-                if (!(t > tMin && t < ray.TMax)) { normal = default; return false; }
-                var p = o + t * d;
-                n = axis switch
+            case ShapeKind.Plane:
                 {
-                    0 => new Vector3(Math.Sign(p.X), 0, 0),
-                    1 => new Vector3(0, Math.Sign(p.Y), 0),
-                    _ => new Vector3(0, 0, Math.Sign(p.Z)),
-                };
-                break;
-            }
+                    if (d.Y == 0) { normal = default; return false; }
+                    t = -o.Y / d.Y;
+                    if (!(t > tMin && t < ray.TMax)) { normal = default; return false; }
+                    n = Vector3.UnitY;
+                    break;
+                }
+            case ShapeKind.Quad:
+                {
+                    if (d.Z == 0) { normal = default; return false; }
+                    t = -o.Z / d.Z;
+                    if (!(t > tMin && t < ray.TMax)) { normal = default; return false; }
+                    var p = o + t * d;
+                    if (Math.Abs(p.X) > 0.5f || Math.Abs(p.Y) > 0.5f) { normal = default; return false; }
+                    n = Vector3.UnitZ;
+                    break;
+                }
+            case ShapeKind.Box:
+                {
+                    float tNear = float.NegativeInfinity, tFar = float.PositiveInfinity;
+                    int axisNear = 0, axisFar = 0;
+                    for (int i = 0; i < 3; i++)
+                    {
+                        float oi = Component(o, i), di = Component(d, i);
+                        float inv = 1f / di;
+                        float ta = (-0.5f - oi) * inv, tb = (0.5f - oi) * inv;
+                        if (ta > tb) (ta, tb) = (tb, ta);
+                        if (ta > tNear) { tNear = ta; axisNear = i; }
+                        if (tb < tFar) { tFar = tb; axisFar = i; }
+                    }
+                    if (tNear > tFar) { normal = default; return false; }
+                    int axis;
+                    if (tNear > tMin) { t = tNear; axis = axisNear; }
+                    else { t = tFar; axis = axisFar; }
+                    if (!(t > tMin && t < ray.TMax)) { normal = default; return false; }
+                    var p = o + t * d;
+                    n = axis switch
+                    {
+                        0 => new Vector3(Math.Sign(p.X), 0, 0),
+                        1 => new Vector3(0, Math.Sign(p.Y), 0),
+                        _ => new Vector3(0, 0, Math.Sign(p.Z)),
+                    };
+                    break;
+                }
         }
         normal = Vector3.Normalize(Vector3.TransformNormal(n, NormalToWorld));
         return true;

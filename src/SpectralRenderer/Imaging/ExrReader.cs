@@ -265,7 +265,14 @@ public static class ExrReader
 
     static string CompressionName(int c) => c switch
     {
-        1 => "RLE", 4 => "PIZ", 5 => "PXR24", 6 => "B44", 7 => "B44A", 8 => "DWAA", 9 => "DWAB", _ => $"#{c}",
+        1 => "RLE",
+        4 => "PIZ",
+        5 => "PXR24",
+        6 => "B44",
+        7 => "B44A",
+        8 => "DWAA",
+        9 => "DWAB",
+        _ => $"#{c}",
     };
 
     /// <summary>Bounds-checked little-endian reading; running off the end is a truncated file.</summary>

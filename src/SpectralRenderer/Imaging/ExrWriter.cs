@@ -1,8 +1,8 @@
 using System.Buffers;
-using System.Runtime.CompilerServices;
 using System.Buffers.Binary;
-using System.Runtime.InteropServices;
 using System.Globalization;
+using System.Runtime.CompilerServices;
+using System.Runtime.InteropServices;
 using System.Text;
 using SpectralRenderer.Color;
 using SpectralRenderer.Spectra;

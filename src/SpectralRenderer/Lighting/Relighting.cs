@@ -36,8 +36,14 @@ public static class Relighting
         var o = manifest.Run?["overrides"] as JsonObject;
         var overrides = new SceneOverrides
         {
-            Width = (int?)o?["width"], Height = (int?)o?["height"], Bands = (string?)o?["bands"], Wave = (string?)o?["wave"], SamplesPerPixel = (int?)o?["spp"],
-            Rgb = (string?)o?["rgb"], Integration = (string?)o?["integration"], Formats = (string?)o?["formats"],
+            Width = (int?)o?["width"],
+            Height = (int?)o?["height"],
+            Bands = (string?)o?["bands"],
+            Wave = (string?)o?["wave"],
+            SamplesPerPixel = (int?)o?["spp"],
+            Rgb = (string?)o?["rgb"],
+            Integration = (string?)o?["integration"],
+            Formats = (string?)o?["formats"],
             ExrCompression = (string?)o?["exr_compression"],
             ModelDirectories = o?["models"]?.AsArray().Select(d => (string)d!).Where(Directory.Exists).ToList() ?? [],
         };
@@ -87,8 +93,17 @@ public static class Relighting
         var (dy, sy) = transfer.CentreLuminance(scene);
         var result = new RenderResult
         {
-            Image = image, Xyz = xyz, FallbackPixels = fallback, ObjectIds = transfer.ObjectIds, LitMasks = transfer.LitMasks, DiffuseY = dy, SpecularY = sy,
-            Rays = new RayCounters(), Elapsed = clock.Elapsed, Threads = Environment.ProcessorCount, Tiles = 0,
+            Image = image,
+            Xyz = xyz,
+            FallbackPixels = fallback,
+            ObjectIds = transfer.ObjectIds,
+            LitMasks = transfer.LitMasks,
+            DiffuseY = dy,
+            SpecularY = sy,
+            Rays = new RayCounters(),
+            Elapsed = clock.Elapsed,
+            Threads = Environment.ProcessorCount,
+            Tiles = 0,
             Crop = PixelRect.Whole(transfer.Width, transfer.Height),
         };
         var compute = clock.Elapsed;
@@ -102,7 +117,7 @@ public static class Relighting
                 ["from_created_utc"] = src.Manifest.CreatedUtc,
                 ["method"] = "per-light transfer (lights/): L_b = sum_c F_c * P_c,b and XYZ = sum_c F_c * XYZ_c with P_c rebuilt from the new lights' term tables; no rays traced",
                 ["changes"] = new JsonArray(changes.Select(c => (JsonNode)new JsonObject
-                    { ["light"] = c.Light, ["spectrum"] = c.Spectrum, ["intensity"] = c.Intensity }).ToArray()),
+                { ["light"] = c.Light, ["spectrum"] = c.Spectrum, ["intensity"] = c.Intensity }).ToArray()),
                 ["white"] = white,
             },
         };

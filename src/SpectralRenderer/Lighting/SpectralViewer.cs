@@ -41,10 +41,14 @@ public static class SpectralViewer
         var data = new JsonObject
         {
             ["title"] = Path.GetFileName(Path.GetFullPath(dir).TrimEnd(Path.DirectorySeparatorChar)),
-            ["width"] = width, ["height"] = height, ["bands"] = grid.Count,
+            ["width"] = width,
+            ["height"] = height,
+            ["bands"] = grid.Count,
             ["edges"] = new JsonArray(grid.Edges().Select(e => (JsonNode)JsonValue.Create(e)).ToArray()),
             ["centres"] = new JsonArray(Enumerable.Range(0, grid.Count).Select(b => (JsonNode)JsonValue.Create(grid.Centre(b))).ToArray()),
-            ["wx"] = Nums(manifest.Wx), ["wy"] = Nums(manifest.Wy), ["wz"] = Nums(manifest.Wz),
+            ["wx"] = Nums(manifest.Wx),
+            ["wy"] = Nums(manifest.Wy),
+            ["wz"] = Nums(manifest.Wz),
             ["white"] = Nums([manifest.White.X, manifest.White.Y, manifest.White.Z]),
         };
 
@@ -118,9 +122,13 @@ public static class SpectralViewer
             data["presets"] = presets;
             data["components"] = new JsonArray(comps.Select(c => (JsonNode)new JsonObject
             {
-                ["light"] = (int)c!["light"]!, ["follows_light"] = (bool)c["follows_light"]!, ["key"] = (string?)c["key"],
-                ["offset"] = (int)c["offset"]!, ["count"] = (int)c["count"]!,
-                ["band_values"] = c["band_values"]!.DeepClone(), ["xyz"] = c["xyz"]!.DeepClone(),
+                ["light"] = (int)c!["light"]!,
+                ["follows_light"] = (bool)c["follows_light"]!,
+                ["key"] = (string?)c["key"],
+                ["offset"] = (int)c["offset"]!,
+                ["count"] = (int)c["count"]!,
+                ["band_values"] = c["band_values"]!.DeepClone(),
+                ["xyz"] = c["xyz"]!.DeepClone(),
             }).ToArray());
             var (_, f) = ReadNpy(Path.Combine(dir, LightTransferFiles.Folder, "factors.npy"));
             using (var ps = File.OpenRead(Path.Combine(dir, LightTransferFiles.Folder, "pixels.npy")))

@@ -33,8 +33,16 @@ public static class AnalysisImages
         done("mask-highlight.png");
 
         ExrWriter.Write(Path.Combine(outDir, "reflectance.exr"), image.Width, image.Height, image.Grid, GroundTruthBands(scene, result), null,
-            new ExrOptions { Reflective = true, Rgb = false, Colorimeter = scene.Colorimeter,
-                DataX = result.Crop.X0, DataY = result.Crop.Y0, DisplayWidth = scene.Camera.Width, DisplayHeight = scene.Camera.Height });
+            new ExrOptions
+            {
+                Reflective = true,
+                Rgb = false,
+                Colorimeter = scene.Colorimeter,
+                DataX = result.Crop.X0,
+                DataY = result.Crop.Y0,
+                DisplayWidth = scene.Camera.Width,
+                DisplayHeight = scene.Camera.Height
+            });
         done("reflectance.exr");
     }
 

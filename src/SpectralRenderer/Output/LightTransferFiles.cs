@@ -2,9 +2,9 @@ using System.Globalization;
 using System.Text.Json;
 using System.Text.Json.Nodes;
 using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Imaging;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
-using SpectralRenderer.Imaging;
 using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Output;
@@ -69,7 +69,9 @@ public static class LightTransferFiles
             var l = scene.Lights[k];
             lights.Add(new JsonObject
             {
-                ["index"] = k, ["name"] = l.Name, ["kind"] = l.Type,
+                ["index"] = k,
+                ["name"] = l.Name,
+                ["kind"] = l.Type,
                 ["spectrum"] = l.Spectrum?.Name,
                 ["band_values"] = Arr(l.Intensity.AsSpan(0, scene.Bands)),
             });
@@ -83,12 +85,17 @@ public static class LightTransferFiles
             comp.BandValues(tables, p);
             comps.Add(new JsonObject
             {
-                ["index"] = c, ["key"] = comp.Key, ["offset"] = offset, ["count"] = t.Factors[c].Length, ["merged_chains"] = t.Merged[c],
-                ["light"] = comp.Light, ["lobe"] = TransferComponent.LobeName(comp.Lobe),
+                ["index"] = c,
+                ["key"] = comp.Key,
+                ["offset"] = offset,
+                ["count"] = t.Factors[c].Length,
+                ["merged_chains"] = t.Merged[c],
+                ["light"] = comp.Light,
+                ["lobe"] = TransferComponent.LobeName(comp.Lobe),
                 ["follows_light"] = comp.FollowsLight,
                 ["material"] = comp.Material < 0 ? null : scene.Materials[comp.Material].Name,
                 ["chain"] = new JsonArray(comp.Chain.Select(x => (JsonNode)new JsonObject
-                    { ["material"] = scene.Materials[x.Material].Name, ["weight"] = x.Transmit ? "transmit" : "mirror" }).ToArray()),
+                { ["material"] = scene.Materials[x.Material].Name, ["weight"] = x.Transmit ? "transmit" : "mirror" }).ToArray()),
                 ["band_values"] = Arr(p.AsSpan(0, scene.Bands)),
                 ["xyz"] = Arr(p.AsSpan(scene.Bands, 3)),
                 ["coloured_chain"] = comp.Coloured(tables),
@@ -96,12 +103,16 @@ public static class LightTransferFiles
         }
         var materials = new JsonArray(scene.Materials.Select(mt => (JsonNode)new JsonObject
         {
-            ["name"] = mt.Name, ["diffuse_spectrum"] = mt.DiffuseSpectrum?.Name, ["diffuse_band_values"] = Arr(mt.Diffuse.AsSpan(0, scene.Bands)),
+            ["name"] = mt.Name,
+            ["diffuse_spectrum"] = mt.DiffuseSpectrum?.Name,
+            ["diffuse_band_values"] = Arr(mt.Diffuse.AsSpan(0, scene.Bands)),
         }).ToArray());
         return new JsonObject
         {
             ["layout"] = "L_b(pixel) = sum over components c and entries j in [c.offset, c.offset + c.count) with pixels[j] = pixel of factors[j] * c.band_values[b]; the pixel's XYZ the same sum of factors[j] * c.xyz (eq. 3 on L_b where ids[2] marks a colour fallback)",
-            ["width"] = t.Width, ["height"] = t.Height, ["bands"] = t.Bands,
+            ["width"] = t.Width,
+            ["height"] = t.Height,
+            ["bands"] = t.Bands,
             ["band_scheme"] = scene.Integration.ToString().ToLowerInvariant(),
             ["exact_for"] = "every band scheme: a component's band values and XYZ are the scene's term tables (exact band means of E·m and their exact XYZ under 'exact') times the chain's weights, as the integrator multiplies them",
             ["lights"] = lights,
@@ -178,7 +189,11 @@ public static class LightTransferFiles
         var ids = Load("ids.npy", [3, height, width]);
         return new LightTransfer
         {
-            Width = width, Height = height, Bands = bands, Grid = scene.Grid, Components = comps,
+            Width = width,
+            Height = height,
+            Bands = bands,
+            Grid = scene.Grid,
+            Components = comps,
             Factors = offsets.Select(o => f.AsSpan(o.Offset, o.Count).ToArray()).ToArray(),
             Pixels = offsets.Select(o => pix.AsSpan(o.Offset, o.Count).ToArray()).ToArray(),
             Merged = nodes.Select(c => (int?)c!["merged_chains"] ?? 1).ToArray(),

@@ -115,8 +115,13 @@ public sealed record RenderManifest
         {
             var e = new JsonObject
             {
-                ["index"] = l.Index, ["name"] = l.Name, ["kind"] = l.Kind, ["spectrum"] = l.Spectrum,
-                ["intensity"] = l.Intensity, ["intensity_unit"] = l.IntensityUnit, ["has_ambient"] = l.HasAmbient,
+                ["index"] = l.Index,
+                ["name"] = l.Name,
+                ["kind"] = l.Kind,
+                ["spectrum"] = l.Spectrum,
+                ["intensity"] = l.Intensity,
+                ["intensity_unit"] = l.IntensityUnit,
+                ["has_ambient"] = l.HasAmbient,
             };
             if (l.Position is { } lp) e["position"] = Arr(lp);
             if (l.Direction is { } ld) e["direction"] = Arr(ld);
@@ -159,7 +164,9 @@ public sealed record RenderManifest
                 ["reference_white_spd"] = new JsonObject { ["wavelengths_nm"] = Arr(ReferenceWhite.Wavelengths), ["values"] = Arr(ReferenceWhite.Values) },
                 ["kappa"] = Kappa,
                 ["white_xyz"] = Arr([White.X, White.Y, White.Z]),
-                ["weights_x"] = Arr(Wx), ["weights_y"] = Arr(Wy), ["weights_z"] = Arr(Wz),
+                ["weights_x"] = Arr(Wx),
+                ["weights_y"] = Arr(Wy),
+                ["weights_z"] = Arr(Wz),
                 ["rgb"] = Rgb,
                 ["exposure"] = Exposure,
                 ["exposure_mode"] = ExposureMode,
@@ -173,7 +180,10 @@ public sealed record RenderManifest
             ["timings_s"] = new JsonObject { ["render"] = RenderSeconds },
             ["rays"] = new JsonObject
             {
-                ["primary"] = Rays.Primary, ["shadow"] = Rays.Shadow, ["secondary"] = Rays.Secondary, ["total"] = Rays.Total,
+                ["primary"] = Rays.Primary,
+                ["shadow"] = Rays.Shadow,
+                ["secondary"] = Rays.Secondary,
+                ["total"] = Rays.Total,
                 ["mrays_per_s"] = Rays.MraysPerSecond,
             },
             ["threads"] = Threads,

@@ -1,14 +1,14 @@
 using System.Buffers;
 using System.Buffers.Binary;
+using System.Globalization;
 using System.Numerics;
 using System.Runtime.CompilerServices;
 using System.Runtime.InteropServices;
-using System.Globalization;
 using System.Text.Json;
 using System.Text.Json.Nodes;
+using SpectralRenderer.Color;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
-using SpectralRenderer.Color;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Spectra;
@@ -111,31 +111,31 @@ public static class RenderOutputWriter
         RenderManifest? manifest = null;
         try
         {
-        Parallel.Invoke(new ParallelOptions { CancellationToken = cancel },
-            () => { if (Has(OutputProducts.Png)) WritePreview(image, xyz!, encoder!, outDir, Done(0)); },
-            () => { if (Has(OutputProducts.Bands)) WriteBands(scene, image, bands!, scale, outDir, Done(1), cancel); },
-            () =>
-            {
-                if (!Has(OutputProducts.Bands)) return;
-                var (mw, mh, mosaic) = BandMosaic.Build(image.Width, image.Height, bands!, scale, 256, scene.Grid);
-                AtomicFile.Write(Path.Combine(outDir, "bands.png"), s => PngWriter.WriteGray8(s, mw, mh, mosaic));
-                Done(2)("bands.png");
-            },
-            () =>
-            {
-                if (!Has(OutputProducts.Aov)) return;
-                var ids = new ushort[result.ObjectIds.Length];
-                for (int i = 0; i < ids.Length; i++) ids[i] = (ushort)(result.ObjectIds[i] + 1);
-                AtomicFile.Write(Path.Combine(outDir, "object-id.png"), s => PngWriter.WriteGray16(s, image.Width, image.Height, ids));
-                Done(3)("object-id.png");
-                AnalysisImages.Write(scene, result, outDir, Done(3));
-            },
-            () => { if (Has(OutputProducts.Exr)) SpectralFiles.WriteExr(scene, image, bands!, xyz, result.Crop, outDir, Done(4)); },
-            () => { if (Has(OutputProducts.Envi)) SpectralFiles.WriteEnvi(scene, image, bands!, outDir, Done(5)); },
-            () => { if (Has(OutputProducts.Npy)) SpectralFiles.WriteNpy(image, outDir, Done(6)); },
-            () => { if (Has(OutputProducts.Npy) || Has(OutputProducts.Envi) || Has(OutputProducts.Exr)) SpectralFiles.WriteWavelengths(image, outDir, Done(7)); },
-            () => { if (transfer is not null && Has(OutputProducts.Lights)) LightTransferFiles.Write(scene, transfer, outDir, Done(8)); },
-            () => manifest = Describe(scene, result, scale, run, encoder));
+            Parallel.Invoke(new ParallelOptions { CancellationToken = cancel },
+                () => { if (Has(OutputProducts.Png)) WritePreview(image, xyz!, encoder!, outDir, Done(0)); },
+                () => { if (Has(OutputProducts.Bands)) WriteBands(scene, image, bands!, scale, outDir, Done(1), cancel); },
+                () =>
+                {
+                    if (!Has(OutputProducts.Bands)) return;
+                    var (mw, mh, mosaic) = BandMosaic.Build(image.Width, image.Height, bands!, scale, 256, scene.Grid);
+                    AtomicFile.Write(Path.Combine(outDir, "bands.png"), s => PngWriter.WriteGray8(s, mw, mh, mosaic));
+                    Done(2)("bands.png");
+                },
+                () =>
+                {
+                    if (!Has(OutputProducts.Aov)) return;
+                    var ids = new ushort[result.ObjectIds.Length];
+                    for (int i = 0; i < ids.Length; i++) ids[i] = (ushort)(result.ObjectIds[i] + 1);
+                    AtomicFile.Write(Path.Combine(outDir, "object-id.png"), s => PngWriter.WriteGray16(s, image.Width, image.Height, ids));
+                    Done(3)("object-id.png");
+                    AnalysisImages.Write(scene, result, outDir, Done(3));
+                },
+                () => { if (Has(OutputProducts.Exr)) SpectralFiles.WriteExr(scene, image, bands!, xyz, result.Crop, outDir, Done(4)); },
+                () => { if (Has(OutputProducts.Envi)) SpectralFiles.WriteEnvi(scene, image, bands!, outDir, Done(5)); },
+                () => { if (Has(OutputProducts.Npy)) SpectralFiles.WriteNpy(image, outDir, Done(6)); },
+                () => { if (Has(OutputProducts.Npy) || Has(OutputProducts.Envi) || Has(OutputProducts.Exr)) SpectralFiles.WriteWavelengths(image, outDir, Done(7)); },
+                () => { if (transfer is not null && Has(OutputProducts.Lights)) LightTransferFiles.Write(scene, transfer, outDir, Done(8)); },
+                () => manifest = Describe(scene, result, scale, run, encoder));
         }
         catch (AggregateException e)
         {
@@ -324,7 +324,9 @@ public static class RenderOutputWriter
             ReferenceWhite = scene.ReferenceWhite,
             Kappa = c.Kappa,
             White = c.White,
-            Wx = c.Wx, Wy = c.Wy, Wz = c.Wz,
+            Wx = c.Wx,
+            Wy = c.Wy,
+            Wz = c.Wz,
             Rgb = scene.Output.Rgb.Name,
             Exposure = preview?.Exposure ?? scene.Output.Exposure,
             ExposureMode = scene.Output.ExposureAuto ? "auto (99th percentile of the display-linear maximum channel of non-black pixels → 1)" : "fixed",

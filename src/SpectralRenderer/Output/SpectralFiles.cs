@@ -24,7 +24,10 @@ public static class SpectralFiles
             DeflateEveryChunk = scene.Output.ExrCompression == ExrCompressionChoice.ZipAll,
             // JCGT 2021's emissiveUnits names the unit of the S0 channels: only true for physical radiometry.
             EmissiveUnits = scene.Radiometry == Radiometry.Physical ? ExrWriter.EmissiveUnits : null,
-            DataX = crop.X0, DataY = crop.Y0, DisplayWidth = scene.Camera.Width, DisplayHeight = scene.Camera.Height,
+            DataX = crop.X0,
+            DataY = crop.Y0,
+            DisplayWidth = scene.Camera.Width,
+            DisplayHeight = scene.Camera.Height,
             Attributes = new Dictionary<string, string>
             {
                 ["software"] = $"spectral {typeof(SpectralFiles).Assembly.GetName().Version?.ToString(3)}",

@@ -29,14 +29,20 @@ public sealed record TransferComponent(int Light, TransferLobe Lobe, int Materia
 
     public static string LobeName(TransferLobe l) => l switch
     {
-        TransferLobe.Diffuse => "diffuse", TransferLobe.Specular => "specular", TransferLobe.Ambient => "ambient",
-        TransferLobe.GlobalAmbient => "global-ambient", _ => "background",
+        TransferLobe.Diffuse => "diffuse",
+        TransferLobe.Specular => "specular",
+        TransferLobe.Ambient => "ambient",
+        TransferLobe.GlobalAmbient => "global-ambient",
+        _ => "background",
     };
 
     public static TransferLobe ParseLobe(string s) => s switch
     {
-        "diffuse" => TransferLobe.Diffuse, "specular" => TransferLobe.Specular, "ambient" => TransferLobe.Ambient,
-        "global-ambient" => TransferLobe.GlobalAmbient, "background" => TransferLobe.Background,
+        "diffuse" => TransferLobe.Diffuse,
+        "specular" => TransferLobe.Specular,
+        "ambient" => TransferLobe.Ambient,
+        "global-ambient" => TransferLobe.GlobalAmbient,
+        "background" => TransferLobe.Background,
         _ => throw new InputException("lights.json", $"unknown component lobe '{s}'", "the light-transfer files are damaged: render the folder again"),
     };
 
@@ -291,38 +297,38 @@ public sealed class LightTransfer
                     int x0 = tile % tilesX * Renderer.TileSize, y0 = tile / tilesX * Renderer.TileSize;
                     int x1 = Math.Min(width, x0 + Renderer.TileSize), y1 = Math.Min(height, y0 + Renderer.TileSize);
                     for (int y = y0; y < y1; y++)
-                    for (int x = x0; x < x1; x++)
-                    {
-                        int i = y * width + x;
-                        w.Terms = 0;
-                        w.Fallback = false;
-                        uint mask = 0;
-                        int id;
-                        if (spp == 1)
+                        for (int x = x0; x < x1; x++)
                         {
-                            w.Counters.Primary++;
-                            id = Primary(cam.Generate(x + 0.5f, y + 0.5f), w, 1f, i, ref mask, centre: true);
-                        }
-                        else
-                        {
-                            for (int s = 0; s < spp; s++)
+                            int i = y * width + x;
+                            w.Terms = 0;
+                            w.Fallback = false;
+                            uint mask = 0;
+                            int id;
+                            if (spp == 1)
                             {
-                                uint h = Renderer.Hash((uint)x, (uint)y, (uint)s);
-                                float jx = ((s % strataX) + (h & 0xFFFF) / 65536f) / strataX;
-                                float jy = ((s / strataX) + (h >> 16) / 65536f) / strataY;
                                 w.Counters.Primary++;
-                                uint unused = 0;
-                                Primary(cam.Generate(x + jx, y + jy), w, inv, i, ref unused, centre: false);
+                                id = Primary(cam.Generate(x + 0.5f, y + 0.5f), w, 1f, i, ref mask, centre: true);
                             }
-                            // The centre ray for the analysis data, traced as the renderer traces it (its radiance weighs 0).
-                            w.Counters.Primary++;
-                            id = Primary(cam.Generate(x + 0.5f, y + 0.5f), w, 0f, i, ref mask, centre: true);
+                            else
+                            {
+                                for (int s = 0; s < spp; s++)
+                                {
+                                    uint h = Renderer.Hash((uint)x, (uint)y, (uint)s);
+                                    float jx = ((s % strataX) + (h & 0xFFFF) / 65536f) / strataX;
+                                    float jy = ((s / strataX) + (h >> 16) / 65536f) / strataY;
+                                    w.Counters.Primary++;
+                                    uint unused = 0;
+                                    Primary(cam.Generate(x + jx, y + jy), w, inv, i, ref unused, centre: false);
+                                }
+                                // The centre ray for the analysis data, traced as the renderer traces it (its radiance weighs 0).
+                                w.Counters.Primary++;
+                                id = Primary(cam.Generate(x + 0.5f, y + 0.5f), w, 0f, i, ref mask, centre: true);
+                            }
+                            w.Emit(i);
+                            _fallback[i] = w.Fallback;
+                            ids[i] = id;
+                            lit[i] = mask;
                         }
-                        w.Emit(i);
-                        _fallback[i] = w.Fallback;
-                        ids[i] = id;
-                        lit[i] = mask;
-                    }
                     _tiles.Add((w.TileComp[..w.TileCount], w.TilePixel[..w.TileCount], w.TileFactor[..w.TileCount], w.TileCount));
                 }
                 lock (gate) total.Add(w.Counters);
@@ -335,10 +341,20 @@ public sealed class LightTransfer
             var (components, pixels, factors, merged) = Assemble(width * height);
             return new LightTransfer
             {
-                Width = width, Height = height, Bands = bands, Grid = _scene.Grid,
-                Components = components, Pixels = pixels, Factors = factors, Merged = merged,
-                CentreDiffuse = _centreDiffuse, CentreSpecular = _centreSpecular, Fallback = _fallback,
-                ObjectIds = ids, LitMasks = lit, Rays = total,
+                Width = width,
+                Height = height,
+                Bands = bands,
+                Grid = _scene.Grid,
+                Components = components,
+                Pixels = pixels,
+                Factors = factors,
+                Merged = merged,
+                CentreDiffuse = _centreDiffuse,
+                CentreSpecular = _centreSpecular,
+                Fallback = _fallback,
+                ObjectIds = ids,
+                LitMasks = lit,
+                Rays = total,
             };
         }
 

@@ -1,8 +1,8 @@
 using System.Runtime.CompilerServices;
 using SpectralRenderer.Acceleration;
 using SpectralRenderer.Color;
-using SpectralRenderer.Spectra;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Rendering;
 
@@ -42,25 +42,25 @@ public sealed partial class Renderer
         st.Packet.Clear();
         st.Lanes = 0;
         for (int by = y0; by < y1; by += Block)
-        for (int bx = x0; bx < x1; bx += Block)
-        for (int y = by; y < Math.Min(by + Block, y1); y++)
-        for (int x = bx; x < Math.Min(bx + Block, x1); x++)
-        for (int s = 0; s < perPixel; s++)
-        {
-            float jx = 0.5f, jy = 0.5f;
-            if (s < spp && spp > 1)
-            {
-                // Sample s in cell (s mod m, s div m), jittered inside it (as the per-pixel loop).
-                uint h = Hash((uint)x, (uint)y, (uint)s);
-                jx = ((s % strataX) + (h & 0xFFFF) / 65536f) / strataX;
-                jy = ((s / strataX) + (h >> 16) / 65536f) / strataY;
-            }
-            counters.Primary++;
-            int lane = st.Lanes++;
-            st.Packet.Set(lane, cam.Generate(x + jx, y + jy));
-            st.PixelX[lane] = x; st.PixelY[lane] = y; st.Sample[lane] = s;
-            if (st.Lanes == RayPacket.Size) Flush(integrator, spp, st, image, ids, lit, specY, diffY, xyz, colorimeter, ref fallbackPixels, ref counters);
-        }
+            for (int bx = x0; bx < x1; bx += Block)
+                for (int y = by; y < Math.Min(by + Block, y1); y++)
+                    for (int x = bx; x < Math.Min(bx + Block, x1); x++)
+                        for (int s = 0; s < perPixel; s++)
+                        {
+                            float jx = 0.5f, jy = 0.5f;
+                            if (s < spp && spp > 1)
+                            {
+                                // Sample s in cell (s mod m, s div m), jittered inside it (as the per-pixel loop).
+                                uint h = Hash((uint)x, (uint)y, (uint)s);
+                                jx = ((s % strataX) + (h & 0xFFFF) / 65536f) / strataX;
+                                jy = ((s / strataX) + (h >> 16) / 65536f) / strataY;
+                            }
+                            counters.Primary++;
+                            int lane = st.Lanes++;
+                            st.Packet.Set(lane, cam.Generate(x + jx, y + jy));
+                            st.PixelX[lane] = x; st.PixelY[lane] = y; st.Sample[lane] = s;
+                            if (st.Lanes == RayPacket.Size) Flush(integrator, spp, st, image, ids, lit, specY, diffY, xyz, colorimeter, ref fallbackPixels, ref counters);
+                        }
         if (st.Lanes > 0) Flush(integrator, spp, st, image, ids, lit, specY, diffY, xyz, colorimeter, ref fallbackPixels, ref counters);
     }
 

@@ -1,5 +1,5 @@
-using System.Runtime.CompilerServices;
 using System.Diagnostics;
+using System.Runtime.CompilerServices;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Spectra;
 
@@ -114,58 +114,58 @@ public sealed partial class Renderer
                 if (packed is not null)
                     PacketTile((IPacketIntegrator)integrator, cam, x0, y0, x1, y1, strataX, strataY, packed, image, ids, lit, specY, diffY, xyz, colorimeter, ref fallbackPixels, ref counters);
                 else
-                for (int y = y0; y < y1; y++)
-                for (int x = x0; x < x1; x++)
-                {
-                    // Inside the tile too: one pixel's work is bounded by the ray budget, so a request to stop
-                    // is seen within one pixel's time, however deep the scene's rays go.
-                    cancel.ThrowIfCancellationRequested();
-                    int id;
-                    var info = new PixelInfo();
-                    long fallbackBefore = counters.Fallback;
-                    if (spp == 1)
-                    {
-                        counters.StartCameraRay(budget);
-                        counters.Primary++;
-                        id = integrator.Radiance(cam.Generate(x + 0.5f, y + 0.5f), sum, scratch, ref counters, ref info);
-                        counters.EndCameraRay();
-                    }
-                    else
-                    {
-                        sum.Clear();
-                        for (int s = 0; s < spp; s++)
+                    for (int y = y0; y < y1; y++)
+                        for (int x = x0; x < x1; x++)
                         {
-                            // Sample s in cell (s mod m, s div m), jittered inside it.
-                            uint h = Hash((uint)x, (uint)y, (uint)s);
-                            float jx = ((s % strataX) + (h & 0xFFFF) / 65536f) / strataX;
-                            float jy = ((s / strataX) + (h >> 16) / 65536f) / strataY;
-                            PixelInfo unused = default;
-                            counters.StartCameraRay(budget);
-                            counters.Primary++;
-                            integrator.Radiance(cam.Generate(x + jx, y + jy), sample, scratch, ref counters, ref unused);
-                            counters.EndCameraRay();
-                            SpectralMath.AddScaled(sum, sample, inv);
+                            // Inside the tile too: one pixel's work is bounded by the ray budget, so a request to stop
+                            // is seen within one pixel's time, however deep the scene's rays go.
+                            cancel.ThrowIfCancellationRequested();
+                            int id;
+                            var info = new PixelInfo();
+                            long fallbackBefore = counters.Fallback;
+                            if (spp == 1)
+                            {
+                                counters.StartCameraRay(budget);
+                                counters.Primary++;
+                                id = integrator.Radiance(cam.Generate(x + 0.5f, y + 0.5f), sum, scratch, ref counters, ref info);
+                                counters.EndCameraRay();
+                            }
+                            else
+                            {
+                                sum.Clear();
+                                for (int s = 0; s < spp; s++)
+                                {
+                                    // Sample s in cell (s mod m, s div m), jittered inside it.
+                                    uint h = Hash((uint)x, (uint)y, (uint)s);
+                                    float jx = ((s % strataX) + (h & 0xFFFF) / 65536f) / strataX;
+                                    float jy = ((s / strataX) + (h >> 16) / 65536f) / strataY;
+                                    PixelInfo unused = default;
+                                    counters.StartCameraRay(budget);
+                                    counters.Primary++;
+                                    integrator.Radiance(cam.Generate(x + jx, y + jy), sample, scratch, ref counters, ref unused);
+                                    counters.EndCameraRay();
+                                    SpectralMath.AddScaled(sum, sample, inv);
+                                }
+                                // The analysis images describe the pixel centre.
+                                counters.StartCameraRay(budget);
+                                counters.Primary++;
+                                id = integrator.Radiance(cam.Generate(x + 0.5f, y + 0.5f), sample, scratch, ref counters, ref info);
+                                counters.EndCameraRay();
+                            }
+                            sum[..bands].CopyTo(image.Data.AsSpan(image.Offset(x - ox, y - oy), bands));
+                            int i = (y - oy) * width + (x - ox);
+                            if (counters.Fallback == fallbackBefore) { xyz[3 * i] = sum[lane]; xyz[3 * i + 1] = sum[lane + 1]; xyz[3 * i + 2] = sum[lane + 2]; }
+                            else
+                            {   // a term multiplied more spectra than the tables hold: eq. 3 on this pixel's band values
+                                var c = colorimeter.ToXyz((ReadOnlySpan<float>)sum[..bands]);
+                                xyz[3 * i] = (float)c.X; xyz[3 * i + 1] = (float)c.Y; xyz[3 * i + 2] = (float)c.Z;
+                                Interlocked.Increment(ref fallbackPixels);
+                            }
+                            ids[i] = id;
+                            lit[i] = info.LitMask;
+                            specY[i] = info.SpecularY;
+                            diffY[i] = info.DiffuseY;
                         }
-                        // The analysis images describe the pixel centre.
-                        counters.StartCameraRay(budget);
-                        counters.Primary++;
-                        id = integrator.Radiance(cam.Generate(x + 0.5f, y + 0.5f), sample, scratch, ref counters, ref info);
-                        counters.EndCameraRay();
-                    }
-                    sum[..bands].CopyTo(image.Data.AsSpan(image.Offset(x - ox, y - oy), bands));
-                    int i = (y - oy) * width + (x - ox);
-                    if (counters.Fallback == fallbackBefore) { xyz[3 * i] = sum[lane]; xyz[3 * i + 1] = sum[lane + 1]; xyz[3 * i + 2] = sum[lane + 2]; }
-                    else
-                    {   // a term multiplied more spectra than the tables hold: eq. 3 on this pixel's band values
-                        var c = colorimeter.ToXyz((ReadOnlySpan<float>)sum[..bands]);
-                        xyz[3 * i] = (float)c.X; xyz[3 * i + 1] = (float)c.Y; xyz[3 * i + 2] = (float)c.Z;
-                        Interlocked.Increment(ref fallbackPixels);
-                    }
-                    ids[i] = id;
-                    lit[i] = info.LitMask;
-                    specY[i] = info.SpecularY;
-                    diffY[i] = info.DiffuseY;
-                }
                 lock (gate)
                 {
                     total.Add(counters);

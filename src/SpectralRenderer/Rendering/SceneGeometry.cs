@@ -1,5 +1,5 @@
-using System.Runtime.CompilerServices;
 using System.Numerics;
+using System.Runtime.CompilerServices;
 using SpectralRenderer.Acceleration;
 using SpectralRenderer.Geometry;
 using SpectralRenderer.Scenes;
@@ -106,24 +106,24 @@ public sealed partial class SceneGeometry
         switch (kind)
         {
             case 1:
-            {
-                int k = h.Primitive;
-                int mesh = _triangles.MeshOf[k];
-                var (p0, p1, p2) = _triangles.Corners(k);
-                var ng = Vector3.Normalize(Vector3.Cross(p1 - p0, p2 - p0));
-                hit.GeometricNormal = ng;
-                hit.Normal = ng;
-                var m = _meshes[mesh];
-                if (_meshSmooth[mesh] && m.Normals is { } normals)
                 {
-                    int tri = _triangles.TriangleOf[k];
-                    var idx = m.Indices;
-                    var n = (1 - h.U - h.V) * normals[idx[3 * tri]] + h.U * normals[idx[3 * tri + 1]] + h.V * normals[idx[3 * tri + 2]];
-                    if (n.LengthSquared() > 0) hit.Normal = Vector3.Normalize(n);
+                    int k = h.Primitive;
+                    int mesh = _triangles.MeshOf[k];
+                    var (p0, p1, p2) = _triangles.Corners(k);
+                    var ng = Vector3.Normalize(Vector3.Cross(p1 - p0, p2 - p0));
+                    hit.GeometricNormal = ng;
+                    hit.Normal = ng;
+                    var m = _meshes[mesh];
+                    if (_meshSmooth[mesh] && m.Normals is { } normals)
+                    {
+                        int tri = _triangles.TriangleOf[k];
+                        var idx = m.Indices;
+                        var n = (1 - h.U - h.V) * normals[idx[3 * tri]] + h.U * normals[idx[3 * tri + 1]] + h.V * normals[idx[3 * tri + 2]];
+                        if (n.LengthSquared() > 0) hit.Normal = Vector3.Normalize(n);
+                    }
+                    hit.Object = _meshObject[mesh];
+                    break;
                 }
-                hit.Object = _meshObject[mesh];
-                break;
-            }
             case 2:
                 // Re-intersect the one winning shape for its normal (cheaper than carrying normals through the BVH).
                 _analytic[ah.Primitive].Intersect(new Ray(ray.Origin, ray.Direction, float.PositiveInfinity), 0, out _, out var na);

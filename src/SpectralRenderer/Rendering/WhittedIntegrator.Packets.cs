@@ -1,8 +1,8 @@
 using System.Numerics;
 using System.Runtime.CompilerServices;
 using SpectralRenderer.Acceleration;
-using SpectralRenderer.Spectra;
 using SpectralRenderer.Geometry;
+using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Rendering;
 

@@ -1,5 +1,5 @@
-using System.Runtime.CompilerServices;
 using System.Numerics;
+using System.Runtime.CompilerServices;
 using SpectralRenderer.Geometry;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Spectra;

@@ -114,13 +114,13 @@ public class PacketTests(ITestOutputHelper output)
         float half = 0.6f * b.Extent.Length() / (b.Centre - eye).Length();
         var rays = new List<Ray>();
         for (int by = 0; by < size; by += 4)
-        for (int bx = 0; bx < size; bx += 4)
-        for (int y = by; y < by + 4; y++)
-        for (int x = bx; x < bx + 4; x++)
-        {
-            float sx = (2 * (x + 0.5f) / size - 1) * half, sy = (1 - 2 * (y + 0.5f) / size) * half;
-            rays.Add(new Ray(eye, Vector3.Normalize(forward + sx * right + sy * up)));
-        }
+            for (int bx = 0; bx < size; bx += 4)
+                for (int y = by; y < by + 4; y++)
+                    for (int x = bx; x < bx + 4; x++)
+                    {
+                        float sx = (2 * (x + 0.5f) / size - 1) * half, sy = (1 - 2 * (y + 0.5f) / size) * half;
+                        rays.Add(new Ray(eye, Vector3.Normalize(forward + sx * right + sy * up)));
+                    }
         return [.. rays];
     }
 

@@ -1,6 +1,6 @@
 using SpectralRenderer.Imaging;
-using SpectralRenderer.Tests.Cli;
 using SpectralRenderer.Spectra;
+using SpectralRenderer.Tests.Cli;
 
 namespace SpectralRenderer.Tests.Analysis;
 

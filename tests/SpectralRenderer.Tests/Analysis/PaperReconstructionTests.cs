@@ -2,9 +2,9 @@ using System.Globalization;
 using System.Numerics;
 using SpectralRenderer.Analysis;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Scenes.Loading;
 using SpectralRenderer.Spectra;
 using SpectralRenderer.Tests.Cli;
-using SpectralRenderer.Scenes.Loading;
 
 namespace SpectralRenderer.Tests.Analysis;
 

@@ -19,7 +19,11 @@ public class PhotonTransferTests(Xunit.Abstractions.ITestOutputHelper output)
 
     static SensorModel Sensor(double? exposure) => SensorPresets.Get("isetcam") with
     {
-        PrnuPercent = 1, DsnuVolts = 1e-3, AnalogGain = 0.8, BlackLevel = 64, ExposureSeconds = exposure,
+        PrnuPercent = 1,
+        DsnuVolts = 1e-3,
+        AnalogGain = 0.8,
+        BlackLevel = 64,
+        ExposureSeconds = exposure,
     };
 
     static float[] Frame(SensorModel sensor, double radiance, ulong seed)

@@ -9,8 +9,12 @@ public class ColorRenderingTests
 {
     static readonly Dictionary<string, string> Names = new()
     {
-        ["A"] = "A", ["D65"] = "D65", ["FL2"] = "FL2", ["FL11"] = "FL11",
-        ["3-LED-1 (457/540/605)"] = "led-rgb", ["Phosphor LED YAG"] = "led-yag",
+        ["A"] = "A",
+        ["D65"] = "D65",
+        ["FL2"] = "FL2",
+        ["FL11"] = "FL11",
+        ["3-LED-1 (457/540/605)"] = "led-rgb",
+        ["Phosphor LED YAG"] = "led-yag",
     };
 
     public static TheoryData<string> Sources() => new(Names.Keys);

@@ -117,17 +117,17 @@ public class CorpusTests
                 Assert.Equal(0, mkfifo(P(w[1]), Convert.ToUInt32("644", 8)));
                 break;
             case "symlink":
-            {
-                var a = w[1].Split(' ');
-                System.IO.File.CreateSymbolicLink(P(a[0]), a[1]);
-                break;
-            }
+                {
+                    var a = w[1].Split(' ');
+                    System.IO.File.CreateSymbolicLink(P(a[0]), a[1]);
+                    break;
+                }
             case "copy":
-            {
-                var a = w[1].Split(' ');
-                System.IO.File.Copy(P(a[0]), P(a[1]), overwrite: true);
-                break;
-            }
+                {
+                    var a = w[1].Split(' ');
+                    System.IO.File.Copy(P(a[0]), P(a[1]), overwrite: true);
+                    break;
+                }
             case "remove":
                 if (System.IO.File.Exists(P(w[1]))) System.IO.File.Delete(P(w[1]));
                 break;
@@ -135,19 +135,19 @@ public class CorpusTests
                 CopyFolder(BaseRender.Value, P(w[1]));
                 break;
             case "json-set":
-            {
-                var a = w[1].Split(' ', 3);
-                var file = P(a[0]);
-                var root = JsonNode.Parse(System.IO.File.ReadAllText(file))!;
-                var keys = a[1].Split('.');
-                JsonNode node = root;
-                foreach (var k in keys[..^1]) node = int.TryParse(k, out int i) ? node[i]! : node[k]!;
-                var value = JsonNode.Parse(a[2]);
-                if (int.TryParse(keys[^1], out int last)) node.AsArray()[last] = value;
-                else node.AsObject()[keys[^1]] = value;
-                System.IO.File.WriteAllText(file, root.ToJsonString());
-                break;
-            }
+                {
+                    var a = w[1].Split(' ', 3);
+                    var file = P(a[0]);
+                    var root = JsonNode.Parse(System.IO.File.ReadAllText(file))!;
+                    var keys = a[1].Split('.');
+                    JsonNode node = root;
+                    foreach (var k in keys[..^1]) node = int.TryParse(k, out int i) ? node[i]! : node[k]!;
+                    var value = JsonNode.Parse(a[2]);
+                    if (int.TryParse(keys[^1], out int last)) node.AsArray()[last] = value;
+                    else node.AsObject()[keys[^1]] = value;
+                    System.IO.File.WriteAllText(file, root.ToJsonString());
+                    break;
+                }
             default: throw new InvalidOperationException("unknown set-up step " + step);
         }
     }

@@ -77,7 +77,9 @@ public partial class SceneDocsTests
         Add("objects", "transform", s => s["objects"]![0]!["transform"] = With([]));
         Add("objects", "mesh fit", s => s["objects"]![0] = new JsonObject
         {
-            ["type"] = "mesh", ["file"] = "tri.obj", ["material"] = "m",
+            ["type"] = "mesh",
+            ["file"] = "tri.obj",
+            ["material"] = "m",
             ["fit"] = With(new JsonObject { ["min"] = new JsonArray(0, 0, 0), ["max"] = new JsonArray(1, 1, 1) }),
         });
         return keys;

@@ -1,7 +1,7 @@
 using SpectralRenderer.Color;
 using SpectralRenderer.Imaging;
-using SpectralRenderer.Spectra;
 using SpectralRenderer.Output;
+using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Tests.Imaging;
 

@@ -44,21 +44,21 @@ public class AnalyticSceneTests
         var lp = new Vector3(3, 4, 5);
         int lit = 0, dark = 0;
         for (int y = 0; y < 40; y += 3)
-        for (int x = 0; x < 48; x += 3)
-        {
-            var ray = scene.Camera.Generate(x + 0.5f, y + 0.5f);
-            var t = HitSphere(ray, Vector3.Zero, 1);
-            if (t is null) { for (int b = 0; b < scene.Bands; b++) Assert.Equal(0f, img[x, y, b]); continue; }
-            var p = ray.Origin + (float)t.Value * ray.Direction;
-            var n = Vector3.Normalize(p);
-            var toL = lp - p;
-            double r = toL.Length();
-            double nl = Math.Max(0, Vector3.Dot(n, toL / (float)r));
-            double d = 1 / (1 + 0.2 * r + 0.05 * r * r);
-            if (nl > 0) lit++; else dark++;
-            for (int b = 0; b < scene.Bands; b++)
-                Close(0.5 * light[b] * m[b] * nl * d, img[x, y, b], 2e-4, $"pixel ({x},{y}) band {b}");
-        }
+            for (int x = 0; x < 48; x += 3)
+            {
+                var ray = scene.Camera.Generate(x + 0.5f, y + 0.5f);
+                var t = HitSphere(ray, Vector3.Zero, 1);
+                if (t is null) { for (int b = 0; b < scene.Bands; b++) Assert.Equal(0f, img[x, y, b]); continue; }
+                var p = ray.Origin + (float)t.Value * ray.Direction;
+                var n = Vector3.Normalize(p);
+                var toL = lp - p;
+                double r = toL.Length();
+                double nl = Math.Max(0, Vector3.Dot(n, toL / (float)r));
+                double d = 1 / (1 + 0.2 * r + 0.05 * r * r);
+                if (nl > 0) lit++; else dark++;
+                for (int b = 0; b < scene.Bands; b++)
+                    Close(0.5 * light[b] * m[b] * nl * d, img[x, y, b], 2e-4, $"pixel ({x},{y}) band {b}");
+            }
         Assert.True(lit > 20 && dark >= 3, $"{lit} lit and {dark} unlit sphere samples");
     }
 
@@ -78,29 +78,29 @@ public class AnalyticSceneTests
         int floor = scene.Objects.FindIndex(o => o.Name == "floor");
         int shadowed = 0, lit = 0;
         for (int y = 0; y < 50; y++)
-        for (int x = 0; x < 60; x++)
-        {
-            if (result.ObjectIds[y * 60 + x] != floor) continue;
-            var ray = scene.Camera.Generate(x + 0.5f, y + 0.5f);
-            double t = -ray.Origin.Y / ray.Direction.Y;
-            var p = ray.Origin + (float)t * ray.Direction;
-            double rho = Math.Sqrt(p.X * p.X + p.Z * p.Z);
-            // The sphere's shadow from a point light 4 above its centre: a disc of radius 6·tan(asin(1/4)).
-            double shadowRadius = 6 * Math.Tan(Math.Asin(0.25));
-            if (rho < shadowRadius - 0.05)
+            for (int x = 0; x < 60; x++)
             {
-                shadowed++;
-                for (int b = 0; b < scene.Bands; b++) Close(0.1 * 0.3 + 0.2 * 0.3, img[x, y, b], 1e-5, $"shadowed ({x},{y}) band {b}");
+                if (result.ObjectIds[y * 60 + x] != floor) continue;
+                var ray = scene.Camera.Generate(x + 0.5f, y + 0.5f);
+                double t = -ray.Origin.Y / ray.Direction.Y;
+                var p = ray.Origin + (float)t * ray.Direction;
+                double rho = Math.Sqrt(p.X * p.X + p.Z * p.Z);
+                // The sphere's shadow from a point light 4 above its centre: a disc of radius 6·tan(asin(1/4)).
+                double shadowRadius = 6 * Math.Tan(Math.Asin(0.25));
+                if (rho < shadowRadius - 0.05)
+                {
+                    shadowed++;
+                    for (int b = 0; b < scene.Bands; b++) Close(0.1 * 0.3 + 0.2 * 0.3, img[x, y, b], 1e-5, $"shadowed ({x},{y}) band {b}");
+                }
+                else if (rho > shadowRadius + 0.05)
+                {
+                    lit++;
+                    var toL = new Vector3(0, 6, 0) - p;
+                    double cos = toL.Y / toL.Length();
+                    var e = Project(scene, "E");
+                    for (int b = 0; b < scene.Bands; b++) Close(0.09 + 0.01 * e[b] * 0.5 * cos, img[x, y, b], 1e-4, $"lit ({x},{y}) band {b}");
+                }
             }
-            else if (rho > shadowRadius + 0.05)
-            {
-                lit++;
-                var toL = new Vector3(0, 6, 0) - p;
-                double cos = toL.Y / toL.Length();
-                var e = Project(scene, "E");
-                for (int b = 0; b < scene.Bands; b++) Close(0.09 + 0.01 * e[b] * 0.5 * cos, img[x, y, b], 1e-4, $"lit ({x},{y}) band {b}");
-            }
-        }
         Assert.True(shadowed > 10 && lit > 100, $"{shadowed} shadowed, {lit} lit floor pixels");
     }
 
@@ -118,22 +118,22 @@ public class AnalyticSceneTests
         var a = Project(scene, "A");
         int inside = 0, outside = 0;
         for (int y = 0; y < 64; y += 2)
-        for (int x = 0; x < 64; x += 2)
-        {
-            var ray = scene.Camera.Generate(x + 0.5f, y + 0.5f);
-            float t = -ray.Origin.Y / ray.Direction.Y;
-            var p = ray.Origin + t * ray.Direction;
-            var fromLight = Vector3.Normalize(p - new Vector3(0, 4, 0));
-            double cosTheta = -fromLight.Y;
-            double cosCut = Math.Cos(20 * Math.PI / 180);
-            if (Math.Abs(cosTheta - cosCut) < 2e-3) continue;   // too close to the cone's edge to call
-            double spot = cosTheta >= cosCut ? Math.Pow(cosTheta, 8) : 0;
-            if (spot > 0) inside++; else outside++;
-            var toL = new Vector3(0, 4, 0) - p;
-            double r = toL.Length(), nl = toL.Y / r;
-            for (int b = 0; b < scene.Bands; b++)
-                Close(spot * (0.1 * 0.6 + 0.05 * a[b] * 0.6 * nl), img[x, y, b], 2e-4, $"({x},{y}) band {b}");
-        }
+            for (int x = 0; x < 64; x += 2)
+            {
+                var ray = scene.Camera.Generate(x + 0.5f, y + 0.5f);
+                float t = -ray.Origin.Y / ray.Direction.Y;
+                var p = ray.Origin + t * ray.Direction;
+                var fromLight = Vector3.Normalize(p - new Vector3(0, 4, 0));
+                double cosTheta = -fromLight.Y;
+                double cosCut = Math.Cos(20 * Math.PI / 180);
+                if (Math.Abs(cosTheta - cosCut) < 2e-3) continue;   // too close to the cone's edge to call
+                double spot = cosTheta >= cosCut ? Math.Pow(cosTheta, 8) : 0;
+                if (spot > 0) inside++; else outside++;
+                var toL = new Vector3(0, 4, 0) - p;
+                double r = toL.Length(), nl = toL.Y / r;
+                for (int b = 0; b < scene.Bands; b++)
+                    Close(spot * (0.1 * 0.6 + 0.05 * a[b] * 0.6 * nl), img[x, y, b], 2e-4, $"({x},{y}) band {b}");
+            }
         Assert.True(inside > 20 && outside > 20, $"{inside} inside, {outside} outside");
     }
 

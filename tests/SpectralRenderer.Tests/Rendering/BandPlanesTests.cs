@@ -1,9 +1,9 @@
 using SpectralRenderer.Color;
 using SpectralRenderer.Imaging;
+using SpectralRenderer.Output;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Spectra;
 using SpectralRenderer.Tests.Imaging;
-using SpectralRenderer.Output;
 
 namespace SpectralRenderer.Tests.Rendering;
 

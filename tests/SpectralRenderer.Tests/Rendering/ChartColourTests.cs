@@ -16,12 +16,12 @@ public class ChartColourTests(Xunit.Abstractions.ITestOutputHelper output)
     {
         var d = new TheoryData<string, string, string, string>();
         foreach (var grid in new[] { "380:780:20", "380:780:5" })
-        foreach (var radiometry in new[] { "paper", "physical" })
-        {
-            d.Add("led-blue", "D65", grid, radiometry);
-            d.Add("D65+led-blue+led-green", "D65", grid, radiometry);
-            d.Add("FL11", "FL11", grid, radiometry);
-        }
+            foreach (var radiometry in new[] { "paper", "physical" })
+            {
+                d.Add("led-blue", "D65", grid, radiometry);
+                d.Add("D65+led-blue+led-green", "D65", grid, radiometry);
+                d.Add("FL11", "FL11", grid, radiometry);
+            }
         return d;
     }
 

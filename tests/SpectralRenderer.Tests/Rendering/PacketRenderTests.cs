@@ -18,18 +18,18 @@ public class PacketRenderTests
         var sb = new StringBuilder();
         const int slices = 48, stacks = 24;
         for (int i = 0; i <= stacks; i++)
-        for (int j = 0; j < slices; j++)
-        {
-            double th = Math.PI * i / stacks, ph = 2 * Math.PI * j / slices;
-            sb.AppendLine(string.Create(CultureInfo.InvariantCulture, $"v {Math.Sin(th) * Math.Cos(ph):R} {Math.Cos(th):R} {Math.Sin(th) * Math.Sin(ph):R}"));
-        }
+            for (int j = 0; j < slices; j++)
+            {
+                double th = Math.PI * i / stacks, ph = 2 * Math.PI * j / slices;
+                sb.AppendLine(string.Create(CultureInfo.InvariantCulture, $"v {Math.Sin(th) * Math.Cos(ph):R} {Math.Cos(th):R} {Math.Sin(th) * Math.Sin(ph):R}"));
+            }
         for (int i = 0; i < stacks; i++)
-        for (int j = 0; j < slices; j++)
-        {
-            int a = i * slices + j + 1, b = i * slices + (j + 1) % slices + 1, c = a + slices, d = b + slices;
-            if (i > 0) sb.AppendLine($"f {a} {b} {d}");
-            if (i < stacks - 1) sb.AppendLine($"f {a} {d} {c}");
-        }
+            for (int j = 0; j < slices; j++)
+            {
+                int a = i * slices + j + 1, b = i * slices + (j + 1) % slices + 1, c = a + slices, d = b + slices;
+                if (i > 0) sb.AppendLine($"f {a} {b} {d}");
+                if (i < stacks - 1) sb.AppendLine($"f {a} {d} {c}");
+            }
         return sb.ToString();
     }
 
@@ -87,11 +87,11 @@ public class PacketRenderTests
         var crop = new PixelRect(13, 7, 70, 45);
         var part = Renderer.Render(scene, integrator, threads: 2, crop: crop);
         for (int y = crop.Y0; y < crop.Y1; y++)
-        for (int x = crop.X0; x < crop.X1; x++)
-        {
-            Assert.True(part.Image.Pixel(x - crop.X0, y - crop.Y0).SequenceEqual(single.Image.Pixel(x, y)), $"pixel {x},{y}");
-            Assert.Equal(single.ObjectIds[y * single.Image.Width + x], part.ObjectIds[(y - crop.Y0) * crop.Width + x - crop.X0]);
-        }
+            for (int x = crop.X0; x < crop.X1; x++)
+            {
+                Assert.True(part.Image.Pixel(x - crop.X0, y - crop.Y0).SequenceEqual(single.Image.Pixel(x, y)), $"pixel {x},{y}");
+                Assert.Equal(single.ObjectIds[y * single.Image.Width + x], part.ObjectIds[(y - crop.Y0) * crop.Width + x - crop.X0]);
+            }
         // Not vacuous: every object is seen, the spot lights part of the floor, some pixels are in shadow.
         Assert.Equal(4, single.ObjectIds.Where(i => i >= 0).Distinct().Count());
         Assert.Contains(single.LitMasks, m => (m & 2) != 0);

@@ -2,8 +2,8 @@ using System.Numerics;
 using SpectralRenderer.Color;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
-using SpectralRenderer.Spectra;
 using SpectralRenderer.Scenes.Loading;
+using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Tests.Rendering;
 

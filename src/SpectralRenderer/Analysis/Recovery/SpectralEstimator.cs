@@ -38,7 +38,10 @@ public sealed class SpectralEstimator
 
     public static RecoveryMethod Parse(string name) => name.ToLowerInvariant() switch
     {
-        "pinv" => RecoveryMethod.Pinv, "wiener" => RecoveryMethod.Wiener, "linear" => RecoveryMethod.Linear, "tikhonov" => RecoveryMethod.Tikhonov,
+        "pinv" => RecoveryMethod.Pinv,
+        "wiener" => RecoveryMethod.Wiener,
+        "linear" => RecoveryMethod.Linear,
+        "tikhonov" => RecoveryMethod.Tikhonov,
         _ => throw new Diagnostics.InputException("--method", $"unknown method '{name}'",
             Diagnostics.InputException.DidYouMean(name, ["pinv", "wiener", "linear", "tikhonov", "all"]) ?? "pinv, wiener, linear, tikhonov or all"),
     };
@@ -70,76 +73,76 @@ public sealed class SpectralEstimator
                 h = new double[n];
                 break;
             case RecoveryMethod.Wiener:
-            {
-                var kr = training.Covariance();
-                var krat = Dense.Multiply(kr, at);
-                var m = Dense.Multiply(a, krat);
-                for (int i = 0; i < c; i++) m[i, i] += noiseVariance[i];
-                g = Dense.SolveRight(krat, Ridge(m));
-                h = Affine(g, mu, amu);
-                break;
-            }
+                {
+                    var kr = training.Covariance();
+                    var krat = Dense.Multiply(kr, at);
+                    var m = Dense.Multiply(a, krat);
+                    for (int i = 0; i < c; i++) m[i, i] += noiseVariance[i];
+                    g = Dense.SolveRight(krat, Ridge(m));
+                    h = Affine(g, mu, amu);
+                    break;
+                }
             case RecoveryMethod.Linear:
-            {
-                // The most components k ≤ min(C, 8) the sensor resolves: cond(A B) ≤ 100, so the coefficients amplify
-                // signal errors at most a hundredfold (beyond that a component is nearly invisible to the channels).
-                var (_, vectors) = Dense.SymmetricEigen(training.Covariance());
-                g = new double[n, c];
-                for (int k = 1; k <= Math.Min(Math.Min(c, n), MaxLinearComponents); k++)
                 {
-                    var b = new double[n, k];
-                    for (int i = 0; i < n; i++) for (int j = 0; j < k; j++) b[i, j] = vectors[i, j];
-                    var ab = Dense.Multiply(a, b);                                   // C × k
-                    var abt = Dense.Transpose(ab);
-                    var normal = Dense.Multiply(abt, ab);
-                    var (ev, _) = Dense.SymmetricEigen(normal);
-                    if (k > 1 && !(ev[^1] > 0 && Math.Sqrt(ev[0] / ev[^1]) <= MaxLinearCondition)) break;
-                    g = Dense.Multiply(b, Dense.Solve(Ridge(normal), abt));         // B (AB)⁺
-                    components = k;
-                }
-                h = Affine(g, mu, amu);
-                break;
-            }
-            default:
-            {
-                int t = training.Count;
-                // Simulated training signals with the sensor's noise (a fixed seed: the fit is reproducible).
-                var s = new double[c, t];
-                var r = new double[n, t];
-                var sMean = new double[c];
-                for (int j = 0; j < t; j++)
-                {
-                    var sig = Dense.Multiply(a, training.Samples[j]);
-                    for (int i = 0; i < c; i++)
+                    // The most components k ≤ min(C, 8) the sensor resolves: cond(A B) ≤ 100, so the coefficients amplify
+                    // signal errors at most a hundredfold (beyond that a component is nearly invisible to the channels).
+                    var (_, vectors) = Dense.SymmetricEigen(training.Covariance());
+                    g = new double[n, c];
+                    for (int k = 1; k <= Math.Min(Math.Min(c, n), MaxLinearComponents); k++)
                     {
-                        var rng = new NoiseStream(seed, 11, j, i);
-                        s[i, j] = sig[i] + Math.Sqrt(noiseVariance[i]) * rng.Normal();
-                        sMean[i] += s[i, j] / t;
+                        var b = new double[n, k];
+                        for (int i = 0; i < n; i++) for (int j = 0; j < k; j++) b[i, j] = vectors[i, j];
+                        var ab = Dense.Multiply(a, b);                                   // C × k
+                        var abt = Dense.Transpose(ab);
+                        var normal = Dense.Multiply(abt, ab);
+                        var (ev, _) = Dense.SymmetricEigen(normal);
+                        if (k > 1 && !(ev[^1] > 0 && Math.Sqrt(ev[0] / ev[^1]) <= MaxLinearCondition)) break;
+                        g = Dense.Multiply(b, Dense.Solve(Ridge(normal), abt));         // B (AB)⁺
+                        components = k;
                     }
-                    for (int b = 0; b < n; b++) r[b, j] = training.Samples[j][b] - mu[b];
+                    h = Affine(g, mu, amu);
+                    break;
                 }
-                for (int i = 0; i < c; i++) for (int j = 0; j < t; j++) s[i, j] -= sMean[i];
-                var sst = Dense.Multiply(s, Dense.Transpose(s));
-                var (eig, _) = Dense.SymmetricEigen(sst);
-                double unit = Dense.Trace(sst) / c;
-                var rst = Dense.Multiply(r, Dense.Transpose(s));
-                double best = double.PositiveInfinity;
-                double[,]? bestG = null;
-                for (double e = -14; e <= 1.001; e += 0.25)
+            default:
                 {
-                    double lam = Math.Pow(10, e) * unit;
-                    var gl = Dense.SolveRight(rst, Dense.Add(sst, Dense.Identity(c, lam)));
-                    var fit = Dense.Multiply(gl, s);
-                    double res = 0;
-                    for (int b = 0; b < n; b++) for (int j = 0; j < t; j++) { double d = r[b, j] - fit[b, j]; res += d * d; }
-                    double trH = eig.Sum(v => Math.Max(0, v) / (Math.Max(0, v) + lam));
-                    double gcv = t * res / ((t - trH) * (t - trH));
-                    if (gcv < best) { best = gcv; bestG = gl; lambda = Math.Pow(10, e); }
+                    int t = training.Count;
+                    // Simulated training signals with the sensor's noise (a fixed seed: the fit is reproducible).
+                    var s = new double[c, t];
+                    var r = new double[n, t];
+                    var sMean = new double[c];
+                    for (int j = 0; j < t; j++)
+                    {
+                        var sig = Dense.Multiply(a, training.Samples[j]);
+                        for (int i = 0; i < c; i++)
+                        {
+                            var rng = new NoiseStream(seed, 11, j, i);
+                            s[i, j] = sig[i] + Math.Sqrt(noiseVariance[i]) * rng.Normal();
+                            sMean[i] += s[i, j] / t;
+                        }
+                        for (int b = 0; b < n; b++) r[b, j] = training.Samples[j][b] - mu[b];
+                    }
+                    for (int i = 0; i < c; i++) for (int j = 0; j < t; j++) s[i, j] -= sMean[i];
+                    var sst = Dense.Multiply(s, Dense.Transpose(s));
+                    var (eig, _) = Dense.SymmetricEigen(sst);
+                    double unit = Dense.Trace(sst) / c;
+                    var rst = Dense.Multiply(r, Dense.Transpose(s));
+                    double best = double.PositiveInfinity;
+                    double[,]? bestG = null;
+                    for (double e = -14; e <= 1.001; e += 0.25)
+                    {
+                        double lam = Math.Pow(10, e) * unit;
+                        var gl = Dense.SolveRight(rst, Dense.Add(sst, Dense.Identity(c, lam)));
+                        var fit = Dense.Multiply(gl, s);
+                        double res = 0;
+                        for (int b = 0; b < n; b++) for (int j = 0; j < t; j++) { double d = r[b, j] - fit[b, j]; res += d * d; }
+                        double trH = eig.Sum(v => Math.Max(0, v) / (Math.Max(0, v) + lam));
+                        double gcv = t * res / ((t - trH) * (t - trH));
+                        if (gcv < best) { best = gcv; bestG = gl; lambda = Math.Pow(10, e); }
+                    }
+                    g = bestG!;
+                    h = Affine(g, mu, sMean);
+                    break;
                 }
-                g = bestG!;
-                h = Affine(g, mu, sMean);
-                break;
-            }
         }
         return new SpectralEstimator(method, g, h, lambda, components);
     }

@@ -18,13 +18,24 @@ public static class LightTypes
     {
         ["point"] = new(["position"], s => new PointLight
         {
-            Name = s.Name, Intensity = s.Intensity, Ambient = s.Ambient, HasAmbient = s.HasAmbient, Spectrum = s.Spectrum, Scale = s.Scale,
-            Position = s.Point("position"), Falloff = s.Falloff,
+            Name = s.Name,
+            Intensity = s.Intensity,
+            Ambient = s.Ambient,
+            HasAmbient = s.HasAmbient,
+            Spectrum = s.Spectrum,
+            Scale = s.Scale,
+            Position = s.Point("position"),
+            Falloff = s.Falloff,
         }),
         ["spot"] = new(["position", "direction", "look_at", "cutoff", "exponent"], Spot),
         ["directional"] = new(["direction"], s => new DirectionalLight
         {
-            Name = s.Name, Intensity = s.Intensity, Ambient = s.Ambient, HasAmbient = s.HasAmbient, Spectrum = s.Spectrum, Scale = s.Scale,
+            Name = s.Name,
+            Intensity = s.Intensity,
+            Ambient = s.Ambient,
+            HasAmbient = s.HasAmbient,
+            Spectrum = s.Spectrum,
+            Scale = s.Scale,
             Direction = s.Direction("direction"),
         }),
     };
@@ -43,8 +54,15 @@ public static class LightTypes
         else throw s.Error("direction", "a spot light needs a direction or look_at", "e.g. \"direction\": [0, -1, 0] or \"look_at\": [0, 0, 0]");
         return new SpotLight
         {
-            Name = s.Name, Intensity = s.Intensity, Ambient = s.Ambient, HasAmbient = s.HasAmbient, Spectrum = s.Spectrum, Scale = s.Scale,
-            Position = position, Direction = direction, Falloff = s.Falloff,
+            Name = s.Name,
+            Intensity = s.Intensity,
+            Ambient = s.Ambient,
+            HasAmbient = s.HasAmbient,
+            Spectrum = s.Spectrum,
+            Scale = s.Scale,
+            Position = position,
+            Direction = direction,
+            Falloff = s.Falloff,
             CosCutoff = MathF.Cos((float)s.Number("cutoff", 30, 0, 180) * MathF.PI / 180),
             Exponent = (float)s.Number("exponent", 0, 0, 1e6),
         };

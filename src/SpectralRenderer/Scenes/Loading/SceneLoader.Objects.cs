@@ -1,5 +1,5 @@
-using System.Runtime.CompilerServices;
 using System.Numerics;
+using System.Runtime.CompilerServices;
 using System.Text.Json;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Geometry;
@@ -41,50 +41,50 @@ public sealed partial class SceneLoader
         switch (type)
         {
             case "sphere":
-            {
-                float r = (float)Number(e, "radius", path, 1, MinSize, MaxCoordinate);
-                local = Matrix4x4.CreateScale(r) * Matrix4x4.CreateTranslation(Vec3(e, "center", path, Vector3.Zero));
-                kind = ShapeKind.Sphere;
-                break;
-            }
+                {
+                    float r = (float)Number(e, "radius", path, 1, MinSize, MaxCoordinate);
+                    local = Matrix4x4.CreateScale(r) * Matrix4x4.CreateTranslation(Vec3(e, "center", path, Vector3.Zero));
+                    kind = ShapeKind.Sphere;
+                    break;
+                }
             case "plane":
-            {
-                var normal = TryGet(e, "normal", out var nn) ? Direction(nn, $"{path}.normal") : Vector3.UnitY;
-                local = Basis(normal, Vector3.UnitY, axisIsY: true) * Matrix4x4.CreateTranslation(Vec3(e, "point", path, Vector3.Zero));
-                kind = ShapeKind.Plane;
-                break;
-            }
+                {
+                    var normal = TryGet(e, "normal", out var nn) ? Direction(nn, $"{path}.normal") : Vector3.UnitY;
+                    local = Basis(normal, Vector3.UnitY, axisIsY: true) * Matrix4x4.CreateTranslation(Vec3(e, "point", path, Vector3.Zero));
+                    kind = ShapeKind.Plane;
+                    break;
+                }
             case "quad":
-            {
-                var size = Size2(e, path);
-                var normal = TryGet(e, "normal", out var nn) ? Direction(nn, $"{path}.normal") : Vector3.UnitZ;
-                var up = TryGet(e, "up", out var u) ? Direction(u, $"{path}.up") : Vector3.UnitY;
-                local = Matrix4x4.CreateScale(size.X, size.Y, 1) * Basis(normal, up, axisIsY: false, path: $"{path}.up") * Matrix4x4.CreateTranslation(Vec3(e, "center", path, Vector3.Zero));
-                kind = ShapeKind.Quad;
-                break;
-            }
+                {
+                    var size = Size2(e, path);
+                    var normal = TryGet(e, "normal", out var nn) ? Direction(nn, $"{path}.normal") : Vector3.UnitZ;
+                    var up = TryGet(e, "up", out var u) ? Direction(u, $"{path}.up") : Vector3.UnitY;
+                    local = Matrix4x4.CreateScale(size.X, size.Y, 1) * Basis(normal, up, axisIsY: false, path: $"{path}.up") * Matrix4x4.CreateTranslation(Vec3(e, "center", path, Vector3.Zero));
+                    kind = ShapeKind.Quad;
+                    break;
+                }
             default:
-            {
-                Vector3 centre, size;
-                if (TryGet(e, "min", out var mn) || TryGet(e, "max", out _))
                 {
-                    var lo = Vec3(Required(e, "min", path), $"{path}.min");
-                    var hi = Vec3(Required(e, "max", path), $"{path}.max");
-                    centre = 0.5f * (lo + hi);
-                    size = hi - lo;
-                    _ = mn;
+                    Vector3 centre, size;
+                    if (TryGet(e, "min", out var mn) || TryGet(e, "max", out _))
+                    {
+                        var lo = Vec3(Required(e, "min", path), $"{path}.min");
+                        var hi = Vec3(Required(e, "max", path), $"{path}.max");
+                        centre = 0.5f * (lo + hi);
+                        size = hi - lo;
+                        _ = mn;
+                    }
+                    else
+                    {
+                        centre = Vec3(e, "center", path, Vector3.Zero);
+                        size = Vec3(e, "size", path, Vector3.One);
+                    }
+                    if (!(size.X >= MinSize && size.Y >= MinSize && size.Z >= MinSize))
+                        throw Error($"{path}.size", $"a box needs a size of at least {MinSize} on every axis, found [{size.X}, {size.Y}, {size.Z}]", "give size as [x, y, z] of positive numbers, or max above min");
+                    local = Matrix4x4.CreateScale(size) * Matrix4x4.CreateTranslation(centre);
+                    kind = ShapeKind.Box;
+                    break;
                 }
-                else
-                {
-                    centre = Vec3(e, "center", path, Vector3.Zero);
-                    size = Vec3(e, "size", path, Vector3.One);
-                }
-                if (!(size.X >= MinSize && size.Y >= MinSize && size.Z >= MinSize))
-            throw Error($"{path}.size", $"a box needs a size of at least {MinSize} on every axis, found [{size.X}, {size.Y}, {size.Z}]", "give size as [x, y, z] of positive numbers, or max above min");
-                local = Matrix4x4.CreateScale(size) * Matrix4x4.CreateTranslation(centre);
-                kind = ShapeKind.Box;
-                break;
-            }
         }
         objects.Add(new SceneObject { Name = name, Material = material, Shape = new AnalyticShape(kind, local * user) });
     }

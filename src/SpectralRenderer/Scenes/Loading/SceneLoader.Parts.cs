@@ -1,6 +1,6 @@
-using System.Runtime.CompilerServices;
 using System.Globalization;
 using System.Numerics;
+using System.Runtime.CompilerServices;
 using System.Text.Json;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Geometry;
@@ -27,66 +27,66 @@ public sealed partial class SceneLoader
                 s = TabulatedSpectrum.Constant(Number(e, path, 0), $"constant:{e.GetRawText()}");
                 break;
             case JsonValueKind.String:
-            {
-                var name = e.GetString()!;
-                if (_resolvedNamed.TryGetValue(name, out var cached)) return cached;
-                if (_namedSpectra.TryGetValue(name, out var named))
                 {
-                    // Depth-first search over the names: a name met again while it is still being resolved
-                    // closes a cycle (any chain without one resolves, however long).
-                    int onPath = _resolving.IndexOf(name);
-                    if (onPath >= 0)
+                    var name = e.GetString()!;
+                    if (_resolvedNamed.TryGetValue(name, out var cached)) return cached;
+                    if (_namedSpectra.TryGetValue(name, out var named))
                     {
-                        var cycle = string.Join(" → ", _resolving.Skip(onPath).Append(name).Select(n => MessageText.Quote(n, 24)));
-                        throw Error(path, $"spectrum names refer to each other in a cycle: {cycle}", "a spectrum name must lead, through other names, to a value");
+                        // Depth-first search over the names: a name met again while it is still being resolved
+                        // closes a cycle (any chain without one resolves, however long).
+                        int onPath = _resolving.IndexOf(name);
+                        if (onPath >= 0)
+                        {
+                            var cycle = string.Join(" → ", _resolving.Skip(onPath).Append(name).Select(n => MessageText.Quote(n, 24)));
+                            throw Error(path, $"spectrum names refer to each other in a cycle: {cycle}", "a spectrum name must lead, through other names, to a value");
+                        }
+                        _resolving.Add(name);
+                        try { s = Spectrum(named.Element, named.Path); }
+                        finally { _resolving.RemoveAt(_resolving.Count - 1); }
+                        s = new TabulatedSpectrum(name, s.Wavelengths.ToArray(), s.Values.ToArray(), s.Extrapolation);
+                        _resolvedNamed[name] = s;
+                        return s;
                     }
-                    _resolving.Add(name);
-                    try { s = Spectrum(named.Element, named.Path); }
-                    finally { _resolving.RemoveAt(_resolving.Count - 1); }
-                    s = new TabulatedSpectrum(name, s.Wavelengths.ToArray(), s.Values.ToArray(), s.Extrapolation);
-                    _resolvedNamed[name] = s;
-                    return s;
+                    try { s = SpectrumLibrary.Resolve(name, _dir, Where(path)); }
+                    catch (InputException ex) when (ex.What.StartsWith("unknown spectrum", StringComparison.Ordinal))
+                    {
+                        throw Error(path, $"unknown spectrum {MessageText.Quote(name)}",
+                            InputException.DidYouMean(name, _namedSpectra.Keys.Concat(SpectrumLibrary.KnownNames)) ??
+                            "name one in \"spectra\", a built-in (D65, A, FL11, led-blue, colorchecker:14, …) or file.csv:column");
+                    }
+                    break;
                 }
-                try { s = SpectrumLibrary.Resolve(name, _dir, Where(path)); }
-                catch (InputException ex) when (ex.What.StartsWith("unknown spectrum", StringComparison.Ordinal))
-                {
-                    throw Error(path, $"unknown spectrum {MessageText.Quote(name)}",
-                        InputException.DidYouMean(name, _namedSpectra.Keys.Concat(SpectrumLibrary.KnownNames)) ??
-                        "name one in \"spectra\", a built-in (D65, A, FL11, led-blue, colorchecker:14, …) or file.csv:column");
-                }
-                break;
-            }
             case JsonValueKind.Array:
                 s = Inline(e, path);
                 break;
             case JsonValueKind.Object:
-            {
-                Keys(e, path, "name", "csv", "column", "values", "constant", "scale", "extrapolate");
-                int given = (TryGet(e, "name", out _) ? 1 : 0) + (TryGet(e, "csv", out _) ? 1 : 0) + (TryGet(e, "values", out _) ? 1 : 0) + (TryGet(e, "constant", out _) ? 1 : 0);
-                if (given != 1) throw Error(path, "a spectrum object needs exactly one of name, csv (+ column), values, constant", "e.g. {\"name\": \"D65\", \"scale\": 2}");
-                if (TryGet(e, "name", out var n)) s = Spectrum(n, $"{path}.name");
-                else if (TryGet(e, "values", out var v)) s = Inline(v, $"{path}.values");
-                else if (TryGet(e, "constant", out var c)) s = TabulatedSpectrum.Constant(Number(c, $"{path}.constant", 0));
-                else
                 {
-                    var csv = String(Required(e, "csv", path), $"{path}.csv");
-                    var column = String(Required(e, "column", path), $"{path}.column");
-                    s = SpectrumLibrary.Resolve($"{csv}:{column}", _dir, Where(path));
-                }
-                if (TryGet(e, "extrapolate", out var x))
-                {
-                    var policy = String(x, $"{path}.extrapolate").ToLowerInvariant() switch
+                    Keys(e, path, "name", "csv", "column", "values", "constant", "scale", "extrapolate");
+                    int given = (TryGet(e, "name", out _) ? 1 : 0) + (TryGet(e, "csv", out _) ? 1 : 0) + (TryGet(e, "values", out _) ? 1 : 0) + (TryGet(e, "constant", out _) ? 1 : 0);
+                    if (given != 1) throw Error(path, "a spectrum object needs exactly one of name, csv (+ column), values, constant", "e.g. {\"name\": \"D65\", \"scale\": 2}");
+                    if (TryGet(e, "name", out var n)) s = Spectrum(n, $"{path}.name");
+                    else if (TryGet(e, "values", out var v)) s = Inline(v, $"{path}.values");
+                    else if (TryGet(e, "constant", out var c)) s = TabulatedSpectrum.Constant(Number(c, $"{path}.constant", 0));
+                    else
                     {
-                        "clamp" => Extrapolation.Clamp,
-                        "zero" => Extrapolation.Zero,
-                        "error" or "none" => Extrapolation.Error,
-                        var other => throw Error($"{path}.extrapolate", $"unknown extrapolation '{other}'", "use clamp, zero or error"),
-                    };
-                    s = s.WithExtrapolation(policy);
+                        var csv = String(Required(e, "csv", path), $"{path}.csv");
+                        var column = String(Required(e, "column", path), $"{path}.column");
+                        s = SpectrumLibrary.Resolve($"{csv}:{column}", _dir, Where(path));
+                    }
+                    if (TryGet(e, "extrapolate", out var x))
+                    {
+                        var policy = String(x, $"{path}.extrapolate").ToLowerInvariant() switch
+                        {
+                            "clamp" => Extrapolation.Clamp,
+                            "zero" => Extrapolation.Zero,
+                            "error" or "none" => Extrapolation.Error,
+                            var other => throw Error($"{path}.extrapolate", $"unknown extrapolation '{other}'", "use clamp, zero or error"),
+                        };
+                        s = s.WithExtrapolation(policy);
+                    }
+                    if (TryGet(e, "scale", out var sc)) s = s.Scaled(Number(sc, $"{path}.scale", 0));
+                    break;
                 }
-                if (TryGet(e, "scale", out var sc)) s = s.Scaled(Number(sc, $"{path}.scale", 0));
-                break;
-            }
             default:
                 throw Error(path, $"expected a spectrum (a name, a number, [[λ, v], …] or an object), found {Kind(e)}", "e.g. \"D65\", 0.5, [[400, 0.1], [700, 0.9]] or {\"csv\": \"f.csv\", \"column\": \"r\"}");
         }
@@ -187,8 +187,18 @@ public sealed partial class SceneLoader
         bool fresnel = Bool(e, "fresnel", path, false);
         return new Material
         {
-            Name = name, Ambient = ambient, Diffuse = diffuse, Specular = specular, Shininess = shininess, Model = model,
-            Mirror = mirror, Transmit = transmit, Ior = ior, Dispersive = dispersive, Fresnel = fresnel, DiffuseSpectrum = diffuseSpectrum,
+            Name = name,
+            Ambient = ambient,
+            Diffuse = diffuse,
+            Specular = specular,
+            Shininess = shininess,
+            Model = model,
+            Mirror = mirror,
+            Transmit = transmit,
+            Ior = ior,
+            Dispersive = dispersive,
+            Fresnel = fresnel,
+            DiffuseSpectrum = diffuseSpectrum,
         };
     }
 
@@ -218,7 +228,14 @@ public sealed partial class SceneLoader
     [MethodImpl(MethodImplOptions.NoOptimization)]
     Material DiffuseMaterial(string name, float[] bands, TabulatedSpectrum? spectrum) => new()
     {
-        Name = name, Ambient = bands, Diffuse = bands, Specular = Zero(), Mirror = Zero(), Transmit = Zero(), Ior = Const(1), DiffuseSpectrum = spectrum,
+        Name = name,
+        Ambient = bands,
+        Diffuse = bands,
+        Specular = Zero(),
+        Mirror = Zero(),
+        Transmit = Zero(),
+        Ior = Const(1),
+        DiffuseSpectrum = spectrum,
     };
 
     float[] Zero() => new float[SpectralMath.Padded(_grid.Count)];
@@ -266,7 +283,13 @@ public sealed partial class SceneLoader
         }
         return kind.Make(new LightSource(this, e, path)
         {
-            Name = name, Intensity = bands, Ambient = ambient, HasAmbient = SpectralMath.Any(ambient), Spectrum = spectrum, Falloff = falloff, Scale = intensity,
+            Name = name,
+            Intensity = bands,
+            Ambient = ambient,
+            HasAmbient = SpectralMath.Any(ambient),
+            Spectrum = spectrum,
+            Falloff = falloff,
+            Scale = intensity,
         });
     }
 
