@@ -1,5 +1,5 @@
 // Drives viewer.html in Debian's Chromium (headless) with playwright-core and prints one JSON line of what it read.
-// usage: node viewer-check.mjs URL_OR_FILE '{"hover":[x,y],"light":"NAME","preset":"PRESET","intensity":F,"read":[x,y],"timeRuns":N}'
+// usage: node viewer-check.mjs URL_OR_FILE '{"hover":[x,y],"light":"NAME","preset":"PRESET","intensity":F,"read":[x,y],"canvas":true,"timeRuns":N}'
 // Fails (exit 1) on any console error or page error.
 import { chromium } from "playwright-core";
 import { pathToFileURL } from "node:url";
@@ -33,6 +33,8 @@ try {
     await page.evaluate(([l, pr, f]) => viewer.setLight(l, pr, f), [p.light, p.preset, p.intensity]);
     if (p.read) out.rgb = await page.evaluate(([x, y]) => viewer.pixelRgb(x, y), p.read);
     if (p.read) out.xyz = await page.evaluate(([x, y]) => viewer.pixelXyz(x, y), p.read);
+    // Every pixel the page drew (RGBA, row by row), to compare with the preview a relight writes.
+    if (p.canvas) out.canvas = await page.evaluate(() => { const c = document.getElementById("image"); return Array.from(c.getContext("2d").getImageData(0, 0, c.width, c.height).data); });
     if (p.storeA) { await page.evaluate(() => viewer.setMode("de")); out.de = await page.evaluate(() => viewer.deStats()); }
   }
   if (p.timeRuns) {
