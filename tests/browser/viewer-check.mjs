@@ -30,12 +30,14 @@ try {
   }
   if (p.light) {
     if (p.storeA) await page.evaluate(() => viewer.storeA());
+    if (p.storeA && p.read) out.xyzA = await page.evaluate(([x, y]) => viewer.pixelXyz(x, y), p.read);
     await page.evaluate(([l, pr, f]) => viewer.setLight(l, pr, f), [p.light, p.preset, p.intensity]);
     if (p.read) out.rgb = await page.evaluate(([x, y]) => viewer.pixelRgb(x, y), p.read);
     if (p.read) out.xyz = await page.evaluate(([x, y]) => viewer.pixelXyz(x, y), p.read);
     // Every pixel the page drew (RGBA, row by row), to compare with the preview a relight writes.
     if (p.canvas) out.canvas = await page.evaluate(() => { const c = document.getElementById("image"); return Array.from(c.getContext("2d").getImageData(0, 0, c.width, c.height).data); });
     if (p.storeA) { await page.evaluate(() => viewer.setMode("de")); out.de = await page.evaluate(() => viewer.deStats()); }
+    if (p.storeA && p.read) out.pixelDe = await page.evaluate(([x, y]) => viewer.pixelDe(x, y), p.read);
   }
   if (p.timeRuns) {
     await page.evaluate(() => viewer.setMode("colour"));
@@ -43,6 +45,8 @@ try {
     out.drawMs = await page.evaluate(n => viewer.timeDraw(n), p.timeRuns);
     out.size = await page.evaluate(() => [viewer.width, viewer.height, viewer.bands]);
   }
+  // CIEDE2000 of given L*a*b* pairs ([L1, a1, b1, L2, a2, b2] each), by the page's own formula.
+  if (p.dePairs) out.dePairs = await page.evaluate(pairs => pairs.map(q => viewer.de2000(...q)), p.dePairs);
   out.errors = errors;
   console.log(JSON.stringify(out));
 } finally {

@@ -106,6 +106,37 @@ public class ViewerBrowserTests(ITestOutputHelper output)
         Assert.True(exact >= 0.99 * 3 * png.Width * png.Height, $"only {exact} of {3 * png.Width * png.Height} codes equal preview.png");
     }
 
+    /// <summary>
+    /// The ΔE00 map: the page's CIEDE2000 reproduces Sharma, Wu &amp; Dalal's 34 pairs (data/reference), and its value at
+    /// a pixel between state A and the current state equals the C# CIEDE2000 of the two colours the page shows there.
+    /// </summary>
+    [SkippableFact]
+    public void The_delta_E00_map_reproduces_Sharma_pairs_and_each_pixels_difference()
+    {
+        Script();
+        var dir = Reference.TempDir();
+        var scene = Path.Combine(dir, "s.json");
+        File.WriteAllText(scene, RelightTests.TwoLightScene("A", "A"));
+        Run("render", scene, "-o", Path.Combine(dir, "r"), "--quiet", "--formats", "npy,lights");
+        Run("view", Path.Combine(dir, "r"));
+        var rows = Reference.Rows("ciede2000-sharma-2005.csv");
+        string pairs = "[" + string.Join(",", rows.Select(q => "[" + string.Join(",", new[] { "L1", "a1", "b1", "L2", "a2", "b2" }.Select(k => q[k])) + "]")) + "]";
+        int x = 14, y = 20;
+        var r = Check(Path.Combine(dir, "r", "viewer.html"), $$"""{"light":"key","preset":"D65","intensity":1,"read":[{{x}},{{y}}],"storeA":true,"dePairs":{{pairs}}}""");
+        var page = r["dePairs"]!.AsArray().Select(v => (double)v!).ToArray();
+        Assert.Equal(34, page.Length);
+        for (int k = 0; k < rows.Count; k++)
+            Assert.True(Math.Abs(page[k] - double.Parse(rows[k]["dE00"], CultureInfo.InvariantCulture)) <= 1e-4, $"pair {rows[k]["pair"]}: page {page[k]:F6}, Sharma {rows[k]["dE00"]}");
+
+        var white = JsonNode.Parse(File.ReadAllText(Path.Combine(dir, "r", "render.json")))!["colour"]!["white_xyz"]!.AsArray().Select(v => (double)v!).ToArray();
+        var w = new SpectralRenderer.Color.Xyz(white[0], white[1], white[2]);
+        SpectralRenderer.Color.Xyz Xyz(string key) { var a = r[key]!.AsArray().Select(v => (double)v!).ToArray(); return new(a[0], a[1], a[2]); }
+        double expected = SpectralRenderer.Color.DeltaE2000.Between(SpectralRenderer.Color.Lab.FromXyz(Xyz("xyzA"), w), SpectralRenderer.Color.Lab.FromXyz(Xyz("xyz"), w));
+        Assert.True(expected > 1, $"A → D65 should change the ball's colour visibly (ΔE00 {expected})");
+        Assert.Equal(expected, (double)r["pixelDe"]!, 1e-6 * expected);
+        Assert.InRange((double)r["de"]!["max"]!, expected, double.MaxValue);
+    }
+
     [SkippableFact]
     public void Served_viewer_works_over_loopback_and_serves_nothing_outside_the_folder()
     {
