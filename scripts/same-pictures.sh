@@ -1,20 +1,28 @@
 #!/usr/bin/env bash
-# Renders the paper's scenes (scenes/*.json) with OLD_COMMIT's build and with the working tree's, and compares
-# every output file byte for byte (render.json without the fields that record the run: times, rates, date,
-# command line, output folder). New renders are made with 1 and with 2 threads. Prints one line per scene and
-# exits 1 when any file differs.
+# Same pictures: renders the paper's scenes (scenes/*.json of OLD_COMMIT) with OLD_COMMIT's build and with the
+# working tree's, and compares every output file byte for byte (render.json without the fields that record the
+# run: times, rates, date, command line, output folder, threads). New renders are made with 1 and with 2 threads.
+# Prints one line per scene and exits 1 when any file differs. The check for a refactoring or a speed-up that must
+# not change any picture.
 #
-#   usage: scripts/same-pictures.sh OLD_COMMIT [extra render options, e.g. --width 320 --height 240]
+#   usage: scripts/same-pictures.sh OLD_COMMIT [render options, e.g. --width 320 --height 240 --formats all]
+#
+# Meshes come from $SPECTRAL_MODELS (default ../shared/models beside the checkout). OLD_COMMIT is built in
+# /tmp/bench-compare-SHA (shared with scripts/bench-compare.sh); SAME_PICTURES_OLD_DLL=PATH/spectral.dll uses a build
+# made before instead.
 set -euo pipefail
 old=${1:?usage: scripts/same-pictures.sh OLD_COMMIT [render options]}; shift
 repo=$(git rev-parse --show-toplevel); cd "$repo"
 oldsha=$(git rev-parse --verify "$old^{commit}")
-export SPECTRAL_MODELS=${SPECTRAL_MODELS:-/work/shared/models}
+export SPECTRAL_MODELS=${SPECTRAL_MODELS:-$(cd "$repo/.." && pwd)/shared/models}
 oldtree=/tmp/bench-compare-${oldsha:0:12}
 [[ -d $oldtree ]] || git worktree add --detach "$oldtree" "$oldsha" >/dev/null
-dotnet build -c Release -v q -nologo "$oldtree/src/SpectralRenderer.Cli" >/dev/null
+if [[ -n ${SAME_PICTURES_OLD_DLL:-} ]]; then OLD=$SAME_PICTURES_OLD_DLL
+else
+    dotnet build -c Release -v q -nologo "$oldtree/src/SpectralRenderer.Cli" >/dev/null
+    OLD=$oldtree/src/SpectralRenderer.Cli/bin/Release/net10.0/spectral.dll
+fi
 dotnet build -c Release -v q -nologo "$repo/src/SpectralRenderer.Cli" >/dev/null
-OLD=$oldtree/src/SpectralRenderer.Cli/bin/Release/net10.0/spectral.dll
 NEW=$repo/src/SpectralRenderer.Cli/bin/Release/net10.0/spectral.dll
 out=$(mktemp -d /tmp/same-pictures.XXXXXX); trap 'rm -rf "$out"' EXIT
 # render.json fields that describe the run rather than the picture.
