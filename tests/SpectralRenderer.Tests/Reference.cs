@@ -16,12 +16,30 @@ static class Reference
 
     public static double D(this Dictionary<string, string> row, string key) => double.Parse(row[key], CultureInfo.InvariantCulture);
 
+    /// <summary>
+    /// A new empty folder for one test, under this test run's own folder in the system's temporary folder, which is
+    /// deleted when the test process ends (set SPECTRAL_KEEP_TEST_FILES=1 to keep it for a look).
+    /// </summary>
     public static string TempDir()
     {
-        var d = Path.Combine(Path.GetTempPath(), "spectral-tests", Guid.NewGuid().ToString("N")[..12]);
+        var d = Path.Combine(RunFolder.Value, Guid.NewGuid().ToString("N")[..12]);
         Directory.CreateDirectory(d);
         return d;
     }
+
+    static readonly Lazy<string> RunFolder = new(() =>
+    {
+        var root = Path.Combine(Path.GetTempPath(), "spectral-tests", $"run-{Environment.ProcessId}-{Guid.NewGuid().ToString("N")[..8]}");
+        Directory.CreateDirectory(root);
+        if (Environment.GetEnvironmentVariable("SPECTRAL_KEEP_TEST_FILES") != "1")
+            AppDomain.CurrentDomain.ProcessExit += (_, _) =>
+            {
+                try { Directory.Delete(root, recursive: true); }
+                catch (IOException) { }                       // a file still held: the system's temporary folder keeps it
+                catch (UnauthorizedAccessException) { }
+            };
+        return root;
+    });
 }
 
 static class InputExceptionText

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # A one-node Slurm cluster on localhost: `cluster.sh start` installs Debian's slurm-wlm and munge when missing
-# (as root), starts munged, slurmctld and slurmd with tests/slurm/slurm.conf and waits until the node is idle;
+# (as root), starts munged, slurmctld and slurmd with tests/slurm/slurm.conf (its own munge socket and two free ports,
+# so clusters of two test runs on one machine stay apart) and waits until the node is idle;
 # `cluster.sh stop` stops the daemons this script started. Prints `export SLURM_CONF=…` for sbatch on start.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -16,14 +17,17 @@ start() {
   [ "$(id -u)" = 0 ] || { echo "the one-node cluster runs its daemons as root" >&2; exit 3; }
   stop quiet || true
   mkdir -p "$run/state" "$run/spool" "$run/munge"
-  sed -e "s#@RUN@#$run#g" -e "s#@CPUS@#$(nproc)#g" "$here/slurm.conf" > "$conf"
+  # Two free loopback ports (the kernel's choice), for slurmctld and slurmd.
+  read -r ctld_port slurmd_port < <(python3 -c 'import socket
+s = [socket.socket() for _ in range(2)]
+for x in s: x.bind(("127.0.0.1", 0))
+print(*(x.getsockname()[1] for x in s))')
+  sed -e "s#@RUN@#$run#g" -e "s#@CPUS@#$(nproc)#g" -e "s#@CTLD_PORT@#$ctld_port#g" -e "s#@SLURMD_PORT@#$slurmd_port#g" \
+      "$here/slurm.conf" > "$conf"
   [ -s /etc/munge/munge.key ] || { dd if=/dev/urandom bs=1 count=1024 of=/etc/munge/munge.key 2>/dev/null; chmod 400 /etc/munge/munge.key; }
   chown root:root /etc/munge/munge.key
-  mkdir -p /run/munge && chmod 755 /run/munge
   munged --force --socket="$run/munge/munge.socket" --pid-file="$run/munge/munged.pid" \
          --log-file="$run/munge/munged.log" --seed-file="$run/munge/munged.seed" --key-file=/etc/munge/munge.key
-  # Slurm's munge plugin talks to the default socket; point it at ours.
-  ln -sf "$run/munge/munge.socket" /run/munge/munge.socket.2
   export SLURM_CONF="$conf"
   slurmctld -f "$conf" -i
   slurmd -f "$conf" -N localhost
@@ -31,7 +35,7 @@ start() {
   # Our daemons, not another cluster's on the same ports: each wrote its pid file and is alive.
   for pidfile in "$run/slurmctld.pid" "$run/slurmd.pid"; do
     if ! [ -s "$pidfile" ] || ! kill -0 "$(cat "$pidfile")" 2>/dev/null; then
-      echo "$(basename "$pidfile" .pid) did not start (is another Slurm using ports 6917/6918?); logs in $run" >&2
+      echo "$(basename "$pidfile" .pid) did not start (ports $ctld_port/$slurmd_port); logs in $run" >&2
       tail -n 5 "$run/slurmctld.log" "$run/slurmd.log" >&2 2>/dev/null || true
       stop quiet; exit 1
     fi
