@@ -99,6 +99,7 @@ public static class LightTransferFiles
                 ["band_values"] = Arr(p.AsSpan(0, scene.Bands)),
                 ["xyz"] = Arr(p.AsSpan(scene.Bands, 3)),
                 ["coloured_chain"] = comp.Coloured(tables),
+                ["band"] = comp.Band >= 0 ? comp.Band + 1 : null,   // after a dispersive split: the one band (from 1) it reaches
             });
         }
         var materials = new JsonArray(scene.Materials.Select(mt => (JsonNode)new JsonObject
@@ -152,7 +153,10 @@ public static class LightTransferFiles
             : throw new InputException(jsonPath, $"names material '{(string?)name}' which the scene does not have", "relight the folder with the scene it was rendered from");
         var comps = json["components"]!.AsArray().Select(c => new TransferComponent(
             (int)c!["light"]!, TransferComponent.ParseLobe((string)c["lobe"]!), Mat(c["material"]),
-            c["chain"]!.AsArray().Select(x => (Mat(x!["material"]), (string)x["weight"]! == "transmit")).ToArray())).ToArray();
+            c["chain"]!.AsArray().Select(x => (Mat(x!["material"]), (string)x["weight"]! == "transmit")).ToArray())
+        { Band = c["band"] is { } band ? Band((int)band) : -1 }).ToArray();
+        int Band(int b) => b >= 1 && b <= bands ? b - 1
+            : throw new InputException(jsonPath, $"names band {b}, the render has {bands}", "the file is damaged: render the folder again");
 
         float[] Load(string file, int[] expected)
         {

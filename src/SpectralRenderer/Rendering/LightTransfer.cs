@@ -20,10 +20,14 @@ public enum TransferLobe { Diffuse, Specular, Ambient, GlobalAmbient, Background
 /// from the camera through the mirror (k_r) and transmission (k_t) weights of the materials in <see cref="Chain"/>
 /// (first bounce first). Its band values are P_b = E_b · m_b · Π k_chain,b with E the light's spectrum × intensity
 /// (diffuse, specular), its ambient spectrum, or a_glob, and m the lobe's reflectance — the products eq. 2 and the
-/// Whitted recursion form in every band.
+/// Whitted recursion form in every band. A component reached through a dispersive material carries one band only
+/// (<see cref="Band"/> ≥ 0): there each band follows its own path, as the integrator traces it.
 /// </summary>
 public sealed record TransferComponent(int Light, TransferLobe Lobe, int Material, (int Material, bool Transmit)[] Chain)
 {
+    /// <summary>The one band (0-based) this component reaches, after a dispersive split; −1 for all bands.</summary>
+    public int Band { get; init; } = -1;
+
     /// <summary>Does the component follow light k's spectrum and intensity (diffuse and specular terms)?</summary>
     public bool FollowsLight => Lobe is TransferLobe.Diffuse or TransferLobe.Specular;
 
@@ -46,9 +50,9 @@ public sealed record TransferComponent(int Light, TransferLobe Lobe, int Materia
         _ => throw new InputException("lights.json", $"unknown component lobe '{s}'", "the light-transfer files are damaged: render the folder again"),
     };
 
-    /// <summary>A stable text key such as <c>0:diffuse:2</c> or <c>1:specular:3&lt;mirror:1</c>.</summary>
+    /// <summary>A stable text key such as <c>0:diffuse:2</c>, <c>1:specular:3&lt;mirror:1</c> or, for band 5 only, <c>0:diffuse:2&lt;transmit:0@5</c>.</summary>
     public string Key => $"{Light}:{LobeName(Lobe)}:{Material}" +
-        string.Concat(Chain.Reverse().Select(c => $"<{(c.Transmit ? "transmit" : "mirror")}:{c.Material}"));
+        string.Concat(Chain.Reverse().Select(c => $"<{(c.Transmit ? "transmit" : "mirror")}:{c.Material}")) + (Band >= 0 ? $"@{Band + 1}" : "");
 
     /// <summary>
     /// P into <paramref name="dst"/> (padded: the bands, then X, Y, Z in the colour lanes): the scene's term table of this
@@ -71,10 +75,16 @@ public sealed record TransferComponent(int Light, TransferLobe Lobe, int Materia
             var w = tr ? tables.Transmit[cm] : tables.Mirror[cm];
             for (int b = 0; b < dst.Length; b++) dst[b] *= w[b];
         }
+        if (Band >= 0)
+        {   // One band only; its colour is eq. 3 on the band values (such pixels take the renderer's colour fallback).
+            float v = dst[Band];
+            dst.Clear();
+            dst[Band] = v;
+        }
     }
 
-    /// <summary>Does the chain pass a mirror or transmittance that varies over the bands (so the colour lanes cannot be exact)?</summary>
-    public bool Coloured(TermTables tables) => Chain.Any(c => c.Transmit ? tables.TransmitColoured[c.Material] : tables.MirrorColoured[c.Material]);
+    /// <summary>Does the chain pass a mirror or transmittance that varies over the bands, or a dispersive split (so the colour lanes cannot be exact)?</summary>
+    public bool Coloured(TermTables tables) => Band >= 0 || Chain.Any(c => c.Transmit ? tables.TransmitColoured[c.Material] : tables.MirrorColoured[c.Material]);
 
 }
 
@@ -89,8 +99,8 @@ public sealed record TransferComponent(int Light, TransferLobe Lobe, int Materia
 /// intensity changes only P: <see cref="Relight"/> recomputes the image exactly as a render with those lights
 /// computes it (the band values of this band scheme are products of band means, so P carries them exactly).
 /// The tracer follows <see cref="WhittedIntegrator"/> ray for ray (same camera rays, jitter, shadow rays,
-/// epsilons, Fresnel and total internal reflection). Dispersive materials are not supported (their paths
-/// split per band).
+/// epsilons, Fresnel and total internal reflection, and a dispersive material's per-band paths: each band's refracted
+/// ray, and for its per-band Fresnel reflectance the reflected ray once per band, recorded as one-band components).
 /// </summary>
 public sealed class LightTransfer
 {
@@ -120,8 +130,6 @@ public sealed class LightTransfer
     /// <summary>Traces the scene's camera rays and records S, the factors and the centre-ray data.</summary>
     public static LightTransfer Trace(Scene scene, SceneGeometry geometry, int threads = 0, CancellationToken cancel = default)
     {
-        if (scene.Materials.Any(m => m.Dispersive && m.HasTransmission))
-            throw new InputException("output.formats", "the 'lights' output does not support dispersive materials (their paths split per band)", "render those scenes without 'lights'");
         if (scene.MaxDepth > MaxChain)
             throw new InputException("max_depth", $"the 'lights' output supports max_depth ≤ {MaxChain}, the scene has {scene.MaxDepth}", $"set max_depth to {MaxChain} or less");
         if (scene.Lights.Count > 254 || scene.Materials.Count > 4094)
@@ -203,7 +211,7 @@ public sealed class LightTransfer
         return (diffuse, specular);
     }
 
-    readonly record struct Key(ulong A, ulong B);
+    readonly record struct Key(ulong A, ulong B, int Band);
 
     sealed class Tracer
     {
@@ -241,6 +249,8 @@ public sealed class LightTransfer
         {
             public readonly int[] Chain = new int[MaxChain + 1];
             public int ChainLength;
+            // The band the current path carries after a dispersive split (−1: all bands), as the integrator's band argument.
+            public int Band = -1;
             public readonly Dictionary<Key, int> Index = new();
             // The current pixel's terms: component and accumulated factor (few distinct ones per pixel).
             public int[] TermComps = new int[64];
@@ -374,7 +384,8 @@ public sealed class LightTransfer
                 Array.Fill(weights, 1f);
                 foreach (var (m, t) in comp.Chain)
                     for (int b = 0; b < _scene.Bands; b++) weights[b] *= t ? _materials[m].Transmit[b] : _materials[m].Mirror[b];
-                groupKey[c] = $"{comp.Light}:{(int)comp.Lobe}:{comp.Material}:{Convert.ToHexString(System.Runtime.InteropServices.MemoryMarshal.AsBytes(weights.AsSpan(0, _scene.Bands)))}";
+                if (comp.Band >= 0) for (int b = 0; b < _scene.Bands; b++) if (b != comp.Band) weights[b] = 0;
+                groupKey[c] = $"{comp.Light}:{(int)comp.Lobe}:{comp.Material}@{comp.Band}:{Convert.ToHexString(System.Runtime.InteropServices.MemoryMarshal.AsBytes(weights.AsSpan(0, _scene.Bands)))}";
             }
             // One representative per group: the component with the smallest key (shortest chains first).
             var groups = Enumerable.Range(0, registered).GroupBy(c => groupKey[c])
@@ -414,6 +425,7 @@ public sealed class LightTransfer
         int Primary(Ray ray, Worker w, float weight, int pixel, ref uint mask, bool centre)
         {
             w.ChainLength = 0;
+            w.Band = -1;
             return Radiance(ray, 0, w, weight, pixel, ref mask, centre);
         }
 
@@ -480,12 +492,47 @@ public sealed class LightTransfer
             {
                 var dir = Vector3.Normalize(ray.Direction + 2 * cosI * n);
                 w.Counters.Secondary++;
-                float f = m.MirrorFactor(cosI, outside, -1);
-                Follow(new Ray(pAbove, dir), depth, w, weight, f, m.Mirror, mi, transmit: false, pixel);
+                if (m.Fresnel && m.Dispersive && w.Band < 0)
+                {
+                    // F from each band's own index: the integrator traces the reflected ray once and weights band b by F_b;
+                    // here its terms are recorded once per band, as one-band components (the ray counts as one).
+                    w.Fallback = true;
+                    var counted = w.Counters;
+                    for (int b = 0; b < _scene.Bands; b++)
+                    {
+                        w.Band = b;
+                        Follow(new Ray(pAbove, dir), depth, w, weight, m.MirrorFactor(cosI, outside, b), mi, transmit: false, pixel);
+                        if (b == 0) counted = w.Counters;
+                    }
+                    w.Band = -1;
+                    w.Counters = counted;
+                }
+                else Follow(new Ray(pAbove, dir), depth, w, weight, m.MirrorFactor(cosI, outside, w.Band), mi, transmit: false, pixel);
             }
             if (m.HasTransmission)
             {
-                float eta = m.Eta(outside, -1);
+                if (!m.Dispersive || w.Band >= 0) Refract(ray, hit, m, mi, n, cosI, outside, depth, w, weight, pixel);
+                else
+                {
+                    // Dispersion: every band bends by its own index, so each gets its own refracted ray (one-band components).
+                    w.Fallback = true;
+                    for (int b = 0; b < _scene.Bands; b++)
+                    {
+                        w.Band = b;
+                        Refract(ray, hit, m, mi, n, cosI, outside, depth, w, weight, pixel);
+                    }
+                    w.Band = -1;
+                }
+            }
+            return hit.Object;
+        }
+
+        /// <summary>k_t·L(refracted) for the band the path carries (all when −1), as the integrator's Refract.</summary>
+        void Refract(in Ray ray, in SurfaceHit hit, Material m, int mi, Vector3 n, float cosI, bool outside, int depth, Worker w, float weight, int pixel)
+        {
+            var p = hit.Position;
+            {
+                float eta = m.Eta(outside, w.Band);
                 float sin2T = eta * eta * (1 - cosI * cosI);
                 var ng = outside ? hit.GeometricNormal : -hit.GeometricNormal;
                 Vector3 dir, origin;
@@ -493,7 +540,7 @@ public sealed class LightTransfer
                 if (sin2T >= 1)
                 {
                     // Total internal reflection: with Fresnel nothing is transmitted (F = 1 on the mirror lobe).
-                    if (m.Fresnel) return hit.Object;
+                    if (m.Fresnel) return;
                     dir = Vector3.Normalize(ray.Direction + 2 * cosI * n);
                     origin = p + _geometry.Epsilon * ng;
                 }
@@ -505,12 +552,11 @@ public sealed class LightTransfer
                     f = m.TransmitFactor(cosI, eta);
                 }
                 w.Counters.Secondary++;
-                Follow(new Ray(origin, dir), depth, w, weight, f, m.Transmit, mi, transmit: true, pixel);
+                Follow(new Ray(origin, dir), depth, w, weight, f, mi, transmit: true, pixel);
             }
-            return hit.Object;
         }
 
-        void Follow(Ray ray, int depth, Worker w, float weight, float f, float[] k, int mi, bool transmit, int pixel)
+        void Follow(Ray ray, int depth, Worker w, float weight, float f, int mi, bool transmit, int pixel)
         {
             if (transmit ? _tables.TransmitColoured[mi] : _tables.MirrorColoured[mi]) w.Fallback = true;
             w.Chain[w.ChainLength++] = mi << 1 | (transmit ? 1 : 0);
@@ -530,7 +576,7 @@ public sealed class LightTransfer
                 ulong e = (ulong)(w.Chain[c] + 1);   // 13 bits: material << 1 | transmit, + 1
                 if (c < 2) a |= e << (26 + 16 * c); else b |= e << (16 * (c - 2));
             }
-            var key = new Key(a, b);
+            var key = new Key(a, b, w.Band);
             if (!w.Index.TryGetValue(key, out int index))
             {
                 var chain = new (int, bool)[w.ChainLength];
@@ -540,7 +586,7 @@ public sealed class LightTransfer
                     if (!_index.TryGetValue(key, out index))
                     {
                         index = _registered.Count;
-                        _registered.Add(new TransferComponent(light, lobe, material, chain));
+                        _registered.Add(new TransferComponent(light, lobe, material, chain) { Band = w.Band });
                         _index[key] = index;
                     }
                 }

@@ -119,6 +119,28 @@ public class RelightTests(Xunit.Abstractions.ITestOutputHelper output)
         AssertSameRender(Path.Combine(dir, "direct"), Path.Combine(dir, "relit"));
     }
 
+    /// <summary>
+    /// Dispersive Fresnel glass (Cauchy index): each band refracts along its own path and reflects with its own F, so
+    /// the transfer holds one-band components there; the relit render still equals the direct one in every band.
+    /// </summary>
+    [Theory]
+    [InlineData("D65", "led-blue")]
+    [InlineData("blackbody:3000", "led-green")]
+    public void Dispersive_glass_relit_equals_a_direct_render(string first, string second)
+    {
+        var dir = Reference.TempDir();
+        string Dispersive(string a, string b) => TwoLightScene(a, b).Replace("\"ior\": 1.5", "\"ior\": { \"cauchy\": [1.5, 4200] }");
+        Assert.Contains("cauchy", Dispersive("A", "A"));
+        Render(Write(dir, "a.json", Dispersive("A", "A")), Path.Combine(dir, "A"), "--formats", "npy,exr,lights");
+        Render(Write(dir, "t.json", Dispersive(first, second)), Path.Combine(dir, "direct"), "--formats", "npy,exr");
+        Relight(Path.Combine(dir, "A"), Path.Combine(dir, "relit"), "--light", $"key={first}", "--light", $"blue={second}");
+        AssertSameRender(Path.Combine(dir, "direct"), Path.Combine(dir, "relit"));
+        // The glass's one-band components are there, each naming its band.
+        var comps = JsonNode.Parse(File.ReadAllText(Path.Combine(dir, "A", "lights", "lights.json")))!["components"]!.AsArray();
+        var bands = comps.Where(c => c!["band"] is not null).Select(c => (int)c!["band"]!).Distinct().Order().ToArray();
+        Assert.Equal(Enumerable.Range(1, 20), bands);
+    }
+
     [Fact]
     public void Physical_radiometry_scene_relit_equals_a_direct_render()
     {
