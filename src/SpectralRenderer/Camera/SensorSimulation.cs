@@ -49,20 +49,17 @@ public static class SensorSimulation
     {
         options ??= new SimulationOptions();
         var weights = ChannelWeights.Compute(sensor, cube.Grid, light, cube.RadianceScale);
-        int w = cube.Width, h = cube.Height, planes = sensor.Planes;
-        var rates = new float[w * h * planes];
+        int w = cube.Width, h = cube.Height, planes = sensor.Planes, exposures = sensor.Exposures;
+        // The rates are computed into the output array and exposed in place: one H × W × planes array in all.
+        var dn = GC.AllocateUninitializedArray<float>(w * h * planes);
+        var rowPeaks = new float[h * planes];
         var parallel = new ParallelOptions { MaxDegreeOfParallelism = options.Threads };
-        var padded = PaddedWeights(weights);
-        Parallel.For(0, h, parallel, y => Rates(sensor, cube, padded, rates, y));
+        var layout = new Layout(sensor, weights);
+        Parallel.For(0, h, parallel, y => Rates(layout, cube, dn, rowPeaks, y));
 
         // Exposure: given, or auto so that the brightest expected pixel of each exposure reaches a fraction of the full well.
-        int exposures = sensor.Exposures;
         var peakRate = new double[exposures];
-        for (int i = 0; i < rates.Length; i++)
-        {
-            int e = exposures == 1 ? 0 : i % planes;
-            if (rates[i] > peakRate[e]) peakRate[e] = rates[i];
-        }
+        for (int y = 0; y < h; y++) for (int k = 0; k < planes; k++) peakRate[exposures == 1 ? 0 : k] = Math.Max(peakRate[exposures == 1 ? 0 : k], rowPeaks[y * planes + k]);
         var t = new double[exposures];
         var peakElectrons = new double[exposures];
         for (int e = 0; e < exposures; e++)
@@ -71,87 +68,161 @@ public static class SensorSimulation
             peakElectrons[e] = peakRate[e] * t[e];
         }
 
-        var dn = new float[rates.Length];
-        Parallel.For(0, h, parallel, y => Expose(sensor, options, w, y, planes, rates, t, dn));
+        Parallel.For(0, h, parallel, y => Expose(sensor, layout, options, w, y, t, dn));
         return new RawFrame(w, h, planes, dn, t, peakElectrons, weights, sensor, options);
     }
 
-    /// <summary>Each channel's weights as float, padded with zeros to whole <see cref="Vector{T}"/>s.</summary>
-    static float[] PaddedWeights(ChannelWeights w)
+    /// <summary>The channel weights in the two layouts the rate loops read, and the mosaic's pattern flattened.</summary>
+    sealed class Layout
     {
-        int vc = Vector<float>.Count, stride = (w.Bands + vc - 1) / vc * vc;
-        var p = new float[w.Channels * stride];
-        for (int c = 0; c < w.Channels; c++) for (int b = 0; b < w.Bands; b++) p[c * stride + b] = (float)w[c, b];
-        return p;
+        public readonly int Bands, Channels, Planes, Stride;
+        public readonly bool Mosaic;
+        /// <summary>Per channel, its weights over the bands padded with zeros to whole <see cref="Vector{T}"/>s (mosaic: one channel per photosite).</summary>
+        public readonly float[] ByChannel;
+        /// <summary>Per band, one <see cref="Vector{T}"/> of every channel's weight (full and wheel, up to Vector&lt;float&gt;.Count channels).</summary>
+        public readonly float[] ByBand;
+        /// <summary>The mosaic's channel at [row % rows, column % columns], row-major.</summary>
+        public readonly int[] Pattern;
+        public readonly int PatternRows, PatternColumns;
+
+        public Layout(SensorModel sensor, ChannelWeights w)
+        {
+            int vc = Vector<float>.Count;
+            Bands = w.Bands; Channels = w.Channels; Planes = sensor.Planes; Mosaic = sensor.Arrangement == Arrangement.Mosaic;
+            Stride = (Bands + vc - 1) / vc * vc;
+            ByChannel = new float[Channels * Stride];
+            for (int c = 0; c < Channels; c++) for (int b = 0; b < Bands; b++) ByChannel[c * Stride + b] = (float)w[c, b];
+            ByBand = new float[Bands * vc];
+            if (Channels <= vc) for (int b = 0; b < Bands; b++) for (int c = 0; c < Channels; c++) ByBand[b * vc + c] = (float)w[c, b];
+            PatternRows = Mosaic ? sensor.Pattern!.GetLength(0) : 1;
+            PatternColumns = Mosaic ? sensor.Pattern!.GetLength(1) : 1;
+            Pattern = new int[PatternRows * PatternColumns];
+            if (Mosaic) for (int r = 0; r < PatternRows; r++) for (int c = 0; c < PatternColumns; c++) Pattern[r * PatternColumns + c] = sensor.Pattern![r, c];
+        }
     }
 
     /// <summary>
-    /// ė = Σ_b w_c,b·L_b per photosite, in SIMD over the bands: whole vectors of the pixel's spectrum times the padded
-    /// weights (the lanes past the last band read the next pixel's values and multiply zeros). A pixel too close to the
-    /// end of the cube for that takes the scalar sum; which path a pixel takes depends only on its position.
+    /// ė_c = max(0, Σ_b w_c,b·L_b) for row y, written to <paramref name="rates"/> (H × W × planes) with the row's
+    /// highest rate per plane. A mosaic photosite needs one channel: a dot product in SIMD over the bands (whole
+    /// vectors of the pixel's spectrum times the padded weights; the lanes past the last band read the next pixel's
+    /// values and multiply zeros, and a pixel too close to the cube's end for that takes the scalar sum). Full and
+    /// wheel pixels need every channel: SIMD over the channels, each band's radiance times the vector of the channels'
+    /// weights for that band. Which path a pixel takes depends only on the sensor and the pixel's position.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    static void Rates(SensorModel sensor, RadianceCube cube, float[] padded, float[] rates, int y)
+    static void Rates(Layout l, RadianceCube cube, float[] rates, float[] rowPeaks, int y)
     {
-        int n = cube.Bands, planes = sensor.Planes, w = cube.Width, vc = Vector<float>.Count, nv = (n + vc - 1) / vc, stride = nv * vc;
-        bool mosaic = sensor.Arrangement == Arrangement.Mosaic;
+        int n = l.Bands, planes = l.Planes, w = cube.Width, vc = Vector<float>.Count, nv = l.Stride / vc, stride = l.Stride;
         var data = cube.Data;
-        for (int x = 0; x < w; x++)
+        int rowStart = y * w * planes, rowEnd = rowStart + w * planes;
+        if (l.Mosaic)
         {
-            int p = y * w + x, off = p * n;
-            bool vector = off + stride <= data.Length;
-            for (int k = 0; k < planes; k++)
+            var pattern = l.Pattern.AsSpan((y % l.PatternRows) * l.PatternColumns, l.PatternColumns);
+            float peak = 0;
+            for (int x = 0, px = 0; x < w; x++)
             {
-                int c = mosaic ? sensor.ChannelAt(x, y) : k;
+                int c = pattern[px];
+                if (++px == pattern.Length) px = 0;
+                int off = (y * w + x) * n, wo = c * stride;
                 float s;
-                if (vector)
+                if (off + stride <= data.Length)
                 {
                     var acc = Vector<float>.Zero;
-                    for (int j = 0; j < nv; j++) acc += new Vector<float>(data, off + j * vc) * new Vector<float>(padded, c * stride + j * vc);
+                    for (int j = 0; j < nv; j++) acc += new Vector<float>(data, off + j * vc) * new Vector<float>(l.ByChannel, wo + j * vc);
                     s = Vector.Sum(acc);
                 }
                 else
                 {
                     s = 0;
-                    for (int b = 0; b < n; b++) s += padded[c * stride + b] * data[off + b];
+                    for (int b = 0; b < n; b++) s += l.ByChannel[wo + b] * data[off + b];
                 }
-                rates[p * planes + k] = Math.Max(0, s);
+                s = Math.Max(0, s);
+                rates[rowStart + x] = s;
+                peak = Math.Max(peak, s);
+            }
+            rowPeaks[y] = peak;
+            return;
+        }
+        if (planes <= vc)
+        {
+            var byBand = l.ByBand;
+            var peaks = Vector<float>.Zero;
+            for (int x = 0; x < w; x++)
+            {
+                int off = (y * w + x) * n, o = rowStart + x * planes;
+                var acc = Vector<float>.Zero;
+                for (int b = 0; b < n; b++) acc += new Vector<float>(data[off + b]) * new Vector<float>(byBand, b * vc);
+                acc = Vector.Max(acc, Vector<float>.Zero);
+                peaks = Vector.Max(peaks, acc);
+                // A whole-vector store spills zeros into the next pixel's slots (rewritten next); not past the row.
+                if (o + vc <= rowEnd) acc.CopyTo(rates, o);
+                else for (int k = 0; k < planes; k++) rates[o + k] = acc[k];
+            }
+            for (int k = 0; k < planes; k++) rowPeaks[y * planes + k] = peaks[k];
+            return;
+        }
+        // More channels than lanes: one dot product per channel.
+        for (int k = 0; k < planes; k++) rowPeaks[y * planes + k] = 0;
+        for (int x = 0; x < w; x++)
+        {
+            int off = (y * w + x) * n;
+            bool vector = off + stride <= data.Length;
+            for (int k = 0; k < planes; k++)
+            {
+                float s;
+                if (vector)
+                {
+                    var acc = Vector<float>.Zero;
+                    for (int j = 0; j < nv; j++) acc += new Vector<float>(data, off + j * vc) * new Vector<float>(l.ByChannel, k * stride + j * vc);
+                    s = Vector.Sum(acc);
+                }
+                else
+                {
+                    s = 0;
+                    for (int b = 0; b < n; b++) s += l.ByChannel[k * stride + b] * data[off + b];
+                }
+                s = Math.Max(0, s);
+                rates[rowStart + x * planes + k] = s;
+                rowPeaks[y * planes + k] = Math.Max(rowPeaks[y * planes + k], s);
             }
         }
     }
 
+    /// <summary>Row y of the rates (e⁻/s) in <paramref name="dn"/> exposed and read out in place, photosite by photosite.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    static void Expose(SensorModel sensor, SimulationOptions o, int w, int y, int planes, float[] rates, double[] t, float[] dn)
+    static void Expose(SensorModel sensor, Layout l, SimulationOptions o, int w, int y, double[] t, float[] dn)
     {
         double fullWell = sensor.FullWellElectrons, k = sensor.SystemGain, black = sensor.BlackLevel, white = sensor.WhiteLevel;
-        double voltToDn = sensor.AnalogGain / sensor.VoltageSwing * (white - black);
+        double voltToDn = sensor.AnalogGain / sensor.VoltageSwing * (white - black), conversionGain = sensor.ConversionGain;
         double dark = sensor.DarkCurrentElectronsPerSecond, prnu = sensor.PrnuPercent / 100, dsnu = sensor.DsnuVolts, read = sensor.ReadNoiseVolts;
-        bool mosaic = sensor.Arrangement == Arrangement.Mosaic;
-        for (int x = 0; x < w; x++)
+        int planes = l.Planes;
+        var pattern = l.Pattern.AsSpan((y % l.PatternRows) * l.PatternColumns, l.PatternColumns);
+        ulong prnuFamily = NoiseStream.Family(sensor.FixedPatternSeed, KindPrnu), dsnuFamily = NoiseStream.Family(sensor.FixedPatternSeed, KindDsnu);
+        ulong temporal = NoiseStream.Family(o.Seed, KindTemporal);
+        for (int x = 0, px = 0; x < w; x++)
         {
             long p = (long)y * w + x;
+            int cx = pattern[px];
+            if (++px == pattern.Length) px = 0;
             for (int k2 = 0; k2 < planes; k2++)
             {
                 int i = (int)p * planes + k2;
-                int c = mosaic ? sensor.ChannelAt(x, y) : k2;
-                double te = t[planes == 1 || t.Length == 1 ? 0 : k2];
-                double mean = rates[i] * te;
-                double v;
+                int c = l.Mosaic ? cx : k2;
+                double te = t[t.Length == 1 ? 0 : k2];
+                double mean = dn[i] * te;
                 if (!o.Noise)
                 {
-                    v = Math.Min(mean, fullWell) * k + black;
-                    dn[i] = (float)Math.Min(v, white);
+                    dn[i] = (float)Math.Min(Math.Min(mean, fullWell) * k + black, white);
                     continue;
                 }
                 double gain = 1, offset = 0;
-                if (prnu > 0) { var f = new NoiseStream(sensor.FixedPatternSeed, KindPrnu, p, c); gain = Math.Max(0, 1 + prnu * f.Normal()); }
-                if (dsnu > 0) { var f = new NoiseStream(sensor.FixedPatternSeed, KindDsnu, p, c); offset = dsnu * f.Normal(); }
-                var r = new NoiseStream(o.Seed, KindTemporal, p, c);
+                if (prnu > 0) { var f = new NoiseStream(prnuFamily, p, c); gain = Math.Max(0, 1 + prnu * f.Normal()); }
+                if (dsnu > 0) { var f = new NoiseStream(dsnuFamily, p, c); offset = dsnu * f.Normal(); }
+                var r = new NoiseStream(temporal, p, c);
                 // Photo-electrons and dark electrons are independent Poisson counts: their sum is one Poisson count.
-                double electrons = r.Poisson(mean * gain + dark * te);
-                electrons = Math.Min(electrons, fullWell);
-                double volts = electrons * sensor.ConversionGain + offset + read * r.Normal();
-                v = Math.Round(black + volts * voltToDn, MidpointRounding.AwayFromZero);
+                double electrons = Math.Min(r.Poisson(mean * gain + dark * te), fullWell);
+                double volts = electrons * conversionGain + offset + read * r.Normal();
+                double v = Math.Round(black + volts * voltToDn, MidpointRounding.AwayFromZero);
                 dn[i] = (float)Math.Clamp(v, 0, white);
             }
         }
