@@ -1,5 +1,6 @@
 using System.Numerics;
 using System.Runtime.CompilerServices;
+using System.Runtime.Intrinsics;
 using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Camera;
@@ -24,6 +25,8 @@ public sealed record SimulationOptions
     /// </summary>
     public bool Noise { get; init; } = true;
     public int Threads { get; init; } = -1;
+    /// <summary>Photosite by photosite only, without the 8-lane path (which gives the same bits): for the tests that compare them.</summary>
+    internal bool ScalarOnly { get; init; }
 }
 
 /// <summary>The sensor's output: digital numbers per pixel and plane (H × W × planes), and how it was exposed.</summary>
@@ -41,7 +44,7 @@ public sealed record RawFrame(int Width, int Height, int Planes, float[] Dn, dou
 /// e = Poisson(ė·t·(1 + PRNU) + dark·t) (photo and dark electrons, both Poisson), clipped at the full well; V = e·g + DSNU + N(0, σ_read);
 /// DN = round(black + V·G/V_swing·(white − black)), clipped to [0, white].
 /// </summary>
-public static class SensorSimulation
+public static partial class SensorSimulation
 {
     const ulong KindPrnu = 1, KindDsnu = 2, KindTemporal = 3;
 
@@ -54,7 +57,7 @@ public static class SensorSimulation
         var dn = GC.AllocateUninitializedArray<float>(w * h * planes);
         var rowPeaks = new float[h * planes];
         var parallel = new ParallelOptions { MaxDegreeOfParallelism = options.Threads };
-        var layout = new Layout(sensor, weights);
+        var layout = new Layout(sensor, weights, w);
         Parallel.For(0, h, parallel, y => Rates(layout, cube, dn, rowPeaks, y));
 
         // Exposure: given, or auto so that the brightest expected pixel of each exposure reaches a fraction of the full well.
@@ -68,7 +71,9 @@ public static class SensorSimulation
             peakElectrons[e] = peakRate[e] * t[e];
         }
 
-        Parallel.For(0, h, parallel, y => Expose(sensor, layout, options, w, y, t, dn));
+        var readout = new Readout(sensor, options);
+        var exposureOf = Array.ConvertAll(layout.ChannelOf, c => t[exposures == 1 ? 0 : c]);
+        Parallel.For(0, h, parallel, y => Expose(readout, layout, exposureOf, w, y, dn));
         return new RawFrame(w, h, planes, dn, t, peakElectrons, weights, sensor, options);
     }
 
@@ -84,8 +89,12 @@ public static class SensorSimulation
         /// <summary>The mosaic's channel at [row % rows, column % columns], row-major.</summary>
         public readonly int[] Pattern;
         public readonly int PatternRows, PatternColumns;
+        /// <summary>For the flat index j of a row's photosites (x·planes + plane): the pixel x.</summary>
+        public readonly int[] PixelOf;
+        /// <summary>Per pattern row (one for full and wheel sensors), the channel of each flat index of a row.</summary>
+        public readonly int[] ChannelOf;
 
-        public Layout(SensorModel sensor, ChannelWeights w)
+        public Layout(SensorModel sensor, ChannelWeights w, int width)
         {
             int vc = Vector<float>.Count;
             Bands = w.Bands; Channels = w.Channels; Planes = sensor.Planes; Mosaic = sensor.Arrangement == Arrangement.Mosaic;
@@ -98,6 +107,12 @@ public static class SensorSimulation
             PatternColumns = Mosaic ? sensor.Pattern!.GetLength(1) : 1;
             Pattern = new int[PatternRows * PatternColumns];
             if (Mosaic) for (int r = 0; r < PatternRows; r++) for (int c = 0; c < PatternColumns; c++) Pattern[r * PatternColumns + c] = sensor.Pattern![r, c];
+            int n = width * Planes;
+            PixelOf = new int[n];
+            ChannelOf = new int[PatternRows * n];
+            for (int j = 0; j < n; j++) PixelOf[j] = j / Planes;
+            for (int r = 0; r < PatternRows; r++)
+                for (int j = 0; j < n; j++) ChannelOf[r * n + j] = Mosaic ? Pattern[r * PatternColumns + j % PatternColumns] : j % Planes;
         }
     }
 
@@ -188,43 +203,63 @@ public static class SensorSimulation
         }
     }
 
-    /// <summary>Row y of the rates (e⁻/s) in <paramref name="dn"/> exposed and read out in place, photosite by photosite.</summary>
+    /// <summary>Row y of the rates (e⁻/s) in <paramref name="dn"/> exposed and read out in place.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    static void Expose(SensorModel sensor, Layout l, SimulationOptions o, int w, int y, double[] t, float[] dn)
+    static void Expose(Readout r, Layout l, double[] exposureOf, int w, int y, float[] dn)
     {
-        double fullWell = sensor.FullWellElectrons, k = sensor.SystemGain, black = sensor.BlackLevel, white = sensor.WhiteLevel;
-        double voltToDn = sensor.AnalogGain / sensor.VoltageSwing * (white - black), conversionGain = sensor.ConversionGain;
-        double dark = sensor.DarkCurrentElectronsPerSecond, prnu = sensor.PrnuPercent / 100, dsnu = sensor.DsnuVolts, read = sensor.ReadNoiseVolts;
-        int planes = l.Planes;
-        var pattern = l.Pattern.AsSpan((y % l.PatternRows) * l.PatternColumns, l.PatternColumns);
-        ulong prnuFamily = NoiseStream.Family(sensor.FixedPatternSeed, KindPrnu), dsnuFamily = NoiseStream.Family(sensor.FixedPatternSeed, KindDsnu);
-        ulong temporal = NoiseStream.Family(o.Seed, KindTemporal);
-        for (int x = 0, px = 0; x < w; x++)
+        int planes = l.Planes, rowStart = y * w * planes, n = w * planes;
+        var channels = l.ChannelOf.AsSpan((y % l.PatternRows) * n, n);
+        var te = exposureOf.AsSpan((y % l.PatternRows) * n, n);
+        if (!r.Noise)
         {
-            long p = (long)y * w + x;
-            int cx = pattern[px];
-            if (++px == pattern.Length) px = 0;
-            for (int k2 = 0; k2 < planes; k2++)
-            {
-                int i = (int)p * planes + k2;
-                int c = l.Mosaic ? cx : k2;
-                double te = t[t.Length == 1 ? 0 : k2];
-                double mean = dn[i] * te;
-                if (!o.Noise)
-                {
-                    dn[i] = (float)Math.Min(Math.Min(mean, fullWell) * k + black, white);
-                    continue;
-                }
-                double gain = 1, offset = 0;
-                if (prnu > 0) { var f = new NoiseStream(prnuFamily, p, c); gain = Math.Max(0, 1 + prnu * f.Normal()); }
-                if (dsnu > 0) { var f = new NoiseStream(dsnuFamily, p, c); offset = dsnu * f.Normal(); }
-                var r = new NoiseStream(temporal, p, c);
-                // Photo-electrons and dark electrons are independent Poisson counts: their sum is one Poisson count.
-                double electrons = Math.Min(r.Poisson(mean * gain + dark * te), fullWell);
-                double volts = electrons * conversionGain + offset + read * r.Normal();
-                double v = Math.Round(black + volts * voltToDn, MidpointRounding.AwayFromZero);
-                dn[i] = (float)Math.Clamp(v, 0, white);
-            }
+            for (int j = 0; j < n; j++) dn[rowStart + j] = (float)Math.Min(Math.Min(dn[rowStart + j] * te[j], r.FullWell) * r.SystemGain + r.Black, r.White);
+            return;
+        }
+        int done = r.Lanes ? ExposeLanes(r, l.PixelOf, channels, te, w, y, dn) : 0;
+        for (int j = done; j < n; j++) dn[rowStart + j] = r.Photosite(dn[rowStart + j], te[j], (long)y * w + l.PixelOf[j], channels[j]);
+    }
+
+    /// <summary>Everything the read-out of a photosite needs, from the sensor and the options.</summary>
+    sealed class Readout
+    {
+        public readonly double FullWell, SystemGain, Black, White, VoltToDn, ConversionGain, Dark, Prnu, Dsnu, Read;
+        public readonly ulong PrnuFamily, DsnuFamily, Temporal;
+        public readonly bool Noise, Lanes;
+
+        public Readout(SensorModel sensor, SimulationOptions o)
+        {
+            FullWell = sensor.FullWellElectrons; SystemGain = sensor.SystemGain; Black = sensor.BlackLevel; White = sensor.WhiteLevel;
+            VoltToDn = sensor.AnalogGain / sensor.VoltageSwing * (White - Black); ConversionGain = sensor.ConversionGain;
+            Dark = sensor.DarkCurrentElectronsPerSecond; Prnu = sensor.PrnuPercent / 100; Dsnu = sensor.DsnuVolts; Read = sensor.ReadNoiseVolts;
+            PrnuFamily = NoiseStream.Family(sensor.FixedPatternSeed, KindPrnu);
+            DsnuFamily = NoiseStream.Family(sensor.FixedPatternSeed, KindDsnu);
+            Temporal = NoiseStream.Family(o.Seed, KindTemporal);
+            Noise = o.Noise;
+            Lanes = !o.ScalarOnly && Vector512.IsHardwareAccelerated;
+        }
+
+        /// <summary>
+        /// One photosite of channel c at pixel p, from its own streams: e = min(Poisson(ė·t·(1 + PRNU) + dark·t), full
+        /// well) — photo and dark electrons are independent Poisson counts, so their sum is one —, V = e·g + DSNU +
+        /// N(0, σ_read), DN = round(black + V·G/V_swing·(white − black)) in [0, white] (<see cref="Quantise"/>).
+        /// </summary>
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        public float Photosite(double rate, double te, long p, int c)
+        {
+            double mean = rate * te, gain = 1, offset = 0;
+            if (Prnu > 0) { var f = new NoiseStream(PrnuFamily, p, c); gain = Math.Max(0, 1 + Prnu * f.Normal()); }
+            if (Dsnu > 0) { var f = new NoiseStream(DsnuFamily, p, c); offset = Dsnu * f.Normal(); }
+            var r = new NoiseStream(Temporal, p, c);
+            double electrons = Math.Min(r.Poisson(mean * gain + Dark * te), FullWell);
+            double volts = electrons * ConversionGain + offset + Read * r.Normal();
+            return (float)Quantise(Black + volts * VoltToDn, White);
         }
     }
+
+    /// <summary>Round half away from zero (as <see cref="Math.Round(double, MidpointRounding)"/> does it: truncate x + 0.5⁻) after clipping at 0, then at the white level.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    static double Quantise(double x, double white) => Math.Min(Math.Floor(Math.Max(x, 0) + HalfBelow), white);
+
+    /// <summary>The double just below 0.5.</summary>
+    const double HalfBelow = 0.49999999999999994;
 }
