@@ -101,4 +101,43 @@ public class SensorLanesTests(Xunit.Abstractions.ITestOutputHelper output)
         Assert.Contains(scalar.Dn, d => (d - black) / k < 10);
         Assert.Contains(scalar.Dn, d => (d - black) / k > 0.5 * sensor.FullWellElectrons);
     }
+
+    /// <summary>
+    /// Noise off, a fixed exposure: each raw value is min(Σ_b w_c,b·L_b·t, full well)·K + black, summed here in double
+    /// from the channel weights — for a mosaic (one channel per photosite), full and wheel sensors with no more channels
+    /// than SIMD lanes (all channels at once) and a full sensor with more (one dot product per channel).
+    /// </summary>
+    [Theory]
+    [InlineData("nikon-d5100", false)]
+    [InlineData("mosaic-16", false)]
+    [InlineData("wheel-6", false)]
+    [InlineData("cie-xyz", false)]
+    [InlineData("mosaic-16", true)]
+    public void NoiseOff_RawIsTheWeightedBandSum(string name, bool allChannelsAtEveryPixel)
+    {
+        var sensor = SensorPresets.Get(name);
+        if (allChannelsAtEveryPixel) sensor = sensor with { Arrangement = Arrangement.Full, Pattern = null, PatternName = null };
+        var cube = Cube();
+        var light = TabulatedSpectrum.Constant(1);
+        var probe = SensorSimulation.Run(sensor, cube, light, new SimulationOptions { Noise = false });
+        double t = 0.5 * probe.ExposureSeconds.Min();   // below saturation everywhere: the sum is not clipped
+        sensor = sensor with { ExposureSeconds = t };
+        var raw = SensorSimulation.Run(sensor, cube, light, new SimulationOptions { Noise = false, Threads = 2 });
+        var w = raw.Weights;
+        int n = cube.Bands, planes = sensor.Planes;
+        double worst = 0;
+        for (int y = 0; y < cube.Height; y++)
+            for (int x = 0; x < cube.Width; x++)
+                for (int k = 0; k < planes; k++)
+                {
+                    int c = sensor.Arrangement == Arrangement.Mosaic ? sensor.Pattern![y % sensor.Pattern.GetLength(0), x % sensor.Pattern.GetLength(1)] : k;
+                    double sum = 0;
+                    for (int b = 0; b < n; b++) sum += w[c, b] * cube.Data[(y * cube.Width + x) * n + b];
+                    double expected = Math.Min(sum * t, sensor.FullWellElectrons) * sensor.SystemGain + sensor.BlackLevel;
+                    double got = raw[x, y, k];
+                    worst = Math.Max(worst, Math.Abs(got - expected) / Math.Max(expected, 1e-3));
+                }
+        output.WriteLine($"{name}{(allChannelsAtEveryPixel ? " (full)" : "")}: worst relative difference {worst:G3}");
+        Assert.True(worst < 1e-5, $"{worst}");
+    }
 }
