@@ -46,6 +46,8 @@ public static class Relighting
             Formats = (string?)o?["formats"],
             ExrCompression = (string?)o?["exr_compression"],
             ModelDirectories = o?["models"]?.AsArray().Select(d => (string)d!).Where(Directory.Exists).ToList() ?? [],
+            // No ray is traced: the meshes' triangles are not needed (nor their files present).
+            LoadMeshes = false,
         };
         var names = (scene["lights"] as JsonArray ?? []).Select((l, i) => (string?)l?["name"] ?? $"light-{i}").ToArray();
         return new Source(dir, manifest, scene, manifest.Scene.Length > 0 ? manifest.Scene : Path.Combine(dir, "scene.json"), overrides, names);
@@ -119,6 +121,8 @@ public static class Relighting
                 ["changes"] = new JsonArray(changes.Select(c => (JsonNode)new JsonObject
                 { ["light"] = c.Light, ["spectrum"] = c.Spectrum, ["intensity"] = c.Intensity }).ToArray()),
                 ["white"] = white,
+                // Wall seconds to read lights/ and recombine the image and its colours (no files written).
+                ["compute_s"] = compute.TotalSeconds,
             },
         };
         if (Path.GetFullPath(outDir) == Path.GetFullPath(src.Dir))

@@ -205,6 +205,52 @@ public class RelightTests(Xunit.Abstractions.ITestOutputHelper output)
         AssertSameRender(Path.Combine(dir, "direct"), Path.Combine(dir, "relit"));
     }
 
+    [Fact]
+    public void Relit_light_arrays_are_the_sources_whether_copied_or_encoded_again()
+    {
+        var dir = Reference.TempDir();
+        Render(Write(dir, "s.json", TwoLightScene("A", "led-blue")), Path.Combine(dir, "r"), "--formats", "npy,lights");
+        string[] arrays = ["factors.npy", "pixels.npy", "centre.npy", "ids.npy"];
+        var source = arrays.ToDictionary(f => f, f => File.ReadAllBytes(Path.Combine(dir, "r", "lights", f)));
+        // Files as the writer encodes them are copied: the same bytes.
+        Relight(Path.Combine(dir, "r"), Path.Combine(dir, "copied"), "--light", "key=D65");
+        foreach (var f in arrays) Assert.Equal(source[f], File.ReadAllBytes(Path.Combine(dir, "copied", "lights", f)));
+        // factors.npy saved another way (float64, as numpy.save of a float64 array writes it): read, then encoded again
+        // by the writer, which gives the bytes of the original float32 file.
+        var factors = source["factors.npy"];
+        int headerLength = 10 + BitConverter.ToUInt16(factors, 8);
+        int count = (factors.Length - headerLength) / 4;
+        string dict = $"{{'descr': '<f8', 'fortran_order': False, 'shape': ({count},), }}";
+        var header = dict.PadRight((10 + dict.Length + 1 + 63) / 64 * 64 - 10 - 1) + "\n";
+        using (var f8 = File.Create(Path.Combine(dir, "r", "lights", "factors.npy")))
+        {
+            f8.Write([0x93, (byte)'N', (byte)'U', (byte)'M', (byte)'P', (byte)'Y', 1, 0]);
+            f8.Write(BitConverter.GetBytes((ushort)header.Length));
+            f8.Write(System.Text.Encoding.ASCII.GetBytes(header));
+            for (int i = 0; i < count; i++) f8.Write(BitConverter.GetBytes((double)BitConverter.ToSingle(factors, headerLength + 4 * i)));
+        }
+        Relight(Path.Combine(dir, "r"), Path.Combine(dir, "encoded"), "--light", "key=D65");
+        foreach (var f in arrays) Assert.Equal(source[f], File.ReadAllBytes(Path.Combine(dir, "encoded", "lights", f)));
+        Assert.Equal(File.ReadAllBytes(Path.Combine(dir, "copied", "spectral.npy")), File.ReadAllBytes(Path.Combine(dir, "encoded", "spectral.npy")));
+    }
+
+    [Fact]
+    public void Relight_reads_no_mesh_file()
+    {
+        // Nothing is traced, so a mesh's triangles are not needed: the relight works after the mesh file is gone.
+        var dir = Reference.TempDir();
+        File.WriteAllText(Path.Combine(dir, "tetra.obj"), "v -0.6 0 -0.4\nv 0.6 0 -0.4\nv 0 0 0.7\nv 0 1 0\nf 1 2 4\nf 2 3 4\nf 3 1 4\nf 1 3 2\n");
+        string Scene(string spectrum, double intensity) => TwoLightScene(spectrum, "led-blue", intensity).Replace(
+            "{ \"type\": \"sphere\", \"name\": \"ball\", \"center\": [-0.9, 0.5, 0], \"radius\": 0.5, \"material\": \"green\" }",
+            "{ \"type\": \"mesh\", \"name\": \"ball\", \"file\": \"tetra.obj\", \"fit\": { \"min\": [-1.4, 0, -0.5], \"max\": [-0.4, 1, 0.5] }, \"material\": \"green\" }");
+        Assert.Contains("tetra.obj", Scene("A", 1));
+        Render(Write(dir, "a.json", Scene("A", 1)), Path.Combine(dir, "A"), "--formats", "npy,exr,lights");
+        Render(Write(dir, "t.json", Scene("FL11", 0.5)), Path.Combine(dir, "direct"), "--formats", "npy,exr,lights");
+        File.Delete(Path.Combine(dir, "tetra.obj"));
+        Relight(Path.Combine(dir, "A"), Path.Combine(dir, "relit"), "--light", "key=FL11", "--intensity", "blue=0.5");
+        AssertSameRender(Path.Combine(dir, "direct"), Path.Combine(dir, "relit"));
+    }
+
     static string Repo()
     {
         for (var d = new DirectoryInfo(AppContext.BaseDirectory); d is not null; d = d.Parent)
