@@ -28,11 +28,12 @@ own_spp=$(sed -n 's/.*"spp": *\([0-9]*\).*/\1/p' "$scene" | head -1)
 spps=("$@")
 (( ${#spps[@]} > 0 )) || spps=("$own_spp" 1)
 
-if [[ ${BENCH_NO_BUILD:-0} != 1 ]]; then
+if [[ ${BENCH_NO_BUILD:-0} != 1 && -z ${BENCH_DLL:-} ]]; then
     echo "building $repo (Release, ReadyToRun) ..." >&2
     dotnet build -c Release -v q -nologo src/SpectralRenderer.Cli >/dev/null
 fi
-B=$repo/src/SpectralRenderer.Cli/bin/Release/net10.0/spectral.dll
+# BENCH_DLL: another build's spectral.dll to measure instead (e.g. an older commit's, for a before/after).
+B=${BENCH_DLL:-$repo/src/SpectralRenderer.Cli/bin/Release/net10.0/spectral.dll}
 out=$(mktemp -d /tmp/bench-relight.XXXXXX)
 trap 'rm -rf "$out"' EXIT
 sed 's/"spectrum": "D65"/"spectrum": "A"/' "$scene" > "$out/bunny-A.json"
@@ -46,7 +47,7 @@ timed() { # output file, command… → wall seconds
 median() { printf '%s\n' "$@" | sort -g | awk '{ a[NR] = $1 } END { print (NR % 2) ? a[(NR + 1) / 2] : (a[NR / 2] + a[NR / 2 + 1]) / 2 }'; }
 json() { python3 -c 'import json, sys; d = json.load(open(sys.argv[1])); print(eval(sys.argv[2], {}, {"d": d}))' "$@"; }
 
-echo "machine: $(lscpu | sed -n 's/^Model name: *//p'), $(nproc) cores; $(date -u '+%Y-%m-%d %H:%M UTC'); commit $(git rev-parse --short HEAD)$(git diff --quiet HEAD || echo '+changes')"
+echo "machine: $(lscpu | sed -n 's/^Model name: *//p'), $(nproc) cores; $(date -u '+%Y-%m-%d %H:%M UTC'); commit $(git rev-parse --short HEAD)$(git diff --quiet HEAD || echo '+changes'); $B"
 printf '%-6s %-5s %10s %10s %8s %10s %10s   %s\n' spp size render_s relight_s ratio write_s compute_s "all rounds (render | relight)"
 for spp in "${spps[@]}"; do
     dotnet "$B" render "$out/bunny-A.json" -o "$out/A" --width "$size" --height "$size" --spp "$spp" --formats all,lights --quiet
@@ -63,9 +64,9 @@ for spp in "${spps[@]}"; do
         done
     done
     same=$(json "$out/render/render.json" 'sorted(d["files"])' ; json "$out/relight/render.json" 'sorted(d["files"])')
-    [[ $(sed -n 1p <<< "$same") == $(sed -n 2p <<< "$same") ]] || { echo "bench-relight: the relit folder lists other files than the render" >&2; exit 1; }
-    w=$(json "$out/relight/render.json" 'd["run"]["write_s"]')
-    c=$(json "$out/relight/render.json" 'd["run"]["relit"]["compute_s"]')
+    [[ "$(sed -n 1p <<< "$same")" == "$(sed -n 2p <<< "$same")" ]] || { echo "bench-relight: the relit folder lists other files than the render:" >&2; echo "$same" >&2; exit 1; }
+    w=$(json "$out/relight/render.json" 'd["run"].get("write_s", "nan")')
+    c=$(json "$out/relight/render.json" 'd["run"]["relit"].get("compute_s", "nan")')
     mr=$(median "${render[@]}"); ml=$(median "${relight[@]}")
     printf '%-6s %-5s %10s %10s %8.2f %10.3f %10.3f   %s | %s\n' "$spp" "$size" "$mr" "$ml" "$(echo "$mr / $ml" | bc -l)" "$w" "$c" "${render[*]}" "${relight[*]}"
 done
