@@ -31,7 +31,7 @@ public static class LightTransferFiles
     public const string Folder = "lights";
 
     /// <summary>The four arrays, in the order written.</summary>
-    static readonly string[] Arrays = ["factors.npy", "pixels.npy", "centre.npy", "ids.npy"];
+    public static readonly IReadOnlyList<string> Arrays = ["factors.npy", "pixels.npy", "centre.npy", "ids.npy"];
 
     public static void Write(Scene scene, LightTransfer t, string outDir, Action<string> done)
     {

@@ -21,19 +21,23 @@ namespace SpectralRenderer.Output;
 /// </summary>
 public static class RenderOutputWriter
 {
+    /// <summary>This engine build's identity (render.json "build"): the module version id of its assembly.</summary>
+    public static string EngineBuild { get; } = typeof(RenderOutputWriter).Assembly.ManifestModule.ModuleVersionId.ToString("N");
+
     public static List<string> Write(Scene scene, RenderResult result, string outDir, JsonObject? run = null, CancellationToken cancel = default,
-        LightTransfer? transfer = null) =>
-        Write(scene, result, OutputFolder.Begin(outDir), run, cancel, transfer);
+        LightTransfer? transfer = null, ReusedFiles? reuse = null) =>
+        Write(scene, result, OutputFolder.Begin(outDir), run, cancel, transfer, reuse);
 
     /// <summary>
     /// Writes the render into <paramref name="folder"/>'s staging folder and swaps it in whole (<see cref="OutputFolder"/>).
     /// Interrupted or failed, the staged files are removed and the folder holds what it held before.
     /// </summary>
+    /// <param name="reuse">Files another folder holds exactly as this render would write them (a relit render's light-independent files): copied, not encoded.</param>
     public static List<string> Write(Scene scene, RenderResult result, OutputFolder folder, JsonObject? run = null, CancellationToken cancel = default,
-        LightTransfer? transfer = null)
+        LightTransfer? transfer = null, ReusedFiles? reuse = null)
     {
         List<string> written;
-        try { written = WriteFiles(scene, result, folder.Staging, run, cancel, transfer); }
+        try { written = WriteFiles(scene, result, folder.Staging, run, cancel, transfer, reuse); }
         catch (OperationCanceledException e) when (e is not InterruptedException)
         {
             folder.Abandon();
@@ -101,7 +105,7 @@ public static class RenderOutputWriter
         }
     }
 
-    static List<string> WriteFiles(Scene scene, RenderResult result, string outDir, JsonObject? run, CancellationToken cancel, LightTransfer? transfer)
+    static List<string> WriteFiles(Scene scene, RenderResult result, string outDir, JsonObject? run, CancellationToken cancel, LightTransfer? transfer, ReusedFiles? reuse)
     {
         var products = scene.Output.Products;
         bool Has(OutputProducts p) => (products & p) != 0;
@@ -144,11 +148,14 @@ public static class RenderOutputWriter
                 () =>
                 {
                     if (!Has(OutputProducts.Aov)) return;
-                    var ids = new ushort[result.ObjectIds.Length];
-                    for (int i = 0; i < ids.Length; i++) ids[i] = (ushort)(result.ObjectIds[i] + 1);
-                    AtomicFile.Write(Path.Combine(outDir, "object-id.png"), s => PngWriter.WriteGray16(s, image.Width, image.Height, ids));
+                    if (reuse?.Copy("object-id.png", outDir) != true)
+                    {
+                        var ids = new ushort[result.ObjectIds.Length];
+                        for (int i = 0; i < ids.Length; i++) ids[i] = (ushort)(result.ObjectIds[i] + 1);
+                        AtomicFile.Write(Path.Combine(outDir, "object-id.png"), s => PngWriter.WriteGray16(s, image.Width, image.Height, ids));
+                    }
                     Done(3)("object-id.png");
-                    AnalysisImages.Write(scene, result, outDir, Done(3));
+                    AnalysisImages.Write(scene, result, outDir, Done(3), reuse);
                 },
                 () => { if (Has(OutputProducts.Exr)) SpectralFiles.WriteExr(scene, image, bands!, xyz, result.Crop, outDir, Done(4)); },
                 () => { if (Has(OutputProducts.Envi)) SpectralFiles.WriteEnvi(scene, image, bands!, outDir, Done(5)); },
@@ -340,6 +347,7 @@ public static class RenderOutputWriter
         var manifest = new RenderManifest
         {
             Version = typeof(RenderOutputWriter).Assembly.GetName().Version?.ToString(3),
+            Build = EngineBuild,
             Scene = scene.SourcePath,
             CreatedUtc = RenderManifest.Now(),
             // The film's size; a crop or shard holds the pixels of Crop only.

@@ -235,6 +235,41 @@ public class RelightTests(Xunit.Abstractions.ITestOutputHelper output)
     }
 
     [Fact]
+    public void Light_independent_files_are_the_direct_renders_byte_for_byte_copied_or_encoded()
+    {
+        // object-id.png, mask-lit-K.png, reflectance.exr and lights/*.npy do not depend on the lights' spectra: from a folder of
+        // this build they are copied, from another build's (render.json "build" differs) encoded again; both are the direct
+        // render's bytes. A new reference white changes reflectance.exr's header (κ), so it is encoded again then too.
+        var dir = Reference.TempDir();
+        string[] formats = ["--formats", "npy,exr,aov,lights"];
+        Render(Write(dir, "a.json", TwoLightScene("A", "A")), Path.Combine(dir, "A"), formats);
+        Render(Write(dir, "t.json", TwoLightScene("FL11", "led-blue")), Path.Combine(dir, "direct"), formats);
+        Render(Write(dir, "w.json", TwoLightScene("FL11", "led-blue").Replace("\"white\": \"D65\"", "\"white\": \"A\"")), Path.Combine(dir, "direct-white"), formats);
+        string[] same = ["object-id.png", "mask-lit-0.png", "mask-lit-1.png", "reflectance.exr", "lights/factors.npy", "lights/pixels.npy", "lights/centre.npy", "lights/ids.npy"];
+        void Check(string direct, string relit)
+        {
+            foreach (var f in same) Assert.True(File.ReadAllBytes(Path.Combine(direct, f)).AsSpan().SequenceEqual(File.ReadAllBytes(Path.Combine(relit, f))), $"{relit}/{f} differs from {direct}/{f}");
+            AssertSameRender(direct, relit);
+        }
+        string[] Copied(string relit) => JsonNode.Parse(File.ReadAllText(Path.Combine(relit, "render.json")))!["run"]!["relit"]!["copied_files"]!.AsArray().Select(f => (string)f!).ToArray();
+        string[] lights = ["--light", "key=FL11", "--light", "blue=led-blue"];
+        Relight(Path.Combine(dir, "A"), Path.Combine(dir, "copied"), lights);
+        Check(Path.Combine(dir, "direct"), Path.Combine(dir, "copied"));
+        Assert.Equal(same.Order(StringComparer.Ordinal), Copied(Path.Combine(dir, "copied")));
+        Relight(Path.Combine(dir, "A"), Path.Combine(dir, "white"), [.. lights, "--white", "A"]);
+        Check(Path.Combine(dir, "direct-white"), Path.Combine(dir, "white"));
+        Assert.Equal(same.Where(f => f != "reflectance.exr").Order(StringComparer.Ordinal), Copied(Path.Combine(dir, "white")));
+        var manifest = Path.Combine(dir, "A", "render.json");
+        var json = JsonNode.Parse(File.ReadAllText(manifest))!;
+        Assert.Equal(32, ((string)json["build"]!).Length);
+        json["build"] = "another build";
+        File.WriteAllText(manifest, json.ToJsonString());
+        Relight(Path.Combine(dir, "A"), Path.Combine(dir, "encoded"), lights);
+        Check(Path.Combine(dir, "direct"), Path.Combine(dir, "encoded"));
+        Assert.Equal(same.Where(f => f.StartsWith("lights/", StringComparison.Ordinal)).Order(StringComparer.Ordinal), Copied(Path.Combine(dir, "encoded")));
+    }
+
+    [Fact]
     public void Relight_reads_no_mesh_file()
     {
         // Nothing is traced, so a mesh's triangles are not needed: the relight works after the mesh file is gone.
