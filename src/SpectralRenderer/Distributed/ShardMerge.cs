@@ -205,7 +205,7 @@ public static class ShardMerge
                 RenderOutputWriter.BandSamples16(full, scale, grey);
                 var m = parts[0].Manifest;
                 var text = RenderOutputWriter.BandText(grid, b, scale, m.Radiometry, m.BandUnit ?? "");
-                AtomicFile.Write(Path.Combine(outDir, bandFiles[b]), s => PngWriter.WriteGray16BigEndian(s, width, height, grey, PngFilter.Up, text, gamma: 1.0));
+                AtomicFile.Write(Path.Combine(outDir, bandFiles[b]), s => RenderOutputWriter.WriteBandImage(s, width, height, grey, text));
             }
             if (mosaic) BandMosaic.Draw(thumbs, width, height, bands, b, full, scale, 256, grid);
         }

@@ -146,6 +146,28 @@ public static class ExrWriter
         static int WriteInt32(Span<byte> b, int v) { BinaryPrimitives.WriteInt32LittleEndian(b, v); return 4; }
     }
 
+    /// <summary>
+    /// The bytes a file of these settings starts with: magic, version field and header (the channels sorted by name),
+    /// before the offset table. Two files of equal starts differ only in their pixels.
+    /// </summary>
+    public static byte[] FileStart(int w, int h, BandGrid grid, ExrOptions options)
+    {
+        Validate(grid, options);
+        int count = grid.Count + (options.Rgb ? 3 : 0) + (options.Xyz ? 3 : 0);
+        var names = new string[count];
+        int c = 0;
+        for (int b = 0; b < grid.Count; b++) names[c++] = SpectralChannelName(grid.Centre(b), options.Reflective);
+        string[] previewNames = ["R", "G", "B", "X", "Y", "Z"];
+        for (int i = 0; i < 6; i++) if (i < 3 ? options.Rgb : options.Xyz) names[c++] = previewNames[i];
+        SortByName(names, new object[count]);
+        var header = Header(w, h, grid, options, names, out bool longNames);
+        var start = new byte[8 + header.Length];
+        BinaryPrimitives.WriteInt32LittleEndian(start, Magic);
+        BinaryPrimitives.WriteInt32LittleEndian(start.AsSpan(4), 2 | (longNames ? 0x400 : 0));
+        header.CopyTo(start, 8);
+        return start;
+    }
+
     /// <summary>File layout, "Scan Line Blocks": per scanline y0 … y1 − 1, per channel (sorted), all pixels of that channel, little-endian.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     static void ScanLineBlock(ReadOnlyMemory<float>[] planes, int w, int y0, int y1, int sampleBytes, Span<byte> raw)

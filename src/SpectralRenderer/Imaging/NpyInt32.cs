@@ -23,21 +23,27 @@ public static partial class NpyInt32
         long count = 1;
         foreach (int d in shape) count *= d;
         if (count != data.Length) throw new ArgumentException($"shape holds {count} values, data {data.Length}");
+        stream.Write(Preamble(shape));
+        if (BitConverter.IsLittleEndian) { stream.Write(MemoryMarshal.AsBytes(data)); return; }
+        var b = new byte[4];
+        foreach (int v in data) { BinaryPrimitives.WriteInt32LittleEndian(b, v); stream.Write(b); }
+    }
+
+    /// <summary>Magic, version 1.0, header length and the header dict of a C-order int32 array of this shape: the bytes before the data (a multiple of 64).</summary>
+    public static byte[] Preamble(ReadOnlySpan<int> shape)
+    {
         string dims = shape.Length == 1 ? $"{shape[0]}," : string.Join(", ", shape.ToArray().Select(d => d.ToString(CultureInfo.InvariantCulture)));
         string dict = $"{{'descr': '<i4', 'fortran_order': False, 'shape': ({dims}), }}";
         int preamble = Magic.Length + 2 + 2;
         int total = (preamble + dict.Length + 1 + 63) / 64 * 64;
         string header = dict.PadRight(total - preamble - 1) + "\n";
-        stream.Write(Magic);
-        stream.WriteByte(1);
-        stream.WriteByte(0);
-        Span<byte> len = stackalloc byte[2];
-        BinaryPrimitives.WriteUInt16LittleEndian(len, (ushort)header.Length);
-        stream.Write(len);
-        stream.Write(Encoding.ASCII.GetBytes(header));
-        if (BitConverter.IsLittleEndian) { stream.Write(MemoryMarshal.AsBytes(data)); return; }
-        var b = new byte[4];
-        foreach (int v in data) { BinaryPrimitives.WriteInt32LittleEndian(b, v); stream.Write(b); }
+        var bytes = new byte[preamble + header.Length];
+        Magic.CopyTo(bytes);
+        bytes[6] = 1;  // major version
+        bytes[7] = 0;  // minor version
+        BinaryPrimitives.WriteUInt16LittleEndian(bytes.AsSpan(8), (ushort)header.Length);
+        Encoding.ASCII.GetBytes(header, bytes.AsSpan(preamble));
+        return bytes;
     }
 
     public static (int[] Shape, int[] Data) Read(Stream stream, string where = "NPY")

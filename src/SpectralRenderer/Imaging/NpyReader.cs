@@ -74,6 +74,14 @@ public static class NpyReader
             throw new InputException($"{where}: data", $"the header declares shape ({string.Join(", ", shape)}): {count} values of {size} bytes, but the file holds only {stream.Length - stream.Position} bytes of data",
                 "the file is truncated or its header is wrong: save it again with numpy.save");
         if (count * size > Array.MaxLength) throw new InputException($"{where}: header", $"shape ({string.Join(", ", shape)}) is too large", $"at most {Array.MaxLength / size} values");
+        if (size == 4 && big != BitConverter.IsLittleEndian)
+        {
+            // The machine's own float32 layout: read straight into the array, no second copy.
+            var direct = new float[count];
+            try { stream.ReadExactly(System.Runtime.InteropServices.MemoryMarshal.AsBytes(direct.AsSpan())); }
+            catch (EndOfStreamException) { throw new InputException($"{where}: data", $"file is truncated: {count} values of {size} bytes expected", "the file was cut short: save it again with numpy.save"); }
+            return (shape, direct);
+        }
         var bytes = new byte[count * size];
         try { stream.ReadExactly(bytes); }
         catch (EndOfStreamException) { throw new InputException($"{where}: data", $"file is truncated: {count} values of {size} bytes expected", "the file was cut short: save it again with numpy.save"); }

@@ -34,26 +34,26 @@ public static class PngWriter
 
     /// <summary>8-bit RGB, <paramref name="rgb"/> is width·height·3 bytes, rows top to bottom.</summary>
     public static void WriteRgb8(Stream stream, int width, int height, ReadOnlySpan<byte> rgb,
-        IReadOnlyDictionary<string, string>? text = null, PngFilter filter = PngFilter.Adaptive)
+        IReadOnlyDictionary<string, string>? text = null, PngFilter filter = PngFilter.Adaptive, bool huffmanOnly = false)
     {
         Check(width, height, rgb.Length, 3);
-        Write(stream, width, height, 8, 2, 3, rgb, text, filter);
+        Write(stream, width, height, 8, 2, 3, rgb, text, filter, huffmanOnly: huffmanOnly);
     }
 
     /// <summary>8-bit greyscale, one byte per pixel.</summary>
     public static void WriteGray8(Stream stream, int width, int height, ReadOnlySpan<byte> gray,
-        IReadOnlyDictionary<string, string>? text = null, PngFilter filter = PngFilter.Adaptive)
+        IReadOnlyDictionary<string, string>? text = null, PngFilter filter = PngFilter.Adaptive, bool huffmanOnly = false)
     {
         Check(width, height, gray.Length, 1);
-        Write(stream, width, height, 8, 0, 1, gray, text, filter);
+        Write(stream, width, height, 8, 0, 1, gray, text, filter, huffmanOnly: huffmanOnly);
     }
 
     /// <summary>16-bit greyscale; samples are stored big-endian as §7.1 requires.</summary>
     public static void WriteGray16(Stream stream, int width, int height, ReadOnlySpan<ushort> gray,
-        IReadOnlyDictionary<string, string>? text = null, PngFilter filter = PngFilter.Adaptive)
+        IReadOnlyDictionary<string, string>? text = null, PngFilter filter = PngFilter.Adaptive, bool huffmanOnly = false)
     {
         Check(width, height, gray.Length, 1);
-        Write(stream, width, height, 16, 0, 2, BigEndian(gray), text, filter);
+        Write(stream, width, height, 16, 0, 2, BigEndian(gray), text, filter, huffmanOnly: huffmanOnly);
     }
 
     /// <summary>
@@ -61,10 +61,10 @@ public static class PngWriter
     /// chunk (§11.3.3.2: the encoding exponent × 100000; 1 = linear samples) and with <paramref name="text"/> tEXt chunks.
     /// </summary>
     internal static void WriteGray16BigEndian(Stream stream, int width, int height, ReadOnlySpan<byte> samples, PngFilter filter,
-        IReadOnlyDictionary<string, string>? text = null, double? gamma = null)
+        IReadOnlyDictionary<string, string>? text = null, double? gamma = null, bool huffmanOnly = false)
     {
         Check(width, height, samples.Length, 2);
-        Write(stream, width, height, 16, 0, 2, samples, text, filter, gamma);
+        Write(stream, width, height, 16, 0, 2, samples, text, filter, gamma, huffmanOnly);
     }
 
     /// <summary>16-bit RGB, width·height·3 samples, stored big-endian (§7.1).</summary>
@@ -125,7 +125,7 @@ public static class PngWriter
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     static void Write(Stream stream, int width, int height, byte bitDepth, byte colourType, int bpp,
-        ReadOnlySpan<byte> pixels, IReadOnlyDictionary<string, string>? text, PngFilter filter, double? gamma = null)
+        ReadOnlySpan<byte> pixels, IReadOnlyDictionary<string, string>? text, PngFilter filter, double? gamma = null, bool huffmanOnly = false)
     {
         stream.Write(Signature);
 
@@ -164,10 +164,11 @@ public static class PngWriter
         int batchRows = Math.Clamp((1 << 20) / stride, 1, height);
         var batch = ArrayPool<byte>.Shared.Rent(checked(batchRows * stride));
         var scratch = filter == PngFilter.Adaptive ? ArrayPool<byte>.Shared.Rent(2 * stride) : null;
-        var zlibData = new MemoryStream((int)Math.Min(int.MaxValue / 2, (long)height * stride / 4 + 256));
+        var zlibData = huffmanOnly ? null : new MemoryStream((int)Math.Min(int.MaxValue / 2, (long)height * stride / 4 + 256));
+        var huffman = huffmanOnly ? new HuffmanDeflate() : null;
         try
         {
-            using (var z = new ZLibStream(zlibData, CompressionLevel.Fastest, leaveOpen: true))
+            using (var z = zlibData is null ? null : new ZLibStream(zlibData, CompressionLevel.Fastest, leaveOpen: true))
             {
                 for (int y0 = 0; y0 < height; y0 += batchRows)
                 {
@@ -182,7 +183,13 @@ public static class PngWriter
                         if (filter == PngFilter.Adaptive) FilterAdaptive(row, prior, bpp, output, scratch!);
                         else FilterRow((int)filter, row, prior, bpp, output);
                     }
-                    z.Write(batch, 0, rows * stride);
+                    if (z is not null) z.Write(batch, 0, rows * stride);
+                    else
+                    {
+                        // One deflate block of its own Huffman code per batch, its bytes one IDAT chunk (§11.2.4: any split is allowed).
+                        var bytes = huffman!.Block(batch.AsSpan(0, rows * stride), final: y0 + rows == height);
+                        if (bytes.Length > 0) WriteChunk(stream, "IDAT", bytes);
+                    }
                 }
             }
         }
@@ -190,14 +197,18 @@ public static class PngWriter
         {
             ArrayPool<byte>.Shared.Return(batch);
             if (scratch is not null) ArrayPool<byte>.Shared.Return(scratch);
+            huffman?.Dispose();
         }
-        var data = zlibData.GetBuffer().AsSpan(0, (int)zlibData.Length);
-        int at = 0;
-        do
+        if (zlibData is not null)
         {
-            WriteChunk(stream, "IDAT", data.Slice(at, Math.Min(IdatSize, data.Length - at)));
-            at += IdatSize;
-        } while (at < data.Length);
+            var data = zlibData.GetBuffer().AsSpan(0, (int)zlibData.Length);
+            int at = 0;
+            do
+            {
+                WriteChunk(stream, "IDAT", data.Slice(at, Math.Min(IdatSize, data.Length - at)));
+                at += IdatSize;
+            } while (at < data.Length);
+        }
         WriteChunk(stream, "IEND", []);
     }
 

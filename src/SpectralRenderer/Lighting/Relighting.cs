@@ -46,6 +46,8 @@ public static class Relighting
             Formats = (string?)o?["formats"],
             ExrCompression = (string?)o?["exr_compression"],
             ModelDirectories = o?["models"]?.AsArray().Select(d => (string)d!).Where(Directory.Exists).ToList() ?? [],
+            // No ray is traced: the meshes' triangles are not needed (nor their files present).
+            LoadMeshes = false,
         };
         var names = (scene["lights"] as JsonArray ?? []).Select((l, i) => (string?)l?["name"] ?? $"light-{i}").ToArray();
         return new Source(dir, manifest, scene, manifest.Scene.Length > 0 ? manifest.Scene : Path.Combine(dir, "scene.json"), overrides, names);
@@ -119,6 +121,8 @@ public static class Relighting
                 ["changes"] = new JsonArray(changes.Select(c => (JsonNode)new JsonObject
                 { ["light"] = c.Light, ["spectrum"] = c.Spectrum, ["intensity"] = c.Intensity }).ToArray()),
                 ["white"] = white,
+                // Wall seconds to read lights/ and recombine the image and its colours (no files written).
+                ["compute_s"] = compute.TotalSeconds,
             },
         };
         if (Path.GetFullPath(outDir) == Path.GetFullPath(src.Dir))
@@ -131,13 +135,62 @@ public static class Relighting
             ((JsonObject)run["relit"]!)["metrics"] = mj;
             metricsCsv = csv;
         }
-        var files = RenderOutputWriter.Write(scene, result, outDir, run, cancel, transfer);
+        var reuse = Reusable(src, scene, result.Crop);
+        var copied = (reuse?.Names ?? Enumerable.Empty<string>()).Concat(transfer.StoredIn is null ? [] : LightTransferFiles.Arrays.Select(f => $"{LightTransferFiles.Folder}/{f}"));
+        // Which files were copied from the source (no light changes them; see Reusable), not encoded again.
+        ((JsonObject)run["relit"]!)["copied_files"] = new JsonArray(copied.Order(StringComparer.Ordinal).Select(f => (JsonNode)f).ToArray());
+        var files = RenderOutputWriter.Write(scene, result, outDir, run, cancel, transfer, reuse);
         if (metricsCsv is not null)
         {
             AtomicFile.WriteAllText(Path.Combine(outDir, "relight-metrics.csv"), metricsCsv);
             files.Add("relight-metrics.csv");
         }
         return (scene, files, compute);
+    }
+
+    /// <summary>
+    /// The source's files that a render of the relit scene writes byte for byte the same, when the source was written by
+    /// this very build (render.json "build"): object-id.png and mask-lit-K.png (which object each centre ray sees and
+    /// which lights reach it: geometry, whatever the lights' spectra and intensities), and reflectance.exr when the
+    /// materials' band values are the source's (lights/lights.json) and its header is (κ and the colorimetry follow the
+    /// reference white). Null when the source is another build's.
+    /// </summary>
+    public static ReusedFiles? Reusable(Source src, Scene scene, PixelRect crop)
+    {
+        if (src.Manifest.Build != RenderOutputWriter.EngineBuild || src.Manifest.Files is not { } listed) return null;
+        var names = new List<string> { "object-id.png" };
+        for (int k = 0; k < Math.Min(32, scene.Lights.Count); k++) names.Add($"mask-lit-{k}.png");
+        if (SameMaterials(src, scene))
+        {
+            var path = Path.Combine(src.Dir, "reflectance.exr");
+            var start = AnalysisImages.ReflectanceFileStart(scene, crop);
+            if (File.Exists(path) && new FileInfo(path).Length > start.Length)
+            {
+                var head = new byte[start.Length];
+                using (var f = File.OpenRead(path)) f.ReadExactly(head);
+                if (head.AsSpan().SequenceEqual(start)) names.Add("reflectance.exr");
+            }
+        }
+        return new ReusedFiles(Path.GetFullPath(src.Dir), names.Where(n => listed.Contains(n) && File.Exists(Path.Combine(src.Dir, n))));
+    }
+
+    /// <summary>Whether the scene's materials are the source's, name for name and band value for band value (lights/lights.json).</summary>
+    static bool SameMaterials(Source src, Scene scene)
+    {
+        try
+        {
+            var json = JsonNode.Parse(File.ReadAllText(Path.Combine(src.Dir, LightTransferFiles.Folder, "lights.json")))?["materials"] as JsonArray;
+            if (json is null || json.Count != scene.Materials.Count) return false;
+            for (int m = 0; m < json.Count; m++)
+            {
+                var values = json[m]?["diffuse_band_values"] as JsonArray;
+                if ((string?)json[m]?["name"] != scene.Materials[m].Name || values is null || values.Count != scene.Bands) return false;
+                for (int b = 0; b < scene.Bands; b++)
+                    if ((float)(double)values[b]! != scene.Materials[m].Diffuse[b]) return false;
+            }
+            return true;
+        }
+        catch (Exception e) when (e is JsonException or InvalidOperationException or FormatException or IOException) { return false; }
     }
 
     /// <summary>

@@ -15,16 +15,19 @@ namespace SpectralRenderer.Output;
 public static class AnalysisImages
 {
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    public static void Write(Scene scene, RenderResult result, string outDir, Action<string> done)
+    public static void Write(Scene scene, RenderResult result, string outDir, Action<string> done, ReusedFiles? reuse = null)
     {
         var image = result.Image;
         int n = image.Width * image.Height;
         var mask = new byte[n];
         for (int k = 0; k < Math.Min(32, scene.Lights.Count); k++)
         {
-            for (int i = 0; i < n; i++) mask[i] = (result.LitMasks[i] & (1u << k)) != 0 ? (byte)255 : (byte)0;
             var name = $"mask-lit-{k}.png";
-            AtomicFile.Write(Path.Combine(outDir, name), s => PngWriter.WriteGray8(s, image.Width, image.Height, mask));
+            if (reuse?.Copy(name, outDir) != true)
+            {
+                for (int i = 0; i < n; i++) mask[i] = (result.LitMasks[i] & (1u << k)) != 0 ? (byte)255 : (byte)0;
+                AtomicFile.Write(Path.Combine(outDir, name), s => PngWriter.WriteGray8(s, image.Width, image.Height, mask));
+            }
             done(name);
         }
         float f = (float)scene.Output.HighlightFraction;
@@ -32,19 +35,26 @@ public static class AnalysisImages
         AtomicFile.Write(Path.Combine(outDir, "mask-highlight.png"), s => PngWriter.WriteGray8(s, image.Width, image.Height, mask));
         done("mask-highlight.png");
 
-        ExrWriter.Write(Path.Combine(outDir, "reflectance.exr"), image.Width, image.Height, image.Grid, GroundTruthBands(scene, result), null,
-            new ExrOptions
-            {
-                Reflective = true,
-                Rgb = false,
-                Colorimeter = scene.Colorimeter,
-                DataX = result.Crop.X0,
-                DataY = result.Crop.Y0,
-                DisplayWidth = scene.Camera.Width,
-                DisplayHeight = scene.Camera.Height
-            });
+        if (reuse?.Copy("reflectance.exr", outDir) != true)
+            ExrWriter.Write(Path.Combine(outDir, "reflectance.exr"), image.Width, image.Height, image.Grid, GroundTruthBands(scene, result), null, ReflectanceOptions(scene, result.Crop));
         done("reflectance.exr");
     }
+
+    /// <summary>reflectance.exr's options: T.λ channels, no colour channels, the crop as its data window in the film.</summary>
+    public static ExrOptions ReflectanceOptions(Scene scene, PixelRect crop) => new()
+    {
+        Reflective = true,
+        Rgb = false,
+        Colorimeter = scene.Colorimeter,
+        DataX = crop.X0,
+        DataY = crop.Y0,
+        DisplayWidth = scene.Camera.Width,
+        DisplayHeight = scene.Camera.Height
+    };
+
+    /// <summary>The bytes reflectance.exr of this scene starts with (magic, version, header): what the writer's settings alone decide.</summary>
+    public static byte[] ReflectanceFileStart(Scene scene, PixelRect crop) =>
+        ExrWriter.FileStart(crop.Width, crop.Height, scene.Grid, ReflectanceOptions(scene, crop));
 
     /// <summary>The ground-truth diffuse reflectance of what each pixel sees (reflectance.exr), as band-sequential planes (<see cref="SpectralImage.CopyBands"/>), built directly.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]

@@ -30,10 +30,29 @@ public static class LightTransferFiles
 {
     public const string Folder = "lights";
 
+    /// <summary>The four arrays, in the order written.</summary>
+    public static readonly IReadOnlyList<string> Arrays = ["factors.npy", "pixels.npy", "centre.npy", "ids.npy"];
+
     public static void Write(Scene scene, LightTransfer t, string outDir, Action<string> done)
     {
         var dir = Path.Combine(outDir, Folder);
         Directory.CreateDirectory(dir);
+        if (t.StoredIn is { } from)
+        {
+            // Read from files that are byte for byte these arrays' encoding: copied (in the kernel), not encoded again.
+            foreach (var f in Arrays)
+            {
+                File.Copy(Path.Combine(from, Folder, f), Path.Combine(dir, f));
+                done($"{Folder}/{f}");
+            }
+        }
+        else WriteArrays(t, dir, done);
+        AtomicFile.WriteAllText(Path.Combine(dir, "lights.json"), Describe(scene, t).ToJsonString(new JsonSerializerOptions { WriteIndented = true }));
+        done($"{Folder}/lights.json");
+    }
+
+    static void WriteArrays(LightTransfer t, string dir, Action<string> done)
+    {
         int n = t.Width * t.Height;
         int nnz = t.Factors.Sum(f => f.Length);
         var factors = new float[nnz];
@@ -56,8 +75,16 @@ public static class LightTransferFiles
         for (int i = 0; i < n; i++) { ids[i] = t.ObjectIds[i] + 1; ids[n + i] = t.LitMasks[i]; ids[2 * n + i] = t.Fallback[i] ? 1 : 0; }
         AtomicFile.Write(Path.Combine(dir, "ids.npy"), s => NpyWriter.Write(s, [3, t.Height, t.Width], ids));
         done($"{Folder}/ids.npy");
-        AtomicFile.WriteAllText(Path.Combine(dir, "lights.json"), Describe(scene, t).ToJsonString(new JsonSerializerOptions { WriteIndented = true }));
-        done($"{Folder}/lights.json");
+    }
+
+    /// <summary>Whether <paramref name="path"/> is <paramref name="preamble"/> followed by exactly <paramref name="dataBytes"/> bytes of data.</summary>
+    static bool Canonical(string path, byte[] preamble, long dataBytes)
+    {
+        if (new FileInfo(path).Length != preamble.Length + dataBytes) return false;
+        using var s = File.OpenRead(path);
+        var head = new byte[preamble.Length];
+        s.ReadExactly(head);
+        return head.AsSpan().SequenceEqual(preamble);
     }
 
     /// <summary>The light band values I_k,b (spectrum × intensity) of the scene's lights, unpadded.</summary>
@@ -162,7 +189,7 @@ public static class LightTransferFiles
         {
             var path = Path.Combine(dir, file);
             if (!File.Exists(path)) throw new InputException(outDir, $"misses {Folder}/{file}", "render again with the lights output");
-            using var s = File.OpenRead(path);
+            using var s = new FileStream(path, FileMode.Open, FileAccess.Read, FileShare.Read, bufferSize: 1);   // one read into the array
             var (shape, data) = NpyReader.Read(s, path);
             if (!shape.SequenceEqual(expected))
                 throw new InputException(path, $"has shape ({string.Join(", ", shape)}), lights.json says ({string.Join(", ", expected)})", "the folder mixes two renders; render again");
@@ -175,7 +202,7 @@ public static class LightTransferFiles
         {
             var path = Path.Combine(dir, "pixels.npy");
             if (!File.Exists(path)) throw new InputException(outDir, $"misses {Folder}/pixels.npy", "render again with the lights output");
-            using var s = File.OpenRead(path);
+            using var s = new FileStream(path, FileMode.Open, FileAccess.Read, FileShare.Read, bufferSize: 1);
             var (shape, data) = NpyInt32.Read(s, path);
             if (shape.Length != 1 || shape[0] != nnz) throw new InputException(path, $"holds {string.Join("×", shape)} entries, lights.json says {nnz}", "the folder mixes two renders; render again");
             pix = data;
@@ -191,6 +218,24 @@ public static class LightTransferFiles
         int k = scene.Lights.Count;
         var centre = Load("centre.npy", [2 * k, height, width]);
         var ids = Load("ids.npy", [3, height, width]);
+        var objectIds = new int[n];
+        var litMasks = new uint[n];
+        var fallback = new bool[n];
+        // Writing the transfer back gives the same ids.npy when every value is one the conversions keep.
+        bool idsKept = true;
+        for (int i = 0; i < n; i++)
+        {
+            objectIds[i] = (int)ids[i] - 1; litMasks[i] = (uint)ids[n + i]; fallback[i] = ids[2 * n + i] != 0;
+            idsKept &= objectIds[i] + 1 == ids[i] && litMasks[i] == ids[n + i] && (fallback[i] ? 1f : 0f) == ids[2 * n + i];
+        }
+        // … and the same factors.npy and pixels.npy when the components' entries follow each other in order.
+        bool contiguous = true;
+        for (int c = 0, at = 0; c < offsets.Length; at += offsets[c].Count, c++) contiguous &= offsets[c].Offset == at;
+        bool canonical = idsKept && contiguous
+            && Canonical(Path.Combine(dir, "factors.npy"), NpyWriter.Preamble([(int)nnz]), 4 * nnz)
+            && Canonical(Path.Combine(dir, "pixels.npy"), NpyInt32.Preamble([(int)nnz]), 4 * nnz)
+            && Canonical(Path.Combine(dir, "centre.npy"), NpyWriter.Preamble([2 * k, height, width]), 4L * centre.Length)
+            && Canonical(Path.Combine(dir, "ids.npy"), NpyWriter.Preamble([3, height, width]), 4L * ids.Length);
         return new LightTransfer
         {
             Width = width,
@@ -203,10 +248,11 @@ public static class LightTransferFiles
             Merged = nodes.Select(c => (int?)c!["merged_chains"] ?? 1).ToArray(),
             CentreDiffuse = Enumerable.Range(0, k).Select(i => centre.AsSpan(2 * i * n, n).ToArray()).ToArray(),
             CentreSpecular = Enumerable.Range(0, k).Select(i => centre.AsSpan((2 * i + 1) * n, n).ToArray()).ToArray(),
-            ObjectIds = Enumerable.Range(0, n).Select(i => (int)ids[i] - 1).ToArray(),
-            LitMasks = Enumerable.Range(0, n).Select(i => (uint)ids[n + i]).ToArray(),
-            Fallback = Enumerable.Range(0, n).Select(i => ids[2 * n + i] != 0).ToArray(),
+            ObjectIds = objectIds,
+            LitMasks = litMasks,
+            Fallback = fallback,
             Rays = new RayCounters(),
+            StoredIn = canonical ? Path.GetFullPath(outDir) : null,
         };
     }
 }

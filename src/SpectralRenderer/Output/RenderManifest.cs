@@ -32,6 +32,11 @@ public sealed record RenderManifest
 
     public string Tool { get; init; } = "spectral";
     public string? Version { get; init; }
+    /// <summary>
+    /// The engine build that wrote the folder: its assembly's module version id (a new one for every change of the code,
+    /// the same for the same code). Files of a folder written by this very build are what it would write again.
+    /// </summary>
+    public string? Build { get; init; }
     public required string Scene { get; init; }
     public required string CreatedUtc { get; init; }
     public required int Width { get; init; }
@@ -135,6 +140,7 @@ public sealed record RenderManifest
         {
             ["tool"] = Tool,
             ["version"] = Version,
+            ["build"] = Build,
             ["scene"] = Scene,
             ["created_utc"] = CreatedUtc,
             ["width"] = Width,
@@ -251,6 +257,7 @@ public sealed record RenderManifest
         {
             Tool = r.OptStr(json, "tool") ?? "spectral",
             Version = r.OptStr(json, "version"),
+            Build = r.OptStr(json, "build"),
             Scene = r.OptStr(json, "scene") ?? "",
             CreatedUtc = r.OptStr(json, "created_utc") ?? "",
             Width = r.Int(json, "width", "$"),

@@ -21,19 +21,23 @@ namespace SpectralRenderer.Output;
 /// </summary>
 public static class RenderOutputWriter
 {
+    /// <summary>This engine build's identity (render.json "build"): the module version id of its assembly.</summary>
+    public static string EngineBuild { get; } = typeof(RenderOutputWriter).Assembly.ManifestModule.ModuleVersionId.ToString("N");
+
     public static List<string> Write(Scene scene, RenderResult result, string outDir, JsonObject? run = null, CancellationToken cancel = default,
-        LightTransfer? transfer = null) =>
-        Write(scene, result, OutputFolder.Begin(outDir), run, cancel, transfer);
+        LightTransfer? transfer = null, ReusedFiles? reuse = null) =>
+        Write(scene, result, OutputFolder.Begin(outDir), run, cancel, transfer, reuse);
 
     /// <summary>
     /// Writes the render into <paramref name="folder"/>'s staging folder and swaps it in whole (<see cref="OutputFolder"/>).
     /// Interrupted or failed, the staged files are removed and the folder holds what it held before.
     /// </summary>
+    /// <param name="reuse">Files another folder holds exactly as this render would write them (a relit render's light-independent files): copied, not encoded.</param>
     public static List<string> Write(Scene scene, RenderResult result, OutputFolder folder, JsonObject? run = null, CancellationToken cancel = default,
-        LightTransfer? transfer = null)
+        LightTransfer? transfer = null, ReusedFiles? reuse = null)
     {
         List<string> written;
-        try { written = WriteFiles(scene, result, folder.Staging, run, cancel, transfer); }
+        try { written = WriteFiles(scene, result, folder.Staging, run, cancel, transfer, reuse); }
         catch (OperationCanceledException e) when (e is not InterruptedException)
         {
             folder.Abandon();
@@ -52,6 +56,7 @@ public static class RenderOutputWriter
     static void CheckFinite(SpectralImage image)
     {
         var data = image.Data.AsSpan();
+        if (AllFinite(data)) return;
         long bad = 0;
         int first = -1;
         for (int i = 0; i < data.Length; i++)
@@ -61,6 +66,24 @@ public static class RenderOutputWriter
             int px = first / image.Bands;
             throw new WorkFailedException($"the render produced {bad} non-finite band values (the first at pixel {px % image.Width},{px / image.Width}, band {first % image.Bands}); nothing was written");
         }
+    }
+
+    /// <summary>No NaN or ∞: no value has all exponent bits set (IEEE 754 binary32), a vector of values at a time.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    static bool AllFinite(ReadOnlySpan<float> data)
+    {
+        int i = 0;
+        if (Vector.IsHardwareAccelerated)
+        {
+            var exponent = new Vector<uint>(0x7F800000u);
+            var any = Vector<uint>.Zero;
+            var bits = MemoryMarshal.Cast<float, uint>(data);
+            for (; i + Vector<uint>.Count <= bits.Length; i += Vector<uint>.Count)
+                any |= Vector.Equals(new Vector<uint>(bits[i..]) & exponent, exponent);
+            if (any != Vector<uint>.Zero) return false;
+        }
+        for (; i < data.Length; i++) if (!float.IsFinite(data[i])) return false;
+        return true;
     }
 
     /// <summary>The first JSON path in <paramref name="node"/> holding a number that is not finite, or null.</summary>
@@ -82,10 +105,11 @@ public static class RenderOutputWriter
         }
     }
 
-    static List<string> WriteFiles(Scene scene, RenderResult result, string outDir, JsonObject? run, CancellationToken cancel, LightTransfer? transfer)
+    static List<string> WriteFiles(Scene scene, RenderResult result, string outDir, JsonObject? run, CancellationToken cancel, LightTransfer? transfer, ReusedFiles? reuse)
     {
         var products = scene.Output.Products;
         bool Has(OutputProducts p) => (products & p) != 0;
+        var writeClock = System.Diagnostics.Stopwatch.StartNew();
         var image = result.Image;
         CheckFinite(image);
         Directory.CreateDirectory(outDir);
@@ -124,11 +148,14 @@ public static class RenderOutputWriter
                 () =>
                 {
                     if (!Has(OutputProducts.Aov)) return;
-                    var ids = new ushort[result.ObjectIds.Length];
-                    for (int i = 0; i < ids.Length; i++) ids[i] = (ushort)(result.ObjectIds[i] + 1);
-                    AtomicFile.Write(Path.Combine(outDir, "object-id.png"), s => PngWriter.WriteGray16(s, image.Width, image.Height, ids));
+                    if (reuse?.Copy("object-id.png", outDir) != true)
+                    {
+                        var ids = new ushort[result.ObjectIds.Length];
+                        for (int i = 0; i < ids.Length; i++) ids[i] = (ushort)(result.ObjectIds[i] + 1);
+                        AtomicFile.Write(Path.Combine(outDir, "object-id.png"), s => PngWriter.WriteGray16(s, image.Width, image.Height, ids));
+                    }
                     Done(3)("object-id.png");
-                    AnalysisImages.Write(scene, result, outDir, Done(3));
+                    AnalysisImages.Write(scene, result, outDir, Done(3), reuse);
                 },
                 () => { if (Has(OutputProducts.Exr)) SpectralFiles.WriteExr(scene, image, bands!, xyz, result.Crop, outDir, Done(4)); },
                 () => { if (Has(OutputProducts.Envi)) SpectralFiles.WriteEnvi(scene, image, bands!, outDir, Done(5)); },
@@ -146,6 +173,8 @@ public static class RenderOutputWriter
 
         var written = new List<string>();
         foreach (var g in groups) written.AddRange(g);
+        // Wall seconds from the pixels to every file but render.json written (not hashed: a timing).
+        if (run is not null) run["write_s"] = writeClock.Elapsed.TotalSeconds;
         var final = manifest! with { Files = written.ToArray() };
         if (NonFinite(final.ToJson()) is { } bad)
             throw new WorkFailedException($"render.json would hold a non-finite number at {bad}; nothing was written");
@@ -186,15 +215,22 @@ public static class RenderOutputWriter
             {
                 BandSamples16(plane, scale, grey.AsSpan(0, 2 * n));
                 names[b] = BandFileName(scene, b);
-                // The Up filter alone: one pass per row instead of trying all five (band images are smooth).
-                // Linear samples (gAMA 1) on the common scale, which a text chunk states with its unit.
                 var text = BandText(scene, b, scale);
-                AtomicFile.Write(Path.Combine(dir, names[b]), s => PngWriter.WriteGray16BigEndian(s, image.Width, image.Height, grey.AsSpan(0, 2 * n), PngFilter.Up, text, gamma: 1.0));
+                AtomicFile.Write(Path.Combine(dir, names[b]), s => WriteBandImage(s, image.Width, image.Height, grey.AsSpan(0, 2 * n), text));
             }
             finally { ArrayPool<byte>.Shared.Return(grey); }
         });
         foreach (var name in names) done($"bands/{name}");
     }
+
+    /// <summary>
+    /// One band image: 16-bit linear samples (gAMA 1) on the common scale, which the text chunks state with its unit. The Sub
+    /// filter alone (one pass per row instead of trying all five) and deflate blocks of Huffman-coded literals
+    /// (<see cref="HuffmanDeflate"/>): a band image's residuals have no long repeats for LZ77 to find, so this is about 3×
+    /// faster than zlib at level 1 and the files are about a fifth smaller (BENCHMARKS.md, "Writers").
+    /// </summary>
+    internal static void WriteBandImage(Stream s, int width, int height, ReadOnlySpan<byte> bigEndian, Dictionary<string, string> text) =>
+        PngWriter.WriteGray16BigEndian(s, width, height, bigEndian, PngFilter.Sub, text, gamma: 1.0, huffmanOnly: true);
 
     /// <summary>The tEXt chunks of band image b: what it shows and the scale from its samples to band values.</summary>
     internal static Dictionary<string, string> BandText(Scene scene, int b, float scale) =>
@@ -311,6 +347,7 @@ public static class RenderOutputWriter
         var manifest = new RenderManifest
         {
             Version = typeof(RenderOutputWriter).Assembly.GetName().Version?.ToString(3),
+            Build = EngineBuild,
             Scene = scene.SourcePath,
             CreatedUtc = RenderManifest.Now(),
             // The film's size; a crop or shard holds the pixels of Crop only.

@@ -124,6 +124,11 @@ public sealed class LightTransfer
     /// <summary>Per pixel: did a path meet a coloured mirror or transmittance (the renderer's colour fallback to eq. 3)?</summary>
     public required bool[] Fallback { get; init; }
     public required RayCounters Rays { get; init; }
+    /// <summary>
+    /// The render folder whose lights/*.npy this transfer was read from when they are byte for byte what writing it
+    /// gives (LightTransferFiles): a relit render copies them instead of encoding them again. Null for a traced transfer.
+    /// </summary>
+    public string? StoredIn { get; init; }
 
     public const int MaxChain = 6;
 
@@ -173,7 +178,15 @@ public sealed class LightTransfer
                     float fi = f[j];
                     int i = pix[j];
                     var px = data.AsSpan(i * bands, bands);
-                    for (int b = 0; b < bands; b++) px[b] += fi * pc[b];
+                    // px[b] + fi·pc[b] per band, a vector of bands at a time (the same multiply and add per lane, no fused multiply-add).
+                    int b = 0;
+                    if (Vector.IsHardwareAccelerated)
+                    {
+                        var vf = new Vector<float>(fi);
+                        for (; b + Vector<float>.Count <= bands; b += Vector<float>.Count)
+                            (new Vector<float>(px[b..]) + vf * new Vector<float>(pc, b)).CopyTo(px[b..]);
+                    }
+                    for (; b < bands; b++) px[b] += fi * pc[b];
                     xyz[3 * i] += fi * cx; xyz[3 * i + 1] += fi * cy; xyz[3 * i + 2] += fi * cz;
                 }
             }

@@ -98,6 +98,27 @@ public class InteropTests(ITestOutputHelper output)
         }
     }
 
+    [SkippableFact]
+    public void Oiiotool_reads_a_band_image_of_huffman_coded_blocks_with_our_stats()
+    {
+        // libpng (through OpenImageIO) inflates the band images' encoding: two deflate blocks with their own codes.
+        var exe = Require("oiiotool", "openimageio-tools");
+        int w = 1024, h = 520;
+        var samples = new ushort[w * h];
+        for (int i = 0; i < samples.Length; i++) samples[i] = (ushort)(30000 + 20000 * Math.Sin(i * 0.0007) + i % 97);
+        var file = Path.Combine(Reference.TempDir(), "band.png");
+        AtomicFile.Write(file, s => PngWriter.WriteGray16(s, w, h, samples, filter: PngFilter.Sub, huffmanOnly: true));
+        var (exit, stdout, stderr) = Tool.Run(exe, ["--info", "-v", "--stats", file]);
+        output.WriteLine(stdout);
+        Assert.True(exit == 0, stderr);
+        Assert.Contains("1024 x  520, 1 channel, uint16 png", stdout);
+        int Stat(string name) => int.Parse(Regex.Match(stdout, $@"Stats {name}: (\d+) \(of 65535\)").Groups[1].Value, CultureInfo.InvariantCulture);
+        Assert.Equal(samples.Min(), Stat("Min"));
+        Assert.Equal(samples.Max(), Stat("Max"));
+        var avg = double.Parse(Regex.Match(stdout, @"Stats Avg: ([0-9.]+) \(of 65535\)").Groups[1].Value, CultureInfo.InvariantCulture);
+        Assert.Equal(samples.Average(v => (double)v), avg, 0.006);
+    }
+
     static void Close(double ours, double theirs, string what) =>
         Assert.True(Math.Abs(ours - theirs) <= 1e-6 * Math.Abs(ours) + 5.01e-7, $"{what}: ours {ours:R}, tool {theirs:R}");
 
@@ -161,6 +182,18 @@ public class InteropTests(ITestOutputHelper output)
         var g8 = Path.Combine(dir, "gray8.png");
         PngWriter.WriteGray8(g8, W, H, PngTests.Gray8(), filter: PngFilter.Paeth);
         pngs.Add(new { path = g8, width = W, height = H, depth = 8, colour = 0, samples = PngTests.Gray8().Select(v => (int)v) });
+
+        // Deflate blocks of Huffman-coded literals (the band images' encoding): small (one block) and over 1 MiB of
+        // rows (two blocks, each with its own code, split across IDAT chunks), decoded by python's zlib (Adler-32 checked).
+        foreach (var (w, h) in new[] { (W, H), (1024, 520) })
+        {
+            var samples = new ushort[w * h];
+            for (int y = 0; y < h; y++)
+                for (int x = 0; x < w; x++) samples[y * w + x] = (ushort)(20000 + 9000 * Math.Sin(x * 0.01) * Math.Cos(y * 0.013) + (x * 7919 + y * 104729) % 61);
+            var p = Path.Combine(dir, $"huffman-{w}x{h}.png");
+            AtomicFile.Write(p, s => PngWriter.WriteGray16(s, w, h, samples, filter: PngFilter.Sub, huffmanOnly: true));
+            pngs.Add(new { path = p, width = w, height = h, depth = 16, colour = 0, samples = samples.Select(v => (int)v) });
+        }
 
         var manifest = Path.Combine(dir, "manifest.json");
         File.WriteAllText(manifest, JsonSerializer.Serialize(new { npy = new { path = npy, shape = new[] { H, W, img.Bands }, values }, pngs }));

@@ -205,6 +205,87 @@ public class RelightTests(Xunit.Abstractions.ITestOutputHelper output)
         AssertSameRender(Path.Combine(dir, "direct"), Path.Combine(dir, "relit"));
     }
 
+    [Fact]
+    public void Relit_light_arrays_are_the_sources_whether_copied_or_encoded_again()
+    {
+        var dir = Reference.TempDir();
+        Render(Write(dir, "s.json", TwoLightScene("A", "led-blue")), Path.Combine(dir, "r"), "--formats", "npy,lights");
+        string[] arrays = ["factors.npy", "pixels.npy", "centre.npy", "ids.npy"];
+        var source = arrays.ToDictionary(f => f, f => File.ReadAllBytes(Path.Combine(dir, "r", "lights", f)));
+        // Files as the writer encodes them are copied: the same bytes.
+        Relight(Path.Combine(dir, "r"), Path.Combine(dir, "copied"), "--light", "key=D65");
+        foreach (var f in arrays) Assert.Equal(source[f], File.ReadAllBytes(Path.Combine(dir, "copied", "lights", f)));
+        // factors.npy saved another way (float64, as numpy.save of a float64 array writes it): read, then encoded again
+        // by the writer, which gives the bytes of the original float32 file.
+        var factors = source["factors.npy"];
+        int headerLength = 10 + BitConverter.ToUInt16(factors, 8);
+        int count = (factors.Length - headerLength) / 4;
+        string dict = $"{{'descr': '<f8', 'fortran_order': False, 'shape': ({count},), }}";
+        var header = dict.PadRight((10 + dict.Length + 1 + 63) / 64 * 64 - 10 - 1) + "\n";
+        using (var f8 = File.Create(Path.Combine(dir, "r", "lights", "factors.npy")))
+        {
+            f8.Write([0x93, (byte)'N', (byte)'U', (byte)'M', (byte)'P', (byte)'Y', 1, 0]);
+            f8.Write(BitConverter.GetBytes((ushort)header.Length));
+            f8.Write(System.Text.Encoding.ASCII.GetBytes(header));
+            for (int i = 0; i < count; i++) f8.Write(BitConverter.GetBytes((double)BitConverter.ToSingle(factors, headerLength + 4 * i)));
+        }
+        Relight(Path.Combine(dir, "r"), Path.Combine(dir, "encoded"), "--light", "key=D65");
+        foreach (var f in arrays) Assert.Equal(source[f], File.ReadAllBytes(Path.Combine(dir, "encoded", "lights", f)));
+        Assert.Equal(File.ReadAllBytes(Path.Combine(dir, "copied", "spectral.npy")), File.ReadAllBytes(Path.Combine(dir, "encoded", "spectral.npy")));
+    }
+
+    [Fact]
+    public void Light_independent_files_are_the_direct_renders_byte_for_byte_copied_or_encoded()
+    {
+        // object-id.png, mask-lit-K.png, reflectance.exr and lights/*.npy do not depend on the lights' spectra: from a folder of
+        // this build they are copied, from another build's (render.json "build" differs) encoded again; both are the direct
+        // render's bytes. A new reference white changes reflectance.exr's header (κ), so it is encoded again then too.
+        var dir = Reference.TempDir();
+        string[] formats = ["--formats", "npy,exr,aov,lights"];
+        Render(Write(dir, "a.json", TwoLightScene("A", "A")), Path.Combine(dir, "A"), formats);
+        Render(Write(dir, "t.json", TwoLightScene("FL11", "led-blue")), Path.Combine(dir, "direct"), formats);
+        Render(Write(dir, "w.json", TwoLightScene("FL11", "led-blue").Replace("\"white\": \"D65\"", "\"white\": \"A\"")), Path.Combine(dir, "direct-white"), formats);
+        string[] same = ["object-id.png", "mask-lit-0.png", "mask-lit-1.png", "reflectance.exr", "lights/factors.npy", "lights/pixels.npy", "lights/centre.npy", "lights/ids.npy"];
+        void Check(string direct, string relit)
+        {
+            foreach (var f in same) Assert.True(File.ReadAllBytes(Path.Combine(direct, f)).AsSpan().SequenceEqual(File.ReadAllBytes(Path.Combine(relit, f))), $"{relit}/{f} differs from {direct}/{f}");
+            AssertSameRender(direct, relit);
+        }
+        string[] Copied(string relit) => JsonNode.Parse(File.ReadAllText(Path.Combine(relit, "render.json")))!["run"]!["relit"]!["copied_files"]!.AsArray().Select(f => (string)f!).ToArray();
+        string[] lights = ["--light", "key=FL11", "--light", "blue=led-blue"];
+        Relight(Path.Combine(dir, "A"), Path.Combine(dir, "copied"), lights);
+        Check(Path.Combine(dir, "direct"), Path.Combine(dir, "copied"));
+        Assert.Equal(same.Order(StringComparer.Ordinal), Copied(Path.Combine(dir, "copied")));
+        Relight(Path.Combine(dir, "A"), Path.Combine(dir, "white"), [.. lights, "--white", "A"]);
+        Check(Path.Combine(dir, "direct-white"), Path.Combine(dir, "white"));
+        Assert.Equal(same.Where(f => f != "reflectance.exr").Order(StringComparer.Ordinal), Copied(Path.Combine(dir, "white")));
+        var manifest = Path.Combine(dir, "A", "render.json");
+        var json = JsonNode.Parse(File.ReadAllText(manifest))!;
+        Assert.Equal(32, ((string)json["build"]!).Length);
+        json["build"] = "another build";
+        File.WriteAllText(manifest, json.ToJsonString());
+        Relight(Path.Combine(dir, "A"), Path.Combine(dir, "encoded"), lights);
+        Check(Path.Combine(dir, "direct"), Path.Combine(dir, "encoded"));
+        Assert.Equal(same.Where(f => f.StartsWith("lights/", StringComparison.Ordinal)).Order(StringComparer.Ordinal), Copied(Path.Combine(dir, "encoded")));
+    }
+
+    [Fact]
+    public void Relight_reads_no_mesh_file()
+    {
+        // Nothing is traced, so a mesh's triangles are not needed: the relight works after the mesh file is gone.
+        var dir = Reference.TempDir();
+        File.WriteAllText(Path.Combine(dir, "tetra.obj"), "v -0.6 0 -0.4\nv 0.6 0 -0.4\nv 0 0 0.7\nv 0 1 0\nf 1 2 4\nf 2 3 4\nf 3 1 4\nf 1 3 2\n");
+        string Scene(string spectrum, double intensity) => TwoLightScene(spectrum, "led-blue", intensity).Replace(
+            "{ \"type\": \"sphere\", \"name\": \"ball\", \"center\": [-0.9, 0.5, 0], \"radius\": 0.5, \"material\": \"green\" }",
+            "{ \"type\": \"mesh\", \"name\": \"ball\", \"file\": \"tetra.obj\", \"fit\": { \"min\": [-1.4, 0, -0.5], \"max\": [-0.4, 1, 0.5] }, \"material\": \"green\" }");
+        Assert.Contains("tetra.obj", Scene("A", 1));
+        Render(Write(dir, "a.json", Scene("A", 1)), Path.Combine(dir, "A"), "--formats", "npy,exr,lights");
+        Render(Write(dir, "t.json", Scene("FL11", 0.5)), Path.Combine(dir, "direct"), "--formats", "npy,exr,lights");
+        File.Delete(Path.Combine(dir, "tetra.obj"));
+        Relight(Path.Combine(dir, "A"), Path.Combine(dir, "relit"), "--light", "key=FL11", "--intensity", "blue=0.5");
+        AssertSameRender(Path.Combine(dir, "direct"), Path.Combine(dir, "relit"));
+    }
+
     static string Repo()
     {
         for (var d = new DirectoryInfo(AppContext.BaseDirectory); d is not null; d = d.Parent)

@@ -221,7 +221,7 @@ public sealed partial class SceneLoader
     [MethodImpl(MethodImplOptions.NoOptimization)]
     void StartMeshReads(JsonElement root)
     {
-        if (!TryGet(root, "objects", out var objects) || objects.ValueKind != JsonValueKind.Array) return;
+        if (!_overrides.LoadMeshes || !TryGet(root, "objects", out var objects) || objects.ValueKind != JsonValueKind.Array) return;
         foreach (var o in objects.EnumerateArray())
         {
             if (o.ValueKind != JsonValueKind.Object || !o.TryGetProperty("type", out var type) || type.ValueKind != JsonValueKind.String ||
@@ -249,6 +249,7 @@ public sealed partial class SceneLoader
     SceneObject MeshObject(JsonElement e, string path, string name, Matrix4x4 user, int material)
     {
         var file = String(Required(e, "file", path), $"{path}.file");
+        if (!_overrides.LoadMeshes) return new SceneObject { Name = name, Material = material };
         var full = ModelSearch.Find(file, _dir, _overrides.ModelDirectories)
             ?? throw Error($"{path}.file", $"mesh '{file}' not found in {ModelSearch.Describe(_dir, _overrides.ModelDirectories)}",
                 "download the meshes (README, 'Meshes') and pass --models DIR or set SPECTRAL_MODELS", InputProblem.MissingFile);

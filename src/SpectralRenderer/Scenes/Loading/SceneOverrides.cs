@@ -18,4 +18,9 @@ public sealed record SceneOverrides
     public string? Formats { get; init; }
     public string? ExrCompression { get; init; }
     public IReadOnlyList<string> ModelDirectories { get; init; } = [];
+    /// <summary>
+    /// False: mesh objects keep their name and material but no triangles (their files are not read). For work on a
+    /// render that is already traced (relighting from the per-light outputs), where no ray meets the geometry.
+    /// </summary>
+    public bool LoadMeshes { get; init; } = true;
 }
