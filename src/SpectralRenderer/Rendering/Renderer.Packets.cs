@@ -20,6 +20,8 @@ public sealed partial class Renderer
         /// <summary>The framebuffer's first pixel on the film (a crop's corner; 0, 0 for a whole render).</summary>
         public readonly int FilmX0 = filmX0, FilmY0 = filmY0;
         public RayPacket Packet;
+        /// <summary>Per lane, the film position of its camera ray (pixels).</summary>
+        public PacketFloats FilmX, FilmY;
         public readonly float[] Results = new float[RayPacket.Size * padded];
         public readonly int[] Objects = new int[RayPacket.Size];
         public readonly PixelInfo[] Infos = new PixelInfo[RayPacket.Size];
@@ -57,18 +59,20 @@ public sealed partial class Renderer
                             }
                             counters.Primary++;
                             int lane = st.Lanes++;
-                            st.Packet.Set(lane, cam.Generate(x + jx, y + jy));
+                            st.FilmX[lane] = x + jx; st.FilmY[lane] = y + jy;   // the film position cam.Generate takes
                             st.PixelX[lane] = x; st.PixelY[lane] = y; st.Sample[lane] = s;
-                            if (st.Lanes == RayPacket.Size) Flush(integrator, spp, st, image, ids, lit, specY, diffY, xyz, colorimeter, ref fallbackPixels, ref counters);
+                            if (st.Lanes == RayPacket.Size) Flush(integrator, cam, spp, st, image, ids, lit, specY, diffY, xyz, colorimeter, ref fallbackPixels, ref counters);
                         }
-        if (st.Lanes > 0) Flush(integrator, spp, st, image, ids, lit, specY, diffY, xyz, colorimeter, ref fallbackPixels, ref counters);
+        if (st.Lanes > 0) Flush(integrator, cam, spp, st, image, ids, lit, specY, diffY, xyz, colorimeter, ref fallbackPixels, ref counters);
     }
 
     /// <summary>Traces the packet and puts each lane's radiance where it belongs: a pixel (spp = 1), a pixel's sum, or its analysis images.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    static void Flush(IPacketIntegrator integrator, int spp, PacketTileState st, SpectralImage image, int[] ids, uint[] lit, float[] specY, float[] diffY,
+    static void Flush(IPacketIntegrator integrator, Scenes.Camera cam, int spp, PacketTileState st, SpectralImage image, int[] ids, uint[] lit, float[] specY, float[] diffY,
         float[] xyz, Colorimeter colorimeter, ref long fallbackPixels, ref RayCounters counters)
     {
+        // The camera rays of the packet's lanes, all at once (Camera.Generate in SIMD lanes: the same bits).
+        LaneGeometry.CameraRays(cam, ref st.Packet, ref st.FilmX, ref st.FilmY, st.Lanes == 32 ? uint.MaxValue : (1u << st.Lanes) - 1);
         integrator.Radiance(ref st.Packet, st.Results, st.Objects, st.Infos, st.Fallbacks, st.Scratch, ref counters);
         int padded = st.Sum.Length, bands = image.Bands;
         float inv = 1f / spp;

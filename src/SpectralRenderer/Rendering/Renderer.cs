@@ -29,6 +29,8 @@ public sealed class RenderResult
     public required int Tiles { get; init; }
     /// <summary>The part of the camera's film rendered (the whole film unless cropped); Image is its size.</summary>
     public required PixelRect Crop { get; init; }
+    /// <summary>Whether the camera rays were traced in packets (<see cref="Acceleration.RayPacket"/>), else ray by ray.</summary>
+    public bool Packets { get; init; }
 }
 
 /// <summary>Progress of a render, reported after each tile.</summary>
@@ -92,6 +94,7 @@ public sealed partial class Renderer
 
         // One worker per thread, each with its own scratch spectra, pulling tiles from a shared counter:
         // the loop allocates per worker, never per tile, ray or pixel.
+        bool packed = packets && integrator is IPacketIntegrator && !recursive;
         int next = -1;
         [MethodImpl(MethodImplOptions.AggressiveOptimization)]
         void Worker()
@@ -99,7 +102,7 @@ public sealed partial class Renderer
             var state = new TileState(integrator.ScratchLength, padded);
             // Packets trace the camera rays of a tile together; a scene with mirrors or glass is traced ray by ray, where each
             // camera ray's tree has its ray budget and a stop request is seen at every pixel (bounded work, prompt SIGINT).
-            var packed = packets && integrator is IPacketIntegrator && !recursive ? new PacketTileState(integrator.ScratchLength, padded, ox, oy) : null;
+            var packetState = packed ? new PacketTileState(integrator.ScratchLength, padded, ox, oy) : null;
             int tile;
             while ((tile = Interlocked.Increment(ref next)) < tiles)
             {
@@ -111,8 +114,8 @@ public sealed partial class Renderer
                 var sum = state.Sum.AsSpan();
                 var sample = state.Sample.AsSpan();
                 var scratch = state.Scratch.AsSpan();
-                if (packed is not null)
-                    PacketTile((IPacketIntegrator)integrator, cam, x0, y0, x1, y1, strataX, strataY, packed, image, ids, lit, specY, diffY, xyz, colorimeter, ref fallbackPixels, ref counters);
+                if (packetState is not null)
+                    PacketTile((IPacketIntegrator)integrator, cam, x0, y0, x1, y1, strataX, strataY, packetState, image, ids, lit, specY, diffY, xyz, colorimeter, ref fallbackPixels, ref counters);
                 else
                     for (int y = y0; y < y1; y++)
                         for (int x = x0; x < x1; x++)
@@ -179,7 +182,7 @@ public sealed partial class Renderer
         try { Task.WaitAll(workers); }
         catch (AggregateException e) when (e.InnerExceptions.All(x => x is OperationCanceledException)) { throw new OperationCanceledException(cancel); }
 
-        return new RenderResult { Image = image, ObjectIds = ids, LitMasks = lit, SpecularY = specY, DiffuseY = diffY, Xyz = xyz, FallbackPixels = fallbackPixels, Rays = total, Elapsed = clock.Elapsed, Threads = threads, Tiles = tiles, Crop = region };
+        return new RenderResult { Image = image, ObjectIds = ids, LitMasks = lit, SpecularY = specY, DiffuseY = diffY, Xyz = xyz, FallbackPixels = fallbackPixels, Rays = total, Elapsed = clock.Elapsed, Threads = threads, Tiles = tiles, Crop = region, Packets = packed };
     }
 
     sealed class TileState(int scratch, int padded)

@@ -15,30 +15,34 @@ public sealed partial class SceneGeometry
     /// <paramref name="hits"/>[i]. The packet's TMax holds each lane's hit distance afterwards.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    [SkipLocalsInit]
     public uint Intersect(ref RayPacket packet, Span<SurfaceHit> hits)
     {
         uint triangles = _hasTriangles ? _triangles.Intersect(ref packet) : 0;
-        uint found = 0;
-        for (uint m = packet.Active; m != 0; m &= m - 1)
+        // The analytic shapes lane by lane with each lane's TMax, then the planes for all lanes at once: the single-ray order.
+        uint analytic = 0;
+        Span<Hit> analyticHits = stackalloc Hit[RayPacket.Size];
+        if (_analyticBvh is not null)
+            for (uint m = packet.Active; m != 0; m &= m - 1)
+            {
+                int lane = BitOperations.TrailingZeroCount(m);
+                var ray = packet.Ray(lane);
+                var a = _analytic;
+                analyticHits[lane] = new Hit();
+                if (_analyticBvh.Intersect(ref a, ref ray, ref analyticHits[lane])) { analytic |= 1u << lane; packet.TMax[lane] = ray.TMax; }
+            }
+        Unsafe.SkipInit(out PacketInts plane);
+        uint planes = _planes.Length > 0 ? LaneGeometry.Planes(_planes, ref packet, packet.Active, ref plane) : 0;
+        uint found = triangles | analytic | planes;
+        for (uint m = found; m != 0; m &= m - 1)
         {
             int lane = BitOperations.TrailingZeroCount(m);
-            var ray = packet.Ray(lane);
-            int kind = 0;
             var h = new Hit();
-            if ((triangles >> lane & 1) != 0) { kind = 1; h.Primitive = packet.Primitive[lane]; h.U = packet.U[lane]; h.V = packet.V[lane]; }
-            var ah = new Hit();
-            if (_analyticBvh is not null)
-            {
-                var a = _analytic;
-                if (_analyticBvh.Intersect(ref a, ref ray, ref ah)) kind = 2;
-            }
-            int plane = -1;
-            for (int i = 0; i < _planes.Length; i++)
-                if (HitPlane(i, ray, out float tp)) { ray.TMax = tp; plane = i; kind = 3; }
-            if (kind == 0) continue;
-            packet.TMax[lane] = ray.TMax;
-            Record(kind, ray, h, ah, plane, out hits[lane]);
-            found |= 1u << lane;
+            int kind = 1;
+            if ((planes >> lane & 1) != 0) kind = 3;
+            else if ((analytic >> lane & 1) != 0) kind = 2;
+            else { h.Primitive = packet.Primitive[lane]; h.U = packet.U[lane]; h.V = packet.V[lane]; }
+            Record(kind, packet.Ray(lane), h, kind == 2 ? analyticHits[lane] : default, kind == 3 ? plane[lane] : -1, out hits[lane]);
         }
         return found;
     }

@@ -20,6 +20,12 @@ public sealed class Camera
     readonly Vector3 _u, _v, _w;
     readonly float _tanHalf;
 
+    /// <summary>The film's basis as <see cref="Generate"/> uses it: right u, up v, forward w (unit vectors), and tan(fov/2).</summary>
+    internal Vector3 Right => _u;
+    internal Vector3 FilmUp => _v;
+    internal Vector3 Forward => _w;
+    internal float TanHalfFov => _tanHalf;
+
     public Vector3 Position { get; }
     public Vector3 LookAt { get; }
     public Vector3 Up { get; }

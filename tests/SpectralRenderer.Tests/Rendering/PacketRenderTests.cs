@@ -33,7 +33,9 @@ public class PacketRenderTests
         return sb.ToString();
     }
 
-    static Scene Load(int spp)
+    /// <param name="mirror">With a mirror sphere the renderer traces ray by ray (a Whitted recursion); without, every camera
+    /// ray goes through the packet path (camera rays, plane tests, point-light terms and shadow rays in lanes).</param>
+    static Scene Load(int spp, bool mirror)
     {
         var dir = Reference.TempDir();
         File.WriteAllText(Path.Combine(dir, "sphere.obj"), SphereObj());
@@ -42,7 +44,7 @@ public class PacketRenderTests
         { "camera": { "position": [0.4, 1.6, 5.2], "look_at": [0, 0.6, 0], "fov": 40, "width": 83, "height": 61, "spp": {{spp}} },
           "materials": { "shiny": { "diffuse": "colorchecker:14", "specular": 0.4, "shininess": 30 },
                          "phong": { "diffuse": "colorchecker:7", "specular": 0.3, "shininess": 12, "model": "phong" },
-                         "mirror": { "diffuse": 0.1, "mirror": 0.6 },
+                         "mirror": { "diffuse": 0.1{{(mirror ? ", \"mirror\": 0.6" : ", \"specular\": 0.5, \"shininess\": 60")}} },
                          "floor": { "diffuse": "colorchecker:neutral-6.5" } },
           "ambient": 0.05,
           "lights": [ { "type": "point", "position": [2.5, 5, 4], "spectrum": "D65", "intensity": 1 },
@@ -71,16 +73,20 @@ public class PacketRenderTests
     }
 
     [Theory]
-    [InlineData(1)]
-    [InlineData(3)]
-    [InlineData(16)]
-    public void Packets_render_the_ray_by_ray_picture_bit_for_bit(int spp)
+    [InlineData(1, false)]
+    [InlineData(3, false)]
+    [InlineData(16, false)]
+    [InlineData(1, true)]
+    [InlineData(3, true)]
+    public void Packets_render_the_ray_by_ray_picture_bit_for_bit(int spp, bool mirror)
     {
-        var scene = Load(spp);
+        var scene = Load(spp, mirror);
         var integrator = new WhittedIntegrator(scene, new SceneGeometry(scene));
         var single = Renderer.Render(scene, integrator, threads: 1, packets: false);
         var packed1 = Renderer.Render(scene, integrator, threads: 1);
         var packed2 = Renderer.Render(scene, integrator, threads: 2);
+        Assert.False(single.Packets);
+        Assert.Equal(!mirror, packed1.Packets);   // the recursion of a mirror is traced ray by ray
         AssertSame(single, packed1);
         AssertSame(single, packed2);
         // A crop (a shard) whose corner is not on the 4 × 4 blocks of the whole film: its pixels are the whole render's.
