@@ -23,6 +23,8 @@ internal interface ILanes<T> where T : struct, ILanes<T>
     static abstract T operator /(T a, T b);
     /// <summary>The correctly rounded square root (IEEE 754), as MathF.Sqrt.</summary>
     static abstract T Sqrt(T a);
+    /// <summary>−a: the sign bit flipped (−0 for +0), as float and Vector3 negation.</summary>
+    static abstract T Negate(T a);
     /// <summary>candidate &gt; current ? candidate : current (x86 maxps): a NaN candidate leaves current.</summary>
     static abstract T Max(T candidate, T current);
     /// <summary>candidate &lt; current ? candidate : current (x86 minps): a NaN candidate leaves current.</summary>
@@ -60,6 +62,7 @@ internal readonly struct Lanes512 : ILanes<Lanes512>
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes512 operator *(Lanes512 a, Lanes512 b) => new(a._v * b._v);
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes512 operator /(Lanes512 a, Lanes512 b) => new(a._v / b._v);
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes512 Sqrt(Lanes512 a) => new(Vector512.Sqrt(a._v));
+    [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes512 Negate(Lanes512 a) => new(a._v ^ Vector512.Create(-0f));
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes512 Max(Lanes512 candidate, Lanes512 current) => new(Avx512F.Max(candidate._v, current._v));
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes512 Min(Lanes512 candidate, Lanes512 current) => new(Avx512F.Min(candidate._v, current._v));
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes512 Less(Lanes512 a, Lanes512 b) => new(Vector512.LessThan(a._v, b._v));
@@ -91,6 +94,7 @@ internal readonly struct Lanes256 : ILanes<Lanes256>
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes256 operator *(Lanes256 a, Lanes256 b) => new(a._v * b._v);
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes256 operator /(Lanes256 a, Lanes256 b) => new(a._v / b._v);
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes256 Sqrt(Lanes256 a) => new(Vector256.Sqrt(a._v));
+    [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes256 Negate(Lanes256 a) => new(a._v ^ Vector256.Create(-0f));
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static Lanes256 Max(Lanes256 candidate, Lanes256 current) =>
         Avx.IsSupported ? new(Avx.Max(candidate._v, current._v)) : new(Vector256.ConditionalSelect(Vector256.GreaterThan(candidate._v, current._v), candidate._v, current._v));
@@ -126,6 +130,7 @@ internal readonly struct Lanes128 : ILanes<Lanes128>
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes128 operator *(Lanes128 a, Lanes128 b) => new(a._v * b._v);
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes128 operator /(Lanes128 a, Lanes128 b) => new(a._v / b._v);
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes128 Sqrt(Lanes128 a) => new(Vector128.Sqrt(a._v));
+    [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes128 Negate(Lanes128 a) => new(a._v ^ Vector128.Create(-0f));
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static Lanes128 Max(Lanes128 candidate, Lanes128 current) =>
         Sse.IsSupported ? new(Sse.Max(candidate._v, current._v)) : new(Vector128.ConditionalSelect(Vector128.GreaterThan(candidate._v, current._v), candidate._v, current._v));
@@ -162,6 +167,7 @@ internal readonly struct Lanes1 : ILanes<Lanes1>
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes1 operator *(Lanes1 a, Lanes1 b) => new(a._v * b._v);
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes1 operator /(Lanes1 a, Lanes1 b) => new(a._v / b._v);
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes1 Sqrt(Lanes1 a) => new(MathF.Sqrt(a._v));
+    [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes1 Negate(Lanes1 a) => new(-a._v);
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes1 Max(Lanes1 candidate, Lanes1 current) => candidate._v > current._v ? candidate : current;
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes1 Min(Lanes1 candidate, Lanes1 current) => candidate._v < current._v ? candidate : current;
     [MethodImpl(MethodImplOptions.AggressiveInlining)] public static Lanes1 Less(Lanes1 a, Lanes1 b) => new(Mask(a._v < b._v));

@@ -11,12 +11,13 @@ namespace SpectralRenderer.Rendering;
 public sealed partial class SceneGeometry
 {
     /// <summary>
-    /// Closest hits of the packet's active lanes: bit i of the result set when lane i hits, with its record in
-    /// <paramref name="hits"/>[i]. The packet's TMax holds each lane's hit distance afterwards.
+    /// Closest hits of the packet's active lanes: bit i of the result set when lane i hits, with its record in lane i of
+    /// <paramref name="hits"/> (what <see cref="Intersect(ref Ray, out SurfaceHit)"/> records for the lane's ray, bit for
+    /// bit). The packet's TMax holds each lane's hit distance afterwards.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     [SkipLocalsInit]
-    public uint Intersect(ref RayPacket packet, Span<SurfaceHit> hits)
+    internal uint Intersect(ref RayPacket packet, ref HitLanes hits)
     {
         uint triangles = _hasTriangles ? _triangles.Intersect(ref packet) : 0;
         // The analytic shapes lane by lane with each lane's TMax, then the planes for all lanes at once: the single-ray order.
@@ -34,15 +35,48 @@ public sealed partial class SceneGeometry
         Unsafe.SkipInit(out PacketInts plane);
         uint planes = _planes.Length > 0 ? LaneGeometry.Planes(_planes, ref packet, packet.Active, ref plane) : 0;
         uint found = triangles | analytic | planes;
+        if (found == 0) return 0;
+        // Per lane, what its record is made from: the triangle's corners and vertex normals, or the shape's or plane's normal.
+        uint mesh = triangles & ~analytic & ~planes, smooth = 0;
+        Unsafe.SkipInit(out TriangleLanes corners);
         for (uint m = found; m != 0; m &= m - 1)
         {
             int lane = BitOperations.TrailingZeroCount(m);
-            var h = new Hit();
-            int kind = 1;
-            if ((planes >> lane & 1) != 0) kind = 3;
-            else if ((analytic >> lane & 1) != 0) kind = 2;
-            else { h.Primitive = packet.Primitive[lane]; h.U = packet.U[lane]; h.V = packet.V[lane]; }
-            Record(kind, packet.Ray(lane), h, kind == 2 ? analyticHits[lane] : default, kind == 3 ? plane[lane] : -1, out hits[lane]);
+            if ((planes >> lane & 1) != 0)
+            {
+                var n = _planes[plane[lane]].Normal;
+                hits.SetNormals(lane, n, n);
+                hits.Object[lane] = _planeObject[plane[lane]];
+            }
+            else if ((analytic >> lane & 1) != 0)
+            {
+                Record(2, packet.Ray(lane), default, analyticHits[lane], -1, out var h);
+                hits.SetNormals(lane, h.GeometricNormal, h.Normal);
+                hits.Object[lane] = h.Object;
+            }
+            else
+            {
+                int k = packet.Primitive[lane];
+                int meshIndex = _triangles.MeshOf[k];
+                var (p0, p1, p2) = _triangles.Corners(k);
+                corners.SetCorners(lane, p0, p1, p2);
+                var mm = _meshes[meshIndex];
+                if (_meshSmooth[meshIndex] && mm.Normals is { } normals)
+                {
+                    int tri = _triangles.TriangleOf[k];
+                    var idx = mm.Indices;
+                    corners.SetNormals(lane, normals[idx[3 * tri]], normals[idx[3 * tri + 1]], normals[idx[3 * tri + 2]]);
+                    smooth |= 1u << lane;
+                }
+                hits.Object[lane] = _meshObject[meshIndex];
+            }
+        }
+        switch (PacketLanes.Width)
+        {
+            case 16: LaneGeometry.Records<Lanes512>(ref packet, mesh, smooth, in corners, ref hits); break;
+            case 8: LaneGeometry.Records<Lanes256>(ref packet, mesh, smooth, in corners, ref hits); break;
+            case 4: LaneGeometry.Records<Lanes128>(ref packet, mesh, smooth, in corners, ref hits); break;
+            default: LaneGeometry.Records<Lanes1>(ref packet, mesh, smooth, in corners, ref hits); break;
         }
         return found;
     }

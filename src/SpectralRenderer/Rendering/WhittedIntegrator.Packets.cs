@@ -9,8 +9,9 @@ namespace SpectralRenderer.Rendering;
 
 // Camera rays in packets: the closest hits of up to 16 camera rays found together, then, light by light, the
 // light's direction, distance and falloff, n·l and the shadow rays of all lanes (SIMD over rays for a point light,
-// LaneGeometry), the shadow rays traced as one packet, and eq. 2's band sums per lane (SIMD over bands). Every
-// lane adds its terms in the order the single-ray Radiance does, so each pixel gets the same bits. A lane whose surface reflects or transmits (a Whitted recursion) is traced again alone.
+// LaneGeometry), the shadow rays traced as one packet, and eq. 2's band sums per lane (SIMD over bands), each lane's
+// terms listed and summed in one pass over the bands. Every lane adds its terms in the order the single-ray Radiance
+// does, so each pixel gets the same bits. A lane whose surface reflects or transmits (a Whitted recursion) is traced again alone.
 public sealed partial class WhittedIntegrator
 {
     /// <inheritdoc/>
@@ -18,16 +19,28 @@ public sealed partial class WhittedIntegrator
     [SkipLocalsInit]
     public void Radiance(ref RayPacket packet, Span<float> results, Span<int> objects, Span<PixelInfo> infos, Span<bool> fallbacks, Span<float> scratch, ref RayCounters counters)
     {
-        Span<SurfaceHit> hits = stackalloc SurfaceHit[RayPacket.Size];
-        Span<Vector3> toViewer = stackalloc Vector3[RayPacket.Size];
         Span<int> material = stackalloc int[RayPacket.Size];
-        Unsafe.SkipInit(out ShadingLanes at);                 // filled for the shaded lanes below
+        Unsafe.SkipInit(out HitLanes hits);                   // the lanes found are filled
+        Unsafe.SkipInit(out ShadingLanes at);
         Unsafe.SkipInit(out PacketFloats attenuation);
         Unsafe.SkipInit(out PacketFloats cosine);
         Unsafe.SkipInit(out PacketFloats spotFactor);
-        uint found = _geometry.Intersect(ref packet, hits);
-        uint shaded = 0;
+        // Each shaded lane's terms of eq. 2, in the single-ray order, summed over the bands in one pass at the end; with more
+        // lights than the lists hold, added to the lane's spectrum at once (the same bits either way).
+        bool listed = 1 + 2 * _lights.Length <= TermsPerLane;
+        Span<SpectralTerm> terms = stackalloc SpectralTerm[listed ? RayPacket.Size * TermsPerLane : 0];
+        Span<int> termCount = stackalloc int[RayPacket.Size];
+        uint found = _geometry.Intersect(ref packet, ref hits);
         float eps = _geometry.Epsilon;
+        if (found != 0)
+            switch (PacketLanes.Width)
+            {
+                case 16: LaneGeometry.Shading<Lanes512>(ref packet, in hits, eps, ref at); break;
+                case 8: LaneGeometry.Shading<Lanes256>(ref packet, in hits, eps, ref at); break;
+                case 4: LaneGeometry.Shading<Lanes128>(ref packet, in hits, eps, ref at); break;
+                default: LaneGeometry.Shading<Lanes1>(ref packet, in hits, eps, ref at); break;
+            }
+        uint shaded = 0;
         for (uint all = packet.Active; all != 0; all &= all - 1)
         {
             int lane = BitOperations.TrailingZeroCount(all);
@@ -36,15 +49,14 @@ public sealed partial class WhittedIntegrator
             fallbacks[lane] = false;
             if ((found >> lane & 1) == 0)
             {
-                result.Clear();
                 _tables.Background.AsSpan().CopyTo(result);
                 objects[lane] = -1;
                 continue;
             }
-            ref var hit = ref hits[lane];
-            int mi = _objectMaterial[hit.Object];
+            int obj = hits.Object[lane];
+            int mi = _objectMaterial[obj];
             var m = _materials[mi];
-            objects[lane] = hit.Object;
+            objects[lane] = obj;
             if (_scene.MaxDepth > 0 && (m.HasMirror || m.HasTransmission))
             {
                 // The recursion is traced ray by ray.
@@ -53,15 +65,10 @@ public sealed partial class WhittedIntegrator
                 fallbacks[lane] = counters.Fallback != before;
                 continue;
             }
-            result.Clear();
-            var d = new Vector3(packet.DirectionX[lane], packet.DirectionY[lane], packet.DirectionZ[lane]);
-            var v = -d;
-            bool outside = Vector3.Dot(hit.GeometricNormal, v) >= 0;
-            var ng = outside ? hit.GeometricNormal : -hit.GeometricNormal;
-            at.Set(lane, hit.Position, outside ? hit.Normal : -hit.Normal, hit.Position + eps * ng);
-            toViewer[lane] = v;
+            if (!listed) result.Clear();
+            termCount[lane] = 0;
             material[lane] = mi;
-            if (_scene.HasGlobalAmbient && m.HasAmbient) SpectralMath.AddScaled(result, _tables.GlobalAmbient[mi], 1f);
+            if (_scene.HasGlobalAmbient && m.HasAmbient) AddTerm(lane, new SpectralTerm(_globalAmbientAt[mi], 1f), listed, terms, termCount, results);
             shaded |= 1u << lane;
         }
         if (shaded == 0) return;
@@ -89,7 +96,7 @@ public sealed partial class WhittedIntegrator
                 {
                     int lane = BitOperations.TrailingZeroCount(all);
                     if (_materials[material[lane]].HasAmbient)
-                        SpectralMath.AddScaled(results.Slice(lane * _padded, _padded), _tables.Ambient[_tables.Index(k, material[lane])], spotFactor[lane]);
+                        AddTerm(lane, new SpectralTerm(_ambientAt[_tables.Index(k, material[lane])], spotFactor[lane]), listed, terms, termCount, results);
                 }
             if (shadows.Active == 0) continue;
             counters.Shadow += BitOperations.PopCount(shadows.Active);
@@ -102,17 +109,17 @@ public sealed partial class WhittedIntegrator
                 float nl = cosine[lane];
                 float dk = attenuation[lane] * spotFactor[lane];
                 float s = 0;
-                var result = results.Slice(lane * _padded, _padded);
                 int term = _tables.Index(k, mi);
                 var diffuse = _tables.Diffuse[term];
                 if (m.HasSpecular)
                 {
                     // Physical: the lobe is a BRDF, weighted by cos θ_i like the diffuse one (as the single-ray Radiance).
                     var l = new Vector3(shadows.DirectionX[lane], shadows.DirectionY[lane], shadows.DirectionZ[lane]);
-                    s = m.SpecularFactor(at.Normal(lane), l, toViewer[lane], nl) * (_physical ? nl : 1f);
-                    SpectralMath.AddScaled2(result, diffuse, dk * nl, _tables.Specular[term], dk * s);
+                    var v = -new Vector3(packet.DirectionX[lane], packet.DirectionY[lane], packet.DirectionZ[lane]);
+                    s = m.SpecularFactor(at.Normal(lane), l, v, nl) * (_physical ? nl : 1f);
+                    AddTerm(lane, new SpectralTerm(_diffuseAt[term], dk * nl, _specularAt[term], dk * s), listed, terms, termCount, results);
                 }
-                else SpectralMath.AddScaled(result, diffuse, dk * nl);
+                else AddTerm(lane, new SpectralTerm(_diffuseAt[term], dk * nl), listed, terms, termCount, results);
                 ref var info = ref infos[lane];
                 if (k < 32) info.LitMask |= 1u << k;
                 int y = _scene.Bands + 1;   // the Y colour lane
@@ -120,6 +127,26 @@ public sealed partial class WhittedIntegrator
                 info.SpecularY += dk * s * _tables.Specular[term][y];
             }
         }
+        if (listed)
+            for (uint all = shaded; all != 0; all &= all - 1)
+            {
+                int lane = BitOperations.TrailingZeroCount(all);
+                SpectralMath.SumTerms(results.Slice(lane * _padded, _padded), _flat, terms.Slice(lane * TermsPerLane, termCount[lane]));
+            }
+    }
+
+    /// <summary>Most terms a lane lists: the global ambient and, per light, its ambient and its diffuse (+ specular) term, for 8 lights.</summary>
+    const int TermsPerLane = 17;
+
+    /// <summary>A term of eq. 2 for a lane: listed for the one-pass sum, or added to the lane's spectrum now.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    void AddTerm(int lane, SpectralTerm term, bool listed, Span<SpectralTerm> terms, Span<int> termCount, Span<float> results)
+    {
+        if (listed) { terms[lane * TermsPerLane + termCount[lane]++] = term; return; }
+        var result = results.Slice(lane * _padded, _padded);
+        var a = _flat.AsSpan(term.A, _padded);
+        if (term.B < 0) SpectralMath.AddScaled(result, a, term.S);
+        else SpectralMath.AddScaled2(result, a, term.S, _flat.AsSpan(term.B, _padded), term.T);
     }
 
     /// <summary>

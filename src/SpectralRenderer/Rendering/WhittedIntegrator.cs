@@ -45,7 +45,20 @@ public sealed partial class WhittedIntegrator : IPacketIntegrator
         _mirrorMax = _tables.Mirror.Select(t => t.AsSpan(0, scene.Bands).ToArray().DefaultIfEmpty(0).Max()).ToArray();
         _transmitMax = _tables.Transmit.Select(t => t.AsSpan(0, scene.Bands).ToArray().DefaultIfEmpty(0).Max()).ToArray();
         _minWeight = scene.MinRayWeight;
+        // The term tables side by side for the packet path's one-pass band sums: the global ambient of each material, then per
+        // (light, material) the ambient, diffuse and specular tables, at the offsets below.
+        int materials = _materials.Length, pairs = _tables.Diffuse.Length;
+        _flat = new float[(materials + 3 * pairs) * _padded];
+        _globalAmbientAt = new int[materials];
+        _ambientAt = new int[pairs]; _diffuseAt = new int[pairs]; _specularAt = new int[pairs];
+        int at = 0;
+        int Put(float[] table) { table.AsSpan().CopyTo(_flat.AsSpan(at)); at += _padded; return at - _padded; }
+        for (int m = 0; m < materials; m++) _globalAmbientAt[m] = Put(_tables.GlobalAmbient[m]);
+        for (int t = 0; t < pairs; t++) { _ambientAt[t] = Put(_tables.Ambient[t]); _diffuseAt[t] = Put(_tables.Diffuse[t]); _specularAt[t] = Put(_tables.Specular[t]); }
     }
+
+    readonly float[] _flat;
+    readonly int[] _globalAmbientAt, _ambientAt, _diffuseAt, _specularAt;
 
     /// <summary>Scratch floats a thread needs: two spectra per recursion level.</summary>
     public int ScratchLength => (_scene.MaxDepth + 2) * 2 * _padded;

@@ -69,6 +69,31 @@ public static class SpectralMath
         for (int i = 0; i < d.Length; i++) d[i] += va[i] * vs + vb[i] * vt;
     }
 
+    /// <summary>
+    /// dst = (((0 + term₁) + term₂) + …) in the order given, each term a·s or (a·s + b·t) with a, b the padded spectra at
+    /// offsets <see cref="SpectralTerm.A"/>, <see cref="SpectralTerm.B"/> of <paramref name="tables"/>: band for band exactly
+    /// what <see cref="Clear"/> and then <see cref="AddScaled"/> / <see cref="AddScaled2"/> in that order leave, in one pass
+    /// (one write of dst instead of one read and write per term).
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static void SumTerms(Span<float> dst, ReadOnlySpan<float> tables, ReadOnlySpan<SpectralTerm> terms)
+    {
+        var d = V(dst);
+        ref float t0 = ref MemoryMarshal.GetReference(tables);
+        int w = Vector<float>.Count;
+        for (int i = 0; i < d.Length; i++)
+        {
+            var acc = Vector<float>.Zero;
+            foreach (ref readonly var term in terms)
+            {
+                var va = Vector.LoadUnsafe(ref t0, (nuint)(term.A + i * w));
+                if (term.B < 0) acc += va * new Vector<float>(term.S);
+                else acc += va * new Vector<float>(term.S) + Vector.LoadUnsafe(ref t0, (nuint)(term.B + i * w)) * new Vector<float>(term.T);
+            }
+            d[i] = acc;
+        }
+    }
+
     /// <summary>dst += a · s</summary>
     public static void AddScaled(Span<float> dst, ReadOnlySpan<float> a, float s)
     {
@@ -97,3 +122,9 @@ public static class SpectralMath
         if (i < n) Vector.StoreUnsafe(Vector.LoadUnsafe(ref s, (nuint)(n - w)), ref d, (nuint)(n - w));
     }
 }
+
+/// <summary>
+/// One term of <see cref="SpectralMath.SumTerms"/>: the padded spectrum at offset <see cref="A"/> of a flat table array
+/// times <see cref="S"/>, plus (when <see cref="B"/> ≥ 0) the one at <see cref="B"/> times <see cref="T"/>.
+/// </summary>
+public readonly record struct SpectralTerm(int A, float S, int B = -1, float T = 0);

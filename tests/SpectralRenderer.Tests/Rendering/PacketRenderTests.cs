@@ -35,8 +35,15 @@ public class PacketRenderTests
 
     /// <param name="mirror">With a mirror sphere the renderer traces ray by ray (a Whitted recursion); without, every camera
     /// ray goes through the packet path (camera rays, plane tests, point-light terms and shadow rays in lanes).</param>
-    static Scene Load(int spp, bool mirror)
+    /// <param name="copies">How many times the three lights are repeated (shifted): more than 8 lights take the packet
+    /// path's other way of summing eq. 2's terms (at once, not listed).</param>
+    static Scene Load(int spp, bool mirror, int copies = 1)
     {
+        var lights = string.Join(", ", Enumerable.Range(0, copies).Select(i => string.Create(CultureInfo.InvariantCulture, $$"""
+                      { "type": "point", "position": [{{2.5 - i}}, 5, 4], "spectrum": "D65", "intensity": {{1.0 / copies}} },
+                      { "type": "spot", "position": [-3, 4, {{2 - 0.5 * i}}], "look_at": [0, 0.5, 0], "cutoff": 25, "exponent": 8, "spectrum": "A", "intensity": 0.7 },
+                      { "type": "directional", "direction": [-0.3, -1, {{-0.2 + 0.1 * i}}], "spectrum": "D65", "intensity": 0.3 }
+            """)));
         var dir = Reference.TempDir();
         File.WriteAllText(Path.Combine(dir, "sphere.obj"), SphereObj());
         var path = Path.Combine(dir, "scene.json");
@@ -47,9 +54,7 @@ public class PacketRenderTests
                          "mirror": { "diffuse": 0.1{{(mirror ? ", \"mirror\": 0.6" : ", \"specular\": 0.5, \"shininess\": 60")}} },
                          "floor": { "diffuse": "colorchecker:neutral-6.5" } },
           "ambient": 0.05,
-          "lights": [ { "type": "point", "position": [2.5, 5, 4], "spectrum": "D65", "intensity": 1 },
-                      { "type": "spot", "position": [-3, 4, 2], "look_at": [0, 0.5, 0], "cutoff": 25, "exponent": 8, "spectrum": "A", "intensity": 0.7 },
-                      { "type": "directional", "direction": [-0.3, -1, -0.2], "spectrum": "D65", "intensity": 0.3 } ],
+          "lights": [ {{lights}} ],
           "objects": [ { "type": "mesh", "file": "sphere.obj", "fit": { "min": [-1.6, 0, -1], "max": [0.4, 2, 1] }, "material": "shiny" },
                        { "type": "mesh", "file": "sphere.obj", "shading": "flat", "fit": { "min": [0.6, 0, 0.2], "max": [1.6, 1, 1.2] }, "material": "phong" },
                        { "type": "sphere", "center": [1.4, 0.4, -1.2], "radius": 0.4, "material": "mirror" },
@@ -78,9 +83,10 @@ public class PacketRenderTests
     [InlineData(16, false)]
     [InlineData(1, true)]
     [InlineData(3, true)]
-    public void Packets_render_the_ray_by_ray_picture_bit_for_bit(int spp, bool mirror)
+    [InlineData(1, false, 3)]
+    public void Packets_render_the_ray_by_ray_picture_bit_for_bit(int spp, bool mirror, int copies = 1)
     {
-        var scene = Load(spp, mirror);
+        var scene = Load(spp, mirror, copies);
         var integrator = new WhittedIntegrator(scene, new SceneGeometry(scene));
         var single = Renderer.Render(scene, integrator, threads: 1, packets: false);
         var packed1 = Renderer.Render(scene, integrator, threads: 1);
