@@ -105,6 +105,42 @@ internal static class LaneGeometry
         return found;
     }
 
+    /// <summary>The lanes (of those given) whose rays meet one of the planes at t in (0, TMax): the plane test of <see cref="Planes"/>, any hit.</summary>
+    public static uint PlanesBlock(ReadOnlySpan<(Vector3 Normal, float Offset)> planes, ref RayPacket packet, uint lanes) => PacketLanes.Width switch
+    {
+        16 => PlanesBlock<Lanes512>(planes, ref packet, lanes),
+        8 => PlanesBlock<Lanes256>(planes, ref packet, lanes),
+        4 => PlanesBlock<Lanes128>(planes, ref packet, lanes),
+        _ => PlanesBlock<Lanes1>(planes, ref packet, lanes),
+    };
+
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    internal static uint PlanesBlock<L>(ReadOnlySpan<(Vector3 Normal, float Offset)> planes, ref RayPacket p, uint lanes) where L : struct, ILanes<L>
+    {
+        uint chunkMask = L.Count >= 32 ? uint.MaxValue : (1u << L.Count) - 1;
+        var zero = L.Splat(0);
+        uint blocked = 0;
+        for (int c = 0; c < RayPacket.Size; c += L.Count)
+        {
+            uint m = (lanes >> c) & chunkMask;
+            if (m == 0) continue;
+            var ox = L.Load(ref p.OriginX[c]); var oy = L.Load(ref p.OriginY[c]); var oz = L.Load(ref p.OriginZ[c]);
+            var dx = L.Load(ref p.DirectionX[c]); var dy = L.Load(ref p.DirectionY[c]); var dz = L.Load(ref p.DirectionZ[c]);
+            var tMax = L.Load(ref p.TMax[c]);
+            for (int i = 0; i < planes.Length && m != 0; i++)
+            {
+                var (n, offset) = planes[i];
+                var nx = L.Splat(n.X); var ny = L.Splat(n.Y); var nz = L.Splat(n.Z);
+                var denominator = nx * dx + ny * dy + nz * dz;
+                var t = (L.Splat(offset) - (nx * ox + ny * oy + nz * oz)) / denominator;
+                uint bits = L.Bits(L.AndNot(L.And(L.Greater(t, zero), L.Less(t, tMax)), L.Equal(denominator, zero))) & m;
+                blocked |= bits << c;
+                m &= ~bits;
+            }
+        }
+        return blocked;
+    }
+
     /// <summary>
     /// The hit records of the packet's lanes, as SceneGeometry.Record makes them one ray at a time: P = o + t·d for every
     /// lane; for the <paramref name="mesh"/> lanes the face normal Normalize((p1 − p0) × (p2 − p0)), which is also the

@@ -86,20 +86,15 @@ public sealed partial class SceneGeometry
     public uint Occluded(ref RayPacket packet)
     {
         uint blocked = _hasTriangles ? _triangles.Occluded(ref packet) : 0;
-        if (_analyticBvh is null && _planes.Length == 0) return blocked;
-        for (uint m = packet.Active & ~blocked; m != 0; m &= m - 1)
-        {
-            int lane = BitOperations.TrailingZeroCount(m);
-            var ray = packet.Ray(lane);
-            bool hit = false;
-            if (_analyticBvh is not null)
+        if (_analyticBvh is not null)
+            for (uint m = packet.Active & ~blocked; m != 0; m &= m - 1)
             {
+                int lane = BitOperations.TrailingZeroCount(m);
                 var a = _analytic;
-                hit = _analyticBvh.Occluded(ref a, ray);
+                if (_analyticBvh.Occluded(ref a, packet.Ray(lane))) blocked |= 1u << lane;
             }
-            for (int i = 0; i < _planes.Length && !hit; i++) hit = HitPlane(i, ray, out _);
-            if (hit) blocked |= 1u << lane;
-        }
+        uint open = packet.Active & ~blocked;
+        if (_planes.Length > 0 && open != 0) blocked |= LaneGeometry.PlanesBlock(_planes, ref packet, open);
         return blocked;
     }
 }
