@@ -47,15 +47,16 @@ public sealed partial class Renderer
             for (int bx = x0; bx < x1; bx += Block)
                 for (int y = by; y < Math.Min(by + Block, y1); y++)
                     for (int x = bx; x < Math.Min(bx + Block, x1); x++)
-                        for (int s = 0; s < perPixel; s++)
+                        for (int s = 0, cellX = 0, cellY = 0; s < perPixel; s++)
                         {
                             float jx = 0.5f, jy = 0.5f;
                             if (s < spp && spp > 1)
                             {
-                                // Sample s in cell (s mod m, s div m), jittered inside it (as the per-pixel loop).
+                                // Sample s in cell (s mod m, s div m) = (cellX, cellY), jittered inside it (as the per-pixel loop).
                                 uint h = Hash((uint)x, (uint)y, (uint)s);
-                                jx = ((s % strataX) + (h & 0xFFFF) / 65536f) / strataX;
-                                jy = ((s / strataX) + (h >> 16) / 65536f) / strataY;
+                                jx = (cellX + (h & 0xFFFF) / 65536f) / strataX;
+                                jy = (cellY + (h >> 16) / 65536f) / strataY;
+                                if (++cellX == strataX) { cellX = 0; cellY++; }
                             }
                             counters.Primary++;
                             int lane = st.Lanes++;

@@ -95,6 +95,7 @@ public static class SpectralMath
     }
 
     /// <summary>dst += a · s</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static void AddScaled(Span<float> dst, ReadOnlySpan<float> a, float s)
     {
         var d = V(dst); var va = V(a);
