@@ -72,25 +72,33 @@ public static class SpectralMath
     /// <summary>
     /// dst = (((0 + term₁) + term₂) + …) in the order given, each term a·s or (a·s + b·t) with a, b the padded spectra at
     /// offsets <see cref="SpectralTerm.A"/>, <see cref="SpectralTerm.B"/> of <paramref name="tables"/>: band for band exactly
-    /// what <see cref="Clear"/> and then <see cref="AddScaled"/> / <see cref="AddScaled2"/> in that order leave, in one pass
-    /// (one write of dst instead of one read and write per term).
+    /// what <see cref="Clear"/> and then <see cref="AddScaled"/> / <see cref="AddScaled2"/> in that order leave, without the
+    /// clearing pass (the first term is written, not added).
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static void SumTerms(Span<float> dst, ReadOnlySpan<float> tables, ReadOnlySpan<SpectralTerm> terms)
     {
         var d = V(dst);
-        ref float t0 = ref MemoryMarshal.GetReference(tables);
-        int w = Vector<float>.Count;
-        for (int i = 0; i < d.Length; i++)
+        if (terms.IsEmpty) { dst.Clear(); return; }
+        int n = d.Length;
+        for (int j = 0; j < terms.Length; j++)
         {
-            var acc = Vector<float>.Zero;
-            foreach (ref readonly var term in terms)
+            var term = terms[j];
+            var va = V(tables.Slice(term.A, dst.Length));
+            var vs = new Vector<float>(term.S);
+            // The first term lands on +0 (as on a cleared spectrum: 0 + (−0) = +0), the others on the sum so far.
+            if (term.B < 0)
             {
-                var va = Vector.LoadUnsafe(ref t0, (nuint)(term.A + i * w));
-                if (term.B < 0) acc += va * new Vector<float>(term.S);
-                else acc += va * new Vector<float>(term.S) + Vector.LoadUnsafe(ref t0, (nuint)(term.B + i * w)) * new Vector<float>(term.T);
+                if (j == 0) for (int i = 0; i < n; i++) d[i] = Vector<float>.Zero + va[i] * vs;
+                else for (int i = 0; i < n; i++) d[i] += va[i] * vs;
             }
-            d[i] = acc;
+            else
+            {
+                var vb = V(tables.Slice(term.B, dst.Length));
+                var vt = new Vector<float>(term.T);
+                if (j == 0) for (int i = 0; i < n; i++) d[i] = Vector<float>.Zero + (va[i] * vs + vb[i] * vt);
+                else for (int i = 0; i < n; i++) d[i] += va[i] * vs + vb[i] * vt;
+            }
         }
     }
 
