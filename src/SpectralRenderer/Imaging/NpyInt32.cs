@@ -30,21 +30,7 @@ public static partial class NpyInt32
     }
 
     /// <summary>Magic, version 1.0, header length and the header dict of a C-order int32 array of this shape: the bytes before the data (a multiple of 64).</summary>
-    public static byte[] Preamble(ReadOnlySpan<int> shape)
-    {
-        string dims = shape.Length == 1 ? $"{shape[0]}," : string.Join(", ", shape.ToArray().Select(d => d.ToString(CultureInfo.InvariantCulture)));
-        string dict = $"{{'descr': '<i4', 'fortran_order': False, 'shape': ({dims}), }}";
-        int preamble = Magic.Length + 2 + 2;
-        int total = (preamble + dict.Length + 1 + 63) / 64 * 64;
-        string header = dict.PadRight(total - preamble - 1) + "\n";
-        var bytes = new byte[preamble + header.Length];
-        Magic.CopyTo(bytes);
-        bytes[6] = 1;  // major version
-        bytes[7] = 0;  // minor version
-        BinaryPrimitives.WriteUInt16LittleEndian(bytes.AsSpan(8), (ushort)header.Length);
-        Encoding.ASCII.GetBytes(header, bytes.AsSpan(preamble));
-        return bytes;
-    }
+    public static byte[] Preamble(ReadOnlySpan<int> shape) => NpyWriter.Preamble(shape, "<i4");
 
     public static (int[] Shape, int[] Data) Read(Stream stream, string where = "NPY")
     {

@@ -26,10 +26,13 @@ public static class NpyWriter
     /// Magic, version 1.0, header length and the header dict of a C-order float32 array of this shape: the bytes before
     /// the data (a multiple of 64), which the data follows as they are in memory.
     /// </summary>
-    public static byte[] Preamble(ReadOnlySpan<int> shape)
+    public static byte[] Preamble(ReadOnlySpan<int> shape) => Preamble(shape, "<f4");
+
+    /// <summary>The preamble of a C-order array of this shape whose elements have NumPy type <paramref name="descr"/> (e.g. <c>&lt;f4</c>, <c>&lt;i4</c>).</summary>
+    public static byte[] Preamble(ReadOnlySpan<int> shape, string descr)
     {
         string dims = shape.Length == 1 ? $"{shape[0]}," : string.Join(", ", shape.ToArray().Select(d => d.ToString(CultureInfo.InvariantCulture)));
-        string dict = $"{{'descr': '<f4', 'fortran_order': False, 'shape': ({dims}), }}";
+        string dict = $"{{'descr': '{descr}', 'fortran_order': False, 'shape': ({dims}), }}";
         int preamble = Magic.Length + 2 + 2;
         int total = (preamble + dict.Length + 1 + 63) / 64 * 64;
         string header = dict.PadRight(total - preamble - 1) + "\n";
