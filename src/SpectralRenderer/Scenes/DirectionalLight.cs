@@ -4,7 +4,7 @@ using System.Runtime.CompilerServices;
 namespace SpectralRenderer.Scenes;
 
 /// <summary>A light at infinity shining towards <see cref="Direction"/>: no attenuation (d = 1), c_spot = 1.</summary>
-public sealed class DirectionalLight : Light
+public sealed class DirectionalLight(LightEmission emission) : Light(emission)
 {
     /// <summary>Unit direction the light shines towards.</summary>
     public Vector3 Direction { get; init; }

@@ -20,20 +20,26 @@ public readonly struct LightSample
 }
 
 /// <summary>
+/// What every light of eq. 2 emits, whatever its kind: its name, spectral intensity I_k (band values, spectrum ×
+/// intensity), ambient contribution I_amb,k, the scene's "intensity" factor and the spectrum as given.
+/// </summary>
+public readonly record struct LightEmission(string Name, float[] Intensity, float[] Ambient, bool HasAmbient, float Scale = 1, Spectra.TabulatedSpectrum? Spectrum = null);
+
+/// <summary>
 /// A light of eq. 2: its spectral intensity I_k (band values, spectrum × intensity) and its ambient
 /// contribution I_amb,k. Each kind of light (one file each) answers <see cref="Illuminate"/>;
 /// the integrator never asks which kind it has.
 /// </summary>
-public abstract class Light
+public abstract class Light(LightEmission emission)
 {
-    public required string Name { get; init; }
-    public required float[] Intensity { get; init; }
-    public required float[] Ambient { get; init; }
-    public bool HasAmbient { get; init; }
+    public string Name { get; } = emission.Name;
+    public float[] Intensity { get; } = emission.Intensity;
+    public float[] Ambient { get; } = emission.Ambient;
+    public bool HasAmbient { get; } = emission.HasAmbient;
     /// <summary>The scene's "intensity": the factor on <see cref="Spectrum"/> in <see cref="Intensity"/>.</summary>
-    public float Scale { get; init; } = 1;
+    public float Scale { get; } = emission.Scale;
     /// <summary>The light's spectrum as given (for reports and the reference white).</summary>
-    public Spectra.TabulatedSpectrum? Spectrum { get; init; }
+    public Spectra.TabulatedSpectrum? Spectrum { get; } = emission.Spectrum;
 
     /// <summary>The scene-file name of this kind of light ("point", "spot", "directional").</summary>
     public abstract string Type { get; }

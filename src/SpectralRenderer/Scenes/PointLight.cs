@@ -4,7 +4,7 @@ using System.Runtime.CompilerServices;
 namespace SpectralRenderer.Scenes;
 
 /// <summary>A point light at <see cref="Position"/>, shining equally in every direction (c_spot = 1).</summary>
-public sealed class PointLight : Light
+public sealed class PointLight(LightEmission emission) : Light(emission)
 {
     public Vector3 Position { get; init; }
     public DistanceFalloff Falloff { get; init; } = DistanceFalloff.None;

@@ -7,7 +7,7 @@ namespace SpectralRenderer.Scenes;
 /// A spot light at <see cref="Position"/> shining towards <see cref="Direction"/>: c_spot = (cos θ)^e inside
 /// the cone of half-angle θ_c and 0 outside, θ the angle between the axis and the direction to the point.
 /// </summary>
-public sealed class SpotLight : Light
+public sealed class SpotLight(LightEmission emission) : Light(emission)
 {
     public Vector3 Position { get; init; }
     /// <summary>Unit direction the light shines towards.</summary>

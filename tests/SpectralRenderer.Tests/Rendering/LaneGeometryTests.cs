@@ -208,7 +208,7 @@ public class LaneGeometryTests
     public void A_point_light_in_lanes_is_Illuminate_and_the_single_ray_shadow_ray(int width)
     {
         SkipUnsupported(width);
-        var light = new PointLight { Name = "test", Intensity = new float[24], Ambient = new float[24], Position = new Vector3(2.5f, 5, 4), Falloff = new DistanceFalloff(1, 0.2f, 0.05f) };
+        var light = new PointLight(new LightEmission("test", new float[24], new float[24], HasAmbient: false)) { Position = new Vector3(2.5f, 5, 4), Falloff = new DistanceFalloff(1, 0.2f, 0.05f) };
         var r = new Random(11);
         const float eps = 2e-5f;
         int facing = 0, away = 0;

@@ -7,7 +7,8 @@ public sealed record LightType(string[] Keys, Func<SceneLoader.LightSource, Ligh
 
 /// <summary>
 /// The light types a scene file can name ("type"): the one registration point for a new kind of light.
-/// Each entry lists its own keys and builds its <see cref="Light"/> subclass (one file each in Scenes/).
+/// Each entry lists its own keys and builds its <see cref="Light"/> subclass (one file each in Scenes/) from what every
+/// light emits (<see cref="SceneLoader.LightSource.Emission"/>) and its own keys.
 /// </summary>
 public static class LightTypes
 {
@@ -16,28 +17,9 @@ public static class LightTypes
 
     public static readonly IReadOnlyDictionary<string, LightType> ByName = new Dictionary<string, LightType>(StringComparer.Ordinal)
     {
-        ["point"] = new(["position"], s => new PointLight
-        {
-            Name = s.Name,
-            Intensity = s.Intensity,
-            Ambient = s.Ambient,
-            HasAmbient = s.HasAmbient,
-            Spectrum = s.Spectrum,
-            Scale = s.Scale,
-            Position = s.Point("position"),
-            Falloff = s.Falloff,
-        }),
+        ["point"] = new(["position"], s => new PointLight(s.Emission) { Position = s.Point("position"), Falloff = s.Falloff }),
         ["spot"] = new(["position", "direction", "look_at", "cutoff", "exponent"], Spot),
-        ["directional"] = new(["direction"], s => new DirectionalLight
-        {
-            Name = s.Name,
-            Intensity = s.Intensity,
-            Ambient = s.Ambient,
-            HasAmbient = s.HasAmbient,
-            Spectrum = s.Spectrum,
-            Scale = s.Scale,
-            Direction = s.Direction("direction"),
-        }),
+        ["directional"] = new(["direction"], s => new DirectionalLight(s.Emission) { Direction = s.Direction("direction") }),
     };
 
     static SpotLight Spot(SceneLoader.LightSource s)
@@ -52,14 +34,8 @@ public static class LightTypes
             direction = Vector3.Normalize(towards);
         }
         else throw s.Error("direction", "a spot light needs a direction or look_at", "e.g. \"direction\": [0, -1, 0] or \"look_at\": [0, 0, 0]");
-        return new SpotLight
+        return new SpotLight(s.Emission)
         {
-            Name = s.Name,
-            Intensity = s.Intensity,
-            Ambient = s.Ambient,
-            HasAmbient = s.HasAmbient,
-            Spectrum = s.Spectrum,
-            Scale = s.Scale,
             Position = position,
             Direction = direction,
             Falloff = s.Falloff,

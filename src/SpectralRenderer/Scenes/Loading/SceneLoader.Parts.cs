@@ -315,6 +315,8 @@ public sealed partial class SceneLoader
         public required float Scale { get; init; }
         /// <summary>The "attenuation" [c0, c1, c2], or none.</summary>
         public required DistanceFalloff Falloff { get; init; }
+        /// <summary>What every light emits, for the light type's constructor.</summary>
+        public LightEmission Emission => new(Name, Intensity, Ambient, HasAmbient, Scale, Spectrum);
 
         public bool Has(string key) => TryGet(_e, key, out _);
         /// <summary>A required point [x, y, z].</summary>
