@@ -544,29 +544,27 @@ public sealed class LightTransfer
         void Refract(in Ray ray, in SurfaceHit hit, Material m, int mi, Vector3 n, float cosI, bool outside, int depth, Worker w, float weight, int pixel)
         {
             var p = hit.Position;
+            float eta = m.Eta(outside, w.Band);
+            float sin2T = eta * eta * (1 - cosI * cosI);
+            var ng = outside ? hit.GeometricNormal : -hit.GeometricNormal;
+            Vector3 dir, origin;
+            float f = 1;
+            if (sin2T >= 1)
             {
-                float eta = m.Eta(outside, w.Band);
-                float sin2T = eta * eta * (1 - cosI * cosI);
-                var ng = outside ? hit.GeometricNormal : -hit.GeometricNormal;
-                Vector3 dir, origin;
-                float f = 1;
-                if (sin2T >= 1)
-                {
-                    // Total internal reflection: with Fresnel nothing is transmitted (F = 1 on the mirror lobe).
-                    if (m.Fresnel) return;
-                    dir = Vector3.Normalize(ray.Direction + 2 * cosI * n);
-                    origin = p + _geometry.Epsilon * ng;
-                }
-                else
-                {
-                    float cosT = MathF.Sqrt(1 - sin2T);
-                    dir = Vector3.Normalize(eta * ray.Direction + (eta * cosI - cosT) * n);
-                    origin = p - _geometry.Epsilon * ng;
-                    f = m.TransmitFactor(cosI, eta);
-                }
-                w.Counters.Secondary++;
-                Follow(new Ray(origin, dir), depth, w, weight, f, mi, transmit: true, pixel);
+                // Total internal reflection: with Fresnel nothing is transmitted (F = 1 on the mirror lobe).
+                if (m.Fresnel) return;
+                dir = Vector3.Normalize(ray.Direction + 2 * cosI * n);
+                origin = p + _geometry.Epsilon * ng;
             }
+            else
+            {
+                float cosT = MathF.Sqrt(1 - sin2T);
+                dir = Vector3.Normalize(eta * ray.Direction + (eta * cosI - cosT) * n);
+                origin = p - _geometry.Epsilon * ng;
+                f = m.TransmitFactor(cosI, eta);
+            }
+            w.Counters.Secondary++;
+            Follow(new Ray(origin, dir), depth, w, weight, f, mi, transmit: true, pixel);
         }
 
         void Follow(Ray ray, int depth, Worker w, float weight, float f, int mi, bool transmit, int pixel)
