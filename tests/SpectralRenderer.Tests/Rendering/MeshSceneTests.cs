@@ -137,4 +137,21 @@ public class MeshSceneTests
         Assert.Contains("$SPECTRAL_MODELS", e.Message);
         Assert.Contains("--models", e.Message);
     }
+
+    [Fact]
+    public void A_missing_mesh_keeps_the_search_path_labels_however_long_the_folders()
+    {
+        // CI's folders are longer than a developer's: the labels must survive the message's 300-character cut.
+        var dir = Reference.TempDir();
+        var deep = Directory.CreateDirectory(Path.Combine(dir, new string('s', 120), new string('t', 120))).FullName;
+        var models = Directory.CreateDirectory(Path.Combine(dir, new string('m', 200))).FullName;
+        var path = Path.Combine(deep, "scene.json");
+        File.WriteAllText(path, Scene("""{ "type": "mesh", "file": "nowhere.obj", "material": "m" }"""));
+        var e = Assert.Throws<SpectralRenderer.Diagnostics.InputException>(() => SceneLoader.Load(path, new SceneOverrides { ModelDirectories = [models] }));
+        var line = e.Message;
+        Assert.True(line.Length <= SpectralRenderer.Diagnostics.MessageText.MaxLine, line);
+        Assert.Contains("not found in", line);
+        Assert.Contains("--models ", line);
+        Assert.Contains("$SPECTRAL_MODELS", line);
+    }
 }

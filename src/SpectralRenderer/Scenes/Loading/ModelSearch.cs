@@ -29,12 +29,21 @@ public static class ModelSearch
         return null;
     }
 
+    /// <summary>The longest folder a search-path description shows, in characters; longer ones are cut in the middle.</summary>
+    public const int MaxFolder = 32;
+
+    /// <summary>
+    /// The search path for a message whose place already names the scene file: "the scene's folder", then each
+    /// --models folder and $SPECTRAL_MODELS cut to <see cref="MaxFolder"/> characters, so the labels survive the
+    /// cut to <see cref="Diagnostics.MessageText.MaxLine"/> characters however long the folders are.
+    /// </summary>
     public static string Describe(string sceneDir, IEnumerable<string> extra)
     {
+        static string Cut(string folder) => Diagnostics.MessageText.Shorten(folder, MaxFolder);
         var env = Environment.GetEnvironmentVariable(Variable);
-        var list = new List<string> { sceneDir };
-        list.AddRange(extra.Select(d => $"--models {d}"));
-        list.Add(string.IsNullOrEmpty(env) ? "$SPECTRAL_MODELS (unset)" : $"$SPECTRAL_MODELS={env}");
+        var list = new List<string> { "the scene's folder" };
+        list.AddRange(extra.Where(d => Path.GetFullPath(d) != Path.GetFullPath(sceneDir)).Select(d => $"--models {Cut(d)}"));
+        list.Add(string.IsNullOrEmpty(env) ? "$SPECTRAL_MODELS (unset)" : $"$SPECTRAL_MODELS={Cut(env)}");
         return string.Join(", ", list);
     }
 }

@@ -252,7 +252,7 @@ public sealed partial class SceneLoader
         if (!_overrides.LoadMeshes) return new SceneObject { Name = name, Material = material };
         var full = ModelSearch.Find(file, _dir, _overrides.ModelDirectories)
             ?? throw Error($"{path}.file", $"mesh '{file}' not found in {ModelSearch.Describe(_dir, _overrides.ModelDirectories)}",
-                "download the meshes (README, 'Meshes') and pass --models DIR or set SPECTRAL_MODELS", InputProblem.MissingFile);
+                "get the meshes (README, 'Meshes'); pass --models DIR or set SPECTRAL_MODELS", InputProblem.MissingFile);
         var ext = Path.GetExtension(full).ToLowerInvariant();
         if (ext is not (".obj" or ".ply")) throw Error($"{path}.file", $"'{file}' is neither .obj nor .ply", "meshes are Wavefront .obj or Stanford .ply files");
         // The read started with the scene (StartMeshReads); a second object on the same file reads it again,
