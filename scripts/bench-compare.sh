@@ -53,7 +53,8 @@ run_case() { # build case → one figure
     esac
 }
 
-cases=(bunny1024 bunny512x16 igea1024 bunny512b401 process512 peak1024)
+# BENCH_CASES="peak1024 process512" runs only those cases.
+read -r -a cases <<< "${BENCH_CASES:-bunny1024 bunny512x16 igea1024 bunny512b401 process512 peak1024}"
 declare -A figures
 for ((r = 1; r <= rounds; r++)); do
     echo "round $r/$rounds" >&2

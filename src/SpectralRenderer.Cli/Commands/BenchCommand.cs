@@ -40,6 +40,7 @@ public static class BenchCommand
         clock.Restart();
         var geometry = new SceneGeometry(scene);
         var integrator = Integrators.Create(scene, geometry);
+        Renderer.ReturnLoadGarbage();   // as `render` does
         double build = clock.Elapsed.TotalSeconds;
 
         Renderer.Render(scene, integrator, threads);   // warm-up: JIT and caches

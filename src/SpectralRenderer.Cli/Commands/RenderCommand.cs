@@ -109,6 +109,7 @@ public static class RenderCommand
             var setup = System.Diagnostics.Stopwatch.StartNew();
             var geometry = new SceneGeometry(scene);
             var integrator = Integrators.Create(scene, geometry);
+            Renderer.ReturnLoadGarbage();
             double buildSeconds = setup.Elapsed.TotalSeconds;
             int degenerate = scene.Objects.Sum(o => o.Mesh?.DegenerateCount ?? 0);
             RenderResult result;

@@ -7,7 +7,7 @@ namespace SpectralRenderer.Acceleration;
 /// <summary>
 /// A bounding volume hierarchy over primitives given by their bounds, in an array of 32-byte nodes in
 /// depth-first order, each interior node's first child right after it (see <see cref="BvhBuilder"/> for the
-/// binned-SAH build; a range of n primitives owns 2n − 1 slots, some left unused and zero). Traversal is
+/// binned-SAH build; compacted after it to the nodes in use). Traversal is
 /// front-to-back with a fixed stack and allocates nothing; the primitives are tested through a struct
 /// <see cref="IPrimitiveIntersector"/> that receives positions in <see cref="PrimitiveOrder"/>.
 /// </summary>
@@ -39,7 +39,7 @@ public sealed partial class Bvh
 
     /// <summary>k → original primitive index: traversal hands k to the intersector, so store primitive data permuted by this.</summary>
     public int[] PrimitiveOrder { get; }
-    /// <summary>Slots in the node array (2n − 1 for n primitives), used or not.</summary>
+    /// <summary>Nodes in the node array (at most 2n − 1 for n primitives).</summary>
     public int NodeCount => _nodes.Length;
     public int MaxDepth { get; }
     public ReadOnlySpan<BvhNode> Nodes => _nodes;

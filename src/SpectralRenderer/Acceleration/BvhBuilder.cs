@@ -85,7 +85,7 @@ sealed class BvhBuilder
     // from its root on (a binary tree over n primitives has at most 2n − 1 nodes), its left child the next
     // 2·n_left − 1 and its right child the rest. So the first child directly follows its parent, parallel
     // subtrees write disjoint slots (no shared counter, no false sharing), and the array is the same for any
-    // thread count; the slots a leaf of several primitives leaves unused are zero.
+    // thread count; the slots a leaf of several primitives leaves unused are zero, and Compact drops them.
     readonly BvhNode[] _nodes;
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
@@ -109,7 +109,39 @@ sealed class BvhBuilder
         if (bounds.Length == 0) return ([], [], 0);
         var builder = new BvhBuilder(bounds, maxLeafSize, parallel);
         int depth = builder.Subtree(0, bounds.Length, 0, 1, builder.RangeExtent(0, bounds.Length));
-        return (builder._nodes, builder._order, depth);
+        return (Compact(builder._nodes), builder._order, depth);
+    }
+
+    /// <summary>
+    /// The nodes without the slots leaves left unused, in the same depth-first order (each first child right after
+    /// its parent; second children renumbered): the same tree, traversed in the same order, in about half the memory.
+    /// </summary>
+    static BvhNode[] Compact(BvhNode[] slots)
+    {
+        int used = 0;
+        Count(0);
+        var nodes = GC.AllocateUninitializedArray<BvhNode>(used);
+        int next = 0;
+        Copy(0);
+        return nodes;
+
+        void Count(int at)
+        {
+            used++;
+            if (slots[at].IsLeaf) return;
+            Count(at + 1);
+            Count(slots[at].Offset);
+        }
+
+        void Copy(int at)
+        {
+            var node = slots[at];
+            int to = next++;
+            if (node.IsLeaf) { nodes[to] = node; return; }
+            Copy(at + 1);
+            nodes[to] = BvhNode.Interior(node.Min, node.Max, next, node.Axis);
+            Copy(node.Offset);
+        }
     }
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]

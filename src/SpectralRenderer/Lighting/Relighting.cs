@@ -92,16 +92,14 @@ public static class Relighting
             throw new InputException(src.Dir, $"its lights/ are {transfer.Width}×{transfer.Height}×{transfer.Bands} but the scene rebuilds as {scene.Camera.Width}×{scene.Camera.Height}×{scene.Bands}",
                 "the scene file changed since the render; render again");
         var (image, xyz, fallback) = transfer.Relight(scene);
-        var (dy, sy) = transfer.CentreLuminance(scene);
         var result = new RenderResult
         {
             Image = image,
             Xyz = xyz,
             FallbackPixels = fallback,
             ObjectIds = transfer.ObjectIds,
-            LitMasks = transfer.LitMasks,
-            DiffuseY = dy,
-            SpecularY = sy,
+            LitMasks = LitMasks.From(transfer.LitMasks, scene.Lights.Count),
+            Highlights = transfer.CentreHighlights(scene),
             Rays = new RayCounters(),
             Elapsed = clock.Elapsed,
             Threads = Environment.ProcessorCount,

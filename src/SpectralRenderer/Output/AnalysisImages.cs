@@ -20,19 +20,17 @@ public static class AnalysisImages
         var image = result.Image;
         int n = image.Width * image.Height;
         var mask = new byte[n];
-        for (int k = 0; k < Math.Min(32, scene.Lights.Count); k++)
+        for (int k = 0; k < Math.Min(LitMasks.MaxLights, scene.Lights.Count); k++)
         {
             var name = $"mask-lit-{k}.png";
             if (reuse?.Copy(name, outDir) != true)
             {
-                for (int i = 0; i < n; i++) mask[i] = (result.LitMasks[i] & (1u << k)) != 0 ? (byte)255 : (byte)0;
+                for (int i = 0; i < n; i++) mask[i] = result.LitMasks.IsLit(i, k) ? (byte)255 : (byte)0;
                 AtomicFile.Write(Path.Combine(outDir, name), s => PngWriter.WriteGray8(s, image.Width, image.Height, mask));
             }
             done(name);
         }
-        float f = (float)scene.Output.HighlightFraction;
-        for (int i = 0; i < n; i++) mask[i] = result.SpecularY[i] > 0 && result.SpecularY[i] > f * result.DiffuseY[i] ? (byte)255 : (byte)0;
-        AtomicFile.Write(Path.Combine(outDir, "mask-highlight.png"), s => PngWriter.WriteGray8(s, image.Width, image.Height, mask));
+        AtomicFile.Write(Path.Combine(outDir, "mask-highlight.png"), s => PngWriter.WriteGray8(s, image.Width, image.Height, result.Highlights));
         done("mask-highlight.png");
 
         if (reuse?.Copy("reflectance.exr", outDir) != true)

@@ -203,8 +203,8 @@ public sealed class LightTransfer
         return (image, xyz, fallback);
     }
 
-    /// <summary>The highlight-mask luminances of eq. 2's terms at the centre rays, under new light band values.</summary>
-    public (float[] DiffuseY, float[] SpecularY) CentreLuminance(Scene scene)
+    /// <summary>The highlight mask (<see cref="PixelInfo.Highlight"/>) from the luminances of eq. 2's terms at the centre rays, under new light band values.</summary>
+    public byte[] CentreHighlights(Scene scene)
     {
         var tables = new TermTables(scene);
         int n = Width * Height, lights = scene.Lights.Count, y = scene.Bands + 1;   // the Y colour lane
@@ -221,7 +221,10 @@ public sealed class LightTransfer
                 specular[i] += CentreSpecular[k][i] * tables.Specular[term][y];
             }
         }
-        return (diffuse, specular);
+        var mask = new byte[n];
+        float fraction = (float)scene.Output.HighlightFraction;
+        for (int i = 0; i < n; i++) mask[i] = PixelInfo.Highlight(specular[i], diffuse[i], fraction);
+        return mask;
     }
 
     readonly record struct Key(ulong A, ulong B, int Band);

@@ -36,7 +36,7 @@ public sealed partial class Renderer
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     static void PacketTile(IPacketIntegrator integrator, Scenes.Camera cam, int x0, int y0, int x1, int y1, int strataX, int strataY,
-        PacketTileState st, SpectralImage image, int[] ids, uint[] lit, float[] specY, float[] diffY, float[] xyz, Colorimeter colorimeter,
+        PacketTileState st, SpectralImage image, int[] ids, LitMasks lit, byte[] highlights, float highlightFraction, float[] xyz, Colorimeter colorimeter,
         ref long fallbackPixels, ref RayCounters counters)
     {
         int spp = cam.SamplesPerPixel;
@@ -62,14 +62,14 @@ public sealed partial class Renderer
                             int lane = st.Lanes++;
                             st.FilmX[lane] = x + jx; st.FilmY[lane] = y + jy;   // the film position cam.Generate takes
                             st.PixelX[lane] = x; st.PixelY[lane] = y; st.Sample[lane] = s;
-                            if (st.Lanes == RayPacket.Size) Flush(integrator, cam, spp, st, image, ids, lit, specY, diffY, xyz, colorimeter, ref fallbackPixels, ref counters);
+                            if (st.Lanes == RayPacket.Size) Flush(integrator, cam, spp, st, image, ids, lit, highlights, highlightFraction, xyz, colorimeter, ref fallbackPixels, ref counters);
                         }
-        if (st.Lanes > 0) Flush(integrator, cam, spp, st, image, ids, lit, specY, diffY, xyz, colorimeter, ref fallbackPixels, ref counters);
+        if (st.Lanes > 0) Flush(integrator, cam, spp, st, image, ids, lit, highlights, highlightFraction, xyz, colorimeter, ref fallbackPixels, ref counters);
     }
 
     /// <summary>Traces the packet and puts each lane's radiance where it belongs: a pixel (spp = 1), a pixel's sum, or its analysis images.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    static void Flush(IPacketIntegrator integrator, Scenes.Camera cam, int spp, PacketTileState st, SpectralImage image, int[] ids, uint[] lit, float[] specY, float[] diffY,
+    static void Flush(IPacketIntegrator integrator, Scenes.Camera cam, int spp, PacketTileState st, SpectralImage image, int[] ids, LitMasks lit, byte[] highlights, float highlightFraction,
         float[] xyz, Colorimeter colorimeter, ref long fallbackPixels, ref RayCounters counters)
     {
         // The camera rays of the packet's lanes, all at once (Camera.Generate in SIMD lanes: the same bits).
@@ -105,8 +105,7 @@ public sealed partial class Renderer
             }
             ids[i] = st.Objects[lane];
             lit[i] = st.Infos[lane].LitMask;
-            specY[i] = st.Infos[lane].SpecularY;
-            diffY[i] = st.Infos[lane].DiffuseY;
+            highlights[i] = PixelInfo.Highlight(st.Infos[lane].SpecularY, st.Infos[lane].DiffuseY, highlightFraction);
         }
         st.Packet.Clear();
         st.Lanes = 0;

@@ -12,10 +12,10 @@ public sealed class RenderResult
     /// <summary>Per pixel, the index of the object the centre ray hits, or −1 for background.</summary>
     public required int[] ObjectIds { get; init; }
     /// <summary>Per pixel, bit k set when light k reaches the surface the centre ray sees.</summary>
-    public required uint[] LitMasks { get; init; }
-    /// <summary>Per pixel, the luminance of the specular and diffuse terms of eq. 2 at the centre ray's hit.</summary>
-    public required float[] SpecularY { get; init; }
-    public required float[] DiffuseY { get; init; }
+    public required LitMasks LitMasks { get; init; }
+    /// <summary>Per pixel, the highlight mask at the centre ray's hit (<see cref="PixelInfo.Highlight"/>: 255 or 0), one byte
+    /// where the luminances of eq. 2's specular and diffuse terms it is decided from would take eight.</summary>
+    public required byte[] Highlights { get; init; }
     /// <summary>
     /// Per pixel X, Y, Z (3 floats, κ included): the colour of its spectrum as the scene's integration defines it — with
     /// <see cref="Color.BandIntegration.Exact"/> the sum of each term's exact XYZ from the tables, not eq. 3 on the band values.
@@ -45,6 +45,13 @@ public sealed partial class Renderer
 {
     public const int TileSize = 32;
 
+    /// <summary>
+    /// Hands the garbage of scene loading and the BVH build (a mesh file's bytes, parse and build scratch: ~10 MB for the
+    /// bunny) back to the OS before a render allocates its arrays, so a one-shot command's peak working set is the scene,
+    /// the BVH and the render (BENCHMARKS.md). One blocking, compacting collection of a few megabytes: milliseconds.
+    /// </summary>
+    public static void ReturnLoadGarbage() => GC.Collect(2, GCCollectionMode.Aggressive, blocking: true, compacting: true);
+
     public static RenderResult Render(Scene scene, int threads = 0, Action<RenderProgress>? progress = null, CancellationToken cancel = default, PixelRect? crop = null)
     {
         var geometry = new SceneGeometry(scene);
@@ -66,9 +73,9 @@ public sealed partial class Renderer
         // Every pixel of these is written by its tile, so they are not zeroed first (80 MB at 1024² × 20 bands).
         var image = new SpectralImage(width, height, scene.Grid, GC.AllocateUninitializedArray<float>(width * height * bands));
         var ids = GC.AllocateUninitializedArray<int>(width * height);
-        var lit = GC.AllocateUninitializedArray<uint>(width * height);
-        var specY = GC.AllocateUninitializedArray<float>(width * height);
-        var diffY = GC.AllocateUninitializedArray<float>(width * height);
+        var lit = new LitMasks(width * height, scene.Lights.Count);
+        var highlights = GC.AllocateUninitializedArray<byte>(width * height);
+        float highlightFraction = (float)scene.Output.HighlightFraction;
         var xyz = GC.AllocateUninitializedArray<float>(3 * width * height);
         long fallbackPixels = 0;
         var colorimeter = scene.Colorimeter;
@@ -115,7 +122,7 @@ public sealed partial class Renderer
                 var sample = state.Sample.AsSpan();
                 var scratch = state.Scratch.AsSpan();
                 if (packetState is not null)
-                    PacketTile((IPacketIntegrator)integrator, cam, x0, y0, x1, y1, strataX, strataY, packetState, image, ids, lit, specY, diffY, xyz, colorimeter, ref fallbackPixels, ref counters);
+                    PacketTile((IPacketIntegrator)integrator, cam, x0, y0, x1, y1, strataX, strataY, packetState, image, ids, lit, highlights, highlightFraction, xyz, colorimeter, ref fallbackPixels, ref counters);
                 else
                     for (int y = y0; y < y1; y++)
                         for (int x = x0; x < x1; x++)
@@ -166,8 +173,7 @@ public sealed partial class Renderer
                             }
                             ids[i] = id;
                             lit[i] = info.LitMask;
-                            specY[i] = info.SpecularY;
-                            diffY[i] = info.DiffuseY;
+                            highlights[i] = PixelInfo.Highlight(info.SpecularY, info.DiffuseY, highlightFraction);
                         }
                 lock (gate)
                 {
@@ -182,7 +188,7 @@ public sealed partial class Renderer
         try { Task.WaitAll(workers); }
         catch (AggregateException e) when (e.InnerExceptions.All(x => x is OperationCanceledException)) { throw new OperationCanceledException(cancel); }
 
-        return new RenderResult { Image = image, ObjectIds = ids, LitMasks = lit, SpecularY = specY, DiffuseY = diffY, Xyz = xyz, FallbackPixels = fallbackPixels, Rays = total, Elapsed = clock.Elapsed, Threads = threads, Tiles = tiles, Crop = region, Packets = packed };
+        return new RenderResult { Image = image, ObjectIds = ids, LitMasks = lit, Highlights = highlights, Xyz = xyz, FallbackPixels = fallbackPixels, Rays = total, Elapsed = clock.Elapsed, Threads = threads, Tiles = tiles, Crop = region, Packets = packed };
     }
 
     sealed class TileState(int scratch, int padded)

@@ -80,7 +80,7 @@ public class BvhTests(ITestOutputHelper output)
     {
         var set = TriangleSet.Build([Soup(2_000, 1)]);
         var (closest, occluded, hits) = BruteForce.Compare(set, Rays(set.Bvh.Bounds, SoupRays, 2));
-        output.WriteLine($"soup: 2,000 triangles, {set.Bvh.NodeCount} node slots, depth {set.Bvh.MaxDepth}; {SoupRays} rays, {hits} hit");
+        output.WriteLine($"soup: 2,000 triangles, {set.Bvh.NodeCount} nodes, depth {set.Bvh.MaxDepth}; {SoupRays} rays, {hits} hit");
         Assert.Equal(0, closest);
         Assert.Equal(0, occluded);
         Assert.InRange(hits, SoupRays / 20, SoupRays - 1); // the comparison is not vacuous (12,529 of 100k hit)
@@ -117,13 +117,14 @@ public class BvhTests(ITestOutputHelper output)
     }
 
     /// <summary>
-    /// The slot layout walked from the root: a subtree over n primitives owns 2n − 1 slots, its first child right
-    /// after it and its second 2·n_left − 1 slots further; every primitive is in exactly one reachable leaf, each
-    /// node's box holds its children's, and the slots no node uses are zero. Soups, identical boxes (the median
-    /// path), flat boxes and a single primitive, for several leaf sizes.
+    /// The node array is a depth-first tree with no gaps: every node is reached exactly once, each interior node's
+    /// first child follows it directly and its second child follows the first child's subtree; every primitive is in
+    /// exactly one leaf, leaves hold consecutive primitives in order, each node's box holds its children's, and there
+    /// are at most 2n − 1 nodes. Soups, identical boxes (the median path), flat boxes and a single primitive, for several
+    /// leaf sizes.
     /// </summary>
     [Fact]
-    public void Every_range_owns_its_slots_and_the_unused_ones_are_zero()
+    public void The_nodes_are_a_gapless_depth_first_tree()
     {
         var soup = Soup(3_000, 9);
         var cases = new List<Bounds3[]>
@@ -138,30 +139,32 @@ public class BvhTests(ITestOutputHelper output)
             {
                 var bvh = Bvh.Build(bounds, leafSize);
                 var nodes = bvh.Nodes.ToArray();
-                Assert.Equal(2 * bounds.Length - 1, nodes.Length);
-                var used = new bool[nodes.Length];
+                Assert.InRange(nodes.Length, 1, 2 * bounds.Length - 1);
+                var reached = new int[nodes.Length];
                 var seen = new int[bounds.Length];
-                int Walk(int at, int first)   // returns how many primitives the subtree at `at` holds; they are [first, first + n)
+                // Returns (primitives, nodes) of the subtree at `at`; its primitives are [first, first + primitives).
+                (int Primitives, int Nodes) Walk(int at, int first)
                 {
-                    used[at] = true;
+                    reached[at]++;
                     var n = nodes[at];
                     if (n.IsLeaf)
                     {
                         Assert.Equal(first, n.Offset);
                         for (int k = n.Offset; k < n.Offset + n.Count; k++) seen[k]++;
-                        return n.Count;
+                        return (n.Count, 1);
                     }
-                    int left = Walk(at + 1, first);
-                    Assert.Equal(at + 2 * left, n.Offset);   // the left range owned 2·n_left − 1 slots from at + 1
-                    int right = Walk(n.Offset, first + left);
+                    var left = Walk(at + 1, first);
+                    Assert.Equal(at + 1 + left.Nodes, n.Offset);   // the second child right after the first child's subtree
+                    var right = Walk(n.Offset, first + left.Primitives);
                     foreach (var c in new[] { nodes[at + 1], nodes[n.Offset] })
                         Assert.True(Vector3.Min(c.Min, n.Min) == n.Min && Vector3.Max(c.Max, n.Max) == n.Max, "a node's box holds its children's");
-                    return left + right;
+                    return (left.Primitives + right.Primitives, 1 + left.Nodes + right.Nodes);
                 }
-                Assert.Equal(bounds.Length, Walk(0, 0));
+                var root = Walk(0, 0);
+                Assert.Equal(bounds.Length, root.Primitives);
+                Assert.Equal(nodes.Length, root.Nodes);
+                Assert.All(reached, r => Assert.Equal(1, r));
                 Assert.All(seen, s => Assert.Equal(1, s));
-                for (int i = 0; i < nodes.Length; i++)
-                    if (!used[i]) Assert.Equal(default(BvhNode), nodes[i]);
             }
     }
 
@@ -173,7 +176,7 @@ public class BvhTests(ITestOutputHelper output)
         var one = TriangleSet.Build([mesh], parallel: false).Bvh;
         var many = TriangleSet.Build([mesh]).Bvh;
         var again = TriangleSet.Build([mesh]).Bvh;
-        output.WriteLine($"{one.NodeCount} node slots, depth {one.MaxDepth}");
+        output.WriteLine($"{one.NodeCount} nodes, depth {one.MaxDepth}");
         Assert.True(one.Nodes.SequenceEqual(many.Nodes));
         Assert.True(many.Nodes.SequenceEqual(again.Nodes));
         Assert.Equal(one.PrimitiveOrder, many.PrimitiveOrder);

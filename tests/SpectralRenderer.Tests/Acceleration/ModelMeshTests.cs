@@ -44,7 +44,7 @@ public class ModelMeshTests(ITestOutputHelper output)
         var set = TriangleSet.Build([m]);
         const int rays = 1_000; // × 69,451 brute-force tests; 100k rays were checked in Release
         var (closest, occluded, hits) = BruteForce.Compare(set, BvhTests.Rays(set.Bvh.Bounds, rays, 5));
-        output.WriteLine($"bunny: {set.Bvh.NodeCount} node slots, depth {set.Bvh.MaxDepth}; {rays} rays, {hits} hit");
+        output.WriteLine($"bunny: {set.Bvh.NodeCount} nodes, depth {set.Bvh.MaxDepth}; {rays} rays, {hits} hit");
         Assert.Equal(0, closest);
         Assert.Equal(0, occluded);
         Assert.InRange(hits, rays / 4, rays - 1);
