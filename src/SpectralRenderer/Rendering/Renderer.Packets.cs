@@ -93,7 +93,8 @@ public sealed partial class Renderer
             }
             x -= st.FilmX0; y -= st.FilmY0;   // film → framebuffer
             var pixel = spp == 1 ? result : sum;
-            SpectralMath.CopyBands(pixel, image.Data.AsSpan(image.Offset(x, y), bands));
+            if (bands >= SpectralMath.StreamMinBands) SpectralMath.StreamBands(pixel, image.Data.AsSpan(image.Offset(x, y), bands));
+            else SpectralMath.CopyBands(pixel, image.Data.AsSpan(image.Offset(x, y), bands));
             int i = y * width + x;
             // The colour lanes follow the bands (as the per-pixel loop); eq. 3 on the band values after a fallback.
             if (!st.PixelFallback) { xyz[3 * i] = pixel[bands]; xyz[3 * i + 1] = pixel[bands + 1]; xyz[3 * i + 2] = pixel[bands + 2]; }
@@ -107,6 +108,7 @@ public sealed partial class Renderer
             lit[i] = st.Infos[lane].LitMask;
             highlights[i] = PixelInfo.Highlight(st.Infos[lane].SpecularY, st.Infos[lane].DiffuseY, highlightFraction);
         }
+        if (bands >= SpectralMath.StreamMinBands) SpectralMath.StreamFence();
         st.Packet.Clear();
         st.Lanes = 0;
     }

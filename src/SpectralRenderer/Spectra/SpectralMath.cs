@@ -1,6 +1,7 @@
 using System.Numerics;
 using System.Runtime.CompilerServices;
 using System.Runtime.InteropServices;
+using System.Runtime.Intrinsics;
 
 namespace SpectralRenderer.Spectra;
 
@@ -129,6 +130,46 @@ public static class SpectralMath
         int i = 0;
         for (; i + w <= n; i += w) Vector.StoreUnsafe(Vector.LoadUnsafe(ref s, (nuint)i), ref d, (nuint)i);
         if (i < n) Vector.StoreUnsafe(Vector.LoadUnsafe(ref s, (nuint)(n - w)), ref d, (nuint)(n - w));
+    }
+
+    /// <summary>Below this many bands a pixel spans too few whole cache lines for <see cref="StreamBands"/> to pay.</summary>
+    public const int StreamMinBands = 128;
+
+    /// <summary>
+    /// As <see cref="CopyBands"/> into a framebuffer far larger than the caches, for a pixel of at least
+    /// <see cref="StreamMinBands"/> bands: the whole cache lines of the destination are written with non-temporal
+    /// (streaming) stores, which skip reading each line before writing it (half the memory traffic of a plain store),
+    /// the ragged ends with plain stores. The caller issues <see cref="StreamFence"/> before another thread reads the
+    /// pixels. The same values as <see cref="CopyBands"/>, bit for bit.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static unsafe void StreamBands(ReadOnlySpan<float> padded, Span<float> dst)
+    {
+        int n = dst.Length;
+        if (n < StreamMinBands || padded.Length < n || !Vector256.IsHardwareAccelerated) { CopyBands(padded, dst); return; }
+        fixed (float* d0 = dst)
+        fixed (float* s0 = padded)
+        {
+            // Plain stores up to the first 64-byte boundary and from the last one; streaming stores between them.
+            int head = (int)(((64 - ((nuint)d0 & 63)) & 63) / sizeof(float));
+            int body = (n - head) & ~15;
+            if (((nuint)d0 & 3) != 0 || body <= 0) { CopyBands(padded, dst); return; }
+            for (int i = 0; i < head; i++) d0[i] = s0[i];
+            float* d = d0 + head, s = s0 + head;
+            if (Vector512.IsHardwareAccelerated)
+                for (int i = 0; i < body; i += 16) Vector512.StoreAlignedNonTemporal(Vector512.Load(s + i), d + i);
+            else
+                for (int i = 0; i < body; i += 8) Vector256.StoreAlignedNonTemporal(Vector256.Load(s + i), d + i);
+            for (int i = head + body; i < n; i++) d0[i] = s0[i];
+        }
+    }
+
+    /// <summary>Orders the streaming stores of <see cref="StreamBands"/> before every later store (x86 sfence), so a
+    /// thread that sees what follows sees the pixels.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static void StreamFence()
+    {
+        if (System.Runtime.Intrinsics.X86.Sse.IsSupported) System.Runtime.Intrinsics.X86.Sse.StoreFence();
     }
 }
 

@@ -37,7 +37,8 @@ public class PacketRenderTests
     /// ray goes through the packet path (camera rays, plane tests, point-light terms and shadow rays in lanes).</param>
     /// <param name="copies">How many times the three lights are repeated (shifted): more than 8 lights take the packet
     /// path's other way of summing eq. 2's terms (at once, not listed).</param>
-    static Scene Load(int spp, bool mirror, int copies = 1)
+    /// <param name="bands">The band grid ("S:E:N"); 128 bands and more take the framebuffer's streaming stores.</param>
+    static Scene Load(int spp, bool mirror, int copies = 1, string bands = "380:780:20")
     {
         var lights = string.Join(", ", Enumerable.Range(0, copies).Select(i => string.Create(CultureInfo.InvariantCulture, $$"""
                       { "type": "point", "position": [{{2.5 - i}}, 5, 4], "spectrum": "D65", "intensity": {{1.0 / copies}} },
@@ -48,7 +49,8 @@ public class PacketRenderTests
         File.WriteAllText(Path.Combine(dir, "sphere.obj"), SphereObj());
         var path = Path.Combine(dir, "scene.json");
         File.WriteAllText(path, $$"""
-        { "camera": { "position": [0.4, 1.6, 5.2], "look_at": [0, 0.6, 0], "fov": 40, "width": 83, "height": 61, "spp": {{spp}} },
+        { "bands": "{{bands}}",
+          "camera": { "position": [0.4, 1.6, 5.2], "look_at": [0, 0.6, 0], "fov": 40, "width": 83, "height": 61, "spp": {{spp}} },
           "materials": { "shiny": { "diffuse": "colorchecker:14", "specular": 0.4, "shininess": 30 },
                          "phong": { "diffuse": "colorchecker:7", "specular": 0.3, "shininess": 12, "model": "phong" },
                          "mirror": { "diffuse": 0.1{{(mirror ? ", \"mirror\": 0.6" : ", \"specular\": 0.5, \"shininess\": 60")}} },
@@ -83,9 +85,11 @@ public class PacketRenderTests
     [InlineData(1, true)]
     [InlineData(3, true)]
     [InlineData(1, false, 3)]
-    public void Packets_render_the_ray_by_ray_picture_bit_for_bit(int spp, bool mirror, int copies = 1)
+    [InlineData(1, false, 1, "380:780:401")]
+    [InlineData(3, false, 1, "400:700:137")]
+    public void Packets_render_the_ray_by_ray_picture_bit_for_bit(int spp, bool mirror, int copies = 1, string bands = "380:780:20")
     {
-        var scene = Load(spp, mirror, copies);
+        var scene = Load(spp, mirror, copies, bands);
         var integrator = new WhittedIntegrator(scene, new SceneGeometry(scene));
         var single = Renderer.Render(scene, integrator, threads: 1, packets: false);
         var packed1 = Renderer.Render(scene, integrator, threads: 1);
