@@ -1,0 +1,85 @@
+using System.Reflection;
+using System.Runtime.CompilerServices;
+
+namespace SpectralRenderer.Cli;
+
+/// <summary>
+/// Compiles the engine's hot loops on a background thread while the main thread reads the scene and its meshes.
+/// Methods marked <see cref="MethodImplOptions.AggressiveOptimization"/> are kept out of the ReadyToRun image (they are
+/// compiled for the machine's SIMD width at first call); in a 2-core render of the bunny at 512² their compilation is
+/// ~0.2 s of processor time, and made at first call it stalls the render's threads (BENCHMARKS.md). Compiled here
+/// first, the same code is ready when they get there; what the warm-up has not reached yet is compiled at first call as
+/// before. Generic methods are compiled for this machine's packet lanes (<see cref="Acceleration.PacketLanes"/>) and
+/// every engine value type their other constraints admit (the triangle and analytic-shape intersectors).
+/// </summary>
+static class JitWarmup
+{
+    /// <summary>The namespaces whose hot loops a render runs, in the order it reaches them: the BVH build, the render, the writers.</summary>
+    static readonly string[] Stages =
+    [
+        "SpectralRenderer.Acceleration", "SpectralRenderer.Rendering", "SpectralRenderer.Scenes", "SpectralRenderer.Imaging",
+        "SpectralRenderer.Output", "SpectralRenderer.Spectra", "SpectralRenderer.Color",
+    ];
+
+    static int _started;
+
+    /// <summary>Starts the warm-up, once per process (a test host runs many commands).</summary>
+    public static void Start()
+    {
+        if (Interlocked.Exchange(ref _started, 1) == 0) ThreadPool.UnsafeQueueUserWorkItem(static _ => Run(), null);
+    }
+
+    static void Run()
+    {
+        try
+        {
+            const BindingFlags all = BindingFlags.Public | BindingFlags.NonPublic | BindingFlags.Instance | BindingFlags.Static | BindingFlags.DeclaredOnly;
+            var types = typeof(Rendering.Renderer).Assembly.GetTypes();
+            var values = types.Where(t => t.IsValueType && !t.ContainsGenericParameters).ToArray();
+            var lanes = values.FirstOrDefault(t => t.Name.StartsWith("Lanes", StringComparison.Ordinal)
+                && t.GetProperty("Count", BindingFlags.Public | BindingFlags.Static)?.GetValue(null) is int n && n == Acceleration.PacketLanes.Width);
+            foreach (var stage in Stages)
+                foreach (var type in types)
+                {
+                    if (type.Namespace != stage || type.ContainsGenericParameters || type == typeof(Rendering.LightTransfer)) continue;
+                    foreach (var method in type.GetMethods(all))
+                    {
+                        if ((method.MethodImplementationFlags & MethodImplAttributes.AggressiveOptimization) == 0 || method.IsAbstract) continue;
+                        if (!method.ContainsGenericParameters) { Prepare(method); continue; }
+                        foreach (var args in Instantiations(method.GetGenericArguments(), values, lanes))
+                        {
+                            MethodInfo made;
+                            try { made = method.MakeGenericMethod(args); }
+                            catch (ArgumentException) { continue; }   // the arguments break a constraint
+                            Prepare(made);
+                        }
+                    }
+                }
+        }
+        catch (Exception)
+        {
+            // A warm-up that fails leaves the methods to be compiled at first call: nothing is lost but time.
+        }
+    }
+
+    static void Prepare(MethodInfo method)
+    {
+        try { RuntimeHelpers.PrepareMethod(method.MethodHandle); }
+        catch (Exception) { }   // this one is compiled at first call
+    }
+
+    /// <summary>Every choice of type arguments: a lanes parameter (constrained to ILanes) takes this machine's lanes; any other, each engine value type its interface constraints admit.</summary>
+    static IEnumerable<Type[]> Instantiations(Type[] parameters, Type[] values, Type? lanes)
+    {
+        IEnumerable<Type[]> choices = [[]];
+        foreach (var p in parameters)
+        {
+            var constraints = p.GetGenericParameterConstraints();
+            Type[] candidates = constraints.Any(c => c.Name == "ILanes`1")
+                ? lanes is null ? [] : [lanes]
+                : values.Where(v => constraints.All(c => c == typeof(ValueType) || (!c.ContainsGenericParameters && c.IsAssignableFrom(v)))).ToArray();
+            choices = choices.SelectMany(prefix => candidates.Select(c => (Type[])[.. prefix, c])).ToArray();
+        }
+        return choices;
+    }
+}
