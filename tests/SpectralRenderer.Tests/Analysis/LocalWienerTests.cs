@@ -147,10 +147,11 @@ public class LocalWienerTests(ITestOutputHelper output)
 
     /// <summary>
     /// The training set does not contain the chart (the nearest rawtoaces spectrum to each Ohta patch is 0.0036 RMSE away at
-    /// best — the black and the neutral 3.5 — and 0.02 or more for half the patches), so the figures above are not a
-    /// lookup. And it bounds what any prior drawn from it can do in the near infrared: given the true 380–700 nm
+    /// best — the black and the neutral 3.5 — and 0.02 or more for 13 of the 24), so the figures above are not a
+    /// lookup. And the chart's near infrared is not that of its visible look-alikes there: given the true 380–700 nm
     /// reflectance, the 700–780 nm rise taken from the training spectrum nearest over 400–700 nm (joined at 700 nm)
-    /// still misses by 0.027 mean RMSE over all bands — above the wheel's and the mosaic's bars.
+    /// still misses by 0.027 mean RMSE over all bands — above the wheel's and the mosaic's bars (an illustration, not
+    /// a bound: wiener-local does better for the wheel).
     /// </summary>
     [Fact]
     public void TrainingSet_DoesNotHoldTheChart_AndItsNearestNeighboursMissTheNearInfrared()
@@ -159,7 +160,7 @@ public class LocalWienerTests(ITestOutputHelper output)
         var nearest = Chart.Select(p => t.Min(r => Rmse(p, r, 0, Grid.Count))).ToArray();
         output.WriteLine($"nearest training spectrum per patch (RMSE 380–780): {string.Join(" ", nearest.Select(v => v.ToString("F4")))}");
         Assert.True(nearest.Min() > 0.003, $"{nearest.Min()}");
-        Assert.True(nearest.Count(v => v >= 0.02) >= 12);
+        Assert.Equal(13, nearest.Count(v => v >= 0.02));
 
         double oracle = 0;
         foreach (var p in Chart)
@@ -171,5 +172,37 @@ public class LocalWienerTests(ITestOutputHelper output)
         }
         output.WriteLine($"true 380–700 nm + the near infrared of the training spectrum nearest over 400–700 nm: {oracle:F4}");
         Assert.True(oracle > 0.02, $"{oracle}");
+    }
+
+    /// <summary>
+    /// Not fooling ourselves: with the 11 training spectra that lie within 0.02 RMSE of a chart patch removed (179 left),
+    /// the local estimate loses some of its gain (it is local: near neighbours are what it uses) but still beats the
+    /// global Wiener estimate over all bands for every preset.
+    /// </summary>
+    [Fact]
+    public void WithoutTheTrainingSpectraNearestTheChart_ItStillBeatsTheGlobalWiener()
+    {
+        var drop = new HashSet<int>();
+        foreach (var p in Chart)
+        {
+            int nearest = Enumerable.Range(0, Rawtoaces.Count).MinBy(j => Rmse(p, Rawtoaces.Samples[j], 0, Grid.Count));
+            if (Rmse(p, Rawtoaces.Samples[nearest], 0, Grid.Count) < 0.02) drop.Add(nearest);
+        }
+        var lines = File.ReadAllLines(DataDirectory.File_("reflectances-rawtoaces-190.csv"));
+        var keep = Enumerable.Range(0, lines[0].Split(',').Length).Where(k => k == 0 || !drop.Contains(k - 1)).ToArray();
+        var csv = Path.Combine(Reference.TempDir(), "rawtoaces-without-chart-neighbours.csv");
+        File.WriteAllLines(csv, lines.Select(l => { var f = l.Split(','); return string.Join(",", keep.Select(k => f[k])); }));
+        var reduced = TrainingSet.Load(csv, Grid);
+        Assert.Equal(Rawtoaces.Count - drop.Count, reduced.Count);
+        output.WriteLine($"{drop.Count} training spectra removed, {reduced.Count} left; mean ColorChecker RMSE 380–780 / 400–700 nm:");
+        foreach (var preset in new[] { "nikon-d5100", "wheel-6", "mosaic-16" })
+        {
+            var a = Forward(preset);
+            int c = a.GetLength(0);
+            var wiener = Score(Estimate(SpectralEstimator.Build(RecoveryMethod.Wiener, a, reduced, new double[c])), a, Chart);
+            var local = Score(Estimate(SpectralEstimator.Build(RecoveryMethod.WienerLocal, a, reduced, new double[c])), a, Chart);
+            output.WriteLine($"  {preset}: wiener {wiener.All:F4} / {wiener.Visible:F4}, wiener-local {local.All:F4} / {local.Visible:F4}");
+            Assert.True(local.All < wiener.All && local.Visible < wiener.Visible, preset);
+        }
     }
 }
