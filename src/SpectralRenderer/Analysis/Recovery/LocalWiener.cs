@@ -6,9 +6,9 @@ namespace SpectralRenderer.Analysis.Recovery;
 
 /// <summary>
 /// Locally weighted (adaptive) Wiener estimation: the prior of the Wiener estimate is not the whole training set but its
-/// samples weighted by how close their simulated signals s_j = A·r_j are to the measured signal s (the local-training
-/// idea of adaptive Wiener estimation, Shen &amp; Xin 2007, Opt. Express 15(23):15545, here with the weights taken in signal
-/// space). With u = s ⊘ (A·1) the signal relative to a white reflector, its chromaticity q = u/‖u‖ and its intensity
+/// samples weighted by how close their simulated signals s_j = A·r_j are to the measured signal s (after the adaptive
+/// Wiener estimation of Shen &amp; Xin 2007, Opt. Express 15(23):15545, which selects the prior's training samples per
+/// sample imaged; here every sample is weighted, smoothly, by the distance of its signal). With u = s ⊘ (A·1) the signal relative to a white reflector, its chromaticity q = u/‖u‖ and its intensity
 /// ln‖u‖, each training sample gets the Gaussian weight
 /// <code>w_j = exp(−½ [‖q − q_j‖²/h_c² + (ln‖u‖ − ln‖u_j‖)²/h_I²])</code>
 /// and the estimate is the Wiener estimate with the weighted mean μ_w and the covariance shrunk towards the whole set's,
