@@ -95,9 +95,9 @@ public static class RecoverCommand
         if (a.Flag("--csv")) { stdout.Write(csv.ToString()); return CommandLine.Success; }
         stdout.WriteLine($"recovery from {capture.Sensor.Name} ({capture.Sensor.ChannelCount} channels, noise {(capture.Raw.Options.Noise ? "on" : "off")}) of {scene.Folder.Path}; training {training.Name} ({training.Count} reflectances); {g} bands{(white is null ? "" : $"; white: {white.Description}")}; RMSE and GFC over {rangeText} nm");
         if (!scene.Aovs.HasMasks) stdout.WriteLine("no mask-lit-<k>.png / mask-highlight.png: regions are not classified (render with --formats including aov)");
-        stdout.WriteLine($"{"method",-9} {"region",-13} {"count",7} {"RMSE",9} {"GFC",9} {"ΔE00 D65",9} {"ΔE00 A",9}");
+        stdout.WriteLine($"{"method",-12} {"region",-13} {"count",7} {"RMSE",9} {"GFC",9} {"ΔE00 D65",9} {"ΔE00 A",9}");
         foreach (var r in results.SelectMany(r => r.Rows))
-            stdout.WriteLine(string.Create(inv, $"{r.Method,-9} {r.Region,-13} {r.Count,7} {r.Rmse,9:F5} {r.Gfc,9:F5} {r.DeltaE00D65,9:F3} {r.DeltaE00A,9:F3}"));
+            stdout.WriteLine(string.Create(inv, $"{r.Method,-12} {r.Region,-13} {r.Count,7} {r.Rmse,9:F5} {r.Gfc,9:F5} {r.DeltaE00D65,9:F3} {r.DeltaE00A,9:F3}"));
         foreach (var r in results.Where(r => r.Estimator.Lambda is not null))
             stdout.WriteLine(string.Create(inv, $"tikhonov: λ = {r.Estimator.Lambda:G3} × the mean eigenvalue of SSᵀ (by GCV)"));
         foreach (var r in results.Where(r => r.Estimator.Components is not null))
