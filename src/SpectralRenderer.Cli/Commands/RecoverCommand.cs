@@ -11,7 +11,7 @@ namespace SpectralRenderer.Cli.Commands;
 public static class RecoverCommand
 {
     const string Help = """
-        usage: spectral recover CAMERADIR [--method pinv|wiener|linear|tikhonov|all] [--training NAME|CSV]
+        usage: spectral recover CAMERADIR [--method pinv|wiener|linear|tikhonov|wiener-local|all] [--training NAME|CSV]
                                           [--white-object NAME | --white-region X0,Y0,X1,Y1] [--csv]
 
         Recovers each pixel's reflectance from the camera signals of a 'spectral camera' folder, with the
@@ -20,6 +20,8 @@ public static class RecoverCommand
           wiener     Wiener estimate: the training set's mean and covariance, the sensor's noise covariance
           linear     linear model on the training set's first C principal components (C = channels)
           tikhonov   regularised regression learned on the training set, λ by generalised cross-validation
+          wiener-local  Wiener estimate with a local prior: the training samples weighted by how near their
+                     signals are to the pixel's (chromaticity and intensity), widths by leave-one-out
         --method takes a comma list; default all. --training: rawtoaces-190 (default), cie224-ces99,
         colorchecker, or a CSV of reflectances (first column wavelength_nm). --white-object / --white-region
         calibrate each channel on a white reference of reflectance 1 (§3.4); its pixels are then excluded.
@@ -93,13 +95,18 @@ public static class RecoverCommand
         if (a.Flag("--csv")) { stdout.Write(csv.ToString()); return CommandLine.Success; }
         stdout.WriteLine($"recovery from {capture.Sensor.Name} ({capture.Sensor.ChannelCount} channels, noise {(capture.Raw.Options.Noise ? "on" : "off")}) of {scene.Folder.Path}; training {training.Name} ({training.Count} reflectances); {g} bands{(white is null ? "" : $"; white: {white.Description}")}; RMSE and GFC over {rangeText} nm");
         if (!scene.Aovs.HasMasks) stdout.WriteLine("no mask-lit-<k>.png / mask-highlight.png: regions are not classified (render with --formats including aov)");
-        stdout.WriteLine($"{"method",-9} {"region",-13} {"count",7} {"RMSE",9} {"GFC",9} {"ΔE00 D65",9} {"ΔE00 A",9}");
+        stdout.WriteLine($"{"method",-12} {"region",-13} {"count",7} {"RMSE",9} {"GFC",9} {"ΔE00 D65",9} {"ΔE00 A",9}");
         foreach (var r in results.SelectMany(r => r.Rows))
-            stdout.WriteLine(string.Create(inv, $"{r.Method,-9} {r.Region,-13} {r.Count,7} {r.Rmse,9:F5} {r.Gfc,9:F5} {r.DeltaE00D65,9:F3} {r.DeltaE00A,9:F3}"));
+            stdout.WriteLine(string.Create(inv, $"{r.Method,-12} {r.Region,-13} {r.Count,7} {r.Rmse,9:F5} {r.Gfc,9:F5} {r.DeltaE00D65,9:F3} {r.DeltaE00A,9:F3}"));
         foreach (var r in results.Where(r => r.Estimator.Lambda is not null))
             stdout.WriteLine(string.Create(inv, $"tikhonov: λ = {r.Estimator.Lambda:G3} × the mean eigenvalue of SSᵀ (by GCV)"));
         foreach (var r in results.Where(r => r.Estimator.Components is not null))
             stdout.WriteLine($"linear: {r.Estimator.Components} principal components (the most with cond(AB) ≤ 100)");
+        foreach (var r in results.Where(r => r.Estimator.Local is not null))
+        {
+            var l = r.Estimator.Local!;
+            stdout.WriteLine(string.Create(inv, $"wiener-local: h_c = {l.ChromaticityWidth:G3}, h_I = {(double.IsPositiveInfinity(l.IntensityWidth) ? "∞" : l.IntensityWidth.ToString("G3", inv))}, β = {l.Shrinkage:G3} (by leave-one-out on the training set: mean RMSE {l.LeaveOneOutRmse:F4})"));
+        }
         stdout.WriteLine($"wrote {string.Join(", ", written)} in {dir}");
         return CommandLine.Success;
     }

@@ -16,7 +16,7 @@ public class RecoveryBoundTests(ITestOutputHelper output)
 {
     static readonly BandGrid Grid = new(380, 780, 20);
 
-    static double[,] Forward(string preset)
+    internal static double[,] Forward(string preset)
     {
         var sensor = SensorPresets.Get(preset);
         var light = SpectrumLibrary.Resolve("D65");
@@ -33,7 +33,7 @@ public class RecoveryBoundTests(ITestOutputHelper output)
         return a;
     }
 
-    static double Rmse(double[] x, double[] y, int lo, int hi)
+    internal static double Rmse(double[] x, double[] y, int lo, int hi)
     {
         double s = 0;
         for (int b = lo; b < hi; b++) s += (x[b] - y[b]) * (x[b] - y[b]);
@@ -41,10 +41,10 @@ public class RecoveryBoundTests(ITestOutputHelper output)
     }
 
     /// <summary>Bands [lo, hi) of 380:780:20 inside 400–700 nm: 1..16.</summary>
-    const int VisLo = 1, VisHi = 16;
+    internal const int VisLo = 1, VisHi = 16;
 
     /// <summary>Mean over the patches of the RMSE, over all bands and over 400–700 nm.</summary>
-    static (double All, double Visible, double Nir) Score(Func<double[], double[]> estimate, double[,] a, double[][] patches)
+    internal static (double All, double Visible, double Nir) Score(Func<double[], double[]> estimate, double[,] a, double[][] patches)
     {
         double all = 0, vis = 0, nir = 0;
         foreach (var r in patches)

@@ -45,7 +45,7 @@ public class RecoveryTests
             f => (double.Parse(f[3], inv), double.Parse(f[4], inv), double.Parse(f[5], inv)));
     }
 
-    static readonly string[] Methods = ["pinv", "wiener", "linear", "tikhonov"];
+    static readonly string[] Methods = ["pinv", "wiener", "linear", "tikhonov", "wiener-local"];
 
     [Fact]
     public void NoiseOff_Wiener_MeetsTheBars_AndMultispectralBeatsRgbForEveryMethod()
@@ -75,6 +75,30 @@ public class RecoveryTests
         Assert.True(on[("wiener", "colorchecker")].Rmse >= off[("wiener", "colorchecker")].Rmse - 1e-4);
         // Wiener is the least-squares-optimal linear estimate: with noise it is not worse than the pseudo-inverse.
         Assert.True(on[("wiener", "colorchecker")].Rmse <= on[("pinv", "colorchecker")].Rmse);
+    }
+
+    /// <summary>
+    /// Over all bands (380–780 nm, where no preset sees above ~720 nm) the locally weighted Wiener estimate beats the
+    /// textbook one for every sensor, noise off and on — most for the wheel (0.051 → 0.024, bar 0.02) — and the
+    /// multispectral sensors still beat RGB with it. The full-range bars stay unmet (docs/camera.md); the limits
+    /// asserted are the figures measured there.
+    /// </summary>
+    [Fact]
+    public void WienerLocal_BeatsWiener_OverAllBands_NoiseOffAndOn()
+    {
+        var atMost = new Dictionary<string, double> { ["nikon-d5100"] = 0.065, ["wheel-6"] = 0.026, ["mosaic-16"] = 0.016 };
+        foreach (var noise in new[] { "off", "on" })
+        {
+            var score = atMost.Keys.ToDictionary(s => s, s => Recover(s, noise, "--method", "wiener,wiener-local"));
+            foreach (var (sensor, limit) in atMost)
+            {
+                double wiener = score[sensor][("wiener", "colorchecker")].Rmse, local = score[sensor][("wiener-local", "colorchecker")].Rmse;
+                Assert.True(local < wiener, $"{sensor}, noise {noise}: wiener-local {local} vs wiener {wiener}");
+                if (noise == "off") Assert.True(local <= limit, $"{sensor}: wiener-local {local}");
+            }
+            Assert.True(score["wheel-6"][("wiener-local", "colorchecker")].Rmse < score["nikon-d5100"][("wiener-local", "colorchecker")].Rmse);
+            Assert.True(score["mosaic-16"][("wiener-local", "colorchecker")].Rmse < score["nikon-d5100"][("wiener-local", "colorchecker")].Rmse);
+        }
     }
 
     [Fact]
@@ -135,7 +159,7 @@ public class RecoveryTests
     public void ReportComparison_HasEverySensorNoiseAndMethod_AndAgreesWithTheCommand()
     {
         var rows = SpectralRenderer.Analysis.Recovery.RecoveryComparison.Rows(Chart.Value);
-        Assert.Equal(3 * 2 * 4, rows.Count);
+        Assert.Equal(3 * 2 * 5, rows.Count);
         var mosaic = Recover("mosaic-16", "off", "--range", "400:700");
         var row = rows.Single(r => r.Sensor == "mosaic-16" && !r.Noise && r.Method == "wiener");
         Assert.Equal(mosaic[("wiener", "colorchecker")].Rmse, row.Rmse400To700, 9);

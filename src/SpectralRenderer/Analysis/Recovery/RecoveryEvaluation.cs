@@ -55,7 +55,14 @@ public static class RecoveryEvaluation
             Span<double> r = stackalloc double[n];
             for (int i = y * scene.Width; i < (y + 1) * scene.Width; i++)
             {
-                estimator.Apply(capture.Image.Rates.AsSpan(i * c, c), r);
+                var signal = capture.Image.Rates.AsSpan(i * c, c);
+                // A pixel whose signal equals its left neighbour's (a flat patch without noise) gets the same estimate.
+                if (i > y * scene.Width && signal.SequenceEqual(capture.Image.Rates.AsSpan((i - 1) * c, c)))
+                {
+                    cube.AsSpan((i - 1) * n, n).CopyTo(cube.AsSpan(i * n, n));
+                    continue;
+                }
+                estimator.Apply(signal, r);
                 for (int b = 0; b < n; b++) cube[i * n + b] = (float)r[b];
             }
         });

@@ -2,7 +2,7 @@ using SpectralRenderer.Camera;
 
 namespace SpectralRenderer.Analysis.Recovery;
 
-public enum RecoveryMethod { Pinv, Wiener, Linear, Tikhonov }
+public enum RecoveryMethod { Pinv, Wiener, Linear, Tikhonov, WienerLocal }
 
 /// <summary>
 /// Reflectance from camera signals, r̂ = G·s + h (N bands from C channels), for the forward model s = A·r + n:
@@ -18,11 +18,15 @@ public enum RecoveryMethod { Pinv, Wiener, Linear, Tikhonov }
 /// (the simulated, noisy signals S of its reflectances R, both centred): G = R Sᵀ (S Sᵀ + λ I)⁻¹, with λ minimising the
 /// generalised cross-validation score GCV(λ) = T‖R − G S‖² / (T − tr H)², H = Sᵀ(SSᵀ + λI)⁻¹S (Golub, Heath &amp;
 /// Wahba 1979).</item>
+/// <item><b>wiener-local</b>: the Wiener estimate with a prior local to the signal, the training samples weighted by the
+/// distance of their signals to the measured one (<see cref="LocalWiener"/>): nonlinear in s; G, h are then the global
+/// Wiener estimate's, the limit of an infinitely wide weighting.</item>
 /// </list>
 /// </summary>
 public sealed class SpectralEstimator
 {
-    SpectralEstimator(RecoveryMethod method, double[,] g, double[] h, double? lambda, int? components) { Method = method; G = g; H = h; Lambda = lambda; Components = components; }
+    SpectralEstimator(RecoveryMethod method, double[,] g, double[] h, double? lambda, int? components, LocalWiener? local)
+    { Method = method; G = g; H = h; Lambda = lambda; Components = components; Local = local; }
 
     public RecoveryMethod Method { get; }
     /// <summary>N × C.</summary>
@@ -32,6 +36,8 @@ public sealed class SpectralEstimator
     public double? Lambda { get; }
     /// <summary>The number of principal components kept (linear only).</summary>
     public int? Components { get; }
+    /// <summary>The locally weighted estimate (wiener-local only), which <see cref="Apply"/> then uses instead of G, h.</summary>
+    public LocalWiener? Local { get; }
 
     public const int MaxLinearComponents = 8;
     public const double MaxLinearCondition = 100;
@@ -42,11 +48,12 @@ public sealed class SpectralEstimator
         "wiener" => RecoveryMethod.Wiener,
         "linear" => RecoveryMethod.Linear,
         "tikhonov" => RecoveryMethod.Tikhonov,
+        "wiener-local" => RecoveryMethod.WienerLocal,
         _ => throw new Diagnostics.InputException("--method", $"unknown method '{name}'",
-            Diagnostics.InputException.DidYouMean(name, ["pinv", "wiener", "linear", "tikhonov", "all"]) ?? "pinv, wiener, linear, tikhonov or all"),
+            Diagnostics.InputException.DidYouMean(name, ["pinv", "wiener", "linear", "tikhonov", "wiener-local", "all"]) ?? "pinv, wiener, linear, tikhonov, wiener-local or all"),
     };
 
-    public static string Name(RecoveryMethod m) => m.ToString().ToLowerInvariant();
+    public static string Name(RecoveryMethod m) => m == RecoveryMethod.WienerLocal ? "wiener-local" : m.ToString().ToLowerInvariant();
 
     /// <param name="a">C × N forward matrix.</param>
     /// <param name="noiseVariance">per channel, the variance of s (same units squared); zeros without noise.</param>
@@ -66,6 +73,7 @@ public sealed class SpectralEstimator
         double[] h;
         double? lambda = null;
         int? components = null;
+        LocalWiener? local = null;
         switch (method)
         {
             case RecoveryMethod.Pinv:
@@ -73,6 +81,7 @@ public sealed class SpectralEstimator
                 h = new double[n];
                 break;
             case RecoveryMethod.Wiener:
+            case RecoveryMethod.WienerLocal:
                 {
                     var kr = training.Covariance();
                     var krat = Dense.Multiply(kr, at);
@@ -80,6 +89,7 @@ public sealed class SpectralEstimator
                     for (int i = 0; i < c; i++) m[i, i] += noiseVariance[i];
                     g = Dense.SolveRight(krat, Ridge(m));
                     h = Affine(g, mu, amu);
+                    if (method == RecoveryMethod.WienerLocal) local = LocalWiener.Build(a, training, noiseVariance);
                     break;
                 }
             case RecoveryMethod.Linear:
@@ -144,7 +154,7 @@ public sealed class SpectralEstimator
                     break;
                 }
         }
-        return new SpectralEstimator(method, g, h, lambda, components);
+        return new SpectralEstimator(method, g, h, lambda, components, local);
     }
 
     /// <summary>h = μ − G·s₀: the estimate is μ at the signal s₀ of the mean.</summary>
@@ -156,6 +166,7 @@ public sealed class SpectralEstimator
 
     public void Apply(ReadOnlySpan<float> signal, Span<double> reflectance)
     {
+        if (Local is not null) { Local.Apply(signal, reflectance); return; }
         int n = G.GetLength(0), c = G.GetLength(1);
         for (int b = 0; b < n; b++)
         {
