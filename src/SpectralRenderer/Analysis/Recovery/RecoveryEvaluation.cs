@@ -21,7 +21,8 @@ public sealed record RecoveryResult(RecoveryMethod Method, SpectralEstimator Est
 /// </summary>
 public static class RecoveryEvaluation
 {
-    /// <param name="regions">false: only the ColorChecker patches are scored (much faster on large images).</param>
+    /// <param name="regions">false: only the ColorChecker patches are scored, and only their pixels recovered (the cube is NaN
+    /// elsewhere): much faster on large images, the same patch figures.</param>
     /// <param name="metricRange">RMSE and GFC over the bands inside [lo, hi] nm only (null: every band); ΔE00 always uses the whole spectrum.</param>
     public static RecoveryResult Run(CameraCapture capture, RecoveryMethod method, TrainingSet training, bool[]? whiteMask = null, string? whiteDescription = null,
         (double Lo, double Hi)? metricRange = null, bool regions = true)
@@ -50,14 +51,23 @@ public static class RecoveryEvaluation
         }
         var estimator = SpectralEstimator.Build(method, a, training, capture.NoiseVariance());
         var cube = new float[pixels * n];
+        // Without regions only the patches' pixels are scored, so only they are recovered.
+        bool[]? recover = null;
+        if (!regions && scene.Patches.Count > 0)
+        {
+            recover = new bool[pixels];
+            foreach (var p in scene.Patches) foreach (int i in p.Pixels) recover[i] = true;
+            Array.Fill(cube, float.NaN);
+        }
         Parallel.For(0, scene.Height, y =>
         {
             Span<double> r = stackalloc double[n];
             for (int i = y * scene.Width; i < (y + 1) * scene.Width; i++)
             {
+                if (recover is not null && !recover[i]) continue;
                 var signal = capture.Image.Rates.AsSpan(i * c, c);
                 // A pixel whose signal equals its left neighbour's (a flat patch without noise) gets the same estimate.
-                if (i > y * scene.Width && signal.SequenceEqual(capture.Image.Rates.AsSpan((i - 1) * c, c)))
+                if (i > y * scene.Width && (recover is null || recover[i - 1]) && signal.SequenceEqual(capture.Image.Rates.AsSpan((i - 1) * c, c)))
                 {
                     cube.AsSpan((i - 1) * n, n).CopyTo(cube.AsSpan(i * n, n));
                     continue;
@@ -109,9 +119,7 @@ public static class RecoveryEvaluation
             double sr = 0, sg = 0, sd = 0, sa = 0;
             foreach (var p in scene.Patches)
             {
-                var (me, mt) = (new double[n], new double[n]);
-                foreach (int i in p.Pixels) for (int b = 0; b < n; b++) { me[b] += cube[i * n + b]; mt[b] += truth.Data[i * n + b]; }
-                for (int b = 0; b < n; b++) { me[b] /= p.Pixels.Length; mt[b] /= p.Pixels.Length; }
+                var (me, mt) = PatchMeans(p, cube, truth.Data, n);
                 var s = Score(me, mt);
                 sr += s.Rmse; sg += s.Gfc; sd += s.D65; sa += s.A;
                 if (p.Number is 2 or 13 or 14 or 15 or 16) examples.Add(($"patch {p.Number} {ColorChecker.Name(p.Number)}", me, mt));
@@ -130,6 +138,34 @@ public static class RecoveryEvaluation
             }
         }
         return new RecoveryResult(method, estimator, cube, rows, examples, whiteDescription);
+    }
+
+    /// <summary>A patch's mean recovered and mean true spectrum over its pixels.</summary>
+    static (double[] Recovered, double[] Truth) PatchMeans(ChartPatch p, float[] cube, float[] truth, int n)
+    {
+        var (me, mt) = (new double[n], new double[n]);
+        foreach (int i in p.Pixels) for (int b = 0; b < n; b++) { me[b] += cube[i * n + b]; mt[b] += truth[i * n + b]; }
+        for (int b = 0; b < n; b++) { me[b] /= p.Pixels.Length; mt[b] /= p.Pixels.Length; }
+        return (me, mt);
+    }
+
+    /// <summary>
+    /// The mean ColorChecker RMSE of a recovered cube (<see cref="RecoveryResult.Reflectance"/>) over the bands inside
+    /// <paramref name="range"/>: each patch's mean recovered spectrum against its mean truth, as the "colorchecker" row of
+    /// <see cref="Run"/> with that metric range scores it — another range from the same recovery.
+    /// </summary>
+    public static double PatchRmse(CameraScene scene, float[] cube, (double Lo, double Hi)? range)
+    {
+        var truth = scene.Aovs.Reflectance ?? throw new InputException(scene.Folder.Path, "has no ground-truth reflectance (reflectance.exr)", "render with --formats including aov");
+        int n = scene.Grid.Count;
+        var (first, bands) = BandsInside(scene.Grid, range);
+        double sr = 0;
+        foreach (var p in scene.Patches)
+        {
+            var (me, mt) = PatchMeans(p, cube, truth.Data, n);
+            sr += SpectralMetrics.Rmse(me.AsSpan(first, bands), mt.AsSpan(first, bands));
+        }
+        return sr / scene.Patches.Count;
     }
 
     /// <summary>The first band and the number of bands lying wholly inside [lo, hi] (all bands without a range).</summary>
