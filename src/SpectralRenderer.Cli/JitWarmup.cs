@@ -15,21 +15,24 @@ namespace SpectralRenderer.Cli;
 static class JitWarmup
 {
     /// <summary>The namespaces whose hot loops a render runs, in the order it reaches them: the BVH build, the render, the writers.</summary>
-    static readonly string[] Stages =
+    public static readonly string[] Render =
     [
         "SpectralRenderer.Acceleration", "SpectralRenderer.Rendering", "SpectralRenderer.Scenes", "SpectralRenderer.Imaging",
         "SpectralRenderer.Output", "SpectralRenderer.Spectra", "SpectralRenderer.Color",
     ];
 
+    /// <summary>What a relight runs: the recombination of the transfer (in Rendering), then the writers.</summary>
+    public static readonly string[] Relight = ["SpectralRenderer.Imaging", "SpectralRenderer.Output", "SpectralRenderer.Rendering"];
+
     static int _started;
 
-    /// <summary>Starts the warm-up, once per process (a test host runs many commands).</summary>
-    public static void Start()
+    /// <summary>Starts the warm-up of the hot loops in <paramref name="stages"/> (namespaces, in order), once per process (a test host runs many commands).</summary>
+    public static void Start(string[] stages)
     {
-        if (Interlocked.Exchange(ref _started, 1) == 0) ThreadPool.UnsafeQueueUserWorkItem(static _ => Run(), null);
+        if (Interlocked.Exchange(ref _started, 1) == 0) ThreadPool.UnsafeQueueUserWorkItem(static s => Run(s), stages, preferLocal: false);
     }
 
-    static void Run()
+    static void Run(string[] stages)
     {
         try
         {
@@ -38,7 +41,7 @@ static class JitWarmup
             var values = types.Where(t => t.IsValueType && !t.ContainsGenericParameters).ToArray();
             var lanes = values.FirstOrDefault(t => t.Name.StartsWith("Lanes", StringComparison.Ordinal)
                 && t.GetProperty("Count", BindingFlags.Public | BindingFlags.Static)?.GetValue(null) is int n && n == Acceleration.PacketLanes.Width);
-            foreach (var stage in Stages)
+            foreach (var stage in stages)
                 foreach (var type in types)
                 {
                     if (type.Namespace != stage || type.ContainsGenericParameters || type == typeof(Rendering.LightTransfer)) continue;

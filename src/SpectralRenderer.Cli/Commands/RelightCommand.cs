@@ -36,6 +36,7 @@ public static class RelightCommand
     {
         var a = new Arguments("relight", argv, ["--light", "--intensity", "--white", "--out", "--sweep"], ["--quiet", "--metrics"], new Dictionary<string, string> { ["-o"] = "--out" });
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
+        JitWarmup.Start(JitWarmup.Relight);   // the writers compile while the transfer is read
         if (a.Positionals.Count != 1) throw new InputException("", a.Positionals.Count == 0 ? "no render folder given" : $"unexpected argument '{a.Positionals[1]}'", "usage: spectral relight OUTDIR --light NAME=SPECTRUM");
         var dir = a.Positionals[0];
         var src = Relighting.Open(dir);

@@ -66,7 +66,7 @@ public static class RenderCommand
     {
         var a = new Arguments("render", argv, Values, ["--quiet"], new Dictionary<string, string> { ["-o"] = "--out" });
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
-        JitWarmup.Start();   // the hot loops compile on the other core while the scene loads
+        JitWarmup.Start(JitWarmup.Render);   // the hot loops compile on the other core while the scene loads
         if (a.Positionals.Count != 1) throw new InputException("command line", a.Positionals.Count == 0 ? "no scene file given" : $"unexpected argument {MessageText.Quote(a.Positionals[1])}", "usage: spectral render SCENE.json -o OUTDIR");
         var scenePath = a.Positionals[0];
         bool fromStdin = scenePath == SceneLoader.StandardInput;
