@@ -10,7 +10,7 @@ namespace SpectralRenderer.Cli;
 /// ~0.2 s of processor time, and made at first call it stalls the render's threads (BENCHMARKS.md). Compiled here
 /// first, the same code is ready when they get there; what the warm-up has not reached yet is compiled at first call as
 /// before. Generic methods are compiled for this machine's packet lanes (<see cref="Acceleration.PacketLanes"/>) and
-/// every engine value type their other constraints admit (the triangle and analytic-shape intersectors).
+/// every engine value type their interface constraints admit (the triangle and analytic-shape intersectors).
 /// </summary>
 static class JitWarmup
 {
@@ -71,7 +71,9 @@ static class JitWarmup
         catch (Exception) { }   // this one is compiled at first call
     }
 
-    /// <summary>Every choice of type arguments: a lanes parameter (constrained to ILanes) takes this machine's lanes; any other, each engine value type its interface constraints admit.</summary>
+    /// <summary>Every choice of type arguments: a lanes parameter (constrained to ILanes) takes this machine's lanes; any other, each
+    /// engine value type its interface constraints admit — none when it has no plain interface constraint (an intersector's), so a
+    /// loosely constrained method is left to its first call rather than compiled for every struct.</summary>
     static IEnumerable<Type[]> Instantiations(Type[] parameters, Type[] values, Type? lanes)
     {
         IEnumerable<Type[]> choices = [[]];
@@ -80,6 +82,7 @@ static class JitWarmup
             var constraints = p.GetGenericParameterConstraints();
             Type[] candidates = constraints.Any(c => c.Name == "ILanes`1")
                 ? lanes is null ? [] : [lanes]
+                : !constraints.Any(c => c.IsInterface && !c.ContainsGenericParameters) ? []
                 : values.Where(v => constraints.All(c => c == typeof(ValueType) || (!c.ContainsGenericParameters && c.IsAssignableFrom(v)))).ToArray();
             choices = choices.SelectMany(prefix => candidates.Select(c => (Type[])[.. prefix, c])).ToArray();
         }

@@ -153,7 +153,7 @@ public static class SpectralMath
             // Plain stores up to the first 64-byte boundary and from the last one; streaming stores between them.
             int head = (int)(((64 - ((nuint)d0 & 63)) & 63) / sizeof(float));
             int body = (n - head) & ~15;
-            if (((nuint)d0 & 3) != 0 || body <= 0) { CopyBands(padded, dst); return; }
+            if (body <= 0) { CopyBands(padded, dst); return; }
             for (int i = 0; i < head; i++) d0[i] = s0[i];
             float* d = d0 + head, s = s0 + head;
             if (Vector512.IsHardwareAccelerated)
