@@ -85,7 +85,7 @@ sealed class BvhBuilder
     // from its root on (a binary tree over n primitives has at most 2n − 1 nodes), its left child the next
     // 2·n_left − 1 and its right child the rest. So the first child directly follows its parent, parallel
     // subtrees write disjoint slots (no shared counter, no false sharing), and the array is the same for any
-    // thread count; the slots a leaf of several primitives leaves unused are zero, and Compact drops them.
+    // thread count; the slots a leaf of several primitives leaves unused are never written, and Compact drops them.
     readonly BvhNode[] _nodes;
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
@@ -100,7 +100,7 @@ sealed class BvhBuilder
         }
         _maxLeafSize = maxLeafSize;
         _parallel = parallel;
-        _nodes = GC.AllocateUninitializedArray<BvhNode>(2 * bounds.Length - 1);   // each slot is written once, used or not
+        _nodes = GC.AllocateUninitializedArray<BvhNode>(2 * bounds.Length - 1);   // each used slot is written once; Compact reads only those
     }
 
     public static (BvhNode[] nodes, int[] order, int maxDepth) Build(ReadOnlySpan<Bounds3> bounds, int maxLeafSize, bool parallel)
@@ -211,11 +211,10 @@ sealed class BvhBuilder
         return Math.Max(Subtree(start, mid, at + 1, depth + 1, left), Subtree(mid, end, second, depth + 1, right));
     }
 
-    /// <summary>A leaf in slot <paramref name="at"/>; the 2·count − 2 slots after it, which its range owns, are cleared.</summary>
+    /// <summary>A leaf in slot <paramref name="at"/>; the 2·count − 2 slots after it, which its range owns, stay unused (Compact skips them).</summary>
     int Leaf(int at, Vector3 min, Vector3 max, int start, int count, int depth)
     {
         _nodes[at] = BvhNode.Leaf(min, max, start, count);
-        _nodes.AsSpan(at + 1, 2 * count - 2).Clear();
         return depth;
     }
 
