@@ -1,3 +1,4 @@
+using System.Diagnostics.CodeAnalysis;
 using System.Reflection;
 using System.Runtime.CompilerServices;
 
@@ -29,9 +30,17 @@ static class JitWarmup
     /// <summary>Starts the warm-up of the hot loops in <paramref name="stages"/> (namespaces, in order), once per process (a test host runs many commands).</summary>
     public static void Start(string[] stages)
     {
+        // The native build (Native AOT) has nothing to compile: its hot loops are machine code already.
+        if (!RuntimeFeature.IsDynamicCodeCompiled) return;
         if (Interlocked.Exchange(ref _started, 1) == 0) ThreadPool.UnsafeQueueUserWorkItem(static s => Run(s), stages, preferLocal: false);
     }
 
+    [UnconditionalSuppressMessage("Trimming", "IL2026", Justification = "Runs only under the JIT (Start), where nothing is trimmed.")]
+    [UnconditionalSuppressMessage("Trimming", "IL2060", Justification = "Runs only under the JIT (Start), where nothing is trimmed.")]
+    [UnconditionalSuppressMessage("Trimming", "IL2065", Justification = "Runs only under the JIT (Start), where nothing is trimmed.")]
+    [UnconditionalSuppressMessage("Trimming", "IL2070", Justification = "Runs only under the JIT (Start), where nothing is trimmed.")]
+    [UnconditionalSuppressMessage("Trimming", "IL2075", Justification = "Runs only under the JIT (Start), where nothing is trimmed.")]
+    [UnconditionalSuppressMessage("AOT", "IL3050", Justification = "Runs only under the JIT (Start: RuntimeFeature.IsDynamicCodeCompiled).")]
     static void Run(string[] stages)
     {
         try

@@ -120,6 +120,8 @@ public static class SweepCommand
     }
 
     /// <summary>How this process was started (the same spectral binary, or `dotnet spectral.dll`), for the emitted scripts.</summary>
+    [System.Diagnostics.CodeAnalysis.UnconditionalSuppressMessage("SingleFile", "IL3000",
+        Justification = "The assembly's path is read only when the process is `dotnet`; the native spectral is its own ProcessPath.")]
     static string SpectralCommand()
     {
         var exe = Environment.ProcessPath ?? "spectral";

@@ -16,7 +16,7 @@ public static class CameraManifest
         for (int c = 0; c < s.ChannelCount; c++)
         {
             var qe = s.Channels[c].QuantumEfficiency;
-            channels.Add(new JsonObject
+            channels.Add((JsonNode)new JsonObject
             {
                 ["name"] = s.Channels[c].Name,
                 ["source"] = s.Channels[c].Source,
@@ -33,8 +33,8 @@ public static class CameraManifest
             for (int y = 0; y < p.GetLength(0); y++)
             {
                 var r = new JsonArray();
-                for (int x = 0; x < p.GetLength(1); x++) r.Add(p[y, x]);
-                rows.Add(r);
+                for (int x = 0; x < p.GetLength(1); x++) r.Add((JsonNode)p[y, x]);
+                rows.Add((JsonNode)r);
             }
             pattern = rows;
         }
@@ -42,8 +42,8 @@ public static class CameraManifest
         for (int i = 0; i < 3; i++)
         {
             var r = new JsonArray();
-            for (int c = 0; c < s.ChannelCount; c++) r.Add(colour.Matrix[i, c]);
-            matrix.Add(r);
+            for (int c = 0; c < s.ChannelCount; c++) r.Add((JsonNode)colour.Matrix[i, c]);
+            matrix.Add((JsonNode)r);
         }
         return new JsonObject
         {

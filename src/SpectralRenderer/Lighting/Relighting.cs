@@ -220,14 +220,14 @@ public static class Relighting
             if (l.Spectrum is { } sp)
                 try { var r = Color.ColorRenderingIndex.Of(sp); ra = r.Ra; cct = r.Cct; rf = Color.ColorFidelityIndex.Of(sp).Rf; }
                 catch (Exception e) when (e is ArgumentException or InvalidOperationException) { }
-            lights.Add(new JsonObject { ["light"] = l.Name, ["spectrum"] = l.Spectrum?.Name, ["Ra"] = ra, ["Rf"] = rf, ["cct_K"] = cct });
+            lights.Add((JsonNode)new JsonObject { ["light"] = l.Name, ["spectrum"] = l.Spectrum?.Name, ["Ra"] = ra, ["Rf"] = rf, ["cct_K"] = cct });
             csv.Append(CultureInfo.InvariantCulture, $"light,{l.Name},,,,{ra:0.00},{rf:0.00},{cct:0}\n");
         }
         var objs = new JsonArray();
         for (int o = 0; o < objects; o++)
         {
             if (count[o] == 0) continue;
-            objs.Add(new JsonObject { ["object"] = relit.Objects[o].Name, ["pixels"] = count[o], ["mean_dE00"] = sum[o] / count[o], ["max_dE00"] = max[o] });
+            objs.Add((JsonNode)new JsonObject { ["object"] = relit.Objects[o].Name, ["pixels"] = count[o], ["mean_dE00"] = sum[o] / count[o], ["max_dE00"] = max[o] });
             csv.Append(CultureInfo.InvariantCulture, $"object,{relit.Objects[o].Name},{count[o]},{sum[o] / count[o]:0.0000},{max[o]:0.0000},,,\n");
         }
         return (new JsonObject { ["white"] = relit.ReferenceWhite.Name, ["lights"] = lights, ["objects"] = objs }, csv.ToString());

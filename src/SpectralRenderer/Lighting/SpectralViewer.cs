@@ -64,7 +64,7 @@ public static class SpectralViewer
                 try { reflectance = Numbers(cm.Project(SpectrumLibrary.Resolve(name))); }
                 catch (InputException) { /* a scene-named or inline spectrum: no ground truth in the page */ }
             }
-            objects.Add(new JsonObject { ["name"] = o.Name, ["material"] = mat, ["reflectance"] = reflectance });
+            objects.Add((JsonNode)new JsonObject { ["name"] = o.Name, ["material"] = mat, ["reflectance"] = reflectance });
         }
         data["objects"] = objects;
 
@@ -90,7 +90,7 @@ public static class SpectralViewer
                     try { ra = ColorRenderingIndex.Of(spectrum).Ra; rf = ColorFidelityIndex.Of(spectrum).Rf; }
                     catch (Exception e) when (e is ArgumentException or InvalidOperationException) { }
                 }
-                presets.Add(new JsonObject { ["name"] = name, ["components"] = values, ["ra"] = ra, ["rf"] = rf });
+                presets.Add((JsonNode)new JsonObject { ["name"] = name, ["components"] = values, ["ra"] = ra, ["rf"] = rf });
             }
             var tl = transfer["lights"]!.AsArray();
             for (int k = 0; k < tl.Count; k++)
@@ -104,7 +104,7 @@ public static class SpectralViewer
                 int kk = k;
                 Add(preset, PresetComponents(c => components[c].FollowsLight && components[c].Light == kk && intensity > 0
                     ? comps[c]!["band_values"]!.AsArray().Concat(comps[c]!["xyz"]!.AsArray()).Select(v => (float)((double)v! / intensity)).ToArray() : null), s);
-                lights.Add(new JsonObject { ["name"] = (string?)l["name"], ["preset"] = preset, ["intensity"] = intensity });
+                lights.Add((JsonNode)new JsonObject { ["name"] = (string?)l["name"], ["preset"] = preset, ["intensity"] = intensity });
             }
             foreach (var name in Presets)
             {

@@ -94,7 +94,7 @@ public static class LightTransferFiles
         for (int k = 0; k < scene.Lights.Count; k++)
         {
             var l = scene.Lights[k];
-            lights.Add(new JsonObject
+            lights.Add((JsonNode)new JsonObject
             {
                 ["index"] = k,
                 ["name"] = l.Name,
@@ -110,7 +110,7 @@ public static class LightTransferFiles
         {
             var comp = t.Components[c];
             comp.BandValues(tables, p);
-            comps.Add(new JsonObject
+            comps.Add((JsonNode)new JsonObject
             {
                 ["index"] = c,
                 ["key"] = comp.Key,
@@ -159,7 +159,7 @@ public static class LightTransferFiles
     static JsonArray Arr(ReadOnlySpan<float> v)
     {
         var a = new JsonArray();
-        foreach (float x in v) a.Add(JsonValue.Create((double)x));
+        foreach (float x in v) a.Add((JsonNode)JsonValue.Create((double)x));
         return a;
     }
 

@@ -103,7 +103,7 @@ public sealed record RenderManifest
         static JsonArray Arr(ReadOnlySpan<double> v)
         {
             var a = new JsonArray();
-            foreach (double x in v) a.Add(JsonValue.Create(x));
+            foreach (double x in v) a.Add((JsonNode)JsonValue.Create(x));
             return a;
         }
         var centres = new double[Grid.Count];
@@ -113,7 +113,7 @@ public sealed record RenderManifest
         {
             var e = new JsonObject { ["id"] = o.Id, ["name"] = o.Name, ["material"] = o.Material, ["reflectance"] = o.Reflectance };
             if (o.FlatNormal is { } fn) e["flat_normal"] = Arr(fn);
-            objects.Add(e);
+            objects.Add((JsonNode)e);
         }
         var lights = new JsonArray();
         foreach (var l in Lights)
@@ -132,10 +132,10 @@ public sealed record RenderManifest
             if (l.Direction is { } ld) e["direction"] = Arr(ld);
             if (l.Attenuation is { } la) e["attenuation"] = Arr(la);
             if (l.Spd is { } spd) e["spd"] = new JsonObject { ["wavelengths_nm"] = Arr(spd.Wavelengths), ["values"] = Arr(spd.Values) };
-            lights.Add(e);
+            lights.Add((JsonNode)e);
         }
         JsonArray? files = null;
-        if (Files is not null) { files = []; foreach (var f in Files) files.Add(JsonValue.Create(f)); }
+        if (Files is not null) { files = []; foreach (var f in Files) files.Add((JsonNode)JsonValue.Create(f)); }
         var json = new JsonObject
         {
             ["tool"] = Tool,
