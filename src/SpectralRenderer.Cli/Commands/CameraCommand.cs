@@ -23,9 +23,9 @@ public static class CameraCommand
         efficiencies, exposure, photon shot noise, dark current, read noise, PRNU/DSNU, full well, gain, ADC.
         The scene light (render.json's reference white) prefilters the channel weights per band.
 
-          --sensor NAME|FILE   isetcam, nikon-d5100, sigma-sd-merrill, canon-5d-mark-ii, wheel-6, mosaic-16,
-                               cie-xyz, a sensor JSON file, or scene (the default: the "sensor" of the
-                               scene's camera object)
+          --sensor NAME|FILE   isetcam, nikon-d5100, sigma-sd-merrill (Bayer), sigma-sd-merrill-x3 (Foveon),
+                               canon-5d-mark-ii, wheel-6, mosaic-16, cie-xyz, a sensor JSON file, or scene
+                               (the default: the "sensor" of the scene's camera object)
           --exposure           auto (default: brightest expected pixel at 0.8 of the full well) or seconds
           --seed N             temporal noise seed (default 1); the same seed gives the same raw file
           --noise off          the expected signal: no noise, no dark current, no quantisation

@@ -14,7 +14,7 @@ public static class SensorPresets
 {
     public const double DefaultPeakQe = 0.5;
 
-    public static readonly string[] Names = ["isetcam", "nikon-d5100", "sigma-sd-merrill", "canon-5d-mark-ii", "wheel-6", "mosaic-16", "cie-xyz"];
+    public static readonly string[] Names = ["isetcam", "nikon-d5100", "sigma-sd-merrill", "sigma-sd-merrill-x3", "canon-5d-mark-ii", "wheel-6", "mosaic-16", "cie-xyz"];
 
     public static SensorModel Get(string name, string where = "--sensor") => name.ToLowerInvariant() switch
     {
@@ -29,10 +29,14 @@ public static class SensorPresets
             "Nikon D5100 sensitivities, Darrodi et al., JOSA A 32(3) 381 (2015), NPL; RGGB Bayer layout"),
         "canon-5d-mark-ii" => Bayer("canon-5d-mark-ii", "camera-canon-5d-mark-ii.csv", ["R", "G", "B"],
             "Canon EOS 5D Mark II sensitivities, AMPAS rawtoaces (Apache 2.0); RGGB Bayer layout"),
-        // A Foveon X3 stacks three photodiodes in each pixel: every channel at every pixel, no mosaic.
-        "sigma-sd-merrill" => new SensorModel
+        // The Sigma's sensitivities behind an RGGB Bayer mosaic, as issue 12 specifies the preset: the NPL curves on the
+        // same photosite layout as the Nikon and the Canon, so the three RGB cameras differ by their curves only.
+        "sigma-sd-merrill" => Bayer("sigma-sd-merrill", "camera-sigma-sdmerill-npl.csv", ["red", "green", "blue"],
+            "Sigma SD Merrill sensitivities, Darrodi et al., JOSA A 32(3) 381 (2015), NPL; 400–680 nm, zero outside; on an RGGB Bayer layout (the camera itself is a Foveon X3: sigma-sd-merrill-x3)"),
+        // The camera as built: a Foveon X3 stacks three photodiodes in each pixel, so every channel at every pixel, no mosaic.
+        "sigma-sd-merrill-x3" => new SensorModel
         {
-            Name = "sigma-sd-merrill",
+            Name = "sigma-sd-merrill-x3",
             Arrangement = Arrangement.Full,
             Source = "Sigma SD Merrill (Foveon X3, three stacked layers per pixel) sensitivities, Darrodi et al., JOSA A 32(3) 381 (2015), NPL; 400–680 nm, zero outside",
             Channels = FromCsv("camera-sigma-sdmerill-npl.csv", ["red", "green", "blue"], ["R", "G", "B"]),

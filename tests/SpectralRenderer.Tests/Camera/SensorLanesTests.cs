@@ -85,6 +85,7 @@ public class SensorLanesTests(Xunit.Abstractions.ITestOutputHelper output)
     [InlineData("cie-xyz", false)]
     [InlineData("wheel-6", false)]
     [InlineData("sigma-sd-merrill", true)]
+    [InlineData("sigma-sd-merrill-x3", true)]
     [InlineData("isetcam", true)]
     public void LanesAndPhotositeByPhotosite_GiveTheSameRawBits(string name, bool fixedPattern)
     {
