@@ -41,11 +41,15 @@ public static class PaperReport
         h.Append(Inv, $"<p>Li, Feng, Yang &amp; Bai (2010), <i>Spectral-based rendering method and its application in multispectral colour reproduction</i>, §3, rendered by SpectralRenderer {Esc(typeof(PaperReport).Assembly.GetName().Version?.ToString(3) ?? "")} on {DateTime.UtcNow:yyyy-MM-dd HH:mm} UTC, {Environment.ProcessorCount} cores, in {totalSeconds:0.0} s. Every image carries light in bands; colours come from eq. 3 (CIE 1931 2°) and sRGB unless noted.</p>\n");
 
         var byName = runs.ToDictionary(r => r.Name);
+        // The camera comparison (Fig. 1's second half) runs beside the sections before it: the §3.4 analysis reads and
+        // scores on one thread, so the other core takes the cameras; its HTML goes in its place below.
+        var chartDir = byName.GetValueOrDefault("paper-3.1-colorchecker-d65") is { Done: true } c ? c.OutDir : null;
+        var cameras = Task.Run(() => global::SpectralRenderer.Analysis.Recovery.RecoveryComparison.HtmlSection(chartDir));
         Chart(h, byName.GetValueOrDefault("paper-3.1-colorchecker-d65"));
         Gallery(h, "Fig. 4 — §3.2 materials on a complex object", runs.Where(r => r.Section == "3.2").ToList());
         Gallery(h, "Fig. 5 — §3.3 one material under different lights", runs.Where(r => r.Section == "3.3").ToList());
         Analysis(h, byName.GetValueOrDefault("paper-3.4-bunny-analysis"));
-        h.Append(global::SpectralRenderer.Analysis.Recovery.RecoveryComparison.HtmlSection(byName.GetValueOrDefault("paper-3.1-colorchecker-d65") is { Done: true } c ? c.OutDir : null));
+        h.Append(cameras.GetAwaiter().GetResult());
         Timings(h, runs, totalSeconds);
 
         h.Append("""

@@ -87,8 +87,9 @@ public sealed partial class Renderer
             st.PixelFallback |= st.Fallbacks[lane];
             if (spp > 1 && s < spp)
             {
-                if (s == 0) sum.Clear();
-                SpectralMath.AddScaled(sum, result, inv);
+                // The pixel's first sample is written (0 + r/spp, as on a cleared sum), the others are added.
+                if (s == 0) SpectralMath.SetScaled(sum, result, inv);
+                else SpectralMath.AddScaled(sum, result, inv);
                 continue;
             }
             x -= st.FilmX0; y -= st.FilmY0;   // film → framebuffer

@@ -103,6 +103,15 @@ public static class SpectralMath
         }
     }
 
+    /// <summary>dst = 0 + a · s: band for band what <see cref="Clear"/> and then <see cref="AddScaled"/> leave (0 + (−0) = +0), in one pass.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static void SetScaled(Span<float> dst, ReadOnlySpan<float> a, float s)
+    {
+        var d = V(dst); var va = V(a);
+        var vs = new Vector<float>(s);
+        for (int i = 0; i < d.Length; i++) d[i] = Vector<float>.Zero + va[i] * vs;
+    }
+
     /// <summary>dst += a · s</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static void AddScaled(Span<float> dst, ReadOnlySpan<float> a, float s)

@@ -140,6 +140,50 @@ public static class RecoveryEvaluation
         return new RecoveryResult(method, estimator, cube, rows, examples, whiteDescription);
     }
 
+    /// <summary>
+    /// The ColorChecker scored from each patch's mean signal, as a camera is characterised (average the patch, then
+    /// estimate): per patch one estimate from the mean of its pixels' signals, against the mean of its true spectra;
+    /// the mean over the patches of the RMSE over all bands and over the bands inside <paramref name="range"/>, and of
+    /// ΔE00 under D65. For the affine methods (pinv, wiener, linear, tikhonov) the estimate of the mean signal is the mean
+    /// of the pixels' estimates, so this is <see cref="Run"/>'s "colorchecker" row up to rounding, from 24 estimates
+    /// instead of every patch pixel's; for wiener-local (nonlinear in the signal) it is the estimate of the patch's signal.
+    /// </summary>
+    public static (double RmseAllBands, double RmseInRange, double DeltaE00D65) PatchMeanSignals(CameraCapture capture, SpectralEstimator estimator, (double Lo, double Hi) range)
+    {
+        var scene = capture.Scene;
+        var truth = scene.Aovs.Reflectance ?? throw new InputException(scene.Folder.Path, "has no ground-truth reflectance (reflectance.exr)", "render with --formats including aov");
+        if (scene.Patches.Count == 0) throw new InputException(scene.Folder.Path, "shows no ColorChecker patches", "render the §3.1 chart (scenes/paper-3.1-colorchecker-d65.json)");
+        int c = capture.Sensor.ChannelCount, n = scene.Grid.Count;
+        var d65 = new ReflectanceDifference(new Colorimeter(scene.Grid, scene.Observer, SpectrumLibrary.Resolve("D65"), scene.Folder.Integration));
+        var (first, bands) = BandsInside(scene.Grid, range);
+        var mean = new double[c];
+        var signal = new float[c];
+        var est = new double[n];
+        double all = 0, inRange = 0, de = 0;
+        foreach (var p in scene.Patches)
+        {
+            Array.Clear(mean);
+            foreach (int i in p.Pixels) for (int k = 0; k < c; k++) mean[k] += capture.Image.Rates[i * c + k];
+            for (int k = 0; k < c; k++) signal[k] = (float)(mean[k] / p.Pixels.Length);
+            estimator.Apply(signal, est);
+            var tru = PatchMean(p, truth.Data, n);
+            all += SpectralMetrics.Rmse(est, tru);
+            inRange += SpectralMetrics.Rmse(est.AsSpan(first, bands), tru.AsSpan(first, bands));
+            de += d65.DeltaE00(est, tru);
+        }
+        int np = scene.Patches.Count;
+        return (all / np, inRange / np, de / np);
+    }
+
+    /// <summary>A cube's mean spectrum over a patch's pixels.</summary>
+    static double[] PatchMean(ChartPatch p, float[] cube, int n)
+    {
+        var m = new double[n];
+        foreach (int i in p.Pixels) for (int b = 0; b < n; b++) m[b] += cube[i * n + b];
+        for (int b = 0; b < n; b++) m[b] /= p.Pixels.Length;
+        return m;
+    }
+
     /// <summary>A patch's mean recovered and mean true spectrum over its pixels.</summary>
     static (double[] Recovered, double[] Truth) PatchMeans(ChartPatch p, float[] cube, float[] truth, int n)
     {
