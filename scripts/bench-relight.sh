@@ -36,6 +36,14 @@ fi
 B=${BENCH_DLL:-$repo/src/SpectralRenderer.Cli/bin/Release/net10.0/spectral.dll}
 out=$(mktemp -d /tmp/bench-relight.XXXXXX)
 trap 'rm -rf "$out"' EXIT
+spectral=(dotnet "$B")
+# BENCH_NATIVE=1: the working tree's native command instead (README, "Install"), published into the scratch folder.
+if [[ ${BENCH_NATIVE:-0} == 1 ]]; then
+    echo "publishing the native command (-p:SpectralNative=true) ..." >&2
+    dotnet publish -c Release -v q -nologo "$repo/src/SpectralRenderer.Cli" -p:SpectralNative=true --artifacts-path "$out/artifacts" -o "$out/native" >/dev/null
+    B=$out/native/spectral
+    spectral=("$B")
+fi
 sed 's/"spectrum": "D65"/"spectrum": "A"/' "$scene" > "$out/bunny-A.json"
 grep -q '"spectrum": "A"' "$out/bunny-A.json" || { echo "bench-relight: could not make the scene's light CIE A" >&2; exit 1; }
 
@@ -50,16 +58,16 @@ json() { python3 -c 'import json, sys; d = json.load(open(sys.argv[1])); print(e
 echo "machine: $(lscpu | sed -n 's/^Model name: *//p'), $(nproc) cores; $(date -u '+%Y-%m-%d %H:%M UTC'); commit $(git rev-parse --short HEAD)$(git diff --quiet HEAD || echo '+changes'); $B"
 printf '%-6s %-5s %10s %10s %8s %10s %10s   %s\n' spp size render_s relight_s ratio write_s compute_s "all rounds (render | relight)"
 for spp in "${spps[@]}"; do
-    dotnet "$B" render "$out/bunny-A.json" -o "$out/A" --width "$size" --height "$size" --spp "$spp" --formats all,lights --quiet
+    "${spectral[@]}" render "$out/bunny-A.json" -o "$out/A" --width "$size" --height "$size" --spp "$spp" --formats all,lights --quiet
     render=() relight=()
     for ((r = 1; r <= rounds; r++)); do
         # The order alternates from round to round too.
         for which in $( (( r % 2 )) && echo "render relight" || echo "relight render"); do
             rm -rf "$out/$which"
             if [[ $which == render ]]; then
-                render+=("$(timed "$out/t" dotnet "$B" render "$scene" -o "$out/render" --width "$size" --height "$size" --spp "$spp" --formats all,lights --quiet)")
+                render+=("$(timed "$out/t" "${spectral[@]}" render "$scene" -o "$out/render" --width "$size" --height "$size" --spp "$spp" --formats all,lights --quiet)")
             else
-                relight+=("$(timed "$out/t" dotnet "$B" relight "$out/A" --light D65=D65 -o "$out/relight" --quiet)")
+                relight+=("$(timed "$out/t" "${spectral[@]}" relight "$out/A" --light D65=D65 -o "$out/relight" --quiet)")
             fi
         done
     done
