@@ -71,7 +71,7 @@ public sealed partial class Renderer
         // width × height: the framebuffer (the crop); (ox, oy): its first pixel on the film.
         int width = region.Width, height = region.Height, ox = region.X0, oy = region.Y0, bands = scene.Bands, padded = scene.PaddedBands;
         // Every pixel of these is written by its tile, so they are not zeroed first (80 MB at 1024² × 20 bands).
-        var image = new SpectralImage(width, height, scene.Grid, GC.AllocateUninitializedArray<float>(width * height * bands));
+        var image = new SpectralImage(width, height, scene.Grid, LargeArrays.Uninitialized<float>(width * height * bands));
         var ids = GC.AllocateUninitializedArray<int>(width * height);
         var lit = new LitMasks(width * height, scene.Lights.Count);
         var highlights = GC.AllocateUninitializedArray<byte>(width * height);

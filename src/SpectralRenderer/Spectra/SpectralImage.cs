@@ -71,7 +71,7 @@ public sealed class SpectralImage
     public float[] BandPlanes()
     {
         // Every value is written below: no zeroing pass first (the 84 MB of a 1024², 20-band cube).
-        var planes = GC.AllocateUninitializedArray<float>(Data.Length);
+        var planes = LargeArrays.Uninitialized<float>(Data.Length);
         int n = Width * Height;
         const int Parts = 16;
         Parallel.For(0, Parts, part =>
