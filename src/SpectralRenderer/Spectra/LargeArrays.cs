@@ -40,6 +40,7 @@ public static partial class LargeArrays
 
     const int MadvHugePage = 14;   // <sys/mman.h>, Linux
 
-    [LibraryImport("libc", EntryPoint = "madvise")]
+    // glibc's soname: the C library the process has loaded already (a musl system has none, and keeps small pages).
+    [LibraryImport("libc.so.6", EntryPoint = "madvise")]
     private static partial int Madvise(nint address, nuint length, int advice);
 }
