@@ -81,7 +81,13 @@ public sealed class LocalWiener
         var grid = widths is { } w ? [w]
             : (from hc in ChromaticityWidths from hi in IntensityWidths from beta in Shrinkages select (hc, hi, beta)).ToArray();
         var score = new double[grid.Length];
-        Parallel.For(0, grid.Length, g => score[g] = e.LeaveOneOutRmseAt(grid[g]));
+        if (widths is null)
+        {
+            // By widths (h_c, h_I): the weights and the weighted signal covariance of each left-out sample, shared by the βs.
+            int nb = Shrinkages.Length;
+            Parallel.For(0, grid.Length / nb, g => e.LeaveOneOutRmseAt(grid[g * nb].hc, grid[g * nb].hi, Shrinkages, score.AsSpan(g * nb, nb)));
+        }
+        else e.LeaveOneOutRmseAt(grid[0].hc, grid[0].hi, [grid[0].beta], score);
         int best = 0;
         for (int g = 1; g < grid.Length; g++) if (score[g] < score[best]) best = g;   // the first of equals: deterministic
         (e.ChromaticityWidth, e.IntensityWidth, e.Shrinkage) = grid[best];
@@ -89,24 +95,29 @@ public sealed class LocalWiener
         return e;
     }
 
-    double LeaveOneOutRmseAt((double Hc, double Hi, double Beta) p)
+    /// <summary>Into <paramref name="rmse"/>, for each β of <paramref name="betas"/>: the mean over the samples of the RMSE of each estimated by the others.</summary>
+    void LeaveOneOutRmseAt(double hc, double hi, double[] betas, Span<double> rmse)
     {
         var scratch = new double[ScratchLength];
         var est = new double[n];
         var sj = new double[c];
-        double sum = 0;
+        var sum = new double[betas.Length];
         for (int j = 0; j < t; j++)
         {
             for (int i = 0; i < c; i++) sj[i] = s[i * t + j];
-            Estimate(sj, j, p.Hc, p.Hi, p.Beta, scratch, est);
-            double e2 = 0;
-            for (int b = 0; b < n; b++) { double d = est[b] - r[b * t + j]; e2 += d * d; }
-            sum += Math.Sqrt(e2 / n);
+            double sw = Weigh(sj, j, hc, hi, scratch);
+            for (int k = 0; k < betas.Length; k++)
+            {
+                Finish(sj, sw, betas[k], scratch, est);
+                double e2 = 0;
+                for (int b = 0; b < n; b++) { double d = est[b] - r[b * t + j]; e2 += d * d; }
+                sum[k] += Math.Sqrt(e2 / n);
+            }
         }
-        return sum / t;
+        for (int k = 0; k < betas.Length; k++) rmse[k] = sum[k] / t;
     }
 
-    int ScratchLength => t * (1 + 2 * c) + c * c + 3 * c;
+    int ScratchLength => t * (3 + 2 * c) + 2 * c * c + 3 * c;
 
     /// <summary>The white-relative chromaticity q = u/‖u‖ (u = s ⊘ A·1) into <paramref name="chroma"/>; returns ln‖u‖.</summary>
     double Feature(ReadOnlySpan<double> signal, Span<double> chroma)
@@ -132,15 +143,34 @@ public sealed class LocalWiener
     }
 
     /// <summary>The estimate from <paramref name="signal"/> with training sample <paramref name="exclude"/> left out (−1: none).</summary>
-    void Estimate(ReadOnlySpan<double> signal, int exclude, double hc, double hi, double beta, Span<double> scratch, Span<double> reflectance)
+    void Estimate(ReadOnlySpan<double> signal, int exclude, double hc, double hi, double beta, Span<double> scratch, Span<double> reflectance) =>
+        Finish(signal, Weigh(signal, exclude, hc, hi, scratch), beta, scratch, reflectance);
+
+    // The scratch: w (T), d = s_j − s̄ (C × T), w_j d_j (C × T), Σ w_j d_j d_jᵀ (C × C, lower), M (C × C), q(s), s̄, x (C each),
+    // (s_j − s̄)ᵀx and f (T each).
+    Span<double> Weights(Span<double> scratch) => scratch[..t];
+    Span<double> Centred(Span<double> scratch) => scratch.Slice(t, c * t);
+    Span<double> WeightedCentred(Span<double> scratch) => scratch.Slice(t + c * t, c * t);
+    Span<double> Scatter(Span<double> scratch) => scratch.Slice(t * (1 + 2 * c), c * c);
+    Span<double> SystemMatrix(Span<double> scratch) => scratch.Slice(t * (1 + 2 * c) + c * c, c * c);
+    Span<double> Chroma(Span<double> scratch) => scratch.Slice(t * (1 + 2 * c) + 2 * c * c, c);
+    Span<double> MeanSignal(Span<double> scratch) => scratch.Slice(t * (1 + 2 * c) + 2 * c * c + c, c);
+    Span<double> Solution(Span<double> scratch) => scratch.Slice(t * (1 + 2 * c) + 2 * c * c + 2 * c, c);
+    Span<double> Projection(Span<double> scratch) => scratch.Slice(t * (1 + 2 * c) + 2 * c * c + 3 * c, t);
+    Span<double> Factors(Span<double> scratch) => scratch.Slice(t * (2 + 2 * c) + 2 * c * c + 3 * c, t);
+
+    /// <summary>
+    /// What the estimate needs of the training samples for this signal, whatever β: the weights w_j, their sum (returned),
+    /// the weighted mean signal s̄, the centred signals and the weighted scatter Σ w_j (s_j − s̄)(s_j − s̄)ᵀ, into the scratch.
+    /// </summary>
+    double Weigh(ReadOnlySpan<double> signal, int exclude, double hc, double hi, Span<double> scratch)
     {
-        var w = scratch[..t];
-        var d = scratch.Slice(t, c * t);            // C × T: s_j − s̄
-        var wd = scratch.Slice(t + c * t, c * t);   // C × T: w_j (s_j − s̄)
-        var m = scratch.Slice(t * (1 + 2 * c), c * c);
-        var qs = scratch.Slice(t * (1 + 2 * c) + c * c, c);
-        var sBar = scratch.Slice(t * (1 + 2 * c) + c * c + c, c);
-        var x = scratch.Slice(t * (1 + 2 * c) + c * c + 2 * c, c);
+        var w = Weights(scratch);
+        var d = Centred(scratch);
+        var wd = WeightedCentred(scratch);
+        var scatter = Scatter(scratch);
+        var qs = Chroma(scratch);
+        var sBar = MeanSignal(scratch);
 
         // Squared distances, then weights relative to the nearest sample (so one weight is 1, whatever the widths).
         double li = Feature(signal, qs);
@@ -169,6 +199,20 @@ public sealed class LocalWiener
             var wdi = wd.Slice(i * t, t);
             for (int j = 0; j < t; j++) { di[j] = si[j] - sBar[i]; wdi[j] = w[j] * di[j]; }
         }
+        for (int i = 0; i < c; i++)
+            for (int k = 0; k <= i; k++) scatter[i * c + k] = Dot(wd.Slice(i * t, t), d.Slice(k * t, t));
+        return sw;
+    }
+
+    /// <summary>The estimate for shrinkage β from what <see cref="Weigh"/> left in the scratch (which it does not change).</summary>
+    void Finish(ReadOnlySpan<double> signal, double sw, double beta, Span<double> scratch, Span<double> reflectance)
+    {
+        var w = Weights(scratch);
+        var d = Centred(scratch);
+        var scatter = Scatter(scratch);
+        var m = SystemMatrix(scratch);
+        var sBar = MeanSignal(scratch);
+        var x = Solution(scratch);
 
         // M = (1 − β) Σ w_j (s_j − s̄)(s_j − s̄)ᵀ / Σw + β A K_r Aᵀ + K_n (lower triangle; two passes, about s̄); a ridge of
         // 1e-12 of each diagonal element keeps noise-free systems solvable and, unlike a multiple of I, does not depend
@@ -176,17 +220,18 @@ public sealed class LocalWiener
         for (int i = 0; i < c; i++)
         {
             for (int k = 0; k <= i; k++)
-                m[i * c + k] = (1 - beta) * Dot(wd.Slice(i * t, t), d.Slice(k * t, t)) / sw + beta * aKrAt[i * c + k];
+                m[i * c + k] = (1 - beta) * scatter[i * c + k] / sw + beta * aKrAt[i * c + k];
             m[i * c + i] = (m[i * c + i] + noise[i]) * (1 + 1e-12);
             x[i] = signal[i] - sBar[i];
         }
         CholeskySolve(m, x, c);
 
         // r̂ = μ_w + (1 − β) Σ w_j (r_j − μ_w)(s_j − s̄)ᵀx / Σw + β K_r Aᵀ x; as Σ w_j (s_j − s̄) = 0 the μ_w inside drops:
-        // r̂_b = Σ_j f_j r_bj + β (K_r Aᵀ x)_b with f_j = w_j (1 + (1 − β)(s_j − s̄)ᵀx) / Σw (kept in w).
-        var f = w;
-        var proj = d[..t];                       // d is no longer needed: its first row holds (s_j − s̄)ᵀx
-        for (int j = 0; j < t; j++) proj[j] *= x[0];
+        // r̂_b = Σ_j f_j r_bj + β (K_r Aᵀ x)_b with f_j = w_j (1 + (1 − β)(s_j − s̄)ᵀx) / Σw.
+        var f = Factors(scratch);
+        var proj = Projection(scratch);
+        var d0 = d[..t];
+        for (int j = 0; j < t; j++) proj[j] = d0[j] * x[0];
         for (int i = 1; i < c; i++) Axpy(x[i], d.Slice(i * t, t), proj);
         for (int j = 0; j < t; j++) f[j] = w[j] * (1 + (1 - beta) * proj[j]) / sw;
         for (int b = 0; b < n; b++)
