@@ -43,8 +43,11 @@ public static class ExperimentsCommand
         RenderCommand.PrepareOutputFolder(outDir);
 
         var clock = Stopwatch.StartNew();
-        var runs = PaperExperiments.Run(sceneDir, outDir, scale, models, threads, quiet ? null : stderr.WriteLine, spp);
-        var report = PaperReport.Write(outDir, runs, clock.Elapsed.TotalSeconds);
+        // The report's slow sections start as soon as their scene is written, while the other scenes render.
+        var prepared = new Dictionary<string, Task<string>>();
+        var runs = PaperExperiments.Run(sceneDir, outDir, scale, models, threads, quiet ? null : stderr.WriteLine, spp,
+            written: r => { if (PaperReport.Prepare(r) is { } section) prepared[r.Name] = section; });
+        var report = PaperReport.Write(outDir, runs, clock.Elapsed.TotalSeconds, prepared);
         int skipped = runs.Count(r => !r.Done);
         stdout.WriteLine(string.Create(CultureInfo.InvariantCulture,
             $"{runs.Count - skipped} of {runs.Count} scenes rendered in {clock.Elapsed.TotalSeconds:0.0} s{(skipped > 0 ? $" ({skipped} skipped: mesh not found)" : "")}; report: {report}"));

@@ -19,7 +19,25 @@ public static class PaperReport
 {
     static readonly CultureInfo Inv = CultureInfo.InvariantCulture;
 
-    public static string Write(string outDir, IReadOnlyList<ExperimentRun> runs, double totalSeconds)
+    /// <summary>
+    /// Starts computing, on the thread pool, the report section of a scene just written whose section is slow (the
+    /// §3.1 chart: the camera comparison; §3.4: the analysis), so it runs while the other scenes render; null for
+    /// the other scenes. <see cref="Write"/> takes the started sections.
+    /// </summary>
+    public static Task<string>? Prepare(ExperimentRun run) => run.Name switch
+    {
+        ChartScene => Task.Run(() => CameraSection(run)),
+        AnalysisScene => Task.Run(() => { var h = new StringBuilder(); Analysis(h, run); return h.ToString(); }),
+        _ => null,
+    };
+
+    const string ChartScene = "paper-3.1-colorchecker-d65", AnalysisScene = "paper-3.4-bunny-analysis";
+
+    static string CameraSection(ExperimentRun? chart) =>
+        global::SpectralRenderer.Analysis.Recovery.RecoveryComparison.HtmlSection(chart is { Done: true } ? chart.OutDir : null);
+
+    /// <summary>Writes report.html; <paramref name="prepared"/>: the sections <see cref="Prepare"/> started, by scene name.</summary>
+    public static string Write(string outDir, IReadOnlyList<ExperimentRun> runs, double totalSeconds, IReadOnlyDictionary<string, Task<string>>? prepared = null)
     {
         var h = new StringBuilder();
         h.Append("""
@@ -41,14 +59,15 @@ public static class PaperReport
         h.Append(Inv, $"<p>Li, Feng, Yang &amp; Bai (2010), <i>Spectral-based rendering method and its application in multispectral colour reproduction</i>, §3, rendered by SpectralRenderer {Esc(typeof(PaperReport).Assembly.GetName().Version?.ToString(3) ?? "")} on {DateTime.UtcNow:yyyy-MM-dd HH:mm} UTC, {Environment.ProcessorCount} cores, in {totalSeconds:0.0} s. Every image carries light in bands; colours come from eq. 3 (CIE 1931 2°) and sRGB unless noted.</p>\n");
 
         var byName = runs.ToDictionary(r => r.Name);
-        // The camera comparison (Fig. 1's second half) runs beside the sections before it: the §3.4 analysis reads and
-        // scores on one thread, so the other core takes the cameras; its HTML goes in its place below.
-        var chartDir = byName.GetValueOrDefault("paper-3.1-colorchecker-d65") is { Done: true } c ? c.OutDir : null;
-        var cameras = Task.Run(() => global::SpectralRenderer.Analysis.Recovery.RecoveryComparison.HtmlSection(chartDir));
-        Chart(h, byName.GetValueOrDefault("paper-3.1-colorchecker-d65"));
+        // The camera comparison (Fig. 1's second half) and the §3.4 analysis each read and score on about one thread:
+        // unless started while the scenes rendered (Prepare), they run beside each other and the sections before them.
+        var cameras = prepared?.GetValueOrDefault(ChartScene) ?? Task.Run(() => CameraSection(byName.GetValueOrDefault(ChartScene)));
+        var analysis = prepared?.GetValueOrDefault(AnalysisScene);
+        Chart(h, byName.GetValueOrDefault(ChartScene));
         Gallery(h, "Fig. 4 — §3.2 materials on a complex object", runs.Where(r => r.Section == "3.2").ToList());
         Gallery(h, "Fig. 5 — §3.3 one material under different lights", runs.Where(r => r.Section == "3.3").ToList());
-        Analysis(h, byName.GetValueOrDefault("paper-3.4-bunny-analysis"));
+        if (analysis is not null) h.Append(analysis.GetAwaiter().GetResult());
+        else Analysis(h, byName.GetValueOrDefault(AnalysisScene));
         h.Append(cameras.GetAwaiter().GetResult());
         Timings(h, runs, totalSeconds);
 

@@ -24,21 +24,73 @@ public static class Demosaic
         if (method == DemosaicMethod.Malvar && sensor.IsBayer)
             Parallel.For(0, height, y => MalvarRow(sensor, input, output, width, height, y));
         else
-            Parallel.For(0, height, y => BilinearRow(sensor, input, output, width, height, y));
+        {
+            var taps = BilinearTaps.Of(sensor, width);
+            Parallel.For(0, height, y => BilinearRow(sensor, taps, input, output, width, height, y));
+        }
         return output;
+    }
+
+    /// <summary>
+    /// Per phase of the pattern (a pixel's position modulo the period), the neighbours bilinear interpolation reads away
+    /// from the borders — their offset in the frame, channel and tent weight, in the order the border loop visits them
+    /// — and each channel's total weight, so interior pixels skip the per-neighbour pattern lookups and bounds tests
+    /// (the same sums in the same order: the same bits).
+    /// </summary>
+    sealed class BilinearTaps
+    {
+        public required int[][] Offset, Channel;
+        public required double[][] Weight, Total;
+
+        public static BilinearTaps Of(SensorModel sensor, int w)
+        {
+            int ph = sensor.Pattern!.GetLength(0), pw = sensor.Pattern.GetLength(1), cc = sensor.ChannelCount, phases = ph * pw;
+            var t = new BilinearTaps { Offset = new int[phases][], Channel = new int[phases][], Weight = new double[phases][], Total = new double[phases][] };
+            for (int py = 0; py < ph; py++)
+                for (int px = 0; px < pw; px++)
+                {
+                    // An interior pixel of this phase: (px + pw, py + ph) has the period's whole neighbourhood at non-negative sites.
+                    int x = px + pw, y = py + ph, own = sensor.ChannelAt(x, y);
+                    List<int> offsets = [], channels = [];
+                    List<double> weights = [];
+                    var total = new double[cc];
+                    for (int dy = -ph + 1; dy < ph; dy++)
+                        for (int dx = -pw + 1; dx < pw; dx++)
+                        {
+                            int c = sensor.ChannelAt(x + dx, y + dy);
+                            if (c == own) continue;
+                            double wt = (1 - Math.Abs(dx) / (double)pw) * (1 - Math.Abs(dy) / (double)ph);
+                            offsets.Add(dy * w + dx); channels.Add(c); weights.Add(wt);
+                            total[c] += wt;
+                        }
+                    int k = py * pw + px;
+                    t.Offset[k] = [.. offsets]; t.Channel[k] = [.. channels]; t.Weight[k] = [.. weights]; t.Total[k] = total;
+                }
+            return t;
+        }
     }
 
     static int Mirror(int i, int n) => n == 1 ? 0 : i < 0 ? Math.Min(-i, n - 1) : i >= n ? Math.Max(2 * (n - 1) - i, 0) : i;
 
-    static void BilinearRow(SensorModel sensor, float[] input, float[] output, int w, int h, int y)
+    static void BilinearRow(SensorModel sensor, BilinearTaps taps, float[] input, float[] output, int w, int h, int y)
     {
         int ph = sensor.Pattern!.GetLength(0), pw = sensor.Pattern.GetLength(1), cc = sensor.ChannelCount;
         Span<double> sum = stackalloc double[cc];
         Span<double> weight = stackalloc double[cc];
+        bool interiorRow = y >= ph - 1 && y <= h - ph;
         for (int x = 0; x < w; x++)
         {
             sum.Clear(); weight.Clear();
             int own = sensor.ChannelAt(x, y);
+            if (interiorRow && x >= pw - 1 && x <= w - pw)
+            {
+                int k = (y % ph) * pw + x % pw, at = y * w + x;
+                var offsets = taps.Offset[k]; var channels = taps.Channel[k]; var weights = taps.Weight[k];
+                for (int j = 0; j < offsets.Length; j++) sum[channels[j]] += weights[j] * input[at + offsets[j]];
+                var total = taps.Total[k];
+                for (int c = 0; c < cc; c++) output[at * cc + c] = c == own ? input[at] : total[c] > 0 ? (float)(sum[c] / total[c]) : 0;
+                continue;
+            }
             for (int dy = -ph + 1; dy < ph; dy++)
                 for (int dx = -pw + 1; dx < pw; dx++)
                 {

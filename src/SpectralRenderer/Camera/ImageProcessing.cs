@@ -5,13 +5,14 @@ namespace SpectralRenderer.Camera;
 /// <summary>
 /// The processed image: per pixel and channel the estimated photo-electron rate ė = (DN − black)/(K·t) (e⁻/s,
 /// after demosaicking a mosaic), the white-balanced signal s = ė/ė_white, its XYZ through the colour-correction
-/// matrix, and 8-bit sRGB.
+/// matrix, and 8-bit sRGB (both empty when the display stage was not asked for).
 /// </summary>
 public sealed record ProcessedImage(int Width, int Height, int Channels, float[] Rates, float[] Balanced, Xyz[] Xyz, byte[] Srgb8, DemosaicMethod? Demosaicked);
 
 public static class ImageProcessing
 {
-    public static ProcessedImage Run(RawFrame raw, ColourCorrection colour, DemosaicMethod method = DemosaicMethod.Malvar)
+    /// <param name="display">Whether to compute the colour-corrected XYZ and sRGB of every pixel (false: only the rates and the balanced signals, for recovery).</param>
+    public static ProcessedImage Run(RawFrame raw, ColourCorrection colour, DemosaicMethod method = DemosaicMethod.Malvar, bool display = true)
     {
         var sensor = raw.Sensor;
         int w = raw.Width, h = raw.Height, cc = sensor.ChannelCount, pixels = w * h;
@@ -32,7 +33,7 @@ public static class ImageProcessing
             var balanced = Demosaic.Run(sensor, site, w, h, used.Value);
             rates = new float[balanced.Length];
             for (int i = 0; i < pixels; i++) for (int c = 0; c < cc; c++) rates[i * cc + c] = (float)(balanced[i * cc + c] * colour.WhiteRate[c]);
-            return Finish(w, h, cc, rates, balanced, colour, used);
+            return Finish(w, h, cc, rates, balanced, colour, used, display);
         }
         rates = new float[pixels * cc];
         var bal = new float[pixels * cc];
@@ -43,11 +44,12 @@ public static class ImageProcessing
                 rates[i * cc + c] = (float)r;
                 bal[i * cc + c] = (float)(r / colour.WhiteRate[c]);
             }
-        return Finish(w, h, cc, rates, bal, colour, used);
+        return Finish(w, h, cc, rates, bal, colour, used, display);
     }
 
-    static ProcessedImage Finish(int w, int h, int cc, float[] rates, float[] balanced, ColourCorrection colour, DemosaicMethod? used)
+    static ProcessedImage Finish(int w, int h, int cc, float[] rates, float[] balanced, ColourCorrection colour, DemosaicMethod? used, bool display)
     {
+        if (!display) return new ProcessedImage(w, h, cc, rates, balanced, [], [], used);
         int pixels = w * h;
         var xyz = new Xyz[pixels];
         var rgb = new byte[pixels * 3];

@@ -42,6 +42,7 @@ public static class SweepRunner
         Directory.CreateDirectory(Path.Combine(outDir, "jobs"));
         int rendered = 0, skipped = 0, failed = 0, finished = 0;
         var clock = Stopwatch.StartNew();
+        var geometries = new GeometryCache();   // jobs that vary lights or materials, not the mesh, share its BVH
         try
         {
             foreach (var job in mine)
@@ -60,7 +61,7 @@ public static class SweepRunner
                 string? error = null;
                 try
                 {
-                    RenderJob(plan, job, dir, overrides, threads, cancel);
+                    RenderJob(plan, job, dir, overrides, threads, geometries, cancel);
                     if (layout == "pairs") Pair(outDir, dir, job.Id);
                     rendered++;
                 }
@@ -101,7 +102,7 @@ public static class SweepRunner
         catch (JsonException) { return null; }   // unreadable: the job counts as not done and runs again
     }
 
-    static void RenderJob(SweepPlan plan, SweepJob job, string dir, SceneOverrides overrides, int threads, CancellationToken cancel)
+    static void RenderJob(SweepPlan plan, SweepJob job, string dir, SceneOverrides overrides, int threads, GeometryCache geometries, CancellationToken cancel)
     {
         Directory.CreateDirectory(dir);
         File.Delete(Path.Combine(dir, "job.json"));
@@ -109,7 +110,7 @@ public static class SweepRunner
         // Parsed as if it were the base scene file, so its relative mesh and spectrum files resolve as the base scene's do.
         var scene = SceneLoader.Parse(text, plan.ScenePath, overrides);
         AtomicFile.WriteAllBytes(Path.Combine(dir, "scene.json"), text);
-        var geometry = new SceneGeometry(scene);
+        var geometry = new SceneGeometry(scene, geometries);
         var result = Renderer.Render(scene, Integrators.Create(scene, geometry), threads, null, cancel);
         var run = new JsonObject { ["command_line"] = $"spectral sweep {plan.PlanPath}", ["sweep_job"] = job.Id, ["triangles"] = geometry.TriangleCount };
         RenderOutputWriter.Write(scene, result, dir, run, cancel);

@@ -24,7 +24,8 @@ public sealed partial class SceneGeometry
     readonly (Vector3 Normal, float Offset)[] _planes;   // n·x = offset, world space
     readonly int[] _planeObject;
 
-    public SceneGeometry(Scene scene)
+    /// <param name="cache">Where a BVH built for the same triangles by an earlier scene can be found (and this one's kept); null: built here.</param>
+    public SceneGeometry(Scene scene, GeometryCache? cache = null)
     {
         var meshes = new List<TriangleMesh>();
         var meshObject = new List<int>();
@@ -41,7 +42,7 @@ public sealed partial class SceneGeometry
         _meshObject = meshObject.ToArray();
         _meshSmooth = meshObject.Select(i => scene.Objects[i].Smooth).ToArray();
         _hasTriangles = meshes.Count > 0 && meshes.Sum(m => m.TriangleCount) > 0;
-        _triangles = _hasTriangles ? TriangleSet.Build(_meshes) : default;
+        _triangles = !_hasTriangles ? default : cache is null ? TriangleSet.Build(_meshes) : cache.Triangles(_meshes);
         TriangleCount = _hasTriangles ? _triangles.Count : 0;
 
         if (finite.Count > 0)

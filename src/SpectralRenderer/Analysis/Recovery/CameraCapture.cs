@@ -62,11 +62,12 @@ public sealed class CameraCapture
     }
 
     /// <summary>The camera run in memory on a render (nothing written): what `spectral camera` would write, read back.</summary>
-    public static CameraCapture Simulate(CameraScene scene, SensorModel sensor, SimulationOptions options, double radianceScale = 1)
+    /// <param name="display">Whether the processed image gets its XYZ and sRGB too (recovery needs only the rates).</param>
+    public static CameraCapture Simulate(CameraScene scene, SensorModel sensor, SimulationOptions options, double radianceScale = 1, bool display = true)
     {
         var raw = SensorSimulation.Run(sensor, scene.Cube(radianceScale), scene.Light, options);
         var colour = ColourCorrection.Fit(raw.Weights, scene.Grid, scene.Light, scene.Observer);
-        return new CameraCapture { Dir = scene.Folder.Path, Manifest = [], Scene = scene, Raw = raw, Image = ImageProcessing.Run(raw, colour), Colour = colour };
+        return new CameraCapture { Dir = scene.Folder.Path, Manifest = [], Scene = scene, Raw = raw, Image = ImageProcessing.Run(raw, colour, display: display), Colour = colour };
     }
 
     /// <summary>A (C × N): expected e⁻/s per unit reflectance in band b, for a surface lit like the white diffuser (its radiance is the light's band values).</summary>
