@@ -1,3 +1,6 @@
+using System.Numerics;
+using System.Runtime.InteropServices;
+
 namespace SpectralRenderer.Color;
 
 /// <summary>How a display colour outside [0, 1]³ is brought inside.</summary>
@@ -108,8 +111,36 @@ public sealed class DisplayEncoder
             if (m > 0 && double.IsFinite(m)) maxima.Add(m);
         }
         if (maxima.Count == 0) return 1;
-        maxima.Sort();
-        double p = maxima[Math.Min(maxima.Count - 1, (int)Math.Floor(percentile * (maxima.Count - 1)))];
+        double p = Select(CollectionsMarshal.AsSpan(maxima), Math.Min(maxima.Count - 1, (int)Math.Floor(percentile * (maxima.Count - 1))));
         return p > 0 ? 1 / p : 1;
+    }
+
+    /// <summary>
+    /// The k-th smallest value (k from 0) — what sorting and indexing give — by selection in linear expected time
+    /// (Hoare's FIND with a median-of-three pivot and a three-way partition, so runs of equal values cost one pass);
+    /// after 2·log₂n + 8 rounds the rest of the range is sorted. Reorders <paramref name="values"/>.
+    /// </summary>
+    internal static double Select(Span<double> values, int k)
+    {
+        int lo = 0, hi = values.Length - 1, rounds = 2 * BitOperations.Log2((uint)values.Length) + 8;
+        while (lo < hi)
+        {
+            if (--rounds < 0) { values[lo..(hi + 1)].Sort(); return values[k]; }
+            double a = values[lo], b = values[lo + (hi - lo) / 2], c = values[hi];
+            double pivot = Math.Max(Math.Min(a, b), Math.Min(Math.Max(a, b), c));
+            // [lo, lt) < pivot, [lt, i) == pivot, (gt, hi] > pivot.
+            int lt = lo, i = lo, gt = hi;
+            while (i <= gt)
+            {
+                double v = values[i];
+                if (v < pivot) { values[i++] = values[lt]; values[lt++] = v; }
+                else if (v > pivot) { values[i] = values[gt]; values[gt--] = v; }
+                else i++;
+            }
+            if (k < lt) hi = lt - 1;
+            else if (k > gt) lo = gt + 1;
+            else return pivot;
+        }
+        return values[k];
     }
 }

@@ -50,4 +50,37 @@ public class DisplayMappingTests
         // 99th percentile of 1000 sorted values (index floor(0.99·999) = 989) is 0.990; black pixels do not count.
         Assert.Equal(1 / 0.990, e, 2);
     }
+
+    /// <summary>The selection behind auto exposure against sorting and indexing, on the orders and repetitions an image gives.</summary>
+    [Theory]
+    [InlineData("random", 1000)]
+    [InlineData("random", 1)]
+    [InlineData("random", 2)]
+    [InlineData("random", 7)]
+    [InlineData("few-levels", 5000)]
+    [InlineData("all-equal", 4096)]
+    [InlineData("ascending", 3000)]
+    [InlineData("descending", 3000)]
+    [InlineData("organ-pipe", 3001)]
+    public void Select_gives_the_sorted_array_entry_at_every_rank(string order, int n)
+    {
+        var rng = new Random(n);
+        double[] Make() => order switch
+        {
+            "random" => Enumerable.Range(0, n).Select(_ => rng.NextDouble()).ToArray(),
+            "few-levels" => Enumerable.Range(0, n).Select(_ => (double)rng.Next(4)).ToArray(),
+            "all-equal" => Enumerable.Repeat(0.5, n).ToArray(),
+            "ascending" => Enumerable.Range(0, n).Select(i => (double)i).ToArray(),
+            "descending" => Enumerable.Range(0, n).Select(i => (double)(n - i)).ToArray(),
+            _ => Enumerable.Range(0, n).Select(i => (double)Math.Min(i, n - i)).ToArray(),
+        };
+        var values = Make();
+        var sorted = values.OrderBy(v => v).ToArray();
+        foreach (int k in new[] { 0, n / 3, n / 2, (int)Math.Floor(0.99 * (n - 1)), n - 1 }.Distinct())
+        {
+            var copy = (double[])values.Clone();
+            Assert.Equal(sorted[k], DisplayEncoder.Select(copy, k));
+            Assert.Equal(sorted, copy.OrderBy(v => v).ToArray());   // reordered, nothing lost
+        }
+    }
 }
