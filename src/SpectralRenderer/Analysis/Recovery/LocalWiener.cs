@@ -204,7 +204,7 @@ public sealed class LocalWiener
         return sw;
     }
 
-    /// <summary>The estimate for shrinkage β from what <see cref="Weigh"/> left in the scratch (which it does not change).</summary>
+    /// <summary>The estimate for shrinkage β from what <see cref="Weigh"/> left in the scratch (its part of the scratch is read, not changed).</summary>
     void Finish(ReadOnlySpan<double> signal, double sw, double beta, Span<double> scratch, Span<double> reflectance)
     {
         var w = Weights(scratch);
