@@ -4,6 +4,7 @@ using System.Text;
 using SpectralRenderer.Analysis;
 using SpectralRenderer.Color;
 using SpectralRenderer.Imaging;
+using SpectralRenderer.Output;
 using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Cli.Paper;
@@ -205,7 +206,7 @@ public static class PaperReport
         if (done.Count > 0)
         {
             var triangles = done.Select(r => r.Triangles).Distinct().ToList();
-            var adapted = done.Select(r => RenderFolder.Open(r.OutDir).Manifest.Adapt).Distinct().ToList();
+            var adapted = done.Select(r => RenderManifest.Read(r.OutDir).Adapt).Distinct().ToList();
             h.Append(Inv, $"<p>{(triangles.Count == 1 ? $"The same mesh size in every image: {triangles[0]:N0} triangles." : $"Triangles: {string.Join(", ", triangles.Select(t => t.ToString("N0", Inv)))}.")} ");
             h.Append(adapted.Count == 1 && !adapted[0]
                 ? "κ is set by each scene's reference white and no image is chromatically adapted, so a coloured light shows as colour.</p>\n"
