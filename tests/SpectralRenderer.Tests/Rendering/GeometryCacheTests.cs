@@ -11,22 +11,7 @@ namespace SpectralRenderer.Tests.Rendering;
 /// </summary>
 public class GeometryCacheTests
 {
-    const string Obj = """
-    v -0.5 -0.5 -0.5
-    v  0.5 -0.5 -0.5
-    v  0.5  0.5 -0.5
-    v -0.5  0.5 -0.5
-    v -0.5 -0.5  0.5
-    v  0.5 -0.5  0.5
-    v  0.5  0.5  0.5
-    v -0.5  0.5  0.5
-    f 1 4 3 2
-    f 5 6 7 8
-    f 1 2 6 5
-    f 4 8 7 3
-    f 1 5 8 4
-    f 2 3 7 6
-    """;
+    const string Obj = MeshSceneTests.Obj;
 
     static Scene Load(string dir, string light, string transform)
     {

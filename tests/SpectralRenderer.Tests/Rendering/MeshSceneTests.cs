@@ -7,7 +7,8 @@ namespace SpectralRenderer.Tests.Rendering;
 /// <summary>Meshes in scenes: the same cube as OBJ, as PLY and as an analytic box renders the same picture.</summary>
 public class MeshSceneTests
 {
-    const string Obj = """
+    /// <summary>The unit cube [−0.5, 0.5]³ as OBJ quads, outward faces (also the mesh of GeometryCacheTests).</summary>
+    internal const string Obj = """
     # unit cube [-0.5, 0.5]^3, quads, outward faces
     v -0.5 -0.5 -0.5
     v  0.5 -0.5 -0.5
