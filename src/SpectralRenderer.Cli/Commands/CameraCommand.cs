@@ -4,7 +4,7 @@ using System.Text;
 using System.Text.Json;
 using System.Text.Json.Nodes;
 using SpectralRenderer.Analysis.Recovery;
-using SpectralRenderer.Camera;
+using SpectralRenderer.Sensor;
 using SpectralRenderer.Color;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;

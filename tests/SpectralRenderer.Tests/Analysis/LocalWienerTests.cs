@@ -1,5 +1,5 @@
 using SpectralRenderer.Analysis.Recovery;
-using SpectralRenderer.Camera;
+using SpectralRenderer.Sensor;
 using SpectralRenderer.Spectra;
 using Xunit.Abstractions;
 using static SpectralRenderer.Tests.Analysis.RecoveryBoundTests;

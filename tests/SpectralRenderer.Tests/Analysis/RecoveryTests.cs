@@ -1,6 +1,6 @@
 using System.Globalization;
 using SpectralRenderer.Analysis.Recovery;
-using SpectralRenderer.Camera;
+using SpectralRenderer.Sensor;
 using SpectralRenderer.Tests.Cli;
 
 namespace SpectralRenderer.Tests.Analysis;

@@ -1,6 +1,6 @@
 using System.Text.Json;
 using System.Text.Json.Nodes;
-using SpectralRenderer.Camera;
+using SpectralRenderer.Sensor;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
 

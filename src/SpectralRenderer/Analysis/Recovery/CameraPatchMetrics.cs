@@ -1,4 +1,4 @@
-using SpectralRenderer.Camera;
+using SpectralRenderer.Sensor;
 using SpectralRenderer.Color;
 
 namespace SpectralRenderer.Analysis.Recovery;

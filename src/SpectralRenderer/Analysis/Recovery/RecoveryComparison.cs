@@ -1,7 +1,7 @@
 using System.Globalization;
 using System.Net;
 using System.Text;
-using SpectralRenderer.Camera;
+using SpectralRenderer.Sensor;
 
 namespace SpectralRenderer.Analysis.Recovery;
 

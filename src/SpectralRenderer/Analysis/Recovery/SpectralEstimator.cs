@@ -1,4 +1,4 @@
-using SpectralRenderer.Camera;
+using SpectralRenderer.Sensor;
 
 namespace SpectralRenderer.Analysis.Recovery;
 

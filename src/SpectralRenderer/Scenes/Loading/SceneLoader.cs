@@ -468,7 +468,7 @@ public sealed partial class SceneLoader
     Camera ParseCamera(JsonElement e, string path)
     {
         Object(e, path);
-        Keys(e, path, "position", "look_at", "up", "fov", "width", "height", "spp", "sensor");   // sensor: read by `spectral camera` (Camera/SensorFile.FromScene)
+        Keys(e, path, "position", "look_at", "up", "fov", "width", "height", "spp", "sensor");   // sensor: read by `spectral camera` (Sensor/SensorFile.FromScene)
         var position = Vec3(Required(e, "position", path), $"{path}.position");
         var lookAt = Vec3(Required(e, "look_at", path), $"{path}.look_at");
         var up = Vec3(e, "up", path, Vector3.UnitY);

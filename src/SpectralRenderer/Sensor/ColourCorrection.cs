@@ -1,7 +1,7 @@
 using SpectralRenderer.Color;
 using SpectralRenderer.Spectra;
 
-namespace SpectralRenderer.Camera;
+namespace SpectralRenderer.Sensor;
 
 /// <summary>
 /// Camera signals to colour, as ISETCam's image processor and pbrt-v4's PixelSensor do it:

@@ -1,6 +1,6 @@
-using SpectralRenderer.Camera;
+using SpectralRenderer.Sensor;
 
-namespace SpectralRenderer.Tests.Camera;
+namespace SpectralRenderer.Tests.Sensor;
 
 /// <summary>Demosaicking against analytic images: per-channel planes that are constant or linear in x and y are reproduced exactly in the interior.</summary>
 public class DemosaicTests

@@ -1,6 +1,6 @@
 using SpectralRenderer.Spectra;
 
-namespace SpectralRenderer.Camera;
+namespace SpectralRenderer.Sensor;
 
 /// <summary>How the channels are laid out on the sensor.</summary>
 public enum Arrangement

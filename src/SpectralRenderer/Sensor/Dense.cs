@@ -1,4 +1,4 @@
-namespace SpectralRenderer.Camera;
+namespace SpectralRenderer.Sensor;
 
 /// <summary>Small dense matrices (double[rows, columns]): products, solves and the symmetric eigenproblem, for fits of a few dozen unknowns.</summary>
 public static class Dense

@@ -1,12 +1,12 @@
 using System.Globalization;
 using System.Text.Json.Nodes;
 using SpectralRenderer.Analysis.Recovery;
-using SpectralRenderer.Camera;
+using SpectralRenderer.Sensor;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Tests.Cli;
 using SpectralRenderer.Tests.Imaging;
 
-namespace SpectralRenderer.Tests.Camera;
+namespace SpectralRenderer.Tests.Sensor;
 
 /// <summary>`spectral camera` end to end: reproducible noise, the ideal colorimetric sensor against 1 nm CIE sums, the DNG in dcraw.</summary>
 public class CameraCommandTests

@@ -2,7 +2,7 @@ using SpectralRenderer.Color;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Spectra;
 
-namespace SpectralRenderer.Camera;
+namespace SpectralRenderer.Sensor;
 
 /// <summary>
 /// The named sensors. Every preset uses ISETCam's default pixel (pixelCreate/sensorCreate: 2.8 µm, fill factor

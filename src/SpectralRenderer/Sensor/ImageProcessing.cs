@@ -1,6 +1,6 @@
 using SpectralRenderer.Color;
 
-namespace SpectralRenderer.Camera;
+namespace SpectralRenderer.Sensor;
 
 /// <summary>
 /// The processed image: per pixel and channel the estimated photo-electron rate ė = (DN − black)/(K·t) (e⁻/s,

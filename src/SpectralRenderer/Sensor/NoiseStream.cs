@@ -2,7 +2,7 @@ using System.Runtime.CompilerServices;
 using System.Runtime.Intrinsics;
 using System.Runtime.Intrinsics.X86;
 
-namespace SpectralRenderer.Camera;
+namespace SpectralRenderer.Sensor;
 
 /// <summary>
 /// A counter-based random stream: the k-th number of stream (seed, kind, pixel, channel) is a hash of those

@@ -2,7 +2,7 @@ using System.Buffers.Binary;
 using System.Text;
 using SpectralRenderer.Imaging;
 
-namespace SpectralRenderer.Camera;
+namespace SpectralRenderer.Sensor;
 
 /// <summary>
 /// A Bayer raw frame as a DNG 1.4 file (Adobe DNG Specification 1.4.0.0): little-endian TIFF, one IFD holding the

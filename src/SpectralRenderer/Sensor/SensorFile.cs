@@ -4,7 +4,7 @@ using System.Text.Json.Nodes;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Spectra;
 
-namespace SpectralRenderer.Camera;
+namespace SpectralRenderer.Sensor;
 
 /// <summary>
 /// A sensor as JSON (docs/camera.md): a preset name, or an object whose keys override a preset's (<c>"preset"</c>,

@@ -1,4 +1,4 @@
-namespace SpectralRenderer.Camera;
+namespace SpectralRenderer.Sensor;
 
 public enum DemosaicMethod { Bilinear, Malvar }
 

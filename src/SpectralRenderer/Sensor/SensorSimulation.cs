@@ -3,7 +3,7 @@ using System.Runtime.CompilerServices;
 using System.Runtime.Intrinsics;
 using SpectralRenderer.Spectra;
 
-namespace SpectralRenderer.Camera;
+namespace SpectralRenderer.Sensor;
 
 /// <summary>
 /// What reaches the camera: an H × W × N cube of band radiance (pixel-interleaved, row 0 at the top), its band grid,

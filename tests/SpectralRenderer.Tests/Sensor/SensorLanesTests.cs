@@ -1,8 +1,8 @@
 using System.Runtime.Intrinsics;
-using SpectralRenderer.Camera;
+using SpectralRenderer.Sensor;
 using SpectralRenderer.Spectra;
 
-namespace SpectralRenderer.Tests.Camera;
+namespace SpectralRenderer.Tests.Sensor;
 
 /// <summary>
 /// The sensor's 8-lane read-out against the photosite-by-photosite one (a second computation of the same model):

@@ -1,7 +1,7 @@
 using System.Runtime.CompilerServices;
 using System.Runtime.Intrinsics;
 
-namespace SpectralRenderer.Camera;
+namespace SpectralRenderer.Sensor;
 
 public static partial class SensorSimulation
 {

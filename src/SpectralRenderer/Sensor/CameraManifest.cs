@@ -1,7 +1,7 @@
 using System.Text.Json.Nodes;
 using SpectralRenderer.Spectra;
 
-namespace SpectralRenderer.Camera;
+namespace SpectralRenderer.Sensor;
 
 /// <summary>camera.json: every parameter the simulation used, the per-band channel weights, the exposures, the colour matrix.</summary>
 public static class CameraManifest

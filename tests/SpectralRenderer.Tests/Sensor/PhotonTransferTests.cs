@@ -1,7 +1,7 @@
-using SpectralRenderer.Camera;
+using SpectralRenderer.Sensor;
 using SpectralRenderer.Spectra;
 
-namespace SpectralRenderer.Tests.Camera;
+namespace SpectralRenderer.Tests.Sensor;
 
 /// <summary>
 /// The EMVA 1288 (release 4.0) photon-transfer method on simulated frames of a uniformly lit 64 × 64 region:

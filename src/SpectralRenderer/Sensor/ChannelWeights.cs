@@ -1,6 +1,6 @@
 using SpectralRenderer.Spectra;
 
-namespace SpectralRenderer.Camera;
+namespace SpectralRenderer.Sensor;
 
 /// <summary>
 /// Per channel c and band b, the photo-electron rate per unit of band radiance (e⁻/s per band unit):

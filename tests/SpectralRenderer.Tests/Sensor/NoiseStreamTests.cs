@@ -1,6 +1,6 @@
-using SpectralRenderer.Camera;
+using SpectralRenderer.Sensor;
 
-namespace SpectralRenderer.Tests.Camera;
+namespace SpectralRenderer.Tests.Sensor;
 
 /// <summary>
 /// The noise generators against their distributions: moments (mean, variance) within four standard errors, and
