@@ -26,7 +26,7 @@ dotnet build -c Release -v q -nologo "$repo/src/SpectralRenderer.Cli" >/dev/null
 NEW=$repo/src/SpectralRenderer.Cli/bin/Release/net10.0/spectral.dll
 out=$(mktemp -d /tmp/same-pictures.XXXXXX); trap 'rm -rf "$out"' EXIT
 # render.json fields that describe the run rather than the picture.
-volatile='"(created_utc|render|mrays_per_s|command_line|load_s|build_s|build|write_s|total_s|output|elapsed_s|threads)":'
+volatile='"(created_utc|render|mrays_per_s|command_line|load_s|build_s|build|write_s|total_s|output|elapsed_s|threads|light_transfer_s)":'
 differ=0
 for scene in "$oldtree"/scenes/*.json; do
     name=$(basename "$scene" .json)

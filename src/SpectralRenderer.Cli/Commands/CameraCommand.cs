@@ -4,10 +4,10 @@ using System.Text;
 using System.Text.Json;
 using System.Text.Json.Nodes;
 using SpectralRenderer.Analysis.Recovery;
-using SpectralRenderer.Sensor;
 using SpectralRenderer.Color;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
+using SpectralRenderer.Sensor;
 
 namespace SpectralRenderer.Cli.Commands;
 

@@ -1,8 +1,8 @@
 using System.Globalization;
 using System.Text.Json.Nodes;
 using SpectralRenderer.Analysis.Recovery;
-using SpectralRenderer.Sensor;
 using SpectralRenderer.Imaging;
+using SpectralRenderer.Sensor;
 using SpectralRenderer.Tests.Cli;
 using SpectralRenderer.Tests.Imaging;
 

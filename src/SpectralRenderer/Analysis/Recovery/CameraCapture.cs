@@ -1,8 +1,8 @@
 using System.Text.Json;
 using System.Text.Json.Nodes;
-using SpectralRenderer.Sensor;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
+using SpectralRenderer.Sensor;
 
 namespace SpectralRenderer.Analysis.Recovery;
 

@@ -1,5 +1,5 @@
-using SpectralRenderer.Sensor;
 using SpectralRenderer.Color;
+using SpectralRenderer.Sensor;
 
 namespace SpectralRenderer.Analysis.Recovery;
 
