@@ -132,15 +132,18 @@ internal sealed class Eq2Walker
             {
                 // Dispersion: every band bends by its own index, so each gets its own refracted ray.
                 sink.Split(ref counters);
-                for (int b = 0; b < _bands; b++) Refract(ref sink, ray.Direction, p, n, ng, m, mi, cosI, outside, depth, b, wt, ref counters);
+                for (int b = 0; b < _bands; b++)
+                    Refract(ref sink, ray.Direction, p, n, ng, m, mi, cosI, outside, depth, b, wt, ref counters);
             }
         }
         return hit.Object;
     }
 
-    /// <summary>Eq. 2's local terms at a shading point (normal n and view direction v on the viewer's side), lights from <paramref name="lights"/>.</summary>
+    /// <summary>Eq. 2's local terms at a shading point (normal n and view direction v on the viewer's side), lights from
+    /// <paramref name="lights"/>.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    public void Shade<TSink, TLights>(ref TSink sink, ref TLights lights, int mi, Material m, Vector3 n, Vector3 v, ref RayCounters counters)
+    public void Shade<TSink, TLights>(ref TSink sink, ref TLights lights, int mi, Material m, Vector3 n, Vector3 v,
+        ref RayCounters counters)
         where TSink : ITermSink, allows ref struct
         where TLights : ILightQuery, allows ref struct
     {
@@ -243,7 +246,8 @@ internal sealed class Eq2Walker
         {
             counters.Shadow++;
             float dist = sample.Distance;
-            return !geometry.Occluded(new Ray(pAbove, sample.Direction, float.IsInfinity(dist) ? float.PositiveInfinity : dist - 2 * geometry.Epsilon));
+            float tMax = float.IsInfinity(dist) ? float.PositiveInfinity : dist - 2 * geometry.Epsilon;
+            return !geometry.Occluded(new Ray(pAbove, sample.Direction, tMax));
         }
     }
 }

@@ -85,12 +85,15 @@ public sealed partial class WhittedIntegrator
             if (light.LaneForm is PointEmitter point)
             {
                 // Direction, distance, falloff, n·l and the shadow rays of all lanes at once (c_spot = 1).
+                ref var d = ref lk.Attenuation;
+                ref var nl = ref lk.Cosine;
                 switch (PacketLanes.Width)
                 {
-                    case 16: LaneGeometry.PointLight<Lanes512>(point, eps, shaded, in at, ref shadows, ref lk.Attenuation, ref lk.Cosine, out reached[k]); break;
-                    case 8: LaneGeometry.PointLight<Lanes256>(point, eps, shaded, in at, ref shadows, ref lk.Attenuation, ref lk.Cosine, out reached[k]); break;
-                    case 4: LaneGeometry.PointLight<Lanes128>(point, eps, shaded, in at, ref shadows, ref lk.Attenuation, ref lk.Cosine, out reached[k]); break;
-                    default: LaneGeometry.PointLight<Lanes1>(point, eps, shaded, in at, ref shadows, ref lk.Attenuation, ref lk.Cosine, out reached[k]); break;
+                    case 16: LaneGeometry.PointLight<Lanes512>(point, eps, shaded, in at, ref shadows, ref d, ref nl, out reached[k]);
+                        break;
+                    case 8: LaneGeometry.PointLight<Lanes256>(point, eps, shaded, in at, ref shadows, ref d, ref nl, out reached[k]); break;
+                    case 4: LaneGeometry.PointLight<Lanes128>(point, eps, shaded, in at, ref shadows, ref d, ref nl, out reached[k]); break;
+                    default: LaneGeometry.PointLight<Lanes1>(point, eps, shaded, in at, ref shadows, ref d, ref nl, out reached[k]); break;
                 }
                 ((Span<float>)lk.Spot).Fill(1f);
             }
@@ -109,7 +112,8 @@ public sealed partial class WhittedIntegrator
             var query = new LaneLights(lanes, reached, lit, lane);
             var v = -new Vector3(packet.DirectionX[lane], packet.DirectionY[lane], packet.DirectionZ[lane]);
             _walker.Shade(ref sink, ref query, mi, _materials[mi], at.Normal(lane), v, ref counters);
-            if (listed) SpectralMath.SumTerms(results.Slice(lane * _padded, _padded), _flat, terms.Slice(lane * TermsPerLane, termCount[lane]));
+            if (listed)
+                SpectralMath.SumTerms(results.Slice(lane * _padded, _padded), _flat, terms.Slice(lane * TermsPerLane, termCount[lane]));
         }
     }
 
@@ -124,7 +128,8 @@ public sealed partial class WhittedIntegrator
     }
 
     /// <summary>A packet lane's lights for the walker's local step: the lanes' precomputed results, shadow rays already traced.</summary>
-    readonly ref struct LaneLights(ReadOnlySpan<LightLanes> lanes, ReadOnlySpan<uint> reached, ReadOnlySpan<uint> lit, int lane) : ILightQuery
+    readonly ref struct LaneLights(ReadOnlySpan<LightLanes> lanes, ReadOnlySpan<uint> reached, ReadOnlySpan<uint> lit, int lane)
+        : ILightQuery
     {
         readonly ReadOnlySpan<LightLanes> _lanes = lanes;
         readonly ReadOnlySpan<uint> _reached = reached, _lit = lit;
@@ -135,7 +140,8 @@ public sealed partial class WhittedIntegrator
             if ((_reached[k] >> lane & 1) == 0) { sample = default; nl = 0; return false; }
             ref readonly var r = ref _lanes[k];
             nl = r.Cosine[lane];
-            sample = new LightSample(new Vector3(r.DirectionX[lane], r.DirectionY[lane], r.DirectionZ[lane]), 0, r.Spot[lane], r.Attenuation[lane]);
+            var l = new Vector3(r.DirectionX[lane], r.DirectionY[lane], r.DirectionZ[lane]);
+            sample = new LightSample(l, 0, r.Spot[lane], r.Attenuation[lane]);
             return true;
         }
 
@@ -155,7 +161,8 @@ public sealed partial class WhittedIntegrator
         readonly Span<float> _results;
         readonly ref PixelInfo _info;
 
-        public LaneSink(WhittedIntegrator owner, int lane, bool listed, Span<SpectralTerm> terms, Span<int> termCount, Span<float> results, ref PixelInfo info)
+        public LaneSink(WhittedIntegrator owner, int lane, bool listed, Span<SpectralTerm> terms, Span<int> termCount, Span<float> results,
+            ref PixelInfo info)
         {
             _owner = owner; _lane = lane; _listed = listed; _terms = terms; _termCount = termCount; _results = results;
             _info = ref info;

@@ -18,7 +18,7 @@ namespace SpectralRenderer.Rendering;
 /// With Fresnel, k_r·F and k_t·(1 − F), F = 1 under total internal reflection (nothing is transmitted), F per band
 /// for a dispersive material.
 /// </summary>
-public sealed partial class WhittedIntegrator : IPacketIntegrator
+public sealed partial class WhittedIntegrator : IPacketIntegrator, IAnalysisIntegrator
 {
     readonly Scene _scene;
     readonly SceneGeometry _geometry;
@@ -59,17 +59,22 @@ public sealed partial class WhittedIntegrator : IPacketIntegrator
     public int ScratchLength => (_scene.MaxDepth + 2) * 2 * _padded + _lights.Length * LightLanes.Floats;
 
     /// <inheritdoc/>
-    public int Radiance(Ray ray, Span<float> result, Span<float> scratch, ref RayCounters counters, ref PixelInfo info)
+    public int Radiance(in CameraSample sample, Span<float> result, Span<float> scratch, ref RayCounters counters) =>
+        Radiance(in sample, result, scratch, ref counters, ref Unsafe.NullRef<PixelInfo>());
+
+    /// <inheritdoc/>
+    public int Radiance(in CameraSample sample, Span<float> result, Span<float> scratch, ref RayCounters counters, ref PixelInfo info)
     {
         var sink = new Sink(_tables, _scene.Bands, result, scratch, ref info);
-        return _walker.Trace(ref sink, ray, 0, -1, 1f, ref counters);
+        return _walker.Trace(ref sink, sample.Ray, 0, -1, 1f, ref counters);
     }
 
     /// <summary>
     /// Eq. 2's terms summed into the ray's spectrum, each a precomputed table times its scalar
     /// (<see cref="SpectralMath.AddScaled"/>, <see cref="SpectralMath.AddScaled2"/>), a mirror or transmitted ray's spectrum
-    /// (its own frame in the scratch) added through k_r or k_t (<see cref="SpectralMath.AddProduct(Span{float}, ReadOnlySpan{float}, ReadOnlySpan{float}, float)"/>). At the camera ray's
-    /// hit it records, when asked, which lights reach the point and the Y of its diffuse and specular terms.
+    /// (its own frame in the scratch) added through k_r or k_t
+    /// (<see cref="SpectralMath.AddProduct(Span{float}, ReadOnlySpan{float}, ReadOnlySpan{float}, float)"/>).
+    /// At the camera ray's hit it records, when asked, which lights reach the point and the Y of its diffuse and specular terms.
     /// </summary>
     ref struct Sink : ITermSink
     {
@@ -97,7 +102,8 @@ public sealed partial class WhittedIntegrator : IPacketIntegrator
         public readonly void Begin() => _frame.Clear();
         public readonly void Background() => _tables.Background.AsSpan().CopyTo(_frame);
         public readonly void GlobalAmbient(int material) => SpectralMath.AddScaled(_frame, _tables.GlobalAmbient[material], 1f);
-        public readonly void Ambient(int light, int material, int term, float spot) => SpectralMath.AddScaled(_frame, _tables.Ambient[term], spot);
+        public readonly void Ambient(int light, int material, int term, float spot) =>
+            SpectralMath.AddScaled(_frame, _tables.Ambient[term], spot);
 
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
         public readonly void Direct(int light, int material, int term, float d, float nl, float s, bool specular)
@@ -114,7 +120,8 @@ public sealed partial class WhittedIntegrator : IPacketIntegrator
             }
         }
 
-        public readonly void Split(ref RayCounters counters) => counters.Fallback++;   // per-band paths: the colour comes from the band values
+        // Per-band paths: the colour comes from the band values.
+        public readonly void Split(ref RayCounters counters) => counters.Fallback++;
 
         public void Enter(int material, bool transmit, int band, float factor) => _frame = Frame(++_depth);
 
