@@ -89,7 +89,8 @@ public sealed partial class WhittedIntegrator
                 ref var nl = ref lk.Cosine;
                 switch (PacketLanes.Width)
                 {
-                    case 16: LaneGeometry.PointLight<Lanes512>(point, eps, shaded, in at, ref shadows, ref d, ref nl, out reached[k]);
+                    case 16:
+                        LaneGeometry.PointLight<Lanes512>(point, eps, shaded, in at, ref shadows, ref d, ref nl, out reached[k]);
                         break;
                     case 8: LaneGeometry.PointLight<Lanes256>(point, eps, shaded, in at, ref shadows, ref d, ref nl, out reached[k]); break;
                     case 4: LaneGeometry.PointLight<Lanes128>(point, eps, shaded, in at, ref shadows, ref d, ref nl, out reached[k]); break;
