@@ -1,4 +1,5 @@
 using System.Collections.Concurrent;
+using System.Diagnostics;
 using System.Numerics;
 using System.Runtime.CompilerServices;
 using SpectralRenderer.Diagnostics;
@@ -243,7 +244,7 @@ public sealed class LightTransfer
         readonly ConcurrentBag<(int[] Comp, int[] Pixel, float[] Factor, int Count)> _tiles = [];
         readonly float[][] _centreDiffuse, _centreSpecular;
         readonly TermTables _tables;
-        readonly bool _physical;
+        readonly Eq2Walker _walker;
         readonly bool[] _fallback;
 
         public Tracer(Scene scene, SceneGeometry geometry)
@@ -257,7 +258,7 @@ public sealed class LightTransfer
             _centreDiffuse = _lights.Select(_ => new float[_width * _height]).ToArray();
             _centreSpecular = _lights.Select(_ => new float[_width * _height]).ToArray();
             _tables = new TermTables(scene);
-            _physical = scene.Radiometry == Radiometry.Physical;
+            _walker = new Eq2Walker(scene, geometry, _tables);
             _fallback = new bool[_width * _height];
         }
 
@@ -265,6 +266,13 @@ public sealed class LightTransfer
         {
             public readonly int[] Chain = new int[MaxChain + 1];
             public int ChainLength;
+            // Per depth, the path's scalar weight and the band its parent carried.
+            public readonly float[] Weights = new float[MaxChain + 2];
+            public readonly int[] Bands = new int[MaxChain + 1];
+            // The camera sample's pixel; for the centre ray, the lights that reach its first hit.
+            public int Pixel;
+            public bool Centre;
+            public uint Mask;
             // The band the current path carries after a dispersive split (−1: all bands), as the integrator's band argument.
             public int Band = -1;
             public readonly Dictionary<Key, int> Index = new();
@@ -277,7 +285,6 @@ public sealed class LightTransfer
             public int[] TileComp = new int[4096], TilePixel = new int[4096];
             public float[] TileFactor = new float[4096];
             public int TileCount;
-            public RayCounters Counters;
 
             public void Emit(int pixel)
             {
@@ -296,73 +303,13 @@ public sealed class LightTransfer
 
         public LightTransfer Run(int threads, CancellationToken cancel)
         {
-            var cam = _scene.Camera;
-            int width = _width, height = _height, bands = _scene.Bands, padded = _padded;
+            int width = _width, height = _height, bands = _scene.Bands;
             var ids = new int[width * height];
             var lit = new uint[width * height];
-            int tilesX = (width + Renderer.TileSize - 1) / Renderer.TileSize, tilesY = (height + Renderer.TileSize - 1) / Renderer.TileSize;
-            int tiles = tilesX * tilesY;
-            if (threads <= 0) threads = Environment.ProcessorCount;
-            int spp = cam.SamplesPerPixel;
-            int strataX = 1;
-            for (int m = (int)Math.Sqrt(spp); m >= 1; m--) if (spp % m == 0) { strataX = m; break; }
-            int strataY = spp / strataX;
-            float inv = 1f / spp;
-            var total = new RayCounters();
-            var gate = new object();
-            int next = -1;
-
-            void Work()
-            {
-                var w = new Worker();
-                int tile;
-                while ((tile = Interlocked.Increment(ref next)) < tiles)
-                {
-                    cancel.ThrowIfCancellationRequested();
-                    w.TileCount = 0;
-                    int x0 = tile % tilesX * Renderer.TileSize, y0 = tile / tilesX * Renderer.TileSize;
-                    int x1 = Math.Min(width, x0 + Renderer.TileSize), y1 = Math.Min(height, y0 + Renderer.TileSize);
-                    for (int y = y0; y < y1; y++)
-                        for (int x = x0; x < x1; x++)
-                        {
-                            int i = y * width + x;
-                            w.Terms = 0;
-                            w.Fallback = false;
-                            uint mask = 0;
-                            int id;
-                            if (spp == 1)
-                            {
-                                w.Counters.Primary++;
-                                id = Primary(cam.Generate(x + 0.5f, y + 0.5f), w, 1f, i, ref mask, centre: true);
-                            }
-                            else
-                            {
-                                for (int s = 0; s < spp; s++)
-                                {
-                                    uint h = Renderer.Hash((uint)x, (uint)y, (uint)s);
-                                    float jx = ((s % strataX) + (h & 0xFFFF) / 65536f) / strataX;
-                                    float jy = ((s / strataX) + (h >> 16) / 65536f) / strataY;
-                                    w.Counters.Primary++;
-                                    uint unused = 0;
-                                    Primary(cam.Generate(x + jx, y + jy), w, inv, i, ref unused, centre: false);
-                                }
-                                // The centre ray for the analysis data, traced as the renderer traces it (its radiance weighs 0).
-                                w.Counters.Primary++;
-                                id = Primary(cam.Generate(x + 0.5f, y + 0.5f), w, 0f, i, ref mask, centre: true);
-                            }
-                            w.Emit(i);
-                            _fallback[i] = w.Fallback;
-                            ids[i] = id;
-                            lit[i] = mask;
-                        }
-                    _tiles.Add((w.TileComp[..w.TileCount], w.TilePixel[..w.TileCount], w.TileFactor[..w.TileCount], w.TileCount));
-                }
-                lock (gate) total.Add(w.Counters);
-            }
-            var workers = new Task[Math.Min(threads, tiles)];
-            for (int k = 0; k < workers.Length; k++) workers[k] = Task.Factory.StartNew(Work, cancel, TaskCreationOptions.None, TaskScheduler.Default);
-            try { Task.WaitAll(workers); }
-            catch (AggregateException e) when (e.InnerExceptions.All(x => x is OperationCanceledException)) { throw new OperationCanceledException(cancel); }
+            // The renderer's own loop (tiles, threads, jitter, weights 1/spp, the centre ray of weight 0) over the whole film.
+            var sampling = new PixelSampling(_scene.Camera, _scene.RayBudget, analysis: true);
+            var (total, _, _) = Renderer.RunTiles(PixelRect.Whole(width, height), threads, null, Stopwatch.StartNew(), cancel,
+                () => new TileWork(this, sampling, ids, lit, cancel));
 
             var (components, pixels, factors, merged) = Assemble(width * height);
             return new LightTransfer
@@ -437,146 +384,115 @@ public sealed class LightTransfer
             return (groups.Select(g => _registered[g[0]]).ToArray(), pix, fac, groups.Select(g => g.Length).ToArray());
         }
 
+        /// <summary>A worker's tiles: each pixel's camera samples (<see cref="Renderer.SampleTile"/>) traced into its terms.</summary>
+        sealed class TileWork(Tracer t, PixelSampling sampling, int[] ids, uint[] lit, CancellationToken cancel) : ITileWork
+        {
+            readonly Worker _w = new();
+
+            public void Tile(int x0, int y0, int x1, int y1, ref RayCounters counters)
+            {
+                _w.TileCount = 0;
+                var sink = new TransferSamples(t, _w, ids, lit);
+                Renderer.SampleTile(ref sink, in sampling, x0, y0, x1, y1, cancel, ref counters);
+                t._tiles.Add((_w.TileComp[.._w.TileCount], _w.TilePixel[.._w.TileCount], _w.TileFactor[.._w.TileCount], _w.TileCount));
+            }
+        }
+
+        /// <summary>A pixel's camera samples as terms with weight 1/spp (the centre ray's weigh 0: only its centre-ray data
+        /// is kept).</summary>
+        struct TransferSamples(Tracer t, Worker w, int[] ids, uint[] lit) : ISampleSink
+        {
+            uint _mask;
+
+            public void BeginPixel(int x, int y, ref RayCounters counters)
+            {
+                w.Terms = 0;
+                w.Fallback = false;
+                _mask = 0;
+            }
+
+            public int Sample(in CameraSample sample, float weight, bool centre, ref RayCounters counters) =>
+                t.Primary(sample.Ray, w, weight, sample.Y * t._width + sample.X, ref _mask, centre, ref counters);
+
+            public readonly void EndPixel(int x, int y, int id, ref RayCounters counters)
+            {
+                int i = y * t._width + x;
+                w.Emit(i);
+                t._fallback[i] = w.Fallback;
+                ids[i] = id;
+                lit[i] = _mask;
+            }
+        }
+
         /// <summary>A camera sample of weight <paramref name="weight"/> (1/spp): radiance terms into the worker.</summary>
-        int Primary(Ray ray, Worker w, float weight, int pixel, ref uint mask, bool centre)
+        int Primary(Ray ray, Worker w, float weight, int pixel, ref uint mask, bool centre, ref RayCounters counters)
         {
             w.ChainLength = 0;
             w.Band = -1;
-            return Radiance(ray, 0, w, weight, pixel, ref mask, centre);
-        }
-
-        void Local(in Ray ray, in SurfaceHit hit, Material m, out Vector3 n, out Vector3 v, out Vector3 pAbove, out bool outside)
-        {
-            v = -ray.Direction;
-            outside = Vector3.Dot(hit.GeometricNormal, v) >= 0;
-            var ng = outside ? hit.GeometricNormal : -hit.GeometricNormal;
-            n = outside ? hit.Normal : -hit.Normal;
-            pAbove = hit.Position + _geometry.Epsilon * ng;
-        }
-
-        /// <summary>Is the lit side facing the light (n·l &gt; 0) and the shadow ray unblocked? n·l, as the integrator tests it.</summary>
-        bool Lit(in LightSample ls, Vector3 pAbove, Vector3 n, ref RayCounters counters, out float nl)
-        {
-            nl = Vector3.Dot(n, ls.Direction);
-            if (nl <= 0) return false;
-            counters.Shadow++;
-            var shadowRay = new Ray(pAbove, ls.Direction, float.IsInfinity(ls.Distance) ? float.PositiveInfinity : ls.Distance - 2 * _geometry.Epsilon);
-            return !_geometry.Occluded(shadowRay);
+            w.Weights[0] = weight;
+            w.Pixel = pixel;
+            w.Centre = centre;
+            w.Mask = 0;
+            var sink = new TransferSink(this, w);
+            int id = _walker.Trace(ref sink, ray, 0, -1, 1f, ref counters);
+            if (centre) mask = w.Mask;
+            return id;
         }
 
         /// <summary>
-        /// Eq. 2 at the hit, as <see cref="WhittedIntegrator.Radiance(Ray, int, int, float, Span{float}, Span{float}, ref RayCounters, ref PixelInfo)"/>
-        /// computes it, each term recorded as its component's factor times the path's scalar weight <paramref name="weight"/>
-        /// (1/spp times the Fresnel factors along it).
+        /// Eq. 2's terms as the walker visits them (<see cref="Eq2Walker"/>), each recorded as its component's factor times the
+        /// path's scalar weight (1/spp times the Fresnel factors along it); the chain of mirror and transmission weights is
+        /// pushed on entering a branch and popped on leaving it. Nothing is pruned or cut by a budget; a dispersive Fresnel
+        /// mirror's reflected ray is followed once per band as one-band components (counted as one ray).
         /// </summary>
-        int Radiance(Ray ray, int depth, Worker w, float weight, int pixel, ref uint mask, bool centre)
+        readonly struct TransferSink(Tracer t, Worker w) : ITermSink
         {
-            if (!_geometry.Intersect(ref ray, out var hit))
-            {
-                if (SpectralMath.Any(_scene.Background)) AddTerm(w, -1, TransferLobe.Background, -1, weight);
-                return -1;
-            }
-            int mi = _objectMaterial[hit.Object];
-            var m = _materials[mi];
-            Local(ray, hit, m, out var n, out var v, out var pAbove, out bool outside);
-            var p = hit.Position;
-            if (_scene.HasGlobalAmbient && m.HasAmbient) AddTerm(w, -1, TransferLobe.GlobalAmbient, mi, weight);
+            public static bool Prunes => false;
+            public static bool Budgeted => false;
+            public static bool ReflectPerBand => true;
 
-            for (int k = 0; k < _lights.Length; k++)
+            float Weight => w.Weights[w.ChainLength];
+
+            public void Begin() { }
+
+            public void Background()
             {
-                var light = _lights[k];
-                if (!light.Illuminate(p, out var ls)) continue;
-                // The light's own ambient spectrum enters wherever the light reaches the point (before n·l and shadows).
-                if (light.HasAmbient && m.HasAmbient) AddTerm(w, k, TransferLobe.Ambient, mi, weight * ls.Spot);
-                if (!Lit(ls, pAbove, n, ref w.Counters, out float nl)) continue;
-                float d = ls.Attenuation * ls.Spot;
-                // Physical: the specular lobe is a BRDF, weighted by cos θ_i like the diffuse one (as the integrator does).
-                float s = m.HasSpecular ? m.SpecularFactor(n, ls.Direction, v, nl) * (_physical ? nl : 1f) : 0;
-                AddTerm(w, k, TransferLobe.Diffuse, mi, weight * d * nl);
-                if (m.HasSpecular) AddTerm(w, k, TransferLobe.Specular, mi, weight * d * s);
-                if (depth == 0 && centre)
+                if (SpectralMath.Any(t._scene.Background)) t.AddTerm(w, -1, TransferLobe.Background, -1, Weight);
+            }
+
+            public void GlobalAmbient(int material) => t.AddTerm(w, -1, TransferLobe.GlobalAmbient, material, Weight);
+            public void Ambient(int light, int material, int term, float spot) =>
+                t.AddTerm(w, light, TransferLobe.Ambient, material, Weight * spot);
+
+            public void Direct(int light, int material, int term, float d, float nl, float s, bool specular)
+            {
+                float weight = Weight;
+                t.AddTerm(w, light, TransferLobe.Diffuse, material, weight * d * nl);
+                if (specular) t.AddTerm(w, light, TransferLobe.Specular, material, weight * d * s);
+                if (w.ChainLength == 0 && w.Centre)
                 {
-                    if (k < 32) mask |= 1u << k;
-                    _centreDiffuse[k][pixel] = d * nl;
-                    _centreSpecular[k][pixel] = d * s;
+                    if (light < 32) w.Mask |= 1u << light;
+                    t._centreDiffuse[light][w.Pixel] = d * nl;
+                    t._centreSpecular[light][w.Pixel] = d * s;
                 }
             }
 
-            if (depth >= _scene.MaxDepth || !(m.HasMirror || m.HasTransmission)) return hit.Object;
-            float cosI = Vector3.Dot(n, v);
-            if (m.HasMirror)
-            {
-                var dir = Vector3.Normalize(ray.Direction + 2 * cosI * n);
-                w.Counters.Secondary++;
-                if (m.Fresnel && m.Dispersive && w.Band < 0)
-                {
-                    // F from each band's own index: the integrator traces the reflected ray once and weights band b by F_b;
-                    // here its terms are recorded once per band, as one-band components (the ray counts as one).
-                    w.Fallback = true;
-                    var counted = w.Counters;
-                    for (int b = 0; b < _scene.Bands; b++)
-                    {
-                        w.Band = b;
-                        Follow(new Ray(pAbove, dir), depth, w, weight, m.MirrorFactor(cosI, outside, b), mi, transmit: false, pixel);
-                        if (b == 0) counted = w.Counters;
-                    }
-                    w.Band = -1;
-                    w.Counters = counted;
-                }
-                else Follow(new Ray(pAbove, dir), depth, w, weight, m.MirrorFactor(cosI, outside, w.Band), mi, transmit: false, pixel);
-            }
-            if (m.HasTransmission)
-            {
-                if (!m.Dispersive || w.Band >= 0) Refract(ray, hit, m, mi, n, cosI, outside, depth, w, weight, pixel);
-                else
-                {
-                    // Dispersion: every band bends by its own index, so each gets its own refracted ray (one-band components).
-                    w.Fallback = true;
-                    for (int b = 0; b < _scene.Bands; b++)
-                    {
-                        w.Band = b;
-                        Refract(ray, hit, m, mi, n, cosI, outside, depth, w, weight, pixel);
-                    }
-                    w.Band = -1;
-                }
-            }
-            return hit.Object;
-        }
+            public void Split(ref RayCounters counters) => w.Fallback = true;
 
-        /// <summary>k_t·L(refracted) for the band the path carries (all when −1), as the integrator's Refract.</summary>
-        void Refract(in Ray ray, in SurfaceHit hit, Material m, int mi, Vector3 n, float cosI, bool outside, int depth, Worker w, float weight, int pixel)
-        {
-            var p = hit.Position;
-            float eta = m.Eta(outside, w.Band);
-            float sin2T = eta * eta * (1 - cosI * cosI);
-            var ng = outside ? hit.GeometricNormal : -hit.GeometricNormal;
-            Vector3 dir, origin;
-            float f = 1;
-            if (sin2T >= 1)
+            public void Enter(int material, bool transmit, int band, float factor)
             {
-                // Total internal reflection: with Fresnel nothing is transmitted (F = 1 on the mirror lobe).
-                if (m.Fresnel) return;
-                dir = Vector3.Normalize(ray.Direction + 2 * cosI * n);
-                origin = p + _geometry.Epsilon * ng;
+                if (transmit ? t._tables.TransmitColoured[material] : t._tables.MirrorColoured[material]) w.Fallback = true;
+                w.Bands[w.ChainLength] = w.Band;
+                w.Band = band;
+                w.Weights[w.ChainLength + 1] = Weight * factor;
+                w.Chain[w.ChainLength++] = material << 1 | (transmit ? 1 : 0);
             }
-            else
-            {
-                float cosT = MathF.Sqrt(1 - sin2T);
-                dir = Vector3.Normalize(eta * ray.Direction + (eta * cosI - cosT) * n);
-                origin = p - _geometry.Epsilon * ng;
-                f = m.TransmitFactor(cosI, eta);
-            }
-            w.Counters.Secondary++;
-            Follow(new Ray(origin, dir), depth, w, weight, f, mi, transmit: true, pixel);
-        }
 
-        void Follow(Ray ray, int depth, Worker w, float weight, float f, int mi, bool transmit, int pixel)
-        {
-            if (transmit ? _tables.TransmitColoured[mi] : _tables.MirrorColoured[mi]) w.Fallback = true;
-            w.Chain[w.ChainLength++] = mi << 1 | (transmit ? 1 : 0);
-            uint unused = 0;
-            Radiance(ray, depth + 1, w, weight * f, pixel, ref unused, centre: false);
-            w.ChainLength--;
+            public void Leave(int material, bool transmit, int band, float factor, ref RayCounters counters) =>
+                w.Band = w.Bands[--w.ChainLength];
+
+            public void LeavePerBand(Material m, int material, float cosI, bool outside, ref RayCounters counters) =>
+                throw new UnreachableException("the transfer follows a per-band mirror once per band");
         }
 
         void AddTerm(Worker w, int light, TransferLobe lobe, int material, float factor)

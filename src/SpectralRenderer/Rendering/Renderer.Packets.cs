@@ -15,10 +15,11 @@ public sealed partial class Renderer
     const int Block = 4;
 
     /// <summary>A worker's packet, its per-lane results and where each lane's ray goes, allocated once per worker.</summary>
-    sealed class PacketTileState(int scratch, int padded, int filmX0, int filmY0)
+    sealed class PacketTileState(IPacketIntegrator integrator, PixelSampling sampling, Film film, int scratch, int padded) : ITileWork
     {
-        /// <summary>The framebuffer's first pixel on the film (a crop's corner; 0, 0 for a whole render).</summary>
-        public readonly int FilmX0 = filmX0, FilmY0 = filmY0;
+        public readonly IPacketIntegrator Integrator = integrator;
+        public readonly PixelSampling Sampling = sampling;
+        public readonly Film Film = film;
         public RayPacket Packet;
         /// <summary>Per lane, the film position of its camera ray (pixels).</summary>
         public PacketFloats FilmX, FilmY;
@@ -32,15 +33,18 @@ public sealed partial class Renderer
         public readonly float[] Sum = new float[padded];
         public readonly float[] Scratch = new float[scratch];
         public int Lanes;
+
+        public void Tile(int x0, int y0, int x1, int y1, ref RayCounters counters) => PacketTile(x0, y0, x1, y1, this, ref counters);
     }
 
+    /// <summary>The tile's camera samples as <see cref="SampleTile"/> makes them (the same rays, jitter and centre rays), in
+    /// packets.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    static void PacketTile(IPacketIntegrator integrator, Scenes.Camera cam, int x0, int y0, int x1, int y1, int strataX, int strataY,
-        PacketTileState st, SpectralImage image, int[] ids, LitMasks lit, byte[] highlights, float highlightFraction, float[] xyz, Colorimeter colorimeter,
-        ref long fallbackPixels, ref RayCounters counters)
+    static void PacketTile(int x0, int y0, int x1, int y1, PacketTileState st, ref RayCounters counters)
     {
-        int spp = cam.SamplesPerPixel;
-        int perPixel = spp == 1 ? 1 : spp + 1;   // the samples, then the centre ray
+        ref readonly var sampling = ref st.Sampling;
+        int spp = sampling.Spp;
+        int perPixel = spp == 1 || !sampling.Analysis ? spp : spp + 1;   // the samples, then the centre ray
         st.Packet.Clear();
         st.Lanes = 0;
         for (int by = y0; by < y1; by += Block)
@@ -49,34 +53,35 @@ public sealed partial class Renderer
                     for (int x = bx; x < Math.Min(bx + Block, x1); x++)
                         for (int s = 0, cellX = 0, cellY = 0; s < perPixel; s++)
                         {
-                            float jx = 0.5f, jy = 0.5f;
+                            float fx = x + 0.5f, fy = y + 0.5f;
                             if (s < spp && spp > 1)
                             {
                                 // Sample s in cell (s mod m, s div m) = (cellX, cellY), jittered inside it (as the per-pixel loop).
-                                uint h = Hash((uint)x, (uint)y, (uint)s);
-                                jx = (cellX + (h & 0xFFFF) / 65536f) / strataX;
-                                jy = (cellY + (h >> 16) / 65536f) / strataY;
-                                if (++cellX == strataX) { cellX = 0; cellY++; }
+                                (fx, fy) = sampling.Film(x, y, s, cellX, cellY);
+                                if (++cellX == sampling.StrataX) { cellX = 0; cellY++; }
                             }
                             counters.Primary++;
                             int lane = st.Lanes++;
-                            st.FilmX[lane] = x + jx; st.FilmY[lane] = y + jy;   // the film position cam.Generate takes
+                            st.FilmX[lane] = fx; st.FilmY[lane] = fy;   // the film position cam.Generate takes
                             st.PixelX[lane] = x; st.PixelY[lane] = y; st.Sample[lane] = s;
-                            if (st.Lanes == RayPacket.Size) Flush(integrator, cam, spp, st, image, ids, lit, highlights, highlightFraction, xyz, colorimeter, ref fallbackPixels, ref counters);
+                            if (st.Lanes == RayPacket.Size) Flush(st, ref counters);
                         }
-        if (st.Lanes > 0) Flush(integrator, cam, spp, st, image, ids, lit, highlights, highlightFraction, xyz, colorimeter, ref fallbackPixels, ref counters);
+        if (st.Lanes > 0) Flush(st, ref counters);
     }
 
     /// <summary>Traces the packet and puts each lane's radiance where it belongs: a pixel (spp = 1), a pixel's sum, or its analysis images.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    static void Flush(IPacketIntegrator integrator, Scenes.Camera cam, int spp, PacketTileState st, SpectralImage image, int[] ids, LitMasks lit, byte[] highlights, float highlightFraction,
-        float[] xyz, Colorimeter colorimeter, ref long fallbackPixels, ref RayCounters counters)
+    static void Flush(PacketTileState st, ref RayCounters counters)
     {
+        var film = st.Film;
+        var image = film.Image;
+        int spp = st.Sampling.Spp;
         // The camera rays of the packet's lanes, all at once (Camera.Generate in SIMD lanes: the same bits).
-        LaneGeometry.CameraRays(cam, ref st.Packet, ref st.FilmX, ref st.FilmY, st.Lanes == 32 ? uint.MaxValue : (1u << st.Lanes) - 1);
-        integrator.Radiance(ref st.Packet, st.Results, st.Objects, st.Infos, st.Fallbacks, st.Scratch, ref counters);
+        uint lanes = st.Lanes == 32 ? uint.MaxValue : (1u << st.Lanes) - 1;
+        LaneGeometry.CameraRays(st.Sampling.Camera, ref st.Packet, ref st.FilmX, ref st.FilmY, lanes);
+        st.Integrator.Radiance(ref st.Packet, st.Results, st.Objects, st.Infos, st.Fallbacks, st.Scratch, ref counters);
         int padded = st.Sum.Length, bands = image.Bands;
-        float inv = 1f / spp;
+        float inv = st.Sampling.Weight;
         var sum = st.Sum.AsSpan();
         int width = image.Width;
         for (int lane = 0; lane < st.Lanes; lane++)
@@ -90,24 +95,15 @@ public sealed partial class Renderer
                 // The pixel's first sample is written (0 + r/spp, as on a cleared sum), the others are added.
                 if (s == 0) SpectralMath.SetScaled(sum, result, inv);
                 else SpectralMath.AddScaled(sum, result, inv);
-                continue;
+                if (s < spp - 1 || st.Sampling.Analysis) continue;
             }
-            x -= st.FilmX0; y -= st.FilmY0;   // film → framebuffer
+            x -= film.X0; y -= film.Y0;   // film → framebuffer
             var pixel = spp == 1 ? result : sum;
             if (bands >= SpectralMath.StreamMinBands) SpectralMath.StreamBands(pixel, image.Data.AsSpan(image.Offset(x, y), bands));
             else SpectralMath.CopyBands(pixel, image.Data.AsSpan(image.Offset(x, y), bands));
-            int i = y * width + x;
             // The colour lanes follow the bands (as the per-pixel loop); eq. 3 on the band values after a fallback.
-            if (!st.PixelFallback) { xyz[3 * i] = pixel[bands]; xyz[3 * i + 1] = pixel[bands + 1]; xyz[3 * i + 2] = pixel[bands + 2]; }
-            else
-            {
-                var c = colorimeter.ToXyz((ReadOnlySpan<float>)pixel[..bands]);
-                xyz[3 * i] = (float)c.X; xyz[3 * i + 1] = (float)c.Y; xyz[3 * i + 2] = (float)c.Z;
-                Interlocked.Increment(ref fallbackPixels);
-            }
-            ids[i] = st.Objects[lane];
-            lit[i] = st.Infos[lane].LitMask;
-            highlights[i] = PixelInfo.Highlight(st.Infos[lane].SpecularY, st.Infos[lane].DiffuseY, highlightFraction);
+            bool centre = spp == 1 || s == spp;
+            film.Finish(y * width + x, pixel, st.PixelFallback, centre ? st.Objects[lane] : -1, centre ? st.Infos[lane] : default);
         }
         if (bands >= SpectralMath.StreamMinBands) SpectralMath.StreamFence();
         st.Packet.Clear();

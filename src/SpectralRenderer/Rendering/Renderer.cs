@@ -68,134 +68,135 @@ public sealed partial class Renderer
         var region = crop ?? PixelRect.Whole(cam.Width, cam.Height);
         if (region.X0 < 0 || region.Y0 < 0 || region.X1 > cam.Width || region.Y1 > cam.Height || region.Width < 1 || region.Height < 1)
             throw new ArgumentOutOfRangeException(nameof(crop), $"crop {region} is not inside the {cam.Width}×{cam.Height} film");
-        // width × height: the framebuffer (the crop); (ox, oy): its first pixel on the film.
-        int width = region.Width, height = region.Height, ox = region.X0, oy = region.Y0, bands = scene.Bands, padded = scene.PaddedBands;
-        // Every pixel of these is written by its tile, so they are not zeroed first (80 MB at 1024² × 20 bands).
-        var image = new SpectralImage(width, height, scene.Grid, LargeArrays.Uninitialized<float>(width * height * bands));
-        var ids = GC.AllocateUninitializedArray<int>(width * height);
-        var lit = new LitMasks(width * height, scene.Lights.Count);
-        var highlights = GC.AllocateUninitializedArray<byte>(width * height);
-        float highlightFraction = (float)scene.Output.HighlightFraction;
-        var xyz = GC.AllocateUninitializedArray<float>(3 * width * height);
-        long fallbackPixels = 0;
-        var colorimeter = scene.Colorimeter;
-        int lane = bands;   // the colour lanes follow the bands (SpectralMath.ColourLanes)
-        // The film's tile grid, clipped to the crop: tile columns tx0 … and rows ty0 … that meet it.
-        int tx0 = ox / TileSize, ty0 = oy / TileSize;
-        int tilesX = (region.X1 + TileSize - 1) / TileSize - tx0, tilesY = (region.Y1 + TileSize - 1) / TileSize - ty0;
-        int tiles = tilesX * tilesY;
-        if (threads <= 0) threads = Environment.ProcessorCount;
-        var total = new RayCounters();
-        var gate = new object();
-        int done = 0;
+        var film = new Film(scene, region);
         var clock = Stopwatch.StartNew();
-        int spp = cam.SamplesPerPixel;
-        // Stratified jitter over an m × n grid of cells with m·n = spp exactly (m the largest divisor ≤ √spp),
-        // so every part of the pixel is sampled equally for any spp.
-        int strataX = 1;
-        for (int m = (int)Math.Sqrt(spp); m >= 1; m--) if (spp % m == 0) { strataX = m; break; }
-        int strataY = spp / strataX;
-        float inv = 1f / spp;
-        int budget = scene.RayBudget;
+        // The analysis images come from the centre rays: with spp > 1 each pixel traces one more ray (weight 0).
+        var sampling = new PixelSampling(cam, scene.RayBudget, analysis: true);
         bool recursive = scene.MaxDepth > 0 && scene.Materials.Any(m => m.HasMirror || m.HasTransmission);
-
-        // One worker per thread, each with its own scratch spectra, pulling tiles from a shared counter:
-        // the loop allocates per worker, never per tile, ray or pixel.
+        // Packets trace the camera rays of a tile together; a scene with mirrors or glass is traced ray by ray, where each
+        // camera ray's tree has its ray budget and a stop request is seen at every pixel (bounded work, prompt SIGINT).
         bool packed = packets && integrator is IPacketIntegrator && !recursive;
-        int next = -1;
-        [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-        void Worker()
+        int padded = scene.PaddedBands;
+        var (rays, tiles, used) = RunTiles(region, threads, progress, clock, cancel, packed
+            ? () => new PacketTileState((IPacketIntegrator)integrator, sampling, film, integrator.ScratchLength, padded)
+            : () => new TileState(integrator, sampling, film, padded, cancel));
+        return new RenderResult
         {
-            var state = new TileState(integrator.ScratchLength, padded);
-            // Packets trace the camera rays of a tile together; a scene with mirrors or glass is traced ray by ray, where each
-            // camera ray's tree has its ray budget and a stop request is seen at every pixel (bounded work, prompt SIGINT).
-            var packetState = packed ? new PacketTileState(integrator.ScratchLength, padded, ox, oy) : null;
-            int tile;
-            while ((tile = Interlocked.Increment(ref next)) < tiles)
-            {
-                cancel.ThrowIfCancellationRequested();
-                // Film coordinates of the tile, clipped to the crop.
-                int x0 = Math.Max(region.X0, (tx0 + tile % tilesX) * TileSize), y0 = Math.Max(region.Y0, (ty0 + tile / tilesX) * TileSize);
-                int x1 = Math.Min(region.X1, (tx0 + tile % tilesX + 1) * TileSize), y1 = Math.Min(region.Y1, (ty0 + tile / tilesX + 1) * TileSize);
-                var counters = new RayCounters();
-                var sum = state.Sum.AsSpan();
-                var sample = state.Sample.AsSpan();
-                var scratch = state.Scratch.AsSpan();
-                if (packetState is not null)
-                    PacketTile((IPacketIntegrator)integrator, cam, x0, y0, x1, y1, strataX, strataY, packetState, image, ids, lit, highlights, highlightFraction, xyz, colorimeter, ref fallbackPixels, ref counters);
-                else
-                    for (int y = y0; y < y1; y++)
-                        for (int x = x0; x < x1; x++)
-                        {
-                            // Inside the tile too: one pixel's work is bounded by the ray budget, so a request to stop
-                            // is seen within one pixel's time, however deep the scene's rays go.
-                            cancel.ThrowIfCancellationRequested();
-                            int id;
-                            var info = new PixelInfo();
-                            long fallbackBefore = counters.Fallback;
-                            if (spp == 1)
-                            {
-                                counters.StartCameraRay(budget);
-                                counters.Primary++;
-                                id = integrator.Radiance(cam.Generate(x + 0.5f, y + 0.5f), sum, scratch, ref counters, ref info);
-                                counters.EndCameraRay();
-                            }
-                            else
-                            {
-                                sum.Clear();
-                                for (int s = 0; s < spp; s++)
-                                {
-                                    // Sample s in cell (s mod m, s div m), jittered inside it.
-                                    uint h = Hash((uint)x, (uint)y, (uint)s);
-                                    float jx = ((s % strataX) + (h & 0xFFFF) / 65536f) / strataX;
-                                    float jy = ((s / strataX) + (h >> 16) / 65536f) / strataY;
-                                    PixelInfo unused = default;
-                                    counters.StartCameraRay(budget);
-                                    counters.Primary++;
-                                    integrator.Radiance(cam.Generate(x + jx, y + jy), sample, scratch, ref counters, ref unused);
-                                    counters.EndCameraRay();
-                                    SpectralMath.AddScaled(sum, sample, inv);
-                                }
-                                // The analysis images describe the pixel centre.
-                                counters.StartCameraRay(budget);
-                                counters.Primary++;
-                                id = integrator.Radiance(cam.Generate(x + 0.5f, y + 0.5f), sample, scratch, ref counters, ref info);
-                                counters.EndCameraRay();
-                            }
-                            sum[..bands].CopyTo(image.Data.AsSpan(image.Offset(x - ox, y - oy), bands));
-                            int i = (y - oy) * width + (x - ox);
-                            if (counters.Fallback == fallbackBefore) { xyz[3 * i] = sum[lane]; xyz[3 * i + 1] = sum[lane + 1]; xyz[3 * i + 2] = sum[lane + 2]; }
-                            else
-                            {   // a term multiplied more spectra than the tables hold: eq. 3 on this pixel's band values
-                                var c = colorimeter.ToXyz((ReadOnlySpan<float>)sum[..bands]);
-                                xyz[3 * i] = (float)c.X; xyz[3 * i + 1] = (float)c.Y; xyz[3 * i + 2] = (float)c.Z;
-                                Interlocked.Increment(ref fallbackPixels);
-                            }
-                            ids[i] = id;
-                            lit[i] = info.LitMask;
-                            highlights[i] = PixelInfo.Highlight(info.SpecularY, info.DiffuseY, highlightFraction);
-                        }
-                lock (gate)
-                {
-                    total.Add(counters);
-                    done++;
-                    progress?.Invoke(new RenderProgress(done, tiles, total.Total, clock.Elapsed));
-                }
-            }
-        }
-        var workers = new Task[Math.Min(threads, tiles)];
-        for (int w = 0; w < workers.Length; w++) workers[w] = Task.Factory.StartNew(Worker, cancel, TaskCreationOptions.None, TaskScheduler.Default);
-        try { Task.WaitAll(workers); }
-        catch (AggregateException e) when (e.InnerExceptions.All(x => x is OperationCanceledException)) { throw new OperationCanceledException(cancel); }
-
-        return new RenderResult { Image = image, ObjectIds = ids, LitMasks = lit, Highlights = highlights, Xyz = xyz, FallbackPixels = fallbackPixels, Rays = total, Elapsed = clock.Elapsed, Threads = threads, Tiles = tiles, Crop = region, Packets = packed };
+            Image = film.Image,
+            ObjectIds = film.Ids,
+            LitMasks = film.Lit,
+            Highlights = film.Highlights,
+            Xyz = film.Xyz,
+            FallbackPixels = film.FallbackPixels,
+            Rays = rays,
+            Elapsed = clock.Elapsed,
+            Threads = used,
+            Tiles = tiles,
+            Crop = region,
+            Packets = packed,
+        };
     }
 
-    sealed class TileState(int scratch, int padded)
+    /// <summary>A render's outputs for the pixels of its crop, and how a pixel's spectrum is written into them.</summary>
+    sealed class Film
     {
-        public readonly float[] Scratch = new float[scratch];
-        public readonly float[] Sum = new float[padded];
-        public readonly float[] Sample = new float[padded];
+        public readonly SpectralImage Image;
+        public readonly int[] Ids;
+        public readonly LitMasks Lit;
+        public readonly byte[] Highlights;
+        public readonly float[] Xyz;
+        public readonly float HighlightFraction;
+        public readonly Color.Colorimeter Colorimeter;
+        /// <summary>The framebuffer's first pixel on the film (a crop's corner; 0, 0 for a whole render).</summary>
+        public readonly int X0, Y0;
+        public long FallbackPixels;
+
+        public Film(Scene scene, PixelRect region)
+        {
+            int width = region.Width, height = region.Height;
+            // Every pixel of these is written by its tile, so they are not zeroed first (80 MB at 1024² × 20 bands).
+            Image = new SpectralImage(width, height, scene.Grid, LargeArrays.Uninitialized<float>(width * height * scene.Bands));
+            Ids = GC.AllocateUninitializedArray<int>(width * height);
+            Lit = new LitMasks(width * height, scene.Lights.Count);
+            Highlights = GC.AllocateUninitializedArray<byte>(width * height);
+            HighlightFraction = (float)scene.Output.HighlightFraction;
+            Xyz = GC.AllocateUninitializedArray<float>(3 * width * height);
+            Colorimeter = scene.Colorimeter;
+            X0 = region.X0; Y0 = region.Y0;
+        }
+
+        /// <summary>The colour of pixel i from the colour lanes of its spectrum (which follow the bands), or, after a fallback,
+        /// eq. 3 on its band values; then what its centre ray saw.</summary>
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        public void Finish(int i, ReadOnlySpan<float> pixel, bool fallback, int id, in PixelInfo info)
+        {
+            int bands = Image.Bands;
+            if (!fallback) { Xyz[3 * i] = pixel[bands]; Xyz[3 * i + 1] = pixel[bands + 1]; Xyz[3 * i + 2] = pixel[bands + 2]; }
+            else
+            {   // a term multiplied more spectra than the tables hold: eq. 3 on this pixel's band values
+                var c = Colorimeter.ToXyz(pixel[..bands]);
+                Xyz[3 * i] = (float)c.X; Xyz[3 * i + 1] = (float)c.Y; Xyz[3 * i + 2] = (float)c.Z;
+                Interlocked.Increment(ref FallbackPixels);
+            }
+            Ids[i] = id;
+            Lit[i] = info.LitMask;
+            Highlights[i] = PixelInfo.Highlight(info.SpecularY, info.DiffuseY, HighlightFraction);
+        }
+    }
+
+    /// <summary>A worker's tile of camera rays one at a time: its scratch spectra, allocated once per worker.</summary>
+    sealed class TileState(IIntegrator integrator, PixelSampling sampling, Film film, int padded, CancellationToken cancel) : ITileWork
+    {
+        readonly float[] _scratch = new float[integrator.ScratchLength];
+        readonly float[] _sum = new float[padded];
+        readonly float[] _sample = new float[padded];
+
+        [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+        public void Tile(int x0, int y0, int x1, int y1, ref RayCounters counters)
+        {
+            var sink = new RadianceSamples(integrator, integrator as IAnalysisIntegrator, film, _sum, _sample, _scratch, sampling.Spp);
+            SampleTile(ref sink, in sampling, x0, y0, x1, y1, cancel, ref counters);
+        }
+    }
+
+    /// <summary>The integrator's radiance per camera sample, summed with weight 1/spp into the pixel; the centre ray (with
+    /// spp = 1 the pixel's only ray) records the analysis data when the integrator can (<see cref="IAnalysisIntegrator"/>).</summary>
+    struct RadianceSamples(IIntegrator integrator, IAnalysisIntegrator? analysing, Film film,
+        float[] sum, float[] sample, float[] scratch, int spp) : ISampleSink
+    {
+        PixelInfo _info;
+        long _fallbackBefore;
+
+        public void BeginPixel(int x, int y, ref RayCounters counters)
+        {
+            _info = default;
+            _fallbackBefore = counters.Fallback;
+            if (spp > 1) sum.AsSpan().Clear();
+        }
+
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        public int Sample(in CameraSample s, float weight, bool centre, ref RayCounters counters)
+        {
+            if (!centre)
+            {
+                integrator.Radiance(in s, sample, scratch, ref counters);
+                SpectralMath.AddScaled(sum, sample, weight);
+                return -1;
+            }
+            // The centre ray: the pixel itself (weight 1, spp = 1), or, weighing 0, the analysis images only.
+            var target = weight == 0 ? sample : sum;
+            return analysing is not null ? analysing.Radiance(in s, target, scratch, ref counters, ref _info)
+                : integrator.Radiance(in s, target, scratch, ref counters);
+        }
+
+        public readonly void EndPixel(int x, int y, int id, ref RayCounters counters)
+        {
+            var image = film.Image;
+            int bands = image.Bands;
+            x -= film.X0; y -= film.Y0;   // film → framebuffer
+            sum.AsSpan(0, bands).CopyTo(image.Data.AsSpan(image.Offset(x, y), bands));
+            film.Finish(y * image.Width + x, sum, counters.Fallback != _fallbackBefore, id, in _info);
+        }
     }
 
     /// <summary>A small integer hash (lowbias32 by C. Wellons) for per-sample jitter.</summary>

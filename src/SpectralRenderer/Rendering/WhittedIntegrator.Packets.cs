@@ -1,5 +1,6 @@
 using System.Numerics;
 using System.Runtime.CompilerServices;
+using System.Runtime.InteropServices;
 using SpectralRenderer.Acceleration;
 using SpectralRenderer.Geometry;
 using SpectralRenderer.Scenes;
@@ -8,10 +9,11 @@ using SpectralRenderer.Spectra;
 namespace SpectralRenderer.Rendering;
 
 // Camera rays in packets: the closest hits of up to 16 camera rays found together, then, light by light, the
-// light's direction, distance and falloff, n·l and the shadow rays of all lanes (SIMD over rays for a point light,
-// LaneGeometry), the shadow rays traced as one packet, and eq. 2's band sums per lane (SIMD over bands), each lane's
-// terms listed and summed in one pass over the bands. Every lane adds its terms in the order the single-ray Radiance
-// does, so each pixel gets the same bits. A lane whose surface reflects or transmits (a Whitted recursion) is traced again alone.
+// light's direction, distance and falloff, n·l and the shadow rays of all lanes (SIMD over rays for a light with a
+// lane form, LaneGeometry), the shadow rays traced as one packet; then each lane's eq. 2 by the one walker's local step
+// (Eq2Walker.Shade) fed from those lane results, its terms listed and summed over the bands in one pass (SIMD over
+// bands). Every lane adds its terms in the order the single-ray walk does, so each pixel gets the same bits. A lane
+// whose surface reflects or transmits (a Whitted recursion) is walked alone.
 public sealed partial class WhittedIntegrator
 {
     /// <inheritdoc/>
@@ -22,9 +24,6 @@ public sealed partial class WhittedIntegrator
         Span<int> material = stackalloc int[RayPacket.Size];
         Unsafe.SkipInit(out HitLanes hits);                   // the lanes found are filled
         Unsafe.SkipInit(out ShadingLanes at);
-        Unsafe.SkipInit(out PacketFloats attenuation);
-        Unsafe.SkipInit(out PacketFloats cosine);
-        Unsafe.SkipInit(out PacketFloats spotFactor);
         // Each shaded lane's terms of eq. 2, in the single-ray order, summed over the bands in one pass at the end; with more
         // lights than the lists hold, added to the lane's spectrum at once (the same bits either way).
         bool listed = 1 + 2 * _lights.Length <= TermsPerLane;
@@ -59,94 +58,154 @@ public sealed partial class WhittedIntegrator
             objects[lane] = obj;
             if (_scene.MaxDepth > 0 && (m.HasMirror || m.HasTransmission))
             {
-                // The recursion is traced ray by ray.
+                // The recursion is walked ray by ray.
                 long before = counters.Fallback;
-                Radiance(packet.Ray(lane) with { TMax = float.PositiveInfinity }, 0, -1, 1f, result, scratch, ref counters, ref infos[lane]);
+                var sink = new Sink(_tables, _scene.Bands, result, scratch, ref infos[lane]);
+                _walker.Trace(ref sink, packet.Ray(lane) with { TMax = float.PositiveInfinity }, 0, -1, 1f, ref counters);
                 fallbacks[lane] = counters.Fallback != before;
                 continue;
             }
             if (!listed) result.Clear();
             termCount[lane] = 0;
             material[lane] = mi;
-            if (_scene.HasGlobalAmbient && m.HasAmbient) AddTerm(lane, new SpectralTerm(_globalAmbientAt[mi], 1f), listed, terms, termCount, results);
             shaded |= 1u << lane;
         }
         if (shaded == 0) return;
 
+        // Per light, the lanes it reaches and their d_k, c_spot, n·l; the lanes that face it get a shadow ray, traced as one packet.
+        int lightCount = _lights.Length;
+        var lanes = MemoryMarshal.Cast<float, LightLanes>(scratch[((_scene.MaxDepth + 2) * 2 * _padded)..])[..lightCount];
+        Span<uint> reached = stackalloc uint[lightCount];
+        Span<uint> lit = stackalloc uint[lightCount];
         Unsafe.SkipInit(out RayPacket shadows);   // 1.6 KB, not zeroed: each lane used is filled
-        for (int k = 0; k < _lights.Length; k++)
+        for (int k = 0; k < lightCount; k++)
         {
             var light = _lights[k];
-            uint reached;
-            if (light is PointLight point)
+            ref var lk = ref lanes[k];
+            if (light.LaneForm is PointEmitter point)
             {
                 // Direction, distance, falloff, n·l and the shadow rays of all lanes at once (c_spot = 1).
+                ref var d = ref lk.Attenuation;
+                ref var nl = ref lk.Cosine;
                 switch (PacketLanes.Width)
                 {
-                    case 16: LaneGeometry.PointLight<Lanes512>(point, eps, shaded, in at, ref shadows, ref attenuation, ref cosine, out reached); break;
-                    case 8: LaneGeometry.PointLight<Lanes256>(point, eps, shaded, in at, ref shadows, ref attenuation, ref cosine, out reached); break;
-                    case 4: LaneGeometry.PointLight<Lanes128>(point, eps, shaded, in at, ref shadows, ref attenuation, ref cosine, out reached); break;
-                    default: LaneGeometry.PointLight<Lanes1>(point, eps, shaded, in at, ref shadows, ref attenuation, ref cosine, out reached); break;
+                    case 16:
+                        LaneGeometry.PointLight<Lanes512>(point, eps, shaded, in at, ref shadows, ref d, ref nl, out reached[k]);
+                        break;
+                    case 8: LaneGeometry.PointLight<Lanes256>(point, eps, shaded, in at, ref shadows, ref d, ref nl, out reached[k]); break;
+                    case 4: LaneGeometry.PointLight<Lanes128>(point, eps, shaded, in at, ref shadows, ref d, ref nl, out reached[k]); break;
+                    default: LaneGeometry.PointLight<Lanes1>(point, eps, shaded, in at, ref shadows, ref d, ref nl, out reached[k]); break;
                 }
-                ((Span<float>)spotFactor).Fill(1f);
+                ((Span<float>)lk.Spot).Fill(1f);
             }
-            else reached = IlluminateLanes(light, shaded, in at, ref shadows, ref attenuation, ref cosine, ref spotFactor);
-            if (light.HasAmbient)
-                for (uint all = reached; all != 0; all &= all - 1)
-                {
-                    int lane = BitOperations.TrailingZeroCount(all);
-                    if (_materials[material[lane]].HasAmbient)
-                        AddTerm(lane, new SpectralTerm(_ambientAt[_tables.Index(k, material[lane])], spotFactor[lane]), listed, terms, termCount, results);
-                }
+            else reached[k] = IlluminateLanes(light, shaded, in at, ref shadows, ref lk.Attenuation, ref lk.Cosine, ref lk.Spot);
+            lit[k] = 0;
             if (shadows.Active == 0) continue;
             counters.Shadow += BitOperations.PopCount(shadows.Active);
-            uint lit = shadows.Active & ~_geometry.Occluded(ref shadows);
-            for (; lit != 0; lit &= lit - 1)
-            {
-                int lane = BitOperations.TrailingZeroCount(lit);
-                int mi = material[lane];
-                var m = _materials[mi];
-                float nl = cosine[lane];
-                float dk = attenuation[lane] * spotFactor[lane];
-                float s = 0;
-                int term = _tables.Index(k, mi);
-                var diffuse = _tables.Diffuse[term];
-                if (m.HasSpecular)
-                {
-                    // Physical: the lobe is a BRDF, weighted by cos θ_i like the diffuse one (as the single-ray Radiance).
-                    var l = new Vector3(shadows.DirectionX[lane], shadows.DirectionY[lane], shadows.DirectionZ[lane]);
-                    var v = -new Vector3(packet.DirectionX[lane], packet.DirectionY[lane], packet.DirectionZ[lane]);
-                    s = m.SpecularFactor(at.Normal(lane), l, v, nl) * (_physical ? nl : 1f);
-                    AddTerm(lane, new SpectralTerm(_diffuseAt[term], dk * nl, _specularAt[term], dk * s), listed, terms, termCount, results);
-                }
-                else AddTerm(lane, new SpectralTerm(_diffuseAt[term], dk * nl), listed, terms, termCount, results);
-                ref var info = ref infos[lane];
-                if (k < 32) info.LitMask |= 1u << k;
-                int y = _scene.Bands + 1;   // the Y colour lane
-                info.DiffuseY += dk * nl * diffuse[y];
-                info.SpecularY += dk * s * _tables.Specular[term][y];
-            }
+            lit[k] = shadows.Active & ~_geometry.Occluded(ref shadows);
+            lk.DirectionX = shadows.DirectionX; lk.DirectionY = shadows.DirectionY; lk.DirectionZ = shadows.DirectionZ;
         }
-        if (listed)
-            for (uint all = shaded; all != 0; all &= all - 1)
-            {
-                int lane = BitOperations.TrailingZeroCount(all);
+        for (uint all = shaded; all != 0; all &= all - 1)
+        {
+            int lane = BitOperations.TrailingZeroCount(all);
+            int mi = material[lane];
+            var sink = new LaneSink(this, lane, listed, terms, termCount, results, ref infos[lane]);
+            var query = new LaneLights(lanes, reached, lit, lane);
+            var v = -new Vector3(packet.DirectionX[lane], packet.DirectionY[lane], packet.DirectionZ[lane]);
+            _walker.Shade(ref sink, ref query, mi, _materials[mi], at.Normal(lane), v, ref counters);
+            if (listed)
                 SpectralMath.SumTerms(results.Slice(lane * _padded, _padded), _flat, terms.Slice(lane * TermsPerLane, termCount[lane]));
-            }
+        }
     }
 
     /// <summary>Most terms a lane lists: the global ambient and, per light, its ambient and its diffuse (+ specular) term, for 8 lights.</summary>
     const int TermsPerLane = 17;
 
-    /// <summary>A term of eq. 2 for a lane: listed for the one-pass sum, or added to the lane's spectrum now.</summary>
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    void AddTerm(int lane, SpectralTerm term, bool listed, Span<SpectralTerm> terms, Span<int> termCount, Span<float> results)
+    /// <summary>One light's results for the lanes of a packet: d_k, c_spot, n·l and (lanes lit) the direction l.</summary>
+    struct LightLanes
     {
-        if (listed) { terms[lane * TermsPerLane + termCount[lane]++] = term; return; }
-        var result = results.Slice(lane * _padded, _padded);
-        var a = _flat.AsSpan(term.A, _padded);
-        if (term.B < 0) SpectralMath.AddScaled(result, a, term.S);
-        else SpectralMath.AddScaled2(result, a, term.S, _flat.AsSpan(term.B, _padded), term.T);
+        public const int Floats = 6 * RayPacket.Size;
+        public PacketFloats Attenuation, Cosine, Spot, DirectionX, DirectionY, DirectionZ;
+    }
+
+    /// <summary>A packet lane's lights for the walker's local step: the lanes' precomputed results, shadow rays already traced.</summary>
+    readonly ref struct LaneLights(ReadOnlySpan<LightLanes> lanes, ReadOnlySpan<uint> reached, ReadOnlySpan<uint> lit, int lane)
+        : ILightQuery
+    {
+        readonly ReadOnlySpan<LightLanes> _lanes = lanes;
+        readonly ReadOnlySpan<uint> _reached = reached, _lit = lit;
+
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        public bool Reach(int k, out LightSample sample, out float nl)
+        {
+            if ((_reached[k] >> lane & 1) == 0) { sample = default; nl = 0; return false; }
+            ref readonly var r = ref _lanes[k];
+            nl = r.Cosine[lane];
+            var l = new Vector3(r.DirectionX[lane], r.DirectionY[lane], r.DirectionZ[lane]);
+            sample = new LightSample(l, 0, r.Spot[lane], r.Attenuation[lane]);
+            return true;
+        }
+
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        public bool Visible(int k, in LightSample sample, ref RayCounters counters) => (_lit[k] >> lane & 1) != 0;
+    }
+
+    /// <summary>A packet lane's terms: listed as <see cref="SpectralTerm"/>s for the one-pass band sum (or added at once), and what the
+    /// camera ray saw for the analysis images. No recursion reaches it (such lanes are walked alone).</summary>
+    ref struct LaneSink : ITermSink
+    {
+        readonly WhittedIntegrator _owner;
+        readonly int _lane;
+        readonly bool _listed;
+        readonly Span<SpectralTerm> _terms;
+        readonly Span<int> _termCount;
+        readonly Span<float> _results;
+        readonly ref PixelInfo _info;
+
+        public LaneSink(WhittedIntegrator owner, int lane, bool listed, Span<SpectralTerm> terms, Span<int> termCount, Span<float> results,
+            ref PixelInfo info)
+        {
+            _owner = owner; _lane = lane; _listed = listed; _terms = terms; _termCount = termCount; _results = results;
+            _info = ref info;
+        }
+
+        public static bool Prunes => true;
+        public static bool Budgeted => true;
+        public static bool ReflectPerBand => false;
+
+        public readonly void Begin() { }
+        public readonly void Background() { }
+        public readonly void GlobalAmbient(int material) => Add(new SpectralTerm(_owner._globalAmbientAt[material], 1f));
+        public readonly void Ambient(int light, int material, int term, float spot) => Add(new SpectralTerm(_owner._ambientAt[term], spot));
+
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        public readonly void Direct(int light, int material, int term, float d, float nl, float s, bool specular)
+        {
+            var o = _owner;
+            if (specular) Add(new SpectralTerm(o._diffuseAt[term], d * nl, o._specularAt[term], d * s));
+            else Add(new SpectralTerm(o._diffuseAt[term], d * nl));
+            if (light < 32) _info.LitMask |= 1u << light;
+            int y = o._scene.Bands + 1;   // the Y colour lane
+            _info.DiffuseY += d * nl * o._tables.Diffuse[term][y];
+            _info.SpecularY += d * s * o._tables.Specular[term][y];
+        }
+
+        public readonly void Split(ref RayCounters counters) { }
+        public readonly void Enter(int material, bool transmit, int band, float factor) { }
+        public readonly void Leave(int material, bool transmit, int band, float factor, ref RayCounters counters) { }
+        public readonly void LeavePerBand(Material m, int material, float cosI, bool outside, ref RayCounters counters) { }
+
+        /// <summary>A term of eq. 2 for the lane: listed for the one-pass sum, or added to the lane's spectrum now.</summary>
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        readonly void Add(SpectralTerm term)
+        {
+            if (_listed) { _terms[_lane * TermsPerLane + _termCount[_lane]++] = term; return; }
+            int padded = _owner._padded;
+            var result = _results.Slice(_lane * padded, padded);
+            var a = _owner._flat.AsSpan(term.A, padded);
+            if (term.B < 0) SpectralMath.AddScaled(result, a, term.S);
+            else SpectralMath.AddScaled2(result, a, term.S, _owner._flat.AsSpan(term.B, padded), term.T);
+        }
     }
 
     /// <summary>

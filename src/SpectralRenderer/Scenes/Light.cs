@@ -49,7 +49,13 @@ public abstract class Light(LightEmission emission)
     /// cannot reach it at all (the point is at the light, or outside its cone), so it adds nothing, not even ambient.
     /// </summary>
     public abstract bool Illuminate(Vector3 p, out LightSample sample);
+
+    /// <summary>The light as an isotropic point emitter that packets evaluate in SIMD lanes, or null when it is not one.</summary>
+    public virtual PointEmitter? LaneForm => null;
 }
+
+/// <summary>An isotropic point emitter (c_spot = 1) at <paramref name="Position"/> with distance falloff d_k.</summary>
+public readonly record struct PointEmitter(Vector3 Position, DistanceFalloff Falloff);
 
 /// <summary>Distance attenuation d = 1/(c0 + c1·r + c2·r²) of eq. 2.</summary>
 public readonly record struct DistanceFalloff(float C0, float C1, float C2)

@@ -11,6 +11,8 @@ public sealed class PointLight(LightEmission emission) : Light(emission)
 
     public override string Type => "point";
 
+    public override PointEmitter? LaneForm => new PointEmitter(Position, Falloff);
+
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]   // hot: once per light per hit, compiled for this CPU at first call
     public override bool Illuminate(Vector3 p, out LightSample sample)
     {

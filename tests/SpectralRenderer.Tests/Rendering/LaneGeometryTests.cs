@@ -209,6 +209,9 @@ public class LaneGeometryTests
     {
         SkipUnsupported(width);
         var light = new PointLight(new LightEmission("test", new float[24], new float[24], HasAmbient: false)) { Position = new Vector3(2.5f, 5, 4), Falloff = new DistanceFalloff(1, 0.2f, 0.05f) };
+        // The light's lane form: an isotropic point emitter at its position with its falloff.
+        var emitter = Assert.IsType<PointEmitter>(light.LaneForm);
+        Assert.Equal(new PointEmitter(light.Position, light.Falloff), emitter);
         var r = new Random(11);
         const float eps = 2e-5f;
         int facing = 0, away = 0;
@@ -226,10 +229,10 @@ public class LaneGeometryTests
             uint lanes = n % 4 == 0 ? 0xF0F7u : 0xFFFFu, reached;
             uint lit = width switch
             {
-                16 => LaneGeometry.PointLight<Lanes512>(light, eps, lanes, in at, ref shadows, ref attenuation, ref cosine, out reached),
-                8 => LaneGeometry.PointLight<Lanes256>(light, eps, lanes, in at, ref shadows, ref attenuation, ref cosine, out reached),
-                4 => LaneGeometry.PointLight<Lanes128>(light, eps, lanes, in at, ref shadows, ref attenuation, ref cosine, out reached),
-                _ => LaneGeometry.PointLight<Lanes1>(light, eps, lanes, in at, ref shadows, ref attenuation, ref cosine, out reached),
+                16 => LaneGeometry.PointLight<Lanes512>(emitter, eps, lanes, in at, ref shadows, ref attenuation, ref cosine, out reached),
+                8 => LaneGeometry.PointLight<Lanes256>(emitter, eps, lanes, in at, ref shadows, ref attenuation, ref cosine, out reached),
+                4 => LaneGeometry.PointLight<Lanes128>(emitter, eps, lanes, in at, ref shadows, ref attenuation, ref cosine, out reached),
+                _ => LaneGeometry.PointLight<Lanes1>(emitter, eps, lanes, in at, ref shadows, ref attenuation, ref cosine, out reached),
             };
             Assert.Equal(lit, shadows.Active);
             for (int lane = 0; lane < RayPacket.Size; lane++)

@@ -1,0 +1,63 @@
+using System.Runtime.CompilerServices;
+using SpectralRenderer.Geometry;
+
+namespace SpectralRenderer.Rendering;
+
+/// <summary>
+/// Deterministic random numbers in [0, 1) for one camera sample, from (pixel x, pixel y, sample index, dimension) only,
+/// so a pixel's value does not depend on the thread, the tile order or the shard that traces it. Dimensions 0 and 1
+/// are the film jitter (<see cref="Renderer"/>'s <c>Hash(x, y, s)</c> split in its 16-bit halves, as every render
+/// before it used); each later dimension is its own counter-based hash of the sample and the dimension.
+/// </summary>
+public struct Sampler(int x, int y, int sample, int dimension = 0)
+{
+    readonly uint _x = (uint)x, _y = (uint)y, _s = (uint)sample;
+
+    /// <summary>The next dimension to be drawn.</summary>
+    public int Dimension { readonly get; private set; } = dimension;
+
+    /// <summary>The next two dimensions: at dimension 0 the film jitter (16-bit resolution), later two 1D draws.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public (float U, float V) Next2D()
+    {
+        if (Dimension == 0)
+        {
+            Dimension = 2;
+            uint h = Renderer.Hash(_x, _y, _s);
+            return ((h & 0xFFFF) / 65536f, (h >> 16) / 65536f);
+        }
+        float u = Next1D();
+        return (u, Next1D());
+    }
+
+    /// <summary>The next dimension: 24 random bits of a hash of the sample and the dimension.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public float Next1D()
+    {
+        if (Dimension < 2) Dimension = 2;   // 0 and 1 are the film jitter's
+        uint d = (uint)Dimension++;
+        uint h = Renderer.Hash(_x, _y, _s) ^ d * 0x9E3779B9u;
+        // lowbias32 again (C. Wellons): every input bit reaches every output bit.
+        h ^= h >> 16; h *= 0x7FEB352Du; h ^= h >> 15; h *= 0x846CA68Bu; h ^= h >> 16;
+        return (h >> 8) * (1f / (1 << 24));
+    }
+}
+
+/// <summary>
+/// One camera sample of a pixel, as the <see cref="Renderer"/> hands it to an integrator: the pixel (film coordinates),
+/// the sample index (<see cref="Centre"/> for the pixel-centre ray of the analysis images), the camera ray through its
+/// film position, and the sampler for the integrator's further random numbers (its first two dimensions are the jitter).
+/// </summary>
+public readonly struct CameraSample(int x, int y, int index, Ray ray)
+{
+    /// <summary>The sample index of the unjittered ray through the pixel centre.</summary>
+    public const int Centre = -1;
+
+    public int X { get; } = x;
+    public int Y { get; } = y;
+    public int Index { get; } = index;
+    public Ray Ray { get; } = ray;
+
+    /// <summary>The sample's random numbers after the film jitter (dimension 2 on).</summary>
+    public Sampler Sampler => new(X, Y, Index, 2);
+}
