@@ -428,11 +428,19 @@ public static class ShardMerge
         double render = parts.Sum(p => p.Manifest.RenderSeconds);
         long Sum(Func<ManifestRays, long> f) => parts.Sum(p => f(p.Manifest.Rays));
         long total = Sum(r => r.Total);
-        var run = new JsonObject { ["command_line"] = commandLine, ["merged_shards"] = parts.Count };
-        if (first.Run is { } r0)
-            foreach (var (k, v) in r0)
-                if (k is not ("command_line" or "shard"))
-                    run[k] = k.EndsWith("_s", StringComparison.Ordinal) ? parts.Max(p => p.Manifest.Run?[k]?.GetValue<double>() ?? 0) : v?.DeepClone();
+        // The first shard's run with the merge's command line, no shard, and each time the longest any shard took.
+        double? Longest(Func<ManifestRun, double?> seconds) =>
+            first.Run is { } r0 && seconds(r0) is not null ? parts.Max(p => (p.Manifest.Run is { } r ? seconds(r) : null) ?? 0) : null;
+        var run = (first.Run ?? new ManifestRun()) with
+        {
+            CommandLine = commandLine,
+            MergedShards = parts.Count,
+            Shard = null,
+            LoadSeconds = Longest(r => r.LoadSeconds),
+            BuildSeconds = Longest(r => r.BuildSeconds),
+            LightTransferSeconds = Longest(r => r.LightTransferSeconds),
+            WriteSeconds = Longest(r => r.WriteSeconds),
+        };
         return first with
         {
             CreatedUtc = RenderManifest.Now(),

@@ -33,22 +33,8 @@ public static class Relighting
         var manifest = RenderManifest.Read(dir);
         if (manifest.ResolvedScene is not JsonObject scene)
             throw new InputException(Path.Combine(dir, RenderManifest.FileName), "has no resolved_scene", "render again with this version of spectral");
-        var o = manifest.Run?["overrides"] as JsonObject;
-        var overrides = new SceneOverrides
-        {
-            Width = (int?)o?["width"],
-            Height = (int?)o?["height"],
-            Bands = (string?)o?["bands"],
-            Wave = (string?)o?["wave"],
-            SamplesPerPixel = (int?)o?["spp"],
-            Rgb = (string?)o?["rgb"],
-            Integration = (string?)o?["integration"],
-            Formats = (string?)o?["formats"],
-            ExrCompression = (string?)o?["exr_compression"],
-            ModelDirectories = o?["models"]?.AsArray().Select(d => (string)d!).Where(Directory.Exists).ToList() ?? [],
-            // No ray is traced: the meshes' triangles are not needed (nor their files present).
-            LoadMeshes = false,
-        };
+        // No ray is traced: the meshes' triangles are not needed (nor their files present).
+        var overrides = Pipeline.RenderJob.Overrides(manifest.Run?.Overrides) with { LoadMeshes = false };
         var names = (scene["lights"] as JsonArray ?? []).Select((l, i) => (string?)l?["name"] ?? $"light-{i}").ToArray();
         return new Source(dir, manifest, scene, manifest.Scene.Length > 0 ? manifest.Scene : Path.Combine(dir, "scene.json"), overrides, names);
     }
@@ -91,53 +77,44 @@ public static class Relighting
         if (transfer.Width != scene.Camera.Width || transfer.Height != scene.Camera.Height || transfer.Bands != scene.Bands)
             throw new InputException(src.Dir, $"its lights/ are {transfer.Width}×{transfer.Height}×{transfer.Bands} but the scene rebuilds as {scene.Camera.Width}×{scene.Camera.Height}×{scene.Bands}",
                 "the scene file changed since the render; render again");
-        var (image, xyz, fallback) = transfer.Relight(scene);
-        var result = new RenderResult
-        {
-            Image = image,
-            Xyz = xyz,
-            FallbackPixels = fallback,
-            ObjectIds = transfer.ObjectIds,
-            LitMasks = LitMasks.From(transfer.LitMasks, scene.Lights.Count),
-            Highlights = transfer.CentreHighlights(scene),
-            Rays = new RayCounters(),
-            Elapsed = clock.Elapsed,
-            Threads = Environment.ProcessorCount,
-            Tiles = 0,
-            Crop = PixelRect.Whole(transfer.Width, transfer.Height),
-        };
-        var compute = clock.Elapsed;
-        var run = new JsonObject
-        {
-            ["command_line"] = commandLine,
-            ["overrides"] = src.Manifest.Run?["overrides"]?.DeepClone(),
-            ["relit"] = new JsonObject
-            {
-                ["from"] = Path.GetFullPath(src.Dir),
-                ["from_created_utc"] = src.Manifest.CreatedUtc,
-                ["method"] = "per-light transfer (lights/): L_b = sum_c F_c * P_c,b and XYZ = sum_c F_c * XYZ_c with P_c rebuilt from the new lights' term tables; no rays traced",
-                ["changes"] = new JsonArray(changes.Select(c => (JsonNode)new JsonObject
-                { ["light"] = c.Light, ["spectrum"] = c.Spectrum, ["intensity"] = c.Intensity }).ToArray()),
-                ["white"] = white,
-                // Wall seconds to read lights/ and recombine the image and its colours (no files written).
-                ["compute_s"] = compute.TotalSeconds,
-            },
-        };
         if (Path.GetFullPath(outDir) == Path.GetFullPath(src.Dir))
             throw new InputException(outDir, "is the folder being relit", "write the relit render to another folder with -o");
         Directory.CreateDirectory(outDir);
-        string? metricsCsv = null;
-        if (metrics)
+        var crop = PixelRect.Whole(transfer.Width, transfer.Height);
+        var reuse = Reusable(src, scene, crop);
+        var job = Pipeline.RenderJob.Load(new Pipeline.RenderRequest
         {
-            var (mj, csv) = Metrics(src, scene, transfer, xyz);
-            ((JsonObject)run["relit"]!)["metrics"] = mj;
-            metricsCsv = csv;
-        }
-        var reuse = Reusable(src, scene, result.Crop);
+            Scene = scene,
+            ScenePath = src.ScenePath,
+            OutDir = outDir,
+            FromTransfer = new Pipeline.TransferSource(transfer, reuse),
+            Detail = Pipeline.RunDetail.None,
+        });
+        var result = job.Render(cancel: cancel);
+        var compute = clock.Elapsed;
         var copied = (reuse?.Names ?? Enumerable.Empty<string>()).Concat(transfer.StoredIn is null ? [] : LightTransferFiles.Arrays.Select(f => $"{LightTransferFiles.Folder}/{f}"));
-        // Which files were copied from the source (no light changes them; see Reusable), not encoded again.
-        ((JsonObject)run["relit"]!)["copied_files"] = new JsonArray(copied.Order(StringComparer.Ordinal).Select(f => (JsonNode)f).ToArray());
-        var files = RenderOutputWriter.Write(scene, result, outDir, run, cancel, transfer, reuse);
+        string? metricsCsv = null;
+        RelightMetrics? metricsRecord = null;
+        if (metrics) (metricsRecord, metricsCsv) = Metrics(src, scene, transfer, result.Xyz!);
+        job.RunRecord = new ManifestRun
+        {
+            CommandLine = commandLine,
+            HasOverrides = true,
+            Overrides = src.Manifest.Run?.Overrides,
+            Relit = new ManifestRelit
+            {
+                From = Path.GetFullPath(src.Dir),
+                FromCreatedUtc = src.Manifest.CreatedUtc,
+                Method = "per-light transfer (lights/): L_b = sum_c F_c * P_c,b and XYZ = sum_c F_c * XYZ_c with P_c rebuilt from the new lights' term tables; no rays traced",
+                Changes = changes.Select(c => new ManifestLightChange(c.Light, c.Spectrum, c.Intensity)).ToArray(),
+                White = white,
+                ComputeSeconds = compute.TotalSeconds,
+                Metrics = metricsRecord,
+                // Which files were copied from the source (no light changes them; see Reusable), not encoded again.
+                CopiedFiles = copied.Order(StringComparer.Ordinal).ToArray(),
+            },
+        };
+        var files = job.Write(cancel).ToList();
         if (metricsCsv is not null)
         {
             AtomicFile.WriteAllText(Path.Combine(outDir, "relight-metrics.csv"), metricsCsv);
@@ -196,7 +173,7 @@ public static class Relighting
     /// object the ΔE00 (CIEDE2000, Lab on the relit scene's white) between each pixel's colour in the source render and
     /// in the relit one (mean and maximum over the pixels whose centre ray sees the object).
     /// </summary>
-    public static (JsonObject Json, string Csv) Metrics(Source src, Scene relit, LightTransfer transfer, float[] relitXyz)
+    public static (RelightMetrics Record, string Csv) Metrics(Source src, Scene relit, LightTransfer transfer, float[] relitXyz)
     {
         var original = ChangedScene(src, [], null);
         var (_, xyz0, _) = transfer.Relight(original);
@@ -213,24 +190,24 @@ public static class Relighting
             sum[o] += d; count[o]++; max[o] = Math.Max(max[o], d);
         }
         var csv = new StringBuilder("kind,name,pixels,mean_dE00,max_dE00,Ra_CIE13.3,Rf_CIE224_2017,CCT_K\n");
-        var lights = new JsonArray();
+        var lights = new List<RelightLightMetrics>();
         foreach (var l in relit.Lights)
         {
             double? ra = null, rf = null, cct = null;
             if (l.Spectrum is { } sp)
                 try { var r = Color.ColorRenderingIndex.Of(sp); ra = r.Ra; cct = r.Cct; rf = Color.ColorFidelityIndex.Of(sp).Rf; }
                 catch (Exception e) when (e is ArgumentException or InvalidOperationException) { }
-            lights.Add((JsonNode)new JsonObject { ["light"] = l.Name, ["spectrum"] = l.Spectrum?.Name, ["Ra"] = ra, ["Rf"] = rf, ["cct_K"] = cct });
+            lights.Add(new RelightLightMetrics(l.Name, l.Spectrum?.Name, ra, rf, cct));
             csv.Append(CultureInfo.InvariantCulture, $"light,{l.Name},,,,{ra:0.00},{rf:0.00},{cct:0}\n");
         }
-        var objs = new JsonArray();
+        var objs = new List<RelightObjectMetrics>();
         for (int o = 0; o < objects; o++)
         {
             if (count[o] == 0) continue;
-            objs.Add((JsonNode)new JsonObject { ["object"] = relit.Objects[o].Name, ["pixels"] = count[o], ["mean_dE00"] = sum[o] / count[o], ["max_dE00"] = max[o] });
+            objs.Add(new RelightObjectMetrics(relit.Objects[o].Name, count[o], sum[o] / count[o], max[o]));
             csv.Append(CultureInfo.InvariantCulture, $"object,{relit.Objects[o].Name},{count[o]},{sum[o] / count[o]:0.0000},{max[o]:0.0000},,,\n");
         }
-        return (new JsonObject { ["white"] = relit.ReferenceWhite.Name, ["lights"] = lights, ["objects"] = objs }, csv.ToString());
+        return (new RelightMetrics(relit.ReferenceWhite.Name, lights, objs), csv.ToString());
     }
 
     /// <summary>

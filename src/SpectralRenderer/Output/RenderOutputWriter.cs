@@ -24,7 +24,7 @@ public static class RenderOutputWriter
     /// <summary>This engine build's identity (render.json "build"): the module version id of its assembly.</summary>
     public static string EngineBuild { get; } = typeof(RenderOutputWriter).Assembly.ManifestModule.ModuleVersionId.ToString("N");
 
-    public static List<string> Write(Scene scene, RenderResult result, string outDir, JsonObject? run = null, CancellationToken cancel = default,
+    public static List<string> Write(Scene scene, RenderResult result, string outDir, ManifestRun? run = null, CancellationToken cancel = default,
         LightTransfer? transfer = null, ReusedFiles? reuse = null) =>
         Write(scene, result, OutputFolder.Begin(outDir), run, cancel, transfer, reuse);
 
@@ -33,7 +33,7 @@ public static class RenderOutputWriter
     /// Interrupted or failed, the staged files are removed and the folder holds what it held before.
     /// </summary>
     /// <param name="reuse">Files another folder holds exactly as this render would write them (a relit render's light-independent files): copied, not encoded.</param>
-    public static List<string> Write(Scene scene, RenderResult result, OutputFolder folder, JsonObject? run = null, CancellationToken cancel = default,
+    public static List<string> Write(Scene scene, RenderResult result, OutputFolder folder, ManifestRun? run = null, CancellationToken cancel = default,
         LightTransfer? transfer = null, ReusedFiles? reuse = null)
     {
         List<string> written;
@@ -105,7 +105,7 @@ public static class RenderOutputWriter
         }
     }
 
-    static List<string> WriteFiles(Scene scene, RenderResult result, string outDir, JsonObject? run, CancellationToken cancel, LightTransfer? transfer, ReusedFiles? reuse)
+    static List<string> WriteFiles(Scene scene, RenderResult result, string outDir, ManifestRun? run, CancellationToken cancel, LightTransfer? transfer, ReusedFiles? reuse)
     {
         var products = scene.Output.Products;
         bool Has(OutputProducts p) => (products & p) != 0;
@@ -174,8 +174,7 @@ public static class RenderOutputWriter
         var written = new List<string>();
         foreach (var g in groups) written.AddRange(g);
         // Wall seconds from the pixels to every file but render.json written (not hashed: a timing).
-        if (run is not null) run["write_s"] = writeClock.Elapsed.TotalSeconds;
-        var final = manifest! with { Files = written.ToArray() };
+        var final = manifest! with { Files = written.ToArray(), Run = run is null ? null : run with { WriteSeconds = writeClock.Elapsed.TotalSeconds } };
         if (NonFinite(final.ToJson()) is { } bad)
             throw new WorkFailedException($"render.json would hold a non-finite number at {bad}; nothing was written");
         AtomicFile.WriteAllText(Path.Combine(outDir, RenderManifest.FileName), final.ToJsonText());
@@ -311,7 +310,7 @@ public static class RenderOutputWriter
     }
 
     [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
-    static RenderManifest Describe(Scene scene, RenderResult result, float bandScale, JsonObject? run, DisplayEncoder? preview)
+    static RenderManifest Describe(Scene scene, RenderResult result, float bandScale, ManifestRun? run, DisplayEncoder? preview)
     {
         var c = scene.Colorimeter;
         var objects = new ManifestObject[scene.Objects.Count];
