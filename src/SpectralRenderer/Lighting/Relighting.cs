@@ -24,46 +24,42 @@ public sealed record LightChange(string Light, string? Spectrum, double? Intensi
 /// </summary>
 public static class Relighting
 {
-    public sealed record Source(string Dir, RenderManifest Manifest, JsonObject Scene, string ScenePath, SceneOverrides Overrides, string[] LightNames);
+    public sealed record Source(string Dir, RenderManifest Manifest, ManifestScene Scene, string ScenePath, SceneOverrides Overrides, string[] LightNames);
 
     /// <summary>A render folder read through its manifest: the resolved scene and the overrides it was rendered with.</summary>
     public static Source Open(string dir)
     {
         if (!Directory.Exists(dir)) throw new InputException(dir, "no such render folder", "give the -o folder of a 'spectral render' run");
         var manifest = RenderManifest.Read(dir);
-        if (manifest.ResolvedScene is not JsonObject scene)
+        if (manifest.ResolvedScene is not { } scene)
             throw new InputException(Path.Combine(dir, RenderManifest.FileName), "has no resolved_scene", "render again with this version of spectral");
         // No ray is traced: the meshes' triangles are not needed (nor their files present).
         var overrides = Pipeline.RenderJob.Overrides(manifest.Run?.Overrides) with { LoadMeshes = false };
-        var names = (scene["lights"] as JsonArray ?? []).Select((l, i) => (string?)l?["name"] ?? $"light-{i}").ToArray();
+        var names = scene.Lights.Select(l => l.Name).ToArray();
         return new Source(dir, manifest, scene, manifest.Scene.Length > 0 ? manifest.Scene : Path.Combine(dir, "scene.json"), overrides, names);
     }
 
     /// <summary>The scene of <paramref name="src"/> with the changes applied, loaded as a render would load it.</summary>
     public static Scene ChangedScene(Source src, IReadOnlyList<LightChange> changes, string? white)
     {
-        var scene = (JsonObject)src.Scene.DeepClone();
-        var lights = scene["lights"] as JsonArray ?? [];
+        var edits = new List<(int, string?, double?)>();
         foreach (var c in changes)
         {
             int k = Array.IndexOf(src.LightNames, c.Light);
             if (k < 0)
                 throw new InputException($"--light {c.Light}", $"the render has no light named '{c.Light}'",
                     InputException.DidYouMean(c.Light, src.LightNames) is { } d ? d : $"its lights are: {string.Join(", ", src.LightNames)}");
-            var l = lights[k]!.AsObject();
             if (c.Spectrum is not null) Check(src, c.Spectrum, $"--light {c.Light}");
-            if (c.Spectrum is not null) l["spectrum"] = c.Spectrum;
-            if (c.Intensity is not null) l["intensity"] = c.Intensity;
+            edits.Add((k, c.Spectrum, c.Intensity));
         }
-        if (white is not null) { Check(src, white, "--white"); scene["white"] = white; }
-        var bytes = Encoding.UTF8.GetBytes(scene.ToJsonString());
-        return SceneLoader.Parse(bytes, src.ScenePath, src.Overrides);
+        if (white is not null) Check(src, white, "--white");
+        return SceneLoader.Parse(src.Scene.WithLights(edits, white), src.ScenePath, src.Overrides);
     }
 
     /// <summary>A spectrum named on the command line resolves (or is one of the scene's own named spectra).</summary>
     static void Check(Source src, string spectrum, string where)
     {
-        if (src.Scene["spectra"] is JsonObject named && named.ContainsKey(spectrum)) return;
+        if (src.Scene.NamesSpectrum(spectrum)) return;
         Spectra.SpectrumLibrary.Resolve(spectrum, Path.GetDirectoryName(Path.GetFullPath(src.ScenePath)), where);
     }
 

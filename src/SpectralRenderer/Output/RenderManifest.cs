@@ -85,8 +85,8 @@ public sealed record RenderManifest
     public ManifestRun? Run { get; init; }
     /// <summary>The files the render wrote, relative to its folder.</summary>
     public IReadOnlyList<string>? Files { get; init; }
-    /// <summary>The resolved scene.</summary>
-    public JsonObject? ResolvedScene { get; init; }
+    /// <summary>The resolved scene: the scene file as the render read it.</summary>
+    public ManifestScene? ResolvedScene { get; init; }
     /// <summary>What the render computes (<see cref="Output.SceneHash"/>): equal for the shards of one render.</summary>
     public string? SceneHash { get; init; }
     /// <summary>
@@ -196,7 +196,7 @@ public sealed record RenderManifest
             ["tiles"] = Tiles,
             ["run"] = Run is null ? null : RunJson(Run),
             ["files"] = files,
-            ["resolved_scene"] = ResolvedScene?.DeepClone(),
+            ["resolved_scene"] = ResolvedScene?.ToJson(),
         };
         if (SceneHash is not null) json["scene_hash"] = SceneHash;
         if (Crop is { } c) json["crop"] = new JsonObject { ["x0"] = c.X0, ["y0"] = c.Y0, ["x1"] = c.X1, ["y1"] = c.Y1 };
@@ -358,7 +358,7 @@ public sealed record RenderManifest
             Tiles = r.OptInt(json, "tiles") ?? 0,
             Run = json["run"] is JsonObject run ? r.Run(run) : null,
             Files = json["files"] is JsonArray fs ? fs.Select(f => (string?)f ?? "").ToArray() : null,
-            ResolvedScene = json["resolved_scene"] as JsonObject,
+            ResolvedScene = json["resolved_scene"] is JsonObject resolved ? new ManifestScene(resolved) : null,
             SceneHash = r.OptStr(json, "scene_hash"),
             Crop = json["crop"] is JsonObject crop
                 ? new Rendering.PixelRect(r.Int(crop, "x0", "$.crop"), r.Int(crop, "y0", "$.crop"), r.Int(crop, "x1", "$.crop"), r.Int(crop, "y1", "$.crop"))

@@ -386,7 +386,7 @@ public static class RenderOutputWriter
             Threads = result.Threads,
             Tiles = result.Tiles,
             Run = run,
-            ResolvedScene = scene.Resolved,
+            ResolvedScene = scene.Resolved is { } resolved ? new ManifestScene(resolved) : null,
             Crop = result.Crop.IsWhole(scene.Camera.Width, scene.Camera.Height) ? null : result.Crop,
         };
         return manifest with { SceneHash = Output.SceneHash.Of(manifest.ToJson(), scene.Output.Products, scene.Output.ExrCompression) };
