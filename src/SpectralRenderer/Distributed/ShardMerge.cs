@@ -7,6 +7,7 @@ using System.Text.RegularExpressions;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Output;
+using SpectralRenderer.Output.Products;
 using SpectralRenderer.Rendering;
 
 namespace SpectralRenderer.Distributed;
@@ -47,18 +48,15 @@ public static class ShardMerge
             {
                 cancel.ThrowIfCancellationRequested();
                 var target = Path.Combine(staging, f);
-                switch (f)
+                switch (OutputProductTable.Owner(f)?.Merging(f) ?? ShardMerging.None)
                 {
-                    case "preview.png": MergePng(parts, f, target, width, height); break;
-                    case "object-id.png": MergePng(parts, f, target, width, height); break;
-                    case "mask-highlight.png": MergePng(parts, f, target, width, height); break;
-                    case var m when m.StartsWith("mask-lit-", StringComparison.Ordinal): MergePng(parts, f, target, width, height); break;
-                    case "spectral.exr" or "reflectance.exr": MergeExr(parts, f, target, width, height); break;
-                    case "spectral.img": MergeEnvi(parts, target, width, bands); break;
-                    case "spectral.hdr": MergeEnviHeader(parts[0], target, height); break;
-                    case "spectral.npy": MergeNpy(parts, target, width, height, bands); break;
-                    case "wavelengths.csv": AtomicFile.WriteAllBytes(target, File.ReadAllBytes(Path.Combine(parts[0].Dir, f))); break;
-                    case var b when b.StartsWith("bands/", StringComparison.Ordinal) || b == "bands.png": break;   // above
+                    case ShardMerging.Png: MergePng(parts, f, target, width, height); break;
+                    case ShardMerging.ExrChunks: MergeExr(parts, f, target, width, height); break;
+                    case ShardMerging.EnviCube: MergeEnvi(parts, target, width, bands); break;
+                    case ShardMerging.EnviHeader: MergeEnviHeader(parts[0], target, height); break;
+                    case ShardMerging.NpyCube: MergeNpy(parts, target, width, height, bands); break;
+                    case ShardMerging.Copy: AtomicFile.WriteAllBytes(target, File.ReadAllBytes(Path.Combine(parts[0].Dir, f))); break;
+                    case ShardMerging.BandImages: break;   // above
                     default: throw new InputException(Path.Combine(parts[0].Dir, "render.json"), $"lists '{f}', a file merge does not know", "merge shards written by the same version");
                 }
             }

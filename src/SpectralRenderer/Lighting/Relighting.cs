@@ -129,20 +129,28 @@ public static class Relighting
     public static ReusedFiles? Reusable(Source src, Scene scene, PixelRect crop)
     {
         if (src.Manifest.Build != RenderOutputWriter.EngineBuild || src.Manifest.Files is not { } listed) return null;
-        var names = new List<string> { "object-id.png" };
-        for (int k = 0; k < Math.Min(32, scene.Lights.Count); k++) names.Add($"mask-lit-{k}.png");
-        if (SameMaterials(src, scene))
+        // What the products say a relight may copy: files of the geometry alone; the ground truth when the materials and its header are the source's.
+        var names = new List<string>();
+        foreach (var file in listed)
         {
-            var path = Path.Combine(src.Dir, "reflectance.exr");
-            var start = AnalysisImages.ReflectanceFileStart(scene, crop);
-            if (File.Exists(path) && new FileInfo(path).Length > start.Length)
+            switch (Output.Products.OutputProductTable.Owner(file)?.Reuse(file) ?? Output.Products.RelightReuse.Never)
             {
-                var head = new byte[start.Length];
-                using (var f = File.OpenRead(path)) f.ReadExactly(head);
-                if (head.AsSpan().SequenceEqual(start)) names.Add("reflectance.exr");
+                case Output.Products.RelightReuse.Geometry: names.Add(file); break;
+                case Output.Products.RelightReuse.SameMaterials when SameMaterials(src, scene) && SameHeader(src, file, AnalysisImages.ReflectanceFileStart(scene, crop)):
+                    names.Add(file); break;
             }
         }
-        return new ReusedFiles(Path.GetFullPath(src.Dir), names.Where(n => listed.Contains(n) && File.Exists(Path.Combine(src.Dir, n))));
+        return new ReusedFiles(Path.GetFullPath(src.Dir), names.Where(n => File.Exists(Path.Combine(src.Dir, n))));
+    }
+
+    /// <summary>Whether the source's <paramref name="file"/> starts with <paramref name="start"/> (and holds more).</summary>
+    static bool SameHeader(Source src, string file, byte[] start)
+    {
+        var path = Path.Combine(src.Dir, file);
+        if (!File.Exists(path) || new FileInfo(path).Length <= start.Length) return false;
+        var head = new byte[start.Length];
+        using (var f = File.OpenRead(path)) f.ReadExactly(head);
+        return head.AsSpan().SequenceEqual(start);
     }
 
     /// <summary>Whether the scene's materials are the source's, name for name and band value for band value (lights/lights.json).</summary>

@@ -1,6 +1,7 @@
 using System.Diagnostics;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Output;
+using SpectralRenderer.Output.Products;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
@@ -41,12 +42,15 @@ public sealed class RenderJob
     /// <summary>Triangles of degenerate shape the meshes' BVHs left out.</summary>
     public int DegenerateTriangles => Scene.Objects.Sum(o => o.Mesh?.DegenerateCount ?? 0);
     public int Threads => Request.Threads;
+    /// <summary>The products named in the request beyond the scene's formats.</summary>
+    public IReadOnlyList<OutputProduct> NamedProducts { get; }
     OutputFolder? _folder;
 
     RenderJob(RenderRequest request, Scene scene, double loadSeconds)
     {
         Request = request;
         Scene = scene;
+        NamedProducts = OutputProductTable.Named(request.Products);
         LoadSeconds = loadSeconds;
         if (request.Region is { } region)
         {
@@ -72,7 +76,7 @@ public sealed class RenderJob
         var job = new RenderJob(request, scene, clock.Elapsed.TotalSeconds);
         job.Check();
         if (observer?.Warning is { } warn) foreach (var w in scene.Warnings) warn(w);
-        if (request.OutDir is not null) RenderMemory.Check(scene, request.Threads);   // what the render and its writers hold
+        if (request.OutDir is not null) RenderMemory.Check(scene, request.Threads, job.NamedProducts);   // what the render and its writers hold
         return job;
     }
 
@@ -193,7 +197,7 @@ public sealed class RenderJob
         }
         RunRecord ??= Record(result);
         var writeClock = Stopwatch.StartNew();
-        Files = RenderOutputWriter.Write(Scene, result, _folder!, RunRecord, cancel, Transfer, Request.FromTransfer?.Reuse);
+        Files = RenderOutputWriter.Write(Scene, result, _folder!, RunRecord, cancel, Transfer, Request.FromTransfer?.Reuse, NamedProducts);
         WriteSeconds = writeClock.Elapsed.TotalSeconds;
         return Files;
     }

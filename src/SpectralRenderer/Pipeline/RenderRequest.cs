@@ -57,6 +57,8 @@ public sealed record RenderRequest
     public string? OutDir { get; init; }
     /// <summary>BVHs shared with earlier renders of this process (experiments, sweeps).</summary>
     public GeometryCache? Geometries { get; init; }
+    /// <summary>Registered output products asked for by name beyond the scene's formats (<see cref="Output.Products.OutputProductTable"/>).</summary>
+    public IReadOnlyList<string> Products { get; init; } = [];
     /// <summary>The result from a per-light transfer instead of rays (relight).</summary>
     public TransferSource? FromTransfer { get; init; }
     /// <summary>The caller's part of render.json's "run" (command line, sweep job, relit source); null with <see cref="RunDetail.None"/> records no run.</summary>
