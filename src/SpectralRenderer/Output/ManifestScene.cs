@@ -30,7 +30,9 @@ public sealed class ManifestScene(JsonObject document)
     /// <summary>Whether <paramref name="name"/> is one of the scene's own named spectra.</summary>
     public bool NamesSpectrum(string name) => _document["spectra"] is JsonObject named && named.ContainsKey(name);
 
-    /// <summary>The scene file (UTF-8) with light K's spectrum and/or intensity changed and the reference white replaced where given.</summary>
+    /// <summary>
+    /// The scene file (UTF-8) with light K's spectrum and/or intensity changed and the reference white replaced where given.
+    /// </summary>
     public byte[] WithLights(IEnumerable<(int Light, string? Spectrum, double? Intensity)> changes, string? white)
     {
         var scene = ToJson();

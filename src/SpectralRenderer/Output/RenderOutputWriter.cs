@@ -132,8 +132,16 @@ public static class RenderOutputWriter
         var encoder = needs.HasFlag(ProductInputs.PreviewEncoder) ? PreviewEncoder(scene, xyz!) : null;
         var context = new ProductContext
         {
-            Scene = scene, Result = result, OutDir = outDir, BandScale = scale, BandPlanes = bands, Xyz = xyz, Preview = encoder,
-            Transfer = transfer, Reuse = reuse, Cancel = cancel,
+            Scene = scene,
+            Result = result,
+            OutDir = outDir,
+            BandScale = scale,
+            BandPlanes = bands,
+            Xyz = xyz,
+            Preview = encoder,
+            Transfer = transfer,
+            Reuse = reuse,
+            Cancel = cancel,
         };
 
         // The products' writers are independent files: run them side by side; each keeps its own list, in a fixed order.

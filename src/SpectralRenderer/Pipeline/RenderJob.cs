@@ -10,7 +10,8 @@ namespace SpectralRenderer.Pipeline;
 
 /// <summary>What a caller hears while a job runs: the scene's warnings, the render's progress, and how long ago it was stopped.</summary>
 /// <param name="StoppedAfter">Appended to an interruption's message (e.g. ", 0.120 s after the signal").</param>
-public sealed record RenderObserver(Action<string>? Warning = null, Action<RenderProgress>? Progress = null, Func<string>? StoppedAfter = null);
+public sealed record RenderObserver(Action<string>? Warning = null, Action<RenderProgress>? Progress = null,
+    Func<string>? StoppedAfter = null);
 
 /// <summary>
 /// One render, assembled once for every command (render, bench, sweep, experiments, relight): the scene loaded and
@@ -76,7 +77,8 @@ public sealed class RenderJob
         var job = new RenderJob(request, scene, clock.Elapsed.TotalSeconds);
         job.Check();
         if (observer?.Warning is { } warn) foreach (var w in scene.Warnings) warn(w);
-        if (request.OutDir is not null) RenderMemory.Check(scene, request.Threads, job.NamedProducts);   // what the render and its writers hold
+        // What the render and its writers hold, checked before anything is built.
+        if (request.OutDir is not null) RenderMemory.Check(scene, request.Threads, job.NamedProducts);
         return job;
     }
 
@@ -85,17 +87,20 @@ public sealed class RenderJob
     {
         var products = Scene.Output.Products;
         if (Shard is not null && (products & OutputProducts.Bands) != 0 && (products & (OutputProducts.Envi | OutputProducts.Npy)) == 0)
-            throw new InputException("--shard", "band images need a float cube in each shard: merge rescales them to the whole image's brightest value",
-                "add envi or npy to --formats");
+            throw new InputException("--shard",
+                "band images need a float cube in each shard: merge rescales them to the whole image's brightest value", "add envi or npy to --formats");
         if (Crop is not null && (products & OutputProducts.Lights) != 0)
-            throw new InputException("--formats", "the per-light outputs (lights) are written for whole renders only, not for a crop or shard", "render lights without --crop/--shard");
+            throw new InputException("--formats", "the per-light outputs (lights) are written for whole renders only, not for a crop or shard",
+                "render lights without --crop/--shard");
         if (Crop is not null && Scene.Output.ExposureAuto)
             throw new InputException(Request.ScenePath.Length > 0 ? Request.ScenePath : Scene.SourcePath,
                 "output.exposure \"auto\" is chosen from the whole image, which a shard or crop does not see",
                 "give a fixed \"exposure\" (a whole render's render.json states the one auto chose, $.colour.exposure)");
     }
 
-    /// <summary>Begins the output folder, builds, renders, traces the transfer when asked and writes; the folder is left as it was on failure.</summary>
+    /// <summary>
+    /// Begins the output folder, builds, renders, traces the transfer when asked and writes; the folder is left as it was on failure.
+    /// </summary>
     public void Execute(RenderObserver? observer = null, CancellationToken cancel = default)
     {
         Begin();
@@ -117,7 +122,9 @@ public sealed class RenderJob
         if (Request.OutDir is { } dir && _folder is null) _folder = OutputFolder.Begin(dir);
     }
 
-    /// <summary>The scene's ray queries and the integrator; the loader's garbage returned when no BVH is shared with later renders.</summary>
+    /// <summary>
+    /// The scene's ray queries and the integrator; the loader's garbage returned when no BVH is shared with later renders.
+    /// </summary>
     public void Build()
     {
         if (Integrator is not null) return;
@@ -154,8 +161,8 @@ public sealed class RenderJob
             _folder?.Abandon();
             string where = _folder is null ? ""
                 : $"; {_folder.Final} {(_folder.HoldsRender ? "still holds the previous render, unchanged" : "holds no render")}";
-            throw new InterruptedException($"interrupted while rendering ({done} of {(total > 0 ? total : "all")} tiles done{observer?.StoppedAfter?.Invoke()}): nothing was written{where}",
-                e.CancellationToken);
+            string tiles = $"{done} of {(total > 0 ? total : "all")} tiles done{observer?.StoppedAfter?.Invoke()}";
+            throw new InterruptedException($"interrupted while rendering ({tiles}): nothing was written{where}", e.CancellationToken);
         }
         return Result;
     }
@@ -182,7 +189,9 @@ public sealed class RenderJob
         };
     }
 
-    /// <summary>The transfer when the lights product is asked for, then every product and render.json into the folder, swapped in whole.</summary>
+    /// <summary>
+    /// The transfer when the lights product is asked for, then every product and render.json into the folder, swapped in whole.
+    /// </summary>
     public IReadOnlyList<string> Write(CancellationToken cancel = default)
     {
         var result = Result ?? throw new InvalidOperationException("render before writing");

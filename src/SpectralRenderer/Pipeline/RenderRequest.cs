@@ -37,11 +37,15 @@ public sealed record TransferSource(LightTransfer Transfer, ReusedFiles? Reuse =
 /// </summary>
 public sealed record RenderRequest
 {
-    /// <summary>The scene file; with <see cref="SceneText"/> the name it is parsed under (its relative paths resolve from its folder).</summary>
+    /// <summary>
+    /// The scene file; with <see cref="SceneText"/> the name it is parsed under (its relative paths resolve from its folder).
+    /// </summary>
     public string ScenePath { get; init; } = "";
     /// <summary>The scene file's bytes, when they are not read from <see cref="ScenePath"/> (standard input, a sweep job's edit).</summary>
     public byte[]? SceneText { get; init; }
-    /// <summary>A scene already loaded (relight's changed scene); then <see cref="ScenePath"/>, <see cref="SceneText"/> are not read.</summary>
+    /// <summary>
+    /// A scene already loaded (relight's changed scene); then <see cref="ScenePath"/>, <see cref="SceneText"/> are not read.
+    /// </summary>
     public Scene? Scene { get; init; }
     /// <summary>Size, bands, spp, colour, formats, model folders: the command line's changes to the scene file.</summary>
     public SceneOverrides Overrides { get; init; } = new();
@@ -57,11 +61,16 @@ public sealed record RenderRequest
     public string? OutDir { get; init; }
     /// <summary>BVHs shared with earlier renders of this process (experiments, sweeps).</summary>
     public GeometryCache? Geometries { get; init; }
-    /// <summary>Registered output products asked for by name beyond the scene's formats (<see cref="Output.Products.OutputProductTable"/>).</summary>
+    /// <summary>
+    /// Registered output products asked for by name beyond the scene's formats (<see cref="Output.Products.OutputProductTable"/>).
+    /// </summary>
     public IReadOnlyList<string> Products { get; init; } = [];
     /// <summary>The result from a per-light transfer instead of rays (relight).</summary>
     public TransferSource? FromTransfer { get; init; }
-    /// <summary>The caller's part of render.json's "run" (command line, sweep job, relit source); null with <see cref="RunDetail.None"/> records no run.</summary>
+    /// <summary>
+    /// The caller's part of render.json's "run" (command line, sweep job, relit source); null with <see cref="RunDetail.None"/> records
+    /// no run.
+    /// </summary>
     public ManifestRun? Run { get; init; }
     /// <summary>What the job adds to <see cref="Run"/>.</summary>
     public RunDetail Detail { get; init; } = RunDetail.Full;

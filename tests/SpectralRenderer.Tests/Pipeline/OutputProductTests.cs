@@ -97,7 +97,8 @@ public class OutputProductTests
     [Fact]
     public void Every_file_of_the_built_in_products_has_one_owner()
     {
-        foreach (var f in new[] { "preview.png", "bands/band-01-400-410nm.png", "bands.png", "object-id.png", "mask-lit-0.png", "mask-highlight.png",
+        foreach (var f in new[] { "preview.png", "bands/band-01-400-410nm.png", "bands.png", "object-id.png", "mask-lit-0.png",
+            "mask-highlight.png",
             "reflectance.exr", "spectral.exr", "spectral.img", "spectral.hdr", "spectral.npy", "wavelengths.csv", "lights/lights.json" })
             Assert.Single(OutputProductTable.All, p => p.Owns(f));
     }

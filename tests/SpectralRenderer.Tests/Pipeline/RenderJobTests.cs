@@ -98,7 +98,8 @@ public class RenderJobTests
         var dir = Reference.TempDir();
         var scene = WriteScene(dir);
         Assert.Equal(0, CliRunner.Run("render", scene, "-o", Path.Combine(dir, "r"), "--quiet", "--formats", "png,lights").Exit);
-        var (code, _, err) = CliRunner.Run("relight", Path.Combine(dir, "r"), "--light", "key=A", "-o", Path.Combine(dir, "A"), "--quiet", "--metrics");
+        var (code, _, err) = CliRunner.Run("relight", Path.Combine(dir, "r"), "--light", "key=A", "-o", Path.Combine(dir, "A"),
+            "--quiet", "--metrics");
         Assert.True(code == 0, err);
         var relitDir = Path.Combine(dir, "A");
         var manifest = RenderManifest.Read(relitDir);

@@ -3,7 +3,9 @@ using SpectralRenderer.Scenes;
 
 namespace SpectralRenderer.Output.Products;
 
-/// <summary>"bands": bands/ (one 16-bit PNG per band on the common scale) and, side by side with them, the mosaic bands.png (Fig. 2).</summary>
+/// <summary>
+/// "bands": bands/ (one 16-bit PNG per band on the common scale) and, side by side with them, the mosaic bands.png (Fig. 2).
+/// </summary>
 public sealed class BandsProduct : OutputProduct
 {
     public override string Name => "bands";

@@ -79,7 +79,10 @@ public abstract class OutputProduct
     /// <summary>The name --formats and a scene's "output.formats" use.</summary>
     public abstract string Name { get; }
 
-    /// <summary>The scene's flag for it; <see cref="OutputProducts.None"/> for a product asked for by name only (<see cref="OutputProductTable.Named"/>).</summary>
+    /// <summary>
+    /// The scene's flag for it; <see cref="OutputProducts.None"/> for a product asked for by name only (<see
+    /// cref="OutputProductTable.Named"/>).
+    /// </summary>
     public virtual OutputProducts Flag => OutputProducts.None;
 
     /// <summary>Whether a render asking for <paramref name="asked"/> writes it.</summary>
@@ -93,7 +96,10 @@ public abstract class OutputProduct
     /// <summary>What its writers hold at once beyond the shared inputs, in bytes, by part.</summary>
     public virtual IEnumerable<(string Part, long Bytes)> Memory(Scene scene, int threads) => [];
 
-    /// <summary>Writes part <paramref name="part"/> of its files into <see cref="ProductContext.OutDir"/>, calling <paramref name="done"/> with each file's relative name.</summary>
+    /// <summary>
+    /// Writes part <paramref name="part"/> of its files into <see cref="ProductContext.OutDir"/>, calling <paramref name="done"/> with
+    /// each file's relative name.
+    /// </summary>
     public abstract void Write(ProductContext context, int part, Action<string> done);
 
     /// <summary>Whether <paramref name="file"/> (relative, as render.json lists it) is one of its files.</summary>

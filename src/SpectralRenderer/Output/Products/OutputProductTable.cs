@@ -30,7 +30,8 @@ public static class OutputProductTable
     {
         lock (Products)
         {
-            if (Products.Any(p => p.Name == product.Name)) throw new ArgumentException($"an output product '{product.Name}' is registered already", nameof(product));
+            if (Products.Any(p => p.Name == product.Name))
+                throw new ArgumentException($"an output product '{product.Name}' is registered already", nameof(product));
             Products.Add(product);
         }
     }
@@ -43,8 +44,9 @@ public static class OutputProductTable
     public static List<OutputProduct> Named(IEnumerable<string> names)
     {
         var all = All;
+        var known = all.Select(p => p.Name).ToArray();
         return names.Select(n => all.FirstOrDefault(p => p.Name == n) ?? throw new InputException("--formats", $"no output product '{n}'",
-            InputException.DidYouMean(n, all.Select(p => p.Name).ToArray()) ?? $"products: {string.Join(", ", all.Select(p => p.Name))}")).ToList();
+            InputException.DidYouMean(n, known) ?? $"products: {string.Join(", ", known)}")).ToList();
     }
 
     /// <summary>The product that writes <paramref name="file"/> (relative, as render.json lists it), or null.</summary>
