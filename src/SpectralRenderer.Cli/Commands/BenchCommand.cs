@@ -1,6 +1,7 @@
 using System.Diagnostics;
 using System.Globalization;
 using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Pipeline;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
@@ -12,7 +13,7 @@ public static class BenchCommand
 {
     const string Help = """
         usage: spectral bench [SCENE] [--width W] [--height H] [--repeat N] [--threads N] [--bands N|S:E:N | --wave S:STEP:E]
-                              [--spp N] [--models DIR]
+                              [--spp N] [--models DIR] [--integrator NAME]
 
         Measures a scene (default: scenes/paper-3.2-bunny-14.json at 1024 × 1024): scene and mesh load,
         BVH build, and the render itself (median of N repeats, after one warm-up), with the rays traced
@@ -22,7 +23,7 @@ public static class BenchCommand
 
     public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
     {
-        var a = new Arguments("bench", argv, ["--width", "--height", "--repeat", "--threads", "--bands", "--band-range", "--wave", "--spp", "--models", "--rgb", "--integration", "--formats"], []);
+        var a = new Arguments("bench", argv, ["--width", "--height", "--repeat", "--threads", "--bands", "--band-range", "--wave", "--spp", "--models", "--rgb", "--integration", "--formats", "--integrator"], []);
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
         if (a.Positionals.Count > 1) throw new InputException("command line", $"unexpected argument {MessageText.Quote(a.Positionals[1])}", "usage: spectral bench [SCENE]");
         var scenePath = a.Positionals.Count == 1 ? a.Positionals[0] : DefaultScene();
@@ -34,22 +35,25 @@ public static class BenchCommand
             Height = a.Int("--height", 1, SceneLoader.MaxResolution) ?? (a.Positionals.Count == 0 ? 1024 : null),
         };
 
-        var clock = Stopwatch.StartNew();
-        var scene = SceneLoader.Load(scenePath, overrides);
-        double load = clock.Elapsed.TotalSeconds;
-        clock.Restart();
-        var geometry = new SceneGeometry(scene);
-        var integrator = Integrators.Create(scene, geometry);
-        Renderer.ReturnLoadGarbage();   // as `render` does
-        double build = clock.Elapsed.TotalSeconds;
+        var job = RenderJob.Load(new RenderRequest
+        {
+            ScenePath = scenePath,
+            Overrides = overrides,
+            Integrator = a.Value("--integrator") ?? Integrators.Default,
+            Threads = threads,
+        });
+        var scene = job.Scene;
+        double load = job.LoadSeconds;
+        job.Build();   // as `render` does: the loader's garbage returned
+        double build = job.BuildSeconds;
 
-        Renderer.Render(scene, integrator, threads);   // warm-up: JIT and caches
+        job.Render();   // warm-up: JIT and caches
         var times = new List<double>();
         RenderResult? last = null;
         for (int i = 0; i < repeat; i++)
         {
             GC.Collect();
-            last = Renderer.Render(scene, integrator, threads);
+            last = job.Render();
             times.Add(last.Elapsed.TotalSeconds);
         }
         times.Sort();
@@ -58,7 +62,7 @@ public static class BenchCommand
         double mrays = rays.Total / median / 1e6;
         long peak = Process.GetCurrentProcess().PeakWorkingSet64;
         var inv = CultureInfo.InvariantCulture;
-        int tris = geometry.TriangleCount;
+        int tris = job.Geometry!.TriangleCount;
 
         stdout.WriteLine($"scene            {scenePath}");
         stdout.WriteLine(string.Create(inv, $"image            {scene.Camera.Width} × {scene.Camera.Height}, {scene.Bands} bands ({scene.Grid}), {scene.Camera.SamplesPerPixel} spp, {threads} threads"));

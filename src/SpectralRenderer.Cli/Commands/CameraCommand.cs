@@ -54,7 +54,7 @@ public static class CameraCommand
         // --sensor, else the sensor written in the scene's camera object (render.json keeps the resolved scene).
         var sensorName = a.Value("--sensor") ?? SensorFile.SceneArgument;
         var sensor = sensorName == SensorFile.SceneArgument
-            ? SensorFile.FromScene(scene.Folder.Manifest.ResolvedScene, scene.Folder.Manifest.Scene)
+            ? SensorFile.FromScene(scene.Folder.Manifest.ResolvedScene?.ToJson(), scene.Folder.Manifest.Scene)
               ?? throw new InputException("command line", "--sensor is required: the scene's camera has no \"sensor\"",
                   $"one of {string.Join(", ", SensorPresets.Names)}, a JSON file, or \"sensor\" in the scene's camera object")
             : SensorFile.Resolve(sensorName);

@@ -5,6 +5,7 @@ using System.Text.Json.Nodes;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Output;
+using SpectralRenderer.Pipeline;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
@@ -18,7 +19,7 @@ public static class RenderCommand
         usage: spectral render SCENE.json|- [-o OUTDIR] [--width W] [--height H] [--bands N | S:E:N] [--wave S:STEP:E]
                                [--spp N] [--threads N] [--rgb srgb|paper] [--integration exact|weighted|paper]
                                [--formats LIST] [--exr-compression zip|zip-all|none] [--models DIR] [--quiet]
-                               [--crop X0,Y0,X1,Y1 | --shard I/N|none] [--shards N]
+                               [--crop X0,Y0,X1,Y1 | --shard I/N|none] [--shards N] [--integrator NAME]
 
         Renders a scene file (docs/scene-format.md) with the paper's eq. 2 in every band and writes:
           preview.png        8-bit sRGB (or eq. 4 with --rgb paper)
@@ -57,9 +58,11 @@ public static class RenderCommand
                              JOB_COMPLETION_INDEX (Kubernetes, with --shards N) or AWS_BATCH_JOB_ARRAY_INDEX/_SIZE;
                              --shard none renders the whole film even there
           --shards N         the shard count where the scheduler gives none (Kubernetes Indexed Jobs)
+          --integrator NAME  the integrator by its registered name (default: whitted, the paper's eq. 2 with
+                             Whitted recursion)
         """;
 
-    static readonly string[] Values = ["-o", "--out", "--width", "--height", "--bands", "--band-range", "--wave", "--spp", "--threads", "--rgb", "--integration", "--formats", "--exr-compression", "--models", "--crop", "--shard", "--shards"];
+    static readonly string[] Values = ["-o", "--out", "--width", "--height", "--bands", "--band-range", "--wave", "--spp", "--threads", "--rgb", "--integration", "--formats", "--exr-compression", "--models", "--crop", "--shard", "--shards", "--integrator"];
 
     [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
     public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
@@ -75,25 +78,21 @@ public static class RenderCommand
         int? threads = a.Int("--threads", 1, 1024);
         bool quiet = a.Flag("--quiet");
 
-        var loadClock = System.Diagnostics.Stopwatch.StartNew();
         byte[]? text = null;
         byte[] Text() => text ??= fromStdin ? SceneLoader.ReadAll(Console.OpenStandardInput()) : InputFile.ReadAllBytes(scenePath, "scene file");
         var overrides = Overrides(a, Text);   // options are checked before the scene is read
-        var scene = SceneLoader.Parse(Text(), scenePath, overrides);
-        double loadSeconds = loadClock.Elapsed.TotalSeconds;
-        var (crop, shard) = Region(a, scene.Camera.Width, scene.Camera.Height);
-        var products = scene.Output.Products;
-        if (shard is not null && (products & OutputProducts.Bands) != 0 && (products & (OutputProducts.Envi | OutputProducts.Npy)) == 0)
-            throw new InputException("--shard", "band images need a float cube in each shard: merge rescales them to the whole image's brightest value",
-                "add envi or npy to --formats");
-        if (crop is not null && (scene.Output.Products & OutputProducts.Lights) != 0)
-            throw new InputException("--formats", "the per-light outputs (lights) are written for whole renders only, not for a crop or shard", "render lights without --crop/--shard");
-        if (crop is not null && scene.Output.ExposureAuto)
-            throw new InputException(scenePath, "output.exposure \"auto\" is chosen from the whole image, which a shard or crop does not see",
-                "give a fixed \"exposure\" (a whole render's render.json states the one auto chose, $.colour.exposure)");
-        foreach (var w in scene.Warnings) stderr.WriteLine(w);
-        RenderMemory.Check(scene, threads ?? 0);
-        var folder = OutputFolder.Begin(outDir);
+        var request = new RenderRequest
+        {
+            ScenePath = scenePath,
+            Overrides = overrides,
+            Integrator = a.Value("--integrator") ?? Integrators.Default,
+            Region = Region(a),
+            Threads = threads ?? 0,
+            OutDir = outDir,
+            Run = new ManifestRun { CommandLine = "spectral render " + string.Join(' ', argv) },
+        };
+        request = request with { SceneText = text ?? (fromStdin ? Text() : null) };
+        var job = RenderJob.Load(request, new RenderObserver(Warning: stderr.WriteLine));
 
         // SIGINT and SIGTERM stop the render at the next pixel (and the writers at the next file): the staged files
         // are removed, the output folder keeps what it held, and the message says so.
@@ -103,91 +102,42 @@ public static class RenderCommand
         using var onInterrupt = PosixSignalRegistration.Create(PosixSignal.SIGINT, Stop);
         using var onTerminate = PosixSignalRegistration.Create(PosixSignal.SIGTERM, Stop);
         string StoppedAfter() => signalledAt == 0 ? "" : string.Create(CultureInfo.InvariantCulture, $", {System.Diagnostics.Stopwatch.GetElapsedTime(signalledAt).TotalSeconds:0.000} s after the signal");
-        int tilesDone = 0, tilesTotal = 0;
-        try
+        var progress = quiet ? null : ProgressBar.For(stderr);
+        job.Execute(new RenderObserver(Progress: progress is null ? null : progress.Report, StoppedAfter: StoppedAfter), cancel.Token);
+        progress?.Finish();
+        var result = job.Result!;
+        var scene = job.Scene;
+        if (result.Rays.OverBudgetRays > 0)
+            stderr.WriteLine(MessageText.Line($"spectral render: warning: {result.Rays.OverBudgetRays} camera rays reached the ray budget of {scene.RayBudget} rays; their deepest reflections and refractions are missing",
+                " (hint: raise \"ray_budget\", or lower \"max_depth\" or raise \"min_ray_weight\" in the scene)"));
+        if (!quiet)
         {
-            var progress = quiet ? null : ProgressBar.For(stderr);
-            var setup = System.Diagnostics.Stopwatch.StartNew();
-            var geometry = new SceneGeometry(scene);
-            var integrator = Integrators.Create(scene, geometry);
-            Renderer.ReturnLoadGarbage();
-            double buildSeconds = setup.Elapsed.TotalSeconds;
-            int degenerate = scene.Objects.Sum(o => o.Mesh?.DegenerateCount ?? 0);
-            RenderResult result;
-            try
-            {
-                result = Renderer.Render(scene, integrator, threads ?? 0, p =>
-                {
-                    tilesDone = p.TilesDone; tilesTotal = p.Tiles;
-                    progress?.Report(p);
-                }, cancel.Token, crop);
-            }
-            catch (OperationCanceledException e)
-            {
-                folder.Abandon();
-                throw new InterruptedException($"interrupted while rendering ({tilesDone} of {(tilesTotal > 0 ? tilesTotal : "all")} tiles done{StoppedAfter()}): nothing was written; {folder.Final} {(folder.HoldsRender ? "still holds the previous render, unchanged" : "holds no render")}", e.CancellationToken);
-            }
-            progress?.Finish();
-            if (result.Rays.OverBudgetRays > 0)
-                stderr.WriteLine(MessageText.Line($"spectral render: warning: {result.Rays.OverBudgetRays} camera rays reached the ray budget of {scene.RayBudget} rays; their deepest reflections and refractions are missing",
-                    " (hint: raise \"ray_budget\", or lower \"max_depth\" or raise \"min_ray_weight\" in the scene)"));
-            var writeClock = System.Diagnostics.Stopwatch.StartNew();
-            var run = new JsonObject
-            {
-                ["command_line"] = "spectral render " + string.Join(' ', argv),
-                ["load_s"] = loadSeconds,
-                ["build_s"] = buildSeconds,
-                ["triangles"] = geometry.TriangleCount,
-                ["degenerate_triangles_skipped"] = degenerate,
-                ["min_ray_weight"] = scene.MinRayWeight,
-                ["ray_budget"] = scene.RayBudget,
-                ["rays_pruned_by_weight"] = result.Rays.PrunedRays,
-                ["camera_rays_over_budget"] = result.Rays.OverBudgetRays,
-            };
-            if (shard is not null) run["shard"] = shard;
-            // The per-light transfer (opt-in): the same camera rays traced once more, recording eq. 2's factors per light.
-            LightTransfer? transfer = null;
-            if ((scene.Output.Products & OutputProducts.Lights) != 0)
-            {
-                var transferClock = System.Diagnostics.Stopwatch.StartNew();
-                transfer = LightTransfer.Trace(scene, geometry, threads ?? 0, cancel.Token);
-                run["light_transfer_s"] = transferClock.Elapsed.TotalSeconds;
-            }
-            run["overrides"] = OverridesJson(overrides);
-            var files = RenderOutputWriter.Write(scene, result, folder, run, cancel.Token, transfer);
-            if (!quiet)
-            {
-                double secs = result.Elapsed.TotalSeconds;
-                stderr.WriteLine(string.Create(CultureInfo.InvariantCulture,
-                    $"rendered {result.Image.Width}×{result.Image.Height}{(crop is { } c ? $" (film {scene.Camera.Width}×{scene.Camera.Height}, crop {c}{(shard is null ? "" : $", shard {shard}")})" : "")}, {scene.Grid.Count} bands ({scene.Grid}), {scene.Camera.SamplesPerPixel} spp{(geometry.TriangleCount > 0 ? $", {geometry.TriangleCount:N0} triangles ({degenerate} degenerate skipped)" : "")} in {secs:0.###} s ({result.Rays.Total / Math.Max(secs, 1e-9) / 1e6:0.##} Mrays/s, {result.Threads} threads); wrote {files.Count} files to {outDir} in {writeClock.Elapsed.TotalSeconds:0.##} s"));
-            }
-            return CommandLine.Success;
+            double secs = result.Elapsed.TotalSeconds;
+            int triangles = job.Geometry?.TriangleCount ?? 0;
+            stderr.WriteLine(string.Create(CultureInfo.InvariantCulture,
+                $"rendered {result.Image.Width}×{result.Image.Height}{(job.Crop is { } c ? $" (film {scene.Camera.Width}×{scene.Camera.Height}, crop {c}{(job.Shard is null ? "" : $", shard {job.Shard}")})" : "")}, {scene.Grid.Count} bands ({scene.Grid}), {scene.Camera.SamplesPerPixel} spp{(triangles > 0 ? $", {triangles:N0} triangles ({job.DegenerateTriangles} degenerate skipped)" : "")} in {secs:0.###} s ({result.Rays.Total / Math.Max(secs, 1e-9) / 1e6:0.##} Mrays/s, {result.Threads} threads); wrote {job.Files.Count} files to {outDir} in {job.WriteSeconds:0.##} s"));
         }
-        catch (Exception e) when (e is not InterruptedException)
-        {
-            folder.Abandon();
-            throw;
-        }
+        return CommandLine.Success;
     }
 
     /// <summary>The film pixels to render (null: all) from --crop, --shard or a job array's variables, and the shard's description.</summary>
-    static (PixelRect? Crop, string? Shard) Region(Arguments a, int width, int height)
+    static RenderRegion? Region(Arguments a)
     {
         string? crop = a.Value("--crop"), shard = a.Value("--shard");
         int? shards = a.Int("--shards", 1, 1 << 20);
         if (crop is not null && shard is not null) throw new InputException("--crop", "cannot be combined with --shard", "a shard is a crop: give one of them");
-        if (crop is not null) return (PixelRect.Parse(crop, width, height), null);
-        if (shard == "none") return (null, null);
+        if (crop is not null) return RenderRegion.Crop(crop);
+        if (shard == "none") return null;
         if (shard is not null)
         {
             var s = Distributed.Shard.Parse(shard);
             if (shards is { } n && n != s.Count) throw new InputException("--shards", $"{n} disagrees with --shard {shard}", "give --shard I/N alone, or --shards N equal to its N");
-            return (s.Strip(width, height), $"{s} (--shard)");
+            return new RenderRegion(s.Strip, $"{s} (--shard)");
         }
         if (Distributed.SchedulerEnvironment.Resolve(shards) is { } env)
-            return (env.Shard.Strip(width, height), $"{env.Shard} ({env.Source})");
+            return new RenderRegion(env.Shard.Strip, $"{env.Shard} ({env.Source})");
         if (shards is not null) throw new InputException("--shards", "is given but no job array variable is set", "use --shard I/N outside a job array");
-        return (null, null);
+        return null;
     }
 
     [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
@@ -227,21 +177,6 @@ public static class RenderCommand
             ModelDirectories = models,
         };
     }
-
-    /// <summary>The command-line overrides as render.json records them (relight rebuilds the same scene from them).</summary>
-    public static JsonObject OverridesJson(SceneOverrides o) => new()
-    {
-        ["width"] = o.Width,
-        ["height"] = o.Height,
-        ["bands"] = o.Bands,
-        ["wave"] = o.Wave,
-        ["spp"] = o.SamplesPerPixel,
-        ["rgb"] = o.Rgb,
-        ["integration"] = o.Integration,
-        ["formats"] = o.Formats,
-        ["exr_compression"] = o.ExrCompression,
-        ["models"] = new JsonArray(o.ModelDirectories.Select(d => (JsonNode)JsonValue.Create(Path.GetFullPath(d))).ToArray()),
-    };
 
     static Spectra.BandGrid SceneRange(byte[] sceneText)
     {

@@ -4,6 +4,7 @@ using SpectralRenderer.Color;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Output;
+using SpectralRenderer.Pipeline;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
@@ -64,11 +65,18 @@ public static class PaperExperiments
         {
             var path = Path.Combine(sceneDir, file + ".json");
             var dir = Path.Combine(outDir, file);
-            var clock = Stopwatch.StartNew();
-            Scene scene;
+            RenderJob render;
             try
             {
-                scene = SceneLoader.Load(path, new SceneOverrides { ModelDirectories = models, ResolutionScale = scale, SamplesPerPixel = samplesPerPixel, Formats = "png,bands,npy,aov" });
+                render = RenderJob.Load(new RenderRequest
+                {
+                    ScenePath = path,
+                    Overrides = new SceneOverrides { ModelDirectories = models, ResolutionScale = scale, SamplesPerPixel = samplesPerPixel, Formats = "png,bands,npy,aov" },
+                    Threads = threads,
+                    OutDir = dir,
+                    Geometries = geometries,
+                    Detail = RunDetail.None,
+                });
             }
             catch (InputException e) when (e.Problem == InputProblem.MissingFile)
             {
@@ -76,18 +84,17 @@ public static class PaperExperiments
                 log?.Invoke($"{file}: skipped — {e.Message}");
                 continue;
             }
-            double load = clock.Elapsed.TotalSeconds;
-            var geometry = new SceneGeometry(scene, geometries);
-            var result = Renderer.Render(scene, Integrators.Create(scene, geometry), threads);
-            clock.Restart();
-            RenderOutputWriter.Write(scene, result, dir);
+            double load = render.LoadSeconds;
+            render.Execute();
+            var (scene, result, geometry) = (render.Scene, render.Result!, render.Geometry!);
+            var clock = Stopwatch.StartNew();
             if (file.StartsWith("paper-3.1", StringComparison.Ordinal))
             {   // Fig. 3 also in the paper's own eq. 4.
                 // The pixels' own colours (exact on the tables by default), as preview.png uses them.
                 var eq4 = RenderOutputWriter.Preview(result.Image.Width, result.Image.Height, XyzPlanes.FromPixels(result.Xyz!), new DisplayEncoder(scene.Colorimeter, RgbSpace.Paper, scene.Output.Exposure));
                 AtomicFile.Write(Path.Combine(dir, "preview-eq4.png"), s => PngWriter.WriteRgb8(s, result.Image.Width, result.Image.Height, eq4));
             }
-            double write = clock.Elapsed.TotalSeconds;
+            double write = render.WriteSeconds + clock.Elapsed.TotalSeconds;
             var run = new ExperimentRun(section, file, Describe(scene), dir, result.Image.Width, result.Image.Height, scene.Bands,
                 load, result.Elapsed.TotalSeconds, write, result.Rays.Total, geometry.TriangleCount, null);
             runs.Add(run);

@@ -7,6 +7,7 @@ using System.Text.RegularExpressions;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Output;
+using SpectralRenderer.Output.Products;
 using SpectralRenderer.Rendering;
 
 namespace SpectralRenderer.Distributed;
@@ -47,18 +48,15 @@ public static class ShardMerge
             {
                 cancel.ThrowIfCancellationRequested();
                 var target = Path.Combine(staging, f);
-                switch (f)
+                switch (OutputProductTable.Owner(f)?.Merging(f) ?? ShardMerging.None)
                 {
-                    case "preview.png": MergePng(parts, f, target, width, height); break;
-                    case "object-id.png": MergePng(parts, f, target, width, height); break;
-                    case "mask-highlight.png": MergePng(parts, f, target, width, height); break;
-                    case var m when m.StartsWith("mask-lit-", StringComparison.Ordinal): MergePng(parts, f, target, width, height); break;
-                    case "spectral.exr" or "reflectance.exr": MergeExr(parts, f, target, width, height); break;
-                    case "spectral.img": MergeEnvi(parts, target, width, bands); break;
-                    case "spectral.hdr": MergeEnviHeader(parts[0], target, height); break;
-                    case "spectral.npy": MergeNpy(parts, target, width, height, bands); break;
-                    case "wavelengths.csv": AtomicFile.WriteAllBytes(target, File.ReadAllBytes(Path.Combine(parts[0].Dir, f))); break;
-                    case var b when b.StartsWith("bands/", StringComparison.Ordinal) || b == "bands.png": break;   // above
+                    case ShardMerging.Png: MergePng(parts, f, target, width, height); break;
+                    case ShardMerging.ExrChunks: MergeExr(parts, f, target, width, height); break;
+                    case ShardMerging.EnviCube: MergeEnvi(parts, target, width, bands); break;
+                    case ShardMerging.EnviHeader: MergeEnviHeader(parts[0], target, height); break;
+                    case ShardMerging.NpyCube: MergeNpy(parts, target, width, height, bands); break;
+                    case ShardMerging.Copy: AtomicFile.WriteAllBytes(target, File.ReadAllBytes(Path.Combine(parts[0].Dir, f))); break;
+                    case ShardMerging.BandImages: break;   // above
                     default: throw new InputException(Path.Combine(parts[0].Dir, "render.json"), $"lists '{f}', a file merge does not know", "merge shards written by the same version");
                 }
             }
@@ -428,11 +426,19 @@ public static class ShardMerge
         double render = parts.Sum(p => p.Manifest.RenderSeconds);
         long Sum(Func<ManifestRays, long> f) => parts.Sum(p => f(p.Manifest.Rays));
         long total = Sum(r => r.Total);
-        var run = new JsonObject { ["command_line"] = commandLine, ["merged_shards"] = parts.Count };
-        if (first.Run is { } r0)
-            foreach (var (k, v) in r0)
-                if (k is not ("command_line" or "shard"))
-                    run[k] = k.EndsWith("_s", StringComparison.Ordinal) ? parts.Max(p => p.Manifest.Run?[k]?.GetValue<double>() ?? 0) : v?.DeepClone();
+        // The first shard's run with the merge's command line, no shard, and each time the longest any shard took.
+        double? Longest(Func<ManifestRun, double?> seconds) =>
+            first.Run is { } r0 && seconds(r0) is not null ? parts.Max(p => (p.Manifest.Run is { } r ? seconds(r) : null) ?? 0) : null;
+        var run = (first.Run ?? new ManifestRun()) with
+        {
+            CommandLine = commandLine,
+            MergedShards = parts.Count,
+            Shard = null,
+            LoadSeconds = Longest(r => r.LoadSeconds),
+            BuildSeconds = Longest(r => r.BuildSeconds),
+            LightTransferSeconds = Longest(r => r.LightTransferSeconds),
+            WriteSeconds = Longest(r => r.WriteSeconds),
+        };
         return first with
         {
             CreatedUtc = RenderManifest.Now(),

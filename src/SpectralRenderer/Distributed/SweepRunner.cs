@@ -108,12 +108,19 @@ public static class SweepRunner
         File.Delete(Path.Combine(dir, "job.json"));
         var text = plan.SceneBytes(job);
         // Parsed as if it were the base scene file, so its relative mesh and spectrum files resolve as the base scene's do.
-        var scene = SceneLoader.Parse(text, plan.ScenePath, overrides);
+        var render = Pipeline.RenderJob.Load(new Pipeline.RenderRequest
+        {
+            ScenePath = plan.ScenePath,
+            SceneText = text,
+            Overrides = overrides,
+            Threads = threads,
+            OutDir = dir,
+            Geometries = geometries,
+            Run = new ManifestRun { CommandLine = $"spectral sweep {plan.PlanPath}", SweepJob = job.Id },
+            Detail = Pipeline.RunDetail.Geometry,
+        });
         AtomicFile.WriteAllBytes(Path.Combine(dir, "scene.json"), text);
-        var geometry = new SceneGeometry(scene, geometries);
-        var result = Renderer.Render(scene, Integrators.Create(scene, geometry), threads, null, cancel);
-        var run = new JsonObject { ["command_line"] = $"spectral sweep {plan.PlanPath}", ["sweep_job"] = job.Id, ["triangles"] = geometry.TriangleCount };
-        RenderOutputWriter.Write(scene, result, dir, run, cancel);
+        render.Execute(cancel: cancel);
     }
 
     /// <summary>--layout pairs: the job's cube and its RGB image side by side under OUT/cube and OUT/rgb, named by job id.</summary>

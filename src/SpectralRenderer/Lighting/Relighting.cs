@@ -24,60 +24,42 @@ public sealed record LightChange(string Light, string? Spectrum, double? Intensi
 /// </summary>
 public static class Relighting
 {
-    public sealed record Source(string Dir, RenderManifest Manifest, JsonObject Scene, string ScenePath, SceneOverrides Overrides, string[] LightNames);
+    public sealed record Source(string Dir, RenderManifest Manifest, ManifestScene Scene, string ScenePath, SceneOverrides Overrides, string[] LightNames);
 
     /// <summary>A render folder read through its manifest: the resolved scene and the overrides it was rendered with.</summary>
     public static Source Open(string dir)
     {
         if (!Directory.Exists(dir)) throw new InputException(dir, "no such render folder", "give the -o folder of a 'spectral render' run");
         var manifest = RenderManifest.Read(dir);
-        if (manifest.ResolvedScene is not JsonObject scene)
+        if (manifest.ResolvedScene is not { } scene)
             throw new InputException(Path.Combine(dir, RenderManifest.FileName), "has no resolved_scene", "render again with this version of spectral");
-        var o = manifest.Run?["overrides"] as JsonObject;
-        var overrides = new SceneOverrides
-        {
-            Width = (int?)o?["width"],
-            Height = (int?)o?["height"],
-            Bands = (string?)o?["bands"],
-            Wave = (string?)o?["wave"],
-            SamplesPerPixel = (int?)o?["spp"],
-            Rgb = (string?)o?["rgb"],
-            Integration = (string?)o?["integration"],
-            Formats = (string?)o?["formats"],
-            ExrCompression = (string?)o?["exr_compression"],
-            ModelDirectories = o?["models"]?.AsArray().Select(d => (string)d!).Where(Directory.Exists).ToList() ?? [],
-            // No ray is traced: the meshes' triangles are not needed (nor their files present).
-            LoadMeshes = false,
-        };
-        var names = (scene["lights"] as JsonArray ?? []).Select((l, i) => (string?)l?["name"] ?? $"light-{i}").ToArray();
+        // No ray is traced: the meshes' triangles are not needed (nor their files present).
+        var overrides = Pipeline.RenderJob.Overrides(manifest.Run?.Overrides) with { LoadMeshes = false };
+        var names = scene.Lights.Select(l => l.Name).ToArray();
         return new Source(dir, manifest, scene, manifest.Scene.Length > 0 ? manifest.Scene : Path.Combine(dir, "scene.json"), overrides, names);
     }
 
     /// <summary>The scene of <paramref name="src"/> with the changes applied, loaded as a render would load it.</summary>
     public static Scene ChangedScene(Source src, IReadOnlyList<LightChange> changes, string? white)
     {
-        var scene = (JsonObject)src.Scene.DeepClone();
-        var lights = scene["lights"] as JsonArray ?? [];
+        var edits = new List<(int, string?, double?)>();
         foreach (var c in changes)
         {
             int k = Array.IndexOf(src.LightNames, c.Light);
             if (k < 0)
                 throw new InputException($"--light {c.Light}", $"the render has no light named '{c.Light}'",
                     InputException.DidYouMean(c.Light, src.LightNames) is { } d ? d : $"its lights are: {string.Join(", ", src.LightNames)}");
-            var l = lights[k]!.AsObject();
             if (c.Spectrum is not null) Check(src, c.Spectrum, $"--light {c.Light}");
-            if (c.Spectrum is not null) l["spectrum"] = c.Spectrum;
-            if (c.Intensity is not null) l["intensity"] = c.Intensity;
+            edits.Add((k, c.Spectrum, c.Intensity));
         }
-        if (white is not null) { Check(src, white, "--white"); scene["white"] = white; }
-        var bytes = Encoding.UTF8.GetBytes(scene.ToJsonString());
-        return SceneLoader.Parse(bytes, src.ScenePath, src.Overrides);
+        if (white is not null) Check(src, white, "--white");
+        return SceneLoader.Parse(src.Scene.WithLights(edits, white), src.ScenePath, src.Overrides);
     }
 
     /// <summary>A spectrum named on the command line resolves (or is one of the scene's own named spectra).</summary>
     static void Check(Source src, string spectrum, string where)
     {
-        if (src.Scene["spectra"] is JsonObject named && named.ContainsKey(spectrum)) return;
+        if (src.Scene.NamesSpectrum(spectrum)) return;
         Spectra.SpectrumLibrary.Resolve(spectrum, Path.GetDirectoryName(Path.GetFullPath(src.ScenePath)), where);
     }
 
@@ -91,53 +73,44 @@ public static class Relighting
         if (transfer.Width != scene.Camera.Width || transfer.Height != scene.Camera.Height || transfer.Bands != scene.Bands)
             throw new InputException(src.Dir, $"its lights/ are {transfer.Width}×{transfer.Height}×{transfer.Bands} but the scene rebuilds as {scene.Camera.Width}×{scene.Camera.Height}×{scene.Bands}",
                 "the scene file changed since the render; render again");
-        var (image, xyz, fallback) = transfer.Relight(scene);
-        var result = new RenderResult
-        {
-            Image = image,
-            Xyz = xyz,
-            FallbackPixels = fallback,
-            ObjectIds = transfer.ObjectIds,
-            LitMasks = LitMasks.From(transfer.LitMasks, scene.Lights.Count),
-            Highlights = transfer.CentreHighlights(scene),
-            Rays = new RayCounters(),
-            Elapsed = clock.Elapsed,
-            Threads = Environment.ProcessorCount,
-            Tiles = 0,
-            Crop = PixelRect.Whole(transfer.Width, transfer.Height),
-        };
-        var compute = clock.Elapsed;
-        var run = new JsonObject
-        {
-            ["command_line"] = commandLine,
-            ["overrides"] = src.Manifest.Run?["overrides"]?.DeepClone(),
-            ["relit"] = new JsonObject
-            {
-                ["from"] = Path.GetFullPath(src.Dir),
-                ["from_created_utc"] = src.Manifest.CreatedUtc,
-                ["method"] = "per-light transfer (lights/): L_b = sum_c F_c * P_c,b and XYZ = sum_c F_c * XYZ_c with P_c rebuilt from the new lights' term tables; no rays traced",
-                ["changes"] = new JsonArray(changes.Select(c => (JsonNode)new JsonObject
-                { ["light"] = c.Light, ["spectrum"] = c.Spectrum, ["intensity"] = c.Intensity }).ToArray()),
-                ["white"] = white,
-                // Wall seconds to read lights/ and recombine the image and its colours (no files written).
-                ["compute_s"] = compute.TotalSeconds,
-            },
-        };
         if (Path.GetFullPath(outDir) == Path.GetFullPath(src.Dir))
             throw new InputException(outDir, "is the folder being relit", "write the relit render to another folder with -o");
         Directory.CreateDirectory(outDir);
-        string? metricsCsv = null;
-        if (metrics)
+        var crop = PixelRect.Whole(transfer.Width, transfer.Height);
+        var reuse = Reusable(src, scene, crop);
+        var job = Pipeline.RenderJob.Load(new Pipeline.RenderRequest
         {
-            var (mj, csv) = Metrics(src, scene, transfer, xyz);
-            ((JsonObject)run["relit"]!)["metrics"] = mj;
-            metricsCsv = csv;
-        }
-        var reuse = Reusable(src, scene, result.Crop);
+            Scene = scene,
+            ScenePath = src.ScenePath,
+            OutDir = outDir,
+            FromTransfer = new Pipeline.TransferSource(transfer, reuse),
+            Detail = Pipeline.RunDetail.None,
+        });
+        var result = job.Render(cancel: cancel);
+        var compute = clock.Elapsed;
         var copied = (reuse?.Names ?? Enumerable.Empty<string>()).Concat(transfer.StoredIn is null ? [] : LightTransferFiles.Arrays.Select(f => $"{LightTransferFiles.Folder}/{f}"));
-        // Which files were copied from the source (no light changes them; see Reusable), not encoded again.
-        ((JsonObject)run["relit"]!)["copied_files"] = new JsonArray(copied.Order(StringComparer.Ordinal).Select(f => (JsonNode)f).ToArray());
-        var files = RenderOutputWriter.Write(scene, result, outDir, run, cancel, transfer, reuse);
+        string? metricsCsv = null;
+        RelightMetrics? metricsRecord = null;
+        if (metrics) (metricsRecord, metricsCsv) = Metrics(src, scene, transfer, result.Xyz!);
+        job.RunRecord = new ManifestRun
+        {
+            CommandLine = commandLine,
+            HasOverrides = true,
+            Overrides = src.Manifest.Run?.Overrides,
+            Relit = new ManifestRelit
+            {
+                From = Path.GetFullPath(src.Dir),
+                FromCreatedUtc = src.Manifest.CreatedUtc,
+                Method = "per-light transfer (lights/): L_b = sum_c F_c * P_c,b and XYZ = sum_c F_c * XYZ_c with P_c rebuilt from the new lights' term tables; no rays traced",
+                Changes = changes.Select(c => new ManifestLightChange(c.Light, c.Spectrum, c.Intensity)).ToArray(),
+                White = white,
+                ComputeSeconds = compute.TotalSeconds,
+                Metrics = metricsRecord,
+                // Which files were copied from the source (no light changes them; see Reusable), not encoded again.
+                CopiedFiles = copied.Order(StringComparer.Ordinal).ToArray(),
+            },
+        };
+        var files = job.Write(cancel).ToList();
         if (metricsCsv is not null)
         {
             AtomicFile.WriteAllText(Path.Combine(outDir, "relight-metrics.csv"), metricsCsv);
@@ -156,20 +129,28 @@ public static class Relighting
     public static ReusedFiles? Reusable(Source src, Scene scene, PixelRect crop)
     {
         if (src.Manifest.Build != RenderOutputWriter.EngineBuild || src.Manifest.Files is not { } listed) return null;
-        var names = new List<string> { "object-id.png" };
-        for (int k = 0; k < Math.Min(32, scene.Lights.Count); k++) names.Add($"mask-lit-{k}.png");
-        if (SameMaterials(src, scene))
+        // What the products say a relight may copy: files of the geometry alone; the ground truth when the materials and its header are the source's.
+        var names = new List<string>();
+        foreach (var file in listed)
         {
-            var path = Path.Combine(src.Dir, "reflectance.exr");
-            var start = AnalysisImages.ReflectanceFileStart(scene, crop);
-            if (File.Exists(path) && new FileInfo(path).Length > start.Length)
+            switch (Output.Products.OutputProductTable.Owner(file)?.Reuse(file) ?? Output.Products.RelightReuse.Never)
             {
-                var head = new byte[start.Length];
-                using (var f = File.OpenRead(path)) f.ReadExactly(head);
-                if (head.AsSpan().SequenceEqual(start)) names.Add("reflectance.exr");
+                case Output.Products.RelightReuse.Geometry: names.Add(file); break;
+                case Output.Products.RelightReuse.SameMaterials when SameMaterials(src, scene) && SameHeader(src, file, AnalysisImages.ReflectanceFileStart(scene, crop)):
+                    names.Add(file); break;
             }
         }
-        return new ReusedFiles(Path.GetFullPath(src.Dir), names.Where(n => listed.Contains(n) && File.Exists(Path.Combine(src.Dir, n))));
+        return new ReusedFiles(Path.GetFullPath(src.Dir), names.Where(n => File.Exists(Path.Combine(src.Dir, n))));
+    }
+
+    /// <summary>Whether the source's <paramref name="file"/> starts with <paramref name="start"/> (and holds more).</summary>
+    static bool SameHeader(Source src, string file, byte[] start)
+    {
+        var path = Path.Combine(src.Dir, file);
+        if (!File.Exists(path) || new FileInfo(path).Length <= start.Length) return false;
+        var head = new byte[start.Length];
+        using (var f = File.OpenRead(path)) f.ReadExactly(head);
+        return head.AsSpan().SequenceEqual(start);
     }
 
     /// <summary>Whether the scene's materials are the source's, name for name and band value for band value (lights/lights.json).</summary>
@@ -196,7 +177,7 @@ public static class Relighting
     /// object the ΔE00 (CIEDE2000, Lab on the relit scene's white) between each pixel's colour in the source render and
     /// in the relit one (mean and maximum over the pixels whose centre ray sees the object).
     /// </summary>
-    public static (JsonObject Json, string Csv) Metrics(Source src, Scene relit, LightTransfer transfer, float[] relitXyz)
+    public static (RelightMetrics Record, string Csv) Metrics(Source src, Scene relit, LightTransfer transfer, float[] relitXyz)
     {
         var original = ChangedScene(src, [], null);
         var (_, xyz0, _) = transfer.Relight(original);
@@ -213,24 +194,24 @@ public static class Relighting
             sum[o] += d; count[o]++; max[o] = Math.Max(max[o], d);
         }
         var csv = new StringBuilder("kind,name,pixels,mean_dE00,max_dE00,Ra_CIE13.3,Rf_CIE224_2017,CCT_K\n");
-        var lights = new JsonArray();
+        var lights = new List<RelightLightMetrics>();
         foreach (var l in relit.Lights)
         {
             double? ra = null, rf = null, cct = null;
             if (l.Spectrum is { } sp)
                 try { var r = Color.ColorRenderingIndex.Of(sp); ra = r.Ra; cct = r.Cct; rf = Color.ColorFidelityIndex.Of(sp).Rf; }
                 catch (Exception e) when (e is ArgumentException or InvalidOperationException) { }
-            lights.Add((JsonNode)new JsonObject { ["light"] = l.Name, ["spectrum"] = l.Spectrum?.Name, ["Ra"] = ra, ["Rf"] = rf, ["cct_K"] = cct });
+            lights.Add(new RelightLightMetrics(l.Name, l.Spectrum?.Name, ra, rf, cct));
             csv.Append(CultureInfo.InvariantCulture, $"light,{l.Name},,,,{ra:0.00},{rf:0.00},{cct:0}\n");
         }
-        var objs = new JsonArray();
+        var objs = new List<RelightObjectMetrics>();
         for (int o = 0; o < objects; o++)
         {
             if (count[o] == 0) continue;
-            objs.Add((JsonNode)new JsonObject { ["object"] = relit.Objects[o].Name, ["pixels"] = count[o], ["mean_dE00"] = sum[o] / count[o], ["max_dE00"] = max[o] });
+            objs.Add(new RelightObjectMetrics(relit.Objects[o].Name, count[o], sum[o] / count[o], max[o]));
             csv.Append(CultureInfo.InvariantCulture, $"object,{relit.Objects[o].Name},{count[o]},{sum[o] / count[o]:0.0000},{max[o]:0.0000},,,\n");
         }
-        return (new JsonObject { ["white"] = relit.ReferenceWhite.Name, ["lights"] = lights, ["objects"] = objs }, csv.ToString());
+        return (new RelightMetrics(relit.ReferenceWhite.Name, lights, objs), csv.ToString());
     }
 
     /// <summary>

@@ -76,7 +76,7 @@ public static class SpectralViewer
             // Candidate lights: P of every component that follows a light, per unit intensity, from the term tables of
             // the render's scene with every light given that spectrum (so the page's colour is exact, not eq. 3 on bands).
             var src = Relighting.Open(dir);
-            var resolvedLights = manifest.ResolvedScene?["lights"] as JsonArray;
+            var resolvedLights = manifest.ResolvedScene?.Lights;
             var comps = transfer["components"]!.AsArray();
             var components = LightTransferFiles.Read(dir, Relighting.ChangedScene(src, [], null)).Components;
             var presets = new JsonArray();
@@ -96,7 +96,7 @@ public static class SpectralViewer
             for (int k = 0; k < tl.Count; k++)
             {
                 var l = tl[k]!;
-                double intensity = (double?)resolvedLights?[k]?["intensity"] ?? 1;
+                double intensity = (resolvedLights is { } rl && k < rl.Count ? rl[k].Intensity : null) ?? 1;
                 string spectrumName = (string?)l["spectrum"] ?? $"light {k}";
                 string preset = $"render: {spectrumName} ({l["name"]})";
                 TabulatedSpectrum? s = null;

@@ -81,12 +81,12 @@ public sealed record RenderManifest
     public required ManifestRays Rays { get; init; }
     public required int Threads { get; init; }
     public required int Tiles { get; init; }
-    /// <summary>How the command ran (command line, load and build times), as the command gives it.</summary>
-    public JsonObject? Run { get; init; }
+    /// <summary>How the render ran (command line, load and build times, overrides, what it was relit from).</summary>
+    public ManifestRun? Run { get; init; }
     /// <summary>The files the render wrote, relative to its folder.</summary>
     public IReadOnlyList<string>? Files { get; init; }
-    /// <summary>The resolved scene.</summary>
-    public JsonObject? ResolvedScene { get; init; }
+    /// <summary>The resolved scene: the scene file as the render read it.</summary>
+    public ManifestScene? ResolvedScene { get; init; }
     /// <summary>What the render computes (<see cref="Output.SceneHash"/>): equal for the shards of one render.</summary>
     public string? SceneHash { get; init; }
     /// <summary>
@@ -194,13 +194,75 @@ public sealed record RenderManifest
             },
             ["threads"] = Threads,
             ["tiles"] = Tiles,
-            ["run"] = Run?.DeepClone(),
+            ["run"] = Run is null ? null : RunJson(Run),
             ["files"] = files,
-            ["resolved_scene"] = ResolvedScene?.DeepClone(),
+            ["resolved_scene"] = ResolvedScene?.ToJson(),
         };
         if (SceneHash is not null) json["scene_hash"] = SceneHash;
         if (Crop is { } c) json["crop"] = new JsonObject { ["x0"] = c.X0, ["y0"] = c.Y0, ["x1"] = c.X1, ["y1"] = c.Y1 };
         return json;
+    }
+
+    static JsonObject RunJson(ManifestRun run)
+    {
+        var o = new JsonObject();
+        void Put(string key, JsonNode? value, bool present) { if (present) o[key] = value; }
+        Put("command_line", run.CommandLine, run.CommandLine is not null);
+        Put("merged_shards", run.MergedShards, run.MergedShards is not null);
+        Put("sweep_job", run.SweepJob, run.SweepJob is not null);
+        Put("load_s", run.LoadSeconds, run.LoadSeconds is not null);
+        Put("build_s", run.BuildSeconds, run.BuildSeconds is not null);
+        Put("triangles", run.Triangles, run.Triangles is not null);
+        Put("degenerate_triangles_skipped", run.DegenerateTrianglesSkipped, run.DegenerateTrianglesSkipped is not null);
+        Put("min_ray_weight", run.MinRayWeight, run.MinRayWeight is not null);
+        Put("ray_budget", run.RayBudget, run.RayBudget is not null);
+        Put("rays_pruned_by_weight", run.RaysPrunedByWeight, run.RaysPrunedByWeight is not null);
+        Put("camera_rays_over_budget", run.CameraRaysOverBudget, run.CameraRaysOverBudget is not null);
+        Put("shard", run.Shard, run.Shard is not null);
+        Put("light_transfer_s", run.LightTransferSeconds, run.LightTransferSeconds is not null);
+        Put("overrides", run.Overrides is { } v ? OverridesJson(v) : null, run.HasOverrides || run.Overrides is not null);
+        Put("relit", run.Relit is { } relit ? RelitJson(relit) : null, run.Relit is not null);
+        Put("write_s", run.WriteSeconds, run.WriteSeconds is not null);
+        return o;
+    }
+
+    static JsonObject OverridesJson(ManifestOverrides v) => new()
+    {
+        ["width"] = v.Width,
+        ["height"] = v.Height,
+        ["bands"] = v.Bands,
+        ["wave"] = v.Wave,
+        ["spp"] = v.SamplesPerPixel,
+        ["rgb"] = v.Rgb,
+        ["integration"] = v.Integration,
+        ["formats"] = v.Formats,
+        ["exr_compression"] = v.ExrCompression,
+        ["models"] = new JsonArray(v.Models.Select(d => (JsonNode)JsonValue.Create(d)).ToArray()),
+    };
+
+    static JsonObject RelitJson(ManifestRelit relit)
+    {
+        var o = new JsonObject
+        {
+            ["from"] = relit.From,
+            ["from_created_utc"] = relit.FromCreatedUtc,
+            ["method"] = relit.Method,
+            ["changes"] = new JsonArray(relit.Changes.Select(c => (JsonNode)new JsonObject
+            { ["light"] = c.Light, ["spectrum"] = c.Spectrum, ["intensity"] = c.Intensity }).ToArray()),
+            ["white"] = relit.White,
+            ["compute_s"] = relit.ComputeSeconds,
+        };
+        if (relit.Metrics is { } m)
+            o["metrics"] = new JsonObject
+            {
+                ["white"] = m.White,
+                ["lights"] = new JsonArray(m.Lights.Select(l => (JsonNode)new JsonObject
+                { ["light"] = l.Light, ["spectrum"] = l.Spectrum, ["Ra"] = l.Ra, ["Rf"] = l.Rf, ["cct_K"] = l.CctKelvin }).ToArray()),
+                ["objects"] = new JsonArray(m.Objects.Select(x => (JsonNode)new JsonObject
+                { ["object"] = x.Object, ["pixels"] = x.Pixels, ["mean_dE00"] = x.MeanDeltaE00, ["max_dE00"] = x.MaxDeltaE00 }).ToArray()),
+            };
+        if (relit.CopiedFiles is { } copied) o["copied_files"] = new JsonArray(copied.Select(f => (JsonNode)f).ToArray());
+        return o;
     }
 
     public string ToJsonText() => ToJson().ToJsonString(new JsonSerializerOptions { WriteIndented = true });
@@ -294,9 +356,9 @@ public sealed record RenderManifest
                     r.OptLong(rays, "total") ?? 0, r.OptNumber(rays, "mrays_per_s") ?? 0),
             Threads = r.OptInt(json, "threads") ?? 0,
             Tiles = r.OptInt(json, "tiles") ?? 0,
-            Run = json["run"] as JsonObject,
+            Run = json["run"] is JsonObject run ? r.Run(run) : null,
             Files = json["files"] is JsonArray fs ? fs.Select(f => (string?)f ?? "").ToArray() : null,
-            ResolvedScene = json["resolved_scene"] as JsonObject,
+            ResolvedScene = json["resolved_scene"] is JsonObject resolved ? new ManifestScene(resolved) : null,
             SceneHash = r.OptStr(json, "scene_hash"),
             Crop = json["crop"] is JsonObject crop
                 ? new Rendering.PixelRect(r.Int(crop, "x0", "$.crop"), r.Int(crop, "y0", "$.crop"), r.Int(crop, "x1", "$.crop"), r.Int(crop, "y1", "$.crop"))
@@ -325,6 +387,59 @@ public sealed record RenderManifest
 
         public JsonObject[] Arr(JsonObject o, string key, string at) =>
             (o[key] as JsonArray ?? throw Missing($"{at}.{key}", "an array")).Select((e, i) => e as JsonObject ?? throw Missing($"{at}.{key}[{i}]", "an object")).ToArray();
+
+        public ManifestRun Run(JsonObject o)
+        {
+            ManifestOverrides? overrides = o["overrides"] is JsonObject v
+                ? new ManifestOverrides(OptInt(v, "width"), OptInt(v, "height"), OptStr(v, "bands"), OptStr(v, "wave"), OptInt(v, "spp"), OptStr(v, "rgb"),
+                    OptStr(v, "integration"), OptStr(v, "formats"), OptStr(v, "exr_compression"),
+                    v["models"] is JsonArray ms ? ms.Select(m => m is JsonValue mv && mv.TryGetValue(out string? d) ? d : null).OfType<string>().ToArray() : [])
+                : null;
+            return new ManifestRun
+            {
+                CommandLine = OptStr(o, "command_line"),
+                MergedShards = OptInt(o, "merged_shards"),
+                SweepJob = OptStr(o, "sweep_job"),
+                LoadSeconds = OptNumber(o, "load_s"),
+                BuildSeconds = OptNumber(o, "build_s"),
+                Triangles = OptInt(o, "triangles"),
+                DegenerateTrianglesSkipped = OptInt(o, "degenerate_triangles_skipped"),
+                MinRayWeight = OptNumber(o, "min_ray_weight"),
+                RayBudget = OptInt(o, "ray_budget"),
+                RaysPrunedByWeight = OptLong(o, "rays_pruned_by_weight"),
+                CameraRaysOverBudget = OptLong(o, "camera_rays_over_budget"),
+                Shard = OptStr(o, "shard"),
+                LightTransferSeconds = OptNumber(o, "light_transfer_s"),
+                HasOverrides = o.ContainsKey("overrides"),
+                Overrides = overrides,
+                Relit = o["relit"] is JsonObject relit ? Relit(relit) : null,
+                WriteSeconds = OptNumber(o, "write_s"),
+            };
+        }
+
+        ManifestRelit Relit(JsonObject o)
+        {
+            var at = "$.run.relit";
+            RelightMetrics? metrics = null;
+            if (o["metrics"] is JsonObject m)
+                metrics = new RelightMetrics(OptStr(m, "white") ?? "",
+                    Arr(m, "lights", $"{at}.metrics").Select(l => new RelightLightMetrics(OptStr(l, "light") ?? "", OptStr(l, "spectrum"),
+                        OptNumber(l, "Ra"), OptNumber(l, "Rf"), OptNumber(l, "cct_K"))).ToArray(),
+                    Arr(m, "objects", $"{at}.metrics").Select(x => new RelightObjectMetrics(OptStr(x, "object") ?? "", OptInt(x, "pixels") ?? 0,
+                        OptNumber(x, "mean_dE00") ?? 0, OptNumber(x, "max_dE00") ?? 0)).ToArray());
+            return new ManifestRelit
+            {
+                From = OptStr(o, "from") ?? "",
+                FromCreatedUtc = OptStr(o, "from_created_utc") ?? "",
+                Method = OptStr(o, "method") ?? "",
+                Changes = o["changes"] is JsonArray ? Arr(o, "changes", at).Select(c => new ManifestLightChange(OptStr(c, "light") ?? "",
+                    OptStr(c, "spectrum"), OptNumber(c, "intensity"))).ToArray() : [],
+                White = OptStr(o, "white"),
+                ComputeSeconds = OptNumber(o, "compute_s") ?? 0,
+                Metrics = metrics,
+                CopiedFiles = o["copied_files"] is JsonArray cf ? cf.Select(f => f is JsonValue fv && fv.TryGetValue(out string? s) ? s : "").ToArray() : null,
+            };
+        }
 
         public string Str(JsonObject o, string key, string at) => OptStr(o, key) ?? throw Missing($"{at}.{key}", "a string");
 

@@ -1,4 +1,5 @@
 using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Output.Products;
 using SpectralRenderer.Scenes;
 
 namespace SpectralRenderer.Output;
@@ -13,11 +14,10 @@ namespace SpectralRenderer.Output;
 public static class RenderMemory
 {
     /// <summary>The parts of the estimate, largest first, in bytes.</summary>
-    public static List<(string Part, long Bytes)> Estimate(Scene scene, int threads)
+    public static List<(string Part, long Bytes)> Estimate(Scene scene, int threads, IReadOnlyList<OutputProduct>? named = null)
     {
         long n = (long)scene.Camera.Width * scene.Camera.Height, bands = scene.Bands;
         var p = scene.Output.Products;
-        bool Has(OutputProducts x) => (p & x) != 0;
         if (threads <= 0) threads = Environment.ProcessorCount;
         var parts = new List<(string, long)>
         {
@@ -26,28 +26,20 @@ public static class RenderMemory
         };
         int triangles = scene.TriangleCount;
         if (triangles > 0) parts.Add(("BVH", 160L * triangles));
-        if (Has(OutputProducts.Bands) || Has(OutputProducts.Exr) || Has(OutputProducts.Envi)) parts.Add(("band planes", 4 * n * bands));
-        if (Has(OutputProducts.Png) || Has(OutputProducts.Exr)) parts.Add(("XYZ planes", 24 * n));
-        if (Has(OutputProducts.Png)) parts.Add(("preview.png", 3 * n + 2 * 3 * n));
-        if (Has(OutputProducts.Bands))
-        {
-            parts.Add(("band PNGs", Math.Min(threads, bands) * (2 * n + 2 * 2 * n)));
-            parts.Add(("bands.png", 2 * n * bands));
-        }
-        if (Has(OutputProducts.Exr)) parts.Add(("spectral.exr", 4 * n * (bands + 6) + 24 * n));
-        if (Has(OutputProducts.Aov))
-        {
-            parts.Add(("ground truth", 2 * 4 * n * bands));
-            parts.Add(("masks", 2 * n + 2 * 2 * n + n + 2 * n));
-        }
+        // The inputs the products share, once; then what each product's writers hold.
+        var products = OutputProductTable.For(p, named);
+        var needs = products.Aggregate(ProductInputs.None, (a, x) => a | x.Needs);
+        if (needs.HasFlag(ProductInputs.BandPlanes)) parts.Add(("band planes", 4 * n * bands));
+        if (needs.HasFlag(ProductInputs.Xyz)) parts.Add(("XYZ planes", 24 * n));
+        foreach (var product in products) parts.AddRange(product.Memory(scene, threads));
         parts.Sort((a, b) => b.Item2.CompareTo(a.Item2));
         return parts;
     }
 
     /// <summary>Throws bad input (the camera's size) when the estimate exceeds what the process may still use.</summary>
-    public static void Check(Scene scene, int threads)
+    public static void Check(Scene scene, int threads, IReadOnlyList<OutputProduct>? named = null)
     {
-        var parts = Estimate(scene, threads);   // never empty: the framebuffer comes first
+        var parts = Estimate(scene, threads, named);   // never empty: the framebuffer comes first
         long need = parts.Sum(x => x.Bytes);
         var info = GC.GetGCMemoryInfo();
         long available = info.TotalAvailableMemoryBytes;

@@ -9,6 +9,7 @@ using System.Text.Json.Nodes;
 using SpectralRenderer.Color;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
+using SpectralRenderer.Output.Products;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Spectra;
@@ -24,20 +25,21 @@ public static class RenderOutputWriter
     /// <summary>This engine build's identity (render.json "build"): the module version id of its assembly.</summary>
     public static string EngineBuild { get; } = typeof(RenderOutputWriter).Assembly.ManifestModule.ModuleVersionId.ToString("N");
 
-    public static List<string> Write(Scene scene, RenderResult result, string outDir, JsonObject? run = null, CancellationToken cancel = default,
-        LightTransfer? transfer = null, ReusedFiles? reuse = null) =>
-        Write(scene, result, OutputFolder.Begin(outDir), run, cancel, transfer, reuse);
+    public static List<string> Write(Scene scene, RenderResult result, string outDir, ManifestRun? run = null, CancellationToken cancel = default,
+        LightTransfer? transfer = null, ReusedFiles? reuse = null, IReadOnlyList<OutputProduct>? named = null) =>
+        Write(scene, result, OutputFolder.Begin(outDir), run, cancel, transfer, reuse, named);
 
     /// <summary>
     /// Writes the render into <paramref name="folder"/>'s staging folder and swaps it in whole (<see cref="OutputFolder"/>).
     /// Interrupted or failed, the staged files are removed and the folder holds what it held before.
     /// </summary>
     /// <param name="reuse">Files another folder holds exactly as this render would write them (a relit render's light-independent files): copied, not encoded.</param>
-    public static List<string> Write(Scene scene, RenderResult result, OutputFolder folder, JsonObject? run = null, CancellationToken cancel = default,
-        LightTransfer? transfer = null, ReusedFiles? reuse = null)
+    /// <param name="named">Products asked for by name beyond the scene's formats (<see cref="OutputProductTable.Named"/>).</param>
+    public static List<string> Write(Scene scene, RenderResult result, OutputFolder folder, ManifestRun? run = null, CancellationToken cancel = default,
+        LightTransfer? transfer = null, ReusedFiles? reuse = null, IReadOnlyList<OutputProduct>? named = null)
     {
         List<string> written;
-        try { written = WriteFiles(scene, result, folder.Staging, run, cancel, transfer, reuse); }
+        try { written = WriteFiles(scene, result, folder.Staging, run, cancel, transfer, reuse, named); }
         catch (OperationCanceledException e) when (e is not InterruptedException)
         {
             folder.Abandon();
@@ -105,10 +107,11 @@ public static class RenderOutputWriter
         }
     }
 
-    static List<string> WriteFiles(Scene scene, RenderResult result, string outDir, JsonObject? run, CancellationToken cancel, LightTransfer? transfer, ReusedFiles? reuse)
+    static List<string> WriteFiles(Scene scene, RenderResult result, string outDir, ManifestRun? run, CancellationToken cancel, LightTransfer? transfer,
+        ReusedFiles? reuse, IReadOnlyList<OutputProduct>? named)
     {
-        var products = scene.Output.Products;
-        bool Has(OutputProducts p) => (products & p) != 0;
+        var products = OutputProductTable.For(scene.Output.Products, named);
+        var needs = products.Aggregate(ProductInputs.None, (a, p) => a | p.Needs);
         var writeClock = System.Diagnostics.Stopwatch.StartNew();
         var image = result.Image;
         CheckFinite(image);
@@ -118,51 +121,40 @@ public static class RenderOutputWriter
         // Band-sequential planes, transposed once and shared by the band PNGs, the mosaic, spectral.exr and the ENVI cube;
         // eq. 3's XYZ of every pixel, computed once for the preview and spectral.exr's R, G, B and X, Y, Z.
         // Without a writer of planes, the preview takes XYZ from the cube itself (no second copy of the cube).
-        float[]? bands = Has(OutputProducts.Bands) || Has(OutputProducts.Exr) || Has(OutputProducts.Envi) ? image.BandPlanes() : null;
+        float[]? bands = needs.HasFlag(ProductInputs.BandPlanes) ? image.BandPlanes() : null;
         // The pixels' colours are the renderer's own (exact on the tables under "exact" integration), else eq. 3 on the cube.
-        bool colour = Has(OutputProducts.Png) || Has(OutputProducts.Exr);
+        bool colour = needs.HasFlag(ProductInputs.Xyz);
         var xyz = !colour ? null
             : result.Xyz is { } px ? XyzPlanes.FromPixels(px)
             : bands is not null ? XyzPlanes.Compute(scene.Colorimeter, bands, n)
             : XyzPlanes.Compute(scene.Colorimeter, image);
 
-        var encoder = Has(OutputProducts.Png) ? PreviewEncoder(scene, xyz!) : null;
+        var encoder = needs.HasFlag(ProductInputs.PreviewEncoder) ? PreviewEncoder(scene, xyz!) : null;
+        var context = new ProductContext
+        {
+            Scene = scene,
+            Result = result,
+            OutDir = outDir,
+            BandScale = scale,
+            BandPlanes = bands,
+            Xyz = xyz,
+            Preview = encoder,
+            Transfer = transfer,
+            Reuse = reuse,
+            Cancel = cancel,
+        };
 
-        // The groups are independent files: write them side by side; each keeps its own list, in a fixed order.
-        var groups = new List<string>[9];
+        // The products' writers are independent files: run them side by side; each keeps its own list, in a fixed order.
+        var writers = products.SelectMany(p => Enumerable.Range(0, p.Parts).Select(part => (Product: p, Part: part))).ToArray();
+        var groups = new List<string>[writers.Length];
         for (int g = 0; g < groups.Length; g++) groups[g] = [];
         Action<string> Done(int g) => name => { lock (groups[g]) groups[g].Add(name); cancel.ThrowIfCancellationRequested(); };
         RenderManifest? manifest = null;
         try
         {
-            Parallel.Invoke(new ParallelOptions { CancellationToken = cancel },
-                () => { if (Has(OutputProducts.Png)) WritePreview(image, xyz!, encoder!, outDir, Done(0)); },
-                () => { if (Has(OutputProducts.Bands)) WriteBands(scene, image, bands!, scale, outDir, Done(1), cancel); },
-                () =>
-                {
-                    if (!Has(OutputProducts.Bands)) return;
-                    var (mw, mh, mosaic) = BandMosaic.Build(image.Width, image.Height, bands!, scale, 256, scene.Grid);
-                    AtomicFile.Write(Path.Combine(outDir, "bands.png"), s => PngWriter.WriteGray8(s, mw, mh, mosaic));
-                    Done(2)("bands.png");
-                },
-                () =>
-                {
-                    if (!Has(OutputProducts.Aov)) return;
-                    if (reuse?.Copy("object-id.png", outDir) != true)
-                    {
-                        var ids = new ushort[result.ObjectIds.Length];
-                        for (int i = 0; i < ids.Length; i++) ids[i] = (ushort)(result.ObjectIds[i] + 1);
-                        AtomicFile.Write(Path.Combine(outDir, "object-id.png"), s => PngWriter.WriteGray16(s, image.Width, image.Height, ids));
-                    }
-                    Done(3)("object-id.png");
-                    AnalysisImages.Write(scene, result, outDir, Done(3), reuse);
-                },
-                () => { if (Has(OutputProducts.Exr)) SpectralFiles.WriteExr(scene, image, bands!, xyz, result.Crop, outDir, Done(4)); },
-                () => { if (Has(OutputProducts.Envi)) SpectralFiles.WriteEnvi(scene, image, bands!, outDir, Done(5)); },
-                () => { if (Has(OutputProducts.Npy)) SpectralFiles.WriteNpy(image, outDir, Done(6)); },
-                () => { if (Has(OutputProducts.Npy) || Has(OutputProducts.Envi) || Has(OutputProducts.Exr)) SpectralFiles.WriteWavelengths(image, outDir, Done(7)); },
-                () => { if (transfer is not null && Has(OutputProducts.Lights)) LightTransferFiles.Write(scene, transfer, outDir, Done(8)); },
-                () => manifest = Describe(scene, result, scale, run, encoder));
+            var actions = writers.Select((w, g) => (Action)(() => w.Product.Write(context, w.Part, Done(g))))
+                .Append(() => manifest = Describe(scene, result, scale, run, encoder)).ToArray();
+            Parallel.Invoke(new ParallelOptions { CancellationToken = cancel }, actions);
         }
         catch (AggregateException e)
         {
@@ -174,8 +166,7 @@ public static class RenderOutputWriter
         var written = new List<string>();
         foreach (var g in groups) written.AddRange(g);
         // Wall seconds from the pixels to every file but render.json written (not hashed: a timing).
-        if (run is not null) run["write_s"] = writeClock.Elapsed.TotalSeconds;
-        var final = manifest! with { Files = written.ToArray() };
+        var final = manifest! with { Files = written.ToArray(), Run = run is null ? null : run with { WriteSeconds = writeClock.Elapsed.TotalSeconds } };
         if (NonFinite(final.ToJson()) is { } bad)
             throw new WorkFailedException($"render.json would hold a non-finite number at {bad}; nothing was written");
         AtomicFile.WriteAllText(Path.Combine(outDir, RenderManifest.FileName), final.ToJsonText());
@@ -183,7 +174,7 @@ public static class RenderOutputWriter
         return written;
     }
 
-    static void WritePreview(SpectralImage image, XyzPlanes xyz, DisplayEncoder encoder, string outDir, Action<string> done)
+    internal static void WritePreview(SpectralImage image, XyzPlanes xyz, DisplayEncoder encoder, string outDir, Action<string> done)
     {
         var rgb = Preview(image.Width, image.Height, xyz, encoder);
         AtomicFile.Write(Path.Combine(outDir, "preview.png"), s => PngWriter.WriteRgb8(s, image.Width, image.Height, rgb));
@@ -201,7 +192,7 @@ public static class RenderOutputWriter
     }
 
     /// <summary>bands/: one 16-bit PNG per band, all on the scale of the brightest band value.</summary>
-    static void WriteBands(Scene scene, SpectralImage image, float[] bands, float scale, string outDir, Action<string> done, CancellationToken cancel)
+    internal static void WriteBands(Scene scene, SpectralImage image, float[] bands, float scale, string outDir, Action<string> done, CancellationToken cancel)
     {
         var dir = Path.Combine(outDir, "bands");
         Directory.CreateDirectory(dir);
@@ -311,7 +302,7 @@ public static class RenderOutputWriter
     }
 
     [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
-    static RenderManifest Describe(Scene scene, RenderResult result, float bandScale, JsonObject? run, DisplayEncoder? preview)
+    static RenderManifest Describe(Scene scene, RenderResult result, float bandScale, ManifestRun? run, DisplayEncoder? preview)
     {
         var c = scene.Colorimeter;
         var objects = new ManifestObject[scene.Objects.Count];
@@ -387,7 +378,7 @@ public static class RenderOutputWriter
             Threads = result.Threads,
             Tiles = result.Tiles,
             Run = run,
-            ResolvedScene = scene.Resolved,
+            ResolvedScene = scene.Resolved is { } resolved ? new ManifestScene(resolved) : null,
             Crop = result.Crop.IsWhole(scene.Camera.Width, scene.Camera.Height) ? null : result.Crop,
         };
         return manifest with { SceneHash = Output.SceneHash.Of(manifest.ToJson(), scene.Output.Products, scene.Output.ExrCompression) };

@@ -26,8 +26,9 @@ public class LayeringTests
         [R + "Output"] = ["Rendering", "Scenes", "Geometry", "Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Sensor"] = ["Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Analysis"] = ["Output", "Sensor", "Imaging", "Spectra", "Color", "Diagnostics"],
-        [R + "Lighting"] = ["Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra", "Color", "Diagnostics"],
-        [R + "Distributed"] = ["Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra", "Color", "Diagnostics"],
+        [R + "Pipeline"] = ["Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Geometry", "Spectra", "Color", "Diagnostics"],
+        [R + "Lighting"] = ["Pipeline", "Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra", "Color", "Diagnostics"],
+        [R + "Distributed"] = ["Pipeline", "Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Cli"] = ["*"],
     };
 

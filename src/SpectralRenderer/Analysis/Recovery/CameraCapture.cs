@@ -36,7 +36,7 @@ public sealed class CameraCapture
             var exposures = sim["exposure_s"]!.AsArray().Select(v => (double)v!).ToArray();
             var argument = (string)m["sensor_argument"]!;
             var sensor = argument == SensorFile.SceneArgument
-                ? SensorFile.FromScene(scene.Folder.Manifest.ResolvedScene, scene.Folder.Manifest.Scene)
+                ? SensorFile.FromScene(scene.Folder.Manifest.ResolvedScene?.ToJson(), scene.Folder.Manifest.Scene)
                   ?? throw new InputException(path, "names the scene's sensor but the render's scene has none", "run 'spectral camera' again")
                 : SensorFile.Resolve(argument);
             var options = new SimulationOptions { Seed = (ulong)sim["seed"]!, Noise = ((string)sim["noise"]!).StartsWith("on", StringComparison.Ordinal) };

@@ -26,7 +26,7 @@ public sealed class CameraScene
     public string LightName => Light.Name;
     public Observer Observer => Folder.ObserverDegrees == 10 ? Observer.Cie1964 : Observer.Cie1931;
     /// <summary>The radiometry the render used ("paper" relative, or "physical" in W·m⁻²·sr⁻¹·nm⁻¹), if it says.</summary>
-    public string? Radiometry => (string?)Folder.Manifest.ResolvedScene?["radiometry"];
+    public string? Radiometry => Folder.Manifest.ResolvedScene?.Radiometry;
 
     public static CameraScene Open(string dir)
     {

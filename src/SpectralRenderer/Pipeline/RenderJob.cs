@@ -1,0 +1,254 @@
+using System.Diagnostics;
+using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Output;
+using SpectralRenderer.Output.Products;
+using SpectralRenderer.Rendering;
+using SpectralRenderer.Scenes;
+using SpectralRenderer.Scenes.Loading;
+
+namespace SpectralRenderer.Pipeline;
+
+/// <summary>What a caller hears while a job runs: the scene's warnings, the render's progress, and how long ago it was stopped.</summary>
+/// <param name="StoppedAfter">Appended to an interruption's message (e.g. ", 0.120 s after the signal").</param>
+public sealed record RenderObserver(Action<string>? Warning = null, Action<RenderProgress>? Progress = null,
+    Func<string>? StoppedAfter = null);
+
+/// <summary>
+/// One render, assembled once for every command (render, bench, sweep, experiments, relight): the scene loaded and
+/// checked against the request (region, products, memory), its geometry built (from the shared
+/// <see cref="GeometryCache"/> where given), the integrator made by name, the film rendered (or recombined from a
+/// per-light transfer), the transfer traced when the lights product is asked for, and every product written into a
+/// staged <see cref="OutputFolder"/> that is swapped in whole. Cancelled or failed, the staging is removed and the folder
+/// holds what it held. <see cref="Run"/> does it all; the steps are public for the callers that interleave their own work.
+/// </summary>
+public sealed class RenderJob
+{
+    public RenderRequest Request { get; }
+    public Scene Scene { get; }
+    /// <summary>The film pixels rendered (null: the whole film) and the shard's description.</summary>
+    public PixelRect? Crop { get; }
+    public string? Shard { get; }
+    public double LoadSeconds { get; }
+    public double BuildSeconds { get; private set; }
+    public SceneGeometry? Geometry { get; private set; }
+    public IIntegrator? Integrator { get; private set; }
+    public RenderResult? Result { get; private set; }
+    public LightTransfer? Transfer { get; private set; }
+    public double? TransferSeconds { get; private set; }
+    /// <summary>render.json's "run" as it will be written; a caller may add to it before <see cref="Write"/>.</summary>
+    public ManifestRun? RunRecord { get; set; }
+    /// <summary>The files written, relative to the folder (render.json last).</summary>
+    public IReadOnlyList<string> Files { get; private set; } = [];
+    public double WriteSeconds { get; private set; }
+    /// <summary>Triangles of degenerate shape the meshes' BVHs left out.</summary>
+    public int DegenerateTriangles => Scene.Objects.Sum(o => o.Mesh?.DegenerateCount ?? 0);
+    public int Threads => Request.Threads;
+    /// <summary>The products named in the request beyond the scene's formats.</summary>
+    public IReadOnlyList<OutputProduct> NamedProducts { get; }
+    OutputFolder? _folder;
+
+    RenderJob(RenderRequest request, Scene scene, double loadSeconds)
+    {
+        Request = request;
+        Scene = scene;
+        NamedProducts = OutputProductTable.Named(request.Products);
+        LoadSeconds = loadSeconds;
+        if (request.Region is { } region)
+        {
+            Crop = region.Rectangle(scene.Camera.Width, scene.Camera.Height);
+            Shard = region.Shard;
+        }
+    }
+
+    /// <summary>Loads, checks and renders the request and writes its products; the job tells what it did.</summary>
+    public static RenderJob Run(RenderRequest request, RenderObserver? observer = null, CancellationToken cancel = default)
+    {
+        var job = Load(request, observer);
+        job.Execute(observer, cancel);
+        return job;
+    }
+
+    /// <summary>The scene loaded and checked: the region and the products agree, the render fits in memory.</summary>
+    public static RenderJob Load(RenderRequest request, RenderObserver? observer = null)
+    {
+        var clock = Stopwatch.StartNew();
+        var scene = request.Scene ?? SceneLoader.Parse(request.SceneText ?? InputFile.ReadAllBytes(request.ScenePath, "scene file"),
+            request.ScenePath, request.Overrides);
+        var job = new RenderJob(request, scene, clock.Elapsed.TotalSeconds);
+        job.Check();
+        if (observer?.Warning is { } warn) foreach (var w in scene.Warnings) warn(w);
+        // What the render and its writers hold, checked before anything is built.
+        if (request.OutDir is not null) RenderMemory.Check(scene, request.Threads, job.NamedProducts);
+        return job;
+    }
+
+    /// <summary>What a crop or shard cannot hold.</summary>
+    void Check()
+    {
+        var products = Scene.Output.Products;
+        if (Shard is not null && (products & OutputProducts.Bands) != 0 && (products & (OutputProducts.Envi | OutputProducts.Npy)) == 0)
+            throw new InputException("--shard",
+                "band images need a float cube in each shard: merge rescales them to the whole image's brightest value", "add envi or npy to --formats");
+        if (Crop is not null && (products & OutputProducts.Lights) != 0)
+            throw new InputException("--formats", "the per-light outputs (lights) are written for whole renders only, not for a crop or shard",
+                "render lights without --crop/--shard");
+        if (Crop is not null && Scene.Output.ExposureAuto)
+            throw new InputException(Request.ScenePath.Length > 0 ? Request.ScenePath : Scene.SourcePath,
+                "output.exposure \"auto\" is chosen from the whole image, which a shard or crop does not see",
+                "give a fixed \"exposure\" (a whole render's render.json states the one auto chose, $.colour.exposure)");
+    }
+
+    /// <summary>
+    /// Begins the output folder, builds, renders, traces the transfer when asked and writes; the folder is left as it was on failure.
+    /// </summary>
+    public void Execute(RenderObserver? observer = null, CancellationToken cancel = default)
+    {
+        Begin();
+        try
+        {
+            if (Request.FromTransfer is null) Build();
+            Render(observer, cancel);
+            Write(cancel);
+        }
+        catch (Exception e) when (e is not InterruptedException)
+        {
+            _folder?.Abandon();
+            throw;
+        }
+    }
+
+    void Begin()
+    {
+        if (Request.OutDir is { } dir && _folder is null) _folder = OutputFolder.Begin(dir);
+    }
+
+    /// <summary>
+    /// The scene's ray queries and the integrator; the loader's garbage returned when no BVH is shared with later renders.
+    /// </summary>
+    public void Build()
+    {
+        if (Integrator is not null) return;
+        var clock = Stopwatch.StartNew();
+        Geometry = new SceneGeometry(Scene, Request.Geometries);
+        try { Integrator = Integrators.Create(Scene, Geometry, Request.Integrator); }
+        catch (ArgumentException e) when (e.ParamName == "name")
+        {
+            string message = e.Message.Replace($" (Parameter '{e.ParamName}')", "", StringComparison.Ordinal);
+            int known = message.IndexOf(" (known: ", StringComparison.Ordinal);
+            throw new InputException("--integrator", known < 0 ? message : message[..known],
+                known < 0 ? "see `spectral render --help`" : $"known integrators: {message[(known + 9)..].TrimEnd(')')}");
+        }
+        if (Request.Geometries is null) Renderer.ReturnLoadGarbage();
+        BuildSeconds = clock.Elapsed.TotalSeconds;
+    }
+
+    /// <summary>Renders the film (or recombines it from the request's transfer); may be called again (bench repeats).</summary>
+    public RenderResult Render(RenderObserver? observer = null, CancellationToken cancel = default)
+    {
+        if (Request.FromTransfer is { } source) return Result = FromTransfer(source.Transfer);
+        Build();
+        int done = 0, total = 0;
+        try
+        {
+            Result = Renderer.Render(Scene, Integrator!, Request.Threads, p =>
+            {
+                done = p.TilesDone; total = p.Tiles;
+                observer?.Progress?.Invoke(p);
+            }, cancel, Crop, Request.Packets);
+        }
+        catch (OperationCanceledException e)
+        {
+            _folder?.Abandon();
+            string where = _folder is null ? ""
+                : $"; {_folder.Final} {(_folder.HoldsRender ? "still holds the previous render, unchanged" : "holds no render")}";
+            string tiles = $"{done} of {(total > 0 ? total : "all")} tiles done{observer?.StoppedAfter?.Invoke()}";
+            throw new InterruptedException($"interrupted while rendering ({tiles}): nothing was written{where}", e.CancellationToken);
+        }
+        return Result;
+    }
+
+    /// <summary>The relit film: the transfer's factors recombined with the scene's lights, the geometry's images as traced.</summary>
+    RenderResult FromTransfer(LightTransfer transfer)
+    {
+        var clock = Stopwatch.StartNew();
+        var (image, xyz, fallback) = transfer.Relight(Scene);
+        Transfer = transfer;
+        return new RenderResult
+        {
+            Image = image,
+            Xyz = xyz,
+            FallbackPixels = fallback,
+            ObjectIds = transfer.ObjectIds,
+            LitMasks = LitMasks.From(transfer.LitMasks, Scene.Lights.Count),
+            Highlights = transfer.CentreHighlights(Scene),
+            Rays = new RayCounters(),
+            Elapsed = clock.Elapsed,
+            Threads = Environment.ProcessorCount,
+            Tiles = 0,
+            Crop = PixelRect.Whole(transfer.Width, transfer.Height),
+        };
+    }
+
+    /// <summary>
+    /// The transfer when the lights product is asked for, then every product and render.json into the folder, swapped in whole.
+    /// </summary>
+    public IReadOnlyList<string> Write(CancellationToken cancel = default)
+    {
+        var result = Result ?? throw new InvalidOperationException("render before writing");
+        if (Request.OutDir is null) return Files;
+        Begin();
+        if (Transfer is null && (Scene.Output.Products & OutputProducts.Lights) != 0 && Geometry is not null)
+        {
+            // The per-light transfer (opt-in): the same camera rays traced once more, recording eq. 2's factors per light.
+            var clock = Stopwatch.StartNew();
+            Transfer = LightTransfer.Trace(Scene, Geometry, Request.Threads, cancel);
+            TransferSeconds = clock.Elapsed.TotalSeconds;
+        }
+        RunRecord ??= Record(result);
+        var writeClock = Stopwatch.StartNew();
+        Files = RenderOutputWriter.Write(Scene, result, _folder!, RunRecord, cancel, Transfer, Request.FromTransfer?.Reuse, NamedProducts);
+        WriteSeconds = writeClock.Elapsed.TotalSeconds;
+        return Files;
+    }
+
+    /// <summary>render.json's "run": the request's, with what <see cref="RenderRequest.Detail"/> adds.</summary>
+    ManifestRun? Record(RenderResult result) => Request.Detail switch
+    {
+        RunDetail.None => Request.Run,
+        RunDetail.Geometry => (Request.Run ?? new ManifestRun()) with { Triangles = Geometry?.TriangleCount },
+        _ => (Request.Run ?? new ManifestRun()) with
+        {
+            LoadSeconds = LoadSeconds,
+            BuildSeconds = BuildSeconds,
+            Triangles = Geometry?.TriangleCount,
+            DegenerateTrianglesSkipped = DegenerateTriangles,
+            MinRayWeight = Scene.MinRayWeight,
+            RayBudget = Scene.RayBudget,
+            RaysPrunedByWeight = result.Rays.PrunedRays,
+            CameraRaysOverBudget = result.Rays.OverBudgetRays,
+            Shard = Shard,
+            LightTransferSeconds = TransferSeconds,
+            HasOverrides = true,
+            Overrides = Recorded(Request.Overrides),
+        },
+    };
+
+    /// <summary>The command-line overrides as render.json records them (model folders as full paths).</summary>
+    public static ManifestOverrides Recorded(SceneOverrides o) => new(o.Width, o.Height, o.Bands, o.Wave, o.SamplesPerPixel, o.Rgb,
+        o.Integration, o.Formats, o.ExrCompression, o.ModelDirectories.Select(Path.GetFullPath).ToArray());
+
+    /// <summary>The overrides render.json recorded, to load the same scene again (relight).</summary>
+    public static SceneOverrides Overrides(ManifestOverrides? o) => new()
+    {
+        Width = o?.Width,
+        Height = o?.Height,
+        Bands = o?.Bands,
+        Wave = o?.Wave,
+        SamplesPerPixel = o?.SamplesPerPixel,
+        Rgb = o?.Rgb,
+        Integration = o?.Integration,
+        Formats = o?.Formats,
+        ExrCompression = o?.ExrCompression,
+        ModelDirectories = o?.Models.Where(Directory.Exists).ToList() ?? [],
+    };
+}
