@@ -71,6 +71,10 @@ public sealed class RenderJob
     /// <summary>The scene loaded and checked: the region and the products agree, the render fits in memory.</summary>
     public static RenderJob Load(RenderRequest request, RenderObserver? observer = null)
     {
+        // A name no integrator is registered under is bad input, said before a mesh is read.
+        if (!Integrators.Has(request.Integrator))
+            throw new InputException("--integrator", $"unknown integrator '{request.Integrator}'",
+                $"known integrators: {string.Join(", ", Integrators.Names)}");
         var clock = Stopwatch.StartNew();
         var scene = request.Scene ?? SceneLoader.Parse(request.SceneText ?? InputFile.ReadAllBytes(request.ScenePath, "scene file"),
             request.ScenePath, request.Overrides);
@@ -130,14 +134,7 @@ public sealed class RenderJob
         if (Integrator is not null) return;
         var clock = Stopwatch.StartNew();
         Geometry = new SceneGeometry(Scene, Request.Geometries);
-        try { Integrator = Integrators.Create(Scene, Geometry, Request.Integrator); }
-        catch (ArgumentException e) when (e.ParamName == "name")
-        {
-            string message = e.Message.Replace($" (Parameter '{e.ParamName}')", "", StringComparison.Ordinal);
-            int known = message.IndexOf(" (known: ", StringComparison.Ordinal);
-            throw new InputException("--integrator", known < 0 ? message : message[..known],
-                known < 0 ? "see `spectral render --help`" : $"known integrators: {message[(known + 9)..].TrimEnd(')')}");
-        }
+        Integrator = Integrators.Create(Scene, Geometry, Request.Integrator);   // its name checked in Load
         if (Request.Geometries is null) Renderer.ReturnLoadGarbage();
         BuildSeconds = clock.Elapsed.TotalSeconds;
     }

@@ -1,5 +1,6 @@
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Tests.Cli;
 using SpectralRenderer.Tests.Rendering;
 
 namespace SpectralRenderer.Tests.Extending;
@@ -67,6 +68,26 @@ public class IntegratorRecipeTests
         double radiusPx = Math.Tan(Math.Asin(0.1)) / Math.Tan(10 * Math.PI / 180) * 32;
         int covered = result.ObjectIds.Count(id => id == 0);
         Assert.InRange(covered, Math.PI * (radiusPx - 1) * (radiusPx - 1), Math.PI * (radiusPx + 1) * (radiusPx + 1));
+    }
+
+    [Fact]
+    public void The_command_line_renders_with_it_through_the_render_job()
+    {
+        EnsureRegistered();
+        var dir = Reference.TempDir();
+        var scene = Path.Combine(dir, "sphere.json");
+        File.WriteAllText(scene, Json);
+        var outDir = Path.Combine(dir, "out");
+        var (code, _, err) = CliRunner.Run("render", scene, "-o", outDir, "--quiet", "--formats", "npy", "--integrator", Name);
+        Assert.True(code == 0, err);
+        using var npy = File.OpenRead(Path.Combine(outDir, "spectral.npy"));
+        var (shape, data) = SpectralRenderer.Imaging.NpyReader.Read(npy);
+        Assert.Equal([64, 64, 6], shape);
+        for (int b = 0; b < 6; b++)
+        {
+            Assert.Equal(0.25f, data[(32 * 64 + 32) * 6 + b]);
+            Assert.Equal(0f, data[b]);
+        }
     }
 
     [Fact]
