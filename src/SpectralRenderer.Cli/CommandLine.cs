@@ -10,7 +10,12 @@ public static class CommandLine
 {
     public const int Success = 0, Failure = 1, BadInput = 2;
 
-    static readonly (string Name, string Summary, Func<string[], TextWriter, TextWriter, int> Run)[] Commands =
+    /// <summary>
+    /// The commands, one line each: name, its line in `spectral --help`, and its handler (the arguments after the name,
+    /// stdout, stderr → exit code; an exception becomes one line on stderr and its exit code, <see cref="Describe"/>).
+    /// A new command is one file in Commands/ and one line here, or a <see cref="Register"/> call.
+    /// </summary>
+    static readonly List<(string Name, string Summary, Func<string[], TextWriter, TextWriter, int> Run)> Commands =
     [
         ("render", "render a scene file: band images, spectral cubes, sRGB preview", RenderCommand.Run),
         ("colorcheck", "a rendered ColorChecker's patches against their 1 nm reference (ΔE00)", ColorCheckCommand.Run),
@@ -27,6 +32,28 @@ public static class CommandLine
         ("recover", "spectral reflectance from a camera's signals (pinv, Wiener, linear model, Tikhonov) against the truth", RecoverCommand.Run),
     ];
 
+    /// <summary>Adds a command (a plug-in, a test) after the built-in ones; its name is lower-case letters, digits and '-'.</summary>
+    public static void Register(string name, string summary, Func<string[], TextWriter, TextWriter, int> run)
+    {
+        ArgumentNullException.ThrowIfNull(run);
+        if (string.IsNullOrEmpty(name) || name[0] == '-' || !name.All(c => char.IsAsciiLetterLower(c) || char.IsAsciiDigit(c) || c == '-'))
+            throw new ArgumentException($"a command name is lower-case letters, digits and '-', not '{name}'", nameof(name));
+        if (summary.Contains('\n')) throw new ArgumentException("a command's summary is one line", nameof(summary));
+        lock (Commands)
+        {
+            if (name is "help" || Commands.Any(c => c.Name == name)) throw new ArgumentException($"the command '{name}' exists already", nameof(name));
+            Commands.Add((name, summary, run));
+        }
+    }
+
+    /// <summary>The commands' names, in the order of `spectral --help`.</summary>
+    public static string[] Names => [.. Table().Select(c => c.Name)];
+
+    static (string Name, string Summary, Func<string[], TextWriter, TextWriter, int> Run)[] Table()
+    {
+        lock (Commands) return [.. Commands];
+    }
+
     public static string Version => typeof(CommandLine).Assembly.GetName().Version?.ToString(3) ?? "0.0.0";
 
     [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
@@ -38,10 +65,11 @@ public static class CommandLine
             return args.Length == 0 ? BadInput : Success;
         }
         if (args[0] == "--version") { stdout.WriteLine($"spectral {Version}"); return Success; }
-        var cmd = Commands.FirstOrDefault(c => c.Name == args[0]);
+        var commands = Table();
+        var cmd = commands.FirstOrDefault(c => c.Name == args[0]);
         if (cmd.Name is null)
         {
-            stderr.WriteLine($"spectral: unknown command '{args[0]}' (hint: {InputException.DidYouMean(args[0], Commands.Select(c => c.Name)) ?? "see 'spectral --help'"})");
+            stderr.WriteLine($"spectral: unknown command '{args[0]}' (hint: {InputException.DidYouMean(args[0], commands.Select(c => c.Name)) ?? "see 'spectral --help'"})");
             return BadInput;
         }
         try
@@ -86,7 +114,7 @@ public static class CommandLine
         w.WriteLine();
         w.WriteLine("usage: spectral <command> [options]     spectral <command> --help for its options");
         w.WriteLine();
-        foreach (var c in Commands) w.WriteLine($"  {c.Name,-12} {c.Summary}");
+        foreach (var c in Table()) w.WriteLine($"  {c.Name,-12} {c.Summary}");
         w.WriteLine();
         w.WriteLine("exit codes: 0 success, 1 failure, 2 bad usage or bad input");
         return w.ToString();

@@ -14,41 +14,75 @@ public static class SensorPresets
 {
     public const double DefaultPeakQe = 0.5;
 
-    public static readonly string[] Names = ["isetcam", "nikon-d5100", "sigma-sd-merrill", "sigma-sd-merrill-x3", "canon-5d-mark-ii", "wheel-6", "mosaic-16", "cie-xyz"];
-
-    public static SensorModel Get(string name, string where = "--sensor") => name.ToLowerInvariant() switch
+    /// <summary>The preset names: the built-in ones in this order, then those registered at run time.</summary>
+    public static string[] Names
     {
-        "isetcam" => new SensorModel
+        get { lock (Presets) return [.. Presets.Select(p => p.Name)]; }
+    }
+
+    /// <summary>
+    /// Adds a preset (a plug-in, a test): <c>--sensor NAME</c>, a sensor file's <c>"preset"</c> and a scene's
+    /// <c>camera.sensor</c> then find it. <paramref name="create"/> makes a new model per use, named <paramref name="name"/>;
+    /// its curves are quantum efficiencies (or <c>PerEnergy</c> responses), as a sensor file's.
+    /// </summary>
+    public static void Register(string name, Func<SensorModel> create)
+    {
+        ArgumentNullException.ThrowIfNull(create);
+        if (string.IsNullOrEmpty(name) || name != name.ToLowerInvariant() || name.EndsWith(".json", StringComparison.Ordinal)
+            || !name.All(c => char.IsAsciiLetterOrDigit(c) || c is '-' or '_' or '.'))
+            throw new ArgumentException($"a preset name is lower-case letters, digits, '-', '_' or '.', not '{name}'", nameof(name));
+        lock (Presets)
+        {
+            if (Presets.Any(p => p.Name == name)) throw new ArgumentException($"the preset '{name}' is already registered", nameof(name));
+            Presets.Add((name, create));
+        }
+    }
+
+    public static SensorModel Get(string name, string where = "--sensor")
+    {
+        string key = name.ToLowerInvariant();
+        Func<SensorModel>? create;
+        lock (Presets) create = Presets.FirstOrDefault(p => p.Name == key).Create;
+        if (create is not null) return create();
+        var names = Names;
+        throw new InputException(where, $"unknown sensor '{name}'",
+            InputException.DidYouMean(name, names) is { } s ? s : $"presets: {string.Join(", ", names)}, or a sensor JSON file");
+    }
+
+    /// <summary>The built-in presets, then the registered ones; one line each.</summary>
+    static readonly List<(string Name, Func<SensorModel> Create)> Presets =
+    [
+        ("isetcam", () => new SensorModel
         {
             Name = "isetcam",
             Arrangement = Arrangement.Full,
             Source = "ISETCam pixelCreate/sensorCreate defaults: monochrome, quantum efficiency 1 at every wavelength (pixel 'spectralQE' ones)",
             Channels = [new SensorChannel("Y", new TabulatedSpectrum("qe 1", [1.0, 1e5], [1.0, 1.0], Extrapolation.Clamp), "QE 1")],
-        },
-        "nikon-d5100" => Bayer("nikon-d5100", "camera-nikon-5100-npl.csv", ["red", "green", "blue"],
-            "Nikon D5100 sensitivities, Darrodi et al., JOSA A 32(3) 381 (2015), NPL; RGGB Bayer layout"),
-        "canon-5d-mark-ii" => Bayer("canon-5d-mark-ii", "camera-canon-5d-mark-ii.csv", ["R", "G", "B"],
-            "Canon EOS 5D Mark II sensitivities, AMPAS rawtoaces (Apache 2.0); RGGB Bayer layout"),
+        }),
+        ("nikon-d5100", () => Bayer("nikon-d5100", "camera-nikon-5100-npl.csv", ["red", "green", "blue"],
+            "Nikon D5100 sensitivities, Darrodi et al., JOSA A 32(3) 381 (2015), NPL; RGGB Bayer layout")),
+        ("canon-5d-mark-ii", () => Bayer("canon-5d-mark-ii", "camera-canon-5d-mark-ii.csv", ["R", "G", "B"],
+            "Canon EOS 5D Mark II sensitivities, AMPAS rawtoaces (Apache 2.0); RGGB Bayer layout")),
         // The Sigma's sensitivities behind an RGGB Bayer mosaic, as issue 12 specifies the preset: the NPL curves on the
         // same photosite layout as the Nikon and the Canon, so the three RGB cameras differ by their curves only.
-        "sigma-sd-merrill" => Bayer("sigma-sd-merrill", "camera-sigma-sdmerill-npl.csv", ["red", "green", "blue"],
-            "Sigma SD Merrill sensitivities, Darrodi et al., JOSA A 32(3) 381 (2015), NPL; 400–680 nm, zero outside; on an RGGB Bayer layout (the camera itself is a Foveon X3: sigma-sd-merrill-x3)"),
+        ("sigma-sd-merrill", () => Bayer("sigma-sd-merrill", "camera-sigma-sdmerill-npl.csv", ["red", "green", "blue"],
+            "Sigma SD Merrill sensitivities, Darrodi et al., JOSA A 32(3) 381 (2015), NPL; 400–680 nm, zero outside; on an RGGB Bayer layout (the camera itself is a Foveon X3: sigma-sd-merrill-x3)")),
         // The camera as built: a Foveon X3 stacks three photodiodes in each pixel, so every channel at every pixel, no mosaic.
-        "sigma-sd-merrill-x3" => new SensorModel
+        ("sigma-sd-merrill-x3", () => new SensorModel
         {
             Name = "sigma-sd-merrill-x3",
             Arrangement = Arrangement.Full,
             Source = "Sigma SD Merrill (Foveon X3, three stacked layers per pixel) sensitivities, Darrodi et al., JOSA A 32(3) 381 (2015), NPL; 400–680 nm, zero outside",
             Channels = FromCsv("camera-sigma-sdmerill-npl.csv", ["red", "green", "blue"], ["R", "G", "B"]),
-        },
-        "wheel-6" => new SensorModel
+        }),
+        ("wheel-6", () => new SensorModel
         {
             Name = "wheel-6",
             Arrangement = Arrangement.Wheel,
             Source = "a monochrome sensor behind a wheel of 6 Gaussian filters, 420–670 nm every 50 nm, FWHM 40 nm (the 5–7 filter practice the paper cites)",
             Channels = Scale(Enumerable.Range(0, 6).Select(i => Gaussian($"F{420 + 50 * i}", 420 + 50 * i, 40)).ToArray(), DefaultPeakQe),
-        },
-        "mosaic-16" => new SensorModel
+        }),
+        ("mosaic-16", () => new SensorModel
         {
             Name = "mosaic-16",
             Arrangement = Arrangement.Mosaic,
@@ -56,17 +90,15 @@ public static class SensorPresets
             Source = "a 4 × 4 snapshot multispectral mosaic: 16 Gaussian filters 410–690 nm evenly spaced (18.67 nm), FWHM 25 nm, in raster order",
             Channels = Scale(Enumerable.Range(0, 16).Select(i => { double c = 410 + 280.0 / 15 * i; return Gaussian($"F{c:0}", c, 25); }).ToArray(), DefaultPeakQe),
             Pattern = new int[4, 4] { { 0, 1, 2, 3 }, { 4, 5, 6, 7 }, { 8, 9, 10, 11 }, { 12, 13, 14, 15 } },
-        },
-        "cie-xyz" => new SensorModel
+        }),
+        ("cie-xyz", () => new SensorModel
         {
             Name = "cie-xyz",
             Arrangement = Arrangement.Full,
             Source = "an ideal colorimetric sensor: η_c(λ) ∝ CMF_c(λ)·(555 nm / λ) (CIE 1931 2°), so the electron count ∝ ∫ L·CMF dλ, i.e. ∝ XYZ",
             Channels = CieXyz(),
-        },
-        _ => throw new InputException(where, $"unknown sensor '{name}'",
-            InputException.DidYouMean(name, Names) is { } s ? s : $"presets: {string.Join(", ", Names)}, or a sensor JSON file"),
-    };
+        }),
+    ];
 
     static SensorModel Bayer(string name, string file, string[] columns, string source) => new()
     {

@@ -5,7 +5,9 @@ namespace SpectralRenderer.Tests.Architecture;
 /// <summary>
 /// The layers are one-way (ARCHITECTURE.md): each namespace may use only the namespaces its rule lists.
 /// The graph is read from the compiled engine and CLI (<see cref="NamespaceDependencies"/>), so it holds
-/// every reference the compiler resolved, by using directive or by fully qualified name.
+/// every reference the compiler resolved, by using directive or by fully qualified name, and from their source
+/// (<see cref="SourceDependencies"/>, whose names are built from <see cref="Allowed"/>), which holds what the compiler
+/// folds away (constants, enum values, nameof). Each layer has a deliberate back edge in LayerProbes.cs that must be reported.
 /// </summary>
 public class LayeringTests
 {
@@ -114,6 +116,95 @@ public class LayeringTests
         Assert.Contains(bad, b => b.StartsWith("SpectralRenderer.Imaging → SpectralRenderer.Output.RenderManifest", StringComparison.Ordinal));
     }
 
+    /// <summary>The name of namespace <paramref name="to"/> as written inside <paramref name="from"/>: relative to the namespace both are in.</summary>
+    static string Relative(string to, string from)
+    {
+        string[] a = from.Split('.'), b = to.Split('.');
+        int common = 0;
+        while (common < a.Length && common < b.Length - 1 && a[common] == b[common]) common++;
+        return string.Join('.', b[common..]);
+    }
+
+    [Fact]
+    public void Every_edge_the_rules_forbid_is_reported_through_a_constant()
+    {
+        // For every layer and every layer its rule does not allow, a constant read by a relative name (as C# binds it
+        // inside the layer's namespace) and by a global:: name: no layer is left out of the source pattern.
+        int pairs = 0;
+        foreach (var (from, ok) in Allowed)
+        {
+            if (ok.Contains("*")) continue;
+            foreach (var to in Allowed.Keys)
+            {
+                string shortTo = to[R.Length..];
+                if (to == from || ok.Contains(shortTo) || from.StartsWith(to + ".", StringComparison.Ordinal)) continue;
+                string snippet = $$"""
+                    namespace {{from}};
+                    static class Probe
+                    {
+                        public const int A = {{Relative(to, from)}}.Limits.Constant;
+                        public const int B = global::{{to}}.Limits.Other;
+                    }
+                    """;
+                var graph = new Dictionary<string, SortedSet<string>>
+                {
+                    [from] = new(SourceDependencies.Scan(snippet).Select(e => e.To), StringComparer.Ordinal),
+                };
+                Assert.Equal([$"{to}.Limits.Constant", $"{to}.Limits.Other"], graph[from]);
+                var bad = Violations(graph, Allowed);
+                Assert.True(bad.Count == 2, $"{from} → {to}: expected two violations, got:\n{string.Join("\n", bad)}\n{snippet}");
+                pairs++;
+            }
+        }
+        Assert.True(pairs > 100, $"only {pairs} forbidden pairs");
+    }
+
+    [Fact]
+    public void A_nested_layer_may_use_the_layer_around_it()
+    {
+        // Inside SpectralRenderer.Scenes.Loading the names of SpectralRenderer.Scenes need no qualification at all, so the
+        // source reader could not see such an edge: the rules must allow it.
+        foreach (var (layer, ok) in Allowed)
+            foreach (var outer in Allowed.Keys.Where(k => layer.StartsWith(k + ".", StringComparison.Ordinal)))
+                Assert.True(ok.Contains("*") || ok.Contains(outer[R.Length..]), $"{layer} must be allowed to use {outer}, which encloses it");
+    }
+
+    const string Layers = "SpectralRenderer.Tests.Architecture.Probe.Layers";
+
+    /// <summary>The back edges of LayerProbes.cs: each layer but Cli → a layer its rule forbids.</summary>
+    static readonly (string From, string To)[] ProbeBackEdges =
+    [
+        ("Diagnostics", "Spectra"), ("Spectra", "Color"), ("Color", "Geometry"), ("Geometry", "Acceleration"),
+        ("Acceleration", "Scenes"), ("Scenes", "Scenes.Loading"), ("Scenes.Loading", "Rendering"), ("Rendering", "Imaging"),
+        ("Imaging", "Sensor"), ("Sensor", "Output"), ("Output", "Pipeline"), ("Pipeline", "Analysis"),
+        ("Analysis", "Lighting"), ("Lighting", "Distributed"), ("Distributed", "Cli"),
+    ];
+
+    [Fact]
+    public void Every_layer_has_a_back_edge_probe_and_each_is_reported()
+    {
+        // The rule table re-rooted at the probes' namespace, the probes' source read as the engine's is, and the compiled
+        // test assembly read as the engine is: the constants leave no trace in the IL, the source reader reports each.
+        var rules = Allowed.ToDictionary(p => Layers + p.Key[(R.Length - 1)..], p => p.Value, StringComparer.Ordinal);
+        var covered = ProbeBackEdges.SelectMany(e => new[] { e.From, e.To }).ToHashSet();
+        Assert.True(Allowed.Keys.All(k => covered.Contains(k[R.Length..])), "every layer is in a probe edge");
+        Assert.True(ProbeBackEdges.Select(e => e.From).Distinct().Count() == Allowed.Count - 1, "every layer but Cli has a back edge");
+
+        var compiled = NamespaceDependencies.Read(typeof(LayeringTests).Assembly.Location)
+            .Where(p => p.Key.StartsWith(Layers + ".", StringComparison.Ordinal)).ToDictionary(p => p.Key, p => p.Value);
+        Assert.Equal(Allowed.Count, compiled.Count);
+        Assert.Empty(Violations(compiled, rules, Layers));
+
+        var source = SourceDependencies.Read([Repo.PathOf("tests", "SpectralRenderer.Tests", "Architecture", "LayerProbes.cs")], rules);
+        var bad = Violations(source, rules, Layers);
+        foreach (var (from, to) in ProbeBackEdges)
+        {
+            var edge = Assert.Single(bad, b => b.StartsWith($"{Layers}.{from} → {Layers}.{to}.", StringComparison.Ordinal));
+            Assert.Contains($": {from} may use only ", edge);
+        }
+        Assert.Equal(ProbeBackEdges.Length, bad.Count);
+    }
+
     [Fact]
     public void The_graph_holds_the_edges_the_layers_are_built_on()
     {
@@ -125,6 +216,10 @@ public class LayeringTests
         Assert.Contains(R + "Output", graph[R + "Analysis"]);        // render folders are read through the manifest
         Assert.Contains(R + "Spectra", graph[R + "Color"]);
         Assert.Contains(R + "Cli.Paper", graph[R + "Cli.Commands"]);
+        var source = SourceGraph();   // and the source reader sees the layers the old pattern left out
+        Assert.Contains(source[R + "Analysis.Recovery"], to => to.StartsWith(R + "Sensor", StringComparison.Ordinal));
+        Assert.Contains(source[R + "Cli.Commands"], to => to.StartsWith(R + "Lighting", StringComparison.Ordinal));
+        Assert.Contains(source[R + "Cli.Commands"], to => to.StartsWith(R + "Distributed", StringComparison.Ordinal));
     }
 
     [Fact]
@@ -148,7 +243,7 @@ public class LayeringTests
         Assert.Contains($"{P}.ByUsing", graph[$"{P}.High"]);
         Assert.Contains($"{P}.ByName", graph[$"{P}.High"]);
         var rules = new Dictionary<string, string[]> { [$"{P}.High"] = [], [$"{P}.ByUsing"] = [], [$"{P}.ByName"] = [] };
-        var probeGraph = graph.Where(p => p.Key.StartsWith(P, StringComparison.Ordinal)).ToDictionary(p => p.Key, p => p.Value);
+        var probeGraph = graph.Where(p => rules.ContainsKey(p.Key)).ToDictionary(p => p.Key, p => p.Value);
         var bad = Violations(probeGraph, rules, P);
         Assert.Equal(2, bad.Count);
         Assert.Contains(bad, b => b.StartsWith($"{P}.High → {P}.ByUsing", StringComparison.Ordinal));

@@ -13,6 +13,7 @@ namespace SpectralRenderer.Tests.FrontDoor;
 /// </summary>
 [Trait("Category", "Slow")]
 [Trait("Category", "Interop")]
+[Trait("Category", "Publish")]   // a Native AOT publish in the fixture: minutes; .ci/run runs it, the fast core does not
 public class NativeBuildTests : IClassFixture<NativeBuildTests.Native>
 {
     public sealed class Native

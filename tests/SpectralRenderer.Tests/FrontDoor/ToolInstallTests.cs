@@ -10,6 +10,7 @@ public class ToolInstallTests
     [Fact]
     [Trait("Category", "Slow")]
     [Trait("Category", "Interop")]
+    [Trait("Category", "Publish")]   // dotnet pack and tool install: .ci/run runs it, the fast core does not
     public void The_packed_tool_installs_into_a_tool_path_and_runs_as_spectral()
     {
         var work = Reference.TempDir();
