@@ -9,6 +9,9 @@ public sealed class PointLight(LightEmission emission) : Light(emission)
     public Vector3 Position { get; init; }
     public DistanceFalloff Falloff { get; init; } = DistanceFalloff.None;
 
+    public override LightDescription Describe(Radiometry radiometry) =>
+        new(Type, LightDescription.UnitOf(radiometry, LightDescription.RadiantIntensity), LightDescription.Of(Position), null, LightDescription.Of(Falloff));
+
     public override string Type => "point";
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]   // hot: once per light per hit, compiled for this CPU at first call
