@@ -19,23 +19,24 @@ public sealed partial class SceneLoader
             return DiffuseMaterial(name, bands, d);
         }
         Object(e, path);
-        Keys(e, path, "diffuse", "ambient", "specular", "shininess", "model", "mirror", "transmit", "ior", "fresnel");
-        foreach (var component in new[] { "ambient", "specular", "mirror", "transmit" })
-            if (TryGet(e, component, out var c)) Reflectance(Spectrum(c, $"{path}.{component}"), $"{path}.{component}");
-        TabulatedSpectrum? diffuseSpectrum = TryGet(e, "diffuse", out var ds) ? Reflectance(Spectrum(ds, $"{path}.diffuse"), $"{path}.diffuse") : null;
-        var diffuse = diffuseSpectrum is null ? Zero() : Bands(diffuseSpectrum, $"{path}.diffuse");
-        var ambient = OptionalBands(e, "ambient", path, diffuse);  // m_amb defaults to m_diff
-        var specular = OptionalBands(e, "specular", path);
-        float shininess = (float)Number(e, "shininess", path, 32, 0, 1e6);
-        var model = SpecularModels.Default;
-        if (TryGet(e, "model", out var m))
+        // The material model ("type", default eq2) reads its own keys; without "type" the keys are eq. 2's, as always.
+        var model = MaterialModels.ByName[MaterialModels.Default];
+        bool typed = TryGet(e, MaterialModels.KindKey, out var t);
+        if (typed)
         {
-            var given = String(m, $"{path}.model").ToLowerInvariant();
-            if (!SpecularModels.ByName.TryGetValue(given, out model))
-                throw Error($"{path}.model", $"unknown specular model '{given}'", $"use {string.Join(" or ", SpecularModels.ByName.Values.Select(x => x.Name).Distinct())}");
+            var type = String(t, $"{path}.{MaterialModels.KindKey}").ToLowerInvariant();
+            var names = MaterialModels.ByName.Keys.ToArray();
+            if (!MaterialModels.ByName.TryGetValue(type, out model))
+                throw Error($"{path}.{MaterialModels.KindKey}", $"unknown material type '{type}'", InputException.DidYouMean(type, names) ?? $"use {string.Join(", ", names)}");
         }
-        var mirror = OptionalBands(e, "mirror", path);
-        var transmit = OptionalBands(e, "transmit", path);
+        Keys(e, path, typed ? [MaterialModels.KindKey, .. model!.Keys] : model!.Keys);
+        return model.Make(new MaterialSource(this, e, path) { Name = name });
+    }
+
+    /// <summary>The index of refraction per band: a number, or {"cauchy": [A, B]} for n(λ) = A + B/λ² at the band centres (dispersive).</summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
+    (float[] Ior, bool Dispersive) Ior(JsonElement e, string path)
+    {
         float[] ior = Const(1.5f);
         bool dispersive = false;
         if (TryGet(e, "ior", out var iorE))
@@ -53,22 +54,7 @@ public sealed partial class SceneLoader
             }
             else throw Error($"{path}.ior", $"expected a number or {{\"cauchy\": [A, B]}}, found {Kind(iorE)}", "e.g. \"ior\": 1.5");
         }
-        bool fresnel = Bool(e, "fresnel", path, false);
-        return new Material
-        {
-            Name = name,
-            Ambient = ambient,
-            Diffuse = diffuse,
-            Specular = specular,
-            Shininess = shininess,
-            Model = model,
-            Mirror = mirror,
-            Transmit = transmit,
-            Ior = ior,
-            Dispersive = dispersive,
-            Fresnel = fresnel,
-            DiffuseSpectrum = diffuseSpectrum,
-        };
+        return (ior, dispersive);
     }
 
     /// <summary>
@@ -95,7 +81,7 @@ public sealed partial class SceneLoader
 
     /// <summary>A purely diffuse material (m_amb = m_diff, no specular, mirror or transmission lobe).</summary>
     [MethodImpl(MethodImplOptions.NoOptimization)]
-    Material DiffuseMaterial(string name, float[] bands, TabulatedSpectrum? spectrum) => new()
+    Material DiffuseMaterial(string name, float[] bands, TabulatedSpectrum? spectrum, Bsdf? bsdf = null) => new()
     {
         Name = name,
         Ambient = bands,
@@ -105,6 +91,7 @@ public sealed partial class SceneLoader
         Transmit = Zero(),
         Ior = Const(1),
         DiffuseSpectrum = spectrum,
+        Bsdf = bsdf!,   // null: eq. 2's own view
     };
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
@@ -126,5 +113,42 @@ public sealed partial class SceneLoader
         }
         materials.Add(ParseMaterial(m, $"{path}.material", $"{path}.material"));
         return materials.Count - 1;
+    }
+
+    /// <summary>
+    /// What a material model's factory (<see cref="MaterialModels"/>) gets: the material's name and readers for its own keys
+    /// that resolve spectra onto the scene's bands and report bad input with the file, line:column and JSON path.
+    /// </summary>
+    public sealed class MaterialSource
+    {
+        readonly SceneLoader _loader;
+        readonly JsonElement _e;
+        readonly string _path;
+
+        internal MaterialSource(SceneLoader loader, JsonElement e, string path) { _loader = loader; _e = e; _path = path; }
+
+        public required string Name { get; init; }
+
+        public bool Has(string key) => TryGet(_e, key, out _);
+        /// <summary>A reflectance or transmittance spectrum, checked to lie in [0, 1] (a warning up to 2); null when absent.</summary>
+        public TabulatedSpectrum? Reflectance(string key) =>
+            TryGet(_e, key, out var v) ? _loader.Reflectance(_loader.Spectrum(v, $"{_path}.{key}"), $"{_path}.{key}") : null;
+        /// <summary>A required reflectance.</summary>
+        public TabulatedSpectrum RequiredReflectance(string key) =>
+            _loader.Reflectance(_loader.Spectrum(_loader.Required(_e, key, _path), $"{_path}.{key}"), $"{_path}.{key}");
+        /// <summary>A spectrum's padded band values on the scene's grid (the integrator integrates its products exactly).</summary>
+        public float[] Bands(TabulatedSpectrum s, string key) => _loader.Bands(s, $"{_path}.{key}");
+        /// <summary>The key's spectrum as padded band values, or <paramref name="fallback"/> (zero when null) when absent.</summary>
+        public float[] Bands(string key, float[]? fallback = null) => _loader.OptionalBands(_e, key, _path, fallback);
+        public float[] Zero() => _loader.Zero();
+        public double Number(string key, double fallback, double min, double max) => _loader.Number(_e, key, _path, fallback, min, max);
+        public bool Bool(string key, bool fallback) => _loader.Bool(_e, key, _path, fallback);
+        /// <summary>A required string.</summary>
+        public string String(string key) => _loader.String(_loader.Required(_e, key, _path), $"{_path}.{key}");
+        /// <summary>"ior": a number or {"cauchy": [A, B]}; 1.5 when absent.</summary>
+        public (float[] Ior, bool Dispersive) Ior() => _loader.Ior(_e, _path);
+        /// <summary>A purely diffuse material of these band values (m_amb = m_diff), with its own BSDF or eq. 2's view.</summary>
+        public Material Diffuse(float[] bands, TabulatedSpectrum? spectrum, Bsdf? bsdf = null) => _loader.DiffuseMaterial(Name, bands, spectrum, bsdf);
+        public InputException Error(string key, string what, string hint) => _loader.Error($"{_path}.{key}", what, hint);
     }
 }
