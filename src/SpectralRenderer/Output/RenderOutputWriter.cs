@@ -334,7 +334,8 @@ public static class RenderOutputWriter
         {
             var l = scene.Lights[k];
             var d = l.Describe(scene.Radiometry);
-            lights[k] = new ManifestLight(k, l.Name, d.Type, l.Spectrum?.Name, l.Scale, d.Unit, l.HasAmbient, d.Position, d.Direction, d.Attenuation, l.Spectrum);
+            lights[k] = new ManifestLight(k, l.Name, d.Type, l.Spectrum?.Name, l.Scale, d.Unit, l.HasAmbient,
+                d.Position, d.Direction, d.Attenuation, l.Spectrum);
         }
         var manifest = new RenderManifest
         {

@@ -66,7 +66,7 @@ public abstract class Bsdf
         return false;
     }
 
-    /// <summary>A unit direction about <paramref name="n"/> with density cos θ/π (Malley's method: a uniform disc lifted to the hemisphere).</summary>
+    /// <summary>A unit direction about <paramref name="n"/> with density cos θ/π (Malley's method).</summary>
     public static Vector3 CosineHemisphere(Vector3 n, Vector2 u)
     {
         float r = MathF.Sqrt(u.X), phi = 2 * MathF.PI * u.Y;
@@ -85,7 +85,8 @@ public abstract class Bsdf
     }
 
     /// <summary>The density of <see cref="PowerCosine"/> at cos α.</summary>
-    public static float PowerCosinePdf(float cos, float exponent) => cos <= 0 ? 0 : (exponent + 1) / (2 * MathF.PI) * MathF.Pow(cos, exponent);
+    public static float PowerCosinePdf(float cos, float exponent) =>
+        cos <= 0 ? 0 : (exponent + 1) / (2 * MathF.PI) * MathF.Pow(cos, exponent);
 
     /// <summary>An orthonormal basis (t, b) completing the unit vector n (Duff et al. 2017, branchless).</summary>
     public static (Vector3 T, Vector3 B) Frame(Vector3 n)

@@ -22,7 +22,8 @@ public sealed class Eq2Bsdf : Bsdf
         double d = Sum(material.Diffuse), s = material.HasSpecular ? Sum(material.Specular) : 0;
         _diffuseShare = d + s > 0 ? (float)(d / (d + s)) : 0;
         Lobes = (d > 0 ? BsdfFlags.Reflection | BsdfFlags.Diffuse : 0) | (s > 0 ? BsdfFlags.Reflection | BsdfFlags.Glossy : 0)
-              | (material.HasMirror ? BsdfFlags.Reflection | BsdfFlags.Delta : 0) | (material.HasTransmission ? BsdfFlags.Transmission | BsdfFlags.Delta : 0);
+              | (material.HasMirror ? BsdfFlags.Reflection | BsdfFlags.Delta : 0)
+              | (material.HasTransmission ? BsdfFlags.Transmission | BsdfFlags.Delta : 0);
     }
 
     static double Sum(float[] a)
@@ -81,7 +82,10 @@ public sealed class Eq2Bsdf : Bsdf
         return true;
     }
 
-    /// <summary>k_r times the Fresnel reflectance when the material has it (per band's own index when it is dispersive and <paramref name="band"/> is −1).</summary>
+    /// <summary>
+    /// k_r times the Fresnel reflectance when the material has it (per band's own index when it is dispersive and
+    /// <paramref name="band"/> is −1).
+    /// </summary>
     public override bool SampleMirror(Vector3 wo, Vector3 n, int band, Span<float> weight, out Vector3 wi)
     {
         wi = default;

@@ -83,7 +83,8 @@ public abstract class Light(LightEmission emission)
     public virtual float Emitted(Vector3 point, Vector3 normal, Vector3 wo) => 0;
 
     /// <summary>The light as render.json lists it (its kind, what its intensity is in, where it is and how it falls off).</summary>
-    public virtual LightDescription Describe(Radiometry radiometry) => new(Type, LightDescription.UnitOf(radiometry, LightDescription.RadiantIntensity));
+    public virtual LightDescription Describe(Radiometry radiometry) =>
+        new(Type, LightDescription.UnitOf(radiometry, LightDescription.RadiantIntensity));
 }
 
 /// <summary>
@@ -97,7 +98,8 @@ public readonly record struct LightIncidence(Vector3 Direction, float Distance, 
 /// A light as the manifest describes it: its kind, the unit of its spectrum × intensity, and the parameters of its kind
 /// (position, direction it shines towards, attenuation [c0, c1, c2]); null where the kind has none.
 /// </summary>
-public sealed record LightDescription(string Type, string Unit, double[]? Position = null, double[]? Direction = null, double[]? Attenuation = null)
+public sealed record LightDescription(string Type, string Unit,
+    double[]? Position = null, double[]? Direction = null, double[]? Attenuation = null)
 {
     public const string Relative = "relative (paper radiometry)";
     public const string RadiantIntensity = "W.sr^-1.nm^-1 (radiant intensity) per unit of the spectrum";

@@ -10,7 +10,8 @@ public sealed class PointLight(LightEmission emission) : Light(emission)
     public DistanceFalloff Falloff { get; init; } = DistanceFalloff.None;
 
     public override LightDescription Describe(Radiometry radiometry) =>
-        new(Type, LightDescription.UnitOf(radiometry, LightDescription.RadiantIntensity), LightDescription.Of(Position), null, LightDescription.Of(Falloff));
+        new(Type, LightDescription.UnitOf(radiometry, LightDescription.RadiantIntensity), LightDescription.Of(Position), null,
+            LightDescription.Of(Falloff));
 
     public override string Type => "point";
 

@@ -18,8 +18,8 @@ public sealed class SpotLight(LightEmission emission) : Light(emission)
     public float Exponent { get; init; }
 
     public override LightDescription Describe(Radiometry radiometry) =>
-        new(Type, LightDescription.UnitOf(radiometry, LightDescription.RadiantIntensity), LightDescription.Of(Position), LightDescription.Of(Direction),
-            LightDescription.Of(Falloff));
+        new(Type, LightDescription.UnitOf(radiometry, LightDescription.RadiantIntensity), LightDescription.Of(Position),
+            LightDescription.Of(Direction), LightDescription.Of(Falloff));
 
     public override string Type => "spot";
 

@@ -3,7 +3,7 @@ using SpectralRenderer.Scenes;
 
 namespace SpectralRenderer.Tests.Scenes;
 
-/// <summary>Delta lights sampled: the same direction, distance and d·c_spot as <see cref="Light.Illuminate"/>, and the inverse-square law.</summary>
+/// <summary>Delta lights sampled: the direction, distance and d·c_spot of <see cref="Light.Illuminate"/>; the inverse-square law.</summary>
 public class LightSamplingTests
 {
     static readonly LightEmission Emission = new("l", [1f], [0f], false);
@@ -11,7 +11,10 @@ public class LightSamplingTests
     static Light[] Lights() =>
     [
         new PointLight(Emission) { Position = new(1, 4, -2), Falloff = new(1, 0.3f, 0.05f) },
-        new SpotLight(Emission) { Position = new(0, 5, 0), Direction = -Vector3.UnitY, Falloff = new(0, 0, 1), CosCutoff = MathF.Cos(0.6f), Exponent = 3 },
+        new SpotLight(Emission)
+        {
+            Position = new(0, 5, 0), Direction = -Vector3.UnitY, Falloff = new(0, 0, 1), CosCutoff = MathF.Cos(0.6f), Exponent = 3,
+        },
         new DirectionalLight(Emission) { Direction = Vector3.Normalize(new Vector3(1, -2, 0.5f)) },
     ];
 

@@ -67,7 +67,8 @@ public class RegistrationTests
     {
         var scene = SceneLoader.Parse(Encoding.UTF8.GetBytes("""
         { "camera": { "position": [0, 5, 1], "look_at": [0, 0, 0] },
-          "materials": { "a": { "type": "lambertian", "reflectance": 0.4 }, "b": { "diffuse": 0.4 }, "c": { "type": "eq2", "diffuse": 0.4 } },
+          "materials": { "a": { "type": "lambertian", "reflectance": 0.4 }, "b": { "diffuse": 0.4 },
+                         "c": { "type": "eq2", "diffuse": 0.4 } },
           "objects": [] }
         """), "lambertian.json");
         var (a, b, c) = (scene.Materials[0], scene.Materials[1], scene.Materials[2]);

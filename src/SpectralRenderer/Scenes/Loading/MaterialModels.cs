@@ -27,7 +27,7 @@ public static class MaterialModels
     /// <summary>Adds a material model under a new (lower-case) name; loads that start afterwards can use it.</summary>
     public static void Register(string name, MaterialModel model) => Registry.Add(ref s_byName, Gate, name, model);
 
-    /// <summary>The paper's eq. 2: m_amb, m_diff, m_spec with its specular model and shininess, Whitted k_r and k_t, IOR, Fresnel.</summary>
+    /// <summary>The paper's eq. 2: m_amb, m_diff, m_spec with its specular model and shininess, k_r and k_t, IOR, Fresnel.</summary>
     static Material Eq2(SceneLoader.MaterialSource s)
     {
         // Every reflectance is checked before any is projected (the order of the errors and warnings).
@@ -42,7 +42,8 @@ public static class MaterialModels
         {
             var given = s.String("model").ToLowerInvariant();
             if (!SpecularModels.ByName.TryGetValue(given, out model))
-                throw s.Error("model", $"unknown specular model '{given}'", $"use {string.Join(" or ", SpecularModels.ByName.Values.Select(x => x.Name).Distinct())}");
+                throw s.Error("model", $"unknown specular model '{given}'",
+                    $"use {string.Join(" or ", SpecularModels.ByName.Values.Select(x => x.Name).Distinct())}");
         }
         var mirror = s.Bands("mirror");
         var transmit = s.Bands("transmit");

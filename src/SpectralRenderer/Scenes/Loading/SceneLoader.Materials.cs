@@ -27,13 +27,14 @@ public sealed partial class SceneLoader
             var type = String(t, $"{path}.{MaterialModels.KindKey}").ToLowerInvariant();
             var names = MaterialModels.ByName.Keys.ToArray();
             if (!MaterialModels.ByName.TryGetValue(type, out model))
-                throw Error($"{path}.{MaterialModels.KindKey}", $"unknown material type '{type}'", InputException.DidYouMean(type, names) ?? $"use {string.Join(", ", names)}");
+                throw Error($"{path}.{MaterialModels.KindKey}", $"unknown material type '{type}'",
+                    InputException.DidYouMean(type, names) ?? $"use {string.Join(", ", names)}");
         }
         Keys(e, path, typed ? [MaterialModels.KindKey, .. model!.Keys] : model!.Keys);
         return model.Make(new MaterialSource(this, e, path) { Name = name });
     }
 
-    /// <summary>The index of refraction per band: a number, or {"cauchy": [A, B]} for n(λ) = A + B/λ² at the band centres (dispersive).</summary>
+    /// <summary>The index of refraction per band: a number, or {"cauchy": [A, B]} for n(λ) = A + B/λ² at the band centres.</summary>
     [MethodImpl(MethodImplOptions.NoOptimization)]
     (float[] Ior, bool Dispersive) Ior(JsonElement e, string path)
     {
@@ -148,7 +149,8 @@ public sealed partial class SceneLoader
         /// <summary>"ior": a number or {"cauchy": [A, B]}; 1.5 when absent.</summary>
         public (float[] Ior, bool Dispersive) Ior() => _loader.Ior(_e, _path);
         /// <summary>A purely diffuse material of these band values (m_amb = m_diff), with its own BSDF or eq. 2's view.</summary>
-        public Material Diffuse(float[] bands, TabulatedSpectrum? spectrum, Bsdf? bsdf = null) => _loader.DiffuseMaterial(Name, bands, spectrum, bsdf);
+        public Material Diffuse(float[] bands, TabulatedSpectrum? spectrum, Bsdf? bsdf = null) =>
+            _loader.DiffuseMaterial(Name, bands, spectrum, bsdf);
         public InputException Error(string key, string what, string hint) => _loader.Error($"{_path}.{key}", what, hint);
     }
 }
