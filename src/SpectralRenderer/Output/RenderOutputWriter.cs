@@ -324,16 +324,9 @@ public static class RenderOutputWriter
         for (int k = 0; k < lights.Length; k++)
         {
             var l = scene.Lights[k];
-            string unit = scene.Radiometry != Radiometry.Physical ? "relative (paper radiometry)"
-                : l is DirectionalLight ? "W.m^-2.nm^-1 (irradiance facing the light) per unit of the spectrum" : "W.sr^-1.nm^-1 (radiant intensity) per unit of the spectrum";
-            static double[] V(System.Numerics.Vector3 v) => [v.X, v.Y, v.Z];
-            lights[k] = l switch
-            {
-                PointLight pl => new ManifestLight(k, l.Name, l.Type, l.Spectrum?.Name, l.Scale, unit, l.HasAmbient, V(pl.Position), null, [pl.Falloff.C0, pl.Falloff.C1, pl.Falloff.C2], l.Spectrum),
-                SpotLight sl => new ManifestLight(k, l.Name, l.Type, l.Spectrum?.Name, l.Scale, unit, l.HasAmbient, V(sl.Position), V(sl.Direction), [sl.Falloff.C0, sl.Falloff.C1, sl.Falloff.C2], l.Spectrum),
-                DirectionalLight dl => new ManifestLight(k, l.Name, l.Type, l.Spectrum?.Name, l.Scale, unit, l.HasAmbient, null, V(dl.Direction), null, l.Spectrum),
-                _ => new ManifestLight(k, l.Name, l.Type, l.Spectrum?.Name, l.Scale, unit, l.HasAmbient, null, null, null, l.Spectrum),
-            };
+            var d = l.Describe(scene.Radiometry);
+            lights[k] = new ManifestLight(k, l.Name, d.Type, l.Spectrum?.Name, l.Scale, d.Unit, l.HasAmbient,
+                d.Position, d.Direction, d.Attenuation, l.Spectrum);
         }
         var manifest = new RenderManifest
         {

@@ -9,6 +9,9 @@ public sealed class DirectionalLight(LightEmission emission) : Light(emission)
     /// <summary>Unit direction the light shines towards.</summary>
     public Vector3 Direction { get; init; }
 
+    public override LightDescription Describe(Radiometry radiometry) =>
+        new(Type, LightDescription.UnitOf(radiometry, LightDescription.Irradiance), null, LightDescription.Of(Direction));
+
     public override string Type => "directional";
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]   // hot: once per light per hit, compiled for this CPU at first call

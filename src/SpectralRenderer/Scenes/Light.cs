@@ -52,6 +52,67 @@ public abstract class Light(LightEmission emission)
 
     /// <summary>The light as an isotropic point emitter that packets evaluate in SIMD lanes, or null when it is not one.</summary>
     public virtual PointEmitter? LaneForm => null;
+
+    // ---- sampling (docs: a light one new file; the defaults are a delta light's) ----------------------------
+
+    /// <summary>True for a light concentrated in a point or a direction (point, spot, directional): no ray can hit it.</summary>
+    public virtual bool IsDelta => true;
+
+    /// <summary>
+    /// One sample of the light seen from <paramref name="p"/> for the random numbers <paramref name="u"/> ∈ [0, 1)²: the
+    /// direction and distance to it, the factor on its spectrum <see cref="Intensity"/> (radiance for a light of extent,
+    /// d_k·c_spot,k for a delta light, as eq. 2 uses it), the solid-angle pdf (1 for a delta light: its one direction
+    /// is chosen with certainty) and whether it is a delta light. False when it cannot reach <paramref name="p"/>.
+    /// A delta light's sample is <see cref="Illuminate"/>'s, whatever <paramref name="u"/>.
+    /// </summary>
+    public virtual bool Sample(Vector3 p, Vector2 u, out LightIncidence sample)
+    {
+        if (!Illuminate(p, out var ls)) { sample = default; return false; }
+        sample = new LightIncidence(ls.Direction, ls.Distance, ls.Attenuation * ls.Spot, 1f, IsDelta);
+        return true;
+    }
+
+    /// <summary>
+    /// The solid-angle density with which <see cref="Sample"/> picks direction <paramref name="wi"/> from <paramref name="p"/>:
+    /// 0 for a delta light (no direction chosen at random, e.g. by a BSDF, ever meets it).
+    /// </summary>
+    public virtual float Pdf(Vector3 p, Vector3 wi) => 0;
+
+    /// <summary>
+    /// The factor on <see cref="Intensity"/> that gives the radiance a ray sees when it hits the light at
+    /// <paramref name="point"/> (surface normal <paramref name="normal"/>), travelling back along <paramref name="wo"/>
+    /// (towards the ray's origin). A delta light cannot be hit: 0.
+    /// </summary>
+    public virtual float Emitted(Vector3 point, Vector3 normal, Vector3 wo) => 0;
+
+    /// <summary>The light as render.json lists it (its kind, what its intensity is in, where it is and how it falls off).</summary>
+    public virtual LightDescription Describe(Radiometry radiometry) =>
+        new(Type, LightDescription.UnitOf(radiometry, LightDescription.RadiantIntensity));
+}
+
+/// <summary>
+/// One sample of a light seen from a point (<see cref="Light.Sample"/>): unit direction towards the light, the distance
+/// (∞ at infinity), the factor on the light's spectrum (radiance, or d_k·c_spot,k of a delta light), the solid-angle
+/// pdf (1 for a delta light) and whether the light is a delta light.
+/// </summary>
+public readonly record struct LightIncidence(Vector3 Direction, float Distance, float Factor, float Pdf, bool IsDelta);
+
+/// <summary>
+/// A light as the manifest describes it: its kind, the unit of its spectrum × intensity, and the parameters of its kind
+/// (position, direction it shines towards, attenuation [c0, c1, c2]); null where the kind has none.
+/// </summary>
+public sealed record LightDescription(string Type, string Unit,
+    double[]? Position = null, double[]? Direction = null, double[]? Attenuation = null)
+{
+    public const string Relative = "relative (paper radiometry)";
+    public const string RadiantIntensity = "W.sr^-1.nm^-1 (radiant intensity) per unit of the spectrum";
+    public const string Irradiance = "W.m^-2.nm^-1 (irradiance facing the light) per unit of the spectrum";
+
+    /// <summary>The unit text: relative under paper radiometry, else <paramref name="physical"/>.</summary>
+    public static string UnitOf(Radiometry radiometry, string physical) => radiometry != Radiometry.Physical ? Relative : physical;
+
+    public static double[] Of(Vector3 v) => [v.X, v.Y, v.Z];
+    public static double[] Of(DistanceFalloff f) => [f.C0, f.C1, f.C2];
 }
 
 /// <summary>An isotropic point emitter (c_spot = 1) at <paramref name="Position"/> with distance falloff d_k.</summary>

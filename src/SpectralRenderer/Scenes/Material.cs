@@ -27,6 +27,12 @@ public sealed class Material
     /// <summary>The tabulated diffuse reflectance (ground truth for analysis), when it was a spectrum.</summary>
     public Spectra.TabulatedSpectrum? DiffuseSpectrum { get; init; }
 
+    /// <summary>
+    /// The material as a BSDF in physical radiometry (f in 1/sr, sampling, pdf, delta lobes): eq. 2's lobes as
+    /// <see cref="Eq2Bsdf"/> unless its material model gives its own. The Whitted integrator uses the lobes above.
+    /// </summary>
+    public Bsdf Bsdf { get => field ??= new Eq2Bsdf(this); init; }
+
     public bool HasAmbient { get; private init; }
     public bool HasSpecular { get; private init; }
     public bool HasMirror { get; private init; }

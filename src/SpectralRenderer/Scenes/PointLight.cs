@@ -9,6 +9,10 @@ public sealed class PointLight(LightEmission emission) : Light(emission)
     public Vector3 Position { get; init; }
     public DistanceFalloff Falloff { get; init; } = DistanceFalloff.None;
 
+    public override LightDescription Describe(Radiometry radiometry) =>
+        new(Type, LightDescription.UnitOf(radiometry, LightDescription.RadiantIntensity), LightDescription.Of(Position), null,
+            LightDescription.Of(Falloff));
+
     public override string Type => "point";
 
     public override PointEmitter? LaneForm => new PointEmitter(Position, Falloff);

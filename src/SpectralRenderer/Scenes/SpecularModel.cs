@@ -19,6 +19,15 @@ public abstract class SpecularModel
     /// (its directional albedo at most m_spec), e.g. (n + 8)/(8π) for Blinn–Phong, (n + 2)/(2π) for Phong.
     /// </summary>
     public abstract double EnergyNormalisation(double shininess);
+
+    /// <summary>
+    /// A light direction l drawn for unit normal n and view direction v (same side), for importance sampling the lobe as a
+    /// BSDF; the density is <see cref="LobePdf"/>. By default cos θ/π over the hemisphere, right for any lobe shape.
+    /// </summary>
+    public virtual Vector3 SampleLobe(Vector3 n, Vector3 v, Vector2 u, float shininess) => Bsdf.CosineHemisphere(n, u);
+
+    /// <summary>The solid-angle density of <see cref="SampleLobe"/> at l (0 below the surface).</summary>
+    public virtual float LobePdf(Vector3 n, Vector3 v, Vector3 l, float shininess) => MathF.Max(0, Vector3.Dot(n, l)) / MathF.PI;
 }
 
 /// <summary>The specular models a scene file can name: the one registration point for a new model.</summary>

@@ -17,6 +17,10 @@ public sealed class SpotLight(LightEmission emission) : Light(emission)
     public float CosCutoff { get; init; } = -1;
     public float Exponent { get; init; }
 
+    public override LightDescription Describe(Radiometry radiometry) =>
+        new(Type, LightDescription.UnitOf(radiometry, LightDescription.RadiantIntensity), LightDescription.Of(Position),
+            LightDescription.Of(Direction), LightDescription.Of(Falloff));
+
     public override string Type => "spot";
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]   // hot: once per light per hit, compiled for this CPU at first call

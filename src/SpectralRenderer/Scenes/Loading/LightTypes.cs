@@ -15,12 +15,18 @@ public static class LightTypes
     /// <summary>Keys every light takes; the loader parses them into <see cref="SceneLoader.LightSource"/>.</summary>
     public static readonly string[] CommonKeys = ["type", "name", "spectrum", "intensity", "ambient", "attenuation"];
 
-    public static readonly IReadOnlyDictionary<string, LightType> ByName = new Dictionary<string, LightType>(StringComparer.Ordinal)
+    static readonly Lock Gate = new();
+    static Dictionary<string, LightType> s_byName = new(StringComparer.Ordinal)
     {
         ["point"] = new(["position"], s => new PointLight(s.Emission) { Position = s.Point("position"), Falloff = s.Falloff }),
         ["spot"] = new(["position", "direction", "look_at", "cutoff", "exponent"], Spot),
         ["directional"] = new(["direction"], s => new DirectionalLight(s.Emission) { Direction = s.Direction("direction") }),
     };
+
+    public static IReadOnlyDictionary<string, LightType> ByName => Volatile.Read(ref s_byName);
+
+    /// <summary>Adds a light type under a new (lower-case) name; loads that start afterwards can use it.</summary>
+    public static void Register(string name, LightType type) => Registry.Add(ref s_byName, Gate, name, type);
 
     static SpotLight Spot(SceneLoader.LightSource s)
     {

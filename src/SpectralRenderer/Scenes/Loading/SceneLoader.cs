@@ -12,7 +12,9 @@ namespace SpectralRenderer.Scenes.Loading;
 
 /// <summary>
 /// Reads a scene file (docs/scene-format.md): JSON with comments and trailing commas. Every error
-/// is one line naming file:line:column and the JSON path, what is wrong, and a hint.
+/// is one line naming file:line:column and the JSON path, what is wrong, and a hint. One file per concept: this one
+/// the scene (top level, bands, radiometry, integration, output), then SceneLoader.Camera, .Spectra, .Materials, .Lights,
+/// .Objects, .Meshes, and .Json (the readers and their errors).
 /// </summary>
 public sealed partial class SceneLoader
 {
@@ -129,115 +131,6 @@ public sealed partial class SceneLoader
             "save the scene file as UTF-8 (it looks like Latin-1 or another legacy encoding)");
     }
 
-    // ---- errors -------------------------------------------------------------------------------
-
-    [MethodImpl(MethodImplOptions.NoOptimization)]
-    InputException Error(string jsonPath, string what, string hint, InputProblem problem = InputProblem.Invalid)
-    {
-        // Point at the nearest located ancestor when the path itself is absent (a missing field).
-        string p = jsonPath;
-        string? pos = _locator.Locate(p);
-        while (pos is null && p.Length > 1)
-        {
-            int cut = Math.Max(p.LastIndexOf('.'), p.LastIndexOf('['));
-            if (cut <= 0) break;
-            p = p[..cut];
-            pos = _locator.Locate(p);
-        }
-        return new InputException(pos is null ? $"{_file}: {jsonPath}" : $"{_file}:{pos}: {jsonPath}", what, hint) { Problem = problem };
-    }
-
-    [MethodImpl(MethodImplOptions.NoOptimization)]
-    static string Kind(JsonElement e) => e.ValueKind switch
-    {
-        JsonValueKind.Object => "an object",
-        JsonValueKind.Array => "an array",
-        JsonValueKind.String => "a string",
-        JsonValueKind.Number => "a number",
-        JsonValueKind.True or JsonValueKind.False => "a boolean",
-        _ => "null",
-    };
-
-    [MethodImpl(MethodImplOptions.NoOptimization)]
-    void Keys(JsonElement obj, string path, params string[] allowed)
-    {
-        foreach (var p in obj.EnumerateObject())
-            if (Array.IndexOf(allowed, p.Name) < 0)
-                throw Error($"{path}.{p.Name}", $"unknown field {MessageText.Quote(p.Name)}",
-                    InputException.DidYouMean(p.Name, allowed) ?? $"allowed here: {string.Join(", ", allowed)}");
-    }
-
-    [MethodImpl(MethodImplOptions.NoOptimization)]
-    JsonElement Object(JsonElement e, string path)
-    {
-        if (e.ValueKind != JsonValueKind.Object) throw Error(path, $"expected an object, found {Kind(e)}", "write it as { \"key\": value, … }");
-        return e;
-    }
-
-    static bool TryGet(JsonElement obj, string name, out JsonElement value) => obj.TryGetProperty(name, out value) && value.ValueKind != JsonValueKind.Null;
-
-    [MethodImpl(MethodImplOptions.NoOptimization)]
-    JsonElement Required(JsonElement obj, string name, string path)
-    {
-        if (!TryGet(obj, name, out var v)) throw Error($"{path}.{name}", $"missing required field '{name}'", "see docs/scene-format.md for the required fields");
-        return v;
-    }
-
-    [MethodImpl(MethodImplOptions.NoOptimization)]
-    double Number(JsonElement e, string path, double min = -MaxMagnitude, double max = MaxMagnitude)
-    {
-        if (e.ValueKind != JsonValueKind.Number) throw Error(path, $"expected a number, found {Kind(e)}", "write a plain number such as 1.5");
-        double v = e.GetDouble();
-        min = Math.Max(min, -MaxMagnitude);
-        max = Math.Min(max, MaxMagnitude);
-        if (!double.IsFinite(v) || v < min || v > max)
-            throw Error(path, $"{v.ToString(CultureInfo.InvariantCulture)} is out of range", $"expected {min.ToString(CultureInfo.InvariantCulture)} to {max.ToString(CultureInfo.InvariantCulture)}");
-        return v;
-    }
-
-    [MethodImpl(MethodImplOptions.NoOptimization)]
-    double Number(JsonElement obj, string name, string path, double fallback, double min = -MaxMagnitude, double max = MaxMagnitude) =>
-        TryGet(obj, name, out var v) ? Number(v, $"{path}.{name}", min, max) : fallback;
-
-    [MethodImpl(MethodImplOptions.NoOptimization)]
-    int Integer(JsonElement obj, string name, string path, int fallback, int min, int max)
-    {
-        if (!TryGet(obj, name, out var v)) return fallback;
-        if (v.ValueKind != JsonValueKind.Number || !v.TryGetInt32(out int i)) throw Error($"{path}.{name}", $"expected a whole number, found {(v.ValueKind == JsonValueKind.Number ? v.GetRawText() : Kind(v))}", "write an integer such as 4");
-        if (i < min || i > max) throw Error($"{path}.{name}", $"{i} is out of range", $"expected {min} to {max}");
-        return i;
-    }
-
-    [MethodImpl(MethodImplOptions.NoOptimization)]
-    string String(JsonElement e, string path)
-    {
-        if (e.ValueKind != JsonValueKind.String) throw Error(path, $"expected a string, found {Kind(e)}", "write it in double quotes");
-        return e.GetString()!;
-    }
-
-    [MethodImpl(MethodImplOptions.NoOptimization)]
-    bool Bool(JsonElement obj, string name, string path, bool fallback)
-    {
-        if (!TryGet(obj, name, out var v)) return fallback;
-        if (v.ValueKind is not (JsonValueKind.True or JsonValueKind.False)) throw Error($"{path}.{name}", $"expected true or false, found {Kind(v)}", "write true or false without quotes");
-        return v.GetBoolean();
-    }
-
-    [MethodImpl(MethodImplOptions.NoOptimization)]
-    Vector3 Vec3(JsonElement obj, string name, string path, Vector3 fallback)
-    {
-        if (!TryGet(obj, name, out var v)) return fallback;
-        return Vec3(v, $"{path}.{name}");
-    }
-
-    [MethodImpl(MethodImplOptions.NoOptimization)]
-    Vector3 Vec3(JsonElement v, string path)
-    {
-        if (v.ValueKind != JsonValueKind.Array || v.GetArrayLength() != 3)
-            throw Error(path, $"expected [x, y, z], found {Kind(v)}", "e.g. [0, 1, 5]");
-        return new Vector3((float)Number(v[0], $"{path}[0]", -MaxCoordinate, MaxCoordinate), (float)Number(v[1], $"{path}[1]", -MaxCoordinate, MaxCoordinate),
-            (float)Number(v[2], $"{path}[2]", -MaxCoordinate, MaxCoordinate));
-    }
 
     // ---- the scene ----------------------------------------------------------------------------
 
@@ -463,42 +356,6 @@ public sealed partial class SceneLoader
     }
 
     static string Size(long bytes) => bytes >= 1L << 30 ? $"{bytes / (double)(1L << 30):0.#} GiB" : $"{bytes / (double)(1L << 20):0.#} MiB";
-
-    [MethodImpl(MethodImplOptions.NoOptimization)]
-    Camera ParseCamera(JsonElement e, string path)
-    {
-        Object(e, path);
-        Keys(e, path, "position", "look_at", "up", "fov", "width", "height", "spp", "sensor");   // sensor: read by `spectral camera` (Sensor/SensorFile.FromScene)
-        var position = Vec3(Required(e, "position", path), $"{path}.position");
-        var lookAt = Vec3(Required(e, "look_at", path), $"{path}.look_at");
-        var up = Vec3(e, "up", path, Vector3.UnitY);
-        if (lookAt == position) throw Error($"{path}.look_at", "look_at equals position", "the camera needs a direction to look in");
-        if (Vector3.Cross(Vector3.Normalize(lookAt - position), up).LengthSquared() < 1e-12f)
-            throw Error($"{path}.up", "up is parallel to the viewing direction", "choose another up vector");
-        float fov = (float)Number(e, "fov", path, 40, 1e-3, 179);
-        int sceneWidth = Integer(e, "width", path, 640, int.MinValue, int.MaxValue);
-        int sceneHeight = Integer(e, "height", path, 480, int.MinValue, int.MaxValue);
-        int width = _overrides.Width ?? sceneWidth, height = _overrides.Height ?? sceneHeight;
-        // One side given alone keeps the camera's aspect ratio (the field of view is vertical, so the view widens or narrows with it otherwise).
-        if (sceneWidth > 0 && sceneHeight > 0)
-        {
-            if (_overrides.Width is { } ow && _overrides.Height is null && ow > 0)
-                height = Math.Max(1, (int)Math.Round((double)ow * sceneHeight / sceneWidth, MidpointRounding.AwayFromZero));
-            else if (_overrides.Height is { } oh && _overrides.Width is null && oh > 0)
-                width = Math.Max(1, (int)Math.Round((double)oh * sceneWidth / sceneHeight, MidpointRounding.AwayFromZero));
-        }
-        if (_overrides.ResolutionScale != 1 && width > 0 && height > 0)
-        {
-            width = Math.Max(8, (int)Math.Round(width * _overrides.ResolutionScale));
-            height = Math.Max(8, (int)Math.Round(height * _overrides.ResolutionScale));
-        }
-        if (width < 1 || height < 1)
-            throw Error(width < 1 ? $"{path}.width" : $"{path}.height", $"resolution {width}×{height} is not positive", "width and height must be at least 1");
-        if (width > MaxResolution || height > MaxResolution)
-            throw Error(width > MaxResolution ? $"{path}.width" : $"{path}.height", $"resolution {width}×{height} exceeds {MaxResolution} pixels on a side", "lower the width or height");
-        int spp = _overrides.SamplesPerPixel ?? Integer(e, "spp", path, 1, 1, 65536);
-        return new Camera(position, lookAt, up, fov, width, height, spp);
-    }
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
     OutputOptions ParseOutput(JsonElement root)

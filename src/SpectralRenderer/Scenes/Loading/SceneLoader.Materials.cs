@@ -1,0 +1,156 @@
+using System.Globalization;
+using System.Runtime.CompilerServices;
+using System.Text.Json;
+using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Spectra;
+
+namespace SpectralRenderer.Scenes.Loading;
+
+// Materials: named under "materials", given inline or as a spectrum name by an object; reflectances checked.
+public sealed partial class SceneLoader
+{
+    [MethodImpl(MethodImplOptions.NoOptimization)]
+    Material ParseMaterial(JsonElement e, string path, string name)
+    {
+        if (e.ValueKind == JsonValueKind.String || e.ValueKind == JsonValueKind.Number || e.ValueKind == JsonValueKind.Array)
+        {   // shorthand: a bare spectrum is a diffuse material
+            var d = Reflectance(Spectrum(e, path), path);
+            var bands = Bands(d, path);
+            return DiffuseMaterial(name, bands, d);
+        }
+        Object(e, path);
+        // The material model ("type", default eq2) reads its own keys; without "type" the keys are eq. 2's, as always.
+        var model = MaterialModels.ByName[MaterialModels.Default];
+        bool typed = TryGet(e, MaterialModels.KindKey, out var t);
+        if (typed)
+        {
+            var type = String(t, $"{path}.{MaterialModels.KindKey}").ToLowerInvariant();
+            var names = MaterialModels.ByName.Keys.ToArray();
+            if (!MaterialModels.ByName.TryGetValue(type, out model))
+                throw Error($"{path}.{MaterialModels.KindKey}", $"unknown material type '{type}'",
+                    InputException.DidYouMean(type, names) ?? $"use {string.Join(", ", names)}");
+        }
+        Keys(e, path, typed ? [MaterialModels.KindKey, .. model!.Keys] : model!.Keys);
+        return model.Make(new MaterialSource(this, e, path) { Name = name });
+    }
+
+    /// <summary>The index of refraction per band: a number, or {"cauchy": [A, B]} for n(λ) = A + B/λ² at the band centres.</summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
+    (float[] Ior, bool Dispersive) Ior(JsonElement e, string path)
+    {
+        float[] ior = Const(1.5f);
+        bool dispersive = false;
+        if (TryGet(e, "ior", out var iorE))
+        {
+            if (iorE.ValueKind == JsonValueKind.Number) ior = Const((float)Number(iorE, $"{path}.ior", 1e-3, 100));
+            else if (iorE.ValueKind == JsonValueKind.Object)
+            {
+                Keys(iorE, $"{path}.ior", "cauchy");
+                var c = Required(iorE, "cauchy", $"{path}.ior");
+                if (c.ValueKind != JsonValueKind.Array || c.GetArrayLength() != 2) throw Error($"{path}.ior.cauchy", "expected [A, B] with n(λ) = A + B/λ², λ in nm (B in nm²)", "e.g. \"ior\": {\"cauchy\": [1.5, 4200]}");
+                double a = Number(c[0], $"{path}.ior.cauchy[0]", 1e-3, 100), b = Number(c[1], $"{path}.ior.cauchy[1]", -1e7, 1e7);
+                ior = new float[SpectralMath.Padded(_grid.Count)];
+                for (int i = 0; i < _grid.Count; i++) { double l = _grid.Centre(i); ior[i] = (float)(a + b / (l * l)); }
+                dispersive = b != 0 && _grid.Count > 1;
+            }
+            else throw Error($"{path}.ior", $"expected a number or {{\"cauchy\": [A, B]}}, found {Kind(iorE)}", "e.g. \"ior\": 1.5");
+        }
+        return (ior, dispersive);
+    }
+
+    /// <summary>
+    /// A reflectance (or transmittance) must lie in [0, 1]: a maximum ≥ 2 over the bands is the symptom of percent and
+    /// is refused, as is a value below −1e-9; a maximum in (1, 2) — a fluorescent or glossy sample measured as a
+    /// reflectance factor — is rendered as given with a one-line warning.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
+    TabulatedSpectrum Reflectance(TabulatedSpectrum s, string path)
+    {
+        if (!s.Covers(_grid.Start, _grid.End)) return s;   // Bands() reports the coverage
+        var (min, max) = s.Range(_grid.Start, _grid.End);
+        var inv = CultureInfo.InvariantCulture;
+        if (max >= 2)
+            throw Error(path, $"reflectance '{s.Name}' reaches {max.ToString("0.###", inv)} over {_grid.Start:0.###}–{_grid.End:0.###} nm: a reflectance cannot exceed 1 (this looks like percent)",
+                $"give the spectrum as an object with \"scale\": 0.01, e.g. {{ \"csv\": \"…\", \"column\": \"…\", \"scale\": 0.01 }}");
+        if (min < -1e-9)
+            throw Error(path, $"reflectance '{s.Name}' goes down to {min.ToString("G4", inv)}: a reflectance cannot be negative",
+                "fix the table (noise below zero should be clipped to 0 before use)");
+        if (max > 1)
+            _warnings.Add($"{Where(path)}: warning: reflectance '{s.Name}' reaches {max.ToString("0.###", inv)} > 1 (a reflectance factor of a fluorescent or glossy sample?); rendered as given");
+        return s;
+    }
+
+    /// <summary>A purely diffuse material (m_amb = m_diff, no specular, mirror or transmission lobe).</summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
+    Material DiffuseMaterial(string name, float[] bands, TabulatedSpectrum? spectrum, Bsdf? bsdf = null) => new()
+    {
+        Name = name,
+        Ambient = bands,
+        Diffuse = bands,
+        Specular = Zero(),
+        Mirror = Zero(),
+        Transmit = Zero(),
+        Ior = Const(1),
+        DiffuseSpectrum = spectrum,
+        Bsdf = bsdf!,   // null: eq. 2's own view
+    };
+
+    [MethodImpl(MethodImplOptions.NoOptimization)]
+    int MaterialOf(JsonElement e, string path, List<Material> materials, Dictionary<string, int> materialIndex)
+    {
+        var m = Required(e, "material", path);
+        if (m.ValueKind == JsonValueKind.String && materialIndex.TryGetValue(m.GetString()!, out int i)) return i;
+        if (m.ValueKind == JsonValueKind.String && !materialIndex.ContainsKey(m.GetString()!))
+        {
+            var name = m.GetString()!;
+            // A built-in spectrum name stands for a diffuse material of that reflectance.
+            if (name.StartsWith("colorchecker:", StringComparison.OrdinalIgnoreCase) || name.StartsWith("constant:", StringComparison.OrdinalIgnoreCase) || _namedSpectra.ContainsKey(name))
+            {
+                materials.Add(ParseMaterial(m, $"{path}.material", name));
+                return materials.Count - 1;
+            }
+            throw Error($"{path}.material", $"unknown material '{name}'",
+                InputException.DidYouMean(name, materialIndex.Keys) ?? (materialIndex.Count > 0 ? $"materials: {string.Join(", ", materialIndex.Keys)}" : "define it under \"materials\""));
+        }
+        materials.Add(ParseMaterial(m, $"{path}.material", $"{path}.material"));
+        return materials.Count - 1;
+    }
+
+    /// <summary>
+    /// What a material model's factory (<see cref="MaterialModels"/>) gets: the material's name and readers for its own keys
+    /// that resolve spectra onto the scene's bands and report bad input with the file, line:column and JSON path.
+    /// </summary>
+    public sealed class MaterialSource
+    {
+        readonly SceneLoader _loader;
+        readonly JsonElement _e;
+        readonly string _path;
+
+        internal MaterialSource(SceneLoader loader, JsonElement e, string path) { _loader = loader; _e = e; _path = path; }
+
+        public required string Name { get; init; }
+
+        public bool Has(string key) => TryGet(_e, key, out _);
+        /// <summary>A reflectance or transmittance spectrum, checked to lie in [0, 1] (a warning up to 2); null when absent.</summary>
+        public TabulatedSpectrum? Reflectance(string key) =>
+            TryGet(_e, key, out var v) ? _loader.Reflectance(_loader.Spectrum(v, $"{_path}.{key}"), $"{_path}.{key}") : null;
+        /// <summary>A required reflectance.</summary>
+        public TabulatedSpectrum RequiredReflectance(string key) =>
+            _loader.Reflectance(_loader.Spectrum(_loader.Required(_e, key, _path), $"{_path}.{key}"), $"{_path}.{key}");
+        /// <summary>A spectrum's padded band values on the scene's grid (the integrator integrates its products exactly).</summary>
+        public float[] Bands(TabulatedSpectrum s, string key) => _loader.Bands(s, $"{_path}.{key}");
+        /// <summary>The key's spectrum as padded band values, or <paramref name="fallback"/> (zero when null) when absent.</summary>
+        public float[] Bands(string key, float[]? fallback = null) => _loader.OptionalBands(_e, key, _path, fallback);
+        public float[] Zero() => _loader.Zero();
+        public double Number(string key, double fallback, double min, double max) => _loader.Number(_e, key, _path, fallback, min, max);
+        public bool Bool(string key, bool fallback) => _loader.Bool(_e, key, _path, fallback);
+        /// <summary>A required string.</summary>
+        public string String(string key) => _loader.String(_loader.Required(_e, key, _path), $"{_path}.{key}");
+        /// <summary>"ior": a number or {"cauchy": [A, B]}; 1.5 when absent.</summary>
+        public (float[] Ior, bool Dispersive) Ior() => _loader.Ior(_e, _path);
+        /// <summary>A purely diffuse material of these band values (m_amb = m_diff), with its own BSDF or eq. 2's view.</summary>
+        public Material Diffuse(float[] bands, TabulatedSpectrum? spectrum, Bsdf? bsdf = null) =>
+            _loader.DiffuseMaterial(Name, bands, spectrum, bsdf);
+        public InputException Error(string key, string what, string hint) => _loader.Error($"{_path}.{key}", what, hint);
+    }
+}
