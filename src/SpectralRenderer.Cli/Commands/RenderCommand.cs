@@ -5,6 +5,7 @@ using System.Text.Json.Nodes;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Output;
+using SpectralRenderer.Output.Products;
 using SpectralRenderer.Pipeline;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
@@ -81,10 +82,13 @@ public static class RenderCommand
         byte[]? text = null;
         byte[] Text() => text ??= fromStdin ? SceneLoader.ReadAll(Console.OpenStandardInput()) : InputFile.ReadAllBytes(scenePath, "scene file");
         var overrides = Overrides(a, Text);   // options are checked before the scene is read
+        // --formats may also name registered products beyond the scene's (OutputProductTable.Register): those go to the request.
+        var registered = SplitFormats(a.Value("--formats")).Registered;
         var request = new RenderRequest
         {
             ScenePath = scenePath,
             Overrides = overrides,
+            Products = registered,
             Integrator = a.Value("--integrator") ?? Integrators.Default,
             Region = Region(a),
             Threads = threads ?? 0,
@@ -172,10 +176,25 @@ public static class RenderCommand
             SamplesPerPixel = a.Int("--spp", 1, 65536),
             Rgb = a.Value("--rgb"),
             Integration = a.Value("--integration"),
-            Formats = a.Value("--formats"),
+            Formats = SplitFormats(a.Value("--formats")).Formats,
             ExrCompression = a.Value("--exr-compression"),
             ModelDirectories = models,
         };
+    }
+
+    /// <summary>
+    /// The --formats list parted into the scene's own product names (null: none given, or only registered ones — the
+    /// scene's formats then apply) and the names of products registered without a scene flag.
+    /// </summary>
+    static (string? Formats, string[] Registered) SplitFormats(string? formats)
+    {
+        if (formats is null) return (null, []);
+        var extra = OutputProductTable.All.Where(p => p.Flag == OutputProducts.None).Select(p => p.Name).ToHashSet(StringComparer.Ordinal);
+        var names = formats.Split(',', StringSplitOptions.TrimEntries);
+        string[] registered = [.. names.Where(extra.Contains)];
+        if (registered.Length == 0) return (formats, []);
+        var own = names.Where(n => !extra.Contains(n)).ToArray();
+        return (own.Length == 0 ? null : string.Join(',', own), registered);
     }
 
     static Spectra.BandGrid SceneRange(byte[] sceneText)

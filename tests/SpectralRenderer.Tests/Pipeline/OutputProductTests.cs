@@ -88,6 +88,20 @@ public class OutputProductTests
     }
 
     [Fact]
+    public void The_command_lines_formats_name_a_registered_product_beside_the_built_in_ones()
+    {
+        Assert.True(Registered.Value);
+        var dir = Reference.TempDir();
+        var scene = Path.Combine(dir, "scene.json");
+        File.WriteAllText(scene, Scene);
+        var outDir = Path.Combine(dir, "out");
+        var (code, _, err) = global::SpectralRenderer.Tests.Cli.CliRunner.Run("render", scene, "-o", outDir, "--quiet", "--formats", "npy,test-luminance-csv");
+        Assert.True(code == 0, err);
+        Assert.Equal(["spectral.npy", "wavelengths.csv", "luminance.csv"], RenderManifest.Read(outDir).Files);
+        Assert.Equal(1 + 9 * 7, File.ReadAllLines(Path.Combine(outDir, "luminance.csv")).Length);
+    }
+
+    [Fact]
     public void A_product_name_nobody_registered_is_bad_input()
     {
         var e = Assert.Throws<global::SpectralRenderer.Diagnostics.InputException>(() => OutputProductTable.Named(["no-such-product"]));
