@@ -52,6 +52,7 @@ public static class BenchCommand
         RenderResult? last = null;
         for (int i = 0; i < repeat; i++)
         {
+            job.ReleaseResult();
             GC.Collect();
             last = job.Render();
             times.Add(last.Elapsed.TotalSeconds);

@@ -139,11 +139,15 @@ public sealed class RenderJob
         BuildSeconds = clock.Elapsed.TotalSeconds;
     }
 
+    /// <summary>Lets the last film go (bench, before it collects and renders again: one framebuffer held at a time).</summary>
+    public void ReleaseResult() => Result = null;
+
     /// <summary>Renders the film (or recombines it from the request's transfer); may be called again (bench repeats).</summary>
     public RenderResult Render(RenderObserver? observer = null, CancellationToken cancel = default)
     {
         if (Request.FromTransfer is { } source) return Result = FromTransfer(source.Transfer);
         Build();
+        Result = null;   // a repeated render lets the previous film go first
         int done = 0, total = 0;
         try
         {
