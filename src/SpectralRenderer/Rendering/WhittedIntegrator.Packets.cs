@@ -74,7 +74,9 @@ public sealed partial class WhittedIntegrator
 
         // Per light, the lanes it reaches and their d_k, c_spot, n·l; the lanes that face it get a shadow ray, traced as one packet.
         int lightCount = _lights.Length;
-        var lanes = MemoryMarshal.Cast<float, LightLanes>(scratch[((_scene.MaxDepth + 2) * 2 * _padded)..])[..lightCount];
+        // Their lane results on the stack for a few lights (3 KB: in cache, aligned), else in the worker's scratch.
+        var lanes = lightCount <= 4 ? stackalloc LightLanes[lightCount]
+            : MemoryMarshal.Cast<float, LightLanes>(scratch[((_scene.MaxDepth + 2) * 2 * _padded)..])[..lightCount];
         Span<uint> reached = stackalloc uint[lightCount];
         Span<uint> lit = stackalloc uint[lightCount];
         Unsafe.SkipInit(out RayPacket shadows);   // 1.6 KB, not zeroed: each lane used is filled
