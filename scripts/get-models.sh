@@ -80,10 +80,17 @@ ply_to_obj() {
   mv "$out.part" "$out"
 }
 
-fetch() {  # fetch URL FILE
-  if command -v curl >/dev/null; then curl -fL --retry 2 -o "$2" "$1"
-  elif command -v wget >/dev/null; then wget -q -O "$2" "$1"
-  else die "neither curl nor wget is installed"; fi
+# fetch URL FILE: on failure (offline, a proxy, the source moved) nothing is left behind and the message says how to
+# use copies of the meshes instead.
+fetch() {
+  local ok=0
+  if command -v curl >/dev/null; then curl -fsSL --retry 2 -o "$2" "$1" || ok=$?
+  elif command -v wget >/dev/null; then wget -q -O "$2" "$1" || ok=$?
+  else die "neither curl nor wget is installed (hint: copy the meshes into a folder, check them with scripts/get-models.sh --verify DIR, then render with --models DIR)"; fi
+  if [ "$ok" -ne 0 ]; then
+    rm -f "$2"
+    die "cannot download $1 (offline?). Hint: with copies of the meshes (${!url[*]}), put them in a folder, check them with scripts/get-models.sh --verify DIR, then render with --models DIR or SPECTRAL_MODELS=DIR"
+  fi
 }
 
 # install NAME TMPFILE DIR: move into place if the checksum matches.
@@ -95,10 +102,16 @@ install_checked() {
   echo "ok       $name"
 }
 
+# The download's scratch folder (the Stanford archive), removed on every exit; a global, since the EXIT trap runs
+# after download() has returned.
+work=""
+cleanup() { [ -z "$work" ] || rm -rf "$work"; [ -z "${tmp:-}" ] || rm -f "$tmp"; }
+trap cleanup EXIT
+
 download() {
-  local dir="$1" stanford="$2" name tmp work
+  local dir="$1" stanford="$2" name
   mkdir -p "$dir"
-  work="$(mktemp -d)"; trap 'rm -rf "$work"' EXIT
+  work="$(mktemp -d)"
   for name in $(awk 'NF == 2 { print $2 }' "$sums"); do
     if [ -f "$dir/$name" ] && [ "$(sha256 "$dir/$name")" = "$(expected "$name")" ]; then echo "ok       $name (already there)"; continue; fi
     tmp="$dir/.$name.download"
@@ -112,6 +125,7 @@ download() {
       fetch "${url[$name]}" "$tmp"
     fi
     install_checked "$name" "$tmp" "$dir"
+    tmp=""
   done
   echo "meshes in $dir: render with --models $dir or SPECTRAL_MODELS=$dir"
 }

@@ -149,4 +149,61 @@ public class ModelScriptTests
         var hash = Convert.ToHexStringLower(SHA256.HashData(File.ReadAllBytes(Path.Combine(dir, "stanford-bunny.obj"))));
         Assert.Equal(Sums()["stanford-bunny.obj"], hash);
     }
+
+    /// <summary>A stand-in for curl on PATH: "serves" each URL's file from <paramref name="source"/>, or fails as curl does
+    /// offline (exit 6) when <paramref name="source"/> is null.</summary>
+    static string FakeCurl(string dir, string? source)
+    {
+        var bin = Directory.CreateDirectory(Path.Combine(dir, "bin")).FullName;
+        var curl = Path.Combine(bin, "curl");
+        File.WriteAllText(curl, source is null
+            ? "#!/bin/sh\necho 'curl: (6) Could not resolve host' >&2\nexit 6\n"
+            : "#!/bin/bash\nwhile [ $# -gt 0 ]; do case $1 in -o) out=$2; shift 2;; -*) shift;; *) url=$1; shift;; esac; done\n"
+              + $"cp \"{source}/${{url##*/}}\" \"$out\"\n");
+        if (!OperatingSystem.IsWindows()) File.SetUnixFileMode(curl, UnixFileMode.UserRead | UnixFileMode.UserWrite | UnixFileMode.UserExecute);
+        return bin;
+    }
+
+    [SkippableFact]
+    [Trait("Category", "Interop")]
+    public void A_download_that_succeeds_exits_0_and_leaves_no_scratch_behind()
+    {
+        var bash = Bash();
+        var dir = Reference.TempDir();
+        var scratch = Directory.CreateDirectory(Path.Combine(dir, "tmp")).FullName;
+        var models = Path.Combine(dir, "models");
+        var env = new Dictionary<string, string?>
+        {
+            ["PATH"] = FakeCurl(dir, ModelsDir()) + ":" + Environment.GetEnvironmentVariable("PATH"),
+            ["TMPDIR"] = scratch,
+        };
+        var (code, stdout, stderr) = Repo.Run(bash, [Script, models], env: env);
+        Assert.True(code == 0, stdout + stderr);
+        foreach (var (name, sum) in Sums())
+            Assert.Equal(sum, Convert.ToHexStringLower(SHA256.HashData(File.ReadAllBytes(Path.Combine(models, name)))));
+        Assert.Empty(Directory.GetFileSystemEntries(scratch));
+        Assert.Equal(Sums().Keys.Order(), Directory.GetFileSystemEntries(models).Select(Path.GetFileName).Order());
+    }
+
+    [SkippableFact]
+    public void Offline_it_exits_1_with_how_to_use_copies_and_leaves_nothing_half_written()
+    {
+        var bash = Bash();
+        var dir = Reference.TempDir();
+        var scratch = Directory.CreateDirectory(Path.Combine(dir, "tmp")).FullName;
+        var models = Path.Combine(dir, "models");
+        var env = new Dictionary<string, string?>
+        {
+            ["PATH"] = FakeCurl(dir, null) + ":" + Environment.GetEnvironmentVariable("PATH"),
+            ["TMPDIR"] = scratch,
+        };
+        var (code, _, stderr) = Repo.Run(bash, [Script, models], env: env);
+        Assert.Equal(1, code);
+        var message = stderr.Trim().Split('\n')[^1];
+        Assert.StartsWith("get-models.sh: cannot download https://", message);
+        Assert.Contains("--verify DIR", message);
+        Assert.Contains("--models DIR", message);
+        Assert.Empty(Directory.GetFileSystemEntries(scratch));
+        Assert.Empty(Directory.GetFileSystemEntries(models));
+    }
 }
