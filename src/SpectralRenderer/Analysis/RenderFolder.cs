@@ -26,8 +26,9 @@ public sealed class RenderFolder
     public int ObserverDegrees => Manifest.ObserverDegrees;
     public BandIntegration Integration => Manifest.Integration;
     /// <summary>
-    /// Each pixel's colour as the render computed it (spectral.exr's X, Y, Z planes: with exact integration the colour of
-    /// the pixel's full-resolution spectrum), or null when the folder has no EXR (then eq. 3 on the cube stands in).
+    /// Each pixel's colour as the render computed it (spectral.exr's X, Y, Z planes, or xyz.npy when the formats left the
+    /// EXR out: with exact integration the colour of the pixel's full-resolution spectrum), or null for a folder that has
+    /// neither (a cube from elsewhere: then eq. 3 on the cube stands in).
     /// </summary>
     public (float[] X, float[] Y, float[] Z)? PixelXyz { get; init; }
 
@@ -42,6 +43,7 @@ public sealed class RenderFolder
             if (f.OtherChannels.TryGetValue("X", out var px) && f.OtherChannels.TryGetValue("Y", out var py) && f.OtherChannels.TryGetValue("Z", out var pz))
                 pixelXyz = (px, py, pz);
         }
+        else pixelXyz = ReadColour(System.IO.Path.Combine(dir, Output.Products.ColourProduct.FileName), image);
         return new RenderFolder { Path = dir, Manifest = manifest, Image = image, ObjectIds = ReadIds(dir, image), PixelXyz = pixelXyz };
     }
 
@@ -59,6 +61,21 @@ public sealed class RenderFolder
             throw new InputException($"{System.IO.Path.Combine(dir, RenderManifest.FileName)}: $.width", $"describes {manifest.Width}×{manifest.Height}×{grid.Count} but the spectral cube is {image.Width}×{image.Height}×{image.Bands}",
                 "the folder mixes two renders; render again into an empty folder");
         return (manifest, image);
+    }
+
+    /// <summary>xyz.npy's X, Y, Z planes (null when the folder has none), checked against the cube's size.</summary>
+    static (float[], float[], float[])? ReadColour(string path, SpectralImage image)
+    {
+        if (!File.Exists(path)) return null;
+        int[] shape; float[] data;
+        using (var s = File.OpenRead(path)) (shape, data) = NpyReader.Read(s, path);
+        if (shape is not [var h, var w, 3] || h != image.Height || w != image.Width)
+            throw new InputException(path, $"has shape ({string.Join(", ", shape)}), ({image.Height}, {image.Width}, 3) expected",
+                "the render folder mixes files of different renders: render it again");
+        int n = w * h;
+        float[] x = new float[n], y = new float[n], z = new float[n];
+        for (int i = 0; i < n; i++) { x[i] = data[3 * i]; y[i] = data[3 * i + 1]; z[i] = data[3 * i + 2]; }
+        return (x, y, z);
     }
 
     static int[] ReadIds(string dir, SpectralImage image)

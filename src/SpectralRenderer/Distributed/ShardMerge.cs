@@ -39,7 +39,10 @@ public static class ShardMerge
         var staging = folder.Staging;
         try
         {
-            float scale = files.Any(f => f.StartsWith("bands", StringComparison.Ordinal)) ? BandScale(parts, width, bands, cancel) : 0;
+            // The whole image's brightest band value (render.json's band_image_scale): read from the cubes where band images
+            // are rescaled to it, else the largest of the shards' own (the same maximum).
+            float scale = files.Any(f => f.StartsWith("bands", StringComparison.Ordinal)) ? BandScale(parts, width, bands, cancel)
+                : parts.Max(p => p.Manifest.BandImageScale);
 
             var bandFiles = files.Where(f => f.StartsWith("bands/", StringComparison.Ordinal)).ToList();
             bool mosaic = files.Contains("bands.png");
@@ -54,7 +57,8 @@ public static class ShardMerge
                     case ShardMerging.ExrChunks: MergeExr(parts, f, target, width, height); break;
                     case ShardMerging.EnviCube: MergeEnvi(parts, target, width, bands); break;
                     case ShardMerging.EnviHeader: MergeEnviHeader(parts[0], target, height); break;
-                    case ShardMerging.NpyCube: MergeNpy(parts, target, width, height, bands); break;
+                    case ShardMerging.NpyCube: MergeNpy(parts, f, target, width, height, bands); break;
+                    case ShardMerging.NpyColour: MergeNpy(parts, f, target, width, height, 3); break;
                     case ShardMerging.Copy: AtomicFile.WriteAllBytes(target, File.ReadAllBytes(Path.Combine(parts[0].Dir, f))); break;
                     case ShardMerging.BandImages: break;   // above
                     default: throw new InputException(Path.Combine(parts[0].Dir, "render.json"), $"lists '{f}', a file merge does not know", "merge shards written by the same version");
@@ -243,7 +247,7 @@ public static class ShardMerge
     }
 
     /// <summary>spectral.npy: the whole array's header, then the shards' C-order rows in order (each shard is whole rows).</summary>
-    static void MergeNpy(List<Part> parts, string target, int width, int height, int bands)
+    static void MergeNpy(List<Part> parts, string file, string target, int width, int height, int bands)
     {
         var buffer = new byte[1 << 22];
         AtomicFile.Write(target, output =>
@@ -251,7 +255,7 @@ public static class ShardMerge
             output.Write(NpyWriter.Preamble([height, width, bands]));
             foreach (var p in parts)
             {
-                using var fs = new FileStream(Path.Combine(p.Dir, "spectral.npy"), FileMode.Open, FileAccess.Read, FileShare.Read, 1 << 16);
+                using var fs = new FileStream(Path.Combine(p.Dir, file), FileMode.Open, FileAccess.Read, FileShare.Read, 1 << 16);
                 long start = NpyWriter.Preamble([p.Crop.Height, width, bands]).Length, bytes = 4L * width * p.Crop.Height * bands;
                 if (fs.Length != start + bytes) throw new InputException(fs.Name, $"has {fs.Length} bytes, {start + bytes} expected (half-written shard)", "the shard was not finished: render it again");
                 fs.Position = start;

@@ -70,7 +70,7 @@ public class OutputProductTests
             OutDir = outDir,
         });
         var manifest = RenderManifest.Read(outDir);
-        Assert.Equal(["spectral.npy", "wavelengths.csv", "luminance.csv"], manifest.Files);
+        Assert.Equal(["spectral.npy", "wavelengths.csv", "xyz.npy", "luminance.csv"], manifest.Files);
 
         // Independently: eq. 3's Y from the cube read back from spectral.npy with render.json's own weights.
         var cube = SpectralFiles.Read(outDir, manifest.Grid);
@@ -97,7 +97,7 @@ public class OutputProductTests
         var outDir = Path.Combine(dir, "out");
         var (code, _, err) = global::SpectralRenderer.Tests.Cli.CliRunner.Run("render", scene, "-o", outDir, "--quiet", "--formats", "npy,test-luminance-csv");
         Assert.True(code == 0, err);
-        Assert.Equal(["spectral.npy", "wavelengths.csv", "luminance.csv"], RenderManifest.Read(outDir).Files);
+        Assert.Equal(["spectral.npy", "wavelengths.csv", "xyz.npy", "luminance.csv"], RenderManifest.Read(outDir).Files);
         Assert.Equal(1 + 9 * 7, File.ReadAllLines(Path.Combine(outDir, "luminance.csv")).Length);
     }
 

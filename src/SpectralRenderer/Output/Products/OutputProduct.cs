@@ -35,6 +35,8 @@ public enum ShardMerging
     EnviHeader,
     /// <summary>The NumPy cube, row strips by offset.</summary>
     NpyCube,
+    /// <summary>The NumPy H × W × 3 colour array (xyz.npy), row strips by offset.</summary>
+    NpyColour,
     /// <summary>The same in every shard: the first one's copied.</summary>
     Copy,
 }

@@ -20,6 +20,7 @@ public static class OutputProductTable
         new NpyProduct(),
         new WavelengthsProduct(),
         new LightsProduct(),
+        new ColourProduct(),
     ];
 
     /// <summary>Every registered product in order.</summary>
