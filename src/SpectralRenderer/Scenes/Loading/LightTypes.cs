@@ -49,6 +49,47 @@ public static class LightTypes
         ["illuminance"] = new("lx", _ => 1),
     };
 
+    // Goniometric: Φ_v = intensity × lamp factor × ∫ I_file dΩ; G = that integral (per unit intensity) / (K_m ∫V·S).
+    static readonly Dictionary<string, PhotometricKey> GoniometricPhotometry = new(StringComparer.Ordinal)
+    {
+        ["luminous_flux"] = new("lm", s => File(s).Table.Flux() * LampFactor(s) / Color.Photometry.Luminous(s.Spectrum)),
+    };
+
+    static PhotometricFile File(SceneLoader.LightSource s) => s.Memo("photometric-file", () =>
+    {
+        var (path, text) = s.ReadText("file", "photometric file");
+        return Path.GetExtension(path).Equals(".ldt", StringComparison.OrdinalIgnoreCase)
+            ? EulumdatReader.Parse(text, path) : IesReader.Parse(text, path);
+    });
+
+    /// <summary>"lamp_lumens" over the file's rated lamp lumens (relative photometry), else 1.</summary>
+    static double LampFactor(SceneLoader.LightSource s)
+    {
+        if (!s.Has("lamp_lumens")) return 1;
+        double lumens = s.Number("lamp_lumens", 1, 0, 1e9);
+        return File(s).LampLumens is { } rated ? lumens / rated
+            : throw s.Error("lamp_lumens", "the file has absolute photometry (lumens per lamp −1)", "its candela are the luminaire's: drop lamp_lumens, or scale with luminous_flux");
+    }
+
+    static GoniometricLight Goniometric(SceneLoader.LightSource s)
+    {
+        if (s.Radiometry != Radiometry.Physical)
+            throw s.Error("type", "a goniometric light needs physical radiometry", "add \"radiometry\": \"physical\" to the scene: its file gives candela");
+        var file = File(s);
+        var orientation = Matrix4x4.Identity;
+        if (s.Has("rotate"))
+        {
+            var deg = s.Point("rotate") * (MathF.PI / 180);
+            orientation = Matrix4x4.CreateRotationX(deg.X) * Matrix4x4.CreateRotationY(deg.Y) * Matrix4x4.CreateRotationZ(deg.Z);
+        }
+        return new GoniometricLight(s.Emission, file.Table, Color.Photometry.Luminous(s.Spectrum) / LampFactor(s))
+        {
+            Position = s.Point("position"),
+            Orientation = orientation,
+            Falloff = s.Falloff,
+        };
+    }
+
     /// <summary>∫ c_spot dΩ (sr) of a cone of half-angle θc with c_spot = max(cos θ, 0)^e (μ^0 = 1, also for μ ≤ 0).</summary>
     public static double SpotSolidAngle(double cosCutoff, double exponent) => exponent == 0
         ? 2 * Math.PI * (1 - cosCutoff)
@@ -62,6 +103,7 @@ public static class LightTypes
         ["spot"] = new(["position", "direction", "look_at", "cutoff", "exponent"], Spot, SpotPhotometry),
         ["directional"] = new(["direction"], s => new DirectionalLight(s.Emission) { Direction = s.Direction("direction") },
             DirectionalPhotometry),
+        ["goniometric"] = new(["position", "file", "rotate", "lamp_lumens"], Goniometric, GoniometricPhotometry),
     };
 
     public static IReadOnlyDictionary<string, LightType> ByName => Volatile.Read(ref s_byName);

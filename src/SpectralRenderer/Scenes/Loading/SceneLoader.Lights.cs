@@ -115,6 +115,27 @@ public sealed partial class SceneLoader
         public LightEmission Emission => new(Name, Intensity, Ambient, HasAmbient, Scale, Spectrum, Photometric);
 
         public bool Has(string key) => TryGet(_e, key, out _);
+        /// <summary>The scene's radiometry (a light type that needs units checks it).</summary>
+        public Radiometry Radiometry => _loader._radiometry;
+
+        readonly Dictionary<string, object> _memo = new(StringComparer.Ordinal);
+        /// <summary>A value computed once per light (e.g. a file its factory and its photometric key both read).</summary>
+        public T Memo<T>(string key, Func<T> make) where T : class
+        {
+            if (_memo.TryGetValue(key, out var v)) return (T)v;
+            var made = make();
+            _memo[key] = made;
+            return made;
+        }
+
+        /// <summary>The text of the file the string key names, relative to the scene's folder: (full path, text).</summary>
+        public (string Path, string Text) ReadText(string key, string what)
+        {
+            var name = _loader.String(_loader.Required(_e, key, _path), $"{_path}.{key}");
+            var full = System.IO.Path.IsPathRooted(name) ? name : System.IO.Path.Combine(_loader._dir, name);
+            if (!File.Exists(full)) throw Error(key, $"{what} {Diagnostics.MessageText.Quote(name, 80)} not found", "a relative path starts at the scene's folder");
+            return (full, InputFile.ReadAllText(full, what));
+        }
         /// <summary>A required point [x, y, z].</summary>
         public Vector3 Point(string key) => _loader.Vec3(_loader.Required(_e, key, _path), $"{_path}.{key}");
         /// <summary>A required non-zero vector, normalised.</summary>
