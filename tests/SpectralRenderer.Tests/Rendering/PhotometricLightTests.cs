@@ -105,6 +105,29 @@ public class PhotometricLightTests(Xunit.Abstractions.ITestOutputHelper output)
         Assert.True(Math.Abs((double)light["intensity"]! - expected) / expected <= 1e-5, "the light's intensity is the scale");
     }
 
+    [Fact]
+    public void Relighting_with_a_new_spectrum_keeps_the_candela_and_a_new_intensity_replaces_them()
+    {
+        var dir = Reference.TempDir();
+        var scene = Path.Combine(dir, "scene.json");
+        File.WriteAllText(scene, Scene("""{ "type": "point", "name": "key", "position": [0, 0, 2], "spectrum": "D65", "luminous_intensity": 1000 }"""));
+        var (code, _, err) = CliRunner.Run("render", scene, "-o", Path.Combine(dir, "r"), "--quiet", "--formats", "npy,lights");
+        Assert.True(code == 0, err);
+        JsonNode Light(string folder) => JsonNode.Parse(File.ReadAllText(Path.Combine(dir, folder, "render.json")))!["lights"]![0]!;
+        // Under A: still 1000 cd, so the scale is 1000 / (683 ∫V·A) and the diffuser's luminance stays 250/π.
+        (code, _, err) = CliRunner.Run("relight", Path.Combine(dir, "r"), "-o", Path.Combine(dir, "a"), "--quiet", "--light", "key=A");
+        Assert.True(code == 0, err);
+        var ph = Light("a")["photometric"]!;
+        Assert.Equal(1000, (double)ph["value"]!);
+        double expected = 1000 / Luminous("A");
+        Assert.True(Math.Abs((double)ph["radiometric_scale"]! - expected) / expected <= 1e-5, $"{ph["radiometric_scale"]} vs {expected}");
+        // A new intensity is radiometric: the photometric value is gone.
+        (code, _, err) = CliRunner.Run("relight", Path.Combine(dir, "r"), "-o", Path.Combine(dir, "i"), "--quiet", "--intensity", "key=2");
+        Assert.True(code == 0, err);
+        Assert.Null(Light("i")["photometric"]);
+        Assert.Equal(2, (double)Light("i")["intensity"]!);
+    }
+
     [Theory]
     [InlineData("\"radiometry\": \"physical\", ", "", "luminous_intensity needs physical radiometry", "\"radiometry\": \"physical\"")]
     [InlineData("\"luminous_intensity\": 1000", "\"luminous_intensity\": 1000, \"intensity\": 2", "both intensity and luminous_intensity", "give one")]
