@@ -3,6 +3,7 @@ using SharpFuzz;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Geometry;
 using SpectralRenderer.Imaging;
+using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
 using SpectralRenderer.Spectra;
 
@@ -25,6 +26,8 @@ public static class Program
         ["exr"] = b => ExrReader.Read(b, "fuzz.exr"),
         ["npy"] = b => NpyReader.Read(new MemoryStream(b), "fuzz.npy"),
         ["png"] = b => PngReader.Read(new MemoryStream(b), "fuzz.png"),
+        ["ies"] = b => IesReader.Parse(Encoding.UTF8.GetString(b), "fuzz.ies").Table.Evaluate(10, 20),
+        ["ldt"] = b => EulumdatReader.Parse(Encoding.UTF8.GetString(b), "fuzz.ldt").Table.Evaluate(10, 20),
         // An ENVI pair: the header text up to the first NUL byte, the samples after it.
         ["envi"] = b =>
         {

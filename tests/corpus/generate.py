@@ -361,6 +361,43 @@ for label, text, pat in [
 csv_case("no-such-column", "wavelength_nm,r\n" + rows, r"has no column 'x'", column="x")
 csv_case("column-ansi", "wavelength_nm,r\n" + rows, r"has no column '\\e\[1m'", column="\x1b[1m")
 
+# Photometric files (IES LM-63, EULUMDAT) of a goniometric light: file:line and a hint.
+def photometric_case(label, ext, text, pat):
+    fname = f"lum-{label}.{ext}"
+    write(fname, text)
+    s = deep(BASE); s["radiometry"] = "physical"
+    s["lights"] = [{"type": "goniometric", "position": [0, 3, 3], "file": fname, "spectrum": "D65"}]
+    sname = f"lum-{label}.json"
+    write(sname, scene_text(s))
+    case(f"photometric/{label}", render("{in}/" + sname), pat, 2, fname, r"\." + ext + r":\d+")
+IES_HEAD = "IESNA:LM-63-2002\n[TEST] corpus\nTILT=NONE\n"
+for label, text, pat in [
+    ("ies-no-tilt", "IESNA:LM-63-2002\n[TEST] x\n", r"no TILT= line"),
+    ("ies-tilt-file", "IESNA:LM-63-2002\nTILT=lamp.tlt\n", r"not supported"),
+    ("ies-cut-short", IES_HEAD + "1 1000 1 3 1 1 2 0 0 0\n1 1 0\n0 45 90\n0\n10 20\n", r"ends before a candela value"),
+    ("ies-type-b", IES_HEAD + "1 1000 1 2 1 2 2 0 0 0\n1 1 0\n0 90\n0\n10 20\n", r"photometric type 2"),
+    ("ies-angles-descending", IES_HEAD + "1 1000 1 3 1 1 2 0 0 0\n1 1 0\n0 90 45\n0\n1 2 3\n", r"not ascending"),
+    ("ies-horizontal-odd", IES_HEAD + "1 1000 1 2 2 1 2 0 0 0\n1 1 0\n0 90\n0 45\n1 2\n3 4\n", r"horizontal angles 0 … 45"),
+    ("ies-candela-text", IES_HEAD + "1 1000 1 2 1 1 2 0 0 0\n1 1 0\n0 90\n0\n10 ten\n", r"'ten', not a number"),
+    ("ies-candela-negative", IES_HEAD + "1 1000 1 2 1 1 2 0 0 0\n1 1 0\n0 90\n0\n10 -1\n", r"negative"),
+    ("ies-nan", IES_HEAD + "1 1000 1 2 1 1 2 0 0 0\n1 1 0\n0 90\n0\n10 NaN\n", r"not a number"),
+    ("ies-huge-count", IES_HEAD + "1 1000 1 999999999 1 1 2 0 0 0\n", r"number of vertical angles"),
+    ("ies-trailing", IES_HEAD + "1 1000 1 2 1 1 2 0 0 0\n1 1 0\n0 90\n0\n10 20 30\n", r"values after the candela table"),
+]:
+    photometric_case(label, "ies", text, pat)
+LDT_HEAD = "corpus\n1\n1\n1\n0\n2\n90\nr\nl\n0\nf\nd\n" + "0\n" * 11 + "1\n0\n1\n1\nLED\n1000\n4000K\n80\n10\n" + "0.5\n" * 10
+for label, text, pat in [
+    ("ldt-isym-bad", "corpus\n1\n7\n", r"symmetry indicator Isym is 7"),
+    ("ldt-cut-short", "corpus\n1\n1\n1\n0\n2\n", r"ends before"),
+    ("ldt-angle-text", LDT_HEAD + "0\nzero\n", r"'zero', not a number"),
+    ("ldt-gamma-descending", LDT_HEAD + "0\n90\n0\n100\n50\n", r"γ angle 0 is not in 0–180° after 90"),
+    ("ldt-no-flux", LDT_HEAD.replace("LED\n1000\n", "LED\n0\n") + "0\n0\n90\n100\n50\n", r"luminous flux is 0"),
+    ("ldt-trailing", LDT_HEAD + "0\n0\n90\n100\n50\n7\n", r"lines after the intensity table"),
+    ("ldt-isym3-odd", "corpus\n1\n3\n6\n60\n2\n90\nr\nl\n0\nf\nd\n" + "0\n" * 11 + "1\n0\n1\n1\nLED\n1000\n4000K\n80\n10\n" + "0.5\n" * 10
+        + "0\n60\n120\n180\n240\n300\n0\n90\n", r"does not split into the planes symmetry 3 needs"),
+]:
+    photometric_case(label, "ldt", text, pat)
+
 # ---- D. OBJ -----------------------------------------------------------------------------------------
 def mesh_case(label, ext, data, pat, place, fit=False, scene_level=False):
     fname = f"{ext}-{label}.{ext}"

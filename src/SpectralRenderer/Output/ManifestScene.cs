@@ -41,11 +41,20 @@ public sealed class ManifestScene(JsonObject document)
         {
             var l = lights[k]!.AsObject();
             if (spectrum is not null) l["spectrum"] = spectrum;
-            if (intensity is not null) l["intensity"] = intensity;
+            if (intensity is not null)
+            {
+                // A new intensity replaces a photometric value (docs/scene-format.md); a new spectrum alone keeps it, so a light
+                // swapped at the same lumens, candela or lux is rescaled to them.
+                foreach (var key in PhotometricKeys) l.Remove(key);
+                l["intensity"] = intensity;
+            }
         }
         if (white is not null) scene["white"] = white;
         return Encoding.UTF8.GetBytes(scene.ToJsonString());
     }
+
+    /// <summary>The scene file's photometric light keys (the light types' list in the scene loader).</summary>
+    static readonly string[] PhotometricKeys = ["luminous_flux", "luminous_intensity", "illuminance", "luminance"];
 
     static string? Text(JsonNode? node) => node is JsonValue v && v.TryGetValue(out string? s) ? s : null;
 }

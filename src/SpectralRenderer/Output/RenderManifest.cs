@@ -15,8 +15,17 @@ public sealed record ManifestObject(int Id, string Name, string Material, string
 /// <param name="Intensity">The scene's intensity, the factor on <paramref name="Spd"/>; <paramref name="IntensityUnit"/> says what it is in.</param>
 /// <param name="Position">Point and spot lights; <paramref name="Direction"/> the direction spot and directional lights shine towards.</param>
 /// <param name="Attenuation">[c0, c1, c2] of d = 1/(c0 + c1·r + c2·r²); null for directional lights (no attenuation).</param>
+/// <param name="Photometric">The photometric value the scene gave instead of an intensity (physical radiometry), or null.</param>
 public sealed record ManifestLight(int Index, string Name, string Kind, string? Spectrum, double Intensity = 1, string? IntensityUnit = null,
-    bool HasAmbient = false, double[]? Position = null, double[]? Direction = null, double[]? Attenuation = null, TabulatedSpectrum? Spd = null);
+    bool HasAmbient = false, double[]? Position = null, double[]? Direction = null, double[]? Attenuation = null, TabulatedSpectrum? Spd = null,
+    ManifestPhotometry? Photometric = null);
+
+/// <summary>
+/// A light's photometric value as render.json records it: the quantity (luminous_flux, luminous_intensity, illuminance,
+/// luminance), its value in <paramref name="Unit"/>, the radiometric scale it gave (the light's intensity, the factor on
+/// its spectrum) and K_m ∫V(λ)·S(λ) dλ of the spectrum, so that Value = scale × that × the light's geometric factor.
+/// </summary>
+public sealed record ManifestPhotometry(string Quantity, double Value, string Unit, double RadiometricScale, double LuminousPerUnit);
 
 /// <summary>Rays traced, by kind, and the rate (million rays per second of render time).</summary>
 public sealed record ManifestRays(long Primary, long Shadow, long Secondary, long Total, double MraysPerSecond);
@@ -132,6 +141,16 @@ public sealed record RenderManifest
             if (l.Direction is { } ld) e["direction"] = Arr(ld);
             if (l.Attenuation is { } la) e["attenuation"] = Arr(la);
             if (l.Spd is { } spd) e["spd"] = new JsonObject { ["wavelengths_nm"] = Arr(spd.Wavelengths), ["values"] = Arr(spd.Values) };
+            if (l.Photometric is { } ph)
+                e["photometric"] = new JsonObject
+                {
+                    ["quantity"] = ph.Quantity,
+                    ["value"] = ph.Value,
+                    ["unit"] = ph.Unit,
+                    ["radiometric_scale"] = ph.RadiometricScale,
+                    ["luminous_per_unit_scale"] = ph.LuminousPerUnit,
+                    ["note"] = "value = radiometric_scale × luminous_per_unit_scale (683 lm/W · ∫V(λ)·spectrum dλ, CIE 1924 V) × the light's solid angle (4π sr for a point light's lm, the spot's ∫c_spot dΩ; 1 for cd and lx)",
+                };
             lights.Add((JsonNode)e);
         }
         JsonArray? files = null;
@@ -304,7 +323,10 @@ public sealed record RenderManifest
                 ? new TabulatedSpectrum(name, r.Numbers(so, "wavelengths_nm", $"{at}.spd"), r.Numbers(so, "values", $"{at}.spd"), Extrapolation.Clamp) : null;
             return new ManifestLight(r.OptInt(l, "index") ?? i, name, r.OptStr(l, "kind") ?? "point", r.OptStr(l, "spectrum"),
                 r.OptNumber(l, "intensity") ?? 1, r.OptStr(l, "intensity_unit"), (bool?)r.Value(l, "has_ambient") ?? false,
-                r.OptNumbers(l, "position", at), r.OptNumbers(l, "direction", at), r.OptNumbers(l, "attenuation", at), spd);
+                r.OptNumbers(l, "position", at), r.OptNumbers(l, "direction", at), r.OptNumbers(l, "attenuation", at), spd,
+                l["photometric"] is JsonObject po ? new ManifestPhotometry(r.Str(po, "quantity", $"{at}.photometric"),
+                    r.OptNumber(po, "value") ?? 0, r.Str(po, "unit", $"{at}.photometric"), r.OptNumber(po, "radiometric_scale") ?? 0,
+                    r.OptNumber(po, "luminous_per_unit_scale") ?? 0) : null);
         }).ToArray();
         var radiometry = json["radiometry"] as JsonObject;
         var rays = json["rays"] as JsonObject;

@@ -326,7 +326,8 @@ public static class RenderOutputWriter
             var l = scene.Lights[k];
             var d = l.Describe(scene.Radiometry);
             lights[k] = new ManifestLight(k, l.Name, d.Type, l.Spectrum?.Name, l.Scale, d.Unit, l.HasAmbient,
-                d.Position, d.Direction, d.Attenuation, l.Spectrum);
+                d.Position, d.Direction, d.Attenuation, l.Spectrum, l.Photometric is { } p
+                    ? new ManifestPhotometry(p.Quantity, p.Value, p.Unit, p.RadiometricScale, p.LuminousPerUnit) : null);
         }
         var manifest = new RenderManifest
         {

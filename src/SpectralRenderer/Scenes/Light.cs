@@ -23,7 +23,15 @@ public readonly struct LightSample
 /// What every light of eq. 2 emits, whatever its kind: its name, spectral intensity I_k (band values, spectrum ×
 /// intensity), ambient contribution I_amb,k, the scene's "intensity" factor and the spectrum as given.
 /// </summary>
-public readonly record struct LightEmission(string Name, float[] Intensity, float[] Ambient, bool HasAmbient, float Scale = 1, Spectra.TabulatedSpectrum? Spectrum = null);
+public readonly record struct LightEmission(string Name, float[] Intensity, float[] Ambient, bool HasAmbient, float Scale = 1,
+    Spectra.TabulatedSpectrum? Spectrum = null, LightPhotometry? Photometric = null);
+
+/// <summary>
+/// A light's strength given photometrically (physical radiometry): the quantity ("luminous_flux", "luminous_intensity",
+/// "illuminance", "luminance"), its value in <paramref name="Unit"/> (lm, cd, lx, cd/m²), the radiometric scale it gives
+/// (the factor on the spectrum, what "intensity" would be) and K_m ∫V·S dλ of the spectrum (photometric per unit scale).
+/// </summary>
+public sealed record LightPhotometry(string Quantity, double Value, string Unit, double RadiometricScale, double LuminousPerUnit);
 
 /// <summary>
 /// A light of eq. 2: its spectral intensity I_k (band values, spectrum × intensity) and its ambient
@@ -40,6 +48,8 @@ public abstract class Light(LightEmission emission)
     public float Scale { get; } = emission.Scale;
     /// <summary>The light's spectrum as given (for reports and the reference white).</summary>
     public Spectra.TabulatedSpectrum? Spectrum { get; } = emission.Spectrum;
+    /// <summary>The photometric value the scene gave instead of "intensity", or null.</summary>
+    public LightPhotometry? Photometric { get; } = emission.Photometric;
 
     /// <summary>The scene-file name of this kind of light ("point", "spot", "directional").</summary>
     public abstract string Type { get; }

@@ -15,13 +15,42 @@ public static class SpectrumLibrary
 {
     static readonly ConcurrentDictionary<string, SpectralTable> Tables = new(StringComparer.Ordinal);
 
-    static readonly (string Name, string File, string Column)[] Builtins =
+    /// <summary>
+    /// The built-in lights and their one scale (docs/scene-format.md, "Spectrum values"): the CIE illuminants with a
+    /// smooth spectrum are 100 at 560 nm as published (A, D65, D50, E; so are blackbody:T and daylight:T); the
+    /// fluorescent illuminants, the LEDs and the measured sources (a line spectrum has no meaningful value at 560 nm) are
+    /// scaled by luminous flux: ∫V(λ)·S(λ) dλ equals D65's, so at the same intensity they give the same lux as D65.
+    /// </summary>
+    static readonly (string Name, string File, string Column, bool Luminous)[] Builtins =
     [
-        ("D65", "illuminants.csv", "D65"), ("A", "illuminants.csv", "A"), ("D50", "illuminants.csv", "D50"),
-        ("E", "illuminants.csv", "E"), ("FL2", "illuminants.csv", "FL2"), ("FL11", "illuminants.csv", "FL11"),
-        ("led-blue", "leds.csv", "blue_465nm"), ("led-green", "leds.csv", "green_525nm"),
-        ("led-rgb", "light-sources.csv", "3-LED-1 (457/540/605)"), ("led-yag", "light-sources.csv", "Phosphor LED YAG"),
+        ("D65", "illuminants.csv", "D65", false), ("A", "illuminants.csv", "A", false), ("D50", "illuminants.csv", "D50", false),
+        ("E", "illuminants.csv", "E", false), ("FL2", "illuminants.csv", "FL2", true), ("FL11", "illuminants.csv", "FL11", true),
+        ("led-blue", "leds.csv", "blue_465nm", true), ("led-green", "leds.csv", "green_525nm", true),
+        ("led-rgb", "light-sources.csv", "3-LED-1 (457/540/605)", true), ("led-yag", "light-sources.csv", "Phosphor LED YAG", true),
     ];
+
+    /// <summary>Whether the built-in light <paramref name="name"/> is scaled by luminous flux (else 100 at 560 nm); null if none.</summary>
+    public static bool? IsLuminousNormalised(string name)
+    {
+        foreach (var b in Builtins)
+            if (string.Equals(b.Name, name, StringComparison.OrdinalIgnoreCase)) return b.Luminous;
+        return null;
+    }
+
+    static readonly ConcurrentDictionary<string, TabulatedSpectrum> Normalised = new(StringComparer.Ordinal);
+
+    /// <summary>
+    /// The table scaled so that ∫V·S dλ = ∫V·D65 dλ: V(λ) = ȳ of data/cie1931-2deg-cmf.csv (CIE 1924 photopic), each
+    /// integral exact on the tables over the spectrum's own range.
+    /// </summary>
+    static TabulatedSpectrum LuminousNormalised(string name, TabulatedSpectrum s) => Normalised.GetOrAdd(name, _ =>
+    {
+        var v = DataTable("cie1931-2deg-cmf.csv")["ybar"];
+        var d65 = DataTable("illuminants.csv")["D65"];
+        static double Luminous(TabulatedSpectrum v, TabulatedSpectrum s) =>
+            TabulatedSpectrum.IntegrateProduct(v, s, Math.Max(v.First, s.First), Math.Min(v.Last, s.Last));
+        return s.Scaled(Luminous(v, d65) / Luminous(v, s), name);
+    });
 
     /// <summary>Every built-in name, for help texts and "did you mean".</summary>
     public static IEnumerable<string> KnownNames =>
@@ -36,7 +65,7 @@ public static class SpectrumLibrary
         name = name.Trim();
         foreach (var b in Builtins)
             if (string.Equals(b.Name, name, StringComparison.OrdinalIgnoreCase))
-                return Rename(DataTable(b.File)[b.Column], b.Name);
+                return Rename(b.Luminous ? LuminousNormalised(b.Name, DataTable(b.File)[b.Column]) : DataTable(b.File)[b.Column], b.Name);
 
         if (name.StartsWith("constant:", StringComparison.OrdinalIgnoreCase))
         {
