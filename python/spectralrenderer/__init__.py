@@ -45,11 +45,13 @@ def _scene_text(scene):
     if isinstance(scene, str) and scene.lstrip().startswith("{"):
         return scene.encode(), "<text>"
     path = os.fspath(scene)
+    if not Path(path).is_file():   # the CLI's words (InputFile)
+        raise SpectralError(f"spectral render: {path}: scene file not found (hint: check the path)", 2)
     try:
         return Path(path).read_bytes(), path
     except OSError as e:
         raise SpectralError(f"spectral render: {path}: cannot read the scene file: {e.strerror} "
-                            "(hint: check the path)", 2) from None
+                            "(hint: choose files and folders you can read and write)", 2) from None
 
 
 def _error(lib, handle):

@@ -98,6 +98,11 @@ def test_a_bad_scene_raises_the_cli_one_line_message_and_the_interpreter_lives_o
     with pytest.raises(sr.SpectralError) as d:
         sr.render({"camera": {"width": -4}})
     assert str(d.value) == str(e.value).replace(str(bad), "<dict>")
+    missing = tmp_path / "missing.json"
+    p = cli("render", missing, "-o", tmp_path / "missing-out")
+    with pytest.raises(sr.SpectralError) as m:
+        sr.render(missing)
+    assert (p.returncode, p.stderr.rstrip("\n")) == (m.value.status, str(m.value))
     with pytest.raises(sr.SpectralError, match="--integrator"):
         sr.render(repo / CHART, integrator="nope")
     assert sr.render(repo / CHART, width=16, height=8).cube.shape == (8, 16, 20)
