@@ -10,7 +10,14 @@
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd); cd "$repo"
 dist=$(mkdir -p "${1:-dist}" && cd "${1:-dist}" && pwd)
-python=${PYTHON:-python3}
+# The first Python with setuptools and wheel (a pyenv python3 on PATH may lack them; Debian's /usr/bin/python3 has them).
+python=${PYTHON:-}
+if [[ -z $python ]]; then
+    for p in python3 /usr/bin/python3; do
+        if command -v "$p" >/dev/null && "$p" -c 'import setuptools, wheel, pip' 2>/dev/null; then python=$p; break; fi
+    done
+    [[ -n $python ]] || { echo "build-wheel: no python3 with pip, setuptools and wheel (Debian: python3-pip python3-setuptools python3-wheel)" >&2; exit 2; }
+fi
 native=${SPECTRAL_NATIVE_DIR:-}
 if [[ -z $native ]]; then
     native=$(mktemp -d /tmp/libspectral.XXXXXX); trap 'rm -rf "$native" "$native.artifacts"' EXIT
