@@ -302,7 +302,7 @@ public static class RenderOutputWriter
     }
 
     [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
-    static RenderManifest Describe(Scene scene, RenderResult result, float bandScale, ManifestRun? run, DisplayEncoder? preview)
+    internal static RenderManifest Describe(Scene scene, RenderResult result, float bandScale, ManifestRun? run, DisplayEncoder? preview)
     {
         var c = scene.Colorimeter;
         var objects = new ManifestObject[scene.Objects.Count];

@@ -125,3 +125,10 @@ namespace SpectralRenderer.Tests.Architecture.Probe.Layers.Cli
 {
     public static class Mark { public const int Value = 16; }
 }
+
+namespace SpectralRenderer.Tests.Architecture.Probe.Layers.Native
+{
+    public static class Mark { public const int Value = 17; }
+
+    static class BackEdge { public const int X = -Cli.Mark.Value; }   // libspectral's C ABI uses the engine, not the CLI
+}

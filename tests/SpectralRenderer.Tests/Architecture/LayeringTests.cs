@@ -32,6 +32,7 @@ public class LayeringTests
         [R + "Lighting"] = ["Pipeline", "Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Distributed"] = ["Pipeline", "Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Cli"] = ["*"],
+        [R + "Native"] = ["Pipeline", "Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra", "Color", "Diagnostics"],
     };
 
     /// <summary>The layer a namespace belongs to (its longest listed prefix), or null.</summary>
@@ -177,7 +178,7 @@ public class LayeringTests
         ("Diagnostics", "Spectra"), ("Spectra", "Color"), ("Color", "Geometry"), ("Geometry", "Acceleration"),
         ("Acceleration", "Scenes"), ("Scenes", "Scenes.Loading"), ("Scenes.Loading", "Rendering"), ("Rendering", "Imaging"),
         ("Imaging", "Sensor"), ("Sensor", "Output"), ("Output", "Pipeline"), ("Pipeline", "Analysis"),
-        ("Analysis", "Lighting"), ("Lighting", "Distributed"), ("Distributed", "Cli"),
+        ("Analysis", "Lighting"), ("Lighting", "Distributed"), ("Distributed", "Cli"), ("Native", "Cli"),
     ];
 
     [Fact]

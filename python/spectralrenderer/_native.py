@@ -1,0 +1,60 @@
+"""ctypes bindings of libspectral's C ABI (src/SpectralRenderer.Native/NativeExports.cs, ABI version 1)."""
+import ctypes
+import os
+from pathlib import Path
+
+ABI_VERSION = 1
+PROGRESS = ctypes.CFUNCTYPE(None, ctypes.c_void_p, ctypes.c_int, ctypes.c_int)
+
+_lib = None
+
+
+def _locate():
+    """libspectral.so: $SPECTRAL_LIBRARY, else the copy bundled in the package (the wheel's)."""
+    env = os.environ.get("SPECTRAL_LIBRARY")
+    if env:
+        return Path(env)
+    return Path(__file__).with_name("libspectral.so")
+
+
+def lib():
+    """The loaded library (once per process); its data/ tables are found beside it (SPECTRAL_DATA)."""
+    global _lib
+    if _lib is not None:
+        return _lib
+    path = _locate()
+    if not path.exists():
+        raise ImportError(f"libspectral not found at {path} (build the wheel with scripts/build-wheel.sh, "
+                          "or set SPECTRAL_LIBRARY to a published libspectral.so)")
+    data = path.parent / "data"
+    # The engine looks for its CIE tables in $SPECTRAL_DATA first: set before the library's first read of the environment.
+    if "SPECTRAL_DATA" not in os.environ and (data / "cie1931-2deg-cmf.csv").exists():
+        os.environ["SPECTRAL_DATA"] = str(data)
+    l = ctypes.CDLL(str(path))
+    l.spectral_abi_version.restype = ctypes.c_int
+    l.spectral_render.restype = ctypes.c_void_p
+    l.spectral_render.argtypes = [ctypes.c_char_p, ctypes.c_char_p, ctypes.c_char_p, ctypes.POINTER(ctypes.c_int),
+                                  PROGRESS, ctypes.c_void_p]
+    l.spectral_status.restype = ctypes.c_int
+    l.spectral_status.argtypes = [ctypes.c_void_p]
+    l.spectral_message.restype = ctypes.c_char_p
+    l.spectral_message.argtypes = [ctypes.c_void_p]
+    l.spectral_shape.restype = None
+    l.spectral_shape.argtypes = [ctypes.c_void_p] + [ctypes.POINTER(ctypes.c_int)] * 3
+    for name, t in [("spectral_cube", ctypes.c_float), ("spectral_wavelengths", ctypes.c_double),
+                    ("spectral_band_edges", ctypes.c_double), ("spectral_xyz", ctypes.c_float),
+                    ("spectral_rgb8", ctypes.c_uint8), ("spectral_ids", ctypes.c_int32)]:
+        f = getattr(l, name)
+        f.restype = ctypes.POINTER(t)
+        f.argtypes = [ctypes.c_void_p]
+    l.spectral_manifest.restype = ctypes.c_char_p
+    l.spectral_manifest.argtypes = [ctypes.c_void_p]
+    l.spectral_save.restype = ctypes.c_int
+    l.spectral_save.argtypes = [ctypes.c_void_p, ctypes.c_char_p, ctypes.POINTER(ctypes.c_void_p)]
+    l.spectral_free.restype = None
+    l.spectral_free.argtypes = [ctypes.c_void_p]
+    version = l.spectral_abi_version()
+    if version != ABI_VERSION:
+        raise ImportError(f"{path} has ABI version {version}; this package speaks version {ABI_VERSION}")
+    _lib = l
+    return l

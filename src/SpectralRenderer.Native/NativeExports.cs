@@ -1,0 +1,373 @@
+using System.Globalization;
+using System.Runtime.InteropServices;
+using System.Text;
+using System.Text.Json;
+using System.Text.Json.Nodes;
+using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Imaging;
+using SpectralRenderer.Output;
+using SpectralRenderer.Pipeline;
+using SpectralRenderer.Rendering;
+using SpectralRenderer.Scenes.Loading;
+using SpectralRenderer.Spectra;
+
+namespace SpectralRenderer.Native;
+
+/// <summary>
+/// libspectral's C ABI, version <see cref="AbiVersion"/> (python/spectralrenderer/_native.py is its one caller in the
+/// repository; README, "Python"). A render is a handle: <c>spectral_render</c> always returns one (never null), holding
+/// either the render or the error — its status (0 success, 1 work failed or interrupted, 2 bad input: the CLI's exit
+/// codes) and the one line the CLI prints. Nothing is global: every call works on its handle only, so calls on different
+/// handles may run on different threads at once. Memory: every pointer an accessor returns belongs to the handle and
+/// stays valid, unmoved (pinned), until <c>spectral_free</c>; strings are UTF-8, NUL-terminated. No exception crosses
+/// the boundary.
+/// </summary>
+public static unsafe class NativeExports
+{
+    /// <summary>The ABI's version: raised when a function's signature or meaning changes.</summary>
+    public const int AbiVersion = 1;
+
+    [UnmanagedCallersOnly(EntryPoint = "spectral_abi_version")]
+    public static int Version() => AbiVersion;
+
+    /// <summary>
+    /// Renders a scene given as UTF-8 JSON text. <paramref name="path"/> names it (its relative mesh paths resolve from its
+    /// folder; messages name it). <paramref name="options"/>: a JSON object of the `spectral render` overrides, each
+    /// optional — width, height, bands (a count or "start:end:count"), wave, spp, rgb, integration, formats,
+    /// exr_compression, integrator, threads. <paramref name="cancel"/> (may be null): the render stops soon after the
+    /// caller sets *cancel to non-zero (status 1, "interrupted …"). <paramref name="progress"/> (may be null) is called
+    /// after each tile with (user, tiles done, tiles) on a worker thread.
+    /// </summary>
+    [UnmanagedCallersOnly(EntryPoint = "spectral_render")]
+    public static nint Render(byte* scene, byte* path, byte* options, int* cancel,
+        delegate* unmanaged<nint, int, int, void> progress, nint user)
+    {
+        var handle = new NativeRender();
+        try
+        {
+            string name = Utf8(path) ?? "scene.json";
+            byte[] text = scene is null ? [] : new ReadOnlySpan<byte>(scene, StrLen(scene)).ToArray();
+            var (overrides, integrator, threads) = Options(Utf8(options), text);
+            var request = new RenderRequest
+            {
+                ScenePath = name,
+                SceneText = text,
+                Overrides = overrides,
+                Integrator = integrator,
+                Threads = threads,
+                OutDir = null,   // nothing written: the film stays in memory until spectral_save
+            };
+            using var stop = new CancellationTokenSource();
+            int* flag = cancel;
+            // The caller's flag, read after every tile and every 20 ms (before the first tile ends).
+            void Poll() { if (flag is not null && Volatile.Read(ref *flag) != 0) stop.Cancel(); }
+            using var timer = new Timer(_ => Poll(), null, 20, 20);
+            var observer = new RenderObserver(Progress: p =>
+            {
+                Poll();
+                if (progress is not null) progress(user, p.TilesDone, p.Tiles);
+            });
+            Poll();
+            var job = RenderJob.Load(request, observer);
+            job.Build();
+            stop.Token.ThrowIfCancellationRequested();
+            job.Render(observer, stop.Token);
+            handle.Set(job);
+        }
+        catch (Exception e)
+        {
+            handle.Fail(e);
+        }
+        return GCHandle.ToIntPtr(GCHandle.Alloc(handle));
+    }
+
+    /// <summary>0 success, 1 work failed or interrupted, 2 bad input (the CLI's exit codes).</summary>
+    [UnmanagedCallersOnly(EntryPoint = "spectral_status")]
+    public static int Status(nint h) => Get(h)?.Status ?? 2;
+
+    /// <summary>The error's one line as the CLI prints it ("spectral render: …"), or an empty string.</summary>
+    [UnmanagedCallersOnly(EntryPoint = "spectral_message")]
+    public static byte* Message(nint h) => Get(h) is { } r ? r.MessageUtf8 : null;
+
+    /// <summary>Height, width and band count of the cube (zeros after an error).</summary>
+    [UnmanagedCallersOnly(EntryPoint = "spectral_shape")]
+    public static void Shape(nint h, int* height, int* width, int* bands)
+    {
+        var r = Get(h)?.Job?.Result;
+        *height = r?.Image.Height ?? 0; *width = r?.Image.Width ?? 0; *bands = r?.Image.Bands ?? 0;
+    }
+
+    /// <summary>The cube, H × W × N float32 row-major (spectral.npy's layout and values), owned by the handle.</summary>
+    [UnmanagedCallersOnly(EntryPoint = "spectral_cube")]
+    public static float* Cube(nint h) => (float*)Guard(h, r => r.Cube);
+
+    /// <summary>The N band centres in nm (float64; wavelengths.csv's centre column).</summary>
+    [UnmanagedCallersOnly(EntryPoint = "spectral_wavelengths")]
+    public static double* Wavelengths(nint h) => (double*)Guard(h, r => r.Wavelengths);
+
+    /// <summary>The N + 1 band edges in nm (float64).</summary>
+    [UnmanagedCallersOnly(EntryPoint = "spectral_band_edges")]
+    public static double* BandEdges(nint h) => (double*)Guard(h, r => r.Edges);
+
+    /// <summary>CIE 1931 X, Y, Z per pixel, H × W × 3 float32 (κ included; the colours the preview is encoded from).</summary>
+    [UnmanagedCallersOnly(EntryPoint = "spectral_xyz")]
+    public static float* Xyz(nint h) => (float*)Guard(h, r => r.Xyz);
+
+    /// <summary>The preview's 8-bit display RGB, H × W × 3 bytes (preview.png's pixels).</summary>
+    [UnmanagedCallersOnly(EntryPoint = "spectral_rgb8")]
+    public static byte* Rgb8(nint h) => (byte*)Guard(h, r => r.Rgb8);
+
+    /// <summary>Object ids per pixel, H × W int32: 0 background, k the scene's k-th object (object-id.png's values).</summary>
+    [UnmanagedCallersOnly(EntryPoint = "spectral_ids")]
+    public static int* Ids(nint h) => (int*)Guard(h, r => r.Ids);
+
+    /// <summary>render.json's content for the render held (its "files" empty and "run" absent until saved), UTF-8 JSON.</summary>
+    [UnmanagedCallersOnly(EntryPoint = "spectral_manifest")]
+    public static byte* Manifest(nint h) => (byte*)Guard(h, r => (nint)r.ManifestUtf8);
+
+    /// <summary>
+    /// Writes the render folder `spectral render -o FOLDER` writes (the same files, byte for byte, but render.json's
+    /// run-describing fields). Returns the status; on failure <paramref name="error"/> (if not null) receives a new handle
+    /// holding the message, to be freed.
+    /// </summary>
+    [UnmanagedCallersOnly(EntryPoint = "spectral_save")]
+    public static int Save(nint h, byte* folder, nint* error)
+    {
+        var r = Get(h);
+        var failure = new NativeRender();
+        try
+        {
+            if (r?.Job is null) throw new InputException("spectral_save", "the handle holds no render", "save a successful render");
+            var dir = Utf8(folder);
+            if (string.IsNullOrWhiteSpace(dir)) throw new InputException("-o", "the output folder name is empty", "give a folder name");
+            r.Save(dir);
+            return 0;
+        }
+        catch (Exception e)
+        {
+            failure.Fail(e);
+            if (error is not null) *error = GCHandle.ToIntPtr(GCHandle.Alloc(failure));
+            return failure.Status;
+        }
+    }
+
+    /// <summary>Frees the handle and every buffer it owns; null is ignored.</summary>
+    [UnmanagedCallersOnly(EntryPoint = "spectral_free")]
+    public static void Free(nint h)
+    {
+        if (h == 0) return;
+        var g = GCHandle.FromIntPtr(h);
+        (g.Target as NativeRender)?.Dispose();
+        g.Free();
+    }
+
+    /// <summary>An accessor's pointer, or null when the handle holds no render or the value cannot be made (never a throw).</summary>
+    static nint Guard(nint h, Func<NativeRender, nint> value)
+    {
+        try { return Get(h) is { Job.Result: not null } r ? value(r) : 0; }
+        catch (Exception) { return 0; }
+    }
+
+    static NativeRender? Get(nint h) => h == 0 ? null : GCHandle.FromIntPtr(h).Target as NativeRender;
+
+    static int StrLen(byte* s) { int n = 0; while (s[n] != 0) n++; return n; }
+
+    static string? Utf8(byte* s) => s is null ? null : Encoding.UTF8.GetString(s, StrLen(s));
+
+    /// <summary>The options object as `spectral render`'s overrides, checked as the command line checks them.</summary>
+    static (SceneOverrides, string Integrator, int Threads) Options(string? json, byte[] sceneText)
+    {
+        JsonObject o;
+        try { o = json is null ? [] : JsonNode.Parse(json) as JsonObject ?? throw new JsonException("not an object"); }
+        catch (JsonException e) { throw new InputException("options", $"not a JSON object: {e.Message}", "pass {\"width\": 64, …}"); }
+        string? Str(string key) => o[key] is JsonValue v && v.TryGetValue(out string? s) ? s
+            : o[key] is null ? null : o[key]!.ToJsonString();
+        int? Int(string key, int min, int max)
+        {
+            if (o[key] is null) return null;
+            if (o[key] is JsonValue v && v.TryGetValue(out int i) && i >= min && i <= max) return i;
+            throw new InputException($"options.{key}",
+                $"{MessageText.Quote(o[key]!.ToJsonString())} is not an integer from {min} to {max}",
+                $"e.g. {key}={Math.Max(min, 1)}");
+        }
+        foreach (var (key, _) in o)
+            if (key is not ("width" or "height" or "bands" or "wave" or "spp" or "rgb" or "integration" or "formats" or "exr_compression"
+                or "integrator" or "threads"))
+                throw new InputException($"options.{key}", "unknown option",
+                    "known: width, height, bands, wave, spp, rgb, integration, formats, exr_compression, integrator, threads");
+        string? bands = Str("bands"), wave = Str("wave");
+        if (bands is not null && wave is not null)
+            throw new InputException("--wave", "--wave and --bands both give the bands",
+                "use one: --wave 400:10:700 (centres) or --bands 395:705:31 (edges)");
+        if (bands is not null && !bands.Contains(':'))
+        {
+            // A count keeps the scene's range (as `spectral render --bands N`).
+            if (!int.TryParse(bands, NumberStyles.Integer, CultureInfo.InvariantCulture, out int n) || n < 1 || n > BandGrid.MaxBands)
+                throw new InputException("--bands", $"'{bands}' is neither a band count nor a grid start:end:count",
+                    "e.g. --bands 40, --bands 395:705:31 (edges) or --wave 400:10:700 (centres)");
+            var range = SceneRange(sceneText);
+            bands = string.Create(CultureInfo.InvariantCulture, $"{range.Start}:{range.End}:{n}");
+        }
+        if (bands is not null) BandGrid.Parse(bands);
+        var overrides = new SceneOverrides
+        {
+            Width = Int("width", int.MinValue, int.MaxValue),
+            Height = Int("height", int.MinValue, int.MaxValue),
+            Bands = bands,
+            Wave = wave,
+            SamplesPerPixel = Int("spp", 1, 65536),
+            Rgb = Str("rgb"),
+            Integration = Str("integration"),
+            Formats = Str("formats"),
+            ExrCompression = Str("exr_compression"),
+        };
+        return (overrides, Str("integrator") ?? Integrators.Default, Int("threads", 0, 1024) ?? 0);
+    }
+
+    /// <summary>The scene's band range for a bare band count (RenderCommand's rule); the loader reports a bad scene.</summary>
+    static BandGrid SceneRange(byte[] sceneText)
+    {
+        try
+        {
+            var options = new JsonDocumentOptions { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true };
+            var node = JsonNode.Parse(sceneText, documentOptions: options);
+            if (node?["wave"]?.GetValue<string>() is { } w) return BandGrid.ParseWave(w);
+            if (node?["bands"]?.GetValue<string>() is { } g) return BandGrid.Parse(g);
+        }
+        catch (Exception e) when (e is JsonException or InvalidOperationException or InputException) { /* the loader reports it */ }
+        return BandGrid.Default;
+    }
+}
+
+/// <summary>One handle's render (or error) and the pinned buffers handed out for it.</summary>
+sealed unsafe class NativeRender : IDisposable
+{
+    public RenderJob? Job { get; private set; }
+    public int Status { get; private set; }
+    public byte* MessageUtf8 { get; private set; }
+    readonly List<GCHandle> _pins = [];
+    readonly List<nint> _strings = [];
+    nint _cube, _wavelengths, _edges, _xyz, _rgb8, _ids;
+    byte* _manifest;
+
+    public void Set(RenderJob job) { Job = job; MessageUtf8 = String(""); }
+
+    /// <summary>The error as the CLI ends `spectral render` with it (CommandLine.Describe: code and one line).</summary>
+    public void Fail(Exception e)
+    {
+        if (e is AggregateException agg && agg.Flatten().InnerExceptions.Count > 0) e = agg.Flatten().InnerExceptions[0];
+        var (code, message) = e switch
+        {
+            InputException => (2, e.Message),
+            WorkFailedException or InterruptedException => (1, e.Message),
+            OperationCanceledException => (1, "interrupted; no output was left under a final name"),
+            OutOfMemoryException or InsufficientExecutionStackException =>
+                (1, $"out of memory ({e.GetType().Name}) (hint: lower the resolution, band count or mesh size)"),
+            IOException => (1, e.Message),
+            UnauthorizedAccessException => (2, $"{e.Message} (hint: choose files and folders you can read and write)"),
+            _ => (1, $"internal error {e.GetType().Name}: {e.Message} "
+                + "(hint: this is a defect of spectral; please report it with the input)"),
+        };
+        Status = code;
+        MessageUtf8 = String("spectral render: " + (e is InputException ? MessageText.Escape(message) : MessageText.Line(message)));
+    }
+
+    RenderResult Result => Job?.Result ?? throw new InvalidOperationException("no render");
+
+    public nint Cube => _cube != 0 ? _cube : _cube = Pin(Result.Image.Data);
+    public nint Wavelengths => _wavelengths != 0 ? _wavelengths
+        : _wavelengths = Pin(Enumerable.Range(0, Result.Image.Bands).Select(Result.Image.Grid.Centre).ToArray());
+    public nint Edges => _edges != 0 ? _edges : _edges = Pin(Result.Image.Grid.Edges());
+    public nint Ids => _ids != 0 ? _ids : _ids = Pin(Result.ObjectIds.Select(i => i + 1).ToArray());
+
+    XyzPlanes Planes => Result.Xyz is { } px ? XyzPlanes.FromPixels(px) : XyzPlanes.Compute(Job!.Scene.Colorimeter, Result.Image);
+
+    public nint Xyz
+    {
+        get
+        {
+            if (_xyz != 0) return _xyz;
+            if (Result.Xyz is { } px) return _xyz = Pin(px);
+            var p = Planes;
+            var xyz = new float[3 * p.X.Length];
+            for (int i = 0; i < p.X.Length; i++)
+            {
+                xyz[3 * i] = (float)p.X[i]; xyz[3 * i + 1] = (float)p.Y[i]; xyz[3 * i + 2] = (float)p.Z[i];
+            }
+            return _xyz = Pin(xyz);
+        }
+    }
+
+    public nint Rgb8
+    {
+        get
+        {
+            if (_rgb8 != 0) return _rgb8;
+            var xyz = Planes;
+            var image = Result.Image;
+            var encoder = RenderOutputWriter.PreviewEncoder(Job!.Scene, xyz);
+            return _rgb8 = Pin(RenderOutputWriter.Preview(image.Width, image.Height, xyz, encoder));
+        }
+    }
+
+    public byte* ManifestUtf8
+    {
+        get
+        {
+            if (_manifest is not null) return _manifest;
+            var scene = Job!.Scene;
+            var xyz = Planes;
+            var m = RenderOutputWriter.Describe(scene, Result, Result.Image.Max(), null, RenderOutputWriter.PreviewEncoder(scene, xyz));
+            return _manifest = String(m.ToJsonText());
+        }
+    }
+
+    /// <summary>The render folder, with render.json's "run" as `spectral render` records it (RenderJob's full detail).</summary>
+    public void Save(string dir)
+    {
+        var job = Job!;
+        var result = Result;
+        var run = new ManifestRun
+        {
+            CommandLine = "spectralrenderer (Python, libspectral)",
+            LoadSeconds = job.LoadSeconds,
+            BuildSeconds = job.BuildSeconds,
+            Triangles = job.Geometry?.TriangleCount,
+            DegenerateTrianglesSkipped = job.DegenerateTriangles,
+            MinRayWeight = job.Scene.MinRayWeight,
+            RayBudget = job.Scene.RayBudget,
+            RaysPrunedByWeight = result.Rays.PrunedRays,
+            CameraRaysOverBudget = result.Rays.OverBudgetRays,
+            HasOverrides = true,
+            Overrides = RenderJob.Recorded(job.Request.Overrides),
+        };
+        // The per-light transfer (the "lights" format) needs the geometry traced again: RenderJob.Write does it as the CLI.
+        RenderOutputWriter.Write(job.Scene, result, dir, run, default, null, null, job.NamedProducts);
+    }
+
+    nint Pin(Array a)
+    {
+        var g = GCHandle.Alloc(a, GCHandleType.Pinned);
+        _pins.Add(g);
+        return g.AddrOfPinnedObject();
+    }
+
+    byte* String(string s)
+    {
+        var bytes = Encoding.UTF8.GetBytes(s);
+        var p = (byte*)NativeMemory.Alloc((nuint)bytes.Length + 1);
+        bytes.CopyTo(new Span<byte>(p, bytes.Length));
+        p[bytes.Length] = 0;
+        _strings.Add((nint)p);
+        return p;
+    }
+
+    public void Dispose()
+    {
+        foreach (var g in _pins) g.Free();
+        _pins.Clear();
+        foreach (var p in _strings) NativeMemory.Free((void*)p);
+        _strings.Clear();
+        Job = null;
+    }
+}
