@@ -8,8 +8,10 @@ public static class CameraManifest
 {
     public const int Version = 1;
 
-    public static JsonObject Build(RawFrame raw, ColourCorrection colour, BandGrid grid, string lightName, double radianceScale, string radianceScaleSource)
+    public static JsonObject Build(RawFrame raw, ColourCorrection colour, BandGrid grid, string lightName, double radianceScale, string radianceScaleSource,
+        string route = RadianceCube.BandRoute, string whiteScaleSource = "1: the light's band values (the paper's white)")
     {
+        bool exact = route.StartsWith("exact", StringComparison.Ordinal);
         var s = raw.Sensor;
         var w = raw.Weights;
         var channels = new JsonArray();
@@ -91,12 +93,17 @@ public static class CameraManifest
                 ["light"] = lightName,
                 ["bands"] = grid.ToString(),
                 ["weights"] = "w_c,b = s·A·ff·πT/(1+4N²)·Δλ·∫_b η_c λ E dλ / (h c ∫_b E dλ): photo-electrons per second per band unit, prefiltered by the light E",
-                ["electrons_formula"] = "e = Poisson(t·Σ_b w_c,b·L_b·(1 + PRNU) + t·dark), clipped at the full well",
+                ["signal_route"] = route,
+                ["white_radiance_scale"] = colour.WhiteScale,
+                ["white_radiance_scale_source"] = whiteScaleSource,
+                ["electrons_formula"] = exact
+                    ? "e = Poisson(t·ė_c·(1 + PRNU) + t·dark), ė_c = s·A·ff·πT/(1+4N²)·Σ_terms F·∫η_c·λ·E_k·m dλ/(h c), clipped at the full well"
+                    : "e = Poisson(t·Σ_b w_c,b·L_b·(1 + PRNU) + t·dark), clipped at the full well",
                 ["dn_formula"] = "DN = round(black + (e·g + DSNU + read)·G/V_swing·(white − black)), clipped to [0, white]",
             },
             ["processing"] = new JsonObject
             {
-                ["white_balance"] = "each channel divided by its expected response to the white diffuser under the light",
+                ["white_balance"] = "each channel divided by its expected response to the white diffuser under the light (radiance: white_radiance_scale × the light)",
                 ["colour_matrix_xyz_from_balanced"] = matrix,
                 ["colour_matrix_fit"] = "least squares on the 24 ColorChecker (Ohta) patches under the light: simulated balanced signals → 1 nm CIE XYZ (white Y = 1)",
                 ["output"] = "sRGB (IEC 61966-2-1), no chromatic adaptation",

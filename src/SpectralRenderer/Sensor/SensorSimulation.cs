@@ -13,6 +13,19 @@ namespace SpectralRenderer.Sensor;
 public sealed record RadianceCube(int Width, int Height, BandGrid Grid, float[] Data, double RadianceScale)
 {
     public int Bands => Grid.Count;
+
+    /// <summary>
+    /// The exact route: per pixel and channel (H × W × C, the sensor's channel order), ∫ L(λ)·η_c(λ)·λ dλ over the
+    /// grid (band units × nm², <see cref="ChannelWeights.ExactIntegral"/>), integrated at the spectra's full resolution
+    /// from the render's eq. 2 terms, so the signals do not depend on the band count. Null: the band route (the
+    /// channel weights on the band values), for cubes that are not renders.
+    /// </summary>
+    public float[]? ChannelIntegrals { get; init; }
+
+    /// <summary>What made the channel signals, in words (camera.json's "signal_route").</summary>
+    public string Route { get; init; } = BandRoute;
+
+    public const string BandRoute = "band cube: rate_c = sum_b w_c,b * L_b (channel weights prefiltered by the scene light per band)";
 }
 
 /// <summary>How to run the sensor: temporal-noise seed, noise on or off, threads (the result does not depend on them).</summary>
@@ -58,7 +71,13 @@ public static partial class SensorSimulation
         var rowPeaks = new float[h * planes];
         var parallel = new ParallelOptions { MaxDegreeOfParallelism = options.Threads };
         var layout = new Layout(sensor, weights, w);
-        Parallel.For(0, h, parallel, y => Rates(layout, cube, dn, rowPeaks, y));
+        if (cube.ChannelIntegrals is { } exact)
+        {
+            if (exact.Length != w * h * sensor.ChannelCount)
+                throw new ArgumentException($"{exact.Length} channel integrals for {w}×{h} pixels × {sensor.ChannelCount} channels");
+            Parallel.For(0, h, parallel, y => ExactRates(layout, exact, weights.Factor, w, dn, rowPeaks, y));
+        }
+        else Parallel.For(0, h, parallel, y => Rates(layout, cube, dn, rowPeaks, y));
 
         // Exposure: given, or auto so that the brightest expected pixel of each exposure reaches a fraction of the full well.
         var peakRate = new double[exposures];
@@ -200,6 +219,22 @@ public static partial class SensorSimulation
                 rates[rowStart + x * planes + k] = s;
                 rowPeaks[y * planes + k] = Math.Max(rowPeaks[y * planes + k], s);
             }
+        }
+    }
+
+    /// <summary>ė_c = max(0, factor · ∫ L η_c λ dλ) of row y from the exact channel integrals (a mosaic photosite: its channel's).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    static void ExactRates(Layout l, float[] exact, double factor, int w, float[] rates, float[] rowPeaks, int y)
+    {
+        int planes = l.Planes, cc = l.Channels, n = w * planes, rowStart = y * w * planes;
+        var channels = l.ChannelOf.AsSpan((y % l.PatternRows) * n, n);
+        for (int k = 0; k < planes; k++) rowPeaks[y * planes + k] = 0;
+        for (int j = 0; j < n; j++)
+        {
+            int x = l.PixelOf[j], k = l.Mosaic ? 0 : j % planes;
+            float s = (float)Math.Max(0, factor * exact[((long)y * w + x) * cc + channels[j]]);
+            rates[rowStart + j] = s;
+            rowPeaks[y * planes + k] = Math.Max(rowPeaks[y * planes + k], s);
         }
     }
 
