@@ -165,6 +165,9 @@ public static class CameraCommand
         manifest["sensor_argument"] = sensorName != SensorFile.SceneArgument && File.Exists(sensorName) ? Path.GetFullPath(sensorName) : sensorName;
         manifest["render_folder"] = Path.GetRelativePath(Path.GetFullPath(outDir), Path.GetFullPath(dir));
         manifest["render_radiometry"] = scene.Radiometry ?? "paper";
+        var (clipTop, clipBottom) = raw.ClippedFractions();
+        manifest["simulation"]!["clipped_at_white_fraction"] = clipTop;
+        manifest["simulation"]!["clipped_below_black_fraction"] = clipBottom;
         manifest["processing"]!["demosaic"] = image.Demosaicked?.ToString().ToLowerInvariant();
         manifest["patches"] = new JsonArray(patches.Select(p => (JsonNode)new JsonObject
         {
@@ -181,6 +184,7 @@ public static class CameraCommand
 
         var inv = CultureInfo.InvariantCulture;
         if (routeNote is not null) stderr.WriteLine(routeNote);
+        if (raw.ClippingWarning() is { } warning) stderr.WriteLine(warning);
         stdout.WriteLine(string.Create(inv, $"camera {sensor.Name} ({sensor.Arrangement.ToString().ToLowerInvariant()}, {sensor.ChannelCount} channels) on {dir}: exposure {string.Join(", ", raw.ExposureSeconds.Select(t => t.ToString("G4", inv)))} s, noise {(noise ? "on" : "off")}, K = {sensor.SystemGain:G4} DN/e⁻"));
         if (patches.Count > 0)
         {

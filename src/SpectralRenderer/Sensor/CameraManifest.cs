@@ -22,7 +22,7 @@ public static class CameraManifest
             {
                 ["name"] = s.Channels[c].Name,
                 ["source"] = s.Channels[c].Source,
-                ["peak_qe"] = qe.Values.ToArray().Max(),
+                ["peak_qe"] = PeakQuantumEfficiency(s.Channels[c]),
                 ["weights_e_per_s_per_band_unit"] = Array(w.Row(c).ToArray()),
                 ["white_rate_e_per_s"] = colour.WhiteRate[c],
                 ["exposure_s"] = raw.ExposureOf(c),
@@ -77,6 +77,8 @@ public static class CameraManifest
                 ["black_level_dn"] = s.BlackLevel,
                 ["white_level_dn"] = s.WhiteLevel,
                 ["system_gain_dn_per_e"] = s.SystemGain,
+                ["dn_scale"] = "DN = black + V·G/V_swing·(white − black), white = 2^bits − 1: the voltage swing maps to white − black DN "
+                    + "(ISETCam maps it to 2^bits without a black offset); K = g·G·(white − black)/V_swing DN per electron",
                 ["exposure"] = s.ExposureSeconds is null ? $"auto: brightest expected pixel at {s.AutoExposureFraction} of the full well" : "given",
                 ["fixed_pattern_seed"] = s.FixedPatternSeed,
                 ["channels"] = channels,
@@ -109,6 +111,16 @@ public static class CameraManifest
                 ["output"] = "sRGB (IEC 61966-2-1), no chromatic adaptation",
             },
         };
+    }
+
+    /// <summary>The largest η(λ) the channel uses (a per-energy channel: R(λ)·555 nm/λ over its table), electrons per photon.</summary>
+    public static double PeakQuantumEfficiency(SensorChannel channel)
+    {
+        var qe = channel.QuantumEfficiency;
+        double peak = 0;
+        for (int i = 0; i < qe.Values.Length; i++)
+            peak = Math.Max(peak, channel.PerEnergy ? qe.Values[i] * SensorChannel.EnergyReferenceNm / qe.Wavelengths[i] : qe.Values[i]);
+        return peak;
     }
 
     static JsonArray Array(IEnumerable<double> values) => new(values.Select(v => (JsonNode)v).ToArray());

@@ -68,10 +68,21 @@ public sealed class ColourCorrection
             targets[p] = reference.OfReflectance(patch);
             t[0, p] = targets[p].X; t[1, p] = targets[p].Y; t[2, p] = targets[p].Z;
         }
-        // M = T·Sᵀ (S·Sᵀ + εI)⁻¹; ε (1e-9 of the mean diagonal) only keeps a many-channel fit on 24 patches solvable.
-        var sst = Dense.Multiply(s, Dense.Transpose(s));
-        double eps = 1e-9 * Dense.Trace(sst) / cc;
-        var m = Dense.SolveRight(Dense.Multiply(t, Dense.Transpose(s)), Dense.Add(sst, Dense.Identity(cc, eps)));
+        double[,] m;
+        if (cc == 1)
+        {   // Monochrome: a grey image. XYZ = s·y·(X_w, Y_w, Z_w)/Y_w — the white's chromaticity (a* = b* = 0) — with y fitted on Y.
+            double sy = 0, ss = 0;
+            for (int p = 0; p < ColorChecker.PatchCount; p++) { sy += s[0, p] * t[1, p]; ss += s[0, p] * s[0, p]; }
+            double y = ss > 0 ? sy / ss : 0, wy = reference.White.Y;
+            m = new double[3, 1] { { y * reference.White.X / wy }, { y }, { y * reference.White.Z / wy } };
+        }
+        else
+        {
+            // M = T·Sᵀ (S·Sᵀ + εI)⁻¹; ε (1e-9 of the mean diagonal) only keeps a many-channel fit on 24 patches solvable.
+            var sst = Dense.Multiply(s, Dense.Transpose(s));
+            double eps = 1e-9 * Dense.Trace(sst) / cc;
+            m = Dense.SolveRight(Dense.Multiply(t, Dense.Transpose(s)), Dense.Add(sst, Dense.Identity(cc, eps)));
+        }
         for (int c = 0; c < cc; c++) whiteRate[c] *= whiteScale;
         return new ColourCorrection(whiteRate, m, targets, signals, reference.White, whiteScale);
     }

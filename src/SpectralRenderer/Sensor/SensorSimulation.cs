@@ -47,8 +47,45 @@ public sealed record RawFrame(int Width, int Height, int Planes, float[] Dn, dou
     ChannelWeights Weights, SensorModel Sensor, SimulationOptions Options)
 {
     public float this[int x, int y, int plane] => Dn[(y * Width + x) * Planes + plane];
+    /// <summary>Per photosite: did its expected charge reach the full well (null when read back from raw.npy)?</summary>
+    public bool[]? Saturated { get; init; }
+
+    /// <summary>Is photosite i clipped: at the full well, at the white level, or (noise on) cut off at 0 DN?</summary>
+    public bool Clipped(int i) => Saturated?[i] == true || Dn[i] >= Sensor.WhiteLevel || (Options.Noise && Dn[i] <= 0);
     /// <summary>The exposure time of channel c's signal.</summary>
     public double ExposureOf(int channel) => ExposureSeconds[Sensor.Arrangement == Arrangement.Wheel ? channel : 0];
+
+    /// <summary>
+    /// The shares of photosites clipped at the top (the full well or DN ≥ white, the ADC's top) and at the ADC's
+    /// floor (DN ≤ 0 with noise on: a dark site's read noise below black, cut off).
+    /// </summary>
+    public (double AtWhite, double BelowBlack) ClippedFractions()
+    {
+        long top = 0, bottom = 0;
+        double white = Sensor.WhiteLevel;
+        for (int i = 0; i < Dn.Length; i++)
+        {
+            float v = Dn[i];
+            if (v >= white || Saturated?[i] == true) top++;
+            else if (v <= 0 && Options.Noise) bottom++;
+        }
+        return Dn.Length == 0 ? (0, 0) : ((double)top / Dn.Length, (double)bottom / Dn.Length);
+    }
+
+    /// <summary>The warning line when more than 1 % of the photosites clip at either end, else null.</summary>
+    public string? ClippingWarning()
+    {
+        var (top, bottom) = ClippedFractions();
+        if (top <= 0.01 && bottom <= 0.01) return null;
+        var inv = System.Globalization.CultureInfo.InvariantCulture;
+        var parts = new List<string>();
+        if (top > 0.01) parts.Add(string.Create(inv, $"{top * 100:0.##} % of photosites clipped at the full well or the white level ({WhiteLevelText()})"));
+        if (bottom > 0.01) parts.Add(string.Create(inv, $"{bottom * 100:0.##} % cut off below black at 0 DN"));
+        string hint = top > 0.01 ? "try --exposure auto (or a shorter exposure)" : "a black level above 0 DN keeps the read noise of dark sites";
+        return $"warning: {string.Join(", ", parts)}; their SNR is left out and their colour is wrong: {hint}";
+    }
+
+    string WhiteLevelText() => string.Create(System.Globalization.CultureInfo.InvariantCulture, $"{Sensor.WhiteLevel:0} DN");
 }
 
 /// <summary>
@@ -92,8 +129,16 @@ public static partial class SensorSimulation
 
         var readout = new Readout(sensor, options);
         var exposureOf = Array.ConvertAll(layout.ChannelOf, c => t[exposures == 1 ? 0 : c]);
+        // Sites whose expected charge fills the full well (their DN sits at saturation, whatever the read noise does to it).
+        var saturated = new bool[dn.Length];
+        int rowSites = w * planes;
+        Parallel.For(0, h, parallel, y =>
+        {
+            var te = exposureOf.AsSpan((y % layout.PatternRows) * rowSites, rowSites);
+            for (int j = 0; j < rowSites; j++) saturated[y * rowSites + j] = dn[y * rowSites + j] * te[j] >= sensor.FullWellElectrons;
+        });
         Parallel.For(0, h, parallel, y => Expose(readout, layout, exposureOf, w, y, dn));
-        return new RawFrame(w, h, planes, dn, t, peakElectrons, weights, sensor, options);
+        return new RawFrame(w, h, planes, dn, t, peakElectrons, weights, sensor, options) { Saturated = saturated };
     }
 
     /// <summary>The channel weights in the two layouts the rate loops read, and the mosaic's pattern flattened.</summary>
