@@ -32,6 +32,8 @@ public static class CameraCommand
           --radiance-scale S   W·m⁻²·sr⁻¹·nm⁻¹ per band unit of the render (default 1; the paper's radiometry
                                has no unit, so this states one)
           --demosaic           malvar (Malvar–He–Cutler, Bayer; default) or bilinear (any mosaic)
+          --signals            exact (default: each eq. 2 term's ∫ η·λ/(hc)·E·m dλ at full spectral resolution,
+                               from the render's lights/ or its transfer traced again) or bands (the band cube)
           -o DIR               output folder (default OUTDIR/camera-<sensor>)
           --bench N            time the sensor simulation N times and print the figures (nothing written)
 
@@ -45,7 +47,7 @@ public static class CameraCommand
     public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
     {
         var a = new Arguments("camera", argv,
-            ["--sensor", "--exposure", "--seed", "--noise", "--radiance-scale", "--demosaic", "--threads", "-o", "--bench"], [],
+            ["--sensor", "--exposure", "--seed", "--noise", "--radiance-scale", "--demosaic", "--signals", "--threads", "-o", "--bench"], [],
             new Dictionary<string, string> { ["--output"] = "-o" });
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
         if (a.Positionals.Count != 1) throw new InputException("command line", "give one render folder", "usage: spectral camera OUTDIR --sensor nikon-d5100");
@@ -80,8 +82,28 @@ public static class CameraCommand
         if (!(scale > 0)) throw new InputException("command line", "--radiance-scale must be positive", "W·m⁻²·sr⁻¹·nm⁻¹ per band unit");
         int threads = a.Int("--threads", 1, 1024) ?? -1;
 
+        bool wantExact = a.Value("--signals") switch
+        {
+            null or "exact" => true,
+            "bands" => false,
+            var v => throw new InputException("command line", $"--signals '{v}' is not exact or bands", "use --signals exact (default) or --signals bands"),
+        };
+
         var options = new SimulationOptions { Seed = seed, Noise = noise, Threads = threads };
         var cube = scene.Cube(scale);
+        double whiteScale = 1;
+        string whiteSource = "1: the light's band values (the paper's white; the render's eq. 2 terms were not used)";
+        string? routeNote = null;
+        if (wantExact)
+        {
+            if (ExactChannelSignals.Compute(scene, sensor, threads, out var why) is { } exact)
+            {
+                cube = cube with { ChannelIntegrals = exact.Integrals, Route = exact.Route };
+                whiteScale = exact.WhiteScale;
+                whiteSource = exact.WhiteScaleSource;
+            }
+            else routeNote = $"note: channel signals from the band cube (not exact): {why}";
+        }
 
         if (a.Int("--bench", 1, 1000) is int repeat)
         {
@@ -108,7 +130,7 @@ public static class CameraCommand
         }
 
         var raw = SensorSimulation.Run(sensor, cube, scene.Light, options);
-        var colour = ColourCorrection.Fit(raw.Weights, scene.Grid, scene.Light, scene.Observer);
+        var colour = ColourCorrection.Fit(raw.Weights, scene.Grid, scene.Light, scene.Observer, cube.ChannelIntegrals is null ? null : sensor, whiteScale);
         var image = ImageProcessing.Run(raw, colour, demosaic);
         var patches = CameraPatchMetrics.Compute(scene, raw, image, colour);
 
@@ -139,10 +161,13 @@ public static class CameraCommand
         var manifest = CameraManifest.Build(raw, colour, scene.Grid, scene.LightName, scale,
             a.Value("--radiance-scale") is not null ? "given with --radiance-scale"
             : relative ? "default 1: the render's radiometry is relative (the paper's eq. 2 has no units), so its band values are taken as W·m⁻²·sr⁻¹·nm⁻¹"
-            : "default 1: the render's physical radiometry is in W·m⁻²·sr⁻¹·nm⁻¹");
+            : "default 1: the render's physical radiometry is in W·m⁻²·sr⁻¹·nm⁻¹", cube.Route, whiteSource);
         manifest["sensor_argument"] = sensorName != SensorFile.SceneArgument && File.Exists(sensorName) ? Path.GetFullPath(sensorName) : sensorName;
         manifest["render_folder"] = Path.GetRelativePath(Path.GetFullPath(outDir), Path.GetFullPath(dir));
         manifest["render_radiometry"] = scene.Radiometry ?? "paper";
+        var (clipTop, clipBottom) = raw.ClippedFractions();
+        manifest["simulation"]!["clipped_at_white_fraction"] = clipTop;
+        manifest["simulation"]!["clipped_below_black_fraction"] = clipBottom;
         manifest["processing"]!["demosaic"] = image.Demosaicked?.ToString().ToLowerInvariant();
         manifest["patches"] = new JsonArray(patches.Select(p => (JsonNode)new JsonObject
         {
@@ -158,6 +183,8 @@ public static class CameraCommand
         AtomicFile.WriteAllText(Path.Combine(outDir, "camera.json"), manifest.ToJsonString(new JsonSerializerOptions { WriteIndented = true }) + "\n");
 
         var inv = CultureInfo.InvariantCulture;
+        if (routeNote is not null) stderr.WriteLine(routeNote);
+        if (raw.ClippingWarning() is { } warning) stderr.WriteLine(warning);
         stdout.WriteLine(string.Create(inv, $"camera {sensor.Name} ({sensor.Arrangement.ToString().ToLowerInvariant()}, {sensor.ChannelCount} channels) on {dir}: exposure {string.Join(", ", raw.ExposureSeconds.Select(t => t.ToString("G4", inv)))} s, noise {(noise ? "on" : "off")}, K = {sensor.SystemGain:G4} DN/e⁻"));
         if (patches.Count > 0)
         {

@@ -32,7 +32,9 @@ public static class ProbeCommand
         if (a.Positionals.Count != 1) throw new InputException("command line", "give one render folder", "usage: spectral probe OUTDIR --pixel X,Y[:LABEL]");
         if (a.Values("--pixel").Count == 0) throw new InputException("command line", "give at least one --pixel X,Y[:LABEL]", "e.g. --pixel 120,80:lit");
         var dir = a.Positionals[0];
-        var image = OpenCube(dir);
+        var (manifest, image) = RenderFolder.OpenCube(dir);
+        // The unit of the band values is the render's radiometry's (issue 24): W·m⁻²·sr⁻¹·nm⁻¹ physical, relative in the paper's.
+        bool physical = manifest.ResolvedScene?.Radiometry == "physical";
         var pixels = PixelOption.ParseAll(a.Values("--pixel"), "probe", image.Width, image.Height);
         var prefix = a.Value("--output") ?? Path.Combine(dir, "probe");
 
@@ -42,7 +44,7 @@ public static class ProbeCommand
         {
             Title = $"Spectra of {pixels.Count} pixel{(pixels.Count == 1 ? "" : "s")} — {Path.GetFileName(Path.GetFullPath(dir).TrimEnd(Path.DirectorySeparatorChar))}",
             XLabel = "wavelength (nm)",
-            YLabel = "spectral radiance (W·m⁻²·sr⁻¹·nm⁻¹, relative)",
+            YLabel = physical ? "spectral radiance (W·m⁻²·sr⁻¹·nm⁻¹, physical radiometry)" : "spectral radiance (W·m⁻²·sr⁻¹·nm⁻¹, relative)",
         };
         var centres = Enumerable.Range(0, image.Bands).Select(image.Grid.Centre).ToArray();
         foreach (var p in pixels) plot.Add(p.Label, centres, Values(image, p).Select(v => (double)v).ToArray());
@@ -50,7 +52,7 @@ public static class ProbeCommand
 
         if (a.Flag("--csv")) { stdout.Write(csv); return CommandLine.Success; }
         var inv = CultureInfo.InvariantCulture;
-        stdout.WriteLine($"{image.Width}×{image.Height}, {image.Grid} bands; radiance per band (relative units)");
+        stdout.WriteLine($"{image.Width}×{image.Height}, {image.Grid} bands; radiance per band ({(physical ? "W·m⁻²·sr⁻¹·nm⁻¹, physical radiometry" : "relative units")})");
         stdout.WriteLine($"{"band",4} {"nm",15}" + string.Concat(pixels.Select(p => $" {Fit(p.Label),14}")));
         for (int b = 0; b < image.Bands; b++)
             stdout.WriteLine(string.Create(inv, $"{Spectra.BandGrid.Number(b),4} {image.Grid.Lower(b),7:0.##}–{image.Grid.Upper(b),-7:0.##}") + string.Concat(pixels.Select(p => $" {image[p.X, p.Y, b].ToString("G7", inv),14}")));

@@ -35,7 +35,7 @@ public static class PaperReport
     const string ChartScene = "paper-3.1-colorchecker-d65", AnalysisScene = "paper-3.4-bunny-analysis";
 
     static string CameraSection(ExperimentRun? chart) =>
-        global::SpectralRenderer.Analysis.Recovery.RecoveryComparison.HtmlSection(chart is { Done: true } ? chart.OutDir : null);
+        global::SpectralRenderer.Analysis.Recovery.RecoveryComparison.HtmlSection(chart is { Done: true } ? chart.OutDir : null, ExactChannelSignals.Input);
 
     /// <summary>Writes report.html; <paramref name="prepared"/>: the sections <see cref="Prepare"/> started, by scene name.</summary>
     public static string Write(string outDir, IReadOnlyList<ExperimentRun> runs, double totalSeconds, IReadOnlyDictionary<string, Task<string>>? prepared = null)

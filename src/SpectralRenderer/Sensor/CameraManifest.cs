@@ -8,8 +8,10 @@ public static class CameraManifest
 {
     public const int Version = 1;
 
-    public static JsonObject Build(RawFrame raw, ColourCorrection colour, BandGrid grid, string lightName, double radianceScale, string radianceScaleSource)
+    public static JsonObject Build(RawFrame raw, ColourCorrection colour, BandGrid grid, string lightName, double radianceScale, string radianceScaleSource,
+        string route = RadianceCube.BandRoute, string whiteScaleSource = "1: the light's band values (the paper's white)")
     {
+        bool exact = route.StartsWith("exact", StringComparison.Ordinal);
         var s = raw.Sensor;
         var w = raw.Weights;
         var channels = new JsonArray();
@@ -20,7 +22,7 @@ public static class CameraManifest
             {
                 ["name"] = s.Channels[c].Name,
                 ["source"] = s.Channels[c].Source,
-                ["peak_qe"] = qe.Values.ToArray().Max(),
+                ["peak_qe"] = PeakQuantumEfficiency(s.Channels[c]),
                 ["weights_e_per_s_per_band_unit"] = Array(w.Row(c).ToArray()),
                 ["white_rate_e_per_s"] = colour.WhiteRate[c],
                 ["exposure_s"] = raw.ExposureOf(c),
@@ -75,6 +77,8 @@ public static class CameraManifest
                 ["black_level_dn"] = s.BlackLevel,
                 ["white_level_dn"] = s.WhiteLevel,
                 ["system_gain_dn_per_e"] = s.SystemGain,
+                ["dn_scale"] = "DN = black + V·G/V_swing·(white − black), white = 2^bits − 1: the voltage swing maps to white − black DN "
+                    + "(ISETCam maps it to 2^bits without a black offset); K = g·G·(white − black)/V_swing DN per electron",
                 ["exposure"] = s.ExposureSeconds is null ? $"auto: brightest expected pixel at {s.AutoExposureFraction} of the full well" : "given",
                 ["fixed_pattern_seed"] = s.FixedPatternSeed,
                 ["channels"] = channels,
@@ -91,17 +95,32 @@ public static class CameraManifest
                 ["light"] = lightName,
                 ["bands"] = grid.ToString(),
                 ["weights"] = "w_c,b = s·A·ff·πT/(1+4N²)·Δλ·∫_b η_c λ E dλ / (h c ∫_b E dλ): photo-electrons per second per band unit, prefiltered by the light E",
-                ["electrons_formula"] = "e = Poisson(t·Σ_b w_c,b·L_b·(1 + PRNU) + t·dark), clipped at the full well",
+                ["signal_route"] = route,
+                ["white_radiance_scale"] = colour.WhiteScale,
+                ["white_radiance_scale_source"] = whiteScaleSource,
+                ["electrons_formula"] = exact
+                    ? "e = Poisson(t·ė_c·(1 + PRNU) + t·dark), ė_c = s·A·ff·πT/(1+4N²)·Σ_terms F·∫η_c·λ·E_k·m dλ/(h c), clipped at the full well"
+                    : "e = Poisson(t·Σ_b w_c,b·L_b·(1 + PRNU) + t·dark), clipped at the full well",
                 ["dn_formula"] = "DN = round(black + (e·g + DSNU + read)·G/V_swing·(white − black)), clipped to [0, white]",
             },
             ["processing"] = new JsonObject
             {
-                ["white_balance"] = "each channel divided by its expected response to the white diffuser under the light",
+                ["white_balance"] = "each channel divided by its expected response to the white diffuser under the light (radiance: white_radiance_scale × the light)",
                 ["colour_matrix_xyz_from_balanced"] = matrix,
                 ["colour_matrix_fit"] = "least squares on the 24 ColorChecker (Ohta) patches under the light: simulated balanced signals → 1 nm CIE XYZ (white Y = 1)",
                 ["output"] = "sRGB (IEC 61966-2-1), no chromatic adaptation",
             },
         };
+    }
+
+    /// <summary>The largest η(λ) the channel uses (a per-energy channel: R(λ)·555 nm/λ over its table), electrons per photon.</summary>
+    public static double PeakQuantumEfficiency(SensorChannel channel)
+    {
+        var qe = channel.QuantumEfficiency;
+        double peak = 0;
+        for (int i = 0; i < qe.Values.Length; i++)
+            peak = Math.Max(peak, channel.PerEnergy ? qe.Values[i] * SensorChannel.EnergyReferenceNm / qe.Wavelengths[i] : qe.Values[i]);
+        return peak;
     }
 
     static JsonArray Array(IEnumerable<double> values) => new(values.Select(v => (JsonNode)v).ToArray());

@@ -17,7 +17,10 @@ public sealed class ChannelWeights
     /// <summary>Planck constant (J·s) and speed of light (m/s), CODATA 2018 exact values.</summary>
     public const double H = 6.62607015e-34, C = 299792458;
 
-    ChannelWeights(int channels, int bands, double[] values) { Channels = channels; Bands = bands; Values = values; }
+    ChannelWeights(int channels, int bands, double[] values, double factor) { Channels = channels; Bands = bands; Values = values; Factor = factor; }
+
+    /// <summary>s · A·ff·πT/(1 + 4N²) · 10⁻⁹/(h c): e⁻/s per unit of ∫ L(λ) η(λ) λ dλ (L in band units, λ in nm).</summary>
+    public double Factor { get; }
 
     public int Channels { get; }
     public int Bands { get; }
@@ -30,7 +33,7 @@ public sealed class ChannelWeights
     {
         int n = grid.Count, m = sensor.ChannelCount;
         var values = new double[m * n];
-        double factor = radianceScale * sensor.Etendue * 1e-9 / (H * C);   // λ in nm → m
+        double factor = FactorOf(sensor, radianceScale);
         var e = new double[n];
         double peak = 0;
         for (int b = 0; b < n; b++) { e[b] = light.Integrate(grid.Lower(b), grid.Upper(b)); peak = Math.Max(peak, e[b]); }
@@ -49,8 +52,41 @@ public sealed class ChannelWeights
                 values[c * n + b] = factor * w;
             }
         }
-        return new ChannelWeights(m, n, values);
+        return new ChannelWeights(m, n, values, factor);
     }
+
+    /// <summary>s · A·ff·πT/(1 + 4N²) · 10⁻⁹/(h c) (λ in nm → m): the rate per unit of <see cref="ExactIntegral"/>.</summary>
+    public static double FactorOf(SensorModel sensor, double radianceScale) => radianceScale * sensor.Etendue * 1e-9 / (H * C);
+
+    /// <summary>
+    /// ∫_lo^hi η_c(λ)·λ·a(λ)·b(λ) dλ (nm² × the units of a·b; a or b null = 1) at the tables' full resolution: the
+    /// channel's signal from a radiance a·b, as exact colour integrates x̄·E·m (a per-energy channel: 555 nm·R(λ)
+    /// in place of η·λ). Between merged knots η, a and b are linear, so the integrand is a polynomial of degree ≤ 4,
+    /// which 3-point Gauss–Legendre integrates without error (exact to degree 5).
+    /// </summary>
+    public static double ExactIntegral(SensorChannel channel, TabulatedSpectrum? a, TabulatedSpectrum? b, double lo, double hi)
+    {
+        var qe = channel.QuantumEfficiency;
+        var knots = new List<double> { lo, hi };
+        foreach (var s in (ReadOnlySpan<TabulatedSpectrum?>)[qe, a, b])
+            if (s is not null) foreach (var x in s.Wavelengths) if (x > lo && x < hi) knots.Add(x);
+        knots.Sort();
+        const double G = 0.7745966692414834;   // √(3/5)
+        double sum = 0;
+        for (int i = 0; i + 1 < knots.Count; i++)
+        {
+            double x0 = knots[i], x1 = knots[i + 1];
+            if (x1 <= x0) continue;
+            double xm = 0.5 * (x0 + x1), r = 0.5 * (x1 - x0);
+            sum += r * (5.0 / 9 * F(xm - G * r) + 8.0 / 9 * F(xm) + 5.0 / 9 * F(xm + G * r));
+        }
+        return sum;
+
+        double F(double x) => (channel.PerEnergy ? SensorChannel.EnergyReferenceNm * At(qe, x) : At(qe, x) * x)
+            * (a is null ? 1 : At(a, x)) * (b is null ? 1 : At(b, x));
+    }
+
+    static double At(TabulatedSpectrum s, double x) => Outside(s, x) ? 0 : Value(s, x);
 
     /// <summary>∫_lo^hi a(λ)·b(λ)·λ dλ of piecewise-linear a, b (b null = 1), exactly (Simpson on each interval between merged knots).</summary>
     public static double IntegrateTimesWavelength(TabulatedSpectrum a, TabulatedSpectrum? b, double lo, double hi)

@@ -13,6 +13,19 @@ namespace SpectralRenderer.Sensor;
 public sealed record RadianceCube(int Width, int Height, BandGrid Grid, float[] Data, double RadianceScale)
 {
     public int Bands => Grid.Count;
+
+    /// <summary>
+    /// The exact route: per pixel and channel (H × W × C, the sensor's channel order), ∫ L(λ)·η_c(λ)·λ dλ over the
+    /// grid (band units × nm², <see cref="ChannelWeights.ExactIntegral"/>), integrated at the spectra's full resolution
+    /// from the render's eq. 2 terms, so the signals do not depend on the band count. Null: the band route (the
+    /// channel weights on the band values), for cubes that are not renders.
+    /// </summary>
+    public float[]? ChannelIntegrals { get; init; }
+
+    /// <summary>What made the channel signals, in words (camera.json's "signal_route").</summary>
+    public string Route { get; init; } = BandRoute;
+
+    public const string BandRoute = "band cube: rate_c = sum_b w_c,b * L_b (channel weights prefiltered by the scene light per band)";
 }
 
 /// <summary>How to run the sensor: temporal-noise seed, noise on or off, threads (the result does not depend on them).</summary>
@@ -34,8 +47,45 @@ public sealed record RawFrame(int Width, int Height, int Planes, float[] Dn, dou
     ChannelWeights Weights, SensorModel Sensor, SimulationOptions Options)
 {
     public float this[int x, int y, int plane] => Dn[(y * Width + x) * Planes + plane];
+    /// <summary>Per photosite: did its expected charge reach the full well (null when read back from raw.npy)?</summary>
+    public bool[]? Saturated { get; init; }
+
+    /// <summary>Is photosite i clipped: at the full well, at the white level, or (noise on) cut off at 0 DN?</summary>
+    public bool Clipped(int i) => Saturated?[i] == true || Dn[i] >= Sensor.WhiteLevel || (Options.Noise && Dn[i] <= 0);
     /// <summary>The exposure time of channel c's signal.</summary>
     public double ExposureOf(int channel) => ExposureSeconds[Sensor.Arrangement == Arrangement.Wheel ? channel : 0];
+
+    /// <summary>
+    /// The shares of photosites clipped at the top (the full well or DN ≥ white, the ADC's top) and at the ADC's
+    /// floor (DN ≤ 0 with noise on: a dark site's read noise below black, cut off).
+    /// </summary>
+    public (double AtWhite, double BelowBlack) ClippedFractions()
+    {
+        long top = 0, bottom = 0;
+        double white = Sensor.WhiteLevel;
+        for (int i = 0; i < Dn.Length; i++)
+        {
+            float v = Dn[i];
+            if (v >= white || Saturated?[i] == true) top++;
+            else if (v <= 0 && Options.Noise) bottom++;
+        }
+        return Dn.Length == 0 ? (0, 0) : ((double)top / Dn.Length, (double)bottom / Dn.Length);
+    }
+
+    /// <summary>The warning line when more than 1 % of the photosites clip at either end, else null.</summary>
+    public string? ClippingWarning()
+    {
+        var (top, bottom) = ClippedFractions();
+        if (top <= 0.01 && bottom <= 0.01) return null;
+        var inv = System.Globalization.CultureInfo.InvariantCulture;
+        var parts = new List<string>();
+        if (top > 0.01) parts.Add(string.Create(inv, $"{top * 100:0.##} % of photosites clipped at the full well or the white level ({WhiteLevelText()})"));
+        if (bottom > 0.01) parts.Add(string.Create(inv, $"{bottom * 100:0.##} % cut off below black at 0 DN"));
+        string hint = top > 0.01 ? "try --exposure auto (or a shorter exposure)" : "a black level above 0 DN keeps the read noise of dark sites";
+        return $"warning: {string.Join(", ", parts)}; their SNR is left out and their colour is wrong: {hint}";
+    }
+
+    string WhiteLevelText() => string.Create(System.Globalization.CultureInfo.InvariantCulture, $"{Sensor.WhiteLevel:0} DN");
 }
 
 /// <summary>
@@ -58,7 +108,13 @@ public static partial class SensorSimulation
         var rowPeaks = new float[h * planes];
         var parallel = new ParallelOptions { MaxDegreeOfParallelism = options.Threads };
         var layout = new Layout(sensor, weights, w);
-        Parallel.For(0, h, parallel, y => Rates(layout, cube, dn, rowPeaks, y));
+        if (cube.ChannelIntegrals is { } exact)
+        {
+            if (exact.Length != w * h * sensor.ChannelCount)
+                throw new ArgumentException($"{exact.Length} channel integrals for {w}×{h} pixels × {sensor.ChannelCount} channels");
+            Parallel.For(0, h, parallel, y => ExactRates(layout, exact, weights.Factor, w, dn, rowPeaks, y));
+        }
+        else Parallel.For(0, h, parallel, y => Rates(layout, cube, dn, rowPeaks, y));
 
         // Exposure: given, or auto so that the brightest expected pixel of each exposure reaches a fraction of the full well.
         var peakRate = new double[exposures];
@@ -73,8 +129,16 @@ public static partial class SensorSimulation
 
         var readout = new Readout(sensor, options);
         var exposureOf = Array.ConvertAll(layout.ChannelOf, c => t[exposures == 1 ? 0 : c]);
+        // Sites whose expected charge fills the full well (their DN sits at saturation, whatever the read noise does to it).
+        var saturated = new bool[dn.Length];
+        int rowSites = w * planes;
+        Parallel.For(0, h, parallel, y =>
+        {
+            var te = exposureOf.AsSpan((y % layout.PatternRows) * rowSites, rowSites);
+            for (int j = 0; j < rowSites; j++) saturated[y * rowSites + j] = dn[y * rowSites + j] * te[j] >= sensor.FullWellElectrons;
+        });
         Parallel.For(0, h, parallel, y => Expose(readout, layout, exposureOf, w, y, dn));
-        return new RawFrame(w, h, planes, dn, t, peakElectrons, weights, sensor, options);
+        return new RawFrame(w, h, planes, dn, t, peakElectrons, weights, sensor, options) { Saturated = saturated };
     }
 
     /// <summary>The channel weights in the two layouts the rate loops read, and the mosaic's pattern flattened.</summary>
@@ -200,6 +264,22 @@ public static partial class SensorSimulation
                 rates[rowStart + x * planes + k] = s;
                 rowPeaks[y * planes + k] = Math.Max(rowPeaks[y * planes + k], s);
             }
+        }
+    }
+
+    /// <summary>ė_c = max(0, factor · ∫ L η_c λ dλ) of row y from the exact channel integrals (a mosaic photosite: its channel's).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    static void ExactRates(Layout l, float[] exact, double factor, int w, float[] rates, float[] rowPeaks, int y)
+    {
+        int planes = l.Planes, cc = l.Channels, n = w * planes, rowStart = y * w * planes;
+        var channels = l.ChannelOf.AsSpan((y % l.PatternRows) * n, n);
+        for (int k = 0; k < planes; k++) rowPeaks[y * planes + k] = 0;
+        for (int j = 0; j < n; j++)
+        {
+            int x = l.PixelOf[j], k = l.Mosaic ? 0 : j % planes;
+            float s = (float)Math.Max(0, factor * exact[((long)y * w + x) * cc + channels[j]]);
+            rates[rowStart + j] = s;
+            rowPeaks[y * planes + k] = Math.Max(rowPeaks[y * planes + k], s);
         }
     }
 

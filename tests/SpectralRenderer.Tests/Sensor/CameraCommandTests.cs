@@ -107,7 +107,8 @@ public class CameraCommandTests
             "--width", "60", "--height", "40", "--quiet", "--formats", "npy,aov", "--integration", "weighted");
         Assert.True(code == 0, err);
         var outDir = Path.Combine(render, "cam");
-        (code, _, err) = CliRunner.Run("camera", render, "--sensor", "cie-xyz", "--noise", "off", "-o", outDir);
+        // The band route: the cube's band values as they are (the exact route integrates the patches' full spectra instead).
+        (code, _, err) = CliRunner.Run("camera", render, "--sensor", "cie-xyz", "--noise", "off", "-o", outDir, "--signals", "bands");
         Assert.True(code == 0, err);
         var (_, raw) = NpyReader.Read(File.OpenRead(Path.Combine(outDir, "raw.npy")));
         var scene = CameraScene.Open(render);

@@ -51,7 +51,10 @@ public sealed class CameraCapture
                 throw new InputException(npy, $"is {string.Join("×", shape)} but the render is {scene.Height}×{scene.Width} and the sensor has {sensor.Planes} planes",
                     "the camera folder and its render do not match; run 'spectral camera' again");
             var raw = new RawFrame(scene.Width, scene.Height, planes, dn, exposures, new double[exposures.Length], weights, sensor, options);
-            var colour = ColourCorrection.Fit(weights, scene.Grid, scene.Light, scene.Observer);
+            // The route and the white the capture used (camera.json), so the white balance and forward model are its own.
+            bool exact = ((string?)sim["signal_route"])?.StartsWith("exact", StringComparison.Ordinal) == true;
+            double whiteScale = (double?)sim["white_radiance_scale"] ?? 1;
+            var colour = ColourCorrection.Fit(weights, scene.Grid, scene.Light, scene.Observer, exact ? sensor : null, whiteScale);
             var demosaic = (string?)m["processing"]?["demosaic"] == "bilinear" ? DemosaicMethod.Bilinear : DemosaicMethod.Malvar;
             return new CameraCapture { Dir = dir, Manifest = m, Scene = scene, Raw = raw, Image = ImageProcessing.Run(raw, colour, demosaic), Colour = colour };
         }
@@ -63,17 +66,26 @@ public sealed class CameraCapture
 
     /// <summary>The camera run in memory on a render (nothing written): what `spectral camera` would write, read back.</summary>
     /// <param name="display">Whether the processed image gets its XYZ and sRGB too (recovery needs only the rates).</param>
-    public static CameraCapture Simulate(CameraScene scene, SensorModel sensor, SimulationOptions options, double radianceScale = 1, bool display = true)
+    /// <param name="cube">The camera's input when not the band cube at <paramref name="radianceScale"/> (the exact route's integrals).</param>
+    /// <param name="whiteScale">The render's white diffuser radiance per unit of the light's band values (<see cref="ColourCorrection.WhiteScale"/>).</param>
+    public static CameraCapture Simulate(CameraScene scene, SensorModel sensor, SimulationOptions options, double radianceScale = 1, bool display = true,
+        RadianceCube? cube = null, double whiteScale = 1)
     {
-        var raw = SensorSimulation.Run(sensor, scene.Cube(radianceScale), scene.Light, options);
-        var colour = ColourCorrection.Fit(raw.Weights, scene.Grid, scene.Light, scene.Observer);
+        cube ??= scene.Cube(radianceScale);
+        var raw = SensorSimulation.Run(sensor, cube, scene.Light, options);
+        var colour = ColourCorrection.Fit(raw.Weights, scene.Grid, scene.Light, scene.Observer, cube.ChannelIntegrals is null ? null : sensor, whiteScale);
         return new CameraCapture { Dir = scene.Folder.Path, Manifest = [], Scene = scene, Raw = raw, Image = ImageProcessing.Run(raw, colour, display: display), Colour = colour };
     }
 
-    /// <summary>A (C × N): expected e⁻/s per unit reflectance in band b, for a surface lit like the white diffuser (its radiance is the light's band values).</summary>
+    /// <summary>
+    /// A (C × N): expected e⁻/s per unit reflectance in band b, for a surface lit like the white diffuser (its radiance is
+    /// the light's band values × the render's white scale: intensity, and 1/π in physical radiometry). w_c,b·E_b =
+    /// s·∫_b η_c·λ·E dλ/(hc), so A is also the exact route's forward model of a reflectance constant in each band.
+    /// </summary>
     public double[,] ForwardMatrix()
     {
         var e = Spectra.BandProjection.Means(Scene.Light, Scene.Grid);
+        for (int b = 0; b < e.Length; b++) e[b] *= Colour.WhiteScale;
         int c = Sensor.ChannelCount, n = e.Length;
         var a = new double[c, n];
         for (int i = 0; i < c; i++) for (int b = 0; b < n; b++) a[i, b] = Raw.Weights[i, b] * e[b];

@@ -6,7 +6,8 @@ namespace SpectralRenderer.Analysis.Recovery;
 /// <summary>
 /// One ColorChecker patch through the camera: the processed (corrected) colour against the patch's exact colour
 /// (1 nm CIE XYZ under the scene light, white Y = 1 — exact for a chart lit like the white, as in §3.1), and per
-/// channel the raw signal-to-noise ratio over the patch's sites, SNR = mean(DN − black) / std(DN), in dB (20 log10).
+/// channel the raw signal-to-noise ratio over the patch's unclipped sites (below the full well and white, above 0 DN), SNR = mean(DN − black) / std(DN),
+/// in dB (20 log10); NaN when fewer than two sites are unclipped.
 /// </summary>
 public sealed record PatchMetrics(int Patch, string Object, int Pixels, Xyz Camera, Xyz Exact, double DeltaE00, double[] SnrDb);
 
@@ -32,8 +33,10 @@ public static class CameraPatchMetrics
                 {
                     int px = i % raw.Width, py = i / raw.Width;
                     double v;
-                    if (sensor.Arrangement == Arrangement.Mosaic) { if (sensor.ChannelAt(px, py) != c) continue; v = raw.Dn[i]; }
-                    else v = raw.Dn[i * raw.Planes + c];
+                    int site = sensor.Arrangement == Arrangement.Mosaic ? i : i * raw.Planes + c;
+                    if (sensor.Arrangement == Arrangement.Mosaic && sensor.ChannelAt(px, py) != c) continue;
+                    v = raw.Dn[site];
+                    if (raw.Clipped(site) || v <= 0) continue;   // clipped: its noise is not the sensor's
                     sum += v - sensor.BlackLevel; sum2 += (v - sensor.BlackLevel) * (v - sensor.BlackLevel); n++;
                 }
                 double mean = n > 0 ? sum / n : 0, variance = n > 1 ? Math.Max(0, (sum2 - sum * sum / n) / (n - 1)) : 0;

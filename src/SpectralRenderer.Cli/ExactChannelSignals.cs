@@ -1,0 +1,187 @@
+using System.Globalization;
+using SpectralRenderer.Analysis.Recovery;
+using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Lighting;
+using SpectralRenderer.Output;
+using SpectralRenderer.Rendering;
+using SpectralRenderer.Scenes;
+using SpectralRenderer.Scenes.Loading;
+using SpectralRenderer.Sensor;
+using SpectralRenderer.Spectra;
+
+namespace SpectralRenderer.Cli;
+
+/// <summary>
+/// The camera's exact route (issue 24): a render's pixel is L = Σ_c F_c · E_k·m·Π k_chain over its eq. 2 components
+/// (<see cref="LightTransfer"/>: a geometric factor F per pixel × a light spectrum × a material spectrum), so a channel's
+/// signal is Σ_c F_c · s_c · Π k · ∫ η(λ)·λ·E_k(λ)·m(λ) dλ — the same per-term scalar × precomputed table that gives
+/// the render its exact colour (<see cref="TermTables"/>), with the channel's η·λ/(hc) in place of x̄, integrated at the
+/// spectra's full resolution (<see cref="ChannelWeights.ExactIntegral"/>). The factors come from the render's lights/
+/// when it wrote them, else the transfer is traced again from the resolved scene (the same rays the render traced).
+/// A component whose chain passes a coloured mirror or glass, a dispersive split, or a spectrum known only by its band
+/// values takes the band route for itself (its band values × the channel weights), and the manifest counts them.
+/// </summary>
+public static class ExactChannelSignals
+{
+    /// <summary>
+    /// The integrals (H × W × C), the white's radiance per unit of the reference white's band values (light scale × 1/π
+    /// physical × the chart's geometric factor), and the route in words.
+    /// </summary>
+    public sealed record Result(float[] Integrals, double WhiteScale, string Route, string WhiteScaleSource);
+
+    /// <summary>The camera's input on the exact route, or null (the band cube) when the folder cannot give it (the report's camera comparison).</summary>
+    public static (RadianceCube Cube, double WhiteScale)? Input(CameraScene cs, SensorModel sensor) =>
+        Compute(cs, sensor, -1, out _) is { } r ? (cs.Cube(1) with { ChannelIntegrals = r.Integrals, Route = r.Route }, r.WhiteScale) : null;
+
+    /// <summary>The exact route for <paramref name="cs"/>'s render, or null (with the reason) when the folder cannot give it.</summary>
+    public static Result? Compute(CameraScene cs, SensorModel sensor, int threads, out string reason)
+    {
+        string dir = cs.Folder.Path;
+        Relighting.Source src;
+        try { src = Relighting.Open(dir); }
+        catch (InputException e) { reason = $"the render folder cannot be rebuilt ({e.Message})"; return null; }
+        Scene scene;
+        LightTransfer transfer;
+        string from;
+        try
+        {
+            if (File.Exists(Path.Combine(dir, LightTransferFiles.Folder, "lights.json")))
+            {
+                scene = Relighting.ChangedScene(src, [], null);
+                transfer = LightTransferFiles.Read(dir, scene);
+                from = "the render's lights/ (per-pixel factors of each eq. 2 term)";
+            }
+            else
+            {
+                scene = SceneLoader.Parse(src.Scene.WithLights([], null), src.ScenePath, src.Overrides with { LoadMeshes = true });
+                transfer = LightTransfer.Trace(scene, new SceneGeometry(scene), threads < 0 ? 0 : threads);
+                from = "the per-light transfer traced again from render.json's resolved scene (the render's rays)";
+            }
+        }
+        catch (InputException e) { reason = $"the render's scene cannot be rebuilt for its eq. 2 terms ({e.Message})"; return null; }
+        if (transfer.Width != cs.Width || transfer.Height != cs.Height || transfer.Bands != cs.Grid.Count)
+        {
+            reason = $"the rebuilt scene is {transfer.Width}×{transfer.Height}×{transfer.Bands}, the cube {cs.Width}×{cs.Height}×{cs.Grid.Count} (a crop or shard)";
+            return null;
+        }
+
+        int cc = sensor.ChannelCount, n = cs.Width * cs.Height;
+        double lo = scene.Grid.Start, hi = scene.Grid.End;
+        var tables = new TermTables(scene);
+        var bandWeights = ChannelWeights.Compute(sensor, scene.Grid, cs.Light, 1);
+        bool physical = scene.Radiometry == Radiometry.Physical;
+        var padded = new float[scene.PaddedBands];
+        var perComponent = new double[transfer.Components.Length][];
+        int bandRoute = 0;
+        for (int k = 0; k < perComponent.Length; k++)
+        {
+            var comp = transfer.Components[k];
+            var t = perComponent[k] = new double[cc];
+            var (e, m, factor) = Term(scene, comp, physical);
+            double chain = 1;
+            bool exact = comp.Band < 0 && !comp.Coloured(tables) && e is not null && scene.Spectra.TryGetValue(e, out _)
+                && (m is null || scene.Spectra.TryGetValue(m, out _));
+            if (exact) foreach (var (cm, tr) in comp.Chain) chain *= (tr ? tables.Transmit[cm] : tables.Mirror[cm])[0];
+            if (exact && SpectralMath.Any(e!) && (m is null || SpectralMath.Any(m)))
+            {
+                var se = scene.Spectra[e!];
+                var sm = m is null ? null : scene.Spectra[m];
+                for (int c = 0; c < cc; c++) t[c] = factor * chain * ChannelWeights.ExactIntegral(sensor.Channels[c], se, sm, lo, hi);
+            }
+            else if (!exact)
+            {   // Band route for this component: Σ_b P_b · w_c,b / (the weights' constant), in the exact integrals' units.
+                bandRoute++;
+                comp.BandValues(tables, padded);
+                for (int c = 0; c < cc; c++)
+                {
+                    double v = 0;
+                    for (int b = 0; b < scene.Bands; b++) v += padded[b] * bandWeights[c, b];
+                    t[c] = v / bandWeights.Factor;
+                }
+            }
+        }
+        // Σ_c F_c · T_c per pixel, in doubles, one pixel range per task (components' pixels ascend).
+        var sum = new double[(long)n * cc];
+        var parallel = new ParallelOptions { MaxDegreeOfParallelism = threads };
+        const int Chunk = 8192;
+        Parallel.For(0, (n + Chunk - 1) / Chunk, parallel, chunk =>
+        {
+            int i0 = chunk * Chunk, i1 = Math.Min(n, i0 + Chunk);
+            for (int k = 0; k < perComponent.Length; k++)
+            {
+                var pix = transfer.Pixels[k];
+                var f = transfer.Factors[k];
+                var t = perComponent[k];
+                int j = Array.BinarySearch(pix, i0);
+                if (j < 0) j = ~j;
+                for (; j < pix.Length && pix[j] < i1; j++)
+                    for (int c = 0; c < cc; c++) sum[(long)pix[j] * cc + c] += f[j] * t[c];
+            }
+        });
+        var integrals = GC.AllocateUninitializedArray<float>(sum.Length);
+        for (long i = 0; i < sum.Length; i++) integrals[i] = (float)sum[i];
+
+        var (whiteScale, whiteSource) = WhiteScale(cs, scene, transfer, physical);
+        var inv = CultureInfo.InvariantCulture;
+        reason = "";
+        string route = $"exact: rate_c = sum over eq. 2 terms of F * s * integral(eta_c * lambda/(h c) * E_k * m) at full spectral resolution, " +
+            $"{transfer.Components.Length} components from {from}" +
+            (bandRoute > 0 ? string.Create(inv, $"; {bandRoute} components (coloured mirror/glass chain, dispersion or band-valued spectra) by their band values") : "");
+        return new Result(integrals, whiteScale, route, whiteSource);
+    }
+
+    /// <summary>The light spectrum, material spectrum (null: none) and constant factor of a component's term, as <see cref="TermTables"/> forms it.</summary>
+    static (float[]? E, float[]? M, double Factor) Term(Scene scene, TransferComponent comp, bool physical)
+    {
+        var mat = comp.Material >= 0 ? scene.Materials[comp.Material] : null;
+        return comp.Lobe switch
+        {
+            TransferLobe.Diffuse => (scene.Lights[comp.Light].Intensity, mat!.Diffuse, physical ? 1 / Math.PI : 1),
+            TransferLobe.Specular => (scene.Lights[comp.Light].Intensity, mat!.Specular, physical ? mat.Model.EnergyNormalisation(mat.Shininess) : 1),
+            TransferLobe.Ambient => (scene.Lights[comp.Light].Ambient, mat!.Ambient, 1),
+            TransferLobe.GlobalAmbient => (scene.GlobalAmbient, mat!.Ambient, 1),
+            _ => (scene.Background, null, 1),
+        };
+    }
+
+    /// <summary>
+    /// The radiance of a perfect white diffuser where the render's chart is (else at the best-lit surface), per unit of the
+    /// reference white's band values: Σ_k F̄_k · intensity_k (× 1/π physical), with F̄_k the mean direct diffuse factor of
+    /// light k over the chart's patch pixels (the maximum over the image without a chart). A light whose spectrum is not
+    /// the reference white counts by its band sum relative to the white's.
+    /// </summary>
+    static (double Scale, string Source) WhiteScale(CameraScene cs, Scene scene, LightTransfer transfer, bool physical)
+    {
+        int lights = scene.Lights.Count;
+        var chart = new bool[cs.Width * cs.Height];
+        int chartPixels = 0;
+        foreach (var p in cs.Patches) foreach (int i in p.Pixels) { chart[i] = true; chartPixels++; }
+        var mean = new double[lights];
+        var max = new double[lights];
+        for (int k = 0; k < transfer.Components.Length; k++)
+        {
+            var comp = transfer.Components[k];
+            if (comp.Lobe != TransferLobe.Diffuse || comp.Chain.Length > 0 || comp.Band >= 0) continue;
+            var pix = transfer.Pixels[k];
+            var f = transfer.Factors[k];
+            for (int j = 0; j < pix.Length; j++)
+            {
+                if (chart[pix[j]]) mean[comp.Light] += f[j];
+                max[comp.Light] = Math.Max(max[comp.Light], f[j]);
+            }
+        }
+        var white = BandProjection.Means(cs.Light, scene.Grid);
+        double whiteSum = white.Sum(), scale = 0;
+        for (int l = 0; l < lights; l++)
+        {
+            var light = scene.Lights[l];
+            double level = light.Spectrum is { } s && s.Name == cs.Light.Name ? light.Scale
+                : whiteSum > 0 ? light.Intensity.AsSpan(0, scene.Bands).ToArray().Sum(v => (double)v) / whiteSum : 0;
+            scale += (chartPixels > 0 ? mean[l] / chartPixels : max[l]) * level;
+        }
+        if (physical) scale /= Math.PI;
+        if (!(scale > 0)) return (1, "1: no light reaches a diffuse surface directly");
+        return (scale, (chartPixels > 0 ? "the lights' direct diffuse factor over the ColorChecker patches" : "the lights' largest direct diffuse factor in the image")
+            + " × their intensity" + (physical ? " / π (physical radiometry)" : ""));
+    }
+}

@@ -1,0 +1,180 @@
+using System.Globalization;
+using System.Text.Json.Nodes;
+using SpectralRenderer.Analysis.Recovery;
+using SpectralRenderer.Imaging;
+using SpectralRenderer.Sensor;
+using SpectralRenderer.Tests.Cli;
+
+namespace SpectralRenderer.Tests.Sensor;
+
+/// <summary>
+/// Issue 24's exact route: each channel integrated at full spectral resolution per eq. 2 term, as exact colour is, so
+/// the signals do not depend on the band count; checked against the render's own exact XYZ and a 0.1 nm integral here.
+/// </summary>
+public class ExactSignalsTests
+{
+    const int Width = 90, Height = 60;
+
+    /// <summary>The §3.1 chart (head-on D65, so a patch's radiance is ρ·E·intensity, /π physical) at a band grid, radiometry and intensity.</summary>
+    internal static string Chart(string bands, string radiometry = "paper", double intensity = 1, string formats = "exr,aov")
+    {
+        var dir = Reference.TempDir();
+        var text = File.ReadAllText(Repo.PathOf("scenes", "paper-3.1-colorchecker-d65.json"))
+            .Replace("\"radiometry\": \"paper\"", $"\"radiometry\": \"{radiometry}\"", StringComparison.Ordinal)
+            .Replace("\"intensity\": 1 }", string.Create(CultureInfo.InvariantCulture, $"\"intensity\": {intensity:R} }}"), StringComparison.Ordinal);
+        var scene = Path.Combine(dir, "chart.json");
+        File.WriteAllText(scene, text);
+        var outDir = Path.Combine(dir, "render");
+        var (code, _, err) = CliRunner.Run("render", scene, "-o", outDir, "--width", $"{Width}", "--height", $"{Height}", "--bands", bands,
+            "--formats", formats, "--quiet");
+        Assert.True(code == 0, err);
+        return outDir;
+    }
+
+    internal static (float[] Raw, JsonObject Manifest) Camera(string render, string sensor, params string[] extra)
+    {
+        var outDir = Path.Combine(render, $"cam-{sensor}-{string.Join("", extra)}");
+        var (code, _, err) = CliRunner.Run(new[] { "camera", render, "--sensor", sensor, "--noise", "off", "-o", outDir }.Concat(extra).ToArray());
+        Assert.True(code == 0, err);
+        var (_, raw) = NpyReader.Read(File.OpenRead(Path.Combine(outDir, "raw.npy")));
+        return (raw, (JsonObject)JsonNode.Parse(File.ReadAllText(Path.Combine(outDir, "camera.json")))!);
+    }
+
+    [Theory]
+    [InlineData("380:780:20")]
+    [InlineData("380:780:5")]
+    public void CieXyz_RawIsProportionalToTheRendersExactXyz(string bands)
+    {
+        var render = Chart(bands);
+        var (raw, manifest) = Camera(render, "cie-xyz");
+        Assert.StartsWith("exact", (string)manifest["simulation"]!["signal_route"]!, StringComparison.Ordinal);
+        var exr = ExrReader.Read(Path.Combine(render, "spectral.exr"));
+        var xyz = new[] { exr.OtherChannels["X"], exr.OtherChannels["Y"], exr.OtherChannels["Z"] };
+        var scene = CameraScene.Open(render);
+        Assert.Equal(24, scene.Patches.Count);
+        double? ratio = null;
+        double worst = 0;
+        foreach (var p in scene.Patches)
+            foreach (int i in p.Pixels)
+                for (int c = 0; c < 3; c++)
+                {
+                    double q = raw[i * 3 + c] / xyz[c][i];
+                    ratio ??= q;
+                    worst = Math.Max(worst, Math.Abs(q / ratio.Value - 1));
+                }
+        Assert.True(worst <= 1e-5, $"cie-xyz raw / exact XYZ varies by {worst:E3} relative at {bands}");
+    }
+
+    [Theory]
+    [InlineData("nikon-d5100")]
+    [InlineData("wheel-6")]
+    [InlineData("mosaic-16")]
+    public void Signals_AtFiveBands_EqualThoseAt401Bands(string sensor)
+    {
+        var (coarse, _) = Camera(Chart("380:780:5"), sensor);
+        var (fine, _) = Camera(Chart("380:780:401"), sensor);
+        Assert.Equal(fine.Length, coarse.Length);
+        double peak = fine.Max(), worst = 0;
+        Assert.True(peak > 0 && peak < 4095, $"peak {peak} DN: the test wants an unclipped, lit chart");
+        for (int i = 0; i < fine.Length; i++)
+            if (fine[i] > 1e-3 * peak) worst = Math.Max(worst, Math.Abs(coarse[i] / fine[i] - 1));
+        Assert.True(worst <= 1e-5, $"{sensor}: 5 bands vs 401 bands differ by {worst:E3} relative");
+    }
+
+    /// <summary>
+    /// Every preset, noise off: a patch pixel's DN − black against K·t·A·ff·πT/(1+4N²)·∫ ρ(λ)·E(λ)·η_c(λ)·λ/(hc) dλ, the
+    /// integral by the midpoint rule on 0.1 nm steps of linear interpolants of the data tables (ρ: Ohta, E: D65), here.
+    /// </summary>
+    [Fact]
+    public void NoiseFreeSignals_MatchATenthNanometreIntegral_ForEveryChannelOfEveryPreset()
+    {
+        var render = Chart("380:780:20");
+        var scene = CameraScene.Open(render);
+        var d65 = Table("illuminants.csv", "D65");
+        var header = File.ReadLines(Path.Combine(SpectralRenderer.Spectra.DataDirectory.Path, "colorchecker-ohta.csv")).First().Split(',');
+        const double h = 6.62607015e-34, c0 = 299792458;
+        foreach (var name in SensorPresets.Names)
+        {
+            var sensor = SensorPresets.Get(name);
+            var (raw, manifest) = Camera(render, name);
+            var exposures = manifest["sensor"]!["channels"]!.AsArray().Select(ch => (double)ch!["exposure_s"]!).ToArray();
+            double worst = 0;
+            foreach (var p in scene.Patches)
+            {
+                var rho = Table("colorchecker-ohta.csv", header[p.Number]);
+                int i = p.Pixels[p.Pixels.Length / 2], x = i % Width, y = i / Width;
+                for (int c = 0; c < sensor.ChannelCount; c++)
+                {
+                    if (sensor.Arrangement == Arrangement.Mosaic && sensor.ChannelAt(x, y) != c) continue;
+                    var ch = sensor.Channels[c];
+                    var qe = (ch.QuantumEfficiency.Wavelengths.ToArray(), ch.QuantumEfficiency.Values.ToArray());
+                    bool zero = ch.QuantumEfficiency.Extrapolation == SpectralRenderer.Spectra.Extrapolation.Zero;
+                    double integral = 0;
+                    for (int k = 0; k < 4000; k++)
+                    {
+                        double wl = 380 + (k + 0.5) * 0.1;
+                        if (zero && (wl < qe.Item1[0] || wl > qe.Item1[^1])) continue;
+                        double eta = ch.PerEnergy ? Lerp(qe, wl) * 555 / wl : Lerp(qe, wl);
+                        integral += Lerp(rho, wl) * Lerp(d65, wl) * eta * wl * 1e-9 / (h * c0) * 0.1;
+                    }
+                    double expected = sensor.SystemGain * exposures[c] * sensor.Etendue * integral;
+                    double dn = sensor.Arrangement == Arrangement.Mosaic ? raw[i] : raw[i * sensor.ChannelCount + c];
+                    worst = Math.Max(worst, Math.Abs((dn - sensor.BlackLevel) / expected - 1));
+                }
+            }
+            Assert.True(worst <= 1e-4, $"{name}: noise-free signal vs the 0.1 nm integral: {worst:E3} relative");
+        }
+    }
+
+    /// <summary>
+    /// Issue 24's radiometry bar: the chart in physical radiometry (a white diffuser returns intensity·E/π) at intensities
+    /// 0.01, 1 and 100 gives, with noise off, the ΔE00 of every patch in patches.csv within 0.01 and the Wiener recovery's
+    /// ColorChecker RMSE (rawtoaces-190 training, 400–700 nm) within 1e-4 of the same chart in the paper's radiometry.
+    /// </summary>
+    [Fact]
+    public void PhysicalRadiometry_AtAnyIntensity_ColourAndRecoveryEqualThePapers()
+    {
+        var (paperDe, paperRmse) = ColourAndRecovery(Chart("380:780:20", formats: "npy,aov"));
+        Assert.True(paperDe.Average() < 2 && paperRmse < 0.05, $"paper radiometry: mean ΔE00 {paperDe.Average()}, RMSE {paperRmse}");
+        foreach (var intensity in new[] { 0.01, 1, 100 })
+        {
+            var (de, rmse) = ColourAndRecovery(Chart("380:780:20", "physical", intensity, "npy,aov"));
+            for (int p = 0; p < de.Length; p++)
+                Assert.True(Math.Abs(de[p] - paperDe[p]) <= 0.01, $"intensity {intensity}, patch {p + 1}: ΔE00 {de[p]} vs paper {paperDe[p]}");
+            Assert.True(Math.Abs(rmse - paperRmse) <= 1e-4, $"intensity {intensity}: Wiener RMSE {rmse} vs paper {paperRmse}");
+        }
+    }
+
+    static (double[] DeltaE, double Rmse) ColourAndRecovery(string render)
+    {
+        var cam = Path.Combine(render, "cam-wheel");
+        var (code, _, err) = CliRunner.Run("camera", render, "--sensor", "wheel-6", "--noise", "off", "-o", cam);
+        Assert.True(code == 0, err);
+        var rows = File.ReadAllLines(Path.Combine(cam, "patches.csv"));
+        int col = Array.IndexOf(rows[0].Split(','), "dE00");
+        var de = rows.Skip(1).Select(r => double.Parse(r.Split(',')[col], CultureInfo.InvariantCulture)).ToArray();
+        Assert.Equal(24, de.Length);
+        (code, var csv, err) = CliRunner.Run("recover", cam, "--method", "wiener", "--training", "rawtoaces-190", "--range", "400:700", "--csv");
+        Assert.True(code == 0, err);
+        var line = csv.Split('\n').Single(l => l.StartsWith("wiener,colorchecker,", StringComparison.Ordinal)).Split(',');
+        return (de, double.Parse(line[3], CultureInfo.InvariantCulture));
+    }
+
+    static (double[] Wl, double[] V) Table(string file, string column)
+    {
+        var lines = File.ReadAllLines(Path.Combine(SpectralRenderer.Spectra.DataDirectory.Path, file));
+        int col = Array.IndexOf(lines[0].Split(','), column);
+        var rows = lines.Skip(1).Where(l => l.Length > 0 && !l.StartsWith('#')).Select(l => l.Split(',')).ToArray();
+        return (rows.Select(r => double.Parse(r[0], CultureInfo.InvariantCulture)).ToArray(), rows.Select(r => double.Parse(r[col], CultureInfo.InvariantCulture)).ToArray());
+    }
+
+    static double Lerp((double[] Wl, double[] V) t, double x)
+    {
+        if (x <= t.Wl[0]) return t.V[0];
+        if (x >= t.Wl[^1]) return t.V[^1];
+        int i = Array.BinarySearch(t.Wl, x);
+        if (i >= 0) return t.V[i];
+        i = ~i - 1;
+        return t.V[i] + (x - t.Wl[i]) / (t.Wl[i + 1] - t.Wl[i]) * (t.V[i + 1] - t.V[i]);
+    }
+}

@@ -1,0 +1,113 @@
+using System.Globalization;
+using System.Text.Json.Nodes;
+using SpectralRenderer.Imaging;
+using SpectralRenderer.Tests.Cli;
+
+namespace SpectralRenderer.Tests.Sensor;
+
+/// <summary>Issue 24's honest reports: clipping warned with its share, a monochrome image neutral, the real peak QE, units from the radiometry.</summary>
+public class HonestReportTests
+{
+    static readonly Lazy<string> Chart = new(() => ExactSignalsTests.Chart("380:780:20"));
+
+    [Fact]
+    public void Overexposure_PrintsTheClippedShare_AndTheHint_AndSnrLeavesClippedSitesOut()
+    {
+        var cam = Path.Combine(Chart.Value, "cam-over");
+        var (code, _, err) = CliRunner.Run("camera", Chart.Value, "--sensor", "nikon-d5100", "--exposure", "0.5", "-o", cam);
+        Assert.True(code == 0, err);
+        var (_, dn) = NpyReader.Read(File.OpenRead(Path.Combine(cam, "raw.npy")));
+        // At least the sites at the 12-bit white level are clipped (the full well, 10⁴ e⁻ × 0.4095 DN/e⁻, is at white too).
+        double atWhite = dn.Count(v => v >= 4095) / (double)dn.Length;
+        Assert.True(atWhite > 0.01, $"the test wants more than 1 % clipped, got {atWhite}");
+        var line = err.Split('\n').Single(l => l.StartsWith("warning:", StringComparison.Ordinal));
+        var manifest = (JsonObject)JsonNode.Parse(File.ReadAllText(Path.Combine(cam, "camera.json")))!;
+        double clipped = (double)manifest["simulation"]!["clipped_at_white_fraction"]!;
+        Assert.InRange(clipped, atWhite, 1.0);
+        Assert.Contains(string.Create(CultureInfo.InvariantCulture, $"{clipped * 100:0.##} % of photosites clipped"), line);
+        Assert.Contains("--exposure auto", line);
+        // A patch clipped in every site has no SNR (empty), not the 64 dB of 4095 DN over the read noise of a full well.
+        var rows = File.ReadAllLines(Path.Combine(cam, "patches.csv"));
+        var white = rows.Single(r => r.StartsWith("19,", StringComparison.Ordinal)).Split(',');
+        Assert.All(white[^3..], v => Assert.Equal("", v));
+
+        var auto = Path.Combine(Chart.Value, "cam-auto");
+        (code, _, err) = CliRunner.Run("camera", Chart.Value, "--sensor", "nikon-d5100", "--noise", "off", "-o", auto);
+        Assert.True(code == 0, err);
+        Assert.DoesNotContain("warning:", err);
+    }
+
+    [Fact]
+    public void MonochromeSensor_ProcessedGreyIsNeutral()
+    {
+        var sensor = Path.Combine(Chart.Value, "mono.json");
+        File.WriteAllText(sensor, """{ "name": "mono", "arrangement": "full", "channels": [ { "name": "L", "box": [400, 700] } ] }""");
+        var cam = Path.Combine(Chart.Value, "cam-mono");
+        var (code, _, err) = CliRunner.Run("camera", Chart.Value, "--sensor", sensor, "--noise", "off", "-o", cam);
+        Assert.True(code == 0, err);
+        var rows = File.ReadAllLines(Path.Combine(cam, "patches.csv"));
+        var head = rows[0].Split(',');
+        // The D65 white from the CIE tables at 1 nm here (Y = 1), and CIELAB (CIE 015) of the grey patches' camera XYZ.
+        var white = WhiteXyz();
+        foreach (var row in rows.Skip(1).Select(r => r.Split(',')).Where(f => int.Parse(f[0], CultureInfo.InvariantCulture) is >= 19 and <= 24))
+        {
+            double X = D(row, head, "camera_X"), Y = D(row, head, "camera_Y"), Z = D(row, head, "camera_Z");
+            static double F(double t) => t > 216.0 / 24389 ? Math.Cbrt(t) : (24389.0 / 27 * t + 16) / 116;
+            double a = 500 * (F(X / white[0]) - F(Y / white[1])), b = 200 * (F(Y / white[1]) - F(Z / white[2]));
+            Assert.True(Math.Abs(a) <= 0.5 && Math.Abs(b) <= 0.5, $"patch {row[0]}: a* {a}, b* {b}");
+        }
+    }
+
+    [Fact]
+    public void CameraJson_StatesTheDnScale_AndThePeakQeTheChannelsUse()
+    {
+        var cam = Path.Combine(Chart.Value, "cam-xyz-json");
+        var (code, _, err) = CliRunner.Run("camera", Chart.Value, "--sensor", "cie-xyz", "--noise", "off", "-o", cam);
+        Assert.True(code == 0, err);
+        var m = (JsonObject)JsonNode.Parse(File.ReadAllText(Path.Combine(cam, "camera.json")))!;
+        Assert.Contains("2^bits", (string)m["sensor"]!["dn_scale"]!);
+        // η = CMF·555 nm/λ × one factor that puts the highest table peak (z̄) at SensorPresets.DefaultPeakQe: its peak from the CIE table, here.
+        var lines = File.ReadAllLines(Path.Combine(SpectralRenderer.Spectra.DataDirectory.Path, "cie1931-2deg-cmf.csv"));
+        var cols = lines[0].Split(',');
+        var channels = m["sensor"]!["channels"]!.AsArray();
+        var rows = lines.Skip(1).Where(l => l.Length > 0).Select(l => l.Split(',').Select(v => double.Parse(v, CultureInfo.InvariantCulture)).ToArray()).ToArray();
+        double scale = SpectralRenderer.Sensor.SensorPresets.DefaultPeakQe / rows.Max(r => Math.Max(r[1], Math.Max(r[2], r[3])));
+        foreach (var (name, col) in new[] { ("X", "xbar"), ("Y", "ybar"), ("Z", "zbar") })
+        {
+            int j = Array.IndexOf(cols, col);
+            double peak = rows.Max(r => r[j] * scale * 555 / r[0]);
+            var ch = channels.Single(c => (string)c!["name"]! == name)!;
+            Assert.Equal(peak, (double)ch["peak_qe"]!, 9);
+        }
+    }
+
+    [Fact]
+    public void Probe_OfAPhysicalRender_SaysItsUnits()
+    {
+        var render = ExactSignalsTests.Chart("380:780:5", "physical", 1, "npy");
+        var (code, stdout, err) = CliRunner.Run("probe", render, "--pixel", "45,30");
+        Assert.True(code == 0, err);
+        Assert.Contains("W·m⁻²·sr⁻¹·nm⁻¹, physical radiometry", stdout);
+        Assert.DoesNotContain("relative", stdout);
+        Assert.Contains("physical radiometry", File.ReadAllText(Path.Combine(render, "probe.svg")));
+    }
+
+    static double D(string[] row, string[] head, string column) => double.Parse(row[Array.IndexOf(head, column)], CultureInfo.InvariantCulture);
+
+    static double[] WhiteXyz()
+    {
+        var cmf = File.ReadAllLines(Path.Combine(SpectralRenderer.Spectra.DataDirectory.Path, "cie1931-2deg-cmf.csv"));
+        var ill = File.ReadAllLines(Path.Combine(SpectralRenderer.Spectra.DataDirectory.Path, "illuminants.csv"));
+        int d65 = Array.IndexOf(ill[0].Split(','), "D65");
+        var e = ill.Skip(1).Where(l => l.Length > 0).Select(l => l.Split(','))
+            .ToDictionary(f => double.Parse(f[0], CultureInfo.InvariantCulture), f => double.Parse(f[d65], CultureInfo.InvariantCulture));
+        var xyz = new double[3];
+        foreach (var f in cmf.Skip(1).Where(l => l.Length > 0).Select(l => l.Split(',')))
+        {
+            double wl = double.Parse(f[0], CultureInfo.InvariantCulture);
+            if (wl < 380 || wl > 780 || !e.TryGetValue(wl, out var ev)) continue;
+            for (int k = 0; k < 3; k++) xyz[k] += double.Parse(f[k + 1], CultureInfo.InvariantCulture) * ev;
+        }
+        return [xyz[0] / xyz[1], 1, xyz[2] / xyz[1]];
+    }
+}
