@@ -39,7 +39,7 @@ public static class BenchCommand
         {
             ScenePath = scenePath,
             Overrides = overrides,
-            Integrator = a.Value("--integrator") ?? Integrators.Default,
+            Integrator = a.Value("--integrator"),
             Threads = threads,
         });
         var scene = job.Scene;

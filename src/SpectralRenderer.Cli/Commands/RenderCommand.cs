@@ -89,7 +89,7 @@ public static class RenderCommand
             ScenePath = scenePath,
             Overrides = overrides,
             Products = registered,
-            Integrator = a.Value("--integrator") ?? Integrators.Default,
+            Integrator = a.Value("--integrator"),
             Region = Region(a),
             Threads = threads ?? 0,
             OutDir = outDir,

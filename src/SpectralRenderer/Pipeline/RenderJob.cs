@@ -72,8 +72,8 @@ public sealed class RenderJob
     public static RenderJob Load(RenderRequest request, RenderObserver? observer = null)
     {
         // A name no integrator is registered under is bad input, said before a mesh is read.
-        if (!Integrators.Has(request.Integrator))
-            throw new InputException("--integrator", $"unknown integrator '{request.Integrator}'",
+        if (request.Integrator is { } named && !Integrators.Has(named))
+            throw new InputException("--integrator", $"unknown integrator '{named}'",
                 $"known integrators: {string.Join(", ", Integrators.Names)}");
         var clock = Stopwatch.StartNew();
         var scene = request.Scene ?? SceneLoader.Parse(request.SceneText ?? InputFile.ReadAllBytes(request.ScenePath, "scene file"),
@@ -86,9 +86,18 @@ public sealed class RenderJob
         return job;
     }
 
-    /// <summary>What a crop or shard cannot hold.</summary>
+    /// <summary>The integrator's name: the command line's, else the scene's "integrator", else whitted.</summary>
+    public string IntegratorName => Request.Integrator ?? Scene.Integrator?.Name ?? Integrators.Default;
+
+    /// <summary>What a crop or shard cannot hold; an integrator the scene names that is not registered.</summary>
     void Check()
     {
+        if (Request.Integrator is null && Scene.Integrator is { } chosen && !Integrators.Has(chosen.Name))
+            throw new InputException($"{Scene.SourcePath}: $.integrator", $"unknown integrator '{chosen.Name}'",
+                $"known integrators: {string.Join(", ", Integrators.Names)}");
+        if (IntegratorName != Integrators.Default && (Scene.Output.Products & OutputProducts.Lights) != 0)
+            throw new InputException("--formats", $"the per-light outputs (lights) are the Whitted model's transfer; the {IntegratorName} integrator does not record one",
+                "leave lights out of the formats, or render with --integrator whitted");
         var products = Scene.Output.Products;
         if (Shard is not null && (products & OutputProducts.Bands) != 0 && (products & (OutputProducts.Envi | OutputProducts.Npy)) == 0)
             throw new InputException("--shard",
@@ -134,7 +143,7 @@ public sealed class RenderJob
         if (Integrator is not null) return;
         var clock = Stopwatch.StartNew();
         Geometry = new SceneGeometry(Scene, Request.Geometries);
-        Integrator = Integrators.Create(Scene, Geometry, Request.Integrator);   // its name checked in Load
+        Integrator = Integrators.Create(Scene, Geometry, IntegratorName);   // its name checked in Load
         if (Request.Geometries is null) Renderer.ReturnLoadGarbage();
         BuildSeconds = clock.Elapsed.TotalSeconds;
     }

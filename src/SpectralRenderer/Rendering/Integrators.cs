@@ -10,6 +10,7 @@ public static class Integrators
     static readonly Dictionary<string, Func<Scene, SceneGeometry, IIntegrator>> Factories = new(StringComparer.Ordinal)
     {
         ["whitted"] = (scene, geometry) => new WhittedIntegrator(scene, geometry),
+        ["path"] = (scene, geometry) => new PathIntegrator(scene, geometry),
     };
 
     /// <summary>The names a render request may give (<c>--integrator</c>), in registration order.</summary>

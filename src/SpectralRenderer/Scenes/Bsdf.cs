@@ -66,6 +66,13 @@ public abstract class Bsdf
         return false;
     }
 
+    /// <summary>
+    /// The same BSDF with each of its spectra carried to another spectral grid by <paramref name="resample"/> (a scene
+    /// spectrum's padded band values in, its values on that grid out): the path tracer's fine grid. Null when the model
+    /// cannot be carried (the path tracer then refuses the material).
+    /// </summary>
+    public virtual Bsdf? Resampled(Func<float[], float[]> resample) => null;
+
     /// <summary>A unit direction about <paramref name="n"/> with density cos θ/π (Malley's method).</summary>
     public static Vector3 CosineHemisphere(Vector3 n, Vector2 u)
     {
@@ -106,6 +113,8 @@ public sealed class LambertianBsdf(float[] reflectance) : Bsdf
     public float[] Reflectance { get; } = reflectance;
 
     public override BsdfFlags Lobes => BsdfFlags.Reflection | BsdfFlags.Diffuse;
+
+    public override Bsdf Resampled(Func<float[], float[]> resample) => new LambertianBsdf(resample(Reflectance));
 
     public override void Evaluate(Vector3 wo, Vector3 wi, Vector3 n, Span<float> f)
     {

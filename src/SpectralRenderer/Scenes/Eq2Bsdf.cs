@@ -35,6 +35,22 @@ public sealed class Eq2Bsdf : Bsdf
 
     public override BsdfFlags Lobes { get; }
 
+    /// <summary>Eq. 2's lobes with every spectrum (and the index of refraction) on another grid.</summary>
+    public override Bsdf Resampled(Func<float[], float[]> resample) => new Eq2Bsdf(new Material
+    {
+        Name = _m.Name,
+        Ambient = resample(_m.Ambient),
+        Diffuse = resample(_m.Diffuse),
+        Specular = resample(_m.Specular),
+        Shininess = _m.Shininess,
+        Model = _m.Model,
+        Mirror = resample(_m.Mirror),
+        Transmit = resample(_m.Transmit),
+        Ior = resample(_m.Ior),
+        Dispersive = _m.Dispersive,
+        Fresnel = _m.Fresnel,
+    });
+
     bool HasSmooth => (Lobes & (BsdfFlags.Diffuse | BsdfFlags.Glossy)) != 0;
 
     public override void Evaluate(Vector3 wo, Vector3 wi, Vector3 n, Span<float> f)

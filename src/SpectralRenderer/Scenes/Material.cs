@@ -26,6 +26,8 @@ public sealed class Material
     public bool Fresnel { get; init; }
     /// <summary>The tabulated diffuse reflectance (ground truth for analysis), when it was a spectrum.</summary>
     public Spectra.TabulatedSpectrum? DiffuseSpectrum { get; init; }
+    /// <summary>What the surface emits ("emission", an area light for the path tracer), or null.</summary>
+    public Emission? Emission { get; set; }
 
     /// <summary>
     /// The material as a BSDF in physical radiometry (f in 1/sr, sampling, pdf, delta lobes): eq. 2's lobes as

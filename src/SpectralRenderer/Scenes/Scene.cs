@@ -60,6 +60,8 @@ public sealed class Scene
     public required float[] GlobalAmbient { get; init; }
     public bool HasGlobalAmbient { get; init; }
     public int MaxDepth { get; init; } = 5;
+    /// <summary>The scene's "integrator" (null: not given; the command line's choice or the default, whitted).</summary>
+    public IntegratorSettings? Integrator { get; init; }
     /// <summary>
     /// Adaptive tree depth (Hall &amp; Greenberg 1983): a reflected or refracted ray whose accumulated weight — the
     /// product of the k_r, k_t (and Fresnel factors) along its path, at its largest band — falls below this is not

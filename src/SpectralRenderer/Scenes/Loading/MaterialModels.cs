@@ -12,6 +12,8 @@ public static class MaterialModels
 {
     /// <summary>The key that names a material's model.</summary>
     public const string KindKey = "type";
+    /// <summary>The key every model takes for what its surface emits (<see cref="Emission"/>).</summary>
+    public const string EmissionKey = "emission";
     /// <summary>The model of a material without "type".</summary>
     public const string Default = "eq2";
 

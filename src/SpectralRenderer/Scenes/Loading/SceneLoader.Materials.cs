@@ -30,8 +30,11 @@ public sealed partial class SceneLoader
                 throw Error($"{path}.{MaterialModels.KindKey}", $"unknown material type '{type}'",
                     InputException.DidYouMean(type, names) ?? $"use {string.Join(", ", names)}");
         }
-        Keys(e, path, typed ? [MaterialModels.KindKey, .. model!.Keys] : model!.Keys);
-        return model.Make(new MaterialSource(this, e, path) { Name = name });
+        // "emission" (an area light) is every model's key.
+        Keys(e, path, typed ? [MaterialModels.KindKey, MaterialModels.EmissionKey, .. model!.Keys] : [MaterialModels.EmissionKey, .. model!.Keys]);
+        var material = model.Make(new MaterialSource(this, e, path) { Name = name });
+        material.Emission = ParseEmission(e, path);
+        return material;
     }
 
     /// <summary>The index of refraction per band: a number, or {"cauchy": [A, B]} for n(λ) = A + B/λ² at the band centres.</summary>

@@ -134,7 +134,7 @@ public sealed partial class SceneLoader
 
     // ---- the scene ----------------------------------------------------------------------------
 
-    static readonly string[] TopKeys = ["name", "description", "bands", "wave", "integration", "radiometry", "observer", "white", "scaling", "spectra", "materials", "lights", "objects", "background", "ambient", "max_depth", "min_ray_weight", "ray_budget", "camera", "output"];
+    static readonly string[] TopKeys = ["name", "description", "bands", "wave", "integration", "radiometry", "observer", "white", "scaling", "spectra", "materials", "lights", "objects", "background", "ambient", "max_depth", "integrator", "min_ray_weight", "ray_budget", "camera", "output"];
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
     Scene Build(JsonElement root)
@@ -217,6 +217,7 @@ public sealed partial class SceneLoader
 
         var output = ParseOutput(root);
         int depth = Integer(root, "max_depth", "$", 5, 0, 64);
+        var integrator = ParseIntegrator(root);
         float minWeight = (float)Number(root, "min_ray_weight", "$", Scene.DefaultMinRayWeight, 0, 1);
         int budget = Integer(root, "ray_budget", "$", Scene.DefaultRayBudget, 1, 1_000_000_000);
         var background = TryGet(root, "background", out var bg) ? Bands(bg, "$.background") : new float[SpectralMath.Padded(_grid.Count)];
@@ -245,6 +246,7 @@ public sealed partial class SceneLoader
             GlobalAmbient = ambient,
             HasGlobalAmbient = hasAmbient && SpectralMath.Any(ambient),
             MaxDepth = depth,
+            Integrator = integrator,
             MinRayWeight = minWeight,
             RayBudget = budget,
             Output = output,
@@ -257,7 +259,8 @@ public sealed partial class SceneLoader
     void WarnIfBlack(List<Light> lights, List<Material> materials, List<SceneObject> objects, bool globalAmbient, bool background)
     {
         if (background) return;
-        bool lit = globalAmbient || lights.Any(l => SpectralMath.Any(l.Intensity) || l.HasAmbient);
+        bool lit = globalAmbient || lights.Any(l => SpectralMath.Any(l.Intensity) || l.HasAmbient)
+            || materials.Any(m => m.Emission is { } e && SpectralMath.Any(e.Radiance));
         if (!lit)
         {
             _warnings.Add($"{_file}: warning: the scene can only render black: {(lights.Count == 0 ? "it has no light" : "no light emits inside the bands " + _grid)}, no ambient light and a black background " +

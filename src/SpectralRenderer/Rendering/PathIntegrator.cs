@@ -1,0 +1,337 @@
+using System.Numerics;
+using System.Runtime.CompilerServices;
+using System.Runtime.InteropServices;
+using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Geometry;
+using SpectralRenderer.Scenes;
+
+namespace SpectralRenderer.Rendering;
+
+/// <summary>
+/// Unidirectional path tracing of the rendering equation (Kajiya 1986) in physical radiometry, every band on every path:
+/// the throughput β and the radiance L are spectra on a fine internal grid (<see cref="FineGrid"/>, 5 nm by default),
+/// multiplied band by band in SIMD lanes and reduced to the output bands (exact band means) and to XYZ only at the film.
+/// At each vertex one light, chosen uniformly, is sampled (next-event estimation) and the BSDF is sampled to continue; both
+/// estimates of light that arrives from surfaces that emit, and from the sky, are combined by multiple importance
+/// sampling with the power heuristic w_a = p_a²/(p_a² + p_b²) (Veach &amp; Guibas 1995). Delta lights (point, spot,
+/// directional) are reached by next-event estimation only, delta lobes (mirror, Fresnel dielectric) by the BSDF only.
+/// A lobe is chosen by a luminance-like channel (<see cref="FineGrid.Luminance"/>), and Russian roulette ends a path from
+/// depth <see cref="IntegratorSettings.RrDepth"/> on with survival probability min(0.95, max_λ β) (the largest band, so
+/// no band's light is starved); each band keeps its own f·cos/pdf, so no wavelength is ever sampled. The sky is the scene's <c>background</c>: the radiance of every escaping
+/// ray, sampled cosine-weighted about the shading normal. Depth is unbounded unless <c>max_depth</c> is given (1: direct
+/// light only). Every random number comes from the camera sample's <see cref="Sampler"/>, so the picture is the same on
+/// any thread count, tile order or shard; nothing is allocated per path.
+/// </summary>
+public sealed class PathIntegrator : IIntegrator
+{
+    readonly SceneGeometry _geometry;
+    readonly FineGrid _grid;
+    readonly int _maxDepth, _rrDepth, _padded;
+    readonly int[] _objectMaterial, _emitterOf;
+    readonly Bsdf[] _bsdf;
+    readonly float[]?[] _emission;
+    readonly bool[] _twoSided, _smooth;
+    readonly float[] _smoothChannel;
+    readonly Light[] _lights;
+    readonly float[][] _lightRadiance;
+    readonly AreaEmitter[] _emitters;
+    readonly float[]? _sky;
+    readonly float[] _background;
+    readonly int _lightCount;
+
+    public PathIntegrator(Scene scene, SceneGeometry geometry)
+    {
+        string where = scene.SourcePath;
+        if (scene.Radiometry != Radiometry.Physical)
+            throw new InputException($"{where}: $.radiometry", "the path integrator needs physical radiometry (eq. 2's paper units are not radiance)",
+                "add \"radiometry\": \"physical\" to the scene, or render it with the whitted integrator");
+        var settings = scene.Integrator is { Name: "path" } s ? s : new IntegratorSettings("path");
+        _geometry = geometry;
+        _grid = new FineGrid(scene, settings.SpectralGrid);
+        _padded = _grid.Padded;
+        _maxDepth = settings.MaxDepth;
+        _rrDepth = settings.RrDepth;
+        int materials = scene.Materials.Count;
+        _bsdf = new Bsdf[materials];
+        _emission = new float[]?[materials];
+        _twoSided = new bool[materials];
+        _smooth = new bool[materials];
+        _smoothChannel = new float[materials];
+        for (int m = 0; m < materials; m++)
+        {
+            var material = scene.Materials[m];
+            if (material.Dispersive && (material.HasTransmission || material.HasMirror && material.Fresnel))
+                throw new InputException($"{where}: $.materials.{material.Name}.ior",
+                    $"material '{material.Name}' is dispersive (Cauchy index): the path integrator does not split paths per band yet",
+                    "give a constant \"ior\", or render dispersion with the whitted integrator");
+            _bsdf[m] = material.Bsdf.Resampled(_grid.Resample)
+                ?? throw new InputException($"{where}: $.materials.{material.Name}",
+                    $"material '{material.Name}' ({material.Bsdf.GetType().Name}) cannot be carried to the path integrator's spectral grid",
+                    "use a material type the path integrator knows (eq2, lambertian), or the whitted integrator");
+            _smooth[m] = (_bsdf[m].Lobes & (BsdfFlags.Diffuse | BsdfFlags.Glossy)) != 0;
+            if (_smooth[m])
+            {   // the smooth lobes' share in the lobe choice: the channel value of m_diff + m_spec (their albedo at most)
+                var albedo = _grid.Resample(material.Diffuse);
+                var spec = _grid.Resample(material.Specular);
+                for (int i = 0; i < albedo.Length; i++) albedo[i] += spec[i];
+                _smoothChannel[m] = Math.Max(_grid.Luminance(albedo), 1e-6f);
+            }
+            if (material.Emission is { } e) { _emission[m] = _grid.Resample(e.Radiance); _twoSided[m] = e.TwoSided; }
+        }
+        _objectMaterial = scene.Objects.Select(o => o.Material).ToArray();
+        _emitterOf = new int[scene.Objects.Count];
+        var emitters = new List<AreaEmitter>();
+        for (int i = 0; i < scene.Objects.Count; i++)
+        {
+            _emitterOf[i] = -1;
+            var o = scene.Objects[i];
+            if (_emission[o.Material] is { } radiance)
+            {
+                _emitterOf[i] = emitters.Count;
+                emitters.Add(new AreaEmitter(o, radiance, _twoSided[o.Material], $"{where}: $.objects"));
+            }
+        }
+        _emitters = [.. emitters];
+        _lights = [.. scene.Lights];
+        _lightRadiance = _lights.Select(l => _grid.Resample(l.Intensity)).ToArray();
+        _background = _grid.Resample(scene.Background);
+        _sky = Spectra.SpectralMath.Any(scene.Background) ? _background : null;
+        _lightCount = _lights.Length + _emitters.Length + (_sky is null ? 0 : 1);
+    }
+
+    /// <summary>The internal grid's sub-bands per output band.</summary>
+    public int SubBands => _grid.PerBand;
+
+    /// <summary>Scratch: L, β, f and the two delta lobes' weights, each a fine spectrum.</summary>
+    public int ScratchLength => 5 * _padded;
+
+    /// <inheritdoc/>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    public int Radiance(in CameraSample sample, Span<float> result, Span<float> scratch, ref RayCounters counters)
+    {
+        int n = _padded;
+        var l = scratch[..n];
+        var beta = scratch.Slice(n, n);
+        var f = scratch.Slice(2 * n, n);
+        var mirror = scratch.Slice(3 * n, n);
+        var transmit = scratch.Slice(4 * n, n);
+        l.Clear();
+        beta.Clear();
+        beta[.._grid.Count].Fill(1);   // the padding stays 0
+        var sampler = sample.Sampler;
+        var ray = sample.Ray;
+        float pick = _lightCount > 0 ? 1f / _lightCount : 0;
+        bool deltaBounce = true;     // the last bounce was a delta lobe (or the camera): emitters seen count in full
+        float bsdfPdf = 0;           // the last bounce's solid-angle density (lobe choice included), for MIS
+        Vector3 previous = default, previousFront = default;
+        int first = -1;
+        for (int depth = 0; ; depth++)
+        {
+            var traced = ray;
+            if (!_geometry.Intersect(ref traced, out var hit))
+            {
+                // The ray escapes: the sky (background) radiance, MIS-weighted against its own sampling.
+                if (depth == 0) AddProduct(l, beta, _background, 1);
+                else if (_sky is not null)
+                {
+                    float w = deltaBounce ? 1 : PowerHeuristic(bsdfPdf, pick * SkyPdf(previousFront, ray.Direction));
+                    AddProduct(l, beta, _sky, w);
+                }
+                break;
+            }
+            if (depth == 0) first = hit.Object;
+            var wo = -ray.Direction;
+            var p = hit.Position;
+            var ng = hit.GeometricNormal;
+            int m = _objectMaterial[hit.Object];
+
+            // Light the surface emits towards the ray (Le), MIS-weighted against next-event estimation of the same point.
+            if (_emission[m] is { } le && (_twoSided[m] || Vector3.Dot(ng, wo) > 0))
+            {
+                float w = 1;
+                if (!deltaBounce)
+                {
+                    int e = _emitterOf[hit.Object];
+                    w = PowerHeuristic(bsdfPdf, e >= 0 ? pick * _emitters[e].Pdf(previous, p, ng) : 0);
+                }
+                AddProduct(l, beta, le, w);
+            }
+            if (_maxDepth >= 0 && depth >= _maxDepth) break;
+            if (counters.BudgetSpent) { counters.OverBudget = true; break; }
+
+            var bsdf = _bsdf[m];
+            var ns = hit.Normal;
+            var front = Vector3.Dot(ns, wo) >= 0 ? ns : -ns;
+            // The lobes' shares of the continuation, by the channel: smooth (m_diff + m_spec), mirror, transmission.
+            float smoothShare = _smooth[m] ? _smoothChannel[m] : 0;
+            float mirrorShare = bsdf.SampleMirror(wo, ns, -1, mirror, out var wiMirror) ? _grid.Luminance(mirror) : 0;
+            float transmitShare = bsdf.SampleTransmission(wo, ns, -1, transmit, out var wiTransmit) ? _grid.Luminance(transmit) : 0;
+            float total = smoothShare + mirrorShare + transmitShare;
+            float smoothProbability = total > 0 ? smoothShare / total : 0;
+
+            // Next-event estimation: one light chosen uniformly, one point on it.
+            float uLight = sampler.Next1D();
+            var uPoint = sampler.Next2D();
+            if (_smooth[m] && _lightCount > 0)
+                NextEvent(bsdf, p, ng, ns, front, wo, uLight, new Vector2(uPoint.U, uPoint.V), pick, smoothProbability, l, beta, f, ref counters);
+
+            // Continue: choose a lobe, then a direction from it; β gains f·|cos θ|/pdf per band.
+            float uLobe = sampler.Next1D();
+            var u = sampler.Next2D();
+            if (!(total > 0)) break;
+            Vector3 wi;
+            float x = uLobe * total;
+            if (x < smoothShare)
+            {
+                if (!bsdf.Sample(wo, ns, new Vector2(u.U, u.V), f, out var bs)) break;
+                wi = bs.Wi;
+                float cos = MathF.Abs(Vector3.Dot(ns, wi));
+                bsdfPdf = bs.Pdf * smoothProbability;
+                Multiply(beta, f, cos / bsdfPdf);
+                deltaBounce = false;
+            }
+            else if (x < smoothShare + mirrorShare)
+            {
+                wi = wiMirror;
+                Multiply(beta, mirror, total / mirrorShare);
+                deltaBounce = true;
+            }
+            else
+            {
+                wi = wiTransmit;
+                Multiply(beta, transmit, total / transmitShare);
+                deltaBounce = true;
+            }
+            previous = p;
+            previousFront = front;
+
+            // Russian roulette on the throughput's channel value.
+            float uRoulette = sampler.Next1D();
+            if (depth + 1 >= _rrDepth)
+            {
+                float q = MathF.Min(0.95f, Max(beta));
+                if (!(q > 0) || uRoulette >= q) break;
+                Scale(beta, 1 / q);
+            }
+            float side = Vector3.Dot(ng, wi) >= 0 ? 1 : -1;
+            ray = new Ray(p + side * _geometry.Epsilon * ng, wi);
+            counters.Secondary++;
+        }
+        _grid.Reduce(l, result);
+        return first;
+    }
+
+    /// <summary>
+    /// L += β·f·L_e·|cos θ|·w/(P(light)·p) for one light sample: a delta light's (w = 1, p = 1, its d_k·c_spot on I_k), an
+    /// emitter's point, or a sky direction, each unshadowed.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    void NextEvent(Bsdf bsdf, Vector3 p, Vector3 ng, Vector3 ns, Vector3 front, Vector3 wo, float uLight, Vector2 u, float pick,
+        float smoothProbability, Span<float> l, Span<float> beta, Span<float> f, ref RayCounters counters)
+    {
+        int k = Math.Min((int)(uLight * _lightCount), _lightCount - 1);
+        Vector3 wi;
+        float distance, factor, pdf;
+        bool delta;
+        float[] radiance;
+        if (k < _lights.Length)
+        {
+            if (!_lights[k].Sample(p, u, out var inc)) return;
+            wi = inc.Direction; distance = inc.Distance; factor = inc.Factor; pdf = inc.Pdf; delta = inc.IsDelta;
+            radiance = _lightRadiance[k];
+        }
+        else if (k < _lights.Length + _emitters.Length)
+        {
+            var emitter = _emitters[k - _lights.Length];
+            if (!emitter.Sample(p, u, out var x, out var nx, out pdf)) return;
+            var d = x - p;
+            distance = d.Length();
+            if (!(distance > 0)) return;
+            wi = d / distance;
+            if (!emitter.Emits(nx, -wi)) return;
+            factor = 1; delta = false;
+            radiance = emitter.Radiance;
+        }
+        else
+        {
+            wi = Bsdf.CosineHemisphere(front, u);
+            pdf = SkyPdf(front, wi);
+            distance = float.PositiveInfinity; factor = 1; delta = false;
+            radiance = _sky!;
+        }
+        if (!(pdf > 0) || !(factor > 0)) return;
+        float cos = MathF.Abs(Vector3.Dot(ns, wi));
+        bsdf.Evaluate(wo, wi, ns, f);
+        float side = Vector3.Dot(ng, wi) >= 0 ? 1 : -1;
+        var origin = p + side * _geometry.Epsilon * ng;
+        var shadow = new Ray(origin, wi);
+        if (!float.IsInfinity(distance))
+        {   // aimed from the offset origin at the light's point itself: a ray grazing a sphere light would otherwise meet it early
+            var towards = p + distance * wi - origin;
+            float length = towards.Length();
+            shadow = new Ray(origin, towards / length, length - 2 * _geometry.Epsilon);
+        }
+        counters.Shadow++;
+        if (_geometry.Occluded(shadow)) return;
+        float w = delta ? 1 : PowerHeuristic(pick * pdf, smoothProbability * bsdf.Pdf(wo, wi, ns));
+        AddProduct3(l, beta, f, radiance, factor * cos * w / (pick * pdf));
+    }
+
+    /// <summary>The sky's sampling density: cosine-weighted about the front shading normal.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    static float SkyPdf(Vector3 front, Vector3 wi) => MathF.Max(0, Vector3.Dot(front, wi)) / MathF.PI;
+
+    /// <summary>Veach's power heuristic (β = 2) for the strategy of density a against one of density b.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    static float PowerHeuristic(float a, float b)
+    {
+        float a2 = a * a, b2 = b * b;
+        return a2 + b2 > 0 && float.IsFinite(a2 + b2) ? a2 / (a2 + b2) : float.IsInfinity(a2) ? 1 : 0;
+    }
+
+    static Span<Vector<float>> V(Span<float> s) => MemoryMarshal.Cast<float, Vector<float>>(s);
+
+    /// <summary>The largest value of a fine spectrum (its padding is 0).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    float Max(Span<float> a)
+    {
+        var v = V(a);
+        var m = Vector<float>.Zero;
+        for (int i = 0; i < v.Length; i++) m = Vector.Max(m, v[i]);
+        float r = 0;
+        for (int i = 0; i < Vector<float>.Count; i++) r = MathF.Max(r, m[i]);
+        return r;
+    }
+
+    /// <summary>dst += a ⊙ b · s</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    static void AddProduct(Span<float> dst, Span<float> a, float[] b, float s)
+    {
+        var d = V(dst); var va = V(a); var vb = V(b.AsSpan(0, dst.Length)); var vs = new Vector<float>(s);
+        for (int i = 0; i < d.Length; i++) d[i] += va[i] * vb[i] * vs;
+    }
+
+    /// <summary>dst += a ⊙ b ⊙ c · s</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    static void AddProduct3(Span<float> dst, Span<float> a, Span<float> b, float[] c, float s)
+    {
+        var d = V(dst); var va = V(a); var vb = V(b); var vc = V(c.AsSpan(0, dst.Length)); var vs = new Vector<float>(s);
+        for (int i = 0; i < d.Length; i++) d[i] += va[i] * vb[i] * vc[i] * vs;
+    }
+
+    /// <summary>dst ⊙= a · s</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    static void Multiply(Span<float> dst, Span<float> a, float s)
+    {
+        var d = V(dst); var va = V(a); var vs = new Vector<float>(s);
+        for (int i = 0; i < d.Length; i++) d[i] *= va[i] * vs;
+    }
+
+    /// <summary>dst ·= s</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    static void Scale(Span<float> dst, float s)
+    {
+        var d = V(dst); var vs = new Vector<float>(s);
+        for (int i = 0; i < d.Length; i++) d[i] *= vs;
+    }
+}

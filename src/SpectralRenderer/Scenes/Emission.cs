@@ -1,0 +1,20 @@
+namespace SpectralRenderer.Scenes;
+
+/// <summary>
+/// Light a surface emits (an area light): spectral radiance L_e in W·m⁻²·sr⁻¹·nm⁻¹ as padded band values (spectrum ×
+/// "radiance"; its tabulated spectrum is in <see cref="Scene.Spectra"/>), the same in every direction of the side its
+/// geometric normal points to, or of both sides when <see cref="TwoSided"/>. Path tracing only (<c>"integrator": "path"</c>).
+/// </summary>
+public sealed record Emission(float[] Radiance, bool TwoSided);
+
+/// <summary>
+/// The light-transport method a scene asks for (<c>"integrator"</c>): its registered name and, for a path tracer, the
+/// maximum path depth (−1: unbounded), the depth from which Russian roulette may end a path, and the width in nm of the
+/// internal spectral grid its paths carry (<c>"spectral_grid"</c>).
+/// </summary>
+public sealed record IntegratorSettings(string Name, int MaxDepth = -1, int RrDepth = IntegratorSettings.DefaultRrDepth,
+    double SpectralGrid = IntegratorSettings.DefaultSpectralGrid)
+{
+    public const int DefaultRrDepth = 5;
+    public const double DefaultSpectralGrid = 5;
+}

@@ -1,0 +1,49 @@
+using System.Runtime.CompilerServices;
+using System.Text.Json;
+
+namespace SpectralRenderer.Scenes.Loading;
+
+// The integrator a scene asks for, and what a surface emits (area lights): path tracing's keys.
+public sealed partial class SceneLoader
+{
+    /// <summary>
+    /// "integrator": a registered name ("whitted", "path") or { "type": name, "max_depth": N, "rr_depth": N,
+    /// "spectral_grid": nm }; the name is checked against the registry when the render is built.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
+    IntegratorSettings? ParseIntegrator(JsonElement root)
+    {
+        if (!TryGet(root, "integrator", out var e)) return null;
+        const string path = "$.integrator";
+        if (e.ValueKind == JsonValueKind.String) return new IntegratorSettings(String(e, path).ToLowerInvariant());
+        if (e.ValueKind != JsonValueKind.Object)
+            throw Error(path, $"expected a name or an object, found {Kind(e)}", "e.g. \"integrator\": \"path\" or { \"type\": \"path\", \"max_depth\": 8 }");
+        Keys(e, path, "type", "max_depth", "rr_depth", "spectral_grid");
+        var name = String(Required(e, "type", path), $"{path}.type").ToLowerInvariant();
+        int maxDepth = Integer(e, "max_depth", path, -1, -1, 1_000_000);
+        int rrDepth = Integer(e, "rr_depth", path, IntegratorSettings.DefaultRrDepth, 0, 1_000_000);
+        // The internal grid: every output band split into equal sub-bands of at most this width (1 nm allowed).
+        double grid = Number(e, "spectral_grid", path, IntegratorSettings.DefaultSpectralGrid, 1, 1000);
+        return new IntegratorSettings(name, maxDepth, rrDepth, grid);
+    }
+
+    /// <summary>
+    /// A material's "emission": { "spectrum": …, "radiance": k, "two_sided": false } — spectral radiance spectrum × k in
+    /// W·m⁻²·sr⁻¹·nm⁻¹, physical radiometry only.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
+    Emission? ParseEmission(JsonElement material, string materialPath)
+    {
+        if (!TryGet(material, "emission", out var e)) return null;
+        string path = $"{materialPath}.emission";
+        Object(e, path);
+        Keys(e, path, "spectrum", "radiance", "two_sided");
+        if (_radiometry != Radiometry.Physical)
+            throw Error(path, "emission is a spectral radiance (W·m⁻²·sr⁻¹·nm⁻¹) and needs physical radiometry",
+                "add \"radiometry\": \"physical\" to the scene (and render it with \"integrator\": \"path\")");
+        var spectrum = Spectrum(Required(e, "spectrum", path), $"{path}.spectrum");
+        double k = Number(e, "radiance", path, 1, 0);
+        var radiance = Bands(spectrum.Scaled(k), $"{path}.spectrum");
+        return new Emission(radiance, Bool(e, "two_sided", path, false));
+    }
+}
