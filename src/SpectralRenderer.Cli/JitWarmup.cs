@@ -47,13 +47,13 @@ static class JitWarmup
         {
             const BindingFlags all = BindingFlags.Public | BindingFlags.NonPublic | BindingFlags.Instance | BindingFlags.Static | BindingFlags.DeclaredOnly;
             var types = typeof(Rendering.Renderer).Assembly.GetTypes();
-            var values = types.Where(t => t.IsValueType && !t.ContainsGenericParameters).ToArray();
+            var values = types.Where(t => t.IsValueType && !t.ContainsGenericParameters && !LeftToFirstCall(t)).ToArray();
             var lanes = values.FirstOrDefault(t => t.Name.StartsWith("Lanes", StringComparison.Ordinal)
                 && t.GetProperty("Count", BindingFlags.Public | BindingFlags.Static)?.GetValue(null) is int n && n == Acceleration.PacketLanes.Width);
             foreach (var stage in stages)
                 foreach (var type in types)
                 {
-                    if (type.Namespace != stage || type.ContainsGenericParameters || type == typeof(Rendering.LightTransfer)) continue;
+                    if (type.Namespace != stage || type.ContainsGenericParameters || LeftToFirstCall(type)) continue;
                     foreach (var method in type.GetMethods(all))
                     {
                         if ((method.MethodImplementationFlags & MethodImplAttributes.AggressiveOptimization) == 0 || method.IsAbstract) continue;
@@ -72,6 +72,15 @@ static class JitWarmup
         {
             // A warm-up that fails leaves the methods to be compiled at first call: nothing is lost but time.
         }
+    }
+
+    /// <summary>Is <paramref name="type"/>, or a type it is nested in, hot code a default render does not run
+    /// (<see cref="Rendering.CompiledAtFirstCallAttribute"/>)? Its methods and instantiations over it are left to their first call.</summary>
+    static bool LeftToFirstCall(Type type)
+    {
+        for (Type? t = type; t is not null; t = t.DeclaringType)
+            if (t.IsDefined(typeof(Rendering.CompiledAtFirstCallAttribute), inherit: false)) return true;
+        return false;
     }
 
     static void Prepare(MethodInfo method)

@@ -12,6 +12,7 @@ namespace SpectralRenderer.Rendering;
 /// subtends, uniform) and else uniformly by area (parallelograms of a quad or box, triangles of a mesh by area, a sphere
 /// from inside), with the solid-angle density p_ω = p_A·d²/|n_x·ω| of an area draw (Veach 1997, eq. 8.10).
 /// </summary>
+[CompiledAtFirstCall]
 internal sealed class AreaEmitter
 {
     readonly Kind _kind;

@@ -6,11 +6,26 @@ using SpectralRenderer.Scenes;
 namespace SpectralRenderer.Rendering;
 
 /// <summary>
-/// What receives the terms of eq. 2 and the Whitted recursion as <see cref="Eq2Walker"/> visits them: summed into a
+/// What receives the terms of eq. 2's local step (<see cref="Eq2Walker.Shade"/>) as the walker visits them: summed into a
 /// pixel's spectrum (Whitted), listed per packet lane, or recorded as geometric factors (the light transfer). A sink is a
 /// struct, so each walk is compiled for its sink and its policy members fold to constants.
 /// </summary>
 internal interface ITermSink
+{
+    /// <summary>a_glob·m_amb of material <paramref name="material"/>.</summary>
+    void GlobalAmbient(int material);
+    /// <summary>c_spot·I_amb,k·m_amb; <paramref name="term"/> = <see cref="TermTables.Index"/>(k, material).</summary>
+    void Ambient(int light, int material, int term, float spot);
+    /// <summary>A light that reaches the point unshadowed with n·l &gt; 0: d·(n·l)·I_k·m_diff and, when
+    /// <paramref name="specular"/>, d·s·I_k·m_spec, with d = c_spot·d_k and s the lobe's factor.</summary>
+    void Direct(int light, int material, int term, float d, float nl, float s, bool specular);
+}
+
+/// <summary>
+/// A sink that also follows the Whitted recursion (<see cref="Eq2Walker.Trace"/>): rays that leave the scene, the mirror and
+/// transmission branches and dispersive splits. A packet lane's sink takes the local step only (such lanes are walked alone).
+/// </summary>
+internal interface IWalkSink : ITermSink
 {
     /// <summary>Is a branch whose weight falls below <see cref="Scene.MinRayWeight"/> left untraced (adaptive depth)?</summary>
     static abstract bool Prunes { get; }
@@ -24,13 +39,6 @@ internal interface ITermSink
     void Begin();
     /// <summary>The ray left the scene: the background radiance.</summary>
     void Background();
-    /// <summary>a_glob·m_amb of material <paramref name="material"/>.</summary>
-    void GlobalAmbient(int material);
-    /// <summary>c_spot·I_amb,k·m_amb; <paramref name="term"/> = <see cref="TermTables.Index"/>(k, material).</summary>
-    void Ambient(int light, int material, int term, float spot);
-    /// <summary>A light that reaches the point unshadowed with n·l &gt; 0: d·(n·l)·I_k·m_diff and, when
-    /// <paramref name="specular"/>, d·s·I_k·m_spec, with d = c_spot·d_k and s the lobe's factor.</summary>
-    void Direct(int light, int material, int term, float d, float nl, float s, bool specular);
     /// <summary>A dispersive split (each band its own path): the colour lanes cannot follow.</summary>
     void Split(ref RayCounters counters);
     /// <summary>Before the reflected (k_r) or transmitted (k_t) ray of <paramref name="material"/> with scalar weight
@@ -98,7 +106,7 @@ internal sealed class Eq2Walker
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public int Trace<TSink>(ref TSink sink, Ray ray, int depth, int band, float weight, ref RayCounters counters)
-        where TSink : ITermSink, allows ref struct
+        where TSink : IWalkSink, allows ref struct
     {
         sink.Begin();
         if (!_geometry.Intersect(ref ray, out var hit))
@@ -165,7 +173,7 @@ internal sealed class Eq2Walker
     /// <summary>k_r·L(reflected), with F per band for a dispersive Fresnel mirror.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     void Reflect<TSink>(ref TSink sink, Vector3 incident, Vector3 pAbove, Vector3 n, Material m, int mi, float cosI, bool outside,
-        int depth, int band, float weight, ref RayCounters counters) where TSink : ITermSink, allows ref struct
+        int depth, int band, float weight, ref RayCounters counters) where TSink : IWalkSink, allows ref struct
     {
         float f = m.MirrorFactor(cosI, outside, band);
         float branch = weight * _mirrorMax[mi] * f;
@@ -204,7 +212,7 @@ internal sealed class Eq2Walker
     /// Fresnel (F = 1 on the mirror lobe), else the constant k_t share into the mirror direction.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     void Refract<TSink>(ref TSink sink, Vector3 incident, Vector3 p, Vector3 n, Vector3 ng, Material m, int mi, float cosI, bool outside,
-        int depth, int band, float branch, ref RayCounters counters) where TSink : ITermSink, allows ref struct
+        int depth, int band, float branch, ref RayCounters counters) where TSink : IWalkSink, allows ref struct
     {
         float eta = m.Eta(outside, band);   // n_i / n_t
         float sin2T = eta * eta * (1 - cosI * cosI);

@@ -14,6 +14,7 @@ namespace SpectralRenderer.Rendering;
 /// integrated on this grid: X = κ·Σ_f L_f·∫_f x̄ dλ (and Y, Z). Spectra are padded float arrays (<see cref="Padded"/>
 /// lanes, a multiple of <see cref="Vector{T}.Count"/>) for whole-vector arithmetic.
 /// </summary>
+[CompiledAtFirstCall]
 internal sealed class FineGrid
 {
     readonly Scene _scene;

@@ -103,6 +103,7 @@ public sealed record TransferComponent(int Light, TransferLobe Lobe, int Materia
 /// epsilons, Fresnel and total internal reflection, and a dispersive material's per-band paths: each band's refracted
 /// ray, and for its per-band Fresnel reflectance the reflected ray once per band, recorded as one-band components).
 /// </summary>
+[CompiledAtFirstCall]
 public sealed class LightTransfer
 {
     public required int Width { get; init; }
@@ -445,7 +446,7 @@ public sealed class LightTransfer
         /// pushed on entering a branch and popped on leaving it. Nothing is pruned or cut by a budget; a dispersive Fresnel
         /// mirror's reflected ray is followed once per band as one-band components (counted as one ray).
         /// </summary>
-        readonly struct TransferSink(Tracer t, Worker w) : ITermSink
+        readonly struct TransferSink(Tracer t, Worker w) : IWalkSink
         {
             public static bool Prunes => false;
             public static bool Budgeted => false;

@@ -22,6 +22,7 @@ namespace SpectralRenderer.Rendering;
 /// light only). Every random number comes from the camera sample's <see cref="Sampler"/>, so the picture is the same on
 /// any thread count, tile order or shard; nothing is allocated per path.
 /// </summary>
+[CompiledAtFirstCall]
 public sealed class PathIntegrator : IIntegrator
 {
     readonly SceneGeometry _geometry;

@@ -153,7 +153,7 @@ public sealed partial class WhittedIntegrator
     }
 
     /// <summary>A packet lane's terms: listed as <see cref="SpectralTerm"/>s for the one-pass band sum (or added at once), and what the
-    /// camera ray saw for the analysis images. No recursion reaches it (such lanes are walked alone).</summary>
+    /// camera ray saw for the analysis images: the local step only (<see cref="ITermSink"/>; lanes that recurse are walked alone).</summary>
     ref struct LaneSink : ITermSink
     {
         readonly WhittedIntegrator _owner;
@@ -171,12 +171,6 @@ public sealed partial class WhittedIntegrator
             _info = ref info;
         }
 
-        public static bool Prunes => true;
-        public static bool Budgeted => true;
-        public static bool ReflectPerBand => false;
-
-        public readonly void Begin() { }
-        public readonly void Background() { }
         public readonly void GlobalAmbient(int material) => Add(new SpectralTerm(_owner._globalAmbientAt[material], 1f));
         public readonly void Ambient(int light, int material, int term, float spot) => Add(new SpectralTerm(_owner._ambientAt[term], spot));
 
@@ -191,11 +185,6 @@ public sealed partial class WhittedIntegrator
             _info.DiffuseY += d * nl * o._tables.Diffuse[term][y];
             _info.SpecularY += d * s * o._tables.Specular[term][y];
         }
-
-        public readonly void Split(ref RayCounters counters) { }
-        public readonly void Enter(int material, bool transmit, int band, float factor) { }
-        public readonly void Leave(int material, bool transmit, int band, float factor, ref RayCounters counters) { }
-        public readonly void LeavePerBand(Material m, int material, float cosI, bool outside, ref RayCounters counters) { }
 
         /// <summary>A term of eq. 2 for the lane: listed for the one-pass sum, or added to the lane's spectrum now.</summary>
         [MethodImpl(MethodImplOptions.AggressiveInlining)]

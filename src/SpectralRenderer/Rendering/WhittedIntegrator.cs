@@ -76,7 +76,7 @@ public sealed partial class WhittedIntegrator : IPacketIntegrator, IAnalysisInte
     /// (<see cref="SpectralMath.AddProduct(Span{float}, ReadOnlySpan{float}, ReadOnlySpan{float}, float)"/>).
     /// At the camera ray's hit it records, when asked, which lights reach the point and the Y of its diffuse and specular terms.
     /// </summary>
-    ref struct Sink : ITermSink
+    ref struct Sink : IWalkSink
     {
         readonly TermTables _tables;
         readonly int _padded, _bands;
