@@ -15,21 +15,21 @@ public static class CommandLine
     /// stdout, stderr → exit code; an exception becomes one line on stderr and its exit code, <see cref="Describe"/>).
     /// A new command is one file in Commands/ and one line here, or a <see cref="Register"/> call.
     /// </summary>
-    static readonly List<(string Name, string Summary, Func<string[], TextWriter, TextWriter, int> Run)> Commands =
+    static readonly List<Command> Commands =
     [
-        ("render", "render a scene file: band images, spectral cubes, sRGB preview", RenderCommand.Run),
-        ("colorcheck", "a rendered ColorChecker's patches against their 1 nm reference (ΔE00)", ColorCheckCommand.Run),
-        ("experiments", "every scene of the paper rendered and analysed into report.html (Figs. 2–7)", ExperimentsCommand.Run),
-        ("bench", "load, BVH build and render times, Mrays/s, peak memory", BenchCommand.Run),
-        ("colors", "the 24 ColorChecker patches' XYZ, Lab, RGB and ΔE00 under a light", ColorsCommand.Run),
-        ("probe", "the spectra of chosen pixels of a render, as CSV and an SVG plot (Fig. 6b)", ProbeCommand.Run),
-        ("relight", "a render under other lights, exactly, from its per-light outputs (no rays traced)", RelightCommand.Run),
-        ("view", "the spectral viewer (viewer.html) of a render; --serve serves it on loopback", ViewCommand.Run),
-        ("merge", "the shards of a render (render --shard I/N) assembled into the whole render, byte for byte", MergeCommand.Run),
-        ("sweep", "a plan's jobs (scene × lights × materials × …) rendered into a dataset with an index, locally or as a job array", SweepCommand.Run),
-        ("reconstruct", "white-board reflectance reconstruction against the truth, by region (§3.4, Fig. 7)", ReconstructCommand.Run),
-        ("camera", "a render seen by a simulated camera: raw (NPY, PNG, DNG), processed sRGB, ΔE00 and SNR per patch", CameraCommand.Run),
-        ("recover", "spectral reflectance from a camera's signals (pinv, Wiener, linear model, Tikhonov) against the truth", RecoverCommand.Run),
+        new("render", "render a scene file: band images, spectral cubes, sRGB preview", RenderCommand.Run),
+        new("colorcheck", "a rendered ColorChecker's patches against their 1 nm reference (ΔE00)", ColorCheckCommand.Run),
+        new("experiments", "every scene of the paper rendered and analysed into report.html (Figs. 2–7)", ExperimentsCommand.Run),
+        new("bench", "load, BVH build and render times, Mrays/s, peak memory", BenchCommand.Run),
+        new("colors", "the 24 ColorChecker patches' XYZ, Lab, RGB and ΔE00 under a light", ColorsCommand.Run),
+        new("probe", "the spectra of chosen pixels of a render, as CSV and an SVG plot (Fig. 6b)", ProbeCommand.Run),
+        new("relight", "a render under other lights, exactly, from its per-light outputs (no rays traced)", RelightCommand.Run),
+        new("view", "the spectral viewer (viewer.html) of a render; --serve serves it on loopback", ViewCommand.Run),
+        new("merge", "the shards of a render (render --shard I/N) assembled into the whole render, byte for byte", MergeCommand.Run),
+        new("sweep", "a plan's jobs (scene × lights × materials × …) rendered into a dataset with an index, locally or as a job array", SweepCommand.Run),
+        new("reconstruct", "white-board reflectance reconstruction against the truth, by region (§3.4, Fig. 7)", ReconstructCommand.Run),
+        new("camera", "a render seen by a simulated camera: raw (NPY, PNG, DNG), processed sRGB, ΔE00 and SNR per patch", CameraCommand.Run),
+        new("recover", "spectral reflectance from a camera's signals (pinv, Wiener, linear model, Tikhonov) against the truth", RecoverCommand.Run),
     ];
 
     /// <summary>Adds a command (a plug-in, a test) after the built-in ones; its name is lower-case letters, digits and '-'.</summary>
@@ -42,17 +42,21 @@ public static class CommandLine
         lock (Commands)
         {
             if (name is "help" || Commands.Any(c => c.Name == name)) throw new ArgumentException($"the command '{name}' exists already", nameof(name));
-            Commands.Add((name, summary, run));
+            Commands.Add(new(name, summary, run));
         }
     }
 
     /// <summary>The commands' names, in the order of `spectral --help`.</summary>
     public static string[] Names => [.. Table().Select(c => c.Name)];
 
-    static (string Name, string Summary, Func<string[], TextWriter, TextWriter, int> Run)[] Table()
+    static Command[] Table()
     {
         lock (Commands) return [.. Commands];
     }
+
+    /// <summary>A command: its name, its line in `spectral --help` and its handler. A class, not a tuple: a list of tuples of
+    /// references is a generic instantiation the ReadyToRun image cannot hold, compiled at every start.</summary>
+    sealed record Command(string Name, string Summary, Func<string[], TextWriter, TextWriter, int> Run);
 
     public static string Version => typeof(CommandLine).Assembly.GetName().Version?.ToString(3) ?? "0.0.0";
 
@@ -66,8 +70,9 @@ public static class CommandLine
         }
         if (args[0] == "--version") { stdout.WriteLine($"spectral {Version}"); return Success; }
         var commands = Table();
-        var cmd = commands.FirstOrDefault(c => c.Name == args[0]);
-        if (cmd.Name is null)
+        Command? cmd = null;
+        foreach (var c in commands) if (c.Name == args[0]) { cmd = c; break; }
+        if (cmd is null)
         {
             stderr.WriteLine($"spectral: unknown command '{args[0]}' (hint: {InputException.DidYouMean(args[0], commands.Select(c => c.Name)) ?? "see 'spectral --help'"})");
             return BadInput;

@@ -28,7 +28,8 @@ public static class RenderMemory
         if (triangles > 0) parts.Add(("BVH", 160L * triangles));
         // The inputs the products share, once; then what each product's writers hold.
         var products = OutputProductTable.For(p, named);
-        var needs = products.Aggregate(ProductInputs.None, (a, x) => a | x.Needs);
+        var needs = ProductInputs.None;
+        foreach (var product in products) needs |= product.Needs;
         if (needs.HasFlag(ProductInputs.BandPlanes)) parts.Add(("band planes", 4 * n * bands));
         if (needs.HasFlag(ProductInputs.Xyz)) parts.Add(("XYZ planes", 24 * n));
         foreach (var product in products) parts.AddRange(product.Memory(scene, threads));

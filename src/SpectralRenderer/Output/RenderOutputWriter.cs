@@ -111,7 +111,8 @@ public static class RenderOutputWriter
         ReusedFiles? reuse, IReadOnlyList<OutputProduct>? named)
     {
         var products = OutputProductTable.For(scene.Output.Products, named);
-        var needs = products.Aggregate(ProductInputs.None, (a, p) => a | p.Needs);
+        var needs = ProductInputs.None;
+        foreach (var p in products) needs |= p.Needs;
         var writeClock = System.Diagnostics.Stopwatch.StartNew();
         var image = result.Image;
         CheckFinite(image);
@@ -145,16 +146,23 @@ public static class RenderOutputWriter
         };
 
         // The products' writers are independent files: run them side by side; each keeps its own list, in a fixed order.
-        var writers = products.SelectMany(p => Enumerable.Range(0, p.Parts).Select(part => (Product: p, Part: part))).ToArray();
-        var groups = new List<string>[writers.Length];
-        for (int g = 0; g < groups.Length; g++) groups[g] = [];
-        Action<string> Done(int g) => name => { lock (groups[g]) groups[g].Add(name); cancel.ThrowIfCancellationRequested(); };
+        // (Plain loops: LINQ over (product, part) tuples is generic code the ReadyToRun image cannot hold, compiled at every start.)
+        var groups = new List<List<string>>();
+        var actions = new List<Action>();
+        Action<string> Done(List<string> group) => name => { lock (group) group.Add(name); cancel.ThrowIfCancellationRequested(); };
         RenderManifest? manifest = null;
+        foreach (var product in products)
+            for (int part = 0; part < product.Parts; part++)
+            {
+                var group = new List<string>();
+                groups.Add(group);
+                int which = part;
+                actions.Add(() => product.Write(context, which, Done(group)));
+            }
+        actions.Add(() => manifest = Describe(scene, result, scale, run, encoder));
         try
         {
-            var actions = writers.Select((w, g) => (Action)(() => w.Product.Write(context, w.Part, Done(g))))
-                .Append(() => manifest = Describe(scene, result, scale, run, encoder)).ToArray();
-            Parallel.Invoke(new ParallelOptions { CancellationToken = cancel }, actions);
+            Parallel.Invoke(new ParallelOptions { CancellationToken = cancel }, actions.ToArray());
         }
         catch (AggregateException e)
         {
