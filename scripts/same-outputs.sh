@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Same outputs beyond the render: for the paper's scenes (scenes/*.json of OLD_COMMIT), OLD_COMMIT's build and the
 # working tree's each run the commands that read or assemble renders —
-#   render --formats all,lights;  relight (every light to CIE A, and --metrics);  render --shard 0/2, 1/2 + merge;
+#   render --formats all,lights (all for a scene of another integrator than whitted: no per-light transfer);
+#   relight (every light to CIE A, and --metrics);  render --shard 0/2, 1/2 + merge;
 #   camera (nikon-d5100, wheel-6, noise on) and recover --method all on the §3.1 and §3.4 scenes —
 # and every file they write is compared byte for byte (JSON files without the fields that record the run: times,
 # rates, date, command line, folders, threads, build id). Prints one line per scene and step; exits 1 when any differs.
@@ -33,9 +34,12 @@ volatile='"(created_utc|render|mrays_per_s|command_line|load_s|build_s|build|wri
 # run TAG DLL SCENE NAME: every command of the list for one scene into $out/NAME.TAG/.
 run() {
     local tag=$1 dll=$2 scene=$3 name=$4 d="$out/$4.$1"
-    local lights=() l
-    dotnet "$dll" render "$scene" -o "$d/render" --quiet --threads 2 --formats all,lights "${opts[@]}"
-    mapfile -t lights < <(python3 -c 'import json,sys; [print(l["name"]) for l in json.load(open(sys.argv[1]))["lights"]]' "$d/render/render.json")
+    local lights=() l formats=all,lights integrator
+    # The per-light transfer (lights, relight) is the Whitted model's: another integrator's scene renders without it.
+    integrator=$(python3 -c 'import re,sys; m=re.search(r"\"integrator\"\s*:\s*(?:\{[^}]*\"type\"\s*:\s*)?\"(\w+)\"", open(sys.argv[1]).read()); print(m.group(1) if m else "whitted")' "$scene")
+    [[ $integrator == whitted ]] || formats=all
+    dotnet "$dll" render "$scene" -o "$d/render" --quiet --threads 2 --formats "$formats" "${opts[@]}"
+    [[ $formats == all ]] || mapfile -t lights < <(python3 -c 'import json,sys; [print(l["name"]) for l in json.load(open(sys.argv[1]))["lights"]]' "$d/render/render.json")
     if ((${#lights[@]})); then
         local relight=()
         for l in "${lights[@]}"; do relight+=(--light "$l=A"); done
