@@ -143,6 +143,8 @@ public class MicrofacetTests(Xunit.Abstractions.ITestOutputHelper output)
             output.WriteLine($"α = {alpha}, θo = {theta}°: albedo {a:F4}");
             Assert.True(a <= 1 + 1e-4, $"α {alpha} θ {theta}: albedo {a:F5} > 1");
             Assert.Equal(a, albedo[2], 1e-5);
+            // At α = 1 and normal incidence D = 1/π and G₂ = 2 cos θi/(1 + cos θi), so the albedo is ∫₀¹ μ/(1 + μ) dμ = 1 − ln 2.
+            if (alpha == 1 && theta == 0) Assert.Equal(1 - Math.Log(2), Albedo(bsdf, Incidence(0), 300, 64)[0], 1e-3);
             // (The 128 strata resolve the tail of tilts beyond 45° only from α ≈ 0.1 on.)
             if (theta == 0 && alpha >= 0.1f) Assert.True(a <= 1 / (1 + alpha * alpha) + 1e-4, $"α {alpha}: albedo {a:F5} > 1/(1 + α²)");
             // Polished: α = 0.01 within 0.1 % of all the light up to 45°, α = 0.05 within 0.5 %, α = 0.2 within 8 %.
