@@ -22,6 +22,8 @@ public static class MaterialModels
     {
         [Default] = new(["diffuse", "ambient", "specular", "shininess", "model", "mirror", "transmit", "ior", "fresnel"], Eq2),
         ["lambertian"] = new(["reflectance"], Lambertian),
+        ["conductor"] = new(ConductorMaterial.Keys, ConductorMaterial.Make),
+        ["plastic"] = new(PlasticMaterial.Keys, PlasticMaterial.Make),
     };
 
     public static IReadOnlyDictionary<string, MaterialModel> ByName => Volatile.Read(ref s_byName);
@@ -44,8 +46,9 @@ public static class MaterialModels
         {
             var given = s.String("model").ToLowerInvariant();
             if (!SpecularModels.ByName.TryGetValue(given, out model))
-                throw s.Error("model", $"unknown specular model '{given}'",
-                    $"use {string.Join(" or ", SpecularModels.ByName.Values.Select(x => x.Name).Distinct())}");
+                throw s.Error("model", $"unknown specular model '{given}'", ByName.ContainsKey(given)
+                    ? $"'{given}' is a material type: write \"type\": \"{given}\" (\"model\" shapes eq. 2's specular lobe)"
+                    : $"use {string.Join(" or ", SpecularModels.ByName.Values.Select(x => x.Name).Distinct())}");
         }
         var mirror = s.Bands("mirror");
         var transmit = s.Bands("transmit");

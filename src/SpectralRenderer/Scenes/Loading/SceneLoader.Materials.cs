@@ -155,5 +155,18 @@ public sealed partial class SceneLoader
         public Material Diffuse(float[] bands, TabulatedSpectrum? spectrum, Bsdf? bsdf = null) =>
             _loader.DiffuseMaterial(Name, bands, spectrum, bsdf);
         public InputException Error(string key, string what, string hint) => _loader.Error($"{_path}.{key}", what, hint);
+        /// <summary>The scene's band grid (band values are padded beyond its count).</summary>
+        public BandGrid Grid => _loader._grid;
+        /// <summary>The key is given as a JSON string.</summary>
+        public bool IsString(string key) => TryGet(_e, key, out var v) && v.ValueKind == JsonValueKind.String;
+        /// <summary>A required non-negative spectrum that is not a reflectance (an optical constant such as n or k).</summary>
+        public TabulatedSpectrum Spectrum(string key) => _loader.Spectrum(_loader.Required(_e, key, _path), $"{_path}.{key}");
+        /// <summary>A required object under <paramref name="key"/> with only the keys <paramref name="keys"/>, read as a source of its own.</summary>
+        public MaterialSource Object(string key, params string[] keys)
+        {
+            var o = _loader.Object(_loader.Required(_e, key, _path), $"{_path}.{key}");
+            _loader.Keys(o, $"{_path}.{key}", keys);
+            return new MaterialSource(_loader, o, $"{_path}.{key}") { Name = Name };
+        }
     }
 }
