@@ -135,15 +135,21 @@ import spectralrenderer as sr
 def rss():
     return int(open("/proc/self/statm").read().split()[1]) * os.sysconf("SC_PAGE_SIZE")
 for i in range(100):
-    r = sr.render({scene!r}, width=64, height=48)
+    r = sr.render({scene!r}, width=8, height=8)
     r.cube.sum(); r.xyz; r.ids; r.manifest
-    del r
+    cap = sr.camera(r, sensor="cie-xyz", noise=False, signals="bands")
+    cap.raw.sum(); cap.manifest
+    if i % 4 == 0:   # a relight (its transfer traced, the scene parsed again: ~30 ms) every fourth render
+        relit = sr.relight(r, lights={{"D65": "blackbody:3000"}})
+        relit.cube.sum()
+        del relit
+    del r, cap
     if i == 9: ten = rss()
 print(ten, rss())
 """
 
 
-def test_repeated_renders_do_not_leak(sr, repo):
+def test_repeated_renders_relights_and_captures_do_not_leak(sr, repo):
     p = subprocess.run([sys.executable, "-c", LEAK.format(python=str(repo / "python"), scene=str(repo / CHART))],
                        capture_output=True, text=True, env=os.environ)
     assert p.returncode == 0, p.stderr
