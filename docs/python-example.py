@@ -28,16 +28,20 @@ except ImportError:   # run from a checkout without the wheel installed: the pac
 
 
 def optional(name):
+    """The module, or None when it is not installed (or is only a stand-in: colour-science puts a mock Matplotlib
+    without a version into sys.modules when the real one is missing)."""
     try:
-        return __import__(name)
+        module = __import__(name)
     except ImportError:
         return None
+    return module if getattr(module, "__version__", None) else None
 
 
-colour = optional("colour")          # colour-science
-matplotlib = optional("matplotlib")
+matplotlib = optional("matplotlib")  # before colour-science, which may stand a mock in for it
 if matplotlib:
     matplotlib.use("Agg")
+    import matplotlib.pyplot  # noqa: E402,F401
+colour = optional("colour")          # colour-science
 
 
 def mesh_missing(scene):

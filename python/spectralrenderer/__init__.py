@@ -419,6 +419,9 @@ def plot_spectrum(x, y, ax=None, label=None, xlabel="wavelength (nm)", ylabel=No
 
     y is one spectrum (N values) or several (K x N, one line each; label a list of K names). Returns the Axes."""
     try:
+        import matplotlib
+        if not getattr(matplotlib, "__version__", None):   # colour-science's stand-in when Matplotlib is missing
+            raise ImportError
         import matplotlib.pyplot as plt
     except ImportError:
         raise ImportError("plot_spectrum needs Matplotlib (pip install matplotlib, or Debian's python3-matplotlib)") from None

@@ -49,7 +49,8 @@ public static unsafe partial class NativeExports
     public static void CaptureShape(nint h, int* height, int* width, int* planes, int* channels)
     {
         var c = Get(h)?.Capture;
-        *height = c?.Raw.Height ?? 0; *width = c?.Raw.Width ?? 0; *planes = c?.Raw.Planes ?? 0; *channels = c?.Raw.Sensor.ChannelCount ?? 0;
+        *height = c?.Raw.Height ?? 0; *width = c?.Raw.Width ?? 0;
+        *planes = c?.Raw.Planes ?? 0; *channels = c?.Raw.Sensor.ChannelCount ?? 0;
     }
 
     /// <summary>The raw digital numbers, H × W (× planes) float32: raw.npy's values.</summary>
@@ -80,7 +81,8 @@ public static unsafe partial class NativeExports
         try
         {
             var capture = Get(h)?.Capture
-                ?? throw new InputException("spectral_recover", "the handle holds no capture", "recover from what spectral_camera returned");
+                ?? throw new InputException("spectral_recover", "the handle holds no capture",
+                    "recover from what spectral_camera returned");
             handle.SetRecovery(NativeRecovery.Run(capture, Utf8(options)));
         }
         catch (Exception e)
@@ -100,7 +102,8 @@ public static unsafe partial class NativeExports
         (float*)RecoveryGuard(h, r => i >= 0 && i < r.Results.Count ? r.Pin(r.Results[i].Reflectance) : 0);
 
     /// <summary>
-    /// The recovery as JSON: {"methods": [names in order], "shape": [H, W, N], "wavelengths": [...], "metrics_csv": recovery-metrics.csv's text, …}.
+    /// The recovery as JSON: {"methods": [names in order], "shape": [H, W, N], "wavelengths": [...], "metrics_csv":
+    /// recovery-metrics.csv's text, …}.
     /// </summary>
     [UnmanagedCallersOnly(EntryPoint = "spectral_recovery_manifest")]
     public static byte* RecoveryManifest(nint h) => (byte*)RecoveryGuard(h, r => (nint)r.ManifestUtf8);
@@ -122,7 +125,10 @@ public static unsafe partial class NativeExports
     {
         JsonObject o;
         try { o = json is null ? [] : JsonNode.Parse(json) as JsonObject ?? throw new JsonException("not an object"); }
-        catch (JsonException e) { throw new InputException(what, $"not a JSON object: {e.Message}", $"known keys: {string.Join(", ", known)}"); }
+        catch (JsonException e)
+        {
+            throw new InputException(what, $"not a JSON object: {e.Message}", $"known keys: {string.Join(", ", known)}");
+        }
         foreach (var (key, _) in o)
             if (Array.IndexOf(known, key) < 0)
                 throw new InputException($"{what}.{key}", "unknown option",
@@ -203,7 +209,8 @@ sealed class NativeCapture : PinnedHolder
     /// <summary>CameraCommand.Run's steps, with the render's folder replaced by the render in memory.</summary>
     public static NativeCapture Run(NativeRender render, string? json)
     {
-        var o = NativeExports.OptionsObject(json, "options", "sensor", "exposure", "seed", "noise", "radiance_scale", "demosaic", "signals", "threads");
+        var o = NativeExports.OptionsObject(json, "options", "sensor", "exposure", "seed", "noise", "radiance_scale", "demosaic",
+            "signals", "threads");
         var (scene, renderScene, transfer) = render.CameraInput();
         var sensorName = NativeExports.Text(o, "sensor") ?? SensorFile.SceneArgument;
         var sensor = sensorName == SensorFile.SceneArgument
@@ -217,7 +224,9 @@ sealed class NativeCapture : PinnedHolder
             else sensor = sensor with
             {
                 ExposureSeconds = ex is JsonValue v && v.TryGetValue(out double t) && t > 0 && double.IsFinite(t) ? t
-                    : throw new InputException("options.exposure", $"{MessageText.Quote(ex.ToJsonString())} must be auto or positive seconds", "e.g. exposure=\"auto\" or exposure=0.01 (seconds)"),
+                    : throw new InputException("options.exposure",
+                        $"{MessageText.Quote(ex.ToJsonString())} must be auto or positive seconds",
+                        "e.g. exposure=\"auto\" or exposure=0.01 (seconds)"),
             };
         }
         bool noise = NativeExports.Text(o, "noise") switch
@@ -230,21 +239,25 @@ sealed class NativeCapture : PinnedHolder
         {
             null or "malvar" => DemosaicMethod.Malvar,
             "bilinear" => DemosaicMethod.Bilinear,
-            var v => throw new InputException("options.demosaic", $"'{v}' is not malvar or bilinear", "demosaic=\"malvar\" or \"bilinear\""),
+            var v => throw new InputException("options.demosaic", $"'{v}' is not malvar or bilinear",
+                "demosaic=\"malvar\" or \"bilinear\""),
         };
         ulong seed = o["seed"] is null ? 1 : o["seed"] is JsonValue sv && sv.TryGetValue(out ulong s) ? s
-            : throw new InputException("options.seed", $"{MessageText.Quote(o["seed"]!.ToJsonString())} is not a whole number ≥ 0", "e.g. seed=1");
+            : throw new InputException("options.seed", $"{MessageText.Quote(o["seed"]!.ToJsonString())} is not a whole number ≥ 0",
+                "e.g. seed=1");
         double scale = 1;
         if (o["radiance_scale"] is { } rs && !(rs is JsonValue rv && rv.TryGetValue(out scale) && scale > 0 && double.IsFinite(scale)))
             throw new InputException("options.radiance_scale", "must be positive", "W·m⁻²·sr⁻¹·nm⁻¹ per band unit");
         int threads = -1;
         if (o["threads"] is { } th && !(th is JsonValue tv && tv.TryGetValue(out threads) && threads >= 1 && threads <= 1024))
-            throw new InputException("options.threads", $"{MessageText.Quote(th.ToJsonString())} is not an integer from 1 to 1024", "e.g. threads=2");
+            throw new InputException("options.threads", $"{MessageText.Quote(th.ToJsonString())} is not an integer from 1 to 1024",
+                "e.g. threads=2");
         bool wantExact = NativeExports.Text(o, "signals") switch
         {
             null or "exact" => true,
             "bands" => false,
-            var v => throw new InputException("options.signals", $"'{v}' is not exact or bands", "signals=\"exact\" (default) or \"bands\""),
+            var v => throw new InputException("options.signals", $"'{v}' is not exact or bands",
+                "signals=\"exact\" (default) or \"bands\""),
         };
 
         var options = new SimulationOptions { Seed = seed, Noise = noise, Threads = threads };
@@ -252,7 +265,8 @@ sealed class NativeCapture : PinnedHolder
         double whiteScale = 1;
         string whiteSource = "1: the light's band values (the paper's white; the render's eq. 2 terms were not used)";
         if (wantExact && transfer is { } traced
-            && ExactChannelSignals.Compute(scene, sensor, renderScene, traced, "the render's per-light transfer (traced in memory: the render's rays)",
+            && ExactChannelSignals.Compute(scene, sensor, renderScene, traced,
+                "the render's per-light transfer (traced in memory: the render's rays)",
                 threads, out _) is { } exact)
         {
             cube = cube with { ChannelIntegrals = exact.Integrals, Route = exact.Route };
@@ -260,14 +274,16 @@ sealed class NativeCapture : PinnedHolder
             whiteSource = exact.WhiteScaleSource;
         }
         var raw = SensorSimulation.Run(sensor, cube, scene.Light, options);
-        var colour = ColourCorrection.Fit(raw.Weights, scene.Grid, scene.Light, scene.Observer, cube.ChannelIntegrals is null ? null : sensor, whiteScale);
+        var colour = ColourCorrection.Fit(raw.Weights, scene.Grid, scene.Light, scene.Observer,
+            cube.ChannelIntegrals is null ? null : sensor, whiteScale);
         var image = ImageProcessing.Run(raw, colour, demosaic);
         var patches = CameraPatchMetrics.Compute(scene, raw, image, colour);
 
         bool relative = scene.Radiometry != "physical";
         var manifest = CameraManifest.Build(raw, colour, scene.Grid, scene.LightName, scale,
             o["radiance_scale"] is not null ? "given with radiance_scale"
-            : relative ? "default 1: the render's radiometry is relative (the paper's eq. 2 has no units), so its band values are taken as W·m⁻²·sr⁻¹·nm⁻¹"
+            : relative ? "default 1: the render's radiometry is relative (the paper's eq. 2 has no units), so its band values are "
+                + "taken as W·m⁻²·sr⁻¹·nm⁻¹"
             : "default 1: the render's physical radiometry is in W·m⁻²·sr⁻¹·nm⁻¹", cube.Route, whiteSource);
         manifest["sensor_argument"] = sensorName;
         manifest["render_radiometry"] = scene.Radiometry ?? "paper";
@@ -312,10 +328,12 @@ sealed class NativeCapture : PinnedHolder
         var options = new SimulationOptions { Seed = Raw.Options.Seed, Noise = Raw.Options.Noise };
         var weights = ChannelWeights.Compute(sensor, Scene.Grid, Scene.Light, RadianceScale);
         var exposures = Raw.ExposureSeconds.ToArray();
-        var raw = new RawFrame(Raw.Width, Raw.Height, Raw.Planes, Raw.Dn, exposures, new double[exposures.Length], weights, sensor, options);
+        var raw = new RawFrame(Raw.Width, Raw.Height, Raw.Planes, Raw.Dn, exposures, new double[exposures.Length], weights, sensor,
+            options);
         bool exact = Manifest["simulation"]?["signal_route"]?.GetValue<string>().StartsWith("exact", StringComparison.Ordinal) == true;
         var colour = ColourCorrection.Fit(weights, Scene.Grid, Scene.Light, Scene.Observer, exact ? sensor : null, WhiteScale);
-        return new CameraCapture { Dir = "", Manifest = Manifest, Scene = Scene, Raw = raw, Image = ImageProcessing.Run(raw, colour, Demosaic), Colour = colour };
+        var image = ImageProcessing.Run(raw, colour, Demosaic);
+        return new CameraCapture { Dir = "", Manifest = Manifest, Scene = Scene, Raw = raw, Image = image, Colour = colour };
     }
 }
 
@@ -361,10 +379,12 @@ sealed class NativeRecovery : PinnedHolder
         {
             range = rn is JsonArray { Count: 2 } a && a[0] is JsonValue l && l.TryGetValue(out double lo)
                 && a[1] is JsonValue h && h.TryGetValue(out double hi) && hi > lo ? (lo, hi)
-                : throw new InputException("options.range", $"{MessageText.Quote(rn.ToJsonString())} is not [lo, hi] in nm", "e.g. range=(400, 700)");
+                : throw new InputException("options.range", $"{MessageText.Quote(rn.ToJsonString())} is not [lo, hi] in nm",
+                    "e.g. range=(400, 700)");
         }
         var (firstBand, bandCount) = RecoveryEvaluation.BandsInside(scene.Grid, range);
-        string rangeText = string.Create(CultureInfo.InvariantCulture, $"{scene.Grid.Lower(firstBand):0.##}-{scene.Grid.Upper(firstBand + bandCount - 1):0.##}");
+        string rangeText = string.Create(CultureInfo.InvariantCulture,
+            $"{scene.Grid.Lower(firstBand):0.##}-{scene.Grid.Upper(firstBand + bandCount - 1):0.##}");
         var results = methods.Select(m => RecoveryEvaluation.Run(capture, m, training, white?.Mask, white?.Description, range)).ToList();
         var inv = CultureInfo.InvariantCulture;
         var csv = new StringBuilder("method,region,count,rmse,gfc,dE00_D65,dE00_A,metric_range_nm\n");
@@ -375,9 +395,11 @@ sealed class NativeRecovery : PinnedHolder
 
     static WhiteReference Region(CameraScene scene, JsonNode node)
     {
-        var v = node is JsonArray { Count: 4 } a ? a.Select(x => x is JsonValue n && n.TryGetValue(out int i) ? i : (int?)null).ToArray() : [];
+        var v = node is JsonArray { Count: 4 } a ? a.Select(x => x is JsonValue n && n.TryGetValue(out int i) ? i : (int?)null).ToArray()
+            : [];
         if (v.Length != 4 || v.Any(n => n is null))
-            throw new InputException("options.white_region", $"{MessageText.Quote(node.ToJsonString())} is not [x0, y0, x1, y1]", "four whole pixel numbers, e.g. (0, 0, 15, 9)");
+            throw new InputException("options.white_region", $"{MessageText.Quote(node.ToJsonString())} is not [x0, y0, x1, y1]",
+                "four whole pixel numbers, e.g. (0, 0, 15, 9)");
         return Reconstruction.WhiteRegion(scene.Folder, v[0]!.Value, v[1]!.Value, v[2]!.Value, v[3]!.Value);
     }
 }

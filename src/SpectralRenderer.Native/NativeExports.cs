@@ -324,7 +324,8 @@ sealed unsafe class NativeRender : IDisposable
         {
             if (_transfer is not null) return _transfer;
             if (job.IntegratorName != Integrators.Default || job.Geometry is null)
-                throw new InputException("integrator", $"the per-light transfer is the Whitted model's; the {job.IntegratorName} integrator does not record one",
+                throw new InputException("integrator",
+                    $"the per-light transfer is the Whitted model's; the {job.IntegratorName} integrator does not record one",
                     "render with integrator=\"whitted\" to relight");
             return _transfer = LightTransfer.Trace(job.Scene, job.Geometry, job.Threads, cancel);
         }
@@ -341,7 +342,8 @@ sealed unsafe class NativeRender : IDisposable
         // render.json's text parsed back, as relight reads it from the folder.
         var manifest = RenderManifest.Parse(JsonNode.Parse(Marshal.PtrToStringUTF8((nint)ManifestUtf8)!)!.AsObject(), ScenePath);
         var resolved = manifest.ResolvedScene
-            ?? throw new InputException("spectral_relight", "the render has no resolved scene", "render again with this version of spectral");
+            ?? throw new InputException("spectral_relight", "the render has no resolved scene",
+                "render again with this version of spectral");
         var document = resolved.ToJson();
         var (changes, white) = Changes(json, document);
         var overrides = RenderJob.Overrides(RenderJob.Recorded(Overrides)) with { LoadMeshes = false };
@@ -362,7 +364,8 @@ sealed unsafe class NativeRender : IDisposable
         {
             From = "a render in memory (spectralrenderer, libspectral)",
             FromCreatedUtc = manifest.CreatedUtc,
-            Method = "per-light transfer: L_b = sum_c F_c * P_c,b and XYZ = sum_c F_c * XYZ_c with P_c rebuilt from the new lights' term tables; "
+            Method = "per-light transfer: L_b = sum_c F_c * P_c,b and XYZ = sum_c F_c * XYZ_c with P_c rebuilt from the new lights' "
+                + "term tables; "
                 + "no rays traced into the picture",
             Changes = changes.Select(c => new ManifestLightChange(c.Light, c.Spectrum, c.Intensity)).ToArray(),
             White = white,
@@ -376,7 +379,10 @@ sealed unsafe class NativeRender : IDisposable
     {
         JsonObject o;
         try { o = json is null ? [] : JsonNode.Parse(json) as JsonObject ?? throw new JsonException("not an object"); }
-        catch (JsonException e) { throw new InputException("changes", $"not a JSON object: {e.Message}", "pass {\"lights\": {\"NAME\": {\"spectrum\": \"A\"}}}"); }
+        catch (JsonException e)
+        {
+            throw new InputException("changes", $"not a JSON object: {e.Message}", "pass {\"lights\": {\"NAME\": {\"spectrum\": \"A\"}}}");
+        }
         string? Spectrum(JsonNode? node, string where, string name)
         {
             switch (node)
@@ -413,13 +419,15 @@ sealed unsafe class NativeRender : IDisposable
                     double? intensity = null;
                     if (c["intensity"] is { } f)
                         intensity = f is JsonValue fv && fv.TryGetValue(out double d) && double.IsFinite(d) && d >= 0 ? d
-                            : throw new InputException("--intensity", $"{MessageText.Quote(f.ToJsonString())} is not a non-negative number", "e.g. intensity 0.5");
+                            : throw new InputException("--intensity", $"{MessageText.Quote(f.ToJsonString())} is not a non-negative number",
+                                "e.g. intensity 0.5");
                     changes.Add(new LightChange(name, Spectrum(c["spectrum"], where, $"relight-{name}"), intensity));
                 }
                 else changes.Add(new LightChange(name, Spectrum(value, where, $"relight-{name}"), null));
             }
         else if (o["lights"] is { } bad)
-            throw new InputException("changes.lights", "not an object", "{\"NAME\": \"SPECTRUM\"} or {\"NAME\": {\"spectrum\": …, \"intensity\": …}}");
+            throw new InputException("changes.lights", "not an object",
+                "{\"NAME\": \"SPECTRUM\"} or {\"NAME\": {\"spectrum\": …, \"intensity\": …}}");
         return (changes, Spectrum(o["white"], "--white", "relight-white"));
     }
 
@@ -449,7 +457,14 @@ sealed unsafe class NativeRender : IDisposable
             var p = Planes;
             for (int i = 0; i < n; i++) { x[i] = (float)p.X[i]; y[i] = (float)p.Y[i]; z[i] = (float)p.Z[i]; }
         }
-        var folder = new RenderFolder { Path = ScenePath, Manifest = manifest, Image = image, ObjectIds = result.ObjectIds, PixelXyz = (x, y, z) };
+        var folder = new RenderFolder
+        {
+            Path = ScenePath,
+            Manifest = manifest,
+            Image = image,
+            ObjectIds = result.ObjectIds,
+            PixelXyz = (x, y, z),
+        };
         int lights = job.Scene.Lights.Count;
         var planes = AnalysisImages.GroundTruthBands(job.Scene, result);
         var truth = new SpectralImage(image.Width, image.Height, image.Grid);
@@ -458,7 +473,8 @@ sealed unsafe class NativeRender : IDisposable
         var aovs = new RenderAovs
         {
             Lit = lights <= LitMasks.MaxLights
-                ? Enumerable.Range(0, lights).Select(k => Enumerable.Range(0, n).Select(i => result.LitMasks.IsLit(i, k)).ToArray()).ToArray()
+                ? Enumerable.Range(0, lights)
+                    .Select(k => Enumerable.Range(0, n).Select(i => result.LitMasks.IsLit(i, k)).ToArray()).ToArray()
                 : null,
             LightNames = manifest.Lights.Select(l => l.Name).ToArray(),
             Highlight = result.Highlights.Select(v => v * 2 > 255).ToArray(),
