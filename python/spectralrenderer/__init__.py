@@ -5,7 +5,12 @@
     r.cube          # H x W x N float32, the values of `spectral render`'s spectral.npy (a view of the library's buffer)
     r.wavelengths   # N band centres, nm
     r.save("out/chart")   # the folder `spectral render -o out/chart` writes
+    warm = sr.relight(r, lights={"D65": "blackbody:3000"})   # `spectral relight`, from the render in memory
+    cap = sr.camera(r, sensor="nikon-d5100")                  # `spectral camera`: cap.raw, cap.srgb, cap.manifest
+    rec = sr.recover(cap, method="wiener")                    # `spectral recover`: rec["wiener"], rec.metrics
 
+Spectra are names ("D65", "blackbody:3000", "colorchecker:14", "file.csv:column") or NumPy arrays: an N x 2 array of
+(nm, value) rows, or a pair (wavelengths, values) — see spectrum(). Scene dicts may hold NumPy arrays anywhere.
 Rendering runs in the library with the GIL released; Ctrl-C cancels it (KeyboardInterrupt). Bad input raises
 SpectralError whose message is the one line the command line prints.
 """
@@ -21,7 +26,8 @@ import numpy as np
 
 from . import _native
 
-__all__ = ["render", "Render", "SpectralError", "abi_version"]
+__all__ = ["render", "relight", "camera", "recover", "spectrum", "plot_spectrum", "Render", "Capture", "Recovery",
+           "SpectralError", "abi_version"]
 __version__ = "0.1.0"
 
 
@@ -38,10 +44,44 @@ def abi_version():
     return _native.lib().spectral_abi_version()
 
 
+def spectrum(wavelengths, values=None):
+    """A spectrum value of the scene format from arrays: inline [[nm, value], …] pairs (linear in between).
+
+    spectrum(wl, v) with two 1-D arrays of one length, or spectrum(a) with an N x 2 array of (nm, value) rows. Names
+    ("D65", "blackbody:3000", …) and such pairs are what render(), relight() and scene dicts take as a spectrum."""
+    if values is None:
+        a = np.asarray(wavelengths, dtype=float)
+        if a.ndim != 2 or a.shape[1] != 2:
+            raise ValueError(f"a spectrum array is N x 2 (nm, value) rows, not {a.shape}")
+        return a.tolist()
+    wl, v = np.asarray(wavelengths, dtype=float), np.asarray(values, dtype=float)
+    if wl.ndim != 1 or wl.shape != v.shape:
+        raise ValueError(f"wavelengths {wl.shape} and values {v.shape} must be 1-D of one length")
+    return np.stack([wl, v], axis=1).tolist()
+
+
+def _spectrum_value(value):
+    """A spectrum given as a name, a number, pairs, an N x 2 array or a (wavelengths, values) pair, as JSON."""
+    if isinstance(value, (str, int, float)) or value is None:
+        return value
+    if isinstance(value, tuple) and len(value) == 2 and np.ndim(value[0]) == 1:
+        return spectrum(value[0], value[1])
+    return spectrum(value)
+
+
+def _json_default(o):
+    """NumPy arrays and scalars in a scene dict, as JSON lists and numbers."""
+    if isinstance(o, np.ndarray):
+        return o.tolist()
+    if isinstance(o, np.generic):
+        return o.item()
+    raise TypeError(f"{type(o).__name__} is not JSON serializable")
+
+
 def _scene_text(scene):
     """(UTF-8 JSON, the name it is loaded under): a dict, JSON text, or a scene file's path."""
     if isinstance(scene, dict):
-        return json.dumps(scene).encode(), "<dict>"
+        return json.dumps(scene, default=_json_default).encode(), "<dict>"
     if isinstance(scene, str) and scene.lstrip().startswith("{"):
         return scene.encode(), "<text>"
     path = os.fspath(scene)
@@ -71,21 +111,27 @@ def render(scene, width=None, height=None, bands=None, wave=None, spp=None, inte
     opts = {k: v for k, v in dict(width=width, height=height, bands=None if bands is None else str(bands), wave=wave,
                                   spp=spp, integrator=integrator, threads=threads, rgb=rgb, integration=integration,
                                   formats=formats).items() if v is not None}
-    cancel = ctypes.c_int(0)
     callback = _native.PROGRESS(lambda _user, done, total: progress(done, total)) if progress else _native.PROGRESS()
+    return Render(_handle=_call(lib, "spectral_render", lambda cancel: lib.spectral_render(
+        text, name.encode(), json.dumps(opts).encode(), cancel, callback, None)))
+
+
+def _call(lib, what, call):
+    """A handle from call(cancel flag) run in a worker thread (the foreign call releases the GIL, so the main thread stays
+    free to see Ctrl-C, which sets the flag the library polls after each tile and every 20 ms); an error raised."""
+    cancel = ctypes.c_int(0)
     out = {}
 
-    def run():  # the foreign call releases the GIL: the main thread stays free to see Ctrl-C
-        out["handle"] = lib.spectral_render(text, name.encode(), json.dumps(opts).encode(), ctypes.byref(cancel),
-                                            callback, None)
+    def run():
+        out["handle"] = call(ctypes.byref(cancel))
 
-    worker = threading.Thread(target=run, name="spectral_render", daemon=True)
+    worker = threading.Thread(target=run, name=what, daemon=True)
     worker.start()
     try:
         while worker.is_alive():
             worker.join(0.05)
     except KeyboardInterrupt:
-        cancel.value = 1   # polled by the render after each tile and every 20 ms
+        cancel.value = 1
         worker.join()
         handle = out.get("handle")
         if handle:
@@ -94,7 +140,67 @@ def render(scene, width=None, height=None, bands=None, wave=None, spp=None, inte
     handle = out["handle"]
     if lib.spectral_status(handle) != 0:
         raise _error(lib, handle)
-    return Render(_handle=handle)
+    return handle
+
+
+def relight(render, lights=None, white=None):
+    """The render under other lights, as `spectral relight` computes it (no ray traced into the picture): a new Render.
+
+    lights: {name: spectrum} or {name: {"spectrum": spectrum, "intensity": F}} (either key); white: a new reference white
+    (κ and the colour weights follow it). A spectrum is a name or arrays (see spectrum()). The render's per-light transfer
+    is traced once, on the first relight, and kept with it. Raises SpectralError with the command's one line."""
+    lib = _native.need(1, "relight")
+    if render._handle is None:
+        raise SpectralError("spectral relight: a render read from a folder has no render in memory "
+                            "(hint: relight a render from sr.render, or run 'spectral relight' on the folder)", 2)
+    changes = {}
+    for name, value in (lights or {}).items():
+        if isinstance(value, dict):
+            value = {k: (_spectrum_value(v) if k == "spectrum" else v) for k, v in value.items()}
+        else:
+            value = {"spectrum": _spectrum_value(value)}
+        changes[name] = value
+    body = json.dumps({"lights": changes, **({} if white is None else {"white": _spectrum_value(white)})},
+                      default=_json_default).encode()
+    return Render(_handle=_call(lib, "spectral_relight", lambda cancel: lib.spectral_relight(render._handle, body, cancel)))
+
+
+def camera(render, sensor=None, exposure=None, seed=None, noise=None, radiance_scale=None, demosaic=None, signals=None,
+           threads=None):
+    """The render seen by a simulated camera, as `spectral camera` (docs/camera.md): a Capture (raw, srgb, manifest).
+
+    sensor: a preset's name (isetcam, nikon-d5100, wheel-6, mosaic-16, cie-xyz, …), a sensor JSON file, or None for the
+    scene's camera "sensor"; exposure "auto" or seconds; noise True/False; signals "exact" (default: each eq. 2 term
+    integrated at full spectral resolution from the render's per-light transfer) or "bands"."""
+    lib = _native.need(1, "camera")
+    if render._handle is None:
+        raise SpectralError("spectral camera: a render read from a folder has no render in memory "
+                            "(hint: run 'spectral camera' on the folder, or render with sr.render)", 2)
+    opts = {k: v for k, v in dict(sensor=None if sensor is None else os.fspath(sensor), exposure=exposure, seed=seed,
+                                  noise=None if noise is None else ("on" if noise else "off"), radiance_scale=radiance_scale,
+                                  demosaic=demosaic, signals=signals, threads=threads).items() if v is not None}
+    handle = lib.spectral_camera(render._handle, json.dumps(opts).encode())
+    if lib.spectral_status(handle) != 0:
+        raise _error(lib, handle)
+    return Capture(handle, render)
+
+
+def recover(capture, method="all", training=None, white_object=None, white_region=None, range=None):
+    """Reflectance recovered from a capture, as `spectral recover` (pinv, wiener, linear, tikhonov, wiener-local): a
+    Recovery holding each method's H x W x N cube (rec["wiener"]) and the metrics against the render's ground truth.
+
+    method: a name, a list of names, or "all"; training: rawtoaces-190 (default), cie224-ces99, colorchecker or a CSV;
+    white_object / white_region (x0, y0, x1, y1): a white reference (§3.4); range (lo, hi) nm for RMSE and GFC."""
+    lib = _native.need(1, "recover")
+    if not isinstance(method, str):
+        method = ",".join(method)
+    opts = {k: v for k, v in dict(method=method, training=None if training is None else os.fspath(training),
+                                  white_object=white_object, white_region=None if white_region is None else list(white_region),
+                                  range=None if range is None else list(range)).items() if v is not None}
+    handle = lib.spectral_recover(capture._owner.ptr, json.dumps(opts).encode())
+    if lib.spectral_status(handle) != 0:
+        raise _error(lib, handle)
+    return Recovery(handle, capture)
 
 
 class Render:
@@ -203,6 +309,138 @@ class Render:
     def __repr__(self):
         h, w, n = self.shape
         return f"<spectralrenderer.Render {w}x{h}, {n} bands>"
+
+
+class Capture:
+    """A camera capture (sr.camera): arrays are views of the library's buffers, valid as long as they are held."""
+
+    def __init__(self, handle, render):
+        self._owner = _Handle(handle)
+        self._render = render   # the render it looked at (recover scores against its ground truth)
+        self._cache = {}
+        h, w, p, c = (ctypes.c_int() for _ in range(4))
+        _native.lib().spectral_capture_shape(handle, *(ctypes.byref(v) for v in (h, w, p, c)))
+        self.height, self.width, self.planes, self.channels = h.value, w.value, p.value, c.value
+
+    def _array(self, name, shape, dtype):
+        if name not in self._cache:
+            ptr = getattr(_native.lib(), "spectral_capture_" + name)(self._owner.ptr)
+            self._cache[name] = _view(ptr, shape, dtype, self._owner, "spectral camera", name)
+        return self._cache[name]
+
+    @property
+    def raw(self):
+        """The raw digital numbers, float32: H x W (one plane: a mosaic) or H x W x planes — raw.npy's values."""
+        shape = (self.height, self.width) if self.planes == 1 else (self.height, self.width, self.planes)
+        return self._array("raw", shape, np.float32)
+
+    @property
+    def srgb(self):
+        """H x W x 3 uint8: processed.png's pixels (demosaicked, white-balanced, colour-corrected sRGB)."""
+        return self._array("rgb8", (self.height, self.width, 3), np.uint8)
+
+    @property
+    def rates(self):
+        """H x W x channels float32: the demosaicked channel signals in electrons per second (what recovery reads)."""
+        return self._array("rates", (self.height, self.width, self.channels), np.float32)
+
+    @property
+    def manifest(self):
+        """camera.json as a dict (sensor, exposures, channel weights, colour matrix, patches; no "files")."""
+        if "manifest" not in self._cache:
+            self._cache["manifest"] = json.loads(_native.lib().spectral_capture_manifest(self._owner.ptr).decode())
+        return self._cache["manifest"]
+
+    @property
+    def patches(self):
+        """Per ColorChecker patch: ΔE00 of the corrected colour against the exact colour, SNR per channel (patches.csv)."""
+        return self.manifest.get("patches", [])
+
+    def _repr_png_(self):
+        return _png(self.srgb)
+
+    def __repr__(self):
+        return f"<spectralrenderer.Capture {self.manifest.get('sensor', {}).get('name', '?')} {self.width}x{self.height}>"
+
+
+class Recovery:
+    """Reflectance recovered from a capture (sr.recover): rec[method] is an H x W x N float32 cube (recovered-<method>.npy)."""
+
+    def __init__(self, handle, capture):
+        self._owner = _Handle(handle)
+        self._capture = capture
+        info = json.loads(_native.lib().spectral_recovery_manifest(handle).decode())
+        self.methods = info["methods"]
+        self.shape = tuple(info["shape"])
+        self.wavelengths = np.array(info["wavelengths"])
+        self.training = info["training"]
+        self.metrics_csv = info["metrics_csv"]
+        self._cache = {}
+
+    @property
+    def metrics(self):
+        """recovery-metrics.csv's rows as dicts: method, region, count, rmse, gfc, dE00_D65, dE00_A, metric_range_nm."""
+        lines = self.metrics_csv.strip().splitlines()
+        keys = lines[0].split(",")
+        conv = lambda k, v: v if k in ("method", "region", "metric_range_nm") else float(v)   # noqa: E731
+        return [{k: conv(k, v) for k, v in zip(keys, line.split(","))} for line in lines[1:]]
+
+    def __getitem__(self, method):
+        if method not in self.methods:
+            raise KeyError(f"{method!r}: this recovery holds {', '.join(self.methods)}")
+        if method not in self._cache:
+            i = self.methods.index(method)
+            ptr = _native.lib().spectral_recovery_reflectance(self._owner.ptr, i)
+            self._cache[method] = _view(ptr, self.shape, np.float32, self._owner, "spectral recover", method)
+        return self._cache[method]
+
+    @property
+    def cube(self):
+        """The one method's cube (a recovery of several methods: rec[name])."""
+        if len(self.methods) != 1:
+            raise ValueError(f"this recovery holds {len(self.methods)} methods: index it by name ({', '.join(self.methods)})")
+        return self[self.methods[0]]
+
+    def __repr__(self):
+        return f"<spectralrenderer.Recovery {', '.join(self.methods)} {self.shape}>"
+
+
+def _view(ptr, shape, dtype, owner, command, name):
+    """A read-only NumPy view of a library buffer whose base holds the handle that owns it."""
+    if not ptr:
+        raise SpectralError(f"{command}: {name} is not available", 1)
+    a = np.ctypeslib.as_array(ptr, shape=shape)
+    a.flags.writeable = False
+    return np.asarray(_Owner(a, owner)).view(dtype)
+
+
+def plot_spectrum(x, y, ax=None, label=None, xlabel="wavelength (nm)", ylabel=None, **kwargs):
+    """Plots spectra with Matplotlib (an optional dependency: pip install matplotlib): y against wavelengths x in nm.
+
+    y is one spectrum (N values) or several (K x N, one line each; label a list of K names). Returns the Axes."""
+    try:
+        import matplotlib
+        if not getattr(matplotlib, "__version__", None):   # colour-science's stand-in when Matplotlib is missing
+            raise ImportError
+        import matplotlib.pyplot as plt
+    except ImportError:
+        raise ImportError("plot_spectrum needs Matplotlib (pip install matplotlib, or Debian's python3-matplotlib)") from None
+    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+    if y.ndim == 1:
+        y = y[None, :]
+    if y.shape[-1] != x.shape[0]:
+        raise ValueError(f"{y.shape[-1]} values per spectrum for {x.shape[0]} wavelengths")
+    labels = label if isinstance(label, (list, tuple)) else [label] * len(y)
+    if ax is None:
+        _, ax = plt.subplots()
+    for row, name in zip(y, labels):
+        ax.plot(x, row, label=name, **kwargs)
+    ax.set_xlabel(xlabel)
+    if ylabel:
+        ax.set_ylabel(ylabel)
+    if any(labels):
+        ax.legend()
+    return ax
 
 
 class _Handle:

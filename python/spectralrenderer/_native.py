@@ -1,9 +1,14 @@
-"""ctypes bindings of libspectral's C ABI (src/SpectralRenderer.Native/NativeExports.cs, ABI version 1)."""
+"""ctypes bindings of libspectral's C ABI (src/SpectralRenderer.Native/NativeExports.cs and NativeCamera.cs, ABI 1.1).
+
+The ABI's major version (spectral_abi_version) changes when a function's signature or meaning does: this package refuses
+another major. Functions added beside them raise the minor (spectral_abi_minor, absent in 1.0): relight, camera and
+recover need minor 1, and say so when the library is older."""
 import ctypes
 import os
 from pathlib import Path
 
 ABI_VERSION = 1
+ABI_MINOR = 1   # the minor this package's newest calls need (relight, camera, recover)
 PROGRESS = ctypes.CFUNCTYPE(None, ctypes.c_void_p, ctypes.c_int, ctypes.c_int)
 
 _lib = None
@@ -53,8 +58,41 @@ def lib():
     l.spectral_save.argtypes = [ctypes.c_void_p, ctypes.c_char_p, ctypes.POINTER(ctypes.c_void_p)]
     l.spectral_free.restype = None
     l.spectral_free.argtypes = [ctypes.c_void_p]
+    try:
+        l.spectral_abi_minor.restype = ctypes.c_int
+        l.minor = l.spectral_abi_minor()
+    except AttributeError:   # a 1.0 library: render and save only
+        l.minor = 0
+    if l.minor >= 1:
+        l.spectral_relight.restype = ctypes.c_void_p
+        l.spectral_relight.argtypes = [ctypes.c_void_p, ctypes.c_char_p, ctypes.POINTER(ctypes.c_int)]
+        for name in ("spectral_camera", "spectral_recover"):
+            getattr(l, name).restype = ctypes.c_void_p
+            getattr(l, name).argtypes = [ctypes.c_void_p, ctypes.c_char_p]
+        l.spectral_capture_shape.restype = None
+        l.spectral_capture_shape.argtypes = [ctypes.c_void_p] + [ctypes.POINTER(ctypes.c_int)] * 4
+        for name, t in [("spectral_capture_raw", ctypes.c_float), ("spectral_capture_rgb8", ctypes.c_uint8),
+                        ("spectral_capture_rates", ctypes.c_float)]:
+            getattr(l, name).restype = ctypes.POINTER(t)
+            getattr(l, name).argtypes = [ctypes.c_void_p]
+        for name in ("spectral_capture_manifest", "spectral_recovery_manifest"):
+            getattr(l, name).restype = ctypes.c_char_p
+            getattr(l, name).argtypes = [ctypes.c_void_p]
+        l.spectral_recovery_count.restype = ctypes.c_int
+        l.spectral_recovery_count.argtypes = [ctypes.c_void_p]
+        l.spectral_recovery_reflectance.restype = ctypes.POINTER(ctypes.c_float)
+        l.spectral_recovery_reflectance.argtypes = [ctypes.c_void_p, ctypes.c_int]
     version = l.spectral_abi_version()
     if version != ABI_VERSION:
         raise ImportError(f"{path} has ABI version {version}; this package speaks version {ABI_VERSION}")
     _lib = l
+    return l
+
+
+def need(minor, what):
+    """The loaded library, checked to have ABI minor ≥ minor (what: the call that needs it, for the message)."""
+    l = lib()
+    if l.minor < minor:
+        raise ImportError(f"{what} needs libspectral ABI {ABI_VERSION}.{minor}; the loaded library is {ABI_VERSION}.{l.minor} "
+                          "(rebuild it: scripts/build-wheel.sh)")
     return l

@@ -38,3 +38,37 @@ def cli():
     def run(*args):
         return subprocess.run(prefix + [str(a) for a in args], capture_output=True, text=True, cwd=REPO)
     return run
+
+
+def read_png(path):
+    """(A file's or PNG bytes') An 8-bit grey or RGB PNG's pixels as a NumPy array (H x W or H x W x 3): the five filter types, no interlace."""
+    import struct
+    import zlib
+    import numpy as np
+    data, pos, idat = path if isinstance(path, bytes) else Path(path).read_bytes(), 8, b""
+    while pos < len(data):
+        (length,), kind = struct.unpack(">I", data[pos:pos + 4]), data[pos + 4:pos + 8]
+        body = data[pos + 8:pos + 8 + length]
+        if kind == b"IHDR":
+            w, h, depth, colour = struct.unpack(">IIBB", body[:10])
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + length
+    assert depth == 8 and colour in (0, 2), (depth, colour)
+    bpp = 1 if colour == 0 else 3
+    stride, raw = w * bpp, zlib.decompress(idat)
+    out, prior = np.zeros((h, stride), np.uint8), np.zeros(stride, np.int32)
+    for y in range(h):
+        ft, line = raw[y * (stride + 1)], np.frombuffer(raw, np.uint8, stride, y * (stride + 1) + 1).astype(np.int32)
+        cur = np.zeros(stride, np.int32)
+        for i in range(stride):
+            a = cur[i - bpp] if i >= bpp else 0
+            b, c = prior[i], prior[i - bpp] if i >= bpp else 0
+            if ft == 4:
+                pa, pb, pc = abs(b - c), abs(a - c), abs(a + b - 2 * c)
+                p = a if pa <= pb and pa <= pc else b if pb <= pc else c
+            else:
+                p = (0, a, b, (a + b) // 2)[ft]
+            cur[i] = (line[i] + p) & 0xFF
+        out[y], prior = cur, cur
+    return out.reshape(h, w) if bpp == 1 else out.reshape(h, w, 3)

@@ -3,11 +3,15 @@ using System.Runtime.InteropServices;
 using System.Text;
 using System.Text.Json;
 using System.Text.Json.Nodes;
+using SpectralRenderer.Analysis;
+using SpectralRenderer.Analysis.Recovery;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
+using SpectralRenderer.Lighting;
 using SpectralRenderer.Output;
 using SpectralRenderer.Pipeline;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
 using SpectralRenderer.Spectra;
 
@@ -22,13 +26,27 @@ namespace SpectralRenderer.Native;
 /// stays valid, unmoved (pinned), until <c>spectral_free</c>; strings are UTF-8, NUL-terminated. No exception crosses
 /// the boundary.
 /// </summary>
-public static unsafe class NativeExports
+public static unsafe partial class NativeExports
 {
-    /// <summary>The ABI's version: raised when a function's signature or meaning changes.</summary>
+    /// <summary>
+    /// The ABI's major version: raised when a function's signature or meaning changes (a caller built for another major
+    /// refuses the library). Functions added beside the existing ones raise <see cref="AbiMinor"/> only, so a caller
+    /// checks major == its own and minor ≥ the one that added the functions it calls.
+    /// </summary>
     public const int AbiVersion = 1;
+
+    /// <summary>
+    /// The ABI's minor version: 0 the first functions; 1 added spectral_abi_minor, spectral_relight, spectral_camera, the
+    /// capture accessors and spectral_recover (version 1's functions unchanged; spectral_save writes lights/ when the
+    /// render's formats name them, as `spectral render` does).
+    /// </summary>
+    public const int AbiMinor = 1;
 
     [UnmanagedCallersOnly(EntryPoint = "spectral_abi_version")]
     public static int Version() => AbiVersion;
+
+    [UnmanagedCallersOnly(EntryPoint = "spectral_abi_minor")]
+    public static int Minor() => AbiMinor;
 
     /// <summary>
     /// Renders a scene given as UTF-8 JSON text. <paramref name="path"/> names it (its relative mesh paths resolve from its
@@ -151,6 +169,34 @@ public static unsafe class NativeExports
         }
     }
 
+    /// <summary>
+    /// Relights the render held by <paramref name="h"/> as `spectral relight` does (no ray traced into the picture): a new
+    /// handle, as <c>spectral_render</c> returns, holding the render under the changed lights or the error.
+    /// <paramref name="changes"/>: a JSON object {"lights": {"NAME": {"spectrum": S, "intensity": F}, …}, "white": S}
+    /// (every key optional; S a spectrum value of the scene format: a name, blackbody:T, …, or inline [[nm, value], …]).
+    /// The per-light transfer is traced once per source handle (the render's own camera rays) and kept with it; a
+    /// relit handle relights again from the same transfer. <paramref name="cancel"/> as for spectral_render.
+    /// </summary>
+    [UnmanagedCallersOnly(EntryPoint = "spectral_relight")]
+    public static nint Relight(nint h, byte* changes, int* cancel)
+    {
+        var handle = new NativeRender();
+        try
+        {
+            var source = Get(h) is { Job.Result: not null } r ? r
+                : throw new InputException("spectral_relight", "the handle holds no render", "relight a successful render");
+            using var stop = new CancellationTokenSource();
+            int* flag = cancel;
+            using var timer = new Timer(_ => { if (flag is not null && Volatile.Read(ref *flag) != 0) stop.Cancel(); }, null, 20, 20);
+            handle.Set(source.Relit(Utf8(changes), stop.Token));
+        }
+        catch (Exception e)
+        {
+            handle.Fail(e, "spectral relight: ");
+        }
+        return GCHandle.ToIntPtr(GCHandle.Alloc(handle));
+    }
+
     /// <summary>Frees the handle and every buffer it owns; null is ignored.</summary>
     [UnmanagedCallersOnly(EntryPoint = "spectral_free")]
     public static void Free(nint h)
@@ -252,8 +298,195 @@ sealed unsafe class NativeRender : IDisposable
 
     public void Set(RenderJob job) { Job = job; MessageUtf8 = String(""); }
 
+    /// <summary>A relit render: its job (the transfer recombined) and what its save records of the relight.</summary>
+    public void Set(Relight relit) { Set(relit.Job); _relit = relit; }
+
+    /// <summary>What a relight made: the job, and the source's scene name and overrides (to relight it again), its changes.</summary>
+    public sealed record Relight(RenderJob Job, string ScenePath, SceneOverrides Overrides, ManifestRelit Record);
+
+    Relight? _relit;
+    LightTransfer? _transfer;
+    readonly Lock _transferLock = new();
+
+    /// <summary>The scene's name and the overrides it was loaded with (a relit render: its source's).</summary>
+    string ScenePath => _relit?.ScenePath ?? Job!.Request.ScenePath;
+    SceneOverrides Overrides => _relit?.Overrides ?? Job!.Request.Overrides;
+
+    /// <summary>
+    /// The per-light transfer of this render: a relit render's own; else traced once (the render's camera rays again,
+    /// recording eq. 2's factors per light, as `spectral render --formats …,lights` does) and kept.
+    /// </summary>
+    LightTransfer Transfer(CancellationToken cancel)
+    {
+        var job = Job!;
+        if (job.Transfer is { } own) return own;
+        lock (_transferLock)
+        {
+            if (_transfer is not null) return _transfer;
+            if (job.IntegratorName != Integrators.Default || job.Geometry is null)
+                throw new InputException("integrator",
+                    $"the per-light transfer is the Whitted model's; the {job.IntegratorName} integrator does not record one",
+                    "render with integrator=\"whitted\" to relight");
+            return _transfer = LightTransfer.Trace(job.Scene, job.Geometry, job.Threads, cancel);
+        }
+    }
+
+    /// <summary>
+    /// This render under changed lights, as `spectral relight` computes it from the folder's lights/: the scene rebuilt from
+    /// render.json's resolved scene and recorded overrides with the changes (<see cref="Relighting.ChangedScene"/>: the same
+    /// checks and messages), the transfer recombined. Inline spectra ([[nm, value], …]) join the scene's named spectra.
+    /// </summary>
+    public Relight Relit(string? json, CancellationToken cancel)
+    {
+        var clock = System.Diagnostics.Stopwatch.StartNew();
+        // render.json's text parsed back, as relight reads it from the folder.
+        var manifest = RenderManifest.Parse(JsonNode.Parse(Marshal.PtrToStringUTF8((nint)ManifestUtf8)!)!.AsObject(), ScenePath);
+        var resolved = manifest.ResolvedScene
+            ?? throw new InputException("spectral_relight", "the render has no resolved scene",
+                "render again with this version of spectral");
+        var document = resolved.ToJson();
+        var (changes, white) = Changes(json, document);
+        var overrides = RenderJob.Overrides(RenderJob.Recorded(Overrides)) with { LoadMeshes = false };
+        var names = resolved.Lights.Select(l => l.Name).ToArray();
+        var src = new Relighting.Source("", manifest, new ManifestScene(document), ScenePath, overrides, names);
+        var scene = Relighting.ChangedScene(src, changes, white);
+        var transfer = Transfer(cancel);
+        cancel.ThrowIfCancellationRequested();
+        var job = RenderJob.Load(new RenderRequest
+        {
+            Scene = scene,
+            ScenePath = ScenePath,
+            FromTransfer = new TransferSource(transfer),
+            Detail = RunDetail.None,
+        });
+        job.Render(cancel: cancel);
+        var record = new ManifestRelit
+        {
+            From = "a render in memory (spectralrenderer, libspectral)",
+            FromCreatedUtc = manifest.CreatedUtc,
+            Method = "per-light transfer: L_b = sum_c F_c * P_c,b and XYZ = sum_c F_c * XYZ_c with P_c rebuilt from the new lights' "
+                + "term tables; "
+                + "no rays traced into the picture",
+            Changes = changes.Select(c => new ManifestLightChange(c.Light, c.Spectrum, c.Intensity)).ToArray(),
+            White = white,
+            ComputeSeconds = clock.Elapsed.TotalSeconds,
+        };
+        return new Relight(job, ScenePath, Overrides, record);
+    }
+
+    /// <summary>The changes object: per light a spectrum and/or intensity, and the white; inline spectra named into the scene.</summary>
+    static (List<LightChange>, string? White) Changes(string? json, JsonObject document)
+    {
+        JsonObject o;
+        try { o = json is null ? [] : JsonNode.Parse(json) as JsonObject ?? throw new JsonException("not an object"); }
+        catch (JsonException e)
+        {
+            throw new InputException("changes", $"not a JSON object: {e.Message}", "pass {\"lights\": {\"NAME\": {\"spectrum\": \"A\"}}}");
+        }
+        string? Spectrum(JsonNode? node, string where, string name)
+        {
+            switch (node)
+            {
+                case null: return null;
+                case JsonValue v when v.TryGetValue(out string? text): return text;
+                case JsonArray or JsonObject or JsonValue:
+                    // An inline spectrum: one of the scene's named spectra, under a name no other spectrum has.
+                    var named = document["spectra"] as JsonObject ?? (JsonObject)(document["spectra"] = new JsonObject());
+                    string key = name;
+                    for (int i = 2; named.ContainsKey(key); i++) key = string.Create(CultureInfo.InvariantCulture, $"{name}-{i}");
+                    named[key] = node.DeepClone();
+                    return key;
+                default:
+                    throw new InputException(where, $"{MessageText.Quote(node.ToJsonString())} is not a spectrum",
+                        "a name (e.g. \"A\", \"blackbody:3000\") or [[nm, value], …]");
+            }
+        }
+        var changes = new List<LightChange>();
+        foreach (var (key, value) in o)
+        {
+            if (key == "white" || key == "lights") continue;
+            throw new InputException($"changes.{key}", "unknown key", "known: lights, white");
+        }
+        if (o["lights"] is JsonObject lights)
+            foreach (var (name, value) in lights)
+            {
+                string where = $"--light {name}";
+                if (value is JsonObject c && (c.ContainsKey("spectrum") || c.ContainsKey("intensity")))
+                {
+                    foreach (var (k, _) in c)
+                        if (k is not ("spectrum" or "intensity"))
+                            throw new InputException($"{where}: {k}", "unknown key", "known: spectrum, intensity");
+                    double? intensity = null;
+                    if (c["intensity"] is { } f)
+                        intensity = f is JsonValue fv && fv.TryGetValue(out double d) && double.IsFinite(d) && d >= 0 ? d
+                            : throw new InputException("--intensity", $"{MessageText.Quote(f.ToJsonString())} is not a non-negative number",
+                                "e.g. intensity 0.5");
+                    changes.Add(new LightChange(name, Spectrum(c["spectrum"], where, $"relight-{name}"), intensity));
+                }
+                else changes.Add(new LightChange(name, Spectrum(value, where, $"relight-{name}"), null));
+            }
+        else if (o["lights"] is { } bad)
+            throw new InputException("changes.lights", "not an object",
+                "{\"NAME\": \"SPECTRUM\"} or {\"NAME\": {\"spectrum\": …, \"intensity\": …}}");
+        return (changes, Spectrum(o["white"], "--white", "relight-white"));
+    }
+
+    /// <summary>A capture (spectral_camera) or a recovery (spectral_recover) this handle holds instead of a render.</summary>
+    public NativeCapture? Capture { get; private set; }
+    public NativeRecovery? Recovery { get; private set; }
+    public void SetCapture(NativeCapture c) { Capture = c; MessageUtf8 = String(""); }
+    public void SetRecovery(NativeRecovery r) { Recovery = r; MessageUtf8 = String(""); }
+
+    /// <summary>
+    /// What `spectral camera` reads from the folder this render would write (CameraScene.Open: render.json, the cube, the
+    /// ids, the colours, the masks, the ground-truth reflectance), taken from memory; the render's scene and its per-light
+    /// transfer for the exact channel signals (null for an integrator that records none: the band cube's route).
+    /// </summary>
+    public (CameraScene Scene, Scene RenderScene, LightTransfer? Transfer) CameraInput()
+    {
+        var job = Job!;
+        var result = Result;
+        var image = result.Image;
+        var manifest = RenderManifest.Parse(JsonNode.Parse(Marshal.PtrToStringUTF8((nint)ManifestUtf8)!)!.AsObject(), ScenePath);
+        int n = image.Width * image.Height;
+        float[] x = new float[n], y = new float[n], z = new float[n];
+        if (result.Xyz is { } px)
+            for (int i = 0; i < n; i++) { x[i] = px[3 * i]; y[i] = px[3 * i + 1]; z[i] = px[3 * i + 2]; }
+        else
+        {
+            var p = Planes;
+            for (int i = 0; i < n; i++) { x[i] = (float)p.X[i]; y[i] = (float)p.Y[i]; z[i] = (float)p.Z[i]; }
+        }
+        var folder = new RenderFolder
+        {
+            Path = ScenePath,
+            Manifest = manifest,
+            Image = image,
+            ObjectIds = result.ObjectIds,
+            PixelXyz = (x, y, z),
+        };
+        int lights = job.Scene.Lights.Count;
+        var planes = AnalysisImages.GroundTruthBands(job.Scene, result);
+        var truth = new SpectralImage(image.Width, image.Height, image.Grid);
+        for (int b = 0; b < image.Bands; b++)
+            for (int i = 0; i < n; i++) truth.Data[i * image.Bands + b] = planes[b * n + i];
+        var aovs = new RenderAovs
+        {
+            Lit = lights <= LitMasks.MaxLights
+                ? Enumerable.Range(0, lights)
+                    .Select(k => Enumerable.Range(0, n).Select(i => result.LitMasks.IsLit(i, k)).ToArray()).ToArray()
+                : null,
+            LightNames = manifest.Lights.Select(l => l.Name).ToArray(),
+            Highlight = result.Highlights.Select(v => v * 2 > 255).ToArray(),
+            HighlightFraction = manifest.HighlightFraction,
+            Reflectance = truth,
+        };
+        bool traced = job.Transfer is not null || job.IntegratorName == Integrators.Default && job.Geometry is not null;
+        return (CameraScene.Of(folder, aovs), job.Scene, traced ? Transfer(default) : null);
+    }
+
     /// <summary>The error as the CLI ends `spectral render` with it (CommandLine.Describe: code and one line).</summary>
-    public void Fail(Exception e)
+    public void Fail(Exception e, string prefix = "spectral render: ")
     {
         if (e is AggregateException agg && agg.Flatten().InnerExceptions.Count > 0) e = agg.Flatten().InnerExceptions[0];
         var (code, message) = e switch
@@ -269,7 +502,7 @@ sealed unsafe class NativeRender : IDisposable
                 + "(hint: this is a defect of spectral; please report it with the input)"),
         };
         Status = code;
-        MessageUtf8 = String("spectral render: " + (e is InputException ? MessageText.Escape(message) : MessageText.Line(message)));
+        MessageUtf8 = String(prefix + (e is InputException ? MessageText.Escape(message) : MessageText.Line(message)));
     }
 
     RenderResult Result => Job?.Result ?? throw new InvalidOperationException("no render");
@@ -327,6 +560,18 @@ sealed unsafe class NativeRender : IDisposable
     {
         var job = Job!;
         var result = Result;
+        if (_relit is { } relit)
+        {
+            // As `spectral relight` records it: the source's overrides and the relight; the transfer written when asked for.
+            RenderOutputWriter.Write(job.Scene, result, dir, new ManifestRun
+            {
+                CommandLine = "spectralrenderer.relight (Python, libspectral)",
+                HasOverrides = true,
+                Overrides = RenderJob.Recorded(relit.Overrides),
+                Relit = relit.Record,
+            }, default, job.Transfer, null, job.NamedProducts);
+            return;
+        }
         var run = new ManifestRun
         {
             CommandLine = "spectralrenderer (Python, libspectral)",
@@ -341,8 +586,9 @@ sealed unsafe class NativeRender : IDisposable
             HasOverrides = true,
             Overrides = RenderJob.Recorded(job.Request.Overrides),
         };
-        // The per-light transfer (the "lights" format) needs the geometry traced again: RenderJob.Write does it as the CLI.
-        RenderOutputWriter.Write(job.Scene, result, dir, run, default, null, null, job.NamedProducts);
+        // The per-light transfer (the "lights" format): the camera rays traced again, as RenderJob.Write does for the CLI.
+        var transfer = (job.Scene.Output.Products & OutputProducts.Lights) != 0 ? Transfer(default) : null;
+        RenderOutputWriter.Write(job.Scene, result, dir, run, default, transfer, null, job.NamedProducts);
     }
 
     nint Pin(Array a)
@@ -364,6 +610,8 @@ sealed unsafe class NativeRender : IDisposable
 
     public void Dispose()
     {
+        Capture?.Dispose();
+        Recovery?.Dispose();
         foreach (var g in _pins) g.Free();
         _pins.Clear();
         foreach (var p in _strings) NativeMemory.Free((void*)p);

@@ -7,6 +7,7 @@ using SpectralRenderer.Analysis.Recovery;
 using SpectralRenderer.Color;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
+using SpectralRenderer.Lighting;
 using SpectralRenderer.Sensor;
 
 namespace SpectralRenderer.Cli.Commands;

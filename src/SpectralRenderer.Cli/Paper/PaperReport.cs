@@ -4,6 +4,7 @@ using System.Text;
 using SpectralRenderer.Analysis;
 using SpectralRenderer.Color;
 using SpectralRenderer.Imaging;
+using SpectralRenderer.Lighting;
 using SpectralRenderer.Output;
 using SpectralRenderer.Spectra;
 

@@ -56,7 +56,7 @@ public static class AnalysisImages
 
     /// <summary>The ground-truth diffuse reflectance of what each pixel sees (reflectance.exr), as band-sequential planes (<see cref="SpectralImage.CopyBands"/>), built directly.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    internal static float[] GroundTruthBands(Scene scene, RenderResult result)
+    public static float[] GroundTruthBands(Scene scene, RenderResult result)
     {
         var ids = result.ObjectIds;
         int n = ids.Length, bands = result.Image.Bands;

@@ -34,6 +34,11 @@ public sealed class CameraScene
         return new CameraScene(folder, RenderAovs.Open(folder), FindPatches(folder));
     }
 
+    /// <summary>
+    /// A render's contents held in memory (libspectral's camera): the folder's cube, manifest and images without the folder.
+    /// </summary>
+    public static CameraScene Of(RenderFolder folder, RenderAovs aovs) => new(folder, aovs, FindPatches(folder));
+
     public RadianceCube Cube(double radianceScale) => new(Width, Height, Grid, Folder.Image.Data, radianceScale);
 
     static List<ChartPatch> FindPatches(RenderFolder folder)

@@ -1,7 +1,6 @@
 using System.Globalization;
 using SpectralRenderer.Analysis.Recovery;
 using SpectralRenderer.Diagnostics;
-using SpectralRenderer.Lighting;
 using SpectralRenderer.Output;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
@@ -9,7 +8,7 @@ using SpectralRenderer.Scenes.Loading;
 using SpectralRenderer.Sensor;
 using SpectralRenderer.Spectra;
 
-namespace SpectralRenderer.Cli;
+namespace SpectralRenderer.Lighting;
 
 /// <summary>
 /// The camera's exact route (issue 24): a render's pixel is L = Σ_c F_c · E_k·m·Π k_chain over its eq. 2 components
@@ -59,6 +58,16 @@ public static class ExactChannelSignals
             }
         }
         catch (InputException e) { reason = $"the render's scene cannot be rebuilt for its eq. 2 terms ({e.Message})"; return null; }
+        return Compute(cs, sensor, scene, transfer, from, threads, out reason);
+    }
+
+    /// <summary>
+    /// The exact route from a scene and its per-light transfer (<paramref name="from"/> says where it came from: a folder's
+    /// lights/, traced again, or a render held in memory), or null (with the reason) when they do not match the cube.
+    /// </summary>
+    public static Result? Compute(CameraScene cs, SensorModel sensor, Scene scene, LightTransfer transfer, string from, int threads,
+        out string reason)
+    {
         if (transfer.Width != cs.Width || transfer.Height != cs.Height || transfer.Bands != cs.Grid.Count)
         {
             reason = $"the rebuilt scene is {transfer.Width}×{transfer.Height}×{transfer.Bands}, the cube {cs.Width}×{cs.Height}×{cs.Grid.Count} (a crop or shard)";
