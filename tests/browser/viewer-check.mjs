@@ -32,6 +32,18 @@ try {
     if (p.storeA) await page.evaluate(() => viewer.storeA());
     if (p.storeA && p.read) out.xyzA = await page.evaluate(([x, y]) => viewer.pixelXyz(x, y), p.read);
     await page.evaluate(([l, pr, f]) => viewer.setLight(l, pr, f), [p.light, p.preset, p.intensity]);
+    if (p.drag !== undefined) {
+      // Drag light p.drag's intensity slider from its thumb to the right end of its track, as a person would.
+      const slider = page.locator(`#intensity-${p.drag}`);
+      const box = await slider.boundingBox();
+      const [value, max] = await slider.evaluate(e => [+e.value, +e.max]);
+      await page.mouse.move(box.x + box.width * value / max, box.y + box.height / 2);
+      await page.mouse.down();
+      await page.mouse.move(box.x + box.width + 20, box.y + box.height / 2, { steps: 5 });
+      await page.mouse.up();
+      out.dragged = await slider.evaluate(e => +e.value);
+      out.sliderMax = max;
+    }
     if (p.read) out.rgb = await page.evaluate(([x, y]) => viewer.pixelRgb(x, y), p.read);
     if (p.read) out.xyz = await page.evaluate(([x, y]) => viewer.pixelXyz(x, y), p.read);
     // Every pixel the page drew (RGBA, row by row), to compare with the preview a relight writes.

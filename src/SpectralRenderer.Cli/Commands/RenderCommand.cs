@@ -45,8 +45,9 @@ public static class RenderCommand
           --rgb MODE         srgb (default) or paper (the paper's eq. 4, linear, clipped)
           --integration S    exact (default: band values and colour integrated on the full tables),
                              weighted (band products, prefiltered colour weights) or paper (eq. 3)
-          --formats LIST     comma-separated from png,bands,exr,envi,npy,aov,lights, or all (every one but lights,
-                             the default); lights = the per-light transfer in lights/ for 'relight' and 'view'
+          --formats LIST     comma-separated from png,bands,exr,envi,npy,aov,lights,photometry, or all (every one but
+                             lights and photometry, the default); lights = the per-light transfer in lights/ for 'relight'
+                             and 'view'; photometry = luminance (cd/m²) and illuminance (lx) maps (physical radiometry)
           --exr-compression  zip (default: deflate the chunks whose samples repeat, store noisy ones),
                              zip-all (deflate every chunk: smallest file, slower) or none
           --models DIR       a folder to search for mesh files (after the scene's folder, before $SPECTRAL_MODELS)

@@ -96,7 +96,9 @@ public static class SpectralViewer
             for (int k = 0; k < tl.Count; k++)
             {
                 var l = tl[k]!;
-                double intensity = (resolvedLights is { } rl && k < rl.Count ? rl[k].Intensity : null) ?? 1;
+                // The resolved scale render.json lists (a photometric light's radiometric scale), else the scene's intensity.
+                var listed = k < manifest.Lights.Count ? manifest.Lights[k] : null;
+                double intensity = listed?.Intensity ?? (resolvedLights is { } rl && k < rl.Count ? rl[k].Intensity : null) ?? 1;
                 string spectrumName = (string?)l["spectrum"] ?? $"light {k}";
                 string preset = $"render: {spectrumName} ({l["name"]})";
                 TabulatedSpectrum? s = null;
@@ -104,7 +106,16 @@ public static class SpectralViewer
                 int kk = k;
                 Add(preset, PresetComponents(c => components[c].FollowsLight && components[c].Light == kk && intensity > 0
                     ? comps[c]!["band_values"]!.AsArray().Concat(comps[c]!["xyz"]!.AsArray()).Select(v => (float)((double)v! / intensity)).ToArray() : null), s);
-                lights.Add((JsonNode)new JsonObject { ["name"] = (string?)l["name"], ["preset"] = preset, ["intensity"] = intensity });
+                var ph = listed?.Photometric;
+                lights.Add((JsonNode)new JsonObject
+                {
+                    ["name"] = (string?)l["name"],
+                    ["preset"] = preset,
+                    ["intensity"] = intensity,
+                    // Photometric units shown beside the slider: the value per unit of the scale (cd, lm, lx, cd/m²).
+                    ["photometric"] = ph is null || !(ph.RadiometricScale > 0) ? null
+                        : new JsonObject { ["quantity"] = ph.Quantity, ["unit"] = ph.Unit, ["per_intensity"] = ph.Value / ph.RadiometricScale },
+                });
             }
             foreach (var name in Presets)
             {

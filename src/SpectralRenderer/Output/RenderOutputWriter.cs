@@ -26,8 +26,8 @@ public static class RenderOutputWriter
     public static string EngineBuild { get; } = typeof(RenderOutputWriter).Assembly.ManifestModule.ModuleVersionId.ToString("N");
 
     public static List<string> Write(Scene scene, RenderResult result, string outDir, ManifestRun? run = null, CancellationToken cancel = default,
-        LightTransfer? transfer = null, ReusedFiles? reuse = null, IReadOnlyList<OutputProduct>? named = null) =>
-        Write(scene, result, OutputFolder.Begin(outDir), run, cancel, transfer, reuse, named);
+        LightTransfer? transfer = null, ReusedFiles? reuse = null, IReadOnlyList<OutputProduct>? named = null, RenderTracer? tracer = null) =>
+        Write(scene, result, OutputFolder.Begin(outDir), run, cancel, transfer, reuse, named, tracer);
 
     /// <summary>
     /// Writes the render into <paramref name="folder"/>'s staging folder and swaps it in whole (<see cref="OutputFolder"/>).
@@ -35,11 +35,12 @@ public static class RenderOutputWriter
     /// </summary>
     /// <param name="reuse">Files another folder holds exactly as this render would write them (a relit render's light-independent files): copied, not encoded.</param>
     /// <param name="named">Products asked for by name beyond the scene's formats (<see cref="OutputProductTable.Named"/>).</param>
+    /// <param name="tracer">The render's geometry and integrator, for products that trace rays (photometry's illuminance).</param>
     public static List<string> Write(Scene scene, RenderResult result, OutputFolder folder, ManifestRun? run = null, CancellationToken cancel = default,
-        LightTransfer? transfer = null, ReusedFiles? reuse = null, IReadOnlyList<OutputProduct>? named = null)
+        LightTransfer? transfer = null, ReusedFiles? reuse = null, IReadOnlyList<OutputProduct>? named = null, RenderTracer? tracer = null)
     {
         List<string> written;
-        try { written = WriteFiles(scene, result, folder.Staging, run, cancel, transfer, reuse, named); }
+        try { written = WriteFiles(scene, result, folder.Staging, run, cancel, transfer, reuse, named, tracer); }
         catch (OperationCanceledException e) when (e is not InterruptedException)
         {
             folder.Abandon();
@@ -108,7 +109,7 @@ public static class RenderOutputWriter
     }
 
     static List<string> WriteFiles(Scene scene, RenderResult result, string outDir, ManifestRun? run, CancellationToken cancel, LightTransfer? transfer,
-        ReusedFiles? reuse, IReadOnlyList<OutputProduct>? named)
+        ReusedFiles? reuse, IReadOnlyList<OutputProduct>? named, RenderTracer? tracer)
     {
         var products = OutputProductTable.For(scene.Output.Products, named);
         var needs = ProductInputs.None;
@@ -141,6 +142,7 @@ public static class RenderOutputWriter
             Xyz = xyz,
             Preview = encoder,
             Transfer = transfer,
+            Tracer = tracer,
             Reuse = reuse,
             Cancel = cancel,
         };

@@ -216,7 +216,8 @@ public sealed class RenderJob
         }
         RunRecord ??= Record(result);
         var writeClock = Stopwatch.StartNew();
-        Files = RenderOutputWriter.Write(Scene, result, _folder!, RunRecord, cancel, Transfer, Request.FromTransfer?.Reuse, NamedProducts);
+        Files = RenderOutputWriter.Write(Scene, result, _folder!, RunRecord, cancel, Transfer, Request.FromTransfer?.Reuse, NamedProducts,
+            Geometry is not null && Integrator is not null ? new RenderTracer(Geometry, Integrator, Request.Threads) : null);
         WriteSeconds = writeClock.Elapsed.TotalSeconds;
         return Files;
     }

@@ -21,6 +21,8 @@ public enum OutputProducts
     Aov = 32,
     /// <summary>lights/: the per-light transfer for relighting (opt-in: not in <see cref="All"/>; "light_groups" in a scene).</summary>
     Lights = 64,
+    /// <summary>photometry.exr and false-colour maps: luminance (cd/m²) seen and illuminance (lx) at the surface seen (opt-in).</summary>
+    Photometry = 128,
     All = Png | Bands | Exr | Envi | Npy | Aov,
 }
 
@@ -42,6 +44,7 @@ public static class OutputNames
     [
         (OutputProducts.Png, "png"), (OutputProducts.Bands, "bands"), (OutputProducts.Exr, "exr"),
         (OutputProducts.Envi, "envi"), (OutputProducts.Npy, "npy"), (OutputProducts.Aov, "aov"), (OutputProducts.Lights, "lights"),
+        (OutputProducts.Photometry, "photometry"),
     ];
 
     public static readonly IReadOnlyList<(ExrCompressionChoice Choice, string Name)> ExrCompressions =

@@ -96,6 +96,29 @@ public class ViewerBrowserTests(ITestOutputHelper output)
         AssertCanvasIs(r, png);
     }
 
+    [SkippableFact]
+    public void Dragging_a_light_slider_past_the_old_limit_of_4_relights_to_what_relight_writes()
+    {
+        // The spot "blue" has intensity 3: its slider reaches 12 (4× the render's own value), beyond the old fixed 4.
+        Script();
+        var dir = Reference.TempDir();
+        var scene = Path.Combine(dir, "s.json");
+        File.WriteAllText(scene, RelightTests.TwoLightScene("A", "A", 3));
+        Run("render", scene, "-o", Path.Combine(dir, "r"), "--quiet", "--formats", "png,npy,aov,lights");
+        Run("view", Path.Combine(dir, "r"));
+        int x = 14, y = 20;
+        var r = Check(Path.Combine(dir, "r", "viewer.html"), $$"""{"light":"blue","preset":"render: A (blue)","drag":1,"read":[{{x}},{{y}}]}""");
+        Assert.Equal(12, (double)r["sliderMax"]!, 9);
+        double dragged = (double)r["dragged"]!;
+        Assert.True(dragged > 4, $"the slider stopped at {dragged}");
+        Run("relight", Path.Combine(dir, "r"), "--intensity", $"blue={dragged.ToString("R", System.Globalization.CultureInfo.InvariantCulture)}",
+            "-o", Path.Combine(dir, "relit"), "--quiet");
+        var png = PngReader.Read(Path.Combine(dir, "relit", "preview.png"));
+        int i = (y * png.Width + x) * png.Channels;
+        var rgb = r["rgb"]!.AsArray().Select(v => (int)v!).ToArray();
+        for (int c = 0; c < 3; c++) Assert.InRange(rgb[c], png.Samples[i + c] - 1, png.Samples[i + c] + 1);
+    }
+
     /// <summary>Every pixel the page drew is within one code of <paramref name="png"/>, and 99 % of the codes are equal.</summary>
     static void AssertCanvasIs(JsonNode r, PngImage png)
     {

@@ -66,10 +66,15 @@ public sealed class ProductContext
     public XyzPlanes? Xyz { get; init; }
     public DisplayEncoder? Preview { get; init; }
     public LightTransfer? Transfer { get; init; }
+    /// <summary>The render's ray queries and integrator, for products that trace rays of their own (photometry); null in a relight.</summary>
+    public RenderTracer? Tracer { get; init; }
     /// <summary>Files another folder holds exactly as this render would write them (relight): copied, not encoded.</summary>
     public ReusedFiles? Reuse { get; init; }
     public CancellationToken Cancel { get; init; }
 }
+
+/// <summary>The scene's ray queries and the integrator the render used, and the threads it may use.</summary>
+public sealed record RenderTracer(SceneGeometry Geometry, IIntegrator Integrator, int Threads);
 
 /// <summary>
 /// One output product of a render (guide §6): its name in --formats and "output.formats", the files it writes, what it

@@ -29,7 +29,7 @@ public sealed partial class SceneLoader
 
     /// <summary>
     /// A material's "emission": { "spectrum": …, "radiance": k, "two_sided": false } — spectral radiance spectrum × k in
-    /// W·m⁻²·sr⁻¹·nm⁻¹, physical radiometry only.
+    /// W·m⁻²·sr⁻¹·nm⁻¹, physical radiometry only; or "luminance": cd/m² instead of "radiance", k = L_v/(K_m ∫V·S dλ).
     /// </summary>
     [MethodImpl(MethodImplOptions.NoOptimization)]
     Emission? ParseEmission(JsonElement material, string materialPath)
@@ -37,13 +37,46 @@ public sealed partial class SceneLoader
         if (!TryGet(material, "emission", out var e)) return null;
         string path = $"{materialPath}.emission";
         Object(e, path);
-        Keys(e, path, "spectrum", "radiance", "two_sided");
+        Keys(e, path, "spectrum", "radiance", "luminance", "two_sided");
         if (_radiometry != Radiometry.Physical)
             throw Error(path, "emission is a spectral radiance (W·m⁻²·sr⁻¹·nm⁻¹) and needs physical radiometry",
                 "add \"radiometry\": \"physical\" to the scene (and render it with \"integrator\": \"path\")");
         var spectrum = Spectrum(Required(e, "spectrum", path), $"{path}.spectrum");
-        double k = Number(e, "radiance", path, 1, 0);
+        double k = Luminance(e, path, spectrum) ?? Number(e, "radiance", path, 1, 0);
         var radiance = Bands(spectrum.Scaled(k), $"{path}.spectrum");
         return new Emission(radiance, Bool(e, "two_sided", path, false));
+    }
+
+    /// <summary>
+    /// A radiance given as "luminance" (cd/m²) in <paramref name="e"/>: the factor k on <paramref name="spectrum"/> whose
+    /// K_m ∫V·(k·S) dλ is it (683 lm/W, CIE 1924 V), or null when the key is absent; with "radiance" too, an error.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
+    double? Luminance(JsonElement e, string path, Spectra.TabulatedSpectrum spectrum)
+    {
+        if (!TryGet(e, "luminance", out _)) return null;
+        if (TryGet(e, "radiance", out _)) throw Error($"{path}.luminance", "both radiance and luminance are given", "give one: luminance (cd/m²) sets the radiance");
+        double value = Number(e, "luminance", path, 0, 0);
+        double luminous = Color.Photometry.Luminous(spectrum);
+        if (!(luminous > 0))
+            throw Error($"{path}.spectrum", $"spectrum '{spectrum.Name}' emits no visible light (∫V·S dλ = 0), so luminance cannot scale it",
+                "give \"radiance\" (radiometric) for an invisible emitter");
+        return value / luminous;
+    }
+
+    /// <summary>
+    /// "background": a spectrum (radiance of escaping rays), or { "spectrum": …, "luminance": cd/m² } — a uniform sky of that
+    /// luminance (physical radiometry).
+    /// </summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
+    float[] ParseBackground(JsonElement bg)
+    {
+        const string path = "$.background";
+        if (bg.ValueKind != JsonValueKind.Object || !TryGet(bg, "luminance", out _)) return Bands(bg, path);
+        Keys(bg, path, "spectrum", "luminance");
+        if (_radiometry != Radiometry.Physical)
+            throw Error($"{path}.luminance", "luminance (cd/m²) needs physical radiometry", "add \"radiometry\": \"physical\" to the scene, or give the background as a spectrum");
+        var spectrum = Spectrum(Required(bg, "spectrum", path), $"{path}.spectrum");
+        return Bands(spectrum.Scaled(Luminance(bg, path, spectrum)!.Value), $"{path}.spectrum");
     }
 }

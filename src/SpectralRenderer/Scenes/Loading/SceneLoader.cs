@@ -220,7 +220,7 @@ public sealed partial class SceneLoader
         var integrator = ParseIntegrator(root);
         float minWeight = (float)Number(root, "min_ray_weight", "$", Scene.DefaultMinRayWeight, 0, 1);
         int budget = Integer(root, "ray_budget", "$", Scene.DefaultRayBudget, 1, 1_000_000_000);
-        var background = TryGet(root, "background", out var bg) ? Bands(bg, "$.background") : new float[SpectralMath.Padded(_grid.Count)];
+        var background = TryGet(root, "background", out var bg) ? ParseBackground(bg) : new float[SpectralMath.Padded(_grid.Count)];
         bool hasAmbient = TryGet(root, "ambient", out var amb);
         var ambient = hasAmbient ? Bands(amb, "$.ambient") : new float[SpectralMath.Padded(_grid.Count)];
 

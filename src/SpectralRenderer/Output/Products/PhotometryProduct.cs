@@ -1,0 +1,66 @@
+using SpectralRenderer.Imaging;
+using SpectralRenderer.Rendering;
+using SpectralRenderer.Scenes;
+
+namespace SpectralRenderer.Output.Products;
+
+/// <summary>
+/// "photometry" (physical radiometry): photometry.exr with the channels <c>luminance</c> (cd/m², K_m ∫V·L dλ of what each
+/// pixel sees) and <c>illuminance</c> (lx arriving at the surface the pixel-centre ray meets, <see cref="Illuminance"/>:
+/// from every light with shadows, and under the path integrator area lights, sky and interreflection by a gather), and
+/// each as a false-colour PNG with its labelled scale as an SVG legend (<see cref="FalseColour"/>). Whole renders only.
+/// </summary>
+public sealed class PhotometryProduct : OutputProduct
+{
+    public const string Exr = "photometry.exr";
+    public static readonly string[] Quantities = ["luminance", "illuminance"];
+
+    public override string Name => "photometry";
+    public override OutputProducts Flag => OutputProducts.Photometry;
+
+    public override IEnumerable<(string Part, long Bytes)> Memory(Scene scene, int threads)
+    {
+        long n = (long)scene.Camera.Width * scene.Camera.Height;
+        yield return ("photometry", 2 * 4 * n + 3 * n + 4 * n);
+    }
+
+    /// <summary>How the illuminance channel was found, as photometry.exr's illuminanceMethod says.</summary>
+    public static string Method(RenderTracer? tracer, Scene scene) => tracer is null
+        ? "none: a relit render traces no rays (the channel holds 0); render the scene with --formats photometry"
+        : tracer.Integrator is PathIntegrator
+            ? $"lights (shadow rays) + gather of {Illuminance.GatherRays(scene)} cosine-weighted path-traced rays (area lights, sky, interreflection), at the pixel-centre ray's first hit"
+            : "direct from every light (shadow rays), at the pixel-centre ray's first hit; no interreflection, ambient or emission (whitted)";
+
+    public override void Write(ProductContext c, int part, Action<string> done)
+    {
+        var scene = c.Scene;
+        if (scene.Radiometry != Radiometry.Physical)
+            throw new Diagnostics.InputException("--formats", "photometry (cd/m², lx) needs physical radiometry", "add \"radiometry\": \"physical\" to the scene");
+        var crop = c.Result.Crop;
+        var t = c.Tracer;
+        var (luminance, illuminance) = new Illuminance(scene, t?.Geometry)
+            .Maps(c.Result, t?.Integrator is PathIntegrator ? t.Integrator : null, t?.Threads ?? 0, c.Cancel);
+        var attributes = new Dictionary<string, string>
+        {
+            ["luminanceUnits"] = "cd.m^-2",
+            ["illuminanceUnits"] = "lx",
+            ["luminanceMethod"] = "K_m * integral of V(lambda) L(lambda), 683 lm/W, CIE 1924 V; mean over the pixel's samples",
+            ["illuminanceMethod"] = Method(c.Tracer, scene),
+        };
+        ExrChannelWriter.Write(Path.Combine(c.OutDir, Exr), crop.Width, crop.Height, [("illuminance", illuminance), ("luminance", luminance)],
+            attributes, crop.X0, crop.Y0, scene.Camera.Width, scene.Camera.Height);
+        done(Exr);
+        foreach (var (quantity, values, unit) in new[] { ("luminance", luminance, "cd/m²"), ("illuminance", illuminance, "lx") })
+        {
+            var scale = FalseColour.For(values, char.ToUpperInvariant(quantity[0]) + quantity[1..], unit);
+            var rgb = scale.Rgb(values);
+            AtomicFile.Write(Path.Combine(c.OutDir, $"{quantity}.png"), s => PngWriter.WriteRgb8(s, crop.Width, crop.Height, rgb));
+            done($"{quantity}.png");
+            AtomicFile.WriteAllText(Path.Combine(c.OutDir, $"{quantity}-scale.svg"), scale.Legend($"colours of {quantity}.png; values in {Exr}"));
+            done($"{quantity}-scale.svg");
+        }
+    }
+
+    public override bool Owns(string file) =>
+        file is Exr or "luminance.png" or "illuminance.png" or "luminance-scale.svg" or "illuminance-scale.svg";
+}
