@@ -1,10 +1,14 @@
 using System.Text;
 using SharpFuzz;
+using SpectralRenderer.Analysis.Recovery;
 using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Distributed;
 using SpectralRenderer.Geometry;
 using SpectralRenderer.Imaging;
+using SpectralRenderer.Output;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
+using SpectralRenderer.Sensor;
 using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Fuzz;
@@ -16,6 +20,30 @@ namespace SpectralRenderer.Fuzz;
 /// </summary>
 public static class Program
 {
+    /// <summary>A scratch folder of this process: the sweep target's base scene (good.json) beside the plan.</summary>
+    static readonly Lazy<string> Work = new(() =>
+    {
+        var dir = Directory.CreateTempSubdirectory("spectral-fuzz-").FullName;
+        File.WriteAllText(Path.Combine(dir, "good.json"), GoodScene);
+        return dir;
+    });
+
+    static string Scratch(string name, byte[] bytes)
+    {
+        var path = Path.Combine(Work.Value, name);
+        File.WriteAllBytes(path, bytes);
+        return path;
+    }
+
+    const string GoodScene = """
+        { "camera": { "position": [0, 0, 5], "look_at": [0, 0, 0], "width": 8, "height": 6 }, "bands": "400:700:4",
+          "materials": { "green": { "diffuse": "colorchecker:14" }, "glass": { "diffuse": 0.1, "transmit": 0.8, "ior": 1.5 } },
+          "lights": [ { "type": "point", "position": [0, 3, 3], "spectrum": "D65" }, { "type": "point", "position": [3, 3, 3], "spectrum": "A" } ],
+          "objects": [ { "type": "sphere", "radius": 1, "material": "green" }, { "type": "sphere", "radius": 0.5, "center": [1, 0, 1], "material": "glass" } ] }
+        """;
+
+    static readonly Lazy<Scene> LightsScene = new(() => SceneLoader.Parse(Encoding.UTF8.GetBytes(GoodScene), "/nonexistent-fuzz/scene.json"));
+
     static readonly Dictionary<string, Action<byte[]>> Targets = new(StringComparer.Ordinal)
     {
         // A scene that names no file that exists: meshes and CSVs are looked up in a folder that is not there.
@@ -28,6 +56,18 @@ public static class Program
         ["png"] = b => PngReader.Read(new MemoryStream(b), "fuzz.png"),
         ["ies"] = b => IesReader.Parse(Encoding.UTF8.GetString(b), "fuzz.ies").Table.Evaluate(10, 20),
         ["ldt"] = b => EulumdatReader.Parse(Encoding.UTF8.GetString(b), "fuzz.ldt").Table.Evaluate(10, 20),
+        // Our own manifests, never trusted when read back (JsonFields): render.json, lights/lights.json (against a fixed
+        // two-light scene), camera.json; a sweep plan (beside a fixed base scene, every job's scene checked) and a sensor file.
+        ["manifest"] = b => RenderManifest.Parse(JsonFields.Parse(Encoding.UTF8.GetString(b), "render.json", "fuzz"), "render.json"),
+        ["lights"] = b => LightTransferFiles.ParseLayout(JsonFields.Parse(Encoding.UTF8.GetString(b), "lights.json", "fuzz"), "lights.json",
+            LightsScene.Value),
+        ["camera"] = b => CameraCapture.Read(JsonFields.Parse(Encoding.UTF8.GetString(b), "camera.json", "fuzz"), "camera.json"),
+        ["sweep"] = b =>
+        {
+            var plan = Scratch("plan.json", b);
+            SweepPlan.Load(plan).CheckJobs(SweepPlan.Load(plan).Jobs.Take(64), new SceneOverrides(), Path.Combine(Work.Value, "out"));
+        },
+        ["sensor"] = b => SensorFile.Resolve(Scratch("sensor.json", b)),
         // An ENVI pair: the header text up to the first NUL byte, the samples after it.
         ["envi"] = b =>
         {

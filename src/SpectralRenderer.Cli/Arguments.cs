@@ -67,4 +67,15 @@ public sealed class Arguments
             throw new InputException(name, $"{MessageText.Quote(v)} is not a finite number", $"e.g. {name} 0.5 (see 'spectral {Command} --help')");
         return d;
     }
+
+    /// <summary>A finite number in (<paramref name="min"/>, <paramref name="max"/>] (<paramref name="unit"/> names what it is in).</summary>
+    public double? Double(string name, double min, double max, string unit)
+    {
+        var v = Value(name);
+        if (Double(name) is not { } d) return null;
+        if (!(d > min && d <= max))
+            throw new InputException(name, $"{MessageText.Quote(v)} is outside {min.ToString(CultureInfo.InvariantCulture)} (exclusive) to {max.ToString("G3", CultureInfo.InvariantCulture)} {unit}",
+                $"see 'spectral {Command} --help'");
+        return d;
+    }
 }

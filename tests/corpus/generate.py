@@ -658,6 +658,351 @@ for label, args, pat in [
     if "exactly one of" in pat: named = "command line"
     folder_case(label, [], pat, named, OPT, cmd=args)
 
+# ---- G. our own files read back (issue 25): render.json, lights/lights.json, camera.json, sweep plans and job.json, ----
+# shards for merge, crops for the analysis commands, traversal names in manifests, overflowing numbers on the command line.
+# Nothing derived is trusted: each tampered field is one line naming the file and its JSON path, exit 2.
+# Set-ups (CorpusTests): "base-render r" (good.json), "base-lights r" (…with --formats npy,aov,lights), "base-camera ."
+# (r/ and cam/, a camera run on it), "base-shards ." (a/ and b/, shards 0/2 and 1/2 of good.json at 8×64),
+# "base-crop r" (good.json --crop 0,0,4,3); "json-set FILE PATH VALUE", "json-del FILE PATH".
+RJ = r"render\.json: \$"
+def manifest_case(label, steps, pat, cmd=COLORCHECK, base="base-render r", file="render.json", place=RJ):
+    case(f"manifest/{label}", list(cmd), pat, 2, file, place, [base, *steps])
+T = r"is (the string|the number|an array|an object|true|false|null|missing)[^,]*, expected "
+for label, path, value, pat in [
+    ("width-string", "width", '"8"', r"\$\.width: is the string '8', expected a whole number 1–32768"),
+    ("width-zero", "width", "0", r"\$\.width: is 0, outside 1–32768"),
+    ("width-negative", "width", "-8", r"\$\.width: is -8, outside"),
+    ("width-huge", "width", "1000000000", r"\$\.width: is 1000000000, outside"),
+    ("width-fraction", "width", "8.5", r"\$\.width: is the number 8\.5, expected a whole number"),
+    ("width-1e400", "width", "1e400", r"\$\.width: is the number 1e400, expected a whole number"),
+    ("width-null", "width", "null", r"\$\.width: is missing, expected a whole number"),
+    ("width-array", "width", "[8]", r"\$\.width: is an array of 1, expected"),
+    ("height-bool", "height", "true", r"\$\.height: is true, expected a whole number"),
+    ("height-wrong", "height", "7", r"describes 8×7×20 but the spectral cube is 8×6×20"),
+    ("spp-zero", "spp", "0", r"\$\.spp: is 0, outside 1–1048576"),
+    ("spp-string", "spp", '"1"', r"\$\.spp: is the string '1', expected"),
+    ("bands-number", "bands", "5", r"\$\.bands: is the number 5, expected an object"),
+    ("bands-grid-number", "bands.grid", "20", r"\$\.bands\.grid: is the number 20, expected a string"),
+    ("bands-grid-text", "bands.grid", '"twenty"', r"bands\.grid.*not a band grid|bands\.grid"),
+    ("bands-count-wrong", "bands.count", "7", r"\$\.bands\.count: is 7, but the grid 380:780:20 has 20 bands"),
+    ("bands-count-zero", "bands.count", "0", r"\$\.bands\.count: is 0, expected ≥ 1"),
+    ("band-scale-negative", "bands.band_image_scale", "-1", r"\$\.bands\.band_image_scale: is -1, outside 0–"),
+    ("band-scale-string", "bands.band_image_scale", '"big"', r"\$\.bands\.band_image_scale: is the string 'big'"),
+    ("colour-array", "colour", "[]", r"\$\.colour: is an array of 0, expected an object"),
+    ("integration-number", "colour.integration", "1", r"\$\.colour\.integration: is the number 1, expected a string"),
+    ("integration-unknown", "colour.integration", '"bogus"', r"colour\.integration.*unknown band integration"),
+    ("observer-3", "colour.observer", "3", r"\$\.colour\.observer: is 3, expected 2 or 10"),
+    ("observer-100", "colour.observer", "100", r"\$\.colour\.observer: is 100, outside 2–10"),
+    ("observer-string", "colour.observer", '"2"', r"\$\.colour\.observer: is the string '2'"),
+    ("white-two", "colour.white_xyz", "[1, 1]", r"\$\.colour\.white_xyz: has 2 entries, expected 3"),
+    ("white-y-zero", "colour.white_xyz", "[0.95, 0, 1.08]", r"\$\.colour\.white_xyz\[1\]: is not positive"),
+    ("white-y-negative", "colour.white_xyz", "[0.95, -1, 1.08]", r"\$\.colour\.white_xyz\[1\]: is not positive"),
+    ("white-null-entry", "colour.white_xyz", "[0.95, null, 1.08]", r"\$\.colour\.white_xyz\[1\]: is missing, expected a finite number"),
+    ("white-object", "colour.white_xyz", '{"x": 1}', r"\$\.colour\.white_xyz: is an object, expected an array"),
+    ("weights-x-short", "colour.weights_x", "[1, 2, 3]", r"\$\.colour\.weights_x: has 3 entries, expected 20"),
+    ("weights-y-empty", "colour.weights_y", "[]", r"\$\.colour\.weights_y: has 0 entries, expected 20"),
+    ("weights-z-string", "colour.weights_z", '"z"', r"\$\.colour\.weights_z: is the string 'z', expected an array of 20"),
+    ("weights-x-entry", "colour.weights_x.3", '"w"', r"\$\.colour\.weights_x\[3\]: is the string 'w', expected a finite number"),
+    ("weights-y-overflow", "colour.weights_y.0", "1e999", r"\$\.colour\.weights_y\[0\]: is the number 1e999, expected a finite number"),
+    ("kappa-negative", "colour.kappa", "-1", r"\$\.colour\.kappa: is -1, outside 0–"),
+    ("kappa-string", "colour.kappa", '"k"', r"\$\.colour\.kappa: is the string 'k'"),
+    ("exposure-negative", "colour.exposure", "-2", r"\$\.colour\.exposure: is -2, outside 0–"),
+    ("exposure-overflow", "colour.exposure", "1e309", r"\$\.colour\.exposure: is the number 1e309, expected a finite number"),
+    ("adapt-string", "colour.adapt", '"yes"', r"\$\.colour\.adapt: is the string 'yes', expected true or false"),
+    ("rgb-number", "colour.rgb", "709", r"\$\.colour\.rgb: is the number 709, expected a string"),
+    ("fallback-negative", "colour.fallback_pixels", "-1", r"\$\.colour\.fallback_pixels: is -1, outside 0–48"),
+    ("fallback-too-many", "colour.fallback_pixels", "49", r"\$\.colour\.fallback_pixels: is 49, outside 0–48"),
+    ("pixel-xyz-number", "colour.pixel_xyz", "5", r"\$\.colour\.pixel_xyz: is the number 5, expected a string"),
+    ("white-spd-number", "colour.reference_white_spd", "5", r"\$\.colour\.reference_white_spd: is the number 5, expected an object"),
+    ("white-spd-empty", "colour.reference_white_spd.wavelengths_nm", "[]", r"reference_white_spd\.wavelengths_nm: is empty"),
+    ("white-spd-descending", "colour.reference_white_spd.wavelengths_nm.1", "1", r"reference_white_spd\.wavelengths_nm\[1\]: is 1, not above"),
+    ("white-spd-zero-nm", "colour.reference_white_spd.wavelengths_nm.0", "0", r"reference_white_spd\.wavelengths_nm\[0\]: is 0, outside 1–100000"),
+    ("white-spd-values-short", "colour.reference_white_spd.values", "[1, 2]", r"reference_white_spd\.values: has 2 entries, expected \d+"),
+    ("objects-number", "objects", "5", r"\$\.objects: is the number 5, expected an array"),
+    ("object-number", "objects.0", "5", r"\$\.objects\[0\]: is the number 5, expected an object"),
+    ("object-id-two", "objects.0.id", "2", r"\$\.objects\[0\]\.id: is 2, expected 1 \(ids count from 1 in order\)"),
+    ("object-id-zero", "objects.0.id", "0", r"\$\.objects\[0\]\.id: is 0, outside 1–65535"),
+    ("object-id-string", "objects.0.id", '"1"', r"\$\.objects\[0\]\.id: is the string '1'"),
+    ("object-name-number", "objects.0.name", "5", r"\$\.objects\[0\]\.name: is the number 5, expected a string"),
+    ("object-material-null", "objects.0.material", "null", r"\$\.objects\[0\]\.material: is missing, expected a string"),
+    ("object-reflectance-number", "objects.0.reflectance", "14", r"\$\.objects\[0\]\.reflectance: is the number 14, expected a string"),
+    ("object-normal-two", "objects.0.flat_normal", "[0, 1]", r"\$\.objects\[0\]\.flat_normal: has 2 entries, expected 3"),
+    ("lights-string", "lights", '"D65"', r"\$\.lights: is the string 'D65', expected an array"),
+    ("light-number", "lights.0", "5", r"\$\.lights\[0\]: is the number 5, expected an object"),
+    ("light-index-negative", "lights.0.index", "-1", r"\$\.lights\[0\]\.index: is -1, expected ≥ \d+"),
+    ("light-intensity-string", "lights.0.intensity", '"1"', r"\$\.lights\[0\]\.intensity: is the string '1'"),
+    ("light-ambient-string", "lights.0.has_ambient", '"no"', r"\$\.lights\[0\]\.has_ambient: is the string 'no', expected true or false"),
+    ("light-position-one", "lights.0.position", "[1]", r"\$\.lights\[0\]\.position: has 1 entries, expected 3"),
+    ("light-attenuation-text", "lights.0.attenuation", '"none"', r"\$\.lights\[0\]\.attenuation: is the string 'none'"),
+    ("light-spd-unsorted", "lights.0.spd", '{"wavelengths_nm": [500, 400], "values": [1, 1]}', r"\$\.lights\[0\]\.spd\.wavelengths_nm\[1\]: is 400, not above"),
+    ("light-spd-values-missing", "lights.0.spd", '{"wavelengths_nm": [400, 500]}', r"\$\.lights\[0\]\.spd\.values: is missing, expected an array of 2"),
+    ("light-photometric-number", "lights.0.photometric", "5", r"\$\.lights\[0\]\.photometric: is the number 5, expected an object"),
+    ("light-photometric-no-unit", "lights.0.photometric", '{"quantity": "luminous_flux", "value": 1}', r"\$\.lights\[0\]\.photometric\.unit: is missing"),
+    ("files-number", "files", "5", r"\$\.files: is the number 5, expected an array"),
+    ("files-entry-number", "files.0", "5", r"\$\.files\[0\]: is the number 5, expected a string"),
+    ("files-parent", "files.0", '"../elsewhere/file"', r"\$\.files\[0\]: '\.\./elsewhere/file' has an empty, '\.' or '\.\.' part"),
+    ("files-bands-parent", "files.0", '"bands/../../elsewhere/file"', r"\$\.files\[0\]: 'bands/\.\./\.\./elsewhere/file' has an empty"),
+    ("files-absolute", "files.0", '"/etc/passwd"', r"\$\.files\[0\]: '/etc/passwd' is an absolute path"),
+    ("files-empty", "files.0", '""', r"\$\.files\[0\]: '' is empty"),
+    ("files-dot", "files.0", '"./preview.png"', r"\$\.files\[0\]: '\./preview\.png' has an empty"),
+    ("files-double-slash", "files.0", '"bands//a.png"', r"\$\.files\[0\]: 'bands//a\.png' has an empty"),
+    ("files-backslash", "files.0", '"..\\\\x"', r"\$\.files\[0\]: .* holds a backslash"),
+    ("files-newline", "files.0", '"a\\nb"', r"\$\.files\[0\]: 'a\\nb' holds a backslash or a control character"),
+    ("files-long", "files.0", json.dumps("x" * 2000), r"\$\.files\[0\]: .* is longer than 1024 characters"),
+    ("crop-number", "crop", "5", r"\$\.crop: is the number 5, expected an object"),
+    ("crop-negative", "crop", '{"x0": -1, "y0": 0, "x1": 8, "y1": 6}', r"\$\.crop\.x0: is -1, outside 0–7"),
+    ("crop-beyond", "crop", '{"x0": 0, "y0": 0, "x1": 9, "y1": 6}', r"\$\.crop\.x1: is 9, outside 1–8"),
+    ("crop-empty", "crop", '{"x0": 4, "y0": 0, "x1": 4, "y1": 6}', r"\$\.crop\.x1: is 4, outside 5–8"),
+    ("crop-missing-y1", "crop", '{"x0": 0, "y0": 0, "x1": 8}', r"\$\.crop\.y1: is missing"),
+    ("threads-negative", "threads", "-1", r"\$\.threads: is -1, expected ≥ \d+"),
+    ("tiles-string", "tiles", '"4"', r"\$\.tiles: is the string '4'"),
+    ("rays-number", "rays", "5", r"\$\.rays: is the number 5, expected an object"),
+    ("rays-total-negative", "rays.total", "-5", r"\$\.rays\.total: is -5, expected ≥ \d+"),
+    ("timings-negative", "timings_s.render", "-1", r"\$\.timings_s\.render: is -1, outside 0–1E\+300"),
+    ("highlight-two", "aov.highlight_fraction", "2", r"\$\.aov\.highlight_fraction: is 2, outside 0–1"),
+    ("radiometry-mode-number", "radiometry.mode", "1", r"\$\.radiometry\.mode: is the number 1, expected a string"),
+    ("run-string", "run", '"fast"', r"\$\.run: is the string 'fast', expected an object"),
+    ("run-load-negative", "run.load_s", "-3", r"\$\.run\.load_s: is -3, expected ≥ \d+"),
+    ("run-overrides-width", "run.overrides", '{"width": 0}', r"\$\.run\.overrides\.width: is 0, outside 1–32768"),
+    ("run-overrides-models", "run.overrides", '{"models": [5]}', r"\$\.run\.overrides\.models\[0\]: is the number 5"),
+    ("run-relit-number", "run.relit", "5", r"\$\.run\.relit: is the number 5, expected an object"),
+    ("run-relit-changes", "run.relit", '{"changes": [5]}', r"\$\.run\.relit\.changes\[0\]: is the number 5"),
+    ("run-relit-copied-parent", "run.relit", '{"copied_files": ["../x"]}', r"\$\.run\.relit\.copied_files\[0\]: '\.\./x' has an empty"),
+    ("resolved-scene-number", "resolved_scene", "5", r"\$\.resolved_scene: is the number 5, expected an object"),
+    ("scene-hash-number", "scene_hash", "5", r"\$\.scene_hash: is the number 5, expected a string"),
+    ("global-ambient-number", "global_ambient", "1", r"\$\.global_ambient: is the number 1, expected true or false"),
+    ("tool-array", "tool", "[]", r"\$\.tool: is an array of 0, expected a string"),
+    ("created-number", "created_utc", "2026", r"\$\.created_utc: is the number 2026, expected a string"),
+]:
+    manifest_case(label, [f"json-set r/render.json {path} {value}"], pat)
+for label, key, pat in [("del-width", "width", r"\$\.width: is missing"), ("del-bands", "bands", r"\$\.bands: is missing, expected an object"),
+                        ("del-colour", "colour", r"\$\.colour: is missing"), ("del-objects", "objects", r"\$\.objects: is missing, expected an array"),
+                        ("del-lights", "lights", r"\$\.lights: is missing"), ("del-white", "colour.white_xyz", r"\$\.colour\.white_xyz: is missing"),
+                        ("del-weights", "colour.weights_z", r"\$\.colour\.weights_z: is missing"), ("del-observer", "colour.observer", r"\$\.colour\.observer: is missing")]:
+    manifest_case(label, [f"json-del r/render.json {key}"], pat)
+for label, text, pat in [
+    ("duplicate-key", '{"width": 8, "width": 8}', r"render\.json:\d+:\d+: broken JSON: .*(duplicate|Duplicate)"),
+    ("deep", "[" * 200 + "]" * 200, r"render\.json:\d+:\d+: broken JSON: .*depth"),
+    ("string-root", '"render"', r"render\.json: \$: is not a JSON object"),
+    ("bom-empty-object", "\ufeff{}", r"\$\.width: is missing"),
+]:
+    write(f"manifest-{label}.json", text)
+    manifest_case(label, [f"copy {{in}}/manifest-{label}.json r/render.json"], pat, place=r"render\.json(:\d+:\d+)?: ")
+# The same damage met by every reader of render.json: probe, reconstruct, camera, view, relight, merge.
+for cmd_label, cmd in [("probe", ("probe", "{tmp}/r", "--pixel", "1,1")), ("reconstruct", ("reconstruct", "{tmp}/r", "--white-object", "sphere-0")),
+                       ("camera", ("camera", "{tmp}/r", "--sensor", "isetcam", "-o", "{tmp}/out")), ("view", ("view", "{tmp}/r")),
+                       ("relight", ("relight", "{tmp}/r", "--light", "light-0=A", "-o", "{tmp}/out", "--quiet")),
+                       ("merge", ("merge", "{tmp}/r", "-o", "{tmp}/out", "--quiet"))]:
+    manifest_case(f"{cmd_label}-weights-short", ["json-set r/render.json colour.weights_x [1]"], r"\$\.colour\.weights_x: has 1 entries, expected 20", cmd=cmd)
+    manifest_case(f"{cmd_label}-files-traversal", ['json-set r/render.json files.0 "bands/../../../victim"'], r"\$\.files\[0\]: 'bands/\.\./\.\./\.\./victim' has an empty", cmd=cmd)
+    manifest_case(f"{cmd_label}-files-link-out", ["remove r/preview.png", "symlink r/preview.png /etc/hostname"], r"\$\.files\[\d+\]: names 'preview\.png', a symbolic link leading out of the folder", cmd=cmd)
+
+# lights/lights.json, read by relight (and the viewer, the camera's exact route)
+RELIGHT = ("relight", "{tmp}/r", "--light", "light-0=A", "-o", "{tmp}/out", "--quiet")
+LJ = r"lights\.json: \$"
+def lights_case(label, steps, pat, cmd=RELIGHT, file="lights.json", place=LJ):
+    case(f"lights/{label}", list(cmd), pat, 2, file, place, ["base-lights r", *steps])
+for label, path, value, pat in [
+    ("width-string", "width", '"8"', r"\$\.width: is the string '8', expected a whole number 1–32768"),
+    ("width-zero", "width", "0", r"\$\.width: is 0, outside 1–32768"),
+    ("height-huge", "height", "99999", r"\$\.height: is 99999, outside 1–32768"),
+    ("bands-wrong", "bands", "7", r"\$\.bands: is 7, but the render has 20 bands"),
+    ("bands-float", "bands", "20.5", r"\$\.bands: is the number 20\.5, expected a whole number"),
+    ("lights-empty", "lights", "[]", r"\$\.lights: has 0 entries, expected 1"),
+    ("lights-number", "lights", "1", r"\$\.lights: is the number 1, expected an array of 1"),
+    ("components-object", "components", "{}", r"\$\.components: is an object, expected an array"),
+    ("component-number", "components.0", "5", r"\$\.components\[0\]: is the number 5, expected an object"),
+    ("lobe-unknown", "components.0.lobe", '"glow"', r"\$\.components\[0\]\.lobe: is 'glow', not diffuse, specular"),
+    ("lobe-number", "components.0.lobe", "0", r"\$\.components\[0\]\.lobe: is the number 0, expected a string"),
+    ("light-out-of-range", "components.0.light", "9", r"\$\.components\[0\]\.light: is 9, outside 0–0"),
+    ("light-string", "components.0.light", '"0"', r"\$\.components\[0\]\.light: is the string '0'"),
+    ("material-unknown", "components.0.material", '"gold"', r"\$\.components\[0\]\.material: names material 'gold', which the scene does not have"),
+    ("material-number", "components.0.material", "3", r"\$\.components\[0\]\.material: is the number 3, expected a string"),
+    ("chain-string", "components.0.chain", '"mirror"', r"\$\.components\[0\]\.chain: is the string 'mirror', expected an array"),
+    ("chain-weight", "components.0.chain", '[{"material": "green", "weight": "bounce"}]', r"\$\.components\[0\]\.chain\[0\]\.weight: is 'bounce', not mirror or transmit"),
+    ("chain-material", "components.0.chain", '[{"material": "lead", "weight": "mirror"}]', r"\$\.components\[0\]\.chain\[0\]\.material: names material 'lead'"),
+    ("chain-too-long", "components.0.chain", json.dumps([{"material": "green", "weight": "mirror"}] * 7), r"\$\.components\[0\]\.chain: has 7 entries, more than 6"),
+    ("band-zero", "components.0.band", "0", r"\$\.components\[0\]\.band: is 0, outside 1–20"),
+    ("band-99", "components.0.band", "99", r"\$\.components\[0\]\.band: is 99, outside 1–20"),
+    ("offset-negative", "components.0.offset", "-1", r"\$\.components\[0\]\.offset: is -1, expected ≥ \d+"),
+    ("offset-beyond", "components.0.offset", "100000", r"\$\.components\[0\]\.offset: entries 100000…\d+ lie outside the \d+ stored"),
+    ("offset-huge", "components.0.offset", "2147483000", r"\$\.components\[0\]\.count: puts entries beyond|\$\.components\[0\]\.offset: entries"),
+    ("count-negative", "components.0.count", "-1", r"\$\.components\[0\]\.count: is -1, outside 0–48"),
+    ("count-beyond-image", "components.0.count", "49", r"\$\.components\[0\]\.count: is 49, outside 0–48"),
+    ("count-fraction", "components.0.count", "1.5", r"\$\.components\[0\]\.count: is the number 1\.5, expected a whole number"),
+    ("merged-zero", "components.0.merged_chains", "0", r"\$\.components\[0\]\.merged_chains: is 0, expected ≥ \d+"),
+]:
+    lights_case(label, [f"json-set r/lights/lights.json {path} {value}"], pat)
+lights_case("del-components", ["json-del r/lights/lights.json components"], r"\$\.components: is missing, expected an array")
+lights_case("del-width", ["json-del r/lights/lights.json width"], r"\$\.width: is missing")
+lights_case("view-lobe-unknown", ['json-set r/lights/lights.json components.0.lobe "glow"'], r"\$\.components\[0\]\.lobe: is 'glow'", cmd=("view", "{tmp}/r"))
+lights_case("view-light-out-of-range", ["json-set r/lights/lights.json components.0.light 5"], r"\$\.components\[0\]\.light: is 5, outside", cmd=("view", "{tmp}/r"))
+for label, text, pat in [("not-json", "{ lights", r"lights\.json:\d+:\d+: broken JSON"), ("array", "[]", r"lights\.json: \$: is not a JSON object"),
+                         ("duplicate", '{"width": 8, "width": 8}', r"lights\.json:\d+:\d+: broken JSON")]:
+    write(f"lights-{label}.json", text)
+    lights_case(label, [f"copy {{in}}/lights-{label}.json r/lights/lights.json"], pat, place=r"lights\.json(:\d+:\d+)?: ")
+write("lights-ids-object-99.npy", npy((3, 6, 8), body=struct.pack("<f", 99) + b"\0" * (4 * 143)))
+lights_case("ids-object-99", ["copy {in}/lights-ids-object-99.npy r/lights/ids.npy"], r"ids\.npy: pixel 0,0: object 99 is not 0 \(background\) or one of the scene's 1", file="ids.npy", place=r"ids\.npy: ")
+write("lights-ids-nan.npy", npy((3, 6, 8), body=struct.pack("<f", float("nan")) + b"\0" * (4 * 143)))
+lights_case("ids-nan", ["copy {in}/lights-ids-nan.npy r/lights/ids.npy"], r"ids\.npy: pixel 0,0: object NaN is not", file="ids.npy", place=r"ids\.npy: ")
+write("lights-ids-shape.npy", npy((2, 6, 8), body=b"\0" * (4 * 96)))
+lights_case("ids-shape", ["copy {in}/lights-ids-shape.npy r/lights/ids.npy"], r"ids\.npy: has shape \(2, 6, 8\), lights\.json says \(3, 6, 8\)", file="ids.npy", place=r"ids\.npy: ")
+
+# camera.json, read by recover
+RECOVER = ("recover", "{tmp}/cam")
+CJ = r"camera\.json: \$"
+def camera_case(label, steps, pat, file="camera.json", place=CJ):
+    case(f"camera/{label}", list(RECOVER), pat, 2, file, place, ["base-camera .", *steps])
+for label, path, value, pat in [
+    ("render-folder-number", "render_folder", "5", r"\$\.render_folder: is the number 5, expected a string"),
+    ("render-folder-gone", "render_folder", '"../nowhere"', r"\$\.render_folder: names '.*nowhere', which is not a folder"),
+    ("sensor-number", "sensor_argument", "5", r"\$\.sensor_argument: is the number 5, expected a string"),
+    ("simulation-array", "simulation", "[]", r"\$\.simulation: is an array of 0, expected an object"),
+    ("exposure-string", "simulation.exposure_s", '"auto"', r"\$\.simulation\.exposure_s: is the string 'auto', expected an array"),
+    ("exposure-zero", "simulation.exposure_s", "[0]", r"\$\.simulation\.exposure_s\[0\]: is 0, not a positive exposure"),
+    ("exposure-negative", "simulation.exposure_s", "[-1]", r"\$\.simulation\.exposure_s\[0\]: is -1, expected ≥ 0"),
+    ("exposure-overflow", "simulation.exposure_s", "[1e999]", r"\$\.simulation\.exposure_s\[0\]: is the number 1e999, expected a finite number"),
+    ("exposure-count", "simulation.exposure_s", "[0.01, 0.01]", r"\$\.simulation\.exposure_s: has 2 exposures, the sensor 'isetcam' takes 1"),
+    ("exposure-null-entry", "simulation.exposure_s", "[null]", r"\$\.simulation\.exposure_s\[0\]: is missing"),
+    ("seed-negative", "simulation.seed", "-1", r"\$\.simulation\.seed: is the number -1, expected a whole number ≥ 0"),
+    ("seed-fraction", "simulation.seed", "1.5", r"\$\.simulation\.seed: is the number 1\.5, expected a whole number"),
+    ("seed-string", "simulation.seed", '"1"', r"\$\.simulation\.seed: is the string '1', expected a whole number"),
+    ("seed-huge", "simulation.seed", "1e30", r"\$\.simulation\.seed: is the number 1e30, expected a whole number"),
+    ("noise-bool", "simulation.noise", "true", r"\$\.simulation\.noise: is true, expected a string"),
+    ("scale-zero", "simulation.radiance_scale_w_m2_sr_nm_per_band_unit", "0", r"radiance_scale_w_m2_sr_nm_per_band_unit: is 0, not a positive scale"),
+    ("scale-negative", "simulation.radiance_scale_w_m2_sr_nm_per_band_unit", "-1", r"radiance_scale_w_m2_sr_nm_per_band_unit: is -1, expected ≥ 0"),
+    ("scale-string", "simulation.radiance_scale_w_m2_sr_nm_per_band_unit", '"1"', r"radiance_scale_w_m2_sr_nm_per_band_unit: is the string '1'"),
+    ("white-scale-zero", "simulation.white_radiance_scale", "0", r"\$\.simulation\.white_radiance_scale: is 0, not a positive scale"),
+    ("route-number", "simulation.signal_route", "1", r"\$\.simulation\.signal_route: is the number 1, expected a string"),
+    ("processing-number", "processing", "1", r"\$\.processing: is the number 1, expected an object"),
+    ("demosaic-number", "processing.demosaic", "1", r"\$\.processing\.demosaic: is the number 1, expected a string"),
+]:
+    camera_case(label, [f"json-set cam/camera.json {path} {value}"], pat)
+camera_case("del-simulation", ["json-del cam/camera.json simulation"], r"\$\.simulation: is missing, expected an object")
+camera_case("del-scale", ["json-del cam/camera.json simulation.radiance_scale_w_m2_sr_nm_per_band_unit"], r"radiance_scale_w_m2_sr_nm_per_band_unit: is missing")
+camera_case("render-damaged", ["json-set r/render.json colour.weights_y [1]"], r"\$\.colour\.weights_y: has 1 entries, expected 20", file="render.json", place=RJ)
+for label, text, pat in [("not-json", "{ camera", r"camera\.json:\d+:\d+: broken JSON"), ("array", "[1]", r"camera\.json: \$: is not a JSON object")]:
+    write(f"camera-{label}.json", text)
+    camera_case(label, [f"copy {{in}}/camera-{label}.json cam/camera.json"], pat, place=r"camera\.json(:\d+:\d+)?: ")
+
+# merge: shards whose manifests name files outside their folder, links, tampered crops
+MERGE = ("merge", "{tmp}/a", "{tmp}/b", "-o", "{tmp}/out", "--quiet")
+def merge_case(label, steps, pat, file="render.json", place=RJ, cmd=MERGE):
+    case(f"merge/{label}", list(cmd), pat, 2, file, place, ["base-shards .", *steps])
+for label, path, value, pat in [
+    ("files-traversal", "files.0", '"bands/../../../victim"', r"\$\.files\[0\]: 'bands/\.\./\.\./\.\./victim' has an empty"),
+    ("files-absolute", "files.0", '"/tmp/victim"', r"\$\.files\[0\]: '/tmp/victim' is an absolute path"),
+    ("crop-number", "crop", '"top"', r"\$\.crop: is the string 'top', expected an object"),
+    ("crop-outside", "crop", '{"x0": 0, "y0": 0, "x1": 8, "y1": 65}', r"\$\.crop\.y1: is 65, outside 1–64"),
+    ("scene-hash-number", "scene_hash", "1", r"\$\.scene_hash: is the number 1, expected a string"),
+    ("width-zero", "width", "0", r"\$\.width: is 0, outside"),
+]:
+    merge_case(label, [f"json-set a/render.json {path} {value}"], pat)
+merge_case("files-duplicate", ['json-set a/render.json files.0 "x.png"', 'json-set a/render.json files.1 "x.png"'], r"\$\.files\[1\]: lists 'x\.png' a second time")
+merge_case("files-link-out", ["remove a/spectral.npy", "symlink a/spectral.npy /etc/hostname"], r"\$\.files\[\d+\]: names 'spectral\.npy', a symbolic link leading out of the folder")
+merge_case("hash-differs", ['json-set b/render.json scene_hash "sha256:0"'], r"is a shard of another scene or settings", file="b", place=r".")
+merge_case("shard-missing", [], r"rows 32–63 are in no shard given|a shard is missing", file="a", place=r".", cmd=("merge", "{tmp}/a", "-o", "{tmp}/out", "--quiet"))
+merge_case("shard-twice", [], r"overlaps", file="a", place=r".", cmd=("merge", "{tmp}/a", "{tmp}/a", "{tmp}/b", "-o", "{tmp}/out", "--quiet"))
+merge_case("out-is-shard", [], r"is also the output folder", file="a", place=r".", cmd=("merge", "{tmp}/a", "{tmp}/b", "-o", "{tmp}/a", "--quiet"))
+merge_case("crop-not-strip", ['json-set a/render.json crop {"x0": 0, "y0": 0, "x1": 4, "y1": 32}'], r"holds crop .*not full-width rows", file="a", place=r".")
+merge_case("listed-file-missing", ["remove b/spectral.npy"], r"lacks spectral\.npy, which its render\.json lists", file="b", place=r".")
+# the analysis commands on a crop say it is one and to merge first
+for cmd_label, cmd in [("colorcheck", ("colorcheck", "{tmp}/r")), ("probe", ("probe", "{tmp}/r", "--pixel", "1,1")),
+                       ("reconstruct", ("reconstruct", "{tmp}/r", "--white-object", "sphere-0")), ("view", ("view", "{tmp}/r")),
+                       ("camera", ("camera", "{tmp}/r", "--sensor", "isetcam", "-o", "{tmp}/out"))]:
+    case(f"crop/{cmd_label}", list(cmd), r"holds a crop of the film \(pixels 0–3 × 0–2 of 8×6, from --crop or --shard\), not a whole render.*spectral merge",
+         2, "r", r".", ["base-crop r"])
+
+# sweep plans (beside good.json in inputs/): checked whole, every job's scene loaded, before the first job runs
+SW = r"plan-[a-z0-9-]+\.json(:\d+:\d+)?: \$"
+def plan_case(label, plan, pat, file=None, place=SW, exit=2):
+    fname = f"plan-{label}.json"
+    write(fname, plan if isinstance(plan, (str, bytes)) else json.dumps(plan))
+    case(f"sweep/{label}", ["sweep", "{in}/" + fname, "-o", "{tmp}/sw", "--quiet"], pat, exit, file or fname, place)
+AX = {"name": "light", "path": "lights[0].spectrum", "values": ["D65", "A"]}
+plan_case("not-json", "{ scene", r"is not valid JSON", place=r".")
+plan_case("array", "[]", r"\$: is not a JSON object")
+plan_case("unknown-key", {"scene": "good.json", "axis": [AX]}, r"\$\.axis: is not a plan key.*did you mean 'axes'")
+plan_case("scene-number", {"scene": 5, "axes": [AX]}, r"\$\.scene: is missing or not a file name")
+plan_case("scene-missing", {"scene": "nothere.json", "axes": [AX]}, r"base scene not found", file="nothere.json", place=r".")
+plan_case("axes-object", {"scene": "good.json", "axes": {"a": 1}}, r"\$\.axes: is not a list of axes")
+plan_case("axis-number", {"scene": "good.json", "axes": [5]}, r"\$\.axes\[0\]: is not an object")
+plan_case("axis-no-name", {"scene": "good.json", "axes": [{"path": "camera.fov", "values": [30]}]}, r"\$\.axes\[0\]\.name: is missing")
+plan_case("axis-name-taken", {"scene": "good.json", "axes": [{**AX, "name": "status"}]}, r"\$\.axes\[0\]\.name: 'status' is taken")
+plan_case("axis-values-empty", {"scene": "good.json", "axes": [{**AX, "values": []}]}, r"\$\.axes\[0\]\.values: is missing or empty")
+plan_case("axis-labels-count", {"scene": "good.json", "axes": [{**AX, "labels": ["x"]}]}, r"\$\.axes\[0\]\.labels: has 1 labels for 2 values")
+plan_case("axis-path-syntax", {"scene": "good.json", "axes": [{**AX, "path": "lights[0]..spectrum"}]}, r"\$\.axes\[0\]\.path: 'lights\[0\]\.\.spectrum' is not a scene path")
+plan_case("edit-lands-nowhere", {"scene": "good.json", "axes": [{**AX, "path": "lights[5].spectrum"}]}, r"job 0000: 'lights' has 1 elements, so no \[5\]", place=r".")
+plan_case("jobs-overflow", {"scene": "good.json", "axes": [{"name": f"a{i}", "path": "camera.fov", "values": list(range(30, 40))} for i in range(12)]},
+          r"\$\.axes: makes more than 100,000 jobs, more than the limit")
+plan_case("jobs-160000", {"scene": "good.json", "axes": [{"name": "a", "path": "camera.fov", "values": list(range(400))}, {"name": "b", "path": "spp", "values": list(range(400))}]},
+          r"\$\.axes: makes more than 100,000 jobs")
+plan_case("jobs-extra-over", {"scene": "good.json", "axes": [{"name": "a", "path": "camera.fov", "values": list(range(1000))}, {"name": "b", "path": "spp", "values": list(range(100))}],
+                              "extra": [{"set": {"camera.fov": 20}}]}, r"\$\.extra: makes 100,001 jobs, more than the limit")
+plan_case("extra-not-object", {"scene": "good.json", "extra": [5]}, r"\$\.extra\[0\]: is not")
+plan_case("no-jobs", {"scene": "good.json"}, r"\$\.axes: makes no jobs")
+# Found by fuzzing (fuzz/run.sh sweep): a plan whose strings are not UTF-8.
+plan_case("fuzz-invalid-utf8", open(os.path.join(HERE, "found", "plan-fuzz-invalid-utf8.json"), "rb").read(), r"is not valid UTF-8", place=r".")
+write("plan-latin1-scene.json", json.dumps({"scene": "scene-035-latin1-byte.json", "axes": [{"name": "light", "path": "lights[0].spectrum", "values": ["A"]}]}))
+case("sweep/scene-latin1", ["sweep", "{in}/plan-latin1-scene.json", "-o", "{tmp}/sw", "--quiet"], r"is not valid UTF-8", 2, "scene-035-latin1-byte.json", r".")
+plan_case("formats-number", {"scene": "good.json", "axes": [AX], "formats": 5}, r"\$\.formats: is not a list of formats")
+# a job's own scene is bad: named as OUT/jobs/ID/scene.json (written so its line is true), and no job renders
+JOBSCENE = r"jobs/\d{4}/scene\.json:\d+:\d+: \$"
+for label, plan, pat in [
+    ("job-bands-and-wave", {"scene": "good.json", "axes": [AX], "extra": [{"name": "both", "set": {"bands": "400:700:10", "wave": "400:10:700"}}]}, r"sweep job 0002: .*wave"),
+    ("job-unknown-spectrum", {"scene": "good.json", "axes": [{**AX, "values": ["D65", "A", "D66"]}]}, r"sweep job 0002: .*unknown spectrum 'D66'"),
+    ("job-width-zero", {"scene": "good.json", "axes": [{"name": "w", "path": "camera.width", "values": [8, 0]}]}, r"\$\.camera\.width: sweep job 0001: .*not positive"),
+    ("job-material-bad", {"scene": "good.json", "axes": [{"name": "m", "path": "materials.green.diffuse", "values": [0.5, -1]}]}, r"sweep job 0001: .*out of range"),
+    ("job-mesh-missing", {"scene": "good.json", "set": {"objects[0]": {"type": "mesh", "file": "nothere.obj", "material": "green"}}, "axes": [AX]}, r"sweep job 0000: mesh 'nothere\.obj' not found"),
+    ("job-mesh-far", {"scene": "good.json", "axes": [{"name": "o", "path": "objects[0]", "values": [{"type": "sphere", "radius": 1, "material": "green"},
+        {"type": "mesh", "file": "tri.obj", "material": "green", "transform": {"scale": 1e6, "translate": [9.5e6, 0, 0]}}]}]}, r"sweep job 0001: the placed mesh reaches"),
+    ("job-ray-budget", {"scene": "good.json", "axes": [{"name": "d", "path": "max_depth", "values": [3, 99]}]}, r"\$\.max_depth: sweep job 0001: .*out of range"),
+]:
+    fname = f"plan-{label}.json"
+    write(fname, json.dumps(plan))
+    case(f"sweep/{label}", ["sweep", "{in}/" + fname, "-o", "{tmp}/sw", "--quiet"], pat, 2, "scene.json", JOBSCENE)
+case("sweep/emit-job-bad", ["sweep", "{in}/plan-job-unknown-spectrum.json", "-o", "{tmp}/sw", "--emit", "slurm", "--quiet"],
+     r"sweep job 0002: .*unknown spectrum 'D66'", 2, "scene.json", JOBSCENE)
+# a damaged job.json is no record: the job runs again (exit 0), never an internal error
+for label, text in [("status-number", '{"status": 1, "job_hash": "x"}'), ("seconds-string", '{"status": "done", "seconds": "fast", "job_hash": "x"}'),
+                    ("not-json", "{ done"), ("array", "[]"), ("status-unknown", '{"status": "great"}')]:
+    write(f"job-{label}.json", text)
+    case(f"sweep/job-record-{label}", ["sweep", "{in}/plan-one.json", "-o", "{tmp}/sw", "--quiet"], r"^$", 0, None, None,
+         ["mkdir sw", "mkdir sw/jobs", "mkdir sw/jobs/0000", f"copy {{in}}/job-{label}.json sw/jobs/0000/job.json"])
+write("plan-one.json", json.dumps({"scene": "good.json", "axes": [{"name": "light", "path": "lights[0].spectrum", "values": ["D65"]}], "formats": ["npy"]}))
+
+# overflowing and out-of-range numbers on the command line
+for label, args, pat, named in [
+    ("camera-exposure-1e300", ["camera", "{tmp}/r", "--sensor", "isetcam", "-o", "{tmp}/out", "--exposure", "1e300"], r"--exposure: '1e300' is outside", "--exposure"),
+    ("camera-exposure-1e-300", ["camera", "{tmp}/r", "--sensor", "isetcam", "-o", "{tmp}/out", "--exposure", "1e-300"], r"--exposure: '1e-300' is outside", "--exposure"),
+    ("camera-exposure-negative", ["camera", "{tmp}/r", "--sensor", "isetcam", "-o", "{tmp}/out", "--exposure", "-1"], r"--exposure: '-1' is outside", "--exposure"),
+    ("camera-exposure-nan", ["camera", "{tmp}/r", "--sensor", "isetcam", "-o", "{tmp}/out", "--exposure", "NaN"], r"--exposure: 'NaN' is not a finite number", "--exposure"),
+    ("camera-scale-1e30", ["camera", "{tmp}/r", "--sensor", "isetcam", "-o", "{tmp}/out", "--radiance-scale", "1e30"], r"--radiance-scale: '1e30' is outside", "--radiance-scale"),
+    ("camera-scale-zero", ["camera", "{tmp}/r", "--sensor", "isetcam", "-o", "{tmp}/out", "--radiance-scale", "0"], r"--radiance-scale: '0' is outside", "--radiance-scale"),
+    ("camera-scale-inf", ["camera", "{tmp}/r", "--sensor", "isetcam", "-o", "{tmp}/out", "--radiance-scale", "Infinity"], r"--radiance-scale: 'Infinity' is not a finite number", "--radiance-scale"),
+    ("camera-seed-negative", ["camera", "{tmp}/r", "--sensor", "isetcam", "-o", "{tmp}/out", "--seed", "-1"], r"--seed '-1' is not a whole number ≥ 0", "command line"),
+    ("camera-seed-overflow", ["camera", "{tmp}/r", "--sensor", "isetcam", "-o", "{tmp}/out", "--seed", "99999999999999999999999"], r"is not a whole number ≥ 0", "command line"),
+    ("camera-threads-huge", ["camera", "{tmp}/r", "--sensor", "isetcam", "-o", "{tmp}/out", "--threads", "99999999999"], r"--threads: '99999999999' is not a whole number in 1–1024", "--threads"),
+    ("view-for-1e300", ["view", "{tmp}/r", "--serve", "--for", "1e300"], r"--for: '1e300' is outside 0 \(exclusive\) to 1E\+07 seconds", "--for"),
+    ("view-for-zero", ["view", "{tmp}/r", "--serve", "--for", "0"], r"--for: '0' is outside", "--for"),
+    ("view-for-negative", ["view", "{tmp}/r", "--serve", "--for", "-5"], r"--for: '-5' is outside", "--for"),
+    ("view-for-nan", ["view", "{tmp}/r", "--serve", "--for", "nan"], r"--for: 'nan' is not a finite number", "--for"),
+    ("view-port-zero", ["view", "{tmp}/r", "--serve", "--port", "0"], r"--port: '0' is not a whole number in 1–65535", "--port"),
+    ("view-port-70000", ["view", "{tmp}/r", "--serve", "--port", "70000"], r"--port: '70000' is not a whole number in 1–65535", "--port"),
+    ("view-port-overflow", ["view", "{tmp}/r", "--serve", "--port", "1e10"], r"--port: '1e10' is not a whole number", "--port"),
+    ("sweep-shards-zero", ["sweep", "{in}/plan-one.json", "-o", "{tmp}/sw", "--shards", "0"], r"--shards: '0' is not a whole number in 1–1048576", "--shards"),
+    ("sweep-shards-overflow", ["sweep", "{in}/plan-one.json", "-o", "{tmp}/sw", "--shards", "99999999999"], r"--shards: '99999999999' is not a whole number", "--shards"),
+    ("sweep-threads-overflow", ["sweep", "{in}/plan-one.json", "-o", "{tmp}/sw", "--threads", "4294967297"], r"--threads: '4294967297' is not a whole number", "--threads"),
+    ("render-shard-overflow", ["render", "{in}/good.json", "-o", "{tmp}/out", "--shard", "99999999999/2"], r"--shard", "--shard"),
+    ("render-shard-zero-count", ["render", "{in}/good.json", "-o", "{tmp}/out", "--shard", "0/0"], r"--shard", "--shard"),
+    ("render-shard-beyond", ["render", "{in}/good.json", "-o", "{tmp}/out", "--shard", "5/2"], r"--shard", "--shard"),
+    ("relight-intensity-1e300", ["relight", "{tmp}/r", "--intensity", "light-0=1e300", "-o", "{tmp}/out", "--quiet"], r"--intensity: '1e300' is not a non-negative number ≤ 1e30", "--intensity"),
+    ("relight-intensity-negative", ["relight", "{tmp}/r", "--intensity", "light-0=-1", "-o", "{tmp}/out", "--quiet"], r"--intensity: '-1' is not a non-negative number ≤ 1e30", "--intensity"),
+    ("relight-intensity-nan", ["relight", "{tmp}/r", "--intensity", "light-0=nan", "-o", "{tmp}/out", "--quiet"], r"--intensity: 'nan' is not a non-negative number ≤ 1e30", "--intensity"),
+]:
+    base = "base-lights r" if label.startswith("relight") or label.startswith("view") else "base-render r"
+    case(f"numbers/{label}", args, pat, 2, named, OPT + r"|--[a-z-]+", [base])
+
 names = [c["name"] for c in cases]
 assert len(names) == len(set(names)), [x for x in names if names.count(x) > 1]
 with open(os.path.join(HERE, "cases.json"), "w", encoding="utf-8") as f:

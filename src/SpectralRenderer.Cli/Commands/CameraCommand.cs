@@ -64,7 +64,7 @@ public static class CameraCommand
         if (a.Value("--exposure") is { } ex)
         {
             if (ex == "auto") sensor = sensor with { ExposureSeconds = null };
-            else sensor = sensor with { ExposureSeconds = a.Double("--exposure") is { } t && t > 0 ? t : throw new InputException("command line", $"--exposure '{ex}' must be auto or positive seconds", "e.g. --exposure auto or --exposure 0.01 (seconds)") };
+            else sensor = sensor with { ExposureSeconds = a.Double("--exposure", 1e-10, 1e5, "seconds") is { } t ? t : throw new InputException("command line", $"--exposure '{ex}' must be auto or positive seconds", "e.g. --exposure auto or --exposure 0.01 (seconds)") };
         }
         bool noise = a.Value("--noise") switch
         {
@@ -79,7 +79,7 @@ public static class CameraCommand
             var v => throw new InputException("command line", $"--demosaic '{v}' is not malvar or bilinear", "use --demosaic malvar or --demosaic bilinear"),
         };
         ulong seed = a.Value("--seed") is { } sv ? ulong.TryParse(sv, NumberStyles.None, CultureInfo.InvariantCulture, out var s) ? s : throw new InputException("command line", $"--seed '{sv}' is not a whole number ≥ 0", "give a whole number, e.g. --seed 1") : 1;
-        double scale = a.Double("--radiance-scale") ?? 1;
+        double scale = a.Double("--radiance-scale", 1e-20, 1e20, "W·m⁻²·sr⁻¹·nm⁻¹ per band unit") ?? 1;
         if (!(scale > 0)) throw new InputException("command line", "--radiance-scale must be positive", "W·m⁻²·sr⁻¹·nm⁻¹ per band unit");
         int threads = a.Int("--threads", 1, 1024) ?? -1;
 

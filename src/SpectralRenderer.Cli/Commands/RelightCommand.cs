@@ -73,8 +73,8 @@ public static class RelightCommand
         foreach (var v in a.Values("--intensity"))
         {
             var (name, text) = Split(v, "--intensity", "NAME=F, e.g. --intensity D65=0.5");
-            if (!double.TryParse(text, NumberStyles.Float, CultureInfo.InvariantCulture, out double f) || !double.IsFinite(f) || f < 0)
-                throw new InputException("--intensity", $"'{text}' is not a non-negative number", "e.g. --intensity D65=0.5");
+            if (!double.TryParse(text, NumberStyles.Float, CultureInfo.InvariantCulture, out double f) || !double.IsFinite(f) || f < 0 || f > 1e30)
+                throw new InputException("--intensity", $"'{text}' is not a non-negative number ≤ 1e30 (a scene's intensity range)", "e.g. --intensity D65=0.5");
             byName[name] = (byName.GetValueOrDefault(name) ?? new LightChange(name, null, null)) with { Intensity = f };
         }
         var whiteArg = a.Value("--white");

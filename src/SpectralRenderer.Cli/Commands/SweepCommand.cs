@@ -64,6 +64,8 @@ public static class SweepCommand
         {
             int tasks = shards ?? plan.Jobs.Count;
             RenderCommand.PrepareOutputFolder(outDir);
+            // The array runs every job: each one's scene is checked now, before anything is submitted.
+            plan.CheckJobs(plan.Jobs, new SceneOverrides { Formats = a.Value("--formats"), ModelDirectories = models }, outDir);
             var file = emit switch
             {
                 "slurm" => EmitSlurm(plan, outDir, tasks, layout, a, models),

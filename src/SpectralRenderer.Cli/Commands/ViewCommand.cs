@@ -32,8 +32,7 @@ public static class ViewCommand
         if (a.Positionals.Count != 1) throw new InputException("", "give one render folder", "usage: spectral view OUTDIR [--serve]");
         var dir = a.Positionals[0];
         int? port = a.Int("--port", 1, 65535);
-        double? seconds = a.Double("--for");
-        if (seconds is <= 0) throw new InputException("--for", "needs a positive number of seconds", "e.g. --for 10");
+        double? seconds = a.Double("--for", 0, 1e7, "seconds");   // ≤ 116 days: a TimeSpan holds it
         var files = SpectralViewer.Write(dir);
         var page = Path.Combine(Path.GetFullPath(dir), "viewer.html");
         if (!a.Flag("--serve"))

@@ -54,7 +54,7 @@ public sealed class RenderFolder
     public static (RenderManifest Manifest, SpectralImage Image) OpenCube(string dir)
     {
         if (!Directory.Exists(dir)) throw new InputException(dir, "no such render folder", "give the -o folder of a 'spectral render' run");
-        var manifest = RenderManifest.Read(dir);
+        var manifest = RenderManifest.Read(dir).Whole(dir);
         var grid = manifest.Grid;
         var image = SpectralFiles.Read(dir, grid);
         if (image.Width != manifest.Width || image.Height != manifest.Height || image.Bands != grid.Count)

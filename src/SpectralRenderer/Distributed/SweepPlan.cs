@@ -34,6 +34,8 @@ public sealed class SweepPlan
     public static SweepPlan Load(string planPath)
     {
         var bytes = InputFile.ReadAllBytes(planPath, "sweep plan");
+        // Found by fuzzing (fuzz/run.sh sweep): text that is not UTF-8 fails in the JSON reader's strings, not as bad input.
+        if (!System.Text.Unicode.Utf8.IsValid(bytes)) throw new InputException(planPath, "is not valid UTF-8", "save the plan as UTF-8");
         var locator = new JsonLocator(bytes, new JsonReaderOptions { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true });
         InputException Bad(string path, string what, string? hint = null) =>
             new(locator.Locate(path) is { } pos ? $"{planPath}:{pos}: {path}" : $"{planPath}: {path}", what, hint ?? "see the sweep plan format in README.md");
@@ -47,6 +49,7 @@ public sealed class SweepPlan
             throw Bad("$.scene", "is missing or not a file name", "\"scene\": \"../scenes/paper-3.2-bunny-19.json\" (relative to the plan)");
         var scenePath = Path.GetFullPath(Path.Combine(Path.GetDirectoryName(Path.GetFullPath(planPath))!, sv.GetValue<string>()));
         var sceneBytes = InputFile.ReadAllBytes(scenePath, "base scene");
+        if (!System.Text.Unicode.Utf8.IsValid(sceneBytes)) throw new InputException(scenePath, "is not valid UTF-8", "save the scene file as UTF-8");
         JsonObject scene;
         try { scene = JsonNode.Parse(sceneBytes, documentOptions: Options) as JsonObject ?? throw new JsonException("not an object"); }
         catch (JsonException e) { throw new InputException(scenePath, $"is not a valid scene: {e.Message.Split(" LineNumber:")[0]}", "check for a missing comma, quote or bracket"); }
@@ -81,10 +84,14 @@ public sealed class SweepPlan
         else if (plan["axes"] is not null) throw Bad("$.axes", "is not a list of axes");
 
         var jobs = new List<SweepJob>();
-        int total = axes.Aggregate(1, (c, x) => checked(c * x.Values.Count));
-        if (axes.Count == 0) total = 0;
-        if (total + (plan["extra"] as JsonArray)?.Count > 100_000) throw Bad("$.axes", $"makes more than 100,000 jobs");
-        int digits = Math.Max(4, (total + ((plan["extra"] as JsonArray)?.Count ?? 0)).ToString(CultureInfo.InvariantCulture).Length);
+        // The product of the axes' lengths, saturated (no overflow) once it is past the limit.
+        long product = axes.Count == 0 ? 0 : axes.Aggregate(1L, (c, x) => c > MaxJobs ? c : c * x.Values.Count);
+        long extras = (plan["extra"] as JsonArray)?.Count ?? 0;
+        if (product + extras > MaxJobs)
+            throw Bad(product > MaxJobs ? "$.axes" : "$.extra", $"makes {(product > MaxJobs ? "more than 100,000" : (product + extras).ToString("N0", CultureInfo.InvariantCulture))} jobs, more than the limit of 100,000",
+                "split the sweep into several plans");
+        int total = (int)product;
+        int digits = Math.Max(4, (total + extras).ToString(CultureInfo.InvariantCulture).Length);
         string Id(int i) => i.ToString(CultureInfo.InvariantCulture).PadLeft(digits, '0');
         for (int j = 0; j < total; j++)
         {
@@ -129,6 +136,48 @@ public sealed class SweepPlan
             try { result.SceneFor(job); }
             catch (InputException e) { throw new InputException(planPath, $"job {job.Id}: {e.What}", e.Hint); }
         return result;
+    }
+
+    /// <summary>The most jobs a plan may make.</summary>
+    public const int MaxJobs = 100_000;
+
+    /// <summary>
+    /// Loads every job's scene as the job will (with <paramref name="overrides"/>), before any job runs: its JSON, spectra,
+    /// materials, lights, camera and the overrides on it; each distinct set of mesh objects (file, fit, transform) is read
+    /// once. A job's bad scene is bad input naming its own scene file, <paramref name="outDir"/>/jobs/ID/scene.json (written
+    /// then, so its line:column are true), see <see cref="InJobScene"/>.
+    /// </summary>
+    public void CheckJobs(IEnumerable<SweepJob> jobs, SceneOverrides overrides, string outDir, CancellationToken cancel = default)
+    {
+        var meshSets = new HashSet<string>(StringComparer.Ordinal);
+        foreach (var job in jobs)
+        {
+            cancel.ThrowIfCancellationRequested();
+            var scene = SceneFor(job);
+            var meshes = string.Concat((scene["objects"] as JsonArray ?? []).OfType<JsonObject>()
+                .Where(o => o["type"] is JsonValue t && t.GetValueKind() == JsonValueKind.String && t.GetValue<string>().Equals("mesh", StringComparison.OrdinalIgnoreCase))
+                .Select(o => o.ToJsonString()));
+            var text = SceneBytes(job);
+            try { SceneLoader.Parse(text, ScenePath, overrides with { LoadMeshes = meshSets.Add(meshes) }); }
+            catch (InputException e) { throw InJobScene(e, job, text, outDir); }
+        }
+    }
+
+    /// <summary>
+    /// An error of a job's scene (parsed as if it were the base scene file, so its relative files resolve alike) as the
+    /// job's own: the place named in OUTDIR/jobs/ID/scene.json, which is written with the job's scene text, and the job named.
+    /// </summary>
+    public InputException InJobScene(InputException e, SweepJob job, byte[] text, string outDir)
+    {
+        if (!e.Where.StartsWith(ScenePath, StringComparison.Ordinal)) return new InputException(e.Where, $"sweep job {job.Id}: {e.What}", e.Hint) { Problem = e.Problem };
+        var file = Path.Combine(outDir, "jobs", job.Id, "scene.json");
+        try
+        {
+            Directory.CreateDirectory(Path.GetDirectoryName(file)!);
+            Imaging.AtomicFile.WriteAllBytes(file, text);
+        }
+        catch (Exception io) when (io is IOException or UnauthorizedAccessException) { file = $"job {job.Id}'s scene"; }
+        return new InputException(file + e.Where[ScenePath.Length..], $"sweep job {job.Id}: {e.What}", e.Hint) { Problem = e.Problem };
     }
 
     static List<(string, JsonNode?)> Edits(JsonObject o, string at, Func<string, string, string?, InputException> bad)

@@ -39,6 +39,8 @@ public static class SweepRunner
         if (layout == "pairs") formats = PairsFormats(formats);
         overrides = overrides with { Formats = formats };
         var mine = plan.Jobs.Where(j => slice.Owns(j.Index)).ToList();
+        // Every job of the slice checked before the first runs: a plan with a bad job renders nothing.
+        plan.CheckJobs(mine, overrides, outDir, cancel);
         Directory.CreateDirectory(Path.Combine(outDir, "jobs"));
         int rendered = 0, skipped = 0, failed = 0, finished = 0;
         var clock = Stopwatch.StartNew();
@@ -76,7 +78,7 @@ public static class SweepRunner
         {
             WriteIndex(plan, outDir, layout);
         }
-        int doneInIndex = plan.Jobs.Count(j => ReadRecord(Path.Combine(outDir, "jobs", j.Id))?["status"]?.GetValue<string>() == "done");
+        int doneInIndex = plan.Jobs.Count(j => ReadRecord(Path.Combine(outDir, "jobs", j.Id))?.Status == "done");
         return new SweepSummary(plan.Jobs.Count, mine.Count, rendered, skipped, failed, doneInIndex);
     }
 
@@ -88,18 +90,29 @@ public static class SweepRunner
         return string.Join(',', set);
     }
 
-    static bool IsDone(string dir, string hash)
-    {
-        var record = ReadRecord(dir);
-        return record?["status"]?.GetValue<string>() == "done" && record["job_hash"]?.GetValue<string>() == hash && File.Exists(Path.Combine(dir, "render.json"));
-    }
+    static bool IsDone(string dir, string hash) =>
+        ReadRecord(dir) is { Status: "done" } record && record.JobHash == hash && File.Exists(Path.Combine(dir, "render.json"));
 
-    static JsonObject? ReadRecord(string dir)
+    /// <summary>A job's job.json as the index uses it: status (done or failed), seconds, job hash, error.</summary>
+    sealed record JobRecord(string Status, double? Seconds, string? JobHash, string? Error);
+
+    /// <summary>
+    /// A job's job.json, checked (<see cref="JsonFields"/>): status done or failed, seconds a finite number ≥ 0, the hash
+    /// and error strings. A missing, unreadable or damaged record is no record: the job counts as pending and runs again.
+    /// </summary>
+    static JobRecord? ReadRecord(string dir)
     {
         var path = Path.Combine(dir, "job.json");
         if (!File.Exists(path)) return null;
-        try { return JsonNode.Parse(File.ReadAllText(path)) as JsonObject; }
-        catch (JsonException) { return null; }   // unreadable: the job counts as not done and runs again
+        try
+        {
+            var json = JsonFields.ParseFile(path, "job.json", "");
+            var r = new JsonFields(path, "");
+            string status = r.String(json, "status", "$");
+            if (status is not ("done" or "failed")) return null;
+            return new JobRecord(status, r.OptNumber(json, "seconds", "$", 0, 1e9), r.OptString(json, "job_hash", "$"), r.OptString(json, "error", "$"));
+        }
+        catch (InputException) { return null; }   // unreadable or damaged: the job counts as not done and runs again
     }
 
     static void RenderJob(SweepPlan plan, SweepJob job, string dir, SceneOverrides overrides, int threads, GeometryCache geometries, CancellationToken cancel)
@@ -107,18 +120,24 @@ public static class SweepRunner
         Directory.CreateDirectory(dir);
         File.Delete(Path.Combine(dir, "job.json"));
         var text = plan.SceneBytes(job);
-        // Parsed as if it were the base scene file, so its relative mesh and spectrum files resolve as the base scene's do.
-        var render = Pipeline.RenderJob.Load(new Pipeline.RenderRequest
+        // Parsed as if it were the base scene file, so its relative mesh and spectrum files resolve as the base scene's do;
+        // its errors name the job's own scene.json.
+        Pipeline.RenderJob render;
+        try
         {
-            ScenePath = plan.ScenePath,
-            SceneText = text,
-            Overrides = overrides,
-            Threads = threads,
-            OutDir = dir,
-            Geometries = geometries,
-            Run = new ManifestRun { CommandLine = $"spectral sweep {plan.PlanPath}", SweepJob = job.Id },
-            Detail = Pipeline.RunDetail.Geometry,
-        });
+            render = Pipeline.RenderJob.Load(new Pipeline.RenderRequest
+            {
+                ScenePath = plan.ScenePath,
+                SceneText = text,
+                Overrides = overrides,
+                Threads = threads,
+                OutDir = dir,
+                Geometries = geometries,
+                Run = new ManifestRun { CommandLine = $"spectral sweep {plan.PlanPath}", SweepJob = job.Id },
+                Detail = Pipeline.RunDetail.Geometry,
+            });
+        }
+        catch (InputException e) { throw plan.InJobScene(e, job, text, Path.GetDirectoryName(Path.GetDirectoryName(dir))!); }
         AtomicFile.WriteAllBytes(Path.Combine(dir, "scene.json"), text);
         render.Execute(cancel: cancel);
     }
@@ -173,8 +192,8 @@ public static class SweepRunner
         foreach (var job in plan.Jobs)
         {
             var record = ReadRecord(Path.Combine(outDir, "jobs", job.Id));
-            string status = record?["status"]?.GetValue<string>() ?? "pending";
-            double? seconds = record?["seconds"]?.GetValue<double>();
+            string status = record?.Status ?? "pending";
+            double? seconds = record?.Seconds;
             string path = $"jobs/{job.Id}";
             var row = new JsonObject { ["job"] = job.Id, ["status"] = status, ["seconds"] = seconds, ["path"] = path, ["parameters"] = Parameters(job) };
             var cells = new List<string> { job.Id, status, seconds?.ToString("0.###", CultureInfo.InvariantCulture) ?? "", path };
@@ -185,7 +204,7 @@ public static class SweepRunner
                 row["rgb"] = $"rgb/{job.Id}.png";
                 cells.AddRange([$"cube/{job.Id}.npy", $"rgb/{job.Id}.png"]);
             }
-            if (record?["error"] is { } e) row["error"] = e.DeepClone();
+            if (record?.Error is { } e) row["error"] = e;
             jsonl.Append(row.ToJsonString()).Append('\n');
             csv.Append(string.Join(',', cells.Select(Csv))).Append("\r\n");
         }

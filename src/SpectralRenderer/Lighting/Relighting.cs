@@ -30,7 +30,7 @@ public static class Relighting
     public static Source Open(string dir)
     {
         if (!Directory.Exists(dir)) throw new InputException(dir, "no such render folder", "give the -o folder of a 'spectral render' run");
-        var manifest = RenderManifest.Read(dir);
+        var manifest = RenderManifest.Read(dir).Whole(dir);
         if (manifest.ResolvedScene is not { } scene)
             throw new InputException(Path.Combine(dir, RenderManifest.FileName), "has no resolved_scene", "render again with this version of spectral");
         // No ray is traced: the meshes' triangles are not needed (nor their files present).

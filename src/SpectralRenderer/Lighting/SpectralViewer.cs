@@ -30,7 +30,7 @@ public static class SpectralViewer
     public static IReadOnlyList<string> Write(string dir)
     {
         if (!Directory.Exists(dir)) throw new InputException(dir, "no such render folder", "give the -o folder of a 'spectral render' run");
-        var manifest = RenderManifest.Read(dir);
+        var manifest = RenderManifest.Read(dir).Whole(dir);
         var grid = manifest.Grid;
         var scheme = manifest.Integration;
         var observer = manifest.ObserverDegrees == 10 ? Observer.Cie1964 : Observer.Cie1931;

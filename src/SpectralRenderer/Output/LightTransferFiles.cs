@@ -163,6 +163,78 @@ public static class LightTransferFiles
         return a;
     }
 
+    const string Damaged = "lights/lights.json is not as a render writes it: render the folder again with the lights output";
+
+    /// <summary>lights.json's layout: the image and band counts, the components and where their entries lie in factors.npy.</summary>
+    public sealed record Layout(int Width, int Height, int Bands, TransferComponent[] Components, (int Offset, int Count)[] Offsets,
+        int[] Merged, long Entries);
+
+    /// <summary>
+    /// lights.json checked against the scene it is read with: sizes in range, one entry per scene light, each component's
+    /// light, lobe, materials (by name), chain (at most <see cref="LightTransfer.MaxChain"/>) and band valid, its entries
+    /// [offset, offset + count) inside the stored total, which fits one array.
+    /// </summary>
+    public static Layout ParseLayout(JsonObject json, string jsonPath, Scene scene)
+    {
+        var r = new JsonFields(jsonPath, Damaged);
+        int width = r.Int(json, "width", "$", 1, 32768), height = r.Int(json, "height", "$", 1, 32768), bands = r.Int(json, "bands", "$", 1, 100_000);
+        if (bands != scene.Bands) throw r.Bad("$.bands", $"is {bands}, but the render has {scene.Bands} bands");
+        int k = scene.Lights.Count;
+        r.Array(json, "lights", "$", k);
+        var materialIndex = new Dictionary<string, int>(StringComparer.Ordinal);
+        for (int i = 0; i < scene.Materials.Count; i++) materialIndex.TryAdd(scene.Materials[i].Name, i);
+        int Mat(JsonNode? node, string at)
+        {
+            string name = r.String(node, at);
+            return materialIndex.TryGetValue(name, out int i) ? i
+                : throw r.Bad(at, $"names material {MessageText.Quote(name)}, which the scene does not have");
+        }
+        var nodes = r.Array(json, "components", "$", max: 1 << 24);
+        var comps = new TransferComponent[nodes.Count];
+        var offsets = new (int, int)[nodes.Count];
+        var merged = new int[nodes.Count];
+        long entries = 0;
+        for (int c = 0; c < comps.Length; c++)
+        {
+            string at = $"$.components[{c}]";
+            var o = r.Object(nodes[c], at);
+            string lobeName = r.String(o, "lobe", at);
+            TransferLobe lobe = lobeName switch
+            {
+                "diffuse" or "specular" or "ambient" or "global-ambient" or "background" => TransferComponent.ParseLobe(lobeName),
+                _ => throw r.Bad($"{at}.lobe", $"is {MessageText.Quote(lobeName)}, not diffuse, specular, ambient, global-ambient or background"),
+            };
+            bool ofLight = lobe is TransferLobe.Diffuse or TransferLobe.Specular or TransferLobe.Ambient;
+            int light = r.Int(o, "light", at, ofLight ? 0 : -1, ofLight ? k - 1 : -1);
+            int material = lobe == TransferLobe.Background
+                ? o["material"] is null ? -1 : throw r.Bad($"{at}.material", "is given for the background, which has no material")
+                : Mat(o["material"], $"{at}.material");
+            var chainNodes = r.Array(o, "chain", at, max: LightTransfer.MaxChain);
+            var chain = new (int, bool)[chainNodes.Count];
+            for (int i = 0; i < chain.Length; i++)
+            {
+                string ca = $"{at}.chain[{i}]";
+                var x = r.Object(chainNodes[i], ca);
+                string weight = r.String(x, "weight", ca);
+                if (weight is not ("mirror" or "transmit")) throw r.Bad($"{ca}.weight", $"is {MessageText.Quote(weight)}, not mirror or transmit");
+                chain[i] = (Mat(x["material"], $"{ca}.material"), weight == "transmit");
+            }
+            int band = r.OptInt(o, "band", at, 1, bands) is { } b ? b - 1 : -1;
+            comps[c] = new TransferComponent(light, lobe, material, chain) { Band = band };
+            int offset = r.Int(o, "offset", at, 0), count = r.Int(o, "count", at, 0, width * height);
+            if (offset + (long)count > Array.MaxLength) throw r.Bad($"{at}.count", $"puts entries beyond {Array.MaxLength}, the most one array holds");
+            offsets[c] = (offset, count);
+            entries += count;
+            merged[c] = r.OptInt(o, "merged_chains", at, 1) ?? 1;
+        }
+        if (entries > Array.MaxLength) throw r.Bad("$.components", $"count {entries} entries in all, more than one array holds");
+        for (int c = 0; c < comps.Length; c++)
+            if (offsets[c].Item1 + (long)offsets[c].Item2 > entries)
+                throw r.Bad($"$.components[{c}].offset", $"entries {offsets[c].Item1}…{offsets[c].Item1 + (long)offsets[c].Item2 - 1} lie outside the {entries} stored");
+        if (2L * k * width * height > Array.MaxLength) throw r.Bad("$.width", $"{width}×{height} pixels × {k} lights is more than one array holds");
+        return new Layout(width, height, bands, comps, offsets, merged, entries);
+    }
+
     /// <summary>Reads lights/ back into a transfer whose components refer to <paramref name="scene"/>'s materials by name.</summary>
     public static LightTransfer Read(string outDir, Scene scene)
     {
@@ -170,20 +242,10 @@ public static class LightTransferFiles
         var jsonPath = Path.Combine(dir, "lights.json");
         if (!File.Exists(jsonPath))
             throw new InputException(outDir, "has no per-light outputs (lights/lights.json)", "render with --formats …,lights or \"output\": { \"light_groups\": true }");
-        JsonObject json;
-        try { json = JsonNode.Parse(File.ReadAllText(jsonPath))!.AsObject(); }
-        catch (JsonException e) { throw new InputException($"{jsonPath}:{(e.LineNumber ?? 0) + 1}", $"broken JSON: {e.Message}", "the file is damaged: render the folder again"); }
-        int width = (int)json["width"]!, height = (int)json["height"]!, bands = (int)json["bands"]!;
+        var layout = ParseLayout(JsonFields.ParseFile(jsonPath, "lights.json", Damaged), jsonPath, scene);
+        int width = layout.Width, height = layout.Height, bands = layout.Bands;
         int n = width * height;
-        var materialIndex = scene.Materials.Select((m, i) => (m.Name, i)).ToDictionary(p => p.Name, p => p.i);
-        int Mat(JsonNode? name) => name is null ? -1 : materialIndex.TryGetValue((string)name!, out int i) ? i
-            : throw new InputException(jsonPath, $"names material '{(string?)name}' which the scene does not have", "relight the folder with the scene it was rendered from");
-        var comps = json["components"]!.AsArray().Select(c => new TransferComponent(
-            (int)c!["light"]!, TransferComponent.ParseLobe((string)c["lobe"]!), Mat(c["material"]),
-            c["chain"]!.AsArray().Select(x => (Mat(x!["material"]), (string)x["weight"]! == "transmit")).ToArray())
-        { Band = c["band"] is { } band ? Band((int)band) : -1 }).ToArray();
-        int Band(int b) => b >= 1 && b <= bands ? b - 1
-            : throw new InputException(jsonPath, $"names band {b}, the render has {bands}", "the file is damaged: render the folder again");
+        var comps = layout.Components;
 
         float[] Load(string file, int[] expected)
         {
@@ -195,8 +257,7 @@ public static class LightTransferFiles
                 throw new InputException(path, $"has shape ({string.Join(", ", shape)}), lights.json says ({string.Join(", ", expected)})", "the folder mixes two renders; render again");
             return data;
         }
-        var nodes = json["components"]!.AsArray();
-        long nnz = nodes.Sum(c => (long)(int)c!["count"]!);
+        long nnz = layout.Entries;
         var f = Load("factors.npy", [(int)nnz]);
         int[] pix;
         {
@@ -208,10 +269,9 @@ public static class LightTransferFiles
             pix = data;
         }
         foreach (int p in pix) if ((uint)p >= (uint)n) throw new InputException(Path.Combine(dir, "pixels.npy"), $"pixel {p} is outside the {width}×{height} image", "the light-transfer files are damaged: render the folder again");
-        var offsets = nodes.Select(c => (Offset: (int)c!["offset"]!, Count: (int)c["count"]!)).ToArray();
+        var offsets = layout.Offsets;
         foreach (var (o, c) in offsets)
         {
-            if (o < 0 || c < 0 || (long)o + c > nnz) throw new InputException(jsonPath, $"a component's entries {o}…{o + c - 1} lie outside the {nnz} stored", "the folder mixes two renders; render again");
             for (int j = o + 1; j < o + c; j++)
                 if (pix[j] <= pix[j - 1]) throw new InputException(Path.Combine(dir, "pixels.npy"), $"entry {j}: pixels of a component must ascend", "render again");
         }
@@ -225,6 +285,9 @@ public static class LightTransferFiles
         bool idsKept = true;
         for (int i = 0; i < n; i++)
         {
+            if (!(ids[i] >= 0 && ids[i] <= scene.Objects.Count && ids[i] == MathF.Floor(ids[i])))
+                throw new InputException(Path.Combine(dir, "ids.npy"), $"pixel {i % width},{i / width}: object {ids[i]} is not 0 (background) or one of the scene's {scene.Objects.Count}",
+                    "the light-transfer files are damaged: render the folder again");
             objectIds[i] = (int)ids[i] - 1; litMasks[i] = (uint)ids[n + i]; fallback[i] = ids[2 * n + i] != 0;
             idsKept &= objectIds[i] + 1 == ids[i] && litMasks[i] == ids[n + i] && (fallback[i] ? 1f : 0f) == ids[2 * n + i];
         }
@@ -245,7 +308,7 @@ public static class LightTransferFiles
             Components = comps,
             Factors = offsets.Select(o => f.AsSpan(o.Offset, o.Count).ToArray()).ToArray(),
             Pixels = offsets.Select(o => pix.AsSpan(o.Offset, o.Count).ToArray()).ToArray(),
-            Merged = nodes.Select(c => (int?)c!["merged_chains"] ?? 1).ToArray(),
+            Merged = layout.Merged,
             CentreDiffuse = Enumerable.Range(0, k).Select(i => centre.AsSpan(2 * i * n, n).ToArray()).ToArray(),
             CentreSpecular = Enumerable.Range(0, k).Select(i => centre.AsSpan((2 * i + 1) * n, n).ToArray()).ToArray(),
             ObjectIds = objectIds,

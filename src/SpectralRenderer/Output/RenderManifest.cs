@@ -104,6 +104,17 @@ public sealed record RenderManifest
     /// </summary>
     public Rendering.PixelRect? Crop { get; init; }
 
+    /// <summary>
+    /// A whole render's manifest, for the commands that read the film whole (analysis, camera, viewer, relight); a crop or
+    /// shard (<see cref="Crop"/>) is refused naming what it is and how to get the whole render.
+    /// </summary>
+    public RenderManifest Whole(string dir)
+    {
+        if (Crop is not { } c) return this;
+        throw new InputException(dir, $"holds a crop of the film (pixels {c.X0}–{c.X1 - 1} × {c.Y0}–{c.Y1 - 1} of {Width}×{Height}, from --crop or --shard), not a whole render",
+            "assemble the shards with 'spectral merge SHARD_DIR… -o OUT' first, or render without --crop");
+    }
+
     /// <summary>Eq. 3 with the render's own weights.</summary>
     public Xyz ToXyz(ReadOnlySpan<double> bands) => Colorimeter.ToXyz(Wx, Wy, Wz, bands);
 
@@ -286,205 +297,228 @@ public sealed record RenderManifest
 
     public string ToJsonText() => ToJson().ToJsonString(new JsonSerializerOptions { WriteIndented = true });
 
-    /// <summary>The render.json of folder <paramref name="dir"/>; a missing or broken one is bad input (file, JSON path, hint).</summary>
+    /// <summary>What a damaged render.json's message suggests.</summary>
+    const string Rerender = "render.json is not as a render writes it: render the folder again with this version";
+
+    /// <summary>
+    /// The render.json of folder <paramref name="dir"/>, validated (<see cref="Parse"/>) and its files checked on disk: none
+    /// it lists leads out of the folder through a symbolic link. A missing or broken one is bad input (file, JSON path, hint).
+    /// </summary>
     public static RenderManifest Read(string dir)
     {
         var path = Path.Combine(dir, FileName);
         if (!File.Exists(path)) throw new InputException(dir, $"has no {FileName}", "give the -o folder of a 'spectral render' run");
-        JsonObject json;
-        try { json = JsonNode.Parse(InputFile.ReadAllText(path, FileName)) as JsonObject ?? throw new InputException($"{path}: $", "is not a JSON object", "render.json must be the manifest a render wrote: render the folder again"); }
-        catch (JsonException e)
-        {
-            string msg = e.Message;
-            int cut = msg.IndexOf(" LineNumber:", StringComparison.Ordinal);
-            if (cut > 0) msg = msg[..cut].TrimEnd('.', ' ');
-            throw new InputException($"{path}:{(e.LineNumber ?? 0) + 1}:{(e.BytePositionInLine ?? 0) + 1}", $"broken JSON: {msg}", "render.json is damaged: render the folder again");
-        }
-        return Parse(json, path);
+        var manifest = Parse(JsonFields.ParseFile(path, FileName, Rerender), path);
+        var fields = new JsonFields(path, Rerender);
+        for (int i = 0; i < (manifest.Files?.Count ?? 0); i++) fields.StaysInside(dir, manifest.Files![i], $"$.files[{i}]");
+        return manifest;
     }
 
-    /// <summary>A manifest from render.json's JSON; <paramref name="path"/> names it in errors.</summary>
+    /// <summary>
+    /// A manifest from render.json's JSON; <paramref name="path"/> names it in errors. Nothing in it is trusted: every
+    /// field is typed and ranged (<see cref="JsonFields"/>), the arrays sized by the band grid, the crop inside the film,
+    /// the files' names inside the folder, and the object ids in order.
+    /// </summary>
     public static RenderManifest Parse(JsonObject json, string path)
     {
-        var r = new Reader(path);
-        var bands = r.Obj(json, "bands", "$");
-        var colour = r.Obj(json, "colour", "$");
-        var spd = r.Obj(colour, "reference_white_spd", "$.colour");
-        var w = r.Numbers(colour, "white_xyz", "$.colour");
-        if (w.Length != 3) throw r.Missing("$.colour.white_xyz", "three numbers X, Y, Z");
-        var objects = r.Arr(json, "objects", "$").Select((o, i) => new ManifestObject(
-            r.Int(o, "id", $"$.objects[{i}]"), r.Str(o, "name", $"$.objects[{i}]"), r.Str(o, "material", $"$.objects[{i}]"), r.OptStr(o, "reflectance"),
-            r.OptNumbers(o, "flat_normal", $"$.objects[{i}]"))).ToArray();
-        var lights = r.Arr(json, "lights", "$").Select((l, i) =>
+        var r = new JsonFields(path, Rerender);
+        int width = r.Int(json, "width", "$", 1, 32768), height = r.Int(json, "height", "$", 1, 32768);
+        var bands = r.Object(json, "bands", "$");
+        string grid = r.String(bands, "grid", "$.bands");
+        var parsedGrid = BandGrid.Parse(grid, $"{path}: $.bands.grid");
+        int n = parsedGrid.Count;
+        if (r.OptInt(bands, "count", "$.bands", 1, int.MaxValue) is { } count && count != n)
+            throw r.Bad("$.bands.count", $"is {count}, but the grid {grid} has {n} bands");
+        var colour = r.Object(json, "colour", "$");
+        var spd = r.Object(colour, "reference_white_spd", "$.colour");
+        var w = r.Numbers(colour, "white_xyz", "$.colour", 3);
+        if (!(w[1] > 0)) throw r.Bad("$.colour.white_xyz[1]", "is not positive: the white must have Y > 0");
+        var objects = r.Array(json, "objects", "$", max: 65535).Select((node, i) =>
+        {
+            string at = $"$.objects[{i}]";
+            var o = r.Object(node, at);
+            int id = r.Int(o, "id", at, 1, 65535);
+            if (id != i + 1) throw r.Bad($"{at}.id", $"is {id}, expected {i + 1} (ids count from 1 in order)");
+            return new ManifestObject(id, r.String(o, "name", at), r.String(o, "material", at), r.OptString(o, "reflectance", at),
+                r.OptNumbers(o, "flat_normal", at, 3));
+        }).ToArray();
+        var lights = r.Array(json, "lights", "$", max: 1 << 16).Select((node, i) =>
         {
             string at = $"$.lights[{i}]";
-            string name = r.OptStr(l, "name") ?? $"light {i}";
-            TabulatedSpectrum? spd = l["spd"] is JsonObject so
-                ? new TabulatedSpectrum(name, r.Numbers(so, "wavelengths_nm", $"{at}.spd"), r.Numbers(so, "values", $"{at}.spd"), Extrapolation.Clamp) : null;
-            return new ManifestLight(r.OptInt(l, "index") ?? i, name, r.OptStr(l, "kind") ?? "point", r.OptStr(l, "spectrum"),
-                r.OptNumber(l, "intensity") ?? 1, r.OptStr(l, "intensity_unit"), (bool?)r.Value(l, "has_ambient") ?? false,
-                r.OptNumbers(l, "position", at), r.OptNumbers(l, "direction", at), r.OptNumbers(l, "attenuation", at), spd,
-                l["photometric"] is JsonObject po ? new ManifestPhotometry(r.Str(po, "quantity", $"{at}.photometric"),
-                    r.OptNumber(po, "value") ?? 0, r.Str(po, "unit", $"{at}.photometric"), r.OptNumber(po, "radiometric_scale") ?? 0,
-                    r.OptNumber(po, "luminous_per_unit_scale") ?? 0) : null);
+            var l = r.Object(node, at);
+            string name = r.OptString(l, "name", at) ?? $"light {i}";
+            TabulatedSpectrum? lightSpd = null;
+            if (r.OptObject(l, "spd", at) is { } so)
+            {
+                var (lw, lv) = Table(r, so, $"{at}.spd");
+                lightSpd = new TabulatedSpectrum(name, lw, lv, Extrapolation.Clamp);
+            }
+            ManifestPhotometry? photometric = null;
+            if (r.OptObject(l, "photometric", at) is { } po)
+            {
+                string pat = $"{at}.photometric";
+                photometric = new ManifestPhotometry(r.String(po, "quantity", pat), r.OptNumber(po, "value", pat) ?? 0, r.String(po, "unit", pat),
+                    r.OptNumber(po, "radiometric_scale", pat) ?? 0, r.OptNumber(po, "luminous_per_unit_scale", pat) ?? 0);
+            }
+            return new ManifestLight(r.OptInt(l, "index", at, 0, int.MaxValue) ?? i, name, r.OptString(l, "kind", at) ?? "point",
+                r.OptString(l, "spectrum", at), r.OptNumber(l, "intensity", at) ?? 1, r.OptString(l, "intensity_unit", at),
+                r.OptBool(l, "has_ambient", at) ?? false, r.OptNumbers(l, "position", at, 3), r.OptNumbers(l, "direction", at, 3),
+                r.OptNumbers(l, "attenuation", at, 3), lightSpd, photometric);
         }).ToArray();
-        var radiometry = json["radiometry"] as JsonObject;
-        var rays = json["rays"] as JsonObject;
-        string grid = r.Str(bands, "grid", "$.bands");
-        var spdWavelengths = r.Numbers(spd, "wavelengths_nm", "$.colour.reference_white_spd");
-        var spdValues = r.Numbers(spd, "values", "$.colour.reference_white_spd");
-        if (spdWavelengths.Length == 0 || spdValues.Length != spdWavelengths.Length)
-            throw r.Missing("$.colour.reference_white_spd.values", $"as many values as wavelengths_nm ({spdWavelengths.Length})");
-        for (int i = 1; i < spdWavelengths.Length; i++)
-            if (!(spdWavelengths[i] > spdWavelengths[i - 1])) throw r.Missing($"$.colour.reference_white_spd.wavelengths_nm[{i}]", "ascending");
-        var parsed = new RenderManifest
+        var radiometry = r.OptObject(json, "radiometry", "$");
+        var rays = r.OptObject(json, "rays", "$");
+        var (spdWavelengths, spdValues) = Table(r, spd, "$.colour.reference_white_spd");
+        var aov = r.OptObject(json, "aov", "$");
+        var timings = r.OptObject(json, "timings_s", "$");
+        string[]? files = null;
+        if (r.OptArray(json, "files", "$") is { } fs)
         {
-            Tool = r.OptStr(json, "tool") ?? "spectral",
-            Version = r.OptStr(json, "version"),
-            Build = r.OptStr(json, "build"),
-            Scene = r.OptStr(json, "scene") ?? "",
-            CreatedUtc = r.OptStr(json, "created_utc") ?? "",
-            Width = r.Int(json, "width", "$"),
-            Height = r.Int(json, "height", "$"),
-            SamplesPerPixel = r.OptInt(json, "spp") ?? 1,
-            Grid = BandGrid.Parse(grid, $"{path}: $.bands.grid"),
-            BandImageScale = (float)(r.OptNumber(bands, "band_image_scale") ?? 0),
-            Integration = BandIntegrations.Parse(r.Str(colour, "integration", "$.colour"), $"{path}: $.colour.integration"),
-            ObserverDegrees = r.Int(colour, "observer", "$.colour"),
-            ReferenceWhite = new TabulatedSpectrum(r.OptStr(colour, "reference_white") ?? "white",
+            files = fs.Select((f, i) => r.RelativeName(f, $"$.files[{i}]")).ToArray();
+            var seen = new HashSet<string>(StringComparer.Ordinal);
+            for (int i = 0; i < files.Length; i++)
+                if (!seen.Add(files[i])) throw r.Bad($"$.files[{i}]", $"lists {MessageText.Quote(files[i], 60)} a second time");
+        }
+        Rendering.PixelRect? crop = null;
+        if (r.OptObject(json, "crop", "$") is { } c)
+        {
+            int x0 = r.Int(c, "x0", "$.crop", 0, width - 1), y0 = r.Int(c, "y0", "$.crop", 0, height - 1);
+            crop = new Rendering.PixelRect(x0, y0, r.Int(c, "x1", "$.crop", x0 + 1, width), r.Int(c, "y1", "$.crop", y0 + 1, height));
+        }
+        const double Huge = 1e300;
+        return new RenderManifest
+        {
+            Tool = r.OptString(json, "tool", "$") ?? "spectral",
+            Version = r.OptString(json, "version", "$"),
+            Build = r.OptString(json, "build", "$"),
+            Scene = r.OptString(json, "scene", "$") ?? "",
+            CreatedUtc = r.OptString(json, "created_utc", "$") ?? "",
+            Width = width,
+            Height = height,
+            SamplesPerPixel = r.OptInt(json, "spp", "$", 1, 1 << 20) ?? 1,
+            Grid = parsedGrid,
+            BandImageScale = (float)(r.OptNumber(bands, "band_image_scale", "$.bands", 0, float.MaxValue) ?? 0),
+            Integration = BandIntegrations.Parse(r.String(colour, "integration", "$.colour"), $"{path}: $.colour.integration"),
+            ObserverDegrees = r.Int(colour, "observer", "$.colour", 2, 10) is var deg && deg is 2 or 10 ? deg
+                : throw r.Bad("$.colour.observer", $"is {deg}, expected 2 or 10 (the CIE 1931 or 1964 observer)"),
+            ReferenceWhite = new TabulatedSpectrum(r.OptString(colour, "reference_white", "$.colour") ?? "white",
                 spdWavelengths, spdValues, Extrapolation.Clamp),
-            Kappa = r.OptNumber(colour, "kappa") ?? 0,
+            Kappa = r.OptNumber(colour, "kappa", "$.colour", 0, Huge) ?? 0,
             White = new Xyz(w[0], w[1], w[2]),
-            Wx = r.Numbers(colour, "weights_x", "$.colour"),
-            Wy = r.Numbers(colour, "weights_y", "$.colour"),
-            Wz = r.Numbers(colour, "weights_z", "$.colour"),
-            Rgb = r.OptStr(colour, "rgb") ?? "srgb",
-            Exposure = r.OptNumber(colour, "exposure") ?? 1,
-            Adapt = r.Value(colour, "adapt") is { } adapt && adapt.TryGetValue(out bool b) && b,
-            ExposureMode = r.OptStr(colour, "exposure_mode") ?? "fixed",
-            Gamut = r.OptStr(colour, "gamut") ?? "clip",
-            Radiometry = radiometry is null ? "paper" : r.OptStr(radiometry, "mode") ?? "paper",
-            BandUnit = radiometry is null ? null : r.OptStr(radiometry, "band_values"),
-            XyzUnit = radiometry is null ? null : r.OptStr(radiometry, "xyz"),
-            PixelXyz = r.OptStr(colour, "pixel_xyz"),
-            FallbackPixels = r.OptLong(colour, "fallback_pixels") ?? 0,
-            GlobalAmbient = r.Value(json, "global_ambient") is { } ga && ga.TryGetValue(out bool g) && g,
+            Wx = r.Numbers(colour, "weights_x", "$.colour", n),
+            Wy = r.Numbers(colour, "weights_y", "$.colour", n),
+            Wz = r.Numbers(colour, "weights_z", "$.colour", n),
+            Rgb = r.OptString(colour, "rgb", "$.colour") ?? "srgb",
+            Exposure = r.OptNumber(colour, "exposure", "$.colour", 0, Huge) ?? 1,
+            Adapt = r.OptBool(colour, "adapt", "$.colour") ?? false,
+            ExposureMode = r.OptString(colour, "exposure_mode", "$.colour") ?? "fixed",
+            Gamut = r.OptString(colour, "gamut", "$.colour") ?? "clip",
+            Radiometry = radiometry is null ? "paper" : r.OptString(radiometry, "mode", "$.radiometry") ?? "paper",
+            BandUnit = radiometry is null ? null : r.OptString(radiometry, "band_values", "$.radiometry"),
+            XyzUnit = radiometry is null ? null : r.OptString(radiometry, "xyz", "$.radiometry"),
+            PixelXyz = r.OptString(colour, "pixel_xyz", "$.colour"),
+            FallbackPixels = r.OptLong(colour, "fallback_pixels", "$.colour", 0, (long)width * height) ?? 0,
+            GlobalAmbient = r.OptBool(json, "global_ambient", "$") ?? false,
             Objects = objects,
             Lights = lights,
-            HighlightFraction = json["aov"] is JsonObject aov ? r.OptNumber(aov, "highlight_fraction") ?? 0.1 : 0.1,
-            RenderSeconds = json["timings_s"] is JsonObject t ? r.OptNumber(t, "render") ?? 0 : 0,
+            HighlightFraction = aov is null ? 0.1 : r.OptNumber(aov, "highlight_fraction", "$.aov", 0, 1) ?? 0.1,
+            RenderSeconds = timings is null ? 0 : r.OptNumber(timings, "render", "$.timings_s", 0, Huge) ?? 0,
             Rays = rays is null ? new ManifestRays(0, 0, 0, 0, 0)
-                : new ManifestRays(r.OptLong(rays, "primary") ?? 0, r.OptLong(rays, "shadow") ?? 0, r.OptLong(rays, "secondary") ?? 0,
-                    r.OptLong(rays, "total") ?? 0, r.OptNumber(rays, "mrays_per_s") ?? 0),
-            Threads = r.OptInt(json, "threads") ?? 0,
-            Tiles = r.OptInt(json, "tiles") ?? 0,
-            Run = json["run"] is JsonObject run ? r.Run(run) : null,
-            Files = json["files"] is JsonArray fs ? fs.Select(f => (string?)f ?? "").ToArray() : null,
-            ResolvedScene = json["resolved_scene"] is JsonObject resolved ? new ManifestScene(resolved) : null,
-            SceneHash = r.OptStr(json, "scene_hash"),
-            Crop = json["crop"] is JsonObject crop
-                ? new Rendering.PixelRect(r.Int(crop, "x0", "$.crop"), r.Int(crop, "y0", "$.crop"), r.Int(crop, "x1", "$.crop"), r.Int(crop, "y1", "$.crop"))
-                : null,
+                : new ManifestRays(r.OptLong(rays, "primary", "$.rays", 0) ?? 0, r.OptLong(rays, "shadow", "$.rays", 0) ?? 0,
+                    r.OptLong(rays, "secondary", "$.rays", 0) ?? 0, r.OptLong(rays, "total", "$.rays", 0) ?? 0,
+                    r.OptNumber(rays, "mrays_per_s", "$.rays", 0, Huge) ?? 0),
+            Threads = r.OptInt(json, "threads", "$", 0) ?? 0,
+            Tiles = r.OptInt(json, "tiles", "$", 0) ?? 0,
+            Run = r.OptObject(json, "run", "$") is { } run ? ReadRun(r, run) : null,
+            Files = files,
+            ResolvedScene = r.OptObject(json, "resolved_scene", "$") is { } resolved ? new ManifestScene(resolved) : null,
+            SceneHash = r.OptString(json, "scene_hash", "$"),
+            Crop = crop,
         };
-        // Consistent with itself: what the analysis commands compute from these must mean something.
-        if (parsed.Width is < 1 or > 32768) throw r.Missing("$.width", "a width of 1 to 32768 pixels");
-        if (parsed.Height is < 1 or > 32768) throw r.Missing("$.height", "a height of 1 to 32768 pixels");
-        foreach (var (key, weights) in new[] { ("weights_x", parsed.Wx), ("weights_y", parsed.Wy), ("weights_z", parsed.Wz) })
-            if (weights.Length != parsed.Grid.Count) throw r.Missing($"$.colour.{key}", $"{parsed.Grid.Count} weights, one per band of {grid}");
-        if (!(w.All(double.IsFinite) && w[1] > 0)) throw r.Missing("$.colour.white_xyz", "a white with finite X, Y, Z and Y > 0");
-        for (int i = 0; i < objects.Length; i++)
-            if (objects[i].Id != i + 1) throw r.Missing($"$.objects[{i}].id", $"id {i + 1} (ids count from 1 in order)");
-        return parsed;
     }
 
-    /// <summary>Typed reads of render.json's fields; a missing or mistyped field is bad input naming its JSON path.</summary>
-    sealed class Reader(string path)
+    /// <summary>A tabulated spectrum's wavelengths_nm (ascending, 1–100000 nm) and as many finite values.</summary>
+    static (double[] Wavelengths, double[] Values) Table(JsonFields r, JsonObject o, string at)
     {
-        public InputException Missing(string at, string what) =>
-            new($"{path}: {at}", $"is missing or not {what}", "re-render the scene with this version");
+        var wl = r.Numbers(o, "wavelengths_nm", at, null, 1, 100_000);
+        if (wl.Length < 1) throw r.Bad($"{at}.wavelengths_nm", "is empty");
+        for (int i = 1; i < wl.Length; i++)
+            if (!(wl[i] > wl[i - 1])) throw r.Bad($"{at}.wavelengths_nm[{i}]", $"is {wl[i]}, not above the one before (wavelengths ascend)");
+        return (wl, r.Numbers(o, "values", at, wl.Length));
+    }
 
-        public JsonValue? Value(JsonObject o, string key) => o[key] as JsonValue;
-
-        public JsonObject Obj(JsonObject o, string key, string at) => o[key] as JsonObject ?? throw Missing($"{at}.{key}", "an object");
-
-        public JsonObject[] Arr(JsonObject o, string key, string at) =>
-            (o[key] as JsonArray ?? throw Missing($"{at}.{key}", "an array")).Select((e, i) => e as JsonObject ?? throw Missing($"{at}.{key}[{i}]", "an object")).ToArray();
-
-        public ManifestRun Run(JsonObject o)
+    static ManifestRun ReadRun(JsonFields r, JsonObject o)
+    {
+        const string at = "$.run";
+        ManifestOverrides? overrides = null;
+        if (r.OptObject(o, "overrides", at) is { } v)
         {
-            ManifestOverrides? overrides = o["overrides"] is JsonObject v
-                ? new ManifestOverrides(OptInt(v, "width"), OptInt(v, "height"), OptStr(v, "bands"), OptStr(v, "wave"), OptInt(v, "spp"), OptStr(v, "rgb"),
-                    OptStr(v, "integration"), OptStr(v, "formats"), OptStr(v, "exr_compression"),
-                    v["models"] is JsonArray ms ? ms.Select(m => m is JsonValue mv && mv.TryGetValue(out string? d) ? d : null).OfType<string>().ToArray() : [])
-                : null;
-            return new ManifestRun
+            const string ov = "$.run.overrides";
+            var models = r.OptArray(v, "models", ov) is { } ms ? ms.Select((m, i) => r.String(m, $"{ov}.models[{i}]")).ToArray() : [];
+            overrides = new ManifestOverrides(r.OptInt(v, "width", ov, 1, 32768), r.OptInt(v, "height", ov, 1, 32768), r.OptString(v, "bands", ov),
+                r.OptString(v, "wave", ov), r.OptInt(v, "spp", ov, 1, 1 << 20), r.OptString(v, "rgb", ov), r.OptString(v, "integration", ov),
+                r.OptString(v, "formats", ov), r.OptString(v, "exr_compression", ov), models);
+        }
+        return new ManifestRun
+        {
+            CommandLine = r.OptString(o, "command_line", at),
+            MergedShards = r.OptInt(o, "merged_shards", at, 1),
+            SweepJob = r.OptString(o, "sweep_job", at),
+            LoadSeconds = r.OptNumber(o, "load_s", at, 0),
+            BuildSeconds = r.OptNumber(o, "build_s", at, 0),
+            Triangles = r.OptInt(o, "triangles", at, 0),
+            DegenerateTrianglesSkipped = r.OptInt(o, "degenerate_triangles_skipped", at, 0),
+            MinRayWeight = r.OptNumber(o, "min_ray_weight", at, 0),
+            RayBudget = r.OptInt(o, "ray_budget", at, 0),
+            RaysPrunedByWeight = r.OptLong(o, "rays_pruned_by_weight", at, 0),
+            CameraRaysOverBudget = r.OptLong(o, "camera_rays_over_budget", at, 0),
+            Shard = r.OptString(o, "shard", at),
+            LightTransferSeconds = r.OptNumber(o, "light_transfer_s", at, 0),
+            HasOverrides = o.ContainsKey("overrides"),
+            Overrides = overrides,
+            Relit = r.OptObject(o, "relit", at) is { } relit ? Relit(r, relit) : null,
+            WriteSeconds = r.OptNumber(o, "write_s", at, 0),
+        };
+    }
+
+    static ManifestRelit Relit(JsonFields r, JsonObject o)
+    {
+        const string at = "$.run.relit";
+        RelightMetrics? metrics = null;
+        if (r.OptObject(o, "metrics", at) is { } m)
+        {
+            const string mt = "$.run.relit.metrics";
+            metrics = new RelightMetrics(r.OptString(m, "white", mt) ?? "",
+                r.Array(m, "lights", mt).Select((node, i) =>
+                {
+                    string a = $"{mt}.lights[{i}]";
+                    var l = r.Object(node, a);
+                    return new RelightLightMetrics(r.OptString(l, "light", a) ?? "", r.OptString(l, "spectrum", a), r.OptNumber(l, "Ra", a),
+                        r.OptNumber(l, "Rf", a), r.OptNumber(l, "cct_K", a));
+                }).ToArray(),
+                r.Array(m, "objects", mt).Select((node, i) =>
+                {
+                    string a = $"{mt}.objects[{i}]";
+                    var x = r.Object(node, a);
+                    return new RelightObjectMetrics(r.OptString(x, "object", a) ?? "", r.OptInt(x, "pixels", a, 0) ?? 0,
+                        r.OptNumber(x, "mean_dE00", a, 0) ?? 0, r.OptNumber(x, "max_dE00", a, 0) ?? 0);
+                }).ToArray());
+        }
+        return new ManifestRelit
+        {
+            From = r.OptString(o, "from", at) ?? "",
+            FromCreatedUtc = r.OptString(o, "from_created_utc", at) ?? "",
+            Method = r.OptString(o, "method", at) ?? "",
+            Changes = r.OptArray(o, "changes", at) is { } changes ? changes.Select((node, i) =>
             {
-                CommandLine = OptStr(o, "command_line"),
-                MergedShards = OptInt(o, "merged_shards"),
-                SweepJob = OptStr(o, "sweep_job"),
-                LoadSeconds = OptNumber(o, "load_s"),
-                BuildSeconds = OptNumber(o, "build_s"),
-                Triangles = OptInt(o, "triangles"),
-                DegenerateTrianglesSkipped = OptInt(o, "degenerate_triangles_skipped"),
-                MinRayWeight = OptNumber(o, "min_ray_weight"),
-                RayBudget = OptInt(o, "ray_budget"),
-                RaysPrunedByWeight = OptLong(o, "rays_pruned_by_weight"),
-                CameraRaysOverBudget = OptLong(o, "camera_rays_over_budget"),
-                Shard = OptStr(o, "shard"),
-                LightTransferSeconds = OptNumber(o, "light_transfer_s"),
-                HasOverrides = o.ContainsKey("overrides"),
-                Overrides = overrides,
-                Relit = o["relit"] is JsonObject relit ? Relit(relit) : null,
-                WriteSeconds = OptNumber(o, "write_s"),
-            };
-        }
-
-        ManifestRelit Relit(JsonObject o)
-        {
-            var at = "$.run.relit";
-            RelightMetrics? metrics = null;
-            if (o["metrics"] is JsonObject m)
-                metrics = new RelightMetrics(OptStr(m, "white") ?? "",
-                    Arr(m, "lights", $"{at}.metrics").Select(l => new RelightLightMetrics(OptStr(l, "light") ?? "", OptStr(l, "spectrum"),
-                        OptNumber(l, "Ra"), OptNumber(l, "Rf"), OptNumber(l, "cct_K"))).ToArray(),
-                    Arr(m, "objects", $"{at}.metrics").Select(x => new RelightObjectMetrics(OptStr(x, "object") ?? "", OptInt(x, "pixels") ?? 0,
-                        OptNumber(x, "mean_dE00") ?? 0, OptNumber(x, "max_dE00") ?? 0)).ToArray());
-            return new ManifestRelit
-            {
-                From = OptStr(o, "from") ?? "",
-                FromCreatedUtc = OptStr(o, "from_created_utc") ?? "",
-                Method = OptStr(o, "method") ?? "",
-                Changes = o["changes"] is JsonArray ? Arr(o, "changes", at).Select(c => new ManifestLightChange(OptStr(c, "light") ?? "",
-                    OptStr(c, "spectrum"), OptNumber(c, "intensity"))).ToArray() : [],
-                White = OptStr(o, "white"),
-                ComputeSeconds = OptNumber(o, "compute_s") ?? 0,
-                Metrics = metrics,
-                CopiedFiles = o["copied_files"] is JsonArray cf ? cf.Select(f => f is JsonValue fv && fv.TryGetValue(out string? s) ? s : "").ToArray() : null,
-            };
-        }
-
-        public string Str(JsonObject o, string key, string at) => OptStr(o, key) ?? throw Missing($"{at}.{key}", "a string");
-
-        public string? OptStr(JsonObject o, string key) => Value(o, key) is { } v && v.TryGetValue(out string? s) ? s : null;
-
-        public int Int(JsonObject o, string key, string at) => OptInt(o, key) ?? throw Missing($"{at}.{key}", "an integer");
-
-        public int? OptInt(JsonObject o, string key) => OptNumber(o, key) is { } d && d == Math.Floor(d) && Math.Abs(d) <= int.MaxValue ? (int)d : null;
-
-        public long? OptLong(JsonObject o, string key) => OptNumber(o, key) is { } d && d == Math.Floor(d) ? (long)d : null;
-
-        public double? OptNumber(JsonObject o, string key) => Value(o, key) is { } v && v.TryGetValue(out double d) ? d : null;
-
-        public double[]? OptNumbers(JsonObject o, string key, string at) => o[key] is null ? null : Numbers(o, key, at);
-
-        public double[] Numbers(JsonObject o, string key, string at)
-        {
-            var a = o[key] as JsonArray ?? throw Missing($"{at}.{key}", "an array of numbers");
-            var r = new double[a.Count];
-            for (int i = 0; i < r.Length; i++)
-                r[i] = a[i] is JsonValue v && v.TryGetValue(out double d) ? d : throw Missing($"{at}.{key}[{i}]", "a number");
-            return r;
-        }
+                string a = $"{at}.changes[{i}]";
+                var c = r.Object(node, a);
+                return new ManifestLightChange(r.OptString(c, "light", a) ?? "", r.OptString(c, "spectrum", a), r.OptNumber(c, "intensity", a));
+            }).ToArray() : [],
+            White = r.OptString(o, "white", at),
+            ComputeSeconds = r.OptNumber(o, "compute_s", at, 0) ?? 0,
+            Metrics = metrics,
+            CopiedFiles = r.OptArray(o, "copied_files", at) is { } cf ? cf.Select((f, i) => r.RelativeName(f, $"{at}.copied_files[{i}]")).ToArray() : null,
+        };
     }
 
     /// <summary>"yyyy-MM-ddTHH:mm:ssZ" of now, as render.json records it.</summary>

@@ -101,6 +101,26 @@ public class CorpusTests
         return dir;
     });
 
+    /// <summary>Set-up runs (<paramref name="runs"/>: good.json rendered, a camera run) into a folder of their own, made once and copied per case.</summary>
+    static Lazy<string> Cached(params string[][] runs) => new(() =>
+    {
+        var dir = Reference.TempDir();
+        foreach (var run in runs)
+        {
+            var (code, _, err) = CliRunner.Run(run.Select(a => a.Replace("{in}", Inputs).Replace("{dir}", dir)).ToArray());
+            if (code != 0) throw new InvalidOperationException($"the set-up run {string.Join(' ', run)} failed: {err}");
+        }
+        return dir;
+    });
+
+    static readonly Lazy<string> LightsRender = Cached(["render", "{in}/good.json", "-o", "{dir}/r", "--formats", "npy,aov,lights", "--quiet"]);
+    static readonly Lazy<string> CameraRun = Cached(["render", "{in}/good.json", "-o", "{dir}/r", "--formats", "npy,aov", "--quiet"],
+        ["camera", "{dir}/r", "--sensor", "isetcam", "--noise", "off", "-o", "{dir}/cam"]);
+    static readonly Lazy<string> Shards = Cached(
+        ["render", "{in}/good.json", "--width", "8", "--height", "64", "--formats", "npy,aov", "--shard", "0/2", "-o", "{dir}/a", "--quiet"],
+        ["render", "{in}/good.json", "--width", "8", "--height", "64", "--formats", "npy,aov", "--shard", "1/2", "-o", "{dir}/b", "--quiet"]);
+    static readonly Lazy<string> Crop = Cached(["render", "{in}/good.json", "--crop", "0,0,4,3", "-o", "{dir}/r", "--quiet"]);
+
     static void Setup(string step, string tmp)
     {
         var w = step.Split(' ', 2);
@@ -134,6 +154,26 @@ public class CorpusTests
             case "base-render":
                 CopyFolder(BaseRender.Value, P(w[1]));
                 break;
+            case "base-lights": CopyFolder(Path.Combine(LightsRender.Value, "r"), P(w[1])); break;
+            case "base-crop": CopyFolder(Path.Combine(Crop.Value, "r"), P(w[1])); break;
+            case "base-camera":
+                foreach (var sub in new[] { "r", "cam" }) CopyFolder(Path.Combine(CameraRun.Value, sub), Path.Combine(P(w[1]), sub));
+                break;
+            case "base-shards":
+                foreach (var sub in new[] { "a", "b" }) CopyFolder(Path.Combine(Shards.Value, sub), Path.Combine(P(w[1]), sub));
+                break;
+            case "json-del":
+                {
+                    var a = w[1].Split(' ', 2);
+                    var file = P(a[0]);
+                    var root = JsonNode.Parse(System.IO.File.ReadAllText(file))!;
+                    var keys = a[1].Split('.');
+                    JsonNode node = root;
+                    foreach (var k in keys[..^1]) node = int.TryParse(k, out int i) ? node[i]! : node[k]!;
+                    node.AsObject().Remove(keys[^1]);
+                    System.IO.File.WriteAllText(file, root.ToJsonString());
+                    break;
+                }
             case "json-set":
                 {
                     var a = w[1].Split(' ', 3);

@@ -66,6 +66,30 @@ public class SweepTests
         Assert.DoesNotContain('\n', e.Message);
     }
 
+    [Fact]
+    public void A_plan_whose_last_job_has_a_bad_scene_renders_nothing_and_names_the_line_of_that_jobs_own_scene()
+    {
+        var dir = Reference.TempDir();
+        // Job 0006 (the extra job) gets both "bands" and "wave", which a scene may not have together.
+        var plan = Plan(dir);
+        File.WriteAllText(plan, File.ReadAllText(plan).Replace("\"bands\": \"400:700:31\"", "\"bands\": \"400:700:31\", \"wave\": \"400:10:700\""));
+        var outDir = Path.Combine(dir, "out");
+        var (code, _, err) = CliRunner.Run("sweep", plan, "-o", outDir, "--quiet");
+        Assert.Equal(2, code);
+        var scene = Path.Combine(outDir, "jobs", "0006", "scene.json");
+        Assert.StartsWith($"spectral sweep: {scene}:", err);
+        Assert.Contains("sweep job 0006", err);
+        // The line:column the message names is where the job's own scene (written beside it) says "bands" or "wave".
+        var at = System.Text.RegularExpressions.Regex.Match(err, @"scene\.json:(\d+):(\d+): \$\.(bands|wave)");
+        Assert.True(at.Success, err);
+        var line = File.ReadAllLines(scene)[int.Parse(at.Groups[1].Value) - 1];
+        Assert.Contains($"\"{at.Groups[3].Value}\"", line);
+        // No job rendered, none recorded, no index: the plan was refused before its first job.
+        Assert.Empty(Directory.EnumerateFiles(outDir, "render.json", SearchOption.AllDirectories));
+        Assert.Empty(Directory.EnumerateFiles(outDir, "job.json", SearchOption.AllDirectories));
+        Assert.False(File.Exists(Path.Combine(outDir, "index.csv")));
+    }
+
     static List<JsonObject> Index(string outDir) =>
         File.ReadAllLines(Path.Combine(outDir, "index.jsonl")).Select(l => JsonNode.Parse(l)!.AsObject()).ToList();
 

@@ -25,43 +25,67 @@ public sealed class CameraCapture
     {
         var path = Path.Combine(dir, "camera.json");
         if (!File.Exists(path)) throw new InputException(dir, "has no camera.json", "give the -o folder of a 'spectral camera' run");
-        JsonObject m;
-        try { m = JsonNode.Parse(File.ReadAllText(path)) as JsonObject ?? throw new InputException(path, "is not a JSON object", "give the camera.json a 'spectral camera' run wrote"); }
-        catch (JsonException e) { throw new InputException($"{path}:{(e.LineNumber ?? 0) + 1}", $"broken JSON: {e.Message}", "camera.json is damaged: run 'spectral camera' again"); }
-        try
+        var m = JsonFields.ParseFile(path, "camera.json", RunAgain);
+        var record = Read(m, path);
+        var r = new JsonFields(path, RunAgain);
+        var renderDir = Path.GetFullPath(Path.Combine(dir, record.RenderFolder));
+        if (!Directory.Exists(renderDir))
+            throw r.Bad("$.render_folder", $"names {MessageText.Quote(record.RenderFolder, 60)}, which is not a folder (the render was moved or removed)");
+        var scene = CameraScene.Open(renderDir);
+        var sensor = record.SensorArgument == SensorFile.SceneArgument
+            ? SensorFile.FromScene(scene.Folder.Manifest.ResolvedScene?.ToJson(), scene.Folder.Manifest.Scene)
+              ?? throw r.Bad("$.sensor_argument", "names the scene's sensor but the render's scene has none")
+            : SensorFile.Resolve(record.SensorArgument);
+        var exposures = record.Exposures;
+        if (exposures.Length != sensor.Exposures)
+            throw r.Bad("$.simulation.exposure_s", $"has {exposures.Length} exposures, the sensor {MessageText.Quote(sensor.Name)} takes {sensor.Exposures}");
+        var options = new SimulationOptions { Seed = record.Seed, Noise = record.Noise };
+        var weights = ChannelWeights.Compute(sensor, scene.Grid, scene.Light, record.RadianceScale);
+        var npy = Path.Combine(dir, "raw.npy");
+        if (!File.Exists(npy)) throw new InputException(dir, "has no raw.npy", "run 'spectral camera' again");
+        int[] shape; float[] dn;
+        using (var f = File.OpenRead(npy)) (shape, dn) = NpyReader.Read(f, npy);
+        int planes = shape.Length == 2 ? 1 : shape.Length == 3 ? shape[2] : -1;
+        if (shape.Length is < 2 or > 3 || shape[0] != scene.Height || shape[1] != scene.Width || planes != sensor.Planes)
+            throw new InputException(npy, $"is {string.Join("×", shape)} but the render is {scene.Height}×{scene.Width} and the sensor has {sensor.Planes} planes",
+                "the camera folder and its render do not match; run 'spectral camera' again");
+        var raw = new RawFrame(scene.Width, scene.Height, planes, dn, exposures, new double[exposures.Length], weights, sensor, options);
+        // The route and the white the capture used (camera.json), so the white balance and forward model are its own.
+        var colour = ColourCorrection.Fit(weights, scene.Grid, scene.Light, scene.Observer, record.Exact ? sensor : null, record.WhiteScale);
+        return new CameraCapture { Dir = dir, Manifest = m, Scene = scene, Raw = raw, Image = ImageProcessing.Run(raw, colour, record.Demosaic), Colour = colour };
+    }
+
+    const string RunAgain = "camera.json is not as 'spectral camera' writes it: run 'spectral camera' again with this version";
+
+    /// <summary>What camera.json records of a capture, as <see cref="Open"/> uses it.</summary>
+    public sealed record CameraRecord(string RenderFolder, string SensorArgument, double[] Exposures, ulong Seed, bool Noise,
+        double RadianceScale, bool Exact, double WhiteScale, DemosaicMethod Demosaic);
+
+    /// <summary>
+    /// camera.json's fields, checked (<see cref="JsonFields"/>): the render folder and sensor as strings, the exposures and
+    /// radiance scales finite and positive, the seed a whole number ≥ 0; <paramref name="path"/> names the file in errors.
+    /// </summary>
+    public static CameraRecord Read(JsonObject m, string path)
+    {
+        var r = new JsonFields(path, RunAgain);
+        var sim = r.Object(m, "simulation", "$");
+        const string at = "$.simulation";
+        var exposures = r.Numbers(sim, "exposure_s", at, null, 0);
+        for (int i = 0; i < exposures.Length; i++)
+            if (!(exposures[i] > 0)) throw r.Bad($"{at}.exposure_s[{i}]", "is 0, not a positive exposure");
+        var seedNode = sim["seed"];
+        ulong seed = seedNode is JsonValue sv && sv.GetValueKind() == JsonValueKind.Number && sv.TryGetValue(out ulong sd) ? sd
+            : throw r.Bad($"{at}.seed", $"is {JsonFields.Kind(seedNode)}, expected a whole number ≥ 0");
+        double Positive(string key, double? fallback)
         {
-            var renderDir = Path.GetFullPath(Path.Combine(dir, (string)m["render_folder"]!));
-            var scene = CameraScene.Open(renderDir);
-            var sim = m["simulation"]!;
-            var exposures = sim["exposure_s"]!.AsArray().Select(v => (double)v!).ToArray();
-            var argument = (string)m["sensor_argument"]!;
-            var sensor = argument == SensorFile.SceneArgument
-                ? SensorFile.FromScene(scene.Folder.Manifest.ResolvedScene?.ToJson(), scene.Folder.Manifest.Scene)
-                  ?? throw new InputException(path, "names the scene's sensor but the render's scene has none", "run 'spectral camera' again")
-                : SensorFile.Resolve(argument);
-            var options = new SimulationOptions { Seed = (ulong)sim["seed"]!, Noise = ((string)sim["noise"]!).StartsWith("on", StringComparison.Ordinal) };
-            double scale = (double)sim["radiance_scale_w_m2_sr_nm_per_band_unit"]!;
-            var weights = ChannelWeights.Compute(sensor, scene.Grid, scene.Light, scale);
-            var npy = Path.Combine(dir, "raw.npy");
-            if (!File.Exists(npy)) throw new InputException(dir, "has no raw.npy", "run 'spectral camera' again");
-            using var f = File.OpenRead(npy);
-            var (shape, dn) = NpyReader.Read(f, npy);
-            int planes = shape.Length == 2 ? 1 : shape[2];
-            if (shape[0] != scene.Height || shape[1] != scene.Width || planes != sensor.Planes)
-                throw new InputException(npy, $"is {string.Join("×", shape)} but the render is {scene.Height}×{scene.Width} and the sensor has {sensor.Planes} planes",
-                    "the camera folder and its render do not match; run 'spectral camera' again");
-            var raw = new RawFrame(scene.Width, scene.Height, planes, dn, exposures, new double[exposures.Length], weights, sensor, options);
-            // The route and the white the capture used (camera.json), so the white balance and forward model are its own.
-            bool exact = ((string?)sim["signal_route"])?.StartsWith("exact", StringComparison.Ordinal) == true;
-            double whiteScale = (double?)sim["white_radiance_scale"] ?? 1;
-            var colour = ColourCorrection.Fit(weights, scene.Grid, scene.Light, scene.Observer, exact ? sensor : null, whiteScale);
-            var demosaic = (string?)m["processing"]?["demosaic"] == "bilinear" ? DemosaicMethod.Bilinear : DemosaicMethod.Malvar;
-            return new CameraCapture { Dir = dir, Manifest = m, Scene = scene, Raw = raw, Image = ImageProcessing.Run(raw, colour, demosaic), Colour = colour };
+            double v = (fallback is null ? r.Number(sim, key, at, 0) : r.OptNumber(sim, key, at, 0)) ?? fallback!.Value;
+            return v > 0 ? v : throw r.Bad($"{at}.{key}", "is 0, not a positive scale");
         }
-        catch (Exception e) when (e is NullReferenceException or InvalidOperationException or FormatException)
-        {
-            throw new InputException(path, $"is missing a field 'spectral camera' writes ({e.Message})", "run 'spectral camera' again with this version");
-        }
+        var processing = r.OptObject(m, "processing", "$");
+        return new CameraRecord(r.String(m, "render_folder", "$"), r.String(m, "sensor_argument", "$"), exposures, seed,
+            r.String(sim, "noise", at).StartsWith("on", StringComparison.Ordinal), Positive("radiance_scale_w_m2_sr_nm_per_band_unit", null),
+            r.OptString(sim, "signal_route", at)?.StartsWith("exact", StringComparison.Ordinal) == true, Positive("white_radiance_scale", 1),
+            processing is not null && r.OptString(processing, "demosaic", "$.processing") == "bilinear" ? DemosaicMethod.Bilinear : DemosaicMethod.Malvar);
     }
 
     /// <summary>The camera run in memory on a render (nothing written): what `spectral camera` would write, read back.</summary>
