@@ -39,6 +39,9 @@ public sealed class CameraCapture
                 ? SensorFile.FromScene(scene.Folder.Manifest.ResolvedScene?.ToJson(), scene.Folder.Manifest.Scene)
                   ?? throw new InputException(path, "names the scene's sensor but the render's scene has none", "run 'spectral camera' again")
                 : SensorFile.Resolve(argument);
+            // The lens as the capture had it (--off-axis, --psf override the sensor's).
+            if ((string?)m["sensor"]?["optics"]?["off_axis"] is { } oa) sensor = sensor with { OffAxis = SensorFile.ParseOffAxis(oa, $"{path}: $.sensor.optics.off_axis") };
+            if ((string?)m["sensor"]?["optics"]?["psf"] is { } psf) sensor = sensor with { Psf = SensorFile.ParsePsf(psf, $"{path}: $.sensor.optics.psf") };
             var options = new SimulationOptions { Seed = (ulong)sim["seed"]!, Noise = ((string)sim["noise"]!).StartsWith("on", StringComparison.Ordinal) };
             double scale = (double)sim["radiance_scale_w_m2_sr_nm_per_band_unit"]!;
             var weights = ChannelWeights.Compute(sensor, scene.Grid, scene.Light, scale);
