@@ -152,7 +152,12 @@ public class OpticsTests
         }
         """;
 
-    static string FlatRender()
+    /// <summary>The wall rendered once for the class (24 × 16, 40 bands).</summary>
+    static readonly Lazy<string> Wall = new(RenderWall);
+
+    static string FlatRender() => Wall.Value;
+
+    static string RenderWall()
     {
         var dir = Reference.TempDir();
         File.WriteAllText(Path.Combine(dir, "flat.json"), Flat);
@@ -207,7 +212,7 @@ public class OpticsTests
         var dir = Path.GetDirectoryName(render)!;
         File.WriteAllText(Path.Combine(dir, "lens.csv"), "wavelength,T\n380,0.4\n450,0.9\n520,0.95\n600,0.7\n780,0.5\n");
         File.WriteAllText(Path.Combine(dir, "lens.json"), """{ "preset": "wheel-6", "transmittance": "lens.csv:T", "off_axis": "none", "psf": "none" }""");
-        var raw = Raw(render, "lens-" + route, "--sensor", Path.Combine(dir, "lens.json"), "--signals", route);
+        var raw = Raw(render, "lens-" + route, "--sensor", Path.Combine(dir, "lens.json"), "--signals", route);   // the folder is shared: same files
         var bare = Raw(render, "bare-" + route, "--sensor", "wheel-6", "--off-axis", "none", "--psf", "none", "--signals", route);
         var sensor = SensorPresets.Get("wheel-6");
         var d65 = ExactSignalsTests.Table("illuminants.csv", "D65");
