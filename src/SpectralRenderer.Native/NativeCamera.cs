@@ -269,7 +269,7 @@ sealed class NativeCapture : PinnedHolder
                 "the render's per-light transfer (traced in memory: the render's rays)",
                 threads, out _) is { } exact)
         {
-            cube = cube with { ChannelIntegrals = exact.Integrals, Route = exact.Route };
+            cube = cube with { ChannelIntegrals = exact.Integrals, Route = exact.Route, OpticsApplied = exact.OpticsApplied };
             whiteScale = exact.WhiteScale;
             whiteSource = exact.WhiteScaleSource;
         }

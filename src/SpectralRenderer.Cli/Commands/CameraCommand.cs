@@ -17,10 +17,12 @@ public static class CameraCommand
 {
     const string Help = """
         usage: spectral camera OUTDIR --sensor NAME|FILE [--exposure auto|SECONDS] [--seed N] [--noise on|off]
-                                      [--radiance-scale S] [--demosaic malvar|bilinear] [--threads N]
+                                      [--radiance-scale S] [--demosaic malvar|bilinear] [--signals exact|bands]
+                                      [--off-axis cos4th|none] [--psf diffraction|none] [--threads N]
                                       [-o DIR] [--bench N]
 
-        Simulates a camera looking at a render (docs/camera.md): optics (thin lens), pixel, channel quantum
+        Simulates a camera looking at a render (docs/camera.md): optics (thin lens with cos⁴ fall-off and the
+        diffraction-limited Airy blur at the f-number, ISETCam's default optics), pixel, channel quantum
         efficiencies, exposure, photon shot noise, dark current, read noise, PRNU/DSNU, full well, gain, ADC.
         The scene light (render.json's reference white) prefilters the channel weights per band.
 
@@ -35,6 +37,9 @@ public static class CameraCommand
           --demosaic           malvar (Malvar–He–Cutler, Bayer; default) or bilinear (any mosaic)
           --signals            exact (default: each eq. 2 term's ∫ η·λ/(hc)·E·m dλ at full spectral resolution,
                                from the render's lights/ or its transfer traced again) or bands (the band cube)
+          --off-axis           cos4th (default: irradiance × cos⁴ of the pixel's field angle, from the render camera's
+                               field of view) or none; overrides the sensor's "off_axis"
+          --psf                diffraction (default: the Airy pattern of the f-number per band) or none; overrides "psf"
           -o DIR               output folder (default OUTDIR/camera-<sensor>)
           --bench N            time the sensor simulation N times and print the figures (nothing written)
 
@@ -48,7 +53,7 @@ public static class CameraCommand
     public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
     {
         var a = new Arguments("camera", argv,
-            ["--sensor", "--exposure", "--seed", "--noise", "--radiance-scale", "--demosaic", "--signals", "--threads", "-o", "--bench"], [],
+            ["--sensor", "--exposure", "--seed", "--noise", "--radiance-scale", "--demosaic", "--signals", "--off-axis", "--psf", "--threads", "-o", "--bench"], [],
             new Dictionary<string, string> { ["--output"] = "-o" });
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
         if (a.Positionals.Count != 1) throw new InputException("command line", "give one render folder", "usage: spectral camera OUTDIR --sensor nikon-d5100");
@@ -66,6 +71,8 @@ public static class CameraCommand
             if (ex == "auto") sensor = sensor with { ExposureSeconds = null };
             else sensor = sensor with { ExposureSeconds = a.Double("--exposure", 1e-10, 1e5, "seconds") is { } t ? t : throw new InputException("command line", $"--exposure '{ex}' must be auto or positive seconds", "e.g. --exposure auto or --exposure 0.01 (seconds)") };
         }
+        if (a.Value("--off-axis") is { } oa) sensor = sensor with { OffAxis = SensorFile.ParseOffAxis(oa, "--off-axis") };
+        if (a.Value("--psf") is { } psf) sensor = sensor with { Psf = SensorFile.ParsePsf(psf, "--psf") };
         bool noise = a.Value("--noise") switch
         {
             null or "on" => true,
@@ -99,7 +106,7 @@ public static class CameraCommand
         {
             if (ExactChannelSignals.Compute(scene, sensor, threads, out var why) is { } exact)
             {
-                cube = cube with { ChannelIntegrals = exact.Integrals, Route = exact.Route };
+                cube = cube with { ChannelIntegrals = exact.Integrals, Route = exact.Route, OpticsApplied = exact.OpticsApplied };
                 whiteScale = exact.WhiteScale;
                 whiteSource = exact.WhiteScaleSource;
             }

@@ -26,11 +26,11 @@ public static class ExactChannelSignals
     /// The integrals (H × W × C), the white's radiance per unit of the reference white's band values (light scale × 1/π
     /// physical × the chart's geometric factor), and the route in words.
     /// </summary>
-    public sealed record Result(float[] Integrals, double WhiteScale, string Route, string WhiteScaleSource);
+    public sealed record Result(float[] Integrals, double WhiteScale, string Route, string WhiteScaleSource, bool OpticsApplied);
 
     /// <summary>The camera's input on the exact route, or null (the band cube) when the folder cannot give it (the report's camera comparison).</summary>
     public static (RadianceCube Cube, double WhiteScale)? Input(CameraScene cs, SensorModel sensor) =>
-        Compute(cs, sensor, -1, out _) is { } r ? (cs.Cube(1) with { ChannelIntegrals = r.Integrals, Route = r.Route }, r.WhiteScale) : null;
+        Compute(cs, sensor, -1, out _) is { } r ? (cs.Cube(1) with { ChannelIntegrals = r.Integrals, Route = r.Route, OpticsApplied = r.OpticsApplied }, r.WhiteScale) : null;
 
     /// <summary>The exact route for <paramref name="cs"/>'s render, or null (with the reason) when the folder cannot give it.</summary>
     public static Result? Compute(CameraScene cs, SensorModel sensor, int threads, out string reason)
@@ -75,17 +75,20 @@ public static class ExactChannelSignals
         }
 
         int cc = sensor.ChannelCount, n = cs.Width * cs.Height;
-        double lo = scene.Grid.Start, hi = scene.Grid.End;
         var tables = new TermTables(scene);
         var bandWeights = ChannelWeights.Compute(sensor, scene.Grid, cs.Light, 1);
         bool physical = scene.Radiometry == Radiometry.Physical;
+        // With the lens's optics (cos⁴, the Airy blur per band) each band's share of the integrals goes through them on
+        // its own — the integral over a band is exact there too, and the bands' shares sum to the whole range's.
+        var optics = Optics.For(sensor, cs.Width, cs.Height, cs.FovDegrees, scene.Grid);
+        int parts = optics.Any ? scene.Bands : 1;
         var padded = new float[scene.PaddedBands];
         var perComponent = new double[transfer.Components.Length][];
         int bandRoute = 0;
         for (int k = 0; k < perComponent.Length; k++)
         {
             var comp = transfer.Components[k];
-            var t = perComponent[k] = new double[cc];
+            var t = perComponent[k] = new double[parts * cc];
             var (e, m, factor) = Term(scene, comp, physical);
             double chain = 1;
             bool exact = comp.Band < 0 && !comp.Coloured(tables) && e is not null && scene.Spectra.TryGetValue(e, out _)
@@ -95,38 +98,50 @@ public static class ExactChannelSignals
             {
                 var se = scene.Spectra[e!];
                 var sm = m is null ? null : scene.Spectra[m];
-                for (int c = 0; c < cc; c++) t[c] = factor * chain * ChannelWeights.ExactIntegral(sensor.Channels[c], se, sm, lo, hi);
+                for (int part = 0; part < parts; part++)
+                {
+                    double lo = parts == 1 ? scene.Grid.Start : scene.Grid.Lower(part), hi = parts == 1 ? scene.Grid.End : scene.Grid.Upper(part);
+                    for (int c = 0; c < cc; c++) t[part * cc + c] = factor * chain * ChannelWeights.ExactIntegral(sensor.Channels[c], se, sm, lo, hi);
+                }
             }
             else if (!exact)
             {   // Band route for this component: Σ_b P_b · w_c,b / (the weights' constant), in the exact integrals' units.
                 bandRoute++;
                 comp.BandValues(tables, padded);
                 for (int c = 0; c < cc; c++)
-                {
-                    double v = 0;
-                    for (int b = 0; b < scene.Bands; b++) v += padded[b] * bandWeights[c, b];
-                    t[c] = v / bandWeights.Factor;
-                }
+                    for (int b = 0; b < scene.Bands; b++) t[(parts == 1 ? 0 : b) * cc + c] += padded[b] * bandWeights[c, b] / bandWeights.Factor;
             }
         }
-        // Σ_c F_c · T_c per pixel, in doubles, one pixel range per task (components' pixels ascend).
+        // Σ_c F_c · T_c per pixel, in doubles, one pixel range per task (components' pixels ascend); per band through the optics.
         var sum = new double[(long)n * cc];
+        var share = optics.Any ? new double[(long)n * cc] : sum;
+        var plane = optics.Any ? new float[n * cc] : null;
+        // A mosaic reads one channel per pixel: only that one is blurred.
+        int[]? planeOf = sensor.Arrangement == Arrangement.Mosaic ? Enumerable.Range(0, n).Select(i => sensor.ChannelAt(i % cs.Width, i / cs.Width)).ToArray() : null;
         var parallel = new ParallelOptions { MaxDegreeOfParallelism = threads };
         const int Chunk = 8192;
-        Parallel.For(0, (n + Chunk - 1) / Chunk, parallel, chunk =>
+        for (int part = 0; part < parts; part++)
         {
-            int i0 = chunk * Chunk, i1 = Math.Min(n, i0 + Chunk);
-            for (int k = 0; k < perComponent.Length; k++)
+            if (optics.Any) Array.Clear(share);
+            Parallel.For(0, (n + Chunk - 1) / Chunk, parallel, chunk =>
             {
-                var pix = transfer.Pixels[k];
-                var f = transfer.Factors[k];
-                var t = perComponent[k];
-                int j = Array.BinarySearch(pix, i0);
-                if (j < 0) j = ~j;
-                for (; j < pix.Length && pix[j] < i1; j++)
-                    for (int c = 0; c < cc; c++) sum[(long)pix[j] * cc + c] += f[j] * t[c];
-            }
-        });
+                int i0 = chunk * Chunk, i1 = Math.Min(n, i0 + Chunk);
+                for (int k = 0; k < perComponent.Length; k++)
+                {
+                    var pix = transfer.Pixels[k];
+                    var f = transfer.Factors[k];
+                    var t = perComponent[k].AsSpan(part * cc, cc);
+                    int j = Array.BinarySearch(pix, i0);
+                    if (j < 0) j = ~j;
+                    for (; j < pix.Length && pix[j] < i1; j++)
+                        for (int c = 0; c < cc; c++) share[(long)pix[j] * cc + c] += f[j] * t[c];
+                }
+            });
+            if (plane is null) continue;
+            for (int i = 0; i < plane.Length; i++) plane[i] = (float)share[i];
+            Optics.Apply(plane, cs.Width, cs.Height, cc, optics.Illumination, optics.Kernels is { } ks ? [ks[part]] : null, threads, planeOf);
+            for (int i = 0; i < plane.Length; i++) sum[i] += plane[i];
+        }
         var integrals = GC.AllocateUninitializedArray<float>(sum.Length);
         for (long i = 0; i < sum.Length; i++) integrals[i] = (float)sum[i];
 
@@ -135,8 +150,9 @@ public static class ExactChannelSignals
         reason = "";
         string route = $"exact: rate_c = sum over eq. 2 terms of F * s * integral(eta_c * lambda/(h c) * E_k * m) at full spectral resolution, " +
             $"{transfer.Components.Length} components from {from}" +
-            (bandRoute > 0 ? string.Create(inv, $"; {bandRoute} components (coloured mirror/glass chain, dispersion or band-valued spectra) by their band values") : "");
-        return new Result(integrals, whiteScale, route, whiteSource);
+            (bandRoute > 0 ? string.Create(inv, $"; {bandRoute} components (coloured mirror/glass chain, dispersion or band-valued spectra) by their band values") : "") +
+            (optics.Any ? "; each band's share through the lens (cos4th fall-off, Airy blur at the band centre) before the bands are summed" : "");
+        return new Result(integrals, whiteScale, route, whiteSource, optics.Any);
     }
 
     /// <summary>The light spectrum, material spectrum (null: none) and constant factor of a component's term, as <see cref="TermTables"/> forms it.</summary>

@@ -22,6 +22,9 @@ public sealed class ManifestScene(JsonObject document)
     /// <summary>"paper" or "physical" where the scene says.</summary>
     public string? Radiometry => Text(_document["radiometry"]);
 
+    /// <summary>The camera's vertical field of view (degrees) where the scene gives it.</summary>
+    public double? CameraFov => _document["camera"]?["fov"] is JsonValue v && v.TryGetValue(out double d) ? d : null;
+
     /// <summary>The scene's lights in order.</summary>
     public IReadOnlyList<ResolvedLight> Lights => (_document["lights"] as JsonArray ?? []).Select((l, i) =>
         new ResolvedLight(Text(l?["name"]) ?? $"light-{i}", Text(l?["spectrum"]),

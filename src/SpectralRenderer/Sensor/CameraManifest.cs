@@ -60,6 +60,8 @@ public static class CameraManifest
                 ["pattern_name"] = s.PatternName,
                 ["f_number"] = s.FNumber,
                 ["transmittance"] = s.OpticsTransmittance,
+                ["transmittance_spectrum"] = s.TransmittanceSource,
+                ["optics"] = OpticsJson(s, raw.Optics),
                 ["pixel_size_um"] = s.PixelSizeMicrons,
                 ["fill_factor"] = s.FillFactor,
                 ["etendue_m2_sr"] = s.Etendue,
@@ -111,6 +113,34 @@ public static class CameraManifest
                 ["output"] = "sRGB (IEC 61966-2-1), no chromatic adaptation",
             },
         };
+    }
+
+    /// <summary>What the lens did (<see cref="Optics"/>): the models, their sources, the focal length from the render's field of view, the kernels.</summary>
+    static JsonObject OpticsJson(SensorModel s, Optics.Plan? plan)
+    {
+        var o = new JsonObject
+        {
+            ["off_axis"] = s.OffAxis == OffAxisModel.Cos4th ? "cos4th" : "none",
+            ["psf"] = s.Psf == PsfModel.Diffraction ? "diffraction" : "none",
+            ["field_of_view_deg"] = plan?.FovDegrees,
+            ["focal_length_mm"] = plan?.FocalLengthMm,
+            ["focal_length_source"] = "f = rows × pixel pitch / (2 tan(fov/2)): the sensor under the render camera's vertical field of view",
+        };
+        if (s.OffAxis == OffAxisModel.Cos4th)
+        {
+            o["off_axis_formula"] = "irradiance × cos⁴φ, tan²φ = s_x² + s_y² at the pixel centre (the render camera's ray); ISETCam cos4th.m (distant image)";
+            o["min_relative_illumination"] = plan?.MinIllumination;
+        }
+        if (s.Psf == PsfModel.Diffraction && plan?.Kernels is { } ks)
+        {
+            o["psf_formula"] = "Airy pattern π/(4(λN)²)·[2J1(v)/v]², v = πr/(λN), at each band's centre (Goodman, Fourier Optics, eq. 4-31), "
+                + "against the pixel-pair triangle, cut where the encircled energy reaches " + Optics.PsfEnergy.ToString(System.Globalization.CultureInfo.InvariantCulture)
+                + " and normalised to 1; edges clamped";
+            o["psf_first_zero_um"] = Array(ks.Select(k => 1.2196698912665045 * k.WavelengthNm * 1e-3 * s.FNumber));
+            o["psf_kernel_radius_px"] = new JsonArray(ks.Select(k => (JsonNode)k.Radius).ToArray());
+            o["psf_kernel_energy"] = Array(ks.Select(k => k.CapturedEnergy));
+        }
+        return o;
     }
 
     /// <summary>The largest η(λ) the channel uses (a per-energy channel: R(λ)·555 nm/λ over its table), electrons per photon.</summary>

@@ -39,12 +39,15 @@ public sealed class ChannelWeights
         for (int b = 0; b < n; b++) { e[b] = light.Integrate(grid.Lower(b), grid.Upper(b)); peak = Math.Max(peak, e[b]); }
         for (int c = 0; c < m; c++)
         {
-            var qe = sensor.Channels[c].QuantumEfficiency;
-            bool perEnergy = sensor.Channels[c].PerEnergy;   // η·λ = R·555 nm: no λ factor left to integrate
+            var ch = sensor.Channels[c];
+            var qe = ch.QuantumEfficiency;
+            bool perEnergy = ch.PerEnergy;   // η·λ = R·555 nm: no λ factor left to integrate
             for (int b = 0; b < n; b++)
             {
                 double lo = grid.Lower(b), hi = grid.Upper(b), width = hi - lo;
-                double w = perEnergy
+                double w = ch.Lens is not null   // a lens transmittance spectrum: η·T·λ·E, degree 4, by Gauss–Legendre
+                    ? e[b] > 1e-12 * peak ? ExactIntegral(ch, light, null, lo, hi) / e[b] * width : ExactIntegral(ch, null, null, lo, hi)
+                    : perEnergy
                     ? SensorChannel.EnergyReferenceNm * (e[b] > 1e-12 * peak ? TabulatedSpectrum.IntegrateProduct(qe, light, lo, hi) / e[b] * width : qe.Integrate(lo, hi))
                     : e[b] > 1e-12 * peak
                     ? IntegrateTimesWavelength(qe, light, lo, hi) / e[b] * width
@@ -61,14 +64,15 @@ public sealed class ChannelWeights
     /// <summary>
     /// ∫_lo^hi η_c(λ)·λ·a(λ)·b(λ) dλ (nm² × the units of a·b; a or b null = 1) at the tables' full resolution: the
     /// channel's signal from a radiance a·b, as exact colour integrates x̄·E·m (a per-energy channel: 555 nm·R(λ)
-    /// in place of η·λ). Between merged knots η, a and b are linear, so the integrand is a polynomial of degree ≤ 4,
-    /// which 3-point Gauss–Legendre integrates without error (exact to degree 5).
+    /// in place of η·λ; times the channel's lens transmittance T(λ) when it has one). Between merged knots η, a, b and T are
+    /// linear, so the integrand is a polynomial of degree ≤ 5, which 3-point Gauss–Legendre integrates without error.
     /// </summary>
     public static double ExactIntegral(SensorChannel channel, TabulatedSpectrum? a, TabulatedSpectrum? b, double lo, double hi)
     {
         var qe = channel.QuantumEfficiency;
+        var lens = channel.Lens;
         var knots = new List<double> { lo, hi };
-        foreach (var s in (ReadOnlySpan<TabulatedSpectrum?>)[qe, a, b])
+        foreach (var s in (ReadOnlySpan<TabulatedSpectrum?>)[qe, a, b, lens])
             if (s is not null) foreach (var x in s.Wavelengths) if (x > lo && x < hi) knots.Add(x);
         knots.Sort();
         const double G = 0.7745966692414834;   // √(3/5)
@@ -83,7 +87,7 @@ public sealed class ChannelWeights
         return sum;
 
         double F(double x) => (channel.PerEnergy ? SensorChannel.EnergyReferenceNm * At(qe, x) : At(qe, x) * x)
-            * (a is null ? 1 : At(a, x)) * (b is null ? 1 : At(b, x));
+            * (a is null ? 1 : At(a, x)) * (b is null ? 1 : At(b, x)) * (lens is null ? 1 : At(lens, x));
     }
 
     static double At(TabulatedSpectrum s, double x) => Outside(s, x) ? 0 : Value(s, x);

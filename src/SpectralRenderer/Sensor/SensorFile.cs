@@ -17,6 +17,7 @@ public static class SensorFile
         "name", "preset", "source", "channels", "peak_qe", "arrangement", "pattern", "f_number", "transmittance", "pixel_size_um",
         "fill_factor", "conversion_gain_v_per_e", "voltage_swing_v", "read_noise_v", "dark_voltage_v_per_s", "prnu_percent",
         "dsnu_v", "analog_gain", "adc_bits", "black_level_dn", "exposure_s", "auto_exposure_fraction", "fixed_pattern_seed",
+        "off_axis", "psf",
     ];
 
     /// <summary>The name a sensor inline in a scene takes unless it says "name".</summary>
@@ -96,12 +97,25 @@ public static class SensorFile
             if (e is JsonValue v && v.TryGetValue(out string? t) && t == "auto") auto = true;
             else exposure = Num(o, "exposure_s", at, 1e-9, 1e6);
         }
+        // "transmittance": a constant, or a spectrum T(λ) (a name or CSV column) that multiplies every channel's η(λ).
+        double? transmittance = null;
+        if (o["transmittance"] is JsonValue tv && tv.TryGetValue(out string? tName))
+        {
+            var t = SpectrumLibrary.Resolve(tName, baseDirectory, $"{at}.transmittance");
+            foreach (var v in t.Values)
+                if (v < 0 || v > 1) throw new InputException($"{at}.transmittance", $"spectrum '{tName}' has values outside 0–1", "a transmittance is a fraction at each wavelength");
+            s = s with { Channels = s.Channels.Select(c => c with { Lens = t }).ToArray(), TransmittanceSource = tName };
+            transmittance = 1;
+        }
+        else transmittance = Num(o, "transmittance", at, 0, 1);
         return s with
         {
+            OffAxis = Str(o, "off_axis", at) is { } oa ? ParseOffAxis(oa, $"{at}.off_axis") : s.OffAxis,
+            Psf = Str(o, "psf", at) is { } ps ? ParsePsf(ps, $"{at}.psf") : s.Psf,
             Name = Str(o, "name", at) ?? (root != "$" ? InlineName : file.EndsWith(".json", StringComparison.OrdinalIgnoreCase) ? Path.GetFileNameWithoutExtension(file) : s.Name),
             Source = Str(o, "source", at) ?? $"{(root != "$" ? $"{file} {root}" : file)} (over preset {s.Name})",
             FNumber = Num(o, "f_number", at, 0.1, 1000) ?? s.FNumber,
-            OpticsTransmittance = Num(o, "transmittance", at, 0, 1) ?? s.OpticsTransmittance,
+            OpticsTransmittance = transmittance ?? s.OpticsTransmittance,
             PixelSizeMicrons = Num(o, "pixel_size_um", at, 0.01, 1000) ?? s.PixelSizeMicrons,
             FillFactor = Num(o, "fill_factor", at, 0, 1) ?? s.FillFactor,
             ConversionGain = Num(o, "conversion_gain_v_per_e", at, 1e-12, 1) ?? s.ConversionGain,
@@ -118,6 +132,22 @@ public static class SensorFile
             FixedPatternSeed = (ulong?)Num(o, "fixed_pattern_seed", at, 0, 1e15, whole: true) ?? s.FixedPatternSeed,
         };
     }
+
+    /// <summary>"cos4th" or "none" (<see cref="OffAxisModel"/>); <paramref name="where"/> names the key or option in the error.</summary>
+    public static OffAxisModel ParseOffAxis(string value, string where) => value switch
+    {
+        "cos4th" => OffAxisModel.Cos4th,
+        "none" => OffAxisModel.None,
+        _ => throw new InputException(where, $"'{value}' is not an off-axis model", "cos4th (ISETCam's default fall-off) or none"),
+    };
+
+    /// <summary>"diffraction" or "none" (<see cref="PsfModel"/>).</summary>
+    public static PsfModel ParsePsf(string value, string where) => value switch
+    {
+        "diffraction" => PsfModel.Diffraction,
+        "none" => PsfModel.None,
+        _ => throw new InputException(where, $"'{value}' is not a point spread model", "diffraction (the Airy pattern at the f-number) or none"),
+    };
 
     static SensorChannel Channel(JsonNode? node, string where, string? baseDirectory)
     {

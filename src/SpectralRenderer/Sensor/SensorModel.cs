@@ -21,6 +21,12 @@ public enum Arrangement
 public sealed record SensorChannel(string Name, TabulatedSpectrum QuantumEfficiency, string Source, bool PerEnergy = false)
 {
     public const double EnergyReferenceNm = 555;
+
+    /// <summary>
+    /// The lens transmittance T(λ) in front of the channel (a sensor's <c>"transmittance"</c> given as a spectrum), which
+    /// multiplies η(λ) wherever the channel is integrated; null: the sensor's constant <see cref="SensorModel.OpticsTransmittance"/> only.
+    /// </summary>
+    public TabulatedSpectrum? Lens { get; init; }
 }
 
 /// <summary>
@@ -46,7 +52,14 @@ public sealed record SensorModel
     public string? PatternName { get; init; }
 
     public double FNumber { get; init; } = 4;
+    /// <summary>The lens's constant transmittance T (a spectrum T(λ), when given, is each channel's <see cref="SensorChannel.Lens"/>, and this is 1).</summary>
     public double OpticsTransmittance { get; init; } = 1;
+    /// <summary>Where T(λ) came from (a spectrum name or CSV column), null for a constant.</summary>
+    public string? TransmittanceSource { get; init; }
+    /// <summary>The off-axis fall-off (<see cref="Optics"/>): cos⁴ of the field angle by default, as ISETCam's default optics.</summary>
+    public OffAxisModel OffAxis { get; init; } = OffAxisModel.Cos4th;
+    /// <summary>The point spread (<see cref="Optics"/>): the diffraction-limited Airy pattern at the f-number by default.</summary>
+    public PsfModel Psf { get; init; } = PsfModel.Diffraction;
     /// <summary>Pixel pitch (µm), square pixels.</summary>
     public double PixelSizeMicrons { get; init; } = 2.8;
     public double FillFactor { get; init; } = 0.75;

@@ -25,6 +25,15 @@ public sealed record RadianceCube(int Width, int Height, BandGrid Grid, float[] 
     /// <summary>What made the channel signals, in words (camera.json's "signal_route").</summary>
     public string Route { get; init; } = BandRoute;
 
+    /// <summary>The render camera's vertical field of view (degrees), which sets the field angle of each pixel (cos⁴); null when unknown.</summary>
+    public double? FovDegrees { get; init; }
+
+    /// <summary>
+    /// Whether the sensor's optics (<see cref="Optics"/>: cos⁴, the Airy blur per band) are already in the data — the exact
+    /// route applies them to its per-band integrals before summing the bands. Else <see cref="SensorSimulation.Run"/> applies them to the band cube.
+    /// </summary>
+    public bool OpticsApplied { get; init; }
+
     public const string BandRoute = "band cube: rate_c = sum_b w_c,b * L_b (channel weights prefiltered by the scene light per band)";
 }
 
@@ -46,6 +55,8 @@ public sealed record SimulationOptions
 public sealed record RawFrame(int Width, int Height, int Planes, float[] Dn, double[] ExposureSeconds, double[] PeakElectrons,
     ChannelWeights Weights, SensorModel Sensor, SimulationOptions Options)
 {
+    /// <summary>The optics the capture went through (null when read back from raw.npy).</summary>
+    public Optics.Plan? Optics { get; init; }
     public float this[int x, int y, int plane] => Dn[(y * Width + x) * Planes + plane];
     /// <summary>Per photosite: did its expected charge reach the full well (null when read back from raw.npy)?</summary>
     public bool[]? Saturated { get; init; }
@@ -108,6 +119,15 @@ public static partial class SensorSimulation
         var rowPeaks = new float[h * planes];
         var parallel = new ParallelOptions { MaxDegreeOfParallelism = options.Threads };
         var layout = new Layout(sensor, weights, w);
+        var optics = Optics.For(sensor, w, h, cube.FovDegrees, cube.Grid);
+        if (cube.ChannelIntegrals is null && optics.Any)
+        {   // The band route: the irradiance (each band of a copy of the cube) through the lens before the pixels sample it.
+            var data = cube.Data.AsSpan(0, w * h * cube.Bands).ToArray();
+            Optics.Apply(data, w, h, cube.Bands, optics.Illumination, optics.Kernels, options.Threads);
+            cube = cube with { Data = data };
+        }
+        else if (cube.ChannelIntegrals is not null && optics.Any && !cube.OpticsApplied)
+            throw new ArgumentException("exact channel integrals without the optics applied: give them per band through the optics (Cli/ExactChannelSignals) or a sensor with off_axis and psf none");
         if (cube.ChannelIntegrals is { } exact)
         {
             if (exact.Length != w * h * sensor.ChannelCount)
@@ -138,7 +158,7 @@ public static partial class SensorSimulation
             for (int j = 0; j < rowSites; j++) saturated[y * rowSites + j] = dn[y * rowSites + j] * te[j] >= sensor.FullWellElectrons;
         });
         Parallel.For(0, h, parallel, y => Expose(readout, layout, exposureOf, w, y, dn));
-        return new RawFrame(w, h, planes, dn, t, peakElectrons, weights, sensor, options) { Saturated = saturated };
+        return new RawFrame(w, h, planes, dn, t, peakElectrons, weights, sensor, options) { Saturated = saturated, Optics = optics };
     }
 
     /// <summary>The channel weights in the two layouts the rate loops read, and the mosaic's pattern flattened.</summary>

@@ -75,7 +75,7 @@ public class CameraCommandTests
     {
         var render = GreyChart(light, "380:780:20");
         var outDir = Path.Combine(render, "cam");
-        var (code, _, err) = CliRunner.Run("camera", render, "--sensor", "cie-xyz", "--noise", "off", "-o", outDir);
+        var (code, _, err) = CliRunner.Run("camera", render, "--sensor", "cie-xyz", "--noise", "off", "-o", outDir, "--off-axis", "none", "--psf", "none");
         Assert.True(code == 0, err);
         var (shape, raw) = NpyReader.Read(File.OpenRead(Path.Combine(outDir, "raw.npy")));
         Assert.Equal([8, 24, 3], shape);
@@ -108,7 +108,8 @@ public class CameraCommandTests
         Assert.True(code == 0, err);
         var outDir = Path.Combine(render, "cam");
         // The band route: the cube's band values as they are (the exact route integrates the patches' full spectra instead).
-        (code, _, err) = CliRunner.Run("camera", render, "--sensor", "cie-xyz", "--noise", "off", "-o", outDir, "--signals", "bands");
+        (code, _, err) = CliRunner.Run("camera", render, "--sensor", "cie-xyz", "--noise", "off", "-o", outDir, "--signals", "bands",
+            "--off-axis", "none", "--psf", "none");
         Assert.True(code == 0, err);
         var (_, raw) = NpyReader.Read(File.OpenRead(Path.Combine(outDir, "raw.npy")));
         var scene = CameraScene.Open(render);

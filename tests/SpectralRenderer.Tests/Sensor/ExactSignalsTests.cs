@@ -34,7 +34,9 @@ public class ExactSignalsTests
     internal static (float[] Raw, JsonObject Manifest) Camera(string render, string sensor, params string[] extra)
     {
         var outDir = Path.Combine(render, $"cam-{sensor}-{string.Join("", extra)}");
-        var (code, _, err) = CliRunner.Run(new[] { "camera", render, "--sensor", sensor, "--noise", "off", "-o", outDir }.Concat(extra).ToArray());
+        // A flat lens (no cos⁴, no blur): these tests compare the spectral integration pixel by pixel; the lens is OpticsTests'.
+        var (code, _, err) = CliRunner.Run(new[] { "camera", render, "--sensor", sensor, "--noise", "off", "-o", outDir, "--off-axis", "none", "--psf", "none" }
+            .Concat(extra).ToArray());
         Assert.True(code == 0, err);
         var (_, raw) = NpyReader.Read(File.OpenRead(Path.Combine(outDir, "raw.npy")));
         return (raw, (JsonObject)JsonNode.Parse(File.ReadAllText(Path.Combine(outDir, "camera.json")))!);
@@ -160,7 +162,7 @@ public class ExactSignalsTests
         return (de, double.Parse(line[3], CultureInfo.InvariantCulture));
     }
 
-    static (double[] Wl, double[] V) Table(string file, string column)
+    internal static (double[] Wl, double[] V) Table(string file, string column)
     {
         var lines = File.ReadAllLines(Path.Combine(SpectralRenderer.Spectra.DataDirectory.Path, file));
         int col = Array.IndexOf(lines[0].Split(','), column);
@@ -168,7 +170,7 @@ public class ExactSignalsTests
         return (rows.Select(r => double.Parse(r[0], CultureInfo.InvariantCulture)).ToArray(), rows.Select(r => double.Parse(r[col], CultureInfo.InvariantCulture)).ToArray());
     }
 
-    static double Lerp((double[] Wl, double[] V) t, double x)
+    internal static double Lerp((double[] Wl, double[] V) t, double x)
     {
         if (x <= t.Wl[0]) return t.V[0];
         if (x >= t.Wl[^1]) return t.V[^1];

@@ -73,7 +73,7 @@ public class RegisteredPresetTests
         var (code, _, err) = CliRunner.Run("render", scene, "-o", render, "--quiet");
         Assert.True(code == 0, err);
         var cam = Path.Combine(render, "cam");
-        (code, _, err) = CliRunner.Run("camera", render, "--sensor", Name, "--noise", "off", "-o", cam);
+        (code, _, err) = CliRunner.Run("camera", render, "--sensor", Name, "--noise", "off", "-o", cam, "--off-axis", "none", "--psf", "none");
         Assert.True(code == 0, err);
 
         var manifest = JsonNode.Parse(File.ReadAllText(Path.Combine(cam, "camera.json")))!;

@@ -116,7 +116,7 @@ public class SensorLanesTests(Xunit.Abstractions.ITestOutputHelper output)
     [InlineData("mosaic-16", true)]
     public void NoiseOff_RawIsTheWeightedBandSum(string name, bool allChannelsAtEveryPixel)
     {
-        var sensor = SensorPresets.Get(name);
+        var sensor = SensorPresets.Get(name) with { OffAxis = OffAxisModel.None, Psf = PsfModel.None };   // the weighted sum per pixel, no lens blur
         if (allChannelsAtEveryPixel) sensor = sensor with { Arrangement = Arrangement.Full, Pattern = null, PatternName = null };
         var cube = Cube();
         var light = TabulatedSpectrum.Constant(1);

@@ -36,6 +36,14 @@ public sealed class CameraCapture
             ? SensorFile.FromScene(scene.Folder.Manifest.ResolvedScene?.ToJson(), scene.Folder.Manifest.Scene)
               ?? throw r.Bad("$.sensor_argument", "names the scene's sensor but the render's scene has none")
             : SensorFile.Resolve(record.SensorArgument);
+        // The lens as the capture had it (--off-axis, --psf override the sensor's).
+        if (r.OptObject(m, "sensor", "$") is { } sensorNode && r.OptObject(sensorNode, "optics", "$.sensor") is { } optics)
+        {
+            if (r.OptString(optics, "off_axis", "$.sensor.optics") is { } oa)
+                sensor = sensor with { OffAxis = SensorFile.ParseOffAxis(oa, $"{path}: $.sensor.optics.off_axis") };
+            if (r.OptString(optics, "psf", "$.sensor.optics") is { } psf)
+                sensor = sensor with { Psf = SensorFile.ParsePsf(psf, $"{path}: $.sensor.optics.psf") };
+        }
         var exposures = record.Exposures;
         if (exposures.Length != sensor.Exposures)
             throw r.Bad("$.simulation.exposure_s", $"has {exposures.Length} exposures, the sensor {MessageText.Quote(sensor.Name)} takes {sensor.Exposures}");

@@ -39,7 +39,10 @@ public sealed class CameraScene
     /// </summary>
     public static CameraScene Of(RenderFolder folder, RenderAovs aovs) => new(folder, aovs, FindPatches(folder));
 
-    public RadianceCube Cube(double radianceScale) => new(Width, Height, Grid, Folder.Image.Data, radianceScale);
+    public RadianceCube Cube(double radianceScale) => new(Width, Height, Grid, Folder.Image.Data, radianceScale) { FovDegrees = FovDegrees };
+
+    /// <summary>The render camera's vertical field of view (degrees; the scene loader's default 40 when the scene gives none).</summary>
+    public double FovDegrees => Folder.Manifest.ResolvedScene?.CameraFov ?? 40;
 
     static List<ChartPatch> FindPatches(RenderFolder folder)
     {

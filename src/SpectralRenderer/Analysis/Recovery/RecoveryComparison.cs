@@ -20,11 +20,17 @@ public static class RecoveryComparison
     /// <summary>The camera's input for a sensor on the exact route (issue 24: channel integrals, the render's white scale), or null for the band cube.</summary>
     public delegate (RadianceCube Cube, double WhiteScale)? CameraInput(CameraScene scene, SensorModel sensor);
 
+    /// <summary>
+    /// A preset behind a flat lens (no cos⁴ fall-off, no Airy blur): the comparison is of the spectral channels, and the
+    /// recovery's forward model (a surface lit like the white, on the axis) has no lens shading correction.
+    /// </summary>
+    static SensorModel Sensor(string name) => SensorPresets.Get(name) with { OffAxis = OffAxisModel.None, Psf = PsfModel.None };
+
     public static List<ComparisonRow> Rows(string chartRenderDir, CameraInput? input = null)
     {
         var scene = CameraScene.Open(chartRenderDir);
         // The exact route's integrals per sensor first (each traces or reads the render's eq. 2 terms once).
-        var inputs = Sensors.Select(s => input?.Invoke(scene, SensorPresets.Get(s))).ToArray();
+        var inputs = Sensors.Select(s => input?.Invoke(scene, Sensor(s))).ToArray();
         var training = TrainingSet.Load("rawtoaces-190", scene.Grid);
         var methods = Enum.GetValues<RecoveryMethod>();
         // The six captures (sensor × noise) are independent: simulated and scored side by side, each row in its place.
@@ -34,7 +40,7 @@ public static class RecoveryComparison
             string name = Sensors[c / 2];
             bool noise = c % 2 == 1;
             var exact = inputs[c / 2];
-            var capture = CameraCapture.Simulate(scene, SensorPresets.Get(name), new SimulationOptions { Noise = noise }, display: false,
+            var capture = CameraCapture.Simulate(scene, Sensor(name), new SimulationOptions { Noise = noise }, display: false,
                 cube: exact?.Cube, whiteScale: exact?.WhiteScale ?? 1);
             var a = capture.ForwardMatrix();
             var noiseVariance = capture.NoiseVariance();
@@ -57,7 +63,8 @@ public static class RecoveryComparison
             return h.Append("<p class=\"skip\">The §3.1 chart was not rendered, so the camera comparison is skipped.</p>\n").ToString();
         var rows = Rows(chartRenderDir, input);
         var inv = CultureInfo.InvariantCulture;
-        h.Append("<p>The §3.1 chart seen by three simulated cameras (docs/camera.md: ISETCam's pixel, auto exposure), reflectance recovered from the signals with the rawtoaces 190-patch prior, scored against the render's ground truth: each patch recovered from its mean signal (as a camera is characterised; for the affine methods the same as the mean of its pixels' estimates, which <code>spectral recover</code> reports), then the mean over the 24 patches of the RMSE on 400–700 nm (where the sensors respond) and on all bands, and of ΔE00 under D65. Noise on: shot, dark, read noise and quantisation, seed 1. " +
+        h.Append("<p>The §3.1 chart seen by three simulated cameras (docs/camera.md: ISETCam's pixel, auto exposure, a flat lens: no cos⁴ fall-off or diffraction blur, which a recovery without lens shading correction would read as reflectance), " +
+            "reflectance recovered from the signals with the rawtoaces 190-patch prior, scored against the render's ground truth: each patch recovered from its mean signal (as a camera is characterised; for the affine methods the same as the mean of its pixels' estimates, which <code>spectral recover</code> reports), then the mean over the 24 patches of the RMSE on 400–700 nm (where the sensors respond) and on all bands, and of ΔE00 under D65. Noise on: shot, dark, read noise and quantisation, seed 1. " +
             (input is null ? "Signals from the band cube." : "Signals exact (issue 24): each channel integrated per eq. 2 term at the spectra's full resolution, independent of the band count; the recovery's forward model takes reflectance constant within each band.") + "</p>\n");
         h.Append("<table><tr><th class=l>sensor</th><th class=l>noise</th><th class=l>method</th><th>RMSE 400–700 nm</th><th>RMSE all bands</th><th>ΔE00 D65</th></tr>\n");
         foreach (var r in rows)
