@@ -103,6 +103,8 @@ public sealed record RenderManifest
     /// film. Its images are crop-sized; the ENVI and NPY cubes start at film pixel (X0, Y0), the EXRs say it in dataWindow.
     /// </summary>
     public Rendering.PixelRect? Crop { get; init; }
+    /// <summary>The sampler and how exact the render is (per-pixel standard errors, adaptive sampling); null: the independent sampler, no statistics.</summary>
+    public ManifestSampling? Sampling { get; init; }
 
     /// <summary>Eq. 3 with the render's own weights.</summary>
     public Xyz ToXyz(ReadOnlySpan<double> bands) => Colorimeter.ToXyz(Wx, Wy, Wz, bands);
@@ -219,6 +221,7 @@ public sealed record RenderManifest
         };
         if (SceneHash is not null) json["scene_hash"] = SceneHash;
         if (Crop is { } c) json["crop"] = new JsonObject { ["x0"] = c.X0, ["y0"] = c.Y0, ["x1"] = c.X1, ["y1"] = c.Y1 };
+        if (Sampling is { } sampling) json["sampling"] = sampling.ToJson();
         return json;
     }
 
@@ -385,6 +388,7 @@ public sealed record RenderManifest
             Crop = json["crop"] is JsonObject crop
                 ? new Rendering.PixelRect(r.Int(crop, "x0", "$.crop"), r.Int(crop, "y0", "$.crop"), r.Int(crop, "x1", "$.crop"), r.Int(crop, "y1", "$.crop"))
                 : null,
+            Sampling = ManifestSampling.Parse(json["sampling"] as JsonObject),
         };
         // Consistent with itself: what the analysis commands compute from these must mean something.
         if (parsed.Width is < 1 or > 32768) throw r.Missing("$.width", "a width of 1 to 32768 pixels");

@@ -21,6 +21,9 @@ public enum OutputProducts
     Aov = 32,
     /// <summary>lights/: the per-light transfer for relighting (opt-in: not in <see cref="All"/>; "light_groups" in a scene).</summary>
     Lights = 64,
+    /// <summary>noise.npy, noise.img/.hdr and stderr channels in spectral.exr: each pixel's standard error per band and of
+    /// luminance (opt-in: not in <see cref="All"/>; needs spp ≥ 2).</summary>
+    Noise = 128,
     All = Png | Bands | Exr | Envi | Npy | Aov,
 }
 
@@ -42,6 +45,7 @@ public static class OutputNames
     [
         (OutputProducts.Png, "png"), (OutputProducts.Bands, "bands"), (OutputProducts.Exr, "exr"),
         (OutputProducts.Envi, "envi"), (OutputProducts.Npy, "npy"), (OutputProducts.Aov, "aov"), (OutputProducts.Lights, "lights"),
+        (OutputProducts.Noise, "noise"),
     ];
 
     public static readonly IReadOnlyList<(ExrCompressionChoice Choice, string Name)> ExrCompressions =

@@ -21,6 +21,7 @@ public static class OutputProductTable
         new WavelengthsProduct(),
         new LightsProduct(),
         new ColourProduct(),
+        new NoiseProduct(),
     ];
 
     /// <summary>Every registered product in order.</summary>
