@@ -18,7 +18,7 @@ public static class RenderCommand
 {
     public const string Help = """
         usage: spectral render SCENE.json|- [-o OUTDIR] [--width W] [--height H] [--bands N | S:E:N] [--wave S:STEP:E]
-                               [--spp N] [--threads N] [--rgb srgb|paper] [--integration exact|weighted|paper]
+                               [--spp N] [--target-error E] [--threads N] [--rgb srgb|paper] [--integration exact|weighted|paper]
                                [--formats LIST] [--exr-compression zip|zip-all|none] [--models DIR] [--quiet]
                                [--crop X0,Y0,X1,Y1 | --shard I/N|none] [--shards N] [--integrator NAME]
 
@@ -41,13 +41,17 @@ public static class RenderCommand
                              the same 31 bands, centred on 400, 410, …, 700 nm
           Bands are numbered from 1 (the first band is band 1) in every file and table a person reads.
           --spp N            samples per pixel (1 = pixel centre; more = stratified jitter)
+          --target-error E   adaptive sampling: each pixel stops once the relative standard error of its mean
+                             luminance is at most E (e.g. 0.01), taking at most --spp samples (render.json: sampling)
           --threads N        worker threads (default: all cores); output is identical for any N
           --rgb MODE         srgb (default) or paper (the paper's eq. 4, linear, clipped)
           --integration S    exact (default: band values and colour integrated on the full tables),
                              weighted (band products, prefiltered colour weights) or paper (eq. 3)
-          --formats LIST     comma-separated from png,bands,exr,envi,npy,aov,lights,photometry, or all (every one but
-                             lights and photometry, the default); lights = the per-light transfer in lights/ for 'relight'
-                             and 'view'; photometry = luminance (cd/m²) and illuminance (lx) maps (physical radiometry)
+          --formats LIST     comma-separated from png,bands,exr,envi,npy,aov,lights,photometry,noise, or all (every one
+                             but lights, photometry and noise, the default); lights = the per-light transfer in lights/ for
+                             'relight' and 'view'; photometry = luminance (cd/m²) and illuminance (lx) maps (physical
+                             radiometry); noise = each pixel's standard error per band and of luminance (noise.npy,
+                             noise.img/.hdr, stderr.* channels in spectral.exr; needs spp >= 2)
           --exr-compression  zip (default: deflate the chunks whose samples repeat, store noisy ones),
                              zip-all (deflate every chunk: smallest file, slower) or none
           --models DIR       a folder to search for mesh files (after the scene's folder, before $SPECTRAL_MODELS)
@@ -64,7 +68,7 @@ public static class RenderCommand
                              Whitted recursion)
         """;
 
-    static readonly string[] Values = ["-o", "--out", "--width", "--height", "--bands", "--band-range", "--wave", "--spp", "--threads", "--rgb", "--integration", "--formats", "--exr-compression", "--models", "--crop", "--shard", "--shards", "--integrator"];
+    static readonly string[] Values = ["-o", "--out", "--width", "--height", "--bands", "--band-range", "--wave", "--spp", "--target-error", "--threads", "--rgb", "--integration", "--formats", "--exr-compression", "--models", "--crop", "--shard", "--shards", "--integrator"];
 
     [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
     public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
@@ -175,12 +179,23 @@ public static class RenderCommand
             Bands = bands,
             Wave = wave,
             SamplesPerPixel = a.Int("--spp", 1, 65536),
+            TargetError = TargetError(a),
             Rgb = a.Value("--rgb"),
             Integration = a.Value("--integration"),
             Formats = SplitFormats(a.Value("--formats")).Formats,
             ExrCompression = a.Value("--exr-compression"),
             ModelDirectories = models,
         };
+    }
+
+    /// <summary>--target-error: a relative standard error in (0, 1).</summary>
+    static double? TargetError(Arguments a)
+    {
+        var e = a.Double("--target-error");
+        if (e is { } v && !(v > 0 && v < 1))
+            throw new InputException("--target-error", $"{v.ToString(CultureInfo.InvariantCulture)} is not a relative error between 0 and 1",
+                "e.g. --target-error 0.01 (1 % standard error of each pixel's luminance)");
+        return e;
     }
 
     /// <summary>

@@ -55,8 +55,11 @@ public static class ShardMerge
                 {
                     case ShardMerging.Png: MergePng(parts, f, target, width, height); break;
                     case ShardMerging.ExrChunks: MergeExr(parts, f, target, width, height); break;
-                    case ShardMerging.EnviCube: MergeEnvi(parts, target, width, bands); break;
-                    case ShardMerging.EnviHeader: MergeEnviHeader(parts[0], target, height); break;
+                    case ShardMerging.EnviCube: MergeEnvi(parts, f, target, width, bands); break;
+                    case ShardMerging.EnviHeader: MergeEnviHeader(parts[0], f, target, height); break;
+                    case ShardMerging.NoiseEnvi: MergeEnvi(parts, f, target, width, bands + 1); break;
+                    case ShardMerging.NoiseEnviHeader: MergeEnviHeader(parts[0], f, target, height); break;
+                    case ShardMerging.NoiseNpy: MergeNpy(parts, f, target, width, height, bands + 1); break;
                     case ShardMerging.NpyCube: MergeNpy(parts, f, target, width, height, bands); break;
                     case ShardMerging.NpyColour: MergeNpy(parts, f, target, width, height, 3); break;
                     case ShardMerging.Copy: AtomicFile.WriteAllBytes(target, File.ReadAllBytes(Path.Combine(parts[0].Dir, f))); break;
@@ -214,13 +217,13 @@ public static class ShardMerge
         if (mosaic) AtomicFile.Write(Path.Combine(outDir, "bands.png"), s => PngWriter.WriteGray8(s, thumbs.Width, thumbs.Height, thumbs.Pixels));
     }
 
-    /// <summary>spectral.img: per band, each shard's rows of that band at their offset in the band's plane.</summary>
-    static void MergeEnvi(List<Part> parts, string target, int width, int bands)
+    /// <summary>spectral.img (noise.img): per band, each shard's rows of that band at their offset in the band's plane.</summary>
+    static void MergeEnvi(List<Part> parts, string file, string target, int width, int bands)
     {
         var buffer = new byte[1 << 22];
         AtomicFile.Write(target, output =>
         {
-            var sources = parts.Select(p => new FileStream(Path.Combine(p.Dir, "spectral.img"), FileMode.Open, FileAccess.Read, FileShare.Read, 1 << 16)).ToList();
+            var sources = parts.Select(p => new FileStream(Path.Combine(p.Dir, file), FileMode.Open, FileAccess.Read, FileShare.Read, 1 << 16)).ToList();
             try
             {
                 for (int i = 0; i < parts.Count; i++)
@@ -238,10 +241,10 @@ public static class ShardMerge
         });
     }
 
-    /// <summary>spectral.hdr: the shard's header with the whole image's line count (the only line that differs).</summary>
-    static void MergeEnviHeader(Part p, string target, int height)
+    /// <summary>spectral.hdr (noise.hdr): the shard's header with the whole image's line count (the only line that differs).</summary>
+    static void MergeEnviHeader(Part p, string file, string target, int height)
     {
-        var text = File.ReadAllText(Path.Combine(p.Dir, "spectral.hdr"));
+        var text = File.ReadAllText(Path.Combine(p.Dir, file));
         var merged = Regex.Replace(text, @"^lines = \d+$", string.Create(CultureInfo.InvariantCulture, $"lines = {height}"), RegexOptions.Multiline);
         AtomicFile.WriteAllText(target, merged);
     }
@@ -454,6 +457,38 @@ public static class ShardMerge
             FallbackPixels = parts.Sum(p => p.Manifest.FallbackPixels),
             Run = run,
             Crop = null,
+            Sampling = Sampling(parts),
         };
+    }
+
+    /// <summary>
+    /// The shards' "sampling" as the whole render's: the relative errors' mean weighted by each shard's pixels, the largest of
+    /// their maxima; adaptive sampling's spp mean weighted by each shard's area, the extremes of theirs.
+    /// </summary>
+    static ManifestSampling? Sampling(List<Part> parts)
+    {
+        if (parts[0].Manifest.Sampling is not { } first) return null;
+        ManifestNoise? noise = null;
+        if (first.Noise is { } n0)
+        {
+            var noises = parts.Select(p => p.Manifest.Sampling?.Noise).OfType<ManifestNoise>().ToList();
+            long pixels = noises.Sum(n => n.Pixels);
+            double? mean = pixels > 0 ? noises.Sum(n => (n.MeanRelative ?? 0) * n.Pixels) / pixels : null;
+            double? max = pixels > 0 ? noises.Max(n => n.MaxRelative ?? 0) : null;
+            noise = n0 with { MeanRelative = mean, MaxRelative = max, Pixels = pixels };
+        }
+        ManifestAdaptive? adaptive = null;
+        if (first.Adaptive is { } a0)
+        {
+            var all = parts.Select(p => (p.Manifest.Sampling?.Adaptive, Area: (double)p.Crop.Width * p.Crop.Height)).ToList();
+            double area = all.Sum(x => x.Area);
+            adaptive = a0 with
+            {
+                Min = all.Min(x => x.Adaptive?.Min ?? 0),
+                Max = all.Max(x => x.Adaptive?.Max ?? 0),
+                Mean = all.Sum(x => (x.Adaptive?.Mean ?? 0) * x.Area) / area,
+            };
+        }
+        return first with { Noise = noise, Adaptive = adaptive };
     }
 }

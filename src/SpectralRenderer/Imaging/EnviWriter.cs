@@ -28,6 +28,27 @@ public static class EnviWriter
         AtomicFile.WriteAllText(HeaderPath(imagePath), Header(image, description, extra));
     }
 
+    /// <summary>
+    /// Band-sequential float32 planes of <paramref name="width"/> × <paramref name="height"/> with named bands and no wavelength
+    /// axis (a cube whose bands are not all spectral, e.g. standard errors per band and of luminance), and its header.
+    /// </summary>
+    internal static void WritePlanes(string imagePath, int width, int height, float[] planes, IReadOnlyList<string> bandNames,
+        string description, IReadOnlyDictionary<string, string>? extra = null)
+    {
+        if (planes.Length != (long)width * height * bandNames.Count)
+            throw new ArgumentException($"planes hold {planes.Length} values, {width}×{height}×{bandNames.Count} expected");
+        AtomicFile.Write(imagePath, s => WriteData(s, planes));
+        var inv = CultureInfo.InvariantCulture;
+        var sb = new StringBuilder("ENVI\n");
+        sb.Append($"description = {{{description.Replace('{', '(').Replace('}', ')').Replace("\r", " ").Replace("\n", " ")}}}\n");
+        sb.Append(inv, $"samples = {width}\nlines = {height}\nbands = {bandNames.Count}\n");
+        sb.Append("header offset = 0\nfile type = ENVI Standard\ndata type = 4\ninterleave = bsq\nbyte order = 0\n");
+        sb.Append("band names = {").AppendJoin(", ", bandNames.Select(b => b.Replace(',', ';').Replace('{', '(').Replace('}', ')'))).Append("}\n");
+        if (extra is not null)
+            foreach (var (k, v) in extra) sb.Append($"{k} = {v.Replace('{', '(').Replace('}', ')').Replace("\n", " ")}\n");
+        AtomicFile.WriteAllText(HeaderPath(imagePath), sb.ToString());
+    }
+
     /// <summary>The header path ENVI and GDAL look for: the image path with its extension replaced by .hdr.</summary>
     public static string HeaderPath(string imagePath) => Path.ChangeExtension(imagePath, ".hdr");
 

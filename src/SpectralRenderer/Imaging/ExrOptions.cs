@@ -52,6 +52,8 @@ public sealed record ExrOptions
     public int DisplayHeight { get; init; }
     /// <summary>The emissiveUnits attribute of emissive files (JCGT 2021 §3), or null to omit it when the values have no unit.</summary>
     public string? EmissiveUnits { get; init; } = ExrWriter.EmissiveUnits;
+    /// <summary>Further FLOAT channels (name, row-major plane of the image's size), e.g. a layer "stderr." beside the bands.</summary>
+    public IReadOnlyList<(string Name, float[] Plane)>? ExtraChannels { get; init; }
     /// <summary>Extra string attributes (e.g. "software", "comments").</summary>
     public IReadOnlyDictionary<string, string>? Attributes { get; init; }
 }

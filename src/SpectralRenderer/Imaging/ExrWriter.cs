@@ -65,12 +65,19 @@ public static class ExrWriter
 
         // Channels, each a row-major H × W plane, sorted by name in byte order as OpenEXR's ChannelList is.
         // (Plain arrays and a small sort of our own: no generic collection code to compile at startup.)
-        int count = grid.Count + (options.Rgb ? 3 : 0) + (options.Xyz ? 3 : 0);
+        int extra = options.ExtraChannels?.Count ?? 0;
+        int count = grid.Count + (options.Rgb ? 3 : 0) + (options.Xyz ? 3 : 0) + extra;
         var names = new string[count];
         var planes = new ReadOnlyMemory<float>[count];
         int c0 = 0;
         for (int b = 0; b < grid.Count; b++, c0++)
             (names[c0], planes[c0]) = (SpectralChannelName(grid.Centre(b), options.Reflective), bands.AsMemory(b * n, n));
+        for (int e = 0; e < extra; e++, c0++)
+        {
+            var (name, plane) = options.ExtraChannels![e];
+            if (plane.Length != n) throw new ArgumentException($"EXR channel {name} holds {plane.Length} values, {w}×{h} expected");
+            (names[c0], planes[c0]) = (name, plane);
+        }
         if (options.Rgb || options.Xyz)
         {
             xyz ??= XyzPlanes.Compute(options.Colorimeter!, bands, n);
@@ -153,10 +160,11 @@ public static class ExrWriter
     public static byte[] FileStart(int w, int h, BandGrid grid, ExrOptions options)
     {
         Validate(grid, options);
-        int count = grid.Count + (options.Rgb ? 3 : 0) + (options.Xyz ? 3 : 0);
+        int count = grid.Count + (options.Rgb ? 3 : 0) + (options.Xyz ? 3 : 0) + (options.ExtraChannels?.Count ?? 0);
         var names = new string[count];
         int c = 0;
         for (int b = 0; b < grid.Count; b++) names[c++] = SpectralChannelName(grid.Centre(b), options.Reflective);
+        foreach (var (name, _) in options.ExtraChannels ?? []) names[c++] = name;
         string[] previewNames = ["R", "G", "B", "X", "Y", "Z"];
         for (int i = 0; i < 6; i++) if (i < 3 ? options.Rgb : options.Xyz) names[c++] = previewNames[i];
         SortByName(names, new object[count]);

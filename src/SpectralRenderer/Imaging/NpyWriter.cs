@@ -19,6 +19,9 @@ public static class NpyWriter
 
     public static void Write(string path, SpectralImage image) => AtomicFile.Write(path, s => Write(s, image));
 
+    /// <summary>A C-order float32 array of <paramref name="shape"/> to <paramref name="path"/>.</summary>
+    public static void Write(string path, float[] data, int[] shape) => AtomicFile.Write(path, s => Write(s, shape, data));
+
     public static void Write(Stream stream, SpectralImage image) =>
         Write(stream, [image.Height, image.Width, image.Bands], image.Data);
 

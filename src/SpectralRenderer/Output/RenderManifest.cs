@@ -103,6 +103,8 @@ public sealed record RenderManifest
     /// film. Its images are crop-sized; the ENVI and NPY cubes start at film pixel (X0, Y0), the EXRs say it in dataWindow.
     /// </summary>
     public Rendering.PixelRect? Crop { get; init; }
+    /// <summary>The sampler and how exact the render is (per-pixel standard errors, adaptive sampling); null: the independent sampler, no statistics.</summary>
+    public ManifestSampling? Sampling { get; init; }
 
     /// <summary>
     /// A whole render's manifest, for the commands that read the film whole (analysis, camera, viewer, relight); a crop or
@@ -230,6 +232,7 @@ public sealed record RenderManifest
         };
         if (SceneHash is not null) json["scene_hash"] = SceneHash;
         if (Crop is { } c) json["crop"] = new JsonObject { ["x0"] = c.X0, ["y0"] = c.Y0, ["x1"] = c.X1, ["y1"] = c.Y1 };
+        if (Sampling is { } sampling) json["sampling"] = sampling.ToJson();
         return json;
     }
 
@@ -433,6 +436,7 @@ public sealed record RenderManifest
             ResolvedScene = r.OptObject(json, "resolved_scene", "$") is { } resolved ? new ManifestScene(resolved) : null,
             SceneHash = r.OptString(json, "scene_hash", "$"),
             Crop = crop,
+            Sampling = ManifestSampling.Parse(r.OptObject(json, "sampling", "$")),
         };
     }
 

@@ -251,6 +251,17 @@ public static class RenderOutputWriter
     }
 
     /// <summary>What a band value is, in ASCII: spectral radiance in W m^-2 sr^-1 nm^-1 (physical) or eq. 2's relative units (paper).</summary>
+    /// <summary>render.json's "sampling", or null for the independent sampler of seed 0 without per-pixel statistics.</summary>
+    static ManifestSampling? Sampling(Scene scene, RenderResult result, Colorimeter c)
+    {
+        if (result.Sampler == SamplerSettings.Independent && result.Noise is null) return null;
+        var noise = result.Noise is { } n && result.Xyz is { } xyz
+            ? ManifestNoise.Of(n, xyz, scene.Bands, RadianceUnit(scene), c.Absolute && scene.Radiometry == Radiometry.Physical ? "cd/m^2" : "Y as radiometry.xyz states it")
+            : null;
+        var adaptive = result.SamplesUsed is { } used ? ManifestAdaptive.Of(result.TargetError, scene.Camera.SamplesPerPixel, used) : null;
+        return new ManifestSampling(Samplers.Name(result.Sampler.Kind), result.Sampler.Seed, noise, adaptive);
+    }
+
     public static string RadianceUnit(Scene scene) => scene.Radiometry == Radiometry.Physical
         ? "W.m^-2.sr^-1.nm^-1 (spectral radiance, band mean)"
         : "relative units (paper radiometry: eq. 2 without units; a white diffuser lit head-on by the reference white at intensity 1 has band value E_b)";
@@ -384,6 +395,7 @@ public static class RenderOutputWriter
             Run = run,
             ResolvedScene = scene.Resolved is { } resolved ? new ManifestScene(resolved) : null,
             Crop = result.Crop.IsWhole(scene.Camera.Width, scene.Camera.Height) ? null : result.Crop,
+            Sampling = Sampling(scene, result, c),
         };
         return manifest with { SceneHash = Output.SceneHash.Of(manifest.ToJson(), scene.Output.Products, scene.Output.ExrCompression) };
     }

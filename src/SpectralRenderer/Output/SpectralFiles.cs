@@ -14,7 +14,9 @@ public static class SpectralFiles
     /// <param name="bands">The image's band planes (<see cref="SpectralImage.CopyBands"/>).</param>
     /// <param name="xyz">Their <see cref="XyzPlanes"/> of scene.Colorimeter when the caller has them already.</param>
     /// <param name="crop">The film pixels the image holds: the EXR's data window inside the film's display window.</param>
-    internal static void WriteExr(Scene scene, SpectralImage image, float[] bands, XyzPlanes? xyz, PixelRect crop, string outDir, Action<string> done)
+    /// <param name="extra">Further channels (the noise product's stderr layer), or null.</param>
+    internal static void WriteExr(Scene scene, SpectralImage image, float[] bands, XyzPlanes? xyz, PixelRect crop, string outDir, Action<string> done,
+        IReadOnlyList<(string Name, float[] Plane)>? extra = null)
     {
         ExrWriter.Write(Path.Combine(outDir, "spectral.exr"), image.Width, image.Height, image.Grid, bands, xyz, new ExrOptions
         {
@@ -28,6 +30,7 @@ public static class SpectralFiles
             DataY = crop.Y0,
             DisplayWidth = scene.Camera.Width,
             DisplayHeight = scene.Camera.Height,
+            ExtraChannels = extra,
             Attributes = new Dictionary<string, string>
             {
                 ["software"] = $"spectral {typeof(SpectralFiles).Assembly.GetName().Version?.ToString(3)}",

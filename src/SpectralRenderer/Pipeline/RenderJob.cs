@@ -105,6 +105,12 @@ public sealed class RenderJob
         if (Crop is not null && (products & OutputProducts.Lights) != 0)
             throw new InputException("--formats", "the per-light outputs (lights) are written for whole renders only, not for a crop or shard",
                 "render lights without --crop/--shard");
+        if ((products & OutputProducts.Noise) != 0 && Scene.Camera.SamplesPerPixel < 2)
+            throw new InputException("--formats", $"noise is each pixel's standard error from its samples and needs at least 2 samples per pixel, found spp {Scene.Camera.SamplesPerPixel}",
+                "give --spp 2 or more (or the scene's camera.spp), or leave noise out of the formats");
+        if ((products & OutputProducts.Noise) != 0 && Request.FromTransfer is not null)
+            throw new InputException("--formats", "noise is measured from a render's samples; a relit render is recombined from the per-light transfer and has none",
+                "leave noise out of the formats of the relit render");
         if (Crop is not null && Scene.Output.ExposureAuto)
             throw new InputException(Request.ScenePath.Length > 0 ? Request.ScenePath : Scene.SourcePath,
                 "output.exposure \"auto\" is chosen from the whole image, which a shard or crop does not see",
@@ -164,7 +170,7 @@ public sealed class RenderJob
             {
                 done = p.TilesDone; total = p.Tiles;
                 observer?.Progress?.Invoke(p);
-            }, cancel, Crop, Request.Packets);
+            }, cancel, Crop, Request.Packets, noise: (Scene.Output.Products & OutputProducts.Noise) != 0);
         }
         catch (OperationCanceledException e)
         {

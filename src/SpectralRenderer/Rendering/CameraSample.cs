@@ -1,17 +1,21 @@
 using System.Runtime.CompilerServices;
 using SpectralRenderer.Geometry;
+using SpectralRenderer.Scenes;
 
 namespace SpectralRenderer.Rendering;
 
 /// <summary>
 /// Deterministic random numbers in [0, 1) for one camera sample, from (pixel x, pixel y, sample index, dimension) only,
-/// so a pixel's value does not depend on the thread, the tile order or the shard that traces it. Dimensions 0 and 1
-/// are the film jitter (<see cref="Renderer"/>'s <c>Hash(x, y, s)</c> split in its 16-bit halves, as every render
-/// before it used); each later dimension is its own counter-based hash of the sample and the dimension.
+/// so a pixel's value does not depend on the thread, the tile order or the shard that traces it. <see
+/// cref="SamplerKind.Independent"/>: dimensions 0 and 1 are the film jitter (<see cref="Renderer"/>'s <c>Hash(x, y, s)</c>
+/// split in its 16-bit halves, as every render before it used); each later dimension is its own counter-based hash of the
+/// sample and the dimension. <see cref="SamplerKind.Sobol"/>: each 2D draw is a pair of Owen-scrambled Sobol dimensions and
+/// each 1D draw an Owen-scrambled van der Corput dimension (<see cref="OwenSobol"/>), seeded per (pixel, dimension, seed).
 /// </summary>
-public struct Sampler(int x, int y, int sample, int dimension = 0)
+public struct Sampler(int x, int y, int sample, int dimension = 0, SamplerSettings settings = default)
 {
     readonly uint _x = (uint)x, _y = (uint)y, _s = (uint)sample;
+    readonly SamplerSettings _settings = settings;
 
     /// <summary>The next dimension to be drawn.</summary>
     public int Dimension { readonly get; private set; } = dimension;
@@ -20,10 +24,16 @@ public struct Sampler(int x, int y, int sample, int dimension = 0)
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public (float U, float V) Next2D()
     {
+        if (_settings.Kind == SamplerKind.Sobol)
+        {
+            uint d = (uint)Dimension;
+            Dimension += 2;
+            return OwenSobol.Sample2D(_s, PixelSeed(d));
+        }
         if (Dimension == 0)
         {
             Dimension = 2;
-            uint h = Renderer.Hash(_x, _y, _s);
+            uint h = Renderer.Hash(_x, _y + _settings.Seed * 0x632BE5ABu, _s);
             return ((h & 0xFFFF) / 65536f, (h >> 16) / 65536f);
         }
         float u = Next1D();
@@ -34,13 +44,23 @@ public struct Sampler(int x, int y, int sample, int dimension = 0)
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public float Next1D()
     {
+        if (_settings.Kind == SamplerKind.Sobol)
+        {
+            uint dim = (uint)Dimension++;
+            return OwenSobol.Sample1D(_s, PixelSeed(dim));
+        }
         if (Dimension < 2) Dimension = 2;   // 0 and 1 are the film jitter's
         uint d = (uint)Dimension++;
-        uint h = Renderer.Hash(_x, _y, _s) ^ d * 0x9E3779B9u;
+        uint h = Renderer.Hash(_x, _y + _settings.Seed * 0x632BE5ABu, _s) ^ d * 0x9E3779B9u;
         // lowbias32 again (C. Wellons): every input bit reaches every output bit.
         h ^= h >> 16; h *= 0x7FEB352Du; h ^= h >> 15; h *= 0x846CA68Bu; h ^= h >> 16;
         return (h >> 8) * (1f / (1 << 24));
     }
+
+    /// <summary>The scramble seed of dimension <paramref name="d"/> of this pixel (the sample index is not in it: the
+    /// pixel's samples are one scrambled sequence).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    readonly uint PixelSeed(uint d) => Renderer.Hash(_x, _y, d ^ _settings.Seed * 0x632BE5ABu);
 }
 
 /// <summary>
@@ -48,7 +68,7 @@ public struct Sampler(int x, int y, int sample, int dimension = 0)
 /// the sample index (<see cref="Centre"/> for the pixel-centre ray of the analysis images), the camera ray through its
 /// film position, and the sampler for the integrator's further random numbers (its first two dimensions are the jitter).
 /// </summary>
-public readonly struct CameraSample(int x, int y, int index, Ray ray)
+public readonly struct CameraSample(int x, int y, int index, Ray ray, SamplerSettings sampler = default)
 {
     /// <summary>The sample index of the unjittered ray through the pixel centre.</summary>
     public const int Centre = -1;
@@ -57,7 +77,9 @@ public readonly struct CameraSample(int x, int y, int index, Ray ray)
     public int Y { get; } = y;
     public int Index { get; } = index;
     public Ray Ray { get; } = ray;
+    /// <summary>The render's sampler (kind and seed).</summary>
+    public SamplerSettings Settings { get; } = sampler;
 
     /// <summary>The sample's random numbers after the film jitter (dimension 2 on).</summary>
-    public Sampler Sampler => new(X, Y, Index, 2);
+    public Sampler Sampler => new(X, Y, Index, 2, Settings);
 }

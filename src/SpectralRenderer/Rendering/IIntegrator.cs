@@ -1,3 +1,5 @@
+using SpectralRenderer.Scenes;
+
 namespace SpectralRenderer.Rendering;
 
 /// <summary>
@@ -16,6 +18,9 @@ public interface IIntegrator
     /// bands, then X, Y, Z in the colour lanes). Returns the object the camera ray hits first, or −1.
     /// </summary>
     int Radiance(in CameraSample sample, Span<float> result, Span<float> scratch, ref RayCounters counters);
+
+    /// <summary>The sampler its camera samples carry (<see cref="SamplerKind.Independent"/> unless it asks for another).</summary>
+    SamplerSettings Sampler => SamplerSettings.Independent;
 }
 
 /// <summary>

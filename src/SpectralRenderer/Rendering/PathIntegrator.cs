@@ -51,6 +51,7 @@ public sealed class PathIntegrator : IIntegrator
         _grid = new FineGrid(scene, settings.SpectralGrid);
         _padded = _grid.Padded;
         _maxDepth = settings.MaxDepth;
+        Sampler = new SamplerSettings(settings.Sampler ?? SamplerKind.Sobol, settings.Seed);
         _rrDepth = settings.RrDepth;
         int materials = scene.Materials.Count;
         _bsdf = new Bsdf[materials];
@@ -99,6 +100,9 @@ public sealed class PathIntegrator : IIntegrator
         _sky = Spectra.SpectralMath.Any(scene.Background) ? _background : null;
         _lightCount = _lights.Length + _emitters.Length + (_sky is null ? 0 : 1);
     }
+
+    /// <summary>The sampler of its camera samples: Owen-scrambled Sobol unless the scene's "sampler" says otherwise.</summary>
+    public SamplerSettings Sampler { get; }
 
     /// <summary>The internal grid's sub-bands per output band.</summary>
     public int SubBands => _grid.PerBand;

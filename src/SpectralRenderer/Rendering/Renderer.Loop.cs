@@ -1,5 +1,6 @@
 using System.Diagnostics;
 using System.Runtime.CompilerServices;
+using SpectralRenderer.Scenes;
 
 namespace SpectralRenderer.Rendering;
 
@@ -24,7 +25,9 @@ internal interface ISampleSink
 /// <summary>
 /// A pixel's camera samples: spp jittered rays, stratified over an m × n grid of cells with m·n = spp exactly (m the largest
 /// divisor ≤ √spp) so every part of the pixel is sampled equally for any spp, each jittered inside its cell by the
-/// sample's first 2D draw (<see cref="Sampler"/>); for spp = 1 the one ray through the pixel centre.
+/// sample's first 2D draw (<see cref="Sampler"/>); for spp = 1 the one ray through the pixel centre. With the Sobol sampler
+/// (its first 2D draws are a net over the pixel already) and for adaptive sampling (a pixel may stop at any sample) the
+/// samples are not put in cells: the film position is the pixel corner plus the first 2D draw.
 /// </summary>
 internal readonly struct PixelSampling
 {
@@ -34,14 +37,18 @@ internal readonly struct PixelSampling
     public readonly float Weight;
     /// <summary>Trace the centre ray of the analysis images (spp &gt; 1)?</summary>
     public readonly bool Analysis;
+    /// <summary>The sampler the camera samples carry.</summary>
+    public readonly SamplerSettings Sampler;
 
-    public PixelSampling(Scenes.Camera camera, int budget, bool analysis)
+    public PixelSampling(Scenes.Camera camera, int budget, bool analysis, SamplerSettings sampler = default, bool adaptive = false)
     {
         Camera = camera;
         Spp = camera.SamplesPerPixel;
+        Sampler = sampler;
         StrataX = 1;
-        for (int m = (int)Math.Sqrt(Spp); m >= 1; m--) if (Spp % m == 0) { StrataX = m; break; }
-        StrataY = Spp / StrataX;
+        if (sampler.Kind == SamplerKind.Independent && !adaptive)
+            for (int m = (int)Math.Sqrt(Spp); m >= 1; m--) if (Spp % m == 0) { StrataX = m; break; }
+        StrataY = sampler.Kind == SamplerKind.Independent && !adaptive ? Spp / StrataX : 1;
         Weight = 1f / Spp;
         Budget = budget;
         Analysis = analysis;
@@ -51,7 +58,8 @@ internal readonly struct PixelSampling
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public (float X, float Y) Film(int x, int y, int s, int cellX, int cellY)
     {
-        var (u, v) = new Sampler(x, y, s).Next2D();
+        var (u, v) = new Sampler(x, y, s, 0, Sampler).Next2D();
+        if (StrataX * StrataY != Spp) return (x + u, y + v);   // no cells (Sobol, adaptive)
         return (x + (cellX + u) / StrataX, y + (cellY + v) / StrataY);
     }
 
@@ -59,11 +67,11 @@ internal readonly struct PixelSampling
     public CameraSample Sample(int x, int y, int s)
     {
         var (fx, fy) = Film(x, y, s, s % StrataX, s / StrataX);
-        return new CameraSample(x, y, s, Camera.Generate(fx, fy));
+        return new CameraSample(x, y, s, Camera.Generate(fx, fy), Sampler);
     }
 
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    public CameraSample Centre(int x, int y) => new(x, y, CameraSample.Centre, Camera.Generate(x + 0.5f, y + 0.5f));
+    public CameraSample Centre(int x, int y) => new(x, y, CameraSample.Centre, Camera.Generate(x + 0.5f, y + 0.5f), Sampler);
 }
 
 public sealed partial class Renderer

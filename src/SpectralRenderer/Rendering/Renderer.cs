@@ -31,6 +31,18 @@ public sealed class RenderResult
     public required PixelRect Crop { get; init; }
     /// <summary>Whether the camera rays were traced in packets (<see cref="Acceleration.RayPacket"/>), else ray by ray.</summary>
     public bool Packets { get; init; }
+    /// <summary>
+    /// Per pixel (N + 1 floats, pixel-interleaved as <see cref="Image"/>): the standard error of the pixel's mean from its own
+    /// samples, s/√n, per band (the band unit) and of luminance Y (the unit of <see cref="Xyz"/>'s Y); null unless the noise
+    /// product or adaptive sampling was asked for.
+    /// </summary>
+    public float[]? Noise { get; init; }
+    /// <summary>Per pixel, the samples adaptive sampling took (<see cref="TargetError"/> &gt; 0), else null.</summary>
+    public int[]? SamplesUsed { get; init; }
+    /// <summary>The relative standard error of luminance at which adaptive sampling stopped a pixel (0: off).</summary>
+    public double TargetError { get; init; }
+    /// <summary>The sampler of the camera samples.</summary>
+    public SamplerSettings Sampler { get; init; }
 }
 
 /// <summary>Progress of a render, reported after each tile.</summary>
@@ -62,7 +74,10 @@ public sealed partial class Renderer
     /// 32 × 32 grid clipped to the crop, and each pixel is computed from its own film coordinates, so a crop holds the
     /// same values as the same pixels of a whole render.</param>
     /// <param name="packets">Trace camera rays in packets when the integrator can (<see cref="IPacketIntegrator"/>; the default); false traces every ray alone (the same image).</param>
-    public static RenderResult Render(Scene scene, IIntegrator integrator, int threads = 0, Action<RenderProgress>? progress = null, CancellationToken cancel = default, PixelRect? crop = null, bool packets = true)
+    /// <param name="noise">Record each pixel's standard error (<see cref="RenderResult.Noise"/>); also on with the scene's
+    /// <see cref="Scene.TargetError"/> (adaptive sampling, spp the cap).</param>
+    public static RenderResult Render(Scene scene, IIntegrator integrator, int threads = 0, Action<RenderProgress>? progress = null, CancellationToken cancel = default, PixelRect? crop = null, bool packets = true,
+        bool noise = false)
     {
         var cam = scene.Camera;
         var region = crop ?? PixelRect.Whole(cam.Width, cam.Height);
@@ -71,13 +86,23 @@ public sealed partial class Renderer
         var film = new Film(scene, region);
         var clock = Stopwatch.StartNew();
         // The analysis images come from the centre rays: with spp > 1 each pixel traces one more ray (weight 0).
-        var sampling = new PixelSampling(cam, scene.RayBudget, analysis: true);
+        double target = scene.TargetError;
+        bool statistics = noise || target > 0;
+        if (statistics && cam.SamplesPerPixel < 2)
+            throw new ArgumentException("a pixel's standard error needs at least 2 samples per pixel", nameof(noise));
+        var sampler = integrator.Sampler;
+        var sampling = new PixelSampling(cam, scene.RayBudget, analysis: true, sampler, adaptive: target > 0);
         bool recursive = scene.MaxDepth > 0 && scene.Materials.Any(m => m.HasMirror || m.HasTransmission);
         // Packets trace the camera rays of a tile together; a scene with mirrors or glass is traced ray by ray, where each
         // camera ray's tree has its ray budget and a stop request is seen at every pixel (bounded work, prompt SIGINT).
-        bool packed = packets && integrator is IPacketIntegrator && !recursive;
+        // Per-pixel statistics and samplers other than the independent one go ray by ray too.
+        bool packed = packets && integrator is IPacketIntegrator && !recursive && !statistics && sampler.Kind == SamplerKind.Independent;
         int padded = scene.PaddedBands;
-        var (rays, tiles, used) = RunTiles(region, threads, progress, clock, cancel, packed
+        var errors = statistics ? new float[region.Width * region.Height * (scene.Bands + 1)] : null;
+        var spp = target > 0 ? new int[region.Width * region.Height] : null;
+        var (rays, tiles, used) = RunTiles(region, threads, progress, clock, cancel, statistics
+            ? () => new StatisticsTileState(integrator, sampling, film, padded, errors!, spp, target, cancel)
+            : packed
             ? () => new PacketTileState((IPacketIntegrator)integrator, sampling, film, integrator.ScratchLength, padded)
             : () => new TileState(integrator, sampling, film, padded, cancel));
         return new RenderResult
@@ -94,6 +119,10 @@ public sealed partial class Renderer
             Tiles = tiles,
             Crop = region,
             Packets = packed,
+            Noise = errors,
+            SamplesUsed = spp,
+            TargetError = target,
+            Sampler = sampler,
         };
     }
 

@@ -23,6 +23,9 @@ public enum OutputProducts
     Lights = 64,
     /// <summary>photometry.exr and false-colour maps: luminance (cd/m²) seen and illuminance (lx) at the surface seen (opt-in).</summary>
     Photometry = 128,
+    /// <summary>noise.npy, noise.img/.hdr and stderr channels in spectral.exr: each pixel's standard error per band and of
+    /// luminance (opt-in: not in <see cref="All"/>; needs spp ≥ 2).</summary>
+    Noise = 256,
     All = Png | Bands | Exr | Envi | Npy | Aov,
 }
 
@@ -45,6 +48,7 @@ public static class OutputNames
         (OutputProducts.Png, "png"), (OutputProducts.Bands, "bands"), (OutputProducts.Exr, "exr"),
         (OutputProducts.Envi, "envi"), (OutputProducts.Npy, "npy"), (OutputProducts.Aov, "aov"), (OutputProducts.Lights, "lights"),
         (OutputProducts.Photometry, "photometry"),
+        (OutputProducts.Noise, "noise"),
     ];
 
     public static readonly IReadOnlyList<(ExrCompressionChoice Choice, string Name)> ExrCompressions =

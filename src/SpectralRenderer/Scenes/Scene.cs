@@ -63,6 +63,11 @@ public sealed class Scene
     /// <summary>The scene's "integrator" (null: not given; the command line's choice or the default, whitted).</summary>
     public IntegratorSettings? Integrator { get; init; }
     /// <summary>
+    /// Adaptive sampling (<c>camera.target_error</c>, <c>--target-error</c>): a pixel stops once the relative standard error
+    /// of its mean luminance is at most this, within the camera's spp as the cap; 0: every pixel takes spp samples.
+    /// </summary>
+    public double TargetError { get; init; }
+    /// <summary>
     /// Adaptive tree depth (Hall &amp; Greenberg 1983): a reflected or refracted ray whose accumulated weight — the
     /// product of the k_r, k_t (and Fresnel factors) along its path, at its largest band — falls below this is not
     /// traced, since it cannot change the pixel by more than this fraction of what a directly seen surface shows.

@@ -16,7 +16,10 @@ public sealed class ExrProduct : OutputProduct
     }
 
     public override void Write(ProductContext c, int part, Action<string> done) =>
-        SpectralFiles.WriteExr(c.Scene, c.Image, c.BandPlanes!, c.Xyz, c.Result.Crop, c.OutDir, done);
+        SpectralFiles.WriteExr(c.Scene, c.Image, c.BandPlanes!, c.Xyz, c.Result.Crop, c.OutDir, done,
+            // the noise product's standard errors as a layer beside the bands
+            (c.Scene.Output.Products & OutputProducts.Noise) != 0 && c.Result.Noise is { } noise
+                ? NoiseProduct.ExrChannels(c.Scene, noise, c.Image.Width * c.Image.Height) : null);
 
     public override bool Owns(string file) => file == "spectral.exr";
     public override ShardMerging Merging(string file) => ShardMerging.ExrChunks;

@@ -39,6 +39,11 @@ public enum ShardMerging
     NpyColour,
     /// <summary>The same in every shard: the first one's copied.</summary>
     Copy,
+    /// <summary>noise.npy (H × W × (N + 1)), row strips by offset.</summary>
+    NoiseNpy,
+    /// <summary>noise.img, the N + 1 planes by offset; noise.hdr with the whole height.</summary>
+    NoiseEnvi,
+    NoiseEnviHeader,
 }
 
 /// <summary>Whether a relit render may copy a file from its source folder (written by the same build) instead of writing it.</summary>

@@ -22,6 +22,7 @@ public static class OutputProductTable
         new LightsProduct(),
         new ColourProduct(),
         new PhotometryProduct(),
+        new NoiseProduct(),
     ];
 
     /// <summary>Every registered product in order.</summary>

@@ -11,7 +11,7 @@ public sealed partial class SceneLoader
     Camera ParseCamera(JsonElement e, string path)
     {
         Object(e, path);
-        Keys(e, path, "position", "look_at", "up", "fov", "width", "height", "spp", "sensor");   // sensor: read by `spectral camera` (Sensor/SensorFile.FromScene)
+        Keys(e, path, "position", "look_at", "up", "fov", "width", "height", "spp", "target_error", "sensor");   // sensor: read by `spectral camera` (Sensor/SensorFile.FromScene)
         var position = Vec3(Required(e, "position", path), $"{path}.position");
         var lookAt = Vec3(Required(e, "look_at", path), $"{path}.look_at");
         var up = Vec3(e, "up", path, Vector3.UnitY);
@@ -40,6 +40,11 @@ public sealed partial class SceneLoader
         if (width > MaxResolution || height > MaxResolution)
             throw Error(width > MaxResolution ? $"{path}.width" : $"{path}.height", $"resolution {width}×{height} exceeds {MaxResolution} pixels on a side", "lower the width or height");
         int spp = _overrides.SamplesPerPixel ?? Integer(e, "spp", path, 1, 1, 65536);
+        // Adaptive sampling: each pixel stops at this relative standard error of its luminance (spp the cap); 0 is off.
+        _targetError = _overrides.TargetError ?? Number(e, "target_error", path, 0, 0, 1);
+        if (_targetError > 0 && spp < 2)
+            throw Error(_overrides.TargetError is null ? $"{path}.target_error" : "--target-error",
+                $"adaptive sampling needs spp of at least 2 as its cap, found {spp}", "give \"spp\" (or --spp) the most samples a pixel may take, e.g. 256");
         return new Camera(position, lookAt, up, fov, width, height, spp);
     }
 }

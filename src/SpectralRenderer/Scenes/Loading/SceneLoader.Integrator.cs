@@ -1,5 +1,6 @@
 using System.Runtime.CompilerServices;
 using System.Text.Json;
+using SpectralRenderer.Diagnostics;
 
 namespace SpectralRenderer.Scenes.Loading;
 
@@ -8,7 +9,8 @@ public sealed partial class SceneLoader
 {
     /// <summary>
     /// "integrator": a registered name ("whitted", "path") or { "type": name, "max_depth": N, "rr_depth": N,
-    /// "spectral_grid": nm }; the name is checked against the registry when the render is built.
+    /// "spectral_grid": nm, "sampler": "sobol" | "independent", "seed": N }; the name is checked against the registry when the
+    /// render is built.
     /// </summary>
     [MethodImpl(MethodImplOptions.NoOptimization)]
     IntegratorSettings? ParseIntegrator(JsonElement root)
@@ -18,13 +20,24 @@ public sealed partial class SceneLoader
         if (e.ValueKind == JsonValueKind.String) return new IntegratorSettings(String(e, path).ToLowerInvariant());
         if (e.ValueKind != JsonValueKind.Object)
             throw Error(path, $"expected a name or an object, found {Kind(e)}", "e.g. \"integrator\": \"path\" or { \"type\": \"path\", \"max_depth\": 8 }");
-        Keys(e, path, "type", "max_depth", "rr_depth", "spectral_grid");
+        Keys(e, path, "type", "max_depth", "rr_depth", "spectral_grid", "sampler", "seed");
         var name = String(Required(e, "type", path), $"{path}.type").ToLowerInvariant();
         int maxDepth = Integer(e, "max_depth", path, -1, -1, 1_000_000);
         int rrDepth = Integer(e, "rr_depth", path, IntegratorSettings.DefaultRrDepth, 0, 1_000_000);
         // The internal grid: every output band split into equal sub-bands of at most this width (1 nm allowed).
         double grid = Number(e, "spectral_grid", path, IntegratorSettings.DefaultSpectralGrid, 1, 1000);
-        return new IntegratorSettings(name, maxDepth, rrDepth, grid);
+        SamplerKind? sampler = null;
+        if (TryGet(e, "sampler", out var se))
+        {
+            var text = String(se, $"{path}.sampler");
+            if (!Samplers.TryParse(text, out var kind))
+                throw Error($"{path}.sampler", $"unknown sampler '{text}'",
+                    InputException.DidYouMean(text, Samplers.Names) ?? $"samplers: {string.Join(", ", Samplers.Names)}");
+            sampler = kind;
+        }
+        // The seed changes every random number (independent renders of the same scene); 0 is the default's.
+        uint seed = (uint)Integer(e, "seed", path, 0, 0, int.MaxValue);
+        return new IntegratorSettings(name, maxDepth, rrDepth, grid, sampler, seed);
     }
 
     /// <summary>

@@ -40,6 +40,8 @@ public sealed partial class SceneLoader
     readonly Dictionary<string, TabulatedSpectrum> _resolvedNamed = new(StringComparer.Ordinal);
     readonly List<string> _resolving = [];  // the names being resolved, outermost first (the search path)
     BandGrid _grid = BandGrid.Default;
+    /// <summary>camera.target_error (or --target-error): adaptive sampling's target, 0 for off.</summary>
+    double _targetError;
     Colorimeter? _colorimeter;
     Radiometry _radiometry;
     readonly List<string> _warnings = [];
@@ -134,7 +136,7 @@ public sealed partial class SceneLoader
 
     // ---- the scene ----------------------------------------------------------------------------
 
-    static readonly string[] TopKeys = ["name", "description", "bands", "wave", "integration", "radiometry", "observer", "white", "scaling", "spectra", "materials", "lights", "objects", "background", "ambient", "max_depth", "integrator", "min_ray_weight", "ray_budget", "camera", "output"];
+    static readonly string[] TopKeys = ["name", "description", "bands", "wave", "integration", "radiometry", "observer", "white", "scaling", "spectra", "materials", "lights", "objects", "background", "sky", "ambient", "max_depth", "integrator", "min_ray_weight", "ray_budget", "camera", "output"];
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
     Scene Build(JsonElement root)
@@ -221,6 +223,11 @@ public sealed partial class SceneLoader
         float minWeight = (float)Number(root, "min_ray_weight", "$", Scene.DefaultMinRayWeight, 0, 1);
         int budget = Integer(root, "ray_budget", "$", Scene.DefaultRayBudget, 1, 1_000_000_000);
         var background = TryGet(root, "background", out var bg) ? ParseBackground(bg) : new float[SpectralMath.Padded(_grid.Count)];
+        if (TryGet(root, "sky", out var sky))
+        {
+            if (TryGet(root, "background", out _)) throw Error("$.sky", "a scene gives both \"sky\" and \"background\"", "the sky is the background: keep one");
+            background = ParseSky(sky);
+        }
         bool hasAmbient = TryGet(root, "ambient", out var amb);
         var ambient = hasAmbient ? Bands(amb, "$.ambient") : new float[SpectralMath.Padded(_grid.Count)];
 
@@ -247,6 +254,7 @@ public sealed partial class SceneLoader
             HasGlobalAmbient = hasAmbient && SpectralMath.Any(ambient),
             MaxDepth = depth,
             Integrator = integrator,
+            TargetError = _targetError,
             MinRayWeight = minWeight,
             RayBudget = budget,
             Output = output,

@@ -11,6 +11,8 @@ public sealed record SceneOverrides
     /// <summary>Band centres "start:step:end" (MATLAB/ISETCam colon notation, width = step); excludes <see cref="Bands"/>.</summary>
     public string? Wave { get; init; }
     public int? SamplesPerPixel { get; init; }
+    /// <summary>Adaptive sampling's target relative standard error of a pixel's luminance (--target-error).</summary>
+    public double? TargetError { get; init; }
     /// <summary>Multiplies the scene's own width and height (after the overrides above), at least 8 pixels.</summary>
     public double ResolutionScale { get; init; } = 1;
     public string? Rgb { get; init; }
