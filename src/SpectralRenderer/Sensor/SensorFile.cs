@@ -51,7 +51,7 @@ public static class SensorFile
         if (!nameOrFile.EndsWith(".json", StringComparison.OrdinalIgnoreCase) && !File.Exists(nameOrFile)) return SensorPresets.Get(nameOrFile);
         var text = InputFile.ReadAllText(nameOrFile, "sensor file");
         JsonNode? node;
-        try { node = JsonNode.Parse(text, documentOptions: new JsonDocumentOptions { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true }); }
+        try { node = JsonNode.Parse(text, documentOptions: new JsonDocumentOptions { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true, AllowDuplicateProperties = false }); }
         catch (JsonException e) { throw new InputException($"{nameOrFile}:{(e.LineNumber ?? 0) + 1}:{(e.BytePositionInLine ?? 0) + 1}", $"broken JSON: {e.Message}", "check for a missing comma, quote or bracket just before this place"); }
         if (node is not JsonObject obj) throw new InputException(nameOrFile, "is not a JSON object", "a sensor file is { \"preset\": …, \"channels\": […], … }");
         return Parse(obj, nameOrFile, Path.GetDirectoryName(Path.GetFullPath(nameOrFile)));
@@ -83,7 +83,7 @@ public static class SensorFile
                     _ => throw new InputException($"{at}.arrangement", $"'{a}' is not an arrangement", "full, mosaic or wheel"),
                 },
             };
-        if (o["pattern"] is JsonNode p) s = s with { Pattern = Pattern(p, s, $"{at}.pattern"), PatternName = p is JsonValue ? (string?)p : "custom" };
+        if (o["pattern"] is JsonNode p) s = s with { Pattern = Pattern(p, s, $"{at}.pattern"), PatternName = p is JsonValue ? Str(o, "pattern", at) : "custom" };
         if (s.Arrangement == Arrangement.Mosaic)
         {
             if (s.Pattern is null) throw new InputException($"{at}.pattern", "a mosaic needs a pattern", "e.g. \"RGGB\" or [[0,1],[1,2]]");
@@ -152,7 +152,7 @@ public static class SensorFile
     static SensorChannel Channel(JsonNode? node, string where, string? baseDirectory)
     {
         if (node is not JsonObject c) throw new InputException(where, "a channel is an object", "{ \"name\": \"F1\", \"gaussian\": { \"centre_nm\": 450, \"fwhm_nm\": 40 } }");
-        var name = (string?)c["name"] ?? throw new InputException(where, "a channel needs a \"name\"", "give each channel a \"name\"");
+        var name = Str(c, "name", where) ?? throw new InputException(where, "a channel needs a \"name\"", "give each channel a \"name\"");
         if (c["gaussian"] is JsonObject g)
         {
             double centre = Num(g, "centre_nm", where + ".gaussian", 100, 3000) ?? throw new InputException(where + ".gaussian", "needs centre_nm", "e.g. \"gaussian\": {\"centre_nm\": 550, \"fwhm_nm\": 40}");
@@ -165,7 +165,7 @@ public static class SensorFile
             if (!(hi > lo)) throw new InputException(where + ".box", $"[{lo}, {hi}] is empty", "[lower_nm, upper_nm]");
             return SensorPresets.Box(name, lo, hi);
         }
-        if ((string?)c["spectrum"] is { } spec)
+        if (Str(c, "spectrum", where) is { } spec)
         {
             var s = SpectrumLibrary.Resolve(spec, baseDirectory, where + ".spectrum");
             return new SensorChannel(name, s.WithExtrapolation(Extrapolation.Zero), spec);
