@@ -25,7 +25,8 @@ public static unsafe partial class NativeExports
     /// The camera stage on the render held by <paramref name="h"/> (its cube, ids, colours and per-light transfer), as
     /// `spectral camera FOLDER` runs it on the folder the render would write. <paramref name="options"/>: a JSON object,
     /// each key optional — sensor (a preset's name, a sensor file, "scene"), exposure ("auto" or seconds), seed, noise
-    /// ("on"/"off"), radiance_scale, demosaic ("malvar"/"bilinear"), signals ("exact"/"bands"), threads.
+    /// ("on"/"off"), radiance_scale, demosaic ("malvar"/"bilinear"), signals ("exact"/"bands"), off_axis ("cos4th"/"none"),
+    /// psf ("diffraction"/"none") (ABI 1.2), threads.
     /// </summary>
     [UnmanagedCallersOnly(EntryPoint = "spectral_camera")]
     public static nint Camera(nint h, byte* options)
@@ -206,11 +207,11 @@ sealed class NativeCapture : PinnedHolder
 
     protected override string ManifestText() => Manifest.ToJsonString(new JsonSerializerOptions { WriteIndented = true }) + "\n";
 
-    /// <summary>CameraCommand.Run's steps, with the render's folder replaced by the render in memory.</summary>
+    /// <summary>CameraCommand.Run's options and its <see cref="CameraRun"/>, the render in memory for its folder.</summary>
     public static NativeCapture Run(NativeRender render, string? json)
     {
         var o = NativeExports.OptionsObject(json, "options", "sensor", "exposure", "seed", "noise", "radiance_scale", "demosaic",
-            "signals", "threads");
+            "signals", "off_axis", "psf", "threads");
         var (scene, renderScene, transfer) = render.CameraInput();
         var sensorName = NativeExports.Text(o, "sensor") ?? SensorFile.SceneArgument;
         var sensor = sensorName == SensorFile.SceneArgument
@@ -229,6 +230,10 @@ sealed class NativeCapture : PinnedHolder
                         "e.g. exposure=\"auto\" or exposure=0.01 (seconds)"),
             };
         }
+        // The lens, as `spectral camera --off-axis/--psf`: overrides the sensor's "off_axis" and "psf".
+        if (NativeExports.Text(o, "off_axis") is { } oa)
+            sensor = sensor with { OffAxis = SensorFile.ParseOffAxis(oa, "options.off_axis") };
+        if (NativeExports.Text(o, "psf") is { } psf) sensor = sensor with { Psf = SensorFile.ParsePsf(psf, "options.psf") };
         bool noise = NativeExports.Text(o, "noise") switch
         {
             null or "on" or "true" => true,
@@ -263,7 +268,7 @@ sealed class NativeCapture : PinnedHolder
         var options = new SimulationOptions { Seed = seed, Noise = noise, Threads = threads };
         var cube = scene.Cube(scale);
         double whiteScale = 1;
-        string whiteSource = "1: the light's band values (the paper's white; the render's eq. 2 terms were not used)";
+        string whiteSource = CameraRun.PaperWhite;
         if (wantExact && transfer is { } traced
             && ExactChannelSignals.Compute(scene, sensor, renderScene, traced,
                 "the render's per-light transfer (traced in memory: the render's rays)",
@@ -273,34 +278,8 @@ sealed class NativeCapture : PinnedHolder
             whiteScale = exact.WhiteScale;
             whiteSource = exact.WhiteScaleSource;
         }
-        var raw = SensorSimulation.Run(sensor, cube, scene.Light, options);
-        var colour = ColourCorrection.Fit(raw.Weights, scene.Grid, scene.Light, scene.Observer,
-            cube.ChannelIntegrals is null ? null : sensor, whiteScale);
-        var image = ImageProcessing.Run(raw, colour, demosaic);
-        var patches = CameraPatchMetrics.Compute(scene, raw, image, colour);
-
-        bool relative = scene.Radiometry != "physical";
-        var manifest = CameraManifest.Build(raw, colour, scene.Grid, scene.LightName, scale,
-            o["radiance_scale"] is not null ? "given with radiance_scale"
-            : relative ? "default 1: the render's radiometry is relative (the paper's eq. 2 has no units), so its band values are "
-                + "taken as W·m⁻²·sr⁻¹·nm⁻¹"
-            : "default 1: the render's physical radiometry is in W·m⁻²·sr⁻¹·nm⁻¹", cube.Route, whiteSource);
-        manifest["sensor_argument"] = sensorName;
-        manifest["render_radiometry"] = scene.Radiometry ?? "paper";
-        var (clipTop, clipBottom) = raw.ClippedFractions();
-        manifest["simulation"]!["clipped_at_white_fraction"] = clipTop;
-        manifest["simulation"]!["clipped_below_black_fraction"] = clipBottom;
-        manifest["processing"]!["demosaic"] = image.Demosaicked?.ToString().ToLowerInvariant();
-        manifest["patches"] = new JsonArray(patches.Select(p => (JsonNode)new JsonObject
-        {
-            ["patch"] = p.Patch,
-            ["object"] = p.Object,
-            ["pixels"] = p.Pixels,
-            ["camera_xyz"] = new JsonArray(p.Camera.X, p.Camera.Y, p.Camera.Z),
-            ["exact_xyz"] = new JsonArray(p.Exact.X, p.Exact.Y, p.Exact.Z),
-            ["delta_e00"] = p.DeltaE00,
-            ["snr_db"] = new JsonArray(p.SnrDb.Select(v => double.IsFinite(v) ? (JsonNode?)v : null).ToArray()),
-        }).ToArray());
+        var (raw, colour, image, _, manifest) = CameraRun.Run(scene, sensor, cube, options, demosaic, whiteScale, whiteSource,
+            o["radiance_scale"] is not null ? "radiance_scale" : null, sensorName, null);
         if (raw.ClippingWarning() is { } warning) manifest["warning"] = warning;
         return new NativeCapture
         {

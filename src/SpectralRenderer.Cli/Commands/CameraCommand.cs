@@ -100,7 +100,7 @@ public static class CameraCommand
         var options = new SimulationOptions { Seed = seed, Noise = noise, Threads = threads };
         var cube = scene.Cube(scale);
         double whiteScale = 1;
-        string whiteSource = "1: the light's band values (the paper's white; the render's eq. 2 terms were not used)";
+        string whiteSource = CameraRun.PaperWhite;
         string? routeNote = null;
         if (wantExact)
         {
@@ -137,12 +137,11 @@ public static class CameraCommand
             return CommandLine.Success;
         }
 
-        var raw = SensorSimulation.Run(sensor, cube, scene.Light, options);
-        var colour = ColourCorrection.Fit(raw.Weights, scene.Grid, scene.Light, scene.Observer, cube.ChannelIntegrals is null ? null : sensor, whiteScale);
-        var image = ImageProcessing.Run(raw, colour, demosaic);
-        var patches = CameraPatchMetrics.Compute(scene, raw, image, colour);
-
         var outDir = a.Value("-o") ?? Path.Combine(dir, $"camera-{sensor.Name}");
+        var (raw, colour, image, patches, manifest) = CameraRun.Run(scene, sensor, cube, options, demosaic, whiteScale, whiteSource,
+            a.Value("--radiance-scale") is not null ? "--radiance-scale" : null,
+            sensorName != SensorFile.SceneArgument && File.Exists(sensorName) ? Path.GetFullPath(sensorName) : sensorName,
+            Path.GetRelativePath(Path.GetFullPath(outDir), Path.GetFullPath(dir)));
         Directory.CreateDirectory(outDir);
         var written = new List<string>();
         void Done(string f) => written.Add(f);
@@ -165,28 +164,6 @@ public static class CameraCommand
         PngWriter.WriteRgb8(Path.Combine(outDir, "processed.png"), raw.Width, raw.Height, image.Srgb8); Done("processed.png");
         AtomicFile.WriteAllText(Path.Combine(outDir, "patches.csv"), PatchesCsv(sensor, patches)); Done("patches.csv");
 
-        bool relative = scene.Radiometry != "physical";
-        var manifest = CameraManifest.Build(raw, colour, scene.Grid, scene.LightName, scale,
-            a.Value("--radiance-scale") is not null ? "given with --radiance-scale"
-            : relative ? "default 1: the render's radiometry is relative (the paper's eq. 2 has no units), so its band values are taken as W·m⁻²·sr⁻¹·nm⁻¹"
-            : "default 1: the render's physical radiometry is in W·m⁻²·sr⁻¹·nm⁻¹", cube.Route, whiteSource);
-        manifest["sensor_argument"] = sensorName != SensorFile.SceneArgument && File.Exists(sensorName) ? Path.GetFullPath(sensorName) : sensorName;
-        manifest["render_folder"] = Path.GetRelativePath(Path.GetFullPath(outDir), Path.GetFullPath(dir));
-        manifest["render_radiometry"] = scene.Radiometry ?? "paper";
-        var (clipTop, clipBottom) = raw.ClippedFractions();
-        manifest["simulation"]!["clipped_at_white_fraction"] = clipTop;
-        manifest["simulation"]!["clipped_below_black_fraction"] = clipBottom;
-        manifest["processing"]!["demosaic"] = image.Demosaicked?.ToString().ToLowerInvariant();
-        manifest["patches"] = new JsonArray(patches.Select(p => (JsonNode)new JsonObject
-        {
-            ["patch"] = p.Patch,
-            ["object"] = p.Object,
-            ["pixels"] = p.Pixels,
-            ["camera_xyz"] = new JsonArray(p.Camera.X, p.Camera.Y, p.Camera.Z),
-            ["exact_xyz"] = new JsonArray(p.Exact.X, p.Exact.Y, p.Exact.Z),
-            ["delta_e00"] = p.DeltaE00,
-            ["snr_db"] = new JsonArray(p.SnrDb.Select(v => double.IsFinite(v) ? (JsonNode?)v : null).ToArray()),
-        }).ToArray());
         manifest["files"] = new JsonArray(written.Append("camera.json").Select(f => (JsonNode)f).ToArray());
         AtomicFile.WriteAllText(Path.Combine(outDir, "camera.json"), manifest.ToJsonString(new JsonSerializerOptions { WriteIndented = true }) + "\n");
 
