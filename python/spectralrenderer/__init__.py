@@ -4,6 +4,8 @@
     r = sr.render("scenes/paper-3.1-colorchecker-d65.json", width=120, height=80)
     r.cube          # H x W x N float32, the values of `spectral render`'s spectral.npy (a view of the library's buffer)
     r.wavelengths   # N band centres, nm
+    r.ids, r.masks  # object ids (object-id.png), {"lit-0": …, "highlight": …} (mask-*.png), uint8 0/255
+    r.noise         # H x W x (N + 1) standard errors (noise.npy): render with formats="npy,noise" and spp >= 2
     r.save("out/chart")   # the folder `spectral render -o out/chart` writes
     warm = sr.relight(r, lights={"D65": "blackbody:3000"})   # `spectral relight`, from the render in memory
     cap = sr.camera(r, sensor="nikon-d5100")                  # `spectral camera`: cap.raw, cap.srgb, cap.manifest
@@ -166,19 +168,22 @@ def relight(render, lights=None, white=None):
 
 
 def camera(render, sensor=None, exposure=None, seed=None, noise=None, radiance_scale=None, demosaic=None, signals=None,
-           threads=None):
+           threads=None, off_axis=None, psf=None):
     """The render seen by a simulated camera, as `spectral camera` (docs/camera.md): a Capture (raw, srgb, manifest).
 
     sensor: a preset's name (isetcam, nikon-d5100, wheel-6, mosaic-16, cie-xyz, …), a sensor JSON file, or None for the
     scene's camera "sensor"; exposure "auto" or seconds; noise True/False; signals "exact" (default: each eq. 2 term
-    integrated at full spectral resolution from the render's per-light transfer) or "bands"."""
-    lib = _native.need(1, "camera")
+    integrated at full spectral resolution from the render's per-light transfer) or "bands". The lens, as --off-axis and
+    --psf (overriding the sensor's): off_axis "cos4th" (default: cos⁴ fall-off of the field angle) or "none"; psf
+    "diffraction" (default: the Airy pattern of the f-number per band) or "none"."""
+    lib = _native.need(2 if off_axis is not None or psf is not None else 1, "camera")
     if render._handle is None:
         raise SpectralError("spectral camera: a render read from a folder has no render in memory "
                             "(hint: run 'spectral camera' on the folder, or render with sr.render)", 2)
     opts = {k: v for k, v in dict(sensor=None if sensor is None else os.fspath(sensor), exposure=exposure, seed=seed,
                                   noise=None if noise is None else ("on" if noise else "off"), radiance_scale=radiance_scale,
-                                  demosaic=demosaic, signals=signals, threads=threads).items() if v is not None}
+                                  demosaic=demosaic, signals=signals, threads=threads, off_axis=off_axis,
+                                  psf=psf).items() if v is not None}
     handle = lib.spectral_camera(render._handle, json.dumps(opts).encode())
     if lib.spectral_status(handle) != 0:
         raise _error(lib, handle)
@@ -269,6 +274,34 @@ class Render:
         """H x W int32 object ids: 0 background, k the scene's k-th object (object-id.png's values)."""
         h, w, _ = self.shape
         return self._array("ids", (h, w), np.int32)
+
+    @property
+    def noise(self):
+        """H x W x (N + 1) float32: each pixel's standard error s/sqrt(n) per band (the band unit), then of luminance Y
+        (render.json's colour unit) — noise.npy's values. A render whose formats name noise (spp >= 2) has it."""
+        if self._handle is None:
+            return self._load("noise", lambda: np.load(self._folder / "noise.npy", mmap_mode="r"))
+        if "noise" not in self._cache:
+            h, w, n = self.shape
+            ptr = _native.need(2, "Render.noise").spectral_noise(self._handle)
+            if not ptr:
+                raise SpectralError("spectral render: this render has no noise product (hint: render with formats "
+                                    "naming noise, e.g. formats=\"npy,noise\", and spp=2 or more)", 2)
+            self._cache["noise"] = _view(ptr, (h, w, n + 1), np.float32, self._owner, "spectral render", "noise")
+        return self._cache["noise"]
+
+    @property
+    def masks(self):
+        """The analysis masks, {name: H x W uint8}: "lit-K" where the manifest's K-th light reaches the surface seen
+        (mask-lit-K.png, 255 or 0; lights 0…31) and "highlight" (mask-highlight.png) — the aov product's pixels."""
+        if "masks" not in self._cache:
+            lib = _native.need(2, "Render.masks")
+            h, w, _ = self.shape
+            self._cache["masks"] = {
+                lib.spectral_mask_name(self._handle, i).decode():
+                    _view(lib.spectral_mask(self._handle, i), (h, w), np.uint8, self._owner, "spectral render", "mask")
+                for i in range(lib.spectral_mask_count(self._handle))}
+        return self._cache["masks"]
 
     @property
     def manifest(self):

@@ -1,14 +1,14 @@
-"""ctypes bindings of libspectral's C ABI (src/SpectralRenderer.Native/NativeExports.cs and NativeCamera.cs, ABI 1.1).
+"""ctypes bindings of libspectral's C ABI (src/SpectralRenderer.Native/NativeExports.cs and NativeCamera.cs, ABI 1.2).
 
 The ABI's major version (spectral_abi_version) changes when a function's signature or meaning does: this package refuses
 another major. Functions added beside them raise the minor (spectral_abi_minor, absent in 1.0): relight, camera and
-recover need minor 1, and say so when the library is older."""
+recover need minor 1; noise, the masks and the camera's off_axis and psf minor 2; each says so when the library is older."""
 import ctypes
 import os
 from pathlib import Path
 
 ABI_VERSION = 1
-ABI_MINOR = 1   # the minor this package's newest calls need (relight, camera, recover)
+ABI_MINOR = 2   # the minor this package's newest calls need (noise, masks, the camera's off_axis and psf)
 PROGRESS = ctypes.CFUNCTYPE(None, ctypes.c_void_p, ctypes.c_int, ctypes.c_int)
 
 _lib = None
@@ -82,6 +82,15 @@ def lib():
         l.spectral_recovery_count.argtypes = [ctypes.c_void_p]
         l.spectral_recovery_reflectance.restype = ctypes.POINTER(ctypes.c_float)
         l.spectral_recovery_reflectance.argtypes = [ctypes.c_void_p, ctypes.c_int]
+    if l.minor >= 2:
+        l.spectral_noise.restype = ctypes.POINTER(ctypes.c_float)
+        l.spectral_noise.argtypes = [ctypes.c_void_p]
+        l.spectral_mask_count.restype = ctypes.c_int
+        l.spectral_mask_count.argtypes = [ctypes.c_void_p]
+        l.spectral_mask_name.restype = ctypes.c_char_p
+        l.spectral_mask_name.argtypes = [ctypes.c_void_p, ctypes.c_int]
+        l.spectral_mask.restype = ctypes.POINTER(ctypes.c_uint8)
+        l.spectral_mask.argtypes = [ctypes.c_void_p, ctypes.c_int]
     version = l.spectral_abi_version()
     if version != ABI_VERSION:
         raise ImportError(f"{path} has ABI version {version}; this package speaks version {ABI_VERSION}")

@@ -40,8 +40,18 @@ def cli():
     return run
 
 
+@pytest.fixture(scope="session")
+def cli_chart_npy(cli, tmp_path_factory):
+    """spectral.npy of `spectral render scenes/paper-3.1-colorchecker-d65.json` at the scene's own size (issue 28's bar)."""
+    out = tmp_path_factory.mktemp("cli-chart") / "chart"
+    p = cli("render", "scenes/paper-3.1-colorchecker-d65.json", "-o", out, "--formats", "npy", "--quiet")
+    assert p.returncode == 0, p.stderr
+    return out
+
+
 def read_png(path):
-    """(A file's or PNG bytes') An 8-bit grey or RGB PNG's pixels as a NumPy array (H x W or H x W x 3): the five filter types, no interlace."""
+    """(A file's or PNG bytes') An 8-bit grey or RGB or a 16-bit grey PNG's pixels as a NumPy array (H x W or H x W x 3):
+    the five filter types, no interlace."""
     import struct
     import zlib
     import numpy as np
@@ -54,8 +64,8 @@ def read_png(path):
         elif kind == b"IDAT":
             idat += body
         pos += 12 + length
-    assert depth == 8 and colour in (0, 2), (depth, colour)
-    bpp = 1 if colour == 0 else 3
+    assert (depth, colour) in ((8, 0), (8, 2), (16, 0)), (depth, colour)
+    bpp = 3 if colour == 2 else depth // 8
     stride, raw = w * bpp, zlib.decompress(idat)
     out, prior = np.zeros((h, stride), np.uint8), np.zeros(stride, np.int32)
     for y in range(h):
@@ -71,4 +81,6 @@ def read_png(path):
                 p = (0, a, b, (a + b) // 2)[ft]
             cur[i] = (line[i] + p) & 0xFF
         out[y], prior = cur, cur
+    if depth == 16:   # big-endian samples
+        return (out[:, 0::2].astype(np.uint16) << 8) | out[:, 1::2]
     return out.reshape(h, w) if bpp == 1 else out.reshape(h, w, 3)

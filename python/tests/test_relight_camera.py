@@ -108,6 +108,23 @@ def test_camera_equals_the_cli_camera_bit_for_bit_and_recover_its_recovery(sr, c
     assert {row["region"] for row in rec.metrics} >= {"all", "colorchecker"}
 
 
+def test_the_lens_options_equal_the_cli_camera_off_axis_and_psf(sr, cli, chart, cli_chart):
+    # Both away from the preset's lens (cos4th, diffraction): the raw frame equals the CLI's only if each is applied.
+    off_axis, psf = "none", "none"
+    cam = cli_chart / "camera-flat"
+    p = cli("camera", cli_chart, "--sensor", "nikon-d5100", "--noise", "off", "--off-axis", off_axis, "--psf", psf, "-o", cam)
+    assert p.returncode == 0, p.stderr
+    cap = sr.camera(chart, sensor="nikon-d5100", noise=False, off_axis=off_axis, psf=psf)
+    assert cap.raw.tobytes() == np.load(cam / "raw.npy").tobytes()
+    optics = json.loads((cam / "camera.json").read_text())["sensor"]["optics"]
+    assert (optics["off_axis"], optics["psf"]) == (off_axis, psf) == (cap.manifest["sensor"]["optics"]["off_axis"],
+                                                                     cap.manifest["sensor"]["optics"]["psf"])
+    # The preset's lens (cos4th and diffraction) gives another picture: the option took effect.
+    assert not np.array_equal(cap.raw, sr.camera(chart, sensor="nikon-d5100", noise=False).raw)
+    with pytest.raises(sr.SpectralError, match="off-axis model"):
+        sr.camera(chart, sensor="nikon-d5100", off_axis="cos3rd")
+
+
 def test_camera_and_recover_errors_raise_the_one_line(sr, chart):
     with pytest.raises(sr.SpectralError) as e:
         sr.camera(chart, sensor="nikon-d5101")

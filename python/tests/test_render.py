@@ -12,6 +12,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from conftest import read_png
+
 CHART = "scenes/paper-3.1-colorchecker-d65.json"
 # render.json's fields that describe the run, not the picture (scripts/same-pictures.sh's list).
 VOLATILE = re.compile(r'"(created_utc|render|mrays_per_s|command_line|load_s|build_s|build|write_s|total_s|output|elapsed_s|'
@@ -22,10 +24,8 @@ def test_abi_version(sr):
     assert sr.abi_version() == 1
 
 
-def test_the_chart_cube_equals_the_cli_spectral_npy_bit_for_bit(sr, cli, repo, tmp_path):
-    out = tmp_path / "cli"
-    p = cli("render", CHART, "-o", out, "--formats", "npy", "--quiet")
-    assert p.returncode == 0, p.stderr
+def test_the_chart_cube_equals_the_cli_spectral_npy_bit_for_bit(sr, cli_chart_npy, repo):
+    out = cli_chart_npy
     r = sr.render(repo / CHART)
     expected = np.load(out / "spectral.npy")
     assert r.cube.dtype == np.float32 and r.cube.shape == expected.shape == (480, 720, 20)
@@ -84,6 +84,29 @@ def test_xyz_and_ids_agree_with_the_scene(sr, repo):
     assert np.corrcoef(sums.ravel(), r.xyz[..., 1].ravel())[0, 1] > 0.9
 
 
+def test_ids_masks_and_noise_equal_the_cli_files_bit_for_bit(sr, cli, repo, tmp_path):
+    # Two lights (a spot and a point), glossy, mirror and glass spheres: lit masks that differ, highlights, 2 spp.
+    scene = "scenes/glass-mirror.json"
+    out = tmp_path / "cli"
+    p = cli("render", scene, "-o", out, "--width", 32, "--height", 24, "--formats", "npy,aov,noise", "--quiet")
+    assert p.returncode == 0, p.stderr
+    r = sr.render(repo / scene, width=32, height=24, formats="npy,aov,noise")
+    assert r.ids.dtype == np.int32 and np.array_equal(r.ids, read_png(out / "object-id.png"))
+    files = sorted(f.name for f in out.glob("mask-*.png"))
+    assert sorted(f"mask-{k}.png" for k in r.masks) == files == ["mask-highlight.png", "mask-lit-0.png", "mask-lit-1.png"]
+    for name, mask in r.masks.items():
+        assert mask.dtype == np.uint8 and mask.tobytes() == read_png(out / f"mask-{name}.png").tobytes(), name
+    # Each light lights a different part of the picture; light 0's mask is where the surface seen is lit by the spot.
+    assert not np.array_equal(r.masks["lit-0"], r.masks["lit-1"])
+    noise = np.load(out / "noise.npy")
+    assert r.noise.dtype == np.float32 and r.noise.shape == noise.shape == (24, 32, 21)
+    assert r.noise.tobytes() == noise.tobytes()
+    # No noise product without the format: a one-line error with a hint, not a crash.
+    with pytest.raises(sr.SpectralError, match="noise"):
+        sr.render(repo / scene, width=8, height=8, formats="npy").noise
+    assert sr.Render.load(out).noise.tobytes() == noise.tobytes()
+
+
 def test_a_bad_scene_raises_the_cli_one_line_message_and_the_interpreter_lives_on(sr, cli, repo, tmp_path):
     bad = tmp_path / "bad.json"
     bad.write_text(json.dumps({"camera": {"width": -4}}))   # the text a dict is passed as: the same line:column
@@ -117,15 +140,53 @@ def test_ctrl_c_cancels_the_render_within_half_a_second(sr, repo):
         sent["at"] = time.perf_counter()
         os.kill(os.getpid(), signal.SIGINT)
 
+    # The GIL is released while the library renders: a pure-Python thread keeps ticking (the longest gap between its
+    # ticks stays far below the second the render runs before the interrupt).
+    ticks = []
+
+    def tick():
+        while "at" not in sent:
+            ticks.append(time.perf_counter())
+            time.sleep(0.001)
+
     timer = threading.Timer(1.0, interrupt)
+    ticker = threading.Thread(target=tick, daemon=True)
     timer.start()
+    ticker.start()
     try:
         with pytest.raises(KeyboardInterrupt):
             sr.render(repo / CHART, width=1024, height=1024, spp=64)
         latency = time.perf_counter() - sent["at"]
     finally:
         timer.cancel()
+    ticker.join()
     assert latency < 0.5, f"{latency:.3f} s from SIGINT to KeyboardInterrupt"
+    gaps = np.diff(ticks)
+    assert len(ticks) > 50 and gaps.max() < 0.25, f"{len(ticks)} ticks in 1 s, longest gap {gaps.max():.3f} s"
+
+
+def test_renders_on_two_threads_at_once_equal_their_renders_alone_with_progress(sr, repo):
+    """No global state between calls: two renders run at once on two Python threads, each equal to its render alone; the
+    progress callback counts the tiles."""
+    sizes = [(64, 48), (40, 72)]
+    alone = [sr.render(repo / CHART, width=w, height=h, spp=2).cube.tobytes() for w, h in sizes]
+    got = {}
+
+    def work(i, w, h):
+        seen = []
+        got[i] = (sr.render(repo / CHART, width=w, height=h, spp=2, progress=lambda d, t: seen.append((d, t))).cube.tobytes(),
+                  seen)
+
+    threads = [threading.Thread(target=work, args=(i, w, h)) for i, (w, h) in enumerate(sizes)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for i, (w, h) in enumerate(sizes):
+        cube, seen = got[i]
+        assert cube == alone[i], i
+        tiles = -(-w // 32) * -(-h // 32)
+        assert seen and seen[-1] == (tiles, tiles) and sorted(d for d, _ in seen) == list(range(1, tiles + 1)), seen
 
 
 LEAK = """

@@ -38,9 +38,10 @@ public static unsafe partial class NativeExports
     /// <summary>
     /// The ABI's minor version: 0 the first functions; 1 added spectral_abi_minor, spectral_relight, spectral_camera, the
     /// capture accessors and spectral_recover (version 1's functions unchanged; spectral_save writes lights/ when the
-    /// render's formats name them, as `spectral render` does).
+    /// render's formats name them, as `spectral render` does); 2 added spectral_noise, spectral_mask_count,
+    /// spectral_mask_name and spectral_mask, and spectral_camera's off_axis and psf options.
     /// </summary>
-    public const int AbiMinor = 1;
+    public const int AbiMinor = 2;
 
     [UnmanagedCallersOnly(EntryPoint = "spectral_abi_version")]
     public static int Version() => AbiVersion;
@@ -138,6 +139,29 @@ public static unsafe partial class NativeExports
     /// <summary>Object ids per pixel, H × W int32: 0 background, k the scene's k-th object (object-id.png's values).</summary>
     [UnmanagedCallersOnly(EntryPoint = "spectral_ids")]
     public static int* Ids(nint h) => (int*)Guard(h, r => r.Ids);
+
+    /// <summary>
+    /// The standard error of each pixel's mean from its samples, H × W × (N + 1) float32: per band, then of luminance Y
+    /// (noise.npy's values, ABI 1.2); null unless the render's formats name noise (spp ≥ 2).
+    /// </summary>
+    [UnmanagedCallersOnly(EntryPoint = "spectral_noise")]
+    public static float* Noise(nint h) => (float*)Guard(h, r => r.Noise);
+
+    /// <summary>The number of analysis masks the render holds (ABI 1.2): a lit mask per light (at most 32), then the highlight.</summary>
+    [UnmanagedCallersOnly(EntryPoint = "spectral_mask_count")]
+    public static int MaskCount(nint h)
+    {
+        try { return Get(h) is { Job.Result: not null } r ? r.Masks.Count : 0; }
+        catch (Exception) { return 0; }
+    }
+
+    /// <summary>Mask <paramref name="i"/>'s name, UTF-8: "lit-K" (mask-lit-K.png, render.json's K-th light) or "highlight".</summary>
+    [UnmanagedCallersOnly(EntryPoint = "spectral_mask_name")]
+    public static byte* MaskName(nint h, int i) => (byte*)Guard(h, r => i >= 0 && i < r.Masks.Count ? r.Masks[i].Name : 0);
+
+    /// <summary>Mask <paramref name="i"/>, H × W uint8: mask-&lt;name&gt;.png's pixels (the aov product's: 255 or 0).</summary>
+    [UnmanagedCallersOnly(EntryPoint = "spectral_mask")]
+    public static byte* Mask(nint h, int i) => (byte*)Guard(h, r => i >= 0 && i < r.Masks.Count ? r.Masks[i].Pixels : 0);
 
     /// <summary>render.json's content for the render held (its "files" empty and "run" absent until saved), UTF-8 JSON.</summary>
     [UnmanagedCallersOnly(EntryPoint = "spectral_manifest")]
@@ -293,7 +317,8 @@ sealed unsafe class NativeRender : IDisposable
     public byte* MessageUtf8 { get; private set; }
     readonly List<GCHandle> _pins = [];
     readonly List<nint> _strings = [];
-    nint _cube, _wavelengths, _edges, _xyz, _rgb8, _ids;
+    nint _cube, _wavelengths, _edges, _xyz, _rgb8, _ids, _noise;
+    List<(nint Name, nint Pixels)>? _masks;
     byte* _manifest;
 
     public void Set(RenderJob job) { Job = job; MessageUtf8 = String(""); }
@@ -513,6 +538,30 @@ sealed unsafe class NativeRender : IDisposable
     public nint Edges => _edges != 0 ? _edges : _edges = Pin(Result.Image.Grid.Edges());
     public nint Ids => _ids != 0 ? _ids : _ids = Pin(Result.ObjectIds.Select(i => i + 1).ToArray());
 
+    public nint Noise => _noise != 0 ? _noise : Result.Noise is { } noise ? _noise = Pin(noise) : 0;
+
+    /// <summary>The analysis masks as the aov product writes them (AnalysisImages): mask-lit-K.png's, mask-highlight.png's.</summary>
+    public List<(nint Name, nint Pixels)> Masks
+    {
+        get
+        {
+            lock (_transferLock)
+            {
+                if (_masks is not null) return _masks;
+                var result = Result;
+                var masks = new List<(nint, nint)>();
+                for (int k = 0; k < AnalysisImages.LitMaskCount(Job!.Scene); k++)
+                {
+                    var mask = new byte[result.ObjectIds.Length];
+                    AnalysisImages.LitMask(result, k, mask);
+                    masks.Add(((nint)String(string.Create(CultureInfo.InvariantCulture, $"lit-{k}")), Pin(mask)));
+                }
+                masks.Add(((nint)String("highlight"), Pin(result.Highlights)));
+                return _masks = masks;
+            }
+        }
+    }
+
     XyzPlanes Planes => Result.Xyz is { } px ? XyzPlanes.FromPixels(px) : XyzPlanes.Compute(Job!.Scene.Colorimeter, Result.Image);
 
     public nint Xyz
@@ -616,6 +665,7 @@ sealed unsafe class NativeRender : IDisposable
         _pins.Clear();
         foreach (var p in _strings) NativeMemory.Free((void*)p);
         _strings.Clear();
+        _masks = null;
         Job = null;
     }
 }

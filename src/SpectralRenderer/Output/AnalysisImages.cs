@@ -20,12 +20,12 @@ public static class AnalysisImages
         var image = result.Image;
         int n = image.Width * image.Height;
         var mask = new byte[n];
-        for (int k = 0; k < Math.Min(LitMasks.MaxLights, scene.Lights.Count); k++)
+        for (int k = 0; k < LitMaskCount(scene); k++)
         {
             var name = $"mask-lit-{k}.png";
             if (reuse?.Copy(name, outDir) != true)
             {
-                for (int i = 0; i < n; i++) mask[i] = result.LitMasks.IsLit(i, k) ? (byte)255 : (byte)0;
+                LitMask(result, k, mask);
                 AtomicFile.Write(Path.Combine(outDir, name), s => PngWriter.WriteGray8(s, image.Width, image.Height, mask));
             }
             done(name);
@@ -36,6 +36,16 @@ public static class AnalysisImages
         if (reuse?.Copy("reflectance.exr", outDir) != true)
             ExrWriter.Write(Path.Combine(outDir, "reflectance.exr"), image.Width, image.Height, image.Grid, GroundTruthBands(scene, result), null, ReflectanceOptions(scene, result.Crop));
         done("reflectance.exr");
+    }
+
+    /// <summary>Lit masks of a render (mask-lit-K.png for K below it): a light each, up to <see cref="LitMasks.MaxLights"/>.</summary>
+    public static int LitMaskCount(Scene scene) => Math.Min(LitMasks.MaxLights, scene.Lights.Count);
+
+    /// <summary>mask-lit-<paramref name="k"/>.png's pixels: 255 where light k reaches the surface the centre ray sees, else 0.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    public static void LitMask(RenderResult result, int k, Span<byte> mask)
+    {
+        for (int i = 0; i < mask.Length; i++) mask[i] = result.LitMasks.IsLit(i, k) ? (byte)255 : (byte)0;
     }
 
     /// <summary>reflectance.exr's options: T.λ channels, no colour channels, the crop as its data window in the film.</summary>
