@@ -294,6 +294,9 @@ class Render:
     def masks(self):
         """The analysis masks, {name: H x W uint8}: "lit-K" where the manifest's K-th light reaches the surface seen
         (mask-lit-K.png, 255 or 0; lights 0…31) and "highlight" (mask-highlight.png) — the aov product's pixels."""
+        if self._handle is None:
+            raise SpectralError(f"spectral render: a render read from a folder has its masks in {self._folder}/mask-*.png "
+                                "(hint: read the PNGs, or render with sr.render)", 2)
         if "masks" not in self._cache:
             lib = _native.need(2, "Render.masks")
             h, w, _ = self.shape

@@ -105,6 +105,11 @@ def test_ids_masks_and_noise_equal_the_cli_files_bit_for_bit(sr, cli, repo, tmp_
     with pytest.raises(sr.SpectralError, match="noise"):
         sr.render(repo / scene, width=8, height=8, formats="npy").noise
     assert sr.Render.load(out).noise.tobytes() == noise.tobytes()
+    # An index out of range is a null pointer, not a crash of the host process.
+    from spectralrenderer import _native
+    lib = _native.lib()
+    assert not lib.spectral_mask(r._handle, 3) and lib.spectral_mask_name(r._handle, -1) is None
+    assert lib.spectral_mask_count(None) == 0 and not lib.spectral_noise(None)
 
 
 def test_a_bad_scene_raises_the_cli_one_line_message_and_the_interpreter_lives_on(sr, cli, repo, tmp_path):
