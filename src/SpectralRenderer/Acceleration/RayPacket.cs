@@ -26,8 +26,8 @@ public struct RayPacket
 {
     public const int Size = 16;
 
-    /// <summary>Bit i set when lane i holds a ray.</summary>
-    public uint Active;
+    // The lane arrays first, each a multiple of 64 bytes from the start: a packet placed on a cache-line boundary
+    // (LaneMemory) keeps every SIMD load of lanes inside one line.
     public PacketFloats OriginX, OriginY, OriginZ, DirectionX, DirectionY, DirectionZ, TMax;
     /// <summary>Closest-hit results: the primitive (position in BVH order) and barycentric (u, v), as in <see cref="Hit"/>.</summary>
     public PacketInts Primitive;
@@ -37,6 +37,9 @@ public struct RayPacket
     internal PacketFloats InverseX, InverseY, InverseZ;
     internal PacketFloats NegativeX, NegativeY, NegativeZ;   // all bits set where the direction's sign bit is set
     internal PacketFloats RowXx, RowXy, RowXz, RowYx, RowYy, RowYz, RowZx, RowZy, RowZz;
+
+    /// <summary>Bit i set when lane i holds a ray.</summary>
+    public uint Active;
 
     /// <summary>Empties the packet.</summary>
     public void Clear() => Active = 0;

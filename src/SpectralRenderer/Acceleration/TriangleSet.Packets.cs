@@ -42,14 +42,7 @@ public partial struct TriangleSet
         for (int c = 0; c < RayPacket.Size; c += TLanes.Count)
         {
             uint m = (lanes >> c) & chunkMask;
-            if (m == 0) continue;
-            uint hit = Test<TLanes>(k, ref p, c, m, out var t, out var b1, out var b2);
-            if (hit == 0) continue;
-            var mask = TLanes.FromBits(hit);
-            TLanes.Store(TLanes.Select(mask, t, TLanes.Load(ref p.TMax[c])), ref p.TMax[c]);
-            TLanes.Store(TLanes.Select(mask, b1, TLanes.Load(ref p.U[c])), ref p.U[c]);
-            TLanes.Store(TLanes.Select(mask, b2, TLanes.Load(ref p.V[c])), ref p.V[c]);
-            for (; hit != 0; hit &= hit - 1) p.Primitive[c + BitOperations.TrailingZeroCount(hit)] = k;
+            if (m != 0) Test<TLanes, RecordHits>(k, ref p, c, m);
         }
     }
 
@@ -61,14 +54,25 @@ public partial struct TriangleSet
         for (int c = 0; c < RayPacket.Size; c += TLanes.Count)
         {
             uint m = (lanes >> c) & chunkMask;
-            if (m != 0) blocked |= Test<TLanes>(k, ref p, c, m, out _, out _, out _) << c;
+            if (m != 0) blocked |= Test<TLanes, AnyHit>(k, ref p, c, m) << c;
         }
         return blocked;
     }
 
-    /// <summary>TriangleIntersection.Intersect for lanes c … c + Count − 1 (those in m) against triangle k: the lanes hit, with t, b1, b2.</summary>
+    /// <summary>What a triangle test does with its hits: record them in the packet (closest hit) or only report them (any hit).</summary>
+    interface IHitMode { static abstract bool Records { get; } }
+    struct RecordHits : IHitMode { public static bool Records => true; }
+    struct AnyHit : IHitMode { public static bool Records => false; }
+
+    /// <summary>
+    /// TriangleIntersection.Intersect for lanes c … c + Count − 1 (those in m) against triangle k: the lanes hit, and with
+    /// <typeparamref name="TMode"/> = <see cref="RecordHits"/> their t, b1, b2 and k stored in the packet here. (Too large to be
+    /// inlined, it once handed t, b1, b2 back through stack slots that the caller read at once: whether those loads split a
+    /// cache line, and so missed the store forwarding, depended on the stack's depth, and the camera rays' traversal ran up
+    /// to 2× slower from one build to the next with the same machine code.)
+    /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    readonly uint Test<L>(int k, ref RayPacket p, int c, uint m, out L t, out L b1, out L b2) where L : struct, ILanes<L>
+    readonly uint Test<L, TMode>(int k, ref RayPacket p, int c, uint m) where L : struct, ILanes<L> where TMode : struct, IHitMode
     {
         ref Vector3 corner = ref _corners[3 * k];
         Vector3 p0 = corner, p1 = Unsafe.Add(ref corner, 1), p2 = Unsafe.Add(ref corner, 2);
@@ -94,7 +98,7 @@ public partial struct TriangleSet
                             L.Or(L.Or(L.Greater(u, zero), L.Greater(v, zero)), L.Greater(w, zero)));
         var det = u + v + w;
         uint inside = m & ~L.Bits(L.Or(outside, L.Equal(det, zero)));
-        if (inside == 0) { t = b1 = b2 = zero; return 0; }   // most tests end here: the rays pass beside the triangle
+        if (inside == 0) return 0;   // most tests end here: the rays pass beside the triangle
 
         // Scaled hit distance, compared against the scaled interval before the one division.
         var rzx = L.Load(ref p.RowZx[c]); var rzy = L.Load(ref p.RowZy[c]); var rzz = L.Load(ref p.RowZz[c]);
@@ -108,13 +112,18 @@ public partial struct TriangleSet
             L.Or(L.Greater(tScaled, zero), L.Or(L.Equal(tScaled, zero), L.Less(tScaled, bound))),     // tScaled ≥ 0 || tScaled < tMax·det
             L.Or(L.Less(tScaled, zero), L.Or(L.Equal(tScaled, zero), L.Greater(tScaled, bound))));   // tScaled ≤ 0 || tScaled > tMax·det
         uint candidates = inside & ~L.Bits(beyond);
-        if (candidates == 0) { t = b1 = b2 = zero; return 0; }
+        if (candidates == 0) return 0;
 
         var inv = L.Splat(1) / det;
-        t = tScaled * inv;
-        b1 = v * inv;
-        b2 = w * inv;
-        return candidates & L.Bits(L.And(L.Less(t, tMax), L.Greater(t, zero)));   // rounding of the division
+        var t = tScaled * inv;
+        uint hit = candidates & L.Bits(L.And(L.Less(t, tMax), L.Greater(t, zero)));   // rounding of the division
+        if (!TMode.Records || hit == 0) return hit;
+        var mask = L.FromBits(hit);
+        L.Store(L.Select(mask, t, tMax), ref p.TMax[c]);
+        L.Store(L.Select(mask, v * inv, L.Load(ref p.U[c])), ref p.U[c]);   // b1
+        L.Store(L.Select(mask, w * inv, L.Load(ref p.V[c])), ref p.V[c]);   // b2
+        for (uint h = hit; h != 0; h &= h - 1) p.Primitive[c + BitOperations.TrailingZeroCount(h)] = k;
+        return hit;
     }
 
     /// <summary>The edge functions of the given lanes recomputed in double (Woop et al. §3.3), as TriangleIntersection does.</summary>

@@ -311,5 +311,6 @@ internal struct ShadingLanes
         AX[lane] = above.X; AY[lane] = above.Y; AZ[lane] = above.Z;
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public readonly Vector3 Normal(int lane) => new(NX[lane], NY[lane], NZ[lane]);
 }

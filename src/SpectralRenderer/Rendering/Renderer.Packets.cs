@@ -20,9 +20,9 @@ public sealed partial class Renderer
         public readonly IPacketIntegrator Integrator = integrator;
         public readonly PixelSampling Sampling = sampling;
         public readonly Film Film = film;
-        public RayPacket Packet;
-        /// <summary>Per lane, the film position of its camera ray (pixels).</summary>
-        public PacketFloats FilmX, FilmY;
+        // The packet and its film positions in pinned memory on a cache-line boundary (LaneMemory, PacketBlock).
+        readonly byte[] _block = GC.AllocateArray<byte>(LaneMemory.Bytes<PacketBlock>(), pinned: true);
+        public ref PacketBlock Block => ref LaneMemory.At<PacketBlock>(_block);
         public readonly float[] Results = new float[RayPacket.Size * padded];
         public readonly int[] Objects = new int[RayPacket.Size];
         public readonly PixelInfo[] Infos = new PixelInfo[RayPacket.Size];
@@ -37,6 +37,14 @@ public sealed partial class Renderer
         public void Tile(int x0, int y0, int x1, int y1, ref RayCounters counters) => PacketTile(x0, y0, x1, y1, this, ref counters);
     }
 
+    /// <summary>A worker's camera-ray packet and each lane's film position (pixels), laid out so that, placed on a cache-line
+    /// boundary, every lane array starts on one (<see cref="LaneMemory"/>; a class field is only 8-byte aligned).</summary>
+    internal struct PacketBlock
+    {
+        public PacketFloats FilmX, FilmY;
+        public RayPacket Packet;
+    }
+
     /// <summary>The tile's camera samples as <see cref="SampleTile"/> makes them (the same rays, jitter and centre rays), in
     /// packets.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
@@ -45,7 +53,8 @@ public sealed partial class Renderer
         ref readonly var sampling = ref st.Sampling;
         int spp = sampling.Spp;
         int perPixel = spp == 1 || !sampling.Analysis ? spp : spp + 1;   // the samples, then the centre ray
-        st.Packet.Clear();
+        ref var block = ref st.Block;
+        block.Packet.Clear();
         st.Lanes = 0;
         for (int by = y0; by < y1; by += Block)
             for (int bx = x0; bx < x1; bx += Block)
@@ -62,7 +71,7 @@ public sealed partial class Renderer
                             }
                             counters.Primary++;
                             int lane = st.Lanes++;
-                            st.FilmX[lane] = fx; st.FilmY[lane] = fy;   // the film position cam.Generate takes
+                            block.FilmX[lane] = fx; block.FilmY[lane] = fy;   // the film position cam.Generate takes
                             st.PixelX[lane] = x; st.PixelY[lane] = y; st.Sample[lane] = s;
                             if (st.Lanes == RayPacket.Size) Flush(st, ref counters);
                         }
@@ -78,8 +87,9 @@ public sealed partial class Renderer
         int spp = st.Sampling.Spp;
         // The camera rays of the packet's lanes, all at once (Camera.Generate in SIMD lanes: the same bits).
         uint lanes = st.Lanes == 32 ? uint.MaxValue : (1u << st.Lanes) - 1;
-        LaneGeometry.CameraRays(st.Sampling.Camera, ref st.Packet, ref st.FilmX, ref st.FilmY, lanes);
-        st.Integrator.Radiance(ref st.Packet, st.Results, st.Objects, st.Infos, st.Fallbacks, st.Scratch, ref counters);
+        ref var block = ref st.Block;
+        LaneGeometry.CameraRays(st.Sampling.Camera, ref block.Packet, ref block.FilmX, ref block.FilmY, lanes);
+        st.Integrator.Radiance(ref block.Packet, st.Results, st.Objects, st.Infos, st.Fallbacks, st.Scratch, ref counters);
         int padded = st.Sum.Length, bands = image.Bands;
         float inv = st.Sampling.Weight;
         var sum = st.Sum.AsSpan();
@@ -106,7 +116,7 @@ public sealed partial class Renderer
             film.Finish(y * width + x, pixel, st.PixelFallback, centre ? st.Objects[lane] : -1, centre ? st.Infos[lane] : default);
         }
         if (bands >= SpectralMath.StreamMinBands) SpectralMath.StreamFence();
-        st.Packet.Clear();
+        block.Packet.Clear();
         st.Lanes = 0;
     }
 }

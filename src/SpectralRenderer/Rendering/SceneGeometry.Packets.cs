@@ -32,13 +32,16 @@ public sealed partial class SceneGeometry
                 analyticHits[lane] = new Hit();
                 if (_analyticBvh.Intersect(ref a, ref ray, ref analyticHits[lane])) { analytic |= 1u << lane; packet.TMax[lane] = ray.TMax; }
             }
-        Unsafe.SkipInit(out PacketInts plane);
+        // The planes' lanes and the corners on cache-line boundaries (LaneMemory), not zeroed: each lane used is filled.
+        Span<byte> laneMemory = stackalloc byte[LaneMemory.Bytes<RecordLanes>()];
+        ref var work = ref LaneMemory.At<RecordLanes>(laneMemory);
+        ref var plane = ref work.Plane;
         uint planes = _planes.Length > 0 ? LaneGeometry.Planes(_planes, ref packet, packet.Active, ref plane) : 0;
         uint found = triangles | analytic | planes;
         if (found == 0) return 0;
         // Per lane, what its record is made from: the triangle's corners and vertex normals, or the shape's or plane's normal.
         uint mesh = triangles & ~analytic & ~planes, smooth = 0;
-        Unsafe.SkipInit(out TriangleLanes corners);
+        ref var corners = ref work.Corners;
         for (uint m = found; m != 0; m &= m - 1)
         {
             int lane = BitOperations.TrailingZeroCount(m);
@@ -96,5 +99,12 @@ public sealed partial class SceneGeometry
         uint open = packet.Active & ~blocked;
         if (_planes.Length > 0 && open != 0) blocked |= LaneGeometry.PlanesBlock(_planes, ref packet, open);
         return blocked;
+    }
+
+    /// <summary>The plane index per lane and the triangle corners of a packet's records, on cache-line boundaries.</summary>
+    struct RecordLanes
+    {
+        public TriangleLanes Corners;
+        public PacketInts Plane;
     }
 }

@@ -22,8 +22,12 @@ public sealed partial class WhittedIntegrator
     public void Radiance(ref RayPacket packet, Span<float> results, Span<int> objects, Span<PixelInfo> infos, Span<bool> fallbacks, Span<float> scratch, ref RayCounters counters)
     {
         Span<int> material = stackalloc int[RayPacket.Size];
-        Unsafe.SkipInit(out HitLanes hits);                   // the lanes found are filled
-        Unsafe.SkipInit(out ShadingLanes at);
+        // The lane structures on cache-line boundaries (LaneMemory), not zeroed: the lanes found are filled.
+        Span<byte> laneMemory = stackalloc byte[LaneMemory.Bytes<PacketLanesWork>()];
+        ref var work = ref LaneMemory.At<PacketLanesWork>(laneMemory);
+        ref var hits = ref work.Hits;
+        ref var at = ref work.At;
+        ref var shadows = ref work.Shadows;   // 1.6 KB: each lane used is filled
         // Each shaded lane's terms of eq. 2, in the single-ray order, summed over the bands in one pass at the end; with more
         // lights than the lists hold, added to the lane's spectrum at once (the same bits either way).
         bool listed = 1 + 2 * _lights.Length <= TermsPerLane;
@@ -75,11 +79,10 @@ public sealed partial class WhittedIntegrator
         // Per light, the lanes it reaches and their d_k, c_spot, n·l; the lanes that face it get a shadow ray, traced as one packet.
         int lightCount = _lights.Length;
         // Their lane results on the stack for a few lights (3 KB: in cache, aligned), else in the worker's scratch.
-        var lanes = lightCount <= 4 ? stackalloc LightLanes[lightCount]
+        var lanes = lightCount <= 4 ? LaneMemory.Span<LightLanes>(stackalloc byte[LaneMemory.Bytes<LightLanes>(4)], lightCount)
             : MemoryMarshal.Cast<float, LightLanes>(scratch[((_scene.MaxDepth + 2) * 2 * _padded)..])[..lightCount];
         Span<uint> reached = stackalloc uint[lightCount];
         Span<uint> lit = stackalloc uint[lightCount];
-        Unsafe.SkipInit(out RayPacket shadows);   // 1.6 KB, not zeroed: each lane used is filled
         for (int k = 0; k < lightCount; k++)
         {
             var light = _lights[k];
@@ -118,6 +121,15 @@ public sealed partial class WhittedIntegrator
             if (listed)
                 SpectralMath.SumTerms(results.Slice(lane * _padded, _padded), _flat, terms.Slice(lane * TermsPerLane, termCount[lane]));
         }
+    }
+
+    /// <summary>A packet's hit records, shading frames and shadow rays, laid out to sit on cache-line boundaries (the packet last:
+    /// its lane arrays come first).</summary>
+    struct PacketLanesWork
+    {
+        public HitLanes Hits;
+        public ShadingLanes At;
+        public RayPacket Shadows;
     }
 
     /// <summary>Most terms a lane lists: the global ambient and, per light, its ambient and its diffuse (+ specular) term, for 8 lights.</summary>
