@@ -189,13 +189,12 @@ public sealed partial class WhittedIntegrator
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
         public readonly void Direct(int light, int material, int term, float d, float nl, float s, bool specular)
         {
-            var o = _owner;
-            if (specular) Add(new SpectralTerm(o._diffuseAt[term], d * nl, o._specularAt[term], d * s));
-            else Add(new SpectralTerm(o._diffuseAt[term], d * nl));
+            ref readonly var pair = ref _owner._direct[term];
+            if (specular) Add(new SpectralTerm(pair.DiffuseAt, d * nl, pair.SpecularAt, d * s));
+            else Add(new SpectralTerm(pair.DiffuseAt, d * nl));
             if (light < 32) _info.LitMask |= 1u << light;
-            int y = o._scene.Bands + 1;   // the Y colour lane
-            _info.DiffuseY += d * nl * o._tables.Diffuse[term][y];
-            _info.SpecularY += d * s * o._tables.Specular[term][y];
+            _info.DiffuseY += d * nl * pair.DiffuseY;   // the Y colour lane
+            _info.SpecularY += d * s * pair.SpecularY;
         }
 
         /// <summary>A term of eq. 2 for the lane: listed for the one-pass sum, or added to the lane's spectrum now.</summary>
