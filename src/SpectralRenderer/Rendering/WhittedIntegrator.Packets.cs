@@ -110,14 +110,17 @@ public sealed partial class WhittedIntegrator
             lit[k] = shadows.Active & ~_geometry.Occluded(ref shadows);
             lk.DirectionX = shadows.DirectionX; lk.DirectionY = shadows.DirectionY; lk.DirectionZ = shadows.DirectionZ;
         }
+        // One sink and one light query for the packet, moved from lane to lane.
+        var laneSink = new LaneSink(this, listed, terms, termCount, results, infos);
+        var laneLights = new LaneLights(lanes, reached, lit);
         for (uint all = shaded; all != 0; all &= all - 1)
         {
             int lane = BitOperations.TrailingZeroCount(all);
             int mi = material[lane];
-            var sink = new LaneSink(this, lane, listed, terms, termCount, results, ref infos[lane]);
-            var query = new LaneLights(lanes, reached, lit, lane);
+            laneSink.Lane = lane;
+            laneLights.Lane = lane;
             var v = -new Vector3(packet.DirectionX[lane], packet.DirectionY[lane], packet.DirectionZ[lane]);
-            _walker.Shade(ref sink, ref query, mi, _materials[mi], at.Normal(lane), v, ref counters);
+            _walker.Shade(ref laneSink, ref laneLights, mi, _materials[mi], at.Normal(lane), v, ref counters);
             if (listed)
                 SpectralMath.SumTerms(results.Slice(lane * _padded, _padded), _flat, terms.Slice(lane * TermsPerLane, termCount[lane]));
         }
@@ -143,15 +146,17 @@ public sealed partial class WhittedIntegrator
     }
 
     /// <summary>A packet lane's lights for the walker's local step: the lanes' precomputed results, shadow rays already traced.</summary>
-    readonly ref struct LaneLights(ReadOnlySpan<LightLanes> lanes, ReadOnlySpan<uint> reached, ReadOnlySpan<uint> lit, int lane)
-        : ILightQuery
+    ref struct LaneLights(ReadOnlySpan<LightLanes> lanes, ReadOnlySpan<uint> reached, ReadOnlySpan<uint> lit) : ILightQuery
     {
         readonly ReadOnlySpan<LightLanes> _lanes = lanes;
         readonly ReadOnlySpan<uint> _reached = reached, _lit = lit;
+        /// <summary>The lane asked about.</summary>
+        public int Lane;
 
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
-        public bool Reach(int k, out LightSample sample, out float nl)
+        public readonly bool Reach(int k, out LightSample sample, out float nl)
         {
+            int lane = Lane;
             if ((_reached[k] >> lane & 1) == 0) { sample = default; nl = 0; return false; }
             ref readonly var r = ref _lanes[k];
             nl = r.Cosine[lane];
@@ -161,7 +166,7 @@ public sealed partial class WhittedIntegrator
         }
 
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
-        public bool Visible(int k, in LightSample sample, ref RayCounters counters) => (_lit[k] >> lane & 1) != 0;
+        public readonly bool Visible(int k, in LightSample sample, ref RayCounters counters) => (_lit[k] >> Lane & 1) != 0;
     }
 
     /// <summary>A packet lane's terms: listed as <see cref="SpectralTerm"/>s for the one-pass band sum (or added at once), and what the
@@ -169,18 +174,18 @@ public sealed partial class WhittedIntegrator
     ref struct LaneSink : ITermSink
     {
         readonly WhittedIntegrator _owner;
-        readonly int _lane;
         readonly bool _listed;
         readonly Span<SpectralTerm> _terms;
         readonly Span<int> _termCount;
         readonly Span<float> _results;
-        readonly ref PixelInfo _info;
+        readonly Span<PixelInfo> _infos;
+        /// <summary>The lane whose terms follow.</summary>
+        public int Lane;
 
-        public LaneSink(WhittedIntegrator owner, int lane, bool listed, Span<SpectralTerm> terms, Span<int> termCount, Span<float> results,
-            ref PixelInfo info)
+        public LaneSink(WhittedIntegrator owner, bool listed, Span<SpectralTerm> terms, Span<int> termCount, Span<float> results,
+            Span<PixelInfo> infos)
         {
-            _owner = owner; _lane = lane; _listed = listed; _terms = terms; _termCount = termCount; _results = results;
-            _info = ref info;
+            _owner = owner; _listed = listed; _terms = terms; _termCount = termCount; _results = results; _infos = infos;
         }
 
         public readonly void GlobalAmbient(int material) => Add(new SpectralTerm(_owner._globalAmbientAt[material], 1f));
@@ -192,18 +197,19 @@ public sealed partial class WhittedIntegrator
             ref readonly var pair = ref _owner._direct[term];
             if (specular) Add(new SpectralTerm(pair.DiffuseAt, d * nl, pair.SpecularAt, d * s));
             else Add(new SpectralTerm(pair.DiffuseAt, d * nl));
-            if (light < 32) _info.LitMask |= 1u << light;
-            _info.DiffuseY += d * nl * pair.DiffuseY;   // the Y colour lane
-            _info.SpecularY += d * s * pair.SpecularY;
+            ref var info = ref _infos[Lane];
+            if (light < 32) info.LitMask |= 1u << light;
+            info.DiffuseY += d * nl * pair.DiffuseY;   // the Y colour lane
+            info.SpecularY += d * s * pair.SpecularY;
         }
 
         /// <summary>A term of eq. 2 for the lane: listed for the one-pass sum, or added to the lane's spectrum now.</summary>
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
         readonly void Add(SpectralTerm term)
         {
-            if (_listed) { _terms[_lane * TermsPerLane + _termCount[_lane]++] = term; return; }
+            if (_listed) { _terms[Lane * TermsPerLane + _termCount[Lane]++] = term; return; }
             int padded = _owner._padded;
-            var result = _results.Slice(_lane * padded, padded);
+            var result = _results.Slice(Lane * padded, padded);
             var a = _owner._flat.AsSpan(term.A, padded);
             if (term.B < 0) SpectralMath.AddScaled(result, a, term.S);
             else SpectralMath.AddScaled2(result, a, term.S, _owner._flat.AsSpan(term.B, padded), term.T);
