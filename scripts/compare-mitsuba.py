@@ -147,6 +147,8 @@ def ours_render(args, scene, width, height, spp, seed, out):
     integ = s.get("integrator", "path")
     integ = {"type": integ} if isinstance(integ, str) else dict(integ)
     integ["seed"] = seed
+    if args.spectral_grid:
+        integ["spectral_grid"] = args.spectral_grid
     s["integrator"] = integ
     cmd = ["dotnet", args.spectral, "render", "-", "-o", out, "--width", str(width), "--height", str(height),
            "--spp", str(spp), "--formats", "npy,aov", "--quiet"]
@@ -331,6 +333,7 @@ def main():
     ap.add_argument("--time", type=float, help="the equal-time budget T in seconds of render time")
     ap.add_argument("--rounds", type=int, help="equal-time rounds")
     ap.add_argument("--variant", help="Mitsuba variant (default llvm_ad_spectral when a libLLVM >= 17 is found)")
+    ap.add_argument("--spectral-grid", type=float, help="our internal grid's width in nm (default: the scene's, 5)")
     ap.add_argument("--mitsuba-sampler", default="independent",
                     help="Mitsuba's sampler: independent (its default), stratified, multijitter, orthogonal, ldsampler")
     ap.add_argument("--spectral", default=os.path.join(REPO, "src", "SpectralRenderer.Cli", "bin", "Release", "net10.0",
