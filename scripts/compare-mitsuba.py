@@ -13,8 +13,8 @@ What it measures (a table on stdout, and --json FILE for machines):
   2. Equal time: each renderer gets the same render-time budget T (spp chosen from the rates of part 1), R rounds,
      alternating ours / Mitsuba so that the machine's load hits both alike. Error of each image against its own
      converged reference (part 1, other seeds): RMS ΔE00 over the pixels of the room (CIE 1931 2°, XYZ from the 20
-     bands, Lab white = D65 chromaticity at the luminance of the back wall's mean) and the RMS relative error of
-     8×8-pixel block means per band. Errors are also scaled to exactly T (error·sqrt(t/T)), as noise falls as 1/√t.
+     bands, Lab white = D65 chromaticity at the luminance of the mean of the object named "back") and the RMS
+     relative error of 8×8-pixel block means per band (blocks whose reference is above 1e-3 of the brightest). Errors are also scaled to exactly T (error·sqrt(t/T)), as noise falls as 1/√t.
   3. Samples per second of each (pixels × spp / render time). Ours: the render time render.json records (in the
      process, after scene load: includes the JIT's first calls). Mitsuba: mi.render() + read back of a kernel
      already compiled (a warm-up render with the same spp before every timed one; the compile is not counted).
@@ -267,7 +267,7 @@ def mitsuba_render(mi_scene, spp, seed, band_width, warm):
 
 # ---------------------------------------------------------------- comparison
 
-def regions(ids):
+def regions(ids, names):
     import numpy as np
     h, w = ids.shape
     bw, bh = w // 2, h // 2
@@ -280,7 +280,7 @@ def regions(ids):
     for k in sorted(set(ids.reshape(-1).tolist()) - {0}):
         mask = interior & (ids == k)
         if mask.sum() >= 4:
-            out[f"object {k}"] = mask
+            out[names.get(k, f"object {k}")] = mask
     for y in range(0, h - bh + 1, bh):
         for x in range(0, w - bw + 1, bw):
             mask = np.zeros_like(interior); mask[y:y + bh, x:x + bw] = True
@@ -392,7 +392,7 @@ def main():
         print(f"reference part {k + 1}/{parts}: ours {part_spp} spp {ours_rate[-1]:.0f} samples/s, "
               f"Mitsuba {done} spp {mi_rate[-1]:.0f} samples/s", file=sys.stderr)
     ours_ref, mi_ref = np.mean(ours_parts, axis=0), np.mean(mi_parts, axis=0)
-    regs = regions(ids)
+    regs = regions(ids, {o["id"]: o["name"] for o in meta["objects"]})
     nb = len(edges) - 1
     rows, worst_band = [], np.zeros(nb)
     worst = (0.0, None, None, 0.0)
@@ -430,7 +430,7 @@ def main():
         # Part 2 and 3: equal time, R rounds alternating.
         cmf = band_cmf(edges)
         room = ids != 0
-        back = regs.get("object 3")
+        back = regs.get("back")
         yn = float((ours_ref @ cmf)[back if back is not None else room][:, 1].mean())
         px = width * height
         spp_o = max(1, round(budget * float(np.median(ours_rate)) / px))
