@@ -255,14 +255,16 @@ def mitsuba_scene(scene, spectra, edges, width, height, sampler):
 
 
 def mitsuba_render(mi_scene, spp, seed, band_width, warm):
-    """One mi.render at spp (a warm-up render of the same size first when warm is set, not timed); band means, seconds."""
+    """One mi.render at spp (a warm-up render of the same size first when warm is set, not timed): band means, seconds
+    and the spp the sampler really took (stratified and ldsampler round it)."""
     import mitsuba as mi
     import numpy as np
     if warm:
         np.array(mi.render(mi_scene, spp=spp, seed=seed + 7919))
     t = time.perf_counter()
     img = np.array(mi.render(mi_scene, spp=spp, seed=seed))
-    return img.astype(np.float64) / band_width[None, None, :], time.perf_counter() - t
+    took = mi_scene.sensors()[0].sampler().sample_count()
+    return img.astype(np.float64) / band_width[None, None, :], time.perf_counter() - t, took
 
 
 # ---------------------------------------------------------------- comparison
@@ -344,7 +346,7 @@ def main():
     q = args.quick
     width = args.width or (32 if q else 64)
     height = args.height or (24 if q else 48)
-    ref_spp = args.ref_spp or (1024 if q else 8192)
+    ref_spp = args.ref_spp or (1024 if q else 16384)
     parts = args.parts or (2 if q else 4)
     budget = args.time or (0.5 if q else 2.0)
     rounds = args.rounds or (2 if q else 5)
@@ -386,8 +388,8 @@ def main():
             mitsuba_render(mi_scene, pass_spp, 0, band_width, warm=False)   # compile
         acc, secs, done = 0, 0.0, 0
         while done < part_spp:
-            img, t = mitsuba_render(mi_scene, pass_spp, 100000 * (k + 1) + done, band_width, warm=False)
-            acc = acc + img * pass_spp; secs += t; done += pass_spp
+            img, t, took = mitsuba_render(mi_scene, pass_spp, 100000 * (k + 1) + done, band_width, warm=False)
+            acc = acc + img * took; secs += t; done += took
         mi_parts.append(acc / done); mi_rate.append(width * height * done / secs)
         print(f"reference part {k + 1}/{parts}: ours {part_spp} spp {ours_rate[-1]:.0f} samples/s, "
               f"Mitsuba {done} spp {mi_rate[-1]:.0f} samples/s", file=sys.stderr)
@@ -442,8 +444,8 @@ def main():
                     img, _, t, _ = ours_render(args, scene, width, height, spp_o, 7 + r, os.path.join(work, f"eq{r}"))
                     ref, spp, acc = ours_ref, spp_o, eo
                 else:
-                    img, t = mitsuba_render(mi_scene, spp_m, 7 + r, band_width, warm=True)
-                    ref, spp, acc = mi_ref, spp_m, em
+                    img, t, took = mitsuba_render(mi_scene, spp_m, 7 + r, band_width, warm=True)
+                    ref, spp, acc = mi_ref, took, em
                 de, be = colour_error(img, ref, room, cmf, yn), block_error(img, ref)
                 s = np.sqrt(t / budget)
                 acc.append((t, px * spp / t, de, be, de * s, be * s))
