@@ -33,3 +33,25 @@ internal static class LaneMemory
     public static Span<T> Span<T>(Span<byte> memory, int count) where T : unmanaged =>
         MemoryMarshal.CreateSpan(ref At<T>(memory), count);
 }
+
+/// <summary>
+/// <see cref="Length"/> floats from a cache-line boundary in a pinned array: a worker's spectra that SIMD loops fill whole (a
+/// managed array starts 16 bytes past a boundary or not, by chance, and a 32- or 64-byte store that splits a line costs two).
+/// </summary>
+internal readonly struct LineFloats
+{
+    readonly float[] _array;
+    readonly int _first;
+    public readonly int Length;
+
+    public LineFloats(int length)
+    {
+        _array = GC.AllocateArray<float>(length + LaneMemory.Line / sizeof(float), pinned: true);
+        ref byte at = ref LaneMemory.At<byte>(MemoryMarshal.AsBytes(_array.AsSpan()));
+        _first = (int)Unsafe.ByteOffset(ref Unsafe.As<float, byte>(ref _array[0]), ref at) / sizeof(float);
+        Length = length;
+    }
+
+    public Span<float> Span => _array.AsSpan(_first, Length);
+}
+

@@ -23,14 +23,14 @@ public sealed partial class Renderer
         // The packet and its film positions in pinned memory on a cache-line boundary (LaneMemory, PacketBlock).
         readonly byte[] _block = GC.AllocateArray<byte>(LaneMemory.Bytes<PacketBlock>(), pinned: true);
         public ref PacketBlock Block => ref LaneMemory.At<PacketBlock>(_block);
-        public readonly float[] Results = new float[RayPacket.Size * padded];
+        public readonly LineFloats Results = new(RayPacket.Size * padded);
         public readonly int[] Objects = new int[RayPacket.Size];
         public readonly PixelInfo[] Infos = new PixelInfo[RayPacket.Size];
         public readonly bool[] Fallbacks = new bool[RayPacket.Size];
         /// <summary>Whether a ray of the pixel being summed fell back to eq. 3 (its samples may span two packets).</summary>
         public bool PixelFallback;
         public readonly int[] PixelX = new int[RayPacket.Size], PixelY = new int[RayPacket.Size], Sample = new int[RayPacket.Size];
-        public readonly float[] Sum = new float[padded];
+        public readonly LineFloats Sum = new(padded);
         public readonly float[] Scratch = new float[scratch];
         public int Lanes;
 
@@ -89,14 +89,15 @@ public sealed partial class Renderer
         uint lanes = st.Lanes == 32 ? uint.MaxValue : (1u << st.Lanes) - 1;
         ref var block = ref st.Block;
         LaneGeometry.CameraRays(st.Sampling.Camera, ref block.Packet, ref block.FilmX, ref block.FilmY, lanes);
-        st.Integrator.Radiance(ref block.Packet, st.Results, st.Objects, st.Infos, st.Fallbacks, st.Scratch, ref counters);
+        st.Integrator.Radiance(ref block.Packet, st.Results.Span, st.Objects, st.Infos, st.Fallbacks, st.Scratch, ref counters);
         int padded = st.Sum.Length, bands = image.Bands;
         float inv = st.Sampling.Weight;
-        var sum = st.Sum.AsSpan();
+        var sum = st.Sum.Span;
+        var results = st.Results.Span;
         int width = image.Width;
         for (int lane = 0; lane < st.Lanes; lane++)
         {
-            var result = st.Results.AsSpan(lane * padded, padded);
+            var result = results.Slice(lane * padded, padded);
             int x = st.PixelX[lane], y = st.PixelY[lane], s = st.Sample[lane];
             if (s == 0) st.PixelFallback = false;
             st.PixelFallback |= st.Fallbacks[lane];
