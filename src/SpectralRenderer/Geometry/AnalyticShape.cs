@@ -31,7 +31,12 @@ public sealed class AnalyticShape
         WorldToObject = inv;
         NormalToWorld = Matrix4x4.Transpose(inv);
         Bounds = ComputeBounds();
+        if (kind is ShapeKind.Quad or ShapeKind.Plane)
+            FlatNormal = Vector3.Normalize(Vector3.TransformNormal(kind == ShapeKind.Quad ? Vector3.UnitZ : Vector3.UnitY, NormalToWorld));
     }
+
+    /// <summary>A quad's or plane's world-space unit normal, the one <see cref="Intersect"/> returns at every hit; null for the other kinds.</summary>
+    public Vector3? FlatNormal { get; }
 
     public ShapeKind Kind { get; }
     public Matrix4x4 ObjectToWorld { get; }

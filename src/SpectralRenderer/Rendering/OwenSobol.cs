@@ -17,6 +17,13 @@ public static class OwenSobol
     /// <summary>Generator matrix columns of Sobol dimension 1 (primitive polynomial x + 1): v_i = v_{i−1} ⊕ (v_{i−1} ≫ 1).</summary>
     static readonly uint[] Dimension1 = MakeDimension1();
 
+    /// <summary>
+    /// The same matrix applied a byte at a time: entry 256·k + b is the XOR of the columns v_{8k+j} for the set bits j of b, so
+    /// x = T[b₀] ⊕ T[256 + b₁] ⊕ T[512 + b₂] ⊕ T[768 + b₃] (the product is linear over GF(2)). Four loads instead of a branch per
+    /// index bit: the scrambled indices use all 32 bits, and that loop's mispredicted branches were a tenth of a path's time.
+    /// </summary>
+    static readonly uint[] Dimension1Bytes = MakeDimension1Bytes();
+
     static uint[] MakeDimension1()
     {
         var v = new uint[32];
@@ -25,15 +32,26 @@ public static class OwenSobol
         return v;
     }
 
+    static uint[] MakeDimension1Bytes()
+    {
+        var t = new uint[4 * 256];
+        for (int k = 0; k < 4; k++)
+            for (int b = 0; b < 256; b++)
+            {
+                uint x = 0;
+                for (int j = 0; j < 8; j++)
+                    if ((b >> j & 1) != 0) x ^= Dimension1[8 * k + j];
+                t[256 * k + b] = x;
+            }
+        return t;
+    }
+
     /// <summary>Sobol dimension 1 of <paramref name="index"/> as a 32-bit fraction (dimension 0 is the bit reversal).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static uint Sobol1(uint index)
     {
-        uint x = 0;
-        var v = Dimension1;
-        for (int bit = 0; index != 0; bit++, index >>= 1)
-            if ((index & 1) != 0) x ^= v[bit];
-        return x;
+        var t = Dimension1Bytes;
+        return t[index & 0xFF] ^ t[256 + (index >> 8 & 0xFF)] ^ t[512 + (index >> 16 & 0xFF)] ^ t[768 + (index >> 24)];
     }
 
     /// <summary>Laine–Karras-style hash permutation (Burley 2020, §4): each bit flipped by the seed and the bits below it.</summary>

@@ -31,7 +31,7 @@ public sealed class PathIntegrator : IIntegrator
     readonly int[] _objectMaterial, _emitterOf;
     readonly Bsdf[] _bsdf;
     readonly float[]?[] _emission;
-    readonly bool[] _twoSided, _smooth;
+    readonly bool[] _twoSided, _smooth, _delta;
     readonly float[] _smoothChannel;
     readonly Light[] _lights;
     readonly float[][] _lightRadiance;
@@ -58,6 +58,7 @@ public sealed class PathIntegrator : IIntegrator
         _emission = new float[]?[materials];
         _twoSided = new bool[materials];
         _smooth = new bool[materials];
+        _delta = new bool[materials];
         _smoothChannel = new float[materials];
         for (int m = 0; m < materials; m++)
         {
@@ -71,6 +72,7 @@ public sealed class PathIntegrator : IIntegrator
                     $"material '{material.Name}' ({material.Bsdf.GetType().Name}) cannot be carried to the path integrator's spectral grid",
                     "use a material type the path integrator knows (eq2, lambertian), or the whitted integrator");
             _smooth[m] = (_bsdf[m].Lobes & (BsdfFlags.Diffuse | BsdfFlags.Glossy)) != 0;
+            _delta[m] = (_bsdf[m].Lobes & BsdfFlags.Delta) != 0;
             if (_smooth[m])
             {   // the smooth lobes' share in the lobe choice: the channel value of m_diff + m_spec (their albedo at most)
                 var albedo = _grid.Resample(material.Diffuse);
@@ -169,8 +171,14 @@ public sealed class PathIntegrator : IIntegrator
             var front = Vector3.Dot(ns, wo) >= 0 ? ns : -ns;
             // The lobes' shares of the continuation, by the channel: smooth (m_diff + m_spec), mirror, transmission.
             float smoothShare = _smooth[m] ? _smoothChannel[m] : 0;
-            float mirrorShare = bsdf.SampleMirror(wo, ns, -1, mirror, out var wiMirror) ? _grid.Luminance(mirror) : 0;
-            float transmitShare = bsdf.SampleTransmission(wo, ns, -1, transmit, out var wiTransmit) ? _grid.Luminance(transmit) : 0;
+            // (a BSDF without a delta lobe is not asked for one: both answers would be "none")
+            float mirrorShare = 0, transmitShare = 0;
+            Vector3 wiMirror = default, wiTransmit = default;
+            if (_delta[m])
+            {
+                mirrorShare = bsdf.SampleMirror(wo, ns, -1, mirror, out wiMirror) ? _grid.Luminance(mirror) : 0;
+                transmitShare = bsdf.SampleTransmission(wo, ns, -1, transmit, out wiTransmit) ? _grid.Luminance(transmit) : 0;
+            }
             float total = smoothShare + mirrorShare + transmitShare;
             float smoothProbability = total > 0 ? smoothShare / total : 0;
 

@@ -126,9 +126,15 @@ public sealed partial class SceneGeometry
                     break;
                 }
             case 2:
-                // Re-intersect the one winning shape for its normal (cheaper than carrying normals through the BVH).
-                _analytic[ah.Primitive].Intersect(new Ray(ray.Origin, ray.Direction, float.PositiveInfinity), 0, out _, out var na);
-                hit.Normal = hit.GeometricNormal = na;
+                {
+                    // A flat shape's normal is one vector; a curved or many-faced one's winning shape is re-intersected for
+                    // it (cheaper than carrying normals through the BVH).
+                    var shape = _analytic[ah.Primitive];
+                    Vector3 na;
+                    if (shape.FlatNormal is { } flat) na = flat;
+                    else shape.Intersect(new Ray(ray.Origin, ray.Direction, float.PositiveInfinity), 0, out _, out na);
+                    hit.Normal = hit.GeometricNormal = na;
+                }
                 hit.Object = _analyticObject[ah.Primitive];
                 break;
             default:

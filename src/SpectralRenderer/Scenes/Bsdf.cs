@@ -1,4 +1,5 @@
 using System.Numerics;
+using System.Runtime.InteropServices;
 
 namespace SpectralRenderer.Scenes;
 
@@ -119,7 +120,17 @@ public sealed class LambertianBsdf(float[] reflectance) : Bsdf
     public override void Evaluate(Vector3 wo, Vector3 wi, Vector3 n, Span<float> f)
     {
         float scale = SameSide(wo, wi, n) ? 1 / MathF.PI : 0;
-        for (int i = 0; i < f.Length; i++) f[i] = Reflectance[i] * scale;
+        var rho = Reflectance.AsSpan(0, f.Length);
+        int i = 0;
+        if (Vector.IsHardwareAccelerated)
+        {   // the same product per band, a SIMD register at a time (the path tracer's fine spectra are padded to whole registers)
+            var fv = MemoryMarshal.Cast<float, Vector<float>>(f);
+            var rv = MemoryMarshal.Cast<float, Vector<float>>(rho);
+            var sv = new Vector<float>(scale);
+            for (int k = 0; k < fv.Length; k++) fv[k] = rv[k] * sv;
+            i = fv.Length * Vector<float>.Count;
+        }
+        for (; i < f.Length; i++) f[i] = rho[i] * scale;
     }
 
     public override float Pdf(Vector3 wo, Vector3 wi, Vector3 n) => SameSide(wo, wi, n) ? MathF.Abs(Vector3.Dot(wi, n)) / MathF.PI : 0;
