@@ -39,6 +39,11 @@ public static class ExactChannelSignals
         Relighting.Source src;
         try { src = Relighting.Open(dir); }
         catch (InputException e) { reason = $"the render folder cannot be rebuilt ({e.Message})"; return null; }
+        if (IsPath(src, dir))
+        {   // Its light is every bounce of the rendering equation, not eq. 2's terms (a light × a material × a factor).
+            reason = "a path render's radiance is not a sum of eq. 2's terms (light × material × factor), which the exact route integrates; the band cube is the camera's input";
+            return null;
+        }
         Scene scene;
         LightTransfer transfer;
         string from;
@@ -60,6 +65,11 @@ public static class ExactChannelSignals
         catch (InputException e) { reason = $"the render's scene cannot be rebuilt for its eq. 2 terms ({e.Message})"; return null; }
         return Compute(cs, sensor, scene, transfer, from, threads, out reason);
     }
+
+    /// <summary>A path render: its lights/ are a path transfer, or its scene names the path integrator.</summary>
+    static bool IsPath(Relighting.Source src, string dir) => PathTransferFiles.IsPath(dir)
+        || src.Scene.ToJson()["integrator"] is { } i && ((i as System.Text.Json.Nodes.JsonValue)?.ToString() ?? (string?)i["type"]) == "path"
+        || src.Manifest.Sampling?.Sampler == "sobol";
 
     /// <summary>
     /// The exact route from a scene and its per-light transfer (<paramref name="from"/> says where it came from: a folder's

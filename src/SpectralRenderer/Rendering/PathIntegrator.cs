@@ -114,13 +114,73 @@ public sealed class PathIntegrator : IIntegrator
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public int Radiance(in CameraSample sample, Span<float> result, Span<float> scratch, ref RayCounters counters)
     {
+        var l = scratch[.._padded];
+        l.Clear();
+        var sink = new FilmSink(l);
+        int first = Walk(ref sink, in sample, scratch, ref counters);
+        _grid.Reduce(l, result);
+        return first;
+    }
+
+    /// <summary>Scene lights whose spectra a relight may change (their transfer is kept apart): the scene's lights, in order.</summary>
+    public int TransferLights => _lights.Length;
+
+    /// <summary>The fine grid's sub-bands (the transfer's spectral resolution).</summary>
+    internal FineGrid Grid => _grid;
+
+    /// <summary>
+    /// One camera sample split by light (the per-light transfer of a path render): for each scene light k the path
+    /// weights T_k,f (β·f·|cos θ|·w/(P(light)·p)·factor, without the light's spectrum) into <paramref name="groups"/>
+    /// [k·padded, (k+1)·padded), and everything else — emitters and the sky, with their spectra — into the last slot
+    /// [K·padded, (K+1)·padded). The same walk as <see cref="Radiance"/> (same random numbers, the same decisions, none of
+    /// which look at a light's spectrum), so Σ_k T_k ⊙ E_k + fixed is its fine radiance. <paramref name="groups"/> is cleared.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    internal int Transfer(in CameraSample sample, Span<float> groups, Span<float> scratch, ref RayCounters counters)
+    {
+        groups.Clear();
+        var sink = new TransferSink(groups, _padded, _lights.Length);
+        return Walk(ref sink, in sample, scratch, ref counters);
+    }
+
+    /// <summary>What a path does with the light it finds: a film sums it; the per-light transfer keeps each scene light's apart.</summary>
+    interface IPathSink
+    {
+        /// <summary>β ⊙ L_e · w: an emitter or the sky reached by the path.</summary>
+        void Emitted(Span<float> beta, float[] le, float w);
+        /// <summary>β ⊙ f ⊙ E · s: next-event estimation of light <paramref name="light"/> (−1: an emitter or the sky).</summary>
+        void NextEvent(int light, Span<float> beta, Span<float> f, float[] radiance, float s);
+    }
+
+    ref struct FilmSink(Span<float> l) : IPathSink
+    {
+        readonly Span<float> _l = l;
+        public readonly void Emitted(Span<float> beta, float[] le, float w) => AddProduct(_l, beta, le, w);
+        public readonly void NextEvent(int light, Span<float> beta, Span<float> f, float[] radiance, float s) =>
+            AddProduct3(_l, beta, f, radiance, s);
+    }
+
+    ref struct TransferSink(Span<float> groups, int padded, int lights) : IPathSink
+    {
+        readonly Span<float> _groups = groups;
+        public readonly void Emitted(Span<float> beta, float[] le, float w) => AddProduct(_groups.Slice(lights * padded, padded), beta, le, w);
+        public readonly void NextEvent(int light, Span<float> beta, Span<float> f, float[] radiance, float s)
+        {
+            if (light < 0) AddProduct3(_groups.Slice(lights * padded, padded), beta, f, radiance, s);
+            else AddProduct2(_groups.Slice(light * padded, padded), beta, f, s);
+        }
+    }
+
+    /// <summary>The path of one camera sample; the light it finds goes to <paramref name="sink"/>. Returns the first object hit.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    int Walk<TSink>(ref TSink sink, in CameraSample sample, Span<float> scratch, ref RayCounters counters)
+        where TSink : IPathSink, allows ref struct
+    {
         int n = _padded;
-        var l = scratch[..n];
         var beta = scratch.Slice(n, n);
         var f = scratch.Slice(2 * n, n);
         var mirror = scratch.Slice(3 * n, n);
         var transmit = scratch.Slice(4 * n, n);
-        l.Clear();
         beta.Clear();
         beta[.._grid.Count].Fill(1);   // the padding stays 0
         var sampler = sample.Sampler;
@@ -136,11 +196,11 @@ public sealed class PathIntegrator : IIntegrator
             if (!_geometry.Intersect(ref traced, out var hit))
             {
                 // The ray escapes: the sky (background) radiance, MIS-weighted against its own sampling.
-                if (depth == 0) AddProduct(l, beta, _background, 1);
+                if (depth == 0) sink.Emitted(beta, _background, 1);
                 else if (_sky is not null)
                 {
                     float w = deltaBounce ? 1 : PowerHeuristic(bsdfPdf, pick * SkyPdf(previousFront, ray.Direction));
-                    AddProduct(l, beta, _sky, w);
+                    sink.Emitted(beta, _sky, w);
                 }
                 break;
             }
@@ -159,7 +219,7 @@ public sealed class PathIntegrator : IIntegrator
                     int e = _emitterOf[hit.Object];
                     w = PowerHeuristic(bsdfPdf, e >= 0 ? pick * _emitters[e].Pdf(previous, p, ng) : 0);
                 }
-                AddProduct(l, beta, le, w);
+                sink.Emitted(beta, le, w);
             }
             if (_maxDepth >= 0 && depth >= _maxDepth) break;
             if (counters.BudgetSpent) { counters.OverBudget = true; break; }
@@ -178,7 +238,7 @@ public sealed class PathIntegrator : IIntegrator
             float uLight = sampler.Next1D();
             var uPoint = sampler.Next2D();
             if (_smooth[m] && _lightCount > 0)
-                NextEvent(bsdf, p, ng, ns, front, wo, uLight, new Vector2(uPoint.U, uPoint.V), pick, smoothProbability, l, beta, f, ref counters);
+                NextEvent(ref sink, bsdf, p, ng, ns, front, wo, uLight, new Vector2(uPoint.U, uPoint.V), pick, smoothProbability, beta, f, ref counters);
 
             // Continue: choose a lobe, then a direction from it; β gains f·|cos θ|/pdf per band.
             float uLobe = sampler.Next1D();
@@ -222,7 +282,6 @@ public sealed class PathIntegrator : IIntegrator
             ray = new Ray(p + side * _geometry.Epsilon * ng, wi);
             counters.Secondary++;
         }
-        _grid.Reduce(l, result);
         return first;
     }
 
@@ -231,8 +290,8 @@ public sealed class PathIntegrator : IIntegrator
     /// emitter's point, or a sky direction, each unshadowed.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    void NextEvent(Bsdf bsdf, Vector3 p, Vector3 ng, Vector3 ns, Vector3 front, Vector3 wo, float uLight, Vector2 u, float pick,
-        float smoothProbability, Span<float> l, Span<float> beta, Span<float> f, ref RayCounters counters)
+    void NextEvent<TSink>(ref TSink sink, Bsdf bsdf, Vector3 p, Vector3 ng, Vector3 ns, Vector3 front, Vector3 wo, float uLight, Vector2 u,
+        float pick, float smoothProbability, Span<float> beta, Span<float> f, ref RayCounters counters) where TSink : IPathSink, allows ref struct
     {
         int k = Math.Min((int)(uLight * _lightCount), _lightCount - 1);
         Vector3 wi;
@@ -279,7 +338,7 @@ public sealed class PathIntegrator : IIntegrator
         counters.Shadow++;
         if (_geometry.Occluded(shadow)) return;
         float w = delta ? 1 : PowerHeuristic(pick * pdf, smoothProbability * bsdf.Pdf(wo, wi, ns));
-        AddProduct3(l, beta, f, radiance, factor * cos * w / (pick * pdf));
+        sink.NextEvent(k < _lights.Length ? k : -1, beta, f, radiance, factor * cos * w / (pick * pdf));
     }
 
     /// <summary>The sky's sampling density: cosine-weighted about the front shading normal.</summary>
@@ -322,6 +381,14 @@ public sealed class PathIntegrator : IIntegrator
     {
         var d = V(dst); var va = V(a); var vb = V(b); var vc = V(c.AsSpan(0, dst.Length)); var vs = new Vector<float>(s);
         for (int i = 0; i < d.Length; i++) d[i] += va[i] * vb[i] * vc[i] * vs;
+    }
+
+    /// <summary>dst += a ⊙ b · s</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    static void AddProduct2(Span<float> dst, Span<float> a, Span<float> b, float s)
+    {
+        var d = V(dst); var va = V(a); var vb = V(b); var vs = new Vector<float>(s);
+        for (int i = 0; i < d.Length; i++) d[i] += va[i] * vb[i] * vs;
     }
 
     /// <summary>dst ⊙= a · s</summary>
