@@ -64,7 +64,7 @@ public static class ShardMerge
                     case ShardMerging.NpyCube: MergeNpy(parts, f, target, width, height, bands); break;
                     case ShardMerging.NpyColour: MergeNpy(parts, f, target, width, height, 3); break;
                     case ShardMerging.PathTransfer: MergeNpy(parts, f, target, width, height, PathGroups(parts[0])); break;
-                    case ShardMerging.PathIds: MergeNpy(parts, f, target, width, height); break;
+                    case ShardMerging.PathIds: MergeNpy(parts, f, target, width, height, 3); break;
                     case ShardMerging.Copy: AtomicFile.WriteAllBytes(target, File.ReadAllBytes(Path.Combine(parts[0].Dir, f))); break;
                     case ShardMerging.BandImages: break;   // above
                     default: throw new InputException(Path.Combine(parts[0].Dir, "render.json"), $"lists '{f}', a file merge does not know", "merge shards written by the same version");

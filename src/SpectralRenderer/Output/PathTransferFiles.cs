@@ -17,7 +17,8 @@ namespace SpectralRenderer.Output;
 /// (W·m⁻²·sr⁻¹·nm⁻¹ of radiance per unit of the light's spectrum × intensity), then the emitters' and the sky's radiance F_f
 /// (W·m⁻²·sr⁻¹·nm⁻¹). The pixel's radiance on the grid is F_f + Σ_k T_k,f · E_k,f; an output band is the mean of its
 /// sub-bands.</item>
-/// <item><c>ids.npy</c>: float32 [H, W], the object index + 1 the centre ray hit (0 = background).</item>
+/// <item><c>ids.npy</c>: float32 [H, W, 3]: the object index + 1 the centre ray hit (0 = background), then the lights that
+/// reach its surface point (bit k = light k) as two 16-bit halves, low then high (each exact in a float32).</item>
 /// </list>
 /// Rows of a shard's strip are the whole film's rows, so shards merge by offset.
 /// </summary>
@@ -35,9 +36,14 @@ public static class PathTransferFiles
         int h = t.Region.Height, w = t.Region.Width;
         AtomicFile.Write(Path.Combine(dir, TransferFile), s => NpyWriter.Write(s, [h, w, t.Lights + 1, t.SubBands], t.Data));
         done($"{LightTransferFiles.Folder}/{TransferFile}");
-        var ids = new float[t.ObjectIds.Length];
-        for (int i = 0; i < ids.Length; i++) ids[i] = t.ObjectIds[i] + 1;
-        AtomicFile.Write(Path.Combine(dir, IdsFile), s => NpyWriter.Write(s, [h, w], ids));
+        var ids = new float[3 * t.ObjectIds.Length];
+        for (int i = 0; i < t.ObjectIds.Length; i++)
+        {
+            ids[3 * i] = t.ObjectIds[i] + 1;
+            ids[3 * i + 1] = t.LitMasks[i] & 0xFFFF;
+            ids[3 * i + 2] = t.LitMasks[i] >> 16;
+        }
+        AtomicFile.Write(Path.Combine(dir, IdsFile), s => NpyWriter.Write(s, [h, w, 3], ids));
         done($"{LightTransferFiles.Folder}/{IdsFile}");
         AtomicFile.WriteAllText(Path.Combine(dir, "lights.json"), Describe(scene, t).ToJsonString(new JsonSerializerOptions { WriteIndented = true }));
         done($"{LightTransferFiles.Folder}/lights.json");
@@ -79,7 +85,8 @@ public static class PathTransferFiles
             ["files"] = new JsonObject
             {
                 ["transfer"] = "transfer.npy: float32 [H, W, K + 1, F]: light k's path weights T_k,f (radiance per unit of its spectrum x intensity), then the emitters' and sky's radiance (W m^-2 sr^-1 nm^-1)",
-                ["ids"] = "ids.npy: float32 [H, W], object index + 1 seen by the centre ray (0 = background)",
+                ["ids"] = "ids.npy: float32 [H, W, 3]: object index + 1 seen by the centre ray (0 = background), then the lit mask " +
+                    "(bit k = light k reaches that point) as its low and high 16 bits",
             },
         };
     }
@@ -127,14 +134,20 @@ public static class PathTransferFiles
             return data;
         }
         var data = Load(TransferFile, [height, width, k + 1, sub]);
-        var ids = Load(IdsFile, [height, width]);
-        var objectIds = new int[ids.Length];
-        for (int i = 0; i < ids.Length; i++)
+        var ids = Load(IdsFile, [height, width, 3]);
+        var objectIds = new int[width * height];
+        var lit = new uint[objectIds.Length];
+        for (int i = 0; i < objectIds.Length; i++)
         {
-            if (!(ids[i] >= 0 && ids[i] <= scene.Objects.Count && ids[i] == MathF.Floor(ids[i])))
-                throw new InputException(Path.Combine(dir, IdsFile), $"pixel {i % width},{i / width}: object {ids[i]} is not 0 (background) or one of the scene's {scene.Objects.Count}",
+            float id = ids[3 * i], low = ids[3 * i + 1], high = ids[3 * i + 2];
+            if (!(id >= 0 && id <= scene.Objects.Count && id == MathF.Floor(id)))
+                throw new InputException(Path.Combine(dir, IdsFile), $"pixel {i % width},{i / width}: object {id} is not 0 (background) or one of the scene's {scene.Objects.Count}",
                     "the light-transfer files are damaged: render the folder again");
-            objectIds[i] = (int)ids[i] - 1;
+            if (!(low >= 0 && low <= 0xFFFF && low == MathF.Floor(low) && high >= 0 && high <= 0xFFFF && high == MathF.Floor(high)))
+                throw new InputException(Path.Combine(dir, IdsFile), $"pixel {i % width},{i / width}: lit mask halves {low}, {high} are not whole numbers 0–65535",
+                    "the light-transfer files are damaged: render the folder again");
+            objectIds[i] = (int)id - 1;
+            lit[i] = (uint)low | (uint)high << 16;
         }
         return new PathTransfer
         {
@@ -147,6 +160,7 @@ public static class PathTransferFiles
             SubBands = sub,
             Data = data,
             ObjectIds = objectIds,
+            LitMasks = lit,
         };
     }
 }

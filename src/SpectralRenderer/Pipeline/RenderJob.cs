@@ -221,7 +221,7 @@ public sealed class RenderJob
         var (image, xyz) = transfer.Relight(Scene);
         PathTransfer = transfer;
         int n = transfer.Region.Width * transfer.Region.Height;
-        // The path integrator says nothing of lit masks or highlights (no analysis of the centre ray): as its film has them.
+        // The lit masks as traced (geometry: no light's spectrum changes them); no highlights (the path tracer has no eq. 2 terms).
         var highlights = new byte[n];
         Array.Fill(highlights, PixelInfo.Highlight(0, 0, (float)Scene.Output.HighlightFraction));
         return new RenderResult
@@ -229,7 +229,7 @@ public sealed class RenderJob
             Image = image,
             Xyz = xyz,
             ObjectIds = transfer.ObjectIds,
-            LitMasks = new LitMasks(n, Scene.Lights.Count),
+            LitMasks = LitMasks.From(transfer.LitMasks, Scene.Lights.Count),
             Highlights = highlights,
             Rays = new RayCounters(),
             Elapsed = clock.Elapsed,

@@ -23,7 +23,7 @@ namespace SpectralRenderer.Rendering;
 /// any thread count, tile order or shard; nothing is allocated per path.
 /// </summary>
 [CompiledAtFirstCall]
-public sealed class PathIntegrator : IIntegrator
+public sealed class PathIntegrator : IAnalysisIntegrator
 {
     readonly SceneGeometry _geometry;
     readonly FineGrid _grid;
@@ -122,6 +122,47 @@ public sealed class PathIntegrator : IIntegrator
         return first;
     }
 
+    /// <summary>
+    /// The centre ray: its radiance as <see cref="Radiance(in CameraSample, Span{float}, Span{float}, ref RayCounters)"/>,
+    /// and the lit masks (<see cref="LitMask"/>). The path tracer has no eq. 2 terms, so no highlight.
+    /// </summary>
+    public int Radiance(in CameraSample sample, Span<float> result, Span<float> scratch, ref RayCounters counters, ref PixelInfo info)
+    {
+        int first = Radiance(in sample, result, scratch, ref counters);
+        info.LitMask = LitMask(in sample);
+        return first;
+    }
+
+    /// <summary>
+    /// The scene lights (bit k = light k, the first 32) that reach the camera ray's first surface point directly, as the
+    /// Whitted model's masks say it (mask-lit-K.png, the recovery's lit and shadow regions): the light's centre on the
+    /// ray's side of the surface, inside its cone, the shadow ray unblocked. Its rays are not counted (analysis only).
+    /// </summary>
+    internal uint LitMask(in CameraSample sample)
+    {
+        var traced = sample.Ray;
+        if (_lights.Length == 0 || !_geometry.Intersect(ref traced, out var hit)) return 0;
+        var p = hit.Position;
+        var ng = hit.GeometricNormal;
+        var wo = -sample.Ray.Direction;
+        var front = Vector3.Dot(hit.Normal, wo) >= 0 ? hit.Normal : -hit.Normal;
+        uint mask = 0;
+        for (int k = 0; k < Math.Min(_lights.Length, 32); k++)
+        {
+            if (!_lights[k].Sample(p, new Vector2(0.5f, 0.5f), out var inc) || !(inc.Factor > 0) || Vector3.Dot(front, inc.Direction) <= 0) continue;
+            var origin = p + (Vector3.Dot(ng, inc.Direction) >= 0 ? 1 : -1) * _geometry.Epsilon * ng;
+            var shadow = new Ray(origin, inc.Direction);
+            if (!float.IsInfinity(inc.Distance))
+            {
+                var towards = p + inc.Distance * inc.Direction - origin;
+                float length = towards.Length();
+                shadow = new Ray(origin, towards / length, length - 2 * _geometry.Epsilon);
+            }
+            if (!_geometry.Occluded(shadow)) mask |= 1u << k;
+        }
+        return mask;
+    }
+
     /// <summary>Scene lights whose spectra a relight may change (their transfer is kept apart): the scene's lights, in order.</summary>
     public int TransferLights => _lights.Length;
 
@@ -132,7 +173,7 @@ public sealed class PathIntegrator : IIntegrator
     /// One camera sample split by light (the per-light transfer of a path render): for each scene light k the path
     /// weights T_k,f (β·f·|cos θ|·w/(P(light)·p)·factor, without the light's spectrum) into <paramref name="groups"/>
     /// [k·padded, (k+1)·padded), and everything else — emitters and the sky, with their spectra — into the last slot
-    /// [K·padded, (K+1)·padded). The same walk as <see cref="Radiance"/> (same random numbers, the same decisions, none of
+    /// [K·padded, (K+1)·padded). The film's walk (the same random numbers, the same decisions, none of
     /// which look at a light's spectrum), so Σ_k T_k ⊙ E_k + fixed is its fine radiance. <paramref name="groups"/> is cleared.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]

@@ -34,6 +34,8 @@ public sealed class PathTransfer
     public required float[] Data { get; init; }
     /// <summary>Per pixel of the region, the object its centre ray hit (−1: none), as the render's object ids.</summary>
     public required int[] ObjectIds { get; init; }
+    /// <summary>Per pixel of the region, the scene lights that reach the centre ray's surface point (bit k = light k), as traced.</summary>
+    public required uint[] LitMasks { get; init; }
     public RayCounters Rays { get; init; }
 
     /// <summary>Floats per pixel: (K + 1) × F.</summary>
@@ -59,9 +61,10 @@ public sealed class PathTransfer
                 "render fewer pixels or lights with the lights output, or a coarser \"spectral_grid\"");
         var data = new float[size];
         var ids = new int[rect.Width * rect.Height];
+        var lit = new uint[ids.Length];
         var sampling = new PixelSampling(cam, scene.RayBudget, analysis: true, integrator.Sampler);
         var (rays, _, _) = Renderer.RunTiles(rect, threads, null, Stopwatch.StartNew(), cancel,
-            () => new TileWork(integrator, sampling, rect, lights, sub, padded, data, ids, cancel));
+            () => new TileWork(integrator, sampling, rect, lights, sub, padded, data, ids, lit, cancel));
         return new PathTransfer
         {
             FilmWidth = cam.Width,
@@ -73,12 +76,13 @@ public sealed class PathTransfer
             SubBands = sub,
             Data = data,
             ObjectIds = ids,
+            LitMasks = lit,
             Rays = rays,
         };
     }
 
     sealed class TileWork(PathIntegrator integrator, PixelSampling sampling, PixelRect rect, int lights, int sub, int padded,
-        float[] data, int[] ids, CancellationToken cancel) : ITileWork
+        float[] data, int[] ids, uint[] lit, CancellationToken cancel) : ITileWork
     {
         readonly float[] _scratch = new float[integrator.ScratchLength];
         readonly float[] _sample = new float[(lights + 1) * padded];
@@ -88,6 +92,8 @@ public sealed class PathTransfer
         readonly int _lights = lights, _sub = sub, _padded = padded;
         readonly float[] _data = data;
         readonly int[] _ids = ids;
+        readonly uint[] _lit = lit;
+        uint _mask;
 
         public void Tile(int x0, int y0, int x1, int y1, ref RayCounters counters)
         {
@@ -98,13 +104,18 @@ public sealed class PathTransfer
         /// <summary>A pixel's samples summed with the film's weights (1/spp; the centre ray, weight 0, gives the object id).</summary>
         struct Samples(TileWork w) : ISampleSink
         {
-            public readonly void BeginPixel(int x, int y, ref RayCounters counters) => w._sum.AsSpan().Clear();
+            public readonly void BeginPixel(int x, int y, ref RayCounters counters)
+            {
+                w._sum.AsSpan().Clear();
+                w._mask = 0;
+            }
 
             [MethodImpl(MethodImplOptions.AggressiveOptimization)]
             public readonly int Sample(in CameraSample sample, float weight, bool centre, ref RayCounters counters)
             {
                 int id = w._integrator.Transfer(in sample, w._sample, w._scratch, ref counters);
                 if (weight != 0) SpectralMath.AddScaled(w._sum, w._sample, weight);
+                if (centre) w._mask = w._integrator.LitMask(in sample);   // as the render's centre ray records it
                 return id;
             }
 
@@ -112,6 +123,7 @@ public sealed class PathTransfer
             {
                 int i = (y - w._rect.Y0) * w._rect.Width + (x - w._rect.X0);
                 w._ids[i] = id;
+                w._lit[i] = w._mask;
                 for (int g = 0; g <= w._lights; g++)
                     w._sum.AsSpan(g * w._padded, w._sub).CopyTo(w._data.AsSpan((i * (w._lights + 1) + g) * w._sub, w._sub));
             }

@@ -120,22 +120,29 @@ public class PathRelightTests(Xunit.Abstractions.ITestOutputHelper output)
     }
 
     [Fact]
-    public void Two_shards_of_a_path_render_with_its_transfer_merge_into_the_whole_render_byte_for_byte()
+    public void A_path_render_with_its_transfer_is_the_same_bits_on_1_and_2_threads_and_from_4_shards_merged_and_relit()
     {
         var dir = Reference.TempDir();
-        var scene = Write(dir, "a.json", Scene("A", 0.2, 0.3, height: 64));
+        var scene = Write(dir, "a.json", Scene("A", 0.2, 0.3, height: 128));
         var whole = Path.Combine(dir, "whole");
-        ShardMergeTests.Render(scene, whole, "--formats", "npy,exr,lights");
+        ShardMergeTests.Render(scene, whole, "--formats", "npy,exr,lights", "--threads", "2");
+        var one = Path.Combine(dir, "one");
+        ShardMergeTests.Render(scene, one, "--formats", "npy,exr,lights", "--threads", "1");
+        ShardMergeTests.AssertSameRender(whole, one);
         var shards = new List<string>();
-        for (int i = 0; i < 2; i++)
+        for (int i = 0; i < 4; i++)
         {
             shards.Add(Path.Combine(dir, $"shard-{i}"));
-            ShardMergeTests.Render(scene, shards[^1], "--formats", "npy,exr,lights", "--shard", $"{i}/2");
+            ShardMergeTests.Render(scene, shards[^1], "--formats", "npy,exr,lights", "--shard", $"{i}/4");
         }
         var merged = Path.Combine(dir, "merged");
         var (code, _, err) = CliRunner.Run(["merge", .. shards, "-o", merged]);
         Assert.True(code == 0, err);
         ShardMergeTests.AssertSameRender(whole, merged);
+        // The merged transfer relights as the whole render's does, bit for bit.
+        foreach (var (from, to) in new[] { (whole, "relit-whole"), (merged, "relit-merged") })
+            Assert.Equal(0, Cli("relight", from, "-o", Path.Combine(dir, to), "--light", "bulb=D65").Exit);
+        Assert.Equal(File.ReadAllBytes(Path.Combine(dir, "relit-whole", "spectral.npy")), File.ReadAllBytes(Path.Combine(dir, "relit-merged", "spectral.npy")));
     }
 
     [Fact]

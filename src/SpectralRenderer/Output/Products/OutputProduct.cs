@@ -46,7 +46,7 @@ public enum ShardMerging
     NoiseEnviHeader,
     /// <summary>A path render's lights/transfer.npy (H × W × (K + 1) × F), row strips by offset.</summary>
     PathTransfer,
-    /// <summary>A path render's lights/ids.npy (H × W), row strips by offset.</summary>
+    /// <summary>A path render's lights/ids.npy (H × W × 3), row strips by offset.</summary>
     PathIds,
 }
 
