@@ -16,7 +16,8 @@ namespace SpectralRenderer.Cli.Paper;
 /// Direct light (the paper's model: Whitted, eq. 2's light terms and its mirror chains) against global illumination (the
 /// path integrator: every bounce) for one scene of each of §3.1–3.4, both in physical radiometry and without the scenes'
 /// constant ambient term (the paper's stand-in for the light between surfaces, which the path render computes, and whose
-/// paper units are no radiance), so that the report can say how much the shadows and the §3.4 white-board reconstruction change. Each scene is rendered twice into
+/// paper units are no radiance), so that the report can say how much the shadows and the §3.4 white-board reconstruction
+/// change. Each scene is rendered twice into
 /// gi/NAME/direct and gi/NAME/path; the regions are the direct render's (its lit masks: lit = every light reaches the
 /// centre ray's point, shadow = none), so both renders are measured on the same pixels; luminance is Y = Σ_b W_y,b·L_b
 /// of each render's band cube (render.json's weights). gi/comparison.csv holds every number.
@@ -26,7 +27,8 @@ public static class GlobalIlluminationComparison
     /// <summary>One scene per section of the paper.</summary>
     public static readonly (string Section, string File)[] Scenes =
     [
-        ("3.1", "paper-3.1-colorchecker-d65"), ("3.2", "paper-3.2-bunny-19"), ("3.3", "paper-3.3-statue-D65"), ("3.4", "paper-3.4-bunny-analysis"),
+        ("3.1", "paper-3.1-colorchecker-d65"), ("3.2", "paper-3.2-bunny-19"), ("3.3", "paper-3.3-statue-D65"),
+        ("3.4", "paper-3.4-bunny-analysis"),
     ];
 
     /// <summary>
@@ -64,13 +66,18 @@ public static class GlobalIlluminationComparison
                 new JsonDocumentOptions { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true })!.AsObject();
             doc["radiometry"] = "physical";
             doc.Remove("ambient");   // the paper's constant stand-in for the light between surfaces, which the path render computes
+            var overrides = new SceneOverrides
+            {
+                ModelDirectories = models,
+                ResolutionScale = scale,
+                SamplesPerPixel = spp,
+                Formats = "npy,aov",
+            };
             try
             {
-                Render(path, doc, Path.Combine(dir, "direct"), new SceneOverrides { ModelDirectories = models, ResolutionScale = scale, SamplesPerPixel = spp, Formats = "npy,aov" },
-                    threads, geometries);
+                Render(path, doc, Path.Combine(dir, "direct"), overrides, threads, geometries);
                 doc["integrator"] = new JsonObject { ["type"] = "path" };
-                Render(path, doc, Path.Combine(dir, "path"),
-                    new SceneOverrides { ModelDirectories = models, ResolutionScale = scale, SamplesPerPixel = spp, Formats = "npy,aov" }, threads, geometries);
+                Render(path, doc, Path.Combine(dir, "path"), overrides, threads, geometries);
             }
             catch (InputException e) when (e.Problem == InputProblem.MissingFile)
             {
@@ -120,8 +127,10 @@ public static class GlobalIlluminationComparison
         }
         if (scene == SubjectScene && aovs.Reflectance is not null)
         {   // §3.4: reflectance = pixel ÷ the white board's mean radiance, scored against the ground truth, per region.
-            var sumD = Reconstruction.Summarise(Reconstruction.Compute(direct, aovs, Reconstruction.WhiteObject(direct, "board", aovs)).SurfacePixels());
-            var sumP = Reconstruction.Summarise(Reconstruction.Compute(path, aovs, Reconstruction.WhiteObject(path, "board", aovs)).SurfacePixels());
+            List<RegionSummary> Scored(RenderFolder f) =>
+                Reconstruction.Summarise(Reconstruction.Compute(f, aovs, Reconstruction.WhiteObject(f, "board", aovs)).SurfacePixels());
+            var sumD = Scored(direct);
+            var sumP = Scored(path);
             foreach (var d in sumD)
                 if (sumP.FirstOrDefault(p => p.Region == d.Region) is { } p)
                 {
@@ -172,7 +181,8 @@ public static class GlobalIlluminationComparison
     {
         var sb = new StringBuilder("section,scene,quantity,region,pixels,direct,path,path_over_direct\n");
         foreach (var r in rows)
-            sb.Append(CultureInfo.InvariantCulture, $"{r.Section},{r.Scene},{r.Quantity},{r.Region},{r.Pixels},{r.Direct:R},{r.Path:R},{r.Ratio:R}\n");
+            sb.Append(CultureInfo.InvariantCulture,
+                $"{r.Section},{r.Scene},{r.Quantity},{r.Region},{r.Pixels},{r.Direct:R},{r.Path:R},{r.Ratio:R}\n");
         return sb.ToString();
     }
 }

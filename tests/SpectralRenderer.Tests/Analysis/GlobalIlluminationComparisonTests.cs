@@ -16,7 +16,8 @@ public class GlobalIlluminationComparisonTests
 {
     static string Scenes => Path.GetDirectoryName(ShardMergeTests.Scene("paper-3.1-colorchecker-d65.json"))!;
 
-    static bool HaveModels => Environment.GetEnvironmentVariable("SPECTRAL_MODELS") is { Length: > 0 } m && File.Exists(Path.Combine(m, "stanford-bunny.obj"));
+    static bool HaveModels => Environment.GetEnvironmentVariable("SPECTRAL_MODELS") is { Length: > 0 } m
+        && File.Exists(Path.Combine(m, "stanford-bunny.obj"));
 
     static List<string[]> Csv(string folder) =>
         File.ReadAllLines(Path.Combine(folder, "comparison.csv")).Skip(1).Select(l => l.Split(',')).ToList();
@@ -29,7 +30,8 @@ public class GlobalIlluminationComparisonTests
         float[] cube;
         int[] shape;
         using (var s = File.OpenRead(Path.Combine(dir, "spectral.npy"))) (shape, cube) = NpyReader.Read(s);
-        var wy = System.Text.Json.Nodes.JsonNode.Parse(File.ReadAllText(Path.Combine(dir, "render.json")))!["colour"]!["weights_y"]!.AsArray()
+        var manifest = System.Text.Json.Nodes.JsonNode.Parse(File.ReadAllText(Path.Combine(dir, "render.json")))!;
+        var wy = manifest["colour"]!["weights_y"]!.AsArray()
             .Select(v => (double)v!).ToArray();
         int bands = shape[2], n = shape[0] * shape[1], count = 0;
         double sum = 0;
@@ -42,7 +44,7 @@ public class GlobalIlluminationComparisonTests
         return (sum / count, count);
     }
 
-    /// <summary>Every Y row of the CSV equals the region mean recomputed from the written files; returns them by scene and region.</summary>
+    /// <summary>Every Y row of the CSV equals the region mean recomputed from the written files; returns them by scene, region.</summary>
     static Dictionary<(string, string), (double Direct, double Path)> CheckedRows(GlobalIlluminationComparison.Result r)
     {
         var rows = new Dictionary<(string, string), (double, double)>();
@@ -62,7 +64,8 @@ public class GlobalIlluminationComparisonTests
             var (md, nd) = RegionMean(direct, In);
             var (mp, _) = RegionMean(Path.Combine(r.Folder, scene, "path"), In);
             Assert.Equal(nd, int.Parse(row[4], CultureInfo.InvariantCulture));
-            Assert.True(Math.Abs(D(row[5]) / md - 1) <= 1e-9 && Math.Abs(D(row[6]) / mp - 1) <= 1e-9, $"{scene} {region}: CSV {row[5]}, {row[6]}; files {md}, {mp}");
+            Assert.True(Math.Abs(D(row[5]) / md - 1) <= 1e-9 && Math.Abs(D(row[6]) / mp - 1) <= 1e-9,
+                $"{scene} {region}: CSV {row[5]}, {row[6]}; files {md}, {mp}");
             Assert.True(Math.Abs(D(row[7]) - mp / md) <= 1e-9 * mp / md, $"{scene} {region}: ratio {row[7]} vs {mp / md}");
             rows[(scene, region)] = (md, mp);
         }
@@ -85,8 +88,8 @@ public class GlobalIlluminationComparisonTests
     public void In_section_3_4_the_white_board_lights_the_shadow_and_the_numbers_are_the_files_region_means()
     {
         Skip.IfNot(HaveModels, "SPECTRAL_MODELS does not point at the meshes (stanford-bunny.obj)");
-        var r = GlobalIlluminationComparison.Run(Scenes, Reference.TempDir(), 0.15, [Environment.GetEnvironmentVariable("SPECTRAL_MODELS")!], 0, 4,
-            only: ["3.4"]);
+        string models = Environment.GetEnvironmentVariable("SPECTRAL_MODELS")!;
+        var r = GlobalIlluminationComparison.Run(Scenes, Reference.TempDir(), 0.15, [models], 0, 4, only: ["3.4"]);
         var rows = CheckedRows(r);
         var lit = rows[("paper-3.4-bunny-analysis", "lit")];
         var shadow = rows[("paper-3.4-bunny-analysis", "shadow")];

@@ -47,7 +47,8 @@ public class PathDownstreamTests
     public void The_camera_reads_the_white_off_the_chart_and_recovery_sees_every_chart_pixel_lit()
     {
         var cam = Path.Combine(Chart.Value, "cam-xyz");
-        var (code, stdout, err) = CliRunner.Run("camera", Chart.Value, "--sensor", "cie-xyz", "--noise", "off", "-o", cam, "--off-axis", "none", "--psf", "none");
+        var (code, stdout, err) = CliRunner.Run("camera", Chart.Value, "--sensor", "cie-xyz", "--noise", "off", "-o", cam,
+            "--off-axis", "none", "--psf", "none");
         Assert.True(code == 0, err);
         Assert.Contains("band cube", err);   // the exact route (eq. 2's terms) does not apply to a path render
         // The white diffuser's radiance under a head-on directional light of intensity 1 in physical radiometry: E/π.
@@ -70,7 +71,8 @@ public class PathDownstreamTests
         var (shape, data) = NpyReader.Read(ids);
         Assert.Equal([40, 60, 3], shape);
         int onChart = Enumerable.Range(0, 40 * 60).Count(i => data[3 * i] > 0);
-        Assert.True(Enumerable.Range(0, 40 * 60).All(i => data[3 * i + 1] == (data[3 * i] > 0 ? 1 : 0)), "lit mask bit 0 where the chart is seen");
+        Assert.True(Enumerable.Range(0, 40 * 60).All(i => data[3 * i + 1] == (data[3 * i] > 0 ? 1 : 0)),
+            "lit mask bit 0 where the chart is seen");
         Assert.True(onChart >= lit, $"{onChart} chart pixels, {lit} lit surface pixels");
     }
 
@@ -115,7 +117,8 @@ public class PathDownstreamTests
         var (a, b) = (Read(jobA), Read(relit));
         double worst = a.Zip(b).Max(p => p.First == p.Second ? 0 : Math.Abs(p.First - p.Second) / Math.Max(Math.Abs(p.First), 1e-30));
         Assert.True(worst <= 1e-5, $"relit D65 job differs from the A job by {worst:E2}");
-        double change = a.Zip(Read(Path.Combine(outDir, "jobs", "0000"))).Max(p => Math.Abs(p.First - p.Second) / Math.Max(Math.Abs(p.First), 1e-30));
+        double change = a.Zip(Read(Path.Combine(outDir, "jobs", "0000")))
+            .Max(p => Math.Abs(p.First - p.Second) / Math.Max(Math.Abs(p.First), 1e-30));
         Assert.True(change > 1e-2, $"the A and D65 jobs differ by only {change:E2}");
     }
 }
