@@ -112,6 +112,11 @@ public static class CameraCommand
             }
             else routeNote = $"note: channel signals from the band cube (not exact): {why}";
         }
+        if (cube.ChannelIntegrals is null && ExactChannelSignals.IsPathRender(dir) && ChartWhite.Scale(scene) is { } chartWhite)
+        {   // A path render's white is every bounce of light at the chart, not the lights' direct factor: read it off the chart.
+            whiteScale = chartWhite;
+            whiteSource = "the ColorChecker in the render: its patches' band values against the light's × their reflectances (least squares; a path render)";
+        }
 
         if (a.Int("--bench", 1, 1000) is int repeat)
         {

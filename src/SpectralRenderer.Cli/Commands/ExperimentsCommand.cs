@@ -10,7 +10,7 @@ namespace SpectralRenderer.Cli.Commands;
 public static class ExperimentsCommand
 {
     const string Help = """
-        usage: spectral experiments [--out DIR] [--scale F] [--spp N] [--scenes DIR] [--models DIR] [--threads N] [--quiet]
+        usage: spectral experiments [--out DIR] [--scale F] [--spp N] [--scenes DIR] [--models DIR] [--threads N] [--gi-spp N] [--no-gi] [--quiet]
 
         Renders every scene of the paper — §3.1 the ColorChecker, §3.2 four bunnies, §3.3 the statue under
         A, D65, blue and green LEDs, §3.4 the analysis bunny — and writes DIR/report.html: one self-contained
@@ -23,11 +23,14 @@ public static class ExperimentsCommand
           --spp N        samples per pixel for every scene (default: each scene's own, 4 for §3.2–3.4, anti-aliased)
           --scenes DIR   where the paper-*.json scenes are (default: the repository's scenes/)
           --models DIR   a folder to search for the meshes (also $SPECTRAL_MODELS)
+          --gi-spp N     samples per pixel of the direct and path renders that compare direct light with global
+                         illumination for one scene per section (DIR/gi/, default 16)
+          --no-gi        leave that comparison out
         """;
 
     public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
     {
-        var a = new Arguments("experiments", argv, ["--out", "-o", "--scale", "--spp", "--scenes", "--models", "--threads"], ["--quiet"], new Dictionary<string, string> { ["-o"] = "--out" });
+        var a = new Arguments("experiments", argv, ["--out", "-o", "--scale", "--spp", "--scenes", "--models", "--threads", "--gi-spp"], ["--quiet", "--no-gi"], new Dictionary<string, string> { ["-o"] = "--out" });
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
         if (a.Positionals.Count > 0) throw new InputException("command line", $"unexpected argument {MessageText.Quote(a.Positionals[0])}", "see 'spectral experiments --help'");
         var outDir = a.Value("--out") ?? Path.Combine("out", "experiments");
@@ -47,7 +50,10 @@ public static class ExperimentsCommand
         var prepared = new Dictionary<string, Task<string>>();
         var runs = PaperExperiments.Run(sceneDir, outDir, scale, models, threads, quiet ? null : stderr.WriteLine, spp,
             written: r => { if (PaperReport.Prepare(r) is { } section) prepared[r.Name] = section; });
-        var report = PaperReport.Write(outDir, runs, clock.Elapsed.TotalSeconds, prepared);
+        // Direct light against global illumination, one scene per section (gi/), at the same scale.
+        var gi = a.Flag("--no-gi") ? null
+            : GlobalIlluminationComparison.Run(sceneDir, outDir, scale, models, threads, a.Int("--gi-spp", 1, 65536) ?? 16, log: quiet ? null : stderr.WriteLine);
+        var report = PaperReport.Write(outDir, runs, clock.Elapsed.TotalSeconds, prepared, gi);
         int skipped = runs.Count(r => !r.Done);
         stdout.WriteLine(string.Create(CultureInfo.InvariantCulture,
             $"{runs.Count - skipped} of {runs.Count} scenes rendered in {clock.Elapsed.TotalSeconds:0.0} s{(skipped > 0 ? $" ({skipped} skipped: mesh not found)" : "")}; report: {report}"));

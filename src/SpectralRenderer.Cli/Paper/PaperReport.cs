@@ -39,7 +39,9 @@ public static class PaperReport
         global::SpectralRenderer.Analysis.Recovery.RecoveryComparison.HtmlSection(chart is { Done: true } ? chart.OutDir : null, ExactChannelSignals.Input);
 
     /// <summary>Writes report.html; <paramref name="prepared"/>: the sections <see cref="Prepare"/> started, by scene name.</summary>
-    public static string Write(string outDir, IReadOnlyList<ExperimentRun> runs, double totalSeconds, IReadOnlyDictionary<string, Task<string>>? prepared = null)
+    /// <param name="gi">The direct-against-global-illumination comparison (<see cref="GlobalIlluminationComparison"/>), when it ran.</param>
+    public static string Write(string outDir, IReadOnlyList<ExperimentRun> runs, double totalSeconds, IReadOnlyDictionary<string, Task<string>>? prepared = null,
+        GlobalIlluminationComparison.Result? gi = null)
     {
         var h = new StringBuilder();
         h.Append("""
@@ -71,6 +73,7 @@ public static class PaperReport
         if (analysis is not null) h.Append(analysis.GetAwaiter().GetResult());
         else Analysis(h, byName.GetValueOrDefault(AnalysisScene));
         h.Append(cameras.GetAwaiter().GetResult());
+        if (gi is not null) GlobalIllumination(h, gi);
         Timings(h, runs, totalSeconds);
 
         h.Append("""
@@ -101,6 +104,33 @@ public static class PaperReport
     }
 
     static string Esc(string s) => WebUtility.HtmlEncode(s);
+
+    // ---- direct light against global illumination ---------------------------------------------------
+
+    static void GlobalIllumination(StringBuilder h, GlobalIlluminationComparison.Result gi)
+    {
+        h.Append("<h2>Direct light (the paper's model) against global illumination</h2>\n");
+        h.Append(Inv, $"<p>One scene of each section rendered twice in physical radiometry: <i>direct</i> is the paper's model (Whitted: eq. 2's light terms, mirror and glass chains), <i>path</i> the path integrator (every bounce); the scenes' constant ambient term, the paper's stand-in for the light between surfaces, is left out of both. Regions are the direct render's: <i>lit</i> where every light reaches the pixel's point, <i>shadow</i> where none does. Luminance Y from each band cube; all numbers in gi/comparison.csv ({gi.Seconds:0.0} s).</p>\n");
+        foreach (var (scene, why) in gi.Skipped) h.Append($"<p class=\"skip\">{Esc(scene)} was not rendered: {Esc(why)}.</p>\n");
+        if (gi.Rows.Count == 0) return;
+        h.Append("<table><tr><th>§</th><th class=l>scene</th><th class=l>quantity</th><th class=l>region</th><th>pixels</th><th>direct</th><th>path</th><th>path ÷ direct</th></tr>\n");
+        foreach (var r in gi.Rows)
+            h.Append(Inv, $"<tr><td>{r.Section}</td><td class=l>{Esc(r.Scene)}</td><td class=l>{r.Quantity}</td><td class=l>{r.Region}</td><td>{r.Pixels}</td><td>{r.Direct:G5}</td><td>{r.Path:G5}</td><td>{(double.IsFinite(r.Ratio) ? r.Ratio.ToString("0.000", Inv) : "—")}</td></tr>\n");
+        h.Append("</table>\n<ul>\n");
+        foreach (var g in gi.Rows.GroupBy(r => r.Scene))
+        {
+            var y = g.Where(r => r.Quantity == "Y").ToDictionary(r => r.Region);
+            var sb = new StringBuilder();
+            if (y.TryGetValue("lit", out var lit)) sb.Append(Inv, $"lit ×{lit.Ratio:0.000}");
+            if (y.TryGetValue("shadow", out var sh) && y.TryGetValue("lit", out lit) && lit.Direct > 0 && lit.Path > 0)
+                sb.Append(Inv, $"; shadow at {100 * sh.Direct / lit.Direct:0.0} % of the lit level in direct light and {100 * sh.Path / lit.Path:0.0} % with every bounce");
+            else sb.Append("; no pixel in shadow");
+            foreach (var r in g.Where(r => r.Quantity == "rmse" && r.Region is "lit" or "shadow"))
+                sb.Append(Inv, $"; white-board reconstruction RMSE ({r.Region}) {r.Direct:0.0000} → {r.Path:0.0000}");
+            h.Append($"<li>{Esc(g.Key)}: {sb}</li>\n");
+        }
+        h.Append("</ul>\n");
+    }
 
     static string Img(string file, string alt, int? width = null)
     {

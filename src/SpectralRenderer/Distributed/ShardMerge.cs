@@ -51,6 +51,7 @@ public static class ShardMerge
             {
                 cancel.ThrowIfCancellationRequested();
                 var target = Path.Combine(staging, f);
+                Directory.CreateDirectory(Path.GetDirectoryName(target)!);   // lights/ of a path render
                 switch (OutputProductTable.Owner(f)?.Merging(f) ?? ShardMerging.None)
                 {
                     case ShardMerging.Png: MergePng(parts, f, target, width, height); break;
@@ -62,6 +63,8 @@ public static class ShardMerge
                     case ShardMerging.NoiseNpy: MergeNpy(parts, f, target, width, height, bands + 1); break;
                     case ShardMerging.NpyCube: MergeNpy(parts, f, target, width, height, bands); break;
                     case ShardMerging.NpyColour: MergeNpy(parts, f, target, width, height, 3); break;
+                    case ShardMerging.PathTransfer: MergeNpy(parts, f, target, width, height, PathGroups(parts[0])); break;
+                    case ShardMerging.PathIds: MergeNpy(parts, f, target, width, height, 3); break;
                     case ShardMerging.Copy: AtomicFile.WriteAllBytes(target, File.ReadAllBytes(Path.Combine(parts[0].Dir, f))); break;
                     case ShardMerging.BandImages: break;   // above
                     default: throw new InputException(Path.Combine(parts[0].Dir, "render.json"), $"lists '{f}', a file merge does not know", "merge shards written by the same version");
@@ -249,17 +252,30 @@ public static class ShardMerge
         AtomicFile.WriteAllText(target, merged);
     }
 
-    /// <summary>spectral.npy: the whole array's header, then the shards' C-order rows in order (each shard is whole rows).</summary>
-    static void MergeNpy(List<Part> parts, string file, string target, int width, int height, int bands)
+    /// <summary>A path render's transfer per pixel, (K + 1, F), from a shard's lights/lights.json.</summary>
+    static int[] PathGroups(Part p)
+    {
+        var path = Path.Combine(p.Dir, LightTransferFiles.Folder, "lights.json");
+        var r = new JsonFields(path, "render the shard again with the lights output");
+        var json = JsonFields.ParseFile(path, "lights.json", r.Hint);
+        return [r.Array(json, "lights", "$").Count + 1, r.Int(json, "sub_bands", "$", 1, 1 << 20)];
+    }
+
+    /// <summary>
+    /// spectral.npy and the other H × W × … float32 arrays: the whole array's header, then the shards' C-order rows in order
+    /// (each shard is whole rows), copied by offset.
+    /// </summary>
+    static void MergeNpy(List<Part> parts, string file, string target, int width, int height, params int[] inner)
     {
         var buffer = new byte[1 << 22];
+        long perPixel = inner.Aggregate(1L, (a, b) => a * b);
         AtomicFile.Write(target, output =>
         {
-            output.Write(NpyWriter.Preamble([height, width, bands]));
+            output.Write(NpyWriter.Preamble([height, width, .. inner]));
             foreach (var p in parts)
             {
                 using var fs = new FileStream(Path.Combine(p.Dir, file), FileMode.Open, FileAccess.Read, FileShare.Read, 1 << 16);
-                long start = NpyWriter.Preamble([p.Crop.Height, width, bands]).Length, bytes = 4L * width * p.Crop.Height * bands;
+                long start = NpyWriter.Preamble([p.Crop.Height, width, .. inner]).Length, bytes = 4L * width * p.Crop.Height * perPixel;
                 if (fs.Length != start + bytes) throw new InputException(fs.Name, $"has {fs.Length} bytes, {start + bytes} expected (half-written shard)", "the shard was not finished: render it again");
                 fs.Position = start;
                 Copy(fs, output, bytes, buffer);

@@ -39,6 +39,11 @@ public static class ExactChannelSignals
         Relighting.Source src;
         try { src = Relighting.Open(dir); }
         catch (InputException e) { reason = $"the render folder cannot be rebuilt ({e.Message})"; return null; }
+        if (IsPath(src))
+        {   // Its light is every bounce of the rendering equation, not eq. 2's terms (a light × a material × a factor).
+            reason = "a path render's radiance is not a sum of eq. 2's terms (light × material × factor), which the exact route integrates; the band cube is the camera's input";
+            return null;
+        }
         Scene scene;
         LightTransfer transfer;
         string from;
@@ -60,6 +65,18 @@ public static class ExactChannelSignals
         catch (InputException e) { reason = $"the render's scene cannot be rebuilt for its eq. 2 terms ({e.Message})"; return null; }
         return Compute(cs, sensor, scene, transfer, from, threads, out reason);
     }
+
+    /// <summary>Whether the render folder <paramref name="dir"/> holds a path render (the camera's band route then reads its white off the chart).</summary>
+    public static bool IsPathRender(string dir)
+    {
+        try { return IsPath(Relighting.Open(dir)); }
+        catch (InputException) { return PathTransferFiles.IsPath(dir); }
+    }
+
+    /// <summary>A path render: its lights/ are a path transfer, or its scene names the path integrator, or its sampler is the path tracer's.</summary>
+    static bool IsPath(Relighting.Source src) => PathTransferFiles.IsPath(src.Dir)
+        || src.Scene.ToJson()["integrator"] is { } i && ((i as System.Text.Json.Nodes.JsonValue)?.ToString() ?? (string?)i["type"]) == "path"
+        || src.Manifest.Sampling?.Sampler == "sobol";
 
     /// <summary>
     /// The exact route from a scene and its per-light transfer (<paramref name="from"/> says where it came from: a folder's

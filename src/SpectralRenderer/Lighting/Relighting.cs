@@ -46,6 +46,9 @@ public static class Relighting
         foreach (var c in changes)
         {
             int k = Array.IndexOf(src.LightNames, c.Light);
+            if (k < 0 && NotRelightable(src, c.Light) is { } what)
+                throw new InputException($"--light {c.Light}", $"'{c.Light}' is {what}: a relight changes the scene's lights (point, spot, directional, goniometric); emitting surfaces and the sky are kept as rendered",
+                    $"change it in the scene file and render again; relightable lights: {string.Join(", ", src.LightNames)}");
             if (k < 0)
                 throw new InputException($"--light {c.Light}", $"the render has no light named '{c.Light}'",
                     InputException.DidYouMean(c.Light, src.LightNames) is { } d ? d : $"its lights are: {string.Join(", ", src.LightNames)}");
@@ -54,6 +57,14 @@ public static class Relighting
         }
         if (white is not null) Check(src, white, "--white");
         return SceneLoader.Parse(src.Scene.WithLights(edits, white), src.ScenePath, src.Overrides);
+    }
+
+    /// <summary>What <paramref name="name"/> is when it is a source of light a relight keeps (an emitting material, the sky), else null.</summary>
+    static string? NotRelightable(Source src, string name)
+    {
+        var doc = src.Scene.ToJson();
+        if (doc["materials"]?[name] is JsonObject m && m["emission"] is not null) return "an emitting material (an area light)";
+        return name is "sky" or "background" && (doc["sky"] is not null || doc["background"] is not null) ? "the scene's sky (its background)" : null;
     }
 
     /// <summary>A spectrum named on the command line resolves (or is one of the scene's own named spectra).</summary>
@@ -68,6 +79,8 @@ public static class Relighting
         string commandLine, CancellationToken cancel = default, bool metrics = false)
     {
         var scene = ChangedScene(src, changes, white);
+        scene.Output.Products &= ~OutputProducts.Noise;   // measured from a render's samples: a relit render has none to write
+        if (PathTransferFiles.IsPath(src.Dir)) return WritePath(src, scene, changes, white, outDir, commandLine, cancel, metrics);
         var clock = System.Diagnostics.Stopwatch.StartNew();
         var transfer = LightTransferFiles.Read(src.Dir, scene);
         if (transfer.Width != scene.Camera.Width || transfer.Height != scene.Camera.Height || transfer.Bands != scene.Bands)
@@ -91,7 +104,7 @@ public static class Relighting
         var copied = (reuse?.Names ?? Enumerable.Empty<string>()).Concat(transfer.StoredIn is null ? [] : LightTransferFiles.Arrays.Select(f => $"{LightTransferFiles.Folder}/{f}"));
         string? metricsCsv = null;
         RelightMetrics? metricsRecord = null;
-        if (metrics) (metricsRecord, metricsCsv) = Metrics(src, scene, transfer, result.Xyz!);
+        if (metrics) (metricsRecord, metricsCsv) = Metrics(src, scene, transfer.ObjectIds, transfer.Relight(ChangedScene(src, [], null)).Xyz, result.Xyz!);
         job.RunRecord = new ManifestRun
         {
             CommandLine = commandLine,
@@ -108,6 +121,68 @@ public static class Relighting
                 Metrics = metricsRecord,
                 // Which files were copied from the source (no light changes them; see Reusable), not encoded again.
                 CopiedFiles = copied.Order(StringComparer.Ordinal).ToArray(),
+            },
+        };
+        var files = job.Write(cancel).ToList();
+        if (metricsCsv is not null)
+        {
+            AtomicFile.WriteAllText(Path.Combine(outDir, "relight-metrics.csv"), metricsCsv);
+            files.Add("relight-metrics.csv");
+        }
+        return (scene, files, compute);
+    }
+
+    /// <summary>
+    /// Relights a path render (lights/ of kind "path", <see cref="PathTransfer"/>): the scene's lights (point, spot,
+    /// directional, goniometric at its own spectrum) take new spectra and intensities, 0 switching one off; the emitters' and
+    /// the sky's light is kept as rendered (it is not a scene light: relight refuses no name of it, it has none).
+    /// </summary>
+    static (Scene Scene, List<string> Files, TimeSpan Compute) WritePath(Source src, Scene scene, IReadOnlyList<LightChange> changes, string? white,
+        string outDir, string commandLine, CancellationToken cancel, bool metrics)
+    {
+        foreach (var c in changes)
+            if (c.Spectrum is not null && scene.Lights[Array.IndexOf(src.LightNames, c.Light)] is GoniometricLight)
+                throw new InputException($"--light {c.Light}", $"light '{c.Light}' is goniometric: its candela are radiance per lumen of its spectrum, so a new spectrum rescales its path weights, which a path render's transfer holds",
+                    "give it a new --intensity only, or render the scene again with the new spectrum");
+        var clock = System.Diagnostics.Stopwatch.StartNew();
+        var transfer = PathTransferFiles.Read(src.Dir, scene);
+        if (transfer.FilmWidth != scene.Camera.Width || transfer.FilmHeight != scene.Camera.Height)
+            throw new InputException(src.Dir, $"its lights/ are {transfer.FilmWidth}×{transfer.FilmHeight} but the scene rebuilds as {scene.Camera.Width}×{scene.Camera.Height}",
+                "the scene file changed since the render; render again");
+        if (Path.GetFullPath(outDir) == Path.GetFullPath(src.Dir))
+            throw new InputException(outDir, "is the folder being relit", "write the relit render to another folder with -o");
+        Directory.CreateDirectory(outDir);
+        var reuse = Reusable(src, scene, transfer.Region);
+        var job = Pipeline.RenderJob.Load(new Pipeline.RenderRequest
+        {
+            Scene = scene,
+            ScenePath = src.ScenePath,
+            OutDir = outDir,
+            Integrator = "path",
+            FromTransfer = new Pipeline.TransferSource(null, reuse, transfer),
+            Detail = Pipeline.RunDetail.None,
+        });
+        var result = job.Render(cancel: cancel);
+        var compute = clock.Elapsed;
+        string? metricsCsv = null;
+        RelightMetrics? metricsRecord = null;
+        if (metrics) (metricsRecord, metricsCsv) = Metrics(src, scene, transfer.ObjectIds, transfer.Relight(ChangedScene(src, [], null)).Xyz, result.Xyz!);
+        job.RunRecord = new ManifestRun
+        {
+            CommandLine = commandLine,
+            HasOverrides = true,
+            Overrides = src.Manifest.Run?.Overrides,
+            Relit = new ManifestRelit
+            {
+                From = Path.GetFullPath(src.Dir),
+                FromCreatedUtc = src.Manifest.CreatedUtc,
+                Method = "per-light transfer of a path render (lights/transfer.npy): on the fine grid L_f = F_f + sum_k T_k,f * E_k,f with E_k the new " +
+                    "lights' spectra x intensities (emitters and sky F as rendered), reduced to the bands and XYZ as the film is; no rays traced",
+                Changes = changes.Select(c => new ManifestLightChange(c.Light, c.Spectrum, c.Intensity)).ToArray(),
+                White = white,
+                ComputeSeconds = compute.TotalSeconds,
+                Metrics = metricsRecord,
+                CopiedFiles = (reuse?.Names ?? Enumerable.Empty<string>()).Order(StringComparer.Ordinal).ToArray(),
             },
         };
         var files = job.Write(cancel).ToList();
@@ -177,16 +252,14 @@ public static class Relighting
     /// object the ΔE00 (CIEDE2000, Lab on the relit scene's white) between each pixel's colour in the source render and
     /// in the relit one (mean and maximum over the pixels whose centre ray sees the object).
     /// </summary>
-    public static (RelightMetrics Record, string Csv) Metrics(Source src, Scene relit, LightTransfer transfer, float[] relitXyz)
+    public static (RelightMetrics Record, string Csv) Metrics(Source src, Scene relit, int[] objectIds, float[] xyz0, float[] relitXyz)
     {
-        var original = ChangedScene(src, [], null);
-        var (_, xyz0, _) = transfer.Relight(original);
         var white = relit.Colorimeter.White;
         int objects = relit.Objects.Count;
         var sum = new double[objects]; var max = new double[objects]; var count = new int[objects];
-        for (int i = 0; i < transfer.ObjectIds.Length; i++)
+        for (int i = 0; i < objectIds.Length; i++)
         {
-            int o = transfer.ObjectIds[i];
+            int o = objectIds[i];
             if (o < 0) continue;
             var a = Color.Lab.FromXyz(new Color.Xyz(xyz0[3 * i], xyz0[3 * i + 1], xyz0[3 * i + 2]), white);
             var b = Color.Lab.FromXyz(new Color.Xyz(relitXyz[3 * i], relitXyz[3 * i + 1], relitXyz[3 * i + 2]), white);

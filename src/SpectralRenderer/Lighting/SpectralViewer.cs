@@ -53,7 +53,8 @@ public static class SpectralViewer
         };
 
         var lightsJson = Path.Combine(dir, LightTransferFiles.Folder, "lights.json");
-        JsonObject? transfer = File.Exists(lightsJson) ? JsonNode.Parse(File.ReadAllText(lightsJson))!.AsObject() : null;
+        // A path render's transfer (lights.json of kind path) has no eq. 2 components for the page's sliders: the page shows its cube.
+        JsonObject? transfer = File.Exists(lightsJson) && !PathTransferFiles.IsPath(dir) ? JsonNode.Parse(File.ReadAllText(lightsJson))!.AsObject() : null;
         var objects = new JsonArray();
         foreach (var o in manifest.Objects)
         {

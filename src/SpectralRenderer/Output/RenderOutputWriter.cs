@@ -26,8 +26,9 @@ public static class RenderOutputWriter
     public static string EngineBuild { get; } = typeof(RenderOutputWriter).Assembly.ManifestModule.ModuleVersionId.ToString("N");
 
     public static List<string> Write(Scene scene, RenderResult result, string outDir, ManifestRun? run = null, CancellationToken cancel = default,
-        LightTransfer? transfer = null, ReusedFiles? reuse = null, IReadOnlyList<OutputProduct>? named = null, RenderTracer? tracer = null) =>
-        Write(scene, result, OutputFolder.Begin(outDir), run, cancel, transfer, reuse, named, tracer);
+        LightTransfer? transfer = null, ReusedFiles? reuse = null, IReadOnlyList<OutputProduct>? named = null, RenderTracer? tracer = null,
+        PathTransfer? pathTransfer = null) =>
+        Write(scene, result, OutputFolder.Begin(outDir), run, cancel, transfer, reuse, named, tracer, pathTransfer);
 
     /// <summary>
     /// Writes the render into <paramref name="folder"/>'s staging folder and swaps it in whole (<see cref="OutputFolder"/>).
@@ -37,10 +38,11 @@ public static class RenderOutputWriter
     /// <param name="named">Products asked for by name beyond the scene's formats (<see cref="OutputProductTable.Named"/>).</param>
     /// <param name="tracer">The render's geometry and integrator, for products that trace rays (photometry's illuminance).</param>
     public static List<string> Write(Scene scene, RenderResult result, OutputFolder folder, ManifestRun? run = null, CancellationToken cancel = default,
-        LightTransfer? transfer = null, ReusedFiles? reuse = null, IReadOnlyList<OutputProduct>? named = null, RenderTracer? tracer = null)
+        LightTransfer? transfer = null, ReusedFiles? reuse = null, IReadOnlyList<OutputProduct>? named = null, RenderTracer? tracer = null,
+        PathTransfer? pathTransfer = null)
     {
         List<string> written;
-        try { written = WriteFiles(scene, result, folder.Staging, run, cancel, transfer, reuse, named, tracer); }
+        try { written = WriteFiles(scene, result, folder.Staging, run, cancel, transfer, reuse, named, tracer, pathTransfer); }
         catch (OperationCanceledException e) when (e is not InterruptedException)
         {
             folder.Abandon();
@@ -109,7 +111,7 @@ public static class RenderOutputWriter
     }
 
     static List<string> WriteFiles(Scene scene, RenderResult result, string outDir, ManifestRun? run, CancellationToken cancel, LightTransfer? transfer,
-        ReusedFiles? reuse, IReadOnlyList<OutputProduct>? named, RenderTracer? tracer)
+        ReusedFiles? reuse, IReadOnlyList<OutputProduct>? named, RenderTracer? tracer, PathTransfer? pathTransfer)
     {
         var products = OutputProductTable.For(scene.Output.Products, named);
         var needs = ProductInputs.None;
@@ -142,6 +144,7 @@ public static class RenderOutputWriter
             Xyz = xyz,
             Preview = encoder,
             Transfer = transfer,
+            PathTransfer = pathTransfer,
             Tracer = tracer,
             Reuse = reuse,
             Cancel = cancel,

@@ -34,6 +34,8 @@ public sealed class RenderJob
     public IIntegrator? Integrator { get; private set; }
     public RenderResult? Result { get; private set; }
     public LightTransfer? Transfer { get; private set; }
+    /// <summary>A path render's per-light transfer (the lights product under the path integrator).</summary>
+    public PathTransfer? PathTransfer { get; private set; }
     public double? TransferSeconds { get; private set; }
     /// <summary>render.json's "run" as it will be written; a caller may add to it before <see cref="Write"/>.</summary>
     public ManifestRun? RunRecord { get; set; }
@@ -95,16 +97,22 @@ public sealed class RenderJob
         if (Request.Integrator is null && Scene.Integrator is { } chosen && !Integrators.Has(chosen.Name))
             throw new InputException($"{Scene.SourcePath}: $.integrator", $"unknown integrator '{chosen.Name}'",
                 $"known integrators: {string.Join(", ", Integrators.Names)}");
-        if (IntegratorName != Integrators.Default && (Scene.Output.Products & OutputProducts.Lights) != 0)
-            throw new InputException("--formats", $"the per-light outputs (lights) are the Whitted model's transfer; the {IntegratorName} integrator does not record one",
-                "leave lights out of the formats, or render with --integrator whitted");
+        bool lights = (Scene.Output.Products & OutputProducts.Lights) != 0;
+        if (IntegratorName is not (Integrators.Default or "path") && lights)
+            throw new InputException("--formats", $"the per-light outputs (lights) are recorded by the whitted and path integrators; the {IntegratorName} integrator does not record one",
+                "leave lights out of the formats, or render with --integrator whitted or path");
+        if (IntegratorName == "path" && lights && Scene.TargetError > 0)
+            throw new InputException("--target-error", "a path render's per-light transfer (lights) needs the same samples in every pixel: adaptive sampling stops a pixel by its luminance, which follows the lights' spectra, so a relight could not equal a render",
+                "leave out --target-error (fixed --spp), or leave lights out of the formats");
         var products = Scene.Output.Products;
         if (Shard is not null && (products & OutputProducts.Bands) != 0 && (products & (OutputProducts.Envi | OutputProducts.Npy)) == 0)
             throw new InputException("--shard",
                 "band images need a float cube in each shard: merge rescales them to the whole image's brightest value", "add envi or npy to --formats");
-        if (Crop is not null && (products & OutputProducts.Lights) != 0)
-            throw new InputException("--formats", "the per-light outputs (lights) are written for whole renders only, not for a crop or shard",
-                "render lights without --crop/--shard");
+        if (Crop is not null && lights && !(Shard is not null && IntegratorName == "path"))
+            throw new InputException("--formats", IntegratorName == "path"
+                    ? "a path render's per-light outputs (lights) are written for whole renders and shards, not for a crop"
+                    : "the per-light outputs (lights) are written for whole renders only, not for a crop or shard",
+                "render lights without --crop" + (IntegratorName == "path" ? "" : "/--shard"));
         if ((products & OutputProducts.Noise) != 0 && Scene.Camera.SamplesPerPixel < 2)
             throw new InputException("--formats", $"noise is each pixel's standard error from its samples and needs at least 2 samples per pixel, found spp {Scene.Camera.SamplesPerPixel}",
                 "give --spp 2 or more (or the scene's camera.spp), or leave noise out of the formats");
@@ -160,7 +168,8 @@ public sealed class RenderJob
     /// <summary>Renders the film (or recombines it from the request's transfer); may be called again (bench repeats).</summary>
     public RenderResult Render(RenderObserver? observer = null, CancellationToken cancel = default)
     {
-        if (Request.FromTransfer is { } source) return Result = FromTransfer(source.Transfer);
+        if (Request.FromTransfer is { Path: { } path }) return Result = FromPathTransfer(path);
+        if (Request.FromTransfer is { Transfer: { } source }) return Result = FromTransfer(source);
         Build();
         Result = null;   // a repeated render lets the previous film go first
         int done = 0, total = 0;
@@ -205,6 +214,31 @@ public sealed class RenderJob
         };
     }
 
+    /// <summary>The relit film of a path render: its transfer under the scene's lights; the object ids as traced.</summary>
+    RenderResult FromPathTransfer(PathTransfer transfer)
+    {
+        var clock = Stopwatch.StartNew();
+        var (image, xyz) = transfer.Relight(Scene);
+        PathTransfer = transfer;
+        int n = transfer.Region.Width * transfer.Region.Height;
+        // The lit masks as traced (geometry: no light's spectrum changes them); no highlights (the path tracer has no eq. 2 terms).
+        var highlights = new byte[n];
+        Array.Fill(highlights, PixelInfo.Highlight(0, 0, (float)Scene.Output.HighlightFraction));
+        return new RenderResult
+        {
+            Image = image,
+            Xyz = xyz,
+            ObjectIds = transfer.ObjectIds,
+            LitMasks = LitMasks.From(transfer.LitMasks, Scene.Lights.Count),
+            Highlights = highlights,
+            Rays = new RayCounters(),
+            Elapsed = clock.Elapsed,
+            Threads = Environment.ProcessorCount,
+            Tiles = 0,
+            Crop = transfer.Region,
+        };
+    }
+
     /// <summary>
     /// The transfer when the lights product is asked for, then every product and render.json into the folder, swapped in whole.
     /// </summary>
@@ -213,7 +247,14 @@ public sealed class RenderJob
         var result = Result ?? throw new InvalidOperationException("render before writing");
         if (Request.OutDir is null) return Files;
         Begin();
-        if (Transfer is null && (Scene.Output.Products & OutputProducts.Lights) != 0 && Geometry is not null)
+        if (PathTransfer is null && (Scene.Output.Products & OutputProducts.Lights) != 0 && Integrator is PathIntegrator path)
+        {
+            // A path render's transfer: its camera samples traced again (the same paths), each light's weights kept apart.
+            var clock = Stopwatch.StartNew();
+            PathTransfer = PathTransfer.Trace(Scene, path, Request.Threads, cancel, Crop);
+            TransferSeconds = clock.Elapsed.TotalSeconds;
+        }
+        else if (Transfer is null && (Scene.Output.Products & OutputProducts.Lights) != 0 && Geometry is not null)
         {
             // The per-light transfer (opt-in): the same camera rays traced once more, recording eq. 2's factors per light.
             var clock = Stopwatch.StartNew();
@@ -223,7 +264,7 @@ public sealed class RenderJob
         RunRecord ??= Record(result);
         var writeClock = Stopwatch.StartNew();
         Files = RenderOutputWriter.Write(Scene, result, _folder!, RunRecord, cancel, Transfer, Request.FromTransfer?.Reuse, NamedProducts,
-            Geometry is not null && Integrator is not null ? new RenderTracer(Geometry, Integrator, Request.Threads) : null);
+            Geometry is not null && Integrator is not null ? new RenderTracer(Geometry, Integrator, Request.Threads) : null, PathTransfer);
         WriteSeconds = writeClock.Elapsed.TotalSeconds;
         return Files;
     }

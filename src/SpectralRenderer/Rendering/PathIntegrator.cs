@@ -23,7 +23,7 @@ namespace SpectralRenderer.Rendering;
 /// any thread count, tile order or shard; nothing is allocated per path.
 /// </summary>
 [CompiledAtFirstCall]
-public sealed class PathIntegrator : IIntegrator
+public sealed class PathIntegrator : IAnalysisIntegrator
 {
     readonly SceneGeometry _geometry;
     readonly FineGrid _grid;
@@ -116,13 +116,114 @@ public sealed class PathIntegrator : IIntegrator
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public int Radiance(in CameraSample sample, Span<float> result, Span<float> scratch, ref RayCounters counters)
     {
+        var l = scratch[.._padded];
+        l.Clear();
+        var sink = new FilmSink(l);
+        int first = Walk(ref sink, in sample, scratch, ref counters);
+        _grid.Reduce(l, result);
+        return first;
+    }
+
+    /// <summary>
+    /// The centre ray: its radiance as <see cref="Radiance(in CameraSample, Span{float}, Span{float}, ref RayCounters)"/>,
+    /// and the lit masks (<see cref="LitMask"/>). The path tracer has no eq. 2 terms, so no highlight.
+    /// </summary>
+    public int Radiance(in CameraSample sample, Span<float> result, Span<float> scratch, ref RayCounters counters, ref PixelInfo info)
+    {
+        int first = Radiance(in sample, result, scratch, ref counters);
+        info.LitMask = LitMask(in sample);
+        return first;
+    }
+
+    /// <summary>
+    /// The scene lights (bit k = light k, the first 32) that reach the camera ray's first surface point directly, as the
+    /// Whitted model's masks say it (mask-lit-K.png, the recovery's lit and shadow regions): the light's centre on the
+    /// ray's side of the surface, inside its cone, the shadow ray unblocked. Its rays are not counted (analysis only).
+    /// </summary>
+    internal uint LitMask(in CameraSample sample)
+    {
+        var traced = sample.Ray;
+        if (_lights.Length == 0 || !_geometry.Intersect(ref traced, out var hit)) return 0;
+        var p = hit.Position;
+        var ng = hit.GeometricNormal;
+        var wo = -sample.Ray.Direction;
+        var front = Vector3.Dot(hit.Normal, wo) >= 0 ? hit.Normal : -hit.Normal;
+        uint mask = 0;
+        for (int k = 0; k < Math.Min(_lights.Length, 32); k++)
+        {
+            if (!_lights[k].Sample(p, new Vector2(0.5f, 0.5f), out var inc) || !(inc.Factor > 0) || Vector3.Dot(front, inc.Direction) <= 0) continue;
+            var origin = p + (Vector3.Dot(ng, inc.Direction) >= 0 ? 1 : -1) * _geometry.Epsilon * ng;
+            var shadow = new Ray(origin, inc.Direction);
+            if (!float.IsInfinity(inc.Distance))
+            {
+                var towards = p + inc.Distance * inc.Direction - origin;
+                float length = towards.Length();
+                shadow = new Ray(origin, towards / length, length - 2 * _geometry.Epsilon);
+            }
+            if (!_geometry.Occluded(shadow)) mask |= 1u << k;
+        }
+        return mask;
+    }
+
+    /// <summary>Scene lights whose spectra a relight may change (their transfer is kept apart): the scene's lights, in order.</summary>
+    public int TransferLights => _lights.Length;
+
+    /// <summary>The fine grid's sub-bands (the transfer's spectral resolution).</summary>
+    internal FineGrid Grid => _grid;
+
+    /// <summary>
+    /// One camera sample split by light (the per-light transfer of a path render): for each scene light k the path
+    /// weights T_k,f (β·f·|cos θ|·w/(P(light)·p)·factor, without the light's spectrum) into <paramref name="groups"/>
+    /// [k·padded, (k+1)·padded), and everything else — emitters and the sky, with their spectra — into the last slot
+    /// [K·padded, (K+1)·padded). The film's walk (the same random numbers, the same decisions, none of
+    /// which look at a light's spectrum), so Σ_k T_k ⊙ E_k + fixed is its fine radiance. <paramref name="groups"/> is cleared.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    internal int Transfer(in CameraSample sample, Span<float> groups, Span<float> scratch, ref RayCounters counters)
+    {
+        groups.Clear();
+        var sink = new TransferSink(groups, _padded, _lights.Length);
+        return Walk(ref sink, in sample, scratch, ref counters);
+    }
+
+    /// <summary>What a path does with the light it finds: a film sums it; the per-light transfer keeps each scene light's apart.</summary>
+    interface IPathSink
+    {
+        /// <summary>β ⊙ L_e · w: an emitter or the sky reached by the path.</summary>
+        void Emitted(Span<float> beta, float[] le, float w);
+        /// <summary>β ⊙ f ⊙ E · s: next-event estimation of light <paramref name="light"/> (−1: an emitter or the sky).</summary>
+        void NextEvent(int light, Span<float> beta, Span<float> f, float[] radiance, float s);
+    }
+
+    ref struct FilmSink(Span<float> l) : IPathSink
+    {
+        readonly Span<float> _l = l;
+        public readonly void Emitted(Span<float> beta, float[] le, float w) => AddProduct(_l, beta, le, w);
+        public readonly void NextEvent(int light, Span<float> beta, Span<float> f, float[] radiance, float s) =>
+            AddProduct3(_l, beta, f, radiance, s);
+    }
+
+    ref struct TransferSink(Span<float> groups, int padded, int lights) : IPathSink
+    {
+        readonly Span<float> _groups = groups;
+        public readonly void Emitted(Span<float> beta, float[] le, float w) => AddProduct(_groups.Slice(lights * padded, padded), beta, le, w);
+        public readonly void NextEvent(int light, Span<float> beta, Span<float> f, float[] radiance, float s)
+        {
+            if (light < 0) AddProduct3(_groups.Slice(lights * padded, padded), beta, f, radiance, s);
+            else AddProduct2(_groups.Slice(light * padded, padded), beta, f, s);
+        }
+    }
+
+    /// <summary>The path of one camera sample; the light it finds goes to <paramref name="sink"/>. Returns the first object hit.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    int Walk<TSink>(ref TSink sink, in CameraSample sample, Span<float> scratch, ref RayCounters counters)
+        where TSink : IPathSink, allows ref struct
+    {
         int n = _padded;
-        var l = scratch[..n];
         var beta = scratch.Slice(n, n);
         var f = scratch.Slice(2 * n, n);
         var mirror = scratch.Slice(3 * n, n);
         var transmit = scratch.Slice(4 * n, n);
-        l.Clear();
         beta.Clear();
         beta[.._grid.Count].Fill(1);   // the padding stays 0
         var sampler = sample.Sampler;
@@ -138,11 +239,11 @@ public sealed class PathIntegrator : IIntegrator
             if (!_geometry.Intersect(ref traced, out var hit))
             {
                 // The ray escapes: the sky (background) radiance, MIS-weighted against its own sampling.
-                if (depth == 0) AddProduct(l, beta, _background, 1);
+                if (depth == 0) sink.Emitted(beta, _background, 1);
                 else if (_sky is not null)
                 {
                     float w = deltaBounce ? 1 : PowerHeuristic(bsdfPdf, pick * SkyPdf(previousFront, ray.Direction));
-                    AddProduct(l, beta, _sky, w);
+                    sink.Emitted(beta, _sky, w);
                 }
                 break;
             }
@@ -161,7 +262,7 @@ public sealed class PathIntegrator : IIntegrator
                     int e = _emitterOf[hit.Object];
                     w = PowerHeuristic(bsdfPdf, e >= 0 ? pick * _emitters[e].Pdf(previous, p, ng) : 0);
                 }
-                AddProduct(l, beta, le, w);
+                sink.Emitted(beta, le, w);
             }
             if (_maxDepth >= 0 && depth >= _maxDepth) break;
             if (counters.BudgetSpent) { counters.OverBudget = true; break; }
@@ -186,7 +287,7 @@ public sealed class PathIntegrator : IIntegrator
             float uLight = sampler.Next1D();
             var uPoint = sampler.Next2D();
             if (_smooth[m] && _lightCount > 0)
-                NextEvent(bsdf, p, ng, ns, front, wo, uLight, new Vector2(uPoint.U, uPoint.V), pick, smoothProbability, l, beta, f, ref counters);
+                NextEvent(ref sink, bsdf, p, ng, ns, front, wo, uLight, new Vector2(uPoint.U, uPoint.V), pick, smoothProbability, beta, f, ref counters);
 
             // Continue: choose a lobe, then a direction from it; β gains f·|cos θ|/pdf per band.
             float uLobe = sampler.Next1D();
@@ -230,7 +331,6 @@ public sealed class PathIntegrator : IIntegrator
             ray = new Ray(p + side * _geometry.Epsilon * ng, wi);
             counters.Secondary++;
         }
-        _grid.Reduce(l, result);
         return first;
     }
 
@@ -239,8 +339,8 @@ public sealed class PathIntegrator : IIntegrator
     /// emitter's point, or a sky direction, each unshadowed.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    void NextEvent(Bsdf bsdf, Vector3 p, Vector3 ng, Vector3 ns, Vector3 front, Vector3 wo, float uLight, Vector2 u, float pick,
-        float smoothProbability, Span<float> l, Span<float> beta, Span<float> f, ref RayCounters counters)
+    void NextEvent<TSink>(ref TSink sink, Bsdf bsdf, Vector3 p, Vector3 ng, Vector3 ns, Vector3 front, Vector3 wo, float uLight, Vector2 u,
+        float pick, float smoothProbability, Span<float> beta, Span<float> f, ref RayCounters counters) where TSink : IPathSink, allows ref struct
     {
         int k = Math.Min((int)(uLight * _lightCount), _lightCount - 1);
         Vector3 wi;
@@ -287,7 +387,7 @@ public sealed class PathIntegrator : IIntegrator
         counters.Shadow++;
         if (_geometry.Occluded(shadow)) return;
         float w = delta ? 1 : PowerHeuristic(pick * pdf, smoothProbability * bsdf.Pdf(wo, wi, ns));
-        AddProduct3(l, beta, f, radiance, factor * cos * w / (pick * pdf));
+        sink.NextEvent(k < _lights.Length ? k : -1, beta, f, radiance, factor * cos * w / (pick * pdf));
     }
 
     /// <summary>The sky's sampling density: cosine-weighted about the front shading normal.</summary>
@@ -330,6 +430,14 @@ public sealed class PathIntegrator : IIntegrator
     {
         var d = V(dst); var va = V(a); var vb = V(b); var vc = V(c.AsSpan(0, dst.Length)); var vs = new Vector<float>(s);
         for (int i = 0; i < d.Length; i++) d[i] += va[i] * vb[i] * vc[i] * vs;
+    }
+
+    /// <summary>dst += a ⊙ b · s</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    static void AddProduct2(Span<float> dst, Span<float> a, Span<float> b, float s)
+    {
+        var d = V(dst); var va = V(a); var vb = V(b); var vs = new Vector<float>(s);
+        for (int i = 0; i < d.Length; i++) d[i] += va[i] * vb[i] * vs;
     }
 
     /// <summary>dst ⊙= a · s</summary>

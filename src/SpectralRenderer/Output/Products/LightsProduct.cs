@@ -11,7 +11,22 @@ public sealed class LightsProduct : OutputProduct
     public override void Write(ProductContext c, int part, Action<string> done)
     {
         if (c.Transfer is not null) LightTransferFiles.Write(c.Scene, c.Transfer, c.OutDir, done);
+        else if (c.PathTransfer is not null) PathTransferFiles.Write(c.Scene, c.PathTransfer, c.OutDir, done);
     }
+
+    /// <summary>A path scene's transfer: (K + 1) × F floats per pixel (the Whitted transfer's size is known only once traced).</summary>
+    public override IEnumerable<(string Part, long Bytes)> Memory(Scene scene, int threads) => scene.Integrator is { Name: "path" }
+        ? [("per-light transfer (path)", Rendering.PathTransfer.Bytes(scene, (long)scene.Camera.Width * scene.Camera.Height))]
+        : [];
+
+    /// <summary>Shards of a path render (the only lights a shard writes): the arrays by rows, lights.json the same in each.</summary>
+    public override ShardMerging Merging(string file) => file switch
+    {
+        "lights/" + PathTransferFiles.TransferFile => ShardMerging.PathTransfer,
+        "lights/" + PathTransferFiles.IdsFile => ShardMerging.PathIds,
+        "lights/lights.json" => ShardMerging.Copy,
+        _ => ShardMerging.None,
+    };
 
     public override bool Owns(string file) => file.StartsWith(LightTransferFiles.Folder + "/", StringComparison.Ordinal);
 }

@@ -44,6 +44,10 @@ public enum ShardMerging
     /// <summary>noise.img, the N + 1 planes by offset; noise.hdr with the whole height.</summary>
     NoiseEnvi,
     NoiseEnviHeader,
+    /// <summary>A path render's lights/transfer.npy (H × W × (K + 1) × F), row strips by offset.</summary>
+    PathTransfer,
+    /// <summary>A path render's lights/ids.npy (H × W × 3), row strips by offset.</summary>
+    PathIds,
 }
 
 /// <summary>Whether a relit render may copy a file from its source folder (written by the same build) instead of writing it.</summary>
@@ -71,6 +75,8 @@ public sealed class ProductContext
     public XyzPlanes? Xyz { get; init; }
     public DisplayEncoder? Preview { get; init; }
     public LightTransfer? Transfer { get; init; }
+    /// <summary>A path render's per-light transfer (the lights product of the path integrator).</summary>
+    public PathTransfer? PathTransfer { get; init; }
     /// <summary>The render's ray queries and integrator, for products that trace rays of their own (photometry); null in a relight.</summary>
     public RenderTracer? Tracer { get; init; }
     /// <summary>Files another folder holds exactly as this render would write them (relight): copied, not encoded.</summary>

@@ -1,0 +1,166 @@
+using System.Text.Json;
+using System.Text.Json.Nodes;
+using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Imaging;
+using SpectralRenderer.Rendering;
+using SpectralRenderer.Scenes;
+
+namespace SpectralRenderer.Output;
+
+/// <summary>
+/// A path render's per-light transfer (<see cref="PathTransfer"/>) in <c>lights/</c>:
+/// <list type="bullet">
+/// <item><c>lights.json</c>: <c>"kind": "path"</c>, the layout, the film and band counts, the internal grid (its width in nm,
+/// the sub-bands' edges), the lights (name, spectrum, band values) and the groups in file order (each light, then
+/// "emitters and sky").</item>
+/// <item><c>transfer.npy</c>: float32 [H, W, K + 1, F]: per pixel and light k its path weights T_k,f on the fine grid
+/// (W·m⁻²·sr⁻¹·nm⁻¹ of radiance per unit of the light's spectrum × intensity), then the emitters' and the sky's radiance F_f
+/// (W·m⁻²·sr⁻¹·nm⁻¹). The pixel's radiance on the grid is F_f + Σ_k T_k,f · E_k,f; an output band is the mean of its
+/// sub-bands.</item>
+/// <item><c>ids.npy</c>: float32 [H, W, 3]: the object index + 1 the centre ray hit (0 = background), then the lights that
+/// reach its surface point (bit k = light k) as two 16-bit halves, low then high (each exact in a float32).</item>
+/// </list>
+/// Rows of a shard's strip are the whole film's rows, so shards merge by offset.
+/// </summary>
+public static class PathTransferFiles
+{
+    public const string Kind = "path";
+    public const string TransferFile = "transfer.npy", IdsFile = "ids.npy";
+
+    const string Damaged = "lights/lights.json is not as a path render writes it: render the folder again with the lights output";
+
+    public static void Write(Scene scene, PathTransfer t, string outDir, Action<string> done)
+    {
+        var dir = Path.Combine(outDir, LightTransferFiles.Folder);
+        Directory.CreateDirectory(dir);
+        int h = t.Region.Height, w = t.Region.Width;
+        AtomicFile.Write(Path.Combine(dir, TransferFile), s => NpyWriter.Write(s, [h, w, t.Lights + 1, t.SubBands], t.Data));
+        done($"{LightTransferFiles.Folder}/{TransferFile}");
+        var ids = new float[3 * t.ObjectIds.Length];
+        for (int i = 0; i < t.ObjectIds.Length; i++)
+        {
+            ids[3 * i] = t.ObjectIds[i] + 1;
+            ids[3 * i + 1] = t.LitMasks[i] & 0xFFFF;
+            ids[3 * i + 2] = t.LitMasks[i] >> 16;
+        }
+        AtomicFile.Write(Path.Combine(dir, IdsFile), s => NpyWriter.Write(s, [h, w, 3], ids));
+        done($"{LightTransferFiles.Folder}/{IdsFile}");
+        AtomicFile.WriteAllText(Path.Combine(dir, "lights.json"), Describe(scene, t).ToJsonString(new JsonSerializerOptions { WriteIndented = true }));
+        done($"{LightTransferFiles.Folder}/lights.json");
+    }
+
+    /// <summary>lights.json of a path render (the whole film's: a shard's is the same).</summary>
+    public static JsonObject Describe(Scene scene, PathTransfer t)
+    {
+        var grid = new FineGrid(scene, t.SpectralGrid);
+        var lights = new JsonArray();
+        var groups = new JsonArray();
+        for (int k = 0; k < scene.Lights.Count; k++)
+        {
+            var l = scene.Lights[k];
+            lights.Add((JsonNode)new JsonObject
+            {
+                ["index"] = k,
+                ["name"] = l.Name,
+                ["kind"] = l.Type,
+                ["spectrum"] = l.Spectrum?.Name,
+                ["band_values"] = Arr(l.Intensity.AsSpan(0, scene.Bands)),
+            });
+            groups.Add((JsonNode)$"light {l.Name}");
+        }
+        groups.Add((JsonNode)"emitters and sky");
+        return new JsonObject
+        {
+            ["kind"] = Kind,
+            ["layout"] = "radiance on the fine grid L_f(pixel) = transfer[y, x, K, f] + sum over lights k < K of transfer[y, x, k, f] * E_k,f " +
+                "(E_k: light k's spectrum x intensity, exact sub-band means); band b = mean of its sub-bands; XYZ integrated on the fine grid",
+            ["width"] = t.FilmWidth,
+            ["height"] = t.FilmHeight,
+            ["bands"] = t.Bands,
+            ["spectral_grid_nm"] = t.SpectralGrid,
+            ["sub_bands"] = t.SubBands,
+            ["sub_band_edges_nm"] = new JsonArray(grid.Lower.Append(grid.Upper[^1]).Select(x => (JsonNode)JsonValue.Create(x)).ToArray()),
+            ["lights"] = lights,
+            ["groups"] = groups,
+            ["files"] = new JsonObject
+            {
+                ["transfer"] = "transfer.npy: float32 [H, W, K + 1, F]: light k's path weights T_k,f (radiance per unit of its spectrum x intensity), then the emitters' and sky's radiance (W m^-2 sr^-1 nm^-1)",
+                ["ids"] = "ids.npy: float32 [H, W, 3]: object index + 1 seen by the centre ray (0 = background), then the lit mask " +
+                    "(bit k = light k reaches that point) as its low and high 16 bits",
+            },
+        };
+    }
+
+    static JsonArray Arr(ReadOnlySpan<float> v)
+    {
+        var a = new JsonArray();
+        foreach (float x in v) a.Add((JsonNode)JsonValue.Create((double)x));
+        return a;
+    }
+
+    /// <summary>Whether <paramref name="outDir"/>'s lights/ is a path render's.</summary>
+    public static bool IsPath(string outDir)
+    {
+        var path = Path.Combine(outDir, LightTransferFiles.Folder, "lights.json");
+        if (!File.Exists(path)) return false;
+        try { return (string?)JsonNode.Parse(File.ReadAllText(path))?["kind"] == Kind; }
+        catch (Exception e) when (e is JsonException or InvalidOperationException or FormatException or ArgumentException) { return false; }   // the reader says what is wrong
+    }
+
+    /// <summary>Reads lights/ of a path render back, checked against <paramref name="scene"/> (sizes, lights, grid).</summary>
+    public static PathTransfer Read(string outDir, Scene scene)
+    {
+        var dir = Path.Combine(outDir, LightTransferFiles.Folder);
+        var jsonPath = Path.Combine(dir, "lights.json");
+        var json = JsonFields.ParseFile(jsonPath, "lights.json", Damaged);
+        var r = new JsonFields(jsonPath, Damaged);
+        int width = r.Int(json, "width", "$", 1, 32768), height = r.Int(json, "height", "$", 1, 32768), bands = r.Int(json, "bands", "$", 1, 100_000);
+        if (bands != scene.Bands) throw r.Bad("$.bands", $"is {bands}, but the scene rebuilds with {scene.Bands} bands");
+        int k = scene.Lights.Count;
+        r.Array(json, "lights", "$", k);
+        double gridWidth = r.Number(json, "spectral_grid_nm", "$", 1, 1000);
+        int sub = r.Int(json, "sub_bands", "$", 1, 1 << 20);
+        var grid = new FineGrid(scene, gridWidth);
+        if (grid.Count != sub) throw r.Bad("$.sub_bands", $"is {sub}, but the scene's grid of {gridWidth} nm has {grid.Count} sub-bands");
+
+        float[] Load(string file, int[] expected)
+        {
+            var path = Path.Combine(dir, file);
+            if (!File.Exists(path)) throw new InputException(outDir, $"misses {LightTransferFiles.Folder}/{file}", "render again with the lights output");
+            using var s = new FileStream(path, FileMode.Open, FileAccess.Read, FileShare.Read, bufferSize: 1);
+            var (shape, data) = NpyReader.Read(s, path);
+            if (!shape.SequenceEqual(expected))
+                throw new InputException(path, $"has shape ({string.Join(", ", shape)}), lights.json says ({string.Join(", ", expected)})", "the folder mixes two renders; render again");
+            return data;
+        }
+        var data = Load(TransferFile, [height, width, k + 1, sub]);
+        var ids = Load(IdsFile, [height, width, 3]);
+        var objectIds = new int[width * height];
+        var lit = new uint[objectIds.Length];
+        for (int i = 0; i < objectIds.Length; i++)
+        {
+            float id = ids[3 * i], low = ids[3 * i + 1], high = ids[3 * i + 2];
+            if (!(id >= 0 && id <= scene.Objects.Count && id == MathF.Floor(id)))
+                throw new InputException(Path.Combine(dir, IdsFile), $"pixel {i % width},{i / width}: object {id} is not 0 (background) or one of the scene's {scene.Objects.Count}",
+                    "the light-transfer files are damaged: render the folder again");
+            if (!(low >= 0 && low <= 0xFFFF && low == MathF.Floor(low) && high >= 0 && high <= 0xFFFF && high == MathF.Floor(high)))
+                throw new InputException(Path.Combine(dir, IdsFile), $"pixel {i % width},{i / width}: lit mask halves {low}, {high} are not whole numbers 0–65535",
+                    "the light-transfer files are damaged: render the folder again");
+            objectIds[i] = (int)id - 1;
+            lit[i] = (uint)low | (uint)high << 16;
+        }
+        return new PathTransfer
+        {
+            FilmWidth = width,
+            FilmHeight = height,
+            Region = PixelRect.Whole(width, height),
+            Bands = bands,
+            Lights = k,
+            SpectralGrid = gridWidth,
+            SubBands = sub,
+            Data = data,
+            ObjectIds = objectIds,
+            LitMasks = lit,
+        };
+    }
+}
