@@ -53,6 +53,13 @@ public static class ExactChannelSignals
             else
             {
                 scene = SceneLoader.Parse(src.Scene.WithLights([], null), src.ScenePath, src.Overrides with { LoadMeshes = true });
+                // The per-light transfer is the Whitted model's: a path-traced render (its scene's "integrator") is not a sum of
+                // those terms, so its band cube (exact means of the path's fine sub-bands) is the camera's input.
+                if (scene.Integrator is { Name: var name } && name != Integrators.Default)
+                {
+                    reason = $"the render's {name} integrator has no per-term light transfer (that is the {Integrators.Default} model's)";
+                    return null;
+                }
                 transfer = LightTransfer.Trace(scene, new SceneGeometry(scene), threads < 0 ? 0 : threads);
                 from = "the per-light transfer traced again from render.json's resolved scene (the render's rays)";
             }

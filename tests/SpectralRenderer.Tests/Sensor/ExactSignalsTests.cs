@@ -147,6 +147,28 @@ public class ExactSignalsTests
         }
     }
 
+    /// <summary>
+    /// A path-traced render is not a sum of the Whitted model's eq. 2 terms (the booth's light is an emitting material, no
+    /// light): the camera takes its band cube, says so on stderr and in camera.json, and the chart it sees is lit (before,
+    /// the exact route traced a transfer of no components and every signal was 0).
+    /// </summary>
+    [Fact]
+    public void PathRender_TakesTheBandRoute_AndSaysSo()
+    {
+        var dir = Reference.TempDir();
+        var (code, _, err) = CliRunner.Run("render", Repo.PathOf("scenes", "path-colorchecker-booth.json"), "-o", dir, "--width", "24", "--height", "16",
+            "--spp", "1", "--bands", "380:780:10", "--formats", "npy,aov", "--quiet");
+        Assert.True(code == 0, err);
+        var cam = Path.Combine(dir, "cam");
+        (code, _, err) = CliRunner.Run("camera", dir, "--sensor", "wheel-6", "--noise", "off", "-o", cam, "--off-axis", "none", "--psf", "none");
+        Assert.True(code == 0, err);
+        Assert.Contains("channel signals from the band cube (not exact): the render's path integrator", err);
+        var manifest = JsonNode.Parse(File.ReadAllText(Path.Combine(cam, "camera.json")))!;
+        Assert.Equal(RadianceCube.BandRoute, (string)manifest["simulation"]!["signal_route"]!);
+        var (_, raw) = NpyReader.Read(File.OpenRead(Path.Combine(cam, "raw.npy")));
+        Assert.True(raw.Max() > 100, $"peak {raw.Max()} DN: the booth is lit");
+    }
+
     static (double[] DeltaE, double Rmse) ColourAndRecovery(string render)
     {
         var cam = Path.Combine(render, "cam-wheel");
