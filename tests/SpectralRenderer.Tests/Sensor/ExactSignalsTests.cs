@@ -150,23 +150,41 @@ public class ExactSignalsTests
     /// <summary>
     /// A path-traced render is not a sum of the Whitted model's eq. 2 terms (the booth's light is an emitting material, no
     /// light): the camera takes its band cube, says so on stderr and in camera.json, and the chart it sees is lit (before,
-    /// the exact route traced a transfer of no components and every signal was 0).
+    /// the exact route traced a transfer of no components and every signal was 0). The same when the command line chose the
+    /// path integrator for a scene that names none (render.json's run.integrator; before, the chart's camera traced the
+    /// Whitted transfer of a path render), and the exact route again when it chose whitted for a scene that names path.
     /// </summary>
-    [Fact]
-    public void PathRender_TakesTheBandRoute_AndSaysSo()
+    [Theory]
+    [InlineData("path-colorchecker-booth.json", null, "bands")]
+    [InlineData("paper-3.1-colorchecker-d65.json", "path", "bands")]
+    [InlineData("path-colorchecker-booth.json", "whitted", "exact")]
+    public void PathRender_TakesTheBandRoute_AndSaysSo(string sceneFile, string? integrator, string route)
     {
         var dir = Reference.TempDir();
-        var (code, _, err) = CliRunner.Run("render", Repo.PathOf("scenes", "path-colorchecker-booth.json"), "-o", dir, "--width", "24", "--height", "16",
-            "--spp", "1", "--bands", "380:780:10", "--formats", "npy,aov", "--quiet");
+        var scene = Path.Combine(dir, "scene.json");
+        // The chart in physical radiometry, as the path integrator needs.
+        File.WriteAllText(scene, File.ReadAllText(Repo.PathOf("scenes", sceneFile))
+            .Replace("\"radiometry\": \"paper\"", "\"radiometry\": \"physical\"", StringComparison.Ordinal));
+        var render = Path.Combine(dir, "render");
+        string[] args = ["render", scene, "-o", render, "--width", "24", "--height", "16", "--spp", "1", "--bands", "380:780:10",
+            "--formats", "npy,aov", "--quiet"];
+        var (code, _, err) = CliRunner.Run(integrator is null ? args : [.. args, "--integrator", integrator]);
         Assert.True(code == 0, err);
+        Assert.Equal(integrator, (string?)JsonNode.Parse(File.ReadAllText(Path.Combine(render, "render.json")))!["run"]!["integrator"]);
         var cam = Path.Combine(dir, "cam");
-        (code, _, err) = CliRunner.Run("camera", dir, "--sensor", "wheel-6", "--noise", "off", "-o", cam, "--off-axis", "none", "--psf", "none");
+        (code, _, err) = CliRunner.Run("camera", render, "--sensor", "wheel-6", "--noise", "off", "-o", cam, "--off-axis", "none", "--psf", "none");
         Assert.True(code == 0, err);
-        Assert.Contains("channel signals from the band cube (not exact): the render's path integrator", err);
         var manifest = JsonNode.Parse(File.ReadAllText(Path.Combine(cam, "camera.json")))!;
-        Assert.Equal(RadianceCube.BandRoute, (string)manifest["simulation"]!["signal_route"]!);
+        string used = (string)manifest["simulation"]!["signal_route"]!;
+        if (route == "bands")
+        {
+            Assert.Contains("channel signals from the band cube (not exact): the render's path integrator", err);
+            Assert.Equal(RadianceCube.BandRoute, used);
+        }
+        else Assert.StartsWith("exact", used, StringComparison.Ordinal);
+        if (route == "exact") return;   // the booth by Whitted: its light is an emitter, which eq. 2 does not see
         var (_, raw) = NpyReader.Read(File.OpenRead(Path.Combine(cam, "raw.npy")));
-        Assert.True(raw.Max() > 100, $"peak {raw.Max()} DN: the booth is lit");
+        Assert.True(raw.Max() > 100, $"peak {raw.Max()} DN: the scene is lit");
     }
 
     static (double[] DeltaE, double Rmse) ColourAndRecovery(string render)
