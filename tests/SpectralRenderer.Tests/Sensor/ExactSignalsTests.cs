@@ -4,6 +4,7 @@ using SpectralRenderer.Analysis.Recovery;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Sensor;
 using SpectralRenderer.Tests.Cli;
+using Xunit.Abstractions;
 
 namespace SpectralRenderer.Tests.Sensor;
 
@@ -11,7 +12,7 @@ namespace SpectralRenderer.Tests.Sensor;
 /// Issue 24's exact route: each channel integrated at full spectral resolution per eq. 2 term, as exact colour is, so
 /// the signals do not depend on the band count; checked against the render's own exact XYZ and a 0.1 nm integral here.
 /// </summary>
-public class ExactSignalsTests
+public class ExactSignalsTests(ITestOutputHelper output)
 {
     const int Width = 90, Height = 60;
 
@@ -64,6 +65,7 @@ public class ExactSignalsTests
                     ratio ??= q;
                     worst = Math.Max(worst, Math.Abs(q / ratio.Value - 1));
                 }
+        output.WriteLine($"cie-xyz raw / exact XYZ at {bands}: largest relative deviation {worst:E3}");
         Assert.True(worst <= 1e-5, $"cie-xyz raw / exact XYZ varies by {worst:E3} relative at {bands}");
     }
 
@@ -80,6 +82,7 @@ public class ExactSignalsTests
         Assert.True(peak > 0 && peak < 4095, $"peak {peak} DN: the test wants an unclipped, lit chart");
         for (int i = 0; i < fine.Length; i++)
             if (fine[i] > 1e-3 * peak) worst = Math.Max(worst, Math.Abs(coarse[i] / fine[i] - 1));
+        output.WriteLine($"{sensor}: 5 bands vs 401 bands, largest relative difference {worst:E3}");
         Assert.True(worst <= 1e-5, $"{sensor}: 5 bands vs 401 bands differ by {worst:E3} relative");
     }
 
@@ -124,6 +127,7 @@ public class ExactSignalsTests
                     worst = Math.Max(worst, Math.Abs((dn - sensor.BlackLevel) / expected - 1));
                 }
             }
+            output.WriteLine($"{name}: noise-free signal vs the 0.1 nm integral, largest relative difference {worst:E3}");
             Assert.True(worst <= 1e-4, $"{name}: noise-free signal vs the 0.1 nm integral: {worst:E3} relative");
         }
     }
@@ -141,6 +145,8 @@ public class ExactSignalsTests
         foreach (var intensity in new[] { 0.01, 1, 100 })
         {
             var (de, rmse) = ColourAndRecovery(Chart("380:780:20", "physical", intensity, "npy,aov"));
+            output.WriteLine($"intensity {intensity}: largest |ΔE00 − paper's| {de.Zip(paperDe, (x, y) => Math.Abs(x - y)).Max():E2} " +
+                $"(paper mean {paperDe.Average():F3}), Wiener RMSE {rmse:F6} vs paper {paperRmse:F6}");
             for (int p = 0; p < de.Length; p++)
                 Assert.True(Math.Abs(de[p] - paperDe[p]) <= 0.01, $"intensity {intensity}, patch {p + 1}: ΔE00 {de[p]} vs paper {paperDe[p]}");
             Assert.True(Math.Abs(rmse - paperRmse) <= 1e-4, $"intensity {intensity}: Wiener RMSE {rmse} vs paper {paperRmse}");
