@@ -72,7 +72,8 @@ public static class ExactChannelSignals
     static bool HasTermTransfer(Relighting.Source src, Scene scene, out string reason)
     {
         string name = src.Manifest.Run?.Integrator ?? scene.Integrator?.Name ?? Integrators.Default;
-        reason = name == Integrators.Default ? "" : $"the render's {name} integrator has no per-term light transfer (that is the {Integrators.Default} model's)";
+        reason = name == Integrators.Default ? ""
+            : $"the render's {name} integrator has no per-term light transfer (that is the {Integrators.Default} model's)";
         return name == Integrators.Default;
     }
 

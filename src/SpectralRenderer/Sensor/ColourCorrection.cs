@@ -20,7 +20,8 @@ namespace SpectralRenderer.Sensor;
 /// </summary>
 public sealed class ColourCorrection
 {
-    ColourCorrection(double[] whiteRate, double[,] matrix, Xyz[] targets, double[][] signals, Xyz white, double whiteScale, bool exactSignals)
+    ColourCorrection(double[] whiteRate, double[,] matrix, Xyz[] targets, double[][] signals, Xyz white, double whiteScale,
+        bool exactSignals)
     {
         WhiteRate = whiteRate; Matrix = matrix; Targets = targets; TrainingSignals = signals; White = white; WhiteScale = whiteScale;
         ExactSignals = exactSignals;

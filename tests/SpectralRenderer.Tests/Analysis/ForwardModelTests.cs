@@ -29,7 +29,8 @@ public class ForwardModelTests(ITestOutputHelper output)
     static double At(int k) => 380 + (k + 0.5) * 0.1;
 
     /// <summary>A table's linear interpolant at the midpoints.</summary>
-    static double[] Sampled((double[] Wl, double[] V) t) => Enumerable.Range(0, Steps).Select(k => ExactSignalsTests.Lerp(t, At(k))).ToArray();
+    static double[] Sampled((double[] Wl, double[] V) t) =>
+        Enumerable.Range(0, Steps).Select(k => ExactSignalsTests.Lerp(t, At(k))).ToArray();
 
     static readonly Lazy<double[]> D65Sampled = new(() => Sampled(D65));
     static readonly Lazy<double[][]> PatchesSampled = new(() => Patches.Value.Select(Sampled).ToArray());
@@ -48,10 +49,12 @@ public class ForwardModelTests(ITestOutputHelper output)
         {
             double wl = At(k);
             if (zero && (wl < qe.Item1[0] || wl > qe.Item1[^1])) continue;
-            double eta = ch.PerEnergy ? ExactSignalsTests.Lerp(qe, wl) * SensorChannel.EnergyReferenceNm / wl : ExactSignalsTests.Lerp(qe, wl);
+            double eta = ExactSignalsTests.Lerp(qe, wl);
+            if (ch.PerEnergy) eta *= SensorChannel.EnergyReferenceNm / wl;
             f[k] = e[k] * eta * wl * 0.1;
         }
-        return rho is null ? [f.Sum()] : rho.Select(r => { double v = 0; for (int k = 0; k < Steps; k++) v += r[k] * f[k]; return v; }).ToArray();
+        return rho is null ? [f.Sum()]
+            : rho.Select(r => { double v = 0; for (int k = 0; k < Steps; k++) v += r[k] * f[k]; return v; }).ToArray();
     }
 
     /// <summary>The band means on <see cref="Grid"/> (20 nm: 200 midpoints each) of a sampled table.</summary>
@@ -70,7 +73,8 @@ public class ForwardModelTests(ITestOutputHelper output)
         Assert.Equal(81, model.Knots!.Length);   // rawtoaces: 380–780 nm every 5 nm
         var white = model.White();
         var rho = PatchesSampled.Value;
-        var s = Patches.Value.Select(r => Dense.Multiply(model.A, model.Knots.Select(k => ExactSignalsTests.Lerp(r, k)).ToArray())).ToArray();
+        var s = Patches.Value
+            .Select(r => Dense.Multiply(model.A, model.Knots.Select(k => ExactSignalsTests.Lerp(r, k)).ToArray())).ToArray();
         for (int c = 0; c < sensor.ChannelCount; c++)
         {
             double expected = Integrals(sensor.Channels[c], null)[0];
@@ -78,13 +82,15 @@ public class ForwardModelTests(ITestOutputHelper output)
             // The Ohta patches are tabulated on the same 5 nm knots, so their values there are the model's coordinates.
             var patches = Integrals(sensor.Channels[c], rho);
             for (int p = 0; p < patches.Length; p++)
-                Assert.True(Math.Abs(s[p][c] / patches[p] - 1) <= 1e-4, $"{preset} channel {c}, patch {p + 1}: {s[p][c]} vs the 0.1 nm integral {patches[p]}");
+                Assert.True(Math.Abs(s[p][c] / patches[p] - 1) <= 1e-4,
+                    $"{preset} channel {c}, patch {p + 1}: {s[p][c]} vs the 0.1 nm integral {patches[p]}");
         }
         for (int p = 0; p < rho.Length; p++)
         {
             var bands = model.ToBands(model.Knots.Select(k => ExactSignalsTests.Lerp(Patches.Value[p], k)).ToArray());
             var means = BandMeans(rho[p]);
-            for (int b = 0; b < Grid.Count; b++) Assert.True(Math.Abs(bands[b] - means[b]) <= 1e-6, $"{preset} band {b}: {bands[b]} vs {means[b]}");
+            for (int b = 0; b < Grid.Count; b++)
+                Assert.True(Math.Abs(bands[b] - means[b]) <= 1e-6, $"{preset} band {b}: {bands[b]} vs {means[b]}");
         }
     }
 
@@ -94,7 +100,8 @@ public class ForwardModelTests(ITestOutputHelper output)
     /// 1/12 DN² quantisation floor at the auto exposure: the brightest signal at 0.8 of the full well, one frame), and the
     /// two forward models.
     /// </summary>
-    sealed record Mosaic(double[][] ExactSignals, double[][] BandSignals, double[][] Truth, double[] Kn, ForwardModel Exact, ForwardModel Bands);
+    sealed record Mosaic(double[][] ExactSignals, double[][] BandSignals, double[][] Truth, double[] Kn, ForwardModel Exact,
+        ForwardModel Bands);
 
     static readonly Lazy<Mosaic> MosaicCase = new(() =>
     {
@@ -104,7 +111,8 @@ public class ForwardModelTests(ITestOutputHelper output)
         var patches = PatchesSampled.Value;
         int c = sensor.ChannelCount;
         var perChannel = sensor.Channels.Select(ch => Integrals(ch, patches)).ToArray();
-        var exactSignals = Enumerable.Range(0, patches.Length).Select(p => Enumerable.Range(0, c).Select(k => factor * perChannel[k][p]).ToArray()).ToArray();
+        var exactSignals = Enumerable.Range(0, patches.Length)
+            .Select(p => Enumerable.Range(0, c).Select(k => factor * perChannel[k][p]).ToArray()).ToArray();
         var truth = patches.Select(BandMeans).ToArray();
         var w = ChannelWeights.Compute(sensor, Grid, d65, 1);
         var e = BandProjection.Means(d65, Grid);
@@ -113,7 +121,8 @@ public class ForwardModelTests(ITestOutputHelper output)
         var bandSignals = truth.Select(r => Dense.Multiply(a, r)).ToArray();
         double t = sensor.AutoExposureFraction * sensor.FullWellElectrons / exactSignals.Max(s => s.Max());
         var kn = Enumerable.Repeat(1.0 / 12 / (sensor.SystemGain * t * sensor.SystemGain * t), c).ToArray();
-        return new Mosaic(exactSignals, bandSignals, truth, kn, ForwardModel.Exact(sensor, factor, 1, d65, Grid, Training.Value), ForwardModel.Bands(a, Training.Value));
+        return new Mosaic(exactSignals, bandSignals, truth, kn, ForwardModel.Exact(sensor, factor, 1, d65, Grid, Training.Value),
+            ForwardModel.Bands(a, Training.Value));
     });
 
     delegate void Estimate(ReadOnlySpan<float> signal, Span<double> reflectance);
@@ -147,7 +156,8 @@ public class ForwardModelTests(ITestOutputHelper output)
         double bandRoute = Score(band.Apply, m.BandSignals, m.Truth);
         output.WriteLine($"Wiener: exact signals, full-resolution model {exact:F5}, band model {wrong:F5}; band route {bandRoute:F5}");
         Assert.True(wrong > 0.005, $"the band model on exact signals {wrong}: the gap this fixes");
-        Assert.True(exact <= 0.005 && exact <= bandRoute, $"Wiener on exact signals {exact} vs the bar 0.005 and the band route's {bandRoute}");
+        Assert.True(exact <= 0.005 && exact <= bandRoute,
+            $"Wiener on exact signals {exact} vs the bar 0.005 and the band route's {bandRoute}");
     }
 
     /// <summary>

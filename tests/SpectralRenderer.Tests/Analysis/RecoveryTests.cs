@@ -33,10 +33,12 @@ public class RecoveryTests
         return dir;
     }
 
-    static Dictionary<(string Method, string Region), (double Rmse, double Gfc, double De)> Recover(string sensor, string noise, params string[] extra) =>
+    static Dictionary<(string Method, string Region), (double Rmse, double Gfc, double De)> Recover(string sensor, string noise,
+        params string[] extra) =>
         RecoverOn("bands", sensor, noise, extra);
 
-    static Dictionary<(string Method, string Region), (double Rmse, double Gfc, double De)> RecoverOn(string route, string sensor, string noise, params string[] extra)
+    static Dictionary<(string Method, string Region), (double Rmse, double Gfc, double De)> RecoverOn(string route, string sensor,
+        string noise, params string[] extra)
     {
         var cam = Path.Combine(Chart.Value, route == "bands" ? $"camera-{sensor}-{noise}" : $"camera-{sensor}-{noise}-{route}");
         // The band route (--signals bands) unless asked: the figures these bars were set on; the exact route's bar is
@@ -66,7 +68,8 @@ public class RecoveryTests
         Assert.True(rgb[("wiener", "colorchecker")].Rmse <= 0.05, $"nikon-d5100 {rgb[("wiener", "colorchecker")].Rmse}");
         Assert.True(wheel[("wiener", "colorchecker")].Rmse <= 0.02, $"wheel-6 {wheel[("wiener", "colorchecker")].Rmse}");
         Assert.True(mosaic[("wiener", "colorchecker")].Rmse <= 0.005, $"mosaic-16 {mosaic[("wiener", "colorchecker")].Rmse}");
-        var json = System.Text.Json.Nodes.JsonNode.Parse(File.ReadAllText(Path.Combine(Chart.Value, "camera-mosaic-16-off", "recovery.json")))!;
+        var json = System.Text.Json.Nodes.JsonNode.Parse(
+            File.ReadAllText(Path.Combine(Chart.Value, "camera-mosaic-16-off", "recovery.json")))!;
         Assert.Equal("bands", (string)json["forward_model"]!);   // a band-route capture keeps the band model
         foreach (var m in Methods)
         {
@@ -217,14 +220,16 @@ public class RecoveryTests
     [Trait("Category", "Slow")]
     public void ReportComparison_OnTheExactRoute_AgreesWithTheCommand()
     {
-        var rows = SpectralRenderer.Analysis.Recovery.RecoveryComparison.Rows(Chart.Value, SpectralRenderer.Lighting.ExactChannelSignals.Input);
+        var rows = SpectralRenderer.Analysis.Recovery.RecoveryComparison.Rows(Chart.Value,
+            SpectralRenderer.Lighting.ExactChannelSignals.Input);
         Assert.Equal(3 * 2 * 5, rows.Count);
         var args = new[] { "--method", "wiener", "--range", "400:700" };
         double exact = RecoverOn("exact", "mosaic-16", "off", args)[("wiener", "colorchecker")].Rmse;
         double bands = RecoverOn("bands", "mosaic-16", "off", args)[("wiener", "colorchecker")].Rmse;
         var row = rows.Single(r => r.Sensor == "mosaic-16" && !r.Noise && r.Method == "wiener");
         Assert.Equal(exact, row.Rmse400To700, 6);
-        Assert.True(Math.Abs(exact - bands) > 1e-5, $"exact route {exact} vs band route {bands}: the routes differ, so the report took the exact one");
+        Assert.True(Math.Abs(exact - bands) > 1e-5,
+            $"exact route {exact} vs band route {bands}: the routes differ, so the report took the exact one");
     }
 
     [Theory]

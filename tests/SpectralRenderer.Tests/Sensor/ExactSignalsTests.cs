@@ -178,7 +178,8 @@ public class ExactSignalsTests(ITestOutputHelper output)
         Assert.True(code == 0, err);
         Assert.Equal(integrator, (string?)JsonNode.Parse(File.ReadAllText(Path.Combine(render, "render.json")))!["run"]!["integrator"]);
         var cam = Path.Combine(dir, "cam");
-        (code, _, err) = CliRunner.Run("camera", render, "--sensor", "wheel-6", "--noise", "off", "-o", cam, "--off-axis", "none", "--psf", "none");
+        (code, _, err) = CliRunner.Run("camera", render, "--sensor", "wheel-6", "--noise", "off", "-o", cam,
+            "--off-axis", "none", "--psf", "none");
         Assert.True(code == 0, err);
         var manifest = JsonNode.Parse(File.ReadAllText(Path.Combine(cam, "camera.json")))!;
         string used = (string)manifest["simulation"]!["signal_route"]!;

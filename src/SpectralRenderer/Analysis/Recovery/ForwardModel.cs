@@ -50,7 +50,8 @@ public sealed class ForwardModel
     /// The exact route's model for <paramref name="sensor"/> under <paramref name="light"/> on <paramref name="grid"/>'s range,
     /// with <paramref name="factor"/> the channel weights' k (<see cref="ChannelWeights.Factor"/>) and the render's white scale.
     /// </summary>
-    public static ForwardModel Exact(SensorModel sensor, double factor, double whiteScale, TabulatedSpectrum light, BandGrid grid, TrainingSet training)
+    public static ForwardModel Exact(SensorModel sensor, double factor, double whiteScale, TabulatedSpectrum light, BandGrid grid,
+        TrainingSet training)
     {
         double lo = grid.Start, hi = grid.End;
         var all = new SortedSet<double>();
@@ -74,7 +75,8 @@ public sealed class ForwardModel
         Parallel.For(0, c, ch =>
         {
             for (int i = 0; i < m; i++)
-                am[ch, i] = whiteScale * factor * ChannelWeights.ExactIntegral(sensor.Channels[ch], light, kept[i].Hat, kept[i].Lo, kept[i].Hi);
+                am[ch, i] = whiteScale * factor
+                    * ChannelWeights.ExactIntegral(sensor.Channels[ch], light, kept[i].Hat, kept[i].Lo, kept[i].Hi);
         });
         var p = new double[n, m];
         for (int b = 0; b < n; b++)
@@ -84,7 +86,8 @@ public sealed class ForwardModel
                 if (e > a) p[b, i] = kept[i].Hat.Integrate(a, e) / (grid.Upper(b) - grid.Lower(b));
             }
         // The samples at the knots (tiny negatives count as 0, as in the band means).
-        var samples = training.Spectra.Select(s => kept.Select(h => Math.Max(0, s.Evaluate(s.Covers(h.Knot, h.Knot) ? h.Knot : Math.Clamp(h.Knot, s.First, s.Last))))
+        var samples = training.Spectra.Select(s => kept
+            .Select(h => Math.Max(0, s.Evaluate(s.Covers(h.Knot, h.Knot) ? h.Knot : Math.Clamp(h.Knot, s.First, s.Last))))
             .ToArray()).ToArray();
         return new ForwardModel("exact", am, p, training.WithSamples(samples), kept.Select(h => h.Knot).ToArray());
     }

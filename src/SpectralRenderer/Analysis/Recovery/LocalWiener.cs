@@ -71,14 +71,17 @@ public sealed class LocalWiener
         }
         var kr = training.Covariance();
         var krAtX = new double[m * c];   // K_r Aᵀ in the coordinates, then (exact route) its band means
-        for (int b = 0; b < m; b++) for (int i = 0; i < c; i++) { double v = 0; for (int k = 0; k < m; k++) v += kr[b, k] * a[i, k]; krAtX[b * c + i] = v; }
+        for (int b = 0; b < m; b++)
+            for (int i = 0; i < c; i++) { double v = 0; for (int k = 0; k < m; k++) v += kr[b, k] * a[i, k]; krAtX[b * c + i] = v; }
         aKrAt = new double[c * c];
-        for (int i = 0; i < c; i++) for (int k = 0; k < c; k++) { double v = 0; for (int b = 0; b < m; b++) v += a[i, b] * krAtX[b * c + k]; aKrAt[i * c + k] = v; }
+        for (int i = 0; i < c; i++)
+            for (int k = 0; k < c; k++) { double v = 0; for (int b = 0; b < m; b++) v += a[i, b] * krAtX[b * c + k]; aKrAt[i * c + k] = v; }
         krAt = krAtX;
         if (p is not null)
         {
             krAt = new double[n * c];
-            for (int b = 0; b < n; b++) for (int i = 0; i < c; i++) { double v = 0; for (int k = 0; k < m; k++) v += p[b, k] * krAtX[k * c + i]; krAt[b * c + i] = v; }
+            for (int b = 0; b < n; b++)
+                for (int i = 0; i < c; i++) { double v = 0; for (int k = 0; k < m; k++) v += p[b, k] * krAtX[k * c + i]; krAt[b * c + i] = v; }
         }
         noise = (double[])noiseVariance.Clone();
     }
@@ -86,13 +89,15 @@ public sealed class LocalWiener
     /// <param name="a">C × N forward matrix.</param>
     /// <param name="noiseVariance">per channel, the variance of s.</param>
     /// <param name="widths">(h_c, h_I, β) to use; null: chosen by leave-one-out on the training set.</param>
-    public static LocalWiener Build(double[,] a, TrainingSet training, double[] noiseVariance, (double Chromaticity, double Intensity, double Shrinkage)? widths = null) =>
+    public static LocalWiener Build(double[,] a, TrainingSet training, double[] noiseVariance,
+        (double Chromaticity, double Intensity, double Shrinkage)? widths = null) =>
         Build(ForwardModel.Bands(a, training), noiseVariance, widths);
 
     /// <param name="model">the forward model, with the training set in its coordinates; the estimate is of the band means.</param>
     /// <param name="noiseVariance">per channel, the variance of s.</param>
     /// <param name="widths">(h_c, h_I, β) to use; null: chosen by leave-one-out on the training set (RMSE over the bands).</param>
-    public static LocalWiener Build(ForwardModel model, double[] noiseVariance, (double Chromaticity, double Intensity, double Shrinkage)? widths = null)
+    public static LocalWiener Build(ForwardModel model, double[] noiseVariance,
+        (double Chromaticity, double Intensity, double Shrinkage)? widths = null)
     {
         var e = new LocalWiener(model, noiseVariance);
         var grid = widths is { } w ? [w]

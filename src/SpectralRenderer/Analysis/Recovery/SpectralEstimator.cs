@@ -27,7 +27,8 @@ public enum RecoveryMethod { Pinv, Wiener, Linear, Tikhonov, WienerLocal }
 /// </summary>
 public sealed class SpectralEstimator
 {
-    SpectralEstimator(RecoveryMethod method, double[,] g, double[] h, double? lambda, int? components, LocalWiener? local, ForwardModel model)
+    SpectralEstimator(RecoveryMethod method, double[,] g, double[] h, double? lambda, int? components, LocalWiener? local,
+        ForwardModel model)
     { Method = method; G = g; H = h; Lambda = lambda; Components = components; Local = local; Model = model; }
 
     public RecoveryMethod Method { get; }
@@ -61,7 +62,8 @@ public sealed class SpectralEstimator
 
     /// <param name="a">C × N forward matrix.</param>
     /// <param name="noiseVariance">per channel, the variance of s (same units squared); zeros without noise.</param>
-    public static SpectralEstimator Build(RecoveryMethod method, double[,] a, TrainingSet training, double[] noiseVariance, ulong seed = 1) =>
+    public static SpectralEstimator Build(RecoveryMethod method, double[,] a, TrainingSet training, double[] noiseVariance,
+        ulong seed = 1) =>
         Build(method, ForwardModel.Bands(a, training), noiseVariance, seed);
 
     /// <summary>

@@ -49,7 +49,9 @@ public sealed class TrainingSet
         return new TrainingSet(named.Name ?? Path.GetFileNameWithoutExtension(path), samples.ToArray(), spectra.ToArray());
     }
 
-    /// <summary>The same reflectances given by other coordinates (T × M), e.g. their values at knots: Mean and Covariance are then in those.</summary>
+    /// <summary>
+    /// The same reflectances given by other coordinates (T × M), e.g. their values at knots: Mean and Covariance are then in those.
+    /// </summary>
     public TrainingSet WithSamples(double[][] samples) => new(Name, samples, Spectra);
 
     public double[] Mean()
