@@ -249,8 +249,11 @@ public static class PaperReport
 
         var probe = new SvgPlot
         {
-            Title = "(b) spectra of the labelled pixels", XLabel = "wavelength (nm)",
-            YLabel = Commands.ProbeCommand.RadianceAxis(folder.Manifest.Radiometry == "physical"), Width = 560, Height = 380,
+            Title = "(b) spectra of the labelled pixels",
+            XLabel = "wavelength (nm)",
+            YLabel = Commands.ProbeCommand.RadianceAxis(folder.Manifest.Radiometry == "physical"),
+            Width = 560,
+            Height = 380,
         };
         for (int k = 0; k < picks.Count; k++) probe.Add($"{k + 1}: {picks[k].Label}", centres, picks[k].Radiance);
         h.Append($"<figure>{PlotSvg(probe)}</figure></div>\n");
