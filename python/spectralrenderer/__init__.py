@@ -410,6 +410,7 @@ class Recovery:
         self.shape = tuple(info["shape"])
         self.wavelengths = np.array(info["wavelengths"])
         self.training = info["training"]
+        self.forward_model = info.get("forward_model")   # "exact" or "bands": the capture's signal route's model
         self.metrics_csv = info["metrics_csv"]
         self._cache = {}
 

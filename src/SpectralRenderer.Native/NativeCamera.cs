@@ -333,6 +333,7 @@ sealed class NativeRecovery : PinnedHolder
             ["shape"] = new JsonArray(Scene.Height, Scene.Width, g.Count),
             ["wavelengths"] = new JsonArray(Enumerable.Range(0, g.Count).Select(b => (JsonNode)g.Centre(b)).ToArray()),
             ["training"] = Training,
+            ["forward_model"] = Results.FirstOrDefault()?.Estimator.Model.Route,
             ["white"] = Results.FirstOrDefault()?.WhiteDescription,
             ["metrics_csv"] = Csv,
         }.ToJsonString();

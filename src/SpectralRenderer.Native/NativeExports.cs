@@ -624,6 +624,7 @@ sealed unsafe class NativeRender : IDisposable
         var run = new ManifestRun
         {
             CommandLine = "spectralrenderer (Python, libspectral)",
+            Integrator = job.Request.Integrator,
             LoadSeconds = job.LoadSeconds,
             BuildSeconds = job.BuildSeconds,
             Triangles = job.Geometry?.TriangleCount,

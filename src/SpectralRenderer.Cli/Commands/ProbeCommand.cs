@@ -25,6 +25,10 @@ public static class ProbeCommand
           --csv                 print only the CSV
         """;
 
+    /// <summary>A plot's radiance axis in the render's radiometry (issue 24): W·m⁻²·sr⁻¹·nm⁻¹ physical, relative in the paper's.</summary>
+    internal static string RadianceAxis(bool physical) =>
+        physical ? "spectral radiance (W·m⁻²·sr⁻¹·nm⁻¹, physical radiometry)" : "spectral radiance (W·m⁻²·sr⁻¹·nm⁻¹, relative)";
+
     public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
     {
         var a = new Arguments("probe", argv, ["--pixel", "--output"], ["--csv"], new Dictionary<string, string> { ["-o"] = "--output" });
@@ -44,7 +48,7 @@ public static class ProbeCommand
         {
             Title = $"Spectra of {pixels.Count} pixel{(pixels.Count == 1 ? "" : "s")} — {Path.GetFileName(Path.GetFullPath(dir).TrimEnd(Path.DirectorySeparatorChar))}",
             XLabel = "wavelength (nm)",
-            YLabel = physical ? "spectral radiance (W·m⁻²·sr⁻¹·nm⁻¹, physical radiometry)" : "spectral radiance (W·m⁻²·sr⁻¹·nm⁻¹, relative)",
+            YLabel = RadianceAxis(physical),
         };
         var centres = Enumerable.Range(0, image.Bands).Select(image.Grid.Centre).ToArray();
         foreach (var p in pixels) plot.Add(p.Label, centres, Values(image, p).Select(v => (double)v).ToArray());

@@ -1,5 +1,7 @@
 using System.Globalization;
 using System.Text;
+using System.Text.Json;
+using System.Text.Json.Nodes;
 using SpectralRenderer.Analysis;
 using SpectralRenderer.Analysis.Recovery;
 using SpectralRenderer.Diagnostics;
@@ -28,10 +30,15 @@ public static class RecoverCommand
         --range LO:HI scores RMSE and GFC on the bands inside LO–HI nm only (e.g. 400:700, where the sensors
         respond; default every band); ΔE00 always uses the whole spectrum.
 
+        The forward model follows the capture's signal route (camera.json): on the band route the band
+        weights (reflectance constant within each band, as the band route's signals are made), on the exact
+        route the training spectra's signals at full spectral resolution, recovered as band means.
+
         Scores against the render's ground truth (reflectance.exr): RMSE, GFC, CIEDE2000 under D65 and A, per
         region (lit, shadow, partial, highlight, all) and over the ColorChecker patches when the render shows
         them. Writes CAMERADIR/recovered-<method>.npy (H×W×N float32), recovery-metrics.csv (one row per
-        method and region) and recovery-<method>.svg (recovered vs true spectra).
+        method and region), recovery-<method>.svg (recovered vs true spectra) and recovery.json (the forward
+        model, training set, methods and scoring range).
 
           --csv   print recovery-metrics.csv instead of the table
         """;
@@ -91,9 +98,21 @@ public static class RecoverCommand
         }
         AtomicFile.WriteAllText(Path.Combine(dir, "recovery-metrics.csv"), csv.ToString());
         written.Add("recovery-metrics.csv");
+        var model = results[0].Estimator.Model;
+        AtomicFile.WriteAllText(Path.Combine(dir, "recovery.json"), new JsonObject
+        {
+            ["forward_model"] = model.Route,
+            ["forward_model_description"] = model.Description,
+            ["training"] = training.Name,
+            ["methods"] = new JsonArray(results.Select(r => (JsonNode)SpectralEstimator.Name(r.Method)).ToArray()),
+            ["metric_range_nm"] = rangeText,
+            ["white"] = white?.Description,
+        }.ToJsonString(new JsonSerializerOptions { WriteIndented = true }) + "\n");
+        written.Add("recovery.json");
 
         if (a.Flag("--csv")) { stdout.Write(csv.ToString()); return CommandLine.Success; }
         stdout.WriteLine($"recovery from {capture.Sensor.Name} ({capture.Sensor.ChannelCount} channels, noise {(capture.Raw.Options.Noise ? "on" : "off")}) of {scene.Folder.Path}; training {training.Name} ({training.Count} reflectances); {g} bands{(white is null ? "" : $"; white: {white.Description}")}; RMSE and GFC over {rangeText} nm");
+        stdout.WriteLine($"forward model: {model.Description}");
         if (!scene.Aovs.HasMasks) stdout.WriteLine("no mask-lit-<k>.png / mask-highlight.png: regions are not classified (render with --formats including aov)");
         stdout.WriteLine($"{"method",-12} {"region",-13} {"count",7} {"RMSE",9} {"GFC",9} {"ΔE00 D65",9} {"ΔE00 A",9}");
         foreach (var r in results.SelectMany(r => r.Rows))

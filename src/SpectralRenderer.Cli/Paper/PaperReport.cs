@@ -277,7 +277,14 @@ public static class PaperReport
         }
         h.Append(Inv, $"</svg><figcaption>(a) {Esc(subjectName)} ({Esc(subjectTruth)}) with {Esc(whiteName)} (ground-truth reflectance ≥ {whiteLevel:0.000} in every band) under {Esc(LightsOf(folder))}; the labelled pixels.</figcaption></figure>");
 
-        var probe = new SvgPlot { Title = "(b) spectra of the labelled pixels", XLabel = "wavelength (nm)", YLabel = "spectral radiance (relative, W·m⁻²·sr⁻¹·nm⁻¹)", Width = 560, Height = 380 };
+        var probe = new SvgPlot
+        {
+            Title = "(b) spectra of the labelled pixels",
+            XLabel = "wavelength (nm)",
+            YLabel = Commands.ProbeCommand.RadianceAxis(folder.Manifest.Radiometry == "physical"),
+            Width = 560,
+            Height = 380,
+        };
         for (int k = 0; k < picks.Count; k++) probe.Add($"{k + 1}: {picks[k].Label}", centres, picks[k].Radiance);
         h.Append($"<figure>{PlotSvg(probe)}</figure></div>\n");
 

@@ -49,15 +49,17 @@ public static class ExactChannelSignals
         string from;
         try
         {
-            if (File.Exists(Path.Combine(dir, LightTransferFiles.Folder, "lights.json")))
+            bool written = File.Exists(Path.Combine(dir, LightTransferFiles.Folder, "lights.json"));
+            scene = written ? Relighting.ChangedScene(src, [], null)
+                : SceneLoader.Parse(src.Scene.WithLights([], null), src.ScenePath, src.Overrides with { LoadMeshes = true });
+            if (!HasTermTransfer(src, scene, out reason)) return null;
+            if (written)
             {
-                scene = Relighting.ChangedScene(src, [], null);
                 transfer = LightTransferFiles.Read(dir, scene);
                 from = "the render's lights/ (per-pixel factors of each eq. 2 term)";
             }
             else
             {
-                scene = SceneLoader.Parse(src.Scene.WithLights([], null), src.ScenePath, src.Overrides with { LoadMeshes = true });
                 transfer = LightTransfer.Trace(scene, new SceneGeometry(scene), threads < 0 ? 0 : threads);
                 from = "the per-light transfer traced again from render.json's resolved scene (the render's rays)";
             }
@@ -77,6 +79,20 @@ public static class ExactChannelSignals
     static bool IsPath(Relighting.Source src) => PathTransferFiles.IsPath(src.Dir)
         || src.Scene.ToJson()["integrator"] is { } i && ((i as System.Text.Json.Nodes.JsonValue)?.ToString() ?? (string?)i["type"]) == "path"
         || src.Manifest.Sampling?.Sampler == "sobol";
+
+    /// <summary>
+    /// Whether the render is a sum of eq. 2 terms whose per-light transfer the exact route can use: the Whitted model's.
+    /// The integrator is the command line's (render.json's run.integrator), else the resolved scene's. A path-traced render
+    /// is not (its light bounces between surfaces), so its band cube — exact means of the path's fine sub-bands — is the
+    /// camera's input. The one place to change when another integrator records a transfer of its own.
+    /// </summary>
+    static bool HasTermTransfer(Relighting.Source src, Scene scene, out string reason)
+    {
+        string name = src.Manifest.Run?.Integrator ?? scene.Integrator?.Name ?? Integrators.Default;
+        reason = name == Integrators.Default ? ""
+            : $"the render's {name} integrator has no per-term light transfer (that is the {Integrators.Default} model's)";
+        return name == Integrators.Default;
+    }
 
     /// <summary>
     /// The exact route from a scene and its per-light transfer (<paramref name="from"/> says where it came from: a folder's

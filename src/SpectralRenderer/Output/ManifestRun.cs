@@ -7,6 +7,8 @@ namespace SpectralRenderer.Output;
 public sealed record ManifestRun
 {
     public string? CommandLine { get; init; }
+    /// <summary>The integrator the command line chose (<c>--integrator</c>); null: the resolved scene's, else whitted.</summary>
+    public string? Integrator { get; init; }
     /// <summary>`spectral merge`: how many shards were assembled.</summary>
     public int? MergedShards { get; init; }
     /// <summary>`spectral sweep`: the job's id.</summary>

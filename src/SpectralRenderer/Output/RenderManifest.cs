@@ -241,6 +241,7 @@ public sealed record RenderManifest
         var o = new JsonObject();
         void Put(string key, JsonNode? value, bool present) { if (present) o[key] = value; }
         Put("command_line", run.CommandLine, run.CommandLine is not null);
+        Put("integrator", run.Integrator, run.Integrator is not null);
         Put("merged_shards", run.MergedShards, run.MergedShards is not null);
         Put("sweep_job", run.SweepJob, run.SweepJob is not null);
         Put("load_s", run.LoadSeconds, run.LoadSeconds is not null);
@@ -465,6 +466,7 @@ public sealed record RenderManifest
         return new ManifestRun
         {
             CommandLine = r.OptString(o, "command_line", at),
+            Integrator = r.OptString(o, "integrator", at),
             MergedShards = r.OptInt(o, "merged_shards", at, 1),
             SweepJob = r.OptString(o, "sweep_job", at),
             LoadSeconds = r.OptNumber(o, "load_s", at, 0),

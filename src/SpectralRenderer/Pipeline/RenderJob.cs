@@ -288,6 +288,7 @@ public sealed class RenderJob
             LightTransferSeconds = TransferSeconds,
             HasOverrides = true,
             Overrides = Recorded(Request.Overrides),
+            Integrator = Request.Integrator,   // what the camera's exact route needs to know (issue 24)
         },
     };
 

@@ -20,10 +20,15 @@ namespace SpectralRenderer.Sensor;
 /// </summary>
 public sealed class ColourCorrection
 {
-    ColourCorrection(double[] whiteRate, double[,] matrix, Xyz[] targets, double[][] signals, Xyz white, double whiteScale)
+    ColourCorrection(double[] whiteRate, double[,] matrix, Xyz[] targets, double[][] signals, Xyz white, double whiteScale,
+        bool exactSignals)
     {
         WhiteRate = whiteRate; Matrix = matrix; Targets = targets; TrainingSignals = signals; White = white; WhiteScale = whiteScale;
+        ExactSignals = exactSignals;
     }
+
+    /// <summary>Whether the white and the patches' signals are the exact route's full-resolution integrals (else band sums).</summary>
+    public bool ExactSignals { get; }
 
     /// <summary>The render's white diffuser radiance per unit of the light's band values (1: the paper's white, E).</summary>
     public double WhiteScale { get; }
@@ -84,7 +89,7 @@ public sealed class ColourCorrection
             m = Dense.SolveRight(Dense.Multiply(t, Dense.Transpose(s)), Dense.Add(sst, Dense.Identity(cc, eps)));
         }
         for (int c = 0; c < cc; c++) whiteRate[c] *= whiteScale;
-        return new ColourCorrection(whiteRate, m, targets, signals, reference.White, whiteScale);
+        return new ColourCorrection(whiteRate, m, targets, signals, reference.White, whiteScale, exact is not null);
     }
 
     /// <summary>XYZ of white-balanced signals.</summary>

@@ -60,10 +60,14 @@ public static class ImageProcessing
             {
                 for (int c = 0; c < cc; c++) s[c] = balanced[i * cc + c];
                 xyz[i] = colour.ToXyz(s);
-                var (r, g, b) = RgbSpace.Srgb.Encode8(xyz[i]);
+                // A monochrome sensor records no colour: its image is grey, R = G = B = the sRGB code of Y (issue 24), so
+                // neither the light's chromaticity nor the 8-bit rounding of three channels can tint it.
+                var (r, g, b) = cc == 1 ? Grey(RgbSpace.Srgb.Encode8(xyz[i].Y)) : RgbSpace.Srgb.Encode8(xyz[i]);
                 rgb[3 * i] = r; rgb[3 * i + 1] = g; rgb[3 * i + 2] = b;
             }
         });
         return new ProcessedImage(w, h, cc, rates, balanced, xyz, rgb, used);
     }
+
+    static (byte, byte, byte) Grey(byte v) => (v, v, v);
 }

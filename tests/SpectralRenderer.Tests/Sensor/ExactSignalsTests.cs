@@ -4,6 +4,7 @@ using SpectralRenderer.Analysis.Recovery;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Sensor;
 using SpectralRenderer.Tests.Cli;
+using Xunit.Abstractions;
 
 namespace SpectralRenderer.Tests.Sensor;
 
@@ -11,7 +12,7 @@ namespace SpectralRenderer.Tests.Sensor;
 /// Issue 24's exact route: each channel integrated at full spectral resolution per eq. 2 term, as exact colour is, so
 /// the signals do not depend on the band count; checked against the render's own exact XYZ and a 0.1 nm integral here.
 /// </summary>
-public class ExactSignalsTests
+public class ExactSignalsTests(ITestOutputHelper output)
 {
     const int Width = 90, Height = 60;
 
@@ -64,6 +65,7 @@ public class ExactSignalsTests
                     ratio ??= q;
                     worst = Math.Max(worst, Math.Abs(q / ratio.Value - 1));
                 }
+        output.WriteLine($"cie-xyz raw / exact XYZ at {bands}: largest relative deviation {worst:E3}");
         Assert.True(worst <= 1e-5, $"cie-xyz raw / exact XYZ varies by {worst:E3} relative at {bands}");
     }
 
@@ -80,6 +82,7 @@ public class ExactSignalsTests
         Assert.True(peak > 0 && peak < 4095, $"peak {peak} DN: the test wants an unclipped, lit chart");
         for (int i = 0; i < fine.Length; i++)
             if (fine[i] > 1e-3 * peak) worst = Math.Max(worst, Math.Abs(coarse[i] / fine[i] - 1));
+        output.WriteLine($"{sensor}: 5 bands vs 401 bands, largest relative difference {worst:E3}");
         Assert.True(worst <= 1e-5, $"{sensor}: 5 bands vs 401 bands differ by {worst:E3} relative");
     }
 
@@ -124,6 +127,7 @@ public class ExactSignalsTests
                     worst = Math.Max(worst, Math.Abs((dn - sensor.BlackLevel) / expected - 1));
                 }
             }
+            output.WriteLine($"{name}: noise-free signal vs the 0.1 nm integral, largest relative difference {worst:E3}");
             Assert.True(worst <= 1e-4, $"{name}: noise-free signal vs the 0.1 nm integral: {worst:E3} relative");
         }
     }
@@ -141,10 +145,88 @@ public class ExactSignalsTests
         foreach (var intensity in new[] { 0.01, 1, 100 })
         {
             var (de, rmse) = ColourAndRecovery(Chart("380:780:20", "physical", intensity, "npy,aov"));
+            output.WriteLine($"intensity {intensity}: largest |ΔE00 − paper's| {de.Zip(paperDe, (x, y) => Math.Abs(x - y)).Max():E2} " +
+                $"(paper mean {paperDe.Average():F3}), Wiener RMSE {rmse:F6} vs paper {paperRmse:F6}");
             for (int p = 0; p < de.Length; p++)
                 Assert.True(Math.Abs(de[p] - paperDe[p]) <= 0.01, $"intensity {intensity}, patch {p + 1}: ΔE00 {de[p]} vs paper {paperDe[p]}");
             Assert.True(Math.Abs(rmse - paperRmse) <= 1e-4, $"intensity {intensity}: Wiener RMSE {rmse} vs paper {paperRmse}");
         }
+    }
+
+    /// <summary>
+    /// Issue 24: recovery calibrated on a white board (§3.4: <c>recover --white-object</c>, here the chart's white patch 19)
+    /// works in physical radiometry: at intensities 0.01 and 100 its Wiener ColorChecker RMSE (400–700 nm) is the paper
+    /// radiometry's within 1e-4, and the calibration scales the model (its figure differs from the uncalibrated one).
+    /// </summary>
+    [Fact]
+    public void WhiteBoardCalibration_InPhysicalRadiometry_GivesThePapersRecovery()
+    {
+        var paperRender = Chart("380:780:20", formats: "npy,aov");
+        double paper = Wiener(paperRender, "--white-object", "patch-19"), plain = Wiener(paperRender);
+        Assert.True(Math.Abs(paper - plain) > 1e-4, $"calibrated {paper} vs uncalibrated {plain}: the calibration did nothing");
+        foreach (var intensity in new[] { 0.01, 100 })
+        {
+            double rmse = Wiener(Chart("380:780:20", "physical", intensity, "npy,aov"), "--white-object", "patch-19");
+            output.WriteLine($"white-board calibrated Wiener RMSE: physical at intensity {intensity} {rmse:F6}, paper {paper:F6}");
+            Assert.True(Math.Abs(rmse - paper) <= 1e-4, $"intensity {intensity}: calibrated RMSE {rmse} vs paper {paper}");
+        }
+    }
+
+    /// <summary>wheel-6, noise off, default lens; the Wiener ColorChecker RMSE over 400–700 nm (rawtoaces-190).</summary>
+    static double Wiener(string render, params string[] extra)
+    {
+        var cam = Path.Combine(render, "cam-board");
+        if (!Directory.Exists(cam))
+        {
+            var (c, _, e) = CliRunner.Run("camera", render, "--sensor", "wheel-6", "--noise", "off", "-o", cam);
+            Assert.True(c == 0, e);
+        }
+        var (code, csv, err) = CliRunner.Run(["recover", cam, "--method", "wiener", "--training", "rawtoaces-190", "--range", "400:700",
+            "--csv", .. extra]);
+        Assert.True(code == 0, err);
+        var line = csv.Split('\n').Single(l => l.StartsWith("wiener,colorchecker,", StringComparison.Ordinal)).Split(',');
+        return double.Parse(line[3], CultureInfo.InvariantCulture);
+    }
+
+    /// <summary>
+    /// A path-traced render is not a sum of the Whitted model's eq. 2 terms (the booth's light is an emitting material, no
+    /// light): the camera takes its band cube, says so on stderr and in camera.json, and the chart it sees is lit (before,
+    /// the exact route traced a transfer of no components and every signal was 0). The same when the command line chose the
+    /// path integrator for a scene that names none (render.json's run.integrator; before, the chart's camera traced the
+    /// Whitted transfer of a path render), and the exact route again when it chose whitted for a scene that names path.
+    /// </summary>
+    [Theory]
+    [InlineData("path-colorchecker-booth.json", null, "bands")]
+    [InlineData("paper-3.1-colorchecker-d65.json", "path", "bands")]
+    [InlineData("path-colorchecker-booth.json", "whitted", "exact")]
+    public void PathRender_TakesTheBandRoute_AndSaysSo(string sceneFile, string? integrator, string route)
+    {
+        var dir = Reference.TempDir();
+        var scene = Path.Combine(dir, "scene.json");
+        // The chart in physical radiometry, as the path integrator needs.
+        File.WriteAllText(scene, File.ReadAllText(Repo.PathOf("scenes", sceneFile))
+            .Replace("\"radiometry\": \"paper\"", "\"radiometry\": \"physical\"", StringComparison.Ordinal));
+        var render = Path.Combine(dir, "render");
+        string[] args = ["render", scene, "-o", render, "--width", "24", "--height", "16", "--spp", "1", "--bands", "380:780:10",
+            "--formats", "npy,aov", "--quiet"];
+        var (code, _, err) = CliRunner.Run(integrator is null ? args : [.. args, "--integrator", integrator]);
+        Assert.True(code == 0, err);
+        Assert.Equal(integrator, (string?)JsonNode.Parse(File.ReadAllText(Path.Combine(render, "render.json")))!["run"]!["integrator"]);
+        var cam = Path.Combine(dir, "cam");
+        (code, _, err) = CliRunner.Run("camera", render, "--sensor", "wheel-6", "--noise", "off", "-o", cam,
+            "--off-axis", "none", "--psf", "none");
+        Assert.True(code == 0, err);
+        var manifest = JsonNode.Parse(File.ReadAllText(Path.Combine(cam, "camera.json")))!;
+        string used = (string)manifest["simulation"]!["signal_route"]!;
+        if (route == "bands")
+        {
+            Assert.Contains("channel signals from the band cube (not exact): the render's path integrator", err);
+            Assert.Equal(RadianceCube.BandRoute, used);
+        }
+        else Assert.StartsWith("exact", used, StringComparison.Ordinal);
+        if (route == "exact") return;   // the booth by Whitted: its light is an emitter, which eq. 2 does not see
+        var (_, raw) = NpyReader.Read(File.OpenRead(Path.Combine(cam, "raw.npy")));
+        Assert.True(raw.Max() > 100, $"peak {raw.Max()} DN: the scene is lit");
     }
 
     static (double[] DeltaE, double Rmse) ColourAndRecovery(string render)

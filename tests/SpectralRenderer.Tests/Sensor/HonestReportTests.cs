@@ -1,5 +1,6 @@
 using System.Globalization;
 using System.Text.Json.Nodes;
+using SpectralRenderer.Analysis.Recovery;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Tests.Cli;
 
@@ -55,6 +56,21 @@ public class HonestReportTests
             static double F(double t) => t > 216.0 / 24389 ? Math.Cbrt(t) : (24389.0 / 27 * t + 16) / 116;
             double a = 500 * (F(X / white[0]) - F(Y / white[1])), b = 200 * (F(Y / white[1]) - F(Z / white[2]));
             Assert.True(Math.Abs(a) <= 0.5 && Math.Abs(b) <= 0.5, $"patch {row[0]}: a* {a}, b* {b}");
+        }
+        // processed.png itself: the grey patches' centre pixels, sRGB decoded (IEC 61966-2-1: its curve, its RGB → XYZ matrix
+        // and D65 white, written out here) to CIELAB, have a* and b* within 0.5.
+        var png = PngReader.Read(Path.Combine(cam, "processed.png"));
+        double[,] m = { { 0.4124, 0.3576, 0.1805 }, { 0.2126, 0.7152, 0.0722 }, { 0.0193, 0.1192, 0.9505 } };
+        static double Linear(double v) => v <= 0.04045 ? v / 12.92 : Math.Pow((v + 0.055) / 1.055, 2.4);
+        static double Fl(double t) => t > 216.0 / 24389 ? Math.Cbrt(t) : (24389.0 / 27 * t + 16) / 116;
+        double[] Xyz(double[] rgb) => Enumerable.Range(0, 3).Select(r => m[r, 0] * rgb[0] + m[r, 1] * rgb[1] + m[r, 2] * rgb[2]).ToArray();
+        var d65 = Xyz([1, 1, 1]);
+        foreach (var p in CameraScene.Open(Chart.Value).Patches.Where(p => p.Number is >= 19 and <= 23))
+        {
+            int i = p.Pixels[p.Pixels.Length / 2] * png.Channels;
+            var xyz = Xyz(Enumerable.Range(0, 3).Select(c => Linear(png.Samples[i + c] / 255.0)).ToArray());
+            double a = 500 * (Fl(xyz[0] / d65[0]) - Fl(xyz[1] / d65[1])), b = 200 * (Fl(xyz[1] / d65[1]) - Fl(xyz[2] / d65[2]));
+            Assert.True(Math.Abs(a) <= 0.5 && Math.Abs(b) <= 0.5, $"processed.png, patch {p.Number}: a* {a}, b* {b}");
         }
     }
 

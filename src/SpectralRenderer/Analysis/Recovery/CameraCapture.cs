@@ -21,6 +21,9 @@ public sealed class CameraCapture
 
     public SensorModel Sensor => Raw.Sensor;
 
+    /// <summary>Whether the capture's signals came by the exact route (camera.json's signal_route; the colour fit follows it).</summary>
+    public bool ExactSignals => Colour.ExactSignals;
+
     public static CameraCapture Open(string dir)
     {
         var path = Path.Combine(dir, "camera.json");
@@ -123,6 +126,25 @@ public sealed class CameraCapture
         for (int i = 0; i < c; i++) for (int b = 0; b < n; b++) a[i, b] = Raw.Weights[i, b] * e[b];
         return a;
     }
+
+    /// <summary>
+    /// The recovery's forward model for this capture's signal route (<see cref="Recovery.ForwardModel"/>): on the band route
+    /// <see cref="ForwardMatrix"/> on the band means, on the exact route the same white at the training spectra's full
+    /// resolution, so the estimators see what the exact route made of the training spectra.
+    /// </summary>
+    public ForwardModel ForwardModel(TrainingSet training)
+    {
+        // Kept for the training set last asked (recover builds one estimator per method from it).
+        if (model is { } m && ReferenceEquals(m.Training, training)) return m.Model;
+        var f = ExactSignals
+            ? Recovery.ForwardModel.Exact(Sensor, Raw.Weights.Factor, Colour.WhiteScale, Scene.Light, Scene.Grid, training)
+            : Recovery.ForwardModel.Bands(ForwardMatrix(), training);
+        model = new ModelFor(training, f);
+        return f;
+    }
+
+    sealed record ModelFor(TrainingSet Training, ForwardModel Model);
+    ModelFor? model;
 
     /// <summary>
     /// Per channel, the temporal noise variance of ė = (DN − black)/(K t) at the mean signal ė̄ of the surface pixels:

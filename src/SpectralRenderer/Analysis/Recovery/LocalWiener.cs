@@ -50,34 +50,56 @@ public sealed class LocalWiener
     /// <summary>The training set's leave-one-out error at the chosen widths: the mean over the samples of the RMSE over all bands (reflectance units).</summary>
     public double LeaveOneOutRmse { get; private set; }
 
-    LocalWiener(double[,] a, TrainingSet training, double[] noiseVariance)
+    LocalWiener(ForwardModel model, double[] noiseVariance)
     {
-        c = a.GetLength(0); n = a.GetLength(1); t = training.Count;
+        var a = model.A;
+        var training = model.Training;
+        int m = a.GetLength(1);   // the model's coordinates (the bands, or the exact route's knots)
+        var p = model.BandMeans;
+        c = a.GetLength(0); n = p?.GetLength(0) ?? m; t = training.Count;
         r = new double[t * n]; s = new double[t * c]; q = new double[t * c]; logI = new double[t];
         white = new double[c];
-        for (int i = 0; i < c; i++) for (int b = 0; b < n; b++) white[i] += a[i, b];
+        for (int i = 0; i < c; i++) for (int b = 0; b < m; b++) white[i] += a[i, b];
         Span<double> sj = stackalloc double[c], qj = stackalloc double[c];
         for (int j = 0; j < t; j++)
         {
-            for (int b = 0; b < n; b++) r[b * t + j] = training.Samples[j][b];
-            for (int i = 0; i < c; i++) { double v = 0; for (int b = 0; b < n; b++) v += a[i, b] * training.Samples[j][b]; sj[i] = v; }
+            var rj = model.ToBands(training.Samples[j]);
+            for (int b = 0; b < n; b++) r[b * t + j] = rj[b];
+            for (int i = 0; i < c; i++) { double v = 0; for (int b = 0; b < m; b++) v += a[i, b] * training.Samples[j][b]; sj[i] = v; }
             logI[j] = Feature(sj, qj);
             for (int i = 0; i < c; i++) { s[i * t + j] = sj[i]; q[i * t + j] = qj[i]; }
         }
         var kr = training.Covariance();
-        krAt = new double[n * c];
-        for (int b = 0; b < n; b++) for (int i = 0; i < c; i++) { double v = 0; for (int k = 0; k < n; k++) v += kr[b, k] * a[i, k]; krAt[b * c + i] = v; }
+        var krAtX = new double[m * c];   // K_r Aᵀ in the coordinates, then (exact route) its band means
+        for (int b = 0; b < m; b++)
+            for (int i = 0; i < c; i++) { double v = 0; for (int k = 0; k < m; k++) v += kr[b, k] * a[i, k]; krAtX[b * c + i] = v; }
         aKrAt = new double[c * c];
-        for (int i = 0; i < c; i++) for (int k = 0; k < c; k++) { double v = 0; for (int b = 0; b < n; b++) v += a[i, b] * krAt[b * c + k]; aKrAt[i * c + k] = v; }
+        for (int i = 0; i < c; i++)
+            for (int k = 0; k < c; k++) { double v = 0; for (int b = 0; b < m; b++) v += a[i, b] * krAtX[b * c + k]; aKrAt[i * c + k] = v; }
+        krAt = krAtX;
+        if (p is not null)
+        {
+            krAt = new double[n * c];
+            for (int b = 0; b < n; b++)
+                for (int i = 0; i < c; i++) { double v = 0; for (int k = 0; k < m; k++) v += p[b, k] * krAtX[k * c + i]; krAt[b * c + i] = v; }
+        }
         noise = (double[])noiseVariance.Clone();
     }
 
     /// <param name="a">C × N forward matrix.</param>
     /// <param name="noiseVariance">per channel, the variance of s.</param>
     /// <param name="widths">(h_c, h_I, β) to use; null: chosen by leave-one-out on the training set.</param>
-    public static LocalWiener Build(double[,] a, TrainingSet training, double[] noiseVariance, (double Chromaticity, double Intensity, double Shrinkage)? widths = null)
+    public static LocalWiener Build(double[,] a, TrainingSet training, double[] noiseVariance,
+        (double Chromaticity, double Intensity, double Shrinkage)? widths = null) =>
+        Build(ForwardModel.Bands(a, training), noiseVariance, widths);
+
+    /// <param name="model">the forward model, with the training set in its coordinates; the estimate is of the band means.</param>
+    /// <param name="noiseVariance">per channel, the variance of s.</param>
+    /// <param name="widths">(h_c, h_I, β) to use; null: chosen by leave-one-out on the training set (RMSE over the bands).</param>
+    public static LocalWiener Build(ForwardModel model, double[] noiseVariance,
+        (double Chromaticity, double Intensity, double Shrinkage)? widths = null)
     {
-        var e = new LocalWiener(a, training, noiseVariance);
+        var e = new LocalWiener(model, noiseVariance);
         var grid = widths is { } w ? [w]
             : (from hc in ChromaticityWidths from hi in IntensityWidths from beta in Shrinkages select (hc, hi, beta)).ToArray();
         var score = new double[grid.Length];

@@ -42,12 +42,12 @@ public static class RecoveryComparison
             var exact = inputs[c / 2];
             var capture = CameraCapture.Simulate(scene, Sensor(name), new SimulationOptions { Noise = noise }, display: false,
                 cube: exact?.Cube, whiteScale: exact?.WhiteScale ?? 1);
-            var a = capture.ForwardMatrix();
+            var model = capture.ForwardModel(training);   // the route's own: exact signals, a model at full resolution
             var noiseVariance = capture.NoiseVariance();
             for (int m = 0; m < methods.Length; m++)
             {
                 // Each patch recovered from its mean signal, scored on all bands and on 400–700 nm.
-                var estimator = SpectralEstimator.Build(methods[m], a, training, noiseVariance);
+                var estimator = SpectralEstimator.Build(methods[m], model, noiseVariance);
                 var (all, visible, de) = RecoveryEvaluation.PatchMeanSignals(capture, estimator, (400, 700));
                 rows[c * methods.Length + m] = new ComparisonRow(name, noise, SpectralEstimator.Name(methods[m]), visible, all, de);
             }
@@ -65,7 +65,10 @@ public static class RecoveryComparison
         var inv = CultureInfo.InvariantCulture;
         h.Append("<p>The §3.1 chart seen by three simulated cameras (docs/camera.md: ISETCam's pixel, auto exposure, a flat lens: no cos⁴ fall-off or diffraction blur, which a recovery without lens shading correction would read as reflectance), " +
             "reflectance recovered from the signals with the rawtoaces 190-patch prior, scored against the render's ground truth: each patch recovered from its mean signal (as a camera is characterised; for the affine methods the same as the mean of its pixels' estimates, which <code>spectral recover</code> reports), then the mean over the 24 patches of the RMSE on 400–700 nm (where the sensors respond) and on all bands, and of ΔE00 under D65. Noise on: shot, dark, read noise and quantisation, seed 1. " +
-            (input is null ? "Signals from the band cube." : "Signals exact (issue 24): each channel integrated per eq. 2 term at the spectra's full resolution, independent of the band count; the recovery's forward model takes reflectance constant within each band.") + "</p>\n");
+            (input is null ? "Signals from the band cube."
+                : "Signals exact (issue 24): each channel integrated per eq. 2 term at the spectra's full resolution, independent of the band " +
+                  "count; the recovery's forward model is at full resolution too (the training spectra's exact signals, recovered as band means).")
+            + "</p>\n");
         h.Append("<table><tr><th class=l>sensor</th><th class=l>noise</th><th class=l>method</th><th>RMSE 400–700 nm</th><th>RMSE all bands</th><th>ΔE00 D65</th></tr>\n");
         foreach (var r in rows)
             h.Append(inv, $"<tr><td class=l>{WebUtility.HtmlEncode(r.Sensor)}</td><td class=l>{(r.Noise ? "on" : "off")}</td><td class=l>{r.Method}</td><td>{r.Rmse400To700:0.0000}</td><td>{r.RmseAllBands:0.0000}</td><td>{r.DeltaE00D65:0.000}</td></tr>\n");

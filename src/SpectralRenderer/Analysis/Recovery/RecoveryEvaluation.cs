@@ -30,7 +30,7 @@ public static class RecoveryEvaluation
         var scene = capture.Scene;
         var truth = scene.Aovs.Reflectance ?? throw new InputException(scene.Folder.Path, "has no ground-truth reflectance (reflectance.exr)", "render with --formats including aov");
         int c = capture.Sensor.ChannelCount, n = scene.Grid.Count, pixels = scene.Width * scene.Height;
-        var a = capture.ForwardMatrix();
+        var model = capture.ForwardModel(training);
         if (whiteMask is not null)
         {
             var measured = new double[c];
@@ -41,15 +41,12 @@ public static class RecoveryEvaluation
                 for (int k = 0; k < c; k++) measured[k] += capture.Image.Rates[i * c + k];
                 count++;
             }
-            for (int k = 0; k < c; k++)
-            {
-                double predicted = 0;
-                for (int b = 0; b < n; b++) predicted += a[k, b];
-                double scale = count > 0 && predicted > 0 ? measured[k] / count / predicted : 1;
-                for (int b = 0; b < n; b++) a[k, b] *= scale;
-            }
+            var predicted = model.White();
+            var scales = new double[c];
+            for (int k = 0; k < c; k++) scales[k] = count > 0 && predicted[k] > 0 ? measured[k] / count / predicted[k] : 1;
+            model = model.WithChannelScales(scales);
         }
-        var estimator = SpectralEstimator.Build(method, a, training, capture.NoiseVariance());
+        var estimator = SpectralEstimator.Build(method, model, capture.NoiseVariance());
         var cube = new float[pixels * n];
         // Without regions only the patches' pixels are scored, so only they are recovered.
         bool[]? recover = null;

@@ -7,7 +7,9 @@ public enum RecoveryMethod { Pinv, Wiener, Linear, Tikhonov, WienerLocal }
 /// <summary>
 /// Reflectance from camera signals, r̂ = G·s + h (N bands from C channels), for the forward model s = A·r + n:
 /// A (C × N) the expected photo-electron rate per unit reflectance in each band (channel weights × the light's band
-/// values: a surface lit like the white diffuser), n the sensor noise of covariance K_n.
+/// values: a surface lit like the white diffuser), n the sensor noise of covariance K_n. On the exact route r is the
+/// reflectance at full resolution (its values at the training spectra's knots, <see cref="ForwardModel"/>) and the
+/// estimate is of its band means: G and h below, computed there, are then taken through the band means P.
 /// <list type="bullet">
 /// <item><b>pinv</b>: the minimum-norm least-squares solution, G = A⁺ = Aᵀ(AAᵀ)⁻¹.</item>
 /// <item><b>wiener</b>: the linear minimum-mean-square-error estimate with the training set's mean μ and covariance K_r
@@ -25,10 +27,13 @@ public enum RecoveryMethod { Pinv, Wiener, Linear, Tikhonov, WienerLocal }
 /// </summary>
 public sealed class SpectralEstimator
 {
-    SpectralEstimator(RecoveryMethod method, double[,] g, double[] h, double? lambda, int? components, LocalWiener? local)
-    { Method = method; G = g; H = h; Lambda = lambda; Components = components; Local = local; }
+    SpectralEstimator(RecoveryMethod method, double[,] g, double[] h, double? lambda, int? components, LocalWiener? local,
+        ForwardModel model)
+    { Method = method; G = g; H = h; Lambda = lambda; Components = components; Local = local; Model = model; }
 
     public RecoveryMethod Method { get; }
+    /// <summary>The forward model the estimator inverts (its route: bands or exact).</summary>
+    public ForwardModel Model { get; }
     /// <summary>N × C.</summary>
     public double[,] G { get; }
     public double[] H { get; }
@@ -57,12 +62,24 @@ public sealed class SpectralEstimator
 
     /// <param name="a">C × N forward matrix.</param>
     /// <param name="noiseVariance">per channel, the variance of s (same units squared); zeros without noise.</param>
-    public static SpectralEstimator Build(RecoveryMethod method, double[,] a, TrainingSet training, double[] noiseVariance, ulong seed = 1)
+    public static SpectralEstimator Build(RecoveryMethod method, double[,] a, TrainingSet training, double[] noiseVariance,
+        ulong seed = 1) =>
+        Build(method, ForwardModel.Bands(a, training), noiseVariance, seed);
+
+    /// <summary>
+    /// The estimator for <paramref name="model"/>: each method in the model's coordinates x (M of them: the bands, or the
+    /// exact route's knots) with the training set's mean and covariance there, then the band means P·x: G = P·G_x, h = P·h_x.
+    /// </summary>
+    /// <param name="noiseVariance">per channel, the variance of s (same units squared); zeros without noise.</param>
+    public static SpectralEstimator Build(RecoveryMethod method, ForwardModel model, double[] noiseVariance, ulong seed = 1)
     {
+        var a = model.A;
+        var training = model.Training;
         int c = a.GetLength(0), n = a.GetLength(1);
         var at = Dense.Transpose(a);
         var mu = training.Mean();
         var amu = Dense.Multiply(a, mu);
+        var muBands = model.ToBands(mu);
         // A ridge of 1e-12 of the mean diagonal keeps noise-free systems solvable without changing them measurably.
         double[,] Ridge(double[,] m)
         {
@@ -77,8 +94,8 @@ public sealed class SpectralEstimator
         switch (method)
         {
             case RecoveryMethod.Pinv:
-                g = Dense.SolveRight(at, Ridge(Dense.Multiply(a, at)));
-                h = new double[n];
+                g = model.ToBands(Dense.SolveRight(at, Ridge(Dense.Multiply(a, at))));
+                h = new double[g.GetLength(0)];
                 break;
             case RecoveryMethod.Wiener:
             case RecoveryMethod.WienerLocal:
@@ -87,9 +104,9 @@ public sealed class SpectralEstimator
                     var krat = Dense.Multiply(kr, at);
                     var m = Dense.Multiply(a, krat);
                     for (int i = 0; i < c; i++) m[i, i] += noiseVariance[i];
-                    g = Dense.SolveRight(krat, Ridge(m));
-                    h = Affine(g, mu, amu);
-                    if (method == RecoveryMethod.WienerLocal) local = LocalWiener.Build(a, training, noiseVariance);
+                    g = model.ToBands(Dense.SolveRight(krat, Ridge(m)));
+                    h = Affine(g, muBands, amu);
+                    if (method == RecoveryMethod.WienerLocal) local = LocalWiener.Build(model, noiseVariance);
                     break;
                 }
             case RecoveryMethod.Linear:
@@ -110,7 +127,8 @@ public sealed class SpectralEstimator
                         g = Dense.Multiply(b, Dense.Solve(Ridge(normal), abt));         // B (AB)⁺
                         components = k;
                     }
-                    h = Affine(g, mu, amu);
+                    g = model.ToBands(g);
+                    h = Affine(g, muBands, amu);
                     break;
                 }
             default:
@@ -118,7 +136,8 @@ public sealed class SpectralEstimator
                     int t = training.Count;
                     // Simulated training signals with the sensor's noise (a fixed seed: the fit is reproducible).
                     var s = new double[c, t];
-                    var r = new double[n, t];
+                    int nb = muBands.Length;
+                    var r = new double[nb, t];   // the targets: band means
                     var sMean = new double[c];
                     for (int j = 0; j < t; j++)
                     {
@@ -129,7 +148,8 @@ public sealed class SpectralEstimator
                             s[i, j] = sig[i] + Math.Sqrt(noiseVariance[i]) * rng.Normal();
                             sMean[i] += s[i, j] / t;
                         }
-                        for (int b = 0; b < n; b++) r[b, j] = training.Samples[j][b] - mu[b];
+                        var rj = model.ToBands(training.Samples[j]);
+                        for (int b = 0; b < nb; b++) r[b, j] = rj[b] - muBands[b];
                     }
                     for (int i = 0; i < c; i++) for (int j = 0; j < t; j++) s[i, j] -= sMean[i];
                     var sst = Dense.Multiply(s, Dense.Transpose(s));
@@ -144,17 +164,17 @@ public sealed class SpectralEstimator
                         var gl = Dense.SolveRight(rst, Dense.Add(sst, Dense.Identity(c, lam)));
                         var fit = Dense.Multiply(gl, s);
                         double res = 0;
-                        for (int b = 0; b < n; b++) for (int j = 0; j < t; j++) { double d = r[b, j] - fit[b, j]; res += d * d; }
+                        for (int b = 0; b < nb; b++) for (int j = 0; j < t; j++) { double d = r[b, j] - fit[b, j]; res += d * d; }
                         double trH = eig.Sum(v => Math.Max(0, v) / (Math.Max(0, v) + lam));
                         double gcv = t * res / ((t - trH) * (t - trH));
                         if (gcv < best) { best = gcv; bestG = gl; lambda = Math.Pow(10, e); }
                     }
                     g = bestG!;
-                    h = Affine(g, mu, sMean);
+                    h = Affine(g, muBands, sMean);
                     break;
                 }
         }
-        return new SpectralEstimator(method, g, h, lambda, components, local);
+        return new SpectralEstimator(method, g, h, lambda, components, local, model);
     }
 
     /// <summary>h = μ − G·s₀: the estimate is μ at the signal s₀ of the mean.</summary>

@@ -5,7 +5,8 @@ namespace SpectralRenderer.Analysis.Recovery;
 
 /// <summary>
 /// Reflectances a recovery learns from (its prior), as band means on the render's grid: the named sets in data/
-/// (data/README.md gives their sources) or every column of a CSV file (first column wavelength_nm).
+/// (data/README.md gives their sources) or every column of a CSV file (first column wavelength_nm). The spectra as
+/// tabulated stay too, for the exact route's forward model at full resolution (<see cref="ForwardModel"/>).
 /// </summary>
 public sealed class TrainingSet
 {
@@ -16,11 +17,13 @@ public sealed class TrainingSet
         ("colorchecker", ColorChecker.File, "the 24 ColorChecker patches (Ohta): the test chart itself, an optimistic prior"),
     ];
 
-    TrainingSet(string name, double[][] samples) { Name = name; Samples = samples; }
+    TrainingSet(string name, double[][] samples, TabulatedSpectrum[] spectra) { Name = name; Samples = samples; Spectra = spectra; }
 
     public string Name { get; }
-    /// <summary>T samples × N band means.</summary>
+    /// <summary>T samples × N band means (or, from <see cref="WithSamples"/>, a forward model's coordinates).</summary>
     public double[][] Samples { get; }
+    /// <summary>The T reflectances as tabulated (piecewise linear between the file's wavelengths).</summary>
+    public TabulatedSpectrum[] Spectra { get; }
     public int Count => Samples.Length;
 
     public static TrainingSet Load(string nameOrCsv, BandGrid grid)
@@ -33,16 +36,23 @@ public sealed class TrainingSet
             InputException.DidYouMean(nameOrCsv, Named.Select(n => n.Name)) ?? $"one of {string.Join(", ", Named.Select(n => n.Name))}, or a CSV file");
         var table = SpectrumLibrary.Table(path);
         var samples = new List<double[]>();
+        var spectra = new List<TabulatedSpectrum>();
         foreach (var column in table.Columns)
         {
             var s = table[column];
             s.RequireCoverage(grid.Start, grid.End, $"{path}: column {column}");
             // Tiny negatives left by the source's processing (|v| ≤ 3e-16 in rawtoaces) count as 0.
             samples.Add(BandProjection.Means(s, grid).Select(v => Math.Max(0, v)).ToArray());
+            spectra.Add(s);
         }
         if (samples.Count < 2) throw new InputException(path, "a training set needs at least two reflectances", "list two or more reflectance spectra");
-        return new TrainingSet(named.Name ?? Path.GetFileNameWithoutExtension(path), samples.ToArray());
+        return new TrainingSet(named.Name ?? Path.GetFileNameWithoutExtension(path), samples.ToArray(), spectra.ToArray());
     }
+
+    /// <summary>
+    /// The same reflectances given by other coordinates (T × M), e.g. their values at knots: Mean and Covariance are then in those.
+    /// </summary>
+    public TrainingSet WithSamples(double[][] samples) => new(Name, samples, Spectra);
 
     public double[] Mean()
     {
