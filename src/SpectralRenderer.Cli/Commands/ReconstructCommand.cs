@@ -3,6 +3,7 @@ using System.Text;
 using SpectralRenderer.Analysis;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
+using SpectralRenderer.Output;
 
 namespace SpectralRenderer.Cli.Commands;
 
@@ -54,17 +55,22 @@ public static class ReconstructCommand
         var summaries = Reconstruction.Summarise(surface);
         var pixels = chosen.Count > 0 ? chosen.Select(p => rec.At(p.X, p.Y, p.Label)).ToList() : Reconstruction.Representatives(surface);
 
-        NpyWriter.Write(Path.Combine(dir, "reconstructed.npy"), rec.Reflectance);
-        ExrWriter.Write(Path.Combine(dir, "reconstructed.exr"), rec.Reflectance, new ExrOptions
+        // One folder transaction (OutputFolder): the five files staged beside OUTDIR and swapped in together.
+        string[] names = ["reconstructed.npy", "reconstructed.exr", "reconstruction.csv", "reconstruction-metrics.csv", "reconstruction.svg"];
+        using var target = OutputFolder.BeginFiles(dir, names, "reconstruction");
+        var staging = target.Staging;
+        NpyWriter.Write(Path.Combine(staging, "reconstructed.npy"), rec.Reflectance);
+        ExrWriter.Write(Path.Combine(staging, "reconstructed.exr"), rec.Reflectance, new ExrOptions
         {
             Reflective = true,
             Rgb = false,
             Attributes = new Dictionary<string, string> { ["comments"] = $"reflectance reconstructed by white-board calibration against {white.Description} (Li et al. 2010 §3.4)" },
         });
-        AtomicFile.WriteAllText(Path.Combine(dir, "reconstruction.csv"), CurvesCsv(rec, pixels));
+        AtomicFile.WriteAllText(Path.Combine(staging, "reconstruction.csv"), CurvesCsv(rec, pixels));
         var metrics = MetricsCsv(pixels, summaries);
-        AtomicFile.WriteAllText(Path.Combine(dir, "reconstruction-metrics.csv"), metrics);
-        Plot(rec, pixels).Write(Path.Combine(dir, "reconstruction.svg"));
+        AtomicFile.WriteAllText(Path.Combine(staging, "reconstruction-metrics.csv"), metrics);
+        Plot(rec, pixels).Write(Path.Combine(staging, "reconstruction.svg"));
+        target.Commit(names);
 
         if (a.Flag("--csv")) { stdout.Write(metrics); return CommandLine.Success; }
         var inv = CultureInfo.InvariantCulture;

@@ -4,6 +4,7 @@ using SpectralRenderer.Analysis;
 using SpectralRenderer.Analysis.Recovery;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
+using SpectralRenderer.Output;
 
 namespace SpectralRenderer.Cli.Commands;
 
@@ -73,10 +74,15 @@ public static class RecoverCommand
         var written = new List<string>();
         var g = scene.Grid;
         var centres = Enumerable.Range(0, g.Count).Select(g.Centre).ToArray();
+        // One folder transaction (OutputFolder): staged beside CAMERADIR and swapped in together; nothing else there is touched.
+        var names = results.SelectMany(r => new[] { $"recovered-{SpectralEstimator.Name(r.Method)}.npy", $"recovery-{SpectralEstimator.Name(r.Method)}.svg" })
+            .Append("recovery-metrics.csv").ToList();
+        using var folder = OutputFolder.BeginFiles(dir, names, "recovery");
         foreach (var r in results)
         {
+            Signals.Token.ThrowIfCancellationRequested();
             var name = SpectralEstimator.Name(r.Method);
-            AtomicFile.Write(Path.Combine(dir, $"recovered-{name}.npy"), s => NpyWriter.Write(s, [scene.Height, scene.Width, g.Count], r.Reflectance));
+            AtomicFile.Write(Path.Combine(folder.Staging, $"recovered-{name}.npy"), s => NpyWriter.Write(s, [scene.Height, scene.Width, g.Count], r.Reflectance));
             var plot = new SvgPlot
             {
                 Title = $"Reflectance recovered by {name} from {capture.Sensor.Name} ({training.Name} prior{(white is null ? "" : ", white-calibrated")})",
@@ -85,12 +91,13 @@ public static class RecoverCommand
             };
             foreach (var (label, rec, _) in r.Examples) plot.Add(label, centres, rec);
             foreach (var (label, _, truth) in r.Examples) plot.Add($"truth: {label}", centres, truth, dashed: true);
-            plot.Write(Path.Combine(dir, $"recovery-{name}.svg"));
+            plot.Write(Path.Combine(folder.Staging, $"recovery-{name}.svg"));
             written.Add($"recovered-{name}.npy");
             written.Add($"recovery-{name}.svg");
         }
-        AtomicFile.WriteAllText(Path.Combine(dir, "recovery-metrics.csv"), csv.ToString());
+        AtomicFile.WriteAllText(Path.Combine(folder.Staging, "recovery-metrics.csv"), csv.ToString());
         written.Add("recovery-metrics.csv");
+        folder.Commit(written);
 
         if (a.Flag("--csv")) { stdout.Write(csv.ToString()); return CommandLine.Success; }
         stdout.WriteLine($"recovery from {capture.Sensor.Name} ({capture.Sensor.ChannelCount} channels, noise {(capture.Raw.Options.Noise ? "on" : "off")}) of {scene.Folder.Path}; training {training.Name} ({training.Count} reflectances); {g} bands{(white is null ? "" : $"; white: {white.Description}")}; RMSE and GFC over {rangeText} nm");

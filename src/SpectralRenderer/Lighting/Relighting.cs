@@ -73,7 +73,8 @@ public static class Relighting
         if (transfer.Width != scene.Camera.Width || transfer.Height != scene.Camera.Height || transfer.Bands != scene.Bands)
             throw new InputException(src.Dir, $"its lights/ are {transfer.Width}×{transfer.Height}×{transfer.Bands} but the scene rebuilds as {scene.Camera.Width}×{scene.Camera.Height}×{scene.Bands}",
                 "the scene file changed since the render; render again");
-        if (Path.GetFullPath(outDir) == Path.GetFullPath(src.Dir))
+        // By identity, not spelling: "r/", "./r" or a link to r is the folder being relit too.
+        if (OutputFolder.SameFolder(src.Dir, outDir))
             throw new InputException(outDir, "is the folder being relit", "write the relit render to another folder with -o");
         Directory.CreateDirectory(outDir);
         var crop = PixelRect.Whole(transfer.Width, transfer.Height);
