@@ -89,10 +89,10 @@ public static class SweepCommand
         // SIGINT/SIGTERM (Signals; SIGTERM is what Slurm sends on pre-emption) stop the running job's render at its next
         // pixel; the index is rebuilt from the job records whichever way the run ends, a forced stop included.
         var cancel = Signals.Token;
-        // One sweep at a time on a dataset: a second one exits 2 naming the folder (the jobs' folders are locked each too).
-        using var dataset = OutputFolder.BeginFiles(outDir, ["index.csv", "index.jsonl"], "sweep index");
         Signals.OnForcedStop(() => SweepRunner.WriteIndex(plan, outDir, layout == "pairs" ? "pairs" : "folders"));
         Signals.DescribeLeft(() => $"finished jobs are kept and listed in {Path.Combine(outDir, "index.csv")} (rebuilt); the running job left nothing under a final name; run the same command again to resume");
+        // One sweep at a time on a dataset: a second one exits 2 naming the folder (the jobs' folders are locked each too).
+        using var dataset = OutputFolder.BeginFiles(outDir, ["index.csv", "index.jsonl"], "sweep index");
         {
             bool terminal = ReferenceEquals(stderr, Console.Error) && !Console.IsErrorRedirected;
             Action<SweepProgress>? progress = quiet ? null : p =>

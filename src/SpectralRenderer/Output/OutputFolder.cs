@@ -201,7 +201,8 @@ public sealed class OutputFolder : IDisposable
                 bool had = f.HoldsResult;
                 if (!f._swapping && !f._done) TryDelete(f.Staging);
                 f.Release();
-                left.Add($"{f.Final} {(had ? $"still holds the previous {f.What}, unchanged" : $"holds no {f.What}")}");
+                left.Add(f._owned is not null ? $"{f.Final} is as it was (no {f.What} file replaced)"
+                    : $"{f.Final} {(had ? $"still holds the previous {f.What}, unchanged" : $"holds no {f.What}")}");
             }
             finally { Monitor.Exit(f._sync); }
         }
