@@ -652,7 +652,9 @@ for label, args, pat in [
     ("probe-pixel-negative", ["probe", "{tmp}/r", "--pixel", "-1,2"], r"outside|is not X,Y"),
     ("reconstruct-no-white", ["reconstruct", "{tmp}/r"], r"exactly one of"),
     ("reconstruct-white-unknown", ["reconstruct", "{tmp}/r", "--white-object", "board"], r"no object 'board'"),
-    ("reconstruct-region-outside", ["reconstruct", "{tmp}/r", "--white-region", "0,0,100,100"], r"outside the 8×6 image"),
+    ("reconstruct-region-outside", ["reconstruct", "{tmp}/r", "--white-region", "0,0,100,100"], r"is not a non-empty rectangle inside the 8×6 image"),
+    ("reconstruct-region-one-past", ["reconstruct", "{tmp}/r", "--white-region", "0,0,9,6"], r"0,0,9,6 is not a non-empty rectangle inside the 8×6 image"),
+    ("reconstruct-region-empty", ["reconstruct", "{tmp}/r", "--white-region", "2,2,2,4"], r"2,2,2,4 is not a non-empty rectangle"),
 ]:
     named = next((a for a in args if a in ("--pixel", "--white-object", "--white-region")), "command line")
     if "exactly one of" in pat: named = "command line"

@@ -15,9 +15,9 @@ public static class ReconstructCommand
                                     [--pixel X,Y[:LABEL] …] [--csv]
 
         The paper's §3.4 white-board calibration: reflectance = pixel radiance ÷ white radiance, band by
-        band, the white being the mean over the pixels of object NAME or of the rectangle X0..X1 × Y0..Y1
-        (inclusive). Compares it with the ground-truth reflectance the render wrote (reflectance.exr)
-        by RMSE, GFC (goodness-of-fit coefficient), CIEDE2000 under D65, and the least-squares scale c with
+        band, the white being the mean over the pixels of object NAME or of the rectangle X0,Y0,X1,Y1: columns
+        X0…X1−1 and rows Y0…Y1−1 (X1 and Y1 exclusive, as --crop). Compares it with the ground-truth
+        reflectance the render wrote (reflectance.exr) by RMSE, GFC (goodness-of-fit coefficient), CIEDE2000 under D65, and the least-squares scale c with
         the RMSE left after scaling (c·truth ≈ reconstruction: a shadow is a scale error).
 
         Regions (from the render's mask-lit-<k>.png and mask-highlight.png):
@@ -93,7 +93,7 @@ public static class ReconstructCommand
     {
         var v = text.Split(',').Select(t => int.TryParse(t.Trim(), NumberStyles.Integer, CultureInfo.InvariantCulture, out int n) ? n : (int?)null).ToArray();
         if (v.Length != 4 || v.Any(n => n is null))
-            throw new InputException("--white-region", $"'{text}' is not X0,Y0,X1,Y1", "four whole pixel numbers, e.g. 0,0,15,9");
+            throw new InputException("--white-region", $"'{text}' is not X0,Y0,X1,Y1", "four whole pixel numbers, X1 and Y1 exclusive (as for --crop), e.g. 0,0,16,10: columns 0–15, rows 0–9");
         return Reconstruction.WhiteRegion(folder, v[0]!.Value, v[1]!.Value, v[2]!.Value, v[3]!.Value);
     }
 

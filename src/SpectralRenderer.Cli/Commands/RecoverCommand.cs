@@ -26,6 +26,7 @@ public static class RecoverCommand
         --method takes a comma list; default all. --training: rawtoaces-190 (default), cie224-ces99,
         colorchecker, or a CSV of reflectances (first column wavelength_nm). --white-object / --white-region
         calibrate each channel on a white reference of reflectance 1 (§3.4); its pixels are then excluded.
+        --white-region X0,Y0,X1,Y1 is columns X0…X1−1 and rows Y0…Y1−1 (X1 and Y1 exclusive, as --crop).
         --range LO:HI scores RMSE and GFC on the bands inside LO–HI nm only (e.g. 400:700, where the sensors
         respond; default every band); ΔE00 always uses the whole spectrum.
 
@@ -122,7 +123,7 @@ public static class RecoverCommand
     {
         var v = text.Split(',').Select(t => int.TryParse(t.Trim(), NumberStyles.Integer, CultureInfo.InvariantCulture, out int n) ? n : (int?)null).ToArray();
         if (v.Length != 4 || v.Any(n => n is null))
-            throw new InputException("--white-region", $"'{text}' is not X0,Y0,X1,Y1", "four whole pixel numbers, e.g. 0,0,15,9");
+            throw new InputException("--white-region", $"'{text}' is not X0,Y0,X1,Y1", "four whole pixel numbers, X1 and Y1 exclusive (as for --crop), e.g. 0,0,16,10: columns 0–15, rows 0–9");
         return Reconstruction.WhiteRegion(scene.Folder, v[0]!.Value, v[1]!.Value, v[2]!.Value, v[3]!.Value);
     }
 }
