@@ -195,7 +195,7 @@ def recover(capture, method="all", training=None, white_object=None, white_regio
     Recovery holding each method's H x W x N cube (rec["wiener"]) and the metrics against the render's ground truth.
 
     method: a name, a list of names, or "all"; training: rawtoaces-190 (default), cie224-ces99, colorchecker or a CSV;
-    white_object / white_region (x0, y0, x1, y1): a white reference (§3.4); range (lo, hi) nm for RMSE and GFC."""
+    white_object / white_region (x0, y0, x1, y1; x1 and y1 exclusive, as --crop): a white reference (§3.4); range (lo, hi) nm for RMSE and GFC."""
     lib = _native.need(1, "recover")
     if not isinstance(method, str):
         method = ",".join(method)

@@ -78,18 +78,26 @@ public static class CommandLine
             stderr.WriteLine($"spectral: unknown command '{args[0]}' (hint: {InputException.DidYouMean(args[0], commands.Select(c => c.Name)) ?? "see 'spectral --help'"})");
             return BadInput;
         }
+        // SIGINT and SIGTERM are answered from here to the exit (Signals): the command stops at its next check, or is
+        // ended for it after a grace period with its staging removed and one line of what was left.
+        using var signals = Signals.Install(cmd.Name, stderr);
+        int exit;
+        string? line = null;
         try
         {
-            return cmd.Run(args[1..], stdout, stderr);
+            exit = cmd.Run(args[1..], stdout, stderr);
         }
         catch (Exception e)
         {
             var (code, message) = Describe(e);
             // An InputException's message is one line of at most MessageText.MaxLine already, cut where its parts allow
             // (never through its hint); other messages are made one such line here.
-            stderr.WriteLine($"spectral {cmd.Name}: " + (e is InputException ? MessageText.Escape(message) : MessageText.Line(message)));
-            return code;
+            line = $"spectral {cmd.Name}: " + (e is InputException ? MessageText.Escape(message) : MessageText.Line(message));
+            exit = code;
         }
+        if (!signals.TryEnd()) Thread.Sleep(Timeout.Infinite);   // a signal's watchdog is ending the process with its own line
+        if (line is not null) stderr.WriteLine(line);
+        return exit;
     }
 
     /// <summary>

@@ -73,7 +73,7 @@ public static unsafe partial class NativeExports
     /// <summary>
     /// Recovery of reflectance from the capture held by <paramref name="h"/>, as `spectral recover CAMERADIR` on the folder
     /// the capture would write. <paramref name="options"/>: a JSON object, each key optional — method (a name or a comma
-    /// list, "all" the default), training, white_object, white_region ([x0, y0, x1, y1]), range ([lo, hi] nm).
+    /// list, "all" the default), training, white_object, white_region ([x0, y0, x1, y1], x1 and y1 exclusive), range ([lo, hi] nm).
     /// </summary>
     [UnmanagedCallersOnly(EntryPoint = "spectral_recover")]
     public static nint Recover(nint h, byte* options)
@@ -379,7 +379,7 @@ sealed class NativeRecovery : PinnedHolder
             : [];
         if (v.Length != 4 || v.Any(n => n is null))
             throw new InputException("options.white_region", $"{MessageText.Quote(node.ToJsonString())} is not [x0, y0, x1, y1]",
-                "four whole pixel numbers, e.g. (0, 0, 15, 9)");
-        return Reconstruction.WhiteRegion(scene.Folder, v[0]!.Value, v[1]!.Value, v[2]!.Value, v[3]!.Value);
+                "four whole pixel numbers, x1 and y1 exclusive (as --crop), e.g. (0, 0, 16, 10)");
+        return Reconstruction.WhiteRegion(scene.Folder, v[0]!.Value, v[1]!.Value, v[2]!.Value, v[3]!.Value, "options.white_region");
     }
 }

@@ -326,7 +326,7 @@ def csv_case(label, text, pat, column="r"):
     sname = f"csv-{label}.json"
     write(sname, scene_text(s))
     scene_level = "has no column" in pat or "covers" in pat
-    case(f"csv/{label}", render("{in}/" + sname), pat, 2, sname if scene_level else fname, JSONPLACE if scene_level else r"\.csv:\d+")
+    case(f"csv/{label}", render("{in}/" + sname), pat, 2, sname if scene_level else fname, JSONPLACE if scene_level else r"\.csv:\d+:\d+: ")
 
 rows = "".join(f"{w},{0.5}\n" for w in range(380, 781, 10))
 for label, text, pat in [
@@ -652,7 +652,9 @@ for label, args, pat in [
     ("probe-pixel-negative", ["probe", "{tmp}/r", "--pixel", "-1,2"], r"outside|is not X,Y"),
     ("reconstruct-no-white", ["reconstruct", "{tmp}/r"], r"exactly one of"),
     ("reconstruct-white-unknown", ["reconstruct", "{tmp}/r", "--white-object", "board"], r"no object 'board'"),
-    ("reconstruct-region-outside", ["reconstruct", "{tmp}/r", "--white-region", "0,0,100,100"], r"outside the 8×6 image"),
+    ("reconstruct-region-outside", ["reconstruct", "{tmp}/r", "--white-region", "0,0,100,100"], r"is not a non-empty rectangle inside the 8×6 image"),
+    ("reconstruct-region-one-past", ["reconstruct", "{tmp}/r", "--white-region", "0,0,9,6"], r"0,0,9,6 is not a non-empty rectangle inside the 8×6 image"),
+    ("reconstruct-region-empty", ["reconstruct", "{tmp}/r", "--white-region", "2,2,2,4"], r"2,2,2,4 is not a non-empty rectangle"),
 ]:
     named = next((a for a in args if a in ("--pixel", "--white-object", "--white-region")), "command line")
     if "exactly one of" in pat: named = "command line"
@@ -1002,6 +1004,36 @@ for label, args, pat, named in [
 ]:
     base = "base-lights r" if label.startswith("relight") or label.startswith("view") else "base-render r"
     case(f"numbers/{label}", args, pat, 2, named, OPT + r"|--[a-z-]+", [base])
+
+# ---- H. sensor files (the two inputs fixed in 2c7cecf, found by the sensor fuzz target) and relight sweep CSVs ----------
+# A sensor file's duplicate key is named at its second occurrence (line:column); a channel's name or spectrum that is
+# not a string by its JSON path. A relight sweep CSV's bad cell by the sweep file's own row:column, before any row is written.
+GAUSS = {"centre_nm": 450, "fwhm_nm": 40}
+for label, text, pat, place in [
+    ("duplicate-key", '{"name": "a",\n  "channels": [{"name": "F1", "gaussian": {"centre_nm": 450, "fwhm_nm": 40}}],\n  "name": "b"}',
+     r"sensor-duplicate-key\.json:3:3: broken JSON: Duplicate property 'name'", r"\.json:3:3: "),
+    ("duplicate-key-in-channel", '{"name": "a", "channels": [{"name": "F1", "name": "F2", "gaussian": {"centre_nm": 450, "fwhm_nm": 40}}]}',
+     r"sensor-duplicate-key-in-channel\.json:1:43: broken JSON: Duplicate property 'name'", r"\.json:1:43: "),
+    ("channel-name-number", json.dumps({"name": "x", "channels": [{"name": 5, "gaussian": GAUSS}]}),
+     r"\$\.channels\[0\]\.name: must be a string", r"\.json: \$\.channels\[0\]\.name"),
+    ("channel-spectrum-number", json.dumps({"name": "x", "channels": [{"name": "F1", "spectrum": 7}]}),
+     r"\$\.channels\[0\]\.spectrum: must be a string", r"\.json: \$\.channels\[0\]\.spectrum"),
+]:
+    fname = write(f"sensor-{label}.json", text)
+    case(f"sensor/{label}", ["camera", "{tmp}/r", "--sensor", "{in}/" + fname, "-o", "{tmp}/out"], pat, 2, fname, place, ["base-render r"])
+for label, text, pat, place in [
+    ("unknown-spectrum-after-blank", "light-0\nD65\n\nD66\n", r"unknown spectrum", ":4:1: "),
+    ("intensity-negative", "light-0.intensity\n1\n-1\n", r"'-1' is not a non-negative intensity", ":3:1: "),
+    ("intensity-1e31", "light-0.intensity\n1e31\n", r"is not a non-negative intensity ≤ 1e30", ":2:1: "),
+    ("white-unknown", "light-0,white\nD65,A\nA,nope\n", r"unknown spectrum", ":3:2: "),
+    ("short-row", "light-0,white\nD65\n", r"1 cells, the header names 2", ":2:2: "),
+    ("no-such-light", "light-9\nD65\n", r"column 'light-9' names no light", ":1:1: "),
+    ("column-twice", "light-0,light-0\nD65,A\n", r"column 'light-0' appears twice", ":1:2: "),
+    ("header-only", "light-0\n", r"a sweep needs a header and at least one row", ":2:1: "),
+]:
+    fname = write(f"relight-sweep-{label}.csv", text)
+    case(f"relight-sweep/{label}", ["relight", "{tmp}/r", "--sweep", "{in}/" + fname, "-o", "{tmp}/out", "--quiet"], pat, 2, fname,
+         r"\.csv" + place, ["base-lights r"])
 
 names = [c["name"] for c in cases]
 assert len(names) == len(set(names)), [x for x in names if names.count(x) > 1]

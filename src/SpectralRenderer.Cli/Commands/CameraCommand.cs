@@ -8,6 +8,7 @@ using SpectralRenderer.Color;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Lighting;
+using SpectralRenderer.Output;
 using SpectralRenderer.Sensor;
 
 namespace SpectralRenderer.Cli.Commands;
@@ -143,13 +144,19 @@ public static class CameraCommand
         }
 
         var outDir = a.Value("-o") ?? Path.Combine(dir, $"camera-{sensor.Name}");
+        if (OutputFolder.SameFolder(dir, outDir))
+            throw new InputException("-o", $"{outDir} is the render folder itself", "write the camera's files to a folder of their own (default OUTDIR/camera-<sensor>)");
         var (raw, colour, image, patches, manifest) = CameraRun.Run(scene, sensor, cube, options, demosaic, whiteScale, whiteSource,
             a.Value("--radiance-scale") is not null ? "--radiance-scale" : null,
             sensorName != SensorFile.SceneArgument && File.Exists(sensorName) ? Path.GetFullPath(sensorName) : sensorName,
             Path.GetRelativePath(Path.GetFullPath(outDir), Path.GetFullPath(dir)));
-        Directory.CreateDirectory(outDir);
+        // One folder transaction (OutputFolder): the files are staged, swapped in whole with camera.json last, and
+        // replace only what the previous camera.json lists; a signal, error or refusal leaves the folder as it was.
+        using var folder = OutputFolder.Begin(outDir, "camera.json", "camera run");
+        var final = outDir;
+        outDir = folder.Staging;
         var written = new List<string>();
-        void Done(string f) => written.Add(f);
+        void Done(string f) { written.Add(f); Signals.Token.ThrowIfCancellationRequested(); }
 
         int[] shape = raw.Planes == 1 ? [raw.Height, raw.Width] : [raw.Height, raw.Width, raw.Planes];
         AtomicFile.Write(Path.Combine(outDir, "raw.npy"), st => NpyWriter.Write(st, shape, raw.Dn)); Done("raw.npy");
@@ -171,6 +178,8 @@ public static class CameraCommand
 
         manifest["files"] = new JsonArray(written.Append("camera.json").Select(f => (JsonNode)f).ToArray());
         AtomicFile.WriteAllText(Path.Combine(outDir, "camera.json"), manifest.ToJsonString(new JsonSerializerOptions { WriteIndented = true }) + "\n");
+        folder.Commit([.. written, "camera.json"]);
+        outDir = final;
 
         var inv = CultureInfo.InvariantCulture;
         if (routeNote is not null) stderr.WriteLine(routeNote);

@@ -29,16 +29,15 @@ public static class MergeCommand
         var outDir = a.Value("--out") ?? throw new InputException("", "no output folder given", "usage: spectral merge SHARD_DIR… -o OUTDIR");
         if (a.Positionals.Count == 0) throw new InputException("", "no shard folders given", "usage: spectral merge SHARD_DIR… -o OUTDIR");
         RenderCommand.PrepareOutputFolder(outDir);
-        using var cancel = new CancellationTokenSource();
-        ConsoleCancelEventHandler onCancel = (_, e) => { e.Cancel = true; cancel.Cancel(); };
-        Console.CancelKeyPress += onCancel;
-        try
+        var clock = System.Diagnostics.Stopwatch.StartNew();
+        List<string> files;
+        // SIGINT/SIGTERM (Signals) stop the merge at the next file or chunk; its staging is removed, OUTDIR keeps what it held.
+        try { files = ShardMerge.Merge(a.Positionals, outDir, "spectral merge " + string.Join(' ', argv), Signals.Token); }
+        catch (OperationCanceledException e) when (e is not InterruptedException)
         {
-            var clock = System.Diagnostics.Stopwatch.StartNew();
-            var files = ShardMerge.Merge(a.Positionals, outDir, "spectral merge " + string.Join(' ', argv), cancel.Token);
-            if (!a.Flag("--quiet")) stderr.WriteLine($"merged {a.Positionals.Count} shards into {outDir}: {files.Count} files in {clock.Elapsed.TotalSeconds:0.##} s, peak working set {System.Diagnostics.Process.GetCurrentProcess().PeakWorkingSet64 / 1048576.0:0} MiB");
-            return CommandLine.Success;
+            throw new InterruptedException($"interrupted by {Signals.Signal} while merging{Signals.StoppedAfter()}: the merged files were not swapped in; {outDir} holds what it held", e.CancellationToken);
         }
-        finally { Console.CancelKeyPress -= onCancel; }
+        if (!a.Flag("--quiet")) stderr.WriteLine($"merged {a.Positionals.Count} shards into {outDir}: {files.Count} files in {clock.Elapsed.TotalSeconds:0.##} s, peak working set {System.Diagnostics.Process.GetCurrentProcess().PeakWorkingSet64 / 1048576.0:0} MiB");
+        return CommandLine.Success;
     }
 }

@@ -43,7 +43,10 @@ public static class ProbeCommand
         var prefix = a.Value("--output") ?? Path.Combine(dir, "probe");
 
         var csv = Csv(image, pixels);
-        AtomicFile.WriteAllText(prefix + ".csv", csv);
+        // One folder transaction (OutputFolder): PREFIX.csv and PREFIX.svg staged and swapped in together.
+        var stem = Path.GetFileName(prefix);
+        using var folder = OutputFolder.BeginFiles(Path.GetDirectoryName(Path.GetFullPath(prefix))!, [stem + ".csv", stem + ".svg"], "probe", "-o");
+        AtomicFile.WriteAllText(Path.Combine(folder.Staging, stem + ".csv"), csv);
         var plot = new SvgPlot
         {
             Title = $"Spectra of {pixels.Count} pixel{(pixels.Count == 1 ? "" : "s")} — {Path.GetFileName(Path.GetFullPath(dir).TrimEnd(Path.DirectorySeparatorChar))}",
@@ -52,7 +55,8 @@ public static class ProbeCommand
         };
         var centres = Enumerable.Range(0, image.Bands).Select(image.Grid.Centre).ToArray();
         foreach (var p in pixels) plot.Add(p.Label, centres, Values(image, p).Select(v => (double)v).ToArray());
-        plot.Write(prefix + ".svg");
+        plot.Write(Path.Combine(folder.Staging, stem + ".svg"));
+        folder.Commit([stem + ".csv", stem + ".svg"]);
 
         if (a.Flag("--csv")) { stdout.Write(csv); return CommandLine.Success; }
         var inv = CultureInfo.InvariantCulture;

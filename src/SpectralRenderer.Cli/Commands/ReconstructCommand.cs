@@ -3,6 +3,7 @@ using System.Text;
 using SpectralRenderer.Analysis;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
+using SpectralRenderer.Output;
 
 namespace SpectralRenderer.Cli.Commands;
 
@@ -14,9 +15,9 @@ public static class ReconstructCommand
                                     [--pixel X,Y[:LABEL] …] [--csv]
 
         The paper's §3.4 white-board calibration: reflectance = pixel radiance ÷ white radiance, band by
-        band, the white being the mean over the pixels of object NAME or of the rectangle X0..X1 × Y0..Y1
-        (inclusive). Compares it with the ground-truth reflectance the render wrote (reflectance.exr)
-        by RMSE, GFC (goodness-of-fit coefficient), CIEDE2000 under D65, and the least-squares scale c with
+        band, the white being the mean over the pixels of object NAME or of the rectangle X0,Y0,X1,Y1: columns
+        X0…X1−1 and rows Y0…Y1−1 (X1 and Y1 exclusive, as --crop). Compares it with the ground-truth
+        reflectance the render wrote (reflectance.exr) by RMSE, GFC (goodness-of-fit coefficient), CIEDE2000 under D65, and the least-squares scale c with
         the RMSE left after scaling (c·truth ≈ reconstruction: a shadow is a scale error).
 
         Regions (from the render's mask-lit-<k>.png and mask-highlight.png):
@@ -54,17 +55,22 @@ public static class ReconstructCommand
         var summaries = Reconstruction.Summarise(surface);
         var pixels = chosen.Count > 0 ? chosen.Select(p => rec.At(p.X, p.Y, p.Label)).ToList() : Reconstruction.Representatives(surface);
 
-        NpyWriter.Write(Path.Combine(dir, "reconstructed.npy"), rec.Reflectance);
-        ExrWriter.Write(Path.Combine(dir, "reconstructed.exr"), rec.Reflectance, new ExrOptions
+        // One folder transaction (OutputFolder): the five files staged beside OUTDIR and swapped in together.
+        string[] names = ["reconstructed.npy", "reconstructed.exr", "reconstruction.csv", "reconstruction-metrics.csv", "reconstruction.svg"];
+        using var target = OutputFolder.BeginFiles(dir, names, "reconstruction");
+        var staging = target.Staging;
+        NpyWriter.Write(Path.Combine(staging, "reconstructed.npy"), rec.Reflectance);
+        ExrWriter.Write(Path.Combine(staging, "reconstructed.exr"), rec.Reflectance, new ExrOptions
         {
             Reflective = true,
             Rgb = false,
             Attributes = new Dictionary<string, string> { ["comments"] = $"reflectance reconstructed by white-board calibration against {white.Description} (Li et al. 2010 §3.4)" },
         });
-        AtomicFile.WriteAllText(Path.Combine(dir, "reconstruction.csv"), CurvesCsv(rec, pixels));
+        AtomicFile.WriteAllText(Path.Combine(staging, "reconstruction.csv"), CurvesCsv(rec, pixels));
         var metrics = MetricsCsv(pixels, summaries);
-        AtomicFile.WriteAllText(Path.Combine(dir, "reconstruction-metrics.csv"), metrics);
-        Plot(rec, pixels).Write(Path.Combine(dir, "reconstruction.svg"));
+        AtomicFile.WriteAllText(Path.Combine(staging, "reconstruction-metrics.csv"), metrics);
+        Plot(rec, pixels).Write(Path.Combine(staging, "reconstruction.svg"));
+        target.Commit(names);
 
         if (a.Flag("--csv")) { stdout.Write(metrics); return CommandLine.Success; }
         var inv = CultureInfo.InvariantCulture;
@@ -87,7 +93,7 @@ public static class ReconstructCommand
     {
         var v = text.Split(',').Select(t => int.TryParse(t.Trim(), NumberStyles.Integer, CultureInfo.InvariantCulture, out int n) ? n : (int?)null).ToArray();
         if (v.Length != 4 || v.Any(n => n is null))
-            throw new InputException("--white-region", $"'{text}' is not X0,Y0,X1,Y1", "four whole pixel numbers, e.g. 0,0,15,9");
+            throw new InputException("--white-region", $"'{text}' is not X0,Y0,X1,Y1", "four whole pixel numbers, X1 and Y1 exclusive (as for --crop), e.g. 0,0,16,10: columns 0–15, rows 0–9");
         return Reconstruction.WhiteRegion(folder, v[0]!.Value, v[1]!.Value, v[2]!.Value, v[3]!.Value);
     }
 

@@ -6,6 +6,7 @@ using SpectralRenderer.Analysis;
 using SpectralRenderer.Analysis.Recovery;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
+using SpectralRenderer.Output;
 
 namespace SpectralRenderer.Cli.Commands;
 
@@ -27,6 +28,7 @@ public static class RecoverCommand
         --method takes a comma list; default all. --training: rawtoaces-190 (default), cie224-ces99,
         colorchecker, or a CSV of reflectances (first column wavelength_nm). --white-object / --white-region
         calibrate each channel on a white reference of reflectance 1 (§3.4); its pixels are then excluded.
+        --white-region X0,Y0,X1,Y1 is columns X0…X1−1 and rows Y0…Y1−1 (X1 and Y1 exclusive, as --crop).
         --range LO:HI scores RMSE and GFC on the bands inside LO–HI nm only (e.g. 400:700, where the sensors
         respond; default every band); ΔE00 always uses the whole spectrum.
 
@@ -80,10 +82,15 @@ public static class RecoverCommand
         var written = new List<string>();
         var g = scene.Grid;
         var centres = Enumerable.Range(0, g.Count).Select(g.Centre).ToArray();
+        // One folder transaction (OutputFolder): staged beside CAMERADIR and swapped in together; nothing else there is touched.
+        var names = results.SelectMany(r => new[] { $"recovered-{SpectralEstimator.Name(r.Method)}.npy", $"recovery-{SpectralEstimator.Name(r.Method)}.svg" })
+            .Append("recovery-metrics.csv").ToList();
+        using var folder = OutputFolder.BeginFiles(dir, names, "recovery");
         foreach (var r in results)
         {
+            Signals.Token.ThrowIfCancellationRequested();
             var name = SpectralEstimator.Name(r.Method);
-            AtomicFile.Write(Path.Combine(dir, $"recovered-{name}.npy"), s => NpyWriter.Write(s, [scene.Height, scene.Width, g.Count], r.Reflectance));
+            AtomicFile.Write(Path.Combine(folder.Staging, $"recovered-{name}.npy"), s => NpyWriter.Write(s, [scene.Height, scene.Width, g.Count], r.Reflectance));
             var plot = new SvgPlot
             {
                 Title = $"Reflectance recovered by {name} from {capture.Sensor.Name} ({training.Name} prior{(white is null ? "" : ", white-calibrated")})",
@@ -92,14 +99,14 @@ public static class RecoverCommand
             };
             foreach (var (label, rec, _) in r.Examples) plot.Add(label, centres, rec);
             foreach (var (label, _, truth) in r.Examples) plot.Add($"truth: {label}", centres, truth, dashed: true);
-            plot.Write(Path.Combine(dir, $"recovery-{name}.svg"));
+            plot.Write(Path.Combine(folder.Staging, $"recovery-{name}.svg"));
             written.Add($"recovered-{name}.npy");
             written.Add($"recovery-{name}.svg");
         }
-        AtomicFile.WriteAllText(Path.Combine(dir, "recovery-metrics.csv"), csv.ToString());
+        AtomicFile.WriteAllText(Path.Combine(folder.Staging, "recovery-metrics.csv"), csv.ToString());
         written.Add("recovery-metrics.csv");
         var model = results[0].Estimator.Model;
-        AtomicFile.WriteAllText(Path.Combine(dir, "recovery.json"), new JsonObject
+        AtomicFile.WriteAllText(Path.Combine(folder.Staging, "recovery.json"), new JsonObject
         {
             ["forward_model"] = model.Route,
             ["forward_model_description"] = model.Description,
@@ -109,6 +116,7 @@ public static class RecoverCommand
             ["white"] = white?.Description,
         }.ToJsonString(new JsonSerializerOptions { WriteIndented = true }) + "\n");
         written.Add("recovery.json");
+        folder.Commit(written);
 
         if (a.Flag("--csv")) { stdout.Write(csv.ToString()); return CommandLine.Success; }
         stdout.WriteLine($"recovery from {capture.Sensor.Name} ({capture.Sensor.ChannelCount} channels, noise {(capture.Raw.Options.Noise ? "on" : "off")}) of {scene.Folder.Path}; training {training.Name} ({training.Count} reflectances); {g} bands{(white is null ? "" : $"; white: {white.Description}")}; RMSE and GFC over {rangeText} nm");
@@ -134,7 +142,7 @@ public static class RecoverCommand
     {
         var v = text.Split(',').Select(t => int.TryParse(t.Trim(), NumberStyles.Integer, CultureInfo.InvariantCulture, out int n) ? n : (int?)null).ToArray();
         if (v.Length != 4 || v.Any(n => n is null))
-            throw new InputException("--white-region", $"'{text}' is not X0,Y0,X1,Y1", "four whole pixel numbers, e.g. 0,0,15,9");
+            throw new InputException("--white-region", $"'{text}' is not X0,Y0,X1,Y1", "four whole pixel numbers, X1 and Y1 exclusive (as for --crop), e.g. 0,0,16,10: columns 0–15, rows 0–9");
         return Reconstruction.WhiteRegion(scene.Folder, v[0]!.Value, v[1]!.Value, v[2]!.Value, v[3]!.Value);
     }
 }

@@ -49,13 +49,20 @@ public static class RelightCommand
             if (a.Values("--light").Count + a.Values("--intensity").Count > 0 || a.Value("--white") is not null)
                 throw new InputException("--sweep", "give the lights either in the sweep file or with --light/--intensity/--white, not both", "see 'spectral relight --help'");
             var rows = Relighting.ReadSweep(sweep, src.LightNames);
+            // Every row checked (its spectra resolved, its scene loaded) before the first is written: a bad cell is named
+            // by the sweep file's row and column, and no earlier row's folder is left behind for it.
+            foreach (var row in rows)
+            {
+                Signals.Token.ThrowIfCancellationRequested();
+                Relighting.ChangedScene(src, row.Changes, row.White, row.WhiteWhere);
+            }
             var outRoot = a.Value("--out") ?? dir.TrimEnd('/', '\\') + "-sweep";
             RenderCommand.PrepareOutputFolder(outRoot);
             var index = new StringBuilder("row,folder,white,changes\n");
             for (int r = 0; r < rows.Count; r++)
             {
                 var folder = (r + 1).ToString("0000", CultureInfo.InvariantCulture);
-                var (changes, white) = rows[r];
+                var (changes, white) = (rows[r].Changes, rows[r].White);
                 Relighting.Write(src, changes, white, Path.Combine(outRoot, folder), commandLine, metrics: a.Flag("--metrics"));
                 index.Append(CultureInfo.InvariantCulture, $"{r + 1},{folder},{white},\"{string.Join("; ", changes.Select(Describe))}\"\n");
             }

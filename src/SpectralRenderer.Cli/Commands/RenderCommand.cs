@@ -103,16 +103,10 @@ public static class RenderCommand
         request = request with { SceneText = text ?? (fromStdin ? Text() : null) };
         var job = RenderJob.Load(request, new RenderObserver(Warning: stderr.WriteLine));
 
-        // SIGINT and SIGTERM stop the render at the next pixel (and the writers at the next file): the staged files
-        // are removed, the output folder keeps what it held, and the message says so.
-        using var cancel = new CancellationTokenSource();
-        long signalledAt = 0;
-        void Stop(PosixSignalContext c) { c.Cancel = true; Interlocked.CompareExchange(ref signalledAt, System.Diagnostics.Stopwatch.GetTimestamp(), 0); cancel.Cancel(); }
-        using var onInterrupt = PosixSignalRegistration.Create(PosixSignal.SIGINT, Stop);
-        using var onTerminate = PosixSignalRegistration.Create(PosixSignal.SIGTERM, Stop);
-        string StoppedAfter() => signalledAt == 0 ? "" : string.Create(CultureInfo.InvariantCulture, $", {System.Diagnostics.Stopwatch.GetElapsedTime(signalledAt).TotalSeconds:0.000} s after the signal");
+        // SIGINT and SIGTERM (Signals, answered from the command's start) stop the render at the next pixel (and the
+        // writers at the next file): the staged files are removed, the output folder keeps what it held, and the message says so.
         var progress = quiet ? null : ProgressBar.For(stderr);
-        job.Execute(new RenderObserver(Progress: progress is null ? null : progress.Report, StoppedAfter: StoppedAfter), cancel.Token);
+        job.Execute(new RenderObserver(Progress: progress is null ? null : progress.Report, StoppedAfter: Signals.StoppedAfter), Signals.Token);
         progress?.Finish();
         var result = job.Result!;
         var scene = job.Scene;

@@ -4,6 +4,7 @@ using System.Text;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Distributed;
 using SpectralRenderer.Imaging;
+using SpectralRenderer.Output;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
 
@@ -85,10 +86,13 @@ public static class SweepCommand
 
         RenderCommand.PrepareOutputFolder(outDir);
         var overrides = new SceneOverrides { Formats = a.Value("--formats"), ModelDirectories = models };
-        using var cancel = new CancellationTokenSource();
-        ConsoleCancelEventHandler onCancel = (_, e) => { e.Cancel = true; cancel.Cancel(); };
-        Console.CancelKeyPress += onCancel;
-        try
+        // SIGINT/SIGTERM (Signals; SIGTERM is what Slurm sends on pre-emption) stop the running job's render at its next
+        // pixel; the index is rebuilt from the job records whichever way the run ends, a forced stop included.
+        var cancel = Signals.Token;
+        Signals.OnForcedStop(() => SweepRunner.WriteIndex(plan, outDir, layout == "pairs" ? "pairs" : "folders"));
+        Signals.DescribeLeft(() => $"finished jobs are kept and listed in {Path.Combine(outDir, "index.csv")} (rebuilt); the running job left nothing under a final name; run the same command again to resume");
+        // One sweep at a time on a dataset: a second one exits 2 naming the folder (the jobs' folders are locked each too).
+        using var dataset = OutputFolder.BeginFiles(outDir, ["index.csv", "index.jsonl"], "sweep index");
         {
             bool terminal = ReferenceEquals(stderr, Console.Error) && !Console.IsErrorRedirected;
             Action<SweepProgress>? progress = quiet ? null : p =>
@@ -101,11 +105,11 @@ public static class SweepCommand
                 else stderr.WriteLine(line);
             };
             SweepSummary s;
-            try { s = SweepRunner.Run(plan, outDir, slice, overrides, layout, a.Int("--threads", 1, 1024) ?? 0, progress, cancel.Token); }
+            try { s = SweepRunner.Run(plan, outDir, slice, overrides, layout, a.Int("--threads", 1, 1024) ?? 0, progress, cancel); }
             catch (OperationCanceledException)
             {
                 if (terminal && !quiet) stderr.WriteLine();
-                stderr.WriteLine($"spectral sweep: interrupted; finished jobs are kept and listed in {Path.Combine(outDir, "index.csv")}; run the same command again to resume");
+                stderr.WriteLine($"spectral sweep: interrupted{(Signals.Signal.Length > 0 ? $" by {Signals.Signal}" : "")}{Signals.StoppedAfter()}; finished jobs are kept and listed in {Path.Combine(outDir, "index.csv")} (rebuilt); run the same command again to resume");
                 return CommandLine.Failure;
             }
             if (terminal && !quiet) stderr.WriteLine();
@@ -118,7 +122,6 @@ public static class SweepCommand
             }
             return CommandLine.Success;
         }
-        finally { Console.CancelKeyPress -= onCancel; }
     }
 
     /// <summary>How this process was started (the same spectral binary, or `dotnet spectral.dll`), for the emitted scripts.</summary>

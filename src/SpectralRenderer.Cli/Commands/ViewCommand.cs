@@ -40,11 +40,11 @@ public static class ViewCommand
             stdout.WriteLine($"wrote {string.Join(" and ", files)} to {dir}; open file://{page}");
             return CommandLine.Success;
         }
-        using var cancel = seconds is { } s ? new CancellationTokenSource(TimeSpan.FromSeconds(s)) : new CancellationTokenSource();
-        ConsoleCancelEventHandler onCancel = (_, e) => { e.Cancel = true; cancel.Cancel(); };
-        Console.CancelKeyPress += onCancel;
-        try { Serve(Path.GetFullPath(dir), port ?? FreePort(), stdout, cancel.Token); }
-        finally { Console.CancelKeyPress -= onCancel; }
+        // Until --for ends or SIGINT/SIGTERM (Signals) comes: then the listener stops and the command says so.
+        using var cancel = CancellationTokenSource.CreateLinkedTokenSource(Signals.Token);
+        if (seconds is { } s) cancel.CancelAfter(TimeSpan.FromSeconds(s));
+        Serve(Path.GetFullPath(dir), port ?? FreePort(), stdout, cancel.Token);
+        if (Signals.Token.IsCancellationRequested) stderr.WriteLine($"spectral view: stopped serving on {Signals.Signal}{Signals.StoppedAfter()}; {string.Join(" and ", files)} stay in {dir}");
         return CommandLine.Success;
     }
 

@@ -110,19 +110,20 @@ public sealed class Reconstruction
         return inner;
     }
 
-    /// <summary>The mean radiance over the rectangle [x0, x1] × [y0, y1] (inclusive, pixels).</summary>
-    public static WhiteReference WhiteRegion(RenderFolder folder, int x0, int y0, int x1, int y1)
+    /// <summary>
+    /// The mean radiance over the rectangle X0,Y0,X1,Y1 of whole-image pixels: columns x0 … x1 − 1, rows y0 … y1 − 1
+    /// (X1 and Y1 exclusive, as --crop writes a rectangle).
+    /// </summary>
+    public static WhiteReference WhiteRegion(RenderFolder folder, int x0, int y0, int x1, int y1, string where = "--white-region")
     {
         var img = folder.Image;
-        if (x0 > x1) (x0, x1) = (x1, x0);
-        if (y0 > y1) (y0, y1) = (y1, y0);
-        if (x0 < 0 || y0 < 0 || x1 >= img.Width || y1 >= img.Height)
-            throw new InputException("--white-region", $"{x0},{y0},{x1},{y1} is outside the {img.Width}×{img.Height} image",
-                $"x in 0–{img.Width - 1}, y in 0–{img.Height - 1}");
+        if (x0 < 0 || y0 < 0 || x1 > img.Width || y1 > img.Height || x1 <= x0 || y1 <= y0)
+            throw new InputException(where, $"{x0},{y0},{x1},{y1} is not a non-empty rectangle inside the {img.Width}×{img.Height} image",
+                $"X1 and Y1 are exclusive (as for --crop): 0 ≤ X0 < X1 ≤ {img.Width}, 0 ≤ Y0 < Y1 ≤ {img.Height}");
         var mask = new bool[img.Width * img.Height];
-        for (int y = y0; y <= y1; y++)
-            for (int x = x0; x <= x1; x++) mask[y * img.Width + x] = true;
-        return Mean(folder, mask, $"region {x0},{y0}–{x1},{y1}");
+        for (int y = y0; y < y1; y++)
+            for (int x = x0; x < x1; x++) mask[y * img.Width + x] = true;
+        return Mean(folder, mask, $"region {x0},{y0},{x1},{y1} (columns {x0}–{x1 - 1}, rows {y0}–{y1 - 1})");
     }
 
     static WhiteReference Mean(RenderFolder folder, bool[] mask, string description)

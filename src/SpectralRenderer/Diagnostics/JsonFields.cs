@@ -40,8 +40,47 @@ public sealed class JsonFields(string file, string hint)
             string msg = e.Message;
             int cut = msg.IndexOf(" LineNumber:", StringComparison.Ordinal);
             if (cut > 0) msg = msg[..cut].TrimEnd('.', ' ');
-            throw new InputException($"{path}:{(e.LineNumber ?? 0) + 1}:{(e.BytePositionInLine ?? 0) + 1}", $"broken JSON: {msg}", hint);
+            throw new InputException($"{path}:{Place(e, text, default)}", $"broken JSON: {msg}", hint);
         }
+    }
+
+    /// <summary>
+    /// "line:column" of a JSON error: the parser's own for a syntax error; for a duplicate key (which the parser reports
+    /// without a place) the second occurrence of the key, found by one pass of a reader over the text.
+    /// </summary>
+    public static string Place(JsonException e, string text, JsonReaderOptions options)
+    {
+        if (e.LineNumber is { } line) return $"{line + 1}:{(e.BytePositionInLine ?? 0) + 1}";
+        return DuplicateKey(text, options) ?? "1:1";
+    }
+
+    /// <summary>"line:column" (1-based, column in bytes of the line) of the first key that repeats a key of its object, or null.</summary>
+    public static string? DuplicateKey(string text, JsonReaderOptions options)
+    {
+        var utf8 = System.Text.Encoding.UTF8.GetBytes(text);
+        var reader = new Utf8JsonReader(utf8, options);
+        var keys = new Stack<HashSet<string>?>();
+        try
+        {
+            while (reader.Read())
+            {
+                switch (reader.TokenType)
+                {
+                    case JsonTokenType.StartObject: keys.Push(new HashSet<string>(StringComparer.Ordinal)); break;
+                    case JsonTokenType.StartArray: keys.Push(null); break;
+                    case JsonTokenType.EndObject or JsonTokenType.EndArray: keys.Pop(); break;
+                    case JsonTokenType.PropertyName when keys.TryPeek(out var set) && set is not null && !set.Add(reader.GetString()!):
+                        long at = reader.TokenStartIndex;
+                        int lineStart = System.Array.LastIndexOf(utf8, (byte)'\n', (int)Math.Max(0, at - 1)) + 1;
+                        if (at == 0) lineStart = 0;
+                        int lineNo = 1;
+                        for (int i = 0; i < lineStart; i++) if (utf8[i] == (byte)'\n') lineNo++;
+                        return $"{lineNo}:{at - lineStart + 1}";
+                }
+            }
+        }
+        catch (Exception x) when (x is JsonException or InvalidOperationException) { }
+        return null;
     }
 
     public InputException Bad(string at, string what) => new($"{File}: {at}", what, Hint);

@@ -91,7 +91,7 @@ public static class ShardMerge
         foreach (var dir in dirs)
         {
             if (!Directory.Exists(dir)) throw new InputException(dir, "is not a folder", "give the folders the shards were rendered into");
-            if (Path.GetFullPath(dir).TrimEnd('/') == Path.GetFullPath(outDir).TrimEnd('/'))
+            if (OutputFolder.SameFolder(dir, outDir))   // by identity: "a/", a link to a, another mount of it
                 throw new InputException(dir, "is also the output folder", "merge into a new folder with -o");
             var path = Path.Combine(dir, RenderManifest.FileName);
             if (!File.Exists(path))

@@ -33,15 +33,20 @@ public static class WavelengthsCsv
     /// <summary>Reads the grid back (evenly spaced bands).</summary>
     public static BandGrid Read(string path)
     {
-        var lines = InputFile.ReadAllText(path, "wavelengths.csv").Split('\n').Select(l => l.TrimEnd('\r')).Where(l => l.Trim().Length > 0).ToArray();
-        if (lines.Length < 2 || lines[0].Trim() != Header)
-            throw new InputException(path, "not a wavelengths.csv", $"the first line must be {Header}");
-        var rows = lines.Skip(1).Select((l, i) =>
+        // Rows keep their line numbers (blank lines skipped) so a message names the file's own row:column.
+        var lines = InputFile.ReadAllText(path, "wavelengths.csv").Split('\n').Select((l, i) => (Text: l.TrimEnd('\r'), Row: i + 1))
+            .Where(l => l.Text.Trim().Length > 0).ToArray();
+        if (lines.Length < 2 || lines[0].Text.Trim() != Header)
+            throw new InputException(lines.Length == 0 ? $"{path}:1:1" : $"{path}:{lines[0].Row}:1", "not a wavelengths.csv", $"the first line must be {Header}");
+        var rows = lines.Skip(1).Select(l =>
         {
-            var p = l.Split(',');
-            if (p.Length != 4 || !double.TryParse(p[1], NumberStyles.Float, CultureInfo.InvariantCulture, out var lo)
-                || !double.TryParse(p[3], NumberStyles.Float, CultureInfo.InvariantCulture, out var hi))
-                throw new InputException($"{path}:{i + 2}", $"bad row {MessageText.Quote(l)}", "band,start_nm,centre_nm,end_nm");
+            var p = l.Text.Split(',');
+            if (p.Length != 4)
+                throw new InputException($"{path}:{l.Row}:{Math.Min(p.Length, 4) + 1}", $"bad row {MessageText.Quote(l.Text)}: {p.Length} cells, not 4", "band,start_nm,centre_nm,end_nm");
+            if (!double.TryParse(p[1], NumberStyles.Float, CultureInfo.InvariantCulture, out var lo))
+                throw new InputException($"{path}:{l.Row}:2", $"start_nm {MessageText.Quote(p[1])} is not a number", "band,start_nm,centre_nm,end_nm");
+            if (!double.TryParse(p[3], NumberStyles.Float, CultureInfo.InvariantCulture, out var hi))
+                throw new InputException($"{path}:{l.Row}:4", $"end_nm {MessageText.Quote(p[3])} is not a number", "band,start_nm,centre_nm,end_nm");
             return (lo, hi);
         }).ToArray();
         try { return new BandGrid(rows[0].lo, rows[^1].hi, rows.Length); }

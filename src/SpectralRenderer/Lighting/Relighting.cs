@@ -12,7 +12,9 @@ using SpectralRenderer.Scenes.Loading;
 namespace SpectralRenderer.Lighting;
 
 /// <summary>What to change: per light (by name) a new spectrum and/or intensity, and the reference white.</summary>
-public sealed record LightChange(string Light, string? Spectrum, double? Intensity);
+/// <summary>A light's new spectrum and/or intensity; <paramref name="Where"/> names where the spectrum was given
+/// (a sweep CSV's file:row:column) for messages, null for the command line's --light.</summary>
+public sealed record LightChange(string Light, string? Spectrum, double? Intensity, string? Where = null);
 
 /// <summary>
 /// Relighting a render folder that has the per-light transfer (lights/): the scene is rebuilt from the
@@ -40,7 +42,8 @@ public static class Relighting
     }
 
     /// <summary>The scene of <paramref name="src"/> with the changes applied, loaded as a render would load it.</summary>
-    public static Scene ChangedScene(Source src, IReadOnlyList<LightChange> changes, string? white)
+    /// <paramref name="whiteWhere"/> names where the white was given (default --white).
+    public static Scene ChangedScene(Source src, IReadOnlyList<LightChange> changes, string? white, string? whiteWhere = null)
     {
         var edits = new List<(int, string?, double?)>();
         foreach (var c in changes)
@@ -52,10 +55,10 @@ public static class Relighting
             if (k < 0)
                 throw new InputException($"--light {c.Light}", $"the render has no light named '{c.Light}'",
                     InputException.DidYouMean(c.Light, src.LightNames) is { } d ? d : $"its lights are: {string.Join(", ", src.LightNames)}");
-            if (c.Spectrum is not null) Check(src, c.Spectrum, $"--light {c.Light}");
+            if (c.Spectrum is not null) Check(src, c.Spectrum, c.Where ?? $"--light {c.Light}");
             edits.Add((k, c.Spectrum, c.Intensity));
         }
-        if (white is not null) Check(src, white, "--white");
+        if (white is not null) Check(src, white, whiteWhere ?? "--white");
         return SceneLoader.Parse(src.Scene.WithLights(edits, white), src.ScenePath, src.Overrides);
     }
 
@@ -86,7 +89,8 @@ public static class Relighting
         if (transfer.Width != scene.Camera.Width || transfer.Height != scene.Camera.Height || transfer.Bands != scene.Bands)
             throw new InputException(src.Dir, $"its lights/ are {transfer.Width}×{transfer.Height}×{transfer.Bands} but the scene rebuilds as {scene.Camera.Width}×{scene.Camera.Height}×{scene.Bands}",
                 "the scene file changed since the render; render again");
-        if (Path.GetFullPath(outDir) == Path.GetFullPath(src.Dir))
+        // By identity, not spelling: "r/", "./r" or a link to r is the folder being relit too.
+        if (OutputFolder.SameFolder(src.Dir, outDir))
             throw new InputException(outDir, "is the folder being relit", "write the relit render to another folder with -o");
         Directory.CreateDirectory(outDir);
         var crop = PixelRect.Whole(transfer.Width, transfer.Height);
@@ -287,46 +291,56 @@ public static class Relighting
         return (new RelightMetrics(relit.ReferenceWhite.Name, lights, objs), csv.ToString());
     }
 
+    /// <summary>One row of a sweep file: its changes, its white (and the white's file:row:column) and its line.</summary>
+    public sealed record SweepRow(List<LightChange> Changes, string? White, string? WhiteWhere, int Line);
+
     /// <summary>
     /// A sweep file: a CSV whose header names columns <c>LIGHT</c> (its spectrum), <c>LIGHT.intensity</c> and
-    /// optionally <c>white</c>; every row is one relit render (an empty cell keeps the render's value).
+    /// optionally <c>white</c>; every row is one relit render (an empty cell keeps the render's value). Blank lines are
+    /// skipped; every message names the file's own row (line) and column (1-based cell).
     /// </summary>
-    public static List<(List<LightChange> Changes, string? White)> ReadSweep(string path, string[] lightNames)
+    public static List<SweepRow> ReadSweep(string path, string[] lightNames)
     {
-        var lines = InputFile.ReadAllText(path).Replace("\r\n", "\n").Split('\n').Where(l => l.Trim().Length > 0).ToArray();
-        if (lines.Length < 2) throw new InputException($"{path}:1", "a sweep needs a header and at least one row", "e.g. header 'D65,D65.intensity' then 'A,1'");
-        var header = lines[0].Split(',').Select(h => h.Trim()).ToArray();
+        var lines = InputFile.ReadAllText(path).Replace("\r\n", "\n").Split('\n').Select((l, i) => (Text: l, Row: i + 1))
+            .Where(l => l.Text.Trim().Length > 0).ToArray();
+        if (lines.Length < 2) throw new InputException($"{path}:{(lines.Length == 0 ? 1 : lines[0].Row + 1)}:1", "a sweep needs a header and at least one row", "e.g. header 'D65,D65.intensity' then 'A,1'");
+        var header = lines[0].Text.Split(',').Select(h => h.Trim()).ToArray();
+        int headerRow = lines[0].Row;
         for (int c = 0; c < header.Length; c++)
         {
             var h = header[c];
             var light = h.EndsWith(".intensity", StringComparison.Ordinal) ? h[..^".intensity".Length] : h;
             if (h != "white" && Array.IndexOf(lightNames, light) < 0)
-                throw new InputException($"{path}:1:{c + 1}", $"column '{h}' names no light of the render",
+                throw new InputException($"{path}:{headerRow}:{c + 1}", $"column {MessageText.Quote(h)} names no light of the render",
                     $"columns: white, a light's name (its spectrum) or NAME.intensity; lights: {string.Join(", ", lightNames)}");
+            if (Array.IndexOf(header, h) < c)
+                throw new InputException($"{path}:{headerRow}:{c + 1}", $"column {MessageText.Quote(h)} appears twice", "give every column once");
         }
-        var rows = new List<(List<LightChange>, string?)>();
-        for (int r = 1; r < lines.Length; r++)
+        var rows = new List<SweepRow>();
+        foreach (var (text, row) in lines.Skip(1))
         {
-            var cells = lines[r].Split(',').Select(x => x.Trim()).ToArray();
+            var cells = text.Split(',').Select(x => x.Trim()).ToArray();
             if (cells.Length != header.Length)
-                throw new InputException($"{path}:{r + 1}", $"{cells.Length} cells, the header names {header.Length}", "every row needs one cell per header column");
+                throw new InputException($"{path}:{row}:{Math.Min(cells.Length, header.Length) + 1}", $"{cells.Length} cells, the header names {header.Length}", "every row needs one cell per header column");
             var changes = new Dictionary<string, LightChange>();
-            string? white = null;
+            string? white = null, whiteWhere = null;
             for (int c = 0; c < cells.Length; c++)
             {
                 if (cells[c].Length == 0) continue;
                 var h = header[c];
-                if (h == "white") { white = cells[c]; continue; }
+                string where = $"{path}:{row}:{c + 1}";
+                if (h == "white") { (white, whiteWhere) = (cells[c], where); continue; }
                 if (h.EndsWith(".intensity", StringComparison.Ordinal))
                 {
                     var name = h[..^".intensity".Length];
-                    if (!double.TryParse(cells[c], NumberStyles.Float, CultureInfo.InvariantCulture, out double f) || !(f >= 0) || !double.IsFinite(f))
-                        throw new InputException($"{path}:{r + 1}:{c + 1}", $"'{cells[c]}' is not a non-negative intensity", "intensities are plain non-negative numbers");
+                    // The range a scene's "intensity" takes (as --intensity), so the scene file is never blamed for it.
+                    if (!double.TryParse(cells[c], NumberStyles.Float, CultureInfo.InvariantCulture, out double f) || !double.IsFinite(f) || f < 0 || f > 1e30)
+                        throw new InputException(where, $"{MessageText.Quote(cells[c])} is not a non-negative intensity ≤ 1e30", "intensities are plain non-negative numbers, e.g. 0.5");
                     changes[name] = (changes.GetValueOrDefault(name) ?? new LightChange(name, null, null)) with { Intensity = f };
                 }
-                else changes[h] = (changes.GetValueOrDefault(h) ?? new LightChange(h, null, null)) with { Spectrum = cells[c] };
+                else changes[h] = (changes.GetValueOrDefault(h) ?? new LightChange(h, null, null)) with { Spectrum = cells[c], Where = where };
             }
-            rows.Add((changes.Values.ToList(), white));
+            rows.Add(new SweepRow(changes.Values.ToList(), white, whiteWhere, row));
         }
         return rows;
     }

@@ -258,7 +258,8 @@ public sealed class RenderJob
         {
             // The per-light transfer (opt-in): the same camera rays traced once more, recording eq. 2's factors per light.
             var clock = Stopwatch.StartNew();
-            Transfer = LightTransfer.Trace(Scene, Geometry, Request.Threads, cancel);
+            try { Transfer = LightTransfer.Trace(Scene, Geometry, Request.Threads, cancel); }
+            catch { _folder?.Abandon(); throw; }
             TransferSeconds = clock.Elapsed.TotalSeconds;
         }
         RunRecord ??= Record(result);

@@ -128,7 +128,8 @@ public sealed partial class Renderer
     /// <summary>
     /// The one camera-sample loop over a tile's pixels, ray by ray: per pixel its spp samples of weight 1/spp, then (spp &gt; 1,
     /// analysis wanted) the centre ray of weight 0; each camera ray with its ray budget (bounded work) and a stop request seen
-    /// at every pixel, however deep the scene's rays go.
+    /// before every camera ray, so a stop waits for one ray's tree at most (at most the budget's rays), however deep the
+    /// scene's rays go or however many samples a pixel takes.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     internal static void SampleTile<TSink>(ref TSink sink, in PixelSampling sampling, int x0, int y0, int x1, int y1,
@@ -144,7 +145,11 @@ public sealed partial class Renderer
                 if (spp == 1) id = Camera(ref sink, sampling.Centre(x, y), 1f, true, budget, ref counters);
                 else
                 {
-                    for (int s = 0; s < spp; s++) Camera(ref sink, sampling.Sample(x, y, s), sampling.Weight, false, budget, ref counters);
+                    for (int s = 0; s < spp; s++)
+                    {
+                        if (cancel.IsCancellationRequested) cancel.ThrowIfCancellationRequested();
+                        Camera(ref sink, sampling.Sample(x, y, s), sampling.Weight, false, budget, ref counters);
+                    }
                     // The analysis images describe the pixel centre.
                     if (sampling.Analysis) id = Camera(ref sink, sampling.Centre(x, y), 0f, true, budget, ref counters);
                 }

@@ -52,7 +52,11 @@ public static class SensorFile
         var text = InputFile.ReadAllText(nameOrFile, "sensor file");
         JsonNode? node;
         try { node = JsonNode.Parse(text, documentOptions: new JsonDocumentOptions { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true, AllowDuplicateProperties = false }); }
-        catch (JsonException e) { throw new InputException($"{nameOrFile}:{(e.LineNumber ?? 0) + 1}:{(e.BytePositionInLine ?? 0) + 1}", $"broken JSON: {e.Message}", "check for a missing comma, quote or bracket just before this place"); }
+        catch (JsonException e)
+        {
+            throw new InputException($"{nameOrFile}:{JsonFields.Place(e, text, new JsonReaderOptions { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true })}",
+                $"broken JSON: {e.Message}", e.LineNumber is null ? "give each key once in its object" : "check for a missing comma, quote or bracket just before this place");
+        }
         if (node is not JsonObject obj) throw new InputException(nameOrFile, "is not a JSON object", "a sensor file is { \"preset\": …, \"channels\": […], … }");
         return Parse(obj, nameOrFile, Path.GetDirectoryName(Path.GetFullPath(nameOrFile)));
     }

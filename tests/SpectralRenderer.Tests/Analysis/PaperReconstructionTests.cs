@@ -58,7 +58,7 @@ public class PaperReconstructionTests
         var h = l;
         for (int i = 0; i < 20; i++) h = Vector3.Normalize(l + Vector3.Normalize(camera.Position - h));
         string Px(Vector3 p, string label) { var q = camera.Project(p)!.Value; return $"{(int)q.X},{(int)q.Y}:{label}"; }
-        (code, var stdout, err) = CliRunner.Run("reconstruct", outDir, "--white-region", "0,0,19,9",
+        (code, var stdout, err) = CliRunner.Run("reconstruct", outDir, "--white-region", "0,0,20,10",
             "--pixel", Px(l, "lit"), "--pixel", Px(Vector3.Normalize(new Vector3(0, -0.95f, 0.3f)), "shadow"), "--pixel", Px(h, "highlight"), "--csv");
         Assert.True(code == 0, err);
         var metrics = stdout.Trim().Split('\n').Skip(1).Select(r => r.Split(',')).Where(r => r[0] == "pixel").ToDictionary(r => r[1]);

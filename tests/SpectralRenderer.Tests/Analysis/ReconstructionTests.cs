@@ -83,9 +83,9 @@ public class ReconstructionTests
     public void A_white_rectangle_works_like_the_board_and_representatives_stand_in_for_pixels()
     {
         var (dir, _, _) = AnalysisFolder.Synthetic();
-        var (code, stdout, err) = CliRunner.Run("reconstruct", dir, "--white-region", "0,0,3,10");
+        var (code, stdout, err) = CliRunner.Run("reconstruct", dir, "--white-region", "0,0,4,11");
         Assert.True(code == 0, err);
-        Assert.Contains("white reference: region 0,0–3,10, 44 pixels", stdout);
+        Assert.Contains("white reference: region 0,0,4,11 (columns 0–3, rows 0–10), 44 pixels", stdout);
         Assert.Matches(@"shadow\s+44\s+\S+\s+1\.000000\s+\S+\s+0\.20000", stdout);
         Assert.Matches(@"lit\s+66\s+\S+\s+1\.000000\s+0\.000\s+1\.00000", stdout);
         var svg = XDocument.Parse(File.ReadAllText(Path.Combine(dir, "reconstruction.svg")));
@@ -95,9 +95,10 @@ public class ReconstructionTests
     [Theory]
     [InlineData(new[] { "--white-object", "bord" }, "--white-object: no object 'bord' in", "did you mean 'board'?")]
     [InlineData(new[] { "--white-object", "board", "--pixel", "16,3" }, "--pixel: 16,3 is outside the 16×12 image", "x in 0–15")]
-    [InlineData(new[] { "--white-region", "0,0,3,12" }, "--white-region: 0,0,3,12 is outside the 16×12 image", "y in 0–11")]
+    [InlineData(new[] { "--white-region", "0,0,3,13" }, "--white-region: 0,0,3,13 is not a non-empty rectangle inside the 16×12 image", "X1 and Y1 are exclusive (as for --crop)")]
+    [InlineData(new[] { "--white-region", "3,0,3,5" }, "--white-region: 3,0,3,5 is not a non-empty rectangle", "0 ≤ X0 < X1 ≤ 16")]
     [InlineData(new[] { "--white-region", "0,0,3" }, "'0,0,3' is not X0,Y0,X1,Y1", "four whole pixel numbers")]
-    [InlineData(new[] { "--white-region", "0,11,3,11" }, "region 0,11–3,11 is black", "must be lit")]
+    [InlineData(new[] { "--white-region", "0,11,4,12" }, "region 0,11,4,12 (columns 0–3, rows 11–11) is black", "must be lit")]
     [InlineData(new string[0], "give exactly one of --white-object NAME and --white-region", "--white-object board")]
     [InlineData(new[] { "--white-object", "board", "--white-objet", "x" }, "unknown option '--white-objet'", "did you mean '--white-object'?")]
     public void Bad_input_gives_one_line_and_exit_2(string[] options, string what, string hint)

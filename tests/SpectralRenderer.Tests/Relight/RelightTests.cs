@@ -321,6 +321,33 @@ public class RelightTests(Xunit.Abstractions.ITestOutputHelper output)
         AssertSameRender(Path.Combine(dir, "direct"), Path.Combine(dir, "sw", "0002"));
     }
 
+    /// <summary>
+    /// A sweep CSV's defects are named by the sweep file's own row (its line, blank lines counted) and column, found
+    /// before the first row is written (no folder of an earlier row is left), never blamed on the scene or --light.
+    /// </summary>
+    [Theory]
+    [InlineData("key,blue\nD65,led-blue\n\nA,D66\n", ":4:2", "unknown spectrum")]
+    [InlineData("key,blue.intensity\nD65,1\nA,-1\n", ":3:2", "is not a non-negative intensity")]
+    [InlineData("key,blue.intensity\nD65,1\nA,1e31\n", ":3:2", "≤ 1e30")]
+    [InlineData("key,white\nD65,A\nA,nope-white\n", ":3:2", "unknown spectrum")]
+    [InlineData("key,blue\nD65,led-blue\nA\n", ":3:2", "1 cells, the header names 2")]
+    [InlineData("\nkey,bleu\nD65,A\n", ":2:2", "column 'bleu' names no light")]
+    [InlineData("key,key\nD65,A\n", ":1:2", "column 'key' appears twice")]
+    [InlineData("key\n", ":2:1", "a sweep needs a header and at least one row")]
+    public void A_bad_sweep_cell_is_named_by_its_row_and_column_before_anything_is_written(string csv, string place, string says)
+    {
+        var dir = Reference.TempDir();
+        var s = Write(dir, "s.json", TwoLightScene("A", "A"));
+        Render(s, Path.Combine(dir, "r"), "--formats", "npy,lights");
+        var sweep = Write(dir, "sweep.csv", csv);
+        var (code, _, err) = CliRunner.Run("relight", Path.Combine(dir, "r"), "--sweep", sweep, "-o", Path.Combine(dir, "sw"), "--quiet");
+        Assert.True(code == 2, err);
+        Assert.StartsWith($"spectral relight: {sweep}{place}: ", err);
+        Assert.Contains(says, err);
+        Assert.Single(err.TrimEnd().Split('\n'));
+        Assert.False(Directory.Exists(Path.Combine(dir, "sw")) && Directory.EnumerateFileSystemEntries(Path.Combine(dir, "sw")).Any());
+    }
+
     [Theory]
     [InlineData(new[] { "--light", "nope=D65" }, "no light named 'nope'")]
     [InlineData(new[] { "--light", "key=D66" }, "unknown spectrum")]

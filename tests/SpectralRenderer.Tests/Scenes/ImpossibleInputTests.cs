@@ -55,7 +55,7 @@ public class ImpossibleInputTests
         var (code, _, err) = CliRunner.Run("render", scene, "-o", Path.Combine(dir, "out"), "--quiet");
         Assert.Equal(2, code);
         // The CSV reader names the row; the scene's own check (< −1e-9 after scaling) backs it for every other source.
-        Assert.Contains("r.csv:3", err);
+        Assert.Contains("r.csv:3:2", err);
         Assert.Contains("negative value -0.01", err);
         Assert.Single(err.TrimEnd('\n').Split('\n'));
     }

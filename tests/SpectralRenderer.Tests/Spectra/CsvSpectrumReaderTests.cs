@@ -24,18 +24,23 @@ public class CsvSpectrumReaderTests
     }
 
     [Theory]
-    [InlineData("wavelength_nm,a\n400,0.1\n410,x\n", "bad.csv:3:", "'x' in column 'a' is not a number")]
-    [InlineData("wavelength_nm,a,b\n400,0.1,0.2\n410,0.3\n", "bad.csv:3:", "missing column")]
-    [InlineData("wavelength_nm,a\n400,0.1\n390,0.2\n", "bad.csv:3:", "not ascending")]
-    [InlineData("wavelength_nm,a\n400,0.1\n400,0.2\n", "bad.csv:3:", "appears twice")]
-    [InlineData("wavelength_nm,a\n400,0.1\n410,NaN\n", "bad.csv:3:", "not finite")]
-    [InlineData("wavelength_nm,a\n400,Infinity\n", "bad.csv:2:", "not finite")]
-    [InlineData("wavelength_nm,a\n400,0.1\n410,-0.2\n", "bad.csv:3:", "negative value -0.2")]
-    [InlineData("", "bad.csv:1:", "empty")]
-    [InlineData("\n\n", "bad.csv:1:", "empty")]
-    [InlineData("wavelength_nm,a\n", "bad.csv:2:", "no data rows")]
-    [InlineData("wavelength_nm\n400\n", "bad.csv:1:", "fewer than two columns")]
-    public void Broken_files_are_rejected_with_file_and_line(string text, string where, string what)
+    [InlineData("wavelength_nm,a\n400,0.1\n410,x\n", "bad.csv:3:2:", "'x' in column 'a' is not a number")]
+    [InlineData("wavelength_nm,a,b\n400,0.1,0.2\n410,0.3\n", "bad.csv:3:3:", "missing column")]
+    [InlineData("wavelength_nm,a\n400,0.1\n390,0.2\n", "bad.csv:3:1:", "not ascending")]
+    [InlineData("wavelength_nm,a\n400,0.1\n400,0.2\n", "bad.csv:3:1:", "appears twice")]
+    [InlineData("wavelength_nm,a\n400,0.1\n410,NaN\n", "bad.csv:3:2:", "not finite")]
+    [InlineData("wavelength_nm,a\n400,Infinity\n", "bad.csv:2:2:", "not finite")]
+    [InlineData("wavelength_nm,a\n400,0.1\n410,-0.2\n", "bad.csv:3:2:", "negative value -0.2")]
+    [InlineData("", "bad.csv:1:1:", "empty")]
+    [InlineData("\n\n", "bad.csv:1:1:", "empty")]
+    [InlineData("wavelength_nm,a\n", "bad.csv:2:1:", "no data rows")]
+    [InlineData("wavelength_nm\n400\n", "bad.csv:1:2:", "fewer than two columns")]
+    [InlineData("wavelength_nm,a,a\n400,1,1\n", "bad.csv:1:3:", "column name 'a' appears twice")]
+    [InlineData("wavelength_nm,,a\n400,1,1\n", "bad.csv:1:2:", "column 2 has no name")]
+    [InlineData("wavelength_nm,a\n400,1,2\n", "bad.csv:2:3:", "the header names only 2")]
+    [InlineData("wavelength_nm,a\n400,1\n\n410,1\n", "bad.csv:3:1:", "empty line inside the data")]
+    [InlineData("wavelength_nm,a\n0,1\n", "bad.csv:2:1:", "not positive")]
+    public void Broken_files_are_rejected_with_file_row_and_column(string text, string where, string what)
     {
         var e = Assert.Throws<InputException>(() => CsvSpectrumReader.Parse(text, "bad.csv"));
         Assert.StartsWith(where, e.Message);

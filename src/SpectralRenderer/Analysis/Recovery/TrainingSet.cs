@@ -37,10 +37,10 @@ public sealed class TrainingSet
         var table = SpectrumLibrary.Table(path);
         var samples = new List<double[]>();
         var spectra = new List<TabulatedSpectrum>();
-        foreach (var column in table.Columns)
+        for (int c = 0; c < table.Columns.Count; c++)
         {
-            var s = table[column];
-            s.RequireCoverage(grid.Start, grid.End, $"{path}: column {column}");
+            var s = table[table.Columns[c]];
+            s.RequireCoverage(grid.Start, grid.End, $"{path}:1:{c + 2} (column {table.Columns[c]})");
             // Tiny negatives left by the source's processing (|v| ≤ 3e-16 in rawtoaces) count as 0.
             samples.Add(BandProjection.Means(s, grid).Select(v => Math.Max(0, v)).ToArray());
             spectra.Add(s);
