@@ -44,6 +44,8 @@ public enum ShardMerging
     /// <summary>noise.img, the N + 1 planes by offset; noise.hdr with the whole height.</summary>
     NoiseEnvi,
     NoiseEnviHeader,
+    /// <summary>A false-colour picture and legend of photometry.exr's channels, drawn again from the shards' EXRs assembled.</summary>
+    FalseColour,
 }
 
 /// <summary>Whether a relit render may copy a file from its source folder (written by the same build) instead of writing it.</summary>

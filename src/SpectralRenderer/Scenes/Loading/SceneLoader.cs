@@ -213,6 +213,7 @@ public sealed partial class SceneLoader
             int i = 0;
             foreach (var o in objectsElement.EnumerateArray()) { ParseObject(o, $"$.objects[{i}]", i, objects, materials, materialIndex); i++; }
         }
+        ScaleFluxEmission(materials, materialIndex, objects);
         var names = new HashSet<string>(StringComparer.Ordinal);
         foreach (var o in objects)
             if (!names.Add(o.Name)) throw Error("$.objects", $"two objects are named '{o.Name}'", "object names must be unique (they label the object-id image)");
