@@ -186,6 +186,35 @@ public sealed class Illuminance
         return (luminance, illuminance);
     }
 
+    /// <summary>
+    /// The illuminance (lx) at each point of a calculation grid (i fastest), on the side of its normal: from the lights with
+    /// shadows (<see cref="FromLights"/>), plus, when <paramref name="gather"/> is given (a path integrator), π/N Σ L_v of
+    /// <see cref="GatherRays"/> cosine-weighted rays from the point (area lights, sky and interreflection), drawn from the
+    /// point's (i, j). The same on any thread count.
+    /// </summary>
+    public double[] OnGrid(CalculationGrid grid, IIntegrator? gather, int threads, CancellationToken cancel = default)
+    {
+        int nu = grid.PointsU, nv = grid.PointsV;
+        var lux = new double[nu * nv];
+        var n = grid.Normal;
+        int rays = GatherRays(_scene);
+        var options = new ParallelOptions { MaxDegreeOfParallelism = threads > 0 ? threads : -1, CancellationToken = cancel };
+        Parallel.For(0, nv, options, () => (new float[_scene.PaddedBands + 64], new float[gather?.ScratchLength ?? 0]), (j, _, buffers) =>
+        {
+            var (radiance, scratch) = buffers;
+            var counters = new RayCounters();
+            for (int i = 0; i < nu; i++)
+            {
+                var p = grid.Point(i, j);
+                double e = FromLights(p, n, n, ref counters);
+                if (gather is not null) e += Gather(gather, i, j, p, n, n, rays, radiance, scratch, ref counters);
+                lux[j * nu + i] = e;
+            }
+            return buffers;
+        }, _ => { });
+        return lux;
+    }
+
     /// <summary>π/N Σ L_v(ω_i) over N cosine-weighted directions about n (E = ∫ L cos θ dω, pdf cos θ/π).</summary>
     double Gather(IIntegrator integrator, int x, int y, Vector3 p, Vector3 n, Vector3 ng, int rays, float[] radiance, float[] scratch,
         ref RayCounters counters)
