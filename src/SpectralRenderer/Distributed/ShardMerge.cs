@@ -63,7 +63,10 @@ public static class ShardMerge
                     case ShardMerging.NoiseNpy: MergeNpy(parts, f, target, width, height, bands + 1); break;
                     case ShardMerging.NpyCube: MergeNpy(parts, f, target, width, height, bands); break;
                     case ShardMerging.NpyColour: MergeNpy(parts, f, target, width, height, 3); break;
-                    case ShardMerging.Copy: AtomicFile.WriteAllBytes(target, File.ReadAllBytes(Path.Combine(parts[0].Dir, f))); break;
+                    case ShardMerging.Copy:
+                        Directory.CreateDirectory(Path.GetDirectoryName(target)!);   // grids/NAME.csv: a subfolder
+                        AtomicFile.WriteAllBytes(target, File.ReadAllBytes(Path.Combine(parts[0].Dir, f)));
+                        break;
                     case ShardMerging.BandImages: break;   // above
                     case ShardMerging.FalseColour: photometry ??= MergePhotometryPictures(parts, staging, width, height); break;
                     default: throw new InputException(Path.Combine(parts[0].Dir, "render.json"), $"lists '{f}', a file merge does not know", "merge shards written by the same version");

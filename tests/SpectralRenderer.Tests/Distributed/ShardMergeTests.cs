@@ -73,7 +73,7 @@ public class ShardMergeTests
     public void Shards_with_the_photometry_product_merge_into_the_single_renders_photometry_byte_for_byte(string integrator, int n)
     {
         // Issue 27: photometry.exr (luminance cd/m², illuminance lx) of every shard's rows, and the false-colour pictures
-        // drawn again on the whole image's scale; a box's shadow and a spot's edge across the strips.
+        // drawn again on the whole image's scale; a box's shadow and a spot's edge across the strips; the calculation grid's files.
         var dir = Reference.TempDir();
         var scene = Path.Combine(dir, "scene.json");
         File.WriteAllText(scene, $$"""
@@ -83,7 +83,8 @@ public class ShardMergeTests
               "lights": [ { "type": "spot", "position": [0.5, 1, 3], "look_at": [0, 0, 0], "cutoff": 25, "spectrum": "A", "luminous_intensity": 500 },
                           { "type": "point", "position": [-1, -2, 2], "spectrum": "led-blue", "luminous_flux": 2000 } ],
               "objects": [ { "type": "quad", "center": [0, 0, 0], "size": 6, "material": "white" },
-                           { "type": "box", "center": [0, 0.3, 0.6], "size": [0.6, 0.6, 0.6], "material": "grey" } ] }
+                           { "type": "box", "center": [0, 0.3, 0.6], "size": [0.6, 0.6, 0.6], "material": "grey" } ],
+              "calculation_grids": [ { "name": "floor", "origin": [-2, -2, 0], "u": [4, 0, 0], "v": [0, 4, 0], "points": [6, 5] } ] }
             """);
         string[] formats = ["--formats", "png,photometry"];
         Render(scene, Path.Combine(dir, "whole"), formats);
@@ -92,6 +93,7 @@ public class ShardMergeTests
         Assert.True(code == 0, err);
         AssertSameRender(Path.Combine(dir, "whole"), Path.Combine(dir, "merged"));
         Assert.True(File.Exists(Path.Combine(dir, "merged", "illuminance-scale.svg")));
+        Assert.True(File.Exists(Path.Combine(dir, "merged", "grids", "floor.csv")));   // the scene's calculation grid, the same in every shard
     }
 
     [SkippableFact]
