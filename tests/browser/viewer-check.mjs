@@ -1,5 +1,6 @@
 // Drives viewer.html in Debian's Chromium (headless) with playwright-core and prints one JSON line of what it read.
-// usage: node viewer-check.mjs URL_OR_FILE '{"hover":[x,y],"light":"NAME","preset":"PRESET","intensity":F,"read":[x,y],"canvas":true,"timeRuns":N}'
+// usage: node viewer-check.mjs URL_OR_FILE '{"hover":[x,y],"light":"NAME","preset":"PRESET","intensity":F,"read":[x,y],"canvas":true,"timeRuns":N,
+//   "logDrag":K,"logTo":F,"readout":[x,y],"view":"luminance"}'
 // Fails (exit 1) on any console error or page error.
 import { chromium } from "playwright-core";
 import { pathToFileURL } from "node:url";
@@ -50,6 +51,37 @@ try {
     if (p.canvas) out.canvas = await page.evaluate(() => { const c = document.getElementById("image"); return Array.from(c.getContext("2d").getImageData(0, 0, c.width, c.height).data); });
     if (p.storeA) { await page.evaluate(() => viewer.setMode("de")); out.de = await page.evaluate(() => viewer.deStats()); }
     if (p.storeA && p.read) out.pixelDe = await page.evaluate(([x, y]) => viewer.pixelDe(x, y), p.read);
+  }
+  if (p.logDrag !== undefined) {
+    // Drag light p.logDrag's logarithmic slider from its thumb to p.logTo (0 … 1) of its track; read the slider, the
+    // intensity the page took and the text beside it.
+    const slider = page.locator(`#logIntensity-${p.logDrag}`);
+    const box = await slider.boundingBox();
+    const [value, min, max] = await slider.evaluate(e => [+e.value, +e.min, +e.max]);
+    await page.mouse.move(box.x + box.width * (value - min) / (max - min), box.y + box.height / 2);
+    await page.mouse.down();
+    await page.mouse.move(box.x + box.width * p.logTo, box.y + box.height / 2, { steps: 5 });
+    await page.mouse.up();
+    out.logSlider = await slider.evaluate(e => [+e.value, +e.min, +e.max]);
+    out.linearSlider = await page.locator(`#intensity-${p.logDrag}`).evaluate(e => +e.value);
+    out.intensity = await page.evaluate(k => viewer.intensity(viewer.lights()[k]), p.logDrag);
+    out.intensityText = await page.locator(`#intensityText-${p.logDrag}`).textContent();
+    if (p.read) out.rgb = await page.evaluate(([x, y]) => viewer.pixelRgb(x, y), p.read);
+  }
+  if (p.readout) {
+    // Hover the pixel and read the luminance and illuminance readout under the cursor.
+    const box = await page.locator("#image").boundingBox();
+    const zoom = box.width / (await page.evaluate(() => viewer.width));
+    await page.mouse.move(box.x + (p.readout[0] + 0.5) * zoom, box.y + (p.readout[1] + 0.5) * zoom);
+    out.luminance = +(await page.locator("#luminance-readout").getAttribute("data-value"));
+    out.illuminance = +(await page.locator("#illuminance-readout").getAttribute("data-value"));
+    out.readoutText = await page.locator("#photometry-readout").textContent();
+  }
+  if (p.view) {
+    // Switch the view (luminance, illuminance) and read the canvas and the legend shown beside it.
+    await page.selectOption("#mode", p.view);
+    out.viewCanvas = await page.evaluate(() => { const c = document.getElementById("image"); return Array.from(c.getContext("2d").getImageData(0, 0, c.width, c.height).data); });
+    out.legend = await page.locator("#legend").innerHTML();
   }
   if (p.timeRuns) {
     await page.evaluate(() => viewer.setMode("colour"));

@@ -17,8 +17,11 @@ public static class ViewCommand
         sRGB image with exposure and gamut controls, the spectrum of the pixel under the mouse (click to pin)
         with the ground-truth reflectance of the object seen, each band image (Fig. 2), region means
         (shift-drag), and — for renders with the per-light outputs (--formats …,lights) — a light picker
-        and intensity sliders that relight the image in the page, with Ra and Rf of each light and a
-        ΔE00 map between a stored lighting state and the current one.
+        and intensity sliders (linear, and logarithmic over four decades) that relight the image in the page,
+        with Ra and Rf of each light and a ΔE00 map between a stored lighting state and the current one. A
+        render with --formats …,photometry adds its luminance (cd/m²) and illuminance (lx) maps as views (false
+        colour with the legend of luminance.png and illuminance.png) and both values under the cursor; they
+        follow the lights as they change (illuminance: each light's share traced again when the page is written).
 
           --serve          serve OUTDIR on http://127.0.0.1:PORT/ (System.Net.HttpListener) and print the URL
           --port N         the port (default: a free one)

@@ -47,6 +47,7 @@ public static class ShardMerge
             var bandFiles = files.Where(f => f.StartsWith("bands/", StringComparison.Ordinal)).ToList();
             bool mosaic = files.Contains("bands.png");
             if (bandFiles.Count > 0 || mosaic) MergeBands(parts, staging, width, height, bands, scale, bandFiles, mosaic, cancel);
+            List<string>? photometry = null;   // the false-colour pictures, all four drawn at their first
             foreach (var f in files)
             {
                 cancel.ThrowIfCancellationRequested();
@@ -65,8 +66,12 @@ public static class ShardMerge
                     case ShardMerging.NpyColour: MergeNpy(parts, f, target, width, height, 3); break;
                     case ShardMerging.PathTransfer: MergeNpy(parts, f, target, width, height, PathGroups(parts[0])); break;
                     case ShardMerging.PathIds: MergeNpy(parts, f, target, width, height, 3); break;
-                    case ShardMerging.Copy: AtomicFile.WriteAllBytes(target, File.ReadAllBytes(Path.Combine(parts[0].Dir, f))); break;
+                    case ShardMerging.Copy:
+                        Directory.CreateDirectory(Path.GetDirectoryName(target)!);   // grids/NAME.csv: a subfolder
+                        AtomicFile.WriteAllBytes(target, File.ReadAllBytes(Path.Combine(parts[0].Dir, f)));
+                        break;
                     case ShardMerging.BandImages: break;   // above
+                    case ShardMerging.FalseColour: photometry ??= MergePhotometryPictures(parts, staging, width, height); break;
                     default: throw new InputException(Path.Combine(parts[0].Dir, "render.json"), $"lists '{f}', a file merge does not know", "merge shards written by the same version");
                 }
             }
@@ -218,6 +223,30 @@ public static class ShardMerge
             if (mosaic) BandMosaic.Draw(thumbs, width, height, bands, b, full, scale, 256, grid);
         }
         if (mosaic) AtomicFile.Write(Path.Combine(outDir, "bands.png"), s => PngWriter.WriteGray8(s, thumbs.Width, thumbs.Height, thumbs.Pixels));
+    }
+
+    /// <summary>
+    /// luminance.png, illuminance.png and their legends: the shards' photometry.exr rows assembled into the whole image's
+    /// planes, then drawn as a whole render draws them (the scale spans the whole image's values).
+    /// </summary>
+    static List<string> MergePhotometryPictures(List<Part> parts, string outDir, int width, int height)
+    {
+        var luminance = new float[width * height];
+        var illuminance = new float[width * height];
+        foreach (var p in parts)
+        {
+            var path = Path.Combine(p.Dir, PhotometryProduct.Exr);
+            var (window, channels) = ExrChannelWriter.Read(path);
+            if (window != new ExrChannelWriter.PixelWindow(p.Crop.X0, p.Crop.Y0, p.Crop.Width, p.Crop.Height)
+                || !channels.TryGetValue("luminance", out var l) || !channels.TryGetValue("illuminance", out var e))
+                throw new InputException(path, $"does not hold luminance and illuminance of the shard's rows {p.Crop.Y0}–{p.Crop.Y1 - 1}",
+                    "the shard was changed or not finished: render it again");
+            l.CopyTo(luminance, p.Crop.Y0 * width);
+            e.CopyTo(illuminance, p.Crop.Y0 * width);
+        }
+        var written = new List<string>();
+        PhotometryProduct.WritePictures(outDir, width, height, luminance, illuminance, written.Add);
+        return written;
     }
 
     /// <summary>spectral.img (noise.img): per band, each shard's rows of that band at their offset in the band's plane.</summary>

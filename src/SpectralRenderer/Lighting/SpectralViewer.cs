@@ -6,6 +6,7 @@ using SpectralRenderer.Color;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Output;
+using SpectralRenderer.Output.Products;
 using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Lighting;
@@ -69,9 +70,44 @@ public static class SpectralViewer
         }
         data["objects"] = objects;
 
+        // The photometry product: luminance (cd/m²) and illuminance (lx) maps as views, on photometry.exr's false-colour scales.
+        var binary = new Dictionary<string, byte[]>();
+        JsonObject? photometry = null;
+        var photometryExr = Path.Combine(dir, PhotometryProduct.Exr);
+        if (File.Exists(photometryExr))
+        {
+            var (window, planes) = ExrChannelWriter.Read(photometryExr);
+            if (window != new ExrChannelWriter.PixelWindow(0, 0, width, height)
+                || !planes.ContainsKey("luminance") || !planes.ContainsKey("illuminance"))
+                throw new InputException(photometryExr, $"does not hold luminance and illuminance of the whole {width}×{height} film",
+                    "render the folder again with --formats …,photometry");
+            var probe = new Rendering.Illuminance(Relighting.ChangedScene(Relighting.Open(dir), [], null), null);
+            var scales = new JsonObject();
+            foreach (var (q, unit) in new[] { ("luminance", "cd/m²"), ("illuminance", "lx") })
+            {
+                var scale = FalseColour.For(planes[q], char.ToUpperInvariant(q[0]) + q[1..], unit);
+                scales[q] = new JsonObject
+                {
+                    ["unit"] = unit,
+                    ["low"] = scale.Low,
+                    ["high"] = scale.High,
+                    ["log"] = scale.Log,
+                    ["legend"] = scale.Legend($"{q}.png's scale; values: the page's (relit) values"),
+                };
+                binary[q] = System.Runtime.InteropServices.MemoryMarshal.AsBytes(planes[q].AsSpan()).ToArray();
+            }
+            photometry = new JsonObject
+            {
+                ["scales"] = scales,
+                // Luminance of the relit pixel: K_m/κ · Y of its exact colour (ȳ = V), else Σ_b L_b K_m∫_b V dλ.
+                ["y_to_luminance"] = probe.YToLuminance,
+                ["band_v"] = Numbers(probe.BandV),
+            };
+            data["photometry"] = photometry;
+        }
+
         var ids = new ushort[n];
         // Large arrays go into the data file as base64 strings, written in pieces (no one giant JSON string).
-        var binary = new Dictionary<string, byte[]>();
         if (transfer is not null)
         {
             // Candidate lights: P of every component that follows a light, per unit intensity, from the term tables of
@@ -94,6 +130,14 @@ public static class SpectralViewer
                 presets.Add((JsonNode)new JsonObject { ["name"] = name, ["components"] = values, ["ra"] = ra, ["rf"] = rf });
             }
             var tl = transfer["lights"]!.AsArray();
+            // Photometry (a render with photometry.exr): each light's luminous value K_m∫V·I dλ per unit intensity under
+            // each preset, so the page's illuminance follows the lights (Illuminance.LightFactorMaps).
+            // The scene with its meshes (the shadow rays need every triangle).
+            var sourceScene = photometry is not null
+                ? Relighting.ChangedScene(src with { Overrides = src.Overrides with { LoadMeshes = true } }, [], null) : null;
+            bool relitPhotometry = sourceScene is not null && sourceScene.Lights.Count == tl.Count;
+            var luminous0 = relitPhotometry ? new Rendering.Illuminance(sourceScene!, null) : null;
+            var presetLuminous = new List<JsonArray?>();
             for (int k = 0; k < tl.Count; k++)
             {
                 var l = tl[k]!;
@@ -107,6 +151,8 @@ public static class SpectralViewer
                 int kk = k;
                 Add(preset, PresetComponents(c => components[c].FollowsLight && components[c].Light == kk && intensity > 0
                     ? comps[c]!["band_values"]!.AsArray().Concat(comps[c]!["xyz"]!.AsArray()).Select(v => (float)((double)v! / intensity)).ToArray() : null), s);
+                presetLuminous.Add(luminous0 is null ? null : new JsonArray(Enumerable.Range(0, tl.Count)
+                    .Select(j => j == kk && intensity > 0 ? (JsonNode)JsonValue.Create(luminous0.LuminousOf(kk) / intensity) : null).ToArray()));
                 var ph = listed?.Photometric;
                 lights.Add((JsonNode)new JsonObject
                 {
@@ -129,6 +175,18 @@ public static class SpectralViewer
                     components[c].BandValues(tables, p);
                     return p.AsSpan(0, grid.Count + 3).ToArray();
                 }), SpectrumLibrary.Resolve(name));
+                var luminous = relitPhotometry ? new Rendering.Illuminance(scene, null) : null;
+                presetLuminous.Add(luminous is null ? null : Numbers(Enumerable.Range(0, tl.Count).Select(luminous.LuminousOf)));
+            }
+            if (relitPhotometry)
+            {
+                // K_m∫V·I dλ of each preset per unit intensity (null where a render's own spectrum is not that light's), the
+                // render's own, and each light's lx per unit of it at every pixel's surface.
+                for (int q = 0; q < presets.Count; q++) presets[q]!["luminous"] = presetLuminous[q];
+                photometry!["luminous"] = Numbers(Enumerable.Range(0, tl.Count).Select(luminous0!.LuminousOf));
+                var factors = new Rendering.Illuminance(sourceScene!, new Rendering.SceneGeometry(sourceScene!)).LightFactorMaps(0);
+                var planes = factors.SelectMany(m => m).ToArray();
+                binary["light_factors"] = System.Runtime.InteropServices.MemoryMarshal.AsBytes(planes.AsSpan()).ToArray();
             }
             data["lights"] = lights;
             data["presets"] = presets;

@@ -41,6 +41,12 @@ public sealed class Illuminance
         _yToLuminance = Colorimeter.Km / scene.Colorimeter.Kappa;
     }
 
+    /// <summary>K_m/κ when luminance is the exact colour's Y times it (the observer's ȳ is V), else null (bands: <see cref="BandV"/>).</summary>
+    public double? YToLuminance => _yIsV ? _yToLuminance : null;
+
+    /// <summary>K_m ∫_b V dλ per band: a band mean's luminance weight (cd/m² per W·m⁻²·sr⁻¹·nm⁻¹).</summary>
+    public IReadOnlyList<double> BandV => _bandV;
+
     /// <summary>K_m ∫V·L dλ of light k's spectral intensity: what its c_spot·d_k·cos θ multiply into lux.</summary>
     public double LuminousOf(int light) => _luminous[light];
 
@@ -83,6 +89,55 @@ public sealed class Illuminance
             e += _luminous[k] * s.Spot * s.Attenuation * cos;
         }
         return e;
+    }
+
+    /// <summary>
+    /// Light <paramref name="k"/>'s share of <see cref="FromLights"/> per unit of its luminous value: c_spot·d_k·max(0, n·l)
+    /// with the shadow ray unblocked, else 0 (lx per cd for a point light, lx per lx facing it for a directional one).
+    /// </summary>
+    public double LightFactor(int k, Vector3 p, Vector3 n, Vector3 ng, ref RayCounters counters)
+    {
+        var geometry = _geometry ?? throw new InvalidOperationException("illuminance needs the scene's geometry");
+        if (!_scene.Lights[k].Illuminate(p, out var s)) return 0;
+        float cos = Vector3.Dot(n, s.Direction);
+        if (!(cos > 0) || !(s.Spot > 0)) return 0;
+        float eps = geometry.Epsilon;
+        float side = Vector3.Dot(ng, s.Direction) >= 0 ? 1 : -1;
+        var origin = p + side * eps * ng;
+        var shadow = float.IsInfinity(s.Distance) ? new Ray(origin, s.Direction)
+            : new Ray(origin, s.Direction, MathF.Max(0, s.Distance - 2 * eps));
+        counters.Shadow++;
+        return geometry.Occluded(shadow) ? 0 : (double)s.Spot * s.Attenuation * cos;
+    }
+
+    /// <summary>
+    /// Per light, per pixel of the whole film, <see cref="LightFactor"/> at the surface the pixel-centre ray meets (as
+    /// <see cref="Maps"/> finds it; 0 where it meets nothing): the illuminance is linear in each light's luminous value, so
+    /// Σ_k K_m∫V·I_k dλ · G_k is the direct illuminance under any spectra and intensities of the same lights (the viewer's
+    /// relighting). The same on any thread count.
+    /// </summary>
+    public float[][] LightFactorMaps(int threads, CancellationToken cancel = default)
+    {
+        var geometry = _geometry ?? throw new InvalidOperationException("illuminance needs the scene's geometry");
+        var camera = _scene.Camera;
+        int w = camera.Width, h = camera.Height, lights = _scene.Lights.Count;
+        var maps = new float[lights][];
+        for (int k = 0; k < lights; k++) maps[k] = new float[w * h];
+        var options = new ParallelOptions { MaxDegreeOfParallelism = threads > 0 ? threads : -1, CancellationToken = cancel };
+        Parallel.For(0, h, options, y =>
+        {
+            var counters = new RayCounters();
+            for (int x = 0; x < w; x++)
+            {
+                var ray = camera.Generate(x + 0.5f, y + 0.5f);
+                if (!geometry.Intersect(ref ray, out var hit)) continue;
+                var wo = -ray.Direction;
+                var ng = Vector3.Dot(hit.GeometricNormal, wo) >= 0 ? hit.GeometricNormal : -hit.GeometricNormal;
+                var n = Vector3.Dot(hit.Normal, wo) >= 0 ? hit.Normal : -hit.Normal;
+                for (int k = 0; k < lights; k++) maps[k][y * w + x] = (float)LightFactor(k, hit.Position, n, ng, ref counters);
+            }
+        });
+        return maps;
     }
 
     /// <summary>The gather rays a pixel's illuminance takes under a path integrator: the camera's spp, at least 64.</summary>
@@ -129,6 +184,35 @@ public sealed class Illuminance
             return buffers;
         }, _ => { });
         return (luminance, illuminance);
+    }
+
+    /// <summary>
+    /// The illuminance (lx) at each point of a calculation grid (i fastest), on the side of its normal: from the lights with
+    /// shadows (<see cref="FromLights"/>), plus, when <paramref name="gather"/> is given (a path integrator), π/N Σ L_v of
+    /// <see cref="GatherRays"/> cosine-weighted rays from the point (area lights, sky and interreflection), drawn from the
+    /// point's (i, j). The same on any thread count.
+    /// </summary>
+    public double[] OnGrid(CalculationGrid grid, IIntegrator? gather, int threads, CancellationToken cancel = default)
+    {
+        int nu = grid.PointsU, nv = grid.PointsV;
+        var lux = new double[nu * nv];
+        var n = grid.Normal;
+        int rays = GatherRays(_scene);
+        var options = new ParallelOptions { MaxDegreeOfParallelism = threads > 0 ? threads : -1, CancellationToken = cancel };
+        Parallel.For(0, nv, options, () => (new float[_scene.PaddedBands + 64], new float[gather?.ScratchLength ?? 0]), (j, _, buffers) =>
+        {
+            var (radiance, scratch) = buffers;
+            var counters = new RayCounters();
+            for (int i = 0; i < nu; i++)
+            {
+                var p = grid.Point(i, j);
+                double e = FromLights(p, n, n, ref counters);
+                if (gather is not null) e += Gather(gather, i, j, p, n, n, rays, radiance, scratch, ref counters);
+                lux[j * nu + i] = e;
+            }
+            return buffers;
+        }, _ => { });
+        return lux;
     }
 
     /// <summary>π/N Σ L_v(ω_i) over N cosine-weighted directions about n (E = ∫ L cos θ dω, pdf cos θ/π).</summary>

@@ -26,6 +26,8 @@ public enum OutputProducts
     /// <summary>noise.npy, noise.img/.hdr and stderr channels in spectral.exr: each pixel's standard error per band and of
     /// luminance (opt-in: not in <see cref="All"/>; needs spp ≥ 2).</summary>
     Noise = 256,
+    /// <summary>grids/NAME.csv and .svg: the illuminance (lx) on the scene's calculation grids (set by "calculation_grids").</summary>
+    Grids = 512,
     All = Png | Bands | Exr | Envi | Npy | Aov,
 }
 
@@ -48,7 +50,7 @@ public static class OutputNames
         (OutputProducts.Png, "png"), (OutputProducts.Bands, "bands"), (OutputProducts.Exr, "exr"),
         (OutputProducts.Envi, "envi"), (OutputProducts.Npy, "npy"), (OutputProducts.Aov, "aov"), (OutputProducts.Lights, "lights"),
         (OutputProducts.Photometry, "photometry"),
-        (OutputProducts.Noise, "noise"),
+        (OutputProducts.Noise, "noise"), (OutputProducts.Grids, "grids"),
     ];
 
     public static readonly IReadOnlyList<(ExrCompressionChoice Choice, string Name)> ExrCompressions =

@@ -78,6 +78,8 @@ public sealed class Scene
     public int RayBudget { get; init; } = DefaultRayBudget;
     public const int DefaultRayBudget = 20_000;
     public required OutputOptions Output { get; init; }
+    /// <summary>Work planes whose illuminance a render writes ("calculation_grids"; physical radiometry).</summary>
+    public IReadOnlyList<CalculationGrid> CalculationGrids { get; init; } = [];
     /// <summary>The resolved scene as JSON (for render.json).</summary>
     public System.Text.Json.Nodes.JsonObject? Resolved { get; init; }
 

@@ -67,6 +67,35 @@ public class ShardMergeTests
         AssertSameRender(Path.Combine(dir, "whole"), Path.Combine(dir, "merged"));
     }
 
+    [Theory]
+    [InlineData("whitted", 3)]
+    [InlineData("whitted", 2)]
+    public void Shards_with_the_photometry_product_merge_into_the_single_renders_photometry_byte_for_byte(string integrator, int n)
+    {
+        // Issue 27: photometry.exr (luminance cd/m², illuminance lx) of every shard's rows, and the false-colour pictures
+        // drawn again on the whole image's scale; a box's shadow and a spot's edge across the strips; the calculation grid's files.
+        var dir = Reference.TempDir();
+        var scene = Path.Combine(dir, "scene.json");
+        File.WriteAllText(scene, $$"""
+            { "radiometry": "physical", "scaling": "absolute", "white": "D65", "bands": "400:700:50", "integrator": "{{integrator}}",
+              "camera": { "position": [0, 0, 5], "look_at": [0, 0, 0], "fov": 50, "width": 8, "height": 96, "spp": 1 },
+              "materials": { "white": { "diffuse": 0.8 }, "grey": { "diffuse": 0.3 } },
+              "lights": [ { "type": "spot", "position": [0.5, 1, 3], "look_at": [0, 0, 0], "cutoff": 25, "spectrum": "A", "luminous_intensity": 500 },
+                          { "type": "point", "position": [-1, -2, 2], "spectrum": "led-blue", "luminous_flux": 2000 } ],
+              "objects": [ { "type": "quad", "center": [0, 0, 0], "size": 6, "material": "white" },
+                           { "type": "box", "center": [0, 0.3, 0.6], "size": [0.6, 0.6, 0.6], "material": "grey" } ],
+              "calculation_grids": [ { "name": "floor", "origin": [-2, -2, 0], "u": [4, 0, 0], "v": [0, 4, 0], "points": [6, 5] } ] }
+            """);
+        string[] formats = ["--formats", "png,photometry"];
+        Render(scene, Path.Combine(dir, "whole"), formats);
+        var shards = Shards(scene, dir, n, formats);
+        var (code, _, err) = CliRunner.Run(["merge", .. shards, "-o", Path.Combine(dir, "merged"), "--quiet"]);
+        Assert.True(code == 0, err);
+        AssertSameRender(Path.Combine(dir, "whole"), Path.Combine(dir, "merged"));
+        Assert.True(File.Exists(Path.Combine(dir, "merged", "illuminance-scale.svg")));
+        Assert.True(File.Exists(Path.Combine(dir, "merged", "grids", "floor.csv")));   // the scene's calculation grid, the same in every shard
+    }
+
     [SkippableFact]
     public void Four_shards_of_the_paper_bunny_merge_into_the_single_render_byte_for_byte()
     {

@@ -75,6 +75,7 @@ public partial class SceneDocsTests
         Add("Path tracing", "$.integrator", s => s["integrator"] = With(new JsonObject { ["type"] = "path" }));
         Add("Path tracing", "$.background", s => s["background"] = With(new JsonObject { ["spectrum"] = "D65", ["luminance"] = 1 }));
         Add("Path tracing", "$.sky", s => s["sky"] = With(new JsonObject { ["type"] = "daylight" }));
+        Add("Radiometry", "$.calculation_grids[0]", s => { s["radiometry"] = "physical"; s["calculation_grids"] = new JsonArray(With([])); });
 
         var lightTypes = Fail(s => s["lights"]![0]!["type"] = Unknown, dir);
         Assert.StartsWith("use ", lightTypes.Hint);
@@ -126,11 +127,11 @@ public partial class SceneDocsTests
     public void The_probe_reaches_every_place_the_loader_checks_keys()
     {
         // Each call of the loader's Keys(element, path, allowed…) is one kind of JSON object; the probe above
-        // asks fifteen of them (the light, object and material calls cover every type). A new one must join the probe.
+        // asks sixteen of them (the light, object and material calls cover every type). A new one must join the probe.
         var sources = Directory.GetFiles(Repo.PathOf("src", "SpectralRenderer"), "*.cs", SearchOption.AllDirectories)
             .Where(f => !f.Contains($"{Path.DirectorySeparatorChar}obj{Path.DirectorySeparatorChar}", StringComparison.Ordinal));
         var calls = sources.SelectMany(f => KeysCall().Matches(File.ReadAllText(f)).Select(m => $"{Path.GetFileName(f)}: {m.Value}")).ToList();
-        Assert.True(calls.Count == 15, $"{calls.Count} Keys(...) calls, the probe knows 15; add the new one to AcceptedKeys:\n" + string.Join("\n", calls));
+        Assert.True(calls.Count == 16, $"{calls.Count} Keys(...) calls, the probe knows 16; add the new one to AcceptedKeys:\n" + string.Join("\n", calls));
     }
 
     // ---- the examples -------------------------------------------------------------------------------

@@ -122,6 +122,22 @@ public class PhotometryOutputTests(ITestOutputHelper output)
         Check($"{spectrum}: luminance (cd/m²)", l, 500 * 0.5 / Math.PI);
     }
 
+    [Theory, MemberData(nameof(Spectra))]
+    public void A_sphere_light_of_1000_lm_gives_1000_over_4_pi_r2_lux_at_distance_r(string spectrum)
+    {
+        // An emitting sphere (radius 0.1 m) of "luminous_flux": 1000 lm, 2 m in front of a white diffuser, seen from the
+        // side: a Lambertian sphere's illuminance on a surface facing its centre is Φ/(4πr²), so L = ρ·Φ/(4πr²)/π.
+        var json = Scene("", extra: "\"integrator\": { \"type\": \"path\", \"spectral_grid\": 1 },")
+            .Replace("\"position\": [0, 0, 5]", "\"position\": [2, 0, 5], \"spp\": 16")
+            .Replace("\"diffuser\": { \"diffuse\": 1 } }", $$"""
+                "diffuser": { "diffuse": 1 }, "bulb": { "diffuse": 0, "emission": { "spectrum": "{{spectrum}}", "luminous_flux": 1000 } } }
+                """)
+            .Replace("\"material\": \"diffuser\" } ]", "\"material\": \"diffuser\" }, { \"type\": \"sphere\", \"center\": [0, 0, 2], \"radius\": 0.1, \"material\": \"bulb\" } ]");
+        var (l, _) = Mean(Render(json));
+        double e = 1000 / (4 * Math.PI * 2 * 2);
+        Check($"{spectrum} sphere of 1000 lm at 2 m: illuminance π·L/ρ (lx)", Math.PI * l, e);
+    }
+
     [Fact]
     public void Illuminance_follows_the_cosine_law_and_shadows_across_the_picture()
     {

@@ -113,7 +113,7 @@ public class OutputProductTests
     {
         foreach (var f in new[] { "preview.png", "bands/band-01-400-410nm.png", "bands.png", "object-id.png", "mask-lit-0.png",
             "mask-highlight.png",
-            "reflectance.exr", "spectral.exr", "spectral.img", "spectral.hdr", "spectral.npy", "wavelengths.csv", "lights/lights.json" })
+            "reflectance.exr", "spectral.exr", "spectral.img", "spectral.hdr", "spectral.npy", "wavelengths.csv", "lights/lights.json", "grids/desk.csv" })
             Assert.Single(OutputProductTable.All, p => p.Owns(f));
     }
 }

@@ -119,6 +119,75 @@ public class ViewerBrowserTests(ITestOutputHelper output)
         for (int c = 0; c < 3; c++) Assert.InRange(rgb[c], png.Samples[i + c] - 1, png.Samples[i + c] + 1);
     }
 
+    /// <summary>
+    /// Issue 27's photometric scene: a white diffuser (ρ = 1) facing the camera, a point lamp of 1000 cd at 2 m on the axis
+    /// and a sun of 100 lx head-on; the 9 × 9 film's centre pixel looks along the axis (E = I/r² + E⊥, L = ρE/π).
+    /// </summary>
+    static string PhotometricScene(string lampSpectrum = "D65", string lampValue = "\"luminous_intensity\": 1000") => $$"""
+        { "radiometry": "physical", "scaling": "absolute", "white": "D65", "bands": "380:780:20",
+          "camera": { "position": [0, 0, 5], "look_at": [0, 0, 0], "fov": 20, "width": 9, "height": 9, "spp": 1 },
+          "materials": { "diffuser": { "diffuse": 1 } },
+          "lights": [ { "type": "point", "name": "lamp", "position": [0, 0, 2], "spectrum": "{{lampSpectrum}}", {{lampValue}} },
+                      { "type": "directional", "name": "sun", "direction": [0, 0, -1], "spectrum": "D65", "illuminance": 100 } ],
+          "objects": [ { "type": "quad", "center": [0, 0, 0], "size": 4, "material": "diffuser" } ] }
+        """;
+
+    static void Near(string what, double expected, double actual, double rel)
+        => Assert.True(Math.Abs(actual - expected) <= rel * Math.Abs(expected), $"{what}: page {actual:G9}, expected {expected:G9}");
+
+    [SkippableFact]
+    public void The_cursor_readout_gives_lux_and_cd_per_m2_that_follow_the_lights_and_the_maps_are_views()
+    {
+        Script();
+        var dir = Reference.TempDir();
+        var scene = Path.Combine(dir, "s.json");
+        File.WriteAllText(scene, PhotometricScene());
+        Run("render", scene, "-o", Path.Combine(dir, "r"), "--quiet", "--formats", "png,lights,photometry");
+        Run("view", Path.Combine(dir, "r"));
+        var page = Path.Combine(dir, "r", "viewer.html");
+        var exr = SpectralRenderer.Tests.Output.PhotometryOutputTests.ReadExr(Path.Combine(dir, "r", "photometry.exr"));
+
+        // As rendered: E = 1000/2² + 100 = 350 lx, L = 350/π cd/m² at the centre (the bar's 0.1 %), and photometry.exr's values.
+        var r = Check(page, """{"readout":[4,4],"view":"illuminance"}""");
+        Near("illuminance (lx)", 350, (double)r["illuminance"]!, 1e-3);
+        Near("luminance (cd/m²)", 350 / Math.PI, (double)r["luminance"]!, 1e-3);
+        Near("illuminance vs photometry.exr", exr.Channels["illuminance"][4 * 9 + 4], (double)r["illuminance"]!, 1e-6);
+        Near("luminance vs photometry.exr", exr.Channels["luminance"][4 * 9 + 4], (double)r["luminance"]!, 1e-5);
+        Assert.Contains("lx", (string)r["readoutText"]!);
+        Assert.Contains("cd/m²", (string)r["readoutText"]!);
+        // The illuminance view is illuminance.png (same scale), with its legend.
+        var png = PngReader.Read(Path.Combine(dir, "r", "illuminance.png"));
+        var canvas = r["viewCanvas"]!.AsArray().Select(v => (int)v!).ToArray();
+        for (int p = 0; p < 81; p++)
+            for (int c = 0; c < 3; c++) Assert.InRange(canvas[4 * p + c], png.Samples[3 * p + c] - 1, png.Samples[3 * p + c] + 1);
+        Assert.Contains("data-unit=\"lx\"", (string)r["legend"]!);
+
+        // The lamp's log slider dragged to the middle of its 4 decades: the same spectrum, so E = I/r² + 100 with
+        // I = 1000 cd × (new scale / render's scale), and the text beside the slider says I in cd.
+        double scale0 = (double)JsonNode.Parse(File.ReadAllText(Path.Combine(dir, "r", "render.json")))!["lights"]![0]!["intensity"]!;
+        r = Check(page, """{"light":"sun","preset":"render: D65 (sun)","logDrag":0,"logTo":0.5,"readout":[4,4]}""");
+        double intensity = (double)r["intensity"]!;
+        var log = r["logSlider"]!.AsArray().Select(v => (double)v!).ToArray();
+        Assert.Equal(Math.Log10(4 * scale0), log[2], 9);
+        Assert.Equal(Math.Pow(10, log[0]), intensity, intensity * 1e-12);
+        Assert.True(intensity < 0.1 * scale0 && intensity > 1e-3 * scale0, $"log slider at {log[0]} gives {intensity} (scale {scale0})");
+        double cd = 1000 * intensity / scale0;
+        Assert.Contains($"= {cd.ToString("G4", CultureInfo.InvariantCulture)} cd", (string)r["intensityText"]!);
+        Near("illuminance after the log drag (lx)", cd / 4 + 100, (double)r["illuminance"]!, 1e-3);
+        Near("luminance after the log drag (cd/m²)", (cd / 4 + 100) / Math.PI, (double)r["luminance"]!, 1e-3);
+
+        // Another spectrum: the lamp to A at twice the render's scale, against photometry.exr of that scene rendered.
+        double x = 2 * scale0;
+        r = Check(page, $$"""{"light":"lamp","preset":"A","intensity":{{x.ToString("R", CultureInfo.InvariantCulture)}},"readout":[4,4]}""");
+        File.WriteAllText(scene, PhotometricScene("A", $"\"intensity\": {x.ToString("R", CultureInfo.InvariantCulture)}"));
+        Run("render", scene, "-o", Path.Combine(dir, "a"), "--quiet", "--formats", "png,photometry");
+        var a = SpectralRenderer.Tests.Output.PhotometryOutputTests.ReadExr(Path.Combine(dir, "a", "photometry.exr"));
+        output.WriteLine($"A at ×{x:G6}: page {(double)r["illuminance"]!:G7} lx, {(double)r["luminance"]!:G7} cd/m²; render {a.Channels["illuminance"][40]:G7} lx, {a.Channels["luminance"][40]:G7} cd/m²");
+        Near("illuminance under A vs its render", a.Channels["illuminance"][40], (double)r["illuminance"]!, 1e-5);
+        Near("luminance under A vs its render", a.Channels["luminance"][40], (double)r["luminance"]!, 1e-4);
+        Assert.True((double)r["illuminance"]! > 400, "the lamp under A at twice its scale should light the centre more than before");
+    }
+
     /// <summary>Every pixel the page drew is within one code of <paramref name="png"/>, and 99 % of the codes are equal.</summary>
     static void AssertCanvasIs(JsonNode r, PngImage png)
     {

@@ -48,6 +48,8 @@ public enum ShardMerging
     PathTransfer,
     /// <summary>A path render's lights/ids.npy (H × W × 3), row strips by offset.</summary>
     PathIds,
+    /// <summary>A false-colour picture and legend of photometry.exr's channels, drawn again from the shards' EXRs assembled.</summary>
+    FalseColour,
 }
 
 /// <summary>Whether a relit render may copy a file from its source folder (written by the same build) instead of writing it.</summary>

@@ -23,6 +23,7 @@ public static class OutputProductTable
         new ColourProduct(),
         new PhotometryProduct(),
         new NoiseProduct(),
+        new GridsProduct(),
     ];
 
     /// <summary>Every registered product in order.</summary>

@@ -8,7 +8,8 @@ namespace SpectralRenderer.Output.Products;
 /// "photometry" (physical radiometry): photometry.exr with the channels <c>luminance</c> (cd/m², K_m ∫V·L dλ of what each
 /// pixel sees) and <c>illuminance</c> (lx arriving at the surface the pixel-centre ray meets, <see cref="Illuminance"/>:
 /// from every light with shadows, and under the path integrator area lights, sky and interreflection by a gather), and
-/// each as a false-colour PNG with its labelled scale as an SVG legend (<see cref="FalseColour"/>). Whole renders only.
+/// each as a false-colour PNG with its labelled scale as an SVG legend (<see cref="FalseColour"/>). Shards write their
+/// rows; `spectral merge` assembles the whole render's files.
 /// </summary>
 public sealed class PhotometryProduct : OutputProduct
 {
@@ -50,16 +51,28 @@ public sealed class PhotometryProduct : OutputProduct
         ExrChannelWriter.Write(Path.Combine(c.OutDir, Exr), crop.Width, crop.Height, [("illuminance", illuminance), ("luminance", luminance)],
             attributes, crop.X0, crop.Y0, scene.Camera.Width, scene.Camera.Height);
         done(Exr);
+        WritePictures(c.OutDir, crop.Width, crop.Height, luminance, illuminance, done);
+    }
+
+    /// <summary>
+    /// luminance.png and illuminance.png (false colour on a scale of the whole picture's values) and their SVG legends;
+    /// also what `spectral merge` writes from the shards' photometry.exr assembled (the scale needs the whole image).
+    /// </summary>
+    public static void WritePictures(string dir, int width, int height, float[] luminance, float[] illuminance, Action<string> done)
+    {
         foreach (var (quantity, values, unit) in new[] { ("luminance", luminance, "cd/m²"), ("illuminance", illuminance, "lx") })
         {
             var scale = FalseColour.For(values, char.ToUpperInvariant(quantity[0]) + quantity[1..], unit);
             var rgb = scale.Rgb(values);
-            AtomicFile.Write(Path.Combine(c.OutDir, $"{quantity}.png"), s => PngWriter.WriteRgb8(s, crop.Width, crop.Height, rgb));
+            AtomicFile.Write(Path.Combine(dir, $"{quantity}.png"), s => PngWriter.WriteRgb8(s, width, height, rgb));
             done($"{quantity}.png");
-            AtomicFile.WriteAllText(Path.Combine(c.OutDir, $"{quantity}-scale.svg"), scale.Legend($"colours of {quantity}.png; values in {Exr}"));
+            AtomicFile.WriteAllText(Path.Combine(dir, $"{quantity}-scale.svg"), scale.Legend($"colours of {quantity}.png; values in {Exr}"));
             done($"{quantity}-scale.svg");
         }
     }
+
+    /// <summary>Shards: photometry.exr's scanline chunks are the whole file's; the pictures are drawn again on the whole image.</summary>
+    public override ShardMerging Merging(string file) => file == Exr ? ShardMerging.ExrChunks : ShardMerging.FalseColour;
 
     public override bool Owns(string file) =>
         file is Exr or "luminance.png" or "illuminance.png" or "luminance-scale.svg" or "illuminance-scale.svg";

@@ -42,7 +42,8 @@ public sealed partial class SceneLoader
 
     /// <summary>
     /// A material's "emission": { "spectrum": …, "radiance": k, "two_sided": false } — spectral radiance spectrum × k in
-    /// W·m⁻²·sr⁻¹·nm⁻¹, physical radiometry only; or "luminance": cd/m² instead of "radiance", k = L_v/(K_m ∫V·S dλ).
+    /// W·m⁻²·sr⁻¹·nm⁻¹, physical radiometry only; or "luminance": cd/m² instead of "radiance", k = L_v/(K_m ∫V·S dλ); or
+    /// "luminous_flux": lm, the total flux of the objects made of the material (<see cref="ScaleFluxEmission"/>).
     /// </summary>
     [MethodImpl(MethodImplOptions.NoOptimization)]
     Emission? ParseEmission(JsonElement material, string materialPath)
@@ -50,14 +51,89 @@ public sealed partial class SceneLoader
         if (!TryGet(material, "emission", out var e)) return null;
         string path = $"{materialPath}.emission";
         Object(e, path);
-        Keys(e, path, "spectrum", "radiance", "luminance", "two_sided");
+        Keys(e, path, "spectrum", "radiance", "luminance", "luminous_flux", "two_sided");
         if (_radiometry != Radiometry.Physical)
             throw Error(path, "emission is a spectral radiance (W·m⁻²·sr⁻¹·nm⁻¹) and needs physical radiometry",
                 "add \"radiometry\": \"physical\" to the scene (and render it with \"integrator\": \"path\")");
         var spectrum = Spectrum(Required(e, "spectrum", path), $"{path}.spectrum");
+        bool twoSided = Bool(e, "two_sided", path, false);
+        if (TryGet(e, "luminous_flux", out _))
+        {
+            foreach (var other in new[] { "radiance", "luminance" })
+                if (TryGet(e, other, out _))
+                    throw Error($"{path}.luminous_flux", $"both {other} and luminous_flux are given", "give one: luminous_flux (lm) sets the radiance");
+            double flux = Number(e, "luminous_flux", path, 0, 0);
+            double luminous = Color.Photometry.Luminous(spectrum);
+            if (!(luminous > 0))
+                throw Error($"{path}.spectrum", $"spectrum '{spectrum.Name}' emits no visible light (∫V·S dλ = 0), so luminous_flux cannot scale it",
+                    "give \"radiance\" (radiometric) for an invisible emitter");
+            _fluxEmissions.Add((materialPath, flux, luminous, spectrum, twoSided));
+            return new Emission(Bands(spectrum, $"{path}.spectrum"), twoSided);   // scaled once the objects' area is known
+        }
         double k = Luminance(e, path, spectrum) ?? Number(e, "radiance", path, 1, 0);
         var radiance = Bands(spectrum.Scaled(k), $"{path}.spectrum");
-        return new Emission(radiance, Bool(e, "two_sided", path, false));
+        return new Emission(radiance, twoSided);
+    }
+
+    /// <summary>Emissions given by luminous flux: the material's path, Φ_v (lm), K_m∫V·S dλ, the spectrum and its sides.</summary>
+    readonly List<(string Path, double Flux, double Luminous, Spectra.TabulatedSpectrum Spectrum, bool TwoSided)> _fluxEmissions = [];
+
+    /// <summary>
+    /// Gives each emission set by "luminous_flux" its radiance: a Lambertian emitter of luminance L_v sends π·L_v·A lm
+    /// from each emitting side of area A, so L_v = Φ_v/(π·A·sides) over the total area A of the objects made of the
+    /// material (<see cref="SurfaceArea"/>), and k = L_v/(K_m ∫V·S dλ) on the spectrum.
+    /// </summary>
+    void ScaleFluxEmission(List<Material> materials, Dictionary<string, int> materialIndex, List<SceneObject> objects)
+    {
+        foreach (var (path, flux, luminous, spectrum, twoSided) in _fluxEmissions)
+        {
+            const string Named = "$.materials.";
+            if (!path.StartsWith(Named, StringComparison.Ordinal) || !materialIndex.TryGetValue(path[Named.Length..], out int m))
+                throw Error($"{path}.emission.luminous_flux", "luminous_flux is the flux of every object of a named material",
+                    "define the material under \"materials\" and name it in the objects, or use \"luminance\" (cd/m²)");
+            string name = path[Named.Length..];
+            // A scene loaded without its meshes' triangles (relighting reads lights only): no area, nothing rendered.
+            if (objects.Any(o => o.Material == m && o.Mesh is null && o.Shape is null)) continue;
+            double area = 0;
+            foreach (var o in objects)
+                if (o.Material == m) area += SurfaceArea(o);
+            if (!(area > 0))
+                throw Error($"{path}.emission.luminous_flux", $"no object of material '{name}' has an area to send {flux} lm from",
+                    "give the material to a sphere, quad, box or mesh, or use \"luminance\" (cd/m²)");
+            double k = flux / (Math.PI * area * (twoSided ? 2 : 1)) / luminous;
+            materials[m].Emission = new Emission(Bands(spectrum.Scaled(k), $"{path}.emission.spectrum"), twoSided);
+        }
+    }
+
+    /// <summary>
+    /// The area (m²) of an object's surface as the path tracer's emitter samples it: a sphere 4πr², a quad |m·x × m·y|
+    /// of its unit square, a box its six faces, a mesh Σ ½|e₁ × e₂| over its triangles; an infinite plane 0.
+    /// </summary>
+    static double SurfaceArea(SceneObject o)
+    {
+        if (o.Mesh is { } mesh)
+        {
+            double sum = 0;
+            for (int t = 0; t < mesh.TriangleCount; t++)
+            {
+                var (p0, p1, p2) = mesh.Triangle(t);
+                sum += 0.5 * System.Numerics.Vector3.Cross(p1 - p0, p2 - p0).Length();
+            }
+            return sum;
+        }
+        var shape = o.Shape!;
+        var m = shape.ObjectToWorld;
+        System.Numerics.Vector3 X = System.Numerics.Vector3.TransformNormal(System.Numerics.Vector3.UnitX, m),
+            Y = System.Numerics.Vector3.TransformNormal(System.Numerics.Vector3.UnitY, m),
+            Z = System.Numerics.Vector3.TransformNormal(System.Numerics.Vector3.UnitZ, m);
+        double Face(System.Numerics.Vector3 u, System.Numerics.Vector3 v) => System.Numerics.Vector3.Cross(u, v).Length();
+        return shape.Kind switch
+        {
+            Geometry.ShapeKind.Sphere => 4 * Math.PI * X.LengthSquared(),
+            Geometry.ShapeKind.Quad => Face(X, Y),
+            Geometry.ShapeKind.Box => 2 * (Face(X, Y) + Face(Y, Z) + Face(Z, X)),
+            _ => 0,
+        };
     }
 
     /// <summary>

@@ -136,7 +136,7 @@ public sealed partial class SceneLoader
 
     // ---- the scene ----------------------------------------------------------------------------
 
-    static readonly string[] TopKeys = ["name", "description", "bands", "wave", "integration", "radiometry", "observer", "white", "scaling", "spectra", "materials", "lights", "objects", "background", "sky", "ambient", "max_depth", "integrator", "min_ray_weight", "ray_budget", "camera", "output"];
+    static readonly string[] TopKeys = ["name", "description", "bands", "wave", "integration", "radiometry", "observer", "white", "scaling", "spectra", "materials", "lights", "objects", "background", "sky", "ambient", "max_depth", "integrator", "min_ray_weight", "ray_budget", "camera", "output", "calculation_grids"];
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
     Scene Build(JsonElement root)
@@ -213,11 +213,15 @@ public sealed partial class SceneLoader
             int i = 0;
             foreach (var o in objectsElement.EnumerateArray()) { ParseObject(o, $"$.objects[{i}]", i, objects, materials, materialIndex); i++; }
         }
+        ScaleFluxEmission(materials, materialIndex, objects);
         var names = new HashSet<string>(StringComparer.Ordinal);
         foreach (var o in objects)
             if (!names.Add(o.Name)) throw Error("$.objects", $"two objects are named '{o.Name}'", "object names must be unique (they label the object-id image)");
 
         var output = ParseOutput(root);
+        var calculationGrids = ParseCalculationGrids(root);
+        // A scene's calculation grids are written with every render of it (the grids product).
+        if (calculationGrids.Count > 0) output.Products |= OutputProducts.Grids;
         int depth = Integer(root, "max_depth", "$", 5, 0, 64);
         var integrator = ParseIntegrator(root);
         float minWeight = (float)Number(root, "min_ray_weight", "$", Scene.DefaultMinRayWeight, 0, 1);
@@ -258,6 +262,7 @@ public sealed partial class SceneLoader
             MinRayWeight = minWeight,
             RayBudget = budget,
             Output = output,
+            CalculationGrids = calculationGrids,
             Resolved = Resolved(root),
         };
     }
