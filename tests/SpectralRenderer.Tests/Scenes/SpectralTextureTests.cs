@@ -19,7 +19,7 @@ namespace SpectralRenderer.Tests.Scenes;
 /// and colour to ΔE00 0.001 at every patch centre. A textured OBJ mesh (vt rotated by 90°) shows the texel its uv says.
 /// Mip levels keep the texture's mean.
 /// </summary>
-public class SpectralTextureTests
+public class SpectralTextureTests(Xunit.Abstractions.ITestOutputHelper output)
 {
     const int PerPatch = 4;   // texels per patch side: a patch centre's bilinear taps stay inside the patch
 
@@ -78,7 +78,7 @@ public class SpectralTextureTests
     static RenderResult Render(string json, string dir) => Renderer.Render(SceneLoader.Parse(Encoding.UTF8.GetBytes(json), Path.Combine(dir, "scene.json")));
 
     /// <summary>Every patch centre: band values to 1e-6 and ΔE00 ≤ 0.001 between the two renders.</summary>
-    static void SamePatches(string textured, string untextured, string dir)
+    void SamePatches(string textured, string untextured, string dir)
     {
         var scene = SceneLoader.Parse(Encoding.UTF8.GetBytes(untextured), Path.Combine(dir, "scene.json"));
         var a = Render(textured, dir);
@@ -96,6 +96,7 @@ public class SpectralTextureTests
             var lb = Lab.FromXyz(new Xyz(b.Xyz![3 * i], b.Xyz[3 * i + 1], b.Xyz[3 * i + 2]), white);
             worstDe = Math.Max(worstDe, DeltaE2000.Between(la, lb));
         }
+        output.WriteLine($"largest band difference {worstBand:G3}, largest ΔE00 {worstDe:G3}");
         Assert.True(worstBand <= 1e-6, $"largest band difference {worstBand:G3}");
         Assert.True(worstDe <= 0.001, $"largest ΔE00 {worstDe:G3}");
     }

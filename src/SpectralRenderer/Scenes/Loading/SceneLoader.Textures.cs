@@ -2,6 +2,7 @@ using System.Globalization;
 using System.Numerics;
 using System.Runtime.CompilerServices;
 using System.Text.Json;
+using SpectralRenderer.Color;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Scenes.Textures;
@@ -68,7 +69,7 @@ public sealed partial class SceneLoader
                 var exr = ExrReader.Read(full);
                 return FromImage(exr.Image, full);
             }
-            if (ext == ".png") throw Error($"{path}.texture", "RGB PNG textures are not supported yet", "give a spectral texture (ENVI, spectral EXR, PNG stack)");
+            if (ext == ".png") return RgbTexture(full, path);
             return FromImage(EnviReader.Read(EnviImage(full, path)), full);
         }
         catch (InputException ex) when (!ex.Where.StartsWith(_file, StringComparison.Ordinal))
@@ -144,6 +145,28 @@ public sealed partial class SceneLoader
             for (int i = 0; i < width * height; i++) values[i * n + b] = png.Samples[i] / max;
         }
         return new SpectralTexture(files[0], width, height, wavelengths, values!);
+    }
+
+    static readonly Lazy<SigmoidUplift> Uplift = new(() => new SigmoidUplift());
+
+    /// <summary>An 8- or 16-bit sRGB PNG, each colour uplifted to a reflectance spectrum (<see cref="SigmoidUplift"/>).</summary>
+    SpectralTexture RgbTexture(string full, string path)
+    {
+        var png = PngReader.Read(full);
+        if (png.Channels != 3)
+            throw Error($"{path}.texture", $"{full} has {png.Channels} channel(s): an RGB texture is an sRGB PNG of three channels", "save the texture as RGB (no alpha), or give a spectral texture");
+        var uplift = Uplift.Value;
+        int n = SigmoidUplift.Wavelengths.Length, texels = png.Width * png.Height, max = (1 << png.BitDepth) - 1;
+        var values = new float[texels * n];
+        Parallel.For(0, png.Height, y =>
+        {
+            for (int i = y * png.Width; i < (y + 1) * png.Width; i++)
+            {
+                var r = uplift.FromSrgbCodes(png.Samples[3 * i], png.Samples[3 * i + 1], png.Samples[3 * i + 2], max);
+                for (int j = 0; j < n; j++) values[i * n + j] = (float)r[j];
+            }
+        });
+        return new SpectralTexture(full, png.Width, png.Height, SigmoidUplift.Wavelengths, values);
     }
 
     /// <summary>"uv_transform": {"scale": s | [su, sv], "offset": [ou, ov], "rotation": degrees, "wrap": "repeat" | "clamp" | "mirror"}.</summary>
