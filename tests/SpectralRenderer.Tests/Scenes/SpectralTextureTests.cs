@@ -157,20 +157,24 @@ public class SpectralTextureTests(Xunit.Abstractions.ITestOutputHelper output)
         SamePatches(TexturedChart($$"""{ "texture": "chart_{nm}.png", "wavelengths": [{{list}}] }"""), UntexturedChart(wl, (p, j) => Q(patches[p][j]) / 65535.0), dir);
     }
 
-    [Fact]
-    public void A_textured_OBJ_mesh_shows_the_texel_its_uv_names()
+    [Theory]
+    [InlineData("square.obj")]
+    [InlineData("square.ply")]
+    public void A_textured_mesh_shows_the_texel_its_uv_names(string mesh)
     {
         // A 2 × 2 chart of constant reflectances, 4 × 4 texels each; the square [−1, 1]² in z = 0 with vt turned by 90°:
         // corner (s, t) of the square (s, t ∈ {0, 1}) has uv = (1 − t, s). Around a quarter's centre the bilinear taps stay
         // inside its block.
         var dir = Reference.TempDir();
         File.WriteAllText(Path.Combine(dir, "square.obj"), "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0 0\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n");
+        File.WriteAllText(Path.Combine(dir, "square.ply"), "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nproperty float s\nproperty float t\n" +
+            "element face 1\nproperty list uchar int vertex_indices\nend_header\n-1 -1 0 1 0\n1 -1 0 1 1\n1 1 0 0 1\n-1 1 0 0 0\n4 0 1 2 3\n");
         double[] rho = [0.1, 0.3, 0.5, 0.7];   // texel (x, y) = rho[y·2 + x], row 0 at the top (v = 1)
         var texels = new float[8 * 8 * 2];
         for (int y = 0; y < 8; y++)
             for (int x = 0; x < 8; x++) texels[2 * (y * 8 + x)] = texels[2 * (y * 8 + x) + 1] = (float)rho[y / 4 * 2 + x / 4];
         WriteEnvi(Path.Combine(dir, "four.img"), 8, 8, [380, 780], texels);
-        string Mesh(string material) => Scene($$"""{ "type": "mesh", "file": "square.obj", "material": {{material}} }""");
+        string Mesh(string material) => Scene($$"""{ "type": "mesh", "file": "{{mesh}}", "material": {{material}} }""");
         var textured = Render(Mesh("""{ "diffuse": { "texture": "four.hdr" } }"""), dir);
         var white = Render(Mesh("""{ "diffuse": 1 }"""), dir);
         var camera = SceneLoader.Parse(Encoding.UTF8.GetBytes(Mesh("1")), Path.Combine(dir, "scene.json")).Camera;
