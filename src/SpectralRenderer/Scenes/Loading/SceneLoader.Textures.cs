@@ -29,6 +29,7 @@ public sealed partial class SceneLoader
         if (!path.EndsWith(".diffuse", StringComparison.Ordinal))
             throw Error(path, "only a material's \"diffuse\" can be a texture so far", "give a spectrum here, and the texture as the material's \"diffuse\"");
         Keys(e, path, TextureKeys);
+        var uv = TryGet(e, "uv_transform", out var u) ? UvTransformOf(u, $"{path}.uv_transform") : UvTransform.Identity;
         var texture = ReadTexture(e, path);
         double scale = Number(e, "scale", path, 1, 0, 1e6);
         if (scale != 1) for (int i = 0; i < texture.Values.Length; i++) texture.Values[i] = (float)(texture.Values[i] * scale);
@@ -41,7 +42,6 @@ public sealed partial class SceneLoader
         if (min < -1e-6)
             throw Error($"{path}.texture", $"texture {texture.Source} goes down to {min.ToString("G4", inv)}: a reflectance cannot be negative", "clip the texture's noise below zero to 0");
         if (max > 1) _warnings.Add($"{Where(path)}: warning: texture {texture.Source} reaches {max.ToString("0.###", inv)} > 1; rendered as given");
-        var uv = TryGet(e, "uv_transform", out var u) ? UvTransformOf(u, $"{path}.uv_transform") : UvTransform.Identity;
         _pendingTextures[path] = new TextureBinding(texture, uv);
         return texture.Mean();
     }

@@ -6,7 +6,7 @@ namespace SpectralRenderer.Scenes.Textures;
 /// A reflectance image: Height × Width texels, each a spectrum tabulated at the same <see cref="Wavelengths"/> (an ENVI
 /// cube's or spectral EXR's band centres, a PNG stack's list, or an RGB texel's uplifted spectrum on its own grid),
 /// linear between the samples like every table here. Row 0 is the top of the image (v = 1). The texel spectra are
-/// projected onto a render's bands and colour by <c>Rendering.TextureTables</c>, exactly, once per render.
+/// projected onto a render's bands and colour by the renderer's texture tables, exactly, once per render.
 /// </summary>
 public sealed class SpectralTexture
 {
