@@ -30,6 +30,7 @@ public static class CommandLine
         new("reconstruct", "white-board reflectance reconstruction against the truth, by region (§3.4, Fig. 7)", ReconstructCommand.Run),
         new("camera", "a render seen by a simulated camera: raw (NPY, PNG, DNG), processed sRGB, ΔE00 and SNR per patch", CameraCommand.Run),
         new("recover", "spectral reflectance from a camera's signals (pinv, Wiener, linear model, Tikhonov) against the truth", RecoverCommand.Run),
+        new("metamerism", "an sRGB texture's colour under other lights for two metamers of its uplift (ΔE00 spread)", MetamerismCommand.Run),
         new("illuminance", "illuminance (lx) on a grid of points of a work plane from every light: CSV and an SVG heat map", IlluminanceCommand.Run),
     ];
 

@@ -9,7 +9,7 @@ namespace SpectralRenderer.Geometry;
 /// <summary>
 /// Reads the geometry of a Wavefront OBJ file: <c>v</c>, <c>vn</c> and <c>f</c> (corners <c>v</c>, <c>v/vt</c>,
 /// <c>v//vn</c>, <c>v/vt/vn</c>; negative indices count back from the last element read; polygons are
-/// fan-triangulated). Every other keyword (<c>vt</c>, <c>g</c>, <c>o</c>, <c>s</c>, <c>mtllib</c>, ...) is ignored.
+/// fan-triangulated), and <c>vt</c> (u v, kept per triangle corner when every corner names one). Every other keyword (<c>g</c>, <c>o</c>, <c>s</c>, <c>mtllib</c>, ...) is ignored.
 /// A vertex gets the file's normal when all corners using it name the same <c>vn</c>; otherwise the mesh's
 /// normals are computed. The file is parsed as UTF-8 bytes; numbers read exactly as float.Parse and int.Parse
 /// read them. Errors name "file:line".
@@ -46,6 +46,8 @@ public static class ObjReader
         var normals = Array.Empty<Vector3>();
         var indices = new int[6 * guess];
         var cornerNormals = new int[6 * guess]; // vn index (0-based) per corner of `indices`, -1 when none
+        var cornerTexCoords = new int[6 * guess]; // vt index (0-based) per corner of `indices`, -1 when none
+        var texCoords = Array.Empty<Vector2>();
         int positionCount = 0, normalCount = 0, indexCount = 0, texCoordCount = 0, faceCount = 0;
 
         int lineNumber = 0;
@@ -82,14 +84,21 @@ public static class ObjReader
                 }
             }
             else if (keyword.SequenceEqual("vt"u8))
-                texCoordCount++;
+            {
+                float u = ReadFloat(ref tokens, path, lineNumber, "vt");
+                var second = tokens.Next();   // v is optional (1D textures): 0
+                float v = second.Length == 0 ? 0 : TryParseFloat(second, out float vv) && float.IsFinite(vv) ? vv
+                    : throw new InputException($"{path}:{lineNumber}", $"vt: {MessageText.Quote(second)} is not a number", "write vt u v with finite numbers");
+                if (texCoordCount == texCoords.Length) Array.Resize(ref texCoords, Math.Max(2 * texCoords.Length, guess));
+                texCoords[texCoordCount++] = new Vector2(u, v);
+            }
             else if (keyword.SequenceEqual("f"u8))
             {
-                int corners = 0, firstVertex = 0, firstNormal = 0, previousVertex = 0, previousNormal = 0;
+                int corners = 0, firstVertex = 0, firstNormal = 0, previousVertex = 0, previousNormal = 0, firstUv = 0, previousUv = 0;
                 for (var corner = tokens.Next(); corner.Length > 0; corner = tokens.Next(), corners++)
                 {
-                    var (p, n) = ReadCorner(corner, positionCount, texCoordCount, normalCount, path, lineNumber);
-                    if (corners == 0) (firstVertex, firstNormal) = (p, n);
+                    var (p, n, t) = ReadCorner(corner, positionCount, texCoordCount, normalCount, path, lineNumber);
+                    if (corners == 0) (firstVertex, firstNormal, firstUv) = (p, n, t);
                     if (corners >= 2)
                     {
                         // Fan: (first, previous, this).
@@ -97,12 +106,14 @@ public static class ObjReader
                         {
                             Array.Resize(ref indices, 2 * indices.Length);
                             Array.Resize(ref cornerNormals, indices.Length);
+                            Array.Resize(ref cornerTexCoords, indices.Length);
                         }
+                        cornerTexCoords[indexCount] = firstUv; cornerTexCoords[indexCount + 1] = previousUv; cornerTexCoords[indexCount + 2] = t;
                         indices[indexCount] = firstVertex; indices[indexCount + 1] = previousVertex; indices[indexCount + 2] = p;
                         cornerNormals[indexCount] = firstNormal; cornerNormals[indexCount + 1] = previousNormal; cornerNormals[indexCount + 2] = n;
                         indexCount += 3;
                     }
-                    (previousVertex, previousNormal) = (p, n);
+                    (previousVertex, previousNormal, previousUv) = (p, n, t);
                 }
                 if (corners < 3)
                     throw new InputException($"{path}:{lineNumber}", $"face has {corners} vertices (a face needs at least 3)", "write 'f' with three or more vertex indices, e.g. f 1 2 3");
@@ -113,11 +124,24 @@ public static class ObjReader
 
         var positionArray = positions[..positionCount];
         var mapped = MapNormals(positionCount, indices.AsSpan(0, indexCount), cornerNormals, normals.AsSpan(0, normalCount));
-        var mesh = new TriangleMesh(positionArray, indices, indexCount, mapped, path);
+        var mesh = new TriangleMesh(positionArray, indices, indexCount, mapped, path, CornerTexCoords(cornerTexCoords.AsSpan(0, indexCount), texCoords));
         if (mesh.TriangleCount == 0)
             throw new InputException($"{path}:{Math.Max(1, lineNumber)}", $"at the end of the file, all {mesh.DegenerateCount} triangles are degenerate (zero area)", "check the vertex coordinates: every triangle has zero area");
         if (mesh.Normals is null) mesh.ComputeVertexNormals();
         return mesh;
+    }
+
+    /// <summary>The vt of every triangle corner, or null when some corner names none.</summary>
+    static Vector2[]? CornerTexCoords(ReadOnlySpan<int> corners, Vector2[] texCoords)
+    {
+        if (texCoords.Length == 0 || corners.Length == 0) return null;
+        var result = new Vector2[corners.Length];
+        for (int i = 0; i < corners.Length; i++)
+        {
+            if (corners[i] < 0) return null;
+            result[i] = texCoords[corners[i]];
+        }
+        return result;
     }
 
     /// <summary>A line with non-ASCII bytes, its Unicode white space (no-break space, em space, ...) made ' '.</summary>
@@ -223,20 +247,20 @@ public static class ObjReader
         return int.TryParse(s, NumberStyles.AllowLeadingSign, CultureInfo.InvariantCulture, out value);
     }
 
-    /// <summary>One face corner "v[/[vt][/vn]]" as 0-based (position, normal or -1).</summary>
+    /// <summary>One face corner "v[/[vt][/vn]]" as 0-based (position, normal or -1, texture coordinate or -1).</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    static (int position, int normal) ReadCorner(ReadOnlySpan<byte> corner, int positions, int texCoords, int normals,
+    static (int position, int normal, int texCoord) ReadCorner(ReadOnlySpan<byte> corner, int positions, int texCoords, int normals,
         string path, int line)
     {
         int slash = corner.IndexOf((byte)'/');
         int p = Resolve(slash < 0 ? corner : corner[..slash], positions, "vertex", path, line);
-        if (slash < 0) return (p, -1);
+        if (slash < 0) return (p, -1, -1);
         var rest = corner[(slash + 1)..];
         slash = rest.IndexOf((byte)'/');
         var vt = slash < 0 ? rest : rest[..slash];
-        if (vt.Length > 0) Resolve(vt, texCoords, "texture coordinate", path, line);
-        if (slash < 0 || slash == rest.Length - 1) return (p, -1);
-        return (p, Resolve(rest[(slash + 1)..], normals, "normal", path, line));
+        int t = vt.Length > 0 ? Resolve(vt, texCoords, "texture coordinate", path, line) : -1;
+        if (slash < 0 || slash == rest.Length - 1) return (p, -1, t);
+        return (p, Resolve(rest[(slash + 1)..], normals, "normal", path, line), t);
     }
 
     /// <summary>A 1-based (or negative, relative) OBJ index to a 0-based one, checked against what is defined so far.</summary>

@@ -8,7 +8,8 @@ namespace SpectralRenderer.Geometry;
 
 /// <summary>
 /// Reads a triangle mesh from a PLY file (ascii, binary_little_endian or binary_big_endian): the vertex
-/// element's x y z (and nx ny nz when all three are present), of any scalar type; polygons from the 'face'
+/// element's x y z (and nx ny nz when all three are present, texture coordinates u v — or s t, texture_u texture_v — when
+/// both are), of any scalar type; polygons from the 'face'
 /// element's vertex_indices (or vertex_index) list, fan-triangulated; triangle strips from a 'tristrips'
 /// element's vertex_indices list, where −1 restarts a strip and every second triangle is flipped to keep the
 /// winding. Other properties and elements are skipped. The whole file is read into memory and parsed as bytes:
@@ -77,7 +78,13 @@ public static class PlyReader
             pos = end;
         }
 
-        var result = new TriangleMesh(mesh.Positions, mesh.Indices, mesh.IndexCount, mesh.Normals, path);
+        Vector2[]? cornerUvs = null;
+        if (mesh.TexCoords is { } uvs)
+        {
+            cornerUvs = new Vector2[mesh.IndexCount];
+            for (int i = 0; i < cornerUvs.Length; i++) cornerUvs[i] = uvs[mesh.Indices[i]];
+        }
+        var result = new TriangleMesh(mesh.Positions, mesh.Indices, mesh.IndexCount, mesh.Normals, path, cornerUvs);
         if (result.TriangleCount == 0)
             throw new InputException($"{path}: end of data", result.DegenerateCount == 0 ? "no faces (empty mesh)" : $"all {result.DegenerateCount} triangles are degenerate", "check the vertex coordinates and faces: nothing of area is left");
         if (result.Normals is null) result.ComputeVertexNormals();
@@ -89,6 +96,7 @@ public static class PlyReader
     {
         public Vector3[] Positions = [];
         public Vector3[]? Normals;
+        public Vector2[]? TexCoords;
         public int[] Indices = [];
         public int IndexCount;
         int[] _list = new int[64];
@@ -156,16 +164,27 @@ public static class PlyReader
         return i;
     }
 
-    /// <summary>Role of each vertex property: 0..2 position x y z, 3..5 normal x y z, -1 skipped.</summary>
+    /// <summary>Role of each vertex property: 0..2 position x y z, 3..5 normal x y z, 6..7 texture u v, -1 skipped.</summary>
     static int[] VertexRoles(PlyElement e)
     {
         var roles = new int[e.Properties.Count];
-        string[] names = ["x", "y", "z", "nx", "ny", "nz"];
-        for (int i = 0; i < roles.Length; i++) roles[i] = e.Properties[i].IsList ? -1 : Array.IndexOf(names, e.Properties[i].Name);
+        for (int i = 0; i < roles.Length; i++)
+        {
+            roles[i] = e.Properties[i].IsList ? -1 : Array.IndexOf(RoleNames, e.Properties[i].Name);
+            if (roles[i] < 0 && !e.Properties[i].IsList)
+                roles[i] = e.Properties[i].Name switch { "s" or "texture_u" => 6, "t" or "texture_v" => 7, _ => -1 };
+        }
+        // A second name for a texture coordinate (u and s both given) keeps the first.
+        for (int i = 0; i < roles.Length; i++)
+            if (roles[i] >= 6 && Array.IndexOf(roles, roles[i]) < i) roles[i] = -1;
         return roles;
     }
 
+    static readonly string[] RoleNames = ["x", "y", "z", "nx", "ny", "nz", "u", "v"];
+    const int Roles = 8;
+
     static bool HasNormals(int[] roles) => Array.IndexOf(roles, 3) >= 0 && Array.IndexOf(roles, 4) >= 0 && Array.IndexOf(roles, 5) >= 0;
+    static bool HasTexCoords(int[] roles) => Array.IndexOf(roles, 6) >= 0 && Array.IndexOf(roles, 7) >= 0;
 
     /// <summary>
     /// The binary vertex element in bulk: each instance is a fixed-size record, each role a value at a fixed
@@ -180,8 +199,8 @@ public static class PlyReader
         var roles = VertexRoles(e);
         // The properties with a role, in file order: offset in the record, type, role.
         int used = 0, offset = 0, seen = 0;
-        Span<int> offsets = stackalloc int[6], targets = stackalloc int[6];
-        Span<PlyType> types = stackalloc PlyType[6];
+        Span<int> offsets = stackalloc int[Roles], targets = stackalloc int[Roles];
+        Span<PlyType> types = stackalloc PlyType[Roles];
         for (int i = 0; i < roles.Length; i++)
         {
             if (roles[i] >= 0)
@@ -196,6 +215,7 @@ public static class PlyReader
 
         var positions = new Vector3[e.Count];
         var normals = HasNormals(roles) ? new Vector3[e.Count] : null;
+        var uvs = HasTexCoords(roles) ? new Vector2[e.Count] : null;
         bool justXyz = le && used == 3 && stride == 12 && offsets[1] == 4 && offsets[2] == 8 && targets[0] == 0 && targets[1] == 1
             && types[0] == PlyType.Float32 && types[1] == PlyType.Float32 && types[2] == PlyType.Float32;
         if (justXyz && BitConverter.IsLittleEndian)
@@ -206,9 +226,10 @@ public static class PlyReader
                 if (!float.IsFinite(positions[k].X + positions[k].Y + positions[k].Z))
                     CheckFinite(data, start + 12 * k, e, k, offsets, types, targets, le, path);
         }
-        else ReadRecords(data, start, stride, e, offsets, types, targets, le, path, positions, normals);
+        else ReadRecords(data, start, stride, e, offsets, types, targets, le, path, positions, normals, uvs);
         mesh.Positions = positions;
         mesh.Normals = normals;
+        mesh.TexCoords = uvs;
         return start + e.Count * stride;
     }
 
@@ -216,9 +237,9 @@ public static class PlyReader
     /// the common x y z layout does not compile it).</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     static void ReadRecords(ReadOnlySpan<byte> data, int start, int stride, PlyElement e, ReadOnlySpan<int> offsets,
-        ReadOnlySpan<PlyType> types, ReadOnlySpan<int> targets, bool le, string path, Vector3[] positions, Vector3[]? normals)
+        ReadOnlySpan<PlyType> types, ReadOnlySpan<int> targets, bool le, string path, Vector3[] positions, Vector3[]? normals, Vector2[]? uvs)
     {
-        Span<float> v = stackalloc float[6];
+        Span<float> v = stackalloc float[Roles];
         for (int k = 0; k < positions.Length; k++)
         {
             var record = data.Slice(start + k * stride, stride);
@@ -230,6 +251,7 @@ public static class PlyReader
             }
             positions[k] = new Vector3(v[0], v[1], v[2]);
             if (normals is not null) normals[k] = SafeNormalize(new Vector3(v[3], v[4], v[5]));
+            if (uvs is not null) uvs[k] = new Vector2(v[6], v[7]);
         }
     }
 
@@ -242,7 +264,7 @@ public static class PlyReader
             float value = (float)PlyCursor.DecodeReal(types[j], data[(record + offsets[j])..], le);
             if (!float.IsFinite(value))
             {
-                string name = new[] { "x", "y", "z", "nx", "ny", "nz" }[targets[j]];
+                string name = RoleNames[targets[j]];
                 throw PlyCursor.Error(path, e.Name, k, record + offsets[j], $"property '{name}' is {value}, not a finite number", "vertex coordinates must be finite numbers: export the mesh again");
             }
         }
@@ -331,7 +353,8 @@ public static class PlyReader
         var roles = VertexRoles(e);
         var positions = new Vector3[e.Count];
         var normals = HasNormals(roles) ? new Vector3[e.Count] : null;
-        Span<float> v = stackalloc float[6];
+        var uvs = HasTexCoords(roles) ? new Vector2[e.Count] : null;
+        Span<float> v = stackalloc float[Roles];
         for (int k = 0; k < e.Count; k++)
         {
             cursor.Instance = k;
@@ -345,9 +368,11 @@ public static class PlyReader
             }
             positions[k] = new Vector3(v[0], v[1], v[2]);
             if (normals is not null) normals[k] = SafeNormalize(new Vector3(v[3], v[4], v[5]));
+            if (uvs is not null) uvs[k] = new Vector2(v[6], v[7]);
         }
         mesh.Positions = positions;
         mesh.Normals = normals;
+        mesh.TexCoords = uvs;
     }
 
     static Vector3 SafeNormalize(Vector3 n)

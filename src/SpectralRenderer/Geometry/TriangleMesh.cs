@@ -12,6 +12,9 @@ public sealed class TriangleMesh
     public Vector3[] Positions { get; }
     public Vector3[]? Normals { get; private set; }
     public int[] Indices { get; private set; }
+    /// <summary>Texture coordinates per triangle corner (three per triangle, parallel to <see cref="Indices"/>: OBJ's vt may
+    /// differ per corner at a seam), or null when the file gave none.</summary>
+    public Vector2[]? TexCoords { get; private set; }
     public int TriangleCount => Indices.Length / 3;
     /// <summary>How many triangles of the input were dropped as degenerate.</summary>
     public int DegenerateCount { get; }
@@ -24,7 +27,7 @@ public sealed class TriangleMesh
 
     /// <summary>A mesh from the first <paramref name="indexCount"/> entries of <paramref name="indices"/> (a reader's
     /// buffer, which the mesh takes over).</summary>
-    internal TriangleMesh(Vector3[] positions, int[] indices, int indexCount, Vector3[]? normals, string source)
+    internal TriangleMesh(Vector3[] positions, int[] indices, int indexCount, Vector3[]? normals, string source, Vector2[]? cornerTexCoords = null)
     {
         if (indexCount % 3 != 0) throw new ArgumentException("indices must come in threes", nameof(indices));
         if (normals is not null && normals.Length != positions.Length)
@@ -32,11 +35,12 @@ public sealed class TriangleMesh
         Positions = positions;
         Normals = normals;
         Source = source;
-        (Indices, DegenerateCount) = DropDegenerate(positions, indices, indexCount);
+        (Indices, DegenerateCount) = DropDegenerate(positions, indices, indexCount, cornerTexCoords);
+        if (cornerTexCoords is not null) TexCoords = cornerTexCoords.Length == Indices.Length ? cornerTexCoords : cornerTexCoords[..Indices.Length];
     }
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    static (int[] kept, int dropped) DropDegenerate(Vector3[] p, int[] indices, int count)
+    static (int[] kept, int dropped) DropDegenerate(Vector3[] p, int[] indices, int count, Vector2[]? uvs)
     {
         int write = 0;
         for (int read = 0; read < count; read += 3)
@@ -45,6 +49,7 @@ public sealed class TriangleMesh
             if ((uint)a >= (uint)p.Length || (uint)b >= (uint)p.Length || (uint)c >= (uint)p.Length)
                 throw new ArgumentOutOfRangeException(nameof(indices), $"triangle {read / 3} has an index outside [0, {p.Length})");
             if (a == b || b == c || a == c || Vector3.Cross(p[b] - p[a], p[c] - p[a]) == Vector3.Zero) continue;
+            if (uvs is not null) { uvs[write] = uvs[read]; uvs[write + 1] = uvs[read + 1]; uvs[write + 2] = uvs[read + 2]; }
             indices[write++] = a; indices[write++] = b; indices[write++] = c;
         }
         int dropped = (count - write) / 3;
@@ -127,7 +132,11 @@ public sealed class TriangleMesh
             for (int i = 0; i < normals.Length; i++) normals[i] = Vector3.Normalize(Vector3.TransformNormal(normals[i], normalMatrix));
         }
         if (m.GetDeterminant() < 0)
-            for (int i = 0; i < Indices.Length; i += 3) (Indices[i + 1], Indices[i + 2]) = (Indices[i + 2], Indices[i + 1]);
+            for (int i = 0; i < Indices.Length; i += 3)
+            {
+                (Indices[i + 1], Indices[i + 2]) = (Indices[i + 2], Indices[i + 1]);
+                if (TexCoords is { } uv) (uv[i + 1], uv[i + 2]) = (uv[i + 2], uv[i + 1]);
+            }
         return this;
     }
 

@@ -26,6 +26,8 @@ public static class RenderMemory
         };
         int triangles = scene.TriangleCount;
         if (triangles > 0) parts.Add(("BVH", 160L * triangles));
+        long textures = Rendering.TextureTables.Bytes(scene);   // per texel, mip level and light: shared by the threads
+        if (textures > 0) parts.Add(("texture tables", textures));
         // The inputs the products share, once; then what each product's writers hold.
         var products = OutputProductTable.For(p, named);
         var needs = ProductInputs.None;

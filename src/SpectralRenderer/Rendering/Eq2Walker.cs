@@ -37,6 +37,9 @@ internal interface IWalkSink : ITermSink
 
     /// <summary>A ray's radiance starts (its own spectrum is empty).</summary>
     void Begin();
+    /// <summary>The hit's material is textured: its textured terms (<see cref="TexturedTerms"/>) come from these texels in the
+    /// local step that follows (until the next <see cref="Begin"/>).</summary>
+    void Texels(TexturedTerms terms, in TexelTaps taps);
     /// <summary>The ray left the scene: the background radiance.</summary>
     void Background();
     /// <summary>A dispersive split (each band its own path): the colour lanes cannot follow.</summary>
@@ -78,6 +81,8 @@ internal sealed class Eq2Walker
     // Per material, the largest mirror and transmit factor over the bands: a branch's weight grows by at most these.
     readonly float[] _mirrorMax, _transmitMax;
     readonly float _minWeight;
+    readonly TexturedTerms?[]? _textured;
+    readonly float _pixelAngle;
 
     public Eq2Walker(Scene scene, SceneGeometry geometry, TermTables tables)
     {
@@ -93,6 +98,10 @@ internal sealed class Eq2Walker
         _mirrorMax = tables.Mirror.Select(t => t.AsSpan(0, scene.Bands).ToArray().DefaultIfEmpty(0).Max()).ToArray();
         _transmitMax = tables.Transmit.Select(t => t.AsSpan(0, scene.Bands).ToArray().DefaultIfEmpty(0).Max()).ToArray();
         _minWeight = scene.MinRayWeight;
+        _textured = tables.Textures?.Of;
+        // A camera pixel's angular width at the image centre: a hit's footprint t·angle/|cos θ| picks the mip level (a ray
+        // cone from the camera; a secondary ray's cone starts at its own origin).
+        _pixelAngle = 2 * MathF.Tan(scene.Camera.Fov * MathF.PI / 360) / Math.Max(1, scene.Camera.Height);
     }
 
     public TermTables Tables => _tables;
@@ -123,6 +132,13 @@ internal sealed class Eq2Walker
         var n = outside ? hit.Normal : -hit.Normal;
         var p = hit.Position;
         var pAbove = p + _geometry.Epsilon * ng;
+        if (_textured?[mi] is { } textured)
+        {
+            var uv = _geometry.TexCoord(in hit, out float density);
+            float width = hit.T * _pixelAngle / MathF.Max(MathF.Abs(Vector3.Dot(ng, v)), 0.25f) * density;
+            textured.Lookup(uv, width, out var taps);
+            sink.Texels(textured, in taps);
+        }
         var lights = new RayLights(_lights, _geometry, p, pAbove, n);
         Shade(ref sink, ref lights, mi, m, n, v, ref counters);
 

@@ -258,6 +258,9 @@ public sealed class LightTransfer
             _width = scene.Camera.Width; _height = scene.Camera.Height;
             _centreDiffuse = _lights.Select(_ => new float[_width * _height]).ToArray();
             _centreSpecular = _lights.Select(_ => new float[_width * _height]).ToArray();
+            if (scene.Materials.FirstOrDefault(m => m.DiffuseTexture is not null) is { } textured)
+                throw new InputException(scene.SourcePath, $"material '{textured.Name}' is textured: light transfer and relighting take spectra, not textures (issue 26)",
+                    "render the scene directly, or give the material a spectrum");
             _tables = new TermTables(scene);
             _walker = new Eq2Walker(scene, geometry, _tables);
             _fallback = new bool[_width * _height];
@@ -455,6 +458,8 @@ public sealed class LightTransfer
             float Weight => w.Weights[w.ChainLength];
 
             public void Begin() { }
+            // Textured materials are refused before a transfer is traced (Tracer's constructor).
+            public void Texels(TexturedTerms terms, in TexelTaps taps) { }
 
             public void Background()
             {

@@ -67,6 +67,10 @@ public sealed class PathIntegrator : IAnalysisIntegrator
                 throw new InputException($"{where}: $.materials.{material.Name}.ior",
                     $"material '{material.Name}' is dispersive (Cauchy index): the path integrator does not split paths per band yet",
                     "give a constant \"ior\", or render dispersion with the whitted integrator");
+            if (material.DiffuseTexture is not null)
+                throw new InputException($"{where}: $.materials.{material.Name}.diffuse",
+                    $"material '{material.Name}' is textured: the path integrator takes spectra only so far (issue 26)",
+                    "render textured scenes with the whitted integrator");
             _bsdf[m] = material.Bsdf.Resampled(_grid.Resample)
                 ?? throw new InputException($"{where}: $.materials.{material.Name}",
                     $"material '{material.Name}' ({material.Bsdf.GetType().Name}) cannot be carried to the path integrator's spectral grid",

@@ -60,6 +60,7 @@ public sealed partial class SceneGeometry
             return (n, Vector3.Dot(n, Vector3.Transform(Vector3.Zero, p.Shape.ObjectToWorld)));
         }).ToArray();
         _planeObject = planes.Select(p => p.Object).ToArray();
+        _planeShapes = planes.Select(p => p.Shape).ToArray();
 
         var b = Bounds3.Empty;
         if (_hasTriangles) b.Include(_triangles.Bvh.Bounds);
@@ -104,6 +105,7 @@ public sealed partial class SceneGeometry
         hit = default;
         hit.T = ray.TMax;
         hit.Position = ray.At(ray.TMax);
+        hit.Kind = kind;
         switch (kind)
         {
             case 1:
@@ -123,6 +125,7 @@ public sealed partial class SceneGeometry
                         if (n.LengthSquared() > 0) hit.Normal = Vector3.Normalize(n);
                     }
                     hit.Object = _meshObject[mesh];
+                    hit.Primitive = k; hit.B1 = h.U; hit.B2 = h.V;
                     break;
                 }
             case 2:
@@ -136,10 +139,12 @@ public sealed partial class SceneGeometry
                     hit.Normal = hit.GeometricNormal = na;
                 }
                 hit.Object = _analyticObject[ah.Primitive];
+                hit.Primitive = ah.Primitive;
                 break;
             default:
                 hit.Normal = hit.GeometricNormal = _planes[plane].Normal;
                 hit.Object = _planeObject[plane];
+                hit.Primitive = plane;
                 break;
         }
     }

@@ -12,4 +12,10 @@ public struct SurfaceHit
     /// <summary>Unit geometric (face) normal: decides the side and offsets secondary rays.</summary>
     public Vector3 GeometricNormal;
     public int Object;
+    /// <summary>What was hit, for texture coordinates (<see cref="SceneGeometry.TexCoord"/>): 1 triangle, 2 analytic shape, 3 plane.</summary>
+    public int Kind;
+    /// <summary>The triangle (BVH order), analytic shape or plane index within its kind.</summary>
+    public int Primitive;
+    /// <summary>A triangle's barycentric coordinates of corners 1 and 2.</summary>
+    public float B1, B2;
 }

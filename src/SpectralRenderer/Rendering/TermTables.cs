@@ -51,7 +51,11 @@ public sealed class TermTables
             (Mirror[m], MirrorColoured[m]) = Weight(materials[m].Mirror, bands, padded);
             (Transmit[m], TransmitColoured[m]) = Weight(materials[m].Transmit, bands, padded);
         }
+        Textures = TextureTables.For(scene);
     }
+
+    /// <summary>The textured materials' per-texel tables, or null when no material is textured.</summary>
+    public TextureTables? Textures { get; }
 
     /// <summary>I_k ⊙ m_diff (× 1/π physical), index light·M + material.</summary>
     public float[][] Diffuse { get; }

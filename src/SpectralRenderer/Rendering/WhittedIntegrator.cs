@@ -94,6 +94,8 @@ public sealed partial class WhittedIntegrator : IPacketIntegrator, IAnalysisInte
         readonly ref PixelInfo _info;   // null: no analysis
         Span<float> _frame;
         int _depth;
+        TexturedTerms? _textured;   // the current hit's textured terms and texels, or null
+        TexelTaps _taps;
 
         public Sink(TermTables tables, int bands, Span<float> result, Span<float> scratch, ref PixelInfo info)
         {
@@ -109,15 +111,49 @@ public sealed partial class WhittedIntegrator : IPacketIntegrator, IAnalysisInte
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
         readonly Span<float> Frame(int depth) => depth == 0 ? _result : _scratch.Slice((depth - 1) * _padded, _padded);
 
-        public readonly void Begin() => _frame.Clear();
+        public void Begin() { _frame.Clear(); _textured = null; }
+        public void Texels(TexturedTerms terms, in TexelTaps taps) { _textured = terms; _taps = taps; }
         public readonly void Background() => _tables.Background.AsSpan().CopyTo(_frame);
-        public readonly void GlobalAmbient(int material) => SpectralMath.AddScaled(_frame, _tables.GlobalAmbient[material], 1f);
-        public readonly void Ambient(int light, int material, int term, float spot) =>
-            SpectralMath.AddScaled(_frame, _tables.Ambient[term], spot);
+
+        public readonly void GlobalAmbient(int material)
+        {
+            if (_textured is { Ambient: true } t) AddTexels(t, 0, 1f);
+            else SpectralMath.AddScaled(_frame, _tables.GlobalAmbient[material], 1f);
+        }
+
+        public readonly void Ambient(int light, int material, int term, float spot)
+        {
+            if (_textured is { Ambient: true } t) AddTexels(t, 1 + light, spot);
+            else SpectralMath.AddScaled(_frame, _tables.Ambient[term], spot);
+        }
+
+        /// <summary>The texels' tables of <paramref name="slot"/>, each by its weight, times <paramref name="scale"/>.</summary>
+        readonly void AddTexels(TexturedTerms t, int slot, float scale)
+        {
+            var data = t.Data;
+            int offset = t.SlotOffset(slot);
+            for (int i = 0; i < _taps.Count; i++)
+                SpectralMath.AddScaled(_frame, data.AsSpan(_taps.At[i] + offset, _padded), scale * _taps.Weight[i]);
+        }
 
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
         public readonly void Direct(int light, int material, int term, float d, float nl, float s, bool specular)
         {
+            if (_textured is { } textured)
+            {
+                // The diffuse term from the texels (the light's slot), the specular one from the plain table.
+                int slot = 1 + (textured.Slots - 1) / 2 + light;
+                AddTexels(textured, slot, d * nl);
+                if (specular) SpectralMath.AddScaled(_frame, _tables.Specular[term], d * s);
+                if (_depth == 0 && !Unsafe.IsNullRef(ref _info))
+                {
+                    if (light < 32) _info.LitMask |= 1u << light;
+                    int yLane = _bands + 1, offset = textured.SlotOffset(slot);
+                    for (int i = 0; i < _taps.Count; i++) _info.DiffuseY += d * nl * _taps.Weight[i] * textured.Data[_taps.At[i] + offset + yLane];
+                    _info.SpecularY += d * s * _tables.Specular[term][yLane];
+                }
+                return;
+            }
             var diffuse = _tables.Diffuse[term];
             if (specular) SpectralMath.AddScaled2(_frame, diffuse, d * nl, _tables.Specular[term], d * s);
             else SpectralMath.AddScaled(_frame, diffuse, d * nl);

@@ -26,6 +26,9 @@ public sealed class Material
     public bool Fresnel { get; init; }
     /// <summary>The tabulated diffuse reflectance (ground truth for analysis), when it was a spectrum.</summary>
     public Spectra.TabulatedSpectrum? DiffuseSpectrum { get; init; }
+    /// <summary>A spectral texture on m_diff (and on m_amb when that defaults to m_diff), or null; <see cref="Diffuse"/> then holds
+    /// the texture's mean (the renderer's texture tables look the texels up).</summary>
+    public Textures.TextureBinding? DiffuseTexture { get; set; }
     /// <summary>What the surface emits ("emission", an area light for the path tracer), or null.</summary>
     public Emission? Emission { get; set; }
 

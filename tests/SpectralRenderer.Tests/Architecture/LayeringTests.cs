@@ -22,7 +22,7 @@ public class LayeringTests
         [R + "Geometry"] = ["Diagnostics"],
         [R + "Acceleration"] = ["Geometry", "Diagnostics"],
         [R + "Scenes"] = ["Spectra", "Color", "Geometry", "Diagnostics"],
-        [R + "Scenes.Loading"] = ["Scenes", "Spectra", "Color", "Geometry", "Diagnostics"],
+        [R + "Scenes.Loading"] = ["Scenes", "Imaging", "Spectra", "Color", "Geometry", "Diagnostics"],
         [R + "Rendering"] = ["Scenes", "Acceleration", "Geometry", "Spectra", "Color", "Diagnostics"],
         [R + "Imaging"] = ["Spectra", "Color", "Diagnostics"],
         [R + "Output"] = ["Rendering", "Scenes", "Geometry", "Imaging", "Spectra", "Color", "Diagnostics"],

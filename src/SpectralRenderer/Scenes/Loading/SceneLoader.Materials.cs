@@ -34,6 +34,7 @@ public sealed partial class SceneLoader
         Keys(e, path, typed ? [MaterialModels.KindKey, MaterialModels.EmissionKey, .. model!.Keys] : [MaterialModels.EmissionKey, .. model!.Keys]);
         var material = model.Make(new MaterialSource(this, e, path) { Name = name });
         material.Emission = ParseEmission(e, path);
+        AttachTextures(material, path);   // issue 26: SceneLoader.Textures.cs
         return material;
     }
 

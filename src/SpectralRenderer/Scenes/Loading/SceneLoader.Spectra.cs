@@ -56,6 +56,8 @@ public sealed partial class SceneLoader
             case JsonValueKind.Array:
                 s = Inline(e, path);
                 break;
+            case JsonValueKind.Object when IsTexture(e):
+                return TextureSpectrum(e, path);   // issue 26: SceneLoader.Textures.cs
             case JsonValueKind.Object:
                 {
                     Keys(e, path, "name", "csv", "column", "values", "constant", "scale", "extrapolate");

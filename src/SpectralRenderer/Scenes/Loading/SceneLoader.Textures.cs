@@ -1,0 +1,205 @@
+using System.Globalization;
+using System.Numerics;
+using System.Runtime.CompilerServices;
+using System.Text.Json;
+using SpectralRenderer.Color;
+using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Imaging;
+using SpectralRenderer.Scenes.Textures;
+using SpectralRenderer.Spectra;
+
+namespace SpectralRenderer.Scenes.Loading;
+
+// Textures (issue 26): a material's "diffuse" given as { "texture": FILE, … } — an ENVI cube, a spectral OpenEXR
+// (T.<λ>nm or S0.<λ>nm channels), a stack of single-band PNGs with their wavelengths, or an sRGB PNG uplifted to
+// reflectance spectra. The spectrum it stands for is the texture's mean; the texels reach the material afterwards
+// (AttachTextures), so the material models read "diffuse" as they always have.
+public sealed partial class SceneLoader
+{
+    static readonly string[] TextureKeys = ["texture", "wavelengths", "scale", "uv_transform"];
+    readonly Dictionary<string, TextureBinding> _pendingTextures = new(StringComparer.Ordinal);
+
+    /// <summary>Is <paramref name="e"/> a texture object ({"texture": …})?</summary>
+    static bool IsTexture(JsonElement e) => e.ValueKind == JsonValueKind.Object && TryGet(e, "texture", out _);
+
+    /// <summary>A texture given where a spectrum is expected: read, checked as a reflectance, kept for its material; its mean returned.</summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
+    TabulatedSpectrum TextureSpectrum(JsonElement e, string path)
+    {
+        if (!path.EndsWith(".diffuse", StringComparison.Ordinal))
+            throw Error(path, "only a material's \"diffuse\" can be a texture so far", "give a spectrum here, and the texture as the material's \"diffuse\"");
+        Keys(e, path, TextureKeys);
+        var uv = TryGet(e, "uv_transform", out var u) ? UvTransformOf(u, $"{path}.uv_transform") : UvTransform.Identity;
+        var texture = ReadTexture(e, path);
+        double scale = Number(e, "scale", path, 1, 0, 1e6);
+        if (scale != 1) for (int i = 0; i < texture.Values.Length; i++) texture.Values[i] = (float)(texture.Values[i] * scale);
+        var (min, max) = texture.Range();
+        var inv = CultureInfo.InvariantCulture;
+        if (!float.IsFinite(min) || !float.IsFinite(max))
+            throw Error($"{path}.texture", $"texture {texture.Source} holds values that are not finite numbers", "write the texture again with finite reflectances");
+        if (max >= 2)
+            throw Error($"{path}.texture", $"texture {texture.Source} reaches {max.ToString("0.###", inv)}: a reflectance cannot exceed 1 (this looks like percent)", "add \"scale\": 0.01 to the texture object");
+        if (min < -1e-6)
+            throw Error($"{path}.texture", $"texture {texture.Source} goes down to {min.ToString("G4", inv)}: a reflectance cannot be negative", "clip the texture's noise below zero to 0");
+        if (max > 1) _warnings.Add($"{Where(path)}: warning: texture {texture.Source} reaches {max.ToString("0.###", inv)} > 1; rendered as given");
+        _pendingTextures[path] = new TextureBinding(texture, uv);
+        return texture.Mean();
+    }
+
+    /// <summary>The texture read for <paramref name="materialPath"/>'s "diffuse" goes onto the material made from it.</summary>
+    void AttachTextures(Material material, string materialPath)
+    {
+        if (_pendingTextures.Remove($"{materialPath}.diffuse", out var binding)) material.DiffuseTexture = binding;
+    }
+
+    [MethodImpl(MethodImplOptions.NoOptimization)]
+    SpectralTexture ReadTexture(JsonElement e, string path)
+    {
+        var t = Required(e, "texture", path);
+        if (t.ValueKind == JsonValueKind.Array) return PngStack(t, e, path);
+        var file = String(t, $"{path}.texture");
+        if (file.Contains("{nm}", StringComparison.Ordinal)) return PngStack(t, e, path);
+        if (TryGet(e, "wavelengths", out _)) throw Error($"{path}.wavelengths", "\"wavelengths\" belongs to a stack of PNG bands", "name the bands as a list of files or a pattern with {nm}, or drop \"wavelengths\"");
+        var full = TextureFile(file, $"{path}.texture");
+        var ext = Path.GetExtension(full).ToLowerInvariant();
+        try
+        {
+            if (ext == ".exr")
+            {
+                var exr = ExrReader.Read(full);
+                return FromImage(exr.Image, full);
+            }
+            if (ext == ".png") return RgbTexture(full, path);
+            return FromImage(EnviReader.Read(EnviImage(full, path)), full);
+        }
+        catch (InputException ex) when (!ex.Where.StartsWith(_file, StringComparison.Ordinal))
+        {
+            throw Error($"{path}.texture", $"{ex.Where}: {ex.What}", ex.Hint);
+        }
+    }
+
+    /// <summary>An ENVI cube named by its header or its image: the image path (beside the .hdr, with a usual extension or none).</summary>
+    string EnviImage(string full, string path)
+    {
+        if (!full.EndsWith(".hdr", StringComparison.OrdinalIgnoreCase)) return full;
+        var stem = full[..^4];
+        foreach (var ext in new[] { ".img", ".raw", ".bsq", ".bil", ".bip", ".dat", "" })
+            if (File.Exists(stem + ext)) return stem + ext;
+        throw Error($"{path}.texture", $"ENVI header {full} has no image beside it", $"expected {Path.GetFileName(stem)}.img (or .raw, .bsq, .dat)");
+    }
+
+    string TextureFile(string file, string path)
+    {
+        var full = Path.GetFullPath(Path.Combine(_dir, file));
+        if (!File.Exists(full)) throw Error(path, $"texture file '{file}' not found (looked in {_dir})", "give the path relative to the scene file");
+        return full;
+    }
+
+    /// <summary>A spectral image's pixels as texels, each tabulated at its band centres.</summary>
+    static SpectralTexture FromImage(SpectralImage image, string source)
+    {
+        var wavelengths = new double[image.Bands];
+        for (int b = 0; b < wavelengths.Length; b++) wavelengths[b] = image.Grid.Centre(b);
+        return new SpectralTexture(source, image.Width, image.Height, wavelengths, image.Data);
+    }
+
+    /// <summary>Single-band PNGs (8 or 16 bit, grey, linear: value / (2^bits − 1)), one per wavelength of "wavelengths":
+    /// a list of files, or one pattern whose "{nm}" is each wavelength.</summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
+    SpectralTexture PngStack(JsonElement t, JsonElement e, string path)
+    {
+        var wl = Required(e, "wavelengths", path);
+        if (wl.ValueKind != JsonValueKind.Array || wl.GetArrayLength() < 2)
+            throw Error($"{path}.wavelengths", "expected a list of at least two wavelengths in nm, one per PNG band", "e.g. \"wavelengths\": [400, 410, 420]");
+        var wavelengths = new double[wl.GetArrayLength()];
+        for (int i = 0; i < wavelengths.Length; i++)
+        {
+            wavelengths[i] = Number(wl[i], $"{path}.wavelengths[{i}]", 100, 5000);
+            if (i > 0 && !(wavelengths[i] > wavelengths[i - 1])) throw Error($"{path}.wavelengths[{i}]", "wavelengths must be strictly ascending", "list the bands from short to long wavelengths");
+        }
+        var files = new string[wavelengths.Length];
+        if (t.ValueKind == JsonValueKind.Array)
+        {
+            if (t.GetArrayLength() != wavelengths.Length)
+                throw Error($"{path}.texture", $"{t.GetArrayLength()} PNG files for {wavelengths.Length} wavelengths", "give one file per wavelength");
+            for (int i = 0; i < files.Length; i++) files[i] = TextureFile(String(t[i], $"{path}.texture[{i}]"), $"{path}.texture[{i}]");
+        }
+        else
+        {
+            var pattern = String(t, $"{path}.texture");
+            for (int i = 0; i < files.Length; i++)
+                files[i] = TextureFile(pattern.Replace("{nm}", wavelengths[i].ToString("0.###", CultureInfo.InvariantCulture), StringComparison.Ordinal), $"{path}.texture");
+        }
+        float[]? values = null;
+        int width = 0, height = 0, n = wavelengths.Length;
+        for (int b = 0; b < n; b++)
+        {
+            PngImage png;
+            try { png = PngReader.Read(files[b]); }
+            catch (InputException ex) { throw Error($"{path}.texture", $"{ex.Where}: {ex.What}", ex.Hint); }
+            if (png.Channels != 1) throw Error($"{path}.texture", $"{files[b]} has {png.Channels} channels: a band of a PNG stack is one grey channel", "write each band as a greyscale PNG");
+            if (values is null) { width = png.Width; height = png.Height; values = new float[width * height * n]; }
+            else if (png.Width != width || png.Height != height)
+                throw Error($"{path}.texture", $"{files[b]} is {png.Width}×{png.Height}, the first band {width}×{height}", "every band of a stack has the same size");
+            float max = (1 << png.BitDepth) - 1;
+            for (int i = 0; i < width * height; i++) values[i * n + b] = png.Samples[i] / max;
+        }
+        return new SpectralTexture(files[0], width, height, wavelengths, values!);
+    }
+
+    static readonly Lazy<SigmoidUplift> Uplift = new(() => new SigmoidUplift());
+
+    /// <summary>An 8- or 16-bit sRGB PNG, each colour uplifted to a reflectance spectrum (<see cref="SigmoidUplift"/>).</summary>
+    SpectralTexture RgbTexture(string full, string path)
+    {
+        var png = PngReader.Read(full);
+        if (png.Channels != 3)
+            throw Error($"{path}.texture", $"{full} has {png.Channels} channel(s): an RGB texture is an sRGB PNG of three channels", "save the texture as RGB (no alpha), or give a spectral texture");
+        var uplift = Uplift.Value;
+        int n = SigmoidUplift.Wavelengths.Length, texels = png.Width * png.Height, max = (1 << png.BitDepth) - 1;
+        var values = new float[texels * n];
+        Parallel.For(0, png.Height, y =>
+        {
+            for (int i = y * png.Width; i < (y + 1) * png.Width; i++)
+            {
+                var r = uplift.FromSrgbCodes(png.Samples[3 * i], png.Samples[3 * i + 1], png.Samples[3 * i + 2], max);
+                for (int j = 0; j < n; j++) values[i * n + j] = (float)r[j];
+            }
+        });
+        return new SpectralTexture(full, png.Width, png.Height, SigmoidUplift.Wavelengths, values);
+    }
+
+    /// <summary>"uv_transform": {"scale": s | [su, sv], "offset": [ou, ov], "rotation": degrees, "wrap": "repeat" | "clamp" | "mirror"}.</summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
+    UvTransform UvTransformOf(JsonElement e, string path)
+    {
+        Object(e, path);
+        Keys(e, path, "scale", "offset", "rotation", "wrap");
+        var scale = Vector2.One;
+        if (TryGet(e, "scale", out var s))
+            scale = s.ValueKind == JsonValueKind.Number ? new Vector2((float)Number(s, $"{path}.scale", -1e6, 1e6)) : Pair(s, $"{path}.scale");
+        if (scale.X == 0 || scale.Y == 0) throw Error($"{path}.scale", "a zero scale squeezes the texture to a line", "use a non-zero scale, e.g. 2 to repeat it twice");
+        var offset = TryGet(e, "offset", out var o) ? Pair(o, $"{path}.offset") : Vector2.Zero;
+        float rotation = (float)Number(e, "rotation", path, 0, -3600, 3600);
+        var wrap = TextureWrap.Repeat;
+        if (TryGet(e, "wrap", out var w))
+        {
+            var name = String(w, $"{path}.wrap").ToLowerInvariant();
+            string[] names = ["repeat", "clamp", "mirror"];
+            wrap = name switch
+            {
+                "repeat" => TextureWrap.Repeat,
+                "clamp" => TextureWrap.Clamp,
+                "mirror" => TextureWrap.Mirror,
+                _ => throw Error($"{path}.wrap", $"unknown wrap '{name}'", InputException.DidYouMean(name, names) ?? "use repeat, clamp or mirror"),
+            };
+        }
+        return new UvTransform(scale, offset, rotation, wrap);
+    }
+
+    Vector2 Pair(JsonElement e, string path)
+    {
+        if (e.ValueKind != JsonValueKind.Array || e.GetArrayLength() != 2) throw Error(path, $"expected [u, v], found {Kind(e)}", "e.g. [2, 1]");
+        return new Vector2((float)Number(e[0], $"{path}[0]", -1e6, 1e6), (float)Number(e[1], $"{path}[1]", -1e6, 1e6));
+    }
+}
