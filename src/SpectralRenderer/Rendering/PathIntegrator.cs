@@ -31,6 +31,7 @@ public sealed class PathIntegrator : IIntegrator
     readonly int[] _objectMaterial, _emitterOf;
     readonly Bsdf[] _bsdf;
     readonly float[]?[] _emission;
+    readonly FluorescentShift?[] _shift;   // a fluorescent material's shifted diffuse lobe (FluorescentShift.cs)
     readonly bool[] _twoSided, _smooth;
     readonly float[] _smoothChannel;
     readonly Light[] _lights;
@@ -56,6 +57,7 @@ public sealed class PathIntegrator : IIntegrator
         int materials = scene.Materials.Count;
         _bsdf = new Bsdf[materials];
         _emission = new float[]?[materials];
+        _shift = new FluorescentShift?[materials];
         _twoSided = new bool[materials];
         _smooth = new bool[materials];
         _smoothChannel = new float[materials];
@@ -78,6 +80,7 @@ public sealed class PathIntegrator : IIntegrator
                 for (int i = 0; i < albedo.Length; i++) albedo[i] += spec[i];
                 _smoothChannel[m] = Math.Max(_grid.Luminance(albedo), 1e-6f);
             }
+            if (material.Fluorescence is { HasShift: true } fl) _shift[m] = new FluorescentShift(fl, _grid);
             if (material.Emission is { } e) { _emission[m] = _grid.Resample(e.Radiance); _twoSided[m] = e.TwoSided; }
         }
         _objectMaterial = scene.Objects.Select(o => o.Material).ToArray();
@@ -107,8 +110,8 @@ public sealed class PathIntegrator : IIntegrator
     /// <summary>The internal grid's sub-bands per output band.</summary>
     public int SubBands => _grid.PerBand;
 
-    /// <summary>Scratch: L, β, f and the two delta lobes' weights, each a fine spectrum.</summary>
-    public int ScratchLength => 5 * _padded;
+    /// <summary>Scratch: L, β, f, the two delta lobes' weights and β before a fluorescent bounce, each a fine spectrum.</summary>
+    public int ScratchLength => 6 * _padded;
 
     /// <inheritdoc/>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
@@ -178,7 +181,7 @@ public sealed class PathIntegrator : IIntegrator
             float uLight = sampler.Next1D();
             var uPoint = sampler.Next2D();
             if (_smooth[m] && _lightCount > 0)
-                NextEvent(bsdf, p, ng, ns, front, wo, uLight, new Vector2(uPoint.U, uPoint.V), pick, smoothProbability, l, beta, f, ref counters);
+                NextEvent(bsdf, _shift[m], p, ng, ns, front, wo, uLight, new Vector2(uPoint.U, uPoint.V), pick, smoothProbability, l, beta, f, ref counters);
 
             // Continue: choose a lobe, then a direction from it; β gains f·|cos θ|/pdf per band.
             float uLobe = sampler.Next1D();
@@ -192,7 +195,14 @@ public sealed class PathIntegrator : IIntegrator
                 wi = bs.Wi;
                 float cos = MathF.Abs(Vector3.Dot(ns, wi));
                 bsdfPdf = bs.Pdf * smoothProbability;
-                Multiply(beta, f, cos / bsdfPdf);
+                if (_shift[m] is { } shift && FluorescentShift.Reflects(wo, wi, ns))
+                {   // β' = β ⊙ f_diagonal + (β·S)/π, both × cos/pdf
+                    var before = scratch.Slice(5 * n, n);
+                    beta.CopyTo(before);
+                    Multiply(beta, f, cos / bsdfPdf);
+                    shift.AddAdjoint(beta, before, cos / bsdfPdf);
+                }
+                else Multiply(beta, f, cos / bsdfPdf);
                 deltaBounce = false;
             }
             else if (x < smoothShare + mirrorShare)
@@ -231,7 +241,7 @@ public sealed class PathIntegrator : IIntegrator
     /// emitter's point, or a sky direction, each unshadowed.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    void NextEvent(Bsdf bsdf, Vector3 p, Vector3 ng, Vector3 ns, Vector3 front, Vector3 wo, float uLight, Vector2 u, float pick,
+    void NextEvent(Bsdf bsdf, FluorescentShift? shift, Vector3 p, Vector3 ng, Vector3 ns, Vector3 front, Vector3 wo, float uLight, Vector2 u, float pick,
         float smoothProbability, Span<float> l, Span<float> beta, Span<float> f, ref RayCounters counters)
     {
         int k = Math.Min((int)(uLight * _lightCount), _lightCount - 1);
@@ -280,6 +290,7 @@ public sealed class PathIntegrator : IIntegrator
         if (_geometry.Occluded(shadow)) return;
         float w = delta ? 1 : PowerHeuristic(pick * pdf, smoothProbability * bsdf.Pdf(wo, wi, ns));
         AddProduct3(l, beta, f, radiance, factor * cos * w / (pick * pdf));
+        if (shift is not null && FluorescentShift.Reflects(wo, wi, ns)) shift.AddEmitted(l, beta, radiance, factor * cos * w / (pick * pdf));
     }
 
     /// <summary>The sky's sampling density: cosine-weighted about the front shading normal.</summary>
