@@ -8,9 +8,10 @@ namespace SpectralRenderer.Rendering;
 /// A fluorescent material's shifted diffuse lobe on the path tracer's fine grid (<see cref="FineGrid"/>): the re-radiation
 /// matrix's off-diagonal part as S[o, i]/π (a Lambertian re-emission, 1/sr) integrated exactly over sub-band × sub-band
 /// (<see cref="ReradiationMatrix.ShiftOnBands(int, Func{int, double}, Func{int, double})"/>), beside the reflective diagonal
-/// that the material's BSDF already carries. Next-event estimation adds β ⊙ (S·L_e); a bounce through the smooth lobe
-/// carries the throughput through the transpose, β'[i] = Σ_o β[o]·S[o, i] — the path is traced from the camera, so its
-/// weight at an emission wavelength becomes a weight at each excitation wavelength. One N × N product per fluorescent vertex.
+/// that the material's BSDF already carries. Next-event estimation adds β ⊙ (S·L_e) for the light sample (a delta light, an
+/// emitter's point or a sky direction) at full weight: the shift is excited by direct light only. Light reaching the surface
+/// after another bounce would need the throughput to become a matrix (camera wavelength × current wavelength); it excites
+/// only the reflective diagonal, which the path's β carries as for any material. One N × N product per light sample.
 /// </summary>
 sealed class FluorescentShift
 {
@@ -43,18 +44,6 @@ sealed class FluorescentShift
             float sum = 0;
             for (int i = 0; i < row.Length; i++) sum += row[i] * radiance[i];
             l[o] += beta[o] * sum * scale;
-        }
-    }
-
-    /// <summary>dst[i] += Σ_o β[o]·S[o, i]·scale (the throughput carried to the excitation wavelengths).</summary>
-    public void AddAdjoint(Span<float> dst, ReadOnlySpan<float> beta, float scale)
-    {
-        for (int o = 0; o < _n; o++)
-        {
-            float w = beta[o] * scale;
-            if (w == 0) continue;
-            var row = _s.AsSpan(o * _n, _n);
-            for (int i = 0; i < row.Length; i++) dst[i] += w * row[i];
         }
     }
 }

@@ -110,8 +110,8 @@ public sealed class PathIntegrator : IIntegrator
     /// <summary>The internal grid's sub-bands per output band.</summary>
     public int SubBands => _grid.PerBand;
 
-    /// <summary>Scratch: L, β, f, the two delta lobes' weights and β before a fluorescent bounce, each a fine spectrum.</summary>
-    public int ScratchLength => 6 * _padded;
+    /// <summary>Scratch: L, β, f and the two delta lobes' weights, each a fine spectrum.</summary>
+    public int ScratchLength => 5 * _padded;
 
     /// <inheritdoc/>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
@@ -195,14 +195,7 @@ public sealed class PathIntegrator : IIntegrator
                 wi = bs.Wi;
                 float cos = MathF.Abs(Vector3.Dot(ns, wi));
                 bsdfPdf = bs.Pdf * smoothProbability;
-                if (_shift[m] is { } shift && FluorescentShift.Reflects(wo, wi, ns))
-                {   // β' = β ⊙ f_diagonal + (β·S)/π, both × cos/pdf
-                    var before = scratch.Slice(5 * n, n);
-                    beta.CopyTo(before);
-                    Multiply(beta, f, cos / bsdfPdf);
-                    shift.AddAdjoint(beta, before, cos / bsdfPdf);
-                }
-                else Multiply(beta, f, cos / bsdfPdf);
+                Multiply(beta, f, cos / bsdfPdf);
                 deltaBounce = false;
             }
             else if (x < smoothShare + mirrorShare)
@@ -290,7 +283,8 @@ public sealed class PathIntegrator : IIntegrator
         if (_geometry.Occluded(shadow)) return;
         float w = delta ? 1 : PowerHeuristic(pick * pdf, smoothProbability * bsdf.Pdf(wo, wi, ns));
         AddProduct3(l, beta, f, radiance, factor * cos * w / (pick * pdf));
-        if (shift is not null && FluorescentShift.Reflects(wo, wi, ns)) shift.AddEmitted(l, beta, radiance, factor * cos * w / (pick * pdf));
+        // A fluorescent surface's shifted lobe is excited by this light sample alone (no BSDF-sampled counterpart): weight 1.
+        if (shift is not null && FluorescentShift.Reflects(wo, wi, ns)) shift.AddEmitted(l, beta, radiance, factor * cos / (pick * pdf));
     }
 
     /// <summary>The sky's sampling density: cosine-weighted about the front shading normal.</summary>

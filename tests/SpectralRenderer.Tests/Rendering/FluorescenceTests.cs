@@ -86,6 +86,15 @@ public sealed class FluorescenceTests(Xunit.Abstractions.ITestOutputHelper outpu
 
     static RenderResult Render(string json) => SceneText.Render(json);
 
+    static double[] Difference(RenderResult a, RenderResult b) =>
+        Enumerable.Range(0, a.Image.Bands).Select(k => (double)a.Image[0, 0, k] - b.Image[0, 0, k]).ToArray();
+
+    static RenderResult RenderPath(string json)
+    {
+        var scene = SceneText.Load(json);
+        return Renderer.Render(scene, Integrators.Create(scene, new SceneGeometry(scene), "path"));
+    }
+
     /// <summary>The tabulated D50 column of data/illuminants-300-780.csv, read here.</summary>
     static Dictionary<double, double> D50()
     {
@@ -142,6 +151,50 @@ public sealed class FluorescenceTests(Xunit.Abstractions.ITestOutputHelper outpu
         output.WriteLine($"largest shifted band value {peak:G6}; largest |rendered − direct| relative to the band value {worst:E2}");
         Assert.True(peak > 1, "the OBA emits visibly");
         Assert.True(worst <= 1e-6, $"relative deviation {worst:E2}");
+    }
+
+    /// <summary>The shifted emission per cell for a light whose cell means are <paramref name="e"/>: L_o = Σ_{i≠o} D[o,i]·Ē_i.</summary>
+    static double[] Shifted(double[] d, double[] e)
+    {
+        int n = Cells.Length;
+        var l = new double[n];
+        for (int o = 0; o < n; o++)
+            for (int i = 0; i < n; i++)
+                if (i != o) l[o] += d[o * n + i] * e[i];
+        return l;
+    }
+
+    [Fact]
+    public void The_path_integrator_adds_the_shift_of_direct_light_from_a_delta_light_and_from_a_uniform_sky()
+    {
+        var d = ObaPaper();
+        string full = Fluorescent(WriteMatrix("oba.csv", d)), diag = Fluorescent(WriteMatrix("diagonal.csv", Diagonal(d)));
+        const string path = "\"radiometry\": \"physical\", \"integrator\": { \"type\": \"path\", \"max_depth\": 1 },";
+        // Direct light only, head-on: next-event estimation of the delta light adds the same shift as Whitted's tables (the
+        // path's 5 nm sub-bands are the matrix's cells here; the diagonal parts differ, a product of sub-band means there).
+        var pathShift = Difference(RenderPath(Scene(full, extra: path)), RenderPath(Scene(diag, extra: path)));
+        var whittedShift = Difference(Render(Scene(full, extra: "\"radiometry\": \"physical\",")), Render(Scene(diag, extra: "\"radiometry\": \"physical\",")));
+        double worst = 0, peak = whittedShift.Max();
+        for (int b = 0; b < 48; b++) worst = Math.Max(worst, Math.Abs(pathShift[b] - whittedShift[b]) / peak);
+        output.WriteLine($"path vs whitted shift, D50 head-on: largest difference {worst:E2} of the peak {peak:G6}");
+        Assert.True(worst <= 1e-5, $"path vs whitted {worst:E2}");
+        // A uniform sky of radiance 1 and no light: an unoccluded plane's shifted part is (S·1)_b in every direction, found by
+        // next-event estimation of the sky (cosine-sampled, so every sample is exact). Expected here: two 5 nm cells per
+        // 10 nm band, each cell's mean irradiance 1.
+        string sky = path;
+        string Sky(string material) => Scene(material, extra: sky).Replace("\"background\": 0", "\"background\": 1")
+            .Replace("\"lights\": [ { \"type\": \"directional\", \"direction\": [0, 0, -1], \"spectrum\": \"D50\" } ]", "\"lights\": []");
+        var withShift = RenderPath(Sky(full)).Image;
+        var without = RenderPath(Sky(diag)).Image;
+        var l = Shifted(d, Enumerable.Repeat(1.0, Cells.Length).ToArray());
+        worst = 0;
+        for (int b = 0; b < 48; b++)
+        {
+            double expected = (l[2 * b] + l[2 * b + 1]) / 2;
+            worst = Math.Max(worst, Math.Abs(withShift[0, 0, b] - without[0, 0, b] - expected) / withShift[0, 0, b]);
+        }
+        output.WriteLine($"path under a uniform sky: largest |rendered shift − direct| relative to the band value {worst:E2}");
+        Assert.True(worst <= 1e-5, $"sky {worst:E2}");
     }
 
     [Fact]
