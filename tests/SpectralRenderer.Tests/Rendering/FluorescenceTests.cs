@@ -30,22 +30,38 @@ public sealed class FluorescenceTests(Xunit.Abstractions.ITestOutputHelper outpu
     /// photon distribution peaking at 440 nm (σ 18 nm), only towards longer wavelengths (Stokes):
     ///   D[i, i] = R₀(λ_i)·(1 − a(λ_i)),  D[o, i] = q·a(λ_i)·λ_i·p_o / λ_o  (o ≠ i, λ_o > λ_i), Σ_o p_o = 1.
     /// </summary>
-    static double[] ObaPaper(double q = 0.8, double strength = 0.9)
+    static double[] ObaPaper(double q = 0.8, double strength = 0.9, double[]? at = null)
     {
-        int n = Cells.Length;
+        var cells = at ?? Cells;
+        int n = cells.Length;
         var d = new double[n * n];
-        var p = Cells.Select(l => Gauss(l, 440, 18)).ToArray();
+        var p = cells.Select(l => Gauss(l, 440, 18)).ToArray();
         double sum = p.Sum();
         for (int i = 0; i < n; i++)
         {
-            double l = Cells[i];
+            double l = cells[i];
             double r0 = 0.88 - 0.10 * Gauss(l, 400, 35);
             double a = strength * Gauss(l, 365, 15);
             d[i * n + i] = r0 * (1 - a);
             for (int o = 0; o < n; o++)
-                if (Cells[o] > l) d[o * n + i] = q * a * l * (p[o] / sum) / Cells[o];
+                if (cells[o] > l) d[o * n + i] = q * a * l * (p[o] / sum) / cells[o];
         }
         return d;
+    }
+
+    [Fact]
+    public void The_shipped_matrix_is_the_model_of_this_test_on_10_nm_cells_to_its_six_printed_digits()
+    {
+        var lines = File.ReadAllLines(Repo.PathOf("scenes", "oba-paper-matrix.csv"));
+        var cells = lines[0].Split(',').Skip(1).Select(x => double.Parse(x, Inv)).ToArray();
+        Assert.Equal(Enumerable.Range(0, 48).Select(j => 305.0 + 10 * j), cells);
+        var d = ObaPaper(at: cells);
+        for (int o = 0; o < 48; o++)
+        {
+            var row = lines[o + 1].Split(',').Skip(1).Select(x => double.Parse(x, Inv)).ToArray();
+            for (int i = 0; i < 48; i++)
+                Assert.True(Math.Abs(row[i] - d[o * 48 + i]) <= 5e-6 * d[o * 48 + i] + 1e-12, $"D[{cells[o]}, {cells[i]}] = {row[i]}, model {d[o * 48 + i]}");
+        }
     }
 
     string WriteMatrix(string name, double[] d)
@@ -102,6 +118,23 @@ public sealed class FluorescenceTests(Xunit.Abstractions.ITestOutputHelper outpu
         int c = Array.IndexOf(lines[0].Split(','), "D50");
         return lines.Skip(1).Where(l => l.Length > 0).Select(l => l.Split(','))
             .ToDictionary(r => double.Parse(r[0], Inv), r => double.Parse(r[c], Inv));
+    }
+
+    [Fact]
+    public void Bands_below_the_CIE_tables_carry_light_but_no_colour()
+    {
+        // 300:780:48 under D50 (tabulated from 300 nm): the CMFs start at 360 nm, so the six bands below carry zero weight.
+        var scene = SceneText.Load(Scene("{ \"diffuse\": 0.5 }"));
+        for (int b = 0; b < 6; b++)
+        {
+            Assert.Equal(0, scene.Colorimeter.Wx[b]);
+            Assert.Equal(0, scene.Colorimeter.Wy[b]);
+            Assert.Equal(0, scene.Colorimeter.Wz[b]);
+        }
+        Assert.True(scene.Colorimeter.Wz[6] > 0);   // 360–370 nm
+        var image = SceneText.Render(Scene("{ \"diffuse\": 0.5 }")).Image;
+        Assert.True(image[0, 0, 0] > 0, "D50's UV reaches the surface");
+        Assert.Equal(0.5 * (D50()[300] + D50()[305]) / 2 * 0.5 + 0.5 * (D50()[305] + D50()[310]) / 2 * 0.5, image[0, 0, 0], 4);
     }
 
     [Fact]
@@ -238,6 +271,30 @@ public sealed class FluorescenceTests(Xunit.Abstractions.ITestOutputHelper outpu
         // And "diffuse" given beside the matrix is refused.
         var both = Assert.Throws<InputException>(() => SceneText.Load(Scene($$"""{ "diffuse": 0.5, "fluorescence": { "matrix": "{{path}}" } }""")));
         Assert.Contains("$.materials.paper.diffuse", both.Message);
+    }
+
+    /// <summary>
+    /// The shipped scene (its matrix from scripts/oba-paper-matrix.py) rendered under D50 with the per-light transfer, then
+    /// relit to D65: the relit cube is byte for byte the fresh render under D65 (the shift follows the new light).
+    /// </summary>
+    [Fact]
+    public void Relighting_a_fluorescent_render_equals_a_fresh_render_of_the_new_light()
+    {
+        File.Copy(Repo.PathOf("scenes", "oba-paper-matrix.csv"), Path.Combine(_dir, "oba-paper-matrix.csv"));
+        var m1 = File.ReadAllText(Repo.PathOf("scenes", "fluorescence-paper-m1.json")).Replace("\"width\": 240, \"height\": 120", "\"width\": 24, \"height\": 12");
+        var m2 = File.ReadAllText(Repo.PathOf("scenes", "fluorescence-paper-m2.json")).Replace("\"width\": 240, \"height\": 120", "\"width\": 24, \"height\": 12");
+        Assert.Contains("\"filter\": \"uv-cut\"", m2);
+        File.WriteAllText(Path.Combine(_dir, "m1.json"), m1);
+        File.WriteAllText(Path.Combine(_dir, "d65.json"), m1.Replace("\"spectrum\": \"D50\" }", "\"spectrum\": \"D65\" }"));
+        string Out(string name) => Path.Combine(_dir, name);
+        var (code, _, err) = Cli.CliRunner.Run("render", Out("m1.json"), "-o", Out("m1"), "--formats", "npy,lights", "--quiet");
+        Assert.True(code == 0, err);
+        (code, _, err) = Cli.CliRunner.Run("render", Out("d65.json"), "-o", Out("d65"), "--formats", "npy", "--quiet");
+        Assert.True(code == 0, err);
+        (code, _, err) = Cli.CliRunner.Run("relight", Out("m1"), "--light", "light-0=D65", "-o", Out("relit"), "--quiet");
+        Assert.True(code == 0, err);
+        Assert.Equal(File.ReadAllBytes(Path.Combine(Out("d65"), "spectral.npy")), File.ReadAllBytes(Path.Combine(Out("relit"), "spectral.npy")));
+        Assert.NotEqual(File.ReadAllBytes(Path.Combine(Out("m1"), "spectral.npy")), File.ReadAllBytes(Path.Combine(Out("relit"), "spectral.npy")));
     }
 
     /// <summary>
