@@ -181,7 +181,8 @@ public sealed class PathIntegrator : IIntegrator
             float uLight = sampler.Next1D();
             var uPoint = sampler.Next2D();
             if (_smooth[m] && _lightCount > 0)
-                NextEvent(bsdf, _shift[m], p, ng, ns, front, wo, uLight, new Vector2(uPoint.U, uPoint.V), pick, smoothProbability, l, beta, f, ref counters);
+                NextEvent(bsdf, _shift[m], p, ng, ns, front, wo, uLight, new Vector2(uPoint.U, uPoint.V), pick, smoothProbability,
+                    l, beta, f, ref counters);
 
             // Continue: choose a lobe, then a direction from it; β gains f·|cos θ|/pdf per band.
             float uLobe = sampler.Next1D();
@@ -234,7 +235,8 @@ public sealed class PathIntegrator : IIntegrator
     /// emitter's point, or a sky direction, each unshadowed.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    void NextEvent(Bsdf bsdf, FluorescentShift? shift, Vector3 p, Vector3 ng, Vector3 ns, Vector3 front, Vector3 wo, float uLight, Vector2 u, float pick,
+    void NextEvent(Bsdf bsdf, FluorescentShift? shift, Vector3 p, Vector3 ng, Vector3 ns, Vector3 front, Vector3 wo, float uLight,
+        Vector2 u, float pick,
         float smoothProbability, Span<float> l, Span<float> beta, Span<float> f, ref RayCounters counters)
     {
         int k = Math.Min((int)(uLight * _lightCount), _lightCount - 1);

@@ -65,7 +65,8 @@ public partial class SceneDocsTests
         Add("materials", "$.materials.m", s => s["materials"]!["m"]![Unknown] = 1);
         Add("materials", "$.materials.m.ior", s => s["materials"]!["m"]!["ior"] = With(new JsonObject { ["cauchy"] = new JsonArray(1.5, 0) }));
         Add("materials", "$.materials.m.emission", s => s["materials"]!["m"]!["emission"] = With(new JsonObject { ["spectrum"] = "D65" }));
-        Add("materials", "$.materials.m.fluorescence", s => s["materials"]!["m"] = new JsonObject { ["fluorescence"] = With(new JsonObject { ["matrix"] = "m.csv" }) });
+        Add("materials", "$.materials.m.fluorescence",
+            s => s["materials"]!["m"] = new JsonObject { ["fluorescence"] = With(new JsonObject { ["matrix"] = "m.csv" }) });
         foreach (var model in new[] { "lambertian", "conductor", "plastic" })   // the built-in models (tests register others)
             Add("materials", $"material {model}", s => s["materials"]!["m"] = With(new JsonObject { ["type"] = model }));
         Add("materials", "$.materials.m.conductor", s => s["materials"]!["m"] = new JsonObject
@@ -131,7 +132,8 @@ public partial class SceneDocsTests
         var sources = Directory.GetFiles(Repo.PathOf("src", "SpectralRenderer"), "*.cs", SearchOption.AllDirectories)
             .Where(f => !f.Contains($"{Path.DirectorySeparatorChar}obj{Path.DirectorySeparatorChar}", StringComparison.Ordinal));
         var calls = sources.SelectMany(f => KeysCall().Matches(File.ReadAllText(f)).Select(m => $"{Path.GetFileName(f)}: {m.Value}")).ToList();
-        Assert.True(calls.Count == 16, $"{calls.Count} Keys(...) calls, the probe knows 16; add the new one to AcceptedKeys:\n" + string.Join("\n", calls));
+        Assert.True(calls.Count == 16,
+            $"{calls.Count} Keys(...) calls, the probe knows 16; add the new one to AcceptedKeys:\n" + string.Join("\n", calls));
     }
 
     // ---- the examples -------------------------------------------------------------------------------

@@ -60,7 +60,8 @@ public sealed class FluorescenceTests(Xunit.Abstractions.ITestOutputHelper outpu
         {
             var row = lines[o + 1].Split(',').Skip(1).Select(x => double.Parse(x, Inv)).ToArray();
             for (int i = 0; i < 48; i++)
-                Assert.True(Math.Abs(row[i] - d[o * 48 + i]) <= 5e-6 * d[o * 48 + i] + 1e-12, $"D[{cells[o]}, {cells[i]}] = {row[i]}, model {d[o * 48 + i]}");
+                Assert.True(Math.Abs(row[i] - d[o * 48 + i]) <= 5e-6 * d[o * 48 + i] + 1e-12,
+                    $"D[{cells[o]}, {cells[i]}] = {row[i]}, model {d[o * 48 + i]}");
         }
     }
 
@@ -206,7 +207,8 @@ public sealed class FluorescenceTests(Xunit.Abstractions.ITestOutputHelper outpu
         // Direct light only, head-on: next-event estimation of the delta light adds the same shift as Whitted's tables (the
         // path's 5 nm sub-bands are the matrix's cells here; the diagonal parts differ, a product of sub-band means there).
         var pathShift = Difference(RenderPath(Scene(full, extra: path)), RenderPath(Scene(diag, extra: path)));
-        var whittedShift = Difference(Render(Scene(full, extra: "\"radiometry\": \"physical\",")), Render(Scene(diag, extra: "\"radiometry\": \"physical\",")));
+        var whittedShift = Difference(Render(Scene(full, extra: "\"radiometry\": \"physical\",")), Render(Scene(diag,
+            extra: "\"radiometry\": \"physical\",")));
         double worst = 0, peak = whittedShift.Max();
         for (int b = 0; b < 48; b++) worst = Math.Max(worst, Math.Abs(pathShift[b] - whittedShift[b]) / peak);
         output.WriteLine($"path vs whitted shift, D50 head-on: largest difference {worst:E2} of the peak {peak:G6}");
@@ -269,7 +271,8 @@ public sealed class FluorescenceTests(Xunit.Abstractions.ITestOutputHelper outpu
         Assert.Contains("367.5 nm re-emits", ex.Message);
         Assert.DoesNotContain('\n', ex.Message);
         // And "diffuse" given beside the matrix is refused.
-        var both = Assert.Throws<InputException>(() => SceneText.Load(Scene($$"""{ "diffuse": 0.5, "fluorescence": { "matrix": "{{path}}" } }""")));
+        var material = $$"""{ "diffuse": 0.5, "fluorescence": { "matrix": "{{path}}" } }""";
+        var both = Assert.Throws<InputException>(() => SceneText.Load(Scene(material)));
         Assert.Contains("$.materials.paper.diffuse", both.Message);
     }
 
@@ -281,8 +284,10 @@ public sealed class FluorescenceTests(Xunit.Abstractions.ITestOutputHelper outpu
     public void Relighting_a_fluorescent_render_equals_a_fresh_render_of_the_new_light()
     {
         File.Copy(Repo.PathOf("scenes", "oba-paper-matrix.csv"), Path.Combine(_dir, "oba-paper-matrix.csv"));
-        var m1 = File.ReadAllText(Repo.PathOf("scenes", "fluorescence-paper-m1.json")).Replace("\"width\": 240, \"height\": 120", "\"width\": 24, \"height\": 12");
-        var m2 = File.ReadAllText(Repo.PathOf("scenes", "fluorescence-paper-m2.json")).Replace("\"width\": 240, \"height\": 120", "\"width\": 24, \"height\": 12");
+        var m1 = File.ReadAllText(Repo.PathOf("scenes", "fluorescence-paper-m1.json")).Replace("\"width\": 240, \"height\": 120",
+            "\"width\": 24, \"height\": 12");
+        var m2 = File.ReadAllText(Repo.PathOf("scenes", "fluorescence-paper-m2.json")).Replace("\"width\": 240, \"height\": 120",
+            "\"width\": 24, \"height\": 12");
         Assert.Contains("\"filter\": \"uv-cut\"", m2);
         File.WriteAllText(Path.Combine(_dir, "m1.json"), m1);
         File.WriteAllText(Path.Combine(_dir, "d65.json"), m1.Replace("\"spectrum\": \"D50\" }", "\"spectrum\": \"D65\" }"));
@@ -293,8 +298,10 @@ public sealed class FluorescenceTests(Xunit.Abstractions.ITestOutputHelper outpu
         Assert.True(code == 0, err);
         (code, _, err) = Cli.CliRunner.Run("relight", Out("m1"), "--light", "light-0=D65", "-o", Out("relit"), "--quiet");
         Assert.True(code == 0, err);
-        Assert.Equal(File.ReadAllBytes(Path.Combine(Out("d65"), "spectral.npy")), File.ReadAllBytes(Path.Combine(Out("relit"), "spectral.npy")));
-        Assert.NotEqual(File.ReadAllBytes(Path.Combine(Out("m1"), "spectral.npy")), File.ReadAllBytes(Path.Combine(Out("relit"), "spectral.npy")));
+        Assert.Equal(File.ReadAllBytes(Path.Combine(Out("d65"), "spectral.npy")), File.ReadAllBytes(Path.Combine(Out("relit"),
+            "spectral.npy")));
+        Assert.NotEqual(File.ReadAllBytes(Path.Combine(Out("m1"), "spectral.npy")), File.ReadAllBytes(Path.Combine(Out("relit"),
+            "spectral.npy")));
     }
 
     /// <summary>
@@ -313,7 +320,8 @@ public sealed class FluorescenceTests(Xunit.Abstractions.ITestOutputHelper outpu
         var matrix = Fluorescent(WriteMatrix("oba.csv", ObaPaper()));
         Lab LabOf(string light, string white = "D50", string observer = "2")
         {
-            var scene = SceneText.Load(Scene(matrix, light: light, extra: $"\"observer\": {observer},").Replace("\"white\": \"D50\"", $"\"white\": \"{white}\""));
+            var scene = SceneText.Load(Scene(matrix, light: light,
+                extra: $"\"observer\": {observer},").Replace("\"white\": \"D50\"", $"\"white\": \"{white}\""));
             var result = Renderer.Render(scene, 0);
             var xyz = new Xyz(result.Xyz![0], result.Xyz[1], result.Xyz[2]);
             lastXyz = xyz;
@@ -322,7 +330,8 @@ public sealed class FluorescenceTests(Xunit.Abstractions.ITestOutputHelper outpu
         var m1 = LabOf("\"D50\"");
         var m2 = LabOf("\"D50\", \"filter\": \"uv-cut\"");
         double db = m1.B - m2.B;
-        output.WriteLine($"M1 (D50 with UV): L* {m1.L:F2} a* {m1.A:F2} b* {m1.B:F2}; M2 (UV cut): L* {m2.L:F2} a* {m2.A:F2} b* {m2.B:F2}; Δb* = {db:F2}");
+        output.WriteLine($"M1 (D50 with UV): L* {m1.L:F2} a* {m1.A:F2} b* {m1.B:F2}; " +
+            $"M2 (UV cut): L* {m2.L:F2} a* {m2.A:F2} b* {m2.B:F2}; Δb* = {db:F2}");
         Assert.True(m1.B < 0, "the brightened paper is bluish under M1");
         Assert.True(db < -1 && db > -15, $"Δb* {db}");
 

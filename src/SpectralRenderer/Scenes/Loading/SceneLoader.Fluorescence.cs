@@ -13,7 +13,11 @@ public sealed partial class SceneLoader
     public const string FilterKey = "filter";
 
     /// <summary>The material models whose diffuse term a matrix can replace, and the key the matrix's diagonal stands for.</summary>
-    static readonly Dictionary<string, string> FluorescentModels = new(StringComparer.Ordinal) { ["eq2"] = "diffuse", ["lambertian"] = "reflectance" };
+    static readonly Dictionary<string, string> FluorescentModels = new(StringComparer.Ordinal)
+    {
+        ["eq2"] = "diffuse",
+        ["lambertian"] = "reflectance"
+    };
 
     /// <summary>
     /// The material's re-radiation matrix, or null. Its diagonal is the diffuse reflectance (so "diffuse" is not given as well);
@@ -28,14 +32,16 @@ public sealed partial class SceneLoader
             throw Error(where, $"material type '{model}' has no diffuse term for a re-radiation matrix",
                 $"fluorescence applies to the {string.Join(" and ", FluorescentModels.Keys)} models");
         if (TryGet(e, diagonalKey, out _))
-            throw Error($"{path}.{diagonalKey}", $"\"{diagonalKey}\" and \"{FluorescenceKey}\" are both given: the matrix's diagonal is the reflectance",
+            throw Error($"{path}.{diagonalKey}",
+                $"\"{diagonalKey}\" and \"{FluorescenceKey}\" are both given: the matrix's diagonal is the reflectance",
                 $"remove \"{diagonalKey}\" (or put its values on the matrix's diagonal)");
         Object(f, where);
         Keys(f, where, "matrix");
         var name = String(Required(f, "matrix", where), $"{where}.matrix");
         var full = Path.IsPathRooted(name) ? name : Path.Combine(_dir, name);
         if (!File.Exists(full))
-            throw Error($"{where}.matrix", $"re-radiation matrix {Diagnostics.MessageText.Quote(name, 80)} not found", "a relative path starts at the scene's folder");
+            throw Error($"{where}.matrix", $"re-radiation matrix {Diagnostics.MessageText.Quote(name, 80)} not found",
+                "a relative path starts at the scene's folder");
         if (!full.EndsWith(".csv", StringComparison.OrdinalIgnoreCase))
             throw Error($"{where}.matrix", $"{Diagnostics.MessageText.Quote(name, 80)} is not a .csv file",
                 "give the matrix as CSV (docs/scene-format.md, \"Fluorescence\"); the bispectral EXR layout is not read yet");
@@ -53,7 +59,8 @@ public sealed partial class SceneLoader
         if (!TryGet(e, FilterKey, out var f)) return spectrum;
         var name = String(f, $"{path}.{FilterKey}").ToLowerInvariant();
         if (name != UvCut.Name)
-            throw Error($"{path}.{FilterKey}", $"unknown light filter '{name}'", $"use \"{UvCut.Name}\" (ISO 13655 M2: no radiation below 400 nm)");
+            throw Error($"{path}.{FilterKey}", $"unknown light filter '{name}'",
+                $"use \"{UvCut.Name}\" (ISO 13655 M2: no radiation below 400 nm)");
         return UvCut.Apply(spectrum);
     }
 }
