@@ -31,6 +31,7 @@ public sealed class PathIntegrator : IAnalysisIntegrator
     readonly int[] _objectMaterial, _emitterOf;
     readonly Bsdf[] _bsdf;
     readonly float[]?[] _emission;
+    readonly FluorescentShift?[] _shift;   // a fluorescent material's shifted diffuse lobe (FluorescentShift.cs)
     readonly bool[] _twoSided, _smooth, _delta;
     readonly float[] _smoothChannel;
     readonly Light[] _lights;
@@ -56,6 +57,7 @@ public sealed class PathIntegrator : IAnalysisIntegrator
         int materials = scene.Materials.Count;
         _bsdf = new Bsdf[materials];
         _emission = new float[]?[materials];
+        _shift = new FluorescentShift?[materials];
         _twoSided = new bool[materials];
         _smooth = new bool[materials];
         _delta = new bool[materials];
@@ -84,6 +86,7 @@ public sealed class PathIntegrator : IAnalysisIntegrator
                 for (int i = 0; i < albedo.Length; i++) albedo[i] += spec[i];
                 _smoothChannel[m] = Math.Max(_grid.Luminance(albedo), 1e-6f);
             }
+            if (material.Fluorescence is { HasShift: true } fl) _shift[m] = new FluorescentShift(fl, _grid);
             if (material.Emission is { } e) { _emission[m] = _grid.Resample(e.Radiance); _twoSided[m] = e.TwoSided; }
         }
         _objectMaterial = scene.Objects.Select(o => o.Material).ToArray();
@@ -183,6 +186,9 @@ public sealed class PathIntegrator : IAnalysisIntegrator
     /// which look at a light's spectrum), so Σ_k T_k ⊙ E_k + fixed is its fine radiance. <paramref name="groups"/> is cleared.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    /// <summary>Does a material of the scene shift light between bands (fluorescence)? Its paths have no per-light band transfer.</summary>
+    public bool Fluoresces => _shift.Any(x => x is not null);
+
     internal int Transfer(in CameraSample sample, Span<float> groups, Span<float> scratch, ref RayCounters counters)
     {
         groups.Clear();
@@ -197,6 +203,8 @@ public sealed class PathIntegrator : IAnalysisIntegrator
         void Emitted(Span<float> beta, float[] le, float w);
         /// <summary>β ⊙ f ⊙ E · s: next-event estimation of light <paramref name="light"/> (−1: an emitter or the sky).</summary>
         void NextEvent(int light, Span<float> beta, Span<float> f, float[] radiance, float s);
+        /// <summary>β ⊙ (S·E) · s: a fluorescent surface's shifted lobe S excited by next-event light <paramref name="light"/>.</summary>
+        void Shifted(int light, FluorescentShift shift, Span<float> beta, float[] radiance, float s);
     }
 
     ref struct FilmSink(Span<float> l) : IPathSink
@@ -205,6 +213,8 @@ public sealed class PathIntegrator : IAnalysisIntegrator
         public readonly void Emitted(Span<float> beta, float[] le, float w) => AddProduct(_l, beta, le, w);
         public readonly void NextEvent(int light, Span<float> beta, Span<float> f, float[] radiance, float s) =>
             AddProduct3(_l, beta, f, radiance, s);
+        public readonly void Shifted(int light, FluorescentShift shift, Span<float> beta, float[] radiance, float s) =>
+            shift.AddEmitted(_l, beta, radiance, s);
     }
 
     ref struct TransferSink(Span<float> groups, int padded, int lights) : IPathSink
@@ -215,6 +225,12 @@ public sealed class PathIntegrator : IAnalysisIntegrator
         {
             if (light < 0) AddProduct3(_groups.Slice(lights * padded, padded), beta, f, radiance, s);
             else AddProduct2(_groups.Slice(light * padded, padded), beta, f, s);
+        }
+        // A shift mixes the light's bands, so it has no per-band transfer: PathTransfer.Trace refuses such scenes for scene
+        // lights; emitters and the sky (fixed spectra) enter the fixed slot.
+        public readonly void Shifted(int light, FluorescentShift shift, Span<float> beta, float[] radiance, float s)
+        {
+            if (light < 0) shift.AddEmitted(_groups.Slice(lights * padded, padded), beta, radiance, s);
         }
     }
 
@@ -291,7 +307,7 @@ public sealed class PathIntegrator : IAnalysisIntegrator
             float uLight = sampler.Next1D();
             var uPoint = sampler.Next2D();
             if (_smooth[m] && _lightCount > 0)
-                NextEvent(ref sink, bsdf, p, ng, ns, front, wo, uLight, new Vector2(uPoint.U, uPoint.V), pick, smoothProbability, beta, f, ref counters);
+                NextEvent(ref sink, bsdf, _shift[m], p, ng, ns, front, wo, uLight, new Vector2(uPoint.U, uPoint.V), pick, smoothProbability, beta, f, ref counters);
 
             // Continue: choose a lobe, then a direction from it; β gains f·|cos θ|/pdf per band.
             float uLobe = sampler.Next1D();
@@ -343,7 +359,7 @@ public sealed class PathIntegrator : IAnalysisIntegrator
     /// emitter's point, or a sky direction, each unshadowed.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    void NextEvent<TSink>(ref TSink sink, Bsdf bsdf, Vector3 p, Vector3 ng, Vector3 ns, Vector3 front, Vector3 wo, float uLight, Vector2 u,
+    void NextEvent<TSink>(ref TSink sink, Bsdf bsdf, FluorescentShift? shift, Vector3 p, Vector3 ng, Vector3 ns, Vector3 front, Vector3 wo, float uLight, Vector2 u,
         float pick, float smoothProbability, Span<float> beta, Span<float> f, ref RayCounters counters) where TSink : IPathSink, allows ref struct
     {
         int k = Math.Min((int)(uLight * _lightCount), _lightCount - 1);
@@ -392,6 +408,8 @@ public sealed class PathIntegrator : IAnalysisIntegrator
         if (_geometry.Occluded(shadow)) return;
         float w = delta ? 1 : PowerHeuristic(pick * pdf, smoothProbability * bsdf.Pdf(wo, wi, ns));
         sink.NextEvent(k < _lights.Length ? k : -1, beta, f, radiance, factor * cos * w / (pick * pdf));
+        // A fluorescent surface's shifted lobe is excited by this light sample alone (no BSDF-sampled counterpart): weight 1.
+        if (shift is not null && FluorescentShift.Reflects(wo, wi, ns)) sink.Shifted(k < _lights.Length ? k : -1, shift, beta, radiance, factor * cos / (pick * pdf));
     }
 
     /// <summary>The sky's sampling density: cosine-weighted about the front shading normal.</summary>

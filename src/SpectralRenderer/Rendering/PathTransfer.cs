@@ -53,6 +53,9 @@ public sealed class PathTransfer
         PixelRect? region = null)
     {
         var cam = scene.Camera;
+        if (integrator.Fluoresces && scene.Lights.Count > 0)
+            throw new InputException("--formats", "a fluorescent material shifts light between bands: a path render's per-light transfer cannot hold it",
+                "leave lights out of --formats for this scene, or render it with the whitted integrator, whose relighting handles fluorescence");
         var rect = region ?? PixelRect.Whole(cam.Width, cam.Height);
         int lights = scene.Lights.Count, sub = integrator.Grid.Count, padded = integrator.Grid.Padded;
         long size = (long)rect.Width * rect.Height * (lights + 1) * sub;

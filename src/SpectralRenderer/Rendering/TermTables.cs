@@ -37,6 +37,8 @@ public sealed class TermTables
             for (int k = 0; k < lights.Count; k++)
             {
                 Diffuse[k * _materials + m] = Product(scene, lights[k].Intensity, mat.Diffuse, physical ? 1 / Math.PI : 1);
+                if (mat.Fluorescence is { } fl)   // the diffuse term is the re-radiation matrix applied to the light
+                    FluorescentTerms.AddShift(scene, Diffuse[k * _materials + m], lights[k].Intensity, fl, physical ? 1 / Math.PI : 1);
                 Specular[k * _materials + m] = Product(scene, lights[k].Intensity, mat.Specular, specNorm);
                 Ambient[k * _materials + m] = Product(scene, lights[k].Ambient, mat.Ambient, 1);
             }

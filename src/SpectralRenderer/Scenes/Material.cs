@@ -31,6 +31,8 @@ public sealed class Material
     public Textures.TextureBinding? DiffuseTexture { get; set; }
     /// <summary>What the surface emits ("emission", an area light for the path tracer), or null.</summary>
     public Emission? Emission { get; set; }
+    /// <summary>The re-radiation (Donaldson) matrix whose diagonal is <see cref="Diffuse"/> ("fluorescence"), or null.</summary>
+    public Spectra.ReradiationMatrix? Fluorescence { get; set; }
 
     /// <summary>
     /// The material as a BSDF in physical radiometry (f in 1/sr, sampling, pdf, delta lobes): eq. 2's lobes as

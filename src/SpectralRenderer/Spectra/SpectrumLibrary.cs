@@ -23,8 +23,10 @@ public static class SpectrumLibrary
     /// </summary>
     static readonly (string Name, string File, string Column, bool Luminous)[] Builtins =
     [
-        ("D65", "illuminants.csv", "D65", false), ("A", "illuminants.csv", "A", false), ("D50", "illuminants.csv", "D50", false),
-        ("E", "illuminants.csv", "E", false), ("FL2", "illuminants.csv", "FL2", true), ("FL11", "illuminants.csv", "FL11", true),
+        // A, D65, D50 and E from 300 nm (their UV part; 380–780 nm the same values as illuminants.csv).
+        ("D65", "illuminants-300-780.csv", "D65", false), ("A", "illuminants-300-780.csv", "A", false),
+        ("D50", "illuminants-300-780.csv", "D50", false), ("E", "illuminants-300-780.csv", "E", false),
+        ("FL2", "illuminants.csv", "FL2", true), ("FL11", "illuminants.csv", "FL11", true),
         ("led-blue", "leds.csv", "blue_465nm", true), ("led-green", "leds.csv", "green_525nm", true),
         ("led-rgb", "light-sources.csv", "3-LED-1 (457/540/605)", true), ("led-yag", "light-sources.csv", "Phosphor LED YAG", true),
     ];

@@ -67,6 +67,8 @@ public partial class SceneDocsTests
         Add("materials", "$.materials.m.diffuse (texture)", s => s["materials"]!["m"]!["diffuse"] = With(new JsonObject { ["texture"] = "t.png" }));
         Add("materials", "$.materials.m.diffuse.uv_transform", s => s["materials"]!["m"]!["diffuse"] = new JsonObject { ["texture"] = "t.png", ["uv_transform"] = With([]) });
         Add("materials", "$.materials.m.emission", s => s["materials"]!["m"]!["emission"] = With(new JsonObject { ["spectrum"] = "D65" }));
+        Add("materials", "$.materials.m.fluorescence",
+            s => s["materials"]!["m"] = new JsonObject { ["fluorescence"] = With(new JsonObject { ["matrix"] = "m.csv" }) });
         foreach (var model in new[] { "lambertian", "conductor", "plastic" })   // the built-in models (tests register others)
             Add("materials", $"material {model}", s => s["materials"]!["m"] = With(new JsonObject { ["type"] = model }));
         Add("materials", "$.materials.m.conductor", s => s["materials"]!["m"] = new JsonObject
@@ -129,11 +131,11 @@ public partial class SceneDocsTests
     public void The_probe_reaches_every_place_the_loader_checks_keys()
     {
         // Each call of the loader's Keys(element, path, allowed…) is one kind of JSON object; the probe above
-        // asks eighteen of them (the light, object and material calls cover every type). A new one must join the probe.
+        // asks nineteen of them (the light, object and material calls cover every type). A new one must join the probe.
         var sources = Directory.GetFiles(Repo.PathOf("src", "SpectralRenderer"), "*.cs", SearchOption.AllDirectories)
             .Where(f => !f.Contains($"{Path.DirectorySeparatorChar}obj{Path.DirectorySeparatorChar}", StringComparison.Ordinal));
         var calls = sources.SelectMany(f => KeysCall().Matches(File.ReadAllText(f)).Select(m => $"{Path.GetFileName(f)}: {m.Value}")).ToList();
-        Assert.True(calls.Count == 18, $"{calls.Count} Keys(...) calls, the probe knows 18; add the new one to AcceptedKeys:\n" + string.Join("\n", calls));
+        Assert.True(calls.Count == 19, $"{calls.Count} Keys(...) calls, the probe knows 19; add the new one to AcceptedKeys:\n" + string.Join("\n", calls));
     }
 
     // ---- the examples -------------------------------------------------------------------------------

@@ -24,7 +24,7 @@ public sealed record PhotometricKey(string Unit, Func<SceneLoader.LightSource, d
 public static class LightTypes
 {
     /// <summary>Keys every light takes; the loader parses them into <see cref="SceneLoader.LightSource"/>.</summary>
-    public static readonly string[] CommonKeys = ["type", "name", "spectrum", "intensity", "ambient", "attenuation"];
+    public static readonly string[] CommonKeys = ["type", "name", "spectrum", "intensity", "ambient", "attenuation", SceneLoader.FilterKey];
 
     /// <summary>The photometric keys of every light type, each an alternative to "intensity".</summary>
     public static readonly string[] PhotometricKeys = ["luminous_flux", "luminous_intensity", "illuminance", "luminance"];

@@ -20,7 +20,7 @@ public sealed partial class SceneLoader
         // Photometric keys are checked by ParsePhotometric, which names the ones this type takes.
         Keys(e, path, [.. LightTypes.CommonKeys, .. kind.Keys, .. LightTypes.PhotometricKeys]);
         var name = TryGet(e, "name", out var n) ? String(n, $"{path}.name") : $"light-{index}";
-        var spectrum = Spectrum(Required(e, "spectrum", path), $"{path}.spectrum");
+        var spectrum = FilteredLight(e, path, Spectrum(Required(e, "spectrum", path), $"{path}.spectrum"));
         var keys = new LightSource(this, e, path) { Name = name, Spectrum = spectrum };
         var photometric = ParsePhotometric(e, path, type, kind, keys, spectrum);
         float intensity = photometric is { } ph ? (float)ph.RadiometricScale : (float)Number(e, "intensity", path, 1, 0);

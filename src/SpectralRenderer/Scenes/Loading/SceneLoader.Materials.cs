@@ -30,10 +30,13 @@ public sealed partial class SceneLoader
                 throw Error($"{path}.{MaterialModels.KindKey}", $"unknown material type '{type}'",
                     InputException.DidYouMean(type, names) ?? $"use {string.Join(", ", names)}");
         }
-        // "emission" (an area light) is every model's key.
-        Keys(e, path, typed ? [MaterialModels.KindKey, MaterialModels.EmissionKey, .. model!.Keys] : [MaterialModels.EmissionKey, .. model!.Keys]);
-        var material = model.Make(new MaterialSource(this, e, path) { Name = name });
+        // "emission" (an area light) and "fluorescence" (SceneLoader.Fluorescence.cs) are every model's keys.
+        string[] common = [MaterialModels.EmissionKey, FluorescenceKey];
+        Keys(e, path, typed ? [MaterialModels.KindKey, .. common, .. model!.Keys] : [.. common, .. model!.Keys]);
+        var fluorescence = ParseFluorescence(e, path, typed ? t.GetString()!.ToLowerInvariant() : MaterialModels.Default);
+        var material = model.Make(new MaterialSource(this, e, path) { Name = name, Diagonal = fluorescence?.Reflectance });
         material.Emission = ParseEmission(e, path);
+        material.Fluorescence = fluorescence;
         AttachTextures(material, path);   // issue 26: SceneLoader.Textures.cs
         return material;
     }
@@ -133,13 +136,16 @@ public sealed partial class SceneLoader
         internal MaterialSource(SceneLoader loader, JsonElement e, string path) { _loader = loader; _e = e; _path = path; }
 
         public required string Name { get; init; }
+        /// <summary>A re-radiation matrix's diagonal, which stands for the diffuse reflectance ("diffuse", "reflectance").</summary>
+        internal TabulatedSpectrum? Diagonal { get; init; }
+        bool IsDiagonal(string key) => Diagonal is not null && key is "diffuse" or "reflectance";
 
         public bool Has(string key) => TryGet(_e, key, out _);
         /// <summary>A reflectance or transmittance spectrum, checked to lie in [0, 1] (a warning up to 2); null when absent.</summary>
-        public TabulatedSpectrum? Reflectance(string key) =>
+        public TabulatedSpectrum? Reflectance(string key) => IsDiagonal(key) ? Diagonal :
             TryGet(_e, key, out var v) ? _loader.Reflectance(_loader.Spectrum(v, $"{_path}.{key}"), $"{_path}.{key}") : null;
         /// <summary>A required reflectance.</summary>
-        public TabulatedSpectrum RequiredReflectance(string key) =>
+        public TabulatedSpectrum RequiredReflectance(string key) => IsDiagonal(key) ? Diagonal! :
             _loader.Reflectance(_loader.Spectrum(_loader.Required(_e, key, _path), $"{_path}.{key}"), $"{_path}.{key}");
         /// <summary>A spectrum's padded band values on the scene's grid (the integrator integrates its products exactly).</summary>
         public float[] Bands(TabulatedSpectrum s, string key) => _loader.Bands(s, $"{_path}.{key}");

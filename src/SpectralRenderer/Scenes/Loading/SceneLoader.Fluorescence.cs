@@ -1,0 +1,66 @@
+using System.Runtime.CompilerServices;
+using System.Text.Json;
+using SpectralRenderer.Spectra;
+
+namespace SpectralRenderer.Scenes.Loading;
+
+// Fluorescence (issue 26): a material's re-radiation matrix, and the UV-cut filter of a light (ISO 13655 M2).
+public sealed partial class SceneLoader
+{
+    /// <summary>The key of a material's re-radiation matrix: <c>"fluorescence": { "matrix": "file.csv" }</c>.</summary>
+    public const string FluorescenceKey = "fluorescence";
+    /// <summary>The key of a light's filter: <c>"filter": "uv-cut"</c>.</summary>
+    public const string FilterKey = "filter";
+
+    /// <summary>The material models whose diffuse term a matrix can replace, and the key the matrix's diagonal stands for.</summary>
+    static readonly Dictionary<string, string> FluorescentModels = new(StringComparer.Ordinal)
+    {
+        ["eq2"] = "diffuse",
+        ["lambertian"] = "reflectance"
+    };
+
+    /// <summary>
+    /// The material's re-radiation matrix, or null. Its diagonal is the diffuse reflectance (so "diffuse" is not given as well);
+    /// the matrix is read relative to the scene's folder (<see cref="ReradiationCsvReader"/>: file:line errors, photon balance).
+    /// </summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
+    ReradiationMatrix? ParseFluorescence(JsonElement e, string path, string model)
+    {
+        if (!TryGet(e, FluorescenceKey, out var f)) return null;
+        string where = $"{path}.{FluorescenceKey}";
+        if (!FluorescentModels.TryGetValue(model, out var diagonalKey))
+            throw Error(where, $"material type '{model}' has no diffuse term for a re-radiation matrix",
+                $"fluorescence applies to the {string.Join(" and ", FluorescentModels.Keys)} models");
+        if (TryGet(e, diagonalKey, out _))
+            throw Error($"{path}.{diagonalKey}",
+                $"\"{diagonalKey}\" and \"{FluorescenceKey}\" are both given: the matrix's diagonal is the reflectance",
+                $"remove \"{diagonalKey}\" (or put its values on the matrix's diagonal)");
+        Object(f, where);
+        Keys(f, where, "matrix");
+        var name = String(Required(f, "matrix", where), $"{where}.matrix");
+        var full = Path.IsPathRooted(name) ? name : Path.Combine(_dir, name);
+        if (!File.Exists(full))
+            throw Error($"{where}.matrix", $"re-radiation matrix {Diagnostics.MessageText.Quote(name, 80)} not found",
+                "a relative path starts at the scene's folder");
+        if (!full.EndsWith(".csv", StringComparison.OrdinalIgnoreCase))
+            throw Error($"{where}.matrix", $"{Diagnostics.MessageText.Quote(name, 80)} is not a .csv file",
+                "give the matrix as CSV (docs/scene-format.md, \"Fluorescence\"); the bispectral EXR layout is not read yet");
+        return ReradiationCsvReader.Read(full);
+    }
+
+    /// <summary>
+    /// A light's spectrum through its filter: <c>"uv-cut"</c> is ISO 13655:2017 measurement condition M2 (no substantial
+    /// radiation below 400 nm), modelled as a filter edge whose transmittance rises linearly from 0 at 395 nm to 1 at 405 nm
+    /// (half at 400 nm); the filtered table is the light's at its own knots and the edge's, so band means stay exact.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
+    TabulatedSpectrum FilteredLight(JsonElement e, string path, TabulatedSpectrum spectrum)
+    {
+        if (!TryGet(e, FilterKey, out var f)) return spectrum;
+        var name = String(f, $"{path}.{FilterKey}").ToLowerInvariant();
+        if (name != UvCut.Name)
+            throw Error($"{path}.{FilterKey}", $"unknown light filter '{name}'",
+                $"use \"{UvCut.Name}\" (ISO 13655 M2: no radiation below 400 nm)");
+        return UvCut.Apply(spectrum);
+    }
+}
