@@ -178,6 +178,9 @@ public sealed class PathIntegrator : IAnalysisIntegrator
     /// <summary>The fine grid's sub-bands (the transfer's spectral resolution).</summary>
     internal FineGrid Grid => _grid;
 
+    /// <summary>Does a material of the scene shift light between bands (fluorescence)? Its paths have no per-light band transfer.</summary>
+    public bool Fluoresces => _shift.Any(x => x is not null);
+
     /// <summary>
     /// One camera sample split by light (the per-light transfer of a path render): for each scene light k the path
     /// weights T_k,f (β·f·|cos θ|·w/(P(light)·p)·factor, without the light's spectrum) into <paramref name="groups"/>
@@ -186,9 +189,6 @@ public sealed class PathIntegrator : IAnalysisIntegrator
     /// which look at a light's spectrum), so Σ_k T_k ⊙ E_k + fixed is its fine radiance. <paramref name="groups"/> is cleared.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    /// <summary>Does a material of the scene shift light between bands (fluorescence)? Its paths have no per-light band transfer.</summary>
-    public bool Fluoresces => _shift.Any(x => x is not null);
-
     internal int Transfer(in CameraSample sample, Span<float> groups, Span<float> scratch, ref RayCounters counters)
     {
         groups.Clear();
