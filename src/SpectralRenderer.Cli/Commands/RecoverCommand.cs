@@ -84,7 +84,7 @@ public static class RecoverCommand
         var centres = Enumerable.Range(0, g.Count).Select(g.Centre).ToArray();
         // One folder transaction (OutputFolder): staged beside CAMERADIR and swapped in together; nothing else there is touched.
         var names = results.SelectMany(r => new[] { $"recovered-{SpectralEstimator.Name(r.Method)}.npy", $"recovery-{SpectralEstimator.Name(r.Method)}.svg" })
-            .Append("recovery-metrics.csv").ToList();
+            .Append("recovery-metrics.csv").Append("recovery.json").ToList();
         using var folder = OutputFolder.BeginFiles(dir, names, "recovery");
         foreach (var r in results)
         {

@@ -41,7 +41,7 @@ public static class ExactChannelSignals
         catch (InputException e) { reason = $"the render folder cannot be rebuilt ({e.Message})"; return null; }
         if (IsPath(src))
         {   // Its light is every bounce of the rendering equation, not eq. 2's terms (a light × a material × a factor).
-            reason = "a path render's radiance is not a sum of eq. 2's terms (light × material × factor), which the exact route integrates; the band cube is the camera's input";
+            reason = "the render's path integrator has no per-term light transfer: its radiance is not a sum of eq. 2's terms (light × material × factor), which the exact route integrates; the band cube is the camera's input";
             return null;
         }
         Scene scene;
@@ -75,10 +75,15 @@ public static class ExactChannelSignals
         catch (InputException) { return PathTransferFiles.IsPath(dir); }
     }
 
-    /// <summary>A path render: its lights/ are a path transfer, or its scene names the path integrator, or its sampler is the path tracer's.</summary>
-    static bool IsPath(Relighting.Source src) => PathTransferFiles.IsPath(src.Dir)
-        || src.Scene.ToJson()["integrator"] is { } i && ((i as System.Text.Json.Nodes.JsonValue)?.ToString() ?? (string?)i["type"]) == "path"
-        || src.Manifest.Sampling?.Sampler == "sobol";
+    /// <summary>A path render: its lights/ are a path transfer, or the integrator it ran (the command line's run.integrator,
+    /// else the resolved scene's) is the path tracer, or — neither named — its sampler is the path tracer's.</summary>
+    static bool IsPath(Relighting.Source src)
+    {
+        if (PathTransferFiles.IsPath(src.Dir)) return true;
+        string? name = src.Manifest.Run?.Integrator ?? (src.Scene.ToJson()["integrator"] is { } i
+            ? (i as System.Text.Json.Nodes.JsonValue)?.ToString() ?? (string?)i["type"] : null);
+        return name is not null ? name == "path" : src.Manifest.Sampling?.Sampler == "sobol";
+    }
 
     /// <summary>
     /// Whether the render is a sum of eq. 2 terms whose per-light transfer the exact route can use: the Whitted model's.
