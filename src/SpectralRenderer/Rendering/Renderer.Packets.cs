@@ -15,11 +15,13 @@ public sealed partial class Renderer
     const int Block = 4;
 
     /// <summary>A worker's packet, its per-lane results and where each lane's ray goes, allocated once per worker.</summary>
-    sealed class PacketTileState(IPacketIntegrator integrator, PixelSampling sampling, Film film, int scratch, int padded) : ITileWork
+    sealed class PacketTileState(IPacketIntegrator integrator, PixelSampling sampling, Film film, int scratch, int padded,
+        CancellationToken cancel) : ITileWork
     {
         public readonly IPacketIntegrator Integrator = integrator;
         public readonly PixelSampling Sampling = sampling;
         public readonly Film Film = film;
+        public readonly CancellationToken Cancel = cancel;
         // The packet and its film positions in pinned memory on a cache-line boundary (LaneMemory, PacketBlock).
         readonly byte[] _block = GC.AllocateArray<byte>(LaneMemory.Bytes<PacketBlock>(), pinned: true);
         public ref PacketBlock Block => ref LaneMemory.At<PacketBlock>(_block);
@@ -73,7 +75,11 @@ public sealed partial class Renderer
                             int lane = st.Lanes++;
                             block.FilmX[lane] = fx; block.FilmY[lane] = fy;   // the film position cam.Generate takes
                             st.PixelX[lane] = x; st.PixelY[lane] = y; st.Sample[lane] = s;
-                            if (st.Lanes == RayPacket.Size) Flush(st, ref counters);
+                            if (st.Lanes == RayPacket.Size)
+                            {   // a stop waits for one packet at most (16 camera rays, whose recursions keep their ray budget)
+                                if (st.Cancel.IsCancellationRequested) st.Cancel.ThrowIfCancellationRequested();
+                                Flush(st, ref counters);
+                            }
                         }
         if (st.Lanes > 0) Flush(st, ref counters);
     }

@@ -105,7 +105,7 @@ public sealed partial class Renderer
         var (rays, tiles, used) = RunTiles(region, threads, progress, clock, cancel, statistics
             ? () => new StatisticsTileState(integrator, sampling, film, padded, errors!, spp, target, cancel)
             : packed
-            ? () => new PacketTileState((IPacketIntegrator)integrator, sampling, film, integrator.ScratchLength, padded)
+            ? () => new PacketTileState((IPacketIntegrator)integrator, sampling, film, integrator.ScratchLength, padded, cancel)
             : () => new TileState(integrator, sampling, film, padded, cancel));
         return new RenderResult
         {

@@ -122,7 +122,7 @@ public sealed partial class WhittedIntegrator
             var v = -new Vector3(packet.DirectionX[lane], packet.DirectionY[lane], packet.DirectionZ[lane]);
             _walker.Shade(ref laneSink, ref laneLights, mi, _materials[mi], at.Normal(lane), v, ref counters);
             if (listed)
-                SpectralMath.SumTerms(results.Slice(lane * _padded, _padded), _flat, terms.Slice(lane * TermsPerLane, termCount[lane]));
+                SpectralMath.SumTerms(results.Slice(lane * _padded, _padded), Flat, terms.Slice(lane * TermsPerLane, termCount[lane]));
         }
     }
 
@@ -210,9 +210,9 @@ public sealed partial class WhittedIntegrator
             if (_listed) { _terms[Lane * TermsPerLane + _termCount[Lane]++] = term; return; }
             int padded = _owner._padded;
             var result = _results.Slice(Lane * padded, padded);
-            var a = _owner._flat.AsSpan(term.A, padded);
+            var a = _owner.Flat.Slice(term.A, padded);
             if (term.B < 0) SpectralMath.AddScaled(result, a, term.S);
-            else SpectralMath.AddScaled2(result, a, term.S, _owner._flat.AsSpan(term.B, padded), term.T);
+            else SpectralMath.AddScaled2(result, a, term.S, _owner.Flat.Slice(term.B, padded), term.T);
         }
     }
 

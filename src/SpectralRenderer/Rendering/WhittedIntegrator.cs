@@ -1,5 +1,6 @@
 using System.Numerics;
 using System.Runtime.CompilerServices;
+using SpectralRenderer.Acceleration;
 using SpectralRenderer.Geometry;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Spectra;
@@ -42,11 +43,11 @@ public sealed partial class WhittedIntegrator : IPacketIntegrator, IAnalysisInte
         // The term tables side by side for the packet path's one-pass band sums: the global ambient of each material, then per
         // (light, material) the ambient, diffuse and specular tables, at the offsets below.
         int materials = _materials.Length, pairs = _tables.Diffuse.Length;
-        _flat = new float[(materials + 3 * pairs) * _padded];
+        _tablesFlat = new LineFloats((materials + 3 * pairs) * _padded);
         _globalAmbientAt = new int[materials];
         _ambientAt = new int[pairs]; _diffuseAt = new int[pairs]; _specularAt = new int[pairs];
         int at = 0;
-        int Put(float[] table) { table.AsSpan().CopyTo(_flat.AsSpan(at)); at += _padded; return at - _padded; }
+        int Put(float[] table) { table.AsSpan().CopyTo(Flat[at..]); at += _padded; return at - _padded; }
         for (int m = 0; m < materials; m++) _globalAmbientAt[m] = Put(_tables.GlobalAmbient[m]);
         for (int t = 0; t < pairs; t++) { _ambientAt[t] = Put(_tables.Ambient[t]); _diffuseAt[t] = Put(_tables.Diffuse[t]); _specularAt[t] = Put(_tables.Specular[t]); }
         // Per (light, material), the direct pair's offsets and its Y colour lane, in one place for a lane's Direct term.
@@ -55,13 +56,15 @@ public sealed partial class WhittedIntegrator : IPacketIntegrator, IAnalysisInte
         for (int t = 0; t < pairs; t++) _direct[t] = new DirectPair(_diffuseAt[t], _specularAt[t], _tables.Diffuse[t][y], _tables.Specular[t][y]);
     }
 
-    /// <summary>A (light, material) pair's diffuse and specular tables in <see cref="_flat"/> and their Y colour lane (the
+    /// <summary>A (light, material) pair's diffuse and specular tables in <see cref="Flat"/> and their Y colour lane (the
     /// values <see cref="TermTables"/> holds, gathered so a packet lane's direct term reads one entry).</summary>
     readonly record struct DirectPair(int DiffuseAt, int SpecularAt, float DiffuseY, float SpecularY);
 
     readonly DirectPair[] _direct;
 
-    readonly float[] _flat;
+    // On a cache-line boundary (LineFloats): each table starts on one, as the one-pass band sums' SIMD loads do.
+    readonly LineFloats _tablesFlat;
+    Span<float> Flat => _tablesFlat.Span;
     readonly int[] _globalAmbientAt, _ambientAt, _diffuseAt, _specularAt;
 
     /// <summary>Scratch floats a thread needs: a spectrum per recursion level (two per level, as before), and for packets
