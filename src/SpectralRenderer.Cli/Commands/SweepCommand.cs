@@ -92,7 +92,8 @@ public static class SweepCommand
         Signals.OnForcedStop(() => SweepRunner.WriteIndex(plan, outDir, layout == "pairs" ? "pairs" : "folders"));
         Signals.DescribeLeft(() => $"finished jobs are kept and listed in {Path.Combine(outDir, "index.csv")} (rebuilt); the running job left nothing under a final name; run the same command again to resume");
         // One sweep at a time on a dataset: a second one exits 2 naming the folder (the jobs' folders are locked each too).
-        using var dataset = OutputFolder.BeginFiles(outDir, ["index.csv", "index.jsonl"], "sweep index");
+        // The slices of one job array share it by design (disjoint jobs; the index rebuilt one slice at a time).
+        using var dataset = slice.Count > 1 ? null : OutputFolder.BeginFiles(outDir, ["index.csv", "index.jsonl"], "sweep index");
         {
             bool terminal = ReferenceEquals(stderr, Console.Error) && !Console.IsErrorRedirected;
             Action<SweepProgress>? progress = quiet ? null : p =>

@@ -183,6 +183,9 @@ public static class SweepRunner
     /// </summary>
     public static void WriteIndex(SweepPlan plan, string outDir, string layout)
     {
+        // The slices of a job array rebuild the index at the same time: one at a time, so the last to finish reads every
+        // job record and writes last.
+        using var serial = IndexLock(outDir);
         var jsonl = new StringBuilder();
         var csv = new StringBuilder();
         var header = new List<string> { "job", "status", "seconds", "path" };
@@ -210,6 +213,24 @@ public static class SweepRunner
         }
         AtomicFile.WriteAllText(Path.Combine(outDir, "index.jsonl"), jsonl.ToString());
         AtomicFile.WriteAllText(Path.Combine(outDir, "index.csv"), csv.ToString());
+    }
+
+    /// <summary>OUT/jobs/.index.lock held exclusively (an OS file lock) while the index is rebuilt; waits up to 30 s for another
+    /// slice, then goes on without it (a stuck holder: the next rebuild repairs the index).</summary>
+    static FileStream? IndexLock(string outDir)
+    {
+        var path = Path.Combine(outDir, "jobs", ".index.lock");
+        long until = Environment.TickCount64 + 30_000;
+        while (true)
+        {
+            try
+            {
+                Directory.CreateDirectory(Path.GetDirectoryName(path)!);
+                return new FileStream(path, FileMode.OpenOrCreate, FileAccess.ReadWrite, FileShare.None, 1);
+            }
+            catch (IOException) when (Environment.TickCount64 < until) { Thread.Sleep(20); }
+            catch (Exception e) when (e is IOException or UnauthorizedAccessException) { return null; }
+        }
     }
 
     static string Csv(string s) => s.IndexOfAny([',', '"', '\r', '\n']) >= 0 ? "\"" + s.Replace("\"", "\"\"") + "\"" : s;
