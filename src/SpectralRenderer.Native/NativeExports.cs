@@ -244,8 +244,9 @@ public static unsafe partial class NativeExports
 
     static string? Utf8(byte* s) => s is null ? null : Encoding.UTF8.GetString(s, StrLen(s));
 
-    /// <summary>The options object as `spectral render`'s overrides, checked as the command line checks them.</summary>
-    static (SceneOverrides, string Integrator, int Threads) Options(string? json, byte[] sceneText)
+    /// <summary>The options object as `spectral render`'s overrides, checked as the command line checks them; the integrator
+    /// null when not given (the scene's, else whitted, as the CLI without --integrator).</summary>
+    static (SceneOverrides, string? Integrator, int Threads) Options(string? json, byte[] sceneText)
     {
         JsonObject o;
         try { o = json is null ? [] : JsonNode.Parse(json) as JsonObject ?? throw new JsonException("not an object"); }
@@ -291,7 +292,7 @@ public static unsafe partial class NativeExports
             Formats = Str("formats"),
             ExrCompression = Str("exr_compression"),
         };
-        return (overrides, Str("integrator") ?? Integrators.Default, Int("threads", 0, 1024) ?? 0);
+        return (overrides, Str("integrator"), Int("threads", 0, 1024) ?? 0);
     }
 
     /// <summary>The scene's band range for a bare band count (RenderCommand's rule); the loader reports a bad scene.</summary>
