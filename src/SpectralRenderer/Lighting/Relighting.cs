@@ -83,15 +83,15 @@ public static class Relighting
     {
         var scene = ChangedScene(src, changes, white);
         scene.Output.Products &= ~OutputProducts.Noise;   // measured from a render's samples: a relit render has none to write
+        // By identity, not spelling: "r/", "./r" or a link to r is the folder being relit too.
+        if (OutputFolder.SameFolder(src.Dir, outDir))
+            throw new InputException(outDir, "is the folder being relit", "write the relit render to another folder with -o");
         if (PathTransferFiles.IsPath(src.Dir)) return WritePath(src, scene, changes, white, outDir, commandLine, cancel, metrics);
         var clock = System.Diagnostics.Stopwatch.StartNew();
         var transfer = LightTransferFiles.Read(src.Dir, scene);
         if (transfer.Width != scene.Camera.Width || transfer.Height != scene.Camera.Height || transfer.Bands != scene.Bands)
             throw new InputException(src.Dir, $"its lights/ are {transfer.Width}×{transfer.Height}×{transfer.Bands} but the scene rebuilds as {scene.Camera.Width}×{scene.Camera.Height}×{scene.Bands}",
                 "the scene file changed since the render; render again");
-        // By identity, not spelling: "r/", "./r" or a link to r is the folder being relit too.
-        if (OutputFolder.SameFolder(src.Dir, outDir))
-            throw new InputException(outDir, "is the folder being relit", "write the relit render to another folder with -o");
         Directory.CreateDirectory(outDir);
         var crop = PixelRect.Whole(transfer.Width, transfer.Height);
         var reuse = Reusable(src, scene, crop);
@@ -109,31 +109,9 @@ public static class Relighting
         string? metricsCsv = null;
         RelightMetrics? metricsRecord = null;
         if (metrics) (metricsRecord, metricsCsv) = Metrics(src, scene, transfer.ObjectIds, transfer.Relight(ChangedScene(src, [], null)).Xyz, result.Xyz!);
-        job.RunRecord = new ManifestRun
-        {
-            CommandLine = commandLine,
-            HasOverrides = true,
-            Overrides = src.Manifest.Run?.Overrides,
-            Relit = new ManifestRelit
-            {
-                From = Path.GetFullPath(src.Dir),
-                FromCreatedUtc = src.Manifest.CreatedUtc,
-                Method = "per-light transfer (lights/): L_b = sum_c F_c * P_c,b and XYZ = sum_c F_c * XYZ_c with P_c rebuilt from the new lights' term tables; no rays traced",
-                Changes = changes.Select(c => new ManifestLightChange(c.Light, c.Spectrum, c.Intensity)).ToArray(),
-                White = white,
-                ComputeSeconds = compute.TotalSeconds,
-                Metrics = metricsRecord,
-                // Which files were copied from the source (no light changes them; see Reusable), not encoded again.
-                CopiedFiles = copied.Order(StringComparer.Ordinal).ToArray(),
-            },
-        };
-        var files = job.Write(cancel).ToList();
-        if (metricsCsv is not null)
-        {
-            AtomicFile.WriteAllText(Path.Combine(outDir, "relight-metrics.csv"), metricsCsv);
-            files.Add("relight-metrics.csv");
-        }
-        return (scene, files, compute);
+        return Finish(job, src, scene, changes, white, commandLine, compute, metricsRecord, metricsCsv, copied,
+            "per-light transfer (lights/): L_b = sum_c F_c * P_c,b and XYZ = sum_c F_c * XYZ_c with P_c rebuilt from the new lights' term tables; no rays traced",
+            outDir, cancel);
     }
 
     /// <summary>
@@ -153,8 +131,6 @@ public static class Relighting
         if (transfer.FilmWidth != scene.Camera.Width || transfer.FilmHeight != scene.Camera.Height)
             throw new InputException(src.Dir, $"its lights/ are {transfer.FilmWidth}×{transfer.FilmHeight} but the scene rebuilds as {scene.Camera.Width}×{scene.Camera.Height}",
                 "the scene file changed since the render; render again");
-        if (Path.GetFullPath(outDir) == Path.GetFullPath(src.Dir))
-            throw new InputException(outDir, "is the folder being relit", "write the relit render to another folder with -o");
         Directory.CreateDirectory(outDir);
         var reuse = Reusable(src, scene, transfer.Region);
         var job = Pipeline.RenderJob.Load(new Pipeline.RenderRequest
@@ -171,6 +147,18 @@ public static class Relighting
         string? metricsCsv = null;
         RelightMetrics? metricsRecord = null;
         if (metrics) (metricsRecord, metricsCsv) = Metrics(src, scene, transfer.ObjectIds, transfer.Relight(ChangedScene(src, [], null)).Xyz, result.Xyz!);
+        return Finish(job, src, scene, changes, white, commandLine, compute, metricsRecord, metricsCsv, reuse?.Names ?? Enumerable.Empty<string>(),
+            "per-light transfer of a path render (lights/transfer.npy): on the fine grid L_f = F_f + sum_k T_k,f * E_k,f with E_k the new " +
+                "lights' spectra x intensities (emitters and sky F as rendered), reduced to the bands and XYZ as the film is; no rays traced",
+            outDir, cancel);
+    }
+
+    /// <summary>The relit render's run record (what changed, how, which files were copied from the source: no light changes
+    /// them, see <see cref="Reusable"/>) and its files, with relight-metrics.csv when asked for.</summary>
+    static (Scene Scene, List<string> Files, TimeSpan Compute) Finish(Pipeline.RenderJob job, Source src, Scene scene,
+        IReadOnlyList<LightChange> changes, string? white, string commandLine, TimeSpan compute, RelightMetrics? metricsRecord,
+        string? metricsCsv, IEnumerable<string> copied, string method, string outDir, CancellationToken cancel)
+    {
         job.RunRecord = new ManifestRun
         {
             CommandLine = commandLine,
@@ -180,13 +168,12 @@ public static class Relighting
             {
                 From = Path.GetFullPath(src.Dir),
                 FromCreatedUtc = src.Manifest.CreatedUtc,
-                Method = "per-light transfer of a path render (lights/transfer.npy): on the fine grid L_f = F_f + sum_k T_k,f * E_k,f with E_k the new " +
-                    "lights' spectra x intensities (emitters and sky F as rendered), reduced to the bands and XYZ as the film is; no rays traced",
+                Method = method,
                 Changes = changes.Select(c => new ManifestLightChange(c.Light, c.Spectrum, c.Intensity)).ToArray(),
                 White = white,
                 ComputeSeconds = compute.TotalSeconds,
                 Metrics = metricsRecord,
-                CopiedFiles = (reuse?.Names ?? Enumerable.Empty<string>()).Order(StringComparer.Ordinal).ToArray(),
+                CopiedFiles = copied.Order(StringComparer.Ordinal).ToArray(),
             },
         };
         var files = job.Write(cancel).ToList();

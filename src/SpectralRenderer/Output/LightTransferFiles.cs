@@ -91,18 +91,7 @@ public static class LightTransferFiles
     public static JsonObject Describe(Scene scene, LightTransfer t)
     {
         var lights = new JsonArray();
-        for (int k = 0; k < scene.Lights.Count; k++)
-        {
-            var l = scene.Lights[k];
-            lights.Add((JsonNode)new JsonObject
-            {
-                ["index"] = k,
-                ["name"] = l.Name,
-                ["kind"] = l.Type,
-                ["spectrum"] = l.Spectrum?.Name,
-                ["band_values"] = Arr(l.Intensity.AsSpan(0, scene.Bands)),
-            });
-        }
+        for (int k = 0; k < scene.Lights.Count; k++) lights.Add((JsonNode)LightEntry(scene, k));
         var comps = new JsonArray();
         var tables = new TermTables(scene);
         var p = new float[scene.PaddedBands];
@@ -153,6 +142,21 @@ public static class LightTransferFiles
                 ["centre"] = "centre.npy: float32 [2K, H, W], light k's centre-ray diffuse (2k) and specular (2k+1) factor",
                 ["ids"] = "ids.npy: float32 [3, H, W], object index + 1 (0 = background), lit mask, colour fallback (1: eq. 3 on the band values)",
             },
+        };
+    }
+
+    /// <summary>lights.json's entry of scene light k (a Whitted or a path render's): its index, name, kind, spectrum name and
+    /// band values I_k,b (spectrum × intensity, unpadded).</summary>
+    internal static JsonObject LightEntry(Scene scene, int k)
+    {
+        var l = scene.Lights[k];
+        return new JsonObject
+        {
+            ["index"] = k,
+            ["name"] = l.Name,
+            ["kind"] = l.Type,
+            ["spectrum"] = l.Spectrum?.Name,
+            ["band_values"] = Arr(l.Intensity.AsSpan(0, scene.Bands)),
         };
     }
 

@@ -57,16 +57,8 @@ public static class PathTransferFiles
         var groups = new JsonArray();
         for (int k = 0; k < scene.Lights.Count; k++)
         {
-            var l = scene.Lights[k];
-            lights.Add((JsonNode)new JsonObject
-            {
-                ["index"] = k,
-                ["name"] = l.Name,
-                ["kind"] = l.Type,
-                ["spectrum"] = l.Spectrum?.Name,
-                ["band_values"] = Arr(l.Intensity.AsSpan(0, scene.Bands)),
-            });
-            groups.Add((JsonNode)$"light {l.Name}");
+            lights.Add((JsonNode)LightTransferFiles.LightEntry(scene, k));
+            groups.Add((JsonNode)$"light {scene.Lights[k].Name}");
         }
         groups.Add((JsonNode)"emitters and sky");
         return new JsonObject
@@ -91,12 +83,6 @@ public static class PathTransferFiles
         };
     }
 
-    static JsonArray Arr(ReadOnlySpan<float> v)
-    {
-        var a = new JsonArray();
-        foreach (float x in v) a.Add((JsonNode)JsonValue.Create((double)x));
-        return a;
-    }
 
     /// <summary>Whether <paramref name="outDir"/>'s lights/ is a path render's.</summary>
     public static bool IsPath(string outDir)
