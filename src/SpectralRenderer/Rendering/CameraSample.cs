@@ -15,6 +15,7 @@ namespace SpectralRenderer.Rendering;
 public struct Sampler(int x, int y, int sample, int dimension = 0, SamplerSettings settings = default)
 {
     readonly uint _x = (uint)x, _y = (uint)y, _s = (uint)sample;
+    readonly uint _sReversed = OwenSobol.ReverseBits((uint)sample);   // the Sobol draws' shuffle starts from R(index)
     readonly SamplerSettings _settings = settings;
 
     /// <summary>The next dimension to be drawn.</summary>
@@ -28,7 +29,7 @@ public struct Sampler(int x, int y, int sample, int dimension = 0, SamplerSettin
         {
             uint d = (uint)Dimension;
             Dimension += 2;
-            return OwenSobol.Sample2D(_s, PixelSeed(d));
+            return OwenSobol.Sample2DReversed(_sReversed, PixelSeed(d));
         }
         if (Dimension == 0)
         {
@@ -47,7 +48,7 @@ public struct Sampler(int x, int y, int sample, int dimension = 0, SamplerSettin
         if (_settings.Kind == SamplerKind.Sobol)
         {
             uint dim = (uint)Dimension++;
-            return OwenSobol.Sample1D(_s, PixelSeed(dim));
+            return OwenSobol.Sample1DReversed(_sReversed, PixelSeed(dim));
         }
         if (Dimension < 2) Dimension = 2;   // 0 and 1 are the film jitter's
         uint d = (uint)Dimension++;

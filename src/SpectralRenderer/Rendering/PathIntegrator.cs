@@ -256,7 +256,7 @@ public sealed class PathIntegrator : IAnalysisIntegrator
         for (int depth = 0; ; depth++)
         {
             var traced = ray;
-            if (!_geometry.Intersect(ref traced, out var hit))
+            if (!_geometry.IntersectScattered(ref traced, out var hit))
             {
                 // The ray escapes: the sky (background) radiance, MIS-weighted against its own sampling.
                 if (depth == 0) sink.Emitted(beta, _background, 1);
@@ -405,7 +405,7 @@ public sealed class PathIntegrator : IAnalysisIntegrator
             shadow = new Ray(origin, towards / length, length - 2 * _geometry.Epsilon);
         }
         counters.Shadow++;
-        if (_geometry.Occluded(shadow)) return;
+        if (_geometry.OccludedScattered(shadow)) return;
         float w = delta ? 1 : PowerHeuristic(pick * pdf, smoothProbability * bsdf.Pdf(wo, wi, ns));
         sink.NextEvent(k < _lights.Length ? k : -1, beta, f, radiance, factor * cos * w / (pick * pdf));
         // A fluorescent surface's shifted lobe is excited by this light sample alone (no BSDF-sampled counterpart): weight 1.
