@@ -303,20 +303,26 @@ public sealed class PathIntegrator : IAnalysisIntegrator
             float total = smoothShare + mirrorShare + transmitShare;
             float smoothProbability = total > 0 ? smoothShare / total : 0;
 
+            // Each vertex takes the same five dimensions (light, point on it, lobe, direction, roulette); a number is drawn
+            // only where it is used (Sampler.Reserve1D), so skipping one changes no other.
+            int dLight = sampler.Reserve1D(), dPoint = sampler.Reserve2D(), dLobe = sampler.Reserve1D(), dDirection = sampler.Reserve2D();
+            int dRoulette = sampler.Reserve1D();
+
             // Next-event estimation: one light chosen uniformly, one point on it.
-            float uLight = sampler.Next1D();
-            var uPoint = sampler.Next2D();
             if (_smooth[m] && _lightCount > 0)
+            {
+                float uLight = _lightCount > 1 ? sampler.At1D(dLight) : 0;   // one light: no choice
+                var uPoint = sampler.At2D(dPoint);
                 NextEvent(ref sink, bsdf, _shift[m], p, ng, ns, front, wo, uLight, new Vector2(uPoint.U, uPoint.V), pick, smoothProbability, beta, f, ref counters);
+            }
 
             // Continue: choose a lobe, then a direction from it; β gains f·|cos θ|/pdf per band.
-            float uLobe = sampler.Next1D();
-            var u = sampler.Next2D();
             if (!(total > 0)) break;
             Vector3 wi;
-            float x = uLobe * total;
+            float x = smoothShare == total ? 0 : sampler.At1D(dLobe) * total;   // the smooth lobes alone: no choice
             if (x < smoothShare)
             {
+                var u = sampler.At2D(dDirection);
                 if (!bsdf.Sample(wo, ns, new Vector2(u.U, u.V), f, out var bs)) break;
                 wi = bs.Wi;
                 float cos = MathF.Abs(Vector3.Dot(ns, wi));
@@ -340,11 +346,10 @@ public sealed class PathIntegrator : IAnalysisIntegrator
             previousFront = front;
 
             // Russian roulette on the throughput's channel value.
-            float uRoulette = sampler.Next1D();
             if (depth + 1 >= _rrDepth)
             {
                 float q = MathF.Min(0.95f, Max(beta));
-                if (!(q > 0) || uRoulette >= q) break;
+                if (!(q > 0) || sampler.At1D(dRoulette) >= q) break;
                 Scale(beta, 1 / q);
             }
             float side = Vector3.Dot(ng, wi) >= 0 ? 1 : -1;
