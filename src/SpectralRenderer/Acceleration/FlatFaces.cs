@@ -1,6 +1,7 @@
 using System.Numerics;
 using System.Runtime.CompilerServices;
 using System.Runtime.InteropServices;
+using System.Runtime.Intrinsics;
 using SpectralRenderer.Geometry;
 
 namespace SpectralRenderer.Acceleration;
@@ -95,8 +96,11 @@ public sealed class FlatFaces
             var t = Distance(v, i, ox, oy, oz, dx, dy, dz);
             var hit = Inside(v, i, t, ox, oy, oz, dx, dy, dz, tMax, half);
             if (hit == Vector<int>.Zero) continue;
-            for (int l = 0; l < w; l++)
-                if (hit[l] != 0 && t[l] < ray.TMax) { ray.TMax = t[l]; best = r * w + l; }
+            for (uint bits = Bits(hit); bits != 0; bits &= bits - 1)
+            {   // the lanes hit, lowest first (so of two faces at the same distance the first wins)
+                int l = BitOperations.TrailingZeroCount(bits);
+                if (t[l] < ray.TMax) { ray.TMax = t[l]; best = r * w + l; }
+            }
             tMax = new Vector<float>(ray.TMax);
         }
         return best;
@@ -117,6 +121,17 @@ public sealed class FlatFaces
             if (Inside(v, i, t, ox, oy, oz, dx, dy, dz, tMax, half) != Vector<int>.Zero) return true;
         }
         return false;
+    }
+
+    /// <summary>Bit l set where lane l of <paramref name="mask"/> is set (its sign bit).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    static uint Bits(Vector<int> mask)
+    {
+        if (Vector<int>.Count == 8) return Vector256.ExtractMostSignificantBits(mask.AsVector256());
+        if (Vector<int>.Count == 4) return Vector128.ExtractMostSignificantBits(mask.AsVector128());
+        uint bits = 0;
+        for (int l = 0; l < Vector<int>.Count; l++) if (mask[l] != 0) bits |= 1u << l;
+        return bits;
     }
 
     /// <summary>t where the ray meets each face's plane: (n·c − n·o)/(n·d).</summary>

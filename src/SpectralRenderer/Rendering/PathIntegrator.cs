@@ -23,6 +23,7 @@ namespace SpectralRenderer.Rendering;
 /// any thread count, tile order or shard; nothing is allocated per path.
 /// </summary>
 [CompiledAtFirstCall]
+[SkipLocalsInit]   // the walk's locals are all written before read: no 0.7 KB of stack cleared per camera sample
 public sealed class PathIntegrator : IAnalysisIntegrator
 {
     readonly SceneGeometry _geometry;
