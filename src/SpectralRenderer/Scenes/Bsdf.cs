@@ -78,8 +78,7 @@ public abstract class Bsdf
     public static Vector3 CosineHemisphere(Vector3 n, Vector2 u)
     {
         float r = MathF.Sqrt(u.X), phi = 2 * MathF.PI * u.Y;
-        var (sin, cos) = MathF.SinCos(phi);   // one call for both (the C library's sincosf: the same values as sinf and cosf)
-        float x = r * cos, y = r * sin, z = MathF.Sqrt(MathF.Max(0, 1 - u.X));
+        float x = r * MathF.Cos(phi), y = r * MathF.Sin(phi), z = MathF.Sqrt(MathF.Max(0, 1 - u.X));
         var (t, b) = Frame(n);
         return x * t + y * b + z * n;
     }
