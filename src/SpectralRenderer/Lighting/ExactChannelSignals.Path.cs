@@ -46,6 +46,7 @@ public static partial class ExactChannelSignals
                     reason = $"the rebuilt scene is {scene.Camera.Width}×{scene.Camera.Height}, the cube {cs.Width}×{cs.Height} (a crop or shard)";
                     return null;
                 }
+                if (FilmTooLarge(scene, sensor) is { } why) { reason = why; return null; }
                 var integrator = (PathIntegrator)Integrators.Create(scene, new SceneGeometry(scene), "path");
                 var clock = System.Diagnostics.Stopwatch.StartNew();
                 film = PathFineFilm.Trace(scene, integrator, threads < 0 ? 0 : threads);
@@ -54,6 +55,15 @@ public static partial class ExactChannelSignals
             }
         }
         catch (InputException e) { reason = $"the path render's scene cannot be rebuilt for its fine grid ({e.Message})"; return null; }
+        return Compute(cs, sensor, scene, film, from, threads, out reason);
+    }
+
+    /// <summary>
+    /// The exact route of a path render from its fine film (<paramref name="from"/> says where the film came from: a folder's
+    /// lights/, traced again, or a render held in memory), or null (with the reason) when it does not match the cube.
+    /// </summary>
+    public static Result? Compute(CameraScene cs, SensorModel sensor, Scene scene, PathFineFilm film, string from, int threads, out string reason)
+    {
         if (film.Width != cs.Width || film.Height != cs.Height || film.SubBands != cs.Grid.Count * film.PerBand)
         {
             reason = $"the fine film is {film.Width}×{film.Height}×{film.SubBands} sub-bands, the cube {cs.Width}×{cs.Height}×{cs.Grid.Count} bands (a crop or shard)";
@@ -104,6 +114,27 @@ public static partial class ExactChannelSignals
             (optics.Any ? "; each band's share through the lens (cos4th fall-off, Airy blur at the band centre) before the bands are summed" : "");
         return new Result(plane, whiteScale, route, whiteSource, optics.Any);
     }
+
+    /// <summary>
+    /// Why the fine film (4 bytes per pixel and sub-band) and the channel sums (12 bytes per pixel and channel) do not fit
+    /// in what this process may still use (the GC's available memory less what is in use, a tenth kept back), else null.
+    /// </summary>
+    static string? FilmTooLarge(Scene scene, SensorModel sensor)
+    {
+        long need = PathFineFilm.Bytes(scene) + 12L * scene.Camera.Width * scene.Camera.Height * sensor.ChannelCount;
+        long usable = (long)(0.9 * GC.GetGCMemoryInfo().TotalAvailableMemoryBytes) - GC.GetTotalMemory(false);
+        return need <= usable ? null
+            : $"the path render's fine film needs about {InputFile.Size(need)}, more than the {InputFile.Size(Math.Max(0, usable))} this process has left; a coarser \"spectral_grid\" or fewer pixels, or --signals bands";
+    }
+
+    /// <summary>
+    /// The band route's white of a render held in memory (libspectral): a path render's read off its chart, a Whitted
+    /// render's from its per-light transfer, as <see cref="BandRouteWhite(CameraScene, int)"/> takes a folder's.
+    /// </summary>
+    public static (double Scale, string Source)? BandRouteWhite(CameraScene cs, Scene scene, LightTransfer? transfer, bool path) =>
+        path ? PathWhite(cs)
+        : transfer is not null && transfer.Width == cs.Width && transfer.Height == cs.Height ? WhiteScale(cs, scene, transfer, scene.Radiometry == Radiometry.Physical)
+        : null;
 
     /// <summary>A path render's white: read off its ColorChecker (<see cref="ChartWhite"/>), its light at the chart being every bounce.</summary>
     static (double Scale, string Source) PathWhite(CameraScene cs) => ChartWhite.Scale(cs) is { } s
