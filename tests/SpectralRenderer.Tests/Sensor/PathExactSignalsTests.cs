@@ -186,6 +186,21 @@ public class PathExactSignalsTests(ITestOutputHelper output)
         Assert.True(worst <= 1e-5, $"lights/ vs traced again differ by {worst:E3}");
     }
 
+    /// <summary>The path route's signals (the samples traced again, the lens applied per band) are the same on 1 and 2 threads, bit for bit.</summary>
+    [Fact]
+    public void Signals_AreTheSameOnAnyThreadCount()
+    {
+        var render = Booth("380:780:20", 5, "npy,aov");
+        var raws = new[] { "1", "2" }.Select(t =>
+        {
+            var cam = Path.Combine(render, $"cam-threads-{t}");
+            var (code, _, err) = CliRunner.Run("camera", render, "--sensor", "mosaic-16", "--noise", "off", "-o", cam, "--threads", t);
+            Assert.True(code == 0, err);
+            return File.ReadAllBytes(Path.Combine(cam, "raw.npy"));
+        }).ToArray();
+        Assert.Equal(raws[0], raws[1]);
+    }
+
     /// <summary>
     /// A path render takes the exact route, whichever way the path integrator was chosen (the scene, or --integrator path
     /// for a scene that names none), with no band-route note; --signals bands still gives the band cube.
