@@ -24,7 +24,7 @@ namespace SpectralRenderer.Rendering;
 /// </summary>
 [CompiledAtFirstCall]
 [SkipLocalsInit]   // the walk's locals are all written before read: no 0.7 KB of stack cleared per camera sample
-public sealed class PathIntegrator : IAnalysisIntegrator
+public sealed partial class PathIntegrator : IAnalysisIntegrator
 {
     readonly SceneGeometry _geometry;
     readonly FineGrid _grid;
