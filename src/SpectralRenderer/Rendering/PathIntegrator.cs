@@ -24,7 +24,7 @@ namespace SpectralRenderer.Rendering;
 /// </summary>
 [CompiledAtFirstCall]
 [SkipLocalsInit]   // the walk's locals are all written before read: no 0.7 KB of stack cleared per camera sample
-public sealed class PathIntegrator : IAnalysisIntegrator
+public sealed partial class PathIntegrator : IAnalysisIntegrator
 {
     readonly SceneGeometry _geometry;
     readonly FineGrid _grid;
@@ -63,13 +63,11 @@ public sealed class PathIntegrator : IAnalysisIntegrator
         _smooth = new bool[materials];
         _delta = new bool[materials];
         _smoothChannel = new float[materials];
+        _dispersive = new bool[materials];
         for (int m = 0; m < materials; m++)
         {
             var material = scene.Materials[m];
-            if (material.Dispersive && (material.HasTransmission || material.HasMirror && material.Fresnel))
-                throw new InputException($"{where}: $.materials.{material.Name}.ior",
-                    $"material '{material.Name}' is dispersive (Cauchy index): the path integrator does not split paths per band yet",
-                    "give a constant \"ior\", or render dispersion with the whitted integrator");
+            _dispersive[m] = material.Dispersive && material.HasTransmission;   // its paths split per band (PathIntegrator.Dispersion.cs)
             if (material.DiffuseTexture is not null)
                 throw new InputException($"{where}: $.materials.{material.Name}.diffuse",
                     $"material '{material.Name}' is textured: the path integrator takes spectra only so far (issue 26)",
@@ -117,8 +115,8 @@ public sealed class PathIntegrator : IAnalysisIntegrator
     /// <summary>The internal grid's sub-bands per output band.</summary>
     public int SubBands => _grid.PerBand;
 
-    /// <summary>Scratch: L, β, f and the two delta lobes' weights, each a fine spectrum.</summary>
-    public int ScratchLength => 5 * _padded;
+    /// <summary>Scratch: L, β, f and the two delta lobes' weights, each a fine spectrum, and a band's β after a dispersive split.</summary>
+    public int ScratchLength => 6 * _padded;
 
     /// <inheritdoc/>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
@@ -287,6 +285,7 @@ public sealed class PathIntegrator : IAnalysisIntegrator
             }
             if (_maxDepth >= 0 && depth >= _maxDepth) break;
             if (counters.BudgetSpent) { counters.OverBudget = true; break; }
+            if (_dispersive[m]) { Disperse(ref sink, in hit, ray, depth, beta, sampler, scratch, ref counters); break; }
 
             var bsdf = _bsdf[m];
             var ns = hit.Normal;
