@@ -79,20 +79,24 @@ public sealed partial class PathIntegrator
             float total = smoothShare + mirrorShare + transmitShare;
             float smoothProbability = total > 0 ? smoothShare / total : 0;
 
-            float uLight = sampler.Next1D();
-            var uPoint = sampler.Next2D();
+            // The five dimensions of a vertex, as Walk reserves them.
+            int dLight = sampler.Reserve1D(), dPoint = sampler.Reserve2D(), dLobe = sampler.Reserve1D(), dDirection = sampler.Reserve2D();
+            int dRoulette = sampler.Reserve1D();
             if (_smooth[m] && _lightCount > 0)
+            {
+                float uLight = _lightCount > 1 ? sampler.At1D(dLight) : 0;
+                var uPoint = sampler.At2D(dPoint);
                 NextEvent(ref sink, bsdf, _shift[m], p, ng, ns, front, wo, uLight, new Vector2(uPoint.U, uPoint.V), pick, smoothProbability, beta, f, ref counters);
+            }
 
-            float uLobe = sampler.Next1D();
-            var u = sampler.Next2D();
             if (!(total > 0)) return;
             Vector3 wi;
             bool deltaBounce;
             float bsdfPdf = 0;
-            float x = uLobe * total;
+            float x = smoothShare == total ? 0 : sampler.At1D(dLobe) * total;
             if (x < smoothShare)
             {
+                var u = sampler.At2D(dDirection);
                 if (!bsdf.Sample(wo, ns, new Vector2(u.U, u.V), f, out var bs)) return;
                 wi = bs.Wi;
                 bsdfPdf = bs.Pdf * smoothProbability;
@@ -112,11 +116,10 @@ public sealed partial class PathIntegrator
                 deltaBounce = true;
             }
 
-            float uRoulette = sampler.Next1D();
             if (depth + 1 >= _rrDepth)
             {
                 float q = MathF.Min(0.95f, Max(beta));
-                if (!(q > 0) || uRoulette >= q) return;
+                if (!(q > 0) || sampler.At1D(dRoulette) >= q) return;
                 Scale(beta, 1 / q);
             }
             float side = Vector3.Dot(ng, wi) >= 0 ? 1 : -1;
@@ -125,7 +128,7 @@ public sealed partial class PathIntegrator
             depth++;
 
             var traced = ray;
-            if (!_geometry.Intersect(ref traced, out hit))
+            if (!_geometry.IntersectScattered(ref traced, out hit))
             {
                 if (_sky is not null) sink.Emitted(beta, _sky, deltaBounce ? 1 : PowerHeuristic(bsdfPdf, pick * SkyPdf(front, ray.Direction)));
                 return;

@@ -14,7 +14,8 @@ namespace SpectralRenderer.Rendering;
 /// At each vertex one light, chosen uniformly, is sampled (next-event estimation) and the BSDF is sampled to continue; both
 /// estimates of light that arrives from surfaces that emit, and from the sky, are combined by multiple importance
 /// sampling with the power heuristic w_a = p_a²/(p_a² + p_b²) (Veach &amp; Guibas 1995). Delta lights (point, spot,
-/// directional) are reached by next-event estimation only, delta lobes (mirror, Fresnel dielectric) by the BSDF only.
+/// directional) are reached by next-event estimation only, delta lobes (mirror, Fresnel dielectric) by the BSDF only; at
+/// its first dispersive glass a path splits into one sub-path per output band (PathIntegrator.Dispersion.cs).
 /// A lobe is chosen by a luminance-like channel (<see cref="FineGrid.Luminance"/>), and Russian roulette ends a path from
 /// depth <see cref="IntegratorSettings.RrDepth"/> on with survival probability min(0.95, max_λ β) (the largest band, so
 /// no band's light is starved); each band keeps its own f·cos/pdf, so no wavelength is ever sampled. The sky is the scene's <c>background</c>: the radiance of every escaping
