@@ -159,7 +159,7 @@ for label, m, pat in [
     ("mat-ior-zero", {"diffuse": 0.5, "ior": 0}, r"out of range"),
     ("mat-ior-string", {"diffuse": 0.5, "ior": "glass"}, r"expected a number or"),
     ("mat-cauchy-short", {"diffuse": 0.5, "ior": {"cauchy": [1.5]}}, r"expected \[A, B\]"),
-    ("mat-cauchy-key", {"diffuse": 0.5, "ior": {"sellmeier": [1]}}, r"unknown field 'sellmeier'"),
+    ("mat-ior-key", {"diffuse": 0.5, "ior": {"cauchy": [1.5, 4200], "abbe": 60}}, r"unknown field 'abbe'"),
     ("mat-fresnel-string", {"diffuse": 0.5, "fresnel": "yes"}, r"expected true or false"),
     ("mat-values-number", {"diffuse": {"values": 5}}, r"expected inline pairs"),
     ("mat-values-object", {"diffuse": {"values": {"a": 1}}}, r"expected inline pairs"),

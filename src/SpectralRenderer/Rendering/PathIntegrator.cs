@@ -14,7 +14,8 @@ namespace SpectralRenderer.Rendering;
 /// At each vertex one light, chosen uniformly, is sampled (next-event estimation) and the BSDF is sampled to continue; both
 /// estimates of light that arrives from surfaces that emit, and from the sky, are combined by multiple importance
 /// sampling with the power heuristic w_a = p_a²/(p_a² + p_b²) (Veach &amp; Guibas 1995). Delta lights (point, spot,
-/// directional) are reached by next-event estimation only, delta lobes (mirror, Fresnel dielectric) by the BSDF only.
+/// directional) are reached by next-event estimation only, delta lobes (mirror, Fresnel dielectric) by the BSDF only; at
+/// its first dispersive glass a path splits into one sub-path per output band (PathIntegrator.Dispersion.cs).
 /// A lobe is chosen by a luminance-like channel (<see cref="FineGrid.Luminance"/>), and Russian roulette ends a path from
 /// depth <see cref="IntegratorSettings.RrDepth"/> on with survival probability min(0.95, max_λ β) (the largest band, so
 /// no band's light is starved); each band keeps its own f·cos/pdf, so no wavelength is ever sampled. The sky is the scene's <c>background</c>: the radiance of every escaping
@@ -63,13 +64,11 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
         _smooth = new bool[materials];
         _delta = new bool[materials];
         _smoothChannel = new float[materials];
+        _dispersive = new bool[materials];
         for (int m = 0; m < materials; m++)
         {
             var material = scene.Materials[m];
-            if (material.Dispersive && (material.HasTransmission || material.HasMirror && material.Fresnel))
-                throw new InputException($"{where}: $.materials.{material.Name}.ior",
-                    $"material '{material.Name}' is dispersive (Cauchy index): the path integrator does not split paths per band yet",
-                    "give a constant \"ior\", or render dispersion with the whitted integrator");
+            _dispersive[m] = material.Dispersive && material.HasTransmission;   // its paths split per band (PathIntegrator.Dispersion.cs)
             if (material.DiffuseTexture is not null)
                 throw new InputException($"{where}: $.materials.{material.Name}.diffuse",
                     $"material '{material.Name}' is textured: the path integrator takes spectra only so far (issue 26)",
@@ -117,8 +116,8 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
     /// <summary>The internal grid's sub-bands per output band.</summary>
     public int SubBands => _grid.PerBand;
 
-    /// <summary>Scratch: L, β, f and the two delta lobes' weights, each a fine spectrum.</summary>
-    public int ScratchLength => 5 * _padded;
+    /// <summary>Scratch: L, β, f and the two delta lobes' weights, each a fine spectrum, and a band's β after a dispersive split.</summary>
+    public int ScratchLength => 6 * _padded;
 
     /// <inheritdoc/>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
@@ -287,6 +286,7 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
             }
             if (_maxDepth >= 0 && depth >= _maxDepth) break;
             if (counters.BudgetSpent) { counters.OverBudget = true; break; }
+            if (_dispersive[m]) { Disperse(ref sink, in hit, ray, depth, beta, sampler, scratch, ref counters); break; }
 
             var bsdf = _bsdf[m];
             var ns = hit.Normal;

@@ -41,7 +41,10 @@ public sealed partial class SceneLoader
         return material;
     }
 
-    /// <summary>The index of refraction per band: a number, or {"cauchy": [A, B]} for n(λ) = A + B/λ² at the band centres.</summary>
+    /// <summary>
+    /// The index of refraction per band: a number, {"cauchy": [A, B]} for n(λ) = A + B/λ², or {"sellmeier": {"B1" … "C3"}}
+    /// for n²(λ) = 1 + Σ B_i·λ²/(λ² − C_i) (λ in µm), each at the band centres (<see cref="RefractiveIndex"/>).
+    /// </summary>
     [MethodImpl(MethodImplOptions.NoOptimization)]
     (float[] Ior, bool Dispersive) Ior(JsonElement e, string path)
     {
@@ -52,15 +55,47 @@ public sealed partial class SceneLoader
             if (iorE.ValueKind == JsonValueKind.Number) ior = Const((float)Number(iorE, $"{path}.ior", 1e-3, 100));
             else if (iorE.ValueKind == JsonValueKind.Object)
             {
-                Keys(iorE, $"{path}.ior", "cauchy");
-                var c = Required(iorE, "cauchy", $"{path}.ior");
-                if (c.ValueKind != JsonValueKind.Array || c.GetArrayLength() != 2) throw Error($"{path}.ior.cauchy", "expected [A, B] with n(λ) = A + B/λ², λ in nm (B in nm²)", "e.g. \"ior\": {\"cauchy\": [1.5, 4200]}");
-                double a = Number(c[0], $"{path}.ior.cauchy[0]", 1e-3, 100), b = Number(c[1], $"{path}.ior.cauchy[1]", -1e7, 1e7);
+                Keys(iorE, $"{path}.ior", "cauchy", "sellmeier");
+                bool cauchy = TryGet(iorE, "cauchy", out var c), sellmeier = TryGet(iorE, "sellmeier", out var s);
+                if (cauchy == sellmeier)
+                    throw Error($"{path}.ior", cauchy ? "both \"cauchy\" and \"sellmeier\": give one dispersion formula" : "expected \"cauchy\" or \"sellmeier\"",
+                        "e.g. \"ior\": {\"cauchy\": [1.5, 4200]}");
+                Func<double, double> n;
+                if (cauchy)
+                {
+                    if (c.ValueKind != JsonValueKind.Array || c.GetArrayLength() != 2) throw Error($"{path}.ior.cauchy", "expected [A, B] with n(λ) = A + B/λ², λ in nm (B in nm²)", "e.g. \"ior\": {\"cauchy\": [1.5, 4200]}");
+                    double a = Number(c[0], $"{path}.ior.cauchy[0]", 1e-3, 100), b = Number(c[1], $"{path}.ior.cauchy[1]", -1e7, 1e7);
+                    n = l => RefractiveIndex.Cauchy(a, b, l);
+                    dispersive = b != 0 && _grid.Count > 1;
+                }
+                else
+                {
+                    const string Example = "e.g. Schott N-BK7: {\"B1\": 1.03961212, \"B2\": 0.231792344, \"B3\": 1.01046945, \"C1\": 0.00600069867, \"C2\": 0.0200179144, \"C3\": 103.560653}";
+                    string sp = $"{path}.ior.sellmeier";
+                    if (s.ValueKind != JsonValueKind.Object) throw Error(sp, $"expected an object of B1, B2, B3 and C1, C2, C3 (C in µm²), found {Kind(s)}", Example);
+                    Keys(s, sp, "B1", "B2", "B3", "C1", "C2", "C3");
+                    var bs = new double[3];
+                    var cs = new double[3];
+                    for (int i = 0; i < 3; i++)
+                    {
+                        bs[i] = Number(s, $"B{i + 1}", sp, 0, -100, 100);
+                        cs[i] = Number(s, $"C{i + 1}", sp, 0, 0, 1e6);
+                    }
+                    n = l => RefractiveIndex.Sellmeier(bs, cs, l);
+                }
                 ior = new float[SpectralMath.Padded(_grid.Count)];
-                for (int i = 0; i < _grid.Count; i++) { double l = _grid.Centre(i); ior[i] = (float)(a + b / (l * l)); }
-                dispersive = b != 0 && _grid.Count > 1;
+                for (int i = 0; i < _grid.Count; i++)
+                {
+                    double v = n(_grid.Centre(i));
+                    if (!(v >= 1e-3 && v <= 100))
+                        throw Error($"{path}.ior", string.Create(CultureInfo.InvariantCulture, $"the index of refraction is {v:0.####} at {_grid.Centre(i):0.###} nm (band {i + 1}): outside 0.001–100 (a Sellmeier resonance C_i = λ² in µm² inside the bands?)"),
+                            "check the coefficients' units: Cauchy B in nm², Sellmeier C_i in µm²");
+                    ior[i] = (float)v;
+                }
+                if (sellmeier)
+                    for (int i = 1; i < _grid.Count; i++) dispersive |= ior[i] != ior[0];
             }
-            else throw Error($"{path}.ior", $"expected a number or {{\"cauchy\": [A, B]}}, found {Kind(iorE)}", "e.g. \"ior\": 1.5");
+            else throw Error($"{path}.ior", $"expected a number or {{\"cauchy\": [A, B]}} or {{\"sellmeier\": {{…}}}}, found {Kind(iorE)}", "e.g. \"ior\": 1.5");
         }
         return (ior, dispersive);
     }
@@ -156,7 +191,7 @@ public sealed partial class SceneLoader
         public bool Bool(string key, bool fallback) => _loader.Bool(_e, key, _path, fallback);
         /// <summary>A required string.</summary>
         public string String(string key) => _loader.String(_loader.Required(_e, key, _path), $"{_path}.{key}");
-        /// <summary>"ior": a number or {"cauchy": [A, B]}; 1.5 when absent.</summary>
+        /// <summary>"ior": a number, {"cauchy": [A, B]} or {"sellmeier": {…}}; 1.5 when absent.</summary>
         public (float[] Ior, bool Dispersive) Ior() => _loader.Ior(_e, _path);
         /// <summary>A purely diffuse material of these band values (m_amb = m_diff), with its own BSDF or eq. 2's view.</summary>
         public Material Diffuse(float[] bands, TabulatedSpectrum? spectrum, Bsdf? bsdf = null) =>
