@@ -1,30 +1,46 @@
 using System.Numerics;
 using System.Runtime.CompilerServices;
+using System.Runtime.InteropServices;
 using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Rendering;
 
 /// <summary>
 /// A fluorescent material's shifted diffuse lobe on the path tracer's fine grid (<see cref="FineGrid"/>): the re-radiation
-/// matrix's off-diagonal part as S[o, i]/π (a Lambertian re-emission, 1/sr) integrated exactly over sub-band × sub-band
-/// (<see cref="ReradiationMatrix.ShiftOnBands(int, Func{int, double}, Func{int, double})"/>), beside the reflective diagonal
-/// that the material's BSDF already carries. Next-event estimation adds β ⊙ (S·L_e) for the light sample (a delta light, an
-/// emitter's point or a sky direction) at full weight: the shift is excited by direct light only. Light reaching the surface
-/// after another bounce would need the throughput to become a matrix (camera wavelength × current wavelength); it excites
-/// only the reflective diagonal, which the path's β carries as for any material. One N × N product per light sample.
+/// matrix's off-diagonal part as f_s[o, i] = S[o, i]/π (a Lambertian re-emission, 1/sr; emission sub-band o, excitation i)
+/// integrated exactly over sub-band × sub-band (<see cref="ReradiationMatrix.ShiftOnBands(int, Func{int, double}, Func{int, double})"/>),
+/// beside the reflective diagonal that the material's BSDF already carries. Next-event estimation adds β ⊙ (f_s·L_e) for a
+/// light sample (<see cref="AddEmitted"/>); the path's continuation may choose this lobe (PathIntegrator.Fluorescence.cs),
+/// whose throughput then maps every camera sub-band onto the excitation sub-bands (<see cref="Start"/>, <see cref="Chain"/>).
+/// Rows are padded to the grid's SIMD length, their padding 0.
 /// </summary>
 sealed class FluorescentShift
 {
-    readonly float[] _s;   // [o * n + i], 1/π folded in
-    readonly int _n;
+    readonly float[] _s;   // [o * padded + i], 1/π folded in
+    readonly int _n, _padded;
 
     public FluorescentShift(ReradiationMatrix matrix, FineGrid grid)
     {
         _n = grid.Count;
+        _padded = grid.Padded;
         var s = matrix.ShiftOnBands(_n, f => grid.Lower[f], f => grid.Upper[f]);
-        _s = new float[_n * _n];
-        for (int k = 0; k < s.Length; k++) _s[k] = (float)(s[k] / Math.PI);
+        _s = new float[_n * _padded];
+        var emitted = new float[_padded];   // S·1: the emission per sub-band under unit irradiance in every sub-band
+        for (int o = 0; o < _n; o++)
+            for (int i = 0; i < _n; i++)
+            {
+                _s[o * _padded + i] = (float)(s[o * _n + i] / Math.PI);
+                emitted[o] += (float)s[o * _n + i];
+            }
+        // The lobe's share in the continuation's lobe choice, as the smooth lobes' is their albedo's channel value: that of S·1
+        // (its albedo under light flat in every band), but at least its largest band — a lobe that turns UV into a few blue
+        // bands has little channel value yet carries all of those bands' light (as Russian roulette, too, goes by the largest
+        // band); at least 1e-6.
+        Share = Math.Max(Math.Max(grid.Luminance(emitted), emitted.Max()), 1e-6f);
     }
+
+    /// <summary>The shifted lobe's share in the lobe choice (compared with the smooth lobes' albedo channel value).</summary>
+    public float Share { get; }
 
     /// <summary>Whether wi leaves on the side wo arrives from (the diffuse lobe's hemisphere, as <c>Eq2Bsdf</c> decides it).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
@@ -34,16 +50,64 @@ sealed class FluorescentShift
         return Vector3.Dot(front, wi) > 0 && Vector3.Dot(front, wo) > 0;
     }
 
-    /// <summary>l[o] += β[o]·Σ_i S[o, i]·radiance[i]·scale.</summary>
+    /// <summary>l[o] += β[o]·Σ_i f_s[o, i]·radiance[i]·scale.</summary>
     public void AddEmitted(Span<float> l, ReadOnlySpan<float> beta, ReadOnlySpan<float> radiance, float scale)
     {
+        var r = V(radiance[.._padded]);
         for (int o = 0; o < _n; o++)
         {
             if (beta[o] == 0) continue;
-            var row = _s.AsSpan(o * _n, _n);
-            float sum = 0;
-            for (int i = 0; i < row.Length; i++) sum += row[i] * radiance[i];
-            l[o] += beta[o] * sum * scale;
+            l[o] += beta[o] * Dot(V(_s.AsSpan(o * _padded, _padded)), r) * scale;
         }
     }
+
+    /// <summary>The first shifted bounce of a path: M[o, ·] = β[o]·w·f_s[o, ·] (camera sub-band o, excitation ·).</summary>
+    public void Start(Span<float> m, ReadOnlySpan<float> beta, float w)
+    {
+        for (int o = 0; o < _n; o++)
+        {
+            var row = V(m.Slice(o * _padded, _padded));
+            var s = V(_s.AsSpan(o * _padded, _padded));
+            var c = new Vector<float>(beta[o] * w);
+            for (int k = 0; k < row.Length; k++) row[k] = s[k] * c;
+        }
+    }
+
+    /// <summary>A further shifted bounce: M ← M·diag(β·w)·f_s, one row at a time through <paramref name="row"/>.</summary>
+    public void Chain(Span<float> m, ReadOnlySpan<float> beta, float w, Span<float> row)
+    {
+        var r = V(row[.._padded]);
+        for (int o = 0; o < _n; o++)
+        {
+            var mo = m.Slice(o * _padded, _padded);
+            r.Clear();
+            for (int j = 0; j < _n; j++)
+            {
+                float c = mo[j] * beta[j] * w;
+                if (c == 0) continue;
+                var s = V(_s.AsSpan(j * _padded, _padded));
+                var vc = new Vector<float>(c);
+                for (int k = 0; k < r.Length; k++) r[k] += s[k] * vc;
+            }
+            r.CopyTo(V(mo));
+        }
+    }
+
+    /// <summary>dst[o] += Σ_i M[o, i]·x[i] for the <paramref name="rows"/> camera sub-bands (M's rows padded to x's length).</summary>
+    public static void AddProduct(Span<float> dst, ReadOnlySpan<float> m, ReadOnlySpan<float> x, int rows)
+    {
+        var vx = V(x);
+        for (int o = 0; o < rows; o++) dst[o] += Dot(V(m.Slice(o * x.Length, x.Length)), vx);
+    }
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    static float Dot(ReadOnlySpan<Vector<float>> a, ReadOnlySpan<Vector<float>> b)
+    {
+        var s = Vector<float>.Zero;
+        for (int k = 0; k < a.Length; k++) s += a[k] * b[k];
+        return Vector.Sum(s);
+    }
+
+    static Span<Vector<float>> V(Span<float> s) => MemoryMarshal.Cast<float, Vector<float>>(s);
+    static ReadOnlySpan<Vector<float>> V(ReadOnlySpan<float> s) => MemoryMarshal.Cast<float, Vector<float>>(s);
 }

@@ -23,7 +23,7 @@ namespace SpectralRenderer.Rendering;
 /// any thread count, tile order or shard; nothing is allocated per path.
 /// </summary>
 [CompiledAtFirstCall]
-public sealed class PathIntegrator : IAnalysisIntegrator
+public sealed partial class PathIntegrator : IAnalysisIntegrator
 {
     readonly SceneGeometry _geometry;
     readonly FineGrid _grid;
@@ -116,8 +116,8 @@ public sealed class PathIntegrator : IAnalysisIntegrator
     /// <summary>The internal grid's sub-bands per output band.</summary>
     public int SubBands => _grid.PerBand;
 
-    /// <summary>Scratch: L, β, f and the two delta lobes' weights, each a fine spectrum.</summary>
-    public int ScratchLength => 5 * _padded;
+    /// <summary>Scratch: L, β, f and the two delta lobes' weights, each a fine spectrum; a fluorescent scene's shifted paths' (<see cref="ShiftScratch"/>).</summary>
+    public int ScratchLength => 5 * _padded + ShiftScratch;
 
     /// <inheritdoc/>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
@@ -205,6 +205,8 @@ public sealed class PathIntegrator : IAnalysisIntegrator
         void NextEvent(int light, Span<float> beta, Span<float> f, float[] radiance, float s);
         /// <summary>β ⊙ (S·E) · s: a fluorescent surface's shifted lobe S excited by next-event light <paramref name="light"/>.</summary>
         void Shifted(int light, FluorescentShift shift, Span<float> beta, float[] radiance, float s);
+        /// <summary>Where emitters and the sky go: a path continued through a shifted lobe remaps it (PathIntegrator.Fluorescence.cs).</summary>
+        Span<float> Fixed { get; }
     }
 
     ref struct FilmSink(Span<float> l) : IPathSink
@@ -215,6 +217,7 @@ public sealed class PathIntegrator : IAnalysisIntegrator
             AddProduct3(_l, beta, f, radiance, s);
         public readonly void Shifted(int light, FluorescentShift shift, Span<float> beta, float[] radiance, float s) =>
             shift.AddEmitted(_l, beta, radiance, s);
+        public readonly Span<float> Fixed => _l;
     }
 
     ref struct TransferSink(Span<float> groups, int padded, int lights) : IPathSink
@@ -232,6 +235,7 @@ public sealed class PathIntegrator : IAnalysisIntegrator
         {
             if (light < 0) shift.AddEmitted(_groups.Slice(lights * padded, padded), beta, radiance, s);
         }
+        public readonly Span<float> Fixed => _groups.Slice(lights * padded, padded);
     }
 
     /// <summary>The path of one camera sample; the light it finds goes to <paramref name="sink"/>. Returns the first object hit.</summary>
@@ -252,7 +256,7 @@ public sealed class PathIntegrator : IAnalysisIntegrator
         bool deltaBounce = true;     // the last bounce was a delta lobe (or the camera): emitters seen count in full
         float bsdfPdf = 0;           // the last bounce's solid-angle density (lobe choice included), for MIS
         Vector3 previous = default, previousFront = default;
-        int first = -1;
+        int first = -1, shifted = 0;   // shifted: the path's shifted bounces so far (PathIntegrator.Fluorescence.cs)
         for (int depth = 0; ; depth++)
         {
             var traced = ray;
@@ -300,13 +304,14 @@ public sealed class PathIntegrator : IAnalysisIntegrator
                 mirrorShare = bsdf.SampleMirror(wo, ns, -1, mirror, out wiMirror) ? _grid.Luminance(mirror) : 0;
                 transmitShare = bsdf.SampleTransmission(wo, ns, -1, transmit, out wiTransmit) ? _grid.Luminance(transmit) : 0;
             }
-            float total = smoothShare + mirrorShare + transmitShare;
+            float shiftShare = _shift[m] is { } fluorescent ? fluorescent.Share : 0;   // the shifted lobe's (fluorescence)
+            float total = smoothShare + mirrorShare + transmitShare + shiftShare;
             float smoothProbability = total > 0 ? smoothShare / total : 0;
 
             // Next-event estimation: one light chosen uniformly, one point on it.
             float uLight = sampler.Next1D();
             var uPoint = sampler.Next2D();
-            if (_smooth[m] && _lightCount > 0)
+            if ((_smooth[m] || shiftShare > 0) && _lightCount > 0)
                 NextEvent(ref sink, bsdf, _shift[m], p, ng, ns, front, wo, uLight, new Vector2(uPoint.U, uPoint.V), pick, smoothProbability, beta, f, ref counters);
 
             // Continue: choose a lobe, then a direction from it; β gains f·|cos θ|/pdf per band.
@@ -330,6 +335,12 @@ public sealed class PathIntegrator : IAnalysisIntegrator
                 Multiply(beta, mirror, total / mirrorShare);
                 deltaBounce = true;
             }
+            else if (shiftShare > 0 && x >= smoothShare + mirrorShare + transmitShare)
+            {
+                if (!ShiftedBounce(ref sink, _shift[m]!, shiftShare / total, wo, ns, front, new Vector2(u.U, u.V), beta, scratch, ref shifted,
+                    out wi, out bsdfPdf)) break;
+                deltaBounce = false;
+            }
             else
             {
                 wi = wiTransmit;
@@ -351,6 +362,7 @@ public sealed class PathIntegrator : IAnalysisIntegrator
             ray = new Ray(p + side * _geometry.Epsilon * ng, wi);
             counters.Secondary++;
         }
+        if (shifted > 0) FinishShifted(sink.Fixed, scratch);
         return first;
     }
 
@@ -408,7 +420,9 @@ public sealed class PathIntegrator : IAnalysisIntegrator
         if (_geometry.Occluded(shadow)) return;
         float w = delta ? 1 : PowerHeuristic(pick * pdf, smoothProbability * bsdf.Pdf(wo, wi, ns));
         sink.NextEvent(k < _lights.Length ? k : -1, beta, f, radiance, factor * cos * w / (pick * pdf));
-        // A fluorescent surface's shifted lobe is excited by this light sample alone (no BSDF-sampled counterpart): weight 1.
+        // A fluorescent surface's shifted lobe: light sources excite it through this sample alone, weight 1 (a shifted bounce
+        // of the continuation gives the sources it reaches weight 0 and carries only light from further bounces:
+        // PathIntegrator.Fluorescence.cs).
         if (shift is not null && FluorescentShift.Reflects(wo, wi, ns)) sink.Shifted(k < _lights.Length ? k : -1, shift, beta, radiance, factor * cos / (pick * pdf));
     }
 
