@@ -18,6 +18,8 @@ sealed class FluorescentShift
 {
     readonly float[] _s;   // [o * padded + i], 1/π folded in
     readonly int _n, _padded;
+    readonly int[] _first, _end;   // per row, the SIMD vectors [first, end) that hold its non-zero entries (a shift is band-limited)
+    readonly float[] _rowSum;      // Σ_i f_s[o, i]
 
     public FluorescentShift(ReradiationMatrix matrix, FineGrid grid)
     {
@@ -37,6 +39,17 @@ sealed class FluorescentShift
         // bands has little channel value yet carries all of those bands' light (as Russian roulette, too, goes by the largest
         // band); at least 1e-6.
         Share = Math.Max(Math.Max(grid.Luminance(emitted), emitted.Max()), 1e-6f);
+        _rowSum = new float[_n];
+        for (int o = 0; o < _n; o++) _rowSum[o] = (float)(emitted[o] / Math.PI);
+        _first = new int[_n];
+        _end = new int[_n];
+        int width = Vector<float>.Count;
+        for (int o = 0; o < _n; o++)
+        {
+            int lo = -1, hi = -1;
+            for (int i = 0; i < _n; i++) if (_s[o * _padded + i] != 0) { if (lo < 0) lo = i; hi = i; }
+            if (lo >= 0) { _first[o] = lo / width; _end[o] = hi / width + 1; }
+        }
     }
 
     /// <summary>The shifted lobe's share in the lobe choice (compared with the smooth lobes' albedo channel value).</summary>
@@ -50,15 +63,61 @@ sealed class FluorescentShift
         return Vector3.Dot(front, wi) > 0 && Vector3.Dot(front, wo) > 0;
     }
 
-    /// <summary>l[o] += β[o]·Σ_i f_s[o, i]·radiance[i]·scale.</summary>
-    public void AddEmitted(Span<float> l, ReadOnlySpan<float> beta, ReadOnlySpan<float> radiance, float scale)
+    /// <summary>f_s·E of each light source's fixed spectrum E, keyed by the array itself (<see cref="Prepare"/>).</summary>
+    readonly Dictionary<float[], float[]> _emitted = new(ReferenceEqualityComparer.Instance);
+
+    /// <summary>
+    /// Computes f_s·E once for each source spectrum of the scene (delta lights, emitters, the sky), so a next-event sample
+    /// costs N products instead of N² — up to <paramref name="maxFloats"/> floats; further spectra are multiplied per sample.
+    /// </summary>
+    public void Prepare(IEnumerable<float[]> spectra, int maxFloats = 1 << 22)
     {
-        var r = V(radiance[.._padded]);
+        foreach (var e in spectra)
+        {
+            if (_emitted.ContainsKey(e)) continue;
+            if ((_emitted.Count + 1) * _padded > maxFloats) break;
+            var se = new float[_padded];
+            var r = V(e.AsSpan(0, _padded));
+            for (int o = 0; o < _n; o++) se[o] = Dot(V(_s.AsSpan(o * _padded, _padded)), r, _first[o], _end[o]);
+            _emitted[e] = se;
+        }
+    }
+
+    /// <summary>l[o] += β[o]·Σ_i f_s[o, i]·radiance[i]·scale.</summary>
+    public void AddEmitted(Span<float> l, ReadOnlySpan<float> beta, float[] radiance, float scale)
+    {
+        if (_emitted.TryGetValue(radiance, out var se))
+        {
+            var vl = V(l[.._padded]);
+            var vb = V(beta[.._padded]);
+            var ve = V(se.AsSpan());
+            var vs = new Vector<float>(scale);
+            for (int k = 0; k < vl.Length; k++) vl[k] += vb[k] * ve[k] * vs;
+            return;
+        }
+        AddShifted(l, beta, radiance, scale);
+    }
+
+    /// <summary>l[o] += β[o]·Σ_i f_s[o, i]·x[i]·scale, over each row's non-zero span.</summary>
+    public void AddShifted(Span<float> l, ReadOnlySpan<float> beta, ReadOnlySpan<float> x, float scale)
+    {
+        var r = V(x[.._padded]);
         for (int o = 0; o < _n; o++)
         {
             if (beta[o] == 0) continue;
-            l[o] += beta[o] * Dot(V(_s.AsSpan(o * _padded, _padded)), r) * scale;
+            l[o] += beta[o] * Dot(V(_s.AsSpan(o * _padded, _padded)), r, _first[o], _end[o]) * scale;
         }
+    }
+
+    /// <summary>
+    /// ‖diag(β·w)·f_s‖∞ = max_o β[o]·w·Σ_i f_s[o, i]: how much a shifted bounce can amplify the light beyond it on its way to
+    /// the film (the product over a path's shifted bounces bounds its camera-side transform, for Russian roulette).
+    /// </summary>
+    public float Gain(ReadOnlySpan<float> beta, float w)
+    {
+        float g = 0;
+        for (int o = 0; o < _n; o++) g = MathF.Max(g, beta[o] * _rowSum[o]);
+        return g * w;
     }
 
     /// <summary>The first shifted bounce of a path: M[o, ·] = β[o]·w·f_s[o, ·] (camera sub-band o, excitation ·).</summary>
@@ -87,7 +146,7 @@ sealed class FluorescentShift
                 if (c == 0) continue;
                 var s = V(_s.AsSpan(j * _padded, _padded));
                 var vc = new Vector<float>(c);
-                for (int k = 0; k < r.Length; k++) r[k] += s[k] * vc;
+                for (int k = _first[j]; k < _end[j]; k++) r[k] += s[k] * vc;
             }
             r.CopyTo(V(mo));
         }
@@ -97,14 +156,15 @@ sealed class FluorescentShift
     public static void AddProduct(Span<float> dst, ReadOnlySpan<float> m, ReadOnlySpan<float> x, int rows)
     {
         var vx = V(x);
-        for (int o = 0; o < rows; o++) dst[o] += Dot(V(m.Slice(o * x.Length, x.Length)), vx);
+        for (int o = 0; o < rows; o++) dst[o] += Dot(V(m.Slice(o * x.Length, x.Length)), vx, 0, vx.Length);
     }
 
+    /// <summary>Σ a[k]·b[k] over the vectors [from, end) (the rest of a is 0).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    static float Dot(ReadOnlySpan<Vector<float>> a, ReadOnlySpan<Vector<float>> b)
+    static float Dot(ReadOnlySpan<Vector<float>> a, ReadOnlySpan<Vector<float>> b, int from, int end)
     {
         var s = Vector<float>.Zero;
-        for (int k = 0; k < a.Length; k++) s += a[k] * b[k];
+        for (int k = from; k < end; k++) s += a[k] * b[k];
         return Vector.Sum(s);
     }
 

@@ -22,18 +22,21 @@ public sealed partial class PathIntegrator
     // one strategy: unbiased, and direct excitation keeps next-event estimation's low noise. A non-fluorescent material never
     // takes this branch and draws no extra random number: its paths are those of a scene without fluorescence.
 
-    /// <summary>Scratch for shifted paths: the saved film, a row, and M (sub-bands × padded) — only in a fluorescent scene.</summary>
-    int ShiftScratch => Fluoresces ? (_grid.Count + 2) * _padded : 0;
+    /// <summary>Scratch for shifted paths: the saved film, a row, β_0·w_1, and M (sub-bands × padded) — only in a fluorescent scene.</summary>
+    int ShiftScratch => Fluoresces ? (_grid.Count + 3) * _padded : 0;
 
     /// <summary>
     /// The continuation through the shifted lobe of <paramref name="shift"/>, chosen with probability <paramref name="probability"/>:
-    /// ωi cosine-weighted about <paramref name="front"/>, the film's collected light saved (or folded by the current M), M
-    /// extended by diag(β)·f_s·w, β reset to 1. <paramref name="pdf"/> is 0: sources reached next are next-event estimation's.
+    /// ωi cosine-weighted about <paramref name="front"/>, the film's collected light saved (or folded into it), the transform
+    /// extended by diag(β)·f_s·w, β reset to 1, <paramref name="gain"/> (a bound of the transform's amplification, which Russian
+    /// roulette multiplies into β's largest band) times its ‖·‖∞. The first bounce keeps M_1 = diag(β_0·w_1)·f_s as its factors (N·span products
+    /// to fold); a second one makes M explicit. <paramref name="pdf"/> is 0: sources reached next are next-event estimation's.
     /// False when ωi leaves the lobe's hemisphere (the path ends).
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     bool ShiftedBounce<TSink>(ref TSink sink, FluorescentShift shift, float probability, Vector3 wo, Vector3 ns, Vector3 front, Vector2 u,
-        Span<float> beta, Span<float> scratch, ref int shifted, out Vector3 wi, out float pdf) where TSink : IPathSink, allows ref struct
+        Span<float> beta, Span<float> scratch, ref int shifted, ref FluorescentShift? firstShift, ref float gain, out Vector3 wi, out float pdf)
+        where TSink : IPathSink, allows ref struct
     {
         wi = Bsdf.CosineHemisphere(front, u);
         pdf = 0;
@@ -44,17 +47,25 @@ public sealed partial class PathIntegrator
         var film = sink.Fixed;
         var saved = scratch.Slice(5 * n, n);
         var row = scratch.Slice(6 * n, n);
-        var m = scratch.Slice(7 * n, _grid.Count * n);
+        var beta0 = scratch.Slice(7 * n, n);
+        var m = scratch.Slice(8 * n, _grid.Count * n);
         if (shifted == 0)
-        {
+        {   // M_1 = diag(β_0·w_1)·f_s, kept as its factors
             film.CopyTo(saved);
-            shift.Start(m, beta, w);
+            for (int i = 0; i < n; i++) beta0[i] = beta[i] * w;
+            firstShift = shift;
         }
         else
         {
-            FluorescentShift.AddProduct(saved, m, film, _grid.Count);
+            if (shifted == 1)
+            {
+                firstShift!.AddShifted(saved, beta0, film, 1);
+                firstShift.Start(m, beta0, 1);
+            }
+            else FluorescentShift.AddProduct(saved, m, film, _grid.Count);
             shift.Chain(m, beta, w, row);
         }
+        gain *= shift.Gain(beta, w);
         film.Clear();
         beta.Clear();
         beta[.._grid.Count].Fill(1);   // the padding stays 0
@@ -63,11 +74,12 @@ public sealed partial class PathIntegrator
     }
 
     /// <summary>The path's end after shifted bounces: the film is the saved film plus M·X (X what was collected since the last).</summary>
-    void FinishShifted(Span<float> film, Span<float> scratch)
+    void FinishShifted(Span<float> film, Span<float> scratch, int shifted, FluorescentShift? firstShift)
     {
         int n = _padded;
         var saved = scratch.Slice(5 * n, n);
-        FluorescentShift.AddProduct(saved, scratch.Slice(7 * n, _grid.Count * n), film, _grid.Count);
+        if (shifted == 1) firstShift!.AddShifted(saved, scratch.Slice(7 * n, n), film, 1);
+        else FluorescentShift.AddProduct(saved, scratch.Slice(8 * n, _grid.Count * n), film, _grid.Count);
         saved.CopyTo(film);
     }
 }

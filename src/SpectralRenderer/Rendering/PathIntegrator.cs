@@ -108,6 +108,7 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
         _background = _grid.Resample(scene.Background);
         _sky = Spectra.SpectralMath.Any(scene.Background) ? _background : null;
         _lightCount = _lights.Length + _emitters.Length + (_sky is null ? 0 : 1);
+        foreach (var shift in _shift) shift?.Prepare([.. _lightRadiance, .. _emitters.Select(e => e.Radiance), .. _sky is null ? [] : new[] { _sky }]);
     }
 
     /// <summary>The sampler of its camera samples: Owen-scrambled Sobol unless the scene's "sampler" says otherwise.</summary>
@@ -256,7 +257,9 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
         bool deltaBounce = true;     // the last bounce was a delta lobe (or the camera): emitters seen count in full
         float bsdfPdf = 0;           // the last bounce's solid-angle density (lobe choice included), for MIS
         Vector3 previous = default, previousFront = default;
-        int first = -1, shifted = 0;   // shifted: the path's shifted bounces so far (PathIntegrator.Fluorescence.cs)
+        int first = -1, shifted = 0;   // shifted: the path's shifted bounces so far, the first one's lobe (PathIntegrator.Fluorescence.cs)
+        FluorescentShift? firstShift = null;
+        float gain = 1;   // a bound of the shifted bounces' amplification towards the film (1 without them)
         for (int depth = 0; ; depth++)
         {
             var traced = ray;
@@ -338,7 +341,7 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
             else if (shiftShare > 0 && x >= smoothShare + mirrorShare + transmitShare)
             {
                 if (!ShiftedBounce(ref sink, _shift[m]!, shiftShare / total, wo, ns, front, new Vector2(u.U, u.V), beta, scratch, ref shifted,
-                    out wi, out bsdfPdf)) break;
+                    ref firstShift, ref gain, out wi, out bsdfPdf)) break;
                 deltaBounce = false;
             }
             else
@@ -354,7 +357,7 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
             float uRoulette = sampler.Next1D();
             if (depth + 1 >= _rrDepth)
             {
-                float q = MathF.Min(0.95f, Max(beta));
+                float q = MathF.Min(0.95f, Max(beta) * gain);
                 if (!(q > 0) || uRoulette >= q) break;
                 Scale(beta, 1 / q);
             }
@@ -362,7 +365,7 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
             ray = new Ray(p + side * _geometry.Epsilon * ng, wi);
             counters.Secondary++;
         }
-        if (shifted > 0) FinishShifted(sink.Fixed, scratch);
+        if (shifted > 0) FinishShifted(sink.Fixed, scratch, shifted, firstShift);
         return first;
     }
 
