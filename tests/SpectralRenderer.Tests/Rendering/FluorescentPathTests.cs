@@ -201,4 +201,29 @@ public sealed class FluorescentPathTests(Xunit.Abstractions.ITestOutputHelper ou
         Assert.True(allowed < 0.1 * r * absorbed, "the test must tell this from next-event excitation only, which re-emits (1 − R) of it");
         Assert.True(Math.Abs(la - 0.5 / (1 - r)) <= 4 * laError + 1e-5, $"L_a {la} vs {0.5 / (1 - r)}");
     }
+    /// <summary>
+    /// A fluorescent scene lit only by emitters keeps a per-light transfer (nothing to relight, one fixed group): its fixed light,
+    /// collected by the transfer's walk through the same shifted bounces, is the film's radiance (5 nm bands = the sub-bands).
+    /// </summary>
+    [Fact]
+    public void A_fluorescent_scene_lit_by_emitters_only_has_its_fixed_transfer_equal_to_the_film()
+    {
+        var d = new double[N * N];
+        for (int i = 0; i < N; i++) d[i * N + i] = 0.5;
+        for (int o = 20; o < N; o++) d[o * N + 10] = 0.4 * Cells[10] / Cells[o] / (N - 20);
+        var scene = Furnace(WriteCsv("transfer.csv", d), "[[300, 1], [780, 2]]");
+        var transfer = PathTransfer.Trace(scene, new PathIntegrator(scene, new SceneGeometry(scene)));
+        var film = Renderer.Render(scene, new PathIntegrator(scene, new SceneGeometry(scene))).Image;
+        Assert.Equal(0, transfer.Lights);
+        double worst = 0;
+        for (int y = 0; y < film.Height; y++)
+            for (int x = 0; x < film.Width; x++)
+                for (int b = 0; b < N; b++)
+                {
+                    double t = transfer.Data[(y * film.Width + x) * transfer.SubBands + b], f = film[x, y, b];
+                    worst = Math.Max(worst, Math.Abs(t - f) / f);
+                }
+        output.WriteLine($"fixed transfer vs film: largest relative difference {worst:E2}");
+        Assert.True(worst < 1e-5, $"{worst:E2}");
+    }
 }
