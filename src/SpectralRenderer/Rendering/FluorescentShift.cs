@@ -159,6 +159,14 @@ sealed class FluorescentShift
         for (int o = 0; o < rows; o++) dst[o] += Dot(V(m.Slice(o * x.Length, x.Length)), vx, 0, vx.Length);
     }
 
+    /// <summary>dst += x (padded spectra).</summary>
+    public static void Add(Span<float> dst, ReadOnlySpan<float> x)
+    {
+        var d = V(dst);
+        var vx = V(x);
+        for (int k = 0; k < d.Length; k++) d[k] += vx[k];
+    }
+
     /// <summary>Σ a[k]·b[k] over the vectors [from, end) (the rest of a is 0).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     static float Dot(ReadOnlySpan<Vector<float>> a, ReadOnlySpan<Vector<float>> b, int from, int end)

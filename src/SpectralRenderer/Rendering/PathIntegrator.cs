@@ -257,8 +257,7 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
         bool deltaBounce = true;     // the last bounce was a delta lobe (or the camera): emitters seen count in full
         float bsdfPdf = 0;           // the last bounce's solid-angle density (lobe choice included), for MIS
         Vector3 previous = default, previousFront = default;
-        int first = -1, shifted = 0;   // shifted: the path's shifted bounces so far, the first one's lobe (PathIntegrator.Fluorescence.cs)
-        FluorescentShift? firstShift = null;
+        int first = -1, shifted = 0;   // shifted: the path's shifted bounces so far (PathIntegrator.Fluorescence.cs)
         float gain = 1;   // a bound of the shifted bounces' amplification towards the film (1 without them)
         for (int depth = 0; ; depth++)
         {
@@ -340,8 +339,8 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
             }
             else if (shiftShare > 0 && x >= smoothShare + mirrorShare + transmitShare)
             {
-                if (!ShiftedBounce(ref sink, _shift[m]!, shiftShare / total, wo, ns, front, new Vector2(u.U, u.V), beta, scratch, ref shifted,
-                    ref firstShift, ref gain, out wi, out bsdfPdf)) break;
+                if (!ShiftedBounce(ref sink, m, shiftShare / total, wo, ns, front, new Vector2(u.U, u.V), beta, scratch, ref shifted,
+                    ref gain, out wi, out bsdfPdf)) break;
                 deltaBounce = false;
             }
             else
@@ -365,7 +364,7 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
             ray = new Ray(p + side * _geometry.Epsilon * ng, wi);
             counters.Secondary++;
         }
-        if (shifted > 0) FinishShifted(sink.Fixed, scratch, shifted, firstShift);
+        if (shifted > 0) FinishShifted(sink.Fixed, scratch, shifted);
         return first;
     }
 
