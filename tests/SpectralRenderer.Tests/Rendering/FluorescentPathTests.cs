@@ -226,4 +226,18 @@ public sealed class FluorescentPathTests(Xunit.Abstractions.ITestOutputHelper ou
         output.WriteLine($"fixed transfer vs film: largest relative difference {worst:E2}");
         Assert.True(worst < 1e-5, $"{worst:E2}");
     }
+    [Fact]
+    public void A_fluorescent_path_render_is_the_same_on_one_thread_and_on_several()
+    {
+        // The cascade's furnace (nested shifted bounces): random numbers only from each camera sample's sampler, scratch per thread.
+        var d = new double[N * N];
+        for (int i = 0; i < N; i++) d[i * N + i] = 0.3;
+        d[30 * N + 9] = 0.6 * Cells[9] / Cells[30];
+        d[60 * N + 30] = 0.6 * Cells[30] / Cells[60];
+        var scene = Furnace(WriteCsv("threads.csv", d), "[[300, 1], [780, 2]]");
+        var one = Renderer.Render(scene, new PathIntegrator(scene, new SceneGeometry(scene)), threads: 1);
+        var several = Renderer.Render(scene, new PathIntegrator(scene, new SceneGeometry(scene)), threads: 3);
+        Assert.Equal(one.Image.Data, several.Image.Data);
+        Assert.Equal(one.Xyz!, several.Xyz!);
+    }
 }
