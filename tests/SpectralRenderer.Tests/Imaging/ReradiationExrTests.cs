@@ -123,6 +123,17 @@ public sealed class ReradiationExrTests(ITestOutputHelper output) : IDisposable
         Assert.Equal(0, m[0, 1]);
     }
 
+    [Fact]
+    public void The_fuzz_seed_is_a_valid_bispectral_matrix()
+    {
+        // fuzz/seeds/matrix/bispectral.exr (the "matrix" fuzz target starts from it): 350, 400, 450 nm, three re-radiations.
+        var m = ReradiationExrReader.Read(Repo.PathOf("fuzz", "seeds", "matrix", "bispectral.exr"));
+        Assert.Equal([350.0, 400.0, 450.0], m.Wavelengths.ToArray());
+        Assert.Equal((double)0.6f, m[1, 1]);
+        Assert.Equal((double)0.1f, m[2, 0]);   // emission 450 nm, excitation 350 nm
+        Assert.True(m.HasShift);
+    }
+
     /// <summary>Each broken file: the one-line message names the file and the channel, and the CLI exits 2.</summary>
     [Fact]
     public void A_broken_bispectral_file_exits_2_naming_the_file_and_the_channel()
