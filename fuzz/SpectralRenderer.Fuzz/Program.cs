@@ -52,6 +52,7 @@ public static class Program
         ["obj"] = b => ObjReader.Parse((ReadOnlySpan<byte>)b, "fuzz.obj"),
         ["ply"] = b => PlyReader.Parse(b, "fuzz.ply"),
         ["exr"] = b => ExrReader.Read(b, "fuzz.exr"),
+        ["matrix"] = b => ReradiationExrReader.Read(b, "fuzz.exr"),   // a bispectral re-radiation matrix (Fichet et al. 2021)
         ["npy"] = b => NpyReader.Read(new MemoryStream(b), "fuzz.npy"),
         ["png"] = b => PngReader.Read(new MemoryStream(b), "fuzz.png"),
         ["ies"] = b => IesReader.Parse(Encoding.UTF8.GetString(b), "fuzz.ies").Table.Evaluate(10, 20),

@@ -567,6 +567,33 @@ for label, data, pat in [
     write(label + ".exr", data)
     folder_case(label, ["remove r/spectral.npy", f"copy {{in}}/{label}.exr r/spectral.exr"], pat, "spectral.exr", EXRPLACE)
 
+# A fluorescent material's re-radiation matrix as a bispectral OpenEXR (Fichet et al. 2021: T.<λ>nm the diagonal,
+# T.<λin>nm.<λout>nm the re-radiation): one line naming the .exr and the channel (issue 26).
+def exr_image(channels, w=1, h=1):
+    names = sorted(channels)
+    head = exr_header([("channels", "chlist", chlist(names)), ("compression", "compression", b"\0"), ("dataWindow", "box2i", box(0, 0, w - 1, h - 1))])
+    line = 4 * w * len(names)
+    out = head + b"".join(struct.pack("<Q", len(head) + 8 * h + y * (8 + line)) for y in range(h))
+    for y in range(h):
+        out += struct.pack("<ii", y, line) + b"".join(struct.pack("<f", v) for n in names for v in channels[n][y * w:(y + 1) * w])
+    return out
+
+MATRIXPLACE = r"\.exr: (channel 'T\.|header attribute 'channels')"
+for label, channels, w, pat in [
+    ("matrix-bad-name", {"T.400nm": [0.5], "T.410nm": [0.5], "T.400nm.41Onm": [0.1]}, 1, r"'T\.400nm\.41Onm': is not a reflective channel name"),
+    ("matrix-no-diagonal", {"T.400nm": [0.5], "T.420nm": [0.5], "T.410nm.420nm": [0.01]}, 1, r"excitation 410 nm has no diagonal channel"),
+    ("matrix-gap", {"T.400nm": [0.5], "T.410nm": [0.5], "T.430nm": [0.5]}, 1, r"'T\.430nm': follows T\.410nm: no diagonal channel at 420 nm"),
+    ("matrix-nan", {"T.400nm": [float("nan")], "T.410nm": [0.5]}, 1, r"'T\.400nm': pixel \(0, 0\) is not finite"),
+    ("matrix-negative", {"T.400nm": [0.5], "T.410nm": [0.5], "T.400nm.410nm": [-0.1]}, 1, r"is negative"),
+    ("matrix-varying", {"T.400nm": [0.5, 0.6], "T.410nm": [0.5, 0.5]}, 2, r"differs between pixels \(0, 0\) and \(1, 0\)"),
+    ("matrix-bright", {"T.400nm": [0.9], "T.410nm": [0.5], "T.400nm.410nm": [0.5]}, 1, r"excitation 400 nm re-emits"),
+    ("matrix-rgb", {"R": [1.0], "G": [1.0], "B": [1.0]}, 1, r"no reflective diagonal channels"),
+]:
+    fname = write(f"exr-{label}.exr", exr_image(channels, w))
+    s = deep(BASE); s["materials"]["green"] = {"type": "lambertian", "fluorescence": {"matrix": fname}}
+    sname = write(f"exr-{label}.json", scene_text(s))
+    case(f"exr/{label}", render("{in}/" + sname), pat, 2, fname, MATRIXPLACE)
+
 ENVIPLACE = r"\.(hdr|img): (header|key|byte|line|data)"
 def envi(samples=8, lines=6, bands=20, dtype=4, extra="", wl=True):
     w = "wavelength = {" + ", ".join(str(390 + 20 * i) for i in range(bands)) + "}\n" if wl else ""

@@ -48,6 +48,43 @@ public static class ExrReader
 
     public static ExrSpectralFile Read(byte[] bytes, string where = "EXR")
     {
+        var (width, height, channels, planes, strings, kappa, edgeVector, compression) = ReadChannels(bytes, where);
+
+        // Spectral channels: S0.<λ>nm (emissive) preferred, else T.<λ>nm (reflective); sorted by wavelength.
+        var spectral = new List<(int Index, double Lambda, string Kind)>();
+        for (int c = 0; c < channels.Count; c++)
+        {
+            var m = SpectralName.Match(channels[c].Name);
+            if (m.Success) spectral.Add((c, double.Parse(m.Groups[2].Value.Replace(',', '.'), CultureInfo.InvariantCulture), m.Groups[1].Value));
+        }
+        string kind = spectral.Any(s => s.Kind == "S0") ? "S0" : "T";
+        spectral = spectral.Where(s => s.Kind == kind).OrderBy(s => s.Lambda).ToList();
+        if (spectral.Count == 0)
+            throw new InputException($"{where}: header attribute 'channels'", "no spectral channels", "expected channels named S0.<λ>nm or T.<λ>nm (Fichet et al. 2021), e.g. S0.390,000000nm");
+
+        var grid = Grid(spectral.Select(s => s.Lambda).ToArray(), strings.GetValueOrDefault("spectralBandEdges"), edgeVector, where);
+        var image = new SpectralImage(width, height, grid);
+        for (int b = 0; b < spectral.Count; b++)
+        {
+            var plane = planes[spectral[b].Index];
+            for (int i = 0, p = b; i < plane.Length; i++, p += grid.Count) image.Data[p] = plane[i];
+        }
+        var used = spectral.Select(s => s.Index).ToHashSet();
+        var others = new Dictionary<string, float[]>(StringComparer.Ordinal);
+        for (int c = 0; c < channels.Count; c++) if (!used.Contains(c)) others[channels[c].Name] = planes[c];
+        var types = channels.ToDictionary(c => c.Name, c => c.Type == 1 ? ExrPixelType.Half : ExrPixelType.Float, StringComparer.Ordinal);
+        return new ExrSpectralFile(image, kind == "T", others, types, strings, kappa, compression);
+    }
+
+    /// <summary>
+    /// Every channel of a file, whatever its name: the data window's size, the channels (name, pixel type 0 UINT, 1 HALF,
+    /// 2 FLOAT) in the header's order with their row-major planes, the string attributes, spectralKappa, the spectralBandEdges
+    /// float vector and the compression. The spectral readers (<see cref="Read(byte[], string)"/>, the bispectral
+    /// re-radiation matrix) name their channels from it.
+    /// </summary>
+    public static (int Width, int Height, List<(string Name, int Type)> Channels, float[][] Planes, Dictionary<string, string> Strings,
+        double? Kappa, float[]? EdgeVector, int Compression) ReadChannels(byte[] bytes, string where)
+    {
         var r = new Cursor(bytes, where);
         // Magic number and version field.
         if (bytes.Length < 8 || BinaryPrimitives.ReadInt32LittleEndian(bytes) != ExrWriter.Magic)
@@ -195,31 +232,7 @@ public static class ExrReader
             done[chunk] = true;
         }
         if (done.Any(d => !d)) throw new InputException($"{where}: chunk table", "some scanlines have no chunk (incomplete file)", "the file was cut short: write it again");
-
-        // Spectral channels: S0.<λ>nm (emissive) preferred, else T.<λ>nm (reflective); sorted by wavelength.
-        var spectral = new List<(int Index, double Lambda, string Kind)>();
-        for (int c = 0; c < channels.Count; c++)
-        {
-            var m = SpectralName.Match(channels[c].Name);
-            if (m.Success) spectral.Add((c, double.Parse(m.Groups[2].Value.Replace(',', '.'), CultureInfo.InvariantCulture), m.Groups[1].Value));
-        }
-        string kind = spectral.Any(s => s.Kind == "S0") ? "S0" : "T";
-        spectral = spectral.Where(s => s.Kind == kind).OrderBy(s => s.Lambda).ToList();
-        if (spectral.Count == 0)
-            throw new InputException($"{where}: header attribute 'channels'", "no spectral channels", "expected channels named S0.<λ>nm or T.<λ>nm (Fichet et al. 2021), e.g. S0.390,000000nm");
-
-        var grid = Grid(spectral.Select(s => s.Lambda).ToArray(), strings.GetValueOrDefault("spectralBandEdges"), edgeVector, where);
-        var image = new SpectralImage(width, height, grid);
-        for (int b = 0; b < spectral.Count; b++)
-        {
-            var plane = planes[spectral[b].Index];
-            for (int i = 0, p = b; i < plane.Length; i++, p += grid.Count) image.Data[p] = plane[i];
-        }
-        var used = spectral.Select(s => s.Index).ToHashSet();
-        var others = new Dictionary<string, float[]>(StringComparer.Ordinal);
-        for (int c = 0; c < channels.Count; c++) if (!used.Contains(c)) others[channels[c].Name] = planes[c];
-        var types = channels.ToDictionary(c => c.Name, c => c.Type == 1 ? ExrPixelType.Half : ExrPixelType.Float, StringComparer.Ordinal);
-        return new ExrSpectralFile(image, kind == "T", others, types, strings, kappa, compression.Value);
+        return (width, height, channels, planes, strings, kappa, edgeVector, compression.Value);
     }
 
     /// <summary>The band grid: Count + 1 edges from spectralBandEdges, else evenly spaced centres.</summary>

@@ -89,6 +89,11 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
             if (material.Fluorescence is { HasShift: true } fl) _shift[m] = new FluorescentShift(fl, _grid);
             if (material.Emission is { } e) { _emission[m] = _grid.Resample(e.Radiance); _twoSided[m] = e.TwoSided; }
         }
+        // A band's sub-path after a dispersive split (PathIntegrator.Dispersion.cs) walks the plain lobes only.
+        if (Array.IndexOf(_dispersive, true) is int glass and >= 0 && Array.FindIndex(_shift, x => x is not null) is int paper and >= 0)
+            throw new InputException($"{where}: $.materials.{scene.Materials[paper].Name}.fluorescence",
+                $"material '{scene.Materials[paper].Name}' fluoresces and material '{scene.Materials[glass].Name}' is dispersive: the path integrator does not follow a shifted bounce after a dispersive split yet",
+                "give the glass a constant \"ior\", or render the scene with the whitted integrator");
         _objectMaterial = scene.Objects.Select(o => o.Material).ToArray();
         _emitterOf = new int[scene.Objects.Count];
         var emitters = new List<AreaEmitter>();
@@ -108,6 +113,7 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
         _background = _grid.Resample(scene.Background);
         _sky = Spectra.SpectralMath.Any(scene.Background) ? _background : null;
         _lightCount = _lights.Length + _emitters.Length + (_sky is null ? 0 : 1);
+        foreach (var shift in _shift) shift?.Prepare([.. _lightRadiance, .. _emitters.Select(e => e.Radiance), .. _sky is null ? [] : new[] { _sky }]);
     }
 
     /// <summary>The sampler of its camera samples: Owen-scrambled Sobol unless the scene's "sampler" says otherwise.</summary>
@@ -116,8 +122,11 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
     /// <summary>The internal grid's sub-bands per output band.</summary>
     public int SubBands => _grid.PerBand;
 
-    /// <summary>Scratch: L, β, f and the two delta lobes' weights, each a fine spectrum, and a band's β after a dispersive split.</summary>
-    public int ScratchLength => 6 * _padded;
+    /// <summary>
+    /// Scratch: L, β, f and the two delta lobes' weights, each a fine spectrum; then either a band's β after a dispersive
+    /// split or a fluorescent scene's shifted paths' (<see cref="ShiftScratch"/>): a scene has not both (the constructor).
+    /// </summary>
+    public int ScratchLength => 5 * _padded + Math.Max(_padded, ShiftScratch);
 
     /// <inheritdoc/>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
@@ -205,6 +214,8 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
         void NextEvent(int light, Span<float> beta, Span<float> f, float[] radiance, float s);
         /// <summary>β ⊙ (S·E) · s: a fluorescent surface's shifted lobe S excited by next-event light <paramref name="light"/>.</summary>
         void Shifted(int light, FluorescentShift shift, Span<float> beta, float[] radiance, float s);
+        /// <summary>Where emitters and the sky go: a path continued through a shifted lobe remaps it (PathIntegrator.Fluorescence.cs).</summary>
+        Span<float> Fixed { get; }
     }
 
     ref struct FilmSink(Span<float> l) : IPathSink
@@ -215,6 +226,7 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
             AddProduct3(_l, beta, f, radiance, s);
         public readonly void Shifted(int light, FluorescentShift shift, Span<float> beta, float[] radiance, float s) =>
             shift.AddEmitted(_l, beta, radiance, s);
+        public readonly Span<float> Fixed => _l;
     }
 
     ref struct TransferSink(Span<float> groups, int padded, int lights) : IPathSink
@@ -232,6 +244,7 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
         {
             if (light < 0) shift.AddEmitted(_groups.Slice(lights * padded, padded), beta, radiance, s);
         }
+        public readonly Span<float> Fixed => _groups.Slice(lights * padded, padded);
     }
 
     /// <summary>The path of one camera sample; the light it finds goes to <paramref name="sink"/>. Returns the first object hit.</summary>
@@ -252,7 +265,8 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
         bool deltaBounce = true;     // the last bounce was a delta lobe (or the camera): emitters seen count in full
         float bsdfPdf = 0;           // the last bounce's solid-angle density (lobe choice included), for MIS
         Vector3 previous = default, previousFront = default;
-        int first = -1;
+        int first = -1, shifted = 0;   // shifted: the path's shifted bounces so far (PathIntegrator.Fluorescence.cs)
+        float gain = 1;   // a bound of the shifted bounces' amplification towards the film (1 without them)
         for (int depth = 0; ; depth++)
         {
             var traced = ray;
@@ -301,7 +315,8 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
                 mirrorShare = bsdf.SampleMirror(wo, ns, -1, mirror, out wiMirror) ? _grid.Luminance(mirror) : 0;
                 transmitShare = bsdf.SampleTransmission(wo, ns, -1, transmit, out wiTransmit) ? _grid.Luminance(transmit) : 0;
             }
-            float total = smoothShare + mirrorShare + transmitShare;
+            float shiftShare = _shift[m] is { } fluorescent ? fluorescent.Share : 0;   // the shifted lobe's (fluorescence)
+            float total = smoothShare + mirrorShare + transmitShare + shiftShare;
             float smoothProbability = total > 0 ? smoothShare / total : 0;
 
             // Each vertex takes the same five dimensions (light, point on it, lobe, direction, roulette); a number is drawn
@@ -310,7 +325,7 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
             int dRoulette = sampler.Reserve1D();
 
             // Next-event estimation: one light chosen uniformly, one point on it.
-            if (_smooth[m] && _lightCount > 0)
+            if ((_smooth[m] || shiftShare > 0) && _lightCount > 0)
             {
                 float uLight = _lightCount > 1 ? sampler.At1D(dLight) : 0;   // one light: no choice
                 var uPoint = sampler.At2D(dPoint);
@@ -337,6 +352,13 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
                 Multiply(beta, mirror, total / mirrorShare);
                 deltaBounce = true;
             }
+            else if (shiftShare > 0 && x >= smoothShare + mirrorShare + transmitShare)
+            {
+                var u = sampler.At2D(dDirection);
+                if (!ShiftedBounce(ref sink, m, shiftShare / total, wo, ns, front, new Vector2(u.U, u.V), beta, scratch, ref shifted,
+                    ref gain, out wi, out bsdfPdf)) break;
+                deltaBounce = false;
+            }
             else
             {
                 wi = wiTransmit;
@@ -349,7 +371,7 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
             // Russian roulette on the throughput's channel value.
             if (depth + 1 >= _rrDepth)
             {
-                float q = MathF.Min(0.95f, Max(beta));
+                float q = MathF.Min(0.95f, Max(beta) * gain);
                 if (!(q > 0) || sampler.At1D(dRoulette) >= q) break;
                 Scale(beta, 1 / q);
             }
@@ -357,6 +379,7 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
             ray = new Ray(p + side * _geometry.Epsilon * ng, wi);
             counters.Secondary++;
         }
+        if (shifted > 0) FinishShifted(sink.Fixed, scratch, shifted);
         return first;
     }
 
@@ -414,7 +437,9 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
         if (_geometry.OccludedScattered(shadow)) return;
         float w = delta ? 1 : PowerHeuristic(pick * pdf, smoothProbability * bsdf.Pdf(wo, wi, ns));
         sink.NextEvent(k < _lights.Length ? k : -1, beta, f, radiance, factor * cos * w / (pick * pdf));
-        // A fluorescent surface's shifted lobe is excited by this light sample alone (no BSDF-sampled counterpart): weight 1.
+        // A fluorescent surface's shifted lobe: light sources excite it through this sample alone, weight 1 (a shifted bounce
+        // of the continuation gives the sources it reaches weight 0 and carries only light from further bounces:
+        // PathIntegrator.Fluorescence.cs).
         if (shift is not null && FluorescentShift.Reflects(wo, wi, ns)) sink.Shifted(k < _lights.Length ? k : -1, shift, beta, radiance, factor * cos / (pick * pdf));
     }
 

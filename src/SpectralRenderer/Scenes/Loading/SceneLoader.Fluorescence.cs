@@ -7,7 +7,7 @@ namespace SpectralRenderer.Scenes.Loading;
 // Fluorescence (issue 26): a material's re-radiation matrix, and the UV-cut filter of a light (ISO 13655 M2).
 public sealed partial class SceneLoader
 {
-    /// <summary>The key of a material's re-radiation matrix: <c>"fluorescence": { "matrix": "file.csv" }</c>.</summary>
+    /// <summary>The key of a material's re-radiation matrix: <c>"fluorescence": { "matrix": "file.csv" }</c> (or "file.exr").</summary>
     public const string FluorescenceKey = "fluorescence";
     /// <summary>The key of a light's filter: <c>"filter": "uv-cut"</c>.</summary>
     public const string FilterKey = "filter";
@@ -21,7 +21,8 @@ public sealed partial class SceneLoader
 
     /// <summary>
     /// The material's re-radiation matrix, or null. Its diagonal is the diffuse reflectance (so "diffuse" is not given as well);
-    /// the matrix is read relative to the scene's folder (<see cref="ReradiationCsvReader"/>: file:line errors, photon balance).
+    /// the matrix is read relative to the scene's folder, from CSV (<see cref="ReradiationCsvReader"/>: file:line errors, photon
+    /// balance) or a bispectral OpenEXR (<see cref="Imaging.ReradiationExrReader"/>: file and channel named).
     /// </summary>
     [MethodImpl(MethodImplOptions.NoOptimization)]
     ReradiationMatrix? ParseFluorescence(JsonElement e, string path, string model)
@@ -42,9 +43,10 @@ public sealed partial class SceneLoader
         if (!File.Exists(full))
             throw Error($"{where}.matrix", $"re-radiation matrix {Diagnostics.MessageText.Quote(name, 80)} not found",
                 "a relative path starts at the scene's folder");
+        if (full.EndsWith(".exr", StringComparison.OrdinalIgnoreCase)) return Imaging.ReradiationExrReader.Read(full);
         if (!full.EndsWith(".csv", StringComparison.OrdinalIgnoreCase))
-            throw Error($"{where}.matrix", $"{Diagnostics.MessageText.Quote(name, 80)} is not a .csv file",
-                "give the matrix as CSV (docs/scene-format.md, \"Fluorescence\"); the bispectral EXR layout is not read yet");
+            throw Error($"{where}.matrix", $"{Diagnostics.MessageText.Quote(name, 80)} is neither a .csv nor an .exr file",
+                "give the matrix as CSV or as a bispectral OpenEXR (T.<λin>nm.<λout>nm channels; docs/scene-format.md, \"Fluorescence\")");
         return ReradiationCsvReader.Read(full);
     }
 

@@ -1,0 +1,116 @@
+using System.Numerics;
+using System.Runtime.CompilerServices;
+using SpectralRenderer.Scenes;
+
+namespace SpectralRenderer.Rendering;
+
+// Fluorescence from indirect light (issue 26): the path's continuation through a fluorescent surface's shifted lobe.
+public sealed partial class PathIntegrator
+{
+    // A shifted bounce re-emits at camera sub-band o what arrives at every excitation sub-band i: the light the path finds
+    // beyond it reaches the film through f_s[o, i]·β[o] (FluorescentShift), not band by band. A path's throughput is then a
+    // matrix (camera sub-band × current sub-band); it stays exact per band, with no wavelength sampled, by splitting the path
+    // at its shifted bounces k = 1, 2, …, K: the film is
+    //   L = X_0 + A_1·X_1 + A_1·A_2·X_2 + … ,   A_k = diag(g_k)·f_s(k),  g_k = β_k−1·w_k,  w = cos θ/(P_lobe·p(ω)),
+    // where X_k is what the path finds between its k-th and (k+1)-th shifted bounce with a fresh throughput β_k (1 at the
+    // bounce). The sink keeps collecting into its fixed slot, which holds X_k; when X_k is complete (at the next shifted bounce
+    // or the path's end) it is carried to the film right to left, A_1·(A_2·(…A_k·X_k)): k products of N × (the shift's band
+    // span), the factors g_k and the materials kept per bounce. Past ShiftLevels bounces (rare: Russian roulette weighs β by
+    // the bounces' gain) the product is made explicit, M = A_1 ⋯ A_k (N³ per further bounce).
+    // The direction is drawn cosine-weighted about the front normal, p = cos θ/π. Light sources excite the shifted lobe by
+    // next-event estimation alone (NextEvent adds f_s·L_e at weight 1 for every light, emitter and the sky), so an emitter or
+    // the sky reached right after a shifted bounce gets MIS weight 0 (its density is returned as 0: PowerHeuristic(0, ·) = 0);
+    // the shifted bounce carries only light that arrives after further bounces. Each path of light is thus counted by exactly
+    // one strategy: unbiased, and direct excitation keeps next-event estimation's low noise. A non-fluorescent material never
+    // takes this branch and draws no extra random number: its paths are those of a scene without fluorescence.
+
+    /// <summary>Shifted bounces of one path kept as factors; beyond, their product is made explicit.</summary>
+    internal const int ShiftLevels = 16;
+
+    /// <summary>
+    /// Scratch for shifted paths (only in a fluorescent scene), after the walk's five spectra: the saved film, two work spectra,
+    /// the materials of the bounces (ShiftLevels floats), their factors g_k (ShiftLevels spectra), and M (sub-bands × padded).
+    /// </summary>
+    int ShiftScratch => Fluoresces ? (3 + ShiftLevels + _grid.Count) * _padded + ShiftLevels : 0;
+
+    Span<float> Saved(Span<float> scratch) => scratch.Slice(5 * _padded, _padded);
+    Span<float> Work(Span<float> scratch, int k) => scratch.Slice((6 + k) * _padded, _padded);
+    Span<float> Materials(Span<float> scratch) => scratch.Slice(8 * _padded, ShiftLevels);
+    Span<float> Factor(Span<float> scratch, int k) => scratch.Slice(8 * _padded + ShiftLevels + (k - 1) * _padded, _padded);
+    Span<float> Explicit(Span<float> scratch) => scratch.Slice((8 + ShiftLevels) * _padded + ShiftLevels, _grid.Count * _padded);
+
+    /// <summary>
+    /// The continuation through material <paramref name="material"/>'s shifted lobe, chosen with probability
+    /// <paramref name="probability"/>: ωi cosine-weighted about <paramref name="front"/>; the light collected since the last
+    /// shifted bounce carried to the saved film; this bounce's factor g = β·w kept; β reset to 1 and <paramref name="gain"/>
+    /// (a bound of the transform's amplification, which Russian roulette multiplies into β's largest band) times ‖diag(g)·f_s‖∞.
+    /// <paramref name="pdf"/> is 0: sources reached next are next-event estimation's. False when ωi leaves the lobe's hemisphere.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    bool ShiftedBounce<TSink>(ref TSink sink, int material, float probability, Vector3 wo, Vector3 ns, Vector3 front, Vector2 u,
+        Span<float> beta, Span<float> scratch, ref int shifted, ref float gain, out Vector3 wi, out float pdf)
+        where TSink : IPathSink, allows ref struct
+    {
+        wi = Bsdf.CosineHemisphere(front, u);
+        pdf = 0;
+        float density = probability * SkyPdf(front, wi);
+        if (!(density > 0) || !FluorescentShift.Reflects(wo, wi, ns)) return false;
+        float w = Vector3.Dot(front, wi) / density;
+        var shift = _shift[material]!;
+        var film = sink.Fixed;
+        if (shifted == 0) film.CopyTo(Saved(scratch));
+        else Fold(film, scratch, shifted);
+        int k = shifted + 1;
+        if (k <= ShiftLevels)
+        {
+            Materials(scratch)[k - 1] = material;
+            var g = Factor(scratch, k);
+            for (int i = 0; i < g.Length; i++) g[i] = beta[i] * w;
+        }
+        else
+        {
+            var m = Explicit(scratch);
+            if (k == ShiftLevels + 1)
+            {   // M = A_1 ⋯ A_ShiftLevels from the kept factors
+                var materials = Materials(scratch);
+                _shift[(int)materials[0]]!.Start(m, Factor(scratch, 1), 1);
+                for (int j = 2; j <= ShiftLevels; j++) _shift[(int)materials[j - 1]]!.Chain(m, Factor(scratch, j), 1, Work(scratch, 0));
+            }
+            shift.Chain(m, beta, w, Work(scratch, 0));
+        }
+        gain *= shift.Gain(beta, w);
+        film.Clear();
+        beta.Clear();
+        beta[.._grid.Count].Fill(1);   // the padding stays 0
+        shifted = k;
+        return true;
+    }
+
+    /// <summary>Saved film += A_1·(A_2·(…A_k·x)) for the k = <paramref name="shifted"/> bounces so far (or M·x past ShiftLevels).</summary>
+    void Fold(Span<float> x, Span<float> scratch, int shifted)
+    {
+        var saved = Saved(scratch);
+        if (shifted > ShiftLevels)
+        {
+            FluorescentShift.AddProduct(saved, Explicit(scratch), x, _grid.Count);
+            return;
+        }
+        Span<float> v = Work(scratch, 0), t = Work(scratch, 1);
+        x.CopyTo(v);
+        var materials = Materials(scratch);
+        for (int j = shifted; j >= 1; j--)
+        {
+            t.Clear();
+            _shift[(int)materials[j - 1]]!.AddShifted(t, Factor(scratch, j), v, 1);
+            var swap = v; v = t; t = swap;
+        }
+        FluorescentShift.Add(saved, v);
+    }
+
+    /// <summary>The path's end after shifted bounces: the film is the saved film plus the light collected since the last, carried.</summary>
+    void FinishShifted(Span<float> film, Span<float> scratch, int shifted)
+    {
+        Fold(film, scratch, shifted);
+        Saved(scratch).CopyTo(film);
+    }
+}
