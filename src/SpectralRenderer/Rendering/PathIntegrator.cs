@@ -23,7 +23,7 @@ namespace SpectralRenderer.Rendering;
 /// any thread count, tile order or shard; nothing is allocated per path.
 /// </summary>
 [CompiledAtFirstCall]
-public sealed class PathIntegrator : IAnalysisIntegrator
+public sealed partial class PathIntegrator : IAnalysisIntegrator
 {
     readonly SceneGeometry _geometry;
     readonly FineGrid _grid;
@@ -69,10 +69,6 @@ public sealed class PathIntegrator : IAnalysisIntegrator
                 throw new InputException($"{where}: $.materials.{material.Name}.ior",
                     $"material '{material.Name}' is dispersive (Cauchy index): the path integrator does not split paths per band yet",
                     "give a constant \"ior\", or render dispersion with the whitted integrator");
-            if (material.DiffuseTexture is not null)
-                throw new InputException($"{where}: $.materials.{material.Name}.diffuse",
-                    $"material '{material.Name}' is textured: the path integrator takes spectra only so far (issue 26)",
-                    "render textured scenes with the whitted integrator");
             _bsdf[m] = material.Bsdf.Resampled(_grid.Resample)
                 ?? throw new InputException($"{where}: $.materials.{material.Name}",
                     $"material '{material.Name}' ({material.Bsdf.GetType().Name}) cannot be carried to the path integrator's spectral grid",
@@ -88,6 +84,7 @@ public sealed class PathIntegrator : IAnalysisIntegrator
             }
             if (material.Fluorescence is { HasShift: true } fl) _shift[m] = new FluorescentShift(fl, _grid);
             if (material.Emission is { } e) { _emission[m] = _grid.Resample(e.Radiance); _twoSided[m] = e.TwoSided; }
+            TakeTextures(scene, m);   // PathIntegrator.Textures.cs
         }
         _objectMaterial = scene.Objects.Select(o => o.Material).ToArray();
         _emitterOf = new int[scene.Objects.Count];
@@ -116,8 +113,8 @@ public sealed class PathIntegrator : IAnalysisIntegrator
     /// <summary>The internal grid's sub-bands per output band.</summary>
     public int SubBands => _grid.PerBand;
 
-    /// <summary>Scratch: L, β, f and the two delta lobes' weights, each a fine spectrum.</summary>
-    public int ScratchLength => 5 * _padded;
+    /// <summary>Scratch: L, β, f and the two delta lobes' weights, each a fine spectrum, and a textured vertex's texels.</summary>
+    public int ScratchLength => 5 * _padded + TextureScratch;
 
     /// <inheritdoc/>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
@@ -292,6 +289,7 @@ public sealed class PathIntegrator : IAnalysisIntegrator
             var front = Vector3.Dot(ns, wo) >= 0 ? ns : -ns;
             // The lobes' shares of the continuation, by the channel: smooth (m_diff + m_spec), mirror, transmission.
             float smoothShare = _smooth[m] ? _smoothChannel[m] : 0;
+            var texels = _textured ? Texels(m, in hit, wo, scratch, ref smoothShare) : default;
             // (a BSDF without a delta lobe is not asked for one: both answers would be "none")
             float mirrorShare = 0, transmitShare = 0;
             Vector3 wiMirror = default, wiTransmit = default;
@@ -307,7 +305,7 @@ public sealed class PathIntegrator : IAnalysisIntegrator
             float uLight = sampler.Next1D();
             var uPoint = sampler.Next2D();
             if (_smooth[m] && _lightCount > 0)
-                NextEvent(ref sink, bsdf, _shift[m], p, ng, ns, front, wo, uLight, new Vector2(uPoint.U, uPoint.V), pick, smoothProbability, beta, f, ref counters);
+                NextEvent(ref sink, bsdf, in texels, _shift[m], p, ng, ns, front, wo, uLight, new Vector2(uPoint.U, uPoint.V), pick, smoothProbability, beta, f, ref counters);
 
             // Continue: choose a lobe, then a direction from it; β gains f·|cos θ|/pdf per band.
             float uLobe = sampler.Next1D();
@@ -318,6 +316,7 @@ public sealed class PathIntegrator : IAnalysisIntegrator
             if (x < smoothShare)
             {
                 if (!bsdf.Sample(wo, ns, new Vector2(u.U, u.V), f, out var bs)) break;
+                if (texels.Any) Evaluate(bsdf, in texels, wo, bs.Wi, ns, f);
                 wi = bs.Wi;
                 float cos = MathF.Abs(Vector3.Dot(ns, wi));
                 bsdfPdf = bs.Pdf * smoothProbability;
@@ -359,7 +358,7 @@ public sealed class PathIntegrator : IAnalysisIntegrator
     /// emitter's point, or a sky direction, each unshadowed.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    void NextEvent<TSink>(ref TSink sink, Bsdf bsdf, FluorescentShift? shift, Vector3 p, Vector3 ng, Vector3 ns, Vector3 front, Vector3 wo, float uLight, Vector2 u,
+    void NextEvent<TSink>(ref TSink sink, Bsdf bsdf, in SurfaceTexels texels, FluorescentShift? shift, Vector3 p, Vector3 ng, Vector3 ns, Vector3 front, Vector3 wo, float uLight, Vector2 u,
         float pick, float smoothProbability, Span<float> beta, Span<float> f, ref RayCounters counters) where TSink : IPathSink, allows ref struct
     {
         int k = Math.Min((int)(uLight * _lightCount), _lightCount - 1);
@@ -394,7 +393,7 @@ public sealed class PathIntegrator : IAnalysisIntegrator
         }
         if (!(pdf > 0) || !(factor > 0)) return;
         float cos = MathF.Abs(Vector3.Dot(ns, wi));
-        bsdf.Evaluate(wo, wi, ns, f);
+        Evaluate(bsdf, in texels, wo, wi, ns, f);
         float side = Vector3.Dot(ng, wi) >= 0 ? 1 : -1;
         var origin = p + side * _geometry.Epsilon * ng;
         var shadow = new Ray(origin, wi);
