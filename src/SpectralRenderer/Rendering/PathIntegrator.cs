@@ -96,7 +96,7 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
             if (_emission[o.Material] is { } radiance)
             {
                 _emitterOf[i] = emitters.Count;
-                emitters.Add(new AreaEmitter(o, radiance, _twoSided[o.Material], $"{where}: $.objects"));
+                emitters.Add(new AreaEmitter(o, radiance, _twoSided[o.Material], $"{where}: $.objects", EmissionTexture(o.Material)));
             }
         }
         _emitters = [.. emitters];
@@ -197,35 +197,35 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
     interface IPathSink
     {
         /// <summary>β ⊙ L_e · w: an emitter or the sky reached by the path.</summary>
-        void Emitted(Span<float> beta, float[] le, float w);
+        void Emitted(Span<float> beta, ReadOnlySpan<float> le, float w);
         /// <summary>β ⊙ f ⊙ E · s: next-event estimation of light <paramref name="light"/> (−1: an emitter or the sky).</summary>
-        void NextEvent(int light, Span<float> beta, Span<float> f, float[] radiance, float s);
+        void NextEvent(int light, Span<float> beta, Span<float> f, ReadOnlySpan<float> radiance, float s);
         /// <summary>β ⊙ (S·E) · s: a fluorescent surface's shifted lobe S excited by next-event light <paramref name="light"/>.</summary>
-        void Shifted(int light, FluorescentShift shift, Span<float> beta, float[] radiance, float s);
+        void Shifted(int light, FluorescentShift shift, Span<float> beta, ReadOnlySpan<float> radiance, float s);
     }
 
     ref struct FilmSink(Span<float> l) : IPathSink
     {
         readonly Span<float> _l = l;
-        public readonly void Emitted(Span<float> beta, float[] le, float w) => AddProduct(_l, beta, le, w);
-        public readonly void NextEvent(int light, Span<float> beta, Span<float> f, float[] radiance, float s) =>
+        public readonly void Emitted(Span<float> beta, ReadOnlySpan<float> le, float w) => AddProduct(_l, beta, le, w);
+        public readonly void NextEvent(int light, Span<float> beta, Span<float> f, ReadOnlySpan<float> radiance, float s) =>
             AddProduct3(_l, beta, f, radiance, s);
-        public readonly void Shifted(int light, FluorescentShift shift, Span<float> beta, float[] radiance, float s) =>
+        public readonly void Shifted(int light, FluorescentShift shift, Span<float> beta, ReadOnlySpan<float> radiance, float s) =>
             shift.AddEmitted(_l, beta, radiance, s);
     }
 
     ref struct TransferSink(Span<float> groups, int padded, int lights) : IPathSink
     {
         readonly Span<float> _groups = groups;
-        public readonly void Emitted(Span<float> beta, float[] le, float w) => AddProduct(_groups.Slice(lights * padded, padded), beta, le, w);
-        public readonly void NextEvent(int light, Span<float> beta, Span<float> f, float[] radiance, float s)
+        public readonly void Emitted(Span<float> beta, ReadOnlySpan<float> le, float w) => AddProduct(_groups.Slice(lights * padded, padded), beta, le, w);
+        public readonly void NextEvent(int light, Span<float> beta, Span<float> f, ReadOnlySpan<float> radiance, float s)
         {
             if (light < 0) AddProduct3(_groups.Slice(lights * padded, padded), beta, f, radiance, s);
             else AddProduct2(_groups.Slice(light * padded, padded), beta, f, s);
         }
         // A shift mixes the light's bands, so it has no per-band transfer: PathTransfer.Trace refuses such scenes for scene
         // lights; emitters and the sky (fixed spectra) enter the fixed slot.
-        public readonly void Shifted(int light, FluorescentShift shift, Span<float> beta, float[] radiance, float s)
+        public readonly void Shifted(int light, FluorescentShift shift, Span<float> beta, ReadOnlySpan<float> radiance, float s)
         {
             if (light < 0) shift.AddEmitted(_groups.Slice(lights * padded, padded), beta, radiance, s);
         }
@@ -279,7 +279,7 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
                     int e = _emitterOf[hit.Object];
                     w = PowerHeuristic(bsdfPdf, e >= 0 ? pick * _emitters[e].Pdf(previous, p, ng) : 0);
                 }
-                sink.Emitted(beta, le, w);
+                sink.Emitted(beta, _textured ? EmittedAt(m, le, in hit, wo, scratch) : le, w);
             }
             if (_maxDepth >= 0 && depth >= _maxDepth) break;
             if (counters.BudgetSpent) { counters.OverBudget = true; break; }
@@ -365,7 +365,7 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
         Vector3 wi;
         float distance, factor, pdf;
         bool delta;
-        float[] radiance;
+        ReadOnlySpan<float> radiance;
         if (k < _lights.Length)
         {
             if (!_lights[k].Sample(p, u, out var inc)) return;
@@ -375,14 +375,14 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
         else if (k < _lights.Length + _emitters.Length)
         {
             var emitter = _emitters[k - _lights.Length];
-            if (!emitter.Sample(p, u, out var x, out var nx, out pdf)) return;
+            if (!emitter.Sample(p, u, out var x, out var nx, out pdf, out int face)) return;
             var d = x - p;
             distance = d.Length();
             if (!(distance > 0)) return;
             wi = d / distance;
             if (!emitter.Emits(nx, -wi)) return;
             factor = 1; delta = false;
-            radiance = emitter.Radiance;
+            radiance = emitter.Texture is null ? emitter.Radiance : EmittedAt(emitter, face, x, nx, wi, distance, texels.Emission);
         }
         else
         {
@@ -424,6 +424,7 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
     }
 
     static Span<Vector<float>> V(Span<float> s) => MemoryMarshal.Cast<float, Vector<float>>(s);
+    static ReadOnlySpan<Vector<float>> RV(ReadOnlySpan<float> s) => MemoryMarshal.Cast<float, Vector<float>>(s);
 
     /// <summary>The largest value of a fine spectrum (its padding is 0).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
@@ -439,17 +440,17 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
 
     /// <summary>dst += a ⊙ b · s</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    static void AddProduct(Span<float> dst, Span<float> a, float[] b, float s)
+    static void AddProduct(Span<float> dst, Span<float> a, ReadOnlySpan<float> b, float s)
     {
-        var d = V(dst); var va = V(a); var vb = V(b.AsSpan(0, dst.Length)); var vs = new Vector<float>(s);
+        var d = V(dst); var va = V(a); var vb = RV(b[..dst.Length]); var vs = new Vector<float>(s);
         for (int i = 0; i < d.Length; i++) d[i] += va[i] * vb[i] * vs;
     }
 
     /// <summary>dst += a ⊙ b ⊙ c · s</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    static void AddProduct3(Span<float> dst, Span<float> a, Span<float> b, float[] c, float s)
+    static void AddProduct3(Span<float> dst, Span<float> a, Span<float> b, ReadOnlySpan<float> c, float s)
     {
-        var d = V(dst); var va = V(a); var vb = V(b); var vc = V(c.AsSpan(0, dst.Length)); var vs = new Vector<float>(s);
+        var d = V(dst); var va = V(a); var vb = V(b); var vc = RV(c[..dst.Length]); var vs = new Vector<float>(s);
         for (int i = 0; i < d.Length; i++) d[i] += va[i] * vb[i] * vc[i] * vs;
     }
 

@@ -1,7 +1,7 @@
 using System.Globalization;
 using System.Numerics;
 using System.Text;
-using SpectralRenderer.Color;
+using SpectralRenderer.Geometry;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
@@ -55,7 +55,6 @@ public class PathTextureTests(Xunit.Abstractions.ITestOutputHelper output)
     {
         var scene = SceneLoader.Parse(Encoding.UTF8.GetBytes(json), Path.Combine(dir, "scene.json"));
         var path = Integrators.Create(scene, new SceneGeometry(scene), scene.Integrator!.Name);
-        Assert.IsType<PathIntegrator>(path);
         return (scene, Renderer.Render(scene, path, threads: 2));
     }
 
@@ -166,5 +165,138 @@ public class PathTextureTests(Xunit.Abstractions.ITestOutputHelper output)
             }
         }
         output.WriteLine($"largest relative difference from ρ·L_sky {worst:G3}");
+    }
+
+    [Fact]
+    public void A_ColorChecker_texture_on_the_specular_weight_equals_untextured_specular_patches()
+    {
+        // f = m_diff/π + m_spec,texel·(s + 2)/(2π)·(r·v)^s under a point light (next-event estimation only, no sky).
+        var (wl, patches) = SpectralTextureTests.ColorCheckerTable();
+        var dir = Reference.TempDir();
+        var texture = WriteChart(dir, wl, patches);
+        const string rest = "\"diffuse\": 0.1, \"shininess\": 8, \"model\": \"phong\"";
+        var (scene, plain) = Render(Scene(UntexturedObjects(wl, patches, s => $$"""{ "specular": {{s}}, {{rest}} }"""), Point, "0"), dir);
+        var (_, textured) = Render(Scene(TexturedObject($$"""{ "specular": {{texture}}, {{rest}} }"""), Point, "0"), dir);
+        SamePatches(textured, plain, scene);
+    }
+
+    [Fact]
+    public void A_textured_emitter_seen_directly_shows_its_texel_radiance()
+    {
+        // L = k·L_texel(λ): band b's value k·(1/Δλ)∫_b L_texel dλ, integrated here from the table's straight segments.
+        var (wl, patches) = SpectralTextureTests.ColorCheckerTable();
+        var dir = Reference.TempDir();
+        var texture = WriteChart(dir, wl, patches);
+        const double k = 3;
+        var (scene, r) = Render(Scene(TexturedObject($$"""{ "diffuse": 0, "emission": { "spectrum": {{texture}}, "radiance": {{k}} } }"""), "", "0")
+            .Replace("\"lights\": [  ],", ""), dir);
+        for (int p = 0; p < 24; p++)
+        {
+            var (x, y) = Centre(scene, p);
+            var le = patches[p].Select(v => (double)(float)v).ToArray();
+            for (int b = 0; b < scene.Bands; b++)
+            {
+                double lo = scene.Grid.Lower(b), hi = scene.Grid.Upper(b);
+                double expected = k * Integral(wl, le, lo, hi) / (hi - lo);
+                Assert.True(Math.Abs(r.Image[x, y, b] / expected - 1) <= 1e-5, $"patch {p + 1} band {b}: {r.Image[x, y, b]:R} vs k·L_texel = {expected:R}");
+            }
+        }
+    }
+
+    [Theory]
+    [InlineData("""{ "type": "quad", "center": [0, 2, 0], "normal": [0, -1, 0], "up": [0, 0, 1], "size": 1.5, "material": "lamp" }""")]
+    [InlineData("""{ "type": "sphere", "center": [0, 2, 0], "radius": 0.5, "material": "lamp" }""")]
+    [InlineData("""{ "type": "mesh", "file": "lamp.obj", "material": "lamp" }""")]
+    public void A_uniformly_textured_emitter_lights_a_room_as_its_spectrum_does(string lamp)
+    {
+        // Next-event samples on the emitter look the texture up at the point drawn, BSDF bounces where they hit it: a texture
+        // of one spectrum everywhere gives the untextured emitter's picture, sample for sample (max_depth 3: interreflection).
+        var (wl, patches) = SpectralTextureTests.ColorCheckerTable();
+        var dir = Reference.TempDir();
+        File.WriteAllText(Path.Combine(dir, "lamp.obj"), "v -0.7 2 -0.7\nv 0.7 2 -0.7\nv 0.7 2 0.7\nv -0.7 2 0.7\nf 1 4 3 2\n");
+        int w = 8, h = 8;
+        SpectralTextureTests.WriteEnvi(Path.Combine(dir, "lamp.img"), w, h, wl, Enumerable.Range(0, w * h).SelectMany(_ => patches[18].Select(v => (float)v)).ToArray());
+        var inv = CultureInfo.InvariantCulture;
+        var pairs = "[" + string.Join(", ", wl.Select((l, j) => $"[{l.ToString(inv)}, {((float)patches[18][j]).ToString("R", inv)}]")) + "]";
+        string Room(string spectrum) => $$"""
+            { "bands": "380:780:20", "radiometry": "physical", "integrator": { "type": "path", "max_depth": 3 },
+              "camera": { "position": [0, 1, 4], "look_at": [0, 0.5, 0], "width": 24, "height": 16, "spp": 4 },
+              "materials": { "lamp": { "diffuse": 0, "emission": { "spectrum": {{spectrum}}, "radiance": 5, "two_sided": true } },
+                             "wall": { "diffuse": 0.6 } },
+              "objects": [ {{lamp}}, { "type": "plane", "material": "wall" },
+                           { "type": "box", "center": [0.8, 0.4, 0], "size": [0.8, 0.8, 0.8], "material": "wall" } ] }
+            """;
+        var (scene, plain) = Render(Room(pairs), dir);
+        var (_, textured) = Render(Room("""{ "texture": "lamp.hdr" }"""), dir);
+        double worst = 0;
+        for (int y = 0; y < 16; y++)
+            for (int x = 0; x < 24; x++)
+                for (int b = 0; b < scene.Bands; b++)
+                {
+                    float a = textured.Image[x, y, b], e = plain.Image[x, y, b];
+                    worst = Math.Max(worst, Math.Abs(a - e) / Math.Max(Math.Abs(e), 1e-3));
+                }
+        output.WriteLine($"largest relative difference {worst:G3}");
+        Assert.True(worst <= 1e-4, $"largest relative difference {worst:G3}");
+        Assert.True(plain.Image[12, 12, 10] > 0, "the floor is dark");
+    }
+
+    [Theory]
+    [InlineData("""{ "type": "quad", "center": [0.2, 2, 0.1], "normal": [0.3, -1, 0.2], "up": [0, 0, 1], "size": [1.5, 0.7], "material": "lamp" }""")]
+    [InlineData("""{ "type": "box", "center": [0, 2, 0], "size": [1, 0.6, 0.8], "transform": { "rotate": [10, 30, 0] }, "material": "lamp" }""")]
+    [InlineData("""{ "type": "sphere", "center": [0, 2, 0], "radius": 0.5, "material": "lamp" }""")]
+    [InlineData("""{ "type": "mesh", "file": "lamp.obj", "material": "lamp" }""")]
+    [InlineData("""{ "type": "mesh", "file": "lamp-uv.obj", "material": "lamp" }""")]
+    public void A_point_drawn_on_an_emitter_has_the_uv_a_ray_hitting_it_finds(string lamp)
+    {
+        // Next-event estimation looks an emitter's texture up at the point it draws (AreaEmitter.TexCoord, from the face and
+        // the point); a ray from the shading point to that point meets the surface there, where SceneGeometry.TexCoord
+        // gives the hit's uv another way (the intersection's barycentrics or the shape's own coordinates). Both agree.
+        var dir = Reference.TempDir();
+        File.WriteAllText(Path.Combine(dir, "lamp.obj"), "v -0.7 2 -0.7\nv 0.7 2 -0.7\nv 0.7 2.3 0.7\nv -0.7 2 0.7\nf 1 4 3 2\n");
+        File.WriteAllText(Path.Combine(dir, "lamp-uv.obj"), "v -0.7 2 -0.7\nv 0.7 2 -0.7\nv 0.7 2.3 0.7\nv -0.7 2 0.7\nvt 0.1 0.2\nvt 0.9 0.1\nvt 0.8 0.95\nvt 0.05 0.7\nf 1/1 4/4 3/3 2/2\n");
+        var scene = SceneLoader.Parse(Encoding.UTF8.GetBytes($$"""
+            { "bands": "400:700:50", "radiometry": "physical", "integrator": "path",
+              "camera": { "position": [0, 1, 4], "look_at": [0, 0.5, 0], "width": 4, "height": 4 },
+              "materials": { "lamp": { "diffuse": 0, "emission": { "spectrum": 1, "two_sided": true } } },
+              "objects": [ {{lamp}} ] }
+            """), Path.Combine(dir, "scene.json"));
+        var geometry = new SceneGeometry(scene);
+        var emitter = new AreaEmitter(scene.Objects[0], new float[8], true, "test");
+        var rng = new Random(26);
+        var p = new Vector3(0.1f, 0.3f, 0.2f);
+        int checkedPoints = 0;
+        for (int i = 0; i < 400; i++)
+        {
+            var u = new Vector2((float)rng.NextDouble(), (float)rng.NextDouble());
+            if (!emitter.Sample(p, u, out var x, out _, out _, out int face)) continue;
+            var d = x - p;
+            var ray = new Ray(p, Vector3.Normalize(d), d.Length() * 1.001f);
+            if (!geometry.Intersect(ref ray, out var hit) || Vector3.Distance(hit.Position, x) > 1e-4f) continue;   // a nearer face in the way
+            var expected = geometry.TexCoord(in hit, out float density);
+            var uv = emitter.TexCoord(face, x, out float emitterDensity);
+            Assert.True(Vector2.Distance(uv, expected) < 1e-4f, $"point {x}: uv {uv} drawn, {expected} hit");
+            Assert.Equal(density, emitterDensity, 1e-4f);
+            checkedPoints++;
+        }
+        output.WriteLine($"{checkedPoints} points compared");
+        Assert.True(checkedPoints > 50);   // a box: the faces turned away from p are hidden
+    }
+
+    [Theory]
+    [InlineData("whitted", """{ "diffuse": 0.5, "specular": TEX }""", "$.objects[0].material.specular", "whitted integrator textures m_diff only")]
+    [InlineData("path", """{ "diffuse": 0, "emission": { "spectrum": TEX, "luminous_flux": 100 } }""", "$.objects[0].material.emission.luminous_flux", "not by luminous_flux")]
+    [InlineData("path", """{ "type": "plastic", "diffuse": TEX }""", "$.objects[0].material.diffuse", "eq. 2 and lambertian materials only")]
+    [InlineData("path", """{ "diffuse": 0.5, "ambient": TEX }""", "$.objects[0].material.ambient", "can be a texture so far")]
+    public void What_cannot_be_textured_is_bad_input_naming_its_place(string integrator, string material, string where, string what)
+    {
+        var (wl, patches) = SpectralTextureTests.ColorCheckerTable();
+        var dir = Reference.TempDir();
+        var texture = WriteChart(dir, wl, patches);
+        var json = Scene(TexturedObject(material.Replace("TEX", texture)), Point, "0").Replace("\"type\": \"path\"", $"\"type\": \"{integrator}\"");
+        var e = Assert.Throws<SpectralRenderer.Diagnostics.InputException>(() => Render(json, dir));
+        output.WriteLine(e.Message);
+        Assert.Contains(where, e.Message);
+        Assert.Contains(what, e.Message);
     }
 }
