@@ -1,6 +1,7 @@
 using System.Numerics;
 using System.Runtime.CompilerServices;
 using System.Runtime.InteropServices;
+using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Textures;
 
 namespace SpectralRenderer.Rendering;
@@ -41,8 +42,18 @@ internal sealed class FineTexture : TexelLevels
         BuildMips();
     }
 
-    /// <summary>Bytes the fine texture of a <paramref name="w"/> × <paramref name="h"/> image takes on a grid of <paramref name="padded"/> lanes.</summary>
-    public static long Bytes(int w, int h, int padded) => TexelsWithMips(w, h) * padded * sizeof(float);
+    /// <summary>
+    /// Bytes the path tracer's fine textures of <paramref name="scene"/> take (the pre-render memory check): per textured
+    /// diffuse, specular or emission, its texels with their mip levels × the fine grid's padded sub-bands, once for all threads.
+    /// </summary>
+    public static long Bytes(Scene scene)
+    {
+        var textures = scene.Materials.SelectMany(m => new[] { m.DiffuseTexture, m.SpecularTexture, m.Emission?.Texture }).OfType<TextureBinding>().ToList();
+        if (textures.Count == 0) return 0;
+        var settings = scene.Integrator is { Name: "path" } s ? s : new IntegratorSettings("path");
+        int padded = new FineGrid(scene, settings.SpectralGrid).Padded;
+        return textures.Sum(t => TexelsWithMips(t.Texture.Width, t.Texture.Height) * padded * sizeof(float));
+    }
 
     /// <summary>The texture at <paramref name="uv"/> for a footprint <paramref name="width"/> wide (uv units) into <paramref name="dst"/>: Σ weight·texel.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]

@@ -299,4 +299,34 @@ public class PathTextureTests(Xunit.Abstractions.ITestOutputHelper output)
         Assert.Contains(where, e.Message);
         Assert.Contains(what, e.Message);
     }
+
+    [Fact]
+    public void The_memory_check_states_the_texture_spectra_once_for_all_threads()
+    {
+        // The 24 × 16 chart as diffuse and as specular: its mip levels 24×16, 12×8, 6×4, 3×2, 1×1 hold 511 texels; on the
+        // path's 5-nm grid each 20-nm band is 4 sub-bands, padded (with the 3 colour lanes every spectrum array keeps) to whole
+        // SIMD registers; 4 bytes a float, two textures.
+        // The Whitted route: 1 + 2 × lights tables of the padded bands per texel, for the diffuse texture. Any thread count.
+        var (wl, patches) = SpectralTextureTests.ColorCheckerTable();
+        var dir = Reference.TempDir();
+        var texture = WriteChart(dir, wl, patches);
+        var json = Scene(TexturedObject($$"""{ "diffuse": {{texture}}, "specular": {{texture}} }"""), Point, "0");
+        var scene = SceneLoader.Parse(Encoding.UTF8.GetBytes(json), Path.Combine(dir, "scene.json"));
+        int texels = 0;
+        for (int w = 24, h = 16; ; w = Math.Max(1, w / 2), h = Math.Max(1, h / 2))
+        {
+            texels += w * h;
+            if (w == 1 && h == 1) break;
+        }
+        Assert.Equal(511, texels);
+        Assert.Equal(20, scene.Grid.Width, 9);
+        int lanes = Vector<float>.Count, padded = (scene.Bands * 4 + 3 + lanes - 1) / lanes * lanes;
+        foreach (int threads in new[] { 1, 2, 16 })
+        {
+            var part = SpectralRenderer.Output.RenderMemory.Estimate(scene, threads).Single(p => p.Part.StartsWith("texture", StringComparison.Ordinal));
+            Assert.Equal(("texture spectra (fine grid)", 2L * texels * padded * 4), part);
+            var whitted = SpectralRenderer.Output.RenderMemory.Estimate(scene, threads, integrator: "whitted").Single(p => p.Part.StartsWith("texture", StringComparison.Ordinal));
+            Assert.Equal(("texture tables", (long)texels * (1 + 2 * 1) * scene.PaddedBands * 4), whitted);
+        }
+    }
 }
