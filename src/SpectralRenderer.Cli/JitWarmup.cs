@@ -26,6 +26,14 @@ static class JitWarmup
     public static readonly string[] Relight = ["SpectralRenderer.Imaging", "SpectralRenderer.Output", "SpectralRenderer.Rendering"];
 
     static int _started;
+    static volatile bool _stopped;
+
+    /// <summary>
+    /// Ends the warm-up after the method it is compiling: for a render whose integrator is not the default one (the path
+    /// tracer, <see cref="Rendering.CompiledAtFirstCallAttribute"/>), the Whitted loops it compiles would only take the
+    /// second core from the render's own threads.
+    /// </summary>
+    public static void Stop() => _stopped = true;
 
     /// <summary>Starts the warm-up of the hot loops in <paramref name="stages"/> (namespaces, in order), once per process (a test host runs many commands).</summary>
     public static void Start(string[] stages)
@@ -56,6 +64,7 @@ static class JitWarmup
                     if (type.Namespace != stage || type.ContainsGenericParameters || LeftToFirstCall(type)) continue;
                     foreach (var method in type.GetMethods(all))
                     {
+                        if (_stopped) return;
                         if ((method.MethodImplementationFlags & MethodImplAttributes.AggressiveOptimization) == 0 || method.IsAbstract) continue;
                         if (!method.ContainsGenericParameters) { Prepare(method); continue; }
                         foreach (var args in Instantiations(method.GetGenericArguments(), values, lanes))

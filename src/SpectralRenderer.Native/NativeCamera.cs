@@ -278,6 +278,18 @@ sealed class NativeCapture : PinnedHolder
             whiteScale = exact.WhiteScale;
             whiteSource = exact.WhiteScaleSource;
         }
+        else if (wantExact && render.PathFilm(threads) is { } film
+            && ExactChannelSignals.Compute(scene, sensor, renderScene, film.Film, film.From, threads, out _) is { } pathExact)
+        {
+            cube = cube with { ChannelIntegrals = pathExact.Integrals, Route = pathExact.Route, OpticsApplied = pathExact.OpticsApplied };
+            whiteScale = pathExact.WhiteScale;
+            whiteSource = pathExact.WhiteScaleSource;
+        }
+        if (cube.ChannelIntegrals is null && ExactChannelSignals.BandRouteWhite(scene, renderScene, transfer, render.IsPath) is { } white)
+        {   // The band route sees the render's radiometry too, as `spectral camera --signals bands` does.
+            whiteScale = white.Scale;
+            whiteSource = white.Source;
+        }
         var (raw, colour, image, _, manifest) = CameraRun.Run(scene, sensor, cube, options, demosaic, whiteScale, whiteSource,
             o["radiance_scale"] is not null ? "radiance_scale" : null, sensorName, null);
         if (raw.ClippingWarning() is { } warning) manifest["warning"] = warning;

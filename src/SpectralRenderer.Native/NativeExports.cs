@@ -511,6 +511,24 @@ sealed unsafe class NativeRender : IDisposable
         return (CameraScene.Of(folder, aovs), job.Scene, traced ? Transfer(default) : null);
     }
 
+    /// <summary>
+    /// A path render's film on its fine grid for the camera's exact signals (ExactChannelSignals.Path.cs): from its per-light
+    /// transfer when it holds one (a relight's, or the lights output), else its camera samples traced again (the same paths);
+    /// null for a render of another integrator, an adaptive or cropped one.
+    /// </summary>
+    public (PathFineFilm Film, string From)? PathFilm(int threads)
+    {
+        var job = Job!;
+        if (job.PathTransfer is { } t)
+            return (PathFineFilm.FromTransfer(t, job.Scene), "the render's path transfer in memory (L_f = F_f + sum_k T_k,f * E_k,f, no rays traced)");
+        if (job.Integrator is not PathIntegrator path || job.Scene.TargetError > 0
+            || Result.Crop != PixelRect.Whole(job.Scene.Camera.Width, job.Scene.Camera.Height)) return null;
+        return (PathFineFilm.Trace(job.Scene, path, threads < 0 ? 0 : threads), "the render's camera samples traced again in memory (the same paths)");
+    }
+
+    /// <summary>Whether the render held is a path render (its integrator, or the path transfer it was relit from).</summary>
+    public bool IsPath => Job is { } job && (job.Integrator is PathIntegrator || job.PathTransfer is not null);
+
     /// <summary>The error as the CLI ends `spectral render` with it (CommandLine.Describe: code and one line).</summary>
     public void Fail(Exception e, string prefix = "spectral render: ")
     {

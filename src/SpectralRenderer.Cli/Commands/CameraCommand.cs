@@ -113,10 +113,10 @@ public static class CameraCommand
             }
             else routeNote = $"note: channel signals from the band cube (not exact): {why}";
         }
-        if (cube.ChannelIntegrals is null && ExactChannelSignals.IsPathRender(dir) && ChartWhite.Scale(scene) is { } chartWhite)
-        {   // A path render's white is every bounce of light at the chart, not the lights' direct factor: read it off the chart.
-            whiteScale = chartWhite;
-            whiteSource = "the ColorChecker in the render: its patches' band values against the light's × their reflectances (least squares; a path render)";
+        if (cube.ChannelIntegrals is null && ExactChannelSignals.BandRouteWhite(scene, threads) is { } white)
+        {   // The band route sees the render's radiometry too: its white as the exact route would take it (1 for a cube from elsewhere).
+            whiteScale = white.Scale;
+            whiteSource = white.Source;
         }
 
         if (a.Int("--bench", 1, 1000) is int repeat)

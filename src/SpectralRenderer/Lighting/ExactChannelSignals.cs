@@ -19,8 +19,9 @@ namespace SpectralRenderer.Lighting;
 /// when it wrote them, else the transfer is traced again from the resolved scene (the same rays the render traced).
 /// A component whose chain passes a coloured mirror or glass, a dispersive split, or a spectrum known only by its band
 /// values takes the band route for itself (its band values × the channel weights), and the manifest counts them.
+/// A path render has no eq. 2 terms; its channels are integrated from its fine spectral grid (ExactChannelSignals.Path.cs).
 /// </summary>
-public static class ExactChannelSignals
+public static partial class ExactChannelSignals
 {
     /// <summary>
     /// The integrals (H × W × C), the white's radiance per unit of the reference white's band values (light scale × 1/π
@@ -35,24 +36,44 @@ public static class ExactChannelSignals
     /// <summary>The exact route for <paramref name="cs"/>'s render, or null (with the reason) when the folder cannot give it.</summary>
     public static Result? Compute(CameraScene cs, SensorModel sensor, int threads, out string reason)
     {
-        string dir = cs.Folder.Path;
         Relighting.Source src;
-        try { src = Relighting.Open(dir); }
+        try { src = Relighting.Open(cs.Folder.Path); }
         catch (InputException e) { reason = $"the render folder cannot be rebuilt ({e.Message})"; return null; }
-        if (IsPath(src))
-        {   // Its light is every bounce of the rendering equation, not eq. 2's terms (a light × a material × a factor).
-            reason = "the render's path integrator has no per-term light transfer: its radiance is not a sum of eq. 2's terms (light × material × factor), which the exact route integrates; the band cube is the camera's input";
-            return null;
-        }
-        Scene scene;
-        LightTransfer transfer;
-        string from;
+        // A path render's light is every bounce of the rendering equation, not eq. 2's terms: its fine grid is integrated instead.
+        if (IsPath(src)) return PathRoute(cs, sensor, src, threads, out reason);
+        return Transfer(src, threads, out var scene, out var transfer, out var from, out reason)
+            ? Compute(cs, sensor, scene, transfer, from, threads, out reason) : null;
+    }
+
+    /// <summary>
+    /// The white scale of a capture on the band route (<c>--signals bands</c>, or when the exact route cannot be had) of a
+    /// render folder: the one the exact route uses — the lights' direct diffuse factor over the chart × their intensity
+    /// (/π physical) for a Whitted render, the chart read off the picture for a path render — so white balance, colour
+    /// correction and recovery see the render's radiometry on either route. Null when the folder is not a render (a cube
+    /// from elsewhere: the light's band values, 1).
+    /// </summary>
+    public static (double Scale, string Source)? BandRouteWhite(CameraScene cs, int threads)
+    {
+        Relighting.Source src;
+        try { src = Relighting.Open(cs.Folder.Path); }
+        catch (InputException) { return PathTransferFiles.IsPath(cs.Folder.Path) ? PathWhite(cs) : null; }
+        if (IsPath(src)) return PathWhite(cs);
+        if (!Transfer(src, threads, out var scene, out var transfer, out _, out _)
+            || transfer.Width != cs.Width || transfer.Height != cs.Height) return null;
+        return WhiteScale(cs, scene, transfer, scene.Radiometry == Radiometry.Physical);
+    }
+
+    /// <summary>A Whitted render's scene and per-light transfer: its lights/ when written, else traced again (the render's rays).</summary>
+    static bool Transfer(Relighting.Source src, int threads, out Scene scene, out LightTransfer transfer, out string from, out string reason)
+    {
+        string dir = src.Dir;
+        scene = null!; transfer = null!; from = "";
         try
         {
             bool written = File.Exists(Path.Combine(dir, LightTransferFiles.Folder, "lights.json"));
             scene = written ? Relighting.ChangedScene(src, [], null)
                 : SceneLoader.Parse(src.Scene.WithLights([], null), src.ScenePath, src.Overrides with { LoadMeshes = true });
-            if (!HasTermTransfer(src, scene, out reason)) return null;
+            if (!HasTermTransfer(src, scene, out reason)) return false;
             if (written)
             {
                 transfer = LightTransferFiles.Read(dir, scene);
@@ -64,15 +85,8 @@ public static class ExactChannelSignals
                 from = "the per-light transfer traced again from render.json's resolved scene (the render's rays)";
             }
         }
-        catch (InputException e) { reason = $"the render's scene cannot be rebuilt for its eq. 2 terms ({e.Message})"; return null; }
-        return Compute(cs, sensor, scene, transfer, from, threads, out reason);
-    }
-
-    /// <summary>Whether the render folder <paramref name="dir"/> holds a path render (the camera's band route then reads its white off the chart).</summary>
-    public static bool IsPathRender(string dir)
-    {
-        try { return IsPath(Relighting.Open(dir)); }
-        catch (InputException) { return PathTransferFiles.IsPath(dir); }
+        catch (InputException e) { reason = $"the render's scene cannot be rebuilt for its eq. 2 terms ({e.Message})"; return false; }
+        return true;
     }
 
     /// <summary>A path render: its lights/ are a path transfer, or the integrator it ran (the command line's run.integrator,
@@ -88,8 +102,8 @@ public static class ExactChannelSignals
     /// <summary>
     /// Whether the render is a sum of eq. 2 terms whose per-light transfer the exact route can use: the Whitted model's.
     /// The integrator is the command line's (render.json's run.integrator), else the resolved scene's. A path-traced render
-    /// is not (its light bounces between surfaces), so its band cube — exact means of the path's fine sub-bands — is the
-    /// camera's input. The one place to change when another integrator records a transfer of its own.
+    /// is not (its light bounces between surfaces): its fine grid is integrated instead (<see cref="PathRoute"/>). The one
+    /// place to change when another integrator records a transfer of its own.
     /// </summary>
     static bool HasTermTransfer(Relighting.Source src, Scene scene, out string reason)
     {

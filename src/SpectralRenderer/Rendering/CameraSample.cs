@@ -15,6 +15,7 @@ namespace SpectralRenderer.Rendering;
 public struct Sampler(int x, int y, int sample, int dimension = 0, SamplerSettings settings = default)
 {
     readonly uint _x = (uint)x, _y = (uint)y, _s = (uint)sample;
+    readonly uint _sReversed = OwenSobol.ReverseBits((uint)sample);   // the Sobol draws' shuffle starts from R(index)
     readonly SamplerSettings _settings = settings;
 
     /// <summary>The next dimension to be drawn.</summary>
@@ -28,7 +29,7 @@ public struct Sampler(int x, int y, int sample, int dimension = 0, SamplerSettin
         {
             uint d = (uint)Dimension;
             Dimension += 2;
-            return OwenSobol.Sample2D(_s, PixelSeed(d));
+            return OwenSobol.Sample2DReversed(_sReversed, PixelSeed(d));
         }
         if (Dimension == 0)
         {
@@ -42,20 +43,45 @@ public struct Sampler(int x, int y, int sample, int dimension = 0, SamplerSettin
 
     /// <summary>The next dimension: 24 random bits of a hash of the sample and the dimension.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    public float Next1D()
+    public float Next1D() => At1D(Reserve1D());
+
+    /// <summary>
+    /// The next 1D dimension, taken without drawing it: an integrator that may not need a number (a lobe choice with one
+    /// lobe, Russian roulette before its depth) reserves its dimension and draws it with <see cref="At1D"/> only when needed,
+    /// so the dimensions after it, and every number drawn, are the same as if it had been drawn.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public int Reserve1D()
     {
-        if (_settings.Kind == SamplerKind.Sobol)
-        {
-            uint dim = (uint)Dimension++;
-            return OwenSobol.Sample1D(_s, PixelSeed(dim));
-        }
-        if (Dimension < 2) Dimension = 2;   // 0 and 1 are the film jitter's
-        uint d = (uint)Dimension++;
-        uint h = Renderer.Hash(_x, _y + _settings.Seed * 0x632BE5ABu, _s) ^ d * 0x9E3779B9u;
+        if (_settings.Kind != SamplerKind.Sobol && Dimension < 2) Dimension = 2;   // 0 and 1 are the film jitter's
+        return Dimension++;
+    }
+
+    /// <summary>The next two dimensions as <see cref="Reserve1D"/> does (drawn by <see cref="At2D"/>); not the film jitter's.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public int Reserve2D()
+    {
+        if (_settings.Kind != SamplerKind.Sobol && Dimension < 2) Dimension = 2;
+        int d = Dimension;
+        Dimension += 2;
+        return d;
+    }
+
+    /// <summary>The value of 1D dimension <paramref name="dimension"/> (from <see cref="Reserve1D"/>) of this sample.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public readonly float At1D(int dimension)
+    {
+        if (_settings.Kind == SamplerKind.Sobol) return OwenSobol.Sample1DReversed(_sReversed, PixelSeed((uint)dimension));
+        uint h = Renderer.Hash(_x, _y + _settings.Seed * 0x632BE5ABu, _s) ^ (uint)dimension * 0x9E3779B9u;
         // lowbias32 again (C. Wellons): every input bit reaches every output bit.
         h ^= h >> 16; h *= 0x7FEB352Du; h ^= h >> 15; h *= 0x846CA68Bu; h ^= h >> 16;
         return (h >> 8) * (1f / (1 << 24));
     }
+
+    /// <summary>The value of the 2D dimension pair <paramref name="dimension"/> (from <see cref="Reserve2D"/>), as <see cref="Next2D"/> draws it there.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public readonly (float U, float V) At2D(int dimension) =>
+        _settings.Kind == SamplerKind.Sobol ? OwenSobol.Sample2DReversed(_sReversed, PixelSeed((uint)dimension)) : (At1D(dimension), At1D(dimension + 1));
 
     /// <summary>The scramble seed of dimension <paramref name="d"/> of this pixel (the sample index is not in it: the
     /// pixel's samples are one scrambled sequence).</summary>

@@ -112,12 +112,21 @@ internal sealed class FineGrid
     {
         result.Clear();
         float inv = 1f / PerBand;
-        for (int b = 0; b < Bands; b++)
-        {
-            float s = 0;
-            for (int j = 0; j < PerBand; j++) s += fine[b * PerBand + j];
-            result[b] = s * inv;
-        }
+        ref float f = ref MemoryMarshal.GetReference(fine[..Count]);
+        ref float r = ref MemoryMarshal.GetReference(result[..Bands]);
+        if (PerBand == 4)   // the default 5-nm grid under 20-nm bands: the same sums, unrolled and without bounds checks
+            for (int b = 0; b < Bands; b++)
+            {
+                ref float q = ref Unsafe.Add(ref f, 4 * b);
+                Unsafe.Add(ref r, b) = (0 + q + Unsafe.Add(ref q, 1) + Unsafe.Add(ref q, 2) + Unsafe.Add(ref q, 3)) * inv;
+            }
+        else
+            for (int b = 0; b < Bands; b++)
+            {
+                float s = 0;
+                for (int j = 0; j < PerBand; j++) s += Unsafe.Add(ref f, b * PerBand + j);
+                Unsafe.Add(ref r, b) = s * inv;
+            }
         var l = MemoryMarshal.Cast<float, Vector<float>>(fine[..Padded]);
         var x = MemoryMarshal.Cast<float, Vector<float>>(_wx.AsSpan());
         var y = MemoryMarshal.Cast<float, Vector<float>>(_wy.AsSpan());

@@ -1,3 +1,4 @@
+using System.Buffers.Binary;
 using System.Runtime.CompilerServices;
 using SpectralRenderer.Scenes;
 
@@ -46,11 +47,25 @@ public static class OwenSobol
         return t;
     }
 
+    /// <summary>
+    /// The bit reversal of Sobol dimension 1, R(Sobol1(i)), as the byte tables of the reversed columns (R is linear over
+    /// GF(2) too): what the scramble of the v coordinate works on, without reversing it.
+    /// </summary>
+    static readonly uint[] Dimension1BytesReversed = Array.ConvertAll(Dimension1Bytes, ReverseBits);
+
     /// <summary>Sobol dimension 1 of <paramref name="index"/> as a 32-bit fraction (dimension 0 is the bit reversal).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static uint Sobol1(uint index)
     {
         var t = Dimension1Bytes;
+        return t[index & 0xFF] ^ t[256 + (index >> 8 & 0xFF)] ^ t[512 + (index >> 16 & 0xFF)] ^ t[768 + (index >> 24)];
+    }
+
+    /// <summary>R(<see cref="Sobol1"/>(index)).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    static uint Sobol1Reversed(uint index)
+    {
+        var t = Dimension1BytesReversed;
         return t[index & 0xFF] ^ t[256 + (index >> 8 & 0xFF)] ^ t[512 + (index >> 16 & 0xFF)] ^ t[768 + (index >> 24)];
     }
 
@@ -70,11 +85,11 @@ public static class OwenSobol
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static uint Scramble(uint x, uint seed) => ReverseBits(LaineKarras(ReverseBits(x), seed));
 
+    /// <summary>The bits of x in reverse order: the bytes swapped (one instruction), then each byte's bits.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    static uint ReverseBits(uint x)
+    public static uint ReverseBits(uint x)
     {
-        x = (x << 16) | (x >> 16);
-        x = ((x & 0x00ff00ffu) << 8) | ((x & 0xff00ff00u) >> 8);
+        x = BinaryPrimitives.ReverseEndianness(x);
         x = ((x & 0x0f0f0f0fu) << 4) | ((x & 0xf0f0f0f0u) >> 4);
         x = ((x & 0x33333333u) << 2) | ((x & 0xccccccccu) >> 2);
         return ((x & 0x55555555u) << 1) | ((x & 0xaaaaaaaau) >> 1);
@@ -95,19 +110,31 @@ public static class OwenSobol
 
     /// <summary>The 2D point of sample <paramref name="index"/> for a dimension pair seeded <paramref name="seed"/>.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    public static (float U, float V) Sample2D(uint index, uint seed)
-    {
-        uint i = Scramble(index, Mix(seed, 1));
-        uint u = Scramble(ReverseBits(i), Mix(seed, 2));
-        uint v = Scramble(Sobol1(i), Mix(seed, 3));
-        return (ToUnit(u), ToUnit(v));
-    }
+    public static (float U, float V) Sample2D(uint index, uint seed) => Sample2DReversed(ReverseBits(index), seed);
 
     /// <summary>The 1D point (Owen-scrambled van der Corput) of sample <paramref name="index"/> for a dimension seeded <paramref name="seed"/>.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    public static float Sample1D(uint index, uint seed)
+    public static float Sample1D(uint index, uint seed) => Sample1DReversed(ReverseBits(index), seed);
+
+    // The same points with fewer bit reversals (R): the shuffled index is i = Scramble(index) = R(LK(R(index))), and
+    // u = Scramble(R(i)) = R(LK(i)) since R(R(x)) = x; v = Scramble(Sobol1(i)) = R(LK(R(Sobol1(i)))), R(Sobol1(i)) from the
+    // reversed tables. R(index) is the caller's, once per camera sample (Sampler). Bit for bit the points above.
+
+    /// <summary><see cref="Sample2D"/> given R(index).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static (float U, float V) Sample2DReversed(uint reversedIndex, uint seed)
     {
-        uint i = Scramble(index, Mix(seed, 1));
-        return ToUnit(Scramble(ReverseBits(i), Mix(seed, 2)));
+        uint i = ReverseBits(LaineKarras(reversedIndex, Mix(seed, 1)));
+        uint u = ReverseBits(LaineKarras(i, Mix(seed, 2)));
+        uint v = ReverseBits(LaineKarras(Sobol1Reversed(i), Mix(seed, 3)));
+        return (ToUnit(u), ToUnit(v));
+    }
+
+    /// <summary><see cref="Sample1D"/> given R(index).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static float Sample1DReversed(uint reversedIndex, uint seed)
+    {
+        uint i = ReverseBits(LaineKarras(reversedIndex, Mix(seed, 1)));
+        return ToUnit(ReverseBits(LaineKarras(i, Mix(seed, 2))));
     }
 }

@@ -231,6 +231,7 @@ public sealed partial class Renderer
     }
 
     /// <summary>A small integer hash (lowbias32 by C. Wellons) for per-sample jitter.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     internal static uint Hash(uint x, uint y, uint s)
     {
         uint h = x * 0x9E3779B1u ^ (y + 0x7F4A7C15u) * 0x85EBCA77u ^ (s + 1) * 0xC2B2AE3Du;

@@ -21,6 +21,7 @@ public sealed partial class SceneGeometry
     readonly AnalyticSet _analytic;
     readonly Bvh? _analyticBvh;
     readonly int[] _analyticObject;
+    readonly FlatFaces? _faces;   // the finite shapes as flat faces, when they are few quads and boxes (IntersectScattered)
     readonly (Vector3 Normal, float Offset)[] _planes;   // n·x = offset, world space
     readonly int[] _planeObject;
 
@@ -51,6 +52,7 @@ public sealed partial class SceneGeometry
             var order = _analyticBvh.PrimitiveOrder;
             _analytic = new AnalyticSet(order.Select(k => finite[k].Shape).ToArray());
             _analyticObject = order.Select(k => finite[k].Object).ToArray();
+            _faces = FlatFaces.TryBuild(order.Select(k => finite[k].Shape).ToArray());
         }
         else _analyticObject = [];
         // Planes are tested directly in world space (an affine map keeps a plane a plane).
@@ -96,6 +98,61 @@ public sealed partial class SceneGeometry
         if (kind == 0) return false;
         Record(kind, ray, h, ah, plane, out hit);
         return true;
+    }
+
+    /// <summary>
+    /// As <see cref="Intersect(ref Ray, out SurfaceHit)"/>, for rays scattered in every direction one at a time (the path integrator's): a scene's few
+    /// quads and boxes are met as <see cref="FlatFaces"/> all at once instead of through their BVH. The hit agrees with
+    /// <see cref="Intersect(ref Ray, out SurfaceHit)"/>'s to float rounding (world-space instead of object-space distances), not bit for bit, so the
+    /// whitted integrator keeps <see cref="Intersect(ref Ray, out SurfaceHit)"/>.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    public bool IntersectScattered(ref Ray ray, out SurfaceHit hit)
+    {
+        if (_faces is not { } faces) return Intersect(ref ray, out hit);
+        var h = new Hit();
+        int kind = 0;
+        if (_hasTriangles)
+        {
+            var t = _triangles;
+            if (t.Bvh.Intersect(ref t, ref ray, ref h)) kind = 1;
+        }
+        int face = faces.Intersect(ref ray);
+        if (face >= 0) kind = 2;
+        int plane = -1;
+        for (int i = 0; i < _planes.Length; i++)
+            if (HitPlane(i, ray, out float tp)) { ray.TMax = tp; plane = i; kind = 3; }
+        if (kind != 2)
+        {
+            if (kind == 0) { hit = default; return false; }
+            Record(kind, ray, h, default, plane, out hit);
+            return true;
+        }
+        hit = default;
+        hit.T = ray.TMax;
+        hit.Position = ray.At(ray.TMax);
+        hit.Kind = 2;
+        hit.Normal = hit.GeometricNormal = faces.Normal(face);
+        int shape = faces.ShapeOf(face);
+        hit.Object = _analyticObject[shape];
+        hit.Primitive = shape;
+        return true;
+    }
+
+    /// <summary>As <see cref="Occluded(in Ray)"/>, with the flat faces of <see cref="IntersectScattered"/>.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    public bool OccludedScattered(in Ray ray)
+    {
+        if (_faces is not { } faces) return Occluded(ray);
+        if (_hasTriangles)
+        {
+            var t = _triangles;
+            if (t.Bvh.Occluded(ref t, ray)) return true;
+        }
+        if (faces.Occluded(ray)) return true;
+        for (int i = 0; i < _planes.Length; i++)
+            if (HitPlane(i, ray, out _)) return true;
+        return false;
     }
 
     /// <summary>The surface record of a closest hit found by kind (1 triangle h, 2 analytic shape ah, 3 plane) at ray.TMax.</summary>

@@ -1,4 +1,5 @@
 using System.Numerics;
+using System.Runtime.CompilerServices;
 using System.Runtime.InteropServices;
 
 namespace SpectralRenderer.Scenes;
@@ -90,6 +91,7 @@ public abstract class Bsdf
     public virtual Bsdf? Resampled(Func<float[], float[]> resample) => null;
 
     /// <summary>A unit direction about <paramref name="n"/> with density cos θ/π (Malley's method).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static Vector3 CosineHemisphere(Vector3 n, Vector2 u)
     {
         float r = MathF.Sqrt(u.X), phi = 2 * MathF.PI * u.Y;
@@ -112,6 +114,7 @@ public abstract class Bsdf
         cos <= 0 ? 0 : (exponent + 1) / (2 * MathF.PI) * MathF.Pow(cos, exponent);
 
     /// <summary>An orthonormal basis (t, b) completing the unit vector n (Duff et al. 2017, branchless).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static (Vector3 T, Vector3 B) Frame(Vector3 n)
     {
         float sign = MathF.CopySign(1, n.Z);
@@ -132,6 +135,7 @@ public sealed class LambertianBsdf(float[] reflectance) : Bsdf
 
     public override Bsdf Resampled(Func<float[], float[]> resample) => new LambertianBsdf(resample(Reflectance));
 
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public override void Evaluate(Vector3 wo, Vector3 wi, Vector3 n, Span<float> f)
     {
         float scale = SameSide(wo, wi, n) ? 1 / MathF.PI : 0;
@@ -158,6 +162,7 @@ public sealed class LambertianBsdf(float[] reflectance) : Bsdf
         for (int i = 0; i < f.Length; i++) f[i] = rho[i] * scale;
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public override float Pdf(Vector3 wo, Vector3 wi, Vector3 n) => SameSide(wo, wi, n) ? MathF.Abs(Vector3.Dot(wi, n)) / MathF.PI : 0;
 
     public override bool Sample(Vector3 wo, Vector3 n, Vector2 u, Span<float> f, out BsdfSample sample)
@@ -170,6 +175,7 @@ public sealed class LambertianBsdf(float[] reflectance) : Bsdf
     }
 
     /// <summary>ωo and ωi on the same side of the surface (both strictly off it).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     internal static bool SameSide(Vector3 wo, Vector3 wi, Vector3 n)
     {
         float a = Vector3.Dot(wo, n), b = Vector3.Dot(wi, n);

@@ -1,0 +1,123 @@
+using System.Diagnostics;
+using System.Runtime.CompilerServices;
+using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Scenes;
+using SpectralRenderer.Spectra;
+
+namespace SpectralRenderer.Rendering;
+
+/// <summary>
+/// A path render's film on its fine grid (issue 24, the camera's exact route): per pixel the mean over its camera samples
+/// of the fine radiance L_f (W·m⁻²·sr⁻¹·nm⁻¹, one value per sub-band of <see cref="FineGrid"/>) that the film reduces to
+/// the output bands (their sub-bands' means) and to XYZ (Σ_f L_f·κ∫_f x̄ dλ). A sensor channel's signal is then
+/// Σ_f L_f · ∫_f η_c(λ)·λ/(hc) dλ, as the film integrates colour. Formed from the render's lights/ (L_f = F_f + Σ_k T_k,f·E_k,f,
+/// no rays) or traced again: the render's camera samples, bit for bit (every random number is the sample's own), summed
+/// with the film's weights 1/spp. Nothing of it is kept at render time; <see cref="Bytes"/> is what it holds.
+/// </summary>
+[CompiledAtFirstCall]
+public sealed class PathFineFilm
+{
+    public required int Width { get; init; }
+    public required int Height { get; init; }
+    /// <summary>Sub-bands per output band (an output band is the mean of its <see cref="PerBand"/> sub-bands).</summary>
+    public required int PerBand { get; init; }
+    /// <summary>The sub-bands' edges (nm).</summary>
+    public required double[] Lower { get; init; }
+    public required double[] Upper { get; init; }
+    /// <summary>[pixel (row-major)][sub-band f]: L_f, W·m⁻²·sr⁻¹·nm⁻¹.</summary>
+    public required float[] Data { get; init; }
+    public int SubBands => Lower.Length;
+
+    /// <summary>Bytes of the fine film of <paramref name="scene"/> (4 per pixel and sub-band).</summary>
+    public static long Bytes(Scene scene) =>
+        4L * scene.Camera.Width * scene.Camera.Height * new FineGrid(scene, PathTransfer.GridWidth(scene)).Count;
+
+    /// <summary>Traces the render's camera samples of the whole film again, summing each sample's fine radiance with its weight.</summary>
+    public static PathFineFilm Trace(Scene scene, PathIntegrator integrator, int threads = 0, CancellationToken cancel = default)
+    {
+        var cam = scene.Camera;
+        var grid = integrator.Grid;
+        int sub = grid.Count;
+        long size = (long)cam.Width * cam.Height * sub;
+        if (size > Array.MaxLength)
+            throw new InputException("camera", $"the path render's fine film needs {size} floats ({cam.Width}×{cam.Height} pixels × {sub} sub-bands), more than one array holds",
+                "a coarser \"spectral_grid\" or fewer pixels; or --signals bands");
+        var data = new float[size];
+        var rect = PixelRect.Whole(cam.Width, cam.Height);
+        // No centre ray beyond the samples (analysis off): with spp = 1 the centre ray is the pixel's one sample, as in the render.
+        var sampling = new PixelSampling(cam, scene.RayBudget, analysis: false, integrator.Sampler);
+        Renderer.RunTiles(rect, threads, null, Stopwatch.StartNew(), cancel, () => new TileWork(integrator, sampling, cam.Width, data, cancel));
+        return Of(grid, cam.Width, cam.Height, data);
+    }
+
+    /// <summary>From a path render's per-light transfer: L_f = F_f + Σ_k T_k,f·E_k,f with the scene's lights (as <see cref="PathTransfer.Relight"/>).</summary>
+    public static PathFineFilm FromTransfer(PathTransfer t, Scene scene)
+    {
+        var grid = new FineGrid(scene, t.SpectralGrid);
+        int sub = t.SubBands, k = t.Lights, w = t.Region.Width, h = t.Region.Height;
+        var e = scene.Lights.Select(l => grid.Resample(l.Intensity)).ToArray();
+        var data = new float[(long)w * h * sub];
+        Parallel.For(0, h, y =>
+        {
+            for (int x = 0; x < w; x++)
+            {
+                int i = y * w + x;
+                var px = t.Data.AsSpan(i * (k + 1) * sub, (k + 1) * sub);
+                var fine = data.AsSpan(i * sub, sub);
+                px.Slice(k * sub, sub).CopyTo(fine);
+                for (int l = 0; l < k; l++)
+                {
+                    var tl = px.Slice(l * sub, sub);
+                    var el = e[l];
+                    for (int f = 0; f < sub; f++) fine[f] += tl[f] * el[f];
+                }
+            }
+        });
+        return Of(grid, w, h, data);
+    }
+
+    static PathFineFilm Of(FineGrid grid, int width, int height, float[] data) => new()
+    {
+        Width = width,
+        Height = height,
+        PerBand = grid.PerBand,
+        Lower = grid.Lower,
+        Upper = grid.Upper,
+        Data = data,
+    };
+
+    sealed class TileWork(PathIntegrator integrator, PixelSampling sampling, int width, float[] data, CancellationToken cancel) : ITileWork
+    {
+        readonly float[] _scratch = new float[integrator.ScratchLength];
+        readonly float[] _sample = new float[integrator.Grid.Padded];
+        readonly float[] _sum = new float[integrator.Grid.Padded];
+        readonly PathIntegrator _integrator = integrator;
+        readonly float[] _data = data;
+        readonly int _width = width, _sub = integrator.Grid.Count;
+
+        public void Tile(int x0, int y0, int x1, int y1, ref RayCounters counters)
+        {
+            var sink = new Samples(this);
+            Renderer.SampleTile(ref sink, in sampling, x0, y0, x1, y1, cancel, ref counters);
+        }
+
+        /// <summary>A pixel's samples summed with the film's weights (<see cref="Renderer"/>'s RadianceSamples, on the fine grid).</summary>
+        readonly struct Samples(TileWork w) : ISampleSink
+        {
+            public void BeginPixel(int x, int y, ref RayCounters counters) => w._sum.AsSpan().Clear();
+
+            [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+            public int Sample(in CameraSample sample, float weight, bool centre, ref RayCounters counters)
+            {
+                int id = w._integrator.FineRadiance(in sample, w._sample, w._scratch, ref counters);
+                if (weight != 0) SpectralMath.AddScaled(w._sum, w._sample, weight);
+                return id;
+            }
+
+            public void EndPixel(int x, int y, int id, ref RayCounters counters)
+            {
+                w._sum.AsSpan(0, w._sub).CopyTo(w._data.AsSpan((y * w._width + x) * w._sub, w._sub));
+            }
+        }
+    }
+}
