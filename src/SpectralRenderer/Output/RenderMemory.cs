@@ -13,8 +13,8 @@ namespace SpectralRenderer.Output;
 /// </summary>
 public static class RenderMemory
 {
-    /// <summary>The parts of the estimate, largest first, in bytes.</summary>
-    public static List<(string Part, long Bytes)> Estimate(Scene scene, int threads, IReadOnlyList<OutputProduct>? named = null)
+    /// <summary>The parts of the estimate, largest first, in bytes, for a render by <paramref name="integrator"/> (null: the scene's).</summary>
+    public static List<(string Part, long Bytes)> Estimate(Scene scene, int threads, IReadOnlyList<OutputProduct>? named = null, string? integrator = null)
     {
         long n = (long)scene.Camera.Width * scene.Camera.Height, bands = scene.Bands;
         var p = scene.Output.Products;
@@ -26,8 +26,11 @@ public static class RenderMemory
         };
         int triangles = scene.TriangleCount;
         if (triangles > 0) parts.Add(("BVH", 160L * triangles));
-        long textures = Rendering.TextureTables.Bytes(scene);   // per texel, mip level and light: shared by the threads
-        if (textures > 0) parts.Add(("texture tables", textures));
+        // Textures, shared by the threads: the Whitted route's tables per texel, mip level and light; the path tracer's
+        // texel spectra on its fine grid per texel and mip level.
+        bool path = (integrator ?? scene.Integrator?.Name) == "path";
+        long textures = path ? Rendering.FineTexture.Bytes(scene) : Rendering.TextureTables.Bytes(scene);
+        if (textures > 0) parts.Add((path ? "texture spectra (fine grid)" : "texture tables", textures));
         // The inputs the products share, once; then what each product's writers hold.
         var products = OutputProductTable.For(p, named);
         var needs = ProductInputs.None;
@@ -40,9 +43,9 @@ public static class RenderMemory
     }
 
     /// <summary>Throws bad input (the camera's size) when the estimate exceeds what the process may still use.</summary>
-    public static void Check(Scene scene, int threads, IReadOnlyList<OutputProduct>? named = null)
+    public static void Check(Scene scene, int threads, IReadOnlyList<OutputProduct>? named = null, string? integrator = null)
     {
-        var parts = Estimate(scene, threads, named);   // never empty: the framebuffer comes first
+        var parts = Estimate(scene, threads, named, integrator);   // never empty: the framebuffer comes first
         long need = parts.Sum(x => x.Bytes);
         var info = GC.GetGCMemoryInfo();
         long available = info.TotalAvailableMemoryBytes;

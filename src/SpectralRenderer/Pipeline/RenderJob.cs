@@ -84,7 +84,7 @@ public sealed class RenderJob
         job.Check();
         if (observer?.Warning is { } warn) foreach (var w in scene.Warnings) warn(w);
         // What the render and its writers hold, checked before anything is built.
-        if (request.OutDir is not null) RenderMemory.Check(scene, request.Threads, job.NamedProducts);
+        if (request.OutDir is not null) RenderMemory.Check(scene, request.Threads, job.NamedProducts, job.IntegratorName);
         return job;
     }
 

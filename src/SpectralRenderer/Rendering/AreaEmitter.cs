@@ -23,15 +23,21 @@ internal sealed class AreaEmitter
     readonly Vector3[] _corner = [], _edge1 = [], _edge2 = [], _normal = [];
     readonly float[] _cumulative = [];
     readonly float _area;
+    // texture coordinates of a point (a textured emission): the analytic shape, or the mesh's per-corner uvs
+    readonly AnalyticShape? _shape;
+    readonly Vector2[]? _meshUvs;
 
     enum Kind { Sphere, Parallelograms, Triangles }
 
-    public AreaEmitter(SceneObject o, float[] radiance, bool twoSided, string where)
+    public AreaEmitter(SceneObject o, float[] radiance, bool twoSided, string where, FineTexture? texture = null)
     {
         Radiance = radiance;
         TwoSided = twoSided;
+        Texture = texture;
+        _shape = o.Shape;
         if (o.Mesh is { } mesh)
         {
+            _meshUvs = mesh.TexCoords;
             _kind = Kind.Triangles;
             int n = mesh.TriangleCount;
             _corner = new Vector3[n]; _edge1 = new Vector3[n]; _edge2 = new Vector3[n]; _normal = new Vector3[n];
@@ -111,8 +117,10 @@ internal sealed class AreaEmitter
         return (corner, e1, e2, normal);
     }
 
-    /// <summary>L_e on the path tracer's grid.</summary>
+    /// <summary>L_e on the path tracer's grid (a textured emitter's: the texture's mean).</summary>
     public float[] Radiance { get; }
+    /// <summary>L_e as a texture on the fine grid (<see cref="TexCoord"/> places a point on it), or null.</summary>
+    public FineTexture? Texture { get; }
     public bool TwoSided { get; }
     /// <summary>The emitting surface's area in m² (scene units²).</summary>
     public float Area => _area;
@@ -124,9 +132,14 @@ internal sealed class AreaEmitter
     /// <summary>A point x (normal n_x) on the emitter seen from <paramref name="p"/> for <paramref name="u"/> ∈ [0, 1)², and the
     /// solid-angle density of its direction; false when it has none (p on the surface, a grazing draw).</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    public bool Sample(Vector3 p, Vector2 u, out Vector3 x, out Vector3 nx, out float pdf)
+    public bool Sample(Vector3 p, Vector2 u, out Vector3 x, out Vector3 nx, out float pdf) => Sample(p, u, out x, out nx, out pdf, out _);
+
+    /// <summary>As <see cref="Sample(Vector3, Vector2, out Vector3, out Vector3, out float)"/>, and the face (parallelogram or
+    /// triangle; 0 on a sphere) the point lies on, for <see cref="TexCoord"/>.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    public bool Sample(Vector3 p, Vector2 u, out Vector3 x, out Vector3 nx, out float pdf, out int face)
     {
-        x = default; nx = default; pdf = 0;
+        x = default; nx = default; pdf = 0; face = 0;
         if (_kind == Kind.Sphere)
         {
             var toCentre = _centre - p;
@@ -159,6 +172,7 @@ internal sealed class AreaEmitter
         int i = Array.BinarySearch(_cumulative, target);
         if (i < 0) i = ~i;
         if (i >= _cumulative.Length) i = _cumulative.Length - 1;
+        face = i;
         float lo = i == 0 ? 0 : _cumulative[i - 1], width = _cumulative[i] - lo;
         float a = width > 0 ? Math.Clamp((target - lo) / width, 0, 0.99999994f) : 0.5f;
         if (_kind == Kind.Parallelograms) x = _corner[i] + a * _edge1[i] + u.Y * _edge2[i];
@@ -171,7 +185,7 @@ internal sealed class AreaEmitter
         return AreaToSolidAngle(p, x, nx, 1 / _area, out pdf);
     }
 
-    /// <summary>The solid-angle density with which <see cref="Sample"/> from <paramref name="p"/> picks point
+    /// <summary>The solid-angle density with which <see cref="Sample(Vector3, Vector2, out Vector3, out Vector3, out float)"/> from <paramref name="p"/> picks point
     /// <paramref name="x"/> (normal <paramref name="nx"/>) of this emitter.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public float Pdf(Vector3 p, Vector3 x, Vector3 nx)
@@ -186,6 +200,25 @@ internal sealed class AreaEmitter
             }
         }
         return AreaToSolidAngle(p, x, nx, 1 / _area, out float pdf) ? pdf : 0;
+    }
+
+    /// <summary>
+    /// The (u, v) of point <paramref name="x"/> on <paramref name="face"/> and the mapping's density (uv units per length), as
+    /// <see cref="SceneGeometry.TexCoord"/> gives them where a ray hits the same point: an analytic shape's generated
+    /// coordinates, a mesh triangle's interpolated at x's barycentrics (the barycentrics themselves without uvs).
+    /// </summary>
+    public Vector2 TexCoord(int face, Vector3 x, out float uvPerLength)
+    {
+        if (_kind != Kind.Triangles) return TextureCoordinates.OfShape(_shape!, x, out uvPerLength);
+        // x − p0 = b1·e1 + b2·e2, solved in the triangle's plane (normal equations of the 2 × 2 system).
+        Vector3 e1 = _edge1[face], e2 = _edge2[face], d = x - _corner[face];
+        float a11 = Vector3.Dot(e1, e1), a12 = Vector3.Dot(e1, e2), a22 = Vector3.Dot(e2, e2);
+        float r1 = Vector3.Dot(d, e1), r2 = Vector3.Dot(d, e2), det = a11 * a22 - a12 * a12;
+        float b1 = det != 0 ? (r1 * a22 - r2 * a12) / det : 0, b2 = det != 0 ? (r2 * a11 - r1 * a12) / det : 0;
+        var p0 = _corner[face];
+        return _meshUvs is { } uvs
+            ? TextureCoordinates.OfTriangle(uvs[3 * face], uvs[3 * face + 1], uvs[3 * face + 2], b1, b2, p0, p0 + e1, p0 + e2, out uvPerLength)
+            : TextureCoordinates.OfTriangle(Vector2.Zero, Vector2.UnitX, Vector2.UnitY, b1, b2, p0, p0 + e1, p0 + e2, out uvPerLength);
     }
 
     [MethodImpl(MethodImplOptions.AggressiveInlining)]

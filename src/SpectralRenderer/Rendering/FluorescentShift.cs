@@ -84,10 +84,14 @@ sealed class FluorescentShift
     }
 
     /// <summary>l[o] += β[o]·Σ_i f_s[o, i]·radiance[i]·scale.</summary>
-    public void AddEmitted(Span<float> l, ReadOnlySpan<float> beta, float[] radiance, float scale)
+    public void AddEmitted(Span<float> l, ReadOnlySpan<float> beta, ReadOnlySpan<float> radiance, float scale)
     {
-        if (_emitted.TryGetValue(radiance, out var se))
+        // The precomputed f_s·E of a source spectrum, found by identity (a light's, an emitter's or the sky's array; an
+        // emitter's texel is computed in full).
+        ref float r0 = ref MemoryMarshal.GetReference(radiance);
+        foreach (var (e, se) in _emitted)
         {
+            if (!Unsafe.AreSame(ref MemoryMarshal.GetArrayDataReference(e), ref r0)) continue;
             var vl = V(l[.._padded]);
             var vb = V(beta[.._padded]);
             var ve = V(se.AsSpan());

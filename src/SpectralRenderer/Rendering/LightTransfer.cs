@@ -258,7 +258,7 @@ public sealed class LightTransfer
             _width = scene.Camera.Width; _height = scene.Camera.Height;
             _centreDiffuse = _lights.Select(_ => new float[_width * _height]).ToArray();
             _centreSpecular = _lights.Select(_ => new float[_width * _height]).ToArray();
-            if (scene.Materials.FirstOrDefault(m => m.DiffuseTexture is not null) is { } textured)
+            if (scene.Materials.FirstOrDefault(m => m.DiffuseTexture is not null || m.SpecularTexture is not null) is { } textured)
                 throw new InputException(scene.SourcePath, $"material '{textured.Name}' is textured: light transfer and relighting take spectra, not textures (issue 26)",
                     "render the scene directly, or give the material a spectrum");
             _tables = new TermTables(scene);

@@ -86,7 +86,7 @@ public sealed partial class PathIntegrator
             {
                 float uLight = _lightCount > 1 ? sampler.At1D(dLight) : 0;
                 var uPoint = sampler.At2D(dPoint);
-                NextEvent(ref sink, bsdf, _shift[m], p, ng, ns, front, wo, uLight, new Vector2(uPoint.U, uPoint.V), pick, smoothProbability, beta, f, ref counters);
+                NextEvent(ref sink, bsdf, default, _shift[m], p, ng, ns, front, wo, uLight, new Vector2(uPoint.U, uPoint.V), pick, smoothProbability, beta, f, ref counters);
             }
 
             if (!(total > 0)) return;

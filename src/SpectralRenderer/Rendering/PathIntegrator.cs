@@ -69,10 +69,6 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
         {
             var material = scene.Materials[m];
             _dispersive[m] = material.Dispersive && material.HasTransmission;   // its paths split per band (PathIntegrator.Dispersion.cs)
-            if (material.DiffuseTexture is not null)
-                throw new InputException($"{where}: $.materials.{material.Name}.diffuse",
-                    $"material '{material.Name}' is textured: the path integrator takes spectra only so far (issue 26)",
-                    "render textured scenes with the whitted integrator");
             _bsdf[m] = material.Bsdf.Resampled(_grid.Resample)
                 ?? throw new InputException($"{where}: $.materials.{material.Name}",
                     $"material '{material.Name}' ({material.Bsdf.GetType().Name}) cannot be carried to the path integrator's spectral grid",
@@ -88,12 +84,17 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
             }
             if (material.Fluorescence is { HasShift: true } fl) _shift[m] = new FluorescentShift(fl, _grid);
             if (material.Emission is { } e) { _emission[m] = _grid.Resample(e.Radiance); _twoSided[m] = e.TwoSided; }
+            TakeTextures(scene, m);   // PathIntegrator.Textures.cs
         }
         // A band's sub-path after a dispersive split (PathIntegrator.Dispersion.cs) walks the plain lobes only.
         if (Array.IndexOf(_dispersive, true) is int glass and >= 0 && Array.FindIndex(_shift, x => x is not null) is int paper and >= 0)
             throw new InputException($"{where}: $.materials.{scene.Materials[paper].Name}.fluorescence",
                 $"material '{scene.Materials[paper].Name}' fluoresces and material '{scene.Materials[glass].Name}' is dispersive: the path integrator does not follow a shifted bounce after a dispersive split yet",
                 "give the glass a constant \"ior\", or render the scene with the whitted integrator");
+        if (Array.IndexOf(_dispersive, true) is int prism and >= 0 && _textured)
+            throw new InputException($"{where}: $.materials.{scene.Materials[prism].Name}.ior",
+                $"material '{scene.Materials[prism].Name}' is dispersive and the scene has textures: the path integrator does not look textures up after a dispersive split yet",
+                "give the glass a constant \"ior\", or the textured materials spectra");
         _objectMaterial = scene.Objects.Select(o => o.Material).ToArray();
         _emitterOf = new int[scene.Objects.Count];
         var emitters = new List<AreaEmitter>();
@@ -104,7 +105,7 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
             if (_emission[o.Material] is { } radiance)
             {
                 _emitterOf[i] = emitters.Count;
-                emitters.Add(new AreaEmitter(o, radiance, _twoSided[o.Material], $"{where}: $.objects"));
+                emitters.Add(new AreaEmitter(o, radiance, _twoSided[o.Material], $"{where}: $.objects", EmissionTexture(o.Material)));
             }
         }
         _emitters = [.. emitters];
@@ -124,9 +125,13 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
 
     /// <summary>
     /// Scratch: L, β, f and the two delta lobes' weights, each a fine spectrum; then either a band's β after a dispersive
-    /// split or a fluorescent scene's shifted paths' (<see cref="ShiftScratch"/>): a scene has not both (the constructor).
+    /// split or a fluorescent scene's shifted paths' (<see cref="ShiftScratch"/>): a scene has not both (the constructor);
+    /// then a textured vertex's texels (<see cref="TextureBase"/>).
     /// </summary>
-    public int ScratchLength => 5 * _padded + Math.Max(_padded, ShiftScratch);
+    public int ScratchLength => TextureBase + TextureScratch;
+
+    /// <summary>Where a textured vertex's texels start in the scratch: after the dispersive split's or the shifted paths' part.</summary>
+    int TextureBase => 5 * _padded + Math.Max(_padded, ShiftScratch);
 
     /// <inheritdoc/>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
@@ -209,11 +214,11 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
     interface IPathSink
     {
         /// <summary>β ⊙ L_e · w: an emitter or the sky reached by the path.</summary>
-        void Emitted(Span<float> beta, float[] le, float w);
+        void Emitted(Span<float> beta, ReadOnlySpan<float> le, float w);
         /// <summary>β ⊙ f ⊙ E · s: next-event estimation of light <paramref name="light"/> (−1: an emitter or the sky).</summary>
-        void NextEvent(int light, Span<float> beta, Span<float> f, float[] radiance, float s);
+        void NextEvent(int light, Span<float> beta, Span<float> f, ReadOnlySpan<float> radiance, float s);
         /// <summary>β ⊙ (S·E) · s: a fluorescent surface's shifted lobe S excited by next-event light <paramref name="light"/>.</summary>
-        void Shifted(int light, FluorescentShift shift, Span<float> beta, float[] radiance, float s);
+        void Shifted(int light, FluorescentShift shift, Span<float> beta, ReadOnlySpan<float> radiance, float s);
         /// <summary>Where emitters and the sky go: a path continued through a shifted lobe remaps it (PathIntegrator.Fluorescence.cs).</summary>
         Span<float> Fixed { get; }
     }
@@ -221,10 +226,10 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
     ref struct FilmSink(Span<float> l) : IPathSink
     {
         readonly Span<float> _l = l;
-        public readonly void Emitted(Span<float> beta, float[] le, float w) => AddProduct(_l, beta, le, w);
-        public readonly void NextEvent(int light, Span<float> beta, Span<float> f, float[] radiance, float s) =>
+        public readonly void Emitted(Span<float> beta, ReadOnlySpan<float> le, float w) => AddProduct(_l, beta, le, w);
+        public readonly void NextEvent(int light, Span<float> beta, Span<float> f, ReadOnlySpan<float> radiance, float s) =>
             AddProduct3(_l, beta, f, radiance, s);
-        public readonly void Shifted(int light, FluorescentShift shift, Span<float> beta, float[] radiance, float s) =>
+        public readonly void Shifted(int light, FluorescentShift shift, Span<float> beta, ReadOnlySpan<float> radiance, float s) =>
             shift.AddEmitted(_l, beta, radiance, s);
         public readonly Span<float> Fixed => _l;
     }
@@ -232,15 +237,15 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
     ref struct TransferSink(Span<float> groups, int padded, int lights) : IPathSink
     {
         readonly Span<float> _groups = groups;
-        public readonly void Emitted(Span<float> beta, float[] le, float w) => AddProduct(_groups.Slice(lights * padded, padded), beta, le, w);
-        public readonly void NextEvent(int light, Span<float> beta, Span<float> f, float[] radiance, float s)
+        public readonly void Emitted(Span<float> beta, ReadOnlySpan<float> le, float w) => AddProduct(_groups.Slice(lights * padded, padded), beta, le, w);
+        public readonly void NextEvent(int light, Span<float> beta, Span<float> f, ReadOnlySpan<float> radiance, float s)
         {
             if (light < 0) AddProduct3(_groups.Slice(lights * padded, padded), beta, f, radiance, s);
             else AddProduct2(_groups.Slice(light * padded, padded), beta, f, s);
         }
         // A shift mixes the light's bands, so it has no per-band transfer: PathTransfer.Trace refuses such scenes for scene
         // lights; emitters and the sky (fixed spectra) enter the fixed slot.
-        public readonly void Shifted(int light, FluorescentShift shift, Span<float> beta, float[] radiance, float s)
+        public readonly void Shifted(int light, FluorescentShift shift, Span<float> beta, ReadOnlySpan<float> radiance, float s)
         {
             if (light < 0) shift.AddEmitted(_groups.Slice(lights * padded, padded), beta, radiance, s);
         }
@@ -296,7 +301,7 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
                     int e = _emitterOf[hit.Object];
                     w = PowerHeuristic(bsdfPdf, e >= 0 ? pick * _emitters[e].Pdf(previous, p, ng) : 0);
                 }
-                sink.Emitted(beta, le, w);
+                sink.Emitted(beta, _textured ? EmittedAt(m, le, in hit, wo, scratch) : le, w);
             }
             if (_maxDepth >= 0 && depth >= _maxDepth) break;
             if (counters.BudgetSpent) { counters.OverBudget = true; break; }
@@ -307,6 +312,7 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
             var front = Vector3.Dot(ns, wo) >= 0 ? ns : -ns;
             // The lobes' shares of the continuation, by the channel: smooth (m_diff + m_spec), mirror, transmission.
             float smoothShare = _smooth[m] ? _smoothChannel[m] : 0;
+            var texels = _textured ? Texels(m, in hit, wo, scratch, ref smoothShare) : default;
             // (a BSDF without a delta lobe is not asked for one: both answers would be "none")
             float mirrorShare = 0, transmitShare = 0;
             Vector3 wiMirror = default, wiTransmit = default;
@@ -329,7 +335,7 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
             {
                 float uLight = _lightCount > 1 ? sampler.At1D(dLight) : 0;   // one light: no choice
                 var uPoint = sampler.At2D(dPoint);
-                NextEvent(ref sink, bsdf, _shift[m], p, ng, ns, front, wo, uLight, new Vector2(uPoint.U, uPoint.V), pick, smoothProbability, beta, f, ref counters);
+                NextEvent(ref sink, bsdf, in texels, _shift[m], p, ng, ns, front, wo, uLight, new Vector2(uPoint.U, uPoint.V), pick, smoothProbability, beta, f, ref counters);
             }
 
             // Continue: choose a lobe, then a direction from it; β gains f·|cos θ|/pdf per band.
@@ -340,6 +346,7 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
             {
                 var u = sampler.At2D(dDirection);
                 if (!bsdf.Sample(wo, ns, new Vector2(u.U, u.V), f, out var bs)) break;
+                if (texels.Any) Evaluate(bsdf, in texels, wo, bs.Wi, ns, f);
                 wi = bs.Wi;
                 float cos = MathF.Abs(Vector3.Dot(ns, wi));
                 bsdfPdf = bs.Pdf * smoothProbability;
@@ -388,14 +395,14 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
     /// emitter's point, or a sky direction, each unshadowed.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    void NextEvent<TSink>(ref TSink sink, Bsdf bsdf, FluorescentShift? shift, Vector3 p, Vector3 ng, Vector3 ns, Vector3 front, Vector3 wo, float uLight, Vector2 u,
+    void NextEvent<TSink>(ref TSink sink, Bsdf bsdf, in SurfaceTexels texels, FluorescentShift? shift, Vector3 p, Vector3 ng, Vector3 ns, Vector3 front, Vector3 wo, float uLight, Vector2 u,
         float pick, float smoothProbability, Span<float> beta, Span<float> f, ref RayCounters counters) where TSink : IPathSink, allows ref struct
     {
         int k = Math.Min((int)(uLight * _lightCount), _lightCount - 1);
         Vector3 wi;
         float distance, factor, pdf;
         bool delta;
-        float[] radiance;
+        ReadOnlySpan<float> radiance;
         if (k < _lights.Length)
         {
             if (!_lights[k].Sample(p, u, out var inc)) return;
@@ -405,14 +412,14 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
         else if (k < _lights.Length + _emitters.Length)
         {
             var emitter = _emitters[k - _lights.Length];
-            if (!emitter.Sample(p, u, out var x, out var nx, out pdf)) return;
+            if (!emitter.Sample(p, u, out var x, out var nx, out pdf, out int face)) return;
             var d = x - p;
             distance = d.Length();
             if (!(distance > 0)) return;
             wi = d / distance;
             if (!emitter.Emits(nx, -wi)) return;
             factor = 1; delta = false;
-            radiance = emitter.Radiance;
+            radiance = emitter.Texture is null ? emitter.Radiance : EmittedAt(emitter, face, x, nx, wi, distance, texels.Emission);
         }
         else
         {
@@ -423,7 +430,7 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
         }
         if (!(pdf > 0) || !(factor > 0)) return;
         float cos = MathF.Abs(Vector3.Dot(ns, wi));
-        bsdf.Evaluate(wo, wi, ns, f);
+        Evaluate(bsdf, in texels, wo, wi, ns, f);
         float side = Vector3.Dot(ng, wi) >= 0 ? 1 : -1;
         var origin = p + side * _geometry.Epsilon * ng;
         var shadow = new Ray(origin, wi);
@@ -456,6 +463,7 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
     }
 
     static Span<Vector<float>> V(Span<float> s) => MemoryMarshal.Cast<float, Vector<float>>(s);
+    static ReadOnlySpan<Vector<float>> RV(ReadOnlySpan<float> s) => MemoryMarshal.Cast<float, Vector<float>>(s);
 
     /// <summary>The largest value of a fine spectrum (its padding is 0).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
@@ -471,17 +479,17 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
 
     /// <summary>dst += a ⊙ b · s</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    static void AddProduct(Span<float> dst, Span<float> a, float[] b, float s)
+    static void AddProduct(Span<float> dst, Span<float> a, ReadOnlySpan<float> b, float s)
     {
-        var d = V(dst); var va = V(a); var vb = V(b.AsSpan(0, dst.Length)); var vs = new Vector<float>(s);
+        var d = V(dst); var va = V(a); var vb = RV(b[..dst.Length]); var vs = new Vector<float>(s);
         for (int i = 0; i < d.Length; i++) d[i] += va[i] * vb[i] * vs;
     }
 
     /// <summary>dst += a ⊙ b ⊙ c · s</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    static void AddProduct3(Span<float> dst, Span<float> a, Span<float> b, float[] c, float s)
+    static void AddProduct3(Span<float> dst, Span<float> a, Span<float> b, ReadOnlySpan<float> c, float s)
     {
-        var d = V(dst); var va = V(a); var vb = V(b); var vc = V(c.AsSpan(0, dst.Length)); var vs = new Vector<float>(s);
+        var d = V(dst); var va = V(a); var vb = V(b); var vc = RV(c[..dst.Length]); var vs = new Vector<float>(s);
         for (int i = 0; i < d.Length; i++) d[i] += va[i] * vb[i] * vc[i] * vs;
     }
 

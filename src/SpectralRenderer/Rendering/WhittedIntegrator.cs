@@ -1,6 +1,7 @@
 using System.Numerics;
 using System.Runtime.CompilerServices;
 using SpectralRenderer.Acceleration;
+using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Geometry;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Spectra;
@@ -38,6 +39,9 @@ public sealed partial class WhittedIntegrator : IPacketIntegrator, IAnalysisInte
         _lights = scene.Lights.ToArray();
         _objectMaterial = scene.Objects.Select(o => o.Material).ToArray();
         _padded = scene.PaddedBands;
+        if (scene.Materials.FirstOrDefault(m => m.SpecularTexture is not null) is { } textured)
+            throw new InputException($"{scene.SourcePath}: {textured.JsonPath}.specular", $"material '{textured.Name}' has a textured specular weight: the whitted integrator textures m_diff only (issue 26)",
+                "render it with \"integrator\": \"path\", or give \"specular\" a spectrum");
         _tables = new TermTables(scene);
         _walker = new Eq2Walker(scene, geometry, _tables);
         // The term tables side by side for the packet path's one-pass band sums: the global ambient of each material, then per

@@ -27,7 +27,7 @@ public readonly record struct BsdfSample(Vector3 Wi, float Pdf, BsdfFlags Flags)
 /// L_o = ∫ f · L_i · cos θ_i dωi. ωo points towards the viewer, ωi towards the light, n is the unit shading normal
 /// (either side: the surfaces of eq. 2 are two-sided, the side ωo is on counts as the front). Band spectra are spans
 /// of band values; the BSDF fills as many as the span holds (at most the scene's padded band count).
-/// The smooth lobes answer <see cref="Evaluate"/>, <see cref="Sample"/> and <see cref="Pdf"/>; the delta lobes
+/// The smooth lobes answer <see cref="Evaluate(Vector3, Vector3, Vector3, Span{float})"/>, <see cref="Sample"/> and <see cref="Pdf"/>; the delta lobes
 /// (perfect mirror k_r, specular transmission k_t) answer <see cref="SampleMirror"/> and <see cref="SampleTransmission"/>.
 /// </summary>
 public abstract class Bsdf
@@ -37,6 +37,21 @@ public abstract class Bsdf
 
     /// <summary>f(ωo, ωi) of the smooth lobes, per band, in 1/sr (delta lobes excluded).</summary>
     public abstract void Evaluate(Vector3 wo, Vector3 wi, Vector3 n, Span<float> f);
+
+    /// <summary>
+    /// Does the model take a texture's texel in place of its diffuse reflectance or specular weight
+    /// (<see cref="Evaluate(Vector3, Vector3, Vector3, ReadOnlySpan{float}, ReadOnlySpan{float}, Span{float})"/>)?
+    /// </summary>
+    public virtual bool TakesTextures => false;
+
+    /// <summary>
+    /// f(ωo, ωi) of the smooth lobes with the diffuse reflectance <paramref name="diffuse"/> and the specular weight
+    /// <paramref name="specular"/> of this point (a texture's filtered texel, on the BSDF's grid) in place of the BSDF's own;
+    /// an empty span keeps its own. Sampling and <see cref="Pdf"/> stay the BSDF's (an estimator's weight f·cos/pdf stays
+    /// unbiased for any density that covers f).
+    /// </summary>
+    public virtual void Evaluate(Vector3 wo, Vector3 wi, Vector3 n, ReadOnlySpan<float> diffuse, ReadOnlySpan<float> specular, Span<float> f) =>
+        throw new NotSupportedException($"{GetType().Name} takes no textures");
 
     /// <summary>The solid-angle density with which <see cref="Sample"/> draws <paramref name="wi"/>.</summary>
     public abstract float Pdf(Vector3 wo, Vector3 wi, Vector3 n);
@@ -135,6 +150,16 @@ public sealed class LambertianBsdf(float[] reflectance) : Bsdf
             i = fv.Length * Vector<float>.Count;
         }
         for (; i < f.Length; i++) f[i] = rho[i] * scale;
+    }
+
+    public override bool TakesTextures => true;
+
+    /// <summary>f = ρ_texel/π (a Lambertian surface has no specular weight).</summary>
+    public override void Evaluate(Vector3 wo, Vector3 wi, Vector3 n, ReadOnlySpan<float> diffuse, ReadOnlySpan<float> specular, Span<float> f)
+    {
+        float scale = SameSide(wo, wi, n) ? 1 / MathF.PI : 0;
+        var rho = diffuse.IsEmpty ? Reflectance.AsSpan(0, f.Length) : diffuse[..f.Length];
+        for (int i = 0; i < f.Length; i++) f[i] = rho[i] * scale;
     }
 
     [MethodImpl(MethodImplOptions.AggressiveInlining)]

@@ -62,6 +62,19 @@ public sealed class Eq2Bsdf : Bsdf
         for (int i = 0; i < f.Length; i++) f[i] = _m.Diffuse[i] / MathF.PI + _m.Specular[i] * spec;
     }
 
+    public override bool TakesTextures => true;
+
+    /// <summary>f = m_diff/π + m_spec·N(s)·factor with a texel's m_diff and/or m_spec (empty: the material's own).</summary>
+    public override void Evaluate(Vector3 wo, Vector3 wi, Vector3 n, ReadOnlySpan<float> diffuse, ReadOnlySpan<float> specular, Span<float> f)
+    {
+        var front = Vector3.Dot(wo, n) >= 0 ? n : -n;
+        float nl = Vector3.Dot(front, wi);
+        if (!(nl > 0 && Vector3.Dot(front, wo) > 0)) { f.Clear(); return; }
+        float spec = _m.HasSpecular ? _specularNorm * _m.SpecularFactor(front, wi, wo, nl) : 0;
+        ReadOnlySpan<float> d = diffuse.IsEmpty ? _m.Diffuse : diffuse, s = specular.IsEmpty ? _m.Specular : specular;
+        for (int i = 0; i < f.Length; i++) f[i] = d[i] / MathF.PI + s[i] * spec;
+    }
+
     public override float Pdf(Vector3 wo, Vector3 wi, Vector3 n)
     {
         if (!HasSmooth) return 0;

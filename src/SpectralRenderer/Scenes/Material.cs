@@ -12,6 +12,8 @@ namespace SpectralRenderer.Scenes;
 public sealed class Material
 {
     public required string Name { get; init; }
+    /// <summary>Where the material is in the scene file: $.materials.NAME, or an inline material's own path (its name).</summary>
+    public string JsonPath => Name.StartsWith("$.", StringComparison.Ordinal) ? Name : $"$.materials.{Name}";
     public required float[] Ambient { get; init { field = value; HasAmbient = Spectra.SpectralMath.Any(value); } }
     public required float[] Diffuse { get; init; }
     public required float[] Specular { get; init { field = value; HasSpecular = Spectra.SpectralMath.Any(value); } }
@@ -29,6 +31,9 @@ public sealed class Material
     /// <summary>A spectral texture on m_diff (and on m_amb when that defaults to m_diff), or null; <see cref="Diffuse"/> then holds
     /// the texture's mean (the renderer's texture tables look the texels up).</summary>
     public Textures.TextureBinding? DiffuseTexture { get; set; }
+    /// <summary>A spectral texture on m_spec, or null; <see cref="Specular"/> then holds the texture's mean (the path integrator
+    /// looks the texels up; the Whitted integrator refuses it).</summary>
+    public Textures.TextureBinding? SpecularTexture { get; set; }
     /// <summary>What the surface emits ("emission", an area light for the path tracer), or null.</summary>
     public Emission? Emission { get; set; }
     /// <summary>The re-radiation (Donaldson) matrix whose diagonal is <see cref="Diffuse"/> ("fluorescence"), or null.</summary>

@@ -21,10 +21,10 @@ namespace SpectralRenderer.Tests.Scenes;
 /// </summary>
 public class SpectralTextureTests(Xunit.Abstractions.ITestOutputHelper output)
 {
-    const int PerPatch = 4;   // texels per patch side: a patch centre's bilinear taps stay inside the patch
+    internal const int PerPatch = 4;   // texels per patch side: a patch centre's bilinear taps stay inside the patch
 
     /// <summary>The reference table: wavelengths and the 24 reflectances (patch-major).</summary>
-    static (double[] Wavelengths, double[][] Patches) ColorCheckerTable()
+    internal static (double[] Wavelengths, double[][] Patches) ColorCheckerTable()
     {
         var lines = File.ReadAllLines(Path.Combine(DataDirectory.Path, "colorchecker-ohta.csv")).Where(l => l.Length > 0 && char.IsDigit(l[0])).ToArray();
         var wl = lines.Select(l => double.Parse(l.Split(',')[0], CultureInfo.InvariantCulture)).ToArray();
@@ -33,7 +33,7 @@ public class SpectralTextureTests(Xunit.Abstractions.ITestOutputHelper output)
     }
 
     /// <summary>Texel-major values of the 6 × 4 chart, <see cref="PerPatch"/>² texels per patch, row 0 the chart's top row.</summary>
-    static float[] ChartTexels(double[][] patches, int samples, Func<double, float> value)
+    internal static float[] ChartTexels(double[][] patches, int samples, Func<double, float> value)
     {
         int w = 6 * PerPatch, h = 4 * PerPatch;
         var v = new float[w * h * samples];
@@ -101,7 +101,7 @@ public class SpectralTextureTests(Xunit.Abstractions.ITestOutputHelper output)
         Assert.True(worstDe <= 0.001, $"largest ΔE00 {worstDe:G3}");
     }
 
-    static void WriteEnvi(string image, int w, int h, double[] wl, float[] texels)
+    internal static void WriteEnvi(string image, int w, int h, double[] wl, float[] texels)
     {
         int n = wl.Length;
         var inv = CultureInfo.InvariantCulture;

@@ -59,6 +59,9 @@ public sealed partial class SceneLoader
         bool twoSided = Bool(e, "two_sided", path, false);
         if (TryGet(e, "luminous_flux", out _))
         {
+            if (_pendingTextures.ContainsKey($"{path}.spectrum"))
+                throw Error($"{path}.luminous_flux", "a textured emission is scaled by \"radiance\" or \"luminance\" (of the texture's mean), not by luminous_flux",
+                    "give \"radiance\": k (the texels' multiplier) or \"luminance\": cd/m²");
             foreach (var other in new[] { "radiance", "luminance" })
                 if (TryGet(e, other, out _))
                     throw Error($"{path}.luminous_flux", $"both {other} and luminous_flux are given", "give one: luminous_flux (lm) sets the radiance");
@@ -72,7 +75,7 @@ public sealed partial class SceneLoader
         }
         double k = Luminance(e, path, spectrum) ?? Number(e, "radiance", path, 1, 0);
         var radiance = Bands(spectrum.Scaled(k), $"{path}.spectrum");
-        return new Emission(radiance, twoSided);
+        return new Emission(radiance, twoSided) { Texture = EmissionTexture(path, k) };   // issue 26: SceneLoader.Textures.cs
     }
 
     /// <summary>Emissions given by luminous flux: the material's path, Φ_v (lm), K_m∫V·S dλ, the spectrum and its sides.</summary>

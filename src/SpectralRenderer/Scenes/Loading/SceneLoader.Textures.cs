@@ -10,10 +10,10 @@ using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Scenes.Loading;
 
-// Textures (issue 26): a material's "diffuse" given as { "texture": FILE, … } — an ENVI cube, a spectral OpenEXR
-// (T.<λ>nm or S0.<λ>nm channels), a stack of single-band PNGs with their wavelengths, or an sRGB PNG uplifted to
-// reflectance spectra. The spectrum it stands for is the texture's mean; the texels reach the material afterwards
-// (AttachTextures), so the material models read "diffuse" as they always have.
+// Textures (issue 26): a material's "diffuse" or "specular", or its emission's "spectrum", given as { "texture": FILE, … }
+// — an ENVI cube, a spectral OpenEXR (T.<λ>nm or S0.<λ>nm channels), a stack of single-band PNGs with their wavelengths,
+// or an sRGB PNG uplifted to reflectance spectra. The spectrum it stands for is the texture's mean; the texels reach the
+// material afterwards (AttachTextures, ParseEmission), so the material models read those keys as they always have.
 public sealed partial class SceneLoader
 {
     static readonly string[] TextureKeys = ["texture", "wavelengths", "scale", "uv_transform"];
@@ -22,12 +22,15 @@ public sealed partial class SceneLoader
     /// <summary>Is <paramref name="e"/> a texture object ({"texture": …})?</summary>
     static bool IsTexture(JsonElement e) => e.ValueKind == JsonValueKind.Object && TryGet(e, "texture", out _);
 
-    /// <summary>A texture given where a spectrum is expected: read, checked as a reflectance, kept for its material; its mean returned.</summary>
+    /// <summary>A texture given where a spectrum is expected: read, checked as a reflectance (an emission's as a radiance), kept
+    /// for its material; its mean returned.</summary>
     [MethodImpl(MethodImplOptions.NoOptimization)]
     TabulatedSpectrum TextureSpectrum(JsonElement e, string path)
     {
-        if (!path.EndsWith(".diffuse", StringComparison.Ordinal))
-            throw Error(path, "only a material's \"diffuse\" can be a texture so far", "give a spectrum here, and the texture as the material's \"diffuse\"");
+        bool emission = path.EndsWith(".emission.spectrum", StringComparison.Ordinal);
+        if (!emission && !path.EndsWith(".diffuse", StringComparison.Ordinal) && !path.EndsWith(".specular", StringComparison.Ordinal))
+            throw Error(path, "only a material's \"diffuse\", \"specular\" or emission \"spectrum\" can be a texture so far",
+                "give a spectrum here, and the texture as a material's \"diffuse\", \"specular\" or \"emission\": { \"spectrum\": … }");
         Keys(e, path, TextureKeys);
         var uv = TryGet(e, "uv_transform", out var u) ? UvTransformOf(u, $"{path}.uv_transform") : UvTransform.Identity;
         var texture = ReadTexture(e, path);
@@ -37,19 +40,29 @@ public sealed partial class SceneLoader
         var inv = CultureInfo.InvariantCulture;
         if (!float.IsFinite(min) || !float.IsFinite(max))
             throw Error($"{path}.texture", $"texture {texture.Source} holds values that are not finite numbers", "write the texture again with finite reflectances");
-        if (max >= 2)
+        if (max >= 2 && !emission)
             throw Error($"{path}.texture", $"texture {texture.Source} reaches {max.ToString("0.###", inv)}: a reflectance cannot exceed 1 (this looks like percent)", "add \"scale\": 0.01 to the texture object");
         if (min < -1e-6)
-            throw Error($"{path}.texture", $"texture {texture.Source} goes down to {min.ToString("G4", inv)}: a reflectance cannot be negative", "clip the texture's noise below zero to 0");
-        if (max > 1) _warnings.Add($"{Where(path)}: warning: texture {texture.Source} reaches {max.ToString("0.###", inv)} > 1; rendered as given");
+            throw Error($"{path}.texture", $"texture {texture.Source} goes down to {min.ToString("G4", inv)}: {(emission ? "a radiance" : "a reflectance")} cannot be negative", "clip the texture's noise below zero to 0");
+        if (max > 1 && !emission) _warnings.Add($"{Where(path)}: warning: texture {texture.Source} reaches {max.ToString("0.###", inv)} > 1; rendered as given");
         _pendingTextures[path] = new TextureBinding(texture, uv);
         return texture.Mean();
     }
 
-    /// <summary>The texture read for <paramref name="materialPath"/>'s "diffuse" goes onto the material made from it.</summary>
+    /// <summary>The textures read for <paramref name="materialPath"/>'s "diffuse" and "specular" go onto the material made from them.</summary>
     void AttachTextures(Material material, string materialPath)
     {
         if (_pendingTextures.Remove($"{materialPath}.diffuse", out var binding)) material.DiffuseTexture = binding;
+        if (_pendingTextures.Remove($"{materialPath}.specular", out binding)) material.SpecularTexture = binding;
+    }
+
+    /// <summary>The texture read for an emission's "spectrum" at <paramref name="path"/>, its texels scaled by the emission's k, or null.</summary>
+    TextureBinding? EmissionTexture(string path, double k)
+    {
+        if (!_pendingTextures.Remove($"{path}.spectrum", out var binding)) return null;
+        var values = binding.Texture.Values;
+        if (k != 1) for (int i = 0; i < values.Length; i++) values[i] = (float)(values[i] * k);
+        return binding;
     }
 
     [MethodImpl(MethodImplOptions.NoOptimization)]

@@ -1,0 +1,74 @@
+using System.Numerics;
+using System.Runtime.CompilerServices;
+using System.Runtime.InteropServices;
+using SpectralRenderer.Scenes;
+using SpectralRenderer.Scenes.Textures;
+
+namespace SpectralRenderer.Rendering;
+
+/// <summary>
+/// A spectral texture on the path tracer's fine grid (<see cref="FineGrid"/>): texel (x, y)'s value on sub-band f is
+/// the exact mean over f of its tabulated spectrum — the projection <see cref="FineGrid.Resample"/> makes of a plain
+/// spectrum. A mean is linear in the texel's samples, so the projection is one sub-band × sample matrix, each column the
+/// mean of a sample's tent function, applied to every texel once at load. Mip levels and the filtered lookup are
+/// <see cref="TexelLevels"/>'; one copy shared by every thread, a lookup writes into the caller's scratch.
+/// </summary>
+internal sealed class FineTexture : TexelLevels
+{
+    public FineTexture(TextureBinding binding, FineGrid grid)
+        : base(binding.Texture.Source, binding.Texture.Width, binding.Texture.Height, grid.Padded, binding.Transform)
+    {
+        var tex = binding.Texture;
+        var hats = TexturedTerms.Hats(tex);
+        int rows = grid.Count, samples = tex.Samples, stride = Stride;
+        var m = new double[rows, samples];
+        for (int f = 0; f < rows; f++)
+            for (int j = 0; j < samples; j++) m[f, j] = hats[j].Mean(grid.Lower[f], grid.Upper[f]);
+        var data = Data;
+        Parallel.For(0, tex.Height, y =>
+        {
+            for (int x = 0; x < tex.Width; x++)
+            {
+                var s = tex.Texel(x, y);
+                var t = data.AsSpan((y * tex.Width + x) * stride, stride);   // level 0; the padding stays 0
+                for (int f = 0; f < rows; f++)
+                {
+                    double sum = 0;
+                    for (int j = 0; j < samples; j++) sum += m[f, j] * s[j];
+                    t[f] = (float)sum;
+                }
+            }
+        });
+        BuildMips();
+    }
+
+    /// <summary>
+    /// Bytes the path tracer's fine textures of <paramref name="scene"/> take (the pre-render memory check): per textured
+    /// diffuse, specular or emission, its texels with their mip levels × the fine grid's padded sub-bands, once for all threads.
+    /// </summary>
+    public static long Bytes(Scene scene)
+    {
+        var textures = scene.Materials.SelectMany(m => new[] { m.DiffuseTexture, m.SpecularTexture, m.Emission?.Texture }).OfType<TextureBinding>().ToList();
+        if (textures.Count == 0) return 0;
+        var settings = scene.Integrator is { Name: "path" } s ? s : new IntegratorSettings("path");
+        int padded = new FineGrid(scene, settings.SpectralGrid).Padded;
+        return textures.Sum(t => TexelsWithMips(t.Texture.Width, t.Texture.Height) * padded * sizeof(float));
+    }
+
+    /// <summary>The texture at <paramref name="uv"/> for a footprint <paramref name="width"/> wide (uv units) into <paramref name="dst"/>: Σ weight·texel.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    public void Filter(Vector2 uv, float width, Span<float> dst)
+    {
+        Lookup(uv, width, out var taps);
+        var d = MemoryMarshal.Cast<float, Vector<float>>(dst[..Stride]);
+        var data = Data.AsSpan();
+        for (int k = 0; k < taps.Count; k++)
+        {
+            var src = MemoryMarshal.Cast<float, Vector<float>>(data.Slice(taps.At[k], Stride));
+            var w = new Vector<float>(taps.Weight[k]);
+            if (k == 0) for (int i = 0; i < d.Length; i++) d[i] = src[i] * w;
+            else for (int i = 0; i < d.Length; i++) d[i] += src[i] * w;
+        }
+        if (taps.Count == 0) dst[..Stride].Clear();
+    }
+}
