@@ -46,7 +46,7 @@ public sealed partial class PathIntegrator
     /// (a bound of the transform's amplification, which Russian roulette multiplies into β's largest band) times ‖diag(g)·f_s‖∞.
     /// <paramref name="pdf"/> is 0: sources reached next are next-event estimation's. False when ωi leaves the lobe's hemisphere.
     /// </summary>
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    [MethodImpl(MethodImplOptions.NoInlining)]   // a fluorescent vertex only: kept out of the walk (its registers and frame)
     bool ShiftedBounce<TSink>(ref TSink sink, int material, float probability, Vector3 wo, Vector3 ns, Vector3 front, Vector2 u,
         Span<float> beta, Span<float> scratch, ref int shifted, ref float gain, out Vector3 wi, out float pdf)
         where TSink : IPathSink, allows ref struct

@@ -73,7 +73,7 @@ public sealed partial class PathIntegrator
     /// The texels of material <paramref name="m"/> at <paramref name="hit"/> into scratch (at TextureBase),
     /// and the smooth lobes' channel share from them; no diffuse or specular texel when the material has no such texture.
     /// </summary>
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    [MethodImpl(MethodImplOptions.NoInlining)]   // textured vertices only: kept out of the walk's code
     SurfaceTexels Texels(int m, scoped in SurfaceHit hit, Vector3 wo, Span<float> scratch, scoped ref float smoothShare)
     {
         var emission = scratch.Slice(TextureBase + 2 * _padded, _padded);
@@ -95,7 +95,7 @@ public sealed partial class PathIntegrator
     }
 
     /// <summary>The radiance material <paramref name="m"/> emits at <paramref name="hit"/>: its texel when textured, else <paramref name="le"/>.</summary>
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    [MethodImpl(MethodImplOptions.NoInlining)]   // textured vertices only: kept out of the walk's code
     ReadOnlySpan<float> EmittedAt(int m, float[] le, scoped in SurfaceHit hit, Vector3 wo, Span<float> scratch)
     {
         if (_emissionTexture[m] is not { } texture) return le;
@@ -115,7 +115,7 @@ public sealed partial class PathIntegrator
     }
 
     /// <summary>f of the smooth lobes, with the vertex's texels when it has any.</summary>
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    [MethodImpl(MethodImplOptions.NoInlining)]   // textured vertices only: kept out of the walk's code
     static void Evaluate(Bsdf bsdf, in SurfaceTexels texels, Vector3 wo, Vector3 wi, Vector3 ns, Span<float> f)
     {
         if (texels.Any) bsdf.Evaluate(wo, wi, ns, texels.Diffuse, texels.Specular, f);
