@@ -150,10 +150,18 @@ public static partial class ExactChannelSignals
             {
                 var se = scene.Spectra[e!];
                 var sm = m is null ? null : scene.Spectra[m];
+                // A fluorescent material's diffuse term is its re-radiation matrix applied to the light: the shifted part too.
+                var shifted = comp.Lobe == TransferLobe.Diffuse && scene.Materials[comp.Material].Fluorescence is { HasShift: true } fl
+                    ? (Matrix: fl, Cells: fl.ShiftedCells(se.Integrate, scene.Grid.Start, scene.Grid.End)) : default;
                 for (int part = 0; part < parts; part++)
                 {
                     double lo = parts == 1 ? scene.Grid.Start : scene.Grid.Lower(part), hi = parts == 1 ? scene.Grid.End : scene.Grid.Upper(part);
-                    for (int c = 0; c < cc; c++) t[part * cc + c] = factor * chain * ChannelWeights.ExactIntegral(sensor.Channels[c], se, sm, lo, hi);
+                    for (int c = 0; c < cc; c++)
+                    {
+                        double v = ChannelWeights.ExactIntegral(sensor.Channels[c], se, sm, lo, hi);
+                        if (shifted.Matrix is { } matrix) v += ShiftIntegral(sensor.Channels[c], matrix, shifted.Cells, lo, hi);
+                        t[part * cc + c] = factor * chain * v;
+                    }
                 }
             }
             else if (!exact)
@@ -208,6 +216,21 @@ public static partial class ExactChannelSignals
     }
 
     /// <summary>The light spectrum, material spectrum (null: none) and constant factor of a component's term, as <see cref="TermTables"/> forms it.</summary>
+    /// <summary>
+    /// ∫_lo^hi η_c(λ)·λ·L_s(λ) dλ of a fluorescent term's shifted emission L_s, constant over each of the matrix's emission
+    /// cells (<see cref="ReradiationMatrix.ShiftedCells"/>, as the render's exact colour takes it: <see cref="FluorescentTerms"/>).
+    /// </summary>
+    static double ShiftIntegral(SensorChannel channel, ReradiationMatrix matrix, double[] cells, double lo, double hi)
+    {
+        double sum = 0;
+        for (int o = 0; o < cells.Length; o++)
+        {
+            double a = Math.Max(lo, matrix.CellLower(o)), b = Math.Min(hi, matrix.CellUpper(o));
+            if (b > a && cells[o] != 0) sum += cells[o] * ChannelWeights.ExactIntegral(channel, null, null, a, b);
+        }
+        return sum;
+    }
+
     static (float[]? E, float[]? M, double Factor) Term(Scene scene, TransferComponent comp, bool physical)
     {
         var mat = comp.Material >= 0 ? scene.Materials[comp.Material] : null;

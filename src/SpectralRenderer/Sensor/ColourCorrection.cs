@@ -60,7 +60,9 @@ public sealed class ColourCorrection
         var t = new double[3, ColorChecker.PatchCount];
         for (int p = 0; p < ColorChecker.PatchCount; p++)
         {
-            var patch = ColorChecker.Patch(p + 1);
+            // Ohta's tables span 380–780 nm; a render's bands may reach into the UV or the near infrared, where the patch's
+            // first and last values continue (CIE 015's extrapolation for short tables).
+            var patch = ColorChecker.Patch(p + 1).WithExtrapolation(Extrapolation.Clamp);
             var r = BandProjection.Means(patch, grid);
             signals[p] = new double[cc];
             for (int c = 0; c < cc; c++)

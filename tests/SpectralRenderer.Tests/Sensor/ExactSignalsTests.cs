@@ -87,6 +87,41 @@ public class ExactSignalsTests(ITestOutputHelper output)
     }
 
     /// <summary>
+    /// Issue 26: a fluorescent paper's diffuse term is its re-radiation matrix applied to the light, so the exact route's
+    /// channels integrate the shifted emission too. The optically brightened paper beside a plain white under D50 with UV
+    /// (bands from 300 nm): cie-xyz's raw is proportional to the render's exact XYZ (the colour of the matrix's emission
+    /// cells, CIE 015) on both papers — without the shift the brightened paper's Z would fall ~10 % short — and the
+    /// camera's colour correction trains on the ColorChecker beyond its 380–780 nm tables.
+    /// </summary>
+    [Fact]
+    public void CieXyz_OnAFluorescentPaper_IsProportionalToTheRendersExactXyz()
+    {
+        var dir = Reference.TempDir();
+        var render = Path.Combine(dir, "render");
+        var (code, _, err) = CliRunner.Run("render", Repo.PathOf("scenes", "fluorescence-paper-m1.json"), "-o", render,
+            "--width", "60", "--height", "30", "--formats", "exr,aov", "--quiet");
+        Assert.True(code == 0, err);
+        var (raw, manifest) = Camera(render, "cie-xyz");
+        Assert.StartsWith("exact", (string)manifest["simulation"]!["signal_route"]!, StringComparison.Ordinal);
+        var exr = ExrReader.Read(Path.Combine(render, "spectral.exr"));
+        var xyz = new[] { exr.OtherChannels["X"], exr.OtherChannels["Y"], exr.OtherChannels["Z"] };
+        // The left quad is the brightened paper, the right one the plain white: one pixel of each sets the scale apart.
+        int left = 15 * 60 + 15, right = 15 * 60 + 45;
+        Assert.True(xyz[2][left] > 1.03 * xyz[2][right] * xyz[1][left] / xyz[1][right], "the brightened paper should be bluer than the plain white");
+        double ratio = raw[right * 3 + 1] / xyz[1][right], worst = 0;
+        int lit = 0;
+        for (int i = 0; i < 60 * 30; i++)
+        {
+            if (!(xyz[1][i] > 0)) continue;
+            lit++;
+            for (int c = 0; c < 3; c++) worst = Math.Max(worst, Math.Abs(raw[i * 3 + c] / xyz[c][i] / ratio - 1));
+        }
+        output.WriteLine($"fluorescent paper: cie-xyz raw / exact XYZ over {lit} pixels, largest relative deviation {worst:E3}");
+        Assert.True(lit > 500, $"only {lit} lit pixels");
+        Assert.True(worst <= 1e-5, $"cie-xyz raw / exact XYZ varies by {worst:E3} relative on the fluorescent paper scene");
+    }
+
+    /// <summary>
     /// Every preset, noise off: a patch pixel's DN − black against K·t·A·ff·πT/(1+4N²)·∫ ρ(λ)·E(λ)·η_c(λ)·λ/(hc) dλ, the
     /// integral by the midpoint rule on 0.1 nm steps of linear interpolants of the data tables (ρ: Ohta, E: D65), here.
     /// </summary>
