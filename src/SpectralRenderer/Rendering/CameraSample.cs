@@ -15,7 +15,8 @@ namespace SpectralRenderer.Rendering;
 public struct Sampler(int x, int y, int sample, int dimension = 0, SamplerSettings settings = default)
 {
     readonly uint _x = (uint)x, _y = (uint)y, _s = (uint)sample;
-    readonly uint _sReversed = OwenSobol.ReverseBits((uint)sample);   // the Sobol draws' shuffle starts from R(index)
+    // The Sobol draws' shuffle starts from R(index); the independent sampler never reads it (a camera ray's jitter is one hash).
+    readonly uint _sReversed = settings.Kind == SamplerKind.Sobol ? OwenSobol.ReverseBits((uint)sample) : 0;
     readonly SamplerSettings _settings = settings;
 
     /// <summary>The next dimension to be drawn.</summary>
