@@ -972,6 +972,13 @@ plan_case("extra-not-object", {"scene": "good.json", "extra": [5]}, r"\$\.extra\
 plan_case("no-jobs", {"scene": "good.json"}, r"\$\.axes: makes no jobs")
 # Found by fuzzing (fuzz/run.sh sweep): a plan whose strings are not UTF-8.
 plan_case("fuzz-invalid-utf8", open(os.path.join(HERE, "found", "plan-fuzz-invalid-utf8.json"), "rb").read(), r"is not valid UTF-8", place=r".")
+# Found by fuzzing (fuzz/run.sh sweep): a key twice in one object of the plan; and the same in the base scene.
+plan_case("fuzz-duplicate-key", open(os.path.join(HERE, "found", "plan-fuzz-duplicate-key.json"), "rb").read(),
+          r":2:\d+: \$\.axes\[0\]\.path: key 'path' appears a second time in this object", place=SW)
+write("scene-duplicate-key.json", '{ "camera": { "position": [0, 0, 5], "look_at": [0, 0, 0], "width": 8, "height": 6, "width": 4 } }')
+write("plan-scene-duplicate-key.json", json.dumps({"scene": "scene-duplicate-key.json", "axes": [AX]}))
+case("sweep/scene-duplicate-key", ["sweep", "{in}/plan-scene-duplicate-key.json", "-o", "{tmp}/sw", "--quiet"],
+     r"scene-duplicate-key\.json:1:\d+: .*'width'", 2, "scene-duplicate-key.json", r".")
 write("plan-latin1-scene.json", json.dumps({"scene": "scene-035-latin1-byte.json", "axes": [{"name": "light", "path": "lights[0].spectrum", "values": ["A"]}]}))
 case("sweep/scene-latin1", ["sweep", "{in}/plan-latin1-scene.json", "-o", "{tmp}/sw", "--quiet"], r"is not valid UTF-8", 2, "scene-035-latin1-byte.json", r".")
 plan_case("formats-number", {"scene": "good.json", "axes": [AX], "formats": 5}, r"\$\.formats: is not a list of formats")

@@ -29,7 +29,7 @@ public sealed class SweepPlan
     /// <summary>The plan's "formats" for every job (null: the scene's own).</summary>
     public string? Formats { get; init; }
 
-    static readonly JsonDocumentOptions Options = new() { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true };
+    static readonly JsonDocumentOptions Options = new() { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true, AllowDuplicateProperties = false };
 
     public static SweepPlan Load(string planPath)
     {
@@ -39,6 +39,11 @@ public sealed class SweepPlan
         var locator = new JsonLocator(bytes, new JsonReaderOptions { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true });
         InputException Bad(string path, string what, string? hint = null) =>
             new(locator.Locate(path) is { } pos ? $"{planPath}:{pos}: {path}" : $"{planPath}: {path}", what, hint ?? "see the sweep plan format in README.md");
+        // Found by fuzzing (fuzz/run.sh sweep): a key given twice in one object broke the JSON object's enumeration.
+        if (locator.Duplicate is { } dup)
+            throw new InputException($"{planPath}:{locator.Position(dup.Offset)}: {dup.Path}",
+                $"key {MessageText.Quote(dup.Path[(dup.Path.LastIndexOf('.') + 1)..])} appears a second time in this object",
+                "each key may appear once: remove or rename one of them");
         JsonObject plan;
         try { plan = JsonNode.Parse(bytes, documentOptions: Options) as JsonObject ?? throw Bad("$", "is not a JSON object", "a plan is { \"scene\": …, \"axes\": [ … ] }"); }
         catch (JsonException e) { throw new InputException(planPath, $"is not valid JSON: {e.Message.Split(" LineNumber:")[0]}", "check for a missing comma, quote or bracket"); }
@@ -52,7 +57,11 @@ public sealed class SweepPlan
         if (!System.Text.Unicode.Utf8.IsValid(sceneBytes)) throw new InputException(scenePath, "is not valid UTF-8", "save the scene file as UTF-8");
         JsonObject scene;
         try { scene = JsonNode.Parse(sceneBytes, documentOptions: Options) as JsonObject ?? throw new JsonException("not an object"); }
-        catch (JsonException e) { throw new InputException(scenePath, $"is not a valid scene: {e.Message.Split(" LineNumber:")[0]}", "check for a missing comma, quote or bracket"); }
+        catch (JsonException e)
+        {
+            var place = JsonFields.Place(e, Encoding.UTF8.GetString(sceneBytes), new JsonReaderOptions { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true });
+            throw new InputException($"{scenePath}:{place}", $"is not a valid scene: {e.Message.Split(" LineNumber:")[0]}", "check for a missing comma, quote or bracket, or a key given twice");
+        }
 
         var fixedEdits = plan["set"] is JsonObject set ? Edits(set, "$.set", Bad) : [];
         var axes = new List<(string Name, List<(string Label, List<(string, JsonNode?)> Edits)> Values)>();
