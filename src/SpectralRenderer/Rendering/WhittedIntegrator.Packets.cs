@@ -110,9 +110,22 @@ public sealed partial class WhittedIntegrator
             lit[k] = shadows.Active & ~_geometry.Occluded(ref shadows);
             lk.DirectionX = shadows.DirectionX; lk.DirectionY = shadows.DirectionY; lk.DirectionZ = shadows.DirectionZ;
         }
+        ShadeLanes(ref packet, in at, shaded, material, lanes, reached, lit, listed, terms, termCount, results, infos, ref counters);
+    }
+
+    /// <summary>Each shaded lane's eq. 2 by the walker's local step from the lights' lane results, then its listed terms summed
+    /// over the bands. A method of its own: inlined into the packet's <see cref="Radiance(ref RayPacket, Span{float}, Span{int},
+    /// Span{PixelInfo}, Span{bool}, Span{float}, ref RayCounters)"/>, the walker's step spent the JIT's inlining budget there and
+    /// left span conversions as calls in the lane loop.</summary>
+    [MethodImpl(MethodImplOptions.NoInlining | MethodImplOptions.AggressiveOptimization)]
+    void ShadeLanes(ref RayPacket packet, in ShadingLanes at, uint shaded, ReadOnlySpan<int> material, ReadOnlySpan<LightLanes> lanes,
+        ReadOnlySpan<uint> reached, ReadOnlySpan<uint> lit, bool listed, Span<SpectralTerm> terms, Span<int> termCount, Span<float> results,
+        Span<PixelInfo> infos, ref RayCounters counters)
+    {
         // One sink and one light query for the packet, moved from lane to lane.
         var laneSink = new LaneSink(this, listed, terms, termCount, results, infos);
         var laneLights = new LaneLights(lanes, reached, lit);
+        ReadOnlySpan<float> flat = Flat;
         for (uint all = shaded; all != 0; all &= all - 1)
         {
             int lane = BitOperations.TrailingZeroCount(all);
@@ -122,7 +135,7 @@ public sealed partial class WhittedIntegrator
             var v = -new Vector3(packet.DirectionX[lane], packet.DirectionY[lane], packet.DirectionZ[lane]);
             _walker.Shade(ref laneSink, ref laneLights, mi, _materials[mi], at.Normal(lane), v, ref counters);
             if (listed)
-                SpectralMath.SumTerms(results.Slice(lane * _padded, _padded), Flat, terms.Slice(lane * TermsPerLane, termCount[lane]));
+                SpectralMath.SumTerms(results.Slice(lane * _padded, _padded), flat, terms.Slice(lane * TermsPerLane, termCount[lane]));
         }
     }
 
