@@ -54,12 +54,13 @@ public sealed class TextureTables
     {
         long bytes = 0;
         int lights = scene.Lights.Count;
+        long Tables(TextureBinding b, TexturedLobe lobe) =>
+            TexturedTerms.TexelsWithMips(b.Texture.Width, b.Texture.Height) * TexturedTerms.SlotsOf(lobe, lights)
+            * scene.PaddedBands * sizeof(float);
         foreach (var m in scene.Materials)
         {
-            if (m.DiffuseTexture is { } d)
-                bytes += TexturedTerms.TexelsWithMips(d.Texture.Width, d.Texture.Height) * TexturedTerms.SlotsOf(TexturedLobe.Diffuse, lights) * scene.PaddedBands * sizeof(float);
-            if (m.SpecularTexture is { } s)
-                bytes += TexturedTerms.TexelsWithMips(s.Texture.Width, s.Texture.Height) * TexturedTerms.SlotsOf(TexturedLobe.Specular, lights) * scene.PaddedBands * sizeof(float);
+            if (m.DiffuseTexture is { } d) bytes += Tables(d, TexturedLobe.Diffuse);
+            if (m.SpecularTexture is { } s) bytes += Tables(s, TexturedLobe.Specular);
         }
         return bytes;
     }
@@ -77,7 +78,8 @@ public sealed class TexturedTerms : TexelLevels
     readonly int _padded, _lights;
 
     TexturedTerms(Scene scene, TextureBinding binding, TexturedLobe lobe, bool ambient, double[][,] matrices)
-        : base(binding.Texture.Source, binding.Texture.Width, binding.Texture.Height, matrices.Length * scene.PaddedBands, binding.Transform)
+        : base(binding.Texture.Source, binding.Texture.Width, binding.Texture.Height, matrices.Length * scene.PaddedBands,
+            binding.Transform)
     {
         var tex = binding.Texture;
         _padded = scene.PaddedBands;
@@ -137,7 +139,8 @@ public sealed class TexturedTerms : TexelLevels
         return new TexturedTerms(scene, binding, TexturedLobe.Specular, false, matrices);
     }
 
-    /// <summary>Slots per texel of <paramref name="lobe"/> with <paramref name="lights"/> lights: 1 + 2 × lights diffuse, lights specular.</summary>
+    /// <summary>Slots per texel of <paramref name="lobe"/> with <paramref name="lights"/> lights: 1 + 2 × lights diffuse,
+    /// lights specular.</summary>
     public static int SlotsOf(TexturedLobe lobe, int lights) => lobe == TexturedLobe.Diffuse ? 1 + 2 * lights : lights;
 
     /// <summary>The lobe the texture stands on.</summary>

@@ -139,7 +139,8 @@ public sealed partial class WhittedIntegrator : IPacketIntegrator, IAnalysisInte
             else SpectralMath.AddScaled(_frame, _tables.Ambient[term], spot);
         }
 
-        /// <summary>The tables of <paramref name="slot"/> of the texels <paramref name="taps"/>, each by its weight, times <paramref name="scale"/>.</summary>
+        /// <summary>The tables of <paramref name="slot"/> of the texels <paramref name="taps"/>, each by its weight, times
+        /// <paramref name="scale"/>.</summary>
         readonly void AddTexels(TexturedTerms t, in TexelTaps taps, int slot, float scale)
         {
             var data = t.Data;
@@ -165,12 +166,18 @@ public sealed partial class WhittedIntegrator : IPacketIntegrator, IAnalysisInte
                 if (light < 32) _info.LitMask |= 1u << light;
                 int yLane = _bands + 1;
                 if (_diffuse is { } dy)
+                {
+                    int at = dy.SlotOffset(dy.LightSlot(light)) + yLane;
                     for (int i = 0; i < _diffuseTaps.Count; i++)
-                        _info.DiffuseY += d * nl * _diffuseTaps.Weight[i] * dy.Data[_diffuseTaps.At[i] + dy.SlotOffset(dy.LightSlot(light)) + yLane];
+                        _info.DiffuseY += d * nl * _diffuseTaps.Weight[i] * dy.Data[_diffuseTaps.At[i] + at];
+                }
                 else _info.DiffuseY += d * nl * _tables.Diffuse[term][yLane];
                 if (_specular is { } sy)
+                {
+                    int at = sy.SlotOffset(sy.LightSlot(light)) + yLane;
                     for (int i = 0; i < _specularTaps.Count; i++)
-                        _info.SpecularY += d * s * _specularTaps.Weight[i] * sy.Data[_specularTaps.At[i] + sy.SlotOffset(sy.LightSlot(light)) + yLane];
+                        _info.SpecularY += d * s * _specularTaps.Weight[i] * sy.Data[_specularTaps.At[i] + at];
+                }
                 else _info.SpecularY += d * s * _tables.Specular[term][yLane];
             }
         }

@@ -26,16 +26,21 @@ public class WhittedTextureTests(Xunit.Abstractions.ITestOutputHelper output)
         { "type": "point", "position": [-1, -2, 6], "spectrum": "D65", "intensity": INTENSITY, "ambient": AMBIENT }
         """;
 
-    static string Scene(string radiometry, string objects, int maxDepth = 0, double ambient = 0) => $$"""
+    static string Scene(string radiometry, string objects, int maxDepth = 0, double ambient = 0)
+    {
+        var inv = CultureInfo.InvariantCulture;
+        var lights = Lights.Replace("INTENSITY", radiometry == "paper" ? "0.01" : "2").Replace("AMBIENT", (ambient * 0.5).ToString(inv));
+        return $$"""
         {
           "bands": "380:780:20", "integration": "exact", "radiometry": "{{radiometry}}", "white": "D65",
           "camera": { "position": [0, 0, 20], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov": 16, "width": 96, "height": 64, "spp": 1 },
-          "ambient": {{ambient.ToString(CultureInfo.InvariantCulture)}},
-          "lights": [ {{Lights.Replace("INTENSITY", radiometry == "paper" ? "0.01" : "2").Replace("AMBIENT", (ambient * 0.5).ToString(CultureInfo.InvariantCulture))}} ],
+          "ambient": {{ambient.ToString(inv)}},
+          "lights": [ {{lights}} ],
           "objects": [ {{objects}} ],
           "background": 0, "max_depth": {{maxDepth}}
         }
         """;
+    }
 
     static string Quad(string material) => $$"""{ "type": "quad", "center": [0, 0, 0], "size": [6, 4], "material": {{material}} }""";
 
@@ -66,7 +71,8 @@ public class WhittedTextureTests(Xunit.Abstractions.ITestOutputHelper output)
         return (scene, Renderer.Render(scene, threads));
     }
 
-    /// <summary>Band b and X, Y, Z of pixel (x, y) of <paramref name="a"/> against <paramref name="b"/> to <paramref name="relative"/>.</summary>
+    /// <summary>Every band and X, Y, Z of pixel (x, y) of <paramref name="a"/> against <paramref name="b"/> to
+    /// <paramref name="relative"/>; the largest relative difference.</summary>
     static double WorstRelative(RenderResult a, RenderResult b, int x, int y, int bands, double relative, string where)
     {
         double worst = 0;
@@ -99,7 +105,8 @@ public class WhittedTextureTests(Xunit.Abstractions.ITestOutputHelper output)
         var (wl, patches) = SpectralTextureTests.ColorCheckerTable();
         var dir = Reference.TempDir();
         var texture = WriteTexture(dir, "uniform", wl, 8, 4, (_, _) => patches[11]);
-        string Material(string specular) => $$"""{ "diffuse": {{Pairs(wl, patches[12])}}, "specular": {{specular}}, "shininess": 20, "model": "{{model}}" }""";
+        string Material(string specular) =>
+            $$"""{ "diffuse": {{Pairs(wl, patches[12])}}, "specular": {{specular}}, "shininess": 20, "model": "{{model}}" }""";
         var (scene, plain) = Render(Scene(radiometry, Quad(Material(Pairs(wl, patches[11])))), dir);
         var (_, textured) = Render(Scene(radiometry, Quad(Material(texture))), dir);
         var (_, matte) = Render(Scene(radiometry, Quad(Material("0"))), dir);
@@ -186,11 +193,12 @@ public class WhittedTextureTests(Xunit.Abstractions.ITestOutputHelper output)
             {
                 var (_, plain) = Render(plainJson(row, column), dir);
                 float sx = column == 0 ? -1 : 1, sy = row == 0 ? 1 : -1;
-                // Away from both seams (x = 0, y = 0) and the edges; the highlight of each light in its quarter.
+                // Away from both seams (x = 0, y = 0) and the edges; (0.77, 1.54) mirrored is a light's highlight in two quarters.
                 foreach (var (px, py) in new[] { (1.5f, 1f), (2.4f, 1.5f), (0.9f, 0.6f), (0.77f, 1.54f) })
                 {
                     var (x, y) = Pixel(scene, sx * px, sy * py);
-                    worst = Math.Max(worst, WorstRelative(textured, plain, x, y, scene.Bands, 1e-6, $"quarter ({row}, {column}) point ({sx * px}, {sy * py})"));
+                    var where = $"quarter ({row}, {column}) point ({sx * px}, {sy * py})";
+                    worst = Math.Max(worst, WorstRelative(textured, plain, x, y, scene.Bands, 1e-6, where));
                 }
             }
         output.WriteLine($"largest relative difference {worst:G3}");
@@ -246,7 +254,8 @@ public class WhittedTextureTests(Xunit.Abstractions.ITestOutputHelper output)
         var dir = Reference.TempDir();
         double[] a = patches[6], b = patches[17];
         // Clamped: at the quad's edges the taps stay in their half.
-        var texture = WriteTexture(dir, "halves", wl, 8, 4, (x, _) => x < 4 ? a : b).Replace(" }", """, "uv_transform": { "wrap": "clamp" } }""");
+        var texture = WriteTexture(dir, "halves", wl, 8, 4, (x, _) => x < 4 ? a : b)
+            .Replace(" }", """, "uv_transform": { "wrap": "clamp" } }""");
         string Json(string specular) => $$"""
             {
               "bands": "380:780:20", "integration": "exact", "radiometry": "paper", "white": "D65",
@@ -286,7 +295,9 @@ public class WhittedTextureTests(Xunit.Abstractions.ITestOutputHelper output)
                 else if (Same(textured, second, x, y, n)) asSecond++;
                 else neither++;
             }
-        output.WriteLine($"{specularSeen} pixels see the quad's specular term by the mirrors: {asFirst} as the first half, {asSecond} as the second, {neither} along the seam");
+        output.WriteLine($"{specularSeen} pixels tell the halves apart by the mirrors: {asFirst} show the first half, " +
+            $"{asSecond} the second, " +
+            $"{neither} neither (the seam)");
         Assert.True(asFirst > 200 && asSecond > 200, $"{asFirst} and {asSecond}");
         // The seam: the pixels whose bilinear taps straddle it (within half a texel of it: a band 1 unit of the quad wide, some
         // 8 pixels at 30 units), vertical across the quad's height.
