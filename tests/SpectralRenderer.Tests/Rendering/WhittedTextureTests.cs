@@ -204,6 +204,33 @@ public class WhittedTextureTests(Xunit.Abstractions.ITestOutputHelper output)
         output.WriteLine($"largest relative difference {worst:G3}");
     }
 
+    [Theory]
+    [InlineData("paper")]
+    [InlineData("physical")]
+    public void A_fine_specular_checker_seen_from_afar_is_its_mean(string radiometry)
+    {
+        // An 8 × 8 checker of patches 7 and 18 repeated 64 times across the quad: a pixel spans several texels, so the lookup
+        // reads coarse mip levels of the specular tables — from level 1 (4 × 4) on every texel is the mean of the two spectra.
+        // Every pixel equals the untextured quad whose m_spec is the mean spectrum, computed here.
+        var (wl, patches) = SpectralTextureTests.ColorCheckerTable();
+        var dir = Reference.TempDir();
+        double[] a = patches[6], b = patches[17];
+        var mean = a.Zip(b, (x, y) => ((double)(float)x + (float)y) / 2).ToArray();
+        var texture = WriteTexture(dir, "checker", wl, 8, 8, (x, y) => (x + y) % 2 == 0 ? a : b)
+            .Replace(" }", """, "uv_transform": { "scale": 64 } }""");
+        string Material(string specular) => $$"""{ "diffuse": 0.2, "specular": {{specular}}, "shininess": 20 }""";
+        var (scene, textured) = Render(Scene(radiometry, Quad(Material(texture))), dir);
+        var (_, plain) = Render(Scene(radiometry, Quad(Material(Pairs(wl, mean)))), dir);
+        var (_, first) = Render(Scene(radiometry, Quad(Material(Pairs(wl, a)))), dir);
+        var (hx, hy) = Pixel(scene, 0.77f, 1.54f);
+        Assert.True(Math.Abs(first.Image[hx, hy, 10] - plain.Image[hx, hy, 10]) > 1e-3 * plain.Image[hx, hy, 10]);   // not one patch
+        double worst = 0;
+        for (int y = 0; y < scene.Camera.Height; y++)
+            for (int x = 0; x < scene.Camera.Width; x++)
+                worst = Math.Max(worst, WorstRelative(textured, plain, x, y, scene.Bands, 1e-6, $"pixel ({x}, {y})"));
+        output.WriteLine($"largest relative difference {worst:G3}");
+    }
+
     [Fact]
     public void A_textured_render_is_the_same_on_one_and_two_threads()
     {
