@@ -37,8 +37,9 @@ internal interface IWalkSink : ITermSink
 
     /// <summary>A ray's radiance starts (its own spectrum is empty).</summary>
     void Begin();
-    /// <summary>The hit's material is textured: its textured terms (<see cref="TexturedTerms"/>) come from these texels in the
-    /// local step that follows (until the next <see cref="Begin"/>).</summary>
+    /// <summary>A lobe of the hit's material is textured: that lobe's terms (<see cref="TexturedTerms"/>, its
+    /// <see cref="TexturedTerms.Lobe"/>) come from these texels in the local step that follows (until the next
+    /// <see cref="Begin"/>); called once per textured lobe (diffuse first), each with its own taps.</summary>
     void Texels(TexturedTerms terms, in TexelTaps taps);
     /// <summary>The ray left the scene: the background radiance.</summary>
     void Background();
@@ -81,7 +82,7 @@ internal sealed class Eq2Walker
     // Per material, the largest mirror and transmit factor over the bands: a branch's weight grows by at most these.
     readonly float[] _mirrorMax, _transmitMax;
     readonly float _minWeight;
-    readonly TexturedTerms?[]? _textured;
+    readonly TextureTables? _textures;
     readonly float _pixelAngle;
 
     public Eq2Walker(Scene scene, SceneGeometry geometry, TermTables tables)
@@ -98,7 +99,7 @@ internal sealed class Eq2Walker
         _mirrorMax = tables.Mirror.Select(t => t.AsSpan(0, scene.Bands).ToArray().DefaultIfEmpty(0).Max()).ToArray();
         _transmitMax = tables.Transmit.Select(t => t.AsSpan(0, scene.Bands).ToArray().DefaultIfEmpty(0).Max()).ToArray();
         _minWeight = scene.MinRayWeight;
-        _textured = tables.Textures?.Of;
+        _textures = tables.Textures;
         // A camera pixel's angular width at the image centre: a hit's footprint t·angle/|cos θ| picks the mip level (a ray
         // cone from the camera; a secondary ray's cone starts at its own origin).
         _pixelAngle = 2 * MathF.Tan(scene.Camera.Fov * MathF.PI / 360) / Math.Max(1, scene.Camera.Height);
@@ -132,13 +133,7 @@ internal sealed class Eq2Walker
         var n = outside ? hit.Normal : -hit.Normal;
         var p = hit.Position;
         var pAbove = p + _geometry.Epsilon * ng;
-        if (_textured?[mi] is { } textured)
-        {
-            var uv = _geometry.TexCoord(in hit, out float density);
-            float width = hit.T * _pixelAngle / MathF.Max(MathF.Abs(Vector3.Dot(ng, v)), 0.25f) * density;
-            textured.Lookup(uv, width, out var taps);
-            sink.Texels(textured, in taps);
-        }
+        if (_textures is { } textures && textures.Textured[mi]) LookUpTexels(ref sink, textures, mi, in hit, ng, v);
         var lights = new RayLights(_lights, _geometry, p, pAbove, n);
         Shade(ref sink, ref lights, mi, m, n, v, ref counters);
 
@@ -161,6 +156,26 @@ internal sealed class Eq2Walker
             }
         }
         return hit.Object;
+    }
+
+    /// <summary>The texels of each textured lobe of material <paramref name="mi"/> at the hit, handed to the sink: one uv and
+    /// footprint (t·pixel angle/|cos θ| from the ray's origin, times the mapping's density), each texture its own filtered taps.</summary>
+    [MethodImpl(MethodImplOptions.NoInlining)]   // textured hits only: kept out of the walk's code
+    void LookUpTexels<TSink>(ref TSink sink, TextureTables textures, int mi, in SurfaceHit hit, Vector3 ng, Vector3 v)
+        where TSink : IWalkSink, allows ref struct
+    {
+        var uv = _geometry.TexCoord(in hit, out float density);
+        float width = hit.T * _pixelAngle / MathF.Max(MathF.Abs(Vector3.Dot(ng, v)), 0.25f) * density;
+        if (textures.Diffuse[mi] is { } diffuse)
+        {
+            diffuse.Lookup(uv, width, out var taps);
+            sink.Texels(diffuse, in taps);
+        }
+        if (textures.Specular[mi] is { } specular)
+        {
+            specular.Lookup(uv, width, out var taps);
+            sink.Texels(specular, in taps);
+        }
     }
 
     /// <summary>Eq. 2's local terms at a shading point (normal n and view direction v on the viewer's side), lights from

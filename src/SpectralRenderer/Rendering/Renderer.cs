@@ -96,8 +96,9 @@ public sealed partial class Renderer
         // Packets trace the camera rays of a tile together; a scene with mirrors or glass is traced ray by ray, where each
         // camera ray's tree has its ray budget and a stop request is seen at every pixel (bounded work, prompt SIGINT).
         // Per-pixel statistics and samplers other than the independent one go ray by ray too.
-        // Textured materials are looked up on the single-ray path (Eq2Walker); the packet path takes spectra only.
-        bool textured = scene.Materials.Any(m => m.DiffuseTexture is not null);
+        // Textured materials (a diffuse or specular texture) are looked up on the single-ray path (Eq2Walker); the packet path
+        // takes spectra only.
+        bool textured = scene.Materials.Any(m => m.DiffuseTexture is not null || m.SpecularTexture is not null);
         bool packed = packets && integrator is IPacketIntegrator && !recursive && !statistics && !textured && sampler.Kind == SamplerKind.Independent;
         int padded = scene.PaddedBands;
         var errors = statistics ? new float[region.Width * region.Height * (scene.Bands + 1)] : null;

@@ -8,71 +8,85 @@ using SpectralRenderer.Spectra;
 namespace SpectralRenderer.Rendering;
 
 /// <summary>
-/// The textured terms of eq. 2 for every material with a diffuse texture: per texel and light the table of
-/// I_k ⊙ m_diff (band means and XYZ lanes, × 1/π physical), and when m_amb is the texture too, a_glob ⊙ m_amb and
-/// I_amb,k ⊙ m_amb — the same exact products <see cref="TermTables"/> makes for a plain spectrum, for the texel's own
-/// spectrum. Band means and colour are linear in the texel's samples, so each light's product is a matrix (bands + XYZ)
-/// × samples, built once by projecting the tent function of each sample; a texel's table is that matrix times its
-/// samples. Mip levels (Williams 1983) average the tables by area (halving each side, a texel's share by overlap, so
-/// every level keeps the mean); a lookup blends the two levels around the footprint's size, bilinear in each.
+/// The textured terms of eq. 2 for every material with a texture on its diffuse or specular lobe, each lobe its own
+/// tables (<see cref="TexturedTerms"/>): per texel and light I_k ⊙ m_diff (× 1/π physical) and, when m_amb is the
+/// diffuse texture too, a_glob ⊙ m_amb and I_amb,k ⊙ m_amb; per texel and light I_k ⊙ m_spec (× the lobe's energy
+/// normalisation physical) — band means and XYZ lanes, the same exact products <see cref="TermTables"/> makes for a plain
+/// spectrum, for the texel's own spectrum. Band means and colour are linear in the texel's samples, so each light's product
+/// is a matrix (bands + XYZ) × samples, built once by projecting the tent function of each sample; a texel's table is that
+/// matrix times its samples. Mip levels (Williams 1983) average the tables by area (halving each side, a texel's share by
+/// overlap, so every level keeps the mean); a lookup blends the two levels around the footprint's size, bilinear in each.
 /// </summary>
 public sealed class TextureTables
 {
-    TextureTables(TexturedTerms?[] of) { Of = of; }
+    TextureTables(TexturedTerms?[] diffuse, TexturedTerms?[] specular)
+    {
+        Diffuse = diffuse;
+        Specular = specular;
+        Textured = new bool[diffuse.Length];
+        for (int m = 0; m < diffuse.Length; m++) Textured[m] = diffuse[m] is not null || specular[m] is not null;
+    }
 
-    /// <summary>Per material, its textured terms or null.</summary>
-    public TexturedTerms?[] Of { get; }
+    /// <summary>Per material, the terms of its diffuse texture (and of m_amb when that is the texture), or null.</summary>
+    public TexturedTerms?[] Diffuse { get; }
+    /// <summary>Per material, the terms of its specular texture, or null.</summary>
+    public TexturedTerms?[] Specular { get; }
+    /// <summary>Per material, is any of its lobes textured?</summary>
+    public bool[] Textured { get; }
 
     /// <summary>The tables of <paramref name="scene"/>'s textured materials, or null when it has none.</summary>
     public static TextureTables? For(Scene scene)
     {
-        if (!scene.Materials.Any(m => m.DiffuseTexture is not null)) return null;
-        var of = new TexturedTerms?[scene.Materials.Count];
-        for (int m = 0; m < of.Length; m++)
+        if (!scene.Materials.Any(m => m.DiffuseTexture is not null || m.SpecularTexture is not null)) return null;
+        var diffuse = new TexturedTerms?[scene.Materials.Count];
+        var specular = new TexturedTerms?[diffuse.Length];
+        for (int m = 0; m < diffuse.Length; m++)
         {
             var mat = scene.Materials[m];
-            if (mat.DiffuseTexture is not { } binding) continue;
-            bool ambient = ReferenceEquals(mat.Ambient, mat.Diffuse);
-            of[m] = new TexturedTerms(scene, binding, ambient);
+            if (mat.DiffuseTexture is { } d) diffuse[m] = TexturedTerms.ForDiffuse(scene, d, ReferenceEquals(mat.Ambient, mat.Diffuse));
+            if (mat.SpecularTexture is { } s) specular[m] = TexturedTerms.ForSpecular(scene, s, mat);
         }
-        return new TextureTables(of);
+        return new TextureTables(diffuse, specular);
     }
 
-    /// <summary>Bytes the tables of <paramref name="scene"/> take (the pre-render memory check).</summary>
+    /// <summary>Bytes the tables of <paramref name="scene"/> take (the pre-render memory check): every textured lobe's.</summary>
     public static long Bytes(Scene scene)
     {
         long bytes = 0;
+        int lights = scene.Lights.Count;
+        long Tables(TextureBinding b, TexturedLobe lobe) =>
+            TexturedTerms.TexelsWithMips(b.Texture.Width, b.Texture.Height) * TexturedTerms.SlotsOf(lobe, lights)
+            * scene.PaddedBands * sizeof(float);
         foreach (var m in scene.Materials)
-            if (m.DiffuseTexture is { } b)
-                bytes += TexturedTerms.TexelsWithMips(b.Texture.Width, b.Texture.Height) * (1 + 2L * scene.Lights.Count) * scene.PaddedBands * sizeof(float);
+        {
+            if (m.DiffuseTexture is { } d) bytes += Tables(d, TexturedLobe.Diffuse);
+            if (m.SpecularTexture is { } s) bytes += Tables(s, TexturedLobe.Specular);
+        }
         return bytes;
     }
 }
 
-/// <summary>One material's textured tables: slot 0 a_glob ⊙ m_amb, slot 1 + k I_amb,k ⊙ m_amb, slot 1 + L + k I_k ⊙ m_diff.</summary>
+/// <summary>The lobe of eq. 2 a texture stands on.</summary>
+public enum TexturedLobe { Diffuse, Specular }
+
+/// <summary>
+/// One textured lobe's tables per texel, each slot a padded table. Diffuse: slot 0 a_glob ⊙ m_amb, slot 1 + k
+/// I_amb,k ⊙ m_amb (zero unless m_amb is the texture), slot 1 + L + k I_k ⊙ m_diff. Specular: slot k I_k ⊙ m_spec.
+/// </summary>
 public sealed class TexturedTerms : TexelLevels
 {
-    readonly int _padded;
+    readonly int _padded, _lights;
 
-    public TexturedTerms(Scene scene, TextureBinding binding, bool ambient)
-        : base(binding.Texture.Source, binding.Texture.Width, binding.Texture.Height, (1 + 2 * scene.Lights.Count) * scene.PaddedBands, binding.Transform)
+    TexturedTerms(Scene scene, TextureBinding binding, TexturedLobe lobe, bool ambient, double[][,] matrices)
+        : base(binding.Texture.Source, binding.Texture.Width, binding.Texture.Height, matrices.Length * scene.PaddedBands,
+            binding.Transform)
     {
         var tex = binding.Texture;
         _padded = scene.PaddedBands;
-        int lights = scene.Lights.Count;
-        Slots = 1 + 2 * lights;
+        _lights = scene.Lights.Count;
+        Lobe = lobe;
+        Slots = matrices.Length;
         Ambient = ambient;
-
-        // Per slot the (bands + XYZ) × samples matrix of the product with that slot's light.
-        bool physical = scene.Radiometry == Radiometry.Physical;
-        var matrices = new double[Slots][,];
-        var hats = Hats(tex);
-        matrices[0] = ambient ? Matrix(scene, scene.GlobalAmbient, hats, 1) : Zero(scene, hats.Length);
-        for (int k = 0; k < lights; k++)
-        {
-            matrices[1 + k] = ambient ? Matrix(scene, scene.Lights[k].Ambient, hats, 1) : Zero(scene, hats.Length);
-            matrices[1 + lights + k] = Matrix(scene, scene.Lights[k].Intensity, hats, physical ? 1 / Math.PI : 1);
-        }
         int rows = scene.Bands + SpectralMath.ColourLanes, samples = tex.Samples, slots = Slots, padded = _padded;
         var data = Data;
         Parallel.For(0, tex.Height, y =>
@@ -96,13 +110,51 @@ public sealed class TexturedTerms : TexelLevels
         BuildMips();
     }
 
-    /// <summary>Slots per texel (1 + 2 × lights), each padded bands long.</summary>
+    /// <summary>The diffuse lobe's tables (per slot the (bands + XYZ) × samples matrix of the product with that slot's light);
+    /// the ambient slots hold a_glob ⊙ texel and I_amb,k ⊙ texel when <paramref name="ambient"/> (m_amb is the texture).</summary>
+    public static TexturedTerms ForDiffuse(Scene scene, TextureBinding binding, bool ambient)
+    {
+        int lights = scene.Lights.Count;
+        bool physical = scene.Radiometry == Radiometry.Physical;
+        var matrices = new double[SlotsOf(TexturedLobe.Diffuse, lights)][,];
+        var hats = Hats(binding.Texture);
+        matrices[0] = ambient ? Matrix(scene, scene.GlobalAmbient, hats, 1) : Zero(scene, hats.Length);
+        for (int k = 0; k < lights; k++)
+        {
+            matrices[1 + k] = ambient ? Matrix(scene, scene.Lights[k].Ambient, hats, 1) : Zero(scene, hats.Length);
+            matrices[1 + lights + k] = Matrix(scene, scene.Lights[k].Intensity, hats, physical ? 1 / Math.PI : 1);
+        }
+        return new TexturedTerms(scene, binding, TexturedLobe.Diffuse, ambient, matrices);
+    }
+
+    /// <summary>The specular lobe's tables of <paramref name="material"/>: per light I_k ⊙ texel, times the specular model's
+    /// energy normalisation under physical radiometry (as <see cref="TermTables.Specular"/>).</summary>
+    public static TexturedTerms ForSpecular(Scene scene, TextureBinding binding, Material material)
+    {
+        int lights = scene.Lights.Count;
+        double norm = scene.Radiometry == Radiometry.Physical ? material.Model.EnergyNormalisation(material.Shininess) : 1;
+        var matrices = new double[SlotsOf(TexturedLobe.Specular, lights)][,];
+        var hats = Hats(binding.Texture);
+        for (int k = 0; k < lights; k++) matrices[k] = Matrix(scene, scene.Lights[k].Intensity, hats, norm);
+        return new TexturedTerms(scene, binding, TexturedLobe.Specular, false, matrices);
+    }
+
+    /// <summary>Slots per texel of <paramref name="lobe"/> with <paramref name="lights"/> lights: 1 + 2 × lights diffuse,
+    /// lights specular.</summary>
+    public static int SlotsOf(TexturedLobe lobe, int lights) => lobe == TexturedLobe.Diffuse ? 1 + 2 * lights : lights;
+
+    /// <summary>The lobe the texture stands on.</summary>
+    public TexturedLobe Lobe { get; }
+    /// <summary>Slots per texel (<see cref="SlotsOf"/>), each padded bands long.</summary>
     public int Slots { get; }
-    /// <summary>Is m_amb the texture (it defaulted to m_diff)?</summary>
+    /// <summary>Is m_amb the texture (a diffuse texture whose material's m_amb defaulted to m_diff)?</summary>
     public bool Ambient { get; }
 
     /// <summary>The offset of <paramref name="slot"/> within a texel's tables.</summary>
     public int SlotOffset(int slot) => slot * _padded;
+
+    /// <summary>The slot of light <paramref name="light"/>'s direct term (I_k ⊙ the lobe's texel).</summary>
+    public int LightSlot(int light) => Lobe == TexturedLobe.Diffuse ? 1 + _lights + light : light;
 
     /// <summary>The tent functions of the texture's samples (1 at sample j, 0 at the others, the texture's extrapolation).</summary>
     internal static TabulatedSpectrum[] Hats(SpectralTexture tex)

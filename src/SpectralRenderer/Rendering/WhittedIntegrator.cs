@@ -39,9 +39,6 @@ public sealed partial class WhittedIntegrator : IPacketIntegrator, IAnalysisInte
         _lights = scene.Lights.ToArray();
         _objectMaterial = scene.Objects.Select(o => o.Material).ToArray();
         _padded = scene.PaddedBands;
-        if (scene.Materials.FirstOrDefault(m => m.SpecularTexture is not null) is { } textured)
-            throw new InputException($"{scene.SourcePath}: {textured.JsonPath}.specular", $"material '{textured.Name}' has a textured specular weight: the whitted integrator textures m_diff only (issue 26)",
-                "render it with \"integrator\": \"path\", or give \"specular\" a spectrum");
         _tables = new TermTables(scene);
         _walker = new Eq2Walker(scene, geometry, _tables);
         // The term tables side by side for the packet path's one-pass band sums: the global ambient of each material, then per
@@ -101,8 +98,10 @@ public sealed partial class WhittedIntegrator : IPacketIntegrator, IAnalysisInte
         readonly ref PixelInfo _info;   // null: no analysis
         Span<float> _frame;
         int _depth;
-        TexturedTerms? _textured;   // the current hit's textured terms and texels, or null
-        TexelTaps _taps;
+        // The current hit's textured lobes and their texels: valid while _textured (set by Texels, cleared by Begin).
+        bool _textured;
+        TexturedTerms? _diffuse, _specular;
+        TexelTaps _diffuseTaps, _specularTaps;
 
         public Sink(TermTables tables, int bands, Span<float> result, Span<float> scratch, ref PixelInfo info)
         {
@@ -118,47 +117,77 @@ public sealed partial class WhittedIntegrator : IPacketIntegrator, IAnalysisInte
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
         readonly Span<float> Frame(int depth) => depth == 0 ? _result : _scratch.Slice((depth - 1) * _padded, _padded);
 
-        public void Begin() { _frame.Clear(); _textured = null; }
-        public void Texels(TexturedTerms terms, in TexelTaps taps) { _textured = terms; _taps = taps; }
+        public void Begin() { _frame.Clear(); _textured = false; }
+
+        public void Texels(TexturedTerms terms, in TexelTaps taps)
+        {
+            if (!_textured) { _diffuse = null; _specular = null; _textured = true; }
+            if (terms.Lobe == TexturedLobe.Diffuse) { _diffuse = terms; _diffuseTaps = taps; }
+            else { _specular = terms; _specularTaps = taps; }
+        }
         public readonly void Background() => _tables.Background.AsSpan().CopyTo(_frame);
 
         public readonly void GlobalAmbient(int material)
         {
-            if (_textured is { Ambient: true } t) AddTexels(t, 0, 1f);
+            if (_textured && _diffuse is { Ambient: true } t) AddTexels(t, in _diffuseTaps, 0, 1f);
             else SpectralMath.AddScaled(_frame, _tables.GlobalAmbient[material], 1f);
         }
 
         public readonly void Ambient(int light, int material, int term, float spot)
         {
-            if (_textured is { Ambient: true } t) AddTexels(t, 1 + light, spot);
+            if (_textured && _diffuse is { Ambient: true } t) AddTexels(t, in _diffuseTaps, 1 + light, spot);
             else SpectralMath.AddScaled(_frame, _tables.Ambient[term], spot);
         }
 
-        /// <summary>The texels' tables of <paramref name="slot"/>, each by its weight, times <paramref name="scale"/>.</summary>
-        readonly void AddTexels(TexturedTerms t, int slot, float scale)
+        /// <summary>The tables of <paramref name="slot"/> of the texels <paramref name="taps"/>, each by its weight, times
+        /// <paramref name="scale"/>.</summary>
+        readonly void AddTexels(TexturedTerms t, in TexelTaps taps, int slot, float scale)
         {
             var data = t.Data;
             int offset = t.SlotOffset(slot);
-            for (int i = 0; i < _taps.Count; i++)
-                SpectralMath.AddScaled(_frame, data.AsSpan(_taps.At[i] + offset, _padded), scale * _taps.Weight[i]);
+            for (int i = 0; i < taps.Count; i++)
+                SpectralMath.AddScaled(_frame, data.AsSpan(taps.At[i] + offset, _padded), scale * taps.Weight[i]);
+        }
+
+        /// <summary>A light's direct pair at a textured hit: each textured lobe's term from its texels (the light's slot), the
+        /// other from its plain table.</summary>
+        [MethodImpl(MethodImplOptions.NoInlining)]   // textured hits only: kept out of the walk's code
+        readonly void TexturedDirect(int light, int term, float d, float nl, float s, bool specular)
+        {
+            if (_diffuse is { } dt) AddTexels(dt, in _diffuseTaps, dt.LightSlot(light), d * nl);
+            else SpectralMath.AddScaled(_frame, _tables.Diffuse[term], d * nl);
+            if (specular)
+            {
+                if (_specular is { } st) AddTexels(st, in _specularTaps, st.LightSlot(light), d * s);
+                else SpectralMath.AddScaled(_frame, _tables.Specular[term], d * s);
+            }
+            if (_depth == 0 && !Unsafe.IsNullRef(ref _info))
+            {
+                if (light < 32) _info.LitMask |= 1u << light;
+                int yLane = _bands + 1;
+                if (_diffuse is { } dy)
+                {
+                    int at = dy.SlotOffset(dy.LightSlot(light)) + yLane;
+                    for (int i = 0; i < _diffuseTaps.Count; i++)
+                        _info.DiffuseY += d * nl * _diffuseTaps.Weight[i] * dy.Data[_diffuseTaps.At[i] + at];
+                }
+                else _info.DiffuseY += d * nl * _tables.Diffuse[term][yLane];
+                if (_specular is { } sy)
+                {
+                    int at = sy.SlotOffset(sy.LightSlot(light)) + yLane;
+                    for (int i = 0; i < _specularTaps.Count; i++)
+                        _info.SpecularY += d * s * _specularTaps.Weight[i] * sy.Data[_specularTaps.At[i] + at];
+                }
+                else _info.SpecularY += d * s * _tables.Specular[term][yLane];
+            }
         }
 
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
         public readonly void Direct(int light, int material, int term, float d, float nl, float s, bool specular)
         {
-            if (_textured is { } textured)
+            if (_textured)
             {
-                // The diffuse term from the texels (the light's slot), the specular one from the plain table.
-                int slot = 1 + (textured.Slots - 1) / 2 + light;
-                AddTexels(textured, slot, d * nl);
-                if (specular) SpectralMath.AddScaled(_frame, _tables.Specular[term], d * s);
-                if (_depth == 0 && !Unsafe.IsNullRef(ref _info))
-                {
-                    if (light < 32) _info.LitMask |= 1u << light;
-                    int yLane = _bands + 1, offset = textured.SlotOffset(slot);
-                    for (int i = 0; i < _taps.Count; i++) _info.DiffuseY += d * nl * _taps.Weight[i] * textured.Data[_taps.At[i] + offset + yLane];
-                    _info.SpecularY += d * s * _tables.Specular[term][yLane];
-                }
+                TexturedDirect(light, term, d, nl, s, specular);
                 return;
             }
             var diffuse = _tables.Diffuse[term];

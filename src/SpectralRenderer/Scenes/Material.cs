@@ -31,8 +31,8 @@ public sealed class Material
     /// <summary>A spectral texture on m_diff (and on m_amb when that defaults to m_diff), or null; <see cref="Diffuse"/> then holds
     /// the texture's mean (the renderer's texture tables look the texels up).</summary>
     public Textures.TextureBinding? DiffuseTexture { get; set; }
-    /// <summary>A spectral texture on m_spec, or null; <see cref="Specular"/> then holds the texture's mean (the path integrator
-    /// looks the texels up; the Whitted integrator refuses it).</summary>
+    /// <summary>A spectral texture on m_spec, or null; <see cref="Specular"/> then holds the texture's mean (the renderer's texture
+    /// tables look the texels up, as for <see cref="DiffuseTexture"/>).</summary>
     public Textures.TextureBinding? SpecularTexture { get; set; }
     /// <summary>What the surface emits ("emission", an area light for the path tracer), or null.</summary>
     public Emission? Emission { get; set; }

@@ -200,7 +200,7 @@ public class SpectralTextureTests(Xunit.Abstractions.ITestOutputHelper output)
         var dir = Reference.TempDir();
         WriteEnvi(Path.Combine(dir, "noise.img"), w, h, wl, values);
         var scene = SceneLoader.Parse(Encoding.UTF8.GetBytes(TexturedChart("""{ "texture": "noise.hdr" }""")), Path.Combine(dir, "scene.json"));
-        var terms = new TermTables(scene).Textures!.Of.Single(t => t is not null)!;
+        var terms = new TermTables(scene).Textures!.Diffuse.Single(t => t is not null)!;
         Assert.True(terms.Levels >= 6);
         int padded = scene.PaddedBands, stride = terms.Slots * padded;
         double[] Mean(int level)
