@@ -32,10 +32,6 @@ public sealed class TermTables
         for (int m = 0; m < _materials; m++)
         {
             var mat = materials[m];
-            if (mat.Fluorescence is not null && mat.DiffuseTexture is not null)   // the texels' tables (TextureTables) have no shift
-                throw new Diagnostics.InputException($"{scene.SourcePath}: {mat.JsonPath}.diffuse",
-                    $"material '{mat.Name}' has a diffuse texture beside a re-radiation matrix: the whitted integrator does not texture fluorescence",
-                    "render it with \"integrator\": {\"type\": \"path\"}, or give it no texture");
             double specNorm = physical ? mat.Model.EnergyNormalisation(mat.Shininess) : 1;
             GlobalAmbient[m] = Product(scene, scene.GlobalAmbient, mat.Ambient, 1);
             for (int k = 0; k < lights.Count; k++)

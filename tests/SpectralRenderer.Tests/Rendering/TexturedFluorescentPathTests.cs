@@ -12,9 +12,10 @@ namespace SpectralRenderer.Tests.Rendering;
 
 /// <summary>
 /// Issue 26: a diffuse texture beside a re-radiation matrix is the reflective diagonal per texel, the matrix's shifted part
-/// the same at every texel (path integrator). Checked against the untextured material whose matrix diagonal is the texture
-/// (the same render), against the analytic answers — a flat quad under a uniform sky reflects (T̄_b + Σ_i≠b S[b, i])·L per
-/// 5 nm band (the bands are the matrix's cells, so the engine's band matrix is S itself), a closed furnace holds
+/// the same at every texel (path integrator, and the whitted integrator's texel tables). Checked against the untextured
+/// material whose matrix diagonal is the texture (the same render), against the analytic answers — a flat quad under a
+/// uniform sky reflects (T̄_b + Σ_i≠b S[b, i])·L per 5 nm band (the bands are the matrix's cells, so the engine's band
+/// matrix is S itself), under whitted and a flat directional light (T̄_b + Σ_i≠b S[b, i])·E/π, a closed furnace holds
 /// (I − diag(T) − S)⁻¹·L_e solved here by elimination — and a texture of two halves against the two uniform renders.
 /// The loader refuses a plain diffuse spectrum beside a matrix and a texel that breaks the photon balance with the shift.
 /// </summary>
@@ -72,9 +73,13 @@ public sealed class TexturedFluorescentPathTests(Xunit.Abstractions.ITestOutputH
 
     Scene Load(string json) => SceneLoader.Parse(Encoding.UTF8.GetBytes(json), Path.Combine(_dir, "scene.json"));
 
-    static RenderResult Render(Scene scene, int threads = 2) => Renderer.Render(scene, new PathIntegrator(scene, new SceneGeometry(scene)), threads: threads);
+    static RenderResult Render(Scene scene, int threads = 2) =>
+        Renderer.Render(scene, new PathIntegrator(scene, new SceneGeometry(scene)), threads: threads);
 
-    /// <summary>A fluorescent floor (<paramref name="paper"/>) with a white sphere on it under a point light of A and a dim sky: interreflection, indirect excitation.</summary>
+    /// <summary>
+    /// A fluorescent floor (<paramref name="paper"/>) with a white sphere on it under a point light of A and a dim sky:
+    /// interreflection, indirect excitation.
+    /// </summary>
     static string Room(string paper) => $$"""
         { "radiometry": "physical", "bands": "300:780:96", "white": "D50", "integrator": { "type": "path", "max_depth": 5 },
           "camera": { "position": [0, 1.5, 5], "look_at": [0, -0.5, 0], "width": 40, "height": 28, "spp": 4 },
@@ -85,7 +90,7 @@ public sealed class TexturedFluorescentPathTests(Xunit.Abstractions.ITestOutputH
           "background": 0.05 }
         """;
 
-    /// <summary>A 6 × 4 quad of <paramref name="paper"/> alone, seen face on, under a uniform sky of <paramref name="sky"/> and the given lights.</summary>
+    /// <summary>A 6 × 4 quad of <paramref name="paper"/> alone, face on, under a uniform sky <paramref name="sky"/> and the lights.</summary>
     static string Quad(string paper, string lights, double sky, int maxDepth) => $$"""
         { "radiometry": "physical", "bands": "300:780:96", "white": "D50", "integrator": { "type": "path", "max_depth": {{maxDepth}} },
           "camera": { "position": [0, 0, 20], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov": 16, "width": 96, "height": 64, "spp": 2 },
@@ -110,9 +115,11 @@ public sealed class TexturedFluorescentPathTests(Xunit.Abstractions.ITestOutputH
     }
 
     static string Fluorescent(string matrix, string? texture) =>
-        texture is null ? $$"""{ "fluorescence": { "matrix": "{{matrix}}" } }""" : $$"""{ "diffuse": {{texture}}, "fluorescence": { "matrix": "{{matrix}}" } }""";
+        texture is null
+            ? $$"""{ "fluorescence": { "matrix": "{{matrix}}" } }"""
+            : $$"""{ "diffuse": {{texture}}, "fluorescence": { "matrix": "{{matrix}}" } }""";
 
-    /// <summary>Largest relative difference over every pixel and band of two renders (and of their XYZ), relative to the larger value.</summary>
+    /// <summary>Largest relative difference over every pixel and band of two renders (and their XYZ), relative to the larger.</summary>
     static double Difference(RenderResult a, RenderResult b, Func<int, int, bool>? where = null)
     {
         double worst = 0;
@@ -150,14 +157,15 @@ public sealed class TexturedFluorescentPathTests(Xunit.Abstractions.ITestOutputH
         double worst = Difference(textured, plain);
         int identical = 0, total = plain.Image.Data.Length;
         for (int k = 0; k < total; k++) if (plain.Image.Data[k] == textured.Image.Data[k]) identical++;
-        output.WriteLine($"uniform texture vs untextured fluorescent: largest relative difference {worst:G3}; {identical} of {total} values bit-identical");
+        output.WriteLine($"uniform texture vs untextured fluorescent: largest relative difference {worst:G3}; " +
+            $"{identical} of {total} values bit-identical");
         Assert.True(worst <= 1e-5, $"{worst:G3}");
         // It is a fluorescent render: the brightener's blue (440 nm) band is far above what the diagonal alone reflects.
         var reflectOnly = Render(Load(Room($$"""{ "diffuse": {{texture}} }""")));
         Assert.True(Difference(textured, reflectOnly) > 0.05, "the texture keeps the matrix's shifted part");
     }
 
-    /// <summary>∫ of the piecewise-linear table (x, y), continued flat beyond its ends, over [lo, hi] (exact, segment by segment).</summary>
+    /// <summary>∫ of the piecewise-linear table (x, y), continued flat beyond its ends, over [lo, hi] (exact, by segments).</summary>
     static double Integral(double[] x, double[] y, double lo, double hi)
     {
         double[] xs = [lo - 1, .. x, hi + 1], ys = [y[0], .. y, y[^1]];
@@ -172,7 +180,7 @@ public sealed class TexturedFluorescentPathTests(Xunit.Abstractions.ITestOutputH
         return sum;
     }
 
-    static double Left(double l) => 0.25 + 0.3 * FluorescenceTests.Gauss(l, 560, 60);   // 0.25 … 0.55 (absorbs ≥ 0.45 > 0.3 at the excitation)
+    static double Left(double l) => 0.25 + 0.3 * FluorescenceTests.Gauss(l, 560, 60);   // 0.25 … 0.55 (absorbs 0.75 in the UV)
     static double Right(double l) => 0.5 - 0.3 * (l - 300) / 480;                     // 0.5 … 0.2
 
     [Fact]
@@ -188,7 +196,8 @@ public sealed class TexturedFluorescentPathTests(Xunit.Abstractions.ITestOutputH
         var d = Brightener(_ => 0.1);
         string matrix = WriteCsv("brightener.csv", d);
         string texture = WriteTexture("halves", 8, 4, (x, _, l) => x < 4 ? Left(l) : Right(l));
-        var scene = Load(Quad(Fluorescent(matrix, texture), "", sky, 1).Replace("\"lights\": [  ],", "").Replace("\"spp\": 2", "\"spp\": 8"));
+        var scene = Load(Quad(Fluorescent(matrix, texture), "", sky, 1)
+            .Replace("\"lights\": [  ],", "").Replace("\"spp\": 2", "\"spp\": 8"));
         var r = Render(scene);
         float seam = scene.Camera.Project(Vector3.Zero)!.Value.X;
         double worst = 0, worstRelative = 0, separation = double.MaxValue;
@@ -246,7 +255,8 @@ public sealed class TexturedFluorescentPathTests(Xunit.Abstractions.ITestOutputH
         double worstLeft = Difference(split, l, (x, y) => Inner(scene, x, y) && x + 0.5 < seam);
         double worstRight = Difference(split, r, (x, y) => Inner(scene, x, y) && x + 0.5 > seam);
         double apart = Difference(l, r, (x, y) => Inner(scene, x, y));
-        output.WriteLine($"two halves vs uniform renders: largest relative difference left {worstLeft:G3}, right {worstRight:G3} (left vs right {apart:G3})");
+        output.WriteLine($"two halves vs uniform renders: largest relative difference left {worstLeft:G3}, right {worstRight:G3} " +
+            $"(left vs right {apart:G3})");
         Assert.True(worstLeft <= 1e-5 && worstRight <= 1e-5, $"{worstLeft:G3} {worstRight:G3}");
         Assert.True(apart > 0.1);
     }
@@ -288,8 +298,9 @@ public sealed class TexturedFluorescentPathTests(Xunit.Abstractions.ITestOutputH
             if (error[b] > 0) worst = Math.Max(worst, Math.Abs(mean[b] - expected[b]) / error[b]);
         }
         double separation = Math.Abs(matrixDiagonal[peak] - expected[peak]) / error[peak];
-        output.WriteLine($"textured furnace: largest |path − solution| {worst:F2} standard errors; at {Cells[peak]} nm path {mean[peak]:F4} ± " +
-            $"{error[peak]:F4}, solution {expected[peak]:F4}; with the matrix's own diagonal {matrixDiagonal[peak]:F4} ({separation:F0} standard errors away)");
+        output.WriteLine($"textured furnace: largest |path − solution| {worst:F2} standard errors; at {Cells[peak]} nm path " +
+            $"{mean[peak]:F4} ± {error[peak]:F4}, solution {expected[peak]:F4}; with the matrix's own diagonal " +
+            $"{matrixDiagonal[peak]:F4} ({separation:F0} standard errors away)");
         Assert.True(separation > 20, "the test must tell the texel diagonal from the matrix's");
     }
 
@@ -329,21 +340,84 @@ public sealed class TexturedFluorescentPathTests(Xunit.Abstractions.ITestOutputH
         Assert.Contains("photons", e.Message);
         // The photon balance of the first excitation wavelength it breaks, computed here: Σ_o≠i D[o, i]·λo/λi > 1 − 0.6.
         var d = Brightener(_ => 0.1);
-        int first = Enumerable.Range(0, N).First(i => Enumerable.Range(0, N).Where(o => o != i).Sum(o => d[o * N + i] * Cells[o]) / Cells[i] > 0.4);
+        double Emitted(int i) => Enumerable.Range(0, N).Where(o => o != i).Sum(o => d[o * N + i] * Cells[o]) / Cells[i];
+        int first = Enumerable.Range(0, N).First(i => Emitted(i) > 0.4);
         Assert.Contains($" at {Cells[first].ToString("0.###", Inv)} nm", e.Message);
         // The same texels at 0.45 everywhere keep the balance: loaded.
         Load(Room(Fluorescent(matrix, WriteTexture("good", 4, 3, (_, _, _) => 0.45))));
     }
 
+    static RenderResult RenderWith(Scene scene, string integrator) =>
+        Renderer.Render(scene, Integrators.Create(scene, new SceneGeometry(scene), integrator), threads: 2);
+
     [Fact]
-    public void The_whitted_integrator_refuses_a_textured_fluorescent_material_with_a_hint_to_the_path_integrator()
+    public void Under_whitted_a_uniform_texture_of_the_diagonal_renders_as_the_untextured_material_and_halves_as_their_textures()
     {
+        // The whitted integrator's texel tables (TexturedTerms) gain the shift per light: a uniform texture of the matrix's
+        // diagonal is the untextured fluorescent material (its term tables, FluorescenceTests), to float rounding; each half
+        // of a two-half texture is its uniform texture (one flat quad, no mirror: every pixel sees its own texels).
         string matrix = WriteCsv("ramp.csv", Brightener(Ramp));
         string texture = WriteTexture("ramp", 4, 4, (_, _, l) => Ramp(l));
-        var scene = Load(Room(Fluorescent(matrix, texture)).Replace("\"type\": \"path\", \"max_depth\": 5", "\"type\": \"whitted\""));
-        var e = Assert.Throws<InputException>(() => Integrators.Create(scene, new SceneGeometry(scene), "whitted"));
-        output.WriteLine(e.Message);
-        Assert.Contains("$.materials.paper.diffuse", e.Message);
-        Assert.Contains("\"integrator\": {\"type\": \"path\"}", e.Message);
+        string Whitted(string json) => json.Replace("\"type\": \"path\", \"max_depth\": 5", "\"type\": \"whitted\"");
+        var plain = RenderWith(Load(Whitted(Room(Fluorescent(matrix, null)))), "whitted");
+        var textured = RenderWith(Load(Whitted(Room(Fluorescent(matrix, texture)))), "whitted");
+        var reflectOnly = RenderWith(Load(Whitted(Room($$"""{ "diffuse": {{texture}} }"""))), "whitted");
+        double uniform = Difference(textured, plain), shift = Difference(textured, reflectOnly);
+        Assert.True(uniform <= 1e-5, $"{uniform:G3}");
+        Assert.True(shift > 0.05, "the texture keeps the matrix's shifted part");
+
+        var d = Brightener(_ => 0.1);
+        string m2 = WriteCsv("brightener.csv", d);
+        const string Lamp = """{ "type": "point", "position": [2, 1, 6], "spectrum": "A", "intensity": 3 }""";
+        string Q(string tex) => Quad(Fluorescent(m2, WriteTexture(tex, 8, 4,
+                (x, _, l) => tex == "left" || (tex == "halves" && x < 4) ? Left(l) : Right(l))), Lamp, 0.05, 1)
+            .Replace("\"type\": \"path\", \"max_depth\": 1", "\"type\": \"whitted\"");
+        var scene = Load(Q("halves"));
+        var split = RenderWith(scene, "whitted");
+        var l = RenderWith(Load(Q("left")), "whitted");
+        var r = RenderWith(Load(Q("right")), "whitted");
+        float seam = scene.Camera.Project(Vector3.Zero)!.Value.X;
+        double worstLeft = Difference(split, l, (x, y) => Inner(scene, x, y) && x + 0.5 < seam);
+        double worstRight = Difference(split, r, (x, y) => Inner(scene, x, y) && x + 0.5 > seam);
+        output.WriteLine($"whitted: uniform texture vs untextured {uniform:G3} (vs the texture without the matrix {shift:G3}); " +
+            $"two halves vs uniform left {worstLeft:G3}, right {worstRight:G3}");
+        Assert.True(worstLeft <= 1e-5 && worstRight <= 1e-5, $"{worstLeft:G3} {worstRight:G3}");
+        Assert.True(Difference(l, r, (x, y) => Inner(scene, x, y)) > 0.1);
+    }
+
+    [Fact]
+    public void Under_whitted_a_textured_fluorescent_quad_in_a_flat_light_reflects_its_texel_plus_the_shift_over_pi()
+    {
+        // Physical radiometry: a directional light of flat irradiance E (1 per nm) at normal incidence; eq. 2's diffuse term
+        // is E·(T̄_b + Σ_i S[b, i]·Ē_i)/π, Ē_i = 1 the light's mean over excitation cell i (no ambient light, no sky).
+        var d = Brightener(_ => 0.1);
+        string matrix = WriteCsv("brightener.csv", d);
+        string texture = WriteTexture("halves", 8, 4, (x, _, l) => x < 4 ? Left(l) : Right(l));
+        const string Flat = """{ "type": "directional", "direction": [0, 0, -1], "spectrum": 1, "intensity": 1 }""";
+        var scene = Load(Quad(Fluorescent(matrix, texture), Flat, 0, 1)
+            .Replace("\"type\": \"path\", \"max_depth\": 1", "\"type\": \"whitted\""));
+        var r = RenderWith(scene, "whitted");
+        float seam = scene.Camera.Project(Vector3.Zero)!.Value.X;
+        double worst = 0;
+        int compared = 0;
+        for (int y = 0; y < scene.Camera.Height; y++)
+            for (int x = 0; x < scene.Camera.Width; x++)
+            {
+                if (!Inner(scene, x, y)) continue;
+                Func<double, double> texel = x + 0.5 < seam ? Left : Right;
+                var rho = Cells.Select(texel).ToArray();
+                for (int b = 0; b < N; b++)
+                {
+                    double lo = scene.Grid.Lower(b), hi = scene.Grid.Upper(b), shift = 0;
+                    for (int i = 0; i < N; i++) if (i != b) shift += d[b * N + i];
+                    double expected = (Integral(Cells, rho, lo, hi) / (hi - lo) + shift) / Math.PI;
+                    double diff = Math.Abs(r.Image[x, y, b] / expected - 1);
+                    worst = Math.Max(worst, diff);
+                    Assert.True(diff <= 1e-5, $"pixel ({x}, {y}) band {Cells[b]} nm: {r.Image[x, y, b]:R} vs (T̄ + ΣS)·E/π = {expected:R}");
+                }
+                compared++;
+            }
+        output.WriteLine($"whitted, {compared} pixels: largest relative difference from (T̄ + ΣS)·E/π {worst:G3}");
+        Assert.True(compared > 600);
     }
 }

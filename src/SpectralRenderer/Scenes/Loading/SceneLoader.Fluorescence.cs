@@ -103,7 +103,8 @@ public sealed partial class SceneLoader
                     if (emitted[i] <= absorbed + ReradiationCsvReader.PhotonTolerance * wl[i]) continue;
                     var inv = System.Globalization.CultureInfo.InvariantCulture;
                     throw Error($"{path}.texture", string.Create(inv,
-                        $"texel ({x}, {y}) reflects {r:G4} at {wl[i]:0.###} nm: it absorbs {1 - r:G4} photons per photon, the matrix re-emits {emitted[i] / wl[i]:G4}"),
+                        $"texel ({x}, {y}) reflects {r:G4} at {wl[i]:0.###} nm: it absorbs {1 - r:G4} photons per photon, " +
+                        $"the matrix re-emits {emitted[i] / wl[i]:G4}"),
                         "lower the texture there (≤ 1 − Σ_o≠i D[o,i]·λo/λi) or the matrix's shift");
                 }
             }
