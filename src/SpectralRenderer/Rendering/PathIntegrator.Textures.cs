@@ -10,7 +10,10 @@ namespace SpectralRenderer.Rendering;
 // Whitted route's uv, bilinear and mip-map filtering: at every path vertex, the filtered texel replaces the BSDF's
 // spectrum in f for next-event estimation and BSDF sampling alike, and in the lobe choice's channel share; an emitter's
 // texel is looked up where a path hits it and where next-event estimation draws a point on it. Texels go into the
-// thread's scratch: nothing is allocated per path.
+// thread's scratch: nothing is allocated per path. A fluorescent material's diffuse texture is its reflective diagonal per
+// texel (SceneLoader.Fluorescence.cs): the texel replaces the diagonal as above, and the matrix's shifted part — next-event
+// excitation and the shifted lobe (PathIntegrator.Fluorescence.cs), with its share in the lobe choice — is the same at
+// every texel, so a textured fluorescent vertex takes no other code than the two parts' own.
 public sealed partial class PathIntegrator
 {
     FineTexture?[] _diffuseTexture = [], _specularTexture = [], _emissionTexture = [];
@@ -42,9 +45,6 @@ public sealed partial class PathIntegrator
         if ((material.DiffuseTexture is not null || material.SpecularTexture is not null) && !_bsdf[m].TakesTextures)
             throw new InputException($"{where}.diffuse", $"material '{material.Name}' ({material.Bsdf.GetType().Name}) is textured: the path integrator textures eq. 2 and lambertian materials only",
                 "give this material a spectrum, or use an eq2 or lambertian material for the texture");
-        if (material.DiffuseTexture is not null && material.Fluorescence is not null)
-            throw new InputException($"{where}.diffuse", $"material '{material.Name}' is textured and fluorescent: a texture with a re-radiation matrix is not supported yet",
-                "give the fluorescent material a spectrum, or drop its \"fluorescence\"");
         if (!_textured)
         {
             int n = scene.Materials.Count;

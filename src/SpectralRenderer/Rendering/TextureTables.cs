@@ -44,6 +44,7 @@ public sealed class TextureTables
         {
             var mat = scene.Materials[m];
             if (mat.DiffuseTexture is { } d) diffuse[m] = TexturedTerms.ForDiffuse(scene, d, ReferenceEquals(mat.Ambient, mat.Diffuse));
+            if (mat.Fluorescence is { HasShift: true } fl && diffuse[m] is { } texels) texels.AddShift(scene, fl);   // the texels are its diagonal
             if (mat.SpecularTexture is { } s) specular[m] = TexturedTerms.ForSpecular(scene, s, mat);
         }
         return new TextureTables(diffuse, specular);
@@ -155,6 +156,29 @@ public sealed class TexturedTerms : TexelLevels
 
     /// <summary>The slot of light <paramref name="light"/>'s direct term (I_k ⊙ the lobe's texel).</summary>
     public int LightSlot(int light) => Lobe == TexturedLobe.Diffuse ? 1 + _lights + light : light;
+
+    /// <summary>
+    /// A fluorescent material's shifted part beside texels that are its reflective diagonal: the same at every texel, so each
+    /// light's I_k ⊗ shift (<see cref="FluorescentTerms.AddShift"/>, × 1/π physical) is added to that light's diffuse slot of
+    /// every texel of every level (a level's texels are weighted means, so a constant passes through them unchanged).
+    /// </summary>
+    internal void AddShift(Scene scene, ReradiationMatrix matrix)
+    {
+        int lights = scene.Lights.Count, texels = Data.Length / Stride;
+        double factor = scene.Radiometry == Radiometry.Physical ? 1 / Math.PI : 1;
+        var shift = new float[_padded];
+        for (int k = 0; k < lights; k++)
+        {
+            Array.Clear(shift);
+            FluorescentTerms.AddShift(scene, shift, scene.Lights[k].Intensity, matrix, factor);
+            int offset = SlotOffset(LightSlot(k));
+            for (int t = 0; t < texels; t++)
+            {
+                var d = Data.AsSpan(t * Stride + offset, _padded);
+                for (int r = 0; r < d.Length; r++) d[r] += shift[r];
+            }
+        }
+    }
 
     /// <summary>The tent functions of the texture's samples (1 at sample j, 0 at the others, the texture's extrapolation).</summary>
     internal static TabulatedSpectrum[] Hats(SpectralTexture tex)

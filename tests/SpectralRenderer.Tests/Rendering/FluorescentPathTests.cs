@@ -74,7 +74,7 @@ public sealed class FluorescentPathTests(Xunit.Abstractions.ITestOutputHelper ou
     static readonly Ray Inside = new(new Vector3(0.1f, 0.2f, 0.3f), Vector3.Normalize(new Vector3(1, -2, 0.5f)));
 
     /// <summary>x with A·x = b, by Gaussian elimination with partial pivoting (A row-major, n × n).</summary>
-    static double[] Solve(double[] a, double[] b)
+    internal static double[] Solve(double[] a, double[] b)
     {
         int n = b.Length;
         a = (double[])a.Clone();

@@ -20,22 +20,29 @@ public sealed partial class SceneLoader
     };
 
     /// <summary>
-    /// The material's re-radiation matrix, or null. Its diagonal is the diffuse reflectance (so "diffuse" is not given as well);
-    /// the matrix is read relative to the scene's folder, from CSV (<see cref="ReradiationCsvReader"/>: file:line errors, photon
-    /// balance) or a bispectral OpenEXR (<see cref="Imaging.ReradiationExrReader"/>: file and channel named).
+    /// The material's re-radiation matrix, or null. Its diagonal is the diffuse reflectance (so a "diffuse" spectrum is not
+    /// given as well) — unless "diffuse" is a texture (<paramref name="texelDiagonal"/>): then each texel is the reflective
+    /// diagonal there and the matrix gives the shifted part alone, the same everywhere (<see cref="CheckTexelPhotons"/>).
+    /// The matrix is read relative to the scene's folder, from CSV (<see cref="ReradiationCsvReader"/>: file:line errors,
+    /// photon balance) or a bispectral OpenEXR (<see cref="Imaging.ReradiationExrReader"/>: file and channel named).
     /// </summary>
     [MethodImpl(MethodImplOptions.NoOptimization)]
-    ReradiationMatrix? ParseFluorescence(JsonElement e, string path, string model)
+    ReradiationMatrix? ParseFluorescence(JsonElement e, string path, string model, out bool texelDiagonal)
     {
+        texelDiagonal = false;
         if (!TryGet(e, FluorescenceKey, out var f)) return null;
         string where = $"{path}.{FluorescenceKey}";
         if (!FluorescentModels.TryGetValue(model, out var diagonalKey))
             throw Error(where, $"material type '{model}' has no diffuse term for a re-radiation matrix",
                 $"fluorescence applies to the {string.Join(" and ", FluorescentModels.Keys)} models");
-        if (TryGet(e, diagonalKey, out _))
-            throw Error($"{path}.{diagonalKey}",
-                $"\"{diagonalKey}\" and \"{FluorescenceKey}\" are both given: the matrix's diagonal is the reflectance",
-                $"remove \"{diagonalKey}\" (or put its values on the matrix's diagonal)");
+        if (TryGet(e, diagonalKey, out var given))
+        {
+            if (!IsTexture(given))
+                throw Error($"{path}.{diagonalKey}",
+                    $"\"{diagonalKey}\" and \"{FluorescenceKey}\" are both given: the matrix's diagonal is the reflectance",
+                    $"remove \"{diagonalKey}\" (or put its values on the matrix's diagonal); a texture there is the diagonal per texel");
+            texelDiagonal = true;   // a texture: the texels are the diagonal (checked against the shift after it is read)
+        }
         Object(f, where);
         Keys(f, where, "matrix");
         var name = String(Required(f, "matrix", where), $"{where}.matrix");
@@ -48,6 +55,59 @@ public sealed partial class SceneLoader
             throw Error($"{where}.matrix", $"{Diagnostics.MessageText.Quote(name, 80)} is neither a .csv nor an .exr file",
                 "give the matrix as CSV or as a bispectral OpenEXR (T.<λin>nm.<λout>nm channels; docs/scene-format.md, \"Fluorescence\")");
         return ReradiationCsvReader.Read(full);
+    }
+
+    /// <summary>
+    /// Photon balance per texel for a texture that is a matrix's reflective diagonal: at each excitation wavelength λ_i of the
+    /// matrix, the photons its shifted part re-emits, Σ_{o≠i} D[o, i]·λ_o (the same for every texel), may not exceed those the
+    /// texel absorbs, (1 − T(λ_i))·λ_i, T the texel's linear interpolant (as <see cref="ReradiationMatrix.PhotonExcess"/>, with
+    /// the texel for D[i, i]). Checked for every texel, not a bound over them; a filtered lookup (bilinear, mip levels) is a
+    /// convex combination of texels, so it keeps the balance too. The first texel (row by row) that breaks it is bad input.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
+    void CheckTexelPhotons(Scenes.Textures.SpectralTexture tex, ReradiationMatrix matrix, string path)
+    {
+        int n = matrix.Count;
+        var wl = matrix.Wavelengths.ToArray();
+        var emitted = new double[n];
+        for (int i = 0; i < n; i++)
+            for (int o = 0; o < n; o++) if (o != i) emitted[i] += matrix[o, i] * wl[o];
+        // The texel's value at λ_i: weights of at most two samples (its linear interpolant, continued as the texture says).
+        var tw = tex.Wavelengths;
+        var at = new (int J, double W, int K, double V)[n];
+        for (int i = 0; i < n; i++)
+        {
+            double l = wl[i];
+            if (l <= tw[0] || l >= tw[^1])
+            {
+                bool inside = l == tw[0] || l == tw[^1];
+                at[i] = !inside && tex.Extrapolation == Extrapolation.Zero ? (0, 0, 0, 0) : (l <= tw[0] ? 0 : tw.Length - 1, 1, 0, 0);
+                continue;
+            }
+            int j = Array.BinarySearch(tw, l);
+            if (j >= 0) { at[i] = (j, 1, 0, 0); continue; }
+            j = ~j - 1;
+            double t = (l - tw[j]) / (tw[j + 1] - tw[j]);
+            at[i] = (j, 1 - t, j + 1, t);
+        }
+        for (int y = 0; y < tex.Height; y++)
+            for (int x = 0; x < tex.Width; x++)
+            {
+                var s = tex.Texel(x, y);
+                for (int i = 0; i < n; i++)
+                {
+                    if (emitted[i] == 0) continue;   // no shift from this column: the texel's own checks apply (≥ 2, negative)
+                    var (j, w, k, v) = at[i];
+                    double r = w * s[j] + v * s[k];
+                    double absorbed = (1 - r) * wl[i];
+                    if (emitted[i] <= absorbed + ReradiationCsvReader.PhotonTolerance * wl[i]) continue;
+                    var inv = System.Globalization.CultureInfo.InvariantCulture;
+                    throw Error($"{path}.texture", string.Create(inv,
+                        $"texel ({x}, {y}) reflects {r:G4} at {wl[i]:0.###} nm: it absorbs {1 - r:G4} photons per photon, " +
+                        $"the matrix re-emits {emitted[i] / wl[i]:G4}"),
+                        "lower the texture there (≤ 1 − Σ_o≠i D[o,i]·λo/λi) or the matrix's shift");
+                }
+            }
     }
 
     /// <summary>

@@ -33,11 +33,15 @@ public sealed partial class SceneLoader
         // "emission" (an area light) and "fluorescence" (SceneLoader.Fluorescence.cs) are every model's keys.
         string[] common = [MaterialModels.EmissionKey, FluorescenceKey];
         Keys(e, path, typed ? [MaterialModels.KindKey, .. common, .. model!.Keys] : [.. common, .. model!.Keys]);
-        var fluorescence = ParseFluorescence(e, path, typed ? t.GetString()!.ToLowerInvariant() : MaterialModels.Default);
-        var material = model.Make(new MaterialSource(this, e, path) { Name = name, Diagonal = fluorescence?.Reflectance });
+        var modelName = typed ? t.GetString()!.ToLowerInvariant() : MaterialModels.Default;
+        var fluorescence = ParseFluorescence(e, path, modelName, out bool texelDiagonal);
+        // A diffuse texture beside a matrix is the diagonal per texel: the model reads it as a texture (its mean the spectrum).
+        var diagonal = texelDiagonal ? null : fluorescence?.Reflectance;
+        var material = model.Make(new MaterialSource(this, e, path) { Name = name, Diagonal = diagonal });
         material.Emission = ParseEmission(e, path);
         material.Fluorescence = fluorescence;
         AttachTextures(material, path);   // issue 26: SceneLoader.Textures.cs
+        if (texelDiagonal && material.DiffuseTexture is { } texels) CheckTexelPhotons(texels.Texture, fluorescence!, $"{path}.diffuse");
         return material;
     }
 
