@@ -54,7 +54,10 @@ sealed class FluorescentShift
         }
     }
 
-    /// <summary>The shifted lobe's share in the lobe choice (compared with the smooth lobes' albedo channel value).</summary>
+    /// <summary>
+    /// A fixed share of the lobe in the lobe choice (beside the smooth lobes' albedo channel value): only for a path whose
+    /// throughput is spent; a path weighs the lobes by their albedos under its β (PathIntegrator.Fluorescence.cs LobeShares).
+    /// </summary>
     public float Share { get; }
 
     /// <summary>S·1 per camera sub-band (padded, padding 0): the lobe's albedo under light flat in every excitation band.</summary>

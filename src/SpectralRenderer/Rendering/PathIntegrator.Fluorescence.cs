@@ -23,6 +23,9 @@ public sealed partial class PathIntegrator
     // the shifted bounce carries only light that arrives after further bounces. Each path of light is thus counted by exactly
     // one strategy: unbiased, and direct excitation keeps next-event estimation's low noise. A non-fluorescent material never
     // takes this branch and draws no extra random number: its paths are those of a scene without fluorescence.
+    // The lobe choice at a fluorescent vertex weighs the smooth and the shifted lobe by their albedos under β (LobeShares):
+    // a fixed share (≈ 0.35 for a brightened paper) gave the diagonal a weight 0.88/0.65 ≈ 1.4 per bounce, which Russian
+    // roulette (survival ≤ 0.95) cannot take back — throughput grew along paths between bright surfaces (fireflies).
 
     /// <summary>Russian roulette's largest survival probability (PathIntegrator.cs).</summary>
     const float Survival = 0.95f;
