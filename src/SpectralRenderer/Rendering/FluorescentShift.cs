@@ -20,6 +20,7 @@ sealed class FluorescentShift
     readonly int _n, _padded;
     readonly int[] _first, _end;   // per row, the SIMD vectors [first, end) that hold its non-zero entries (a shift is band-limited)
     readonly float[] _rowSum;      // Σ_i f_s[o, i]
+    readonly float[] _emittedFlat; // S·1 = π·Σ_i f_s[o, i], padded (padding 0): the lobe's albedo under flat light
 
     public FluorescentShift(ReradiationMatrix matrix, FineGrid grid)
     {
@@ -41,6 +42,7 @@ sealed class FluorescentShift
         Share = Math.Max(Math.Max(grid.Luminance(emitted), emitted.Max()), 1e-6f);
         _rowSum = new float[_n];
         for (int o = 0; o < _n; o++) _rowSum[o] = (float)(emitted[o] / Math.PI);
+        _emittedFlat = emitted;
         _first = new int[_n];
         _end = new int[_n];
         int width = Vector<float>.Count;
@@ -52,8 +54,14 @@ sealed class FluorescentShift
         }
     }
 
-    /// <summary>The shifted lobe's share in the lobe choice (compared with the smooth lobes' albedo channel value).</summary>
+    /// <summary>
+    /// A fixed share of the lobe in the lobe choice (beside the smooth lobes' albedo channel value): only for a path whose
+    /// throughput is spent; a path weighs the lobes by their albedos under its β (PathIntegrator.Fluorescence.cs LobeShares).
+    /// </summary>
     public float Share { get; }
+
+    /// <summary>S·1 per camera sub-band (padded, padding 0): the lobe's albedo under light flat in every excitation band.</summary>
+    public ReadOnlySpan<float> Flat => _emittedFlat;
 
     /// <summary>Whether wi leaves on the side wo arrives from (the diffuse lobe's hemisphere, as <c>Eq2Bsdf</c> decides it).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]

@@ -23,6 +23,12 @@ public sealed partial class PathIntegrator
     // the shifted bounce carries only light that arrives after further bounces. Each path of light is thus counted by exactly
     // one strategy: unbiased, and direct excitation keeps next-event estimation's low noise. A non-fluorescent material never
     // takes this branch and draws no extra random number: its paths are those of a scene without fluorescence.
+    // The lobe choice at a fluorescent vertex weighs the smooth and the shifted lobe by their albedos under β (LobeShares):
+    // a fixed share (≈ 0.35 for a brightened paper) gave the diagonal a weight 0.88/0.65 ≈ 1.4 per bounce, which Russian
+    // roulette (survival ≤ 0.95) cannot take back — throughput grew along paths between bright surfaces (fireflies).
+
+    /// <summary>Russian roulette's largest survival probability (PathIntegrator.cs).</summary>
+    const float Survival = 0.95f;
 
     /// <summary>Shifted bounces of one path kept as factors; beyond, their product is made explicit.</summary>
     internal const int ShiftLevels = 16;
@@ -84,6 +90,72 @@ public sealed partial class PathIntegrator
         beta[.._grid.Count].Fill(1);   // the padding stays 0
         shifted = k;
         return true;
+    }
+
+    /// <summary>
+    /// The lobe choice at a fluorescent vertex, between the smooth lobes (albedo a = m_diff + m_spec: the reflective diagonal,
+    /// its texels when textured) and the shifted one (albedo S·1 under flat light), each weighed by the path's throughput β:
+    /// Ā = Σβ·a/Σβ, B̄ = Σβ·S·1/Σβ (band sums) and Â = max(β·a)/max β, B̂ = max(β·S·1)/max β (largest bands). The shifted lobe
+    /// takes P = max(B̄/(Ā + B̄), min(B̂/(Â + B̂), 1 − Â/0.95)): at most 1 − Â/0.95, so the smooth lobes' weight a/(1 − P)
+    /// stays ≤ 0.95 in β's largest band — Russian roulette's largest survival, so β/q does not grow along paths between bright
+    /// fluorescent surfaces (a fixed share gave the diagonal 0.88/0.65 ≈ 1.4 per bounce, a heavy tail: issue 26); below
+    /// that, the share that balances both lobes' largest band weights (as the
+    /// fixed share did), so a shift into a few bands is not starved; and never below the albedos' proportion, so the lobe
+    /// keeps a probability wherever it carries light (unbiased). The two shares sum to Ā + B̄, the vertex's albedo under β,
+    /// beside a delta lobe's share. Returns the shifted share and sets <paramref name="smoothShare"/>.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.NoInlining)]   // a fluorescent vertex only: kept out of the walk
+    float LobeShares(int m, scoped in SurfaceTexels texels, Span<float> beta, scoped ref float smoothShare)
+    {
+        var shift = _shift[m]!;
+        float sum = Sum(beta), top = Max(beta);
+        if (!(sum > 0 && top > 0) || !float.IsFinite(sum)) return shift.Share;   // a spent path: the fixed shares
+        float bSum = Dot(beta, shift.Flat) / sum, bMax = MaxProduct(beta, shift.Flat, default) / top;
+        if (!_smooth[m]) return bSum;
+        ReadOnlySpan<float> d = texels.Diffuse.IsEmpty ? _albedoDiffuse[m] : texels.Diffuse;
+        ReadOnlySpan<float> s = texels.Specular.IsEmpty ? _albedoSpecular[m] : texels.Specular;
+        float aSum = (Dot(beta, d) + Dot(beta, s)) / sum, aMax = MaxProduct(beta, d, s) / top;
+        if (!(bSum > 0)) return 0;   // β carries nothing the shift emits: the lobe would add 0
+        float p = MathF.Max(bSum / (aSum + bSum), MathF.Min(bMax / (aMax + bMax), 1 - aMax / Survival));
+        float combined = aSum + bSum;
+        smoothShare = MathF.Max(combined * (1 - p), 1e-6f);
+        return combined * p;
+    }
+
+    /// <summary>max_o β[o]·(x[o] + y[o]) (<paramref name="y"/> may be empty).</summary>
+    static float MaxProduct(Span<float> beta, ReadOnlySpan<float> x, ReadOnlySpan<float> y)
+    {
+        var vb = V(beta);
+        var vx = RV(x[..beta.Length]);
+        var m = Vector<float>.Zero;
+        if (y.IsEmpty) for (int i = 0; i < vb.Length; i++) m = Vector.Max(m, vb[i] * vx[i]);
+        else
+        {
+            var vy = RV(y[..beta.Length]);
+            for (int i = 0; i < vb.Length; i++) m = Vector.Max(m, vb[i] * (vx[i] + vy[i]));
+        }
+        float r = 0;
+        for (int i = 0; i < Vector<float>.Count; i++) r = MathF.Max(r, m[i]);
+        return r;
+    }
+
+    /// <summary>Σ a (padded: the padding is 0).</summary>
+    static float Sum(Span<float> a)
+    {
+        var v = V(a);
+        var s = Vector<float>.Zero;
+        for (int i = 0; i < v.Length; i++) s += v[i];
+        return Vector.Sum(s);
+    }
+
+    /// <summary>Σ a ⊙ b over a's padded length.</summary>
+    static float Dot(Span<float> a, ReadOnlySpan<float> b)
+    {
+        var va = V(a);
+        var vb = RV(b[..a.Length]);
+        var s = Vector<float>.Zero;
+        for (int i = 0; i < va.Length; i++) s += va[i] * vb[i];
+        return Vector.Sum(s);
     }
 
     /// <summary>Saved film += A_1·(A_2·(…A_k·x)) for the k = <paramref name="shifted"/> bounces so far (or M·x past ShiftLevels).</summary>

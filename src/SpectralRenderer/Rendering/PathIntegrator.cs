@@ -34,6 +34,7 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
     readonly Bsdf[] _bsdf;
     readonly float[]?[] _emission;
     readonly FluorescentShift?[] _shift;   // a fluorescent material's shifted diffuse lobe (FluorescentShift.cs)
+    readonly float[]?[] _albedoDiffuse, _albedoSpecular;   // a fluorescent material's m_diff and m_spec (its lobe choice)
     readonly bool[] _twoSided, _smooth, _delta;
     readonly float[] _smoothChannel;
     readonly Light[] _lights;
@@ -60,6 +61,8 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
         _bsdf = new Bsdf[materials];
         _emission = new float[]?[materials];
         _shift = new FluorescentShift?[materials];
+        _albedoDiffuse = new float[]?[materials];
+        _albedoSpecular = new float[]?[materials];
         _twoSided = new bool[materials];
         _smooth = new bool[materials];
         _delta = new bool[materials];
@@ -82,7 +85,12 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
                 for (int i = 0; i < albedo.Length; i++) albedo[i] += spec[i];
                 _smoothChannel[m] = Math.Max(_grid.Luminance(albedo), 1e-6f);
             }
-            if (material.Fluorescence is { HasShift: true } fl) _shift[m] = new FluorescentShift(fl, _grid);
+            if (material.Fluorescence is { HasShift: true } fl)
+            {
+                _shift[m] = new FluorescentShift(fl, _grid);
+                _albedoDiffuse[m] = _grid.Resample(material.Diffuse);
+                _albedoSpecular[m] = _grid.Resample(material.Specular);
+            }
             if (material.Emission is { } e) { _emission[m] = _grid.Resample(e.Radiance); _twoSided[m] = e.TwoSided; }
             TakeTextures(scene, m);   // PathIntegrator.Textures.cs
         }
@@ -321,7 +329,8 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
                 mirrorShare = bsdf.SampleMirror(wo, ns, -1, mirror, out wiMirror) ? _grid.Luminance(mirror) : 0;
                 transmitShare = bsdf.SampleTransmission(wo, ns, -1, transmit, out wiTransmit) ? _grid.Luminance(transmit) : 0;
             }
-            float shiftShare = _shift[m] is { } fluorescent ? fluorescent.Share : 0;   // the shifted lobe's (fluorescence)
+            // A fluorescent vertex weighs the smooth and the shifted lobe by their albedos under β (PathIntegrator.Fluorescence.cs).
+            float shiftShare = _shift[m] is not null ? LobeShares(m, in texels, beta, ref smoothShare) : 0;
             float total = smoothShare + mirrorShare + transmitShare + shiftShare;
             float smoothProbability = total > 0 ? smoothShare / total : 0;
 
@@ -378,7 +387,7 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
             // Russian roulette on the throughput's channel value.
             if (depth + 1 >= _rrDepth)
             {
-                float q = MathF.Min(0.95f, Max(beta) * gain);
+                float q = MathF.Min(Survival, Max(beta) * gain);
                 if (!(q > 0) || sampler.At1D(dRoulette) >= q) break;
                 Scale(beta, 1 / q);
             }
