@@ -121,11 +121,14 @@ public static unsafe partial class NativeExports
         catch (Exception) { return 0; }
     }
 
+    /// <summary>Options and changes objects: a key given twice is refused as bad JSON (a JSON object with one throws when read).</summary>
+    internal static readonly JsonDocumentOptions StrictJson = new() { AllowDuplicateProperties = false };
+
     /// <summary>A JSON options object, its keys checked against <paramref name="known"/>.</summary>
     internal static JsonObject OptionsObject(string? json, string what, params string[] known)
     {
         JsonObject o;
-        try { o = json is null ? [] : JsonNode.Parse(json) as JsonObject ?? throw new JsonException("not an object"); }
+        try { o = json is null ? [] : JsonNode.Parse(json, documentOptions: StrictJson) as JsonObject ?? throw new JsonException("not an object"); }
         catch (JsonException e)
         {
             throw new InputException(what, $"not a JSON object: {e.Message}", $"known keys: {string.Join(", ", known)}");

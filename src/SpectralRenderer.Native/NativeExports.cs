@@ -249,7 +249,7 @@ public static unsafe partial class NativeExports
     static (SceneOverrides, string? Integrator, int Threads) Options(string? json, byte[] sceneText)
     {
         JsonObject o;
-        try { o = json is null ? [] : JsonNode.Parse(json) as JsonObject ?? throw new JsonException("not an object"); }
+        try { o = json is null ? [] : JsonNode.Parse(json, documentOptions: StrictJson) as JsonObject ?? throw new JsonException("not an object"); }
         catch (JsonException e) { throw new InputException("options", $"not a JSON object: {e.Message}", "pass {\"width\": 64, …}"); }
         string? Str(string key) => o[key] is JsonValue v && v.TryGetValue(out string? s) ? s
             : o[key] is null ? null : o[key]!.ToJsonString();
@@ -300,7 +300,7 @@ public static unsafe partial class NativeExports
     {
         try
         {
-            var options = new JsonDocumentOptions { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true };
+            var options = new JsonDocumentOptions { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true, AllowDuplicateProperties = false };
             var node = JsonNode.Parse(sceneText, documentOptions: options);
             if (node?["wave"]?.GetValue<string>() is { } w) return BandGrid.ParseWave(w);
             if (node?["bands"]?.GetValue<string>() is { } g) return BandGrid.Parse(g);
@@ -404,7 +404,7 @@ sealed unsafe class NativeRender : IDisposable
     static (List<LightChange>, string? White) Changes(string? json, JsonObject document)
     {
         JsonObject o;
-        try { o = json is null ? [] : JsonNode.Parse(json) as JsonObject ?? throw new JsonException("not an object"); }
+        try { o = json is null ? [] : JsonNode.Parse(json, documentOptions: NativeExports.StrictJson) as JsonObject ?? throw new JsonException("not an object"); }
         catch (JsonException e)
         {
             throw new InputException("changes", $"not a JSON object: {e.Message}", "pass {\"lights\": {\"NAME\": {\"spectrum\": \"A\"}}}");

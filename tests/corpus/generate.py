@@ -979,6 +979,11 @@ write("scene-duplicate-key.json", '{ "camera": { "position": [0, 0, 5], "look_at
 write("plan-scene-duplicate-key.json", json.dumps({"scene": "scene-duplicate-key.json", "axes": [AX]}))
 case("sweep/scene-duplicate-key", ["sweep", "{in}/plan-scene-duplicate-key.json", "-o", "{tmp}/sw", "--quiet"],
      r"scene-duplicate-key\.json:1:\d+: .*'width'", 2, "scene-duplicate-key.json", r".")
+# A key twice in a scene rendered with a bare band count (--bands N reads the scene's range first): found beside the sweep
+# plan's fuzz finding, it was an internal error (exit 1).
+write("scene-duplicate-bands.json", '{ "bands": "400:700:10", "bands": "400:700:5", "camera": { "position": [0, 0, 5], "look_at": [0, 0, 0] } }')
+case("render/duplicate-key-bands-count", render("{in}/scene-duplicate-bands.json", "--bands", "4"),
+     r"\$\.bands: key 'bands' appears a second time in this object", 2, "scene-duplicate-bands.json", JSONPLACE)
 write("plan-latin1-scene.json", json.dumps({"scene": "scene-035-latin1-byte.json", "axes": [{"name": "light", "path": "lights[0].spectrum", "values": ["A"]}]}))
 case("sweep/scene-latin1", ["sweep", "{in}/plan-latin1-scene.json", "-o", "{tmp}/sw", "--quiet"], r"is not valid UTF-8", 2, "scene-035-latin1-byte.json", r".")
 plan_case("formats-number", {"scene": "good.json", "axes": [AX], "formats": 5}, r"\$\.formats: is not a list of formats")
