@@ -214,7 +214,8 @@ public static class RenderCommand
         {
             var node = JsonNode.Parse(sceneText, documentOptions: new System.Text.Json.JsonDocumentOptions
             {
-                CommentHandling = System.Text.Json.JsonCommentHandling.Skip, AllowTrailingCommas = true,
+                CommentHandling = System.Text.Json.JsonCommentHandling.Skip,
+                AllowTrailingCommas = true,
                 AllowDuplicateProperties = false,   // a key twice: the loader reports it with its place (an object with one broke here)
             });
             if (node?["wave"]?.GetValue<string>() is { } w) return Spectra.BandGrid.ParseWave(w);
