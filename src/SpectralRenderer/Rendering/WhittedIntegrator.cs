@@ -165,21 +165,18 @@ public sealed partial class WhittedIntegrator : IPacketIntegrator, IAnalysisInte
             {
                 if (light < 32) _info.LitMask |= 1u << light;
                 int yLane = _bands + 1;
-                if (_diffuse is { } dy)
-                {
-                    int at = dy.SlotOffset(dy.LightSlot(light)) + yLane;
-                    for (int i = 0; i < _diffuseTaps.Count; i++)
-                        _info.DiffuseY += d * nl * _diffuseTaps.Weight[i] * dy.Data[_diffuseTaps.At[i] + at];
-                }
-                else _info.DiffuseY += d * nl * _tables.Diffuse[term][yLane];
-                if (_specular is { } sy)
-                {
-                    int at = sy.SlotOffset(sy.LightSlot(light)) + yLane;
-                    for (int i = 0; i < _specularTaps.Count; i++)
-                        _info.SpecularY += d * s * _specularTaps.Weight[i] * sy.Data[_specularTaps.At[i] + at];
-                }
-                else _info.SpecularY += d * s * _tables.Specular[term][yLane];
+                _info.DiffuseY += d * nl * (_diffuse is { } dy ? TexelsY(dy, in _diffuseTaps, light) : _tables.Diffuse[term][yLane]);
+                _info.SpecularY += d * s * (_specular is { } sy ? TexelsY(sy, in _specularTaps, light) : _tables.Specular[term][yLane]);
             }
+        }
+
+        /// <summary>The Y colour lane of light <paramref name="light"/>'s slot of the texels <paramref name="taps"/>, weighted.</summary>
+        readonly float TexelsY(TexturedTerms t, in TexelTaps taps, int light)
+        {
+            int at = t.SlotOffset(t.LightSlot(light)) + _bands + 1;
+            float y = 0;
+            for (int i = 0; i < taps.Count; i++) y += taps.Weight[i] * t.Data[taps.At[i] + at];
+            return y;
         }
 
         [MethodImpl(MethodImplOptions.AggressiveInlining)]

@@ -57,18 +57,8 @@ public sealed class ReradiationExrTests(ITestOutputHelper output) : IDisposable
 
     string WriteCsv(string file, double[] d)
     {
-        int n = Cells.Length;
-        var sb = new StringBuilder("emission_nm");
-        foreach (var l in Cells) sb.Append(',').Append(l.ToString("R", Inv));
-        sb.Append('\n');
-        for (int o = 0; o < n; o++)
-        {
-            sb.Append(Cells[o].ToString("R", Inv));
-            for (int i = 0; i < n; i++) sb.Append(',').Append(d[o * n + i].ToString("R", Inv));
-            sb.Append('\n');
-        }
         var path = Path.Combine(_dir, file);
-        File.WriteAllText(path, sb.ToString());
+        File.WriteAllText(path, FluorescenceTests.MatrixCsv(Cells, d));
         return path;
     }
 

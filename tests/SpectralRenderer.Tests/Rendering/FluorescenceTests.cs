@@ -65,20 +65,27 @@ public sealed class FluorescenceTests(Xunit.Abstractions.ITestOutputHelper outpu
         }
     }
 
-    string WriteMatrix(string name, double[] d)
+    /// <summary>A re-radiation matrix as the documented CSV: a header of excitation wavelengths, then per emission wavelength
+    /// its row (<paramref name="d"/> row-major, emission × excitation).</summary>
+    internal static string MatrixCsv(double[] cells, double[] d)
     {
-        int n = Cells.Length;
+        int n = cells.Length;
         var sb = new StringBuilder("emission_nm");
-        foreach (var l in Cells) sb.Append(',').Append(l.ToString("R", Inv));
+        foreach (var l in cells) sb.Append(',').Append(l.ToString("R", Inv));
         sb.Append('\n');
         for (int o = 0; o < n; o++)
         {
-            sb.Append(Cells[o].ToString("R", Inv));
+            sb.Append(cells[o].ToString("R", Inv));
             for (int i = 0; i < n; i++) sb.Append(',').Append(d[o * n + i].ToString("R", Inv));
             sb.Append('\n');
         }
+        return sb.ToString();
+    }
+
+    string WriteMatrix(string name, double[] d)
+    {
         var path = Path.Combine(_dir, name);
-        File.WriteAllText(path, sb.ToString());
+        File.WriteAllText(path, MatrixCsv(Cells, d));
         return path;
     }
 

@@ -29,17 +29,8 @@ public sealed class FluorescentPathTests(Xunit.Abstractions.ITestOutputHelper ou
 
     string WriteCsv(string file, double[] d)
     {
-        var sb = new StringBuilder("emission_nm");
-        foreach (var l in Cells) sb.Append(',').Append(l.ToString("R", Inv));
-        sb.Append('\n');
-        for (int o = 0; o < N; o++)
-        {
-            sb.Append(Cells[o].ToString("R", Inv));
-            for (int i = 0; i < N; i++) sb.Append(',').Append(d[o * N + i].ToString("R", Inv));
-            sb.Append('\n');
-        }
         var path = Path.Combine(_dir, file);
-        File.WriteAllText(path, sb.ToString());
+        File.WriteAllText(path, FluorescenceTests.MatrixCsv(Cells, d));
         return path.Replace("\\", "/");
     }
 

@@ -47,16 +47,7 @@ public sealed class TexturedFluorescentPathTests(Xunit.Abstractions.ITestOutputH
 
     string WriteCsv(string file, double[] d)
     {
-        var sb = new StringBuilder("emission_nm");
-        foreach (var l in Cells) sb.Append(',').Append(l.ToString("R", Inv));
-        sb.Append('\n');
-        for (int o = 0; o < N; o++)
-        {
-            sb.Append(Cells[o].ToString("R", Inv));
-            for (int i = 0; i < N; i++) sb.Append(',').Append(d[o * N + i].ToString("R", Inv));
-            sb.Append('\n');
-        }
-        File.WriteAllText(Path.Combine(_dir, file), sb.ToString());
+        File.WriteAllText(Path.Combine(_dir, file), FluorescenceTests.MatrixCsv(Cells, d));
         return file;
     }
 

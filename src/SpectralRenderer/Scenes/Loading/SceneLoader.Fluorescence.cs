@@ -72,33 +72,14 @@ public sealed partial class SceneLoader
         var emitted = new double[n];
         for (int i = 0; i < n; i++)
             for (int o = 0; o < n; o++) if (o != i) emitted[i] += matrix[o, i] * wl[o];
-        // The texel's value at λ_i: weights of at most two samples (its linear interpolant, continued as the texture says).
-        var tw = tex.Wavelengths;
-        var at = new (int J, double W, int K, double V)[n];
-        for (int i = 0; i < n; i++)
-        {
-            double l = wl[i];
-            if (l <= tw[0] || l >= tw[^1])
-            {
-                bool inside = l == tw[0] || l == tw[^1];
-                at[i] = !inside && tex.Extrapolation == Extrapolation.Zero ? (0, 0, 0, 0) : (l <= tw[0] ? 0 : tw.Length - 1, 1, 0, 0);
-                continue;
-            }
-            int j = Array.BinarySearch(tw, l);
-            if (j >= 0) { at[i] = (j, 1, 0, 0); continue; }
-            j = ~j - 1;
-            double t = (l - tw[j]) / (tw[j + 1] - tw[j]);
-            at[i] = (j, 1 - t, j + 1, t);
-        }
         for (int y = 0; y < tex.Height; y++)
             for (int x = 0; x < tex.Width; x++)
             {
-                var s = tex.Texel(x, y);
+                var texel = tex.Spectrum(x, y);
                 for (int i = 0; i < n; i++)
                 {
                     if (emitted[i] == 0) continue;   // no shift from this column: the texel's own checks apply (≥ 2, negative)
-                    var (j, w, k, v) = at[i];
-                    double r = w * s[j] + v * s[k];
+                    double r = texel.Evaluate(wl[i]);
                     double absorbed = (1 - r) * wl[i];
                     if (emitted[i] <= absorbed + ReradiationCsvReader.PhotonTolerance * wl[i]) continue;
                     var inv = System.Globalization.CultureInfo.InvariantCulture;
