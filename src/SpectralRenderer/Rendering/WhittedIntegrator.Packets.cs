@@ -31,7 +31,8 @@ public sealed partial class WhittedIntegrator
         // Each shaded lane's terms of eq. 2, in the single-ray order, summed over the bands in one pass at the end; with more
         // lights than the lists hold, added to the lane's spectrum at once (the same bits either way).
         bool listed = 1 + 2 * _lights.Length <= TermsPerLane;
-        Span<SpectralTerm> terms = stackalloc SpectralTerm[listed ? RayPacket.Size * TermsPerLane : 0];
+        // Constant sizes: a stackalloc of a size known only at run time is a probing loop on every packet.
+        Span<SpectralTerm> terms = stackalloc SpectralTerm[RayPacket.Size * TermsPerLane];
         Span<int> termCount = stackalloc int[RayPacket.Size];
         uint found = _geometry.Intersect(ref packet, ref hits);
         float eps = _geometry.Epsilon;
@@ -78,11 +79,9 @@ public sealed partial class WhittedIntegrator
 
         // Per light, the lanes it reaches and their d_k, c_spot, n·l; the lanes that face it get a shadow ray, traced as one packet.
         int lightCount = _lights.Length;
-        // Their lane results on the stack for a few lights (3 KB: in cache, aligned), else in the worker's scratch.
+        // Their lane results on the stack for a few lights (1.8 KB: in cache, aligned), else in the worker's scratch.
         var lanes = lightCount <= 4 ? LaneMemory.Span<LightLanes>(stackalloc byte[LaneMemory.Bytes<LightLanes>(4)], lightCount)
             : MemoryMarshal.Cast<float, LightLanes>(scratch[((_scene.MaxDepth + 2) * 2 * _padded)..])[..lightCount];
-        Span<uint> reached = stackalloc uint[lightCount];
-        Span<uint> lit = stackalloc uint[lightCount];
         for (int k = 0; k < lightCount; k++)
         {
             var light = _lights[k];
@@ -94,23 +93,21 @@ public sealed partial class WhittedIntegrator
                 ref var nl = ref lk.Cosine;
                 switch (PacketLanes.Width)
                 {
-                    case 16:
-                        LaneGeometry.PointLight<Lanes512>(point, eps, shaded, in at, ref shadows, ref d, ref nl, out reached[k]);
-                        break;
-                    case 8: LaneGeometry.PointLight<Lanes256>(point, eps, shaded, in at, ref shadows, ref d, ref nl, out reached[k]); break;
-                    case 4: LaneGeometry.PointLight<Lanes128>(point, eps, shaded, in at, ref shadows, ref d, ref nl, out reached[k]); break;
-                    default: LaneGeometry.PointLight<Lanes1>(point, eps, shaded, in at, ref shadows, ref d, ref nl, out reached[k]); break;
+                    case 16: LaneGeometry.PointLight<Lanes512>(point, eps, shaded, in at, ref shadows, ref d, ref nl, out lk.Reached); break;
+                    case 8: LaneGeometry.PointLight<Lanes256>(point, eps, shaded, in at, ref shadows, ref d, ref nl, out lk.Reached); break;
+                    case 4: LaneGeometry.PointLight<Lanes128>(point, eps, shaded, in at, ref shadows, ref d, ref nl, out lk.Reached); break;
+                    default: LaneGeometry.PointLight<Lanes1>(point, eps, shaded, in at, ref shadows, ref d, ref nl, out lk.Reached); break;
                 }
                 ((Span<float>)lk.Spot).Fill(1f);
             }
-            else reached[k] = IlluminateLanes(light, shaded, in at, ref shadows, ref lk.Attenuation, ref lk.Cosine, ref lk.Spot);
-            lit[k] = 0;
+            else lk.Reached = IlluminateLanes(light, shaded, in at, ref shadows, ref lk.Attenuation, ref lk.Cosine, ref lk.Spot);
+            lk.Lit = 0;
             if (shadows.Active == 0) continue;
             counters.Shadow += BitOperations.PopCount(shadows.Active);
-            lit[k] = shadows.Active & ~_geometry.Occluded(ref shadows);
+            lk.Lit = shadows.Active & ~_geometry.Occluded(ref shadows);
             lk.DirectionX = shadows.DirectionX; lk.DirectionY = shadows.DirectionY; lk.DirectionZ = shadows.DirectionZ;
         }
-        ShadeLanes(ref packet, in at, shaded, material, lanes, reached, lit, listed, terms, termCount, results, infos, ref counters);
+        ShadeLanes(ref packet, in at, shaded, material, lanes, listed, terms, termCount, results, infos, ref counters);
     }
 
     /// <summary>Each shaded lane's eq. 2 by the walker's local step from the lights' lane results, then its listed terms summed
@@ -119,12 +116,11 @@ public sealed partial class WhittedIntegrator
     /// left span conversions as calls in the lane loop.</summary>
     [MethodImpl(MethodImplOptions.NoInlining | MethodImplOptions.AggressiveOptimization)]
     void ShadeLanes(ref RayPacket packet, in ShadingLanes at, uint shaded, ReadOnlySpan<int> material, ReadOnlySpan<LightLanes> lanes,
-        ReadOnlySpan<uint> reached, ReadOnlySpan<uint> lit, bool listed, Span<SpectralTerm> terms, Span<int> termCount, Span<float> results,
-        Span<PixelInfo> infos, ref RayCounters counters)
+        bool listed, Span<SpectralTerm> terms, Span<int> termCount, Span<float> results, Span<PixelInfo> infos, ref RayCounters counters)
     {
         // One sink and one light query for the packet, moved from lane to lane.
         var laneSink = new LaneSink(this, listed, terms, termCount, results, infos);
-        var laneLights = new LaneLights(lanes, reached, lit);
+        var laneLights = new LaneLights(lanes);
         ReadOnlySpan<float> flat = Flat;
         for (uint all = shaded; all != 0; all &= all - 1)
         {
@@ -151,18 +147,20 @@ public sealed partial class WhittedIntegrator
     /// <summary>Most terms a lane lists: the global ambient and, per light, its ambient and its diffuse (+ specular) term, for 8 lights.</summary>
     const int TermsPerLane = 17;
 
-    /// <summary>One light's results for the lanes of a packet: d_k, c_spot, n·l and (lanes lit) the direction l.</summary>
+    /// <summary>One light's results for the lanes of a packet: d_k, c_spot, n·l and (lanes lit) the direction l; the lanes it
+    /// reaches and those its shadow rays found lit. Seven cache lines, so that each light's lanes start on one.</summary>
+    [StructLayout(LayoutKind.Sequential, Size = Floats * sizeof(float))]
     struct LightLanes
     {
-        public const int Floats = 6 * RayPacket.Size;
+        public const int Floats = 7 * RayPacket.Size;
         public PacketFloats Attenuation, Cosine, Spot, DirectionX, DirectionY, DirectionZ;
+        public uint Reached, Lit;
     }
 
     /// <summary>A packet lane's lights for the walker's local step: the lanes' precomputed results, shadow rays already traced.</summary>
-    ref struct LaneLights(ReadOnlySpan<LightLanes> lanes, ReadOnlySpan<uint> reached, ReadOnlySpan<uint> lit) : ILightQuery
+    ref struct LaneLights(ReadOnlySpan<LightLanes> lanes) : ILightQuery
     {
         readonly ReadOnlySpan<LightLanes> _lanes = lanes;
-        readonly ReadOnlySpan<uint> _reached = reached, _lit = lit;
         /// <summary>The lane asked about.</summary>
         public int Lane;
 
@@ -170,8 +168,8 @@ public sealed partial class WhittedIntegrator
         public readonly bool Reach(int k, out LightSample sample, out float nl)
         {
             int lane = Lane;
-            if ((_reached[k] >> lane & 1) == 0) { sample = default; nl = 0; return false; }
             ref readonly var r = ref _lanes[k];
+            if ((r.Reached >> lane & 1) == 0) { sample = default; nl = 0; return false; }
             nl = r.Cosine[lane];
             var l = new Vector3(r.DirectionX[lane], r.DirectionY[lane], r.DirectionZ[lane]);
             sample = new LightSample(l, 0, r.Spot[lane], r.Attenuation[lane]);
@@ -179,7 +177,7 @@ public sealed partial class WhittedIntegrator
         }
 
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
-        public readonly bool Visible(int k, in LightSample sample, ref RayCounters counters) => (_lit[k] >> Lane & 1) != 0;
+        public readonly bool Visible(int k, in LightSample sample, ref RayCounters counters) => (_lanes[k].Lit >> Lane & 1) != 0;
     }
 
     /// <summary>A packet lane's terms: listed as <see cref="SpectralTerm"/>s for the one-pass band sum (or added at once), and what the
