@@ -225,7 +225,7 @@ internal static class LaneGeometry
     /// whose active lanes they become. Returns those lanes.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    internal static uint PointLight<L>(PointEmitter light, float epsilon, uint lanes, in ShadingLanes at,
+    internal static uint PointLight<L>(in PointEmitter light, float epsilon, uint lanes, in ShadingLanes at,
         ref RayPacket shadows, ref PacketFloats attenuation, ref PacketFloats cosine, out uint reached) where L : struct, ILanes<L>
     {
         uint chunkMask = L.Count >= 32 ? uint.MaxValue : (1u << L.Count) - 1;

@@ -86,17 +86,17 @@ public sealed partial class WhittedIntegrator
         {
             var light = _lights[k];
             ref var lk = ref lanes[k];
-            if (light.LaneForm is PointEmitter point)
+            if (_laneForms[k] is PointEmitter point)
             {
                 // Direction, distance, falloff, n·l and the shadow rays of all lanes at once (c_spot = 1).
                 ref var d = ref lk.Attenuation;
                 ref var nl = ref lk.Cosine;
                 switch (PacketLanes.Width)
                 {
-                    case 16: LaneGeometry.PointLight<Lanes512>(point, eps, shaded, in at, ref shadows, ref d, ref nl, out lk.Reached); break;
-                    case 8: LaneGeometry.PointLight<Lanes256>(point, eps, shaded, in at, ref shadows, ref d, ref nl, out lk.Reached); break;
-                    case 4: LaneGeometry.PointLight<Lanes128>(point, eps, shaded, in at, ref shadows, ref d, ref nl, out lk.Reached); break;
-                    default: LaneGeometry.PointLight<Lanes1>(point, eps, shaded, in at, ref shadows, ref d, ref nl, out lk.Reached); break;
+                    case 16: LaneGeometry.PointLight<Lanes512>(in point, eps, shaded, in at, ref shadows, ref d, ref nl, out lk.Reached); break;
+                    case 8: LaneGeometry.PointLight<Lanes256>(in point, eps, shaded, in at, ref shadows, ref d, ref nl, out lk.Reached); break;
+                    case 4: LaneGeometry.PointLight<Lanes128>(in point, eps, shaded, in at, ref shadows, ref d, ref nl, out lk.Reached); break;
+                    default: LaneGeometry.PointLight<Lanes1>(in point, eps, shaded, in at, ref shadows, ref d, ref nl, out lk.Reached); break;
                 }
                 ((Span<float>)lk.Spot).Fill(1f);
             }

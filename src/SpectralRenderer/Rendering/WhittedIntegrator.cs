@@ -26,6 +26,8 @@ public sealed partial class WhittedIntegrator : IPacketIntegrator, IAnalysisInte
     readonly SceneGeometry _geometry;
     readonly Material[] _materials;
     readonly Light[] _lights;
+    /// <summary>Each light's lane form (<see cref="Light.LaneForm"/>), asked once: the packet path's SIMD point emitters.</summary>
+    readonly PointEmitter?[] _laneForms;
     readonly int[] _objectMaterial;
     readonly int _padded;
     readonly TermTables _tables;
@@ -37,6 +39,7 @@ public sealed partial class WhittedIntegrator : IPacketIntegrator, IAnalysisInte
         _geometry = geometry;
         _materials = scene.Materials.ToArray();
         _lights = scene.Lights.ToArray();
+        _laneForms = _lights.Select(l => l.LaneForm).ToArray();
         _objectMaterial = scene.Objects.Select(o => o.Material).ToArray();
         _padded = scene.PaddedBands;
         _tables = new TermTables(scene);

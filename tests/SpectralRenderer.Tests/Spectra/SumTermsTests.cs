@@ -44,4 +44,17 @@ public class SumTermsTests
                     $"case {n}, {count} terms, value {i}: {expected[i]:R} vs {actual[i]:R}");
         }
     }
+
+    [Fact]
+    public void TermPastTheTablesIsRefused()
+    {
+        // The sum reads without bounds checks, so a term whose spectrum would run past the tables must be refused first.
+        int padded = System.Numerics.Vector<float>.Count * 2;
+        var flat = new float[3 * padded];
+        var dst = new float[padded];
+        SpectralMath.SumTerms(dst, flat, [new SpectralTerm(2 * padded, 1f, 0, 1f)]);   // the last table: fine
+        Assert.Throws<ArgumentOutOfRangeException>(() => SpectralMath.SumTerms(dst, flat, [new SpectralTerm(2 * padded + 1, 1f)]));
+        Assert.Throws<ArgumentOutOfRangeException>(() => SpectralMath.SumTerms(dst, flat, [new SpectralTerm(0, 1f, 2 * padded + 1, 1f)]));
+        Assert.Throws<ArgumentOutOfRangeException>(() => SpectralMath.SumTerms(dst, flat, [new SpectralTerm(-1, 1f)]));
+    }
 }
