@@ -75,7 +75,8 @@ public static class EnviReader
         var cube = EnviCube.Layout(h, where);
         long total = (long)cube.Width * cube.Height * cube.Bands;
         if (stream.CanSeek) cube.CheckLength(stream.Length - stream.Position);
-        if (total * cube.SampleBytes > Array.MaxLength) throw new InputException($"{where}: data", $"{cube.Width}×{cube.Height}×{cube.Bands} samples exceed 2 GiB", "split the cube");
+        if (total * cube.SampleBytes > Array.MaxLength)
+            throw new InputException($"{where}: data", $"{cube.Width}×{cube.Height}×{cube.Bands} samples exceed 2 GiB", "split the cube");
         var bytes = new byte[total * cube.SampleBytes];
         if (cube.Offset > 0) stream.ReadExactly(new byte[cube.Offset]);
         try { stream.ReadExactly(bytes); }
@@ -156,16 +157,23 @@ public sealed class EnviCube
         int Int(string key, int? fallback = null)
         {
             if (h.TryGetValue(key, out var v) && int.TryParse(v, NumberStyles.Integer, CultureInfo.InvariantCulture, out int i)) return i;
-            return fallback ?? throw new InputException($"{where}: header '{key}'", $"ENVI header lacks a numeric '{key}'", $"add '{key} = N' to the header");
+            return fallback ?? throw new InputException($"{where}: header '{key}'", $"ENVI header lacks a numeric '{key}'",
+                $"add '{key} = N' to the header");
         }
         int w = Int("samples"), lines = Int("lines"), bands = Int("bands"), offset = Int("header offset", 0);
         int type = Int("data type"), order = Int("byte order", 0);
         string interleave = h.GetValueOrDefault("interleave", "bsq").Trim().ToLowerInvariant();
-        if (type is not (4 or 5)) throw new InputException($"{where}: header 'data type'", $"ENVI data type {type} is not supported", "only 4 (float32) and 5 (float64)");
-        if (interleave is not ("bsq" or "bil" or "bip")) throw new InputException($"{where}: header 'interleave'", $"unknown interleave {MessageText.Quote(interleave)}", "use bsq, bil or bip");
-        if (w < 1 || lines < 1 || bands < 1 || bands > BandGrid.MaxBands) throw new InputException($"{where}: header 'samples', 'lines', 'bands'", $"bad size {w}×{lines}×{bands}", $"samples, lines and bands must be at least 1 (bands at most {BandGrid.MaxBands})");
+        if (type is not (4 or 5))
+            throw new InputException($"{where}: header 'data type'", $"ENVI data type {type} is not supported", "only 4 (float32) and 5 (float64)");
+        if (interleave is not ("bsq" or "bil" or "bip"))
+            throw new InputException($"{where}: header 'interleave'", $"unknown interleave {MessageText.Quote(interleave)}", "use bsq, bil or bip");
+        if (w < 1 || lines < 1 || bands < 1 || bands > BandGrid.MaxBands)
+            throw new InputException($"{where}: header 'samples', 'lines', 'bands'", $"bad size {w}×{lines}×{bands}",
+                $"samples, lines and bands must be at least 1 (bands at most {BandGrid.MaxBands})");
         var grid = EnviReader.Grid(h, bands, where);
-        if (offset < 0) throw new InputException($"{where}: header 'header offset'", $"'header offset' {offset} is negative", "give the number of bytes before the samples, usually 0");
+        if (offset < 0)
+            throw new InputException($"{where}: header 'header offset'", $"'header offset' {offset} is negative",
+                "give the number of bytes before the samples, usually 0");
         return new EnviCube(w, lines, bands, offset, type, order, interleave, grid, where);
     }
 
@@ -174,11 +182,13 @@ public sealed class EnviCube
     {
         long total = (long)Width * Height * Bands;
         if (total * SampleBytes + Offset > available)
-            throw new InputException($"{_where}: data", $"the header declares {Width}×{Height}×{Bands} samples of {SampleBytes} bytes, but the image file holds only {available} bytes",
+            throw new InputException($"{_where}: data",
+                $"the header declares {Width}×{Height}×{Bands} samples of {SampleBytes} bytes, but the image file holds only {available} bytes",
                 "the image is truncated or the header does not belong to it");
     }
 
-    internal InputException Truncated() => new($"{_where}: data", $"file is truncated: {Width}×{Height}×{Bands} samples of {SampleBytes} bytes expected",
+    internal InputException Truncated() => new($"{_where}: data",
+        $"file is truncated: {Width}×{Height}×{Bands} samples of {SampleBytes} bytes expected",
         "the image file is shorter than the header says: copy it again");
 
     /// <summary>Rows <paramref name="y0"/> … + <paramref name="rows"/> − 1 from the file into <paramref name="dst"/>, pixel-major

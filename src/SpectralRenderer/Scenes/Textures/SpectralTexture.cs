@@ -28,6 +28,8 @@ public sealed class SpectralTexture
 {
     /// <summary>Floats a block of rows holds at most (16 MiB; one row when a row is longer).</summary>
     public const int BlockFloats = 1 << 22;
+    /// <summary>Floats a block holds on this flow instead (tests: a texture read in several blocks).</summary>
+    internal static readonly AsyncLocal<int?> BlockOverride = new();
 
     readonly TexelRows _rows;
     readonly List<double> _factors = [];
@@ -40,10 +42,12 @@ public sealed class SpectralTexture
     }
 
     /// <summary>A texture whose texels <paramref name="rows"/> reads.</summary>
-    public SpectralTexture(string source, int width, int height, double[] wavelengths, TexelRows rows, Extrapolation extrapolation = Extrapolation.Clamp)
+    public SpectralTexture(string source, int width, int height, double[] wavelengths, TexelRows rows,
+        Extrapolation extrapolation = Extrapolation.Clamp)
     {
         if (width < 1 || height < 1) throw new ArgumentOutOfRangeException(nameof(width), "a texture needs at least one texel");
-        if ((long)width * wavelengths.Length > Array.MaxLength) throw new ArgumentOutOfRangeException(nameof(width), "a row of the texture exceeds one array");
+        if ((long)width * wavelengths.Length > Array.MaxLength)
+            throw new ArgumentOutOfRangeException(nameof(width), "a row of the texture exceeds one array");
         Source = source;
         Width = width;
         Height = height;
@@ -61,7 +65,7 @@ public sealed class SpectralTexture
     public Extrapolation Extrapolation { get; }
     public int Samples => Wavelengths.Length;
     /// <summary>Rows a block holds (<see cref="BlockFloats"/>).</summary>
-    public int BlockRows => (int)Math.Clamp(BlockFloats / ((long)Width * Samples), 1, Height);
+    public int BlockRows => (int)Math.Clamp((BlockOverride.Value ?? BlockFloats) / ((long)Width * Samples), 1, Height);
 
     /// <summary>Every texel's value times <paramref name="factor"/> from now on (each factor rounded to float in turn, as a
     /// scaling of the values in place would be).</summary>
