@@ -38,8 +38,9 @@ public abstract class TexelLevels
     /// <summary>The tile side and chunk size of tables built on this flow (tests: several chunks of a small texture).</summary>
     internal static readonly AsyncLocal<(int TileSide, int ChunkFloats)?> Layout = new();
 
-    readonly int[] _width, _height, _tilesX, _firstTile;
-    readonly int[] _tileChunk, _tileAt;   // per tile (levels in order, each row by row): its chunk and first float there
+    readonly int[] _width, _height;
+    readonly (int Width, int TilesX, int FirstTile)[] _levels;   // per level, what finding a texel's tile takes
+    readonly (int Chunk, int At)[] _tiles;   // per tile (levels in order, each row by row): its chunk and first float there
     readonly float[][] _chunks;
     readonly int _shift, _mask;
     readonly UvTransform _uv;
@@ -60,17 +61,15 @@ public abstract class TexelLevels
         TileSide = side;
         _shift = BitOperations.Log2((uint)side);
         _mask = side - 1;
-        _tilesX = new int[_width.Length];
-        _firstTile = new int[_width.Length];
+        _levels = new (int, int, int)[_width.Length];
         long tiles = 0;
         for (int l = 0; l < _width.Length; l++)
         {
-            _firstTile[l] = checked((int)tiles);
-            _tilesX[l] = (_width[l] + _mask) >> _shift;
-            tiles += (long)_tilesX[l] * ((_height[l] + _mask) >> _shift);
+            int across = (_width[l] + _mask) >> _shift;
+            _levels[l] = (_width[l], across, checked((int)tiles));
+            tiles += (long)across * ((_height[l] + _mask) >> _shift);
         }
-        _tileChunk = new int[checked((int)tiles)];
-        _tileAt = new int[_tileChunk.Length];
+        _tiles = new (int, int)[checked((int)tiles)];
         // Whole tiles into chunks, in order, a new chunk where the next tile would overflow the current one.
         var sizes = new List<int>();
         long filled = 0;
@@ -86,8 +85,7 @@ public abstract class TexelLevels
                         sizes.Add(0);
                         filled = 0;
                     }
-                    _tileChunk[tile] = sizes.Count - 1;
-                    _tileAt[tile] = (int)filled;
+                    _tiles[tile] = (sizes.Count - 1, (int)filled);
                     filled += floats;
                     tile++;
                 }
@@ -112,11 +110,12 @@ public abstract class TexelLevels
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public int At(int level, int x, int y, out int chunk)
     {
+        var (width, across, first) = _levels[level];
         int tx = x >> _shift;
-        int tile = _firstTile[level] + (y >> _shift) * _tilesX[level] + tx;
-        int tw = Math.Min(_mask + 1, _width[level] - (tx << _shift));   // the last column of tiles is clipped
-        chunk = _tileChunk[tile];
-        return _tileAt[tile] + ((y & _mask) * tw + (x & _mask)) * Stride;
+        var (c, at) = _tiles[first + (y >> _shift) * across + tx];
+        int tw = Math.Min(_mask + 1, width - (tx << _shift));   // the last column of tiles is clipped
+        chunk = c;
+        return at + ((y & _mask) * tw + (x & _mask)) * Stride;
     }
 
     /// <summary>Texel (x, y) of <paramref name="level"/>: its <see cref="Stride"/> floats.</summary>
@@ -167,7 +166,8 @@ public abstract class TexelLevels
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     void Bilinear(int level, Vector2 st, float weight, ref TexelTaps taps)
     {
-        int w = _width[level], h = _height[level];
+        var (w, across, first) = _levels[level];
+        int h = _height[level];
         float s = st.X * w - 0.5f, t = (1 - st.Y) * h - 0.5f;   // v up: row 0 at v = 1
         if (!float.IsFinite(s) || !float.IsFinite(t)) { s = 0; t = 0; }
         float xf = MathF.Floor(s), yf = MathF.Floor(t);
@@ -176,17 +176,25 @@ public abstract class TexelLevels
         var wrap = _uv.Wrap;
         int xa = UvTransform.WrapIndex(x0, w, wrap), xb = UvTransform.WrapIndex(x0 + 1, w, wrap);
         int ya = UvTransform.WrapIndex(y0, h, wrap), yb = UvTransform.WrapIndex(y0 + 1, h, wrap);
-        Add(ref taps, level, xa, ya, weight * (1 - fx) * (1 - fy));
-        Add(ref taps, level, xb, ya, weight * fx * (1 - fy));
-        Add(ref taps, level, xa, yb, weight * (1 - fx) * fy);
-        Add(ref taps, level, xb, yb, weight * fx * fy);
+        // The two columns' tiles and widths (the last column of tiles clipped), the two rows' first tiles.
+        int txa = xa >> _shift, txb = xb >> _shift;
+        int twa = Math.Min(_mask + 1, w - (txa << _shift)), twb = Math.Min(_mask + 1, w - (txb << _shift));
+        int ra = first + (ya >> _shift) * across, rb = first + (yb >> _shift) * across;
+        int la = ya & _mask, lb = yb & _mask;
+        Add(ref taps, ra + txa, la * twa + (xa & _mask), weight * (1 - fx) * (1 - fy));
+        Add(ref taps, ra + txb, la * twb + (xb & _mask), weight * fx * (1 - fy));
+        Add(ref taps, rb + txa, lb * twa + (xa & _mask), weight * (1 - fx) * fy);
+        Add(ref taps, rb + txb, lb * twb + (xb & _mask), weight * fx * fy);
     }
 
+    /// <summary>The texel <paramref name="texel"/> places into tile <paramref name="tile"/>, weighted, unless the weight is 0.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    void Add(ref TexelTaps taps, int level, int x, int y, float weight)
+    void Add(ref TexelTaps taps, int tile, int texel, float weight)
     {
         if (weight == 0) return;
-        taps.At[taps.Count] = At(level, x, y, out taps.Chunk[taps.Count]);
+        var (chunk, at) = _tiles[tile];
+        taps.Chunk[taps.Count] = chunk;
+        taps.At[taps.Count] = at + texel * Stride;
         taps.Weight[taps.Count] = weight;
         taps.Count++;
     }
