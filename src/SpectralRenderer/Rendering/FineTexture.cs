@@ -20,17 +20,17 @@ internal sealed class FineTexture : TexelLevels
     {
         var tex = binding.Texture;
         var hats = TexturedTerms.Hats(tex);
-        int rows = grid.Count, samples = tex.Samples, stride = Stride;
+        int rows = grid.Count, samples = tex.Samples;
         var m = new double[rows, samples];
         for (int f = 0; f < rows; f++)
             for (int j = 0; j < samples; j++) m[f, j] = hats[j].Mean(grid.Lower[f], grid.Upper[f]);
-        var data = Data;
-        Parallel.For(0, tex.Height, y =>
+        // The texture streamed a block of rows at a time (a file's cube is never held whole), each block's rows in parallel.
+        tex.ForEachBlock((y0, count, block) => Parallel.For(0, count, r =>
         {
             for (int x = 0; x < tex.Width; x++)
             {
-                var s = tex.Texel(x, y);
-                var t = data.AsSpan((y * tex.Width + x) * stride, stride);   // level 0; the padding stays 0
+                var s = block.AsSpan((r * tex.Width + x) * samples, samples);
+                var t = Texel(0, x, y0 + r);   // level 0; the padding stays 0
                 for (int f = 0; f < rows; f++)
                 {
                     double sum = 0;
@@ -38,7 +38,7 @@ internal sealed class FineTexture : TexelLevels
                     t[f] = (float)sum;
                 }
             }
-        });
+        }));
         BuildMips();
     }
 
@@ -61,10 +61,9 @@ internal sealed class FineTexture : TexelLevels
     {
         Lookup(uv, width, out var taps);
         var d = MemoryMarshal.Cast<float, Vector<float>>(dst[..Stride]);
-        var data = Data.AsSpan();
         for (int k = 0; k < taps.Count; k++)
         {
-            var src = MemoryMarshal.Cast<float, Vector<float>>(data.Slice(taps.At[k], Stride));
+            var src = MemoryMarshal.Cast<float, Vector<float>>(Tap(in taps, k));
             var w = new Vector<float>(taps.Weight[k]);
             if (k == 0) for (int i = 0; i < d.Length; i++) d[i] = src[i] * w;
             else for (int i = 0; i < d.Length; i++) d[i] += src[i] * w;

@@ -4,10 +4,12 @@ using SpectralRenderer.Scenes.Textures;
 
 namespace SpectralRenderer.Rendering;
 
-/// <summary>Up to eight texels of a filtered lookup (two mip levels × bilinear): where each texel's tables start and its weight.</summary>
+/// <summary>Up to eight texels of a filtered lookup (two mip levels × bilinear): where each texel's tables start (its
+/// chunk and the offset in it, <see cref="TexelLevels.Tap"/>) and its weight.</summary>
 public struct TexelTaps
 {
     public int Count;
+    public Ints8 Chunk;
     public Ints8 At;
     public Floats8 Weight;
 
@@ -22,10 +24,25 @@ public struct TexelTaps
 /// lookup blends the two levels around the footprint's size, bilinear in each (trilinear). What a texel's floats mean
 /// is the subclass's: eq. 2's per-light tables (<see cref="TexturedTerms"/>), or a spectrum on the path tracer's fine
 /// grid (<see cref="FineTexture"/>). The tables are built once and shared by every thread.
+/// Storage is tiled: each level is cut into square tiles of <see cref="TileSide"/> texels (the last column and row of
+/// tiles clipped to the level, so no texel is padding), a tile's texels row by row and contiguous (a bilinear lookup's
+/// four texels mostly share one tile), whole tiles packed into chunks (arrays) of at most <see cref="DefaultChunkFloats"/>
+/// floats: the tables' size is bounded by memory, not by the largest array.
 /// </summary>
 public abstract class TexelLevels
 {
-    readonly int[] _width, _height, _offset;
+    /// <summary>Texels along a tile's side (a power of two; smaller when a tile of it would not fit a chunk).</summary>
+    public const int DefaultTileSide = 32;
+    /// <summary>Floats a chunk holds at most: 256 MiB, well below the 2 GiB of one array.</summary>
+    public const int DefaultChunkFloats = 1 << 26;
+    /// <summary>The tile side and chunk size of tables built on this flow (tests: several chunks of a small texture).</summary>
+    internal static readonly AsyncLocal<(int TileSide, int ChunkFloats)?> Layout = new();
+
+    readonly int[] _width, _height;
+    readonly (int Width, int TilesX, int FirstTile)[] _levels;   // per level, what finding a texel's tile takes
+    readonly (int Chunk, int At)[] _tiles;   // per tile (levels in order, each row by row): its chunk and first float there
+    readonly float[][] _chunks;
+    readonly int _shift, _mask;
     readonly UvTransform _uv;
 
     /// <summary>The levels of a <paramref name="width"/> × <paramref name="height"/> image, <paramref name="stride"/> floats per texel, placed by <paramref name="uv"/>.</summary>
@@ -37,24 +54,86 @@ public abstract class TexelLevels
         var h = new List<int> { height };
         while (w[^1] > 1 || h[^1] > 1) { w.Add(Math.Max(1, w[^1] / 2)); h.Add(Math.Max(1, h[^1] / 2)); }
         _width = w.ToArray(); _height = h.ToArray();
-        _offset = new int[_width.Length];
-        long texels = 0;
-        for (int l = 0; l < _width.Length; l++) { _offset[l] = (int)texels; texels += (long)_width[l] * _height[l]; }
-        long floats = texels * stride;
-        if (floats > Array.MaxLength) throw new OutOfMemoryException($"texture {source}: {floats} floats of tables exceed one array");
-        Data = new float[floats];
+        var (side, cap) = Layout.Value ?? (DefaultTileSide, DefaultChunkFloats);
+        cap = Math.Min(cap, Array.MaxLength);
+        if (stride > cap) throw new OutOfMemoryException($"texture {source}: a texel's {stride} floats exceed a chunk");
+        while (side > 1 && (long)side * side * stride > cap) side /= 2;
+        TileSide = side;
+        _shift = BitOperations.Log2((uint)side);
+        _mask = side - 1;
+        _levels = new (int, int, int)[_width.Length];
+        long tiles = 0;
+        for (int l = 0; l < _width.Length; l++)
+        {
+            int across = (_width[l] + _mask) >> _shift;
+            _levels[l] = (_width[l], across, checked((int)tiles));
+            tiles += (long)across * ((_height[l] + _mask) >> _shift);
+        }
+        _tiles = new (int, int)[checked((int)tiles)];
+        // Whole tiles into chunks, in order, a new chunk where the next tile would overflow the current one.
+        var sizes = new List<int>();
+        long filled = 0;
+        int tile = 0;
+        for (int l = 0; l < _width.Length; l++)
+            for (int ty = 0; ty < _height[l]; ty += side)
+                for (int tx = 0; tx < _width[l]; tx += side)
+                {
+                    long floats = (long)Math.Min(side, _width[l] - tx) * Math.Min(side, _height[l] - ty) * stride;
+                    if (sizes.Count == 0 || filled + floats > cap)
+                    {
+                        if (sizes.Count > 0) sizes[^1] = (int)filled;
+                        sizes.Add(0);
+                        filled = 0;
+                    }
+                    _tiles[tile] = (sizes.Count - 1, (int)filled);
+                    filled += floats;
+                    tile++;
+                }
+        sizes[^1] = (int)filled;
+        _chunks = new float[sizes.Count][];
+        for (int c = 0; c < _chunks.Length; c++) _chunks[c] = new float[sizes[c]];
     }
 
     /// <summary>Floats per texel.</summary>
     public int Stride { get; }
-    /// <summary>Every level's texels: texel · <see cref="Stride"/>.</summary>
-    public float[] Data { get; }
     public int Levels => _width.Length;
     public int LevelWidth(int level) => _width[level];
     public int LevelHeight(int level) => _height[level];
+    /// <summary>Texels along a tile's side.</summary>
+    public int TileSide { get; }
+    /// <summary>The arrays the tiles are packed in.</summary>
+    public int Chunks => _chunks.Length;
+    /// <summary>Bytes of the tables as allocated (every chunk's floats).</summary>
+    public long AllocatedBytes => _chunks.Sum(c => (long)c.Length) * sizeof(float);
 
-    /// <summary>Where texel (x, y) of <paramref name="level"/> starts in <see cref="Data"/>.</summary>
-    public int At(int level, int x, int y) => (_offset[level] + y * _width[level] + x) * Stride;
+    /// <summary>Where texel (x, y) of <paramref name="level"/> is: its chunk and its first float there.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public int At(int level, int x, int y, out int chunk)
+    {
+        var (width, across, first) = _levels[level];
+        int tx = x >> _shift;
+        var (c, at) = _tiles[first + (y >> _shift) * across + tx];
+        int tw = Math.Min(_mask + 1, width - (tx << _shift));   // the last column of tiles is clipped
+        chunk = c;
+        return at + ((y & _mask) * tw + (x & _mask)) * Stride;
+    }
+
+    /// <summary>Texel (x, y) of <paramref name="level"/>: its <see cref="Stride"/> floats.</summary>
+    public Span<float> Texel(int level, int x, int y)
+    {
+        int at = At(level, x, y, out int chunk);
+        return _chunks[chunk].AsSpan(at, Stride);
+    }
+
+    /// <summary>Tap <paramref name="i"/>'s texel: its <see cref="Stride"/> floats.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public ReadOnlySpan<float> Tap(in TexelTaps taps, int i) => _chunks[taps.Chunk[i]].AsSpan(taps.At[i], Stride);
+
+    /// <summary>Every texel of every level, in storage order (<paramref name="apply"/> gets each chunk's run of whole texels).</summary>
+    protected void ForEachChunk(Action<Span<float>> apply)
+    {
+        foreach (var c in _chunks) apply(c);
+    }
 
     /// <summary>Texels of a w × h image with all its mip levels.</summary>
     public static long TexelsWithMips(int w, int h)
@@ -87,7 +166,8 @@ public abstract class TexelLevels
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     void Bilinear(int level, Vector2 st, float weight, ref TexelTaps taps)
     {
-        int w = _width[level], h = _height[level];
+        var (w, across, first) = _levels[level];
+        int h = _height[level];
         float s = st.X * w - 0.5f, t = (1 - st.Y) * h - 0.5f;   // v up: row 0 at v = 1
         if (!float.IsFinite(s) || !float.IsFinite(t)) { s = 0; t = 0; }
         float xf = MathF.Floor(s), yf = MathF.Floor(t);
@@ -96,17 +176,25 @@ public abstract class TexelLevels
         var wrap = _uv.Wrap;
         int xa = UvTransform.WrapIndex(x0, w, wrap), xb = UvTransform.WrapIndex(x0 + 1, w, wrap);
         int ya = UvTransform.WrapIndex(y0, h, wrap), yb = UvTransform.WrapIndex(y0 + 1, h, wrap);
-        Add(ref taps, At(level, xa, ya), weight * (1 - fx) * (1 - fy));
-        Add(ref taps, At(level, xb, ya), weight * fx * (1 - fy));
-        Add(ref taps, At(level, xa, yb), weight * (1 - fx) * fy);
-        Add(ref taps, At(level, xb, yb), weight * fx * fy);
+        // The two columns' tiles and widths (the last column of tiles clipped), the two rows' first tiles.
+        int txa = xa >> _shift, txb = xb >> _shift;
+        int twa = Math.Min(_mask + 1, w - (txa << _shift)), twb = Math.Min(_mask + 1, w - (txb << _shift));
+        int ra = first + (ya >> _shift) * across, rb = first + (yb >> _shift) * across;
+        int la = ya & _mask, lb = yb & _mask;
+        Add(ref taps, ra + txa, la * twa + (xa & _mask), weight * (1 - fx) * (1 - fy));
+        Add(ref taps, ra + txb, la * twb + (xb & _mask), weight * fx * (1 - fy));
+        Add(ref taps, rb + txa, lb * twa + (xa & _mask), weight * (1 - fx) * fy);
+        Add(ref taps, rb + txb, lb * twb + (xb & _mask), weight * fx * fy);
     }
 
+    /// <summary>The texel <paramref name="texel"/> places into tile <paramref name="tile"/>, weighted, unless the weight is 0.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    static void Add(ref TexelTaps taps, int at, float weight)
+    void Add(ref TexelTaps taps, int tile, int texel, float weight)
     {
         if (weight == 0) return;
-        taps.At[taps.Count] = at;
+        var (chunk, at) = _tiles[tile];
+        taps.Chunk[taps.Count] = chunk;
+        taps.At[taps.Count] = at + texel * Stride;
         taps.Weight[taps.Count] = weight;
         taps.Count++;
     }
@@ -125,7 +213,6 @@ public abstract class TexelLevels
         var wx = Overlaps(fw, cw);
         var wy = Overlaps(fh, ch);
         int stride = Stride;
-        var data = Data;
         Parallel.For(0, ch, cy =>
         {
             var acc = new double[stride];
@@ -136,10 +223,10 @@ public abstract class TexelLevels
                     foreach (var (fx, wxv) in wx[cx])
                     {
                         double wgt = wyv * wxv;
-                        var src = data.AsSpan(At(l - 1, fx, fy), stride);
+                        var src = Texel(l - 1, fx, fy);
                         for (int i = 0; i < stride; i++) acc[i] += wgt * src[i];
                     }
-                var dst = data.AsSpan(At(l, cx, cy), stride);
+                var dst = Texel(l, cx, cy);
                 for (int i = 0; i < stride; i++) dst[i] = (float)acc[i];
             }
         });

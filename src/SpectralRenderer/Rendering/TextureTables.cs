@@ -88,26 +88,27 @@ public sealed class TexturedTerms : TexelLevels
         Lobe = lobe;
         Slots = matrices.Length;
         Ambient = ambient;
-        int rows = scene.Bands + SpectralMath.ColourLanes, samples = tex.Samples, slots = Slots, padded = _padded;
-        var data = Data;
-        Parallel.For(0, tex.Height, y =>
+        int lanes = scene.Bands + SpectralMath.ColourLanes, samples = tex.Samples, slots = Slots, padded = _padded;
+        // The texture streamed a block of rows at a time (a file's cube is never held whole), each block's rows in parallel.
+        tex.ForEachBlock((y0, rows, block) => Parallel.For(0, rows, r =>
         {
             for (int x = 0; x < tex.Width; x++)
             {
-                var s = tex.Texel(x, y);
+                var s = block.AsSpan((r * tex.Width + x) * samples, samples);
+                var texel = Texel(0, x, y0 + r);
                 for (int slot = 0; slot < slots; slot++)
                 {
                     var m = matrices[slot];
-                    var t = data.AsSpan(((y * tex.Width + x) * slots + slot) * padded, padded);
-                    for (int r = 0; r < rows; r++)
+                    var t = texel.Slice(slot * padded, padded);
+                    for (int i = 0; i < lanes; i++)
                     {
                         double sum = 0;
-                        for (int j = 0; j < samples; j++) sum += m[r, j] * s[j];
-                        t[r] = (float)sum;
+                        for (int j = 0; j < samples; j++) sum += m[i, j] * s[j];
+                        t[i] = (float)sum;
                     }
                 }
             }
-        });
+        }));
         BuildMips();
     }
 
@@ -164,19 +165,22 @@ public sealed class TexturedTerms : TexelLevels
     /// </summary>
     internal void AddShift(Scene scene, ReradiationMatrix matrix)
     {
-        int lights = scene.Lights.Count, texels = Data.Length / Stride;
+        int lights = scene.Lights.Count;
         double factor = scene.Radiometry == Radiometry.Physical ? 1 / Math.PI : 1;
         var shift = new float[_padded];
         for (int k = 0; k < lights; k++)
         {
             Array.Clear(shift);
             FluorescentTerms.AddShift(scene, shift, scene.Lights[k].Intensity, matrix, factor);
-            int offset = SlotOffset(LightSlot(k));
-            for (int t = 0; t < texels; t++)
+            int offset = SlotOffset(LightSlot(k)), stride = Stride, padded = _padded;
+            ForEachChunk(chunk =>
             {
-                var d = Data.AsSpan(t * Stride + offset, _padded);
-                for (int r = 0; r < d.Length; r++) d[r] += shift[r];
-            }
+                for (int t = 0; t < chunk.Length; t += stride)
+                {
+                    var d = chunk.Slice(t + offset, padded);
+                    for (int r = 0; r < d.Length; r++) d[r] += shift[r];
+                }
+            });
         }
     }
 

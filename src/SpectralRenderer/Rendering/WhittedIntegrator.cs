@@ -146,10 +146,9 @@ public sealed partial class WhittedIntegrator : IPacketIntegrator, IAnalysisInte
         /// <paramref name="scale"/>.</summary>
         readonly void AddTexels(TexturedTerms t, in TexelTaps taps, int slot, float scale)
         {
-            var data = t.Data;
             int offset = t.SlotOffset(slot);
             for (int i = 0; i < taps.Count; i++)
-                SpectralMath.AddScaled(_frame, data.AsSpan(taps.At[i] + offset, _padded), scale * taps.Weight[i]);
+                SpectralMath.AddScaled(_frame, t.Tap(in taps, i).Slice(offset, _padded), scale * taps.Weight[i]);
         }
 
         /// <summary>A light's direct pair at a textured hit: each textured lobe's term from its texels (the light's slot), the
@@ -178,7 +177,7 @@ public sealed partial class WhittedIntegrator : IPacketIntegrator, IAnalysisInte
         {
             int at = t.SlotOffset(t.LightSlot(light)) + _bands + 1;
             float y = 0;
-            for (int i = 0; i < taps.Count; i++) y += taps.Weight[i] * t.Data[taps.At[i] + at];
+            for (int i = 0; i < taps.Count; i++) y += taps.Weight[i] * t.Tap(in taps, i)[at];
             return y;
         }
 

@@ -209,7 +209,10 @@ public class SpectralTextureTests(Xunit.Abstractions.ITestOutputHelper output)
             int lw = terms.LevelWidth(level), lh = terms.LevelHeight(level);
             for (int y = 0; y < lh; y++)
                 for (int x = 0; x < lw; x++)
-                    for (int i = 0; i < stride; i++) m[i] += terms.Data[terms.At(level, x, y) + i] / ((double)lw * lh);
+                {
+                    var texel = terms.Texel(level, x, y);
+                    for (int i = 0; i < stride; i++) m[i] += texel[i] / ((double)lw * lh);
+                }
             return m;
         }
         var full = Mean(0);

@@ -72,23 +72,29 @@ public sealed partial class SceneLoader
         var emitted = new double[n];
         for (int i = 0; i < n; i++)
             for (int o = 0; o < n; o++) if (o != i) emitted[i] += matrix[o, i] * wl[o];
-        for (int y = 0; y < tex.Height; y++)
-            for (int x = 0; x < tex.Width; x++)
+        int samples = tex.Samples;
+        tex.ForEachBlock((y0, rows, block) =>
+        {
+            for (int y = y0; y < y0 + rows; y++)
+                for (int x = 0; x < tex.Width; x++)
+                    CheckTexel(tex.Spectrum(block.AsSpan(((y - y0) * tex.Width + x) * samples, samples), x, y), x, y);
+        });
+
+        void CheckTexel(TabulatedSpectrum texel, int x, int y)
+        {
+            for (int i = 0; i < n; i++)
             {
-                var texel = tex.Spectrum(x, y);
-                for (int i = 0; i < n; i++)
-                {
-                    if (emitted[i] == 0) continue;   // no shift from this column: the texel's own checks apply (≥ 2, negative)
-                    double r = texel.Evaluate(wl[i]);
-                    double absorbed = (1 - r) * wl[i];
-                    if (emitted[i] <= absorbed + ReradiationCsvReader.PhotonTolerance * wl[i]) continue;
-                    var inv = System.Globalization.CultureInfo.InvariantCulture;
-                    throw Error($"{path}.texture", string.Create(inv,
-                        $"texel ({x}, {y}) reflects {r:G4} at {wl[i]:0.###} nm: it absorbs {1 - r:G4} photons per photon, " +
-                        $"the matrix re-emits {emitted[i] / wl[i]:G4}"),
-                        "lower the texture there (≤ 1 − Σ_o≠i D[o,i]·λo/λi) or the matrix's shift");
-                }
+                if (emitted[i] == 0) continue;   // no shift from this column: the texel's own checks apply (≥ 2, negative)
+                double r = texel.Evaluate(wl[i]);
+                double absorbed = (1 - r) * wl[i];
+                if (emitted[i] <= absorbed + ReradiationCsvReader.PhotonTolerance * wl[i]) continue;
+                var inv = System.Globalization.CultureInfo.InvariantCulture;
+                throw Error($"{path}.texture", string.Create(inv,
+                    $"texel ({x}, {y}) reflects {r:G4} at {wl[i]:0.###} nm: it absorbs {1 - r:G4} photons per photon, " +
+                    $"the matrix re-emits {emitted[i] / wl[i]:G4}"),
+                    "lower the texture there (≤ 1 − Σ_o≠i D[o,i]·λo/λi) or the matrix's shift");
             }
+        }
     }
 
     /// <summary>

@@ -35,8 +35,8 @@ public sealed partial class SceneLoader
         var uv = TryGet(e, "uv_transform", out var u) ? UvTransformOf(u, $"{path}.uv_transform") : UvTransform.Identity;
         var texture = ReadTexture(e, path);
         double scale = Number(e, "scale", path, 1, 0, 1e6);
-        if (scale != 1) for (int i = 0; i < texture.Values.Length; i++) texture.Values[i] = (float)(texture.Values[i] * scale);
-        var (min, max) = texture.Range();
+        texture.Scale(scale);
+        var (min, max, mean) = texture.Summary();
         var inv = CultureInfo.InvariantCulture;
         if (!float.IsFinite(min) || !float.IsFinite(max))
             throw Error($"{path}.texture", $"texture {texture.Source} holds values that are not finite numbers", "write the texture again with finite reflectances");
@@ -46,7 +46,7 @@ public sealed partial class SceneLoader
             throw Error($"{path}.texture", $"texture {texture.Source} goes down to {min.ToString("G4", inv)}: {(emission ? "a radiance" : "a reflectance")} cannot be negative", "clip the texture's noise below zero to 0");
         if (max > 1 && !emission) _warnings.Add($"{Where(path)}: warning: texture {texture.Source} reaches {max.ToString("0.###", inv)} > 1; rendered as given");
         _pendingTextures[path] = new TextureBinding(texture, uv);
-        return texture.Mean();
+        return mean;
     }
 
     /// <summary>The textures read for <paramref name="materialPath"/>'s "diffuse" and "specular" go onto the material made from them.</summary>
@@ -60,8 +60,7 @@ public sealed partial class SceneLoader
     TextureBinding? EmissionTexture(string path, double k)
     {
         if (!_pendingTextures.Remove($"{path}.spectrum", out var binding)) return null;
-        var values = binding.Texture.Values;
-        if (k != 1) for (int i = 0; i < values.Length; i++) values[i] = (float)(values[i] * k);
+        binding.Texture.Scale(k);
         return binding;
     }
 
@@ -83,7 +82,8 @@ public sealed partial class SceneLoader
                 return FromImage(exr.Image, full);
             }
             if (ext == ".png") return RgbTexture(full, path);
-            return FromImage(EnviReader.Read(EnviImage(full, path)), full);
+            var cube = EnviReader.Open(EnviImage(full, path));
+            return new SpectralTexture(full, cube.Width, cube.Height, Centres(cube.Grid), new EnviRows(cube));
         }
         catch (InputException ex) when (!ex.Where.StartsWith(_file, StringComparison.Ordinal))
         {
@@ -109,11 +109,14 @@ public sealed partial class SceneLoader
     }
 
     /// <summary>A spectral image's pixels as texels, each tabulated at its band centres.</summary>
-    static SpectralTexture FromImage(SpectralImage image, string source)
+    static SpectralTexture FromImage(SpectralImage image, string source) =>
+        new(source, image.Width, image.Height, Centres(image.Grid), image.Data);
+
+    static double[] Centres(BandGrid grid)
     {
-        var wavelengths = new double[image.Bands];
-        for (int b = 0; b < wavelengths.Length; b++) wavelengths[b] = image.Grid.Centre(b);
-        return new SpectralTexture(source, image.Width, image.Height, wavelengths, image.Data);
+        var wavelengths = new double[grid.Count];
+        for (int b = 0; b < wavelengths.Length; b++) wavelengths[b] = grid.Centre(b);
+        return wavelengths;
     }
 
     /// <summary>Single-band PNGs (8 or 16 bit, grey, linear: value / (2^bits − 1)), one per wavelength of "wavelengths":
@@ -143,21 +146,24 @@ public sealed partial class SceneLoader
             for (int i = 0; i < files.Length; i++)
                 files[i] = TextureFile(pattern.Replace("{nm}", wavelengths[i].ToString("0.###", CultureInfo.InvariantCulture), StringComparison.Ordinal), $"{path}.texture");
         }
-        float[]? values = null;
-        int width = 0, height = 0, n = wavelengths.Length;
-        for (int b = 0; b < n; b++)
+        // One band file at a time, each kept as its samples (2 bytes each, not a float cube); texels are made from them a block
+        // of rows at a time (PngStackRows).
+        var planes = new ushort[wavelengths.Length][];
+        var max = new float[planes.Length];
+        int width = 0, height = 0;
+        for (int b = 0; b < planes.Length; b++)
         {
             PngImage png;
             try { png = PngReader.Read(files[b]); }
             catch (InputException ex) { throw Error($"{path}.texture", $"{ex.Where}: {ex.What}", ex.Hint); }
             if (png.Channels != 1) throw Error($"{path}.texture", $"{files[b]} has {png.Channels} channels: a band of a PNG stack is one grey channel", "write each band as a greyscale PNG");
-            if (values is null) { width = png.Width; height = png.Height; values = new float[width * height * n]; }
+            if (b == 0) { width = png.Width; height = png.Height; }
             else if (png.Width != width || png.Height != height)
                 throw Error($"{path}.texture", $"{files[b]} is {png.Width}×{png.Height}, the first band {width}×{height}", "every band of a stack has the same size");
-            float max = (1 << png.BitDepth) - 1;
-            for (int i = 0; i < width * height; i++) values[i * n + b] = png.Samples[i] / max;
+            planes[b] = png.Samples;
+            max[b] = (1 << png.BitDepth) - 1;
         }
-        return new SpectralTexture(files[0], width, height, wavelengths, values!);
+        return new SpectralTexture(files[0], width, height, wavelengths, new PngStackRows(planes, max, width));
     }
 
     static readonly Lazy<SigmoidUplift> Uplift = new(() => new SigmoidUplift());
@@ -214,5 +220,26 @@ public sealed partial class SceneLoader
     {
         if (e.ValueKind != JsonValueKind.Array || e.GetArrayLength() != 2) throw Error(path, $"expected [u, v], found {Kind(e)}", "e.g. [2, 1]");
         return new Vector2((float)Number(e[0], $"{path}[0]", -1e6, 1e6), (float)Number(e[1], $"{path}[1]", -1e6, 1e6));
+    }
+}
+
+/// <summary>An ENVI cube's texels, read from its file a block of rows at a time (<see cref="EnviCube.ReadRows"/>).</summary>
+sealed class EnviRows(EnviCube cube) : TexelRows
+{
+    public override void Read(int y0, int rows, Span<float> dst) => cube.ReadRows(y0, rows, dst);
+}
+
+/// <summary>A PNG stack's texels from its band planes (sample / (2^bits − 1), linear), a block of rows at a time.</summary>
+sealed class PngStackRows(ushort[][] planes, float[] max, int width) : TexelRows
+{
+    public override void Read(int y0, int rows, Span<float> dst)
+    {
+        int n = planes.Length, first = y0 * width;
+        for (int b = 0; b < n; b++)
+        {
+            var plane = planes[b];
+            float m = max[b];
+            for (int i = 0; i < rows * width; i++) dst[i * n + b] = plane[first + i] / m;
+        }
     }
 }
