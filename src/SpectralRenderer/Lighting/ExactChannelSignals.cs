@@ -147,7 +147,8 @@ public static partial class ExactChannelSignals
             var t = perComponent[k] = new double[parts * cc];
             if (transfer.Texels?[k] is not null && comp.Texture(scene) is { } texture)
             {
-                if (!TexturedIntegrals(sensor, scene, tables, comp, texture, physical, parts, bandWeights, t, out perSample[k])) bandRoute++;
+                if (!TexturedIntegrals(sensor, scene, tables, comp, texture, physical, parts, bandWeights, t, out perSample[k]))
+                    bandRoute++;
                 continue;
             }
             var (e, m, factor) = Term(scene, comp, physical);
@@ -264,7 +265,8 @@ public static partial class ExactChannelSignals
     /// split or a light known only by its band values): then the texel columns' band values × the channel weights.
     /// </summary>
     static bool TexturedIntegrals(SensorModel sensor, Scene scene, TermTables tables, TransferComponent comp,
-        Scenes.Textures.SpectralTexture texture, bool physical, int parts, ChannelWeights bandWeights, double[] constant, out double[] perSample)
+        Scenes.Textures.SpectralTexture texture, bool physical, int parts, ChannelWeights bandWeights, double[] constant,
+        out double[] perSample)
     {
         int cc = sensor.ChannelCount, samples = texture.Samples;
         perSample = new double[parts * cc * samples];
@@ -298,8 +300,10 @@ public static partial class ExactChannelSignals
             for (int c = 0; c < cc; c++)
             {
                 for (int i = 0; i < samples; i++)
-                    perSample[(part * cc + c) * samples + i] = factor * chain * ChannelWeights.ExactIntegral(sensor.Channels[c], se, hats[i], lo, hi);
-                if (shifted.Matrix is { } matrix) constant[part * cc + c] = factor * chain * ShiftIntegral(sensor.Channels[c], matrix, shifted.Cells, lo, hi);
+                    perSample[(part * cc + c) * samples + i] =
+                        factor * chain * ChannelWeights.ExactIntegral(sensor.Channels[c], se, hats[i], lo, hi);
+                if (shifted.Matrix is { } matrix)
+                    constant[part * cc + c] = factor * chain * ShiftIntegral(sensor.Channels[c], matrix, shifted.Cells, lo, hi);
             }
         }
         return true;

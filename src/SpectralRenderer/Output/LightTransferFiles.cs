@@ -36,7 +36,8 @@ public static class LightTransferFiles
     /// <summary>The texel arrays of a transfer with textured terms (issue 26).</summary>
     public const string TexelsFile = "texels.npy", CentreTexelsFile = "centre-texels.npy";
 
-    /// <summary>The arrays of <paramref name="t"/>, in the order written: the four, and the texel samples when it has textured terms.</summary>
+    /// <summary>The arrays of <paramref name="t"/>, in the order written: the four, and the texel samples when it has
+    /// textured terms.</summary>
     public static IReadOnlyList<string> ArraysOf(LightTransfer t) => t.Texels is null ? Arrays : [.. Arrays, TexelsFile, CentreTexelsFile];
 
     public static void Write(Scene scene, LightTransfer t, string outDir, Action<string> done)
@@ -149,7 +150,12 @@ public static class LightTransferFiles
             JsonObject? texels = null;
             if (texture is not null && t.Texels?[c] is { } v)
             {
-                texels = new JsonObject { ["samples"] = texture.Samples, ["offset"] = texelOffset, ["texture"] = Path.GetFileName(texture.Source) };
+                texels = new JsonObject
+                {
+                    ["samples"] = texture.Samples,
+                    ["offset"] = texelOffset,
+                    ["texture"] = Path.GetFileName(texture.Source),
+                };
                 texelOffset += v.Length;
             }
             comps.Add((JsonNode)new JsonObject
@@ -177,16 +183,18 @@ public static class LightTransferFiles
             ["factors"] = "factors.npy: float32 [nnz], the factors of component c at entries offset .. offset + count - 1",
             ["pixels"] = "pixels.npy: int32 [nnz], the pixel (y * width + x) of each factor, ascending within a component",
             ["centre"] = "centre.npy: float32 [2K, H, W], light k's centre-ray diffuse (2k) and specular (2k+1) factor",
-            ["ids"] = "ids.npy: float32 [3, H, W], object index + 1 (0 = background), lit mask, colour fallback (1: eq. 3 on the band values)",
+            ["ids"] = "ids.npy: float32 [3, H, W], object index + 1 (0 = background), lit mask, "
+                + "colour fallback (1: eq. 3 on the band values)",
         };
         if (t.Texels is not null)
         {
-            files["texels"] = "texels.npy: float32, a textured component c's entry j (j from 0 to count - 1) has S = c.texels.samples values at "
-                + "c.texels.offset + j * S: the sum over the pixel's terms of factor * the filtered texel samples (at the texture's wavelengths); "
-                + "its band values are sum_i V_i * (E * tent_i) band means and XYZ, tent_i the texture's linear interpolant of sample i, plus factor * a "
-                + "fluorescent shift, times the chain's weights";
-            files["centre_texels"] = "centre-texels.npy: float32, for each pixel (ascending) whose centre ray saw a textured material, its filtered "
-                + "diffuse texture samples then its specular texture samples (the highlight mask's Y)";
+            files["texels"] = "texels.npy: float32, a textured component c's entry j (j from 0 to count - 1) has "
+                + "S = c.texels.samples values V at c.texels.offset + j * S: the sum over the pixel's terms of factor * the "
+                + "filtered texel samples (at the texture's wavelengths); its band values are sum_i V_i * (E * tent_i) band "
+                + "means and XYZ, tent_i the texture's linear interpolant of sample i, plus factor * a fluorescent shift, "
+                + "times the chain's weights";
+            files["centre_texels"] = "centre-texels.npy: float32, for each pixel (ascending) whose centre ray saw a textured "
+                + "material, its filtered diffuse texture samples then its specular texture samples (the highlight mask's Y)";
         }
         var materials = new JsonArray(scene.Materials.Select(mt => (JsonNode)new JsonObject
         {
@@ -237,7 +245,8 @@ public static class LightTransferFiles
     public sealed record Layout(int Width, int Height, int Bands, TransferComponent[] Components, (int Offset, int Count)[] Offsets,
         int[] Merged, long Entries)
     {
-        /// <summary>Per component, where its texel samples start in texels.npy and how many per entry (S); null: a spectrum's term.</summary>
+        /// <summary>Per component, where its texel samples start in texels.npy and how many per entry (S); null: a spectrum's
+        /// term.</summary>
         public (long Offset, int Samples)?[] Texels { get; init; } = [];
         /// <summary>How many floats texels.npy holds (0: no textured component).</summary>
         public long TexelFloats { get; init; }
@@ -304,10 +313,12 @@ public static class LightTransferFiles
             // A textured term (issue 26) holds its entries' texel samples; the scene says which terms are textured.
             var texture = comps[c].Texture(scene);
             var tx = r.OptObject(o, "texels", at);
-            if (texture is null && tx is not null) throw r.Bad($"{at}.texels", "is given for a term the scene's material gives by a spectrum, not a texture");
+            if (texture is null && tx is not null)
+                throw r.Bad($"{at}.texels", "is given for a term the scene's material gives by a spectrum, not a texture");
             if (texture is not null)
             {
-                if (tx is null) throw r.Bad(at, $"is material {MessageText.Quote(scene.Materials[material].Name)}'s textured term but has no texels");
+                if (tx is null)
+                    throw r.Bad(at, $"is material {MessageText.Quote(scene.Materials[material].Name)}'s textured term but has no texels");
                 int samples = r.Int(tx, "samples", $"{at}.texels", texture.Samples, texture.Samples);
                 long to = r.Long(tx["offset"], $"{at}.texels.offset", 0, Array.MaxLength);
                 texels[c] = (to, samples);
@@ -317,7 +328,8 @@ public static class LightTransferFiles
         for (int c = 0; c < comps.Length; c++)
             if (texels[c] is { } tc && tc.Item1 + (long)offsets[c].Item2 * tc.Item2 > texelFloats)
                 throw r.Bad($"$.components[{c}].texels.offset", $"puts samples beyond the {texelFloats} stored");
-        if (texelFloats > Array.MaxLength) throw r.Bad("$.components", $"hold {texelFloats} texel samples in all, more than one array holds");
+        if (texelFloats > Array.MaxLength)
+            throw r.Bad("$.components", $"hold {texelFloats} texel samples in all, more than one array holds");
         if (entries > Array.MaxLength) throw r.Bad("$.components", $"count {entries} entries in all, more than one array holds");
         for (int c = 0; c < comps.Length; c++)
             if (offsets[c].Item1 + (long)offsets[c].Item2 > entries)
@@ -413,7 +425,8 @@ public static class LightTransferFiles
             && Canonical(Path.Combine(dir, "pixels.npy"), NpyInt32.Preamble([(int)nnz]), 4 * nnz)
             && Canonical(Path.Combine(dir, "centre.npy"), NpyWriter.Preamble([2 * k, height, width]), 4L * centre.Length)
             && Canonical(Path.Combine(dir, "ids.npy"), NpyWriter.Preamble([3, height, width]), 4L * ids.Length)
-            && (!textured || (Canonical(Path.Combine(dir, TexelsFile), NpyWriter.Preamble([(int)layout.TexelFloats]), 4 * layout.TexelFloats)
+            && (!textured
+                || (Canonical(Path.Combine(dir, TexelsFile), NpyWriter.Preamble([(int)layout.TexelFloats]), 4 * layout.TexelFloats)
                 && Canonical(Path.Combine(dir, CentreTexelsFile), NpyWriter.Preamble([(int)CentreTexelCount(scene, objectIds)]),
                     4 * CentreTexelCount(scene, objectIds))));
         return new LightTransfer

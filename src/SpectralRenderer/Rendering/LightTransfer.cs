@@ -204,7 +204,8 @@ public sealed class LightTransfer
     /// </summary>
     public float[]?[]? Texels { get; init; }
     /// <summary>Per pixel <see cref="CentreWidth"/> floats: the centre ray's filtered texel samples at its first hit, its
-    /// material's diffuse texture's then its specular texture's (the highlight mask's Y of a textured lobe); null without textures.</summary>
+    /// material's diffuse texture's then its specular texture's (the highlight mask's Y of a textured lobe); null without
+    /// textures.</summary>
     public float[]? CentreTexels { get; init; }
     public int CentreWidth { get; init; }
     /// <summary>
@@ -217,7 +218,8 @@ public sealed class LightTransfer
 
     /// <summary>Floats per pixel of the centre texels: the most any material's diffuse and specular textures' samples take.</summary>
     public static int CentreWidthOf(Scene scene) =>
-        scene.Materials.Select(m => (m.DiffuseTexture?.Texture.Samples ?? 0) + (m.SpecularTexture?.Texture.Samples ?? 0)).DefaultIfEmpty(0).Max();
+        scene.Materials.Select(m => (m.DiffuseTexture?.Texture.Samples ?? 0) + (m.SpecularTexture?.Texture.Samples ?? 0))
+            .DefaultIfEmpty(0).Max();
 
     /// <summary>
     /// Bytes the texel samples of a traced transfer hold at most for a first hit (the memory check; a mirror or glass adds
@@ -365,7 +367,8 @@ public sealed class LightTransfer
                         var comp = new TransferComponent(k, lobe == 0 ? TransferLobe.Diffuse : TransferLobe.Specular, m, []);
                         if (comp.TexelColumns(scene, tables, out var constant) is not { } cols) continue;
                         int samples = cols.Length / scene.PaddedBands;
-                        texturedY[lobe, tables.Index(k, m)] = (Enumerable.Range(0, samples).Select(s => cols[s * scene.PaddedBands + y]).ToArray(), constant[y]);
+                        var row = Enumerable.Range(0, samples).Select(s => cols[s * scene.PaddedBands + y]).ToArray();
+                        texturedY[lobe, tables.Index(k, m)] = (row, constant[y]);
                     }
         for (int i = 0; i < n; i++)
         {
@@ -744,7 +747,8 @@ public sealed class LightTransfer
                 throw new UnreachableException("the transfer follows a per-band mirror once per band");
         }
 
-        /// <summary>Σ over the taps of weight × <paramref name="factor"/> × the texel's samples, added into <paramref name="into"/>.</summary>
+        /// <summary>Σ over the taps of weight × <paramref name="factor"/> × the texel's samples, added into
+        /// <paramref name="into"/>.</summary>
         static void Filter(TexturedTerms terms, in TexelTaps taps, float factor, Span<float> into)
         {
             var data = terms.Data;
@@ -805,7 +809,8 @@ public sealed class LightTransfer
             if (texels is not null)
             {
                 int s = texels.Stride;
-                if (w.TermTexelsUsed + s > w.TermTexels.Length) Array.Resize(ref w.TermTexels, Math.Max(w.TermTexels.Length * 2, w.TermTexelsUsed + s));
+                if (w.TermTexelsUsed + s > w.TermTexels.Length)
+                    Array.Resize(ref w.TermTexels, Math.Max(w.TermTexels.Length * 2, w.TermTexelsUsed + s));
                 var into = w.TermTexels.AsSpan(w.TermTexelsUsed, s);
                 into.Clear();
                 Filter(texels, in taps, factor, into);

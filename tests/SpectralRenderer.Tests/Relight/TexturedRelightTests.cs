@@ -66,14 +66,16 @@ public class TexturedRelightTests(Xunit.Abstractions.ITestOutputHelper output)
     }
 
     /// <summary>A textured quad facing the camera, a second light with its own ambient and a spot cone, the global ambient and a
-    /// background; with <paramref name="chains"/> a tilted mirror quad and a tinted Fresnel glass sphere (a unit k_t would merge its chains into the direct terms) that show the quad again.</summary>
+    /// background; with <paramref name="chains"/> a tilted mirror quad and a tinted Fresnel glass sphere (a unit k_t would
+    /// merge its chains into the direct terms) that show the quad again.</summary>
     static string Scene(string radiometry, string integration, string diffuse, string specular, string key, string fill,
         double fillIntensity, bool chains, double keyIntensity = 1)
     {
         double scale = radiometry == "paper" ? 0.01 : 2;
         string extra = chains ? """
             ,
-            { "type": "quad", "name": "chrome", "center": [3.2, 0, 2], "size": [2, 3], "normal": [-1, 0, 0.5], "up": [0, 1, 0], "material": "mirror" },
+            { "type": "quad", "name": "chrome", "center": [3.2, 0, 2], "size": [2, 3], "normal": [-1, 0, 0.5], "up": [0, 1, 0],
+              "material": "mirror" },
             { "type": "sphere", "name": "lens", "center": [-1.2, -0.6, 3.5], "radius": 0.7, "material": "glass" }
             """ : "";
         return $$"""
@@ -87,7 +89,8 @@ public class TexturedRelightTests(Xunit.Abstractions.ITestOutputHelper output)
             "glass": { "diffuse": 0, "mirror": 1, "transmit": "colorchecker:20", "ior": 1.5, "fresnel": true }
           },
           "lights": [
-            { "type": "point", "name": "key", "position": [1, 2, 6], "spectrum": "{{key}}", "intensity": {{(scale * keyIntensity).ToString(Inv)}} },
+            { "type": "point", "name": "key", "position": [1, 2, 6], "spectrum": "{{key}}",
+              "intensity": {{(scale * keyIntensity).ToString(Inv)}} },
             { "type": "spot", "name": "fill", "position": [-2, -1, 7], "look_at": [0, 0, 0], "cutoff": 40, "exponent": 3,
               "spectrum": "{{fill}}", "intensity": {{(scale * fillIntensity).ToString(Inv)}}, "ambient": 0.02 }
           ],
@@ -120,7 +123,8 @@ public class TexturedRelightTests(Xunit.Abstractions.ITestOutputHelper output)
         File.WriteAllText(target, Scene(radiometry, integration, d, s, "D65", fill, 0.6, chains, keyIntensity: 1.7));
         Run("render", underA, "-o", Path.Combine(dir, "A"), "--formats", "npy,exr,png,lights");
         Run("render", target, "-o", Path.Combine(dir, "direct"), "--formats", "npy,exr,png");
-        string key = ((radiometry == "paper" ? 0.01 : 2) * 1.7).ToString(Inv), fillI = ((radiometry == "paper" ? 0.01 : 2) * 0.6).ToString(Inv);
+        double scale = radiometry == "paper" ? 0.01 : 2;
+        string key = (scale * 1.7).ToString(Inv), fillI = (scale * 0.6).ToString(Inv);
         Run("relight", Path.Combine(dir, "A"), "-o", Path.Combine(dir, "relit"), "--light", "key=D65", "--light", $"fill={fill}",
             "--intensity", $"key={key}", "--intensity", $"fill={fillI}");
         AssertSameRender(Path.Combine(dir, "direct"), Path.Combine(dir, "relit"));
@@ -173,7 +177,8 @@ public class TexturedRelightTests(Xunit.Abstractions.ITestOutputHelper output)
         int codes = 0;
         for (int i = 0; i < pa.Samples.Length; i++) codes = Math.Max(codes, Math.Abs(pa.Samples[i] - pb.Samples[i]));
         Assert.True(codes <= 1, $"preview.png differs by {codes} codes");
-        output.WriteLine($"relit vs direct: worst relative band {worstBand:0.###e0}, XYZ {worstXyz:0.###e0}, ΔE00 {worstDe:0.###e0}, preview codes {codes}");
+        output.WriteLine($"relit vs direct: worst relative band {worstBand:0.###e0}, XYZ {worstXyz:0.###e0}, " +
+            $"ΔE00 {worstDe:0.###e0}, preview codes {codes}");
     }
 
     static string Plain(string dir) => "0.3";
@@ -226,7 +231,58 @@ public class TexturedRelightTests(Xunit.Abstractions.ITestOutputHelper output)
         Assert.Contains("texels.npy", files);
         Assert.Contains("centre-texels.npy", files);
         foreach (var f in files)
-            Assert.True(File.ReadAllBytes(Path.Combine(dir, "one", "lights", f!)).AsSpan().SequenceEqual(File.ReadAllBytes(Path.Combine(dir, "two", "lights", f!))),
-                $"lights/{f} differs between 1 and 2 threads");
+        {
+            var one = File.ReadAllBytes(Path.Combine(dir, "one", "lights", f!));
+            var two = File.ReadAllBytes(Path.Combine(dir, "two", "lights", f!));
+            Assert.True(one.AsSpan().SequenceEqual(two), $"lights/{f} differs between 1 and 2 threads");
+        }
+    }
+
+    /// <summary>
+    /// The camera's exact route reads the textured transfer: cie-xyz's raw (noise off, flat lens) is proportional to the
+    /// render's exact XYZ at every lit pixel (the texel samples integrated per sample with the light's tent-function products,
+    /// against the render's texel tables of XYZ), from lights/ and traced again without it.
+    /// </summary>
+    [Theory]
+    [InlineData("exr,aov,lights")]
+    [InlineData("exr,aov")]
+    public void Exact_camera_route_of_a_textured_render_is_proportional_to_its_exact_xyz(string formats)
+    {
+        var dir = Reference.TempDir();
+        var scene = Path.Combine(dir, "a.json");
+        // No coloured mirror or glass: a term through one takes the band route (and its pixel eq. 3), not the exact colour.
+        File.WriteAllText(scene, Scene("physical", "exact", DiffuseEnvi(dir), SpecularEnvi(dir), "D65", "led-blue", 1, chains: false));
+        var render = Path.Combine(dir, "render");
+        Run("render", scene, "-o", render, "--formats", formats);
+        var (raw, manifest) = Sensor.ExactSignalsTests.Camera(render, "cie-xyz");
+        Assert.StartsWith("exact", (string)manifest["simulation"]!["signal_route"]!, StringComparison.Ordinal);
+        var exr = ExrReader.Read(Path.Combine(render, "spectral.exr"));
+        var xyz = new[] { exr.OtherChannels["X"], exr.OtherChannels["Y"], exr.OtherChannels["Z"] };
+        int n = xyz[1].Length, brightest = Enumerable.Range(0, n).MaxBy(i => xyz[1][i]);
+        double ratio = raw[brightest * 3 + 1] / xyz[1][brightest], worst = 0;
+        int lit = 0;
+        for (int i = 0; i < n; i++)
+        {
+            if (!(xyz[1][i] > 1e-3 * xyz[1][brightest])) continue;
+            lit++;
+            for (int c = 0; c < 3; c++) worst = Math.Max(worst, Math.Abs(raw[i * 3 + c] / xyz[c][i] / ratio - 1));
+        }
+        output.WriteLine($"textured ({formats}): cie-xyz raw / exact XYZ over {lit} pixels, largest relative deviation {worst:E3}");
+        Assert.True(lit > n / 2, $"only {lit} lit pixels");
+        Assert.True(worst <= 1e-5, $"cie-xyz raw / exact XYZ varies by {worst:E3} relative");
+    }
+
+    /// <summary>The spectral viewer cannot sum texel samples in its page: a textured transfer is refused in one line (exit 2).</summary>
+    [Fact]
+    public void Viewer_refuses_a_textured_transfer_in_one_line()
+    {
+        var dir = Reference.TempDir();
+        var scene = Path.Combine(dir, "a.json");
+        File.WriteAllText(scene, Scene("paper", "exact", DiffuseEnvi(dir), "0.3", "A", "A", 1, chains: false));
+        Run("render", scene, "-o", Path.Combine(dir, "render"), "--formats", "png,lights");
+        var (code, _, err) = CliRunner.Run("view", Path.Combine(dir, "render"));
+        Assert.Equal(2, code);
+        Assert.Contains("textured terms", err);
+        Assert.Single(err.Trim().Split('\n'));
     }
 }

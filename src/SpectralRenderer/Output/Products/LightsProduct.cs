@@ -18,7 +18,9 @@ public sealed class LightsProduct : OutputProduct
     /// its textured terms' texel samples (S per term and pixel, issue 26) are counted for a first hit.</summary>
     public override IEnumerable<(string Part, long Bytes)> Memory(Scene scene, int threads) => scene.Integrator is { Name: "path" }
         ? [("per-light transfer (path)", Rendering.PathTransfer.Bytes(scene, (long)scene.Camera.Width * scene.Camera.Height))]
-        : Rendering.LightTransfer.TexelBytes(scene) is > 0 and var texels ? [("per-light transfer: texel samples of textured terms", texels)] : [];
+        : Rendering.LightTransfer.TexelBytes(scene) is > 0 and var texels
+            ? [("per-light transfer: texel samples of textured terms", texels)]
+            : [];
 
     /// <summary>Shards of a path render (the only lights a shard writes): the arrays by rows, lights.json the same in each.</summary>
     public override ShardMerging Merging(string file) => file switch
