@@ -158,7 +158,7 @@ public static class LightTransferFiles
                 };
                 texelOffset += v.Length;
             }
-            comps.Add((JsonNode)new JsonObject
+            var entry = new JsonObject
             {
                 ["index"] = c,
                 ["key"] = comp.Key,
@@ -175,8 +175,11 @@ public static class LightTransferFiles
                 ["xyz"] = Arr(p.AsSpan(scene.Bands, 3)),
                 ["coloured_chain"] = comp.Coloured(tables),
                 ["band"] = comp.Band >= 0 ? comp.Band + 1 : null,   // after a dispersive split: the one band (from 1) it reaches
-                ["texels"] = texels,   // a textured term: its entries' texel samples in texels.npy (band_values, xyz: the texture's mean)
-            });
+            };
+            // A textured term: its entries' texel samples in texels.npy (band_values, xyz: the texture's mean); absent otherwise,
+            // so a transfer without textures is written as before.
+            if (texels is not null) entry["texels"] = texels;
+            comps.Add((JsonNode)entry);
         }
         var files = new JsonObject
         {

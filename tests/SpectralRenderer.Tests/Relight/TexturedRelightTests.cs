@@ -323,4 +323,29 @@ public class TexturedRelightTests(Xunit.Abstractions.ITestOutputHelper output)
         Run("relight", Path.Combine(dir, "A"), "-o", Path.Combine(dir, "relit"), "--light", "booth=D65", "--intensity", "booth=0.8");
         AssertSameRender(Path.Combine(dir, "direct"), Path.Combine(dir, "relit"));
     }
+
+    /// <summary>The memory check counts the textured terms' per-pixel samples: its lights part is at least what the arrays
+    /// of the traced transfer hold (texels.npy and centre-texels.npy, read back here), and nothing without textures.</summary>
+    [Fact]
+    public void Memory_check_counts_the_texel_samples_of_the_lights_product()
+    {
+        var dir = Reference.TempDir();
+        var scene = Path.Combine(dir, "a.json");
+        File.WriteAllText(scene, Scene("physical", "exact", DiffuseEnvi(dir), SpecularEnvi(dir), "A", "led-blue", 1, chains: false));
+        Run("render", scene, "-o", Path.Combine(dir, "render"), "--formats", "lights");
+        long stored = 0;
+        foreach (var f in new[] { "texels.npy", "centre-texels.npy" })
+        {
+            using var st = File.OpenRead(Path.Combine(dir, "render", "lights", f));
+            stored += 4L * NpyReader.Read(st).Data.Length;
+        }
+        var lights = SpectralRenderer.Output.Products.OutputProductTable.Named(["lights"]);
+        var parts = SpectralRenderer.Output.RenderMemory.Estimate(SpectralRenderer.Scenes.Loading.SceneLoader.Load(scene), 1, lights);
+        var texels = Assert.Single(parts, p => p.Part.Contains("texel samples", StringComparison.Ordinal));
+        output.WriteLine($"estimated {texels.Bytes} bytes of texel samples; the transfer stores {stored}");
+        Assert.True(texels.Bytes >= stored, $"estimate {texels.Bytes} < stored {stored}");
+        File.WriteAllText(scene, Scene("physical", "exact", "0.4", "0.3", "A", "led-blue", 1, chains: false));
+        var plain = SpectralRenderer.Output.RenderMemory.Estimate(SpectralRenderer.Scenes.Loading.SceneLoader.Load(scene), 1, lights);
+        Assert.DoesNotContain(plain, p => p.Part.Contains("texel samples", StringComparison.Ordinal));
+    }
 }
