@@ -172,6 +172,9 @@ public sealed record TransferComponent(int Light, TransferLobe Lobe, int Materia
 /// The tracer follows <see cref="WhittedIntegrator"/> ray for ray (same camera rays, jitter, shadow rays,
 /// epsilons, Fresnel and total internal reflection, and a dispersive material's per-band paths: each band's refracted
 /// ray, and for its per-band Fresnel reflectance the reflected ray once per band, recorded as one-band components).
+/// A textured term (issue 26) has a texel per pixel, not one P: it is recorded per entry as V = Σ F × the filtered texel
+/// samples (the walker's taps on the texture's own sample levels) and relit as Σ_i V_i · P_i (+ F × a fluorescent shift),
+/// P_i the new light's product with sample i's tent function (<see cref="TransferComponent.TexelColumns"/>).
 /// </summary>
 [CompiledAtFirstCall]
 public sealed class LightTransfer
