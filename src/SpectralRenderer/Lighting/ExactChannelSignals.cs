@@ -127,7 +127,7 @@ public static partial class ExactChannelSignals
         }
 
         int cc = sensor.ChannelCount, n = cs.Width * cs.Height;
-        var tables = new TermTables(scene);
+        var tables = new TermTables(scene, TexelContent.None);
         var bandWeights = ChannelWeights.Compute(sensor, scene.Grid, cs.Light, 1);
         bool physical = scene.Radiometry == Radiometry.Physical;
         // With the lens's optics (cos⁴, the Airy blur per band) each band's share of the integrals goes through them on
@@ -136,11 +136,21 @@ public static partial class ExactChannelSignals
         int parts = optics.Any ? scene.Bands : 1;
         var padded = new float[scene.PaddedBands];
         var perComponent = new double[transfer.Components.Length][];
+        // A textured term (issue 26): per part, channel and texture sample i the integral with the sample's tent function as m,
+        // summed at each entry with its recorded texel samples V_i (Σ F × the filtered texel); perComponent then holds the
+        // part the same at every texel (a fluorescent shift), per unit F.
+        var perSample = new double[transfer.Components.Length][];
         int bandRoute = 0;
         for (int k = 0; k < perComponent.Length; k++)
         {
             var comp = transfer.Components[k];
             var t = perComponent[k] = new double[parts * cc];
+            if (transfer.Texels?[k] is not null && comp.Texture(scene) is { } texture)
+            {
+                if (!TexturedIntegrals(sensor, scene, tables, comp, texture, physical, parts, bandWeights, t, out perSample[k]))
+                    bandRoute++;
+                continue;
+            }
             var (e, m, factor) = Term(scene, comp, physical);
             double chain = 1;
             bool exact = comp.Band < 0 && !comp.Coloured(tables) && e is not null && scene.Spectra.TryGetValue(e, out _)
@@ -193,6 +203,23 @@ public static partial class ExactChannelSignals
                     var t = perComponent[k].AsSpan(part * cc, cc);
                     int j = Array.BinarySearch(pix, i0);
                     if (j < 0) j = ~j;
+                    if (perSample[k] is { } ps)
+                    {
+                        var texels = transfer.Texels![k]!;
+                        int samples = ps.Length / (parts * cc);
+                        for (; j < pix.Length && pix[j] < i1; j++)
+                        {
+                            var v = texels.AsSpan(j * samples, samples);
+                            for (int c = 0; c < cc; c++)
+                            {
+                                double sum = f[j] * t[c];
+                                var row = ps.AsSpan((part * cc + c) * samples, samples);
+                                for (int i = 0; i < samples; i++) sum += v[i] * row[i];
+                                share[(long)pix[j] * cc + c] += sum;
+                            }
+                        }
+                        continue;
+                    }
                     for (; j < pix.Length && pix[j] < i1; j++)
                         for (int c = 0; c < cc; c++) share[(long)pix[j] * cc + c] += f[j] * t[c];
                 }
@@ -229,6 +256,57 @@ public static partial class ExactChannelSignals
             if (b > a && cells[o] != 0) sum += cells[o] * ChannelWeights.ExactIntegral(channel, null, null, a, b);
         }
         return sum;
+    }
+
+    /// <summary>
+    /// A textured component's integrals: per part, channel and texture sample i, F-free, ∫ η_c·λ/(hc)·E·tent_i dλ × the lobe's
+    /// constant × the chain's weight (<paramref name="perSample"/>, [part, channel, sample]), and into <paramref name="constant"/>
+    /// a fluorescent diffuse term's shift per unit F. False when it takes the band route (a coloured chain, a dispersive
+    /// split or a light known only by its band values): then the texel columns' band values × the channel weights.
+    /// </summary>
+    static bool TexturedIntegrals(SensorModel sensor, Scene scene, TermTables tables, TransferComponent comp,
+        Scenes.Textures.SpectralTexture texture, bool physical, int parts, ChannelWeights bandWeights, double[] constant,
+        out double[] perSample)
+    {
+        int cc = sensor.ChannelCount, samples = texture.Samples;
+        perSample = new double[parts * cc * samples];
+        var (e, _, factor) = Term(scene, comp, physical);
+        bool exact = comp.Band < 0 && !comp.Coloured(tables) && e is not null && scene.Spectra.TryGetValue(e, out _);
+        if (!exact)
+        {
+            var columns = comp.TexelColumns(scene, tables, out var shift)!;
+            int padded = scene.PaddedBands;
+            for (int c = 0; c < cc; c++)
+                for (int b = 0; b < scene.Bands; b++)
+                {
+                    double w = bandWeights[c, b] / bandWeights.Factor;
+                    int part = parts == 1 ? 0 : b;
+                    constant[part * cc + c] += shift[b] * w;
+                    for (int i = 0; i < samples; i++) perSample[(part * cc + c) * samples + i] += columns[i * padded + b] * w;
+                }
+            return false;
+        }
+        if (!SpectralMath.Any(e!)) return true;
+        double chain = 1;
+        foreach (var (cm, tr) in comp.Chain) chain *= (tr ? tables.Transmit[cm] : tables.Mirror[cm])[0];
+        var se = scene.Spectra[e!];
+        var hats = TexturedTerms.Hats(texture);
+        var mat = scene.Materials[comp.Material];
+        var shifted = comp.Lobe == TransferLobe.Diffuse && mat.Fluorescence is { HasShift: true } fl
+            ? (Matrix: fl, Cells: fl.ShiftedCells(se.Integrate, scene.Grid.Start, scene.Grid.End)) : default;
+        for (int part = 0; part < parts; part++)
+        {
+            double lo = parts == 1 ? scene.Grid.Start : scene.Grid.Lower(part), hi = parts == 1 ? scene.Grid.End : scene.Grid.Upper(part);
+            for (int c = 0; c < cc; c++)
+            {
+                for (int i = 0; i < samples; i++)
+                    perSample[(part * cc + c) * samples + i] =
+                        factor * chain * ChannelWeights.ExactIntegral(sensor.Channels[c], se, hats[i], lo, hi);
+                if (shifted.Matrix is { } matrix)
+                    constant[part * cc + c] = factor * chain * ShiftIntegral(sensor.Channels[c], matrix, shifted.Cells, lo, hi);
+            }
+        }
+        return true;
     }
 
     static (float[]? E, float[]? M, double Factor) Term(Scene scene, TransferComponent comp, bool physical)

@@ -105,7 +105,8 @@ public static class Relighting
         });
         var result = job.Render(cancel: cancel);
         var compute = clock.Elapsed;
-        var copied = (reuse?.Names ?? Enumerable.Empty<string>()).Concat(transfer.StoredIn is null ? [] : LightTransferFiles.Arrays.Select(f => $"{LightTransferFiles.Folder}/{f}"));
+        var copied = (reuse?.Names ?? Enumerable.Empty<string>())
+            .Concat(transfer.StoredIn is null ? [] : LightTransferFiles.ArraysOf(transfer).Select(f => $"{LightTransferFiles.Folder}/{f}"));
         string? metricsCsv = null;
         RelightMetrics? metricsRecord = null;
         if (metrics) (metricsRecord, metricsCsv) = Metrics(src, scene, transfer.ObjectIds, transfer.Relight(ChangedScene(src, [], null)).Xyz, result.Xyz!);

@@ -56,6 +56,11 @@ public static class SpectralViewer
         var lightsJson = Path.Combine(dir, LightTransferFiles.Folder, "lights.json");
         // A path render's transfer (lights.json of kind path) has no eq. 2 components for the page's sliders: the page shows its cube.
         JsonObject? transfer = File.Exists(lightsJson) && !PathTransferFiles.IsPath(dir) ? JsonNode.Parse(File.ReadAllText(lightsJson))!.AsObject() : null;
+        // A textured term's entries are texel samples (issue 26), which the page's F · P sum cannot take.
+        if (transfer?["components"] is JsonArray tc && tc.Any(c => c?["texels"] is not null))
+            throw new InputException(lightsJson,
+                "holds textured terms (texels.npy): the viewer relights per-pixel factors × per-term spectra only",
+                "relight textured renders with 'spectral relight', or render without the lights format to view the cube");
         var objects = new JsonArray();
         foreach (var o in manifest.Objects)
         {

@@ -30,8 +30,15 @@ public static class LightTransferFiles
 {
     public const string Folder = "lights";
 
-    /// <summary>The four arrays, in the order written.</summary>
+    /// <summary>The four arrays every transfer has, in the order written.</summary>
     public static readonly IReadOnlyList<string> Arrays = ["factors.npy", "pixels.npy", "centre.npy", "ids.npy"];
+
+    /// <summary>The texel arrays of a transfer with textured terms (issue 26).</summary>
+    public const string TexelsFile = "texels.npy", CentreTexelsFile = "centre-texels.npy";
+
+    /// <summary>The arrays of <paramref name="t"/>, in the order written: the four, and the texel samples when it has
+    /// textured terms.</summary>
+    public static IReadOnlyList<string> ArraysOf(LightTransfer t) => t.Texels is null ? Arrays : [.. Arrays, TexelsFile, CentreTexelsFile];
 
     public static void Write(Scene scene, LightTransfer t, string outDir, Action<string> done)
     {
@@ -40,13 +47,17 @@ public static class LightTransferFiles
         if (t.StoredIn is { } from)
         {
             // Read from files that are byte for byte these arrays' encoding: copied (in the kernel), not encoded again.
-            foreach (var f in Arrays)
+            foreach (var f in ArraysOf(t))
             {
                 File.Copy(Path.Combine(from, Folder, f), Path.Combine(dir, f));
                 done($"{Folder}/{f}");
             }
         }
-        else WriteArrays(t, dir, done);
+        else
+        {
+            WriteArrays(t, dir, done);
+            if (t.Texels is not null) WriteTexels(scene, t, dir, done);
+        }
         AtomicFile.WriteAllText(Path.Combine(dir, "lights.json"), Describe(scene, t).ToJsonString(new JsonSerializerOptions { WriteIndented = true }));
         done($"{Folder}/lights.json");
     }
@@ -77,6 +88,41 @@ public static class LightTransferFiles
         done($"{Folder}/ids.npy");
     }
 
+    /// <summary>
+    /// texels.npy: float32 [Σ_c count_c · S_c], each textured component's entries' texel samples in the order of its factors;
+    /// centre-texels.npy: float32 [Σ S_d + S_s], for each pixel (ascending) whose centre ray saw a textured material, its
+    /// filtered samples of that material's diffuse texture, then of its specular texture.
+    /// </summary>
+    static void WriteTexels(Scene scene, LightTransfer t, string dir, Action<string> done)
+    {
+        var texels = new float[t.Texels!.Sum(v => (long)(v?.Length ?? 0))];
+        long at = 0;
+        foreach (var v in t.Texels!) if (v is not null) { v.CopyTo(texels, at); at += v.Length; }
+        AtomicFile.Write(Path.Combine(dir, TexelsFile), s => NpyWriter.Write(s, [texels.Length], texels));
+        done($"{Folder}/{TexelsFile}");
+        var centre = new float[CentreTexelCount(scene, t.ObjectIds)];
+        at = 0;
+        for (int i = 0; i < t.ObjectIds.Length; i++)
+        {
+            int w = CentreTexelsOf(scene, t.ObjectIds[i]);
+            t.CentreTexels.AsSpan(i * t.CentreWidth, w).CopyTo(centre.AsSpan((int)at));
+            at += w;
+        }
+        AtomicFile.Write(Path.Combine(dir, CentreTexelsFile), s => NpyWriter.Write(s, [centre.Length], centre));
+        done($"{Folder}/{CentreTexelsFile}");
+    }
+
+    /// <summary>The centre texels a pixel whose centre ray saw object <paramref name="id"/> (−1: none) has: its material's
+    /// diffuse and specular textures' samples.</summary>
+    static int CentreTexelsOf(Scene scene, int id)
+    {
+        if (id < 0) return 0;
+        var m = scene.Materials[scene.Objects[id].Material];
+        return (m.DiffuseTexture?.Texture.Samples ?? 0) + (m.SpecularTexture?.Texture.Samples ?? 0);
+    }
+
+    static long CentreTexelCount(Scene scene, int[] ids) => ids.Sum(id => (long)CentreTexelsOf(scene, id));
+
     /// <summary>Whether <paramref name="path"/> is <paramref name="preamble"/> followed by exactly <paramref name="dataBytes"/> bytes of data.</summary>
     static bool Canonical(string path, byte[] preamble, long dataBytes)
     {
@@ -93,13 +139,26 @@ public static class LightTransferFiles
         var lights = new JsonArray();
         for (int k = 0; k < scene.Lights.Count; k++) lights.Add((JsonNode)LightEntry(scene, k));
         var comps = new JsonArray();
-        var tables = new TermTables(scene);
+        var tables = new TermTables(scene, TexelContent.None);
         var p = new float[scene.PaddedBands];
+        long texelOffset = 0;
         for (int c = 0, offset = 0; c < t.Components.Length; offset += t.Factors[c].Length, c++)
         {
             var comp = t.Components[c];
             comp.BandValues(tables, p);
-            comps.Add((JsonNode)new JsonObject
+            var texture = comp.Texture(scene);
+            JsonObject? texels = null;
+            if (texture is not null && t.Texels?[c] is { } v)
+            {
+                texels = new JsonObject
+                {
+                    ["samples"] = texture.Samples,
+                    ["offset"] = texelOffset,
+                    ["texture"] = Path.GetFileName(texture.Source),
+                };
+                texelOffset += v.Length;
+            }
+            var entry = new JsonObject
             {
                 ["index"] = c,
                 ["key"] = comp.Key,
@@ -116,7 +175,29 @@ public static class LightTransferFiles
                 ["xyz"] = Arr(p.AsSpan(scene.Bands, 3)),
                 ["coloured_chain"] = comp.Coloured(tables),
                 ["band"] = comp.Band >= 0 ? comp.Band + 1 : null,   // after a dispersive split: the one band (from 1) it reaches
-            });
+            };
+            // A textured term: its entries' texel samples in texels.npy (band_values, xyz: the texture's mean); absent otherwise,
+            // so a transfer without textures is written as before.
+            if (texels is not null) entry["texels"] = texels;
+            comps.Add((JsonNode)entry);
+        }
+        var files = new JsonObject
+        {
+            ["factors"] = "factors.npy: float32 [nnz], the factors of component c at entries offset .. offset + count - 1",
+            ["pixels"] = "pixels.npy: int32 [nnz], the pixel (y * width + x) of each factor, ascending within a component",
+            ["centre"] = "centre.npy: float32 [2K, H, W], light k's centre-ray diffuse (2k) and specular (2k+1) factor",
+            ["ids"] = "ids.npy: float32 [3, H, W], object index + 1 (0 = background), lit mask, "
+                + "colour fallback (1: eq. 3 on the band values)",
+        };
+        if (t.Texels is not null)
+        {
+            files["texels"] = "texels.npy: float32, a textured component c's entry j (j from 0 to count - 1) has "
+                + "S = c.texels.samples values V at c.texels.offset + j * S: the sum over the pixel's terms of factor * the "
+                + "filtered texel samples (at the texture's wavelengths); its band values are sum_i V_i * (E * tent_i) band "
+                + "means and XYZ, tent_i the texture's linear interpolant of sample i, plus factor * a fluorescent shift, "
+                + "times the chain's weights";
+            files["centre_texels"] = "centre-texels.npy: float32, for each pixel (ascending) whose centre ray saw a textured "
+                + "material, its filtered diffuse texture samples then its specular texture samples (the highlight mask's Y)";
         }
         var materials = new JsonArray(scene.Materials.Select(mt => (JsonNode)new JsonObject
         {
@@ -135,13 +216,7 @@ public static class LightTransferFiles
             ["lights"] = lights,
             ["materials"] = materials,
             ["components"] = comps,
-            ["files"] = new JsonObject
-            {
-                ["factors"] = "factors.npy: float32 [nnz], the factors of component c at entries offset .. offset + count - 1",
-                ["pixels"] = "pixels.npy: int32 [nnz], the pixel (y * width + x) of each factor, ascending within a component",
-                ["centre"] = "centre.npy: float32 [2K, H, W], light k's centre-ray diffuse (2k) and specular (2k+1) factor",
-                ["ids"] = "ids.npy: float32 [3, H, W], object index + 1 (0 = background), lit mask, colour fallback (1: eq. 3 on the band values)",
-            },
+            ["files"] = files,
         };
     }
 
@@ -171,7 +246,14 @@ public static class LightTransferFiles
 
     /// <summary>lights.json's layout: the image and band counts, the components and where their entries lie in factors.npy.</summary>
     public sealed record Layout(int Width, int Height, int Bands, TransferComponent[] Components, (int Offset, int Count)[] Offsets,
-        int[] Merged, long Entries);
+        int[] Merged, long Entries)
+    {
+        /// <summary>Per component, where its texel samples start in texels.npy and how many per entry (S); null: a spectrum's
+        /// term.</summary>
+        public (long Offset, int Samples)?[] Texels { get; init; } = [];
+        /// <summary>How many floats texels.npy holds (0: no textured component).</summary>
+        public long TexelFloats { get; init; }
+    }
 
     /// <summary>
     /// lights.json checked against the scene it is read with: sizes in range, one entry per scene light, each component's
@@ -197,7 +279,8 @@ public static class LightTransferFiles
         var comps = new TransferComponent[nodes.Count];
         var offsets = new (int, int)[nodes.Count];
         var merged = new int[nodes.Count];
-        long entries = 0;
+        var texels = new (long, int)?[nodes.Count];
+        long entries = 0, texelFloats = 0;
         for (int c = 0; c < comps.Length; c++)
         {
             string at = $"$.components[{c}]";
@@ -230,13 +313,32 @@ public static class LightTransferFiles
             offsets[c] = (offset, count);
             entries += count;
             merged[c] = r.OptInt(o, "merged_chains", at, 1) ?? 1;
+            // A textured term (issue 26) holds its entries' texel samples; the scene says which terms are textured.
+            var texture = comps[c].Texture(scene);
+            var tx = r.OptObject(o, "texels", at);
+            if (texture is null && tx is not null)
+                throw r.Bad($"{at}.texels", "is given for a term the scene's material gives by a spectrum, not a texture");
+            if (texture is not null)
+            {
+                if (tx is null)
+                    throw r.Bad(at, $"is material {MessageText.Quote(scene.Materials[material].Name)}'s textured term but has no texels");
+                int samples = r.Int(tx, "samples", $"{at}.texels", texture.Samples, texture.Samples);
+                long to = r.Long(tx["offset"], $"{at}.texels.offset", 0, Array.MaxLength);
+                texels[c] = (to, samples);
+                texelFloats += (long)count * samples;
+            }
         }
+        for (int c = 0; c < comps.Length; c++)
+            if (texels[c] is { } tc && tc.Item1 + (long)offsets[c].Item2 * tc.Item2 > texelFloats)
+                throw r.Bad($"$.components[{c}].texels.offset", $"puts samples beyond the {texelFloats} stored");
+        if (texelFloats > Array.MaxLength)
+            throw r.Bad("$.components", $"hold {texelFloats} texel samples in all, more than one array holds");
         if (entries > Array.MaxLength) throw r.Bad("$.components", $"count {entries} entries in all, more than one array holds");
         for (int c = 0; c < comps.Length; c++)
             if (offsets[c].Item1 + (long)offsets[c].Item2 > entries)
                 throw r.Bad($"$.components[{c}].offset", $"entries {offsets[c].Item1}…{offsets[c].Item1 + (long)offsets[c].Item2 - 1} lie outside the {entries} stored");
         if (2L * k * width * height > Array.MaxLength) throw r.Bad("$.width", $"{width}×{height} pixels × {k} lights is more than one array holds");
-        return new Layout(width, height, bands, comps, offsets, merged, entries);
+        return new Layout(width, height, bands, comps, offsets, merged, entries) { Texels = texels, TexelFloats = texelFloats };
     }
 
     /// <summary>Reads lights/ back into a transfer whose components refer to <paramref name="scene"/>'s materials by name.</summary>
@@ -295,14 +397,41 @@ public static class LightTransferFiles
             objectIds[i] = (int)ids[i] - 1; litMasks[i] = (uint)ids[n + i]; fallback[i] = ids[2 * n + i] != 0;
             idsKept &= objectIds[i] + 1 == ids[i] && litMasks[i] == ids[n + i] && (fallback[i] ? 1f : 0f) == ids[2 * n + i];
         }
+        // Textured terms: their entries' texel samples, and the centre rays' (issue 26).
+        float[]?[]? texels = null;
+        float[]? centreTexels = null;
+        int centreWidth = 0;
+        bool textured = layout.Texels.Any(x => x is not null);
+        if (textured)
+        {
+            var all = Load(TexelsFile, [(int)layout.TexelFloats]);
+            texels = new float[]?[comps.Length];
+            for (int c = 0; c < comps.Length; c++)
+                if (layout.Texels[c] is { } tc) texels[c] = all.AsSpan((int)tc.Offset, offsets[c].Count * tc.Samples).ToArray();
+            centreWidth = LightTransfer.CentreWidthOf(scene);
+            var compact = Load(CentreTexelsFile, [(int)CentreTexelCount(scene, objectIds)]);
+            centreTexels = new float[(long)n * centreWidth];
+            for (int i = 0, at = 0; i < n; i++)
+            {
+                int w = CentreTexelsOf(scene, objectIds[i]);
+                compact.AsSpan(at, w).CopyTo(centreTexels.AsSpan(i * centreWidth));
+                at += w;
+            }
+        }
         // … and the same factors.npy and pixels.npy when the components' entries follow each other in order.
         bool contiguous = true;
         for (int c = 0, at = 0; c < offsets.Length; at += offsets[c].Count, c++) contiguous &= offsets[c].Offset == at;
+        for (long c = 0, at = 0; c < comps.Length; c++)
+            if (layout.Texels[c] is { } tc) { contiguous &= tc.Offset == at; at += (long)offsets[c].Count * tc.Samples; }
         bool canonical = idsKept && contiguous
             && Canonical(Path.Combine(dir, "factors.npy"), NpyWriter.Preamble([(int)nnz]), 4 * nnz)
             && Canonical(Path.Combine(dir, "pixels.npy"), NpyInt32.Preamble([(int)nnz]), 4 * nnz)
             && Canonical(Path.Combine(dir, "centre.npy"), NpyWriter.Preamble([2 * k, height, width]), 4L * centre.Length)
-            && Canonical(Path.Combine(dir, "ids.npy"), NpyWriter.Preamble([3, height, width]), 4L * ids.Length);
+            && Canonical(Path.Combine(dir, "ids.npy"), NpyWriter.Preamble([3, height, width]), 4L * ids.Length)
+            && (!textured
+                || (Canonical(Path.Combine(dir, TexelsFile), NpyWriter.Preamble([(int)layout.TexelFloats]), 4 * layout.TexelFloats)
+                && Canonical(Path.Combine(dir, CentreTexelsFile), NpyWriter.Preamble([(int)CentreTexelCount(scene, objectIds)]),
+                    4 * CentreTexelCount(scene, objectIds))));
         return new LightTransfer
         {
             Width = width,
@@ -319,6 +448,9 @@ public static class LightTransferFiles
             LitMasks = litMasks,
             Fallback = fallback,
             Rays = new RayCounters(),
+            Texels = texels,
+            CentreTexels = centreTexels,
+            CentreWidth = centreWidth,
             StoredIn = canonical ? Path.GetFullPath(outDir) : null,
         };
     }

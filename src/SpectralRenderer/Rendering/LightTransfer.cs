@@ -5,6 +5,7 @@ using System.Runtime.CompilerServices;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Geometry;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Scenes.Textures;
 using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Rendering;
@@ -84,6 +85,75 @@ public sealed record TransferComponent(int Light, TransferLobe Lobe, int Materia
         }
     }
 
+    /// <summary>
+    /// The texture whose texels this component's term takes (issue 26): the material's diffuse texture for its diffuse term
+    /// and, when m_amb is that texture, its ambient terms; its specular texture for its specular term. Null: a spectrum.
+    /// </summary>
+    public SpectralTexture? Texture(Scene scene)
+    {
+        if (Material < 0) return null;
+        var m = scene.Materials[Material];
+        return Lobe switch
+        {
+            TransferLobe.Diffuse => m.DiffuseTexture?.Texture,
+            TransferLobe.Specular => m.SpecularTexture?.Texture,
+            TransferLobe.Ambient or TransferLobe.GlobalAmbient => TextureTables.AmbientIsTexture(m) ? m.DiffuseTexture!.Texture : null,
+            _ => null,
+        };
+    }
+
+    /// <summary>
+    /// A textured component's P as a matrix (null when it is not textured, <see cref="Texture"/>): column i (at i · padded)
+    /// the band values and XYZ of E ⊙ tent_i × the lobe's constant (<see cref="TexturedTerms.MatrixOf"/>, the products the
+    /// render's texel tables are made of), and <paramref name="constant"/> the part the same at every texel (a fluorescent
+    /// diffuse term's shift, <see cref="FluorescentTerms.AddShift"/>), both times the chain's weights as
+    /// <see cref="BandValues"/> multiplies them. A pixel's entry is then Σ_i V_i · column_i + F · constant, with V the
+    /// recorded sum of F × the filtered texel samples.
+    /// </summary>
+    public double[]? TexelColumns(Scene scene, TermTables tables, out double[] constant)
+    {
+        int padded = scene.PaddedBands, rows = scene.Bands + SpectralMath.ColourLanes;
+        constant = new double[padded];
+        if (Texture(scene) is not { } texture) return null;
+        var mat = scene.Materials[Material];
+        bool physical = scene.Radiometry == Radiometry.Physical;
+        var (light, factor) = Lobe switch
+        {
+            TransferLobe.Diffuse => (scene.Lights[Light].Intensity, physical ? 1 / Math.PI : 1),
+            TransferLobe.Specular => (scene.Lights[Light].Intensity, physical ? mat.Model.EnergyNormalisation(mat.Shininess) : 1),
+            TransferLobe.Ambient => (scene.Lights[Light].Ambient, 1.0),
+            _ => (scene.GlobalAmbient, 1.0),
+        };
+        var m = TexturedTerms.MatrixOf(scene, texture, light, factor);
+        int samples = texture.Samples;
+        var columns = new double[samples * padded];
+        for (int i = 0; i < samples; i++)
+            for (int r = 0; r < rows; r++) columns[i * padded + r] = m[r, i];
+        if (Lobe == TransferLobe.Diffuse && mat.Fluorescence is { HasShift: true } fl)
+        {
+            var shift = new float[padded];
+            FluorescentTerms.AddShift(scene, shift, light, fl, factor);
+            for (int r = 0; r < rows; r++) constant[r] = shift[r];
+        }
+        foreach (var (cm, tr) in Chain)
+        {
+            var w = tr ? tables.Transmit[cm] : tables.Mirror[cm];
+            for (int r = 0; r < padded; r++)
+            {
+                constant[r] *= w[r];
+                for (int i = 0; i < samples; i++) columns[i * padded + r] *= w[r];
+            }
+        }
+        if (Band >= 0)
+            for (int r = 0; r < padded; r++)
+                if (r != Band)
+                {
+                    constant[r] = 0;
+                    for (int i = 0; i < samples; i++) columns[i * padded + r] = 0;
+                }
+        return columns;
+    }
+
     /// <summary>Does the chain pass a mirror or transmittance that varies over the bands, or a dispersive split (so the colour lanes cannot be exact)?</summary>
     public bool Coloured(TermTables tables) => Band >= 0 || Chain.Any(c => c.Transmit ? tables.TransmitColoured[c.Material] : tables.MirrorColoured[c.Material]);
 
@@ -102,6 +172,9 @@ public sealed record TransferComponent(int Light, TransferLobe Lobe, int Materia
 /// The tracer follows <see cref="WhittedIntegrator"/> ray for ray (same camera rays, jitter, shadow rays,
 /// epsilons, Fresnel and total internal reflection, and a dispersive material's per-band paths: each band's refracted
 /// ray, and for its per-band Fresnel reflectance the reflected ray once per band, recorded as one-band components).
+/// A textured term (issue 26) has a texel per pixel, not one P: it is recorded per entry as V = Σ F × the filtered texel
+/// samples (the walker's taps on the texture's own sample levels) and relit as Σ_i V_i · P_i (+ F × a fluorescent shift),
+/// P_i the new light's product with sample i's tent function (<see cref="TransferComponent.TexelColumns"/>).
 /// </summary>
 [CompiledAtFirstCall]
 public sealed class LightTransfer
@@ -127,12 +200,51 @@ public sealed class LightTransfer
     public required bool[] Fallback { get; init; }
     public required RayCounters Rays { get; init; }
     /// <summary>
+    /// Per component, for a textured one (<see cref="TransferComponent.Texture"/>), the texel samples of each of its entries
+    /// (S floats per entry, in the order of <see cref="Pixels"/>): Σ over the pixel's terms of the factor × the filtered
+    /// texel samples (trilinear taps of the texture's sample levels, <see cref="TexturedTerms.SamplesOf"/>); null entries
+    /// (or a null array) for components of spectra.
+    /// </summary>
+    public float[]?[]? Texels { get; init; }
+    /// <summary>Per pixel <see cref="CentreWidth"/> floats: the centre ray's filtered texel samples at its first hit, its
+    /// material's diffuse texture's then its specular texture's (the highlight mask's Y of a textured lobe); null without
+    /// textures.</summary>
+    public float[]? CentreTexels { get; init; }
+    public int CentreWidth { get; init; }
+    /// <summary>
     /// The render folder whose lights/*.npy this transfer was read from when they are byte for byte what writing it
     /// gives (LightTransferFiles): a relit render copies them instead of encoding them again. Null for a traced transfer.
     /// </summary>
     public string? StoredIn { get; init; }
 
     public const int MaxChain = 6;
+
+    /// <summary>Floats per pixel of the centre texels: the most any material's diffuse and specular textures' samples take.</summary>
+    public static int CentreWidthOf(Scene scene) =>
+        scene.Materials.Select(m => (m.DiffuseTexture?.Texture.Samples ?? 0) + (m.SpecularTexture?.Texture.Samples ?? 0))
+            .DefaultIfEmpty(0).Max();
+
+    /// <summary>
+    /// Bytes the texel samples of a traced transfer hold at most for a first hit (the memory check; a mirror or glass adds
+    /// its own): per pixel every light's textured diffuse, ambient and specular terms' samples and the centre ray's, twice
+    /// (the tiles' and the assembled arrays), and the textures' sample levels. 0 without textures.
+    /// </summary>
+    public static long TexelBytes(Scene scene)
+    {
+        int lights = scene.Lights.Count;
+        long perPixel = 0, levels = 0;
+        foreach (var m in scene.Materials)
+        {
+            int d = m.DiffuseTexture?.Texture.Samples ?? 0, sp = m.SpecularTexture?.Texture.Samples ?? 0;
+            bool ambient = TextureTables.AmbientIsTexture(m);
+            perPixel = Math.Max(perPixel, (long)lights * (d * (ambient ? 2 : 1) + sp) + (ambient ? d : 0));
+            foreach (var b in new[] { m.DiffuseTexture, m.SpecularTexture })
+                if (b is not null) levels += TexelLevels.TexelsWithMips(b.Texture.Width, b.Texture.Height) * b.Texture.Samples;
+        }
+        if (perPixel == 0) return 0;
+        long pixels = (long)scene.Camera.Width * scene.Camera.Height;
+        return sizeof(float) * (pixels * (2 * perPixel + CentreWidthOf(scene)) + levels);
+    }
 
     /// <summary>Traces the scene's camera rays and records S, the factors and the centre-ray data.</summary>
     public static LightTransfer Trace(Scene scene, SceneGeometry geometry, int threads = 0, CancellationToken cancel = default)
@@ -152,12 +264,17 @@ public sealed class LightTransfer
     public (SpectralImage Image, float[] Xyz, long FallbackPixels) Relight(Scene scene)
     {
         int n = Width * Height, bands = Bands, padded = scene.PaddedBands;
-        var tables = new TermTables(scene);
+        var tables = new TermTables(scene, TexelContent.None);
         var p = new float[Components.Length][];
+        var columns = new double[Components.Length][];
+        var constants = new double[Components.Length][];
         for (int c = 0; c < p.Length; c++)
         {
             p[c] = new float[padded];
             Components[c].BandValues(tables, p[c]);
+            if (Texels?[c] is not null)
+                columns[c] = Components[c].TexelColumns(scene, tables, out constants[c])
+                    ?? throw new InvalidOperationException($"component {Components[c].Key} has texels but its term is not textured");
         }
         var image = new SpectralImage(Width, Height, Grid);
         var data = image.Data;
@@ -169,6 +286,11 @@ public sealed class LightTransfer
             int i0 = chunk * Chunk, i1 = Math.Min(n, i0 + Chunk);
             for (int c = 0; c < p.Length; c++)
             {
+                if (columns[c] is { } cols)
+                {
+                    AddTextured(c, cols, constants[c], i0, i1, data, xyz, bands, padded);
+                    continue;
+                }
                 var pix = Pixels[c];
                 var f = Factors[c];
                 var pc = p[c];
@@ -205,12 +327,52 @@ public sealed class LightTransfer
         return (image, xyz, fallback);
     }
 
+    /// <summary>
+    /// Textured component <paramref name="c"/>'s entries in pixels [i0, i1): per entry Σ_i V_i · column_i + F · constant in
+    /// doubles (the bands, then X, Y, Z), added to the pixel as the untextured components' F · P are.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    void AddTextured(int c, double[] columns, double[] constant, int i0, int i1, float[] data, float[] xyz, int bands, int padded)
+    {
+        var pix = Pixels[c];
+        var f = Factors[c];
+        var texels = Texels![c]!;
+        int samples = columns.Length / padded;
+        int j = Array.BinarySearch(pix, i0);
+        if (j < 0) j = ~j;
+        for (; j < pix.Length && pix[j] < i1; j++)
+        {
+            int i = pix[j];
+            var v = texels.AsSpan(j * samples, samples);
+            for (int r = 0; r < bands + SpectralMath.ColourLanes; r++)
+            {
+                double sum = f[j] * constant[r];
+                for (int s = 0; s < samples; s++) sum += v[s] * columns[s * padded + r];
+                if (r < bands) data[i * bands + r] += (float)sum;
+                else xyz[3 * i + r - bands] += (float)sum;
+            }
+        }
+    }
+
     /// <summary>The highlight mask (<see cref="PixelInfo.Highlight"/>) from the luminances of eq. 2's terms at the centre rays, under new light band values.</summary>
     public byte[] CentreHighlights(Scene scene)
     {
-        var tables = new TermTables(scene);
+        var tables = new TermTables(scene, TexelContent.None);
         int n = Width * Height, lights = scene.Lights.Count, y = scene.Bands + 1;   // the Y colour lane
         var diffuse = new float[n]; var specular = new float[n];
+        // A textured lobe's Y per light and material: the Y row of its texel columns (with the texel-independent part).
+        var texturedY = new (double[] Row, double Constant)?[2, lights * scene.Materials.Count];
+        if (CentreTexels is not null)
+            for (int k = 0; k < lights; k++)
+                for (int m = 0; m < scene.Materials.Count; m++)
+                    for (int lobe = 0; lobe < 2; lobe++)
+                    {
+                        var comp = new TransferComponent(k, lobe == 0 ? TransferLobe.Diffuse : TransferLobe.Specular, m, []);
+                        if (comp.TexelColumns(scene, tables, out var constant) is not { } cols) continue;
+                        int samples = cols.Length / scene.PaddedBands;
+                        var row = Enumerable.Range(0, samples).Select(s => cols[s * scene.PaddedBands + y]).ToArray();
+                        texturedY[lobe, tables.Index(k, m)] = (row, constant[y]);
+                    }
         for (int i = 0; i < n; i++)
         {
             int o = ObjectIds[i];
@@ -219,14 +381,27 @@ public sealed class LightTransfer
             for (int k = 0; k < lights; k++)
             {
                 int term = tables.Index(k, m);
-                diffuse[i] += CentreDiffuse[k][i] * tables.Diffuse[term][y];
-                specular[i] += CentreSpecular[k][i] * tables.Specular[term][y];
+                float dy = tables.Diffuse[term][y], sy = tables.Specular[term][y];
+                if (texturedY[0, term] is { } td) dy = CentreY(td, i, 0);
+                if (texturedY[1, term] is { } ts) sy = CentreY(ts, i, scene.Materials[m].DiffuseTexture?.Texture.Samples ?? 0);
+                diffuse[i] += CentreDiffuse[k][i] * dy;
+                specular[i] += CentreSpecular[k][i] * sy;
             }
         }
         var mask = new byte[n];
         float fraction = (float)scene.Output.HighlightFraction;
         for (int i = 0; i < n; i++) mask[i] = PixelInfo.Highlight(specular[i], diffuse[i], fraction);
         return mask;
+    }
+
+    /// <summary>Y of a textured lobe at pixel <paramref name="i"/>'s centre hit: its Y row times the centre's texel samples
+    /// (from <paramref name="at"/> in the pixel's centre texels), plus the texel-independent part.</summary>
+    float CentreY((double[] Row, double Constant) t, int i, int at)
+    {
+        var v = CentreTexels.AsSpan(i * CentreWidth + at, t.Row.Length);
+        double y = t.Constant;
+        for (int s = 0; s < v.Length; s++) y += v[s] * t.Row[s];
+        return (float)y;
     }
 
     readonly record struct Key(ulong A, ulong B, int Band);
@@ -241,8 +416,10 @@ public sealed class LightTransfer
         readonly int _padded, _width, _height;
         readonly ConcurrentDictionary<Key, int> _index = new();
         readonly List<TransferComponent> _registered = [];
-        // Per tile, its terms in pixel order: (component, pixel, factor).
-        readonly ConcurrentBag<(int[] Comp, int[] Pixel, float[] Factor, int Count)> _tiles = [];
+        // Per tile, its terms in pixel order: (component, pixel, factor, where its texel samples start or −1), and the samples.
+        readonly ConcurrentBag<(int[] Comp, int[] Pixel, float[] Factor, int Count, int[] TexelAt, float[] Texels)> _tiles = [];
+        readonly float[]? _centreTexels;
+        readonly int _centreWidth;
         readonly float[][] _centreDiffuse, _centreSpecular;
         readonly TermTables _tables;
         readonly Eq2Walker _walker;
@@ -258,10 +435,10 @@ public sealed class LightTransfer
             _width = scene.Camera.Width; _height = scene.Camera.Height;
             _centreDiffuse = _lights.Select(_ => new float[_width * _height]).ToArray();
             _centreSpecular = _lights.Select(_ => new float[_width * _height]).ToArray();
-            if (scene.Materials.FirstOrDefault(m => m.DiffuseTexture is not null || m.SpecularTexture is not null) is { } textured)
-                throw new InputException(scene.SourcePath, $"material '{textured.Name}' is textured: light transfer and relighting take spectra, not textures (issue 26)",
-                    "render the scene directly, or give the material a spectrum");
-            _tables = new TermTables(scene);
+            // Textured lobes: the walker's taps index each texture's own samples (the same levels as its tables), recorded per term.
+            _tables = new TermTables(scene, TexelContent.Samples);
+            _centreWidth = CentreWidthOf(scene);
+            if (_centreWidth > 0) _centreTexels = new float[(long)_width * _height * _centreWidth];
             _walker = new Eq2Walker(scene, geometry, _tables);
             _fallback = new bool[_width * _height];
         }
@@ -280,15 +457,23 @@ public sealed class LightTransfer
             // The band the current path carries after a dispersive split (−1: all bands), as the integrator's band argument.
             public int Band = -1;
             public readonly Dictionary<Key, int> Index = new();
-            // The current pixel's terms: component and accumulated factor (few distinct ones per pixel).
+            // The current pixel's terms: component and accumulated factor (few distinct ones per pixel), and for a textured
+            // term where its samples (Σ factor × filtered texel) start in TermTexels and how many (−1, 0: a spectrum's term).
             public int[] TermComps = new int[64];
             public float[] TermFactors = new float[64];
-            public int Terms;
+            public int[] TermTexelAt = new int[64], TermTexelCount = new int[64];
+            public float[] TermTexels = new float[256];
+            public int Terms, TermTexelsUsed;
             public bool Fallback;
+            // The hit's textured lobes and their taps (set by Texels after the walker's Begin, until the next Begin).
+            public bool Textured;
+            public TexturedTerms? Diffuse, Specular;
+            public TexelTaps DiffuseTaps, SpecularTaps;
             // The current tile's terms.
-            public int[] TileComp = new int[4096], TilePixel = new int[4096];
+            public int[] TileComp = new int[4096], TilePixel = new int[4096], TileTexelAt = new int[4096];
             public float[] TileFactor = new float[4096];
-            public int TileCount;
+            public float[] TileTexels = new float[256];
+            public int TileCount, TileTexelsUsed;
 
             public void Emit(int pixel)
             {
@@ -296,11 +481,40 @@ public sealed class LightTransfer
                 {
                     int size = Math.Max(TileComp.Length * 2, TileCount + Terms);
                     Array.Resize(ref TileComp, size); Array.Resize(ref TilePixel, size); Array.Resize(ref TileFactor, size);
+                    Array.Resize(ref TileTexelAt, size);
                 }
+                if (TileTexelsUsed + TermTexelsUsed > TileTexels.Length)
+                    Array.Resize(ref TileTexels, Math.Max(TileTexels.Length * 2, TileTexelsUsed + TermTexelsUsed));
                 for (int t = 0; t < Terms; t++)
                 {
                     if (TermFactors[t] == 0) continue;
-                    TileComp[TileCount] = TermComps[t]; TilePixel[TileCount] = pixel; TileFactor[TileCount++] = TermFactors[t];
+                    TileComp[TileCount] = TermComps[t]; TilePixel[TileCount] = pixel; TileFactor[TileCount] = TermFactors[t];
+                    int at = -1;
+                    if (TermTexelAt[t] >= 0)
+                    {
+                        at = TileTexelsUsed;
+                        TermTexels.AsSpan(TermTexelAt[t], TermTexelCount[t]).CopyTo(TileTexels.AsSpan(at));
+                        TileTexelsUsed += TermTexelCount[t];
+                    }
+                    TileTexelAt[TileCount++] = at;
+                }
+            }
+
+            /// <summary>The taps of the lobe a term of <paramref name="lobe"/> takes at this hit, or null (its spectrum).</summary>
+            public TexturedTerms? TexelsOf(TransferLobe lobe, out TexelTaps taps)
+            {
+                taps = default;
+                if (!Textured) return null;
+                switch (lobe)
+                {
+                    case TransferLobe.Diffuse:
+                        taps = DiffuseTaps; return Diffuse;
+                    case TransferLobe.Specular:
+                        taps = SpecularTaps; return Specular;
+                    case TransferLobe.Ambient or TransferLobe.GlobalAmbient when Diffuse is { Ambient: true }:
+                        taps = DiffuseTaps; return Diffuse;
+                    default:
+                        return null;
                 }
             }
         }
@@ -315,7 +529,7 @@ public sealed class LightTransfer
             var (total, _, _) = Renderer.RunTiles(PixelRect.Whole(width, height), threads, null, Stopwatch.StartNew(), cancel,
                 () => new TileWork(this, sampling, ids, lit, cancel));
 
-            var (components, pixels, factors, merged) = Assemble(width * height);
+            var (components, pixels, factors, merged, texels) = Assemble(width * height);
             return new LightTransfer
             {
                 Width = width,
@@ -332,6 +546,9 @@ public sealed class LightTransfer
                 ObjectIds = ids,
                 LitMasks = lit,
                 Rays = total,
+                Texels = texels,
+                CentreTexels = _centreTexels,
+                CentreWidth = _centreWidth,
             };
         }
 
@@ -340,7 +557,7 @@ public sealed class LightTransfer
         /// merged (same light, term and material, and the same band values of the chain's weights: glass paths that
         /// differ only in which of two unit weights they took), in a fixed order whatever the thread count.
         /// </summary>
-        (TransferComponent[], int[][], float[][], int[]) Assemble(int n)
+        (TransferComponent[], int[][], float[][], int[], float[]?[]?) Assemble(int n)
         {
             int registered = _registered.Count;
             var groupKey = new string[registered];
@@ -365,27 +582,42 @@ public sealed class LightTransfer
             foreach (var t in _tiles) for (int j = 0; j < t.Count; j++) counts[groupOf[t.Comp[j]]]++;
             var pix = counts.Select(c => new int[c]).ToArray();
             var fac = counts.Select(c => new float[c]).ToArray();
+            // A textured group's samples per entry (its chains are one material's: one texture, S samples).
+            var samples = groups.Select(g => _registered[g[0]].Texture(_scene)?.Samples ?? 0).ToArray();
+            var tex = counts.Select((c, g) => samples[g] > 0 ? new float[(long)c * samples[g]] : null).ToArray();
             var fill = new int[groups.Length];
             foreach (var t in _tiles.OrderBy(t => t.Count == 0 ? -1 : t.Pixel[0]))
                 for (int j = 0; j < t.Count; j++)
                 {
                     int g = groupOf[t.Comp[j]], at = fill[g]++;
                     pix[g][at] = t.Pixel[j]; fac[g][at] = t.Factor[j];
+                    if (tex[g] is { } v) t.Texels.AsSpan(t.TexelAt[j], samples[g]).CopyTo(v.AsSpan(at * samples[g]));
                 }
             Parallel.For(0, groups.Length, g =>
             {
                 // Stable: within a pixel the terms keep their trace order, so the sum is the same for any thread count.
                 var order = Enumerable.Range(0, pix[g].Length).OrderBy(j => pix[g][j]).ToArray();
                 var p2 = new List<int>(order.Length); var f2 = new List<float>(order.Length);
+                int s = samples[g];
+                var v = tex[g];
+                var v2 = v is null ? null : new float[v.Length];
                 foreach (int j in order)
                 {
-                    if (p2.Count > 0 && p2[^1] == pix[g][j]) f2[^1] += fac[g][j];
+                    bool same = p2.Count > 0 && p2[^1] == pix[g][j];
+                    if (same) f2[^1] += fac[g][j];
                     else { p2.Add(pix[g][j]); f2.Add(fac[g][j]); }
+                    if (v is null) continue;
+                    var into = v2.AsSpan((p2.Count - 1) * s, s);
+                    var from = v.AsSpan(j * s, s);
+                    if (same) for (int i = 0; i < s; i++) into[i] += from[i];
+                    else from.CopyTo(into);
                 }
                 pix[g] = p2.ToArray(); fac[g] = f2.ToArray();
+                if (v2 is not null) tex[g] = v2.AsSpan(0, p2.Count * s).ToArray();
             });
             _ = n;
-            return (groups.Select(g => _registered[g[0]]).ToArray(), pix, fac, groups.Select(g => g.Length).ToArray());
+            return (groups.Select(g => _registered[g[0]]).ToArray(), pix, fac, groups.Select(g => g.Length).ToArray(),
+                tex.Any(v => v is not null) ? tex : null);
         }
 
         /// <summary>A worker's tiles: each pixel's camera samples (<see cref="Renderer.SampleTile"/>) traced into its terms.</summary>
@@ -396,9 +628,11 @@ public sealed class LightTransfer
             public void Tile(int x0, int y0, int x1, int y1, ref RayCounters counters)
             {
                 _w.TileCount = 0;
+                _w.TileTexelsUsed = 0;
                 var sink = new TransferSamples(t, _w, ids, lit);
                 Renderer.SampleTile(ref sink, in sampling, x0, y0, x1, y1, cancel, ref counters);
-                t._tiles.Add((_w.TileComp[.._w.TileCount], _w.TilePixel[.._w.TileCount], _w.TileFactor[.._w.TileCount], _w.TileCount));
+                t._tiles.Add((_w.TileComp[.._w.TileCount], _w.TilePixel[.._w.TileCount], _w.TileFactor[.._w.TileCount], _w.TileCount,
+                    _w.TileTexelAt[.._w.TileCount], _w.TileTexels[.._w.TileTexelsUsed]));
             }
         }
 
@@ -411,6 +645,7 @@ public sealed class LightTransfer
             public void BeginPixel(int x, int y, ref RayCounters counters)
             {
                 w.Terms = 0;
+                w.TermTexelsUsed = 0;
                 w.Fallback = false;
                 _mask = 0;
             }
@@ -457,9 +692,23 @@ public sealed class LightTransfer
 
             float Weight => w.Weights[w.ChainLength];
 
-            public void Begin() { }
-            // Textured materials are refused before a transfer is traced (Tracer's constructor).
-            public void Texels(TexturedTerms terms, in TexelTaps taps) { }
+            public void Begin() => w.Textured = false;
+
+            /// <summary>A textured lobe's taps (into the texture's sample levels) for the terms that follow; the centre ray's
+            /// first hit keeps its filtered samples (the highlight mask's Y under new lights).</summary>
+            public void Texels(TexturedTerms terms, in TexelTaps taps)
+            {
+                if (!w.Textured) { w.Diffuse = null; w.Specular = null; w.Textured = true; }
+                int at = 0;
+                if (terms.Lobe == TexturedLobe.Diffuse) { w.Diffuse = terms; w.DiffuseTaps = taps; }
+                else { at = w.Diffuse?.Stride ?? 0; w.Specular = terms; w.SpecularTaps = taps; }
+                if (w.ChainLength == 0 && w.Centre && t._centreTexels is { } centre)
+                {
+                    var into = centre.AsSpan(w.Pixel * t._centreWidth + at, terms.Stride);
+                    into.Clear();
+                    Filter(terms, in taps, 1f, into);
+                }
+            }
 
             public void Background()
             {
@@ -501,9 +750,23 @@ public sealed class LightTransfer
                 throw new UnreachableException("the transfer follows a per-band mirror once per band");
         }
 
+        /// <summary>Σ over the taps of weight × <paramref name="factor"/> × the texel's samples, added into
+        /// <paramref name="into"/>.</summary>
+        static void Filter(TexturedTerms terms, in TexelTaps taps, float factor, Span<float> into)
+        {
+            var data = terms.Data;
+            for (int i = 0; i < taps.Count; i++)
+            {
+                float wgt = factor * taps.Weight[i];
+                var texel = data.AsSpan(taps.At[i], into.Length);
+                for (int j = 0; j < into.Length; j++) into[j] += wgt * texel[j];
+            }
+        }
+
         void AddTerm(Worker w, int light, TransferLobe lobe, int material, float factor)
         {
             if (factor == 0) return;
+            var texels = w.TexelsOf(lobe, out var taps);
             // light + 1 (8 bits), lobe (3), material + 1 (12), chain length (3), then 16 bits per chain element.
             ulong a = (uint)(light + 1) | (ulong)(uint)lobe << 8 | (ulong)(uint)(material + 1) << 11 | (ulong)(uint)w.ChainLength << 23;
             ulong b = 0;
@@ -529,14 +792,36 @@ public sealed class LightTransfer
                 w.Index[key] = index;
             }
             for (int t = 0; t < w.Terms; t++)
-                if (w.TermComps[t] == index) { w.TermFactors[t] += factor; return; }
+                if (w.TermComps[t] == index)
+                {
+                    w.TermFactors[t] += factor;
+                    if (texels is not null) Filter(texels, in taps, factor, w.TermTexels.AsSpan(w.TermTexelAt[t], w.TermTexelCount[t]));
+                    return;
+                }
             if (w.Terms == w.TermComps.Length)
             {
                 Array.Resize(ref w.TermComps, w.Terms * 2);
                 Array.Resize(ref w.TermFactors, w.Terms * 2);
+                Array.Resize(ref w.TermTexelAt, w.Terms * 2);
+                Array.Resize(ref w.TermTexelCount, w.Terms * 2);
             }
             w.TermComps[w.Terms] = index;
-            w.TermFactors[w.Terms++] = factor;
+            w.TermFactors[w.Terms] = factor;
+            w.TermTexelAt[w.Terms] = -1;
+            w.TermTexelCount[w.Terms] = 0;
+            if (texels is not null)
+            {
+                int s = texels.Stride;
+                if (w.TermTexelsUsed + s > w.TermTexels.Length)
+                    Array.Resize(ref w.TermTexels, Math.Max(w.TermTexels.Length * 2, w.TermTexelsUsed + s));
+                var into = w.TermTexels.AsSpan(w.TermTexelsUsed, s);
+                into.Clear();
+                Filter(texels, in taps, factor, into);
+                w.TermTexelAt[w.Terms] = w.TermTexelsUsed;
+                w.TermTexelCount[w.Terms] = s;
+                w.TermTexelsUsed += s;
+            }
+            w.Terms++;
         }
     }
 }

@@ -4,6 +4,9 @@ using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Rendering;
 
+/// <summary>What <see cref="TermTables.Textures"/> holds per texel.</summary>
+public enum TexelContent { Tables, Samples, None }
+
 /// <summary>
 /// The spectral factors of eq. 2, precomputed once per scene: every term is a scalar (geometry) times a light
 /// spectrum times a material spectrum, so its band values are the scalar times the band means of the product
@@ -17,7 +20,10 @@ public sealed class TermTables
 {
     readonly int _materials;
 
-    public TermTables(Scene scene)
+    /// <param name="texels">What the textured materials' texels hold: their per-light tables (a render), their own samples
+    /// (the per-light transfer, <see cref="TexturedTerms.SamplesOf"/>), or nothing (a relight: it forms a textured term from
+    /// the recorded samples, <see cref="TransferComponent.TexelColumns"/>).</param>
+    public TermTables(Scene scene, TexelContent texels = TexelContent.Tables)
     {
         var cm = scene.Colorimeter;
         int bands = scene.Bands, padded = scene.PaddedBands;
@@ -53,7 +59,7 @@ public sealed class TermTables
             (Mirror[m], MirrorColoured[m]) = Weight(materials[m].Mirror, bands, padded);
             (Transmit[m], TransmitColoured[m]) = Weight(materials[m].Transmit, bands, padded);
         }
-        Textures = TextureTables.For(scene);
+        Textures = texels == TexelContent.None ? null : TextureTables.For(scene, texels == TexelContent.Samples);
     }
 
     /// <summary>The textured materials' per-texel tables, or null when no material is textured.</summary>

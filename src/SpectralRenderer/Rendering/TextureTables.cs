@@ -35,7 +35,9 @@ public sealed class TextureTables
     public bool[] Textured { get; }
 
     /// <summary>The tables of <paramref name="scene"/>'s textured materials, or null when it has none.</summary>
-    public static TextureTables? For(Scene scene)
+    /// <param name="samples">Each texel's own samples instead of its per-light tables (<see cref="TexturedTerms.Samples"/>):
+    /// what the per-light transfer records, so that a relight can form the tables of new lights.</param>
+    public static TextureTables? For(Scene scene, bool samples = false)
     {
         if (!scene.Materials.Any(m => m.DiffuseTexture is not null || m.SpecularTexture is not null)) return null;
         var diffuse = new TexturedTerms?[scene.Materials.Count];
@@ -43,12 +45,23 @@ public sealed class TextureTables
         for (int m = 0; m < diffuse.Length; m++)
         {
             var mat = scene.Materials[m];
-            if (mat.DiffuseTexture is { } d) diffuse[m] = TexturedTerms.ForDiffuse(scene, d, ReferenceEquals(mat.Ambient, mat.Diffuse));
+            bool ambient = AmbientIsTexture(mat);
+            if (samples)
+            {
+                if (mat.DiffuseTexture is { } ds) diffuse[m] = TexturedTerms.SamplesOf(ds, TexturedLobe.Diffuse, ambient);
+                if (mat.SpecularTexture is { } ss) specular[m] = TexturedTerms.SamplesOf(ss, TexturedLobe.Specular, false);
+                continue;
+            }
+            if (mat.DiffuseTexture is { } d) diffuse[m] = TexturedTerms.ForDiffuse(scene, d, ambient);
             if (mat.Fluorescence is { HasShift: true } fl && diffuse[m] is { } texels) texels.AddShift(scene, fl);   // the texels are its diagonal
             if (mat.SpecularTexture is { } s) specular[m] = TexturedTerms.ForSpecular(scene, s, mat);
         }
         return new TextureTables(diffuse, specular);
     }
+
+    /// <summary>Is <paramref name="material"/>'s m_amb its diffuse texture (m_amb defaulted to m_diff)?</summary>
+    public static bool AmbientIsTexture(Material material) =>
+        material.DiffuseTexture is not null && ReferenceEquals(material.Ambient, material.Diffuse);
 
     /// <summary>Bytes the tables of <paramref name="scene"/> take (the pre-render memory check): every textured lobe's.</summary>
     public static long Bytes(Scene scene)
@@ -111,6 +124,33 @@ public sealed class TexturedTerms : TexelLevels
         }));
         BuildMips();
     }
+
+    /// <summary>
+    /// A texture's own samples with their mip levels (stride = the texture's sample count, one slot): the same levels and
+    /// the same lookup as its tables, so a tap's texel holds the samples whose products the tables are. Eq. 2's tables are
+    /// linear in the samples, so Σ w·table(texel) = M · Σ w·samples(texel), M the light's (bands + XYZ) × samples matrix
+    /// (<see cref="MatrixOf"/>): what the per-light transfer records per pixel and a relight multiplies by new lights' M.
+    /// </summary>
+    public static TexturedTerms SamplesOf(TextureBinding binding, TexturedLobe lobe, bool ambient) => new(binding, lobe, ambient);
+
+    TexturedTerms(TextureBinding binding, TexturedLobe lobe, bool ambient)
+        : base(binding.Texture.Source, binding.Texture.Width, binding.Texture.Height, binding.Texture.Samples, binding.Transform)
+    {
+        Lobe = lobe;
+        Slots = 1;
+        Ambient = ambient;
+        Samples = true;
+        binding.Texture.Values.CopyTo(Data, 0);   // texel-major, as level 0 is laid out
+        BuildMips();
+    }
+
+    /// <summary>Do the texels hold the texture's samples (<see cref="SamplesOf"/>) rather than per-light tables?</summary>
+    public bool Samples { get; }
+
+    /// <summary>The (bands + XYZ) × samples matrix of <paramref name="light"/> ⊙ the texture's tent functions × factor: a texel's
+    /// table of that light is this matrix times its samples (<see cref="ForDiffuse"/>, <see cref="ForSpecular"/>).</summary>
+    public static double[,] MatrixOf(Scene scene, SpectralTexture texture, float[] light, double factor) =>
+        Matrix(scene, light, Hats(texture), factor);
 
     /// <summary>The diffuse lobe's tables (per slot the (bands + XYZ) × samples matrix of the product with that slot's light);
     /// the ambient slots hold a_glob ⊙ texel and I_amb,k ⊙ texel when <paramref name="ambient"/> (m_amb is the texture).</summary>

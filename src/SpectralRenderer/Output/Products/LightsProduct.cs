@@ -14,10 +14,13 @@ public sealed class LightsProduct : OutputProduct
         else if (c.PathTransfer is not null) PathTransferFiles.Write(c.Scene, c.PathTransfer, c.OutDir, done);
     }
 
-    /// <summary>A path scene's transfer: (K + 1) × F floats per pixel (the Whitted transfer's size is known only once traced).</summary>
+    /// <summary>A path scene's transfer: (K + 1) × F floats per pixel. A Whitted transfer's factors are known only once traced;
+    /// its textured terms' texel samples (S per term and pixel, issue 26) are counted for a first hit.</summary>
     public override IEnumerable<(string Part, long Bytes)> Memory(Scene scene, int threads) => scene.Integrator is { Name: "path" }
         ? [("per-light transfer (path)", Rendering.PathTransfer.Bytes(scene, (long)scene.Camera.Width * scene.Camera.Height))]
-        : [];
+        : Rendering.LightTransfer.TexelBytes(scene) is > 0 and var texels
+            ? [("per-light transfer: texel samples of textured terms", texels)]
+            : [];
 
     /// <summary>Shards of a path render (the only lights a shard writes): the arrays by rows, lights.json the same in each.</summary>
     public override ShardMerging Merging(string file) => file switch
