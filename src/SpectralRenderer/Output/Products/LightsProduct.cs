@@ -14,7 +14,10 @@ public sealed class LightsProduct : OutputProduct
         else if (c.PathTransfer is not null) PathTransferFiles.Write(c.Scene, c.PathTransfer, c.OutDir, done);
     }
 
-    /// <summary>A path scene's transfer: (K + 1) × F floats per pixel (the Whitted transfer's size is known only once traced).</summary>
+    /// <summary>
+    /// A path scene's transfer: (K + 1) × F floats per pixel, and K × R × C with a fluorescent shift (the Whitted transfer's
+    /// size is known only once traced).
+    /// </summary>
     public override IEnumerable<(string Part, long Bytes)> Memory(Scene scene, int threads) => scene.Integrator is { Name: "path" }
         ? [("per-light transfer (path)", Rendering.PathTransfer.Bytes(scene, (long)scene.Camera.Width * scene.Camera.Height))]
         : [];
@@ -23,6 +26,7 @@ public sealed class LightsProduct : OutputProduct
     public override ShardMerging Merging(string file) => file switch
     {
         "lights/" + PathTransferFiles.TransferFile => ShardMerging.PathTransfer,
+        "lights/" + PathTransferFiles.ShiftFile => ShardMerging.PathShift,
         "lights/" + PathTransferFiles.IdsFile => ShardMerging.PathIds,
         "lights/lights.json" => ShardMerging.Copy,
         _ => ShardMerging.None,
