@@ -63,7 +63,7 @@ public sealed class PathTransfer
     {
         var grid = new FineGrid(scene, GridWidth(scene));
         int k = scene.Lights.Count;
-        long block = k > 0 && scene.Integrator is { Name: "path" } ? (long)k * PathIntegrator.ShiftBlockOf(scene, grid).Size : 0;
+        long block = k > 0 ? (long)k * PathIntegrator.ShiftBlockOf(scene, grid).Size : 0;   // a fluorescent scene's B_k
         return 4L * pixels * ((k + 1) * grid.Count + block);
     }
 
