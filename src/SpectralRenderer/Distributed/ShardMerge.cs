@@ -65,6 +65,7 @@ public static class ShardMerge
                     case ShardMerging.NpyCube: MergeNpy(parts, f, target, width, height, bands); break;
                     case ShardMerging.NpyColour: MergeNpy(parts, f, target, width, height, 3); break;
                     case ShardMerging.PathTransfer: MergeNpy(parts, f, target, width, height, PathGroups(parts[0])); break;
+                    case ShardMerging.PathShift: MergeNpy(parts, f, target, width, height, PathShift(parts[0])); break;
                     case ShardMerging.PathIds: MergeNpy(parts, f, target, width, height, 3); break;
                     case ShardMerging.Copy:
                         Directory.CreateDirectory(Path.GetDirectoryName(target)!);   // grids/NAME.csv: a subfolder
@@ -282,6 +283,17 @@ public static class ShardMerge
     }
 
     /// <summary>A path render's transfer per pixel, (K + 1, F), from a shard's lights/lights.json.</summary>
+    /// <summary>A fluorescent path transfer's shift.npy per pixel: [K, R, C] (lights.json's lights and shift block).</summary>
+    static int[] PathShift(Part p)
+    {
+        var path = Path.Combine(p.Dir, LightTransferFiles.Folder, "lights.json");
+        var r = new JsonFields(path, "render the shard again with the lights output");
+        var json = JsonFields.ParseFile(path, "lights.json", r.Hint);
+        var shift = PathTransferFiles.ReadShift(r, json, r.Int(json, "sub_bands", "$", 1, 1 << 20));
+        if (shift.IsEmpty) throw r.Bad("$.shift", "is missing, but the shard wrote lights/shift.npy");
+        return [r.Array(json, "lights", "$").Count, shift.Rows, shift.Columns];
+    }
+
     static int[] PathGroups(Part p)
     {
         var path = Path.Combine(p.Dir, LightTransferFiles.Folder, "lights.json");

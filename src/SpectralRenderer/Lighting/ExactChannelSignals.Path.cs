@@ -30,8 +30,10 @@ public static partial class ExactChannelSignals
             if (PathTransferFiles.IsPath(src.Dir))
             {
                 scene = Relighting.ChangedScene(src, [], null);
-                film = PathFineFilm.FromTransfer(PathTransferFiles.Read(src.Dir, scene), scene);
-                from = "the render's lights/ (its path transfer: L_f = F_f + sum_k T_k,f * E_k,f per pixel, no rays traced)";
+                var transfer = PathTransferFiles.Read(src.Dir, scene);
+                film = PathFineFilm.FromTransfer(transfer, scene);
+                from = "the render's lights/ (its path transfer: L_f = F_f + sum_k T_k,f * E_k,f" +
+                    (transfer.Shift.IsEmpty ? "" : " + sum_k B_k E_k of its fluorescent shift") + " per pixel, no rays traced)";
             }
             else
             {

@@ -149,7 +149,8 @@ public static class Relighting
         RelightMetrics? metricsRecord = null;
         if (metrics) (metricsRecord, metricsCsv) = Metrics(src, scene, transfer.ObjectIds, transfer.Relight(ChangedScene(src, [], null)).Xyz, result.Xyz!);
         return Finish(job, src, scene, changes, white, commandLine, compute, metricsRecord, metricsCsv, reuse?.Names ?? Enumerable.Empty<string>(),
-            "per-light transfer of a path render (lights/transfer.npy): on the fine grid L_f = F_f + sum_k T_k,f * E_k,f with E_k the new " +
+            "per-light transfer of a path render (lights/transfer.npy): on the fine grid L_f = F_f + sum_k T_k,f * E_k,f" +
+                (transfer.Shift.IsEmpty ? "" : " + sum_k B_k E_k (its fluorescent shift, lights/shift.npy)") + " with E_k the new " +
                 "lights' spectra x intensities (emitters and sky F as rendered), reduced to the bands and XYZ as the film is; no rays traced",
             outDir, cancel);
     }

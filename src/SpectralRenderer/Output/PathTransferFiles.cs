@@ -17,15 +17,23 @@ namespace SpectralRenderer.Output;
 /// (W·m⁻²·sr⁻¹·nm⁻¹ of radiance per unit of the light's spectrum × intensity), then the emitters' and the sky's radiance F_f
 /// (W·m⁻²·sr⁻¹·nm⁻¹). The pixel's radiance on the grid is F_f + Σ_k T_k,f · E_k,f; an output band is the mean of its
 /// sub-bands.</item>
+/// <item><c>shift.npy</c> (version 2, a scene with a fluorescent material and scene lights): float32 [H, W, K, R, C]: per
+/// pixel and light k the matrix B_k of its paths through a fluorescent shift, from excitation sub-band Column0 + c to
+/// emission sub-band Row0 + r (lights.json "shift" gives both ranges); the radiance gains Σ_c B_k,r,c · E_k,Column0+c at
+/// sub-band Row0 + r.</item>
 /// <item><c>ids.npy</c>: float32 [H, W, 3]: the object index + 1 the centre ray hit (0 = background), then the lights that
 /// reach its surface point (bit k = light k) as two 16-bit halves, low then high (each exact in a float32).</item>
 /// </list>
-/// Rows of a shard's strip are the whole film's rows, so shards merge by offset.
+/// Rows of a shard's strip are the whole film's rows, so shards merge by offset. <c>"version"</c> is 2 (this layout; 1 or
+/// absent: the same without a shift, as written before fluorescent transfers, and still read).
 /// </summary>
 public static class PathTransferFiles
 {
     public const string Kind = "path";
-    public const string TransferFile = "transfer.npy", IdsFile = "ids.npy";
+    public const string TransferFile = "transfer.npy", IdsFile = "ids.npy", ShiftFile = "shift.npy";
+
+    /// <summary>The layout written (1: before the fluorescent shift block; 2: with it when a scene has one).</summary>
+    public const int Version = 2;
 
     const string Damaged = "lights/lights.json is not as a path render writes it: render the folder again with the lights output";
 
@@ -36,6 +44,12 @@ public static class PathTransferFiles
         int h = t.Region.Height, w = t.Region.Width;
         AtomicFile.Write(Path.Combine(dir, TransferFile), s => NpyWriter.Write(s, [h, w, t.Lights + 1, t.SubBands], t.Data));
         done($"{LightTransferFiles.Folder}/{TransferFile}");
+        if (!t.Shift.IsEmpty)
+        {
+            int[] shape = [h, w, t.Lights, t.Shift.Rows, t.Shift.Columns];
+            AtomicFile.Write(Path.Combine(dir, ShiftFile), s => NpyWriter.Write(s, shape, t.Blocks));
+            done($"{LightTransferFiles.Folder}/{ShiftFile}");
+        }
         var ids = new float[3 * t.ObjectIds.Length];
         for (int i = 0; i < t.ObjectIds.Length; i++)
         {
@@ -61,11 +75,15 @@ public static class PathTransferFiles
             groups.Add((JsonNode)$"light {scene.Lights[k].Name}");
         }
         groups.Add((JsonNode)"emitters and sky");
-        return new JsonObject
+        string shifted = t.Shift.IsEmpty ? "" : ", plus for f in the shift's emission sub-bands sum over lights k and c < C of " +
+            "shift[y, x, k, f - row0, c] * E_k,(column0 + c)";
+        var json = new JsonObject
         {
             ["kind"] = Kind,
-            ["layout"] = "radiance on the fine grid L_f(pixel) = transfer[y, x, K, f] + sum over lights k < K of transfer[y, x, k, f] * E_k,f " +
-                "(E_k: light k's spectrum x intensity, exact sub-band means); band b = mean of its sub-bands; XYZ integrated on the fine grid",
+            ["version"] = Version,
+            ["layout"] = "radiance on the fine grid L_f(pixel) = transfer[y, x, K, f] + sum over lights k < K of " +
+                "transfer[y, x, k, f] * E_k,f" + shifted + " (E_k: light k's spectrum x intensity, exact sub-band means); " +
+                "band b = mean of its sub-bands; XYZ integrated on the fine grid",
             ["width"] = t.FilmWidth,
             ["height"] = t.FilmHeight,
             ["bands"] = t.Bands,
@@ -81,6 +99,37 @@ public static class PathTransferFiles
                     "(bit k = light k reaches that point) as its low and high 16 bits",
             },
         };
+        if (!t.Shift.IsEmpty)
+        {
+            var sh = t.Shift;
+            json["shift"] = new JsonObject
+            {
+                ["emission_sub_bands"] = new JsonArray(sh.Row0, sh.Rows),
+                ["excitation_sub_bands"] = new JsonArray(sh.Column0, sh.Columns),
+                ["emission_nm"] = new JsonArray(grid.Lower[sh.Row0], grid.Upper[sh.Row0 + sh.Rows - 1]),
+                ["excitation_nm"] = new JsonArray(grid.Lower[sh.Column0], grid.Upper[sh.Column0 + sh.Columns - 1]),
+            };
+            json["files"]!["shift"] = "shift.npy: float32 [H, W, K, R, C]: light k's paths through a fluorescent shift, from excitation " +
+                "sub-band column0 + c to emission sub-band row0 + r " +
+                "(shift.emission_sub_bands = [row0, R], excitation_sub_bands = [column0, C])";
+        }
+        return json;
+    }
+
+    /// <summary>The shift block lights.json declares (empty when it has none), checked against <paramref name="subBands"/>.</summary>
+    internal static ShiftSpan ReadShift(JsonFields r, JsonObject json, int subBands)
+    {
+        if (r.OptObject(json, "shift", "$") is not { } shift) return default;
+        int[] Range(string key)
+        {
+            var v = r.Numbers(shift, key, "$.shift", 2, 0, subBands);
+            if (v.Any(x => x != Math.Floor(x)) || v[1] < 1 || v[0] + v[1] > subBands)
+                throw r.Bad($"$.shift.{key}", $"is not [first, count] of the {subBands} sub-bands");
+            return [(int)v[0], (int)v[1]];
+        }
+        var rows = Range("emission_sub_bands");
+        var columns = Range("excitation_sub_bands");
+        return new ShiftSpan(rows[0], rows[1], columns[0], columns[1]);
     }
 
 
@@ -108,6 +157,13 @@ public static class PathTransferFiles
         int sub = r.Int(json, "sub_bands", "$", 1, 1 << 20);
         var grid = new FineGrid(scene, gridWidth);
         if (grid.Count != sub) throw r.Bad("$.sub_bands", $"is {sub}, but the scene's grid of {gridWidth} nm has {grid.Count} sub-bands");
+        int version = r.OptInt(json, "version", "$", 1, int.MaxValue) ?? 1;
+        if (version > Version)
+            throw new InputException($"{jsonPath}: $.version",
+                $"is {version}: a newer spectral wrote these lights/ (this one reads versions 1–{Version})",
+                "relight it with the spectral that rendered it, or render the folder again");
+        var shift = ReadShift(r, json, sub);
+        if (!shift.IsEmpty && k == 0) throw r.Bad("$.shift", "is given, but the transfer has no lights");
 
         float[] Load(string file, int[] expected)
         {
@@ -120,6 +176,7 @@ public static class PathTransferFiles
             return data;
         }
         var data = Load(TransferFile, [height, width, k + 1, sub]);
+        var blocks = shift.IsEmpty ? [] : Load(ShiftFile, [height, width, k, shift.Rows, shift.Columns]);
         var ids = Load(IdsFile, [height, width, 3]);
         var objectIds = new int[width * height];
         var lit = new uint[objectIds.Length];
@@ -145,6 +202,8 @@ public static class PathTransferFiles
             SpectralGrid = gridWidth,
             SubBands = sub,
             Data = data,
+            Shift = shift,
+            Blocks = blocks,
             ObjectIds = objectIds,
             LitMasks = lit,
         };

@@ -52,7 +52,27 @@ sealed class FluorescentShift
             for (int i = 0; i < _n; i++) if (_s[o * _padded + i] != 0) { if (lo < 0) lo = i; hi = i; }
             if (lo >= 0) { _first[o] = lo / width; _end[o] = hi / width + 1; }
         }
+        // The sub-bands it re-emits into (rows with a non-zero entry) and those that excite it (columns with one).
+        int rowStart = _n, rowEnd = 0, columnStart = _n, columnEnd = 0;
+        for (int o = 0; o < _n; o++)
+            for (int i = 0; i < _n; i++)
+            {
+                if (_s[o * _padded + i] == 0) continue;
+                rowStart = Math.Min(rowStart, o); rowEnd = Math.Max(rowEnd, o + 1);
+                columnStart = Math.Min(columnStart, i); columnEnd = Math.Max(columnEnd, i + 1);
+            }
+        Extent = rowEnd > rowStart ? new ShiftSpan(rowStart, rowEnd - rowStart, columnStart, columnEnd - columnStart) : default;
     }
+
+    /// <summary>The emission sub-bands × excitation sub-bands that hold its non-zero entries (the per-light transfer's block).</summary>
+    public ShiftSpan Extent { get; }
+
+    /// <summary>f_s[o, i] (1/sr).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public float At(int o, int i) => _s[o * _padded + i];
+
+    /// <summary>Row o of f_s (padded).</summary>
+    public ReadOnlySpan<float> Row(int o) => _s.AsSpan(o * _padded, _padded);
 
     /// <summary>
     /// A fixed share of the lobe in the lobe choice (beside the smooth lobes' albedo channel value): only for a path whose
@@ -190,4 +210,26 @@ sealed class FluorescentShift
 
     static Span<Vector<float>> V(Span<float> s) => MemoryMarshal.Cast<float, Vector<float>>(s);
     static ReadOnlySpan<Vector<float>> V(ReadOnlySpan<float> s) => MemoryMarshal.Cast<float, Vector<float>>(s);
+}
+
+/// <summary>
+/// A block of the fine grid's sub-bands: emission rows [Row0, Row0 + Rows) × excitation columns [Column0, Column0 + Columns)
+/// — where a scene's fluorescent shifts have non-zero entries (the union's bounding block), so every product of shifted
+/// bounces maps excitation in the columns to emission in the rows. Empty (0 × 0) without a shift.
+/// </summary>
+public readonly record struct ShiftSpan(int Row0, int Rows, int Column0, int Columns)
+{
+    /// <summary>Floats of one block.</summary>
+    public int Size => Rows * Columns;
+    public bool IsEmpty => Rows == 0 || Columns == 0;
+
+    /// <summary>The bounding block of two.</summary>
+    public ShiftSpan Union(ShiftSpan b)
+    {
+        if (IsEmpty) return b;
+        if (b.IsEmpty) return this;
+        int r0 = Math.Min(Row0, b.Row0), r1 = Math.Max(Row0 + Rows, b.Row0 + b.Rows);
+        int c0 = Math.Min(Column0, b.Column0), c1 = Math.Max(Column0 + Columns, b.Column0 + b.Columns);
+        return new ShiftSpan(r0, r1 - r0, c0, c1 - c0);
+    }
 }

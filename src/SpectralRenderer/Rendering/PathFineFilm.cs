@@ -50,29 +50,26 @@ public sealed class PathFineFilm
         return Of(grid, cam.Width, cam.Height, data);
     }
 
-    /// <summary>From a path render's per-light transfer: L_f = F_f + Σ_k T_k,f·E_k,f with the scene's lights (as <see cref="PathTransfer.Relight"/>).</summary>
+    /// <summary>
+    /// From a path render's per-light transfer: L_f = F_f + Σ_k T_k,f·E_k,f (+ its fluorescent shift B_k·E_k) with the scene's
+    /// lights (as <see cref="PathTransfer.Relight"/>).
+    /// </summary>
     public static PathFineFilm FromTransfer(PathTransfer t, Scene scene)
     {
         var grid = new FineGrid(scene, t.SpectralGrid);
-        int sub = t.SubBands, k = t.Lights, w = t.Region.Width, h = t.Region.Height;
-        var e = scene.Lights.Select(l => grid.Resample(l.Intensity)).ToArray();
+        int sub = t.SubBands, w = t.Region.Width, h = t.Region.Height;
+        var e = PathTransfer.LightSpectra(scene, grid);
         var data = new float[(long)w * h * sub];
-        Parallel.For(0, h, y =>
+        Parallel.For(0, h, () => new float[grid.Padded], (y, _, fine) =>
         {
             for (int x = 0; x < w; x++)
             {
                 int i = y * w + x;
-                var px = t.Data.AsSpan(i * (k + 1) * sub, (k + 1) * sub);
-                var fine = data.AsSpan(i * sub, sub);
-                px.Slice(k * sub, sub).CopyTo(fine);
-                for (int l = 0; l < k; l++)
-                {
-                    var tl = px.Slice(l * sub, sub);
-                    var el = e[l];
-                    for (int f = 0; f < sub; f++) fine[f] += tl[f] * el[f];
-                }
+                t.Radiance(i, e, fine);
+                fine.AsSpan(0, sub).CopyTo(data.AsSpan(i * sub, sub));
             }
-        });
+            return fine;
+        }, _ => { });
         return Of(grid, w, h, data);
     }
 

@@ -63,6 +63,7 @@ public sealed partial class PathIntegrator
         if (!(density > 0) || !FluorescentShift.Reflects(wo, wi, ns)) return false;
         float w = Vector3.Dot(front, wi) / density;
         var shift = _shift[material]!;
+        sink.Shift(shift, beta, w);
         var film = sink.Fixed;
         if (shifted == 0) film.CopyTo(Saved(scratch));
         else Fold(film, scratch, shifted);

@@ -200,24 +200,6 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
     /// <summary>The fine grid's sub-bands (the transfer's spectral resolution).</summary>
     internal FineGrid Grid => _grid;
 
-    /// <summary>Does a material of the scene shift light between bands (fluorescence)? Its paths have no per-light band transfer.</summary>
-    public bool Fluoresces => _shift.Any(x => x is not null);
-
-    /// <summary>
-    /// One camera sample split by light (the per-light transfer of a path render): for each scene light k the path
-    /// weights T_k,f (β·f·|cos θ|·w/(P(light)·p)·factor, without the light's spectrum) into <paramref name="groups"/>
-    /// [k·padded, (k+1)·padded), and everything else — emitters and the sky, with their spectra — into the last slot
-    /// [K·padded, (K+1)·padded). The film's walk (the same random numbers, the same decisions, none of
-    /// which look at a light's spectrum), so Σ_k T_k ⊙ E_k + fixed is its fine radiance. <paramref name="groups"/> is cleared.
-    /// </summary>
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    internal int Transfer(in CameraSample sample, Span<float> groups, Span<float> scratch, ref RayCounters counters)
-    {
-        groups.Clear();
-        var sink = new TransferSink(groups, _padded, _lights.Length);
-        return Walk(ref sink, in sample, scratch, ref counters);
-    }
-
     /// <summary>What a path does with the light it finds: a film sums it; the per-light transfer keeps each scene light's apart.</summary>
     interface IPathSink
     {
@@ -229,6 +211,14 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
         void Shifted(int light, FluorescentShift shift, Span<float> beta, ReadOnlySpan<float> radiance, float s);
         /// <summary>Where emitters and the sky go: a path continued through a shifted lobe remaps it (PathIntegrator.Fluorescence.cs).</summary>
         Span<float> Fixed { get; }
+        /// <summary>
+        /// A shifted bounce through <paramref name="shift"/> with factor g = β·<paramref name="w"/>: what the path finds from
+        /// here on reaches the film through A = diag(g)·f_s more (PathIntegrator.Fluorescence.cs; the fixed slot is carried by
+        /// the walk itself).
+        /// </summary>
+        void Shift(FluorescentShift shift, Span<float> beta, float w);
+        /// <summary>The end of a path that took a shifted bounce.</summary>
+        void End();
     }
 
     ref struct FilmSink(Span<float> l) : IPathSink
@@ -240,24 +230,8 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
         public readonly void Shifted(int light, FluorescentShift shift, Span<float> beta, ReadOnlySpan<float> radiance, float s) =>
             shift.AddEmitted(_l, beta, radiance, s);
         public readonly Span<float> Fixed => _l;
-    }
-
-    ref struct TransferSink(Span<float> groups, int padded, int lights) : IPathSink
-    {
-        readonly Span<float> _groups = groups;
-        public readonly void Emitted(Span<float> beta, ReadOnlySpan<float> le, float w) => AddProduct(_groups.Slice(lights * padded, padded), beta, le, w);
-        public readonly void NextEvent(int light, Span<float> beta, Span<float> f, ReadOnlySpan<float> radiance, float s)
-        {
-            if (light < 0) AddProduct3(_groups.Slice(lights * padded, padded), beta, f, radiance, s);
-            else AddProduct2(_groups.Slice(light * padded, padded), beta, f, s);
-        }
-        // A shift mixes the light's bands, so it has no per-band transfer: PathTransfer.Trace refuses such scenes for scene
-        // lights; emitters and the sky (fixed spectra) enter the fixed slot.
-        public readonly void Shifted(int light, FluorescentShift shift, Span<float> beta, ReadOnlySpan<float> radiance, float s)
-        {
-            if (light < 0) shift.AddEmitted(_groups.Slice(lights * padded, padded), beta, radiance, s);
-        }
-        public readonly Span<float> Fixed => _groups.Slice(lights * padded, padded);
+        public readonly void Shift(FluorescentShift shift, Span<float> beta, float w) { }   // the walk carries the film
+        public readonly void End() { }
     }
 
     /// <summary>The path of one camera sample; the light it finds goes to <paramref name="sink"/>. Returns the first object hit.</summary>
@@ -395,7 +369,11 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
             ray = new Ray(p + side * _geometry.Epsilon * ng, wi);
             counters.Secondary++;
         }
-        if (shifted > 0) FinishShifted(sink.Fixed, scratch, shifted);
+        if (shifted > 0)
+        {
+            FinishShifted(sink.Fixed, scratch, shifted);
+            sink.End();
+        }
         return first;
     }
 

@@ -10,11 +10,15 @@ namespace SpectralRenderer.Rendering;
 /// The per-light transfer of a path render. Light transport is linear in each light's emission, and the path integrator
 /// takes no decision from a light's spectrum (lights are chosen uniformly, lobes and Russian roulette by the materials'
 /// throughput, MIS weights from densities), so a pixel's radiance on the fine grid is
-/// L_f = F_f + Σ_k T_k,f · E_k,f, with E_k the scene light k's spectrum × intensity on the grid (its exact sub-band means),
-/// T_k,f the pixel's mean over its samples of the path weights of light k's next-event estimates (β·f·|cos θ|·w/(P·p) ×
-/// d_k·c_spot), and F_f the light of the emitters and the sky (kept with their spectra: not relightable). A relight forms
-/// L_f under new E_k and reduces it to the output bands and XYZ as the film does (<see cref="FineGrid.Reduce"/>), so it
-/// equals a render of the changed scene with the same samples up to float rounding. Stored per pixel: (K + 1) × F floats.
+/// L_f = F_f + Σ_k (T_k,f · E_k,f + Σ_c B_k,f,c · E_k,c), with E_k the scene light k's spectrum × intensity on the grid (its
+/// exact sub-band means), T_k,f the pixel's mean over its samples of the path weights of light k's next-event estimates
+/// (β·f·|cos θ|·w/(P·p) × d_k·c_spot) on paths without a shifted (fluorescent) bounce, F_f the light of the emitters and
+/// the sky (kept with their spectra: not relightable), and B_k the mean of light k's paths through a fluorescent shift:
+/// a matrix from its excitation sub-bands c to the emission sub-bands f, held on the scene's shift block
+/// (<see cref="Shift"/>, rows × columns; none without fluorescence: PathIntegrator.Transfer.cs). A relight forms L_f under
+/// new E_k and reduces it to the output bands and XYZ as the film does (<see cref="FineGrid.Reduce"/>), so it equals a
+/// render of the changed scene with the same samples up to float rounding. Stored per pixel: (K + 1) × F floats, and
+/// K × rows × columns in a fluorescent scene.
 /// </summary>
 [CompiledAtFirstCall]
 public sealed class PathTransfer
@@ -32,6 +36,13 @@ public sealed class PathTransfer
     public required int SubBands { get; init; }
     /// <summary>[pixel of the region (row-major)][group k ≤ K][sub-band f]: T_k,f, and F_f for k = K.</summary>
     public required float[] Data { get; init; }
+    /// <summary>The shift block B_k lives on (emission sub-bands × excitation sub-bands; empty without fluorescence).</summary>
+    public ShiftSpan Shift { get; init; }
+    /// <summary>
+    /// [pixel of the region (row-major)][light k &lt; K][row r][column c]: B_k at sub-bands (Row0 + r, Column0 + c); empty
+    /// without a shift.
+    /// </summary>
+    public float[] Blocks { get; init; } = [];
     /// <summary>Per pixel of the region, the object its centre ray hit (−1: none), as the render's object ids.</summary>
     public required int[] ObjectIds { get; init; }
     /// <summary>Per pixel of the region, the scene lights that reach the centre ray's surface point (bit k = light k), as traced.</summary>
@@ -44,30 +55,43 @@ public sealed class PathTransfer
     /// <summary>The grid width the path integrator uses for <paramref name="scene"/> (its "spectral_grid", 5 nm by default).</summary>
     public static double GridWidth(Scene scene) => scene.Integrator is { Name: "path" } s ? s.SpectralGrid : IntegratorSettings.DefaultSpectralGrid;
 
+    /// <summary>Floats per pixel of the shift blocks: K × rows × columns.</summary>
+    public long BlockPerPixel => (long)Lights * Shift.Size;
+
     /// <summary>Bytes of a transfer of <paramref name="pixels"/> pixels of <paramref name="scene"/> (for the memory estimate).</summary>
-    public static long Bytes(Scene scene, long pixels) =>
-        4L * pixels * (scene.Lights.Count + 1) * new FineGrid(scene, GridWidth(scene)).Count;
+    public static long Bytes(Scene scene, long pixels)
+    {
+        var grid = new FineGrid(scene, GridWidth(scene));
+        int k = scene.Lights.Count;
+        long block = k > 0 ? (long)k * PathIntegrator.ShiftBlockOf(scene, grid).Size : 0;   // a fluorescent scene's B_k
+        return 4L * pixels * ((k + 1) * grid.Count + block);
+    }
 
     /// <summary>Traces the camera samples of <paramref name="region"/> again (the render's samples, bit for bit) recording T and F.</summary>
     public static PathTransfer Trace(Scene scene, PathIntegrator integrator, int threads = 0, CancellationToken cancel = default,
         PixelRect? region = null)
     {
         var cam = scene.Camera;
-        if (integrator.Fluoresces && scene.Lights.Count > 0)
-            throw new InputException("--formats", "a fluorescent material shifts light between bands: a path render's per-light transfer cannot hold it",
-                "leave lights out of --formats for this scene, or render it with the whitted integrator, whose relighting handles fluorescence");
         var rect = region ?? PixelRect.Whole(cam.Width, cam.Height);
         int lights = scene.Lights.Count, sub = integrator.Grid.Count, padded = integrator.Grid.Padded;
+        var shift = lights > 0 ? integrator.ShiftBlock : default;
         long size = (long)rect.Width * rect.Height * (lights + 1) * sub;
         if (size > Array.MaxLength)
             throw new InputException("--formats", $"the path render's per-light transfer needs {size} floats ({rect.Width}×{rect.Height} pixels × {lights + 1} groups × {sub} sub-bands), more than one array holds",
                 "render fewer pixels or lights with the lights output, or a coarser \"spectral_grid\"");
+        long blockSize = (long)rect.Width * rect.Height * lights * shift.Size;
+        if (blockSize > Array.MaxLength)
+            throw new InputException("--formats",
+                $"the path render's per-light transfer of its fluorescent shift needs {blockSize} floats ({rect.Width}×{rect.Height} " +
+                $"pixels × {lights} lights × {shift.Rows} emission × {shift.Columns} excitation sub-bands), more than one array holds",
+                "render fewer pixels or lights with the lights output, or a coarser \"spectral_grid\"");
         var data = new float[size];
+        var blocks = shift.IsEmpty ? [] : new float[blockSize];
         var ids = new int[rect.Width * rect.Height];
         var lit = new uint[ids.Length];
         var sampling = new PixelSampling(cam, scene.RayBudget, analysis: true, integrator.Sampler);
         var (rays, _, _) = Renderer.RunTiles(rect, threads, null, Stopwatch.StartNew(), cancel,
-            () => new TileWork(integrator, sampling, rect, lights, sub, padded, data, ids, lit, cancel));
+            () => new TileWork(integrator, sampling, rect, lights, sub, padded, shift, data, blocks, ids, lit, cancel));
         return new PathTransfer
         {
             FilmWidth = cam.Width,
@@ -78,6 +102,8 @@ public sealed class PathTransfer
             SpectralGrid = GridWidth(scene),
             SubBands = sub,
             Data = data,
+            Shift = shift,
+            Blocks = blocks,
             ObjectIds = ids,
             LitMasks = lit,
             Rays = rays,
@@ -85,15 +111,17 @@ public sealed class PathTransfer
     }
 
     sealed class TileWork(PathIntegrator integrator, PixelSampling sampling, PixelRect rect, int lights, int sub, int padded,
-        float[] data, int[] ids, uint[] lit, CancellationToken cancel) : ITileWork
+        ShiftSpan shift, float[] data, float[] blocks, int[] ids, uint[] lit, CancellationToken cancel) : ITileWork
     {
         readonly float[] _scratch = new float[integrator.ScratchLength];
         readonly float[] _sample = new float[(lights + 1) * padded];
         readonly float[] _sum = new float[(lights + 1) * padded];
+        // A fluorescent scene's shifted paths: the pixel's B_k, summed by the record with each sample's weight.
+        readonly PathIntegrator.ShiftRecord? _record = shift.IsEmpty ? null : new PathIntegrator.ShiftRecord(lights, shift);
         readonly PathIntegrator _integrator = integrator;
         readonly PixelRect _rect = rect;
         readonly int _lights = lights, _sub = sub, _padded = padded;
-        readonly float[] _data = data;
+        readonly float[] _data = data, _blocks = blocks;
         readonly int[] _ids = ids;
         readonly uint[] _lit = lit;
         uint _mask;
@@ -110,13 +138,15 @@ public sealed class PathTransfer
             public readonly void BeginPixel(int x, int y, ref RayCounters counters)
             {
                 w._sum.AsSpan().Clear();
+                if (w._record is { } record) Array.Clear(record.Blocks);
                 w._mask = 0;
             }
 
             [MethodImpl(MethodImplOptions.AggressiveOptimization)]
             public readonly int Sample(in CameraSample sample, float weight, bool centre, ref RayCounters counters)
             {
-                int id = w._integrator.Transfer(in sample, w._sample, w._scratch, ref counters);
+                if (w._record is { } record) record.Weight = weight;
+                int id = w._integrator.Transfer(in sample, w._sample, w._record, w._scratch, ref counters);
                 if (weight != 0) SpectralMath.AddScaled(w._sum, w._sample, weight);
                 if (centre) w._mask = w._integrator.LitMask(in sample);   // as the render's centre ray records it
                 return id;
@@ -129,6 +159,7 @@ public sealed class PathTransfer
                 w._lit[i] = w._mask;
                 for (int g = 0; g <= w._lights; g++)
                     w._sum.AsSpan(g * w._padded, w._sub).CopyTo(w._data.AsSpan((i * (w._lights + 1) + g) * w._sub, w._sub));
+                if (w._record is { } record) record.Blocks.CopyTo(w._blocks.AsSpan(i * record.Blocks.Length, record.Blocks.Length));
             }
         }
     }
@@ -143,25 +174,17 @@ public sealed class PathTransfer
         if (grid.Count != SubBands || scene.Bands != Bands || scene.Lights.Count != Lights)
             throw new InputException("lights/lights.json", $"the transfer has {Lights} lights × {SubBands} sub-bands of {Bands} bands, the scene rebuilds as {scene.Lights.Count} × {grid.Count} of {scene.Bands}",
                 "the scene file changed since the render; render again");
-        int padded = grid.Padded, bands = Bands, sub = SubBands, k = Lights, w = Region.Width;
-        var e = scene.Lights.Select(l => grid.Resample(l.Intensity)).ToArray();
+        int padded = grid.Padded, bands = Bands, w = Region.Width;
+        var e = LightSpectra(scene, grid);
         var image = new SpectralImage(Region.Width, Region.Height, scene.Grid);
         var xyz = new float[3 * Region.Width * Region.Height];
-        var data = Data;
         Parallel.For(0, Region.Height, () => (new float[padded], new float[scene.PaddedBands]), (y, _, buffers) =>
         {
             var (fine, result) = buffers;
             for (int x = 0; x < w; x++)
             {
                 int i = y * w + x;
-                var px = data.AsSpan(i * (k + 1) * sub, (k + 1) * sub);
-                px.Slice(k * sub, sub).CopyTo(fine);
-                for (int l = 0; l < k; l++)
-                {
-                    var t = px.Slice(l * sub, sub);
-                    var el = e[l];
-                    for (int f = 0; f < sub; f++) fine[f] += t[f] * el[f];
-                }
+                Radiance(i, e, fine);
                 grid.Reduce(fine, result);
                 result.AsSpan(0, bands).CopyTo(image.Data.AsSpan(i * bands, bands));
                 xyz[3 * i] = result[bands]; xyz[3 * i + 1] = result[bands + 1]; xyz[3 * i + 2] = result[bands + 2];
@@ -169,5 +192,39 @@ public sealed class PathTransfer
             return buffers;
         }, _ => { });
         return (image, xyz);
+    }
+
+    /// <summary>E_k: each light's spectrum × intensity on the fine grid (exact sub-band means), as the path integrator takes it.</summary>
+    internal static float[][] LightSpectra(Scene scene, FineGrid grid) => scene.Lights.Select(l => grid.Resample(l.Intensity)).ToArray();
+
+    /// <summary>
+    /// Pixel <paramref name="i"/>'s radiance on the fine grid under light spectra <paramref name="e"/> (<see cref="LightSpectra"/>):
+    /// L_f = F_f + Σ_k T_k,f·E_k,f, then + Σ_k Σ_c B_k,f,c·E_k,c on the shift block, into <paramref name="fine"/>[0, F).
+    /// </summary>
+    internal void Radiance(int i, float[][] e, Span<float> fine)
+    {
+        int sub = SubBands, k = Lights;
+        var px = Data.AsSpan(i * (k + 1) * sub, (k + 1) * sub);
+        px.Slice(k * sub, sub).CopyTo(fine);
+        for (int l = 0; l < k; l++)
+        {
+            var t = px.Slice(l * sub, sub);
+            var el = e[l];
+            for (int f = 0; f < sub; f++) fine[f] += t[f] * el[f];
+        }
+        if (Shift.IsEmpty) return;
+        int rows = Shift.Rows, columns = Shift.Columns, size = Shift.Size;
+        for (int l = 0; l < k; l++)
+        {
+            var b = Blocks.AsSpan((int)(((long)i * k + l) * size), size);
+            var ec = e[l].AsSpan(Shift.Column0, columns);
+            for (int r = 0; r < rows; r++)
+            {
+                var br = b.Slice(r * columns, columns);
+                float v = 0;
+                for (int c = 0; c < columns; c++) v += br[c] * ec[c];
+                fine[Shift.Row0 + r] += v;
+            }
+        }
     }
 }

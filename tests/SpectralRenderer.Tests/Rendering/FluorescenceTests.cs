@@ -206,18 +206,6 @@ public sealed class FluorescenceTests(Xunit.Abstractions.ITestOutputHelper outpu
     }
 
     [Fact]
-    public void A_path_render_of_a_fluorescent_scene_refuses_the_per_light_transfer_and_a_plain_one_keeps_it()
-    {
-        // A shift mixes a light's bands, so the diagonal per-light transfer of a path render (relighting) cannot hold it.
-        const string path = "\"radiometry\": \"physical\", \"integrator\": { \"type\": \"path\", \"max_depth\": 1 },";
-        var fluorescent = SceneText.Load(Scene(Fluorescent(WriteMatrix("oba-transfer.csv", ObaPaper())), extra: path));
-        var e = Assert.Throws<InputException>(() => PathTransfer.Trace(fluorescent, new PathIntegrator(fluorescent, new SceneGeometry(fluorescent))));
-        Assert.Contains("fluorescent", e.Message, StringComparison.Ordinal);
-        var plain = SceneText.Load(Scene(Fluorescent(WriteMatrix("diagonal-transfer.csv", Diagonal(ObaPaper()))), extra: path));
-        Assert.Equal(plain.Lights.Count, PathTransfer.Trace(plain, new PathIntegrator(plain, new SceneGeometry(plain))).Lights);
-    }
-
-    [Fact]
     public void The_path_integrator_adds_the_shift_of_direct_light_from_a_delta_light_and_from_a_uniform_sky()
     {
         var d = ObaPaper();

@@ -14,8 +14,9 @@ public sealed class LightsProduct : OutputProduct
         else if (c.PathTransfer is not null) PathTransferFiles.Write(c.Scene, c.PathTransfer, c.OutDir, done);
     }
 
-    /// <summary>A path scene's transfer: (K + 1) × F floats per pixel. A Whitted transfer's factors are known only once traced;
-    /// its textured terms' texel samples (S per term and pixel, issue 26) are counted for a first hit.</summary>
+    /// <summary>A path scene's transfer: (K + 1) × F floats per pixel, and K × R × C with a fluorescent shift. A Whitted
+    /// transfer's factors are known only once traced; its textured terms' texel samples (S per term and pixel, issue 26) are
+    /// counted for a first hit.</summary>
     public override IEnumerable<(string Part, long Bytes)> Memory(Scene scene, int threads) => scene.Integrator is { Name: "path" }
         ? [("per-light transfer (path)", Rendering.PathTransfer.Bytes(scene, (long)scene.Camera.Width * scene.Camera.Height))]
         : Rendering.LightTransfer.TexelBytes(scene) is > 0 and var texels
@@ -26,6 +27,7 @@ public sealed class LightsProduct : OutputProduct
     public override ShardMerging Merging(string file) => file switch
     {
         "lights/" + PathTransferFiles.TransferFile => ShardMerging.PathTransfer,
+        "lights/" + PathTransferFiles.ShiftFile => ShardMerging.PathShift,
         "lights/" + PathTransferFiles.IdsFile => ShardMerging.PathIds,
         "lights/lights.json" => ShardMerging.Copy,
         _ => ShardMerging.None,

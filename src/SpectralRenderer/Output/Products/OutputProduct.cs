@@ -46,6 +46,8 @@ public enum ShardMerging
     NoiseEnviHeader,
     /// <summary>A path render's lights/transfer.npy (H × W × (K + 1) × F), row strips by offset.</summary>
     PathTransfer,
+    /// <summary>A fluorescent path render's lights/shift.npy (H × W × K × R × C), row strips by offset.</summary>
+    PathShift,
     /// <summary>A path render's lights/ids.npy (H × W × 3), row strips by offset.</summary>
     PathIds,
     /// <summary>A false-colour picture and legend of photometry.exr's channels, drawn again from the shards' EXRs assembled.</summary>
