@@ -754,11 +754,10 @@ public sealed class LightTransfer
         /// <paramref name="into"/>.</summary>
         static void Filter(TexturedTerms terms, in TexelTaps taps, float factor, Span<float> into)
         {
-            var data = terms.Data;
             for (int i = 0; i < taps.Count; i++)
             {
                 float wgt = factor * taps.Weight[i];
-                var texel = data.AsSpan(taps.At[i], into.Length);
+                var texel = terms.Tap(in taps, i)[..into.Length];
                 for (int j = 0; j < into.Length; j++) into[j] += wgt * texel[j];
             }
         }

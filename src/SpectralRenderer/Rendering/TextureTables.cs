@@ -140,7 +140,15 @@ public sealed class TexturedTerms : TexelLevels
         Slots = 1;
         Ambient = ambient;
         Samples = true;
-        binding.Texture.Values.CopyTo(Data, 0);   // texel-major, as level 0 is laid out
+        var tex = binding.Texture;
+        int samples = tex.Samples;
+        // Level 0's texels are the texture's samples, streamed a block of rows at a time as the tables are.
+        tex.ForEachBlock((y0, rows, block) =>
+        {
+            for (int r = 0; r < rows; r++)
+                for (int x = 0; x < tex.Width; x++)
+                    block.AsSpan((r * tex.Width + x) * samples, samples).CopyTo(Texel(0, x, y0 + r));
+        });
         BuildMips();
     }
 
