@@ -11,6 +11,8 @@ using SpectralRenderer.Tests.Cli;
 using SpectralRenderer.Tests.Distributed;
 using SpectralRenderer.Tests.Rendering;
 
+using static SpectralRenderer.Tests.Relight.PathRelightTests;
+
 namespace SpectralRenderer.Tests.Relight;
 
 /// <summary>
@@ -70,25 +72,6 @@ public class PathFluorescentRelightTests(Xunit.Abstractions.ITestOutputHelper ou
 
     static string UvCut(string dir) => Path.Combine(dir, "d50-uvcut.csv").Replace("\\", "/") + ":E";
 
-    static string Write(string dir, string name, string json)
-    {
-        var p = Path.Combine(dir, name);
-        File.WriteAllText(p, json);
-        return p;
-    }
-
-    static (int Exit, string Err) Cli(params string[] args)
-    {
-        var (code, _, err) = CliRunner.Run([.. args, "--quiet"]);
-        return (code, err);
-    }
-
-    static float[] Npy(string dir, string file)
-    {
-        using var s = File.OpenRead(Path.Combine(dir, file));
-        return NpyReader.Read(s).Data;
-    }
-
     /// <summary>The largest relative difference of <paramref name="actual"/> from <paramref name="expected"/> (both 0: none).</summary>
     static double WorstRelative(ReadOnlySpan<float> expected, ReadOnlySpan<float> actual)
     {
@@ -109,7 +92,7 @@ public class PathFluorescentRelightTests(Xunit.Abstractions.ITestOutputHelper ou
     {
         var dir = Folder();
         var source = Path.Combine(dir, "source");
-        var (code, err) = Cli("render", Write(dir, "a.json", Room()), "-o", source, "--formats", "npy,lights");
+        var (code, err) = PathRelightTests.Cli("render", Write(dir, "a.json", Room()), "-o", source, "--formats", "npy,lights");
         Assert.True(code == 0, err);
         var json = JsonNode.Parse(File.ReadAllText(Path.Combine(source, "lights", "lights.json")))!;
         Assert.Equal(2, (int)json["version"]!);
@@ -121,7 +104,7 @@ public class PathFluorescentRelightTests(Xunit.Abstractions.ITestOutputHelper ou
 
         // Unchanged lights (the directional light given its own intensity): the render itself.
         var same = Path.Combine(dir, "same");
-        (code, err) = Cli("relight", source, "-o", same, "--intensity", "sun=1");
+        (code, err) = PathRelightTests.Cli("relight", source, "-o", same, "--intensity", "sun=1");
         Assert.True(code == 0, err);
         double bands = WorstRelative(Npy(source, "spectral.npy"), Npy(same, "spectral.npy"));
         double colour = WorstRelative(Npy(source, "xyz.npy"), Npy(same, "xyz.npy"));
@@ -137,10 +120,10 @@ public class PathFluorescentRelightTests(Xunit.Abstractions.ITestOutputHelper ou
         })
         {
             var relit = Path.Combine(dir, $"relit-{++run}");
-            (code, err) = Cli(["relight", source, "-o", relit, .. args]);
+            (code, err) = PathRelightTests.Cli(["relight", source, "-o", relit, .. args]);
             Assert.True(code == 0, err);
             var direct = Path.Combine(dir, $"direct-{run}");
-            (code, err) = Cli("render", Write(dir, $"direct-{run}.json", scene), "-o", direct, "--formats", "npy");
+            (code, err) = PathRelightTests.Cli("render", Write(dir, $"direct-{run}.json", scene), "-o", direct, "--formats", "npy");
             Assert.True(code == 0, err);
             bands = WorstRelative(Npy(direct, "spectral.npy"), Npy(relit, "spectral.npy"));
             colour = WorstRelative(Npy(direct, "xyz.npy"), Npy(relit, "xyz.npy"));
@@ -255,13 +238,13 @@ public class PathFluorescentRelightTests(Xunit.Abstractions.ITestOutputHelper ou
         File.WriteAllText(Path.Combine(dir, "diagonal.csv"), FluorescenceTests.MatrixCsv(Cells, diagonal));
         File.WriteAllText(Path.Combine(dir, "plain.csv"), csv.ToString());
         var matrix = Path.Combine(dir, "matrix");
-        var (code, err) = Cli("render", Write(dir, "m.json", Room(matrix: "diagonal.csv")), "-o", matrix, "--formats", "npy,lights");
+        var (code, err) = PathRelightTests.Cli("render", Write(dir, "m.json", Room(matrix: "diagonal.csv")), "-o", matrix, "--formats", "npy,lights");
         Assert.True(code == 0, err);
         var plainScene = Room().Replace("{ \"type\": \"lambertian\", \"fluorescence\": { \"matrix\": \"oba.csv\" } }",
             $"{{ \"type\": \"lambertian\", \"reflectance\": \"{Path.Combine(dir, "plain.csv").Replace("\\", "/")}:R\" }}");
         Assert.Contains("plain.csv", plainScene);
         var plain = Path.Combine(dir, "plain");
-        (code, err) = Cli("render", Write(dir, "p.json", plainScene), "-o", plain, "--formats", "npy,lights");
+        (code, err) = PathRelightTests.Cli("render", Write(dir, "p.json", plainScene), "-o", plain, "--formats", "npy,lights");
         Assert.True(code == 0, err);
         Assert.False(File.Exists(Path.Combine(matrix, "lights", PathTransferFiles.ShiftFile)));
         foreach (var f in new[] { "spectral.npy", "xyz.npy", "lights/transfer.npy", "lights/ids.npy" })
@@ -291,7 +274,7 @@ public class PathFluorescentRelightTests(Xunit.Abstractions.ITestOutputHelper ou
         Assert.True(code == 0, err);
         ShardMergeTests.AssertSameRender(two, merged);
         foreach (var (from, to) in new[] { (two, "relit-two"), (merged, "relit-merged") })
-            Assert.Equal(0, Cli("relight", from, "-o", Path.Combine(dir, to), "--light", $"lamp={UvCut(dir)}").Exit);
+            Assert.Equal(0, PathRelightTests.Cli("relight", from, "-o", Path.Combine(dir, to), "--light", $"lamp={UvCut(dir)}").Exit);
         Assert.Equal(File.ReadAllBytes(Path.Combine(dir, "relit-two", "spectral.npy")),
             File.ReadAllBytes(Path.Combine(dir, "relit-merged", "spectral.npy")));
         // The viewer of such a folder shows its cube (a path render has no eq. 2 components for its sliders).
@@ -317,7 +300,7 @@ public class PathFluorescentRelightTests(Xunit.Abstractions.ITestOutputHelper ou
         Assert.Equal(4L * 24 * 16 * (3 * 96 + 2 * 18 * 12), part.Bytes);
         // And the written block is that size.
         var source = Path.Combine(dir, "cut");
-        Assert.Equal(0, Cli("render", Write(dir, "cut.json", json), "-o", source, "--formats", "npy,lights").Exit);
+        Assert.Equal(0, PathRelightTests.Cli("render", Write(dir, "cut.json", json), "-o", source, "--formats", "npy,lights").Exit);
         using var s = File.OpenRead(Path.Combine(source, "lights", PathTransferFiles.ShiftFile));
         Assert.Equal([16, 24, 2, 18, 12], NpyReader.Read(s).Shape);
     }
@@ -327,34 +310,34 @@ public class PathFluorescentRelightTests(Xunit.Abstractions.ITestOutputHelper ou
     {
         var dir = Folder();
         var source = Path.Combine(dir, "source");
-        Assert.Equal(0, Cli("render", Write(dir, "a.json", Room()), "-o", source, "--formats", "npy,lights").Exit);
+        Assert.Equal(0, PathRelightTests.Cli("render", Write(dir, "a.json", Room()), "-o", source, "--formats", "npy,lights").Exit);
         var lightsJson = Path.Combine(source, "lights", "lights.json");
         var json = JsonNode.Parse(File.ReadAllText(lightsJson))!.AsObject();
 
         // A plain scene's lights/ as written before the block (no version key, no shift): relit as before.
         var plainDir = Path.Combine(dir, "plain");
         var plainScene = Room().Replace("\"fluorescence\": { \"matrix\": \"oba.csv\" }", "\"reflectance\": 0.85");
-        Assert.Equal(0, Cli("render", Write(dir, "p.json", plainScene), "-o", plainDir, "--formats", "npy,lights").Exit);
+        Assert.Equal(0, PathRelightTests.Cli("render", Write(dir, "p.json", plainScene), "-o", plainDir, "--formats", "npy,lights").Exit);
         var plainJson = Path.Combine(plainDir, "lights", "lights.json");
         var v2 = Path.Combine(dir, "plain-v2");
-        Assert.Equal(0, Cli("relight", plainDir, "-o", v2, "--light", "lamp=A").Exit);
+        Assert.Equal(0, PathRelightTests.Cli("relight", plainDir, "-o", v2, "--light", "lamp=A").Exit);
         var old = JsonNode.Parse(File.ReadAllText(plainJson))!.AsObject();
         Assert.Null(old["shift"]);
         old.Remove("version");
         File.WriteAllText(plainJson, old.ToJsonString());
         var v1 = Path.Combine(dir, "plain-v1");
-        Assert.Equal(0, Cli("relight", plainDir, "-o", v1, "--light", "lamp=A").Exit);
+        Assert.Equal(0, PathRelightTests.Cli("relight", plainDir, "-o", v1, "--light", "lamp=A").Exit);
         Assert.Equal(File.ReadAllBytes(Path.Combine(v2, "spectral.npy")), File.ReadAllBytes(Path.Combine(v1, "spectral.npy")));
 
         json["version"] = 3;
         File.WriteAllText(lightsJson, json.ToJsonString());
-        var (code, err) = Cli("relight", source, "-o", Path.Combine(dir, "r1"), "--light", "lamp=A");
+        var (code, err) = PathRelightTests.Cli("relight", source, "-o", Path.Combine(dir, "r1"), "--light", "lamp=A");
         Assert.Equal(2, code);
         Assert.Contains("newer", err);
         json["version"] = 2;
         File.WriteAllText(lightsJson, json.ToJsonString());
         File.Delete(Path.Combine(source, "lights", PathTransferFiles.ShiftFile));
-        (code, err) = Cli("relight", source, "-o", Path.Combine(dir, "r2"), "--light", "lamp=A");
+        (code, err) = PathRelightTests.Cli("relight", source, "-o", Path.Combine(dir, "r2"), "--light", "lamp=A");
         Assert.Equal(2, code);
         Assert.Contains(PathTransferFiles.ShiftFile, err);
     }

@@ -38,20 +38,20 @@ public class PathRelightTests(Xunit.Abstractions.ITestOutputHelper output)
 
     static string Num(double v) => v.ToString(CultureInfo.InvariantCulture);
 
-    static string Write(string dir, string name, string json)
+    internal static string Write(string dir, string name, string json)
     {
         var p = Path.Combine(dir, name);
         File.WriteAllText(p, json);
         return p;
     }
 
-    static (int Exit, string Err) Cli(params string[] args)
+    internal static (int Exit, string Err) Cli(params string[] args)
     {
         var (code, _, err) = CliRunner.Run([.. args, "--quiet"]);
         return (code, err);
     }
 
-    static float[] Npy(string dir, string file)
+    internal static float[] Npy(string dir, string file)
     {
         using var s = File.OpenRead(Path.Combine(dir, file));
         return NpyReader.Read(s).Data;
