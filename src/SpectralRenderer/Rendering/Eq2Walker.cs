@@ -54,9 +54,14 @@ internal interface IWalkSink : ITermSink
     void LeavePerBand(Material m, int material, float cosI, bool outside, ref RayCounters counters);
 }
 
-/// <summary>Where the lights of eq. 2 stand from a shading point: a ray's own query, or a packet lane's precomputed results.</summary>
+/// <summary>A shading point as eq. 2's local step sees it: its normal and view direction (on the viewer's side) and where
+/// the lights stand from it; a ray's own query, or a packet lane's precomputed results.</summary>
 internal interface ILightQuery
 {
+    /// <summary>The shading normal n (asked only where a specular lobe needs it).</summary>
+    Vector3 Normal { get; }
+    /// <summary>The direction v towards the viewer (asked only where a specular lobe needs it).</summary>
+    Vector3 View { get; }
     /// <summary>Light k's direction, distance, c_spot and d_k, and n·l; false when it cannot reach the point at all.</summary>
     bool Reach(int k, out LightSample sample, out float nl);
     /// <summary>Is light k unshadowed (asked only where n·l &gt; 0)?</summary>
@@ -134,8 +139,8 @@ internal sealed class Eq2Walker
         var p = hit.Position;
         var pAbove = p + _geometry.Epsilon * ng;
         if (_textures is { } textures && textures.Textured[mi]) LookUpTexels(ref sink, textures, mi, in hit, ng, v);
-        var lights = new RayLights(_lights, _geometry, p, pAbove, n);
-        Shade(ref sink, ref lights, mi, m, n, v, ref counters);
+        var lights = new RayLights(_lights, _geometry, p, pAbove, n, v);
+        Shade(ref sink, ref lights, mi, m, ref counters);
 
         if (depth >= _maxDepth || !(m.HasMirror || m.HasTransmission)) return hit.Object;
         // Bounded work: a camera ray's tree ends where its budget is spent (the renderer counts those rays).
@@ -178,11 +183,9 @@ internal sealed class Eq2Walker
         }
     }
 
-    /// <summary>Eq. 2's local terms at a shading point (normal n and view direction v on the viewer's side), lights from
-    /// <paramref name="lights"/>.</summary>
+    /// <summary>Eq. 2's local terms at the shading point of <paramref name="lights"/> (its normal, view direction and lights).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    public void Shade<TSink, TLights>(ref TSink sink, ref TLights lights, int mi, Material m, Vector3 n, Vector3 v,
-        ref RayCounters counters)
+    public void Shade<TSink, TLights>(ref TSink sink, ref TLights lights, int mi, Material m, ref RayCounters counters)
         where TSink : ITermSink, allows ref struct
         where TLights : ILightQuery, allows ref struct
     {
@@ -196,7 +199,7 @@ internal sealed class Eq2Walker
             if (nl <= 0 || !lights.Visible(k, in ls, ref counters)) continue;
             float d = ls.Attenuation * ls.Spot;
             // Physical: the specular lobe is a BRDF, so it is weighted by cos θ_i like the diffuse one (paper: eq. 2 as written).
-            float s = m.HasSpecular ? m.SpecularFactor(n, ls.Direction, v, nl) * (_physical ? nl : 1f) : 0;
+            float s = m.HasSpecular ? m.SpecularFactor(lights.Normal, ls.Direction, lights.View, nl) * (_physical ? nl : 1f) : 0;
             sink.Direct(k, mi, term, d, nl, s, m.HasSpecular);
         }
     }
@@ -270,8 +273,11 @@ internal sealed class Eq2Walker
     }
 
     /// <summary>A ray's own lights: <see cref="Light.Illuminate"/> at P, and a shadow ray from above the surface (counted).</summary>
-    readonly struct RayLights(Light[] lights, SceneGeometry geometry, Vector3 p, Vector3 pAbove, Vector3 n) : ILightQuery
+    readonly struct RayLights(Light[] lights, SceneGeometry geometry, Vector3 p, Vector3 pAbove, Vector3 n, Vector3 v) : ILightQuery
     {
+        public Vector3 Normal => n;
+        public Vector3 View => v;
+
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
         public bool Reach(int k, out LightSample sample, out float nl)
         {

@@ -1,3 +1,4 @@
+using System.Diagnostics;
 using System.Numerics;
 using System.Runtime.CompilerServices;
 using System.Runtime.InteropServices;
@@ -33,7 +34,6 @@ public sealed partial class WhittedIntegrator
         bool listed = 1 + 2 * _lights.Length <= TermsPerLane;
         // Constant sizes: a stackalloc of a size known only at run time is a probing loop on every packet.
         Span<SpectralTerm> terms = stackalloc SpectralTerm[RayPacket.Size * TermsPerLane];
-        Span<int> termCount = stackalloc int[RayPacket.Size];
         uint found = _geometry.Intersect(ref packet, ref hits);
         float eps = _geometry.Epsilon;
         if (found != 0)
@@ -71,7 +71,6 @@ public sealed partial class WhittedIntegrator
                 continue;
             }
             if (!listed) result.Clear();
-            termCount[lane] = 0;
             material[lane] = mi;
             shaded |= 1u << lane;
         }
@@ -107,7 +106,7 @@ public sealed partial class WhittedIntegrator
             lk.Lit = shadows.Active & ~_geometry.Occluded(ref shadows);
             lk.DirectionX = shadows.DirectionX; lk.DirectionY = shadows.DirectionY; lk.DirectionZ = shadows.DirectionZ;
         }
-        ShadeLanes(ref packet, in at, shaded, material, lanes, listed, terms, termCount, results, infos, ref counters);
+        ShadeLanes(ref packet, in at, shaded, material, lanes, listed, terms, results, infos, ref counters);
     }
 
     /// <summary>Each shaded lane's eq. 2 by the walker's local step from the lights' lane results, then its listed terms summed
@@ -116,22 +115,22 @@ public sealed partial class WhittedIntegrator
     /// left span conversions as calls in the lane loop.</summary>
     [MethodImpl(MethodImplOptions.NoInlining | MethodImplOptions.AggressiveOptimization)]
     void ShadeLanes(ref RayPacket packet, in ShadingLanes at, uint shaded, ReadOnlySpan<int> material, ReadOnlySpan<LightLanes> lanes,
-        bool listed, Span<SpectralTerm> terms, Span<int> termCount, Span<float> results, Span<PixelInfo> infos, ref RayCounters counters)
+        bool listed, Span<SpectralTerm> terms, Span<float> results, Span<PixelInfo> infos, ref RayCounters counters)
     {
-        // One sink and one light query for the packet, moved from lane to lane.
-        var laneSink = new LaneSink(this, listed, terms, termCount, results, infos);
-        var laneLights = new LaneLights(lanes);
+        // One sink and one light query for the packet, moved from lane to lane (scoped: both hold this call's lane data, so the
+        // walker may be handed the two together).
+        scoped var laneSink = new LaneSink(this, listed, terms, results, infos);
+        scoped var laneLights = new LaneLights(lanes, ref packet, in at);
         ReadOnlySpan<float> flat = Flat;
         for (uint all = shaded; all != 0; all &= all - 1)
         {
             int lane = BitOperations.TrailingZeroCount(all);
             int mi = material[lane];
-            laneSink.Lane = lane;
+            laneSink.Start(lane);
             laneLights.Lane = lane;
-            var v = -new Vector3(packet.DirectionX[lane], packet.DirectionY[lane], packet.DirectionZ[lane]);
-            _walker.Shade(ref laneSink, ref laneLights, mi, _materials[mi], at.Normal(lane), v, ref counters);
+            _walker.Shade(ref laneSink, ref laneLights, mi, _materials[mi], ref counters);
             if (listed)
-                SpectralMath.SumTerms(results.Slice(lane * _padded, _padded), flat, terms.Slice(lane * TermsPerLane, termCount[lane]));
+                SpectralMath.SumTerms(results.Slice(lane * _padded, _padded), flat, terms.Slice(lane * TermsPerLane, laneSink.Count));
         }
     }
 
@@ -157,12 +156,18 @@ public sealed partial class WhittedIntegrator
         public uint Reached, Lit;
     }
 
-    /// <summary>A packet lane's lights for the walker's local step: the lanes' precomputed results, shadow rays already traced.</summary>
-    ref struct LaneLights(ReadOnlySpan<LightLanes> lanes) : ILightQuery
+    /// <summary>A packet lane's shading point for the walker's local step: its normal and view direction read from the packet's
+    /// lanes when asked, its lights from their precomputed lane results (shadow rays already traced).</summary>
+    ref struct LaneLights(ReadOnlySpan<LightLanes> lanes, ref RayPacket packet, in ShadingLanes at) : ILightQuery
     {
         readonly ReadOnlySpan<LightLanes> _lanes = lanes;
+        readonly ref RayPacket _packet = ref packet;
+        readonly ref readonly ShadingLanes _at = ref at;
         /// <summary>The lane asked about.</summary>
         public int Lane;
+
+        public readonly Vector3 Normal => _at.Normal(Lane);
+        public readonly Vector3 View => -new Vector3(_packet.DirectionX[Lane], _packet.DirectionY[Lane], _packet.DirectionZ[Lane]);
 
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
         public readonly bool Reach(int k, out LightSample sample, out float nl)
@@ -187,28 +192,42 @@ public sealed partial class WhittedIntegrator
         readonly WhittedIntegrator _owner;
         readonly bool _listed;
         readonly Span<SpectralTerm> _terms;
-        readonly Span<int> _termCount;
         readonly Span<float> _results;
         readonly Span<PixelInfo> _infos;
-        /// <summary>The lane whose terms follow.</summary>
-        public int Lane;
+        // The lane's own list and analysis record, found once per lane (Start).
+        ref SpectralTerm _list;
+        ref PixelInfo _info;
+        int _lane;
+        /// <summary>The terms listed for the lane so far.</summary>
+        public int Count;
 
-        public LaneSink(WhittedIntegrator owner, bool listed, Span<SpectralTerm> terms, Span<int> termCount, Span<float> results,
-            Span<PixelInfo> infos)
+        public LaneSink(WhittedIntegrator owner, bool listed, Span<SpectralTerm> terms, Span<float> results, Span<PixelInfo> infos)
         {
-            _owner = owner; _listed = listed; _terms = terms; _termCount = termCount; _results = results; _infos = infos;
+            _owner = owner; _listed = listed; _terms = terms; _results = results; _infos = infos;
+            _list = ref Unsafe.NullRef<SpectralTerm>();
+            _info = ref Unsafe.NullRef<PixelInfo>();
         }
 
-        public readonly void GlobalAmbient(int material) => Add(new SpectralTerm(_owner._globalAmbientAt[material], 1f));
-        public readonly void Ambient(int light, int material, int term, float spot) => Add(new SpectralTerm(_owner._ambientAt[term], spot));
+        /// <summary>The terms that follow are lane <paramref name="lane"/>'s.</summary>
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        public void Start(int lane)
+        {
+            _lane = lane;
+            Count = 0;
+            _info = ref _infos[lane];
+            if (_listed) _list = ref _terms.Slice(lane * TermsPerLane, TermsPerLane)[0];
+        }
+
+        public void GlobalAmbient(int material) => Add(new SpectralTerm(_owner._globalAmbientAt[material], 1f));
+        public void Ambient(int light, int material, int term, float spot) => Add(new SpectralTerm(_owner._ambientAt[term], spot));
 
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
-        public readonly void Direct(int light, int material, int term, float d, float nl, float s, bool specular)
+        public void Direct(int light, int material, int term, float d, float nl, float s, bool specular)
         {
             ref readonly var pair = ref _owner._direct[term];
             if (specular) Add(new SpectralTerm(pair.DiffuseAt, d * nl, pair.SpecularAt, d * s));
             else Add(new SpectralTerm(pair.DiffuseAt, d * nl));
-            ref var info = ref _infos[Lane];
+            ref var info = ref _info;
             if (light < 32) info.LitMask |= 1u << light;
             info.DiffuseY += d * nl * pair.DiffuseY;   // the Y colour lane
             info.SpecularY += d * s * pair.SpecularY;
@@ -216,11 +235,17 @@ public sealed partial class WhittedIntegrator
 
         /// <summary>A term of eq. 2 for the lane: listed for the one-pass sum, or added to the lane's spectrum now.</summary>
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
-        readonly void Add(SpectralTerm term)
+        void Add(SpectralTerm term)
         {
-            if (_listed) { _terms[Lane * TermsPerLane + _termCount[Lane]++] = term; return; }
+            if (_listed)
+            {
+                // At most 1 + 2 × lights ≤ TermsPerLane terms (listed only then): within the lane's list.
+                Debug.Assert(Count < TermsPerLane);
+                Unsafe.Add(ref _list, Count++) = term;
+                return;
+            }
             int padded = _owner._padded;
-            var result = _results.Slice(Lane * padded, padded);
+            var result = _results.Slice(_lane * padded, padded);
             var a = _owner.Flat.Slice(term.A, padded);
             if (term.B < 0) SpectralMath.AddScaled(result, a, term.S);
             else SpectralMath.AddScaled2(result, a, term.S, _owner.Flat.Slice(term.B, padded), term.T);

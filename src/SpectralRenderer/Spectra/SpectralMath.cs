@@ -82,6 +82,7 @@ public static class SpectralMath
         var d = V(dst);
         if (terms.IsEmpty) { dst.Clear(); return; }
         int n = d.Length;
+        if (n <= SmallVectors) { SumTermsSmall(dst, tables, terms); return; }
         for (int j = 0; j < terms.Length; j++)
         {
             var term = terms[j];
@@ -101,6 +102,52 @@ public static class SpectralMath
                 else for (int i = 0; i < n; i++) d[i] += va[i] * vs + vb[i] * vt;
             }
         }
+    }
+
+    /// <summary>Spectra of at most this many SIMD vectors (the paper's 20 bands and its colour lanes: 3 of 8 floats) are summed
+    /// in registers by <see cref="SumTermsSmall"/>.</summary>
+    const int SmallVectors = 4;
+
+    /// <summary>
+    /// <see cref="SumTerms"/> for a spectrum of at most <see cref="SmallVectors"/> vectors: each vector's sum stays in a register
+    /// from term to term and is stored once (the same additions in the same order, so the same bits). The terms' offsets are
+    /// checked against the tables once, before the unchecked loads.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.NoInlining | MethodImplOptions.AggressiveOptimization)]
+    static void SumTermsSmall(Span<float> dst, ReadOnlySpan<float> tables, ReadOnlySpan<SpectralTerm> terms)
+    {
+        int w = Vector<float>.Count, n = dst.Length / w, last = tables.Length - dst.Length;
+        foreach (ref readonly var term in terms)
+            if ((uint)term.A > (uint)last || (term.B >= 0 && term.B > last)) throw new ArgumentOutOfRangeException(nameof(terms));
+        ref float t = ref MemoryMarshal.GetReference(tables);
+        // The first term lands on +0 (0 + (−0) = +0), as on a cleared spectrum.
+        Vector<float> s0 = Vector<float>.Zero, s1 = Vector<float>.Zero, s2 = Vector<float>.Zero, s3 = Vector<float>.Zero;
+        foreach (ref readonly var term in terms)
+        {
+            ref float a = ref Unsafe.Add(ref t, term.A);
+            var vs = new Vector<float>(term.S);
+            if (term.B < 0)
+            {
+                s0 += Vector.LoadUnsafe(ref a) * vs;
+                if (n > 1) s1 += Vector.LoadUnsafe(ref a, (nuint)w) * vs;
+                if (n > 2) s2 += Vector.LoadUnsafe(ref a, (nuint)(2 * w)) * vs;
+                if (n > 3) s3 += Vector.LoadUnsafe(ref a, (nuint)(3 * w)) * vs;
+            }
+            else
+            {
+                ref float b = ref Unsafe.Add(ref t, term.B);
+                var vt = new Vector<float>(term.T);
+                s0 += Vector.LoadUnsafe(ref a) * vs + Vector.LoadUnsafe(ref b) * vt;
+                if (n > 1) s1 += Vector.LoadUnsafe(ref a, (nuint)w) * vs + Vector.LoadUnsafe(ref b, (nuint)w) * vt;
+                if (n > 2) s2 += Vector.LoadUnsafe(ref a, (nuint)(2 * w)) * vs + Vector.LoadUnsafe(ref b, (nuint)(2 * w)) * vt;
+                if (n > 3) s3 += Vector.LoadUnsafe(ref a, (nuint)(3 * w)) * vs + Vector.LoadUnsafe(ref b, (nuint)(3 * w)) * vt;
+            }
+        }
+        ref float d = ref MemoryMarshal.GetReference(dst);
+        s0.StoreUnsafe(ref d);
+        if (n > 1) s1.StoreUnsafe(ref d, (nuint)w);
+        if (n > 2) s2.StoreUnsafe(ref d, (nuint)(2 * w));
+        if (n > 3) s3.StoreUnsafe(ref d, (nuint)(3 * w));
     }
 
     /// <summary>dst = 0 + a · s: band for band what <see cref="Clear"/> and then <see cref="AddScaled"/> leave (0 + (−0) = +0), in one pass.</summary>

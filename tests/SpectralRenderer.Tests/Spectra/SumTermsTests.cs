@@ -4,13 +4,17 @@ namespace SpectralRenderer.Tests.Spectra;
 
 /// <summary>
 /// SpectralMath.SumTerms (the packet path's one-pass sum of a lane's eq. 2 terms) against what the single-ray path does
-/// with the same terms: Clear, then AddScaled / AddScaled2 in order — bit for bit, for 20 and 401 bands, with −0 and
+/// with the same terms: Clear, then AddScaled / AddScaled2 in order — bit for bit, for 1 to 401 bands, with −0 and
 /// negative factors, single and paired terms, and no term at all.
 /// </summary>
 public class SumTermsTests
 {
     [Theory]
+    [InlineData(1)]     // spectra of 1, 2, 3 and 4 SIMD vectors (8-float vectors: 1, 13, 20, 29 bands + 3 colour lanes) are
+    [InlineData(13)]    // summed in registers, longer ones in memory: each of those paths against the reference
     [InlineData(20)]
+    [InlineData(29)]
+    [InlineData(30)]
     [InlineData(401)]
     public void Summing_the_listed_terms_is_clearing_and_adding_them_in_order_bit_for_bit(int bands)
     {
