@@ -1,4 +1,3 @@
-using System.Diagnostics;
 using System.Numerics;
 using System.Runtime.CompilerServices;
 using System.Runtime.InteropServices;
@@ -239,8 +238,8 @@ public sealed partial class WhittedIntegrator
         {
             if (_listed)
             {
-                // At most 1 + 2 × lights ≤ TermsPerLane terms (listed only then): within the lane's list.
-                Debug.Assert(Count < TermsPerLane);
+                // At most 1 + 2 × lights ≤ TermsPerLane terms (listed only then); checked, as the write below is not.
+                if ((uint)Count >= TermsPerLane) throw new InvalidOperationException("more eq. 2 terms than a lane's list holds");
                 Unsafe.Add(ref _list, Count++) = term;
                 return;
             }

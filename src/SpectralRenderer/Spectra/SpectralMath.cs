@@ -117,6 +117,7 @@ public static class SpectralMath
     static void SumTermsSmall(Span<float> dst, ReadOnlySpan<float> tables, ReadOnlySpan<SpectralTerm> terms)
     {
         int w = Vector<float>.Count, n = dst.Length / w, last = tables.Length - dst.Length;
+        if (last < 0) throw new ArgumentOutOfRangeException(nameof(tables));   // no spectrum fits in the tables
         foreach (ref readonly var term in terms)
             if ((uint)term.A > (uint)last || (term.B >= 0 && term.B > last)) throw new ArgumentOutOfRangeException(nameof(terms));
         ref float t = ref MemoryMarshal.GetReference(tables);

@@ -60,5 +60,7 @@ public class SumTermsTests
         Assert.Throws<ArgumentOutOfRangeException>(() => SpectralMath.SumTerms(dst, flat, [new SpectralTerm(2 * padded + 1, 1f)]));
         Assert.Throws<ArgumentOutOfRangeException>(() => SpectralMath.SumTerms(dst, flat, [new SpectralTerm(0, 1f, 2 * padded + 1, 1f)]));
         Assert.Throws<ArgumentOutOfRangeException>(() => SpectralMath.SumTerms(dst, flat, [new SpectralTerm(-1, 1f)]));
+        // Tables shorter than one spectrum: no offset fits.
+        Assert.Throws<ArgumentOutOfRangeException>(() => SpectralMath.SumTerms(dst, new float[padded - 1], [new SpectralTerm(0, 1f)]));
     }
 }
