@@ -8,7 +8,8 @@ namespace SpectralRenderer.Geometry;
 /// density of the mapping (uv units per world length, the square root of uv area over world area) that sets the
 /// mip level of a lookup. Quad: u = x + ½, v = y + ½ over [−½, ½]². Sphere: u = ½ + atan2(x, z)/2π (longitude),
 /// v = 1 − acos(y)/π (0 at the south pole). Box: each face holds the whole [0, 1]² (the face's own right and up
-/// axes, seen from outside). Plane: u = x, v = −z in object space (repeats with the texture's wrap).
+/// axes, seen from outside). Plane: u = x, v = −z in object space (repeats with the texture's wrap). A registered kind
+/// (disk, cylinder, …): its <see cref="CanonicalShape.TexCoord"/>, at the density of its uv area over its world area.
 /// </summary>
 public static class TextureCoordinates
 {
@@ -36,6 +37,12 @@ public static class TextureCoordinates
                     float area = 4 * MathF.PI * (ax.Length() * ay.Length() + ay.Length() * az.Length() + az.Length() * ax.Length()) / 3;
                     uvPerLength = Density(area);
                     return new Vector2(0.5f + MathF.Atan2(d.X, d.Z) / (2 * MathF.PI), 1 - MathF.Acos(Math.Clamp(d.Y, -1f, 1f)) / MathF.PI);
+                }
+            case ShapeKind.Registered:
+                {
+                    var canonical = shape.Canonical!;
+                    uvPerLength = shape.Area > 0 ? MathF.Sqrt(canonical.TexCoordArea / shape.Area) : 0;
+                    return canonical.TexCoord(o);
                 }
             default:
                 {

@@ -10,7 +10,9 @@ namespace SpectralRenderer.Rendering;
 /// An object whose material emits (<see cref="Emission"/>), as a light the path tracer samples: a point x on its surface
 /// with its outward normal n_x, drawn by solid angle where that is exact (a round sphere seen from outside: the cone it
 /// subtends, uniform) and else uniformly by area (parallelograms of a quad or box, triangles of a mesh by area, a sphere
-/// from inside), with the solid-angle density p_ω = p_A·d²/|n_x·ω| of an area draw (Veach 1997, eq. 8.10).
+/// from inside), with the solid-angle density p_ω = p_A·d²/|n_x·ω| of an area draw (Veach 1997, eq. 8.10). A registered
+/// shape kind (disk, cylinder, one added by a registration) is drawn by its own area sampling
+/// (<see cref="AnalyticShape.SampleArea"/>, uniform in object space, p_A from the placement's area scale).
 /// </summary>
 [CompiledAtFirstCall]
 internal sealed class AreaEmitter
@@ -27,7 +29,7 @@ internal sealed class AreaEmitter
     readonly AnalyticShape? _shape;
     readonly Vector2[]? _meshUvs;
 
-    enum Kind { Sphere, Parallelograms, Triangles }
+    enum Kind { Sphere, Parallelograms, Triangles, Shape }
 
     public AreaEmitter(SceneObject o, float[] radiance, bool twoSided, string where, FineTexture? texture = null)
     {
@@ -91,6 +93,10 @@ internal sealed class AreaEmitter
                     (_corner, _edge1, _edge2, _normal) = Faces(shape, faces);
                     break;
                 }
+            case ShapeKind.Registered:
+                _kind = Kind.Shape;
+                _area = shape.Area;
+                return;
             default:
                 throw new InputException(where, $"object '{o.Name}' is an infinite plane and cannot emit (no finite area to sample)",
                     "use a quad or a box as the area light, or the scene's \"background\" as a uniform sky");
@@ -167,6 +173,11 @@ internal sealed class AreaEmitter
             x = _centre + _radius * nx;
             return AreaToSolidAngle(p, x, nx, 1 / _area, out pdf);
         }
+        if (_kind == Kind.Shape)
+        {
+            x = _shape!.SampleArea(u, out nx, out float pdfArea);
+            return AreaToSolidAngle(p, x, nx, pdfArea, out pdf);
+        }
         // Pick a parallelogram or triangle by area with u.X, reuse its rescaled remainder.
         float target = u.X * _area;
         int i = Array.BinarySearch(_cumulative, target);
@@ -199,7 +210,8 @@ internal sealed class AreaEmitter
                 return 1 / (2 * MathF.PI * (sin2Max / (1 + cosMax)));
             }
         }
-        return AreaToSolidAngle(p, x, nx, 1 / _area, out float pdf) ? pdf : 0;
+        float pdfArea = _kind == Kind.Shape ? _shape!.AreaPdf(nx) : 1 / _area;
+        return AreaToSolidAngle(p, x, nx, pdfArea, out float pdf) ? pdf : 0;
     }
 
     /// <summary>

@@ -110,7 +110,8 @@ public sealed partial class SceneLoader
 
     /// <summary>
     /// The area (m²) of an object's surface as the path tracer's emitter samples it: a sphere 4πr², a quad |m·x × m·y|
-    /// of its unit square, a box its six faces, a mesh Σ ½|e₁ × e₂| over its triangles; an infinite plane 0.
+    /// of its unit square, a box its six faces, a registered kind its own (disk, cylinder), a mesh Σ ½|e₁ × e₂| over its
+    /// triangles; an infinite plane 0.
     /// </summary>
     static double SurfaceArea(SceneObject o)
     {
@@ -135,6 +136,7 @@ public sealed partial class SceneLoader
             Geometry.ShapeKind.Sphere => 4 * Math.PI * X.LengthSquared(),
             Geometry.ShapeKind.Quad => Face(X, Y),
             Geometry.ShapeKind.Box => 2 * (Face(X, Y) + Face(Y, Z) + Face(Z, X)),
+            Geometry.ShapeKind.Registered => shape.Area,
             _ => 0,
         };
     }

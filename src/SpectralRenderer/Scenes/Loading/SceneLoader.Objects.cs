@@ -17,9 +17,24 @@ public sealed partial class SceneLoader
     {
         Object(e, path);
         var type = String(Required(e, "type", path), $"{path}.type").ToLowerInvariant();
-        if (Array.IndexOf(ObjectTypes, type) < 0)
-            throw Error($"{path}.type", $"unknown object type '{type}'", InputException.DidYouMean(type, ObjectTypes) ?? $"types: {string.Join(", ", ObjectTypes)}");
+        var registered = ShapeTypes.ByName;
+        if (Array.IndexOf(ObjectTypes, type) < 0 && !registered.ContainsKey(type))
+        {
+            string[] types = [.. ObjectTypes, .. registered.Keys.Order(StringComparer.Ordinal)];
+            throw Error($"{path}.type", $"unknown object type '{type}'",
+                InputException.DidYouMean(type, types) ?? $"types: {string.Join(", ", types)}");
+        }
         string[] common = ["type", "name", "material", "transform"];
+        if (registered.TryGetValue(type, out var shapeType))
+        {
+            Keys(e, path, [.. common, .. shapeType.Keys]);
+            var shapeName = TryGet(e, "name", out var sn) ? String(sn, $"{path}.name") : $"{type}-{index}";
+            var transform = TryGet(e, "transform", out var st) ? Transform(st, $"{path}.transform") : Matrix4x4.Identity;
+            int shapeMaterial = MaterialOf(e, path, materials, materialIndex);
+            var placed = shapeType.Place(new ShapeSource(this, e, path)) * transform;
+            objects.Add(new SceneObject { Name = shapeName, Material = shapeMaterial, Shape = new AnalyticShape(shapeType.Shape, placed) });
+            return;
+        }
         string[] specific = type switch
         {
             "sphere" => ["center", "radius"],
@@ -88,6 +103,38 @@ public sealed partial class SceneLoader
                 }
         }
         objects.Add(new SceneObject { Name = name, Material = material, Shape = new AnalyticShape(kind, local * user) });
+    }
+
+    /// <summary>A registered shape type's object as its <see cref="ShapeType.Place"/> reads it: its keys, checked, with errors
+    /// at their JSON path.</summary>
+    public sealed class ShapeSource
+    {
+        readonly SceneLoader _loader;
+        readonly JsonElement _e;
+        readonly string _path;
+
+        internal ShapeSource(SceneLoader loader, JsonElement e, string path) { _loader = loader; _e = e; _path = path; }
+
+        public bool Has(string key) => TryGet(_e, key, out _);
+        /// <summary>A point [x, y, z] (scene units), or <paramref name="fallback"/> when absent.</summary>
+        public Vector3 Point(string key, Vector3 fallback) => _loader.Vec3(_e, key, _path, fallback);
+        /// <summary>A translation to the point <paramref name="key"/> (the origin when absent).</summary>
+        public Matrix4x4 Translation(string key) => Matrix4x4.CreateTranslation(Point(key, Vector3.Zero));
+        /// <summary>A length of at least <see cref="MinSize"/>, 1 when absent.</summary>
+        public float Size(string key, double fallback = 1) => (float)_loader.Number(_e, key, _path, fallback, MinSize, MaxCoordinate);
+        /// <summary>A number in [min, max], <paramref name="fallback"/> when absent.</summary>
+        public double Number(string key, double fallback, double min, double max) => _loader.Number(_e, key, _path, fallback, min, max);
+        /// <summary>The rotation taking +z to the direction <paramref name="normalKey"/> (default +z) and +y towards
+        /// <paramref name="upKey"/> (default +y), as a quad's "normal" and "up".</summary>
+        public Matrix4x4 Frame(string normalKey, string upKey)
+        {
+            var normal = TryGet(_e, normalKey, out var n) ? _loader.Direction(n, $"{_path}.{normalKey}") : Vector3.UnitZ;
+            var up = TryGet(_e, upKey, out var u) ? _loader.Direction(u, $"{_path}.{upKey}") : Vector3.UnitY;
+            return _loader.Basis(normal, up, axisIsY: false, path: $"{_path}.{upKey}");
+        }
+        /// <summary>The rotation taking +z to unit <paramref name="normal"/> and +y towards <paramref name="up"/>.</summary>
+        public Matrix4x4 Frame(Vector3 normal, Vector3 up) => _loader.Basis(normal, up, axisIsY: false, path: _path);
+        public InputException Error(string key, string what, string hint) => _loader.Error($"{_path}.{key}", what, hint);
     }
 
     static bool Within(Vector3 p) => Math.Abs(p.X) <= MaxCoordinate && Math.Abs(p.Y) <= MaxCoordinate && Math.Abs(p.Z) <= MaxCoordinate;
