@@ -213,7 +213,7 @@ def with_object(o, label, pat, exit=2, setup=None):
 
 for label, o, pat in [
     ("obj-no-type", {"radius": 1, "material": "green"}, r"missing required field 'type'"),
-    ("obj-type-bad", {"type": "cylinder", "material": "green"}, r"unknown object type 'cylinder'"),
+    ("obj-type-bad", {"type": "cone", "material": "green"}, r"unknown object type 'cone'"),
     ("obj-no-material", {"type": "sphere"}, r"missing required field 'material'"),
     ("obj-material-unknown", {"type": "sphere", "material": "gren"}, r"did you mean 'green'"),
     ("sphere-radius-zero", {"type": "sphere", "radius": 0, "material": "green"}, r"out of range"),
