@@ -143,15 +143,7 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
         for (int k = 0; k < Math.Min(_lights.Length, 32); k++)
         {
             if (!_lights[k].Sample(p, new Vector2(0.5f, 0.5f), out var inc) || !(inc.Factor > 0) || Vector3.Dot(front, inc.Direction) <= 0) continue;
-            var origin = p + (Vector3.Dot(ng, inc.Direction) >= 0 ? 1 : -1) * _geometry.Epsilon * ng;
-            var shadow = new Ray(origin, inc.Direction);
-            if (!float.IsInfinity(inc.Distance))
-            {
-                var towards = p + inc.Distance * inc.Direction - origin;
-                float length = towards.Length();
-                shadow = new Ray(origin, towards / length, length - 2 * _geometry.Epsilon);
-            }
-            if (!_geometry.Occluded(shadow)) mask |= 1u << k;
+            if (!_geometry.Occluded(ShadowRay(p, ng, inc.Direction, inc.Distance))) mask |= 1u << k;
         }
         return mask;
     }
@@ -422,17 +414,8 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
         var bsdf = vertex.Material.Bsdf;
         float cos = MathF.Abs(Vector3.Dot(ns, wi));
         Evaluate(bsdf, in vertex.Texels, vertex.Wo, wi, ns, f);
-        float side = Vector3.Dot(ng, wi) >= 0 ? 1 : -1;
-        var origin = p + side * _geometry.Epsilon * ng;
-        var shadow = new Ray(origin, wi);
-        if (!float.IsInfinity(distance))
-        {   // aimed from the offset origin at the light's point itself: a ray grazing a sphere light would otherwise meet it early
-            var towards = p + distance * wi - origin;
-            float length = towards.Length();
-            shadow = new Ray(origin, towards / length, length - 2 * _geometry.Epsilon);
-        }
         counters.Shadow++;
-        if (_geometry.OccludedScattered(shadow)) return;
+        if (_geometry.OccludedScattered(ShadowRay(p, ng, wi, distance))) return;
         float w = delta ? 1 : PowerHeuristic(_pick * pdf, smoothProbability * bsdf.Pdf(vertex.Wo, wi, ns));
         sink.NextEvent(k < _lights.Length ? k : -1, beta, f, radiance, factor * cos * w / (_pick * pdf));
         // A fluorescent surface's shifted lobe: light sources excite it through this sample alone, weight 1 (a shifted bounce
@@ -440,6 +423,23 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
         // PathIntegrator.Fluorescence.cs).
         if (vertex.Material.Shift is { } shift && FluorescentShift.Reflects(vertex.Wo, wi, ns))
             sink.Shifted(k < _lights.Length ? k : -1, shift, beta, radiance, factor * cos / (_pick * pdf));
+    }
+
+    /// <summary>
+    /// The path's shadow ray from <paramref name="p"/> (geometric normal <paramref name="ng"/>) along <paramref name="wi"/> to
+    /// a light's point <paramref name="distance"/> away (∞: a direction): it leaves from p offset by ε along ±n_g on ωi's side,
+    /// aimed from there at the light's point itself (a ray grazing a sphere light would otherwise meet it early), and ends
+    /// 2ε short of it.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    Ray ShadowRay(Vector3 p, Vector3 ng, Vector3 wi, float distance)
+    {
+        float side = Vector3.Dot(ng, wi) >= 0 ? 1 : -1;
+        var origin = p + side * _geometry.Epsilon * ng;
+        if (float.IsInfinity(distance)) return new Ray(origin, wi);
+        var towards = p + distance * wi - origin;
+        float length = towards.Length();
+        return new Ray(origin, towards / length, length - 2 * _geometry.Epsilon);
     }
 
     /// <summary>The sky's sampling density: cosine-weighted about the front shading normal.</summary>
