@@ -1,4 +1,3 @@
-using System.Numerics;
 using System.Runtime.CompilerServices;
 using SpectralRenderer.Geometry;
 
@@ -7,10 +6,11 @@ namespace SpectralRenderer.Rendering;
 /// <summary>
 /// Dispersion in the path tracer: a refracting material whose index varies over the bands (Cauchy or Sellmeier,
 /// <see cref="Scenes.RefractiveIndex"/>) bends every wavelength its own way, so one direction cannot serve all bands. At
-/// the first vertex of such a material the path splits deterministically into one sub-path per output band: sub-path b
-/// carries β on band b's sub-bands only (the others 0) and from there on follows its own Fresnel reflection and refraction
-/// with band b's index at its centre wavelength (the index the scene gives that band, as the Whitted integrator uses it),
-/// at this and at every later vertex. The bands together are the whole path's estimate (β is their sum), each band
+/// the first vertex of such a material the path splits deterministically into one sub-path per output band: sub-path b is
+/// the same walk (PathIntegrator.cs) carrying β on band b's sub-bands only (the others 0), and from there on follows its
+/// own Fresnel reflection and refraction with band b's index at its centre wavelength (the index the scene gives that band,
+/// as the Whitted integrator uses it), at this and at every later vertex; its next-event estimation, lobe choice, textures,
+/// fluorescent lobes and Russian roulette are the walk's. The bands together are the whole path's estimate (β is their sum), each band
 /// weighted by its own Fresnel factors, so there is no wavelength sampling and no chromatic noise.
 /// Per output band, not per sub-band of the fine grid: the output keeps one index per band (docs/scene-format.md), and a
 /// sub-path costs a whole path's spectral work, so splitting per sub-band would cost <see cref="FineGrid.PerBand"/> times
@@ -18,135 +18,105 @@ namespace SpectralRenderer.Rendering;
 /// Random numbers: every sub-path starts from a copy of the path's <see cref="Sampler"/> at the split, so all bands draw the
 /// same dimensions (common random numbers: their noise is correlated, hence colourless) and the picture depends on the
 /// camera sample only — the same for any thread count or shard. A path that meets no dispersive vertex draws exactly as
-/// before. A dispersive material without transmission (a Fresnel mirror) needs no split: its direction is the same in
-/// every band and <see cref="Scenes.Bsdf.SampleMirror"/> weights each band by its own F.
+/// before.
+/// A dispersive material without transmission (a Fresnel mirror) needs no split: its direction is the same in every band
+/// and <see cref="Scenes.Bsdf.SampleMirror"/> weights each band by its own F.
+/// Fluorescence: a sub-path's shifted bounce sets β to 1 in every band (the light beyond it is at the excitation
+/// wavelengths), so the sub-path carries every band again; at a later dispersive vertex it does not split a second time
+/// (that would multiply its cost by the bands again) but goes on with one output band b drawn with probability
+/// P_b ∝ Σ_b β·c (c: what each band carries to the film through the shifted bounce) and β_b/P_b (<see cref="Narrow"/>):
+/// unbiased, the one place a wavelength is sampled. The shifted bounces'
+/// state (PathIntegrator.Fluorescence.cs) is the split's for every sub-path: a sub-path's own shifted bounces carry what it
+/// found to the saved film when it ends, and the next band starts again from the split's level (IPathSink.Rejoin).
 /// </summary>
 public sealed partial class PathIntegrator
 {
-    readonly bool[] _dispersive;   // per material: a transmitting material with a dispersive index
+    /// <summary>A band's β after a dispersive split, in the scratch after the walk's five spectra.</summary>
+    Span<float> BandBeta(Span<float> scratch) => scratch.Slice(5 * _padded, _padded);
+
+    /// <summary>Has the scene a dispersive and a fluorescent material (the split's β and the shifted paths' scratch apart)?</summary>
+    readonly bool _splitsShifts;
 
     /// <summary>
     /// Splits the path at <paramref name="hit"/> (reached along <paramref name="ray"/> at <paramref name="depth"/>, its
-    /// emission already counted) into one sub-path per output band that β reaches, each walked by <see cref="WalkBand"/>.
+    /// emission already counted) into one sub-path per output band that β reaches, each the walk of that band's sub-bands.
     /// </summary>
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    void Disperse<TSink>(ref TSink sink, in SurfaceHit hit, Ray ray, int depth, Span<float> beta, Sampler sampler, Span<float> scratch,
-        ref RayCounters counters) where TSink : IPathSink, allows ref struct
+    [MethodImpl(MethodImplOptions.NoInlining)]   // a dispersive vertex only: kept out of the walk (its frame)
+    void Disperse<TSink>(ref TSink sink, scoped in SurfaceHit hit, Ray ray, int depth, Span<float> beta, Sampler sampler,
+        ref ShiftState shifts, Span<float> scratch, ref RayCounters counters) where TSink : IPathSink, allows ref struct
     {
-        int n = _padded, width = _grid.PerBand;
-        var bandBeta = scratch.Slice(5 * n, n);
+        int width = _grid.PerBand;
+        var bandBeta = BandBeta(scratch);
+        bool keepExplicit = shifts.Level > ShiftLevels;   // M = A_1 ⋯ A_k is the split's: a sub-path chains onto it
+        if (keepExplicit) Explicit(scratch).CopyTo(ExplicitAtSplit(scratch));
+        sink.Branch();
         for (int lo = 0; lo < _grid.Count; lo += width)
         {
             var part = beta.Slice(lo, width);
             if (!part.ContainsAnyExcept(0f)) continue;   // nothing of this band left to carry
             bandBeta.Clear();
             part.CopyTo(bandBeta.Slice(lo, width));
-            WalkBand(ref sink, lo, hit, ray, depth, bandBeta, sampler, scratch, ref counters);
+            var sub = shifts;
+            Walk(ref sink, ray, depth, in hit, lo, bandBeta, sampler, ref sub, scratch, ref counters);
+            shifts.Saved = sub.Saved;
+            if (sub.Level > shifts.Level)
+            {   // saved film += A_1⋯A_j·X_j of its last shifted bounce j; the film (X of the split's level) starts empty again
+                var film = sink.Fixed;
+                Fold(film, scratch, sub.Level);
+                film.Clear();
+                sink.Rejoin();
+                if (keepExplicit) ExplicitAtSplit(scratch).CopyTo(Explicit(scratch));
+            }
         }
     }
 
     /// <summary>
-    /// One band's sub-path from the vertex <paramref name="hit"/> on: the walk of <see cref="Walk"/> (next-event estimation,
-    /// lobe choice, MIS, Russian roulette, the same draws) with the delta lobes at sub-band <paramref name="band"/>'s index
-    /// (any sub-band of the output band: they share its index).
+    /// A dispersive vertex met by a sub-path that carries every band again (after <paramref name="level"/> ≥ 1 shifted
+    /// bounces): output band b with probability P_b = Σ_b β·c/Σ β·c for <paramref name="u"/>, where c_i = Σ_o A[o, i] is
+    /// how much of sub-band i reaches the film through the last shifted bounce's A = diag(g)·f_s (past ShiftLevels, through
+    /// M = A_1⋯A_k), then β ← β_b/P_b on its sub-bands and 0 elsewhere. A band of c = 0 carries nothing to the film, so
+    /// leaving it out stays unbiased. Returns b's first sub-band, or −1 when β carries nothing to the film.
     /// </summary>
-    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    void WalkBand<TSink>(ref TSink sink, int band, SurfaceHit hit, Ray ray, int depth, Span<float> beta, Sampler sampler, Span<float> scratch,
-        ref RayCounters counters) where TSink : IPathSink, allows ref struct
+    [MethodImpl(MethodImplOptions.NoInlining)]   // a fluorescent and dispersive scene only
+    int Narrow(Span<float> beta, float u, int level, Span<float> scratch)
     {
-        int n = _padded;
-        var f = scratch.Slice(2 * n, n);
-        var mirror = scratch.Slice(3 * n, n);
-        var transmit = scratch.Slice(4 * n, n);
-        float pick = _lightCount > 0 ? 1f / _lightCount : 0;
-        for (; ; )
+        var c = Work(scratch, 0);
+        c.Clear();
+        if (level <= ShiftLevels)
         {
-            var wo = -ray.Direction;
-            var p = hit.Position;
-            var ng = hit.GeometricNormal;
-            int m = _objectMaterial[hit.Object];
-            var bsdf = _bsdf[m];
-            var ns = hit.Normal;
-            var front = Vector3.Dot(ns, wo) >= 0 ? ns : -ns;
-            float smoothShare = _smooth[m] ? _smoothChannel[m] : 0;
-            float mirrorShare = 0, transmitShare = 0;
-            Vector3 wiMirror = default, wiTransmit = default;
-            if (_delta[m])
-            {
-                mirrorShare = bsdf.SampleMirror(wo, ns, band, mirror, out wiMirror) ? _grid.Luminance(mirror) : 0;
-                transmitShare = bsdf.SampleTransmission(wo, ns, band, transmit, out wiTransmit) ? _grid.Luminance(transmit) : 0;
-            }
-            float total = smoothShare + mirrorShare + transmitShare;
-            float smoothProbability = total > 0 ? smoothShare / total : 0;
-
-            // The five dimensions of a vertex, as Walk reserves them.
-            int dLight = sampler.Reserve1D(), dPoint = sampler.Reserve2D(), dLobe = sampler.Reserve1D(), dDirection = sampler.Reserve2D();
-            int dRoulette = sampler.Reserve1D();
-            if (_smooth[m] && _lightCount > 0)
-            {
-                float uLight = _lightCount > 1 ? sampler.At1D(dLight) : 0;
-                var uPoint = sampler.At2D(dPoint);
-                NextEvent(ref sink, bsdf, default, _shift[m], p, ng, ns, front, wo, uLight, new Vector2(uPoint.U, uPoint.V), pick, smoothProbability, beta, f, ref counters);
-            }
-
-            if (!(total > 0)) return;
-            Vector3 wi;
-            bool deltaBounce;
-            float bsdfPdf = 0;
-            float x = smoothShare == total ? 0 : sampler.At1D(dLobe) * total;
-            if (x < smoothShare)
-            {
-                var u = sampler.At2D(dDirection);
-                if (!bsdf.Sample(wo, ns, new Vector2(u.U, u.V), f, out var bs)) return;
-                wi = bs.Wi;
-                bsdfPdf = bs.Pdf * smoothProbability;
-                Multiply(beta, f, MathF.Abs(Vector3.Dot(ns, wi)) / bsdfPdf);
-                deltaBounce = false;
-            }
-            else if (x < smoothShare + mirrorShare)
-            {
-                wi = wiMirror;
-                Multiply(beta, mirror, total / mirrorShare);
-                deltaBounce = true;
-            }
-            else
-            {
-                wi = wiTransmit;
-                Multiply(beta, transmit, total / transmitShare);
-                deltaBounce = true;
-            }
-
-            if (depth + 1 >= _rrDepth)
-            {
-                float q = MathF.Min(0.95f, Max(beta));
-                if (!(q > 0) || sampler.At1D(dRoulette) >= q) return;
-                Scale(beta, 1 / q);
-            }
-            float side = Vector3.Dot(ng, wi) >= 0 ? 1 : -1;
-            ray = new Ray(p + side * _geometry.Epsilon * ng, wi);
-            counters.Secondary++;
-            depth++;
-
-            var traced = ray;
-            if (!_geometry.IntersectScattered(ref traced, out hit))
-            {
-                if (_sky is not null) sink.Emitted(beta, _sky, deltaBounce ? 1 : PowerHeuristic(bsdfPdf, pick * SkyPdf(front, ray.Direction)));
-                return;
-            }
-            int mh = _objectMaterial[hit.Object];
-            var ngh = hit.GeometricNormal;
-            if (_emission[mh] is { } le && (_twoSided[mh] || Vector3.Dot(ngh, -ray.Direction) > 0))
-            {
-                float w = 1;
-                if (!deltaBounce)
-                {
-                    int e = _emitterOf[hit.Object];
-                    w = PowerHeuristic(bsdfPdf, e >= 0 ? pick * _emitters[e].Pdf(p, hit.Position, ngh) : 0);
-                }
-                sink.Emitted(beta, le, w);
-            }
-            if (_maxDepth >= 0 && depth >= _maxDepth) return;
-            if (counters.BudgetSpent) { counters.OverBudget = true; return; }
+            var shift = _materials[(int)Materials(scratch)[level - 1]].Shift!;
+            var g = Factor(scratch, level);
+            for (int o = shift.Extent.Row0; o < shift.Extent.Row0 + shift.Extent.Rows; o++)
+                if (g[o] != 0) AddScaled(c, shift.Row(o), g[o]);
         }
+        else
+        {
+            var m = Explicit(scratch);
+            for (int o = 0; o < _grid.Count; o++) AddScaled(c, m.Slice(o * _padded, _padded), 1);
+        }
+        int width = _grid.PerBand, chosen = -1;
+        float total = Dot(beta, c), share = 0;
+        if (!(total > 0) || !float.IsFinite(total)) return -1;
+        float x = u * total;
+        for (int lo = 0; lo < _grid.Count; lo += width)
+        {
+            float s = 0;
+            for (int i = lo; i < lo + width; i++) s += beta[i] * c[i];
+            if (!(s > 0)) continue;
+            chosen = lo;   // the last band that carries any: the choice if rounding leaves x beyond every band
+            share = s;
+            if (x < s) break;
+            x -= s;
+        }
+        if (chosen < 0) return -1;
+        float scale = total / share;
+        for (int i = 0; i < beta.Length; i++) beta[i] = i >= chosen && i < chosen + width ? beta[i] * scale : 0;
+        return chosen;
+    }
+
+    /// <summary>dst += x·a (padded spectra).</summary>
+    static void AddScaled(Span<float> dst, ReadOnlySpan<float> x, float a)
+    {
+        for (int i = 0; i < dst.Length; i++) dst[i] += x[i] * a;
     }
 }

@@ -34,43 +34,65 @@ public sealed partial class PathIntegrator
     internal const int ShiftLevels = 16;
 
     /// <summary>
-    /// Scratch for shifted paths (only in a fluorescent scene), after the walk's five spectra: the saved film, two work spectra,
-    /// the materials of the bounces (ShiftLevels floats), their factors g_k (ShiftLevels spectra), and M (sub-bands × padded).
+    /// A path's shifted bounces: how many so far (<see cref="Level"/>), whether the saved film holds light yet
+    /// (<see cref="Saved"/>), and <see cref="Gain"/>, a bound of their amplification towards the film (1 without them).
     /// </summary>
-    int ShiftScratch => Fluoresces ? (3 + ShiftLevels + _grid.Count) * _padded + ShiftLevels : 0;
-
-    Span<float> Saved(Span<float> scratch) => scratch.Slice(5 * _padded, _padded);
-    Span<float> Work(Span<float> scratch, int k) => scratch.Slice((6 + k) * _padded, _padded);
-    Span<float> Materials(Span<float> scratch) => scratch.Slice(8 * _padded, ShiftLevels);
-    Span<float> Factor(Span<float> scratch, int k) => scratch.Slice(8 * _padded + ShiftLevels + (k - 1) * _padded, _padded);
-    Span<float> Explicit(Span<float> scratch) => scratch.Slice((8 + ShiftLevels) * _padded + ShiftLevels, _grid.Count * _padded);
+    struct ShiftState(float gain)
+    {
+        public int Level;
+        public bool Saved;
+        public float Gain = gain;
+    }
 
     /// <summary>
-    /// The continuation through material <paramref name="material"/>'s shifted lobe, chosen with probability
-    /// <paramref name="probability"/>: ωi cosine-weighted about <paramref name="front"/>; the light collected since the last
-    /// shifted bounce carried to the saved film; this bounce's factor g = β·w kept; β reset to 1 and <paramref name="gain"/>
-    /// (a bound of the transform's amplification, which Russian roulette multiplies into β's largest band) times ‖diag(g)·f_s‖∞.
+    /// Scratch for shifted paths (only in a fluorescent scene), after the walk's five spectra (and a split's β when the scene
+    /// also disperses): the saved film, two work spectra, the materials of the bounces (ShiftLevels floats), their factors
+    /// g_k (ShiftLevels spectra), M (sub-bands × padded), and with dispersion M at a split (the same).
+    /// </summary>
+    int ShiftScratch => _fluoresces ? (3 + ShiftLevels + (_splitsShifts ? 2 : 1) * _grid.Count) * _padded + ShiftLevels : 0;
+
+    /// <summary>Does a material of the scene shift light between bands (fluorescence)?</summary>
+    readonly bool _fluoresces;
+
+    /// <summary>Where the shifted paths' scratch starts: after a dispersive split's β when the scene has both.</summary>
+    int ShiftBase => (_splitsShifts ? 6 : 5) * _padded;
+
+    Span<float> Saved(Span<float> scratch) => scratch.Slice(ShiftBase, _padded);
+    Span<float> Work(Span<float> scratch, int k) => scratch.Slice(ShiftBase + (1 + k) * _padded, _padded);
+    Span<float> Materials(Span<float> scratch) => scratch.Slice(ShiftBase + 3 * _padded, ShiftLevels);
+    Span<float> Factor(Span<float> scratch, int k) => scratch.Slice(ShiftBase + (2 + k) * _padded + ShiftLevels, _padded);
+    Span<float> Explicit(Span<float> scratch) =>
+        scratch.Slice(ShiftBase + (3 + ShiftLevels) * _padded + ShiftLevels, _grid.Count * _padded);
+    Span<float> ExplicitAtSplit(Span<float> scratch) =>
+        scratch.Slice(ShiftBase + (3 + ShiftLevels + _grid.Count) * _padded + ShiftLevels, _grid.Count * _padded);
+
+    /// <summary>
+    /// The continuation through <paramref name="vertex"/>'s shifted lobe, chosen with probability
+    /// <paramref name="probability"/>: ωi cosine-weighted about its front normal; the light collected since the last
+    /// shifted bounce carried to the saved film; this bounce's factor g = β·w kept; β reset to 1 and the gain of
+    /// <paramref name="shifts"/> (a bound of the transform's amplification, which Russian roulette multiplies into β's
+    /// largest band) times ‖diag(g)·f_s‖∞.
     /// <paramref name="pdf"/> is 0: sources reached next are next-event estimation's. False when ωi leaves the lobe's hemisphere.
     /// </summary>
     [MethodImpl(MethodImplOptions.NoInlining)]   // a fluorescent vertex only: kept out of the walk (its registers and frame)
-    bool ShiftedBounce<TSink>(ref TSink sink, int material, float probability, Vector3 wo, Vector3 ns, Vector3 front, Vector2 u,
-        Span<float> beta, Span<float> scratch, ref int shifted, ref float gain, out Vector3 wi, out float pdf)
-        where TSink : IPathSink, allows ref struct
+    bool ShiftedBounce<TSink>(ref TSink sink, scoped in PathVertex vertex, float probability, Vector2 u, Span<float> beta,
+        Span<float> scratch, ref ShiftState shifts, out Vector3 wi, out float pdf) where TSink : IPathSink, allows ref struct
     {
+        var front = vertex.Front;
         wi = Bsdf.CosineHemisphere(front, u);
         pdf = 0;
         float density = probability * SkyPdf(front, wi);
-        if (!(density > 0) || !FluorescentShift.Reflects(wo, wi, ns)) return false;
+        if (!(density > 0) || !FluorescentShift.Reflects(vertex.Wo, wi, vertex.Ns)) return false;
         float w = Vector3.Dot(front, wi) / density;
-        var shift = _shift[material]!;
+        var shift = vertex.Material.Shift!;
         sink.Shift(shift, beta, w);
         var film = sink.Fixed;
-        if (shifted == 0) film.CopyTo(Saved(scratch));
-        else Fold(film, scratch, shifted);
-        int k = shifted + 1;
+        if (!shifts.Saved) film.CopyTo(Saved(scratch));
+        else Fold(film, scratch, shifts.Level);
+        int k = shifts.Level + 1;
         if (k <= ShiftLevels)
         {
-            Materials(scratch)[k - 1] = material;
+            Materials(scratch)[k - 1] = vertex.Material.Index;
             var g = Factor(scratch, k);
             for (int i = 0; i < g.Length; i++) g[i] = beta[i] * w;
         }
@@ -80,16 +102,18 @@ public sealed partial class PathIntegrator
             if (k == ShiftLevels + 1)
             {   // M = A_1 ⋯ A_ShiftLevels from the kept factors
                 var materials = Materials(scratch);
-                _shift[(int)materials[0]]!.Start(m, Factor(scratch, 1), 1);
-                for (int j = 2; j <= ShiftLevels; j++) _shift[(int)materials[j - 1]]!.Chain(m, Factor(scratch, j), 1, Work(scratch, 0));
+                _materials[(int)materials[0]].Shift!.Start(m, Factor(scratch, 1), 1);
+                for (int j = 2; j <= ShiftLevels; j++)
+                    _materials[(int)materials[j - 1]].Shift!.Chain(m, Factor(scratch, j), 1, Work(scratch, 0));
             }
             shift.Chain(m, beta, w, Work(scratch, 0));
         }
-        gain *= shift.Gain(beta, w);
+        shifts.Gain *= shift.Gain(beta, w);
         film.Clear();
         beta.Clear();
         beta[.._grid.Count].Fill(1);   // the padding stays 0
-        shifted = k;
+        shifts.Level = k;
+        shifts.Saved = true;
         return true;
     }
 
@@ -106,15 +130,17 @@ public sealed partial class PathIntegrator
     /// beside a delta lobe's share. Returns the shifted share and sets <paramref name="smoothShare"/>.
     /// </summary>
     [MethodImpl(MethodImplOptions.NoInlining)]   // a fluorescent vertex only: kept out of the walk
-    float LobeShares(int m, scoped in SurfaceTexels texels, Span<float> beta, scoped ref float smoothShare)
+    float LobeShares(scoped in PathVertex vertex, Span<float> beta, scoped ref float smoothShare)
     {
-        var shift = _shift[m]!;
+        var material = vertex.Material;
+        var texels = vertex.Texels;
+        var shift = material.Shift!;
         float sum = Sum(beta), top = Max(beta);
         if (!(sum > 0 && top > 0) || !float.IsFinite(sum)) return shift.Share;   // a spent path: the fixed shares
         float bSum = Dot(beta, shift.Flat) / sum, bMax = MaxProduct(beta, shift.Flat, default) / top;
-        if (!_smooth[m]) return bSum;
-        ReadOnlySpan<float> d = texels.Diffuse.IsEmpty ? _albedoDiffuse[m] : texels.Diffuse;
-        ReadOnlySpan<float> s = texels.Specular.IsEmpty ? _albedoSpecular[m] : texels.Specular;
+        if (!material.Smooth) return bSum;
+        ReadOnlySpan<float> d = texels.Diffuse.IsEmpty ? material.AlbedoDiffuse : texels.Diffuse;
+        ReadOnlySpan<float> s = texels.Specular.IsEmpty ? material.AlbedoSpecular : texels.Specular;
         float aSum = (Dot(beta, d) + Dot(beta, s)) / sum, aMax = MaxProduct(beta, d, s) / top;
         if (!(bSum > 0)) return 0;   // β carries nothing the shift emits: the lobe would add 0
         float p = MathF.Max(bSum / (aSum + bSum), MathF.Min(bMax / (aMax + bMax), 1 - aMax / Survival));
@@ -174,7 +200,7 @@ public sealed partial class PathIntegrator
         for (int j = shifted; j >= 1; j--)
         {
             t.Clear();
-            _shift[(int)materials[j - 1]]!.AddShifted(t, Factor(scratch, j), v, 1);
+            _materials[(int)materials[j - 1]].Shift!.AddShifted(t, Factor(scratch, j), v, 1);
             var swap = v; v = t; t = swap;
         }
         FluorescentShift.Add(saved, v);

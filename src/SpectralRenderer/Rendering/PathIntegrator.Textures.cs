@@ -1,6 +1,5 @@
 using System.Numerics;
 using System.Runtime.CompilerServices;
-using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Scenes;
 
 namespace SpectralRenderer.Rendering;
@@ -16,89 +15,58 @@ namespace SpectralRenderer.Rendering;
 // every texel, so a textured fluorescent vertex takes no other code than the two parts' own.
 public sealed partial class PathIntegrator
 {
-    FineTexture?[] _diffuseTexture = [], _specularTexture = [], _emissionTexture = [];
-    float[] _diffuseChannel = [], _specularChannel = [];   // a textured material's plain m_diff, m_spec channel values
-    bool _textured;
+    bool _textured;   // has a material of the scene a texture (PathMaterial)?
     float _pixelAngle;
-
-    /// <summary>
-    /// A vertex's texels on the fine grid (an empty span: the material's own spectrum), and the scratch an emitter's texel
-    /// drawn by next-event estimation goes to.
-    /// </summary>
-    readonly ref struct SurfaceTexels(Span<float> diffuse, Span<float> specular, Span<float> emission)
-    {
-        public readonly Span<float> Diffuse = diffuse, Specular = specular, Emission = emission;
-        /// <summary>Does the vertex's BSDF take texels?</summary>
-        public bool Any => !Diffuse.IsEmpty || !Specular.IsEmpty;
-    }
 
     /// <summary>Scratch the textures take at <see cref="TextureBase"/>: a diffuse, a specular and an emitted texel.</summary>
     int TextureScratch => _textured ? 3 * _padded : 0;
 
-    /// <summary>Material <paramref name="m"/>'s textures onto the fine grid, or bad input naming what cannot be textured.</summary>
-    void TakeTextures(Scene scene, int m)
+    /// <summary>Whether the scene's materials are textured, and the camera's pixel angle their lookups' footprint takes.</summary>
+    void TakeTextures(Scene scene)
     {
-        var material = scene.Materials[m];
-        var emission = material.Emission?.Texture;
-        if (material.DiffuseTexture is null && material.SpecularTexture is null && emission is null) return;
-        string where = $"{scene.SourcePath}: {material.JsonPath}";
-        if ((material.DiffuseTexture is not null || material.SpecularTexture is not null) && !_bsdf[m].TakesTextures)
-            throw new InputException($"{where}.diffuse", $"material '{material.Name}' ({material.Bsdf.GetType().Name}) is textured: the path integrator textures eq. 2 and lambertian materials only",
-                "give this material a spectrum, or use an eq2 or lambertian material for the texture");
-        if (!_textured)
-        {
-            int n = scene.Materials.Count;
-            _diffuseTexture = new FineTexture?[n]; _specularTexture = new FineTexture?[n]; _emissionTexture = new FineTexture?[n];
-            _diffuseChannel = new float[n]; _specularChannel = new float[n];
-            // A camera pixel's angular width at the image centre: a hit's footprint t·angle/|cos θ| picks the mip level,
-            // as the Whitted route's (Eq2Walker): a secondary ray's cone starts at its own origin.
-            _pixelAngle = 2 * MathF.Tan(scene.Camera.Fov * MathF.PI / 360) / Math.Max(1, scene.Camera.Height);
-            _textured = true;
-        }
-        if (material.DiffuseTexture is { } d) _diffuseTexture[m] = new FineTexture(d, _grid);
-        if (material.SpecularTexture is { } s) _specularTexture[m] = new FineTexture(s, _grid);
-        if (emission is not null) _emissionTexture[m] = new FineTexture(emission, _grid);
-        _diffuseChannel[m] = _grid.Luminance(_grid.Resample(material.Diffuse));
-        _specularChannel[m] = _grid.Luminance(_grid.Resample(material.Specular));
+        _textured = _materials.Any(m => m.Textured);
+        // A camera pixel's angular width at the image centre: a hit's footprint t·angle/|cos θ| picks the mip level,
+        // as the Whitted route's (Eq2Walker): a secondary ray's cone starts at its own origin.
+        if (_textured) _pixelAngle = 2 * MathF.Tan(scene.Camera.Fov * MathF.PI / 360) / Math.Max(1, scene.Camera.Height);
     }
-
-    /// <summary>Material <paramref name="m"/>'s emission texture on the fine grid, or null (its emitter then has one spectrum).</summary>
-    FineTexture? EmissionTexture(int m) => _textured ? _emissionTexture[m] : null;
 
     /// <summary>The footprint (uv units) of a lookup at distance <paramref name="t"/>, cosine <paramref name="cos"/> and mapping density <paramref name="density"/>.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     float Footprint(float t, float cos, float density) => t * _pixelAngle / MathF.Max(MathF.Abs(cos), 0.25f) * density;
 
     /// <summary>
-    /// The texels of material <paramref name="m"/> at <paramref name="hit"/> into scratch (at TextureBase),
+    /// The texels of <paramref name="material"/> at <paramref name="hit"/> into scratch (at TextureBase),
     /// and the smooth lobes' channel share from them; no diffuse or specular texel when the material has no such texture.
     /// </summary>
     [MethodImpl(MethodImplOptions.NoInlining)]   // textured vertices only: kept out of the walk's code
-    SurfaceTexels Texels(int m, scoped in SurfaceHit hit, Vector3 wo, Span<float> scratch, scoped ref float smoothShare)
+    SurfaceTexels Texels(PathMaterial material, scoped in SurfaceHit hit, Vector3 wo, Span<float> scratch, scoped ref float smoothShare)
     {
         var emission = scratch.Slice(TextureBase + 2 * _padded, _padded);
-        var diffuse = _diffuseTexture[m];
-        var specular = _specularTexture[m];
+        var diffuse = material.DiffuseTexture;
+        var specular = material.SpecularTexture;
         if (diffuse is null && specular is null) return new SurfaceTexels(default, default, emission);
         var uv = _geometry.TexCoord(in hit, out float density);
         float width = Footprint(hit.T, Vector3.Dot(hit.GeometricNormal, wo), density);
         Span<float> d = default, s = default;
         if (diffuse is not null) diffuse.Filter(uv, width, d = scratch.Slice(TextureBase, _padded));
         if (specular is not null) specular.Filter(uv, width, s = scratch.Slice(TextureBase + _padded, _padded));
-        if (_smooth[m])
+        if (material.Smooth)
         {   // the channel value of m_diff + m_spec, as for a plain material (Σ c_f·v_f is linear)
-            float share = diffuse is not null ? _grid.Luminance(d) : _diffuseChannel[m];
-            share += specular is not null ? _grid.Luminance(s) : _specularChannel[m];
+            float share = diffuse is not null ? _grid.Luminance(d) : material.DiffuseChannel;
+            share += specular is not null ? _grid.Luminance(s) : material.SpecularChannel;
             smoothShare = MathF.Max(share, 1e-6f);
         }
         return new SurfaceTexels(d, s, emission);
     }
 
-    /// <summary>The radiance material <paramref name="m"/> emits at <paramref name="hit"/>: its texel when textured, else <paramref name="le"/>.</summary>
+    /// <summary>
+    /// The radiance <paramref name="material"/> emits at <paramref name="hit"/>: its texel when textured, else
+    /// <paramref name="le"/>.
+    /// </summary>
     [MethodImpl(MethodImplOptions.NoInlining)]   // textured vertices only: kept out of the walk's code
-    ReadOnlySpan<float> EmittedAt(int m, float[] le, scoped in SurfaceHit hit, Vector3 wo, Span<float> scratch)
+    ReadOnlySpan<float> EmittedAt(PathMaterial material, float[] le, scoped in SurfaceHit hit, Vector3 wo, Span<float> scratch)
     {
-        if (_emissionTexture[m] is not { } texture) return le;
+        if (material.EmissionTexture is not { } texture) return le;
         var uv = _geometry.TexCoord(in hit, out float density);
         var texel = scratch.Slice(TextureBase + 2 * _padded, _padded);
         texture.Filter(uv, Footprint(hit.T, Vector3.Dot(hit.GeometricNormal, wo), density), texel);

@@ -16,10 +16,11 @@ namespace SpectralRenderer.Rendering;
 public sealed partial class PathIntegrator
 {
     /// <summary>Does a material of the scene shift light between bands (fluorescence)?</summary>
-    public bool Fluoresces => _shift.Any(x => x is not null);
+    public bool Fluoresces => _fluoresces;
 
     /// <summary>The scene's shift block (empty without fluorescence): where the transfer's B_k lives.</summary>
-    internal ShiftSpan ShiftBlock => _shift.Aggregate(default(ShiftSpan), (a, s) => s is null ? a : a.Union(s.Extent));
+    internal ShiftSpan ShiftBlock =>
+        _materials.Aggregate(default(ShiftSpan), (a, m) => m.Shift is not { } s ? a : a.Union(s.Extent));
 
     /// <summary>The shift block of <paramref name="scene"/> on <paramref name="grid"/>, with no integrator (the memory estimate).</summary>
     internal static ShiftSpan ShiftBlockOf(Scene scene, FineGrid grid) => scene.Materials
@@ -59,6 +60,7 @@ public sealed partial class PathIntegrator
         /// <summary>The film weight of the sample being traced (0: the centre ray of analysis, which adds nothing).</summary>
         public float Weight;
         float[] _p = new float[span.Size], _next = new float[span.Size];
+        readonly float[] _kept = new float[span.Size];   // P at a dispersive split, for each band's sub-path
         readonly float[] _segment = new float[lights * span.Columns * span.Columns];
         readonly bool[] _open = new bool[lights];
 
@@ -155,6 +157,12 @@ public sealed partial class PathIntegrator
             (_p, _next) = (_next, _p);
         }
 
+        /// <summary>A dispersive split after shifted bounces: keep P, which its sub-paths' own shifted bounces chain onto.</summary>
+        public void Keep() => _p.CopyTo(_kept, 0);
+
+        /// <summary>A sub-path's end (its X_k folded): P back to the split's.</summary>
+        public void Restore() => _kept.CopyTo(_p, 0);
+
         /// <summary>dst += x·a (any length: whole vectors, then the rest).</summary>
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
         static void Axpy(Span<float> dst, ReadOnlySpan<float> x, float a)
@@ -176,7 +184,7 @@ public sealed partial class PathIntegrator
     ref struct TransferSink(Span<float> groups, int padded, int lights, ShiftRecord? record) : IPathSink
     {
         readonly Span<float> _groups = groups;
-        int _level;   // the path's shifted bounces so far
+        int _level, _split;   // the path's shifted bounces so far, and at its dispersive split
 
         public readonly void Emitted(Span<float> beta, ReadOnlySpan<float> le, float w) =>
             AddProduct(_groups.Slice(lights * padded, padded), beta, le, w);
@@ -209,5 +217,19 @@ public sealed partial class PathIntegrator
         }
 
         public readonly void End() => record?.Fold(_level);
+
+        public void Branch()
+        {
+            _split = _level;
+            if (_level > 0) record?.Keep();
+        }
+
+        public void Rejoin()
+        {
+            if (_level == _split) return;
+            record?.Fold(_level);
+            _level = _split;
+            if (_level > 0) record?.Restore();
+        }
     }
 }

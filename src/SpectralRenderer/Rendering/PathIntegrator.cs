@@ -14,11 +14,13 @@ namespace SpectralRenderer.Rendering;
 /// At each vertex one light, chosen uniformly, is sampled (next-event estimation) and the BSDF is sampled to continue; both
 /// estimates of light that arrives from surfaces that emit, and from the sky, are combined by multiple importance
 /// sampling with the power heuristic w_a = p_a²/(p_a² + p_b²) (Veach &amp; Guibas 1995). Delta lights (point, spot,
-/// directional) are reached by next-event estimation only, delta lobes (mirror, Fresnel dielectric) by the BSDF only; at
-/// its first dispersive glass a path splits into one sub-path per output band (PathIntegrator.Dispersion.cs).
+/// directional) are reached by next-event estimation only, delta lobes (mirror, Fresnel dielectric) by the BSDF only. One
+/// walk (Walk) carries a set of bands: all of them, or after its first dispersive glass one output band's sub-bands, in a
+/// sub-path of the same walk per band (PathIntegrator.Dispersion.cs).
 /// A lobe is chosen by a luminance-like channel (<see cref="FineGrid.Luminance"/>), and Russian roulette ends a path from
-/// depth <see cref="IntegratorSettings.RrDepth"/> on with survival probability min(0.95, max_λ β) (the largest band, so
-/// no band's light is starved); each band keeps its own f·cos/pdf, so no wavelength is ever sampled. The sky is the scene's <c>background</c>: the radiance of every escaping
+/// depth <see cref="IntegratorSettings.RrDepth"/> on with survival probability min(0.95, max_λ β·gain) (the largest band,
+/// so no band's light is starved; gain bounds a fluorescent path's shifted bounces, 1 without them); each band keeps its
+/// own f·cos/pdf, so no wavelength is ever sampled. The sky is the scene's <c>background</c>: the radiance of every escaping
 /// ray, sampled cosine-weighted about the shading normal. Depth is unbounded unless <c>max_depth</c> is given (1: direct
 /// light only). Every random number comes from the camera sample's <see cref="Sampler"/>, so the picture is the same on
 /// any thread count, tile order or shard; nothing is allocated per path.
@@ -31,24 +33,21 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
     readonly FineGrid _grid;
     readonly int _maxDepth, _rrDepth, _padded;
     readonly int[] _objectMaterial, _emitterOf;
-    readonly Bsdf[] _bsdf;
-    readonly float[]?[] _emission;
-    readonly FluorescentShift?[] _shift;   // a fluorescent material's shifted diffuse lobe (FluorescentShift.cs)
-    readonly float[]?[] _albedoDiffuse, _albedoSpecular;   // a fluorescent material's m_diff and m_spec (its lobe choice)
-    readonly bool[] _twoSided, _smooth, _delta;
-    readonly float[] _smoothChannel;
+    readonly PathMaterial[] _materials;   // per scene material: what the walk reads of it (PathMaterial.cs)
     readonly Light[] _lights;
     readonly float[][] _lightRadiance;
     readonly AreaEmitter[] _emitters;
     readonly float[]? _sky;
     readonly float[] _background;
     readonly int _lightCount;
+    readonly float _pick;   // P(light) of next-event estimation's uniform choice (0 without lights)
 
     public PathIntegrator(Scene scene, SceneGeometry geometry)
     {
         string where = scene.SourcePath;
         if (scene.Radiometry != Radiometry.Physical)
-            throw new InputException($"{where}: $.radiometry", "the path integrator needs physical radiometry (eq. 2's paper units are not radiance)",
+            throw new InputException($"{where}: $.radiometry",
+                "the path integrator needs physical radiometry (eq. 2's paper units are not radiance)",
                 "add \"radiometry\": \"physical\" to the scene, or render it with the whitted integrator");
         var settings = scene.Integrator is { Name: "path" } s ? s : new IntegratorSettings("path");
         _geometry = geometry;
@@ -57,52 +56,11 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
         _maxDepth = settings.MaxDepth;
         Sampler = new SamplerSettings(settings.Sampler ?? SamplerKind.Sobol, settings.Seed);
         _rrDepth = settings.RrDepth;
-        int materials = scene.Materials.Count;
-        _bsdf = new Bsdf[materials];
-        _emission = new float[]?[materials];
-        _shift = new FluorescentShift?[materials];
-        _albedoDiffuse = new float[]?[materials];
-        _albedoSpecular = new float[]?[materials];
-        _twoSided = new bool[materials];
-        _smooth = new bool[materials];
-        _delta = new bool[materials];
-        _smoothChannel = new float[materials];
-        _dispersive = new bool[materials];
-        for (int m = 0; m < materials; m++)
-        {
-            var material = scene.Materials[m];
-            _dispersive[m] = material.Dispersive && material.HasTransmission;   // its paths split per band (PathIntegrator.Dispersion.cs)
-            _bsdf[m] = material.Bsdf.Resampled(_grid.Resample)
-                ?? throw new InputException($"{where}: $.materials.{material.Name}",
-                    $"material '{material.Name}' ({material.Bsdf.GetType().Name}) cannot be carried to the path integrator's spectral grid",
-                    "use a material type the path integrator knows (eq2, lambertian), or the whitted integrator");
-            _smooth[m] = (_bsdf[m].Lobes & (BsdfFlags.Diffuse | BsdfFlags.Glossy)) != 0;
-            _delta[m] = (_bsdf[m].Lobes & BsdfFlags.Delta) != 0;
-            if (_smooth[m])
-            {   // the smooth lobes' share in the lobe choice: the channel value of m_diff + m_spec (their albedo at most)
-                var albedo = _grid.Resample(material.Diffuse);
-                var spec = _grid.Resample(material.Specular);
-                for (int i = 0; i < albedo.Length; i++) albedo[i] += spec[i];
-                _smoothChannel[m] = Math.Max(_grid.Luminance(albedo), 1e-6f);
-            }
-            if (material.Fluorescence is { HasShift: true } fl)
-            {
-                _shift[m] = new FluorescentShift(fl, _grid);
-                _albedoDiffuse[m] = _grid.Resample(material.Diffuse);
-                _albedoSpecular[m] = _grid.Resample(material.Specular);
-            }
-            if (material.Emission is { } e) { _emission[m] = _grid.Resample(e.Radiance); _twoSided[m] = e.TwoSided; }
-            TakeTextures(scene, m);   // PathIntegrator.Textures.cs
-        }
-        // A band's sub-path after a dispersive split (PathIntegrator.Dispersion.cs) walks the plain lobes only.
-        if (Array.IndexOf(_dispersive, true) is int glass and >= 0 && Array.FindIndex(_shift, x => x is not null) is int paper and >= 0)
-            throw new InputException($"{where}: $.materials.{scene.Materials[paper].Name}.fluorescence",
-                $"material '{scene.Materials[paper].Name}' fluoresces and material '{scene.Materials[glass].Name}' is dispersive: the path integrator does not follow a shifted bounce after a dispersive split yet",
-                "give the glass a constant \"ior\", or render the scene with the whitted integrator");
-        if (Array.IndexOf(_dispersive, true) is int prism and >= 0 && _textured)
-            throw new InputException($"{where}: $.materials.{scene.Materials[prism].Name}.ior",
-                $"material '{scene.Materials[prism].Name}' is dispersive and the scene has textures: the path integrator does not look textures up after a dispersive split yet",
-                "give the glass a constant \"ior\", or the textured materials spectra");
+        _materials = new PathMaterial[scene.Materials.Count];
+        for (int m = 0; m < _materials.Length; m++) _materials[m] = new PathMaterial(scene, m, _grid);
+        TakeTextures(scene);   // PathIntegrator.Textures.cs
+        _fluoresces = _materials.Any(x => x.Shift is not null);
+        _splitsShifts = _fluoresces && _materials.Any(x => x.Dispersive);
         _objectMaterial = scene.Objects.Select(o => o.Material).ToArray();
         _emitterOf = new int[scene.Objects.Count];
         var emitters = new List<AreaEmitter>();
@@ -110,10 +68,11 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
         {
             _emitterOf[i] = -1;
             var o = scene.Objects[i];
-            if (_emission[o.Material] is { } radiance)
+            var material = _materials[o.Material];
+            if (material.Emission is { } radiance)
             {
                 _emitterOf[i] = emitters.Count;
-                emitters.Add(new AreaEmitter(o, radiance, _twoSided[o.Material], $"{where}: $.objects", EmissionTexture(o.Material)));
+                emitters.Add(new AreaEmitter(o, radiance, material.TwoSided, $"{where}: $.objects", material.EmissionTexture));
             }
         }
         _emitters = [.. emitters];
@@ -122,7 +81,10 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
         _background = _grid.Resample(scene.Background);
         _sky = Spectra.SpectralMath.Any(scene.Background) ? _background : null;
         _lightCount = _lights.Length + _emitters.Length + (_sky is null ? 0 : 1);
-        foreach (var shift in _shift) shift?.Prepare([.. _lightRadiance, .. _emitters.Select(e => e.Radiance), .. _sky is null ? [] : new[] { _sky }]);
+        _pick = _lightCount > 0 ? 1f / _lightCount : 0;
+        float[][] sources = [.. _lightRadiance, .. _emitters.Select(e => e.Radiance), .. _sky is null ? [] : new[] { _sky }];
+        foreach (var material in _materials) material.Shift?.Prepare(sources);
+        _textureBase = 5 * _padded + Math.Max(_padded, ShiftBase - 5 * _padded + ShiftScratch);
     }
 
     /// <summary>The sampler of its camera samples: Owen-scrambled Sobol unless the scene's "sampler" says otherwise.</summary>
@@ -132,14 +94,15 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
     public int SubBands => _grid.PerBand;
 
     /// <summary>
-    /// Scratch: L, β, f and the two delta lobes' weights, each a fine spectrum; then either a band's β after a dispersive
-    /// split or a fluorescent scene's shifted paths' (<see cref="ShiftScratch"/>): a scene has not both (the constructor);
-    /// then a textured vertex's texels (<see cref="TextureBase"/>).
+    /// Scratch: L, β, f and the two delta lobes' weights, each a fine spectrum; then a band's β after a dispersive split
+    /// (<see cref="BandBeta"/>) and a fluorescent scene's shifted paths' (<see cref="ShiftScratch"/>), which share their
+    /// place unless the scene has both; then a textured vertex's texels (<see cref="TextureBase"/>).
     /// </summary>
     public int ScratchLength => TextureBase + TextureScratch;
 
-    /// <summary>Where a textured vertex's texels start in the scratch: after the dispersive split's or the shifted paths' part.</summary>
-    int TextureBase => 5 * _padded + Math.Max(_padded, ShiftScratch);
+    /// <summary>Where a textured vertex's texels start in the scratch: after the dispersive split's and the shifted paths' part.</summary>
+    int TextureBase => _textureBase;
+    readonly int _textureBase;
 
     /// <inheritdoc/>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
@@ -163,7 +126,6 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
         info.LitMask = LitMask(in sample);
         return first;
     }
-
     /// <summary>
     /// The scene lights (bit k = light k, the first 32) that reach the camera ray's first surface point directly, as the
     /// Whitted model's masks say it (mask-lit-K.png, the recovery's lit and shadow regions): the light's centre on the
@@ -181,15 +143,7 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
         for (int k = 0; k < Math.Min(_lights.Length, 32); k++)
         {
             if (!_lights[k].Sample(p, new Vector2(0.5f, 0.5f), out var inc) || !(inc.Factor > 0) || Vector3.Dot(front, inc.Direction) <= 0) continue;
-            var origin = p + (Vector3.Dot(ng, inc.Direction) >= 0 ? 1 : -1) * _geometry.Epsilon * ng;
-            var shadow = new Ray(origin, inc.Direction);
-            if (!float.IsInfinity(inc.Distance))
-            {
-                var towards = p + inc.Distance * inc.Direction - origin;
-                float length = towards.Length();
-                shadow = new Ray(origin, towards / length, length - 2 * _geometry.Epsilon);
-            }
-            if (!_geometry.Occluded(shadow)) mask |= 1u << k;
+            if (!_geometry.Occluded(ShadowRay(p, ng, inc.Direction, inc.Distance))) mask |= 1u << k;
         }
         return mask;
     }
@@ -219,6 +173,10 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
         void Shift(FluorescentShift shift, Span<float> beta, float w);
         /// <summary>The end of a path that took a shifted bounce.</summary>
         void End();
+        /// <summary>A dispersive split (PathIntegrator.Dispersion.cs): keep the shifted bounces' state its sub-paths start from.</summary>
+        void Branch();
+        /// <summary>A sub-path's end after shifted bounces of its own: carry what it found since its last, back to the split's.</summary>
+        void Rejoin();
     }
 
     ref struct FilmSink(Span<float> l) : IPathSink
@@ -232,6 +190,8 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
         public readonly Span<float> Fixed => _l;
         public readonly void Shift(FluorescentShift shift, Span<float> beta, float w) { }   // the walk carries the film
         public readonly void End() { }
+        public readonly void Branch() { }
+        public readonly void Rejoin() { }   // the walk folds the film (PathIntegrator.Dispersion.cs)
     }
 
     /// <summary>The path of one camera sample; the light it finds goes to <paramref name="sink"/>. Returns the first object hit.</summary>
@@ -239,86 +199,121 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
     int Walk<TSink>(ref TSink sink, in CameraSample sample, Span<float> scratch, ref RayCounters counters)
         where TSink : IPathSink, allows ref struct
     {
+        var beta = scratch.Slice(_padded, _padded);
+        beta.Clear();
+        beta[.._grid.Count].Fill(1);   // the padding stays 0
+        var shifts = new ShiftState(1);
+        SurfaceHit none = default;
+        int first = Walk(ref sink, sample.Ray, 0, in none, -1, beta, sample.Sampler, ref shifts, scratch, ref counters);
+        if (shifts.Saved)
+        {
+            FinishShifted(sink.Fixed, scratch, shifts.Level);
+            sink.End();
+        }
+        return first;
+    }
+
+    /// <summary>
+    /// The walk, carrying the bands of <paramref name="beta"/>: every band (<paramref name="band"/> −1) from
+    /// <paramref name="ray"/> at <paramref name="depth"/> on; or, as a sub-path of a dispersive split
+    /// (PathIntegrator.Dispersion.cs), one output band's sub-bands (<paramref name="band"/> its first) from the split's
+    /// vertex <paramref name="split"/>, reached along <paramref name="ray"/>, its emission already counted. Returns the first
+    /// object hit (−1: none, or a sub-path).
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    int Walk<TSink>(ref TSink sink, Ray ray, int depth, scoped in SurfaceHit split, int band, Span<float> beta, Sampler sampler,
+        ref ShiftState shifts, Span<float> scratch, ref RayCounters counters) where TSink : IPathSink, allows ref struct
+    {
         int n = _padded;
-        var beta = scratch.Slice(n, n);
         var f = scratch.Slice(2 * n, n);
         var mirror = scratch.Slice(3 * n, n);
         var transmit = scratch.Slice(4 * n, n);
-        beta.Clear();
-        beta[.._grid.Count].Fill(1);   // the padding stays 0
-        var sampler = sample.Sampler;
-        var ray = sample.Ray;
-        float pick = _lightCount > 0 ? 1f / _lightCount : 0;
+        bool subPath = band >= 0, resume = subPath;   // a sub-path starts at its split's vertex
+        var hit = split;
         bool deltaBounce = true;     // the last bounce was a delta lobe (or the camera): emitters seen count in full
         float bsdfPdf = 0;           // the last bounce's solid-angle density (lobe choice included), for MIS
         Vector3 previous = default, previousFront = default;
-        int first = -1, shifted = 0;   // shifted: the path's shifted bounces so far (PathIntegrator.Fluorescence.cs)
-        float gain = 1;   // a bound of the shifted bounces' amplification towards the film (1 without them)
-        for (int depth = 0; ; depth++)
+        int first = -1;
+        for (; ; depth++)
         {
-            var traced = ray;
-            if (!_geometry.IntersectScattered(ref traced, out var hit))
-            {
-                // The ray escapes: the sky (background) radiance, MIS-weighted against its own sampling.
-                if (depth == 0) sink.Emitted(beta, _background, 1);
-                else if (_sky is not null)
-                {
-                    float w = deltaBounce ? 1 : PowerHeuristic(bsdfPdf, pick * SkyPdf(previousFront, ray.Direction));
-                    sink.Emitted(beta, _sky, w);
-                }
-                break;
-            }
-            if (depth == 0) first = hit.Object;
             var wo = -ray.Direction;
-            var p = hit.Position;
-            var ng = hit.GeometricNormal;
-            int m = _objectMaterial[hit.Object];
-
-            // Light the surface emits towards the ray (Le), MIS-weighted against next-event estimation of the same point.
-            if (_emission[m] is { } le && (_twoSided[m] || Vector3.Dot(ng, wo) > 0))
+            PathMaterial material;
+            if (resume)
             {
-                float w = 1;
-                if (!deltaBounce)
-                {
-                    int e = _emitterOf[hit.Object];
-                    w = PowerHeuristic(bsdfPdf, e >= 0 ? pick * _emitters[e].Pdf(previous, p, ng) : 0);
-                }
-                sink.Emitted(beta, _textured ? EmittedAt(m, le, in hit, wo, scratch) : le, w);
+                material = _materials[_objectMaterial[hit.Object]];
+                resume = false;
             }
-            if (_maxDepth >= 0 && depth >= _maxDepth) break;
-            if (counters.BudgetSpent) { counters.OverBudget = true; break; }
-            if (_dispersive[m]) { Disperse(ref sink, in hit, ray, depth, beta, sampler, scratch, ref counters); break; }
+            else
+            {
+                var traced = ray;
+                if (!_geometry.IntersectScattered(ref traced, out hit))
+                {
+                    // The ray escapes: the sky (background) radiance, MIS-weighted against its own sampling.
+                    if (depth == 0) sink.Emitted(beta, _background, 1);
+                    else if (_sky is not null)
+                    {
+                        float w = deltaBounce ? 1 : PowerHeuristic(bsdfPdf, _pick * SkyPdf(previousFront, ray.Direction));
+                        sink.Emitted(beta, _sky, w);
+                    }
+                    break;
+                }
+                if (depth == 0) first = hit.Object;
+                material = _materials[_objectMaterial[hit.Object]];
 
-            var bsdf = _bsdf[m];
+                // Light the surface emits towards the ray (Le), MIS-weighted against next-event estimation of the same point.
+                if (material.Emission is { } le && (material.TwoSided || Vector3.Dot(hit.GeometricNormal, wo) > 0))
+                {
+                    float w = 1;
+                    if (!deltaBounce)
+                    {
+                        int e = _emitterOf[hit.Object];
+                        w = PowerHeuristic(bsdfPdf, e >= 0 ? _pick * _emitters[e].Pdf(previous, hit.Position, hit.GeometricNormal) : 0);
+                    }
+                    sink.Emitted(beta, _textured ? EmittedAt(material, le, in hit, wo, scratch) : le, w);
+                }
+                if (_maxDepth >= 0 && depth >= _maxDepth) break;
+                if (counters.BudgetSpent) { counters.OverBudget = true; break; }
+                if (material.Dispersive && band < 0)
+                {   // every band at a dispersive vertex: split into the bands' sub-paths (PathIntegrator.Dispersion.cs)
+                    if (!subPath)
+                    {
+                        Disperse(ref sink, in hit, ray, depth, beta, sampler, ref shifts, scratch, ref counters);
+                        break;
+                    }
+                    if ((band = Narrow(beta, sampler.Next1D(), shifts.Level, scratch)) < 0) break;
+                }
+            }
+
+            var bsdf = material.Bsdf;
             var ns = hit.Normal;
-            var front = Vector3.Dot(ns, wo) >= 0 ? ns : -ns;
             // The lobes' shares of the continuation, by the channel: smooth (m_diff + m_spec), mirror, transmission.
-            float smoothShare = _smooth[m] ? _smoothChannel[m] : 0;
-            var texels = _textured ? Texels(m, in hit, wo, scratch, ref smoothShare) : default;
+            float smoothShare = material.Smooth ? material.SmoothChannel : 0;
+            var vertex = new PathVertex(in hit, wo, material,
+                _textured ? Texels(material, in hit, wo, scratch, ref smoothShare) : default);
             // (a BSDF without a delta lobe is not asked for one: both answers would be "none")
             float mirrorShare = 0, transmitShare = 0;
             Vector3 wiMirror = default, wiTransmit = default;
-            if (_delta[m])
-            {
-                mirrorShare = bsdf.SampleMirror(wo, ns, -1, mirror, out wiMirror) ? _grid.Luminance(mirror) : 0;
-                transmitShare = bsdf.SampleTransmission(wo, ns, -1, transmit, out wiTransmit) ? _grid.Luminance(transmit) : 0;
+            if (material.Delta)
+            {   // at the index of band's output band (−1: every band, band 0's index, a non-dispersive material's)
+                mirrorShare = bsdf.SampleMirror(wo, ns, band, mirror, out wiMirror) ? _grid.Luminance(mirror) : 0;
+                transmitShare = bsdf.SampleTransmission(wo, ns, band, transmit, out wiTransmit) ? _grid.Luminance(transmit) : 0;
             }
             // A fluorescent vertex weighs the smooth and the shifted lobe by their albedos under β (PathIntegrator.Fluorescence.cs).
-            float shiftShare = _shift[m] is not null ? LobeShares(m, in texels, beta, ref smoothShare) : 0;
+            float shiftShare = material.Shift is not null ? LobeShares(in vertex, beta, ref smoothShare) : 0;
             float total = smoothShare + mirrorShare + transmitShare + shiftShare;
             float smoothProbability = total > 0 ? smoothShare / total : 0;
 
             // Each vertex takes the same five dimensions (light, point on it, lobe, direction, roulette); a number is drawn
             // only where it is used (Sampler.Reserve1D), so skipping one changes no other.
-            int dLight = sampler.Reserve1D(), dPoint = sampler.Reserve2D(), dLobe = sampler.Reserve1D(), dDirection = sampler.Reserve2D();
-            int dRoulette = sampler.Reserve1D();
+            int dLight = sampler.Reserve1D(), dPoint = sampler.Reserve2D(), dLobe = sampler.Reserve1D();
+            int dDirection = sampler.Reserve2D(), dRoulette = sampler.Reserve1D();
 
             // Next-event estimation: one light chosen uniformly, one point on it.
-            if ((_smooth[m] || shiftShare > 0) && _lightCount > 0)
+            if ((material.Smooth || shiftShare > 0) && _lightCount > 0)
             {
                 float uLight = _lightCount > 1 ? sampler.At1D(dLight) : 0;   // one light: no choice
                 var uPoint = sampler.At2D(dPoint);
-                NextEvent(ref sink, bsdf, in texels, _shift[m], p, ng, ns, front, wo, uLight, new Vector2(uPoint.U, uPoint.V), pick, smoothProbability, beta, f, ref counters);
+                NextEvent(ref sink, in vertex, uLight, new Vector2(uPoint.U, uPoint.V), smoothProbability, beta, f, ref counters);
             }
 
             // Continue: choose a lobe, then a direction from it; β gains f·|cos θ|/pdf per band.
@@ -329,7 +324,7 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
             {
                 var u = sampler.At2D(dDirection);
                 if (!bsdf.Sample(wo, ns, new Vector2(u.U, u.V), f, out var bs)) break;
-                if (texels.Any) Evaluate(bsdf, in texels, wo, bs.Wi, ns, f);
+                if (vertex.Texels.Any) Evaluate(bsdf, in vertex.Texels, wo, bs.Wi, ns, f);
                 wi = bs.Wi;
                 float cos = MathF.Abs(Vector3.Dot(ns, wi));
                 bsdfPdf = bs.Pdf * smoothProbability;
@@ -345,9 +340,10 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
             else if (shiftShare > 0 && x >= smoothShare + mirrorShare + transmitShare)
             {
                 var u = sampler.At2D(dDirection);
-                if (!ShiftedBounce(ref sink, m, shiftShare / total, wo, ns, front, new Vector2(u.U, u.V), beta, scratch, ref shifted,
-                    ref gain, out wi, out bsdfPdf)) break;
+                if (!ShiftedBounce(ref sink, in vertex, shiftShare / total, new Vector2(u.U, u.V), beta, scratch, ref shifts,
+                    out wi, out bsdfPdf)) break;
                 deltaBounce = false;
+                band = -1;   // β is 1 in every band again: the light beyond is at the shift's excitation wavelengths
             }
             else
             {
@@ -355,36 +351,33 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
                 Multiply(beta, transmit, total / transmitShare);
                 deltaBounce = true;
             }
-            previous = p;
-            previousFront = front;
+            previous = vertex.P;
+            previousFront = vertex.Front;
 
             // Russian roulette on the throughput's channel value.
             if (depth + 1 >= _rrDepth)
             {
-                float q = MathF.Min(Survival, Max(beta) * gain);
+                float q = MathF.Min(Survival, Max(beta) * shifts.Gain);
                 if (!(q > 0) || sampler.At1D(dRoulette) >= q) break;
                 Scale(beta, 1 / q);
             }
+            var ng = hit.GeometricNormal;
             float side = Vector3.Dot(ng, wi) >= 0 ? 1 : -1;
-            ray = new Ray(p + side * _geometry.Epsilon * ng, wi);
+            ray = new Ray(vertex.P + side * _geometry.Epsilon * ng, wi);
             counters.Secondary++;
-        }
-        if (shifted > 0)
-        {
-            FinishShifted(sink.Fixed, scratch, shifted);
-            sink.End();
         }
         return first;
     }
 
     /// <summary>
-    /// L += β·f·L_e·|cos θ|·w/(P(light)·p) for one light sample: a delta light's (w = 1, p = 1, its d_k·c_spot on I_k), an
-    /// emitter's point, or a sky direction, each unshadowed.
+    /// L += β·f·L_e·|cos θ|·w/(P(light)·p) for one light sample at <paramref name="vertex"/>: a delta light's (w = 1, p = 1,
+    /// its d_k·c_spot on I_k), an emitter's point, or a sky direction, each unshadowed.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    void NextEvent<TSink>(ref TSink sink, Bsdf bsdf, in SurfaceTexels texels, FluorescentShift? shift, Vector3 p, Vector3 ng, Vector3 ns, Vector3 front, Vector3 wo, float uLight, Vector2 u,
-        float pick, float smoothProbability, Span<float> beta, Span<float> f, ref RayCounters counters) where TSink : IPathSink, allows ref struct
+    void NextEvent<TSink>(ref TSink sink, scoped in PathVertex vertex, float uLight, Vector2 u, float smoothProbability,
+        Span<float> beta, Span<float> f, ref RayCounters counters) where TSink : IPathSink, allows ref struct
     {
+        var p = vertex.P;
         int k = Math.Min((int)(uLight * _lightCount), _lightCount - 1);
         Vector3 wi;
         float distance, factor, pdf;
@@ -406,35 +399,47 @@ public sealed partial class PathIntegrator : IAnalysisIntegrator
             wi = d / distance;
             if (!emitter.Emits(nx, -wi)) return;
             factor = 1; delta = false;
-            radiance = emitter.Texture is null ? emitter.Radiance : EmittedAt(emitter, face, x, nx, wi, distance, texels.Emission);
+            radiance = emitter.Texture is null ? emitter.Radiance : EmittedAt(emitter, face, x, nx, wi, distance, vertex.Texels.Emission);
         }
         else
         {
-            wi = Bsdf.CosineHemisphere(front, u);
-            pdf = SkyPdf(front, wi);
+            wi = Bsdf.CosineHemisphere(vertex.Front, u);
+            pdf = SkyPdf(vertex.Front, wi);
             distance = float.PositiveInfinity; factor = 1; delta = false;
             radiance = _sky!;
         }
         if (!(pdf > 0) || !(factor > 0)) return;
+        var ns = vertex.Ns;
+        var ng = vertex.Ng;
+        var bsdf = vertex.Material.Bsdf;
         float cos = MathF.Abs(Vector3.Dot(ns, wi));
-        Evaluate(bsdf, in texels, wo, wi, ns, f);
-        float side = Vector3.Dot(ng, wi) >= 0 ? 1 : -1;
-        var origin = p + side * _geometry.Epsilon * ng;
-        var shadow = new Ray(origin, wi);
-        if (!float.IsInfinity(distance))
-        {   // aimed from the offset origin at the light's point itself: a ray grazing a sphere light would otherwise meet it early
-            var towards = p + distance * wi - origin;
-            float length = towards.Length();
-            shadow = new Ray(origin, towards / length, length - 2 * _geometry.Epsilon);
-        }
+        Evaluate(bsdf, in vertex.Texels, vertex.Wo, wi, ns, f);
         counters.Shadow++;
-        if (_geometry.OccludedScattered(shadow)) return;
-        float w = delta ? 1 : PowerHeuristic(pick * pdf, smoothProbability * bsdf.Pdf(wo, wi, ns));
-        sink.NextEvent(k < _lights.Length ? k : -1, beta, f, radiance, factor * cos * w / (pick * pdf));
+        if (_geometry.OccludedScattered(ShadowRay(p, ng, wi, distance))) return;
+        float w = delta ? 1 : PowerHeuristic(_pick * pdf, smoothProbability * bsdf.Pdf(vertex.Wo, wi, ns));
+        sink.NextEvent(k < _lights.Length ? k : -1, beta, f, radiance, factor * cos * w / (_pick * pdf));
         // A fluorescent surface's shifted lobe: light sources excite it through this sample alone, weight 1 (a shifted bounce
         // of the continuation gives the sources it reaches weight 0 and carries only light from further bounces:
         // PathIntegrator.Fluorescence.cs).
-        if (shift is not null && FluorescentShift.Reflects(wo, wi, ns)) sink.Shifted(k < _lights.Length ? k : -1, shift, beta, radiance, factor * cos / (pick * pdf));
+        if (vertex.Material.Shift is { } shift && FluorescentShift.Reflects(vertex.Wo, wi, ns))
+            sink.Shifted(k < _lights.Length ? k : -1, shift, beta, radiance, factor * cos / (_pick * pdf));
+    }
+
+    /// <summary>
+    /// The path's shadow ray from <paramref name="p"/> (geometric normal <paramref name="ng"/>) along <paramref name="wi"/> to
+    /// a light's point <paramref name="distance"/> away (∞: a direction): it leaves from p offset by ε along ±n_g on ωi's side,
+    /// aimed from there at the light's point itself (a ray grazing a sphere light would otherwise meet it early), and ends
+    /// 2ε short of it.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    Ray ShadowRay(Vector3 p, Vector3 ng, Vector3 wi, float distance)
+    {
+        float side = Vector3.Dot(ng, wi) >= 0 ? 1 : -1;
+        var origin = p + side * _geometry.Epsilon * ng;
+        if (float.IsInfinity(distance)) return new Ray(origin, wi);
+        var towards = p + distance * wi - origin;
+        float length = towards.Length();
+        return new Ray(origin, towards / length, length - 2 * _geometry.Epsilon);
     }
 
     /// <summary>The sky's sampling density: cosine-weighted about the front shading normal.</summary>
