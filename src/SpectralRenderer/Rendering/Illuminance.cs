@@ -150,7 +150,8 @@ public sealed class Illuminance
     /// π/N Σ L_v of N cosine-weighted rays it traces (area lights, sky and interreflection; delta lights it cannot hit).
     /// The same on any thread count: a pixel's rays depend on (x, y, ray index) only.
     /// </summary>
-    public (float[] Luminance, float[] Illuminance) Maps(RenderResult result, IIntegrator? gather, int threads, CancellationToken cancel = default)
+    public (float[] Luminance, float[] Illuminance) Maps(RenderResult result, IGatherIntegrator? gather, int threads,
+        CancellationToken cancel = default)
     {
         var crop = result.Crop;
         var image = result.Image;
@@ -192,7 +193,7 @@ public sealed class Illuminance
     /// <see cref="GatherRays"/> cosine-weighted rays from the point (area lights, sky and interreflection), drawn from the
     /// point's (i, j). The same on any thread count.
     /// </summary>
-    public double[] OnGrid(CalculationGrid grid, IIntegrator? gather, int threads, CancellationToken cancel = default)
+    public double[] OnGrid(CalculationGrid grid, IGatherIntegrator? gather, int threads, CancellationToken cancel = default)
     {
         int nu = grid.PointsU, nv = grid.PointsV;
         var lux = new double[nu * nv];

@@ -21,7 +21,7 @@ namespace SpectralRenderer.Rendering;
 /// before. A dispersive material without transmission (a Fresnel mirror) needs no split: its direction is the same in
 /// every band and <see cref="Scenes.Bsdf.SampleMirror"/> weights each band by its own F.
 /// </summary>
-public sealed partial class PathIntegrator
+internal sealed partial class PathIntegrator
 {
     readonly bool[] _dispersive;   // per material: a transmitting material with a dispersive index
 
