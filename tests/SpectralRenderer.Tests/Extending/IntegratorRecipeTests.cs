@@ -1,4 +1,5 @@
 using SpectralRenderer.Acceleration;
+using SpectralRenderer.Output.Products;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Tests.Cli;
@@ -179,8 +180,9 @@ public class IntegratorRecipeTests
             new System.Numerics.Vector3(0, 6, 0), 3, 3);
         var lux = illuminance.OnGrid(floor, integrator as IGatherIntegrator, threads: 2);
         Assert.All(lux, e => Assert.Equal(expected, e, expected * 1e-6));
-        var tracer = new global::SpectralRenderer.Output.Products.RenderTracer(geometry, integrator, 2);
-        Assert.Contains("gather", global::SpectralRenderer.Output.Products.PhotometryProduct.Method(tracer, scene), StringComparison.Ordinal);
+        // The photometry product says how its illuminance was found by asking the same capability.
+        var tracer = new RenderTracer(geometry, integrator, 2);
+        Assert.Contains("gather", PhotometryProduct.Method(tracer, scene), StringComparison.Ordinal);
         // Without the capability (the albedo integrator) the grid gets the lights' share only: none.
         EnsureRegistered();
         var albedo = Integrators.Create(scene, geometry, Name);
