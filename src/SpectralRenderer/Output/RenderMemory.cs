@@ -37,6 +37,9 @@ public static class RenderMemory
         if (needs.HasFlag(ProductInputs.BandPlanes)) parts.Add(("band planes", 4 * n * bands));
         if (needs.HasFlag(ProductInputs.Xyz)) parts.Add(("XYZ planes", 24 * n));
         foreach (var product in products) parts.AddRange(product.Memory(scene, threads));
+        // The per-light transfer the integrator records for the lights product: its format's estimate (of the integrator the
+        // render uses, which a request's --integrator may set beside the scene's).
+        if (products.Any(x => x is LightsProduct) && entry?.Transfer is { } transfer) parts.AddRange(transfer.Memory(scene));
         parts.Sort((a, b) => b.Item2.CompareTo(a.Item2));
         return parts;
     }

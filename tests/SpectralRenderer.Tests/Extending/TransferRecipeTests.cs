@@ -163,5 +163,10 @@ public class TransferRecipeTests
         Assert.True(direct.Count(v => v > 0) > direct.Length / 10, "the spheres cover the film");
         for (int i = 0; i < direct.Length; i++) Assert.Equal(direct[i], relit[i], 1e-5f * Math.Max(1, Math.Abs(direct[i])));
         Assert.Contains(before.Zip(relit), p => Math.Abs(p.First - p.Second) > 1e-3f * Math.Abs(p.First));   // A is not D65
+        // The memory check counts its transfer by its format, for the integrator the request names (the scene names none).
+        var scene = SceneText.Load(Json.Replace("LIGHT", "D65"));
+        var lights = global::SpectralRenderer.Output.Products.OutputProductTable.Named(["lights"]);
+        Assert.Contains(("lamp transfer", 4L * 24 * 20 * 6), global::SpectralRenderer.Output.RenderMemory.Estimate(scene, 1, lights, Name));
+        Assert.DoesNotContain(global::SpectralRenderer.Output.RenderMemory.Estimate(scene, 1, lights), p => p.Part == "lamp transfer");
     }
 }

@@ -5,7 +5,8 @@ namespace SpectralRenderer.Output.Products;
 
 /// <summary>
 /// "lights": lights/, the per-light transfer that relight and view recombine, written by the integrator's transfer
-/// (<see cref="ILightTransfer"/>); its format says its memory and whether shards write it (then merged by rows).
+/// (<see cref="ILightTransfer"/>); its format says its memory (counted by <see cref="RenderMemory"/> for the integrator
+/// the render uses) and whether shards write it (then merged by rows).
 /// </summary>
 public sealed class LightsProduct : OutputProduct
 {
@@ -13,10 +14,6 @@ public sealed class LightsProduct : OutputProduct
     public override OutputProducts Flag => OutputProducts.Lights;
 
     public override void Write(ProductContext c, int part, Action<string> done) => c.Transfer?.Write(c.Scene, c.OutDir, done);
-
-    /// <summary>What the scene's integrator's transfer holds (<see cref="TransferFormat.Memory"/>).</summary>
-    public override IEnumerable<(string Part, long Bytes)> Memory(Scene scene, int threads) =>
-        Integrators.Entry(scene.Integrator?.Name ?? Integrators.Default)?.Transfer?.Memory(scene) ?? [];
 
     /// <summary>Shards of a transfer its format shards: the arrays by rows, lights.json the same in each.</summary>
     public override ShardMerging Merging(string file) =>
