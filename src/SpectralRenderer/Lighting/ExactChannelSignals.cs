@@ -111,9 +111,12 @@ public static partial class ExactChannelSignals
         catch (InputException) { return CameraRoute.None; }
     }
 
-    /// <summary>The integrator a render ran: render.json's run.integrator, else its resolved scene's, else the default.</summary>
+    /// <summary>
+    /// The integrator a render ran: render.json's run.integrator, else its resolved scene's (lower case, as the loader reads
+    /// it), else the default.
+    /// </summary>
     static string IntegratorOf(Relighting.Source src) => src.Manifest.Run?.Integrator ?? (src.Scene.ToJson()["integrator"] is { } i
-        ? (i as System.Text.Json.Nodes.JsonValue)?.ToString() ?? (string?)i["type"] : null) ?? Integrators.Default;
+        ? ((i as System.Text.Json.Nodes.JsonValue)?.ToString() ?? (string?)i["type"])?.ToLowerInvariant() : null) ?? Integrators.Default;
 
     /// <summary>
     /// Whether the render is a sum of eq. 2 terms whose per-light transfer the exact route can use (its integrator's
