@@ -331,7 +331,7 @@ sealed unsafe class NativeRender : IDisposable
     public sealed record Relight(RenderJob Job, string ScenePath, SceneOverrides Overrides, ManifestRelit Record);
 
     Relight? _relit;
-    LightTransfer? _transfer;
+    ILightTransfer? _transfer;
     readonly Lock _transferLock = new();
 
     /// <summary>The scene's name and the overrides it was loaded with (a relit render: its source's).</summary>
@@ -342,18 +342,18 @@ sealed unsafe class NativeRender : IDisposable
     /// The per-light transfer of this render: a relit render's own; else traced once (the render's camera rays again,
     /// recording eq. 2's factors per light, as `spectral render --formats …,lights` does) and kept.
     /// </summary>
-    LightTransfer Transfer(CancellationToken cancel)
+    ILightTransfer Transfer(CancellationToken cancel)
     {
         var job = Job!;
         if (job.Transfer is { } own) return own;
         lock (_transferLock)
         {
             if (_transfer is not null) return _transfer;
-            if (job.IntegratorName != Integrators.Default || job.Geometry is null)
+            if (job.Integrator is not ITransferIntegrator { TransferFormat.Route: CameraRoute.Terms } recorder)
                 throw new InputException("integrator",
                     $"the per-light transfer is the Whitted model's; the {job.IntegratorName} integrator does not record one",
                     "render with integrator=\"whitted\" to relight");
-            return _transfer = LightTransfer.Trace(job.Scene, job.Geometry, job.Threads, cancel);
+            return _transfer = recorder.TraceTransfer(job.Scene, job.Threads, cancel, null);
         }
     }
 
@@ -468,7 +468,7 @@ sealed unsafe class NativeRender : IDisposable
     /// ids, the colours, the masks, the ground-truth reflectance), taken from memory; the render's scene and its per-light
     /// transfer for the exact channel signals (null for an integrator that records none: the band cube's route).
     /// </summary>
-    public (CameraScene Scene, Scene RenderScene, LightTransfer? Transfer) CameraInput()
+    public (CameraScene Scene, Scene RenderScene, ITermRoute? Transfer) CameraInput()
     {
         var job = Job!;
         var result = Result;
@@ -507,8 +507,9 @@ sealed unsafe class NativeRender : IDisposable
             HighlightFraction = manifest.HighlightFraction,
             Reflectance = truth,
         };
-        bool traced = job.Transfer is not null || job.IntegratorName == Integrators.Default && job.Geometry is not null;
-        return (CameraScene.Of(folder, aovs), job.Scene, traced ? Transfer(default) : null);
+        bool traced = job.Transfer is ITermRoute
+            || job.Transfer is null && job.Integrator is ITransferIntegrator { TransferFormat.Route: CameraRoute.Terms };
+        return (CameraScene.Of(folder, aovs), job.Scene, traced ? Transfer(default) as ITermRoute : null);
     }
 
     /// <summary>
@@ -519,15 +520,16 @@ sealed unsafe class NativeRender : IDisposable
     public (PathFineFilm Film, string From)? PathFilm(int threads)
     {
         var job = Job!;
-        if (job.PathTransfer is { } t)
-            return (PathFineFilm.FromTransfer(t, job.Scene), "the render's path transfer in memory (L_f = F_f + sum_k T_k,f * E_k,f, no rays traced)");
-        if (job.Integrator is not PathIntegrator path || job.Scene.TargetError > 0
+        if (job.Transfer is IFineFilmRoute t)
+            return (t.FineFilm(job.Scene), "the render's path transfer in memory (L_f = F_f + sum_k T_k,f * E_k,f, no rays traced)");
+        if (job.Integrator is not IFineFilmIntegrator path || job.Scene.TargetError > 0
             || Result.Crop != PixelRect.Whole(job.Scene.Camera.Width, job.Scene.Camera.Height)) return null;
-        return (PathFineFilm.Trace(job.Scene, path, threads < 0 ? 0 : threads), "the render's camera samples traced again in memory (the same paths)");
+        return (path.TraceFineFilm(job.Scene, threads < 0 ? 0 : threads),
+            "the render's camera samples traced again in memory (the same paths)");
     }
 
     /// <summary>Whether the render held is a path render (its integrator, or the path transfer it was relit from).</summary>
-    public bool IsPath => Job is { } job && (job.Integrator is PathIntegrator || job.PathTransfer is not null);
+    public bool IsPath => Job is { } job && (job.Integrator is IFineFilmIntegrator || job.Transfer is IFineFilmRoute);
 
     /// <summary>The error as the CLI ends `spectral render` with it (CommandLine.Describe: code and one line).</summary>
     public void Fail(Exception e, string prefix = "spectral render: ")

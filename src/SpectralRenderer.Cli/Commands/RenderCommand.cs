@@ -102,7 +102,7 @@ public static class RenderCommand
         };
         request = request with { SceneText = text ?? (fromStdin ? Text() : null) };
         var job = RenderJob.Load(request, new RenderObserver(Warning: stderr.WriteLine));
-        if (job.IntegratorName != Integrators.Default) JitWarmup.Stop();   // its hot loops are not the ones being warmed up
+        if (Integrators.Entry(job.IntegratorName)?.WarmedUp != true) JitWarmup.Stop();   // its hot loops are not the ones warmed up
 
         // SIGINT and SIGTERM (Signals, answered from the command's start) stop the render at the next pixel (and the
         // writers at the next file): the staged files are removed, the output folder keeps what it held, and the message says so.

@@ -64,9 +64,7 @@ public static class ShardMerge
                     case ShardMerging.NoiseNpy: MergeNpy(parts, f, target, width, height, bands + 1); break;
                     case ShardMerging.NpyCube: MergeNpy(parts, f, target, width, height, bands); break;
                     case ShardMerging.NpyColour: MergeNpy(parts, f, target, width, height, 3); break;
-                    case ShardMerging.PathTransfer: MergeNpy(parts, f, target, width, height, PathGroups(parts[0])); break;
-                    case ShardMerging.PathShift: MergeNpy(parts, f, target, width, height, PathShift(parts[0])); break;
-                    case ShardMerging.PathIds: MergeNpy(parts, f, target, width, height, 3); break;
+                    case ShardMerging.TransferRows: MergeNpy(parts, f, target, width, height, TransferRows(parts[0], f)); break;
                     case ShardMerging.Copy:
                         Directory.CreateDirectory(Path.GetDirectoryName(target)!);   // grids/NAME.csv: a subfolder
                         AtomicFile.WriteAllBytes(target, File.ReadAllBytes(Path.Combine(parts[0].Dir, f)));
@@ -282,24 +280,17 @@ public static class ShardMerge
         AtomicFile.WriteAllText(target, merged);
     }
 
-    /// <summary>A path render's transfer per pixel, (K + 1, F), from a shard's lights/lights.json.</summary>
-    /// <summary>A fluorescent path transfer's shift.npy per pixel: [K, R, C] (lights.json's lights and shift block).</summary>
-    static int[] PathShift(Part p)
+    /// <summary>
+    /// A shard's transfer array lights/NAME per pixel, as the format of the shard's lights/ reads it from its lights.json
+    /// (<see cref="TransferFormat.RowShape"/>).
+    /// </summary>
+    static int[] TransferRows(Part p, string file)
     {
-        var path = Path.Combine(p.Dir, LightTransferFiles.Folder, "lights.json");
-        var r = new JsonFields(path, "render the shard again with the lights output");
-        var json = JsonFields.ParseFile(path, "lights.json", r.Hint);
-        var shift = PathTransferFiles.ReadShift(r, json, r.Int(json, "sub_bands", "$", 1, 1 << 20));
-        if (shift.IsEmpty) throw r.Bad("$.shift", "is missing, but the shard wrote lights/shift.npy");
-        return [r.Array(json, "lights", "$").Count, shift.Rows, shift.Columns];
-    }
-
-    static int[] PathGroups(Part p)
-    {
-        var path = Path.Combine(p.Dir, LightTransferFiles.Folder, "lights.json");
-        var r = new JsonFields(path, "render the shard again with the lights output");
-        var json = JsonFields.ParseFile(path, "lights.json", r.Hint);
-        return [r.Array(json, "lights", "$").Count + 1, r.Int(json, "sub_bands", "$", 1, 1 << 20)];
+        var format = TransferFiles.FormatOf(p.Dir);
+        string name = file[(TransferFiles.Folder.Length + 1)..];
+        return (format is { Shards: true } ? format.RowShape(name, Path.Combine(p.Dir, TransferFiles.Folder)) : null)
+            ?? throw new InputException(Path.Combine(p.Dir, "render.json"), $"lists '{file}', a file merge does not know",
+                "merge shards written by the same version");
     }
 
     /// <summary>

@@ -27,13 +27,12 @@ public static partial class ExactChannelSignals
         string from;
         try
         {
-            if (PathTransferFiles.IsPath(src.Dir))
+            if (LightsRoute(src.Dir) == CameraRoute.FineFilm)
             {
                 scene = Relighting.ChangedScene(src, [], null);
-                var transfer = PathTransferFiles.Read(src.Dir, scene);
-                film = PathFineFilm.FromTransfer(transfer, scene);
-                from = "the render's lights/ (its path transfer: L_f = F_f + sum_k T_k,f * E_k,f" +
-                    (transfer.Shift.IsEmpty ? "" : " + sum_k B_k E_k of its fluorescent shift") + " per pixel, no rays traced)";
+                var transfer = (IFineFilmRoute)TransferFiles.Read(src.Dir, scene);   // its format's route is FineFilm
+                film = transfer.FineFilm(scene);
+                from = $"the render's lights/ ({transfer.FineFilmMethod})";
             }
             else
             {
@@ -49,9 +48,13 @@ public static partial class ExactChannelSignals
                     return null;
                 }
                 if (FilmTooLarge(scene, sensor) is { } why) { reason = why; return null; }
-                var integrator = (PathIntegrator)Integrators.Create(scene, new SceneGeometry(scene), "path");
+                if (Integrators.Create(scene, new SceneGeometry(scene), IntegratorOf(src)) is not IFineFilmIntegrator integrator)
+                {
+                    reason = $"the render's {IntegratorOf(src)} integrator cannot trace its film on a fine grid";
+                    return null;
+                }
                 var clock = System.Diagnostics.Stopwatch.StartNew();
-                film = PathFineFilm.Trace(scene, integrator, threads < 0 ? 0 : threads);
+                film = integrator.TraceFineFilm(scene, threads < 0 ? 0 : threads);
                 from = string.Create(CultureInfo.InvariantCulture,
                     $"the render's camera samples traced again from render.json's resolved scene (the same paths, {clock.Elapsed.TotalSeconds:F1} s)");
             }
@@ -133,7 +136,7 @@ public static partial class ExactChannelSignals
     /// The band route's white of a render held in memory (libspectral): a path render's read off its chart, a Whitted
     /// render's from its per-light transfer, as <see cref="BandRouteWhite(CameraScene, int)"/> takes a folder's.
     /// </summary>
-    public static (double Scale, string Source)? BandRouteWhite(CameraScene cs, Scene scene, LightTransfer? transfer, bool path) =>
+    public static (double Scale, string Source)? BandRouteWhite(CameraScene cs, Scene scene, ITermRoute? transfer, bool path) =>
         path ? PathWhite(cs)
         : transfer is not null && transfer.Width == cs.Width && transfer.Height == cs.Height ? WhiteScale(cs, scene, transfer, scene.Radiometry == Radiometry.Physical)
         : null;

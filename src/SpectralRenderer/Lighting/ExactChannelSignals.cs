@@ -12,7 +12,7 @@ namespace SpectralRenderer.Lighting;
 
 /// <summary>
 /// The camera's exact route (issue 24): a render's pixel is L = Σ_c F_c · E_k·m·Π k_chain over its eq. 2 components
-/// (<see cref="LightTransfer"/>: a geometric factor F per pixel × a light spectrum × a material spectrum), so a channel's
+/// (<see cref="ITermRoute"/>: a geometric factor F per pixel × a light spectrum × a material spectrum), so a channel's
 /// signal is Σ_c F_c · s_c · Π k · ∫ η(λ)·λ·E_k(λ)·m(λ) dλ — the same per-term scalar × precomputed table that gives
 /// the render its exact colour (<see cref="TermTables"/>), with the channel's η·λ/(hc) in place of x̄, integrated at the
 /// spectra's full resolution (<see cref="ChannelWeights.ExactIntegral"/>). The factors come from the render's lights/
@@ -20,6 +20,7 @@ namespace SpectralRenderer.Lighting;
 /// A component whose chain passes a coloured mirror or glass, a dispersive split, or a spectrum known only by its band
 /// values takes the band route for itself (its band values × the channel weights), and the manifest counts them.
 /// A path render has no eq. 2 terms; its channels are integrated from its fine spectral grid (ExactChannelSignals.Path.cs).
+/// Which route a render takes is its integrator's capability (<see cref="TransferFormat.Route"/>), not its name.
 /// </summary>
 public static partial class ExactChannelSignals
 {
@@ -40,7 +41,7 @@ public static partial class ExactChannelSignals
         try { src = Relighting.Open(cs.Folder.Path); }
         catch (InputException e) { reason = $"the render folder cannot be rebuilt ({e.Message})"; return null; }
         // A path render's light is every bounce of the rendering equation, not eq. 2's terms: its fine grid is integrated instead.
-        if (IsPath(src)) return PathRoute(cs, sensor, src, threads, out reason);
+        if (RouteOf(src) == CameraRoute.FineFilm) return PathRoute(cs, sensor, src, threads, out reason);
         return Transfer(src, threads, out var scene, out var transfer, out var from, out reason)
             ? Compute(cs, sensor, scene, transfer, from, threads, out reason) : null;
     }
@@ -56,32 +57,38 @@ public static partial class ExactChannelSignals
     {
         Relighting.Source src;
         try { src = Relighting.Open(cs.Folder.Path); }
-        catch (InputException) { return PathTransferFiles.IsPath(cs.Folder.Path) ? PathWhite(cs) : null; }
-        if (IsPath(src)) return PathWhite(cs);
+        catch (InputException) { return LightsRoute(cs.Folder.Path) == CameraRoute.FineFilm ? PathWhite(cs) : null; }
+        if (RouteOf(src) == CameraRoute.FineFilm) return PathWhite(cs);
         if (!Transfer(src, threads, out var scene, out var transfer, out _, out _)
             || transfer.Width != cs.Width || transfer.Height != cs.Height) return null;
         return WhiteScale(cs, scene, transfer, scene.Radiometry == Radiometry.Physical);
     }
 
-    /// <summary>A Whitted render's scene and per-light transfer: its lights/ when written, else traced again (the render's rays).</summary>
-    static bool Transfer(Relighting.Source src, int threads, out Scene scene, out LightTransfer transfer, out string from, out string reason)
+    /// <summary>A render's scene and its eq. 2 terms: its lights/ when written, else traced again (the render's rays).</summary>
+    static bool Transfer(Relighting.Source src, int threads, out Scene scene, out ITermRoute transfer, out string from, out string reason)
     {
         string dir = src.Dir;
         scene = null!; transfer = null!; from = "";
         try
         {
-            bool written = File.Exists(Path.Combine(dir, LightTransferFiles.Folder, "lights.json"));
+            bool written = File.Exists(Path.Combine(dir, TransferFiles.Folder, TransferFiles.Description));
             scene = written ? Relighting.ChangedScene(src, [], null)
                 : SceneLoader.Parse(src.Scene.WithLights([], null), src.ScenePath, src.Overrides with { LoadMeshes = true });
-            if (!HasTermTransfer(src, scene, out reason)) return false;
+            if (!HasTermTransfer(src, out reason)) return false;
             if (written)
             {
-                transfer = LightTransferFiles.Read(dir, scene);
+                transfer = (ITermRoute)TransferFiles.Read(dir, scene);   // its format's route is Terms
                 from = "the render's lights/ (per-pixel factors of each eq. 2 term)";
             }
             else
             {
-                transfer = LightTransfer.Trace(scene, new SceneGeometry(scene), threads < 0 ? 0 : threads);
+                if (Integrators.Create(scene, new SceneGeometry(scene), IntegratorOf(src)) is not ITransferIntegrator integrator
+                    || integrator.TraceTransfer(scene, threads < 0 ? 0 : threads, default, null) is not ITermRoute terms)
+                {
+                    reason = $"the render's {IntegratorOf(src)} integrator records no eq. 2 terms";
+                    return false;
+                }
+                transfer = terms;
                 from = "the per-light transfer traced again from render.json's resolved scene (the render's rays)";
             }
         }
@@ -89,35 +96,46 @@ public static partial class ExactChannelSignals
         return true;
     }
 
-    /// <summary>A path render: its lights/ are a path transfer, or the integrator it ran (the command line's run.integrator,
-    /// else the resolved scene's) is the path tracer, or — neither named — its sampler is the path tracer's.</summary>
-    static bool IsPath(Relighting.Source src)
+    /// <summary>
+    /// The exact route a render folder gives: its lights/' format's when it wrote them, else its integrator's (the command
+    /// line's run.integrator, else the resolved scene's, else the default) transfer format's.
+    /// </summary>
+    static CameraRoute RouteOf(Relighting.Source src) => LightsRoute(src.Dir) is var written && written != CameraRoute.None
+        ? written
+        : Integrators.Entry(IntegratorOf(src))?.Transfer?.Route ?? CameraRoute.None;
+
+    /// <summary>The route of the transfer in <paramref name="dir"/>/lights/, None without one (or one no integrator writes).</summary>
+    static CameraRoute LightsRoute(string dir)
     {
-        if (PathTransferFiles.IsPath(src.Dir)) return true;
-        string? name = src.Manifest.Run?.Integrator ?? (src.Scene.ToJson()["integrator"] is { } i
-            ? (i as System.Text.Json.Nodes.JsonValue)?.ToString() ?? (string?)i["type"] : null);
-        return name is not null ? name == "path" : src.Manifest.Sampling?.Sampler == "sobol";
+        try { return TransferFiles.FormatOf(dir)?.Route ?? CameraRoute.None; }
+        catch (InputException) { return CameraRoute.None; }
     }
 
     /// <summary>
-    /// Whether the render is a sum of eq. 2 terms whose per-light transfer the exact route can use: the Whitted model's.
-    /// The integrator is the command line's (render.json's run.integrator), else the resolved scene's. A path-traced render
-    /// is not (its light bounces between surfaces): its fine grid is integrated instead (<see cref="PathRoute"/>). The one
-    /// place to change when another integrator records a transfer of its own.
+    /// The integrator a render ran: render.json's run.integrator, else its resolved scene's (lower case, as the loader reads
+    /// it), else the default.
     /// </summary>
-    static bool HasTermTransfer(Relighting.Source src, Scene scene, out string reason)
+    static string IntegratorOf(Relighting.Source src) => src.Manifest.Run?.Integrator ?? (src.Scene.ToJson()["integrator"] is { } i
+        ? ((i as System.Text.Json.Nodes.JsonValue)?.ToString() ?? (string?)i["type"])?.ToLowerInvariant() : null) ?? Integrators.Default;
+
+    /// <summary>
+    /// Whether the render is a sum of eq. 2 terms whose per-light transfer the exact route can use (its integrator's
+    /// transfer gives <see cref="CameraRoute.Terms"/>: the Whitted model's). A path-traced render is not (its light bounces
+    /// between surfaces): its fine grid is integrated instead (<see cref="PathRoute"/>).
+    /// </summary>
+    static bool HasTermTransfer(Relighting.Source src, out string reason)
     {
-        string name = src.Manifest.Run?.Integrator ?? scene.Integrator?.Name ?? Integrators.Default;
-        reason = name == Integrators.Default ? ""
-            : $"the render's {name} integrator has no per-term light transfer (that is the {Integrators.Default} model's)";
-        return name == Integrators.Default;
+        string name = IntegratorOf(src);
+        bool terms = RouteOf(src) == CameraRoute.Terms;
+        reason = terms ? "" : $"the render's {name} integrator has no per-term light transfer (that is the {Integrators.Default} model's)";
+        return terms;
     }
 
     /// <summary>
     /// The exact route from a scene and its per-light transfer (<paramref name="from"/> says where it came from: a folder's
     /// lights/, traced again, or a render held in memory), or null (with the reason) when they do not match the cube.
     /// </summary>
-    public static Result? Compute(CameraScene cs, SensorModel sensor, Scene scene, LightTransfer transfer, string from, int threads,
+    public static Result? Compute(CameraScene cs, SensorModel sensor, Scene scene, ITermRoute transfer, string from, int threads,
         out string reason)
     {
         if (transfer.Width != cs.Width || transfer.Height != cs.Height || transfer.Bands != cs.Grid.Count)
@@ -328,7 +346,7 @@ public static partial class ExactChannelSignals
     /// light k over the chart's patch pixels (the maximum over the image without a chart). A light whose spectrum is not
     /// the reference white counts by its band sum relative to the white's.
     /// </summary>
-    static (double Scale, string Source) WhiteScale(CameraScene cs, Scene scene, LightTransfer transfer, bool physical)
+    static (double Scale, string Source) WhiteScale(CameraScene cs, Scene scene, ITermRoute transfer, bool physical)
     {
         int lights = scene.Lights.Count;
         var chart = new bool[cs.Width * cs.Height];

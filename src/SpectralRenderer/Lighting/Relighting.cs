@@ -21,7 +21,7 @@ public sealed record LightChange(string Light, string? Spectrum, double? Intensi
 /// resolved scene and the command-line overrides render.json recorded, with the lights' spectra, intensities
 /// and the reference white changed as asked (so the band grid, κ, eq. 3 weights and every output option are
 /// exactly what a fresh render of the changed scene has), and the image is S + Σ_c F_c · P_c under the new
-/// light band values (<see cref="LightTransfer.Relight"/>). No ray is traced. The result is written as a
+/// light band values (<see cref="ILightTransfer.Relight"/>). No ray is traced. The result is written as a
 /// complete render folder, its render.json saying it was relit and from what.
 /// </summary>
 public static class Relighting
@@ -86,52 +86,16 @@ public static class Relighting
         // By identity, not spelling: "r/", "./r" or a link to r is the folder being relit too.
         if (OutputFolder.SameFolder(src.Dir, outDir))
             throw new InputException(outDir, "is the folder being relit", "write the relit render to another folder with -o");
-        if (PathTransferFiles.IsPath(src.Dir)) return WritePath(src, scene, changes, white, outDir, commandLine, cancel, metrics);
-        var clock = System.Diagnostics.Stopwatch.StartNew();
-        var transfer = LightTransferFiles.Read(src.Dir, scene);
-        if (transfer.Width != scene.Camera.Width || transfer.Height != scene.Camera.Height || transfer.Bands != scene.Bands)
-            throw new InputException(src.Dir, $"its lights/ are {transfer.Width}×{transfer.Height}×{transfer.Bands} but the scene rebuilds as {scene.Camera.Width}×{scene.Camera.Height}×{scene.Bands}",
-                "the scene file changed since the render; render again");
-        Directory.CreateDirectory(outDir);
-        var crop = PixelRect.Whole(transfer.Width, transfer.Height);
-        var reuse = Reusable(src, scene, crop);
-        var job = Pipeline.RenderJob.Load(new Pipeline.RenderRequest
-        {
-            Scene = scene,
-            ScenePath = src.ScenePath,
-            OutDir = outDir,
-            FromTransfer = new Pipeline.TransferSource(transfer, reuse),
-            Detail = Pipeline.RunDetail.None,
-        });
-        var result = job.Render(cancel: cancel);
-        var compute = clock.Elapsed;
-        var copied = (reuse?.Names ?? Enumerable.Empty<string>())
-            .Concat(transfer.StoredIn is null ? [] : LightTransferFiles.ArraysOf(transfer).Select(f => $"{LightTransferFiles.Folder}/{f}"));
-        string? metricsCsv = null;
-        RelightMetrics? metricsRecord = null;
-        if (metrics) (metricsRecord, metricsCsv) = Metrics(src, scene, transfer.ObjectIds, transfer.Relight(ChangedScene(src, [], null)).Xyz, result.Xyz!);
-        return Finish(job, src, scene, changes, white, commandLine, compute, metricsRecord, metricsCsv, copied,
-            "per-light transfer (lights/): L_b = sum_c F_c * P_c,b and XYZ = sum_c F_c * XYZ_c with P_c rebuilt from the new lights' term tables; no rays traced",
-            outDir, cancel);
-    }
-
-    /// <summary>
-    /// Relights a path render (lights/ of kind "path", <see cref="PathTransfer"/>): the scene's lights (point, spot,
-    /// directional, goniometric at its own spectrum) take new spectra and intensities, 0 switching one off; the emitters' and
-    /// the sky's light is kept as rendered (it is not a scene light: relight refuses no name of it, it has none).
-    /// </summary>
-    static (Scene Scene, List<string> Files, TimeSpan Compute) WritePath(Source src, Scene scene, IReadOnlyList<LightChange> changes, string? white,
-        string outDir, string commandLine, CancellationToken cancel, bool metrics)
-    {
+        var format = TransferFiles.FormatOf(src.Dir);
         foreach (var c in changes)
-            if (c.Spectrum is not null && scene.Lights[Array.IndexOf(src.LightNames, c.Light)] is GoniometricLight)
-                throw new InputException($"--light {c.Light}", $"light '{c.Light}' is goniometric: its candela are radiance per lumen of its spectrum, so a new spectrum rescales its path weights, which a path render's transfer holds",
+            if (c.Spectrum is not null && format?.RefusesNewSpectrum(scene.Lights[Array.IndexOf(src.LightNames, c.Light)]) is { } why)
+                throw new InputException($"--light {c.Light}", $"light '{c.Light}' {why}",
                     "give it a new --intensity only, or render the scene again with the new spectrum");
         var clock = System.Diagnostics.Stopwatch.StartNew();
-        var transfer = PathTransferFiles.Read(src.Dir, scene);
-        if (transfer.FilmWidth != scene.Camera.Width || transfer.FilmHeight != scene.Camera.Height)
-            throw new InputException(src.Dir, $"its lights/ are {transfer.FilmWidth}×{transfer.FilmHeight} but the scene rebuilds as {scene.Camera.Width}×{scene.Camera.Height}",
-                "the scene file changed since the render; render again");
+        // The transfer of whichever integrator rendered the folder (lights.json's kind), checked against the rebuilt scene.
+        var transfer = TransferFiles.Read(src.Dir, scene);
+        if (transfer.Mismatch(scene) is { } mismatch)
+            throw new InputException(src.Dir, mismatch, "the scene file changed since the render; render again");
         Directory.CreateDirectory(outDir);
         var reuse = Reusable(src, scene, transfer.Region);
         var job = Pipeline.RenderJob.Load(new Pipeline.RenderRequest
@@ -139,19 +103,21 @@ public static class Relighting
             Scene = scene,
             ScenePath = src.ScenePath,
             OutDir = outDir,
-            Integrator = "path",
-            FromTransfer = new Pipeline.TransferSource(null, reuse, transfer),
+            Integrator = transfer.Format.Integrator,
+            FromTransfer = new Pipeline.TransferSource(transfer, reuse),
             Detail = Pipeline.RunDetail.None,
         });
         var result = job.Render(cancel: cancel);
         var compute = clock.Elapsed;
+        var copied = (reuse?.Names ?? Enumerable.Empty<string>()).Concat(transfer.StoredFiles);
         string? metricsCsv = null;
         RelightMetrics? metricsRecord = null;
-        if (metrics) (metricsRecord, metricsCsv) = Metrics(src, scene, transfer.ObjectIds, transfer.Relight(ChangedScene(src, [], null)).Xyz, result.Xyz!);
-        return Finish(job, src, scene, changes, white, commandLine, compute, metricsRecord, metricsCsv, reuse?.Names ?? Enumerable.Empty<string>(),
-            "per-light transfer of a path render (lights/transfer.npy): on the fine grid L_f = F_f + sum_k T_k,f * E_k,f" +
-                (transfer.Shift.IsEmpty ? "" : " + sum_k B_k E_k (its fluorescent shift, lights/shift.npy)") + " with E_k the new " +
-                "lights' spectra x intensities (emitters and sky F as rendered), reduced to the bands and XYZ as the film is; no rays traced",
+        if (metrics)
+        {
+            var unchanged = transfer.Relight(ChangedScene(src, [], null)).Xyz!;
+            (metricsRecord, metricsCsv) = Metrics(src, scene, transfer.ObjectIds, unchanged, result.Xyz!);
+        }
+        return Finish(job, src, scene, changes, white, commandLine, compute, metricsRecord, metricsCsv, copied, transfer.RelightMethod,
             outDir, cancel);
     }
 
@@ -226,7 +192,8 @@ public static class Relighting
     {
         try
         {
-            var json = JsonNode.Parse(File.ReadAllText(Path.Combine(src.Dir, LightTransferFiles.Folder, "lights.json")))?["materials"] as JsonArray;
+            var lightsJson = Path.Combine(src.Dir, TransferFiles.Folder, TransferFiles.Description);
+            var json = JsonNode.Parse(File.ReadAllText(lightsJson))?["materials"] as JsonArray;
             if (json is null || json.Count != scene.Materials.Count) return false;
             for (int m = 0; m < json.Count; m++)
             {

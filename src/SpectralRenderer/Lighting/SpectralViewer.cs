@@ -7,6 +7,7 @@ using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Output;
 using SpectralRenderer.Output.Products;
+using SpectralRenderer.Rendering;
 using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Lighting;
@@ -53,9 +54,10 @@ public static class SpectralViewer
             ["white"] = Nums([manifest.White.X, manifest.White.Y, manifest.White.Z]),
         };
 
-        var lightsJson = Path.Combine(dir, LightTransferFiles.Folder, "lights.json");
-        // A path render's transfer (lights.json of kind path) has no eq. 2 components for the page's sliders: the page shows its cube.
-        JsonObject? transfer = File.Exists(lightsJson) && !PathTransferFiles.IsPath(dir) ? JsonNode.Parse(File.ReadAllText(lightsJson))!.AsObject() : null;
+        var lightsJson = Path.Combine(dir, TransferFiles.Folder, "lights.json");
+        // Only a transfer of eq. 2's terms (CameraRoute.Terms: Whitted's) has the components the page's sliders recombine;
+        // of any other (a path render's) the page shows its cube.
+        JsonObject? transfer = File.Exists(lightsJson) && TermsIn(dir) ? JsonNode.Parse(File.ReadAllText(lightsJson))!.AsObject() : null;
         // A textured term's entries are texel samples (issue 26), which the page's F · P sum cannot take.
         if (transfer?["components"] is JsonArray tc && tc.Any(c => c?["texels"] is not null))
             throw new InputException(lightsJson,
@@ -120,7 +122,7 @@ public static class SpectralViewer
             var src = Relighting.Open(dir);
             var resolvedLights = manifest.ResolvedScene?.Lights;
             var comps = transfer["components"]!.AsArray();
-            var components = LightTransferFiles.Read(dir, Relighting.ChangedScene(src, [], null)).Components;
+            var components = ((ITermRoute)TransferFiles.Read(dir, Relighting.ChangedScene(src, [], null))).Components;
             var presets = new JsonArray();
             var lights = new JsonArray();
             JsonArray PresetComponents(Func<int, float[]?> p) => new(Enumerable.Range(0, comps.Count).Select(c => p(c) is { } v ? (JsonNode)Numbers(v.Select(x => (double)x)) : null).ToArray());
@@ -205,11 +207,11 @@ public static class SpectralViewer
                 ["band_values"] = c["band_values"]!.DeepClone(),
                 ["xyz"] = c["xyz"]!.DeepClone(),
             }).ToArray());
-            var (_, f) = ReadNpy(Path.Combine(dir, LightTransferFiles.Folder, "factors.npy"));
-            using (var ps = File.OpenRead(Path.Combine(dir, LightTransferFiles.Folder, "pixels.npy")))
+            var (_, f) = ReadNpy(Path.Combine(dir, TransferFiles.Folder, "factors.npy"));
+            using (var ps = File.OpenRead(Path.Combine(dir, TransferFiles.Folder, "pixels.npy")))
                 binary["pixels"] = System.Runtime.InteropServices.MemoryMarshal.AsBytes(NpyInt32.Read(ps).Data.AsSpan()).ToArray();
             binary["factors"] = System.Runtime.InteropServices.MemoryMarshal.AsBytes(f.AsSpan()).ToArray();
-            var (_, idp) = ReadNpy(Path.Combine(dir, LightTransferFiles.Folder, "ids.npy"));
+            var (_, idp) = ReadNpy(Path.Combine(dir, TransferFiles.Folder, "ids.npy"));
             for (int i = 0; i < n; i++) ids[i] = (ushort)idp[i];
             var fallback = Enumerable.Range(0, n).Where(i => idp[2 * n + i] != 0).ToArray();
             binary["fallback"] = System.Runtime.InteropServices.MemoryMarshal.AsBytes(fallback.AsSpan()).ToArray();
@@ -248,6 +250,13 @@ public static class SpectralViewer
     }
 
     static JsonArray Numbers(IEnumerable<double> v) => new(v.Select(x => (JsonNode)JsonValue.Create(x)).ToArray());
+
+    /// <summary>Whether <paramref name="dir"/>'s lights/ hold eq. 2's terms (a format whose camera route is Terms).</summary>
+    static bool TermsIn(string dir)
+    {
+        try { return TransferFiles.FormatOf(dir)?.Route == CameraRoute.Terms; }
+        catch (InputException) { return false; }
+    }
 
     static (int[], float[]) ReadNpy(string path)
     {

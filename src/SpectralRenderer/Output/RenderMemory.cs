@@ -26,11 +26,10 @@ public static class RenderMemory
         };
         int triangles = scene.TriangleCount;
         if (triangles > 0) parts.Add(("BVH", 160L * triangles));
-        // Textures, shared by the threads: the Whitted route's tables per texel, mip level and light; the path tracer's
-        // texel spectra on its fine grid per texel and mip level.
-        bool path = (integrator ?? scene.Integrator?.Name) == "path";
-        long textures = path ? Rendering.FineTexture.Bytes(scene) : Rendering.TextureTables.Bytes(scene);
-        if (textures > 0) parts.Add((path ? "texture spectra (fine grid)" : "texture tables", textures));
+        // The integrator's tables shared by the threads (textures: the Whitted route's tables per texel, mip level and light;
+        // the path tracer's texel spectra on its fine grid), as its registration says.
+        var entry = Rendering.Integrators.Entry(integrator ?? scene.Integrator?.Name ?? Rendering.Integrators.Default);
+        if (entry?.Tables is { } tables) parts.AddRange(tables(scene));
         // The inputs the products share, once; then what each product's writers hold.
         var products = OutputProductTable.For(p, named);
         var needs = ProductInputs.None;
@@ -38,6 +37,9 @@ public static class RenderMemory
         if (needs.HasFlag(ProductInputs.BandPlanes)) parts.Add(("band planes", 4 * n * bands));
         if (needs.HasFlag(ProductInputs.Xyz)) parts.Add(("XYZ planes", 24 * n));
         foreach (var product in products) parts.AddRange(product.Memory(scene, threads));
+        // The per-light transfer the integrator records for the lights product: its format's estimate (of the integrator the
+        // render uses, which a request's --integrator may set beside the scene's).
+        if (products.Any(x => x is LightsProduct) && entry?.Transfer is { } transfer) parts.AddRange(transfer.Memory(scene));
         parts.Sort((a, b) => b.Item2.CompareTo(a.Item2));
         return parts;
     }

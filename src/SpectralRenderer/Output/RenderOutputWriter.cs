@@ -26,9 +26,9 @@ public static class RenderOutputWriter
     public static string EngineBuild { get; } = typeof(RenderOutputWriter).Assembly.ManifestModule.ModuleVersionId.ToString("N");
 
     public static List<string> Write(Scene scene, RenderResult result, string outDir, ManifestRun? run = null, CancellationToken cancel = default,
-        LightTransfer? transfer = null, ReusedFiles? reuse = null, IReadOnlyList<OutputProduct>? named = null, RenderTracer? tracer = null,
-        PathTransfer? pathTransfer = null) =>
-        Write(scene, result, OutputFolder.Begin(outDir), run, cancel, transfer, reuse, named, tracer, pathTransfer);
+        ILightTransfer? transfer = null, ReusedFiles? reuse = null, IReadOnlyList<OutputProduct>? named = null,
+        RenderTracer? tracer = null) =>
+        Write(scene, result, OutputFolder.Begin(outDir), run, cancel, transfer, reuse, named, tracer);
 
     /// <summary>
     /// Writes the render into <paramref name="folder"/>'s staging folder and swaps it in whole (<see cref="OutputFolder"/>).
@@ -38,11 +38,11 @@ public static class RenderOutputWriter
     /// <param name="named">Products asked for by name beyond the scene's formats (<see cref="OutputProductTable.Named"/>).</param>
     /// <param name="tracer">The render's geometry and integrator, for products that trace rays (photometry's illuminance).</param>
     public static List<string> Write(Scene scene, RenderResult result, OutputFolder folder, ManifestRun? run = null, CancellationToken cancel = default,
-        LightTransfer? transfer = null, ReusedFiles? reuse = null, IReadOnlyList<OutputProduct>? named = null, RenderTracer? tracer = null,
-        PathTransfer? pathTransfer = null)
+        ILightTransfer? transfer = null, ReusedFiles? reuse = null, IReadOnlyList<OutputProduct>? named = null,
+        RenderTracer? tracer = null)
     {
         List<string> written;
-        try { written = WriteFiles(scene, result, folder.Staging, run, cancel, transfer, reuse, named, tracer, pathTransfer); }
+        try { written = WriteFiles(scene, result, folder.Staging, run, cancel, transfer, reuse, named, tracer); }
         catch (OperationCanceledException e) when (e is not InterruptedException)
         {
             folder.Abandon();
@@ -110,8 +110,8 @@ public static class RenderOutputWriter
         }
     }
 
-    static List<string> WriteFiles(Scene scene, RenderResult result, string outDir, ManifestRun? run, CancellationToken cancel, LightTransfer? transfer,
-        ReusedFiles? reuse, IReadOnlyList<OutputProduct>? named, RenderTracer? tracer, PathTransfer? pathTransfer)
+    static List<string> WriteFiles(Scene scene, RenderResult result, string outDir, ManifestRun? run, CancellationToken cancel,
+        ILightTransfer? transfer, ReusedFiles? reuse, IReadOnlyList<OutputProduct>? named, RenderTracer? tracer)
     {
         var products = OutputProductTable.For(scene.Output.Products, named);
         var needs = ProductInputs.None;
@@ -144,7 +144,6 @@ public static class RenderOutputWriter
             Xyz = xyz,
             Preview = encoder,
             Transfer = transfer,
-            PathTransfer = pathTransfer,
             Tracer = tracer,
             Reuse = reuse,
             Cancel = cancel,

@@ -33,9 +33,8 @@ public sealed class RenderJob
     public SceneGeometry? Geometry { get; private set; }
     public IIntegrator? Integrator { get; private set; }
     public RenderResult? Result { get; private set; }
-    public LightTransfer? Transfer { get; private set; }
-    /// <summary>A path render's per-light transfer (the lights product under the path integrator).</summary>
-    public PathTransfer? PathTransfer { get; private set; }
+    /// <summary>The per-light transfer (the lights product, or the one a relit render was recombined from).</summary>
+    public ILightTransfer? Transfer { get; private set; }
     public double? TransferSeconds { get; private set; }
     /// <summary>render.json's "run" as it will be written; a caller may add to it before <see cref="Write"/>.</summary>
     public ManifestRun? RunRecord { get; set; }
@@ -97,22 +96,29 @@ public sealed class RenderJob
         if (Request.Integrator is null && Scene.Integrator is { } chosen && !Integrators.Has(chosen.Name))
             throw new InputException($"{Scene.SourcePath}: $.integrator", $"unknown integrator '{chosen.Name}'",
                 $"known integrators: {string.Join(", ", Integrators.Names)}");
+        if (Scene.Integrator is { } given && Integrators.Entry(given.Name) is { } entry)
+            foreach (var (key, where) in given.Keys)
+                if (!entry.Keys.Contains(key))
+                    throw new InputException(where, $"the {given.Name} integrator takes no {MessageText.Quote(key)}",
+                        entry.Keys.Count == 0 ? $"give just \"integrator\": \"{given.Name}\""
+                            : $"{given.Name} takes: {string.Join(", ", entry.Keys)}");
         bool lights = (Scene.Output.Products & OutputProducts.Lights) != 0;
-        if (IntegratorName is not (Integrators.Default or "path") && lights)
-            throw new InputException("--formats", $"the per-light outputs (lights) are recorded by the whitted and path integrators; the {IntegratorName} integrator does not record one",
-                "leave lights out of the formats, or render with --integrator whitted or path");
-        if (IntegratorName == "path" && lights && Scene.TargetError > 0)
-            throw new InputException("--target-error", "a path render's per-light transfer (lights) needs the same samples in every pixel: adaptive sampling stops a pixel by its luminance, which follows the lights' spectra, so a relight could not equal a render",
-                "leave out --target-error (fixed --spp), or leave lights out of the formats");
+        var transfer = Integrators.Entry(IntegratorName)?.Transfer;
+        if (transfer is null && lights)
+            throw new InputException("--formats", $"the per-light outputs (lights) are recorded by the {Recording()} integrators; " +
+                $"the {IntegratorName} integrator does not record one",
+                $"leave lights out of the formats, or render with --integrator {Recording(" or ")}");
+        if (lights && transfer?.Refuses(Scene) is { } refused) throw new InputException(refused.Option, refused.What, refused.Hint);
         var products = Scene.Output.Products;
         if (Shard is not null && (products & OutputProducts.Bands) != 0 && (products & (OutputProducts.Envi | OutputProducts.Npy)) == 0)
             throw new InputException("--shard",
                 "band images need a float cube in each shard: merge rescales them to the whole image's brightest value", "add envi or npy to --formats");
-        if (Crop is not null && lights && !(Shard is not null && IntegratorName == "path"))
-            throw new InputException("--formats", IntegratorName == "path"
-                    ? "a path render's per-light outputs (lights) are written for whole renders and shards, not for a crop"
+        bool shards = transfer?.Shards == true;
+        if (Crop is not null && lights && !(Shard is not null && shards))
+            throw new InputException("--formats", shards
+                    ? $"a {IntegratorName} render's per-light outputs (lights) are written for whole renders and shards, not for a crop"
                     : "the per-light outputs (lights) are written for whole renders only, not for a crop or shard",
-                "render lights without --crop" + (IntegratorName == "path" ? "" : "/--shard"));
+                "render lights without --crop" + (shards ? "" : "/--shard"));
         if ((products & OutputProducts.Noise) != 0 && Scene.Camera.SamplesPerPixel < 2)
             throw new InputException("--formats", $"noise is each pixel's standard error from its samples and needs at least 2 samples per pixel, found spp {Scene.Camera.SamplesPerPixel}",
                 "give --spp 2 or more (or the scene's camera.spp), or leave noise out of the formats");
@@ -123,6 +129,13 @@ public sealed class RenderJob
             throw new InputException(Request.ScenePath.Length > 0 ? Request.ScenePath : Scene.SourcePath,
                 "output.exposure \"auto\" is chosen from the whole image, which a shard or crop does not see",
                 "give a fixed \"exposure\" (a whole render's render.json states the one auto chose, $.colour.exposure)");
+    }
+
+    /// <summary>The integrators that record a per-light transfer, named as a sentence lists them ("whitted and path").</summary>
+    static string Recording(string and = " and ")
+    {
+        var names = Integrators.Names.Where(n => Integrators.Entry(n)?.Transfer is not null).ToList();
+        return names.Count <= 1 ? string.Concat(names) : string.Join(", ", names[..^1]) + and + names[^1];
     }
 
     /// <summary>
@@ -168,8 +181,11 @@ public sealed class RenderJob
     /// <summary>Renders the film (or recombines it from the request's transfer); may be called again (bench repeats).</summary>
     public RenderResult Render(RenderObserver? observer = null, CancellationToken cancel = default)
     {
-        if (Request.FromTransfer is { Path: { } path }) return Result = FromPathTransfer(path);
-        if (Request.FromTransfer is { Transfer: { } source }) return Result = FromTransfer(source);
+        if (Request.FromTransfer is { Transfer: { } source })
+        {
+            Transfer = source;
+            return Result = source.Relight(Scene);
+        }
         Build();
         Result = null;   // a repeated render lets the previous film go first
         int done = 0, total = 0;
@@ -192,53 +208,6 @@ public sealed class RenderJob
         return Result;
     }
 
-    /// <summary>The relit film: the transfer's factors recombined with the scene's lights, the geometry's images as traced.</summary>
-    RenderResult FromTransfer(LightTransfer transfer)
-    {
-        var clock = Stopwatch.StartNew();
-        var (image, xyz, fallback) = transfer.Relight(Scene);
-        Transfer = transfer;
-        return new RenderResult
-        {
-            Image = image,
-            Xyz = xyz,
-            FallbackPixels = fallback,
-            ObjectIds = transfer.ObjectIds,
-            LitMasks = LitMasks.From(transfer.LitMasks, Scene.Lights.Count),
-            Highlights = transfer.CentreHighlights(Scene),
-            Rays = new RayCounters(),
-            Elapsed = clock.Elapsed,
-            Threads = Environment.ProcessorCount,
-            Tiles = 0,
-            Crop = PixelRect.Whole(transfer.Width, transfer.Height),
-        };
-    }
-
-    /// <summary>The relit film of a path render: its transfer under the scene's lights; the object ids as traced.</summary>
-    RenderResult FromPathTransfer(PathTransfer transfer)
-    {
-        var clock = Stopwatch.StartNew();
-        var (image, xyz) = transfer.Relight(Scene);
-        PathTransfer = transfer;
-        int n = transfer.Region.Width * transfer.Region.Height;
-        // The lit masks as traced (geometry: no light's spectrum changes them); no highlights (the path tracer has no eq. 2 terms).
-        var highlights = new byte[n];
-        Array.Fill(highlights, PixelInfo.Highlight(0, 0, (float)Scene.Output.HighlightFraction));
-        return new RenderResult
-        {
-            Image = image,
-            Xyz = xyz,
-            ObjectIds = transfer.ObjectIds,
-            LitMasks = LitMasks.From(transfer.LitMasks, Scene.Lights.Count),
-            Highlights = highlights,
-            Rays = new RayCounters(),
-            Elapsed = clock.Elapsed,
-            Threads = Environment.ProcessorCount,
-            Tiles = 0,
-            Crop = transfer.Region,
-        };
-    }
-
     /// <summary>
     /// The transfer when the lights product is asked for, then every product and render.json into the folder, swapped in whole.
     /// </summary>
@@ -247,25 +216,18 @@ public sealed class RenderJob
         var result = Result ?? throw new InvalidOperationException("render before writing");
         if (Request.OutDir is null) return Files;
         Begin();
-        if (PathTransfer is null && (Scene.Output.Products & OutputProducts.Lights) != 0 && Integrator is PathIntegrator path)
+        if (Transfer is null && (Scene.Output.Products & OutputProducts.Lights) != 0 && Integrator is ITransferIntegrator recorder)
         {
-            // A path render's transfer: its camera samples traced again (the same paths), each light's weights kept apart.
+            // The per-light transfer (opt-in): the render's camera samples traced once more, each light's share kept apart.
             var clock = Stopwatch.StartNew();
-            PathTransfer = PathTransfer.Trace(Scene, path, Request.Threads, cancel, Crop);
-            TransferSeconds = clock.Elapsed.TotalSeconds;
-        }
-        else if (Transfer is null && (Scene.Output.Products & OutputProducts.Lights) != 0 && Geometry is not null)
-        {
-            // The per-light transfer (opt-in): the same camera rays traced once more, recording eq. 2's factors per light.
-            var clock = Stopwatch.StartNew();
-            try { Transfer = LightTransfer.Trace(Scene, Geometry, Request.Threads, cancel); }
+            try { Transfer = recorder.TraceTransfer(Scene, Request.Threads, cancel, Crop); }
             catch { _folder?.Abandon(); throw; }
             TransferSeconds = clock.Elapsed.TotalSeconds;
         }
         RunRecord ??= Record(result);
         var writeClock = Stopwatch.StartNew();
         Files = RenderOutputWriter.Write(Scene, result, _folder!, RunRecord, cancel, Transfer, Request.FromTransfer?.Reuse, NamedProducts,
-            Geometry is not null && Integrator is not null ? new RenderTracer(Geometry, Integrator, Request.Threads) : null, PathTransfer);
+            Geometry is not null && Integrator is not null ? new RenderTracer(Geometry, Integrator, Request.Threads) : null);
         WriteSeconds = writeClock.Elapsed.TotalSeconds;
         return Files;
     }

@@ -27,10 +27,9 @@ public sealed record RenderRegion(Func<int, int, PixelRect> Rectangle, string? S
 
 /// <summary>
 /// A render's result taken from a per-light transfer instead of traced rays (relight): the transfer recombined for the
-/// scene's lights, and the files of the source folder that no light changes, copied. A path render's transfer is
-/// <see cref="Path"/> (then <see cref="Transfer"/> is null).
+/// scene's lights, and the files of the source folder that no light changes, copied.
 /// </summary>
-public sealed record TransferSource(LightTransfer? Transfer, ReusedFiles? Reuse = null, PathTransfer? Path = null);
+public sealed record TransferSource(ILightTransfer Transfer, ReusedFiles? Reuse = null);
 
 /// <summary>
 /// What to render and where: the scene (a file, its bytes, or a loaded scene) and what overrides it (size, bands, spp,

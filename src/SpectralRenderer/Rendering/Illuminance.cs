@@ -140,17 +140,18 @@ public sealed class Illuminance
         return maps;
     }
 
-    /// <summary>The gather rays a pixel's illuminance takes under a path integrator: the camera's spp, at least 64.</summary>
+    /// <summary>The gather rays a pixel's illuminance takes under an integrator that gathers: the camera's spp, at least 64.</summary>
     public static int GatherRays(Scene scene) => Math.Max(64, scene.Camera.SamplesPerPixel);
 
     /// <summary>
     /// Per pixel of the render's crop, the luminance (cd/m²) of what the camera sees, from the rendered pixels, and the
     /// illuminance (lx) arriving at the surface the pixel-centre ray meets first (on the side facing the camera; 0 where
-    /// it meets nothing): from the lights with shadows, plus, when <paramref name="gather"/> is given (a path integrator),
+    /// it meets nothing): from the lights with shadows, plus, when <paramref name="gather"/> is given (an integrator that gathers),
     /// π/N Σ L_v of N cosine-weighted rays it traces (area lights, sky and interreflection; delta lights it cannot hit).
     /// The same on any thread count: a pixel's rays depend on (x, y, ray index) only.
     /// </summary>
-    public (float[] Luminance, float[] Illuminance) Maps(RenderResult result, IIntegrator? gather, int threads, CancellationToken cancel = default)
+    public (float[] Luminance, float[] Illuminance) Maps(RenderResult result, IGatherIntegrator? gather, int threads,
+        CancellationToken cancel = default)
     {
         var crop = result.Crop;
         var image = result.Image;
@@ -188,11 +189,11 @@ public sealed class Illuminance
 
     /// <summary>
     /// The illuminance (lx) at each point of a calculation grid (i fastest), on the side of its normal: from the lights with
-    /// shadows (<see cref="FromLights"/>), plus, when <paramref name="gather"/> is given (a path integrator), π/N Σ L_v of
+    /// shadows (<see cref="FromLights"/>), plus, when <paramref name="gather"/> is given (one that gathers: path), π/N Σ L_v of
     /// <see cref="GatherRays"/> cosine-weighted rays from the point (area lights, sky and interreflection), drawn from the
     /// point's (i, j). The same on any thread count.
     /// </summary>
-    public double[] OnGrid(CalculationGrid grid, IIntegrator? gather, int threads, CancellationToken cancel = default)
+    public double[] OnGrid(CalculationGrid grid, IGatherIntegrator? gather, int threads, CancellationToken cancel = default)
     {
         int nu = grid.PointsU, nv = grid.PointsV;
         var lux = new double[nu * nv];

@@ -177,7 +177,7 @@ public sealed record TransferComponent(int Light, TransferLobe Lobe, int Materia
 /// P_i the new light's product with sample i's tent function (<see cref="TransferComponent.TexelColumns"/>).
 /// </summary>
 [CompiledAtFirstCall]
-public sealed class LightTransfer
+internal sealed partial class LightTransfer
 {
     public required int Width { get; init; }
     public required int Height { get; init; }

@@ -33,7 +33,7 @@ public sealed class PathFineFilm
         4L * scene.Camera.Width * scene.Camera.Height * new FineGrid(scene, PathTransfer.GridWidth(scene)).Count;
 
     /// <summary>Traces the render's camera samples of the whole film again, summing each sample's fine radiance with its weight.</summary>
-    public static PathFineFilm Trace(Scene scene, PathIntegrator integrator, int threads = 0, CancellationToken cancel = default)
+    internal static PathFineFilm Trace(Scene scene, PathIntegrator integrator, int threads = 0, CancellationToken cancel = default)
     {
         var cam = scene.Camera;
         var grid = integrator.Grid;
@@ -54,7 +54,7 @@ public sealed class PathFineFilm
     /// From a path render's per-light transfer: L_f = F_f + Σ_k T_k,f·E_k,f (+ its fluorescent shift B_k·E_k) with the scene's
     /// lights (as <see cref="PathTransfer.Relight"/>).
     /// </summary>
-    public static PathFineFilm FromTransfer(PathTransfer t, Scene scene)
+    internal static PathFineFilm FromTransfer(PathTransfer t, Scene scene)
     {
         var grid = new FineGrid(scene, t.SpectralGrid);
         int sub = t.SubBands, w = t.Region.Width, h = t.Region.Height;

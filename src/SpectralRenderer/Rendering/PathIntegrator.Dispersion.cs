@@ -29,7 +29,7 @@ namespace SpectralRenderer.Rendering;
 /// state (PathIntegrator.Fluorescence.cs) is the split's for every sub-path: a sub-path's own shifted bounces carry what it
 /// found to the saved film when it ends, and the next band starts again from the split's level (IPathSink.Rejoin).
 /// </summary>
-public sealed partial class PathIntegrator
+internal sealed partial class PathIntegrator
 {
     /// <summary>A band's β after a dispersive split, in the scratch after the walk's five spectra.</summary>
     Span<float> BandBeta(Span<float> scratch) => scratch.Slice(5 * _padded, _padded);

@@ -2,7 +2,7 @@ using System.Runtime.CompilerServices;
 
 namespace SpectralRenderer.Rendering;
 
-public sealed partial class PathIntegrator
+internal sealed partial class PathIntegrator
 {
     /// <summary>
     /// One camera sample's radiance on the fine grid (<see cref="Grid"/>), before the film reduces it to output bands and

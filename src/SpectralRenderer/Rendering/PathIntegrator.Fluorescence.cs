@@ -5,7 +5,7 @@ using SpectralRenderer.Scenes;
 namespace SpectralRenderer.Rendering;
 
 // Fluorescence from indirect light (issue 26): the path's continuation through a fluorescent surface's shifted lobe.
-public sealed partial class PathIntegrator
+internal sealed partial class PathIntegrator
 {
     // A shifted bounce re-emits at camera sub-band o what arrives at every excitation sub-band i: the light the path finds
     // beyond it reaches the film through f_s[o, i]·β[o] (FluorescentShift), not band by band. A path's throughput is then a

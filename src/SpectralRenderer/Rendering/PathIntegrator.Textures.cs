@@ -13,7 +13,7 @@ namespace SpectralRenderer.Rendering;
 // texel (SceneLoader.Fluorescence.cs): the texel replaces the diagonal as above, and the matrix's shifted part — next-event
 // excitation and the shifted lobe (PathIntegrator.Fluorescence.cs), with its share in the lobe choice — is the same at
 // every texel, so a textured fluorescent vertex takes no other code than the two parts' own.
-public sealed partial class PathIntegrator
+internal sealed partial class PathIntegrator
 {
     bool _textured;   // has a material of the scene a texture (PathMaterial)?
     float _pixelAngle;

@@ -13,7 +13,7 @@ namespace SpectralRenderer.Rendering;
 // (ShiftSpan: the union of the shifts' non-zero rows × columns): R × C floats per light, and a relight adds B_k·E_k[C].
 // The walk's decisions are the film's (none looks at a light's spectrum: β, the albedos, the roulette's gain), so the
 // record equals the film for any light spectra up to float rounding.
-public sealed partial class PathIntegrator
+internal sealed partial class PathIntegrator
 {
     /// <summary>Does a material of the scene shift light between bands (fluorescence)?</summary>
     public bool Fluoresces => _fluoresces;

@@ -27,7 +27,7 @@ namespace SpectralRenderer.Rendering;
 /// </summary>
 [CompiledAtFirstCall]
 [SkipLocalsInit]   // the walk's locals are all written before read: no 0.7 KB of stack cleared per camera sample
-public sealed partial class PathIntegrator : IAnalysisIntegrator
+internal sealed partial class PathIntegrator : IAnalysisIntegrator
 {
     readonly SceneGeometry _geometry;
     readonly FineGrid _grid;

@@ -21,7 +21,7 @@ namespace SpectralRenderer.Rendering;
 /// K × rows × columns in a fluorescent scene.
 /// </summary>
 [CompiledAtFirstCall]
-public sealed class PathTransfer
+internal sealed partial class PathTransfer
 {
     /// <summary>The film's size, and the pixels this transfer holds (a whole render's, or a shard's strip).</summary>
     public required int FilmWidth { get; init; }

@@ -92,14 +92,10 @@ public sealed partial class Renderer
             throw new ArgumentException("a pixel's standard error needs at least 2 samples per pixel", nameof(noise));
         var sampler = integrator.Sampler;
         var sampling = new PixelSampling(cam, scene.RayBudget, analysis: true, sampler, adaptive: target > 0);
-        bool recursive = scene.MaxDepth > 0 && scene.Materials.Any(m => m.HasMirror || m.HasTransmission);
-        // Packets trace the camera rays of a tile together; a scene with mirrors or glass is traced ray by ray, where each
-        // camera ray's tree has its ray budget and a stop request is seen at every pixel (bounded work, prompt SIGINT).
-        // Per-pixel statistics and samplers other than the independent one go ray by ray too.
-        // Textured materials (a diffuse or specular texture) are looked up on the single-ray path (Eq2Walker); the packet path
-        // takes spectra only.
-        bool textured = scene.Materials.Any(m => m.DiffuseTexture is not null || m.SpecularTexture is not null);
-        bool packed = packets && integrator is IPacketIntegrator && !recursive && !statistics && !textured && sampler.Kind == SamplerKind.Independent;
+        // Packets trace the camera rays of a tile together, for the scenes the integrator says (IPacketIntegrator.PrefersPackets).
+        // Per-pixel statistics and samplers other than the independent one go ray by ray.
+        bool packed = packets && integrator is IPacketIntegrator p && p.PrefersPackets(scene) && !statistics
+            && sampler.Kind == SamplerKind.Independent;
         int padded = scene.PaddedBands;
         var errors = statistics ? new float[region.Width * region.Height * (scene.Bands + 1)] : null;
         var spp = target > 0 ? new int[region.Width * region.Height] : null;

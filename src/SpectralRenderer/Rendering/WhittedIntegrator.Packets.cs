@@ -14,7 +14,7 @@ namespace SpectralRenderer.Rendering;
 // (Eq2Walker.Shade) fed from those lane results, its terms listed and summed over the bands in one pass (SIMD over
 // bands). Every lane adds its terms in the order the single-ray walk does, so each pixel gets the same bits. A lane
 // whose surface reflects or transmits (a Whitted recursion) is walked alone.
-public sealed partial class WhittedIntegrator
+internal sealed partial class WhittedIntegrator
 {
     /// <inheritdoc/>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]

@@ -20,7 +20,7 @@ namespace SpectralRenderer.Rendering;
 /// With Fresnel, k_r·F and k_t·(1 − F), F = 1 under total internal reflection (nothing is transmitted), F per band
 /// for a dispersive material.
 /// </summary>
-public sealed partial class WhittedIntegrator : IPacketIntegrator, IAnalysisIntegrator
+internal sealed partial class WhittedIntegrator : IPacketIntegrator, IAnalysisIntegrator
 {
     readonly Scene _scene;
     readonly SceneGeometry _geometry;

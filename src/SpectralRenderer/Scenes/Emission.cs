@@ -23,5 +23,7 @@ public sealed record IntegratorSettings(string Name, int MaxDepth = -1, int RrDe
     double SpectralGrid = IntegratorSettings.DefaultSpectralGrid, SamplerKind? Sampler = null, uint Seed = 0)
 {
     public const int DefaultRrDepth = 5;
+    /// <summary>The keys the scene's "integrator" object gave beside "type", each with where it stands ("file:line:col: $.path").</summary>
+    public IReadOnlyList<(string Key, string Where)> Keys { get; init; } = [];
     public const double DefaultSpectralGrid = 5;
 }

@@ -73,7 +73,8 @@ public sealed class Scene
     /// traced, since it cannot change the pixel by more than this fraction of what a directly seen surface shows.
     /// </summary>
     public float MinRayWeight { get; init; } = DefaultMinRayWeight;
-    public const float DefaultMinRayWeight = 0f;   // off by default: relighting (LightTransfer) traces the full tree and must equal a render
+    // Off by default: relighting (the per-light transfer) traces the full tree and must equal a render.
+    public const float DefaultMinRayWeight = 0f;
     /// <summary>The most rays one camera ray may cost, itself and its shadow, reflected and refracted rays included; beyond it, its branches end and the ray is counted.</summary>
     public int RayBudget { get; init; } = DefaultRayBudget;
     public const int DefaultRayBudget = 20_000;

@@ -59,11 +59,11 @@ namespace SpectralRenderer.Tests.Architecture.Probe.Layers.Scenes.Loading
 
 namespace SpectralRenderer.Tests.Architecture.Probe.Layers.Rendering
 {
-    using Codec = SpectralRenderer.Tests.Architecture.Probe.Layers.Imaging.Mark;
+    using Writer = SpectralRenderer.Tests.Architecture.Probe.Layers.Output.Mark;
 
     public static class Mark { public const int Value = 8; }
 
-    static class BackEdge { public const int X = Codec.Value; }   // through a using alias
+    static class BackEdge { public const int X = Writer.Value; }   // through a using alias
 }
 
 namespace SpectralRenderer.Tests.Architecture.Probe.Layers.Imaging

@@ -23,7 +23,7 @@ public class LayeringTests
         [R + "Acceleration"] = ["Geometry", "Diagnostics"],
         [R + "Scenes"] = ["Spectra", "Color", "Geometry", "Diagnostics"],
         [R + "Scenes.Loading"] = ["Scenes", "Imaging", "Spectra", "Color", "Geometry", "Diagnostics"],
-        [R + "Rendering"] = ["Scenes", "Acceleration", "Geometry", "Spectra", "Color", "Diagnostics"],
+        [R + "Rendering"] = ["Scenes", "Acceleration", "Imaging", "Geometry", "Spectra", "Color", "Diagnostics"],
         [R + "Imaging"] = ["Spectra", "Color", "Diagnostics"],
         [R + "Output"] = ["Rendering", "Scenes", "Geometry", "Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Sensor"] = ["Imaging", "Spectra", "Color", "Diagnostics"],
@@ -176,7 +176,7 @@ public class LayeringTests
     static readonly (string From, string To)[] ProbeBackEdges =
     [
         ("Diagnostics", "Spectra"), ("Spectra", "Color"), ("Color", "Geometry"), ("Geometry", "Acceleration"),
-        ("Acceleration", "Scenes"), ("Scenes", "Scenes.Loading"), ("Scenes.Loading", "Rendering"), ("Rendering", "Imaging"),
+        ("Acceleration", "Scenes"), ("Scenes", "Scenes.Loading"), ("Scenes.Loading", "Rendering"), ("Rendering", "Output"),
         ("Imaging", "Sensor"), ("Sensor", "Output"), ("Output", "Pipeline"), ("Pipeline", "Analysis"),
         ("Analysis", "Lighting"), ("Lighting", "Distributed"), ("Distributed", "Cli"), ("Native", "Cli"),
     ];

@@ -6,7 +6,8 @@ namespace SpectralRenderer.Output.Products;
 /// <summary>
 /// "grids" (set by a scene's "calculation_grids"; physical radiometry): grids/NAME.csv and grids/NAME.svg for each
 /// calculation grid, the illuminance (lx) at its points (<see cref="Illuminance.OnGrid"/>) from every light with shadows
-/// and, under the path integrator, area lights, sky and interreflection by a gather. A relit render traces the grid again
+/// and, under an integrator that gathers (<see cref="IGatherIntegrator"/>: path), area lights, sky and interreflection.
+/// A relit render traces the grid again
 /// under its own lights (the scene's geometry built once more). Not per pixel: every shard writes the same files.
 /// </summary>
 public sealed class GridsProduct : OutputProduct
@@ -26,7 +27,7 @@ public sealed class GridsProduct : OutputProduct
         string title = Path.GetFileName(scene.SourcePath);
         foreach (var grid in scene.CalculationGrids)
         {
-            var lux = illuminance.OnGrid(grid, integrator as PathIntegrator, c.Tracer?.Threads ?? 0, c.Cancel);
+            var lux = illuminance.OnGrid(grid, integrator as IGatherIntegrator, c.Tracer?.Threads ?? 0, c.Cancel);
             CalculationGridFiles.Write(Path.Combine(dir, grid.Name), grid, lux, $"{title}: {grid.Name}");
             done($"{CalculationGridFiles.Folder}/{grid.Name}.csv");
             done($"{CalculationGridFiles.Folder}/{grid.Name}.svg");

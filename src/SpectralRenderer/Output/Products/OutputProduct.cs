@@ -44,12 +44,11 @@ public enum ShardMerging
     /// <summary>noise.img, the N + 1 planes by offset; noise.hdr with the whole height.</summary>
     NoiseEnvi,
     NoiseEnviHeader,
-    /// <summary>A path render's lights/transfer.npy (H × W × (K + 1) × F), row strips by offset.</summary>
-    PathTransfer,
-    /// <summary>A fluorescent path render's lights/shift.npy (H × W × K × R × C), row strips by offset.</summary>
-    PathShift,
-    /// <summary>A path render's lights/ids.npy (H × W × 3), row strips by offset.</summary>
-    PathIds,
+    /// <summary>
+    /// An array of a per-light transfer written by shards (lights/…: H × W × …, the per-pixel shape its format reads from
+    /// the shard's lights.json, <see cref="TransferFormat.RowShape"/>), row strips by offset.
+    /// </summary>
+    TransferRows,
     /// <summary>A false-colour picture and legend of photometry.exr's channels, drawn again from the shards' EXRs assembled.</summary>
     FalseColour,
 }
@@ -78,9 +77,8 @@ public sealed class ProductContext
     public float[]? BandPlanes { get; init; }
     public XyzPlanes? Xyz { get; init; }
     public DisplayEncoder? Preview { get; init; }
-    public LightTransfer? Transfer { get; init; }
-    /// <summary>A path render's per-light transfer (the lights product of the path integrator).</summary>
-    public PathTransfer? PathTransfer { get; init; }
+    /// <summary>The integrator's per-light transfer (the lights product), or null.</summary>
+    public ILightTransfer? Transfer { get; init; }
     /// <summary>The render's ray queries and integrator, for products that trace rays of their own (photometry); null in a relight.</summary>
     public RenderTracer? Tracer { get; init; }
     /// <summary>Files another folder holds exactly as this render would write them (relight): copied, not encoded.</summary>

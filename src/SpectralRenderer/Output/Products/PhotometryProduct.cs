@@ -7,7 +7,8 @@ namespace SpectralRenderer.Output.Products;
 /// <summary>
 /// "photometry" (physical radiometry): photometry.exr with the channels <c>luminance</c> (cd/m², K_m ∫V·L dλ of what each
 /// pixel sees) and <c>illuminance</c> (lx arriving at the surface the pixel-centre ray meets, <see cref="Illuminance"/>:
-/// from every light with shadows, and under the path integrator area lights, sky and interreflection by a gather), and
+/// from every light with shadows, and under an integrator that gathers (<see cref="IGatherIntegrator"/>: path) area lights,
+/// sky and interreflection), and
 /// each as a false-colour PNG with its labelled scale as an SVG legend (<see cref="FalseColour"/>). Shards write their
 /// rows; `spectral merge` assembles the whole render's files.
 /// </summary>
@@ -28,7 +29,7 @@ public sealed class PhotometryProduct : OutputProduct
     /// <summary>How the illuminance channel was found, as photometry.exr's illuminanceMethod says.</summary>
     public static string Method(RenderTracer? tracer, Scene scene) => tracer is null
         ? "none: a relit render traces no rays (the channel holds 0); render the scene with --formats photometry"
-        : tracer.Integrator is PathIntegrator
+        : tracer.Integrator is IGatherIntegrator
             ? $"lights (shadow rays) + gather of {Illuminance.GatherRays(scene)} cosine-weighted path-traced rays (area lights, sky, interreflection), at the pixel-centre ray's first hit"
             : "direct from every light (shadow rays), at the pixel-centre ray's first hit; no interreflection, ambient or emission (whitted)";
 
@@ -40,7 +41,7 @@ public sealed class PhotometryProduct : OutputProduct
         var crop = c.Result.Crop;
         var t = c.Tracer;
         var (luminance, illuminance) = new Illuminance(scene, t?.Geometry)
-            .Maps(c.Result, t?.Integrator is PathIntegrator ? t.Integrator : null, t?.Threads ?? 0, c.Cancel);
+            .Maps(c.Result, t?.Integrator as IGatherIntegrator, t?.Threads ?? 0, c.Cancel);
         var attributes = new Dictionary<string, string>
         {
             ["luminanceUnits"] = "cd.m^-2",

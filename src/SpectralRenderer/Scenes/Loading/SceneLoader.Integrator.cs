@@ -4,13 +4,13 @@ using SpectralRenderer.Diagnostics;
 
 namespace SpectralRenderer.Scenes.Loading;
 
-// The integrator a scene asks for, and what a surface emits (area lights): path tracing's keys.
+// The integrator a scene asks for and its settings, and what a surface emits (area lights).
 public sealed partial class SceneLoader
 {
     /// <summary>
-    /// "integrator": a registered name ("whitted", "path") or { "type": name, "max_depth": N, "rr_depth": N,
-    /// "spectral_grid": nm, "sampler": "sobol" | "independent", "seed": N }; the name is checked against the registry when the
-    /// render is built.
+    /// "integrator": a registered name or { "type": name, "max_depth": N, "rr_depth": N, "spectral_grid": nm,
+    /// "sampler": "sobol" | "independent", "seed": N }: every key an integrator's settings may have is read here; the name,
+    /// and the keys given against the keys its registration takes, are checked when the render is built (RenderJob).
     /// </summary>
     [MethodImpl(MethodImplOptions.NoOptimization)]
     IntegratorSettings? ParseIntegrator(JsonElement root)
@@ -37,7 +37,8 @@ public sealed partial class SceneLoader
         }
         // The seed changes every random number (independent renders of the same scene); 0 is the default's.
         uint seed = (uint)Integer(e, "seed", path, 0, 0, int.MaxValue);
-        return new IntegratorSettings(name, maxDepth, rrDepth, grid, sampler, seed);
+        var given = e.EnumerateObject().Where(p => p.Name != "type").Select(p => (p.Name, Where($"{path}.{p.Name}"))).ToArray();
+        return new IntegratorSettings(name, maxDepth, rrDepth, grid, sampler, seed) { Keys = given };
     }
 
     /// <summary>

@@ -2,10 +2,9 @@ using System.Text.Json;
 using System.Text.Json.Nodes;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
-using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
 
-namespace SpectralRenderer.Output;
+namespace SpectralRenderer.Rendering;
 
 /// <summary>
 /// A path render's per-light transfer (<see cref="PathTransfer"/>) in <c>lights/</c>:
@@ -27,7 +26,7 @@ namespace SpectralRenderer.Output;
 /// Rows of a shard's strip are the whole film's rows, so shards merge by offset. <c>"version"</c> is 2 (this layout; 1 or
 /// absent: the same without a shift, as written before fluorescent transfers, and still read).
 /// </summary>
-public static class PathTransferFiles
+internal static class PathTransferFiles
 {
     public const string Kind = "path";
     public const string TransferFile = "transfer.npy", IdsFile = "ids.npy", ShiftFile = "shift.npy";
@@ -36,6 +35,49 @@ public static class PathTransferFiles
     public const int Version = 2;
 
     const string Damaged = "lights/lights.json is not as a path render writes it: render the folder again with the lights output";
+
+    /// <summary>The path transfer's format: kind "path", written by shards too (joined by rows), the fine film for the camera.</summary>
+    public static readonly TransferFormat Format = new FineFormat();
+
+    sealed class FineFormat : TransferFormat
+    {
+        public override string Kind => PathTransferFiles.Kind;
+        public override string Integrator => "path";
+        public override CameraRoute Route => CameraRoute.FineFilm;
+        public override bool Shards => true;
+
+        public override (string Option, string What, string Hint)? Refuses(Scene scene) => scene.TargetError > 0
+            ? ("--target-error", "a path render's per-light transfer (lights) needs the same samples in every pixel: adaptive " +
+                "sampling stops a pixel by its luminance, which follows the lights' spectra, so a relight could not equal a render",
+                "leave out --target-error (fixed --spp), or leave lights out of the formats")
+            : null;
+
+        public override string? RefusesNewSpectrum(Light light) => light is GoniometricLight
+            ? "is goniometric: its candela are radiance per lumen of its spectrum, so a new spectrum rescales its path weights, " +
+                "which a path render's transfer holds"
+            : null;
+
+        /// <summary>(K + 1) × F floats per pixel, and K × R × C with a fluorescent shift.</summary>
+        public override IEnumerable<(string Part, long Bytes)> Memory(Scene scene) =>
+            [("per-light transfer (path)", PathTransfer.Bytes(scene, (long)scene.Camera.Width * scene.Camera.Height))];
+
+        public override ILightTransfer Read(string outDir, Scene scene) => PathTransferFiles.Read(outDir, scene);
+
+        /// <summary>transfer.npy (K + 1, F), shift.npy (K, R, C), ids.npy (3) per pixel; K, F, R, C from the shard's lights.json.</summary>
+        public override int[]? RowShape(string file, string lightsDir)
+        {
+            if (file is not (TransferFile or ShiftFile or IdsFile)) return null;
+            if (file == IdsFile) return [3];
+            var path = Path.Combine(lightsDir, "lights.json");
+            var r = new JsonFields(path, "render the shard again with the lights output");
+            var json = JsonFields.ParseFile(path, "lights.json", r.Hint);
+            int lights = r.Array(json, "lights", "$").Count, sub = r.Int(json, "sub_bands", "$", 1, 1 << 20);
+            if (file == TransferFile) return [lights + 1, sub];
+            var shift = ReadShift(r, json, sub);
+            if (shift.IsEmpty) throw r.Bad("$.shift", "is missing, but the shard wrote lights/shift.npy");
+            return [lights, shift.Rows, shift.Columns];
+        }
+    }
 
     public static void Write(Scene scene, PathTransfer t, string outDir, Action<string> done)
     {
@@ -132,15 +174,6 @@ public static class PathTransferFiles
         return new ShiftSpan(rows[0], rows[1], columns[0], columns[1]);
     }
 
-
-    /// <summary>Whether <paramref name="outDir"/>'s lights/ is a path render's.</summary>
-    public static bool IsPath(string outDir)
-    {
-        var path = Path.Combine(outDir, LightTransferFiles.Folder, "lights.json");
-        if (!File.Exists(path)) return false;
-        try { return (string?)JsonNode.Parse(File.ReadAllText(path))?["kind"] == Kind; }
-        catch (Exception e) when (e is JsonException or InvalidOperationException or FormatException or ArgumentException) { return false; }   // the reader says what is wrong
-    }
 
     /// <summary>Reads lights/ of a path render back, checked against <paramref name="scene"/> (sizes, lights, grid).</summary>
     public static PathTransfer Read(string outDir, Scene scene)

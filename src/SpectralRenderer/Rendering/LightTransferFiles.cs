@@ -3,11 +3,10 @@ using System.Text.Json;
 using System.Text.Json.Nodes;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
-using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Spectra;
 
-namespace SpectralRenderer.Output;
+namespace SpectralRenderer.Rendering;
 
 /// <summary>
 /// The per-light transfer outputs (<c>--formats …,lights</c> or <c>output.light_groups</c>), in <c>lights/</c>:
@@ -26,9 +25,27 @@ namespace SpectralRenderer.Output;
 /// </list>
 /// A pixel's band values are L_b = Σ_c F_c · P_c,b and its colour Σ_c F_c · XYZ_c (<see cref="LightTransfer"/>).
 /// </summary>
-public static class LightTransferFiles
+internal static class LightTransferFiles
 {
-    public const string Folder = "lights";
+    public const string Folder = TransferFiles.Folder;
+
+    /// <summary>The Whitted transfer's format: its lights.json names no kind (the first format); eq. 2's terms for the camera.</summary>
+    public static readonly TransferFormat Format = new TermFormat();
+
+    sealed class TermFormat : TransferFormat
+    {
+        public override string? Kind => null;
+        public override string Integrator => Integrators.Default;
+        public override CameraRoute Route => CameraRoute.Terms;
+
+        /// <summary>Its factors are known only once traced; its textured terms' texel samples (S per term and pixel, issue 26)
+        /// are counted for a first hit.</summary>
+        public override IEnumerable<(string Part, long Bytes)> Memory(Scene scene) => LightTransfer.TexelBytes(scene) is > 0 and var texels
+            ? [("per-light transfer: texel samples of textured terms", texels)]
+            : [];
+
+        public override ILightTransfer Read(string outDir, Scene scene) => LightTransferFiles.Read(outDir, scene);
+    }
 
     /// <summary>The four arrays every transfer has, in the order written.</summary>
     public static readonly IReadOnlyList<string> Arrays = ["factors.npy", "pixels.npy", "centre.npy", "ids.npy"];

@@ -1,0 +1,151 @@
+using SpectralRenderer.Scenes;
+
+namespace SpectralRenderer.Rendering;
+
+// What an integrator can do beyond a picture, asked by capability, never by name: the render job, the output products,
+// relighting, the camera's exact route, the memory check, the shard merge and the C ABI hold "the integrator's
+// transfer" or "an integrator that gathers" and do not know its class. A new integrator implements the ones it can
+// (ARCHITECTURE.md, "Extending: an integrator"); what is known before its geometry is built rides on its registration
+// (IntegratorEntry in Integrators.cs: its settings keys, its transfer's format, its tables' memory).
+
+/// <summary>
+/// An integrator that records a per-light transfer (the lights product; relight; the C ABI's relight and exact route):
+/// its camera samples traced again with each scene light's contribution kept apart.
+/// </summary>
+public interface ITransferIntegrator : IIntegrator
+{
+    /// <summary>The format of the transfer it records (its files' kind, memory, what a render with it may not ask for).</summary>
+    TransferFormat TransferFormat { get; }
+
+    /// <summary>
+    /// The transfer of <paramref name="crop"/> (null: the whole film; a crop only when <see cref="TransferFormat.Shards"/>),
+    /// the render's camera samples bit for bit.
+    /// </summary>
+    ILightTransfer TraceTransfer(Scene scene, int threads, CancellationToken cancel, PixelRect? crop);
+}
+
+/// <summary>
+/// A per-light transfer: a render's film as a sum over the scene's lights of what each one's light did, so the film can be
+/// recombined under other light spectra and intensities without tracing a ray (relight).
+/// </summary>
+public interface ILightTransfer
+{
+    TransferFormat Format { get; }
+    /// <summary>The film's size and the pixels the transfer holds (a whole render's, or a shard's strip).</summary>
+    int FilmWidth { get; }
+    int FilmHeight { get; }
+    PixelRect Region { get; }
+    /// <summary>Per pixel of the region, the object its centre ray hit (−1: none).</summary>
+    int[] ObjectIds { get; }
+
+    /// <summary>
+    /// Why <paramref name="scene"/> (the render's scene with its lights changed) cannot be recombined from it (its film or
+    /// bands differ: the scene file changed since the render), or null.
+    /// </summary>
+    string? Mismatch(Scene scene);
+
+    /// <summary>The film of <paramref name="scene"/>: the transfer recombined under its lights, the geometry's images as traced.</summary>
+    RenderResult Relight(Scene scene);
+
+    /// <summary>How <see cref="Relight"/> forms the film, as a relit render.json's relit.method says.</summary>
+    string RelightMethod { get; }
+
+    /// <summary>Files under lights/ a relit render copies from the folder it was read from (byte for byte what it writes).</summary>
+    IEnumerable<string> StoredFiles { get; }
+
+    /// <summary>Writes lights/ into <paramref name="outDir"/>, calling <paramref name="done"/> with each file's relative name.</summary>
+    void Write(Scene scene, string outDir, Action<string> done);
+}
+
+/// <summary>Which exact camera route a render's transfer gives the camera (<c>spectral camera --signals exact</c>).</summary>
+public enum CameraRoute
+{
+    /// <summary>None: the camera integrates the band cube.</summary>
+    None,
+    /// <summary>Eq. 2's terms per light (<see cref="ITermRoute"/>): each term's spectrum integrated at full resolution.</summary>
+    Terms,
+    /// <summary>The film on a fine sub-band grid (<see cref="IFineFilmRoute"/>, <see cref="IFineFilmIntegrator"/>).</summary>
+    FineFilm,
+}
+
+/// <summary>
+/// What an integrator's per-light transfer is before one is traced or read: the kind lights.json names, the memory a
+/// render's transfer takes, whether shards may write it, how it is read back, how its shards' arrays merge, and the camera
+/// route it gives. One instance per integrator, on its registration (<see cref="IntegratorEntry.Transfer"/>).
+/// </summary>
+public abstract class TransferFormat
+{
+    /// <summary>lights.json's "kind", or null for the format whose lights.json names none (the first one, Whitted's).</summary>
+    public abstract string? Kind { get; }
+
+    /// <summary>The integrator it belongs to (its registered name).</summary>
+    public abstract string Integrator { get; }
+
+    /// <summary>The exact camera route its transfer (and its integrator) gives.</summary>
+    public virtual CameraRoute Route => CameraRoute.None;
+
+    /// <summary>Whether a shard writes its strip of the transfer (<c>spectral merge</c> joins them by <see cref="RowShape"/>).</summary>
+    public virtual bool Shards => false;
+
+    /// <summary>Why a render of <paramref name="scene"/> cannot record it (e.g. adaptive sampling), and a hint; null if it can.</summary>
+    public virtual (string Option, string What, string Hint)? Refuses(Scene scene) => null;
+
+    /// <summary>Why a relight cannot give scene light <paramref name="light"/> a new spectrum with it, or null.</summary>
+    public virtual string? RefusesNewSpectrum(Light light) => null;
+
+    /// <summary>What a render's transfer of <paramref name="scene"/> holds, by part (the memory check).</summary>
+    public abstract IEnumerable<(string Part, long Bytes)> Memory(Scene scene);
+
+    /// <summary>The transfer in <paramref name="outDir"/>/lights/ for <paramref name="scene"/>; bad input when damaged.</summary>
+    public abstract ILightTransfer Read(string outDir, Scene scene);
+
+    /// <summary>
+    /// A shard's lights/<paramref name="file"/> as an H × W × … float32 array: the per-pixel shape (from the shard's
+    /// lights.json in <paramref name="lightsDir"/>), or null when the file is not joined by rows.
+    /// </summary>
+    public virtual int[]? RowShape(string file, string lightsDir) => null;
+}
+
+/// <summary>
+/// The exact camera route of eq. 2's terms: a pixel's radiance is Σ_c F_c · P_c over components c (a light's term through
+/// a chain of mirrors and glass, <see cref="TransferComponent"/>), each P_c a spectrum the camera integrates at its full
+/// resolution. Implemented by the Whitted transfer.
+/// </summary>
+public interface ITermRoute : ILightTransfer
+{
+    int Width { get; }
+    int Height { get; }
+    int Bands { get; }
+    TransferComponent[] Components { get; }
+    /// <summary>Per component, its pixels (y·W + x, ascending) and the factors there.</summary>
+    int[][] Pixels { get; }
+    float[][] Factors { get; }
+    /// <summary>Per component, a textured one's texel samples per entry (null for components of spectra).</summary>
+    float[]?[]? Texels { get; }
+}
+
+/// <summary>The exact camera route of a film on a fine sub-band grid, recombined from a transfer without rays.</summary>
+public interface IFineFilmRoute : ILightTransfer
+{
+    /// <summary>The fine film of <paramref name="scene"/> (the render's lights).</summary>
+    PathFineFilm FineFilm(Scene scene);
+
+    /// <summary>How the film is formed from the transfer, for the camera's route text.</summary>
+    string FineFilmMethod { get; }
+}
+
+/// <summary>An integrator whose radiance lives on a fine sub-band grid: its film traced again for the camera's exact route.</summary>
+public interface IFineFilmIntegrator : IIntegrator
+{
+    /// <summary>The render's camera samples traced again (the same paths) onto the fine grid.</summary>
+    PathFineFilm TraceFineFilm(Scene scene, int threads, CancellationToken cancel = default);
+}
+
+/// <summary>
+/// An integrator whose <see cref="IIntegrator.Radiance"/> along any ray is all the light arriving back along it (emitters,
+/// sky, interreflection), so a cosine-weighted gather of it from a surface point gives the illuminance the lights' shadow
+/// rays miss (<see cref="Illuminance.Maps"/>, <see cref="Illuminance.OnGrid"/>: photometry and calculation grids).
+/// </summary>
+public interface IGatherIntegrator : IIntegrator
+{
+}

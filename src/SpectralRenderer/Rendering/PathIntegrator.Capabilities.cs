@@ -1,0 +1,17 @@
+using SpectralRenderer.Scenes;
+
+namespace SpectralRenderer.Rendering;
+
+// What the path integrator can do beyond a picture (IntegratorCapabilities.cs): its per-light transfer (PathTransfer.cs,
+// files in PathTransferFiles.cs, for whole renders and shards), its film on the fine grid for the camera's exact route
+// (PathFineFilm.cs), and the gather of photometry and calculation grids (its radiance is every bounce).
+internal sealed partial class PathIntegrator : ITransferIntegrator, IFineFilmIntegrator, IGatherIntegrator
+{
+    public TransferFormat TransferFormat => PathTransferFiles.Format;
+
+    public ILightTransfer TraceTransfer(Scene scene, int threads, CancellationToken cancel, PixelRect? crop) =>
+        PathTransfer.Trace(scene, this, threads, cancel, crop);
+
+    public PathFineFilm TraceFineFilm(Scene scene, int threads, CancellationToken cancel = default) =>
+        PathFineFilm.Trace(scene, this, threads, cancel);
+}
