@@ -123,10 +123,7 @@ public static class Relighting
     static (Scene Scene, List<string> Files, TimeSpan Compute) WritePath(Source src, Scene scene, IReadOnlyList<LightChange> changes, string? white,
         string outDir, string commandLine, CancellationToken cancel, bool metrics)
     {
-        foreach (var c in changes)
-            if (c.Spectrum is not null && scene.Lights[Array.IndexOf(src.LightNames, c.Light)] is GoniometricLight)
-                throw new InputException($"--light {c.Light}", $"light '{c.Light}' is goniometric: its candela are radiance per lumen of its spectrum, so a new spectrum rescales its path weights, which a path render's transfer holds",
-                    "give it a new --intensity only, or render the scene again with the new spectrum");
+        CheckPathChanges(src, scene, changes);
         var clock = System.Diagnostics.Stopwatch.StartNew();
         var transfer = PathTransferFiles.Read(src.Dir, scene);
         if (transfer.FilmWidth != scene.Camera.Width || transfer.FilmHeight != scene.Camera.Height)
@@ -149,11 +146,28 @@ public static class Relighting
         RelightMetrics? metricsRecord = null;
         if (metrics) (metricsRecord, metricsCsv) = Metrics(src, scene, transfer.ObjectIds, transfer.Relight(ChangedScene(src, [], null)).Xyz, result.Xyz!);
         return Finish(job, src, scene, changes, white, commandLine, compute, metricsRecord, metricsCsv, reuse?.Names ?? Enumerable.Empty<string>(),
-            "per-light transfer of a path render (lights/transfer.npy): on the fine grid L_f = F_f + sum_k T_k,f * E_k,f" +
-                (transfer.Shift.IsEmpty ? "" : " + sum_k B_k E_k (its fluorescent shift, lights/shift.npy)") + " with E_k the new " +
-                "lights' spectra x intensities (emitters and sky F as rendered), reduced to the bands and XYZ as the film is; no rays traced",
-            outDir, cancel);
+            PathMethod(transfer, " (lights/transfer.npy)", ", lights/shift.npy"), outDir, cancel);
     }
+
+    /// <summary>
+    /// What a path render's relight cannot change: a goniometric light's spectrum (its candela are radiance per lumen of
+    /// its spectrum, so a new one rescales the path weights the transfer holds). The C ABI's relight checks the same.
+    /// </summary>
+    public static void CheckPathChanges(Source src, Scene scene, IReadOnlyList<LightChange> changes)
+    {
+        foreach (var c in changes)
+            if (c.Spectrum is not null && scene.Lights[Array.IndexOf(src.LightNames, c.Light)] is GoniometricLight)
+                throw new InputException($"--light {c.Light}", $"light '{c.Light}' is goniometric: its candela are radiance per "
+                    + "lumen of its spectrum, so a new spectrum rescales its path weights, which a path render's transfer holds",
+                    "give it a new --intensity only, or render the scene again with the new spectrum");
+    }
+
+    /// <summary>How a path render is relit (render.json's relit.method); <paramref name="stored"/> and
+    /// <paramref name="shiftStored"/> name the files the transfer and its shift are read from (empty: in memory).</summary>
+    public static string PathMethod(PathTransfer transfer, string stored, string shiftStored) =>
+        $"per-light transfer of a path render{stored}: on the fine grid L_f = F_f + sum_k T_k,f * E_k,f" +
+        (transfer.Shift.IsEmpty ? "" : $" + sum_k B_k E_k (its fluorescent shift{shiftStored})") + " with E_k the new " +
+        "lights' spectra x intensities (emitters and sky F as rendered), reduced to the bands and XYZ as the film is; no rays traced";
 
     /// <summary>The relit render's run record (what changed, how, which files were copied from the source: no light changes
     /// them, see <see cref="Reusable"/>) and its files, with relight-metrics.csv when asked for.</summary>
