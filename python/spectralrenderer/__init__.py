@@ -160,7 +160,8 @@ def relight(render, lights=None, white=None):
 
     lights: {name: spectrum} or {name: {"spectrum": spectrum, "intensity": F}} (either key); white: a new reference white
     (κ and the colour weights follow it). A spectrum is a name or arrays (see spectrum()). The render's per-light transfer
-    is traced once, on the first relight, and kept with it. Raises SpectralError with the command's one line."""
+    (the Whitted model's factors, or a path render's weights on its fine grid) is traced once, on the first relight, and
+    kept with it (or taken from an earlier save with lights). Raises SpectralError with the command's one line."""
     lib = _native.need(1, "relight")
     if render._handle is None:
         raise SpectralError("spectral relight: a render read from a folder has no render in memory "
@@ -327,7 +328,8 @@ class Render:
         return self._cache["manifest"]
 
     def save(self, folder):
-        """Writes the folder `spectral render -o FOLDER` writes (same bytes; render.json's run fields aside)."""
+        """Writes the folder `spectral render -o FOLDER` writes (same bytes; render.json's run fields aside), lights/ too
+        when the formats name lights (a Whitted or a path render)."""
         lib = _native.lib()
         err = ctypes.c_void_p()
         if lib.spectral_save(self._handle, os.fspath(folder).encode(), ctypes.byref(err)) != 0:

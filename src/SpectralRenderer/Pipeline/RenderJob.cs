@@ -278,8 +278,13 @@ public sealed class RenderJob
     public IReadOnlyList<string> WriteTo(string dir, CancellationToken cancel = default)
     {
         if (Request.OutDir is not null) throw new InvalidOperationException("the request names its folder: call Write");
-        _folder = OutputFolder.Begin(dir);
+        var folder = _folder = OutputFolder.Begin(dir);
         try { return Write(cancel); }
+        catch (Exception e) when (e is not InterruptedException)
+        {
+            folder.Abandon();   // as Execute: the staging removed, the folder holds what it held
+            throw;
+        }
         finally { _folder = null; }
     }
 
