@@ -103,19 +103,29 @@ def _error(lib, handle):
     return SpectralError(message, status)
 
 
-def render(scene, width=None, height=None, bands=None, wave=None, spp=None, integrator=None, threads=None,
-           rgb=None, integration=None, formats=None, progress=None):
-    """Renders a scene (dict, JSON text, or path) as `spectral render` does, in memory. Options are the command
-    line's overrides; bands is a count or "start:end:count". progress(done, total) is called after each tile.
+def render(scene, progress=None, **options):
+    """Renders a scene (dict, JSON text, or path) as `spectral render` does, in memory. The keywords are the command's
+    options (`spectral render --help`, one table for the command line, libspectral and this package), with '_' for '-':
+    width, height, bands (a count or "start:end:count"), band_range, wave, spp, target_error, threads, rgb, integration,
+    formats, exr_compression, models (a folder or a list of them), crop ("x0,y0,x1,y1" or (x0, y0, x1, y1)), shard
+    ("i/n"), shards, integrator; None leaves an option out. Values are checked by the library with the command line's
+    messages. progress(done, total) is called after each tile.
     Raises SpectralError (the CLI's one-line message) on bad input or failure; KeyboardInterrupt cancels."""
     lib = _native.lib()
     text, name = _scene_text(scene)
-    opts = {k: v for k, v in dict(width=width, height=height, bands=None if bands is None else str(bands), wave=wave,
-                                  spp=spp, integrator=integrator, threads=threads, rgb=rgb, integration=integration,
-                                  formats=formats).items() if v is not None}
+    opts = {k: _option_value(v) for k, v in options.items() if v is not None}
     callback = _native.PROGRESS(lambda _user, done, total: progress(done, total)) if progress else _native.PROGRESS()
     return Render(_handle=_call(lib, "spectral_render", lambda cancel: lib.spectral_render(
-        text, name.encode(), json.dumps(opts).encode(), cancel, callback, None)))
+        text, name.encode(), json.dumps(opts, default=_json_default).encode(), cancel, callback, None)))
+
+
+def _option_value(value):
+    """An option's value as the library's JSON takes it: a text or a number, a list of them (paths as text)."""
+    if isinstance(value, (list, tuple)):
+        return [_option_value(v) for v in value]
+    if isinstance(value, os.PathLike):
+        return os.fspath(value)
+    return value
 
 
 def _call(lib, what, call):
@@ -150,7 +160,8 @@ def relight(render, lights=None, white=None):
 
     lights: {name: spectrum} or {name: {"spectrum": spectrum, "intensity": F}} (either key); white: a new reference white
     (κ and the colour weights follow it). A spectrum is a name or arrays (see spectrum()). The render's per-light transfer
-    is traced once, on the first relight, and kept with it. Raises SpectralError with the command's one line."""
+    (the Whitted model's factors, or a path render's weights on its fine grid) is traced once, on the first relight, and
+    kept with it (or taken from an earlier save with lights). Raises SpectralError with the command's one line."""
     lib = _native.need(1, "relight")
     if render._handle is None:
         raise SpectralError("spectral relight: a render read from a folder has no render in memory "
@@ -317,7 +328,8 @@ class Render:
         return self._cache["manifest"]
 
     def save(self, folder):
-        """Writes the folder `spectral render -o FOLDER` writes (same bytes; render.json's run fields aside)."""
+        """Writes the folder `spectral render -o FOLDER` writes (same bytes; render.json's run fields aside), lights/ too
+        when the formats name lights (a Whitted or a path render)."""
         lib = _native.lib()
         err = ctypes.c_void_p()
         if lib.spectral_save(self._handle, os.fspath(folder).encode(), ctypes.byref(err)) != 0:

@@ -1,14 +1,15 @@
-"""ctypes bindings of libspectral's C ABI (src/SpectralRenderer.Native/NativeExports.cs and NativeCamera.cs, ABI 1.2).
+"""ctypes bindings of libspectral's C ABI (src/SpectralRenderer.Native/NativeExports.cs and NativeCamera.cs, ABI 1.3).
 
 The ABI's major version (spectral_abi_version) changes when a function's signature or meaning does: this package refuses
 another major. Functions added beside them raise the minor (spectral_abi_minor, absent in 1.0): relight, camera and
-recover need minor 1; noise, the masks and the camera's off_axis and psf minor 2; each says so when the library is older."""
+recover need minor 1; noise, the masks and the camera's off_axis and psf minor 2; render's options beyond the first eleven
+(the options table) and a path render's relight and lights minor 3; each says so when the library is older."""
 import ctypes
 import os
 from pathlib import Path
 
 ABI_VERSION = 1
-ABI_MINOR = 2   # the minor this package's newest calls need (noise, masks, the camera's off_axis and psf)
+ABI_MINOR = 3   # the minor this package's newest calls need (every render option; a path render's relight and lights)
 PROGRESS = ctypes.CFUNCTYPE(None, ctypes.c_void_p, ctypes.c_int, ctypes.c_int)
 
 _lib = None

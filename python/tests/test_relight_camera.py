@@ -26,9 +26,9 @@ def cli_chart(cli, tmp_path_factory):
     return out
 
 
-def test_the_abi_minor_version_adds_relight_camera_and_recover_then_noise_masks_and_the_lens(sr):
+def test_the_abi_minor_version_adds_relight_camera_and_recover_then_noise_masks_and_the_lens_then_every_option(sr):
     from spectralrenderer import _native
-    assert sr.abi_version() == 1 and _native.lib().minor >= _native.ABI_MINOR == 2
+    assert sr.abi_version() == 1 and _native.lib().minor >= _native.ABI_MINOR == 3
 
 
 def test_save_writes_lights_as_the_cli_does(chart, cli_chart, tmp_path):

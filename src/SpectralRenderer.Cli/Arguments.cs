@@ -1,6 +1,7 @@
 using System.Globalization;
 using System.Runtime.CompilerServices;
 using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Pipeline;
 
 namespace SpectralRenderer.Cli;
 
@@ -49,6 +50,10 @@ public sealed class Arguments
     public bool Flag(string name) => _flags.Contains(name);
     public string? Value(string name) => _options.TryGetValue(name, out var l) ? l[^1] : null;
     public IReadOnlyList<string> Values(string name) => _options.TryGetValue(name, out var l) ? l : [];
+
+    /// <summary>The values given of these render options (<see cref="RenderOptions"/>), by option name, for its parser.</summary>
+    public Dictionary<string, IReadOnlyList<string>> Given(IEnumerable<RenderOption> options) =>
+        options.Where(o => _options.ContainsKey(o.Flag)).ToDictionary(o => o.Name, o => (IReadOnlyList<string>)_options[o.Flag]);
 
     public int? Int(string name, int min, int max)
     {

@@ -6,6 +6,7 @@ using System.Text.Json.Nodes;
 using SpectralRenderer.Analysis;
 using SpectralRenderer.Analysis.Recovery;
 using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Distributed;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Lighting;
 using SpectralRenderer.Output;
@@ -39,9 +40,11 @@ public static unsafe partial class NativeExports
     /// The ABI's minor version: 0 the first functions; 1 added spectral_abi_minor, spectral_relight, spectral_camera, the
     /// capture accessors and spectral_recover (version 1's functions unchanged; spectral_save writes lights/ when the
     /// render's formats name them, as `spectral render` does); 2 added spectral_noise, spectral_mask_count,
-    /// spectral_mask_name and spectral_mask, and spectral_camera's off_axis and psf options.
+    /// spectral_mask_name and spectral_mask, and spectral_camera's off_axis and psf options; 3 made spectral_render take
+    /// every option of `spectral render` (the options table, RenderOptions: band_range, target_error, models, crop, shard,
+    /// shards besides the first eleven) and spectral_relight and spectral_save's lights work on path renders.
     /// </summary>
-    public const int AbiMinor = 2;
+    public const int AbiMinor = 3;
 
     [UnmanagedCallersOnly(EntryPoint = "spectral_abi_version")]
     public static int Version() => AbiVersion;
@@ -51,9 +54,11 @@ public static unsafe partial class NativeExports
 
     /// <summary>
     /// Renders a scene given as UTF-8 JSON text. <paramref name="path"/> names it (its relative mesh paths resolve from its
-    /// folder; messages name it). <paramref name="options"/>: a JSON object of the `spectral render` overrides, each
-    /// optional — width, height, bands (a count or "start:end:count"), wave, spp, rgb, integration, formats,
-    /// exr_compression, integrator, threads. <paramref name="cancel"/> (may be null): the render stops soon after the
+    /// folder; messages name it). <paramref name="options"/>: a JSON object of `spectral render`'s options, each optional,
+    /// keyed by the option's name with '_' for '-' (<see cref="RenderOptions.All"/>: width, height, bands, wave, spp,
+    /// target_error, threads, rgb, integration, formats, exr_compression, models, crop, shard, …), valued as on the command
+    /// line (a text or a number; an array for models, or items joined by ','), checked by the same code with the same
+    /// messages; no job array variable is read. <paramref name="cancel"/> (may be null): the render stops soon after the
     /// caller sets *cancel to non-zero (status 1, "interrupted …"). <paramref name="progress"/> (may be null) is called
     /// after each tile with (user, tiles done, tiles) on a worker thread.
     /// </summary>
@@ -66,15 +71,12 @@ public static unsafe partial class NativeExports
         {
             string name = Utf8(path) ?? "scene.json";
             byte[] text = scene is null ? [] : new ReadOnlySpan<byte>(scene, StrLen(scene)).ToArray();
-            var (overrides, integrator, threads) = Options(Utf8(options), text);
-            var request = new RenderRequest
+            var values = RenderOptions.Parse(RenderOptions.FromJson(Options(Utf8(options))), () => text);
+            var request = values.Request(name, ShardRegion.Of(values, jobArray: false)) with
             {
-                ScenePath = name,
                 SceneText = text,
-                Overrides = overrides,
-                Integrator = integrator,
-                Threads = threads,
-                OutDir = null,   // nothing written: the film stays in memory until spectral_save
+                OutDir = null,   // nothing written: the film stays in memory until spectral_save (RenderJob.WriteTo)
+                Run = new ManifestRun { CommandLine = "spectralrenderer (Python, libspectral)" },
             };
             using var stop = new CancellationTokenSource();
             int* flag = cancel;
@@ -244,69 +246,15 @@ public static unsafe partial class NativeExports
 
     static string? Utf8(byte* s) => s is null ? null : Encoding.UTF8.GetString(s, StrLen(s));
 
-    /// <summary>The options object as `spectral render`'s overrides, checked as the command line checks them; the integrator
-    /// null when not given (the scene's, else whitted, as the CLI without --integrator).</summary>
-    static (SceneOverrides, string? Integrator, int Threads) Options(string? json, byte[] sceneText)
-    {
-        JsonObject o;
-        try { o = json is null ? [] : JsonNode.Parse(json, documentOptions: StrictJson) as JsonObject ?? throw new JsonException("not an object"); }
-        catch (JsonException e) { throw new InputException("options", $"not a JSON object: {e.Message}", "pass {\"width\": 64, …}"); }
-        string? Str(string key) => o[key] is JsonValue v && v.TryGetValue(out string? s) ? s
-            : o[key] is null ? null : o[key]!.ToJsonString();
-        int? Int(string key, int min, int max)
-        {
-            if (o[key] is null) return null;
-            if (o[key] is JsonValue v && v.TryGetValue(out int i) && i >= min && i <= max) return i;
-            throw new InputException($"options.{key}",
-                $"{MessageText.Quote(o[key]!.ToJsonString())} is not an integer from {min} to {max}",
-                $"e.g. {key}={Math.Max(min, 1)}");
-        }
-        foreach (var (key, _) in o)
-            if (key is not ("width" or "height" or "bands" or "wave" or "spp" or "rgb" or "integration" or "formats" or "exr_compression"
-                or "integrator" or "threads"))
-                throw new InputException($"options.{key}", "unknown option",
-                    "known: width, height, bands, wave, spp, rgb, integration, formats, exr_compression, integrator, threads");
-        string? bands = Str("bands"), wave = Str("wave");
-        if (bands is not null && wave is not null)
-            throw new InputException("--wave", "--wave and --bands both give the bands",
-                "use one: --wave 400:10:700 (centres) or --bands 395:705:31 (edges)");
-        if (bands is not null && !bands.Contains(':'))
-        {
-            // A count keeps the scene's range (as `spectral render --bands N`).
-            if (!int.TryParse(bands, NumberStyles.Integer, CultureInfo.InvariantCulture, out int n) || n < 1 || n > BandGrid.MaxBands)
-                throw new InputException("--bands", $"'{bands}' is neither a band count nor a grid start:end:count",
-                    "e.g. --bands 40, --bands 395:705:31 (edges) or --wave 400:10:700 (centres)");
-            var range = SceneRange(sceneText);
-            bands = string.Create(CultureInfo.InvariantCulture, $"{range.Start}:{range.End}:{n}");
-        }
-        if (bands is not null) BandGrid.Parse(bands);
-        var overrides = new SceneOverrides
-        {
-            Width = Int("width", int.MinValue, int.MaxValue),
-            Height = Int("height", int.MinValue, int.MaxValue),
-            Bands = bands,
-            Wave = wave,
-            SamplesPerPixel = Int("spp", 1, 65536),
-            Rgb = Str("rgb"),
-            Integration = Str("integration"),
-            Formats = Str("formats"),
-            ExrCompression = Str("exr_compression"),
-        };
-        return (overrides, Str("integrator"), Int("threads", 0, 1024) ?? 0);
-    }
-
-    /// <summary>The scene's band range for a bare band count (RenderCommand's rule); the loader reports a bad scene.</summary>
-    static BandGrid SceneRange(byte[] sceneText)
+    /// <summary>The options object (keys and values: <see cref="RenderOptions.FromJson"/>); null is none.</summary>
+    static JsonObject Options(string? json)
     {
         try
         {
-            var options = new JsonDocumentOptions { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true, AllowDuplicateProperties = false };
-            var node = JsonNode.Parse(sceneText, documentOptions: options);
-            if (node?["wave"]?.GetValue<string>() is { } w) return BandGrid.ParseWave(w);
-            if (node?["bands"]?.GetValue<string>() is { } g) return BandGrid.Parse(g);
+            return json is null ? [] : JsonNode.Parse(json, documentOptions: StrictJson) as JsonObject
+                ?? throw new JsonException("not an object");
         }
-        catch (Exception e) when (e is JsonException or InvalidOperationException or InputException) { /* the loader reports it */ }
-        return BandGrid.Default;
+        catch (JsonException e) { throw new InputException("options", $"not a JSON object: {e.Message}", "pass {\"width\": 64, …}"); }
     }
 }
 
@@ -339,8 +287,10 @@ sealed unsafe class NativeRender : IDisposable
     SceneOverrides Overrides => _relit?.Overrides ?? Job!.Request.Overrides;
 
     /// <summary>
-    /// The per-light transfer of this render: a relit render's own; else traced once (the render's camera rays again,
-    /// recording eq. 2's factors per light, as `spectral render --formats …,lights` does) and kept.
+    /// The per-light transfer of this render: a relit render's own, the one its save traced (the lights format), else its
+    /// camera samples traced again once, each light's contribution kept apart (as `spectral render --formats …,lights`
+    /// does), and kept. Refused where the command line refuses the lights format (an integrator that records none; what
+    /// its transfer's format refuses, e.g. a path render's adaptive sampling; a crop that is not a shard).
     /// </summary>
     ILightTransfer Transfer(CancellationToken cancel)
     {
@@ -349,11 +299,15 @@ sealed unsafe class NativeRender : IDisposable
         lock (_transferLock)
         {
             if (_transfer is not null) return _transfer;
-            if (job.Integrator is not ITransferIntegrator { TransferFormat.Route: CameraRoute.Terms } recorder)
-                throw new InputException("integrator",
-                    $"the per-light transfer is the Whitted model's; the {job.IntegratorName} integrator does not record one",
-                    "render with integrator=\"whitted\" to relight");
-            return _transfer = recorder.TraceTransfer(job.Scene, job.Threads, cancel, null);
+            if (job.Integrator is not ITransferIntegrator recorder)
+                throw new InputException("integrator", $"the {job.IntegratorName} integrator does not record a per-light transfer",
+                    "render with an integrator that records one (whitted, path) to relight");
+            if (recorder.TransferFormat.Refuses(job.Scene) is { } refused)
+                throw new InputException(refused.Option.TrimStart('-').Replace('-', '_'), refused.What, refused.Hint);
+            if (job.Crop is not null && !(job.Shard is not null && recorder.TransferFormat.Shards))
+                throw new InputException("crop", $"a {job.IntegratorName} render's per-light transfer is traced for whole renders"
+                    + (recorder.TransferFormat.Shards ? " and shards" : "") + ", not for a crop", "render without crop to relight");
+            return _transfer = recorder.TraceTransfer(job.Scene, job.Threads, cancel, job.Crop);
         }
     }
 
@@ -376,13 +330,20 @@ sealed unsafe class NativeRender : IDisposable
         var names = resolved.Lights.Select(l => l.Name).ToArray();
         var src = new Relighting.Source("", manifest, new ManifestScene(document), ScenePath, overrides, names);
         var scene = Relighting.ChangedScene(src, changes, white);
+        scene.Output.Products &= ~OutputProducts.Noise;   // as `spectral relight`: measured from samples, which a relit render has none of
+        // Whichever integrator rendered it: its transfer recombined, as `spectral relight` does from lights/.
         var transfer = Transfer(cancel);
+        foreach (var c in changes)
+            if (c.Spectrum is not null && transfer.Format.RefusesNewSpectrum(scene.Lights[Array.IndexOf(src.LightNames, c.Light)]) is { } why)
+                throw new InputException($"changes.lights.{c.Light}", $"light '{c.Light}' {why}",
+                    "give it a new intensity only, or render the scene again with the new spectrum");
         cancel.ThrowIfCancellationRequested();
         var job = RenderJob.Load(new RenderRequest
         {
             Scene = scene,
             ScenePath = ScenePath,
-            FromTransfer = new TransferSource(transfer),
+            Integrator = transfer.Format.Integrator,
+            FromTransfer = new TransferSource(transfer, null),
             Detail = RunDetail.None,
         });
         job.Render(cancel: cancel);
@@ -390,9 +351,7 @@ sealed unsafe class NativeRender : IDisposable
         {
             From = "a render in memory (spectralrenderer, libspectral)",
             FromCreatedUtc = manifest.CreatedUtc,
-            Method = "per-light transfer: L_b = sum_c F_c * P_c,b and XYZ = sum_c F_c * XYZ_c with P_c rebuilt from the new lights' "
-                + "term tables; "
-                + "no rays traced into the picture",
+            Method = transfer.RelightMethod,
             Changes = changes.Select(c => new ManifestLightChange(c.Light, c.Spectrum, c.Intensity)).ToArray(),
             White = white,
             ComputeSeconds = clock.Elapsed.TotalSeconds,
@@ -625,41 +584,23 @@ sealed unsafe class NativeRender : IDisposable
         }
     }
 
-    /// <summary>The render folder, with render.json's "run" as `spectral render` records it (RenderJob's full detail).</summary>
+    /// <summary>
+    /// The render folder through <see cref="RenderJob.WriteTo"/>, as `spectral render` writes it: render.json's "run" as
+    /// RenderJob records it, the per-light transfer traced when the formats name lights (Whitted or path). A relit render's
+    /// run records its source's overrides and the relight, as `spectral relight` does.
+    /// </summary>
     public void Save(string dir)
     {
         var job = Job!;
-        var result = Result;
         if (_relit is { } relit)
-        {
-            // As `spectral relight` records it: the source's overrides and the relight; the transfer written when asked for.
-            RenderOutputWriter.Write(job.Scene, result, dir, new ManifestRun
+            job.RunRecord = new ManifestRun
             {
                 CommandLine = "spectralrenderer.relight (Python, libspectral)",
                 HasOverrides = true,
                 Overrides = RenderJob.Recorded(relit.Overrides),
                 Relit = relit.Record,
-            }, default, job.Transfer, null, job.NamedProducts);
-            return;
-        }
-        var run = new ManifestRun
-        {
-            CommandLine = "spectralrenderer (Python, libspectral)",
-            Integrator = job.Request.Integrator,
-            LoadSeconds = job.LoadSeconds,
-            BuildSeconds = job.BuildSeconds,
-            Triangles = job.Geometry?.TriangleCount,
-            DegenerateTrianglesSkipped = job.DegenerateTriangles,
-            MinRayWeight = job.Scene.MinRayWeight,
-            RayBudget = job.Scene.RayBudget,
-            RaysPrunedByWeight = result.Rays.PrunedRays,
-            CameraRaysOverBudget = result.Rays.OverBudgetRays,
-            HasOverrides = true,
-            Overrides = RenderJob.Recorded(job.Request.Overrides),
-        };
-        // The per-light transfer (the "lights" format): the camera rays traced again, as RenderJob.Write does for the CLI.
-        var transfer = (job.Scene.Output.Products & OutputProducts.Lights) != 0 ? Transfer(default) : null;
-        RenderOutputWriter.Write(job.Scene, result, dir, run, default, transfer, null, job.NamedProducts);
+            };
+        job.WriteTo(dir);
     }
 
     nint Pin(Array a)

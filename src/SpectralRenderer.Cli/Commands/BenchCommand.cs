@@ -21,15 +21,20 @@ public static class BenchCommand
         Prints a table and one machine-readable line starting with "bench:".
         """;
 
+    /// <summary>The render options bench takes (RenderOptions' table): what shapes the scene and the integrator.</summary>
+    static readonly RenderOption[] Shared = [.. RenderOptions.All.Where(o => o.Name is "width" or "height" or "threads" or "bands"
+        or "band-range" or "wave" or "spp" or "models" or "rgb" or "integration" or "formats" or "integrator")];
+
     public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
     {
-        var a = new Arguments("bench", argv, ["--width", "--height", "--repeat", "--threads", "--bands", "--band-range", "--wave", "--spp", "--models", "--rgb", "--integration", "--formats", "--integrator"], []);
+        var a = new Arguments("bench", argv, ["--repeat", .. Shared.Select(o => o.Flag)], []);
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
         if (a.Positionals.Count > 1) throw new InputException("command line", $"unexpected argument {MessageText.Quote(a.Positionals[1])}", "usage: spectral bench [SCENE]");
         var scenePath = a.Positionals.Count == 1 ? a.Positionals[0] : DefaultScene();
         int repeat = a.Int("--repeat", 1, 1000) ?? 5;
         int threads = a.Int("--threads", 1, 1024) ?? Environment.ProcessorCount;
-        var overrides = RenderCommand.Overrides(a, scenePath) with
+        var options = RenderOptions.Parse(a.Given(Shared), () => InputFile.ReadAllBytes(scenePath, "scene file"));
+        var overrides = options.Overrides with
         {
             Width = a.Int("--width", 1, SceneLoader.MaxResolution) ?? (a.Positionals.Count == 0 ? 1024 : null),
             Height = a.Int("--height", 1, SceneLoader.MaxResolution) ?? (a.Positionals.Count == 0 ? 1024 : null),
@@ -39,7 +44,7 @@ public static class BenchCommand
         {
             ScenePath = scenePath,
             Overrides = overrides,
-            Integrator = a.Value("--integrator"),
+            Integrator = options.Integrator,
             Threads = threads,
         });
         var scene = job.Scene;

@@ -214,7 +214,7 @@ public sealed class RenderJob
     public IReadOnlyList<string> Write(CancellationToken cancel = default)
     {
         var result = Result ?? throw new InvalidOperationException("render before writing");
-        if (Request.OutDir is null) return Files;
+        if (Request.OutDir is null && _folder is null) return Files;
         Begin();
         if (Transfer is null && (Scene.Output.Products & OutputProducts.Lights) != 0 && Integrator is ITransferIntegrator recorder)
         {
@@ -230,6 +230,24 @@ public sealed class RenderJob
             Geometry is not null && Integrator is not null ? new RenderTracer(Geometry, Integrator, Request.Threads) : null);
         WriteSeconds = writeClock.Elapsed.TotalSeconds;
         return Files;
+    }
+
+    /// <summary>
+    /// Writes the render (made without an output folder: the C ABI's spectral_save) into <paramref name="dir"/> as
+    /// <see cref="Write"/> does for the request's folder: the transfer traced when the lights product is asked for, the
+    /// same run record, swapped in whole. May be called again for another folder.
+    /// </summary>
+    public IReadOnlyList<string> WriteTo(string dir, CancellationToken cancel = default)
+    {
+        if (Request.OutDir is not null) throw new InvalidOperationException("the request names its folder: call Write");
+        var folder = _folder = OutputFolder.Begin(dir);
+        try { return Write(cancel); }
+        catch (Exception e) when (e is not InterruptedException)
+        {
+            folder.Abandon();   // as Execute: the staging removed, the folder holds what it held
+            throw;
+        }
+        finally { _folder = null; }
     }
 
     /// <summary>render.json's "run": the request's, with what <see cref="RenderRequest.Detail"/> adds.</summary>

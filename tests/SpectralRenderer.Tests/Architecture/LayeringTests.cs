@@ -32,7 +32,8 @@ public class LayeringTests
         [R + "Lighting"] = ["Analysis", "Sensor", "Pipeline", "Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Distributed"] = ["Pipeline", "Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Cli"] = ["*"],
-        [R + "Native"] = ["Lighting", "Analysis", "Sensor", "Pipeline", "Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra", "Color", "Diagnostics"],
+        [R + "Native"] = ["Distributed", "Lighting", "Analysis", "Sensor", "Pipeline", "Output", "Rendering", "Scenes.Loading", "Scenes",
+            "Imaging", "Spectra", "Color", "Diagnostics"],
     };
 
     /// <summary>The layer a namespace belongs to (its longest listed prefix), or null.</summary>
