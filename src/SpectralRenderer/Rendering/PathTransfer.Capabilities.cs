@@ -37,9 +37,12 @@ internal sealed partial class PathTransfer : IFineFilmRoute
         };
     }
 
+    /// <summary>The relight's method; the files it names only when it was read from them (not a transfer in memory).</summary>
     public string RelightMethod =>
-        "per-light transfer of a path render (lights/transfer.npy): on the fine grid L_f = F_f + sum_k T_k,f * E_k,f" +
-        (Shift.IsEmpty ? "" : " + sum_k B_k E_k (its fluorescent shift, lights/shift.npy)") + " with E_k the new " +
+        "per-light transfer of a path render" + (ReadFromFiles ? " (lights/transfer.npy)" : "") +
+        ": on the fine grid L_f = F_f + sum_k T_k,f * E_k,f" +
+        (Shift.IsEmpty ? "" : " + sum_k B_k E_k (its fluorescent shift" + (ReadFromFiles ? ", lights/shift.npy)" : ")")) +
+        " with E_k the new " +
         "lights' spectra x intensities (emitters and sky F as rendered), reduced to the bands and XYZ as the film is; no rays traced";
 
     public IEnumerable<string> StoredFiles => [];

@@ -23,6 +23,9 @@ namespace SpectralRenderer.Rendering;
 [CompiledAtFirstCall]
 internal sealed partial class PathTransfer
 {
+    /// <summary>Whether it was read from a folder's lights/ (<see cref="PathTransferFiles.Read"/>), not traced.</summary>
+    public bool ReadFromFiles { get; init; }
+
     /// <summary>The film's size, and the pixels this transfer holds (a whole render's, or a shard's strip).</summary>
     public required int FilmWidth { get; init; }
     public required int FilmHeight { get; init; }

@@ -238,6 +238,7 @@ internal static class PathTransferFiles
             Shift = shift,
             Blocks = blocks,
             ObjectIds = objectIds,
+            ReadFromFiles = true,
             LitMasks = lit,
         };
     }
