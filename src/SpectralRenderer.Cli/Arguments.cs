@@ -38,7 +38,10 @@ public sealed class Arguments
                 if (!values.Contains(a))
                     throw new InputException("command line", $"unknown option {MessageText.Quote(a)}",
                         InputException.DidYouMean(a, values.Concat(flags)) ?? $"see 'spectral {command} --help'");
-                var v = inline ?? (i + 1 < args.Count ? args[++i] : throw new InputException("command line", $"option {a} needs a value", $"see 'spectral {command} --help'"));
+                var v = inline
+                    ?? (i + 1 < args.Count
+                        ? args[++i]
+                        : throw new InputException("command line", $"option {a} needs a value", $"see 'spectral {command} --help'"));
                 if (!_options.TryGetValue(a, out var list)) _options[a] = list = [];
                 list.Add(v);
             }
@@ -60,7 +63,8 @@ public sealed class Arguments
         var v = Value(name);
         if (v is null) return null;
         if (!int.TryParse(v, NumberStyles.Integer, CultureInfo.InvariantCulture, out int n) || n < min || n > max)
-            throw new InputException(name, $"{MessageText.Quote(v)} is not a whole number in {min}–{max}", $"e.g. {name} {Math.Clamp(4, min, max)} (see 'spectral {Command} --help')");
+            throw new InputException(name, $"{MessageText.Quote(v)} is not a whole number in {min}–{max}",
+                $"e.g. {name} {Math.Clamp(4, min, max)} (see 'spectral {Command} --help')");
         return n;
     }
 
@@ -69,17 +73,21 @@ public sealed class Arguments
         var v = Value(name);
         if (v is null) return null;
         if (!double.TryParse(v, NumberStyles.Float, CultureInfo.InvariantCulture, out double d) || !double.IsFinite(d))
-            throw new InputException(name, $"{MessageText.Quote(v)} is not a finite number", $"e.g. {name} 0.5 (see 'spectral {Command} --help')");
+            throw new InputException(name, $"{MessageText.Quote(v)} is not a finite number",
+                $"e.g. {name} 0.5 (see 'spectral {Command} --help')");
         return d;
     }
 
-    /// <summary>A finite number in (<paramref name="min"/>, <paramref name="max"/>] (<paramref name="unit"/> names what it is in).</summary>
+    /// <summary>A finite number in (<paramref name="min"/>, <paramref name="max"/>] (<paramref name="unit"/> names what it is
+    /// in).</summary>
     public double? Double(string name, double min, double max, string unit)
     {
         var v = Value(name);
         if (Double(name) is not { } d) return null;
         if (!(d > min && d <= max))
-            throw new InputException(name, $"{MessageText.Quote(v)} is outside {min.ToString(CultureInfo.InvariantCulture)} (exclusive) to {max.ToString("G3", CultureInfo.InvariantCulture)} {unit}",
+            throw new InputException(name,
+                $"{MessageText.Quote(v)} is outside {min.ToString(CultureInfo.InvariantCulture)} (exclusive) to "
+                    + $"{max.ToString("G3", CultureInfo.InvariantCulture)} {unit}",
                 $"see 'spectral {Command} --help'");
         return d;
     }

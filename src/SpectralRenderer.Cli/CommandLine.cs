@@ -26,12 +26,17 @@ public static class CommandLine
         new("relight", "a render under other lights, exactly, from its per-light outputs (no rays traced)", RelightCommand.Run),
         new("view", "the spectral viewer (viewer.html) of a render; --serve serves it on loopback", ViewCommand.Run),
         new("merge", "the shards of a render (render --shard I/N) assembled into the whole render, byte for byte", MergeCommand.Run),
-        new("sweep", "a plan's jobs (scene × lights × materials × …) rendered into a dataset with an index, locally or as a job array", SweepCommand.Run),
+        new("sweep", "a plan's jobs (scene × lights × materials × …) rendered into a dataset with an index, locally or as a job array",
+            SweepCommand.Run),
         new("reconstruct", "white-board reflectance reconstruction against the truth, by region (§3.4, Fig. 7)", ReconstructCommand.Run),
-        new("camera", "a render seen by a simulated camera: raw (NPY, PNG, DNG), processed sRGB, ΔE00 and SNR per patch", CameraCommand.Run),
-        new("recover", "spectral reflectance from a camera's signals (pinv, Wiener, linear model, Tikhonov) against the truth", RecoverCommand.Run),
-        new("metamerism", "an sRGB texture's colour under other lights for two metamers of its uplift (ΔE00 spread)", MetamerismCommand.Run),
-        new("illuminance", "illuminance (lx) on a grid of points of a work plane from every light: CSV and an SVG heat map", IlluminanceCommand.Run),
+        new("camera", "a render seen by a simulated camera: raw (NPY, PNG, DNG), processed sRGB, ΔE00 and SNR per patch",
+            CameraCommand.Run),
+        new("recover", "spectral reflectance from a camera's signals (pinv, Wiener, linear model, Tikhonov) against the truth",
+            RecoverCommand.Run),
+        new("metamerism", "an sRGB texture's colour under other lights for two metamers of its uplift (ΔE00 spread)",
+            MetamerismCommand.Run),
+        new("illuminance", "illuminance (lx) on a grid of points of a work plane from every light: CSV and an SVG heat map",
+            IlluminanceCommand.Run),
     ];
 
     /// <summary>Adds a command (a plug-in, a test) after the built-in ones; its name is lower-case letters, digits and '-'.</summary>
@@ -43,7 +48,8 @@ public static class CommandLine
         if (summary.Contains('\n')) throw new ArgumentException("a command's summary is one line", nameof(summary));
         lock (Commands)
         {
-            if (name is "help" || Commands.Any(c => c.Name == name)) throw new ArgumentException($"the command '{name}' exists already", nameof(name));
+            if (name is "help" || Commands.Any(c => c.Name == name))
+                throw new ArgumentException($"the command '{name}' exists already", nameof(name));
             Commands.Add(new(name, summary, run));
         }
     }
@@ -76,7 +82,8 @@ public static class CommandLine
         foreach (var c in commands) if (c.Name == args[0]) { cmd = c; break; }
         if (cmd is null)
         {
-            stderr.WriteLine($"spectral: unknown command '{args[0]}' (hint: {InputException.DidYouMean(args[0], commands.Select(c => c.Name)) ?? "see 'spectral --help'"})");
+            stderr.WriteLine($"spectral: unknown command '{args[0]}' (hint: "
+                + $"{InputException.DidYouMean(args[0], commands.Select(c => c.Name)) ?? "see 'spectral --help'"})");
             return BadInput;
         }
         // SIGINT and SIGTERM are answered from here to the exit (Signals): the command stops at its next check, or is
@@ -118,7 +125,8 @@ public static class CommandLine
                 (Failure, $"out of memory ({e.GetType().Name}) (hint: lower the resolution, band count or mesh size)"),
             IOException => (Failure, e.Message),
             UnauthorizedAccessException => (BadInput, $"{e.Message} (hint: choose files and folders you can read and write)"),
-            _ => (Failure, $"internal error {e.GetType().Name}: {e.Message} (hint: this is a defect of spectral; please report it with the input)"),
+            _ => (Failure,
+                $"internal error {e.GetType().Name}: {e.Message} (hint: this is a defect of spectral; please report it with the input)"),
         };
     }
 

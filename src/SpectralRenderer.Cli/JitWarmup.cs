@@ -15,7 +15,8 @@ namespace SpectralRenderer.Cli;
 /// </summary>
 static class JitWarmup
 {
-    /// <summary>The namespaces whose hot loops a render runs, in the order it reaches them: the BVH build, the render, the writers.</summary>
+    /// <summary>The namespaces whose hot loops a render runs, in the order it reaches them: the BVH build, the render, the
+    /// writers.</summary>
     public static readonly string[] Render =
     [
         "SpectralRenderer.Acceleration", "SpectralRenderer.Rendering", "SpectralRenderer.Scenes", "SpectralRenderer.Imaging",
@@ -35,7 +36,8 @@ static class JitWarmup
     /// </summary>
     public static void Stop() => _stopped = true;
 
-    /// <summary>Starts the warm-up of the hot loops in <paramref name="stages"/> (namespaces, in order), once per process (a test host runs many commands).</summary>
+    /// <summary>Starts the warm-up of the hot loops in <paramref name="stages"/> (namespaces, in order), once per process (a test host runs
+    /// many commands).</summary>
     public static void Start(string[] stages)
     {
         // The native build (Native AOT) has nothing to compile: its hot loops are machine code already.
@@ -48,16 +50,19 @@ static class JitWarmup
     [UnconditionalSuppressMessage("Trimming", "IL2065", Justification = "Runs only under the JIT (Start), where nothing is trimmed.")]
     [UnconditionalSuppressMessage("Trimming", "IL2070", Justification = "Runs only under the JIT (Start), where nothing is trimmed.")]
     [UnconditionalSuppressMessage("Trimming", "IL2075", Justification = "Runs only under the JIT (Start), where nothing is trimmed.")]
-    [UnconditionalSuppressMessage("AOT", "IL3050", Justification = "Runs only under the JIT (Start: RuntimeFeature.IsDynamicCodeCompiled).")]
+    [UnconditionalSuppressMessage("AOT", "IL3050",
+        Justification = "Runs only under the JIT (Start: RuntimeFeature.IsDynamicCodeCompiled).")]
     static void Run(string[] stages)
     {
         try
         {
-            const BindingFlags all = BindingFlags.Public | BindingFlags.NonPublic | BindingFlags.Instance | BindingFlags.Static | BindingFlags.DeclaredOnly;
+            const BindingFlags all =
+                BindingFlags.Public | BindingFlags.NonPublic | BindingFlags.Instance | BindingFlags.Static | BindingFlags.DeclaredOnly;
             var types = typeof(Rendering.Renderer).Assembly.GetTypes();
             var values = types.Where(t => t.IsValueType && !t.ContainsGenericParameters && !LeftToFirstCall(t)).ToArray();
             var lanes = values.FirstOrDefault(t => t.Name.StartsWith("Lanes", StringComparison.Ordinal)
-                && t.GetProperty("Count", BindingFlags.Public | BindingFlags.Static)?.GetValue(null) is int n && n == Acceleration.PacketLanes.Width);
+                && t.GetProperty("Count", BindingFlags.Public | BindingFlags.Static)?.GetValue(null) is int n
+                    && n == Acceleration.PacketLanes.Width);
             foreach (var stage in stages)
                 foreach (var type in types)
                 {
@@ -65,7 +70,8 @@ static class JitWarmup
                     foreach (var method in type.GetMethods(all))
                     {
                         if (_stopped) return;
-                        if ((method.MethodImplementationFlags & MethodImplAttributes.AggressiveOptimization) == 0 || method.IsAbstract) continue;
+                        if ((method.MethodImplementationFlags & MethodImplAttributes.AggressiveOptimization) == 0 || method.IsAbstract)
+                            continue;
                         if (!method.ContainsGenericParameters) { Prepare(method); continue; }
                         foreach (var args in Instantiations(method.GetGenericArguments(), values, lanes))
                         {
@@ -84,7 +90,8 @@ static class JitWarmup
     }
 
     /// <summary>Is <paramref name="type"/>, or a type it is nested in, hot code a default render does not run
-    /// (<see cref="Rendering.CompiledAtFirstCallAttribute"/>)? Its methods and instantiations over it are left to their first call.</summary>
+    /// (<see cref="Rendering.CompiledAtFirstCallAttribute"/>)? Its methods and instantiations over it are left to their first
+    /// call.</summary>
     static bool LeftToFirstCall(Type type)
     {
         for (Type? t = type; t is not null; t = t.DeclaringType)
@@ -110,7 +117,8 @@ static class JitWarmup
             Type[] candidates = constraints.Any(c => c.Name == "ILanes`1")
                 ? lanes is null ? [] : [lanes]
                 : !constraints.Any(c => c.IsInterface && !c.ContainsGenericParameters) ? []
-                : values.Where(v => constraints.All(c => c == typeof(ValueType) || (!c.ContainsGenericParameters && c.IsAssignableFrom(v)))).ToArray();
+                : values.Where(v => constraints.All(c => c == typeof(ValueType) || (!c.ContainsGenericParameters && c.IsAssignableFrom(v))))
+                    .ToArray();
             choices = choices.SelectMany(prefix => candidates.Select(c => (Type[])[.. prefix, c])).ToArray();
         }
         return choices;

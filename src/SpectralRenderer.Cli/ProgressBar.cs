@@ -25,7 +25,8 @@ public sealed class ProgressBar
         double secs = p.Elapsed.TotalSeconds;
         double eta = f > 0 ? secs / f - secs : 0;
         _err.Write(string.Create(CultureInfo.InvariantCulture,
-            $"\r[{new string('#', filled)}{new string('.', 30 - filled)}] {f * 100,5:0.0}%  {p.TilesDone}/{p.Tiles} tiles  {p.Rays / Math.Max(secs, 1e-9) / 1e6:0.0} Mrays/s  ETA {eta:0.0} s "));
+            $"\r[{new string('#', filled)}{new string('.', 30 - filled)}] {f * 100,5:0.0}%  {p.TilesDone}/{p.Tiles} tiles  "
+                + $"{p.Rays / Math.Max(secs, 1e-9) / 1e6:0.0} Mrays/s  ETA {eta:0.0} s "));
     }
 
     public void Finish() => _err.Write("\r" + new string(' ', 90) + "\r");

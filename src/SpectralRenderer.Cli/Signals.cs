@@ -63,13 +63,16 @@ public sealed class Signals : IDisposable
     public static string StoppedAfter()
     {
         long at = Interlocked.Read(ref Current._signalledAt);
-        return at == 0 ? "" : string.Create(CultureInfo.InvariantCulture, $", {Stopwatch.GetElapsedTime(at).TotalSeconds:0.000} s after the signal");
+        return at == 0
+            ? ""
+            : string.Create(CultureInfo.InvariantCulture, $", {Stopwatch.GetElapsedTime(at).TotalSeconds:0.000} s after the signal");
     }
 
     /// <summary>What runs before the process is ended for a signal (a sweep rebuilds its index).</summary>
     public static void OnForcedStop(Action lastStep) => Current._lastStep = lastStep;
 
-    /// <summary>What the one line says was left, when the process is ended for a signal (default: each open output folder's state).</summary>
+    /// <summary>What the one line says was left, when the process is ended for a signal (default: each open output folder's
+    /// state).</summary>
     public static void DescribeLeft(Func<string> left) => Current._left = left;
 
     /// <summary>Tests: a signal as the handler receives it.</summary>
@@ -96,7 +99,8 @@ public sealed class Signals : IDisposable
         try { _lastStep?.Invoke(); }
         catch (Exception e) when (e is IOException or UnauthorizedAccessException or InputException) { }
         var folders = OutputFolder.AbandonAll();
-        string left = _left?.Invoke() ?? (folders.Count == 0 ? "nothing was written under a final name" : "nothing was written: " + string.Join("; ", folders));
+        string left = _left?.Invoke()
+            ?? (folders.Count == 0 ? "nothing was written under a final name" : "nothing was written: " + string.Join("; ", folders));
         try
         {
             _stderr.WriteLine(MessageText.Line($"spectral {_command}: interrupted by {_signal} ({StoppedAfterSelf()}); {left}"));
@@ -106,7 +110,8 @@ public sealed class Signals : IDisposable
         Environment.Exit(CommandLine.Failure);
     }
 
-    string StoppedAfterSelf() => string.Create(CultureInfo.InvariantCulture, $"stopped {Stopwatch.GetElapsedTime(Interlocked.Read(ref _signalledAt)).TotalSeconds:0.000} s after the signal");
+    string StoppedAfterSelf() => string.Create(CultureInfo.InvariantCulture,
+        $"stopped {Stopwatch.GetElapsedTime(Interlocked.Read(ref _signalledAt)).TotalSeconds:0.000} s after the signal");
 
     /// <summary>
     /// Claims the command's end: true for the first caller (the command returning, or the watchdog); the other must not

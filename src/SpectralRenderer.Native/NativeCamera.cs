@@ -128,7 +128,12 @@ public static unsafe partial class NativeExports
     internal static JsonObject OptionsObject(string? json, string what, params string[] known)
     {
         JsonObject o;
-        try { o = json is null ? [] : JsonNode.Parse(json, documentOptions: StrictJson) as JsonObject ?? throw new JsonException("not an object"); }
+        try
+        {
+            o = json is null
+                ? []
+                : JsonNode.Parse(json, documentOptions: StrictJson) as JsonObject ?? throw new JsonException("not an object");
+        }
         catch (JsonException e)
         {
             throw new InputException(what, $"not a JSON object: {e.Message}", $"known keys: {string.Join(", ", known)}");

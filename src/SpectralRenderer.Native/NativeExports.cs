@@ -334,7 +334,8 @@ sealed unsafe class NativeRender : IDisposable
         // Whichever integrator rendered it: its transfer recombined, as `spectral relight` does from lights/.
         var transfer = Transfer(cancel);
         foreach (var c in changes)
-            if (c.Spectrum is not null && transfer.Format.RefusesNewSpectrum(scene.Lights[Array.IndexOf(src.LightNames, c.Light)]) is { } why)
+            if (c.Spectrum is not null
+                && transfer.Format.RefusesNewSpectrum(scene.Lights[Array.IndexOf(src.LightNames, c.Light)]) is { } why)
                 throw new InputException($"changes.lights.{c.Light}", $"light '{c.Light}' {why}",
                     "give it a new intensity only, or render the scene again with the new spectrum");
         cancel.ThrowIfCancellationRequested();
@@ -363,7 +364,12 @@ sealed unsafe class NativeRender : IDisposable
     static (List<LightChange>, string? White) Changes(string? json, JsonObject document)
     {
         JsonObject o;
-        try { o = json is null ? [] : JsonNode.Parse(json, documentOptions: NativeExports.StrictJson) as JsonObject ?? throw new JsonException("not an object"); }
+        try
+        {
+            o = json is null
+                ? []
+                : JsonNode.Parse(json, documentOptions: NativeExports.StrictJson) as JsonObject ?? throw new JsonException("not an object");
+        }
         catch (JsonException e)
         {
             throw new InputException("changes", $"not a JSON object: {e.Message}", "pass {\"lights\": {\"NAME\": {\"spectrum\": \"A\"}}}");

@@ -10,7 +10,8 @@ namespace SpectralRenderer.Tests;
 /// </summary>
 static class Cie015
 {
-    public static Xyz Of(TabulatedSpectrum reflectance, (TabulatedSpectrum Spd, double Intensity)[] lights, TabulatedSpectrum white, Observer? observer = null, int first = 380, int last = 780)
+    public static Xyz Of(TabulatedSpectrum reflectance, (TabulatedSpectrum Spd, double Intensity)[] lights, TabulatedSpectrum white,
+        Observer? observer = null, int first = 380, int last = 780)
     {
         observer ??= Observer.Cie1931;
         double x = 0, y = 0, z = 0, yw = 0;

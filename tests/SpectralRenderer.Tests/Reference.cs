@@ -45,5 +45,6 @@ static class Reference
 static class InputExceptionText
 {
     /// <summary>The message without its hint: "where: what".</summary>
-    public static string Unhinted(this SpectralRenderer.Diagnostics.InputException e) => string.IsNullOrEmpty(e.Where) ? e.What : $"{e.Where}: {e.What}";
+    public static string Unhinted(this SpectralRenderer.Diagnostics.InputException e) =>
+        string.IsNullOrEmpty(e.Where) ? e.What : $"{e.Where}: {e.What}";
 }

@@ -29,7 +29,9 @@ public static class BenchCommand
     {
         var a = new Arguments("bench", argv, ["--repeat", .. Shared.Select(o => o.Flag)], []);
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
-        if (a.Positionals.Count > 1) throw new InputException("command line", $"unexpected argument {MessageText.Quote(a.Positionals[1])}", "usage: spectral bench [SCENE]");
+        if (a.Positionals.Count > 1)
+            throw new InputException("command line", $"unexpected argument {MessageText.Quote(a.Positionals[1])}",
+                "usage: spectral bench [SCENE]");
         var scenePath = a.Positionals.Count == 1 ? a.Positionals[0] : DefaultScene();
         int repeat = a.Int("--repeat", 1, 1000) ?? 5;
         int threads = a.Int("--threads", 1, 1024) ?? Environment.ProcessorCount;
@@ -71,16 +73,25 @@ public static class BenchCommand
         int tris = job.Geometry!.TriangleCount;
 
         stdout.WriteLine($"scene            {scenePath}");
-        stdout.WriteLine(string.Create(inv, $"image            {scene.Camera.Width} × {scene.Camera.Height}, {scene.Bands} bands ({scene.Grid}), {scene.Camera.SamplesPerPixel} spp, {threads} threads"));
+        stdout.WriteLine(string.Create(inv,
+            $"image            {scene.Camera.Width} × {scene.Camera.Height}, {scene.Bands} bands ({scene.Grid}), "
+                + $"{scene.Camera.SamplesPerPixel} spp, {threads} threads"));
         stdout.WriteLine(string.Create(inv, $"triangles        {tris:N0}"));
         stdout.WriteLine(string.Create(inv, $"load (+meshes)   {load:0.000} s"));
         stdout.WriteLine(string.Create(inv, $"BVH build        {build:0.000} s"));
-        stdout.WriteLine(string.Create(inv, $"render median    {median:0.0000} s  (min {times[0]:0.0000}, max {times[^1]:0.0000}, {repeat} runs)"));
-        stdout.WriteLine(string.Create(inv, $"rays             {rays.Total:N0} (primary {rays.Primary:N0}, shadow {rays.Shadow:N0}, secondary {rays.Secondary:N0})"));
-        stdout.WriteLine(string.Create(inv, $"throughput       {mrays:0.00} Mrays/s"));
-        stdout.WriteLine(string.Create(inv, $"peak working set {peak / 1048576.0:0.0} MB (framebuffer {(long)scene.Camera.Width * scene.Camera.Height * scene.Bands * 4 / 1048576.0:0.0} MB)"));
+        stdout.WriteLine(
+            string.Create(inv, $"render median    {median:0.0000} s  (min {times[0]:0.0000}, max {times[^1]:0.0000}, {repeat} runs)"));
         stdout.WriteLine(string.Create(inv,
-            $"bench: scene={Path.GetFileName(scenePath)} width={scene.Camera.Width} height={scene.Camera.Height} bands={scene.Bands} spp={scene.Camera.SamplesPerPixel} threads={threads} triangles={tris} load_s={load:0.0000} build_s={build:0.0000} render_s={median:0.0000} rays={rays.Total} primary={rays.Primary} shadow={rays.Shadow} secondary={rays.Secondary} mrays_per_s={mrays:0.00} peak_ws_mb={peak / 1048576.0:0.0}"));
+            $"rays             {rays.Total:N0} (primary {rays.Primary:N0}, shadow {rays.Shadow:N0}, secondary {rays.Secondary:N0})"));
+        stdout.WriteLine(string.Create(inv, $"throughput       {mrays:0.00} Mrays/s"));
+        stdout.WriteLine(string.Create(inv,
+            $"peak working set {peak / 1048576.0:0.0} MB (framebuffer "
+                + $"{(long)scene.Camera.Width * scene.Camera.Height * scene.Bands * 4 / 1048576.0:0.0} MB)"));
+        stdout.WriteLine(string.Create(inv,
+            $"bench: scene={Path.GetFileName(scenePath)} width={scene.Camera.Width} height={scene.Camera.Height} bands={scene.Bands} "
+                + $"spp={scene.Camera.SamplesPerPixel} threads={threads} triangles={tris} load_s={load:0.0000} build_s={build:0.0000} "
+                + $"render_s={median:0.0000} rays={rays.Total} primary={rays.Primary} shadow={rays.Shadow} secondary={rays.Secondary} "
+                + $"mrays_per_s={mrays:0.00} peak_ws_mb={peak / 1048576.0:0.0}"));
         return CommandLine.Success;
     }
 

@@ -54,10 +54,13 @@ public static class CameraCommand
     public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
     {
         var a = new Arguments("camera", argv,
-            ["--sensor", "--exposure", "--seed", "--noise", "--radiance-scale", "--demosaic", "--signals", "--off-axis", "--psf", "--threads", "-o", "--bench"], [],
+            ["--sensor", "--exposure", "--seed", "--noise", "--radiance-scale", "--demosaic", "--signals", "--off-axis", "--psf",
+                "--threads", "-o", "--bench"],
+                [],
             new Dictionary<string, string> { ["--output"] = "-o" });
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
-        if (a.Positionals.Count != 1) throw new InputException("command line", "give one render folder", "usage: spectral camera OUTDIR --sensor nikon-d5100");
+        if (a.Positionals.Count != 1)
+            throw new InputException("command line", "give one render folder", "usage: spectral camera OUTDIR --sensor nikon-d5100");
         var dir = a.Positionals[0];
         var scene = CameraScene.Open(dir);
         // --sensor, else the sensor written in the scene's camera object (render.json keeps the resolved scene).
@@ -70,7 +73,14 @@ public static class CameraCommand
         if (a.Value("--exposure") is { } ex)
         {
             if (ex == "auto") sensor = sensor with { ExposureSeconds = null };
-            else sensor = sensor with { ExposureSeconds = a.Double("--exposure", 1e-10, 1e5, "seconds") is { } t ? t : throw new InputException("command line", $"--exposure '{ex}' must be auto or positive seconds", "e.g. --exposure auto or --exposure 0.01 (seconds)") };
+            else
+                sensor = sensor with
+                {
+                    ExposureSeconds = a.Double("--exposure", 1e-10, 1e5, "seconds") is { } t
+                    ? t
+                    : throw new InputException("command line", $"--exposure '{ex}' must be auto or positive seconds",
+                        "e.g. --exposure auto or --exposure 0.01 (seconds)")
+                };
         }
         if (a.Value("--off-axis") is { } oa) sensor = sensor with { OffAxis = SensorFile.ParseOffAxis(oa, "--off-axis") };
         if (a.Value("--psf") is { } psf) sensor = sensor with { Psf = SensorFile.ParsePsf(psf, "--psf") };
@@ -84,9 +94,14 @@ public static class CameraCommand
         {
             null or "malvar" => DemosaicMethod.Malvar,
             "bilinear" => DemosaicMethod.Bilinear,
-            var v => throw new InputException("command line", $"--demosaic '{v}' is not malvar or bilinear", "use --demosaic malvar or --demosaic bilinear"),
+            var v => throw new InputException("command line", $"--demosaic '{v}' is not malvar or bilinear",
+                "use --demosaic malvar or --demosaic bilinear"),
         };
-        ulong seed = a.Value("--seed") is { } sv ? ulong.TryParse(sv, NumberStyles.None, CultureInfo.InvariantCulture, out var s) ? s : throw new InputException("command line", $"--seed '{sv}' is not a whole number ≥ 0", "give a whole number, e.g. --seed 1") : 1;
+        ulong seed = a.Value("--seed") is { } sv
+            ? ulong.TryParse(sv, NumberStyles.None, CultureInfo.InvariantCulture, out var s)
+            ? s
+            : throw new InputException("command line", $"--seed '{sv}' is not a whole number ≥ 0", "give a whole number, e.g. --seed 1")
+            : 1;
         double scale = a.Double("--radiance-scale", 1e-20, 1e20, "W·m⁻²·sr⁻¹·nm⁻¹ per band unit") ?? 1;
         if (!(scale > 0)) throw new InputException("command line", "--radiance-scale must be positive", "W·m⁻²·sr⁻¹·nm⁻¹ per band unit");
         int threads = a.Int("--threads", 1, 1024) ?? -1;
@@ -95,7 +110,8 @@ public static class CameraCommand
         {
             null or "exact" => true,
             "bands" => false,
-            var v => throw new InputException("command line", $"--signals '{v}' is not exact or bands", "use --signals exact (default) or --signals bands"),
+            var v => throw new InputException("command line", $"--signals '{v}' is not exact or bands",
+                "use --signals exact (default) or --signals bands"),
         };
 
         var options = new SimulationOptions { Seed = seed, Noise = noise, Threads = threads };
@@ -139,13 +155,16 @@ public static class CameraCommand
             cpu.Sort();
             // CPU seconds (all threads of the process) tell the work apart from waiting for a core another program holds.
             stdout.WriteLine(string.Create(CultureInfo.InvariantCulture,
-                $"camera {sensor.Name}: {cube.Width}×{cube.Height}×{cube.Bands} bands, noise {(noise ? "on" : "off")}, {Environment.ProcessorCount} CPUs; sensor simulation min {times[0]:F3} s, median {times[times.Count / 2]:F3} s over {repeat} runs (CPU time median {cpu[cpu.Count / 2]:F3} s)"));
+                $"camera {sensor.Name}: {cube.Width}×{cube.Height}×{cube.Bands} bands, noise {(noise ? "on" : "off")}, "
+                    + $"{Environment.ProcessorCount} CPUs; sensor simulation min {times[0]:F3} s, median {times[times.Count / 2]:F3} s "
+                    + $"over {repeat} runs (CPU time median {cpu[cpu.Count / 2]:F3} s)"));
             return CommandLine.Success;
         }
 
         var outDir = a.Value("-o") ?? Path.Combine(dir, $"camera-{sensor.Name}");
         if (OutputFolder.SameFolder(dir, outDir))
-            throw new InputException("-o", $"{outDir} is the render folder itself", "write the camera's files to a folder of their own (default OUTDIR/camera-<sensor>)");
+            throw new InputException("-o", $"{outDir} is the render folder itself",
+                "write the camera's files to a folder of their own (default OUTDIR/camera-<sensor>)");
         var (raw, colour, image, patches, manifest) = CameraRun.Run(scene, sensor, cube, options, demosaic, whiteScale, whiteSource,
             a.Value("--radiance-scale") is not null ? "--radiance-scale" : null,
             sensorName != SensorFile.SceneArgument && File.Exists(sensorName) ? Path.GetFullPath(sensorName) : sensorName,
@@ -160,7 +179,11 @@ public static class CameraCommand
 
         int[] shape = raw.Planes == 1 ? [raw.Height, raw.Width] : [raw.Height, raw.Width, raw.Planes];
         AtomicFile.Write(Path.Combine(outDir, "raw.npy"), st => NpyWriter.Write(st, shape, raw.Dn)); Done("raw.npy");
-        if (raw.Planes == 1) { PngWriter.WriteGray16(Path.Combine(outDir, "raw.png"), raw.Width, raw.Height, Plane(raw, 0)); Done("raw.png"); }
+        if (raw.Planes == 1)
+        {
+            PngWriter.WriteGray16(Path.Combine(outDir, "raw.png"), raw.Width, raw.Height, Plane(raw, 0));
+            Done("raw.png");
+        }
         else
             for (int c = 0; c < raw.Planes; c++)
             {
@@ -170,27 +193,36 @@ public static class CameraCommand
         if (sensor.IsBayer)
         {
             var (matrix, neutral) = DngColour(colour);
-            DngWriter.Write(Path.Combine(outDir, "raw.dng"), raw, matrix, neutral, DngWriter.IlluminantCode(scene.LightName), $"SpectralRenderer {CommandLine.Version}");
+            DngWriter.Write(Path.Combine(outDir, "raw.dng"), raw, matrix, neutral, DngWriter.IlluminantCode(scene.LightName),
+                $"SpectralRenderer {CommandLine.Version}");
             Done("raw.dng");
         }
         PngWriter.WriteRgb8(Path.Combine(outDir, "processed.png"), raw.Width, raw.Height, image.Srgb8); Done("processed.png");
         AtomicFile.WriteAllText(Path.Combine(outDir, "patches.csv"), PatchesCsv(sensor, patches)); Done("patches.csv");
 
         manifest["files"] = new JsonArray(written.Append("camera.json").Select(f => (JsonNode)f).ToArray());
-        AtomicFile.WriteAllText(Path.Combine(outDir, "camera.json"), manifest.ToJsonString(new JsonSerializerOptions { WriteIndented = true }) + "\n");
+        AtomicFile.WriteAllText(Path.Combine(outDir, "camera.json"),
+            manifest.ToJsonString(new JsonSerializerOptions { WriteIndented = true }) + "\n");
         folder.Commit([.. written, "camera.json"]);
         outDir = final;
 
         var inv = CultureInfo.InvariantCulture;
         if (routeNote is not null) stderr.WriteLine(routeNote);
         if (raw.ClippingWarning() is { } warning) stderr.WriteLine(warning);
-        stdout.WriteLine(string.Create(inv, $"camera {sensor.Name} ({sensor.Arrangement.ToString().ToLowerInvariant()}, {sensor.ChannelCount} channels) on {dir}: exposure {string.Join(", ", raw.ExposureSeconds.Select(t => t.ToString("G4", inv)))} s, noise {(noise ? "on" : "off")}, K = {sensor.SystemGain:G4} DN/e⁻"));
+        stdout.WriteLine(string.Create(inv,
+            $"camera {sensor.Name} ({sensor.Arrangement.ToString().ToLowerInvariant()}, {sensor.ChannelCount} channels) on {dir}: exposure "
+                + $"{string.Join(", ", raw.ExposureSeconds.Select(t => t.ToString("G4", inv)))} s, noise {(noise ? "on" : "off")}, K "
+                + $"= {sensor.SystemGain:G4} DN/e⁻"));
         if (patches.Count > 0)
         {
             stdout.WriteLine($"{"patch",5} {"object",-12} {"ΔE00",7}  SNR dB per channel");
             foreach (var p in patches)
-                stdout.WriteLine(string.Create(inv, $"{p.Patch,5} {p.Object,-12} {p.DeltaE00,7:F3}  {string.Join(" ", p.SnrDb.Select(v => double.IsFinite(v) ? v.ToString("F1", inv) : "inf"))}"));
-            stdout.WriteLine(string.Create(inv, $"mean ΔE00 {patches.Average(p => p.DeltaE00):F3}, max {patches.Max(p => p.DeltaE00):F3} (corrected colour vs 1 nm CIE XYZ under {scene.LightName})"));
+                stdout.WriteLine(string.Create(inv,
+                    $"{p.Patch,5} {p.Object,-12} {p.DeltaE00,7:F3}  "
+                        + $"{string.Join(" ", p.SnrDb.Select(v => double.IsFinite(v) ? v.ToString("F1", inv) : "inf"))}"));
+            stdout.WriteLine(string.Create(inv,
+                $"mean ΔE00 {patches.Average(p => p.DeltaE00):F3}, max {patches.Max(p => p.DeltaE00):F3} (corrected colour vs 1 nm "
+                    + $"CIE XYZ under {scene.LightName})"));
         }
         stdout.WriteLine($"wrote {string.Join(", ", written)}, camera.json in {outDir}");
         return CommandLine.Success;
@@ -203,7 +235,8 @@ public static class CameraCommand
         return v;
     }
 
-    /// <summary>ColorMatrix1 = (M·diag(1/ė_white))⁻¹, XYZ → camera, scaled so the white's largest camera value is 1; AsShotNeutral = ė_white / max.</summary>
+    /// <summary>ColorMatrix1 = (M·diag(1/ė_white))⁻¹, XYZ → camera, scaled so the white's largest camera value is 1; AsShotNeutral =
+    /// ė_white / max.</summary>
     static (double[,] Matrix, double[] Neutral) DngColour(ColourCorrection colour)
     {
         var m = (double[,])colour.Matrix.Clone();
@@ -224,7 +257,9 @@ public static class CameraCommand
         sb.Append('\n');
         foreach (var p in patches)
         {
-            sb.Append(inv, $"{p.Patch},{p.Object},{p.Pixels},{p.Camera.X:R},{p.Camera.Y:R},{p.Camera.Z:R},{p.Exact.X:R},{p.Exact.Y:R},{p.Exact.Z:R},{p.DeltaE00:R}");
+            sb.Append(inv,
+                $"{p.Patch},{p.Object},{p.Pixels},{p.Camera.X:R},{p.Camera.Y:R},{p.Camera.Z:R},{p.Exact.X:R},"
+                    + $"{p.Exact.Y:R},{p.Exact.Z:R},{p.DeltaE00:R}");
             foreach (var v in p.SnrDb) sb.Append(',').Append(double.IsFinite(v) ? v.ToString("R", inv) : double.IsNaN(v) ? "" : "inf");
             sb.Append('\n');
         }

@@ -31,13 +31,16 @@ public static class ColorsCommand
     {
         var a = new Arguments("colors", argv, ["--illuminant", "--observer", "--bands", "--wave", "--integration", "--rgb"], ["--csv"]);
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
-        if (a.Positionals.Count > 0) throw new InputException("colors", $"unexpected argument {MessageText.Quote(a.Positionals[0])}", "see 'spectral colors --help'");
+        if (a.Positionals.Count > 0)
+            throw new InputException("colors", $"unexpected argument {MessageText.Quote(a.Positionals[0])}",
+                "see 'spectral colors --help'");
 
         var lightName = a.Value("--illuminant") ?? "D65";
         var light = SpectrumLibrary.Resolve(lightName, Directory.GetCurrentDirectory(), "--illuminant");
         var observer = Observer.FromDegrees(a.Value("--observer") ?? "2");
         if (a.Value("--bands") is not null && a.Value("--wave") is not null)
-            throw new InputException("--wave", "--wave and --bands both give the bands", "use one: --wave 390:20:770 (centres) or --bands 380:780:20 (edges)");
+            throw new InputException("--wave", "--wave and --bands both give the bands",
+                "use one: --wave 390:20:770 (centres) or --bands 380:780:20 (edges)");
         var grid = a.Value("--wave") is { } wave ? BandGrid.ParseWave(wave) : BandGrid.Parse(a.Value("--bands") ?? "380:780:20");
         var scheme = ParseScheme(a.Value("--integration") ?? "exact", "--integration");
         var rgb = RgbSpace.Parse(a.Value("--rgb") ?? "srgb");
@@ -51,8 +54,10 @@ public static class ColorsCommand
         if (csv) stdout.WriteLine("patch,name,X,Y,Z,L,a,b,r_linear,g_linear,b_linear,r8,g8,b8,dE00_vs_1nm");
         else
         {
-            stdout.WriteLine($"ColorChecker (Ohta) under {light.Name}, {observer.Name} observer, bands {grid} ({grid.Width:0.###} nm), {scheme.ToString().ToLowerInvariant()} integration, {rgb.Name} RGB");
-            stdout.WriteLine($"{"#",2} {"name",-18} {"X",8} {"Y",8} {"Z",8} {"L*",7} {"a*",7} {"b*",7} {"R",7} {"G",7} {"B",7}  {"RGB8",-11} {"ΔE00",6}");
+            stdout.WriteLine($"ColorChecker (Ohta) under {light.Name}, {observer.Name} observer, bands {grid} ({grid.Width:0.###} nm), "
+                + $"{scheme.ToString().ToLowerInvariant()} integration, {rgb.Name} RGB");
+            stdout.WriteLine($"{"#",2} {"name",-18} {"X",8} {"Y",8} {"Z",8} {"L*",7} {"a*",7} {"b*",7} {"R",7} {"G",7} "
+                + $"{"B",7}  {"RGB8",-11} {"ΔE00",6}");
         }
         double sum = 0, max = 0;
         for (int p = 1; p <= ColorChecker.PatchCount; p++)
@@ -67,9 +72,13 @@ public static class ColorsCommand
             var c8 = rgb.Encode8(xyz);
             var name = ColorChecker.Name(p);
             if (csv)
-                stdout.WriteLine(string.Create(inv, $"{p},{name},{xyz.X:R},{xyz.Y:R},{xyz.Z:R},{lab.L:R},{lab.A:R},{lab.B:R},{r:R},{g:R},{b:R},{c8.R},{c8.G},{c8.B},{de:R}"));
+                stdout.WriteLine(string.Create(inv,
+                    $"{p},{name},{xyz.X:R},{xyz.Y:R},{xyz.Z:R},{lab.L:R},{lab.A:R},{lab.B:R},{r:R},{g:R},"
+                        + $"{b:R},{c8.R},{c8.G},{c8.B},{de:R}"));
             else
-                stdout.WriteLine(string.Create(inv, $"{p,2} {Trunc(name, 18),-18} {xyz.X,8:F5} {xyz.Y,8:F5} {xyz.Z,8:F5} {lab.L,7:F2} {lab.A,7:F2} {lab.B,7:F2} {r,7:F4} {g,7:F4} {b,7:F4}  {c8.R,3} {c8.G,3} {c8.B,3} {de,6:F3}"));
+                stdout.WriteLine(string.Create(inv,
+                    $"{p,2} {Trunc(name, 18),-18} {xyz.X,8:F5} {xyz.Y,8:F5} {xyz.Z,8:F5} {lab.L,7:F2} {lab.A,7:F2} {lab.B,7:F2} {r,7:F4} "
+                        + $"{g,7:F4} {b,7:F4}  {c8.R,3} {c8.G,3} {c8.B,3} {de,6:F3}"));
         }
         if (!csv) stdout.WriteLine(string.Create(inv, $"ΔE00 against 1 nm integration: mean {sum / 24:F3}, max {max:F3}"));
         return CommandLine.Success;

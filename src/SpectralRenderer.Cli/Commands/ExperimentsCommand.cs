@@ -10,7 +10,8 @@ namespace SpectralRenderer.Cli.Commands;
 public static class ExperimentsCommand
 {
     const string Help = """
-        usage: spectral experiments [--out DIR] [--scale F] [--spp N] [--scenes DIR] [--models DIR] [--threads N] [--gi-spp N] [--no-gi] [--quiet]
+        usage: spectral experiments [--out DIR] [--scale F] [--spp N] [--scenes DIR] [--models DIR] [--threads N]
+                                    [--gi-spp N] [--no-gi] [--quiet]
 
         Renders every scene of the paper — §3.1 the ColorChecker, §3.2 four bunnies, §3.3 the statue under
         A, D65, blue and green LEDs, §3.4 the analysis bunny — and writes DIR/report.html: one self-contained
@@ -30,16 +31,26 @@ public static class ExperimentsCommand
 
     public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
     {
-        var a = new Arguments("experiments", argv, ["--out", "-o", "--scale", "--spp", "--scenes", "--models", "--threads", "--gi-spp"], ["--quiet", "--no-gi"], new Dictionary<string, string> { ["-o"] = "--out" });
+        var a = new Arguments("experiments", argv, ["--out", "-o", "--scale", "--spp", "--scenes", "--models", "--threads", "--gi-spp"],
+            ["--quiet", "--no-gi"], new Dictionary<string, string> { ["-o"] = "--out" });
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
-        if (a.Positionals.Count > 0) throw new InputException("command line", $"unexpected argument {MessageText.Quote(a.Positionals[0])}", "see 'spectral experiments --help'");
+        if (a.Positionals.Count > 0)
+            throw new InputException("command line", $"unexpected argument {MessageText.Quote(a.Positionals[0])}",
+                "see 'spectral experiments --help'");
         var outDir = a.Value("--out") ?? Path.Combine("out", "experiments");
         double scale = a.Double("--scale") ?? 1;
-        if (scale <= 0 || scale > 8) throw new InputException("--scale", $"{scale.ToString(CultureInfo.InvariantCulture)} is outside (0, 8]", "e.g. --scale 0.5 for half the paper's resolution");
+        if (scale <= 0 || scale > 8)
+            throw new InputException("--scale", $"{scale.ToString(CultureInfo.InvariantCulture)} is outside (0, 8]",
+                "e.g. --scale 0.5 for half the paper's resolution");
         var sceneDir = a.Value("--scenes") ?? FindScenes();
-        if (!Directory.Exists(sceneDir)) throw new InputException("--scenes", $"folder {MessageText.Quote(sceneDir, 120)} does not exist", "pass the repository's scenes/ folder");
+        if (!Directory.Exists(sceneDir))
+            throw new InputException("--scenes", $"folder {MessageText.Quote(sceneDir, 120)} does not exist",
+                "pass the repository's scenes/ folder");
         var models = a.Values("--models").ToList();
-        foreach (var m in models) if (!Directory.Exists(m)) throw new InputException("--models", $"folder {MessageText.Quote(m, 120)} does not exist", "pass the folder that holds the mesh files");
+        foreach (var m in models)
+            if (!Directory.Exists(m))
+                throw new InputException("--models", $"folder {MessageText.Quote(m, 120)} does not exist",
+                    "pass the folder that holds the mesh files");
         int threads = a.Int("--threads", 1, 1024) ?? Environment.ProcessorCount;
         int? spp = a.Int("--spp", 1, 65536);
         bool quiet = a.Flag("--quiet");
@@ -52,11 +63,13 @@ public static class ExperimentsCommand
             written: r => { if (PaperReport.Prepare(r) is { } section) prepared[r.Name] = section; });
         // Direct light against global illumination, one scene per section (gi/), at the same scale.
         var gi = a.Flag("--no-gi") ? null
-            : GlobalIlluminationComparison.Run(sceneDir, outDir, scale, models, threads, a.Int("--gi-spp", 1, 65536) ?? 16, log: quiet ? null : stderr.WriteLine);
+            : GlobalIlluminationComparison.Run(sceneDir, outDir, scale, models, threads, a.Int("--gi-spp", 1, 65536) ?? 16,
+                log: quiet ? null : stderr.WriteLine);
         var report = PaperReport.Write(outDir, runs, clock.Elapsed.TotalSeconds, prepared, gi);
         int skipped = runs.Count(r => !r.Done);
         stdout.WriteLine(string.Create(CultureInfo.InvariantCulture,
-            $"{runs.Count - skipped} of {runs.Count} scenes rendered in {clock.Elapsed.TotalSeconds:0.0} s{(skipped > 0 ? $" ({skipped} skipped: mesh not found)" : "")}; report: {report}"));
+            $"{runs.Count - skipped} of {runs.Count} scenes rendered in {clock.Elapsed.TotalSeconds:0.0} "
+                + $"s{(skipped > 0 ? $" ({skipped} skipped: mesh not found)" : "")}; report: {report}"));
         return CommandLine.Success;
     }
 

@@ -26,7 +26,8 @@ public static class MergeCommand
     {
         var a = new Arguments("merge", argv, ["-o", "--out"], ["--quiet"], new Dictionary<string, string> { ["-o"] = "--out" });
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
-        var outDir = a.Value("--out") ?? throw new InputException("", "no output folder given", "usage: spectral merge SHARD_DIR… -o OUTDIR");
+        var outDir =
+            a.Value("--out") ?? throw new InputException("", "no output folder given", "usage: spectral merge SHARD_DIR… -o OUTDIR");
         if (a.Positionals.Count == 0) throw new InputException("", "no shard folders given", "usage: spectral merge SHARD_DIR… -o OUTDIR");
         RenderCommand.PrepareOutputFolder(outDir);
         var clock = System.Diagnostics.Stopwatch.StartNew();
@@ -35,9 +36,13 @@ public static class MergeCommand
         try { files = ShardMerge.Merge(a.Positionals, outDir, "spectral merge " + string.Join(' ', argv), Signals.Token); }
         catch (OperationCanceledException e) when (e is not InterruptedException)
         {
-            throw new InterruptedException($"interrupted by {Signals.Signal} while merging{Signals.StoppedAfter()}: the merged files were not swapped in; {outDir} holds what it held", e.CancellationToken);
+            throw new InterruptedException($"interrupted by {Signals.Signal} while merging{Signals.StoppedAfter()}: the merged files were "
+                + $"not swapped in; {outDir} holds what it held",
+                e.CancellationToken);
         }
-        if (!a.Flag("--quiet")) stderr.WriteLine($"merged {a.Positionals.Count} shards into {outDir}: {files.Count} files in {clock.Elapsed.TotalSeconds:0.##} s, peak working set {System.Diagnostics.Process.GetCurrentProcess().PeakWorkingSet64 / 1048576.0:0} MiB");
+        if (!a.Flag("--quiet"))
+            stderr.WriteLine($"merged {a.Positionals.Count} shards into {outDir}: {files.Count} files in {clock.Elapsed.TotalSeconds:0.##} "
+                + $"s, peak working set {System.Diagnostics.Process.GetCurrentProcess().PeakWorkingSet64 / 1048576.0:0} MiB");
         return CommandLine.Success;
     }
 }

@@ -28,8 +28,11 @@ public static class MetamerismCommand
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
         if (a.Positionals.Count != 1) throw new InputException("metamerism", "expected one sRGB PNG", "see 'spectral metamerism --help'");
         var png = PngReader.Read(a.Positionals[0]);
-        if (png.Channels != 3) throw new InputException(a.Positionals[0], $"{png.Channels} channel(s): expected an RGB PNG", "save the texture as RGB (no alpha)");
-        var names = (a.Value("--lights") ?? string.Join(",", UpliftMetamerism.DefaultLights)).Split(',', StringSplitOptions.RemoveEmptyEntries | StringSplitOptions.TrimEntries);
+        if (png.Channels != 3)
+            throw new InputException(a.Positionals[0], $"{png.Channels} channel(s): expected an RGB PNG",
+                "save the texture as RGB (no alpha)");
+        var names = (a.Value("--lights") ?? string.Join(",", UpliftMetamerism.DefaultLights))
+            .Split(',', StringSplitOptions.RemoveEmptyEntries | StringSplitOptions.TrimEntries);
         var lights = names.Select(UpliftMetamerism.Under).ToArray();
         int max = (1 << png.BitDepth) - 1;
         var counts = new Dictionary<(int, int, int), int>();
@@ -51,17 +54,21 @@ public static class MetamerismCommand
         if (a.Flag("--csv"))
         {
             stdout.WriteLine("r,g,b,texels," + string.Join(",", names.Select(l => $"dE00_{l}")));
-            foreach (var (c, n, s) in rows) stdout.WriteLine(string.Create(inv, $"{c.R},{c.G},{c.B},{n},{string.Join(",", s.Select(v => v.ToString("R", inv)))}"));
+            foreach (var (c, n, s) in rows)
+                stdout.WriteLine(string.Create(inv, $"{c.R},{c.G},{c.B},{n},{string.Join(",", s.Select(v => v.ToString("R", inv)))}"));
             return CommandLine.Success;
         }
-        stdout.WriteLine($"{a.Positionals[0]}: {png.Width}×{png.Height}, {counts.Count} colours; ΔE00 between the sigmoid and the three-box metamer (equal under D65)");
-        if (skippedColours > 0) stdout.WriteLine($"left out: {skippedColours} colours ({skippedTexels} texels) whose box metamer is not a reflectance");
+        stdout.WriteLine($"{a.Positionals[0]}: {png.Width}×{png.Height}, {counts.Count} colours; ΔE00 between the sigmoid and the "
+            + $"three-box metamer (equal under D65)");
+        if (skippedColours > 0)
+            stdout.WriteLine($"left out: {skippedColours} colours ({skippedTexels} texels) whose box metamer is not a reflectance");
         stdout.WriteLine($"{"light",-10} {"mean",7} {"p95",7} {"max",7}");
         for (int k = 0; k < names.Length; k++)
         {
             var weighted = rows.SelectMany(r => Enumerable.Repeat(r.Spread[k], r.Texels)).Order().ToArray();
             if (weighted.Length == 0) { stdout.WriteLine($"{names[k],-10} (no admissible colour)"); continue; }
-            double mean = weighted.Average(), p95 = weighted[(int)Math.Min(weighted.Length - 1, Math.Ceiling(0.95 * weighted.Length) - 1)], top = weighted[^1];
+            double mean = weighted.Average(), p95 = weighted[(int)Math.Min(weighted.Length - 1, Math.Ceiling(0.95 * weighted.Length) - 1)],
+                top = weighted[^1];
             stdout.WriteLine(string.Create(inv, $"{names[k],-10} {mean,7:F3} {p95,7:F3} {top,7:F3}"));
         }
         return CommandLine.Success;

@@ -33,8 +33,10 @@ public static class ProbeCommand
     {
         var a = new Arguments("probe", argv, ["--pixel", "--output"], ["--csv"], new Dictionary<string, string> { ["-o"] = "--output" });
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
-        if (a.Positionals.Count != 1) throw new InputException("command line", "give one render folder", "usage: spectral probe OUTDIR --pixel X,Y[:LABEL]");
-        if (a.Values("--pixel").Count == 0) throw new InputException("command line", "give at least one --pixel X,Y[:LABEL]", "e.g. --pixel 120,80:lit");
+        if (a.Positionals.Count != 1)
+            throw new InputException("command line", "give one render folder", "usage: spectral probe OUTDIR --pixel X,Y[:LABEL]");
+        if (a.Values("--pixel").Count == 0)
+            throw new InputException("command line", "give at least one --pixel X,Y[:LABEL]", "e.g. --pixel 120,80:lit");
         var dir = a.Positionals[0];
         var (manifest, image) = RenderFolder.OpenCube(dir);
         // The unit of the band values is the render's radiometry's (issue 24): W·m⁻²·sr⁻¹·nm⁻¹ physical, relative in the paper's.
@@ -45,11 +47,13 @@ public static class ProbeCommand
         var csv = Csv(image, pixels);
         // One folder transaction (OutputFolder): PREFIX.csv and PREFIX.svg staged and swapped in together.
         var stem = Path.GetFileName(prefix);
-        using var folder = OutputFolder.BeginFiles(Path.GetDirectoryName(Path.GetFullPath(prefix))!, [stem + ".csv", stem + ".svg"], "probe", "-o");
+        using var folder =
+            OutputFolder.BeginFiles(Path.GetDirectoryName(Path.GetFullPath(prefix))!, [stem + ".csv", stem + ".svg"], "probe", "-o");
         AtomicFile.WriteAllText(Path.Combine(folder.Staging, stem + ".csv"), csv);
         var plot = new SvgPlot
         {
-            Title = $"Spectra of {pixels.Count} pixel{(pixels.Count == 1 ? "" : "s")} — {Path.GetFileName(Path.GetFullPath(dir).TrimEnd(Path.DirectorySeparatorChar))}",
+            Title = $"Spectra of {pixels.Count} pixel{(pixels.Count == 1 ? "" : "s")} — "
+                + $"{Path.GetFileName(Path.GetFullPath(dir).TrimEnd(Path.DirectorySeparatorChar))}",
             XLabel = "wavelength (nm)",
             YLabel = RadianceAxis(physical),
         };
@@ -60,10 +64,13 @@ public static class ProbeCommand
 
         if (a.Flag("--csv")) { stdout.Write(csv); return CommandLine.Success; }
         var inv = CultureInfo.InvariantCulture;
-        stdout.WriteLine($"{image.Width}×{image.Height}, {image.Grid} bands; radiance per band ({(physical ? "W·m⁻²·sr⁻¹·nm⁻¹, physical radiometry" : "relative units")})");
+        stdout.WriteLine($"{image.Width}×{image.Height}, {image.Grid} bands; radiance per band "
+            + $"({(physical ? "W·m⁻²·sr⁻¹·nm⁻¹, physical radiometry" : "relative units")})");
         stdout.WriteLine($"{"band",4} {"nm",15}" + string.Concat(pixels.Select(p => $" {Fit(p.Label),14}")));
         for (int b = 0; b < image.Bands; b++)
-            stdout.WriteLine(string.Create(inv, $"{Spectra.BandGrid.Number(b),4} {image.Grid.Lower(b),7:0.##}–{image.Grid.Upper(b),-7:0.##}") + string.Concat(pixels.Select(p => $" {image[p.X, p.Y, b].ToString("G7", inv),14}")));
+            stdout.WriteLine(
+                string.Create(inv, $"{Spectra.BandGrid.Number(b),4} {image.Grid.Lower(b),7:0.##}–{image.Grid.Upper(b),-7:0.##}")
+                + string.Concat(pixels.Select(p => $" {image[p.X, p.Y, b].ToString("G7", inv),14}")));
         stdout.WriteLine($"wrote {prefix}.csv, {prefix}.svg");
         return CommandLine.Success;
     }

@@ -17,8 +17,9 @@ public static class ReconstructCommand
         The paper's §3.4 white-board calibration: reflectance = pixel radiance ÷ white radiance, band by
         band, the white being the mean over the pixels of object NAME or of the rectangle X0,Y0,X1,Y1: columns
         X0…X1−1 and rows Y0…Y1−1 (X1 and Y1 exclusive, as --crop). Compares it with the ground-truth
-        reflectance the render wrote (reflectance.exr) by RMSE, GFC (goodness-of-fit coefficient), CIEDE2000 under D65, and the least-squares scale c with
-        the RMSE left after scaling (c·truth ≈ reconstruction: a shadow is a scale error).
+        reflectance the render wrote (reflectance.exr) by RMSE, GFC (goodness-of-fit coefficient), CIEDE2000
+        under D65, and the least-squares scale c with the RMSE left after scaling (c·truth ≈ reconstruction:
+        a shadow is a scale error).
 
         Regions (from the render's mask-lit-<k>.png and mask-highlight.png):
           highlight  specular > highlight_fraction × diffuse
@@ -39,10 +40,12 @@ public static class ReconstructCommand
     {
         var a = new Arguments("reconstruct", argv, ["--white-object", "--white-region", "--pixel"], ["--csv"]);
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
-        if (a.Positionals.Count != 1) throw new InputException("command line", "give one render folder", "usage: spectral reconstruct OUTDIR --white-object NAME");
+        if (a.Positionals.Count != 1)
+            throw new InputException("command line", "give one render folder", "usage: spectral reconstruct OUTDIR --white-object NAME");
         string? obj = a.Value("--white-object"), region = a.Value("--white-region");
         if ((obj is null) == (region is null))
-            throw new InputException("command line", "give exactly one of --white-object NAME and --white-region X0,Y0,X1,Y1", "e.g. --white-object board");
+            throw new InputException("command line", "give exactly one of --white-object NAME and --white-region X0,Y0,X1,Y1",
+                "e.g. --white-object board");
         var dir = a.Positionals[0];
         var folder = RenderFolder.Open(dir);
         var img = folder.Image;
@@ -56,7 +59,8 @@ public static class ReconstructCommand
         var pixels = chosen.Count > 0 ? chosen.Select(p => rec.At(p.X, p.Y, p.Label)).ToList() : Reconstruction.Representatives(surface);
 
         // One folder transaction (OutputFolder): the five files staged beside OUTDIR and swapped in together.
-        string[] names = ["reconstructed.npy", "reconstructed.exr", "reconstruction.csv", "reconstruction-metrics.csv", "reconstruction.svg"];
+        string[] names =
+            ["reconstructed.npy", "reconstructed.exr", "reconstruction.csv", "reconstruction-metrics.csv", "reconstruction.svg"];
         using var target = OutputFolder.BeginFiles(dir, names, "reconstruction");
         var staging = target.Staging;
         NpyWriter.Write(Path.Combine(staging, "reconstructed.npy"), rec.Reflectance);
@@ -64,7 +68,11 @@ public static class ReconstructCommand
         {
             Reflective = true,
             Rgb = false,
-            Attributes = new Dictionary<string, string> { ["comments"] = $"reflectance reconstructed by white-board calibration against {white.Description} (Li et al. 2010 §3.4)" },
+            Attributes = new Dictionary<string, string>
+            {
+                ["comments"] = $"reflectance reconstructed by white-board calibration against "
+                + $"{white.Description} (Li et al. 2010 §3.4)"
+            },
         });
         AtomicFile.WriteAllText(Path.Combine(staging, "reconstruction.csv"), CurvesCsv(rec, pixels));
         var metrics = MetricsCsv(pixels, summaries);
@@ -75,15 +83,22 @@ public static class ReconstructCommand
         if (a.Flag("--csv")) { stdout.Write(metrics); return CommandLine.Success; }
         var inv = CultureInfo.InvariantCulture;
         stdout.WriteLine($"white reference: {white.Description}, {white.Pixels} pixels; {img.Grid} bands; ΔE00 under D65");
-        if (!aovs.HasMasks) stdout.WriteLine("no mask-lit-<k>.png / mask-highlight.png: regions are not classified (render with --formats including aov)");
-        stdout.WriteLine($"{"pixel",-16} {"x",5} {"y",5} {"object",-14} {"region",-12} {"RMSE",10} {"GFC",10} {"ΔE00",8} {"c",9} {"residual",10}");
+        if (!aovs.HasMasks)
+            stdout.WriteLine("no mask-lit-<k>.png / mask-highlight.png: regions are not classified (render with --formats including aov)");
+        stdout.WriteLine(
+            $"{"pixel",-16} {"x",5} {"y",5} {"object",-14} {"region",-12} {"RMSE",10} {"GFC",10} {"ΔE00",8} {"c",9} {"residual",10}");
         foreach (var p in pixels)
-            stdout.WriteLine(string.Create(inv, $"{Fit(p.Label, 16),-16} {p.X,5} {p.Y,5} {Fit(p.Object, 14),-14} {Reconstruction.Name(p.Region),-12} {p.Rmse,10:G4} {p.Gfc,10:F6} {p.DeltaE00,8:F3} {p.Scale,9:F5} {p.Residual,10:G4}"));
+            stdout.WriteLine(string.Create(inv,
+                $"{Fit(p.Label, 16),-16} {p.X,5} {p.Y,5} {Fit(p.Object, 14),-14} {Reconstruction.Name(p.Region),-12} {p.Rmse,10:G4} "
+                    + $"{p.Gfc,10:F6} {p.DeltaE00,8:F3} {p.Scale,9:F5} {p.Residual,10:G4}"));
         stdout.WriteLine();
         stdout.WriteLine($"{"region",-12} {"pixels",8} {"mean RMSE",10} {"mean GFC",10} {"mean ΔE00",10} {"mean c",9} {"mean resid.",11}");
         foreach (var s in summaries)
-            stdout.WriteLine(string.Create(inv, $"{s.Region,-12} {s.Count,8} {s.MeanRmse,10:G4} {s.MeanGfc,10:F6} {s.MeanDeltaE00,10:F3} {s.MeanScale,9:F5} {s.MeanResidual,11:G4}"));
-        stdout.WriteLine($"wrote reconstructed.exr, reconstructed.npy, reconstruction.csv, reconstruction-metrics.csv, reconstruction.svg in {dir}");
+            stdout.WriteLine(string.Create(inv,
+                $"{s.Region,-12} {s.Count,8} {s.MeanRmse,10:G4} {s.MeanGfc,10:F6} {s.MeanDeltaE00,10:F3} "
+                    + $"{s.MeanScale,9:F5} {s.MeanResidual,11:G4}"));
+        stdout.WriteLine(
+            $"wrote reconstructed.exr, reconstructed.npy, reconstruction.csv, reconstruction-metrics.csv, reconstruction.svg in {dir}");
         return CommandLine.Success;
     }
 
@@ -91,9 +106,11 @@ public static class ReconstructCommand
 
     static WhiteReference ParseRegion(RenderFolder folder, string text)
     {
-        var v = text.Split(',').Select(t => int.TryParse(t.Trim(), NumberStyles.Integer, CultureInfo.InvariantCulture, out int n) ? n : (int?)null).ToArray();
+        var v = text.Split(',')
+            .Select(t => int.TryParse(t.Trim(), NumberStyles.Integer, CultureInfo.InvariantCulture, out int n) ? n : (int?)null).ToArray();
         if (v.Length != 4 || v.Any(n => n is null))
-            throw new InputException("--white-region", $"'{text}' is not X0,Y0,X1,Y1", "four whole pixel numbers, X1 and Y1 exclusive (as for --crop), e.g. 0,0,16,10: columns 0–15, rows 0–9");
+            throw new InputException("--white-region", $"'{text}' is not X0,Y0,X1,Y1",
+                "four whole pixel numbers, X1 and Y1 exclusive (as for --crop), e.g. 0,0,16,10: columns 0–15, rows 0–9");
         return Reconstruction.WhiteRegion(folder, v[0]!.Value, v[1]!.Value, v[2]!.Value, v[3]!.Value);
     }
 
@@ -119,9 +136,13 @@ public static class ReconstructCommand
         var inv = CultureInfo.InvariantCulture;
         var sb = new StringBuilder("kind,label,x,y,object,region,count,rmse,gfc,dE00,c,residual\n");
         foreach (var p in pixels)
-            sb.Append(inv, $"pixel,{PixelOption.Csv(p.Label)},{p.X},{p.Y},{PixelOption.Csv(p.Object)},{Reconstruction.Name(p.Region)},1,{p.Rmse:R},{p.Gfc:R},{p.DeltaE00:R},{p.Scale:R},{p.Residual:R}\n");
+            sb.Append(inv,
+                $"pixel,{PixelOption.Csv(p.Label)},{p.X},{p.Y},{PixelOption.Csv(p.Object)},{Reconstruction.Name(p.Region)},1,{p.Rmse:R},"
+                    + $"{p.Gfc:R},{p.DeltaE00:R},{p.Scale:R},{p.Residual:R}\n");
         foreach (var s in summaries)
-            sb.Append(inv, $"region,{s.Region},,,,{s.Region},{s.Count},{s.MeanRmse:R},{s.MeanGfc:R},{s.MeanDeltaE00:R},{s.MeanScale:R},{s.MeanResidual:R}\n");
+            sb.Append(inv,
+                $"region,{s.Region},,,,{s.Region},{s.Count},{s.MeanRmse:R},{s.MeanGfc:R},{s.MeanDeltaE00:R},"
+                    + $"{s.MeanScale:R},{s.MeanResidual:R}\n");
         return sb.ToString();
     }
 
@@ -130,7 +151,12 @@ public static class ReconstructCommand
     {
         var g = rec.Folder.Image.Grid;
         var centres = Enumerable.Range(0, g.Count).Select(g.Centre).ToArray();
-        var plot = new SvgPlot { Title = $"Reflectance reconstructed against {rec.White.Description}", XLabel = "wavelength (nm)", YLabel = "reflectance (1 = white board)" };
+        var plot = new SvgPlot
+        {
+            Title = $"Reflectance reconstructed against {rec.White.Description}",
+            XLabel = "wavelength (nm)",
+            YLabel = "reflectance (1 = white board)"
+        };
         foreach (var p in pixels) plot.Add(p.Label, centres, p.Reflectance);
         foreach (var t in pixels.Where(p => p.Object != "background").GroupBy(p => p.Object))
             plot.Add($"truth: {t.Key}", centres, t.First().Truth, dashed: true);

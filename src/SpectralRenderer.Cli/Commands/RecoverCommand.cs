@@ -10,7 +10,8 @@ using SpectralRenderer.Output;
 
 namespace SpectralRenderer.Cli.Commands;
 
-/// <summary>`spectral recover CAMERADIR`: spectral reflectance from a simulated camera's signals, scored against the render's truth.</summary>
+/// <summary>`spectral recover CAMERADIR`: spectral reflectance from a simulated camera's signals, scored against the render's
+/// truth.</summary>
 public static class RecoverCommand
 {
     const string Help = """
@@ -49,12 +50,15 @@ public static class RecoverCommand
     {
         var a = new Arguments("recover", argv, ["--method", "--training", "--white-object", "--white-region", "--range"], ["--csv"]);
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
-        if (a.Positionals.Count != 1) throw new InputException("command line", "give one camera folder", "usage: spectral recover CAMERADIR --method wiener");
+        if (a.Positionals.Count != 1)
+            throw new InputException("command line", "give one camera folder", "usage: spectral recover CAMERADIR --method wiener");
         var methodText = a.Value("--method") ?? "all";
         var methods = methodText == "all" ? Enum.GetValues<RecoveryMethod>().ToList()
             : methodText.Split(',').Select(m => SpectralEstimator.Parse(m.Trim())).Distinct().ToList();
         string? obj = a.Value("--white-object"), region = a.Value("--white-region");
-        if (obj is not null && region is not null) throw new InputException("command line", "give at most one of --white-object and --white-region", "see 'spectral recover --help'");
+        if (obj is not null && region is not null)
+            throw new InputException("command line", "give at most one of --white-object and --white-region",
+                "see 'spectral recover --help'");
 
         var dir = a.Positionals[0];
         var capture = CameraCapture.Open(dir);
@@ -73,7 +77,8 @@ public static class RecoverCommand
             range = (lo, hi);
         }
         var (firstBand, bandCount) = RecoveryEvaluation.BandsInside(scene.Grid, range);
-        string rangeText = string.Create(CultureInfo.InvariantCulture, $"{scene.Grid.Lower(firstBand):0.##}-{scene.Grid.Upper(firstBand + bandCount - 1):0.##}");
+        string rangeText = string.Create(CultureInfo.InvariantCulture,
+            $"{scene.Grid.Lower(firstBand):0.##}-{scene.Grid.Upper(firstBand + bandCount - 1):0.##}");
         var results = methods.Select(m => RecoveryEvaluation.Run(capture, m, training, white?.Mask, white?.Description, range)).ToList();
         var inv = CultureInfo.InvariantCulture;
         var csv = new StringBuilder("method,region,count,rmse,gfc,dE00_D65,dE00_A,metric_range_nm\n");
@@ -83,17 +88,20 @@ public static class RecoverCommand
         var g = scene.Grid;
         var centres = Enumerable.Range(0, g.Count).Select(g.Centre).ToArray();
         // One folder transaction (OutputFolder): staged beside CAMERADIR and swapped in together; nothing else there is touched.
-        var names = results.SelectMany(r => new[] { $"recovered-{SpectralEstimator.Name(r.Method)}.npy", $"recovery-{SpectralEstimator.Name(r.Method)}.svg" })
+        var names = results.SelectMany(r =>
+            new[] { $"recovered-{SpectralEstimator.Name(r.Method)}.npy", $"recovery-{SpectralEstimator.Name(r.Method)}.svg" })
             .Append("recovery-metrics.csv").Append("recovery.json").ToList();
         using var folder = OutputFolder.BeginFiles(dir, names, "recovery");
         foreach (var r in results)
         {
             Signals.Token.ThrowIfCancellationRequested();
             var name = SpectralEstimator.Name(r.Method);
-            AtomicFile.Write(Path.Combine(folder.Staging, $"recovered-{name}.npy"), s => NpyWriter.Write(s, [scene.Height, scene.Width, g.Count], r.Reflectance));
+            AtomicFile.Write(Path.Combine(folder.Staging, $"recovered-{name}.npy"),
+                s => NpyWriter.Write(s, [scene.Height, scene.Width, g.Count], r.Reflectance));
             var plot = new SvgPlot
             {
-                Title = $"Reflectance recovered by {name} from {capture.Sensor.Name} ({training.Name} prior{(white is null ? "" : ", white-calibrated")})",
+                Title = $"Reflectance recovered by {name} from {capture.Sensor.Name} ({training.Name} "
+                    + $"prior{(white is null ? "" : ", white-calibrated")})",
                 XLabel = "wavelength (nm)",
                 YLabel = "reflectance factor",
             };
@@ -119,12 +127,16 @@ public static class RecoverCommand
         folder.Commit(written);
 
         if (a.Flag("--csv")) { stdout.Write(csv.ToString()); return CommandLine.Success; }
-        stdout.WriteLine($"recovery from {capture.Sensor.Name} ({capture.Sensor.ChannelCount} channels, noise {(capture.Raw.Options.Noise ? "on" : "off")}) of {scene.Folder.Path}; training {training.Name} ({training.Count} reflectances); {g} bands{(white is null ? "" : $"; white: {white.Description}")}; RMSE and GFC over {rangeText} nm");
+        stdout.WriteLine($"recovery from {capture.Sensor.Name} ({capture.Sensor.ChannelCount} channels, noise "
+            + $"{(capture.Raw.Options.Noise ? "on" : "off")}) of {scene.Folder.Path}; training {training.Name} ({training.Count} "
+            + $"reflectances); {g} bands{(white is null ? "" : $"; white: {white.Description}")}; RMSE and GFC over {rangeText} nm");
         stdout.WriteLine($"forward model: {model.Description}");
-        if (!scene.Aovs.HasMasks) stdout.WriteLine("no mask-lit-<k>.png / mask-highlight.png: regions are not classified (render with --formats including aov)");
+        if (!scene.Aovs.HasMasks)
+            stdout.WriteLine("no mask-lit-<k>.png / mask-highlight.png: regions are not classified (render with --formats including aov)");
         stdout.WriteLine($"{"method",-12} {"region",-13} {"count",7} {"RMSE",9} {"GFC",9} {"ΔE00 D65",9} {"ΔE00 A",9}");
         foreach (var r in results.SelectMany(r => r.Rows))
-            stdout.WriteLine(string.Create(inv, $"{r.Method,-12} {r.Region,-13} {r.Count,7} {r.Rmse,9:F5} {r.Gfc,9:F5} {r.DeltaE00D65,9:F3} {r.DeltaE00A,9:F3}"));
+            stdout.WriteLine(string.Create(inv,
+                $"{r.Method,-12} {r.Region,-13} {r.Count,7} {r.Rmse,9:F5} {r.Gfc,9:F5} {r.DeltaE00D65,9:F3} {r.DeltaE00A,9:F3}"));
         foreach (var r in results.Where(r => r.Estimator.Lambda is not null))
             stdout.WriteLine(string.Create(inv, $"tikhonov: λ = {r.Estimator.Lambda:G3} × the mean eigenvalue of SSᵀ (by GCV)"));
         foreach (var r in results.Where(r => r.Estimator.Components is not null))
@@ -132,7 +144,10 @@ public static class RecoverCommand
         foreach (var r in results.Where(r => r.Estimator.Local is not null))
         {
             var l = r.Estimator.Local!;
-            stdout.WriteLine(string.Create(inv, $"wiener-local: h_c = {l.ChromaticityWidth:G3}, h_I = {(double.IsPositiveInfinity(l.IntensityWidth) ? "∞" : l.IntensityWidth.ToString("G3", inv))}, β = {l.Shrinkage:G3} (by leave-one-out on the training set: mean RMSE {l.LeaveOneOutRmse:F4})"));
+            stdout.WriteLine(string.Create(inv,
+                $"wiener-local: h_c = {l.ChromaticityWidth:G3}, h_I = "
+                    + $"{(double.IsPositiveInfinity(l.IntensityWidth) ? "∞" : l.IntensityWidth.ToString("G3", inv))}, β = {l.Shrinkage:G3} "
+                    + $"(by leave-one-out on the training set: mean RMSE {l.LeaveOneOutRmse:F4})"));
         }
         stdout.WriteLine($"wrote {string.Join(", ", written)} in {dir}");
         return CommandLine.Success;
@@ -140,9 +155,11 @@ public static class RecoverCommand
 
     static WhiteReference ParseRegion(CameraScene scene, string text)
     {
-        var v = text.Split(',').Select(t => int.TryParse(t.Trim(), NumberStyles.Integer, CultureInfo.InvariantCulture, out int n) ? n : (int?)null).ToArray();
+        var v = text.Split(',')
+            .Select(t => int.TryParse(t.Trim(), NumberStyles.Integer, CultureInfo.InvariantCulture, out int n) ? n : (int?)null).ToArray();
         if (v.Length != 4 || v.Any(n => n is null))
-            throw new InputException("--white-region", $"'{text}' is not X0,Y0,X1,Y1", "four whole pixel numbers, X1 and Y1 exclusive (as for --crop), e.g. 0,0,16,10: columns 0–15, rows 0–9");
+            throw new InputException("--white-region", $"'{text}' is not X0,Y0,X1,Y1",
+                "four whole pixel numbers, X1 and Y1 exclusive (as for --crop), e.g. 0,0,16,10: columns 0–15, rows 0–9");
         return Reconstruction.WhiteRegion(scene.Folder, v[0]!.Value, v[1]!.Value, v[2]!.Value, v[3]!.Value);
     }
 }

@@ -34,10 +34,13 @@ public static class RelightCommand
 
     public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
     {
-        var a = new Arguments("relight", argv, ["--light", "--intensity", "--white", "--out", "--sweep"], ["--quiet", "--metrics"], new Dictionary<string, string> { ["-o"] = "--out" });
+        var a = new Arguments("relight", argv, ["--light", "--intensity", "--white", "--out", "--sweep"], ["--quiet", "--metrics"],
+            new Dictionary<string, string> { ["-o"] = "--out" });
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
         JitWarmup.Start(JitWarmup.Relight);   // the writers compile while the transfer is read
-        if (a.Positionals.Count != 1) throw new InputException("", a.Positionals.Count == 0 ? "no render folder given" : $"unexpected argument '{a.Positionals[1]}'", "usage: spectral relight OUTDIR --light NAME=SPECTRUM");
+        if (a.Positionals.Count != 1)
+            throw new InputException("", a.Positionals.Count == 0 ? "no render folder given" : $"unexpected argument '{a.Positionals[1]}'",
+                "usage: spectral relight OUTDIR --light NAME=SPECTRUM");
         var dir = a.Positionals[0];
         var src = Relighting.Open(dir);
         bool quiet = a.Flag("--quiet");
@@ -47,7 +50,9 @@ public static class RelightCommand
         if (a.Value("--sweep") is { } sweep)
         {
             if (a.Values("--light").Count + a.Values("--intensity").Count > 0 || a.Value("--white") is not null)
-                throw new InputException("--sweep", "give the lights either in the sweep file or with --light/--intensity/--white, not both", "see 'spectral relight --help'");
+                throw new InputException("--sweep",
+                    "give the lights either in the sweep file or with --light/--intensity/--white, not both",
+                    "see 'spectral relight --help'");
             var rows = Relighting.ReadSweep(sweep, src.LightNames);
             // Every row checked (its spectra resolved, its scene loaded) before the first is written: a bad cell is named
             // by the sweep file's row and column, and no earlier row's folder is left behind for it.
@@ -67,7 +72,9 @@ public static class RelightCommand
                 index.Append(CultureInfo.InvariantCulture, $"{r + 1},{folder},{white},\"{string.Join("; ", changes.Select(Describe))}\"\n");
             }
             AtomicFile.WriteAllText(Path.Combine(outRoot, "index.csv"), index.ToString());
-            if (!quiet) stderr.WriteLine($"relit {rows.Count} variants of {dir} into {outRoot} in {clock.Elapsed.TotalSeconds:0.###} s (index.csv)");
+            if (!quiet)
+                stderr.WriteLine(
+                    $"relit {rows.Count} variants of {dir} into {outRoot} in {clock.Elapsed.TotalSeconds:0.###} s (index.csv)");
             return CommandLine.Success;
         }
 
@@ -80,25 +87,33 @@ public static class RelightCommand
         foreach (var v in a.Values("--intensity"))
         {
             var (name, text) = Split(v, "--intensity", "NAME=F, e.g. --intensity D65=0.5");
-            if (!double.TryParse(text, NumberStyles.Float, CultureInfo.InvariantCulture, out double f) || !double.IsFinite(f) || f < 0 || f > 1e30)
-                throw new InputException("--intensity", $"'{text}' is not a non-negative number ≤ 1e30 (a scene's intensity range)", "e.g. --intensity D65=0.5");
+            if (!double.TryParse(text, NumberStyles.Float, CultureInfo.InvariantCulture, out double f) || !double.IsFinite(f) || f < 0
+                || f > 1e30)
+                throw new InputException("--intensity", $"'{text}' is not a non-negative number ≤ 1e30 (a scene's intensity range)",
+                    "e.g. --intensity D65=0.5");
             byName[name] = (byName.GetValueOrDefault(name) ?? new LightChange(name, null, null)) with { Intensity = f };
         }
         var whiteArg = a.Value("--white");
         if (byName.Count == 0 && whiteArg is null)
-            throw new InputException("", "nothing to change", $"give --light NAME=SPECTRUM, --intensity NAME=F or --white; lights: {string.Join(", ", src.LightNames)}");
+            throw new InputException("", "nothing to change",
+                $"give --light NAME=SPECTRUM, --intensity NAME=F or --white; lights: {string.Join(", ", src.LightNames)}");
         var outDir = a.Value("--out") ?? dir.TrimEnd('/', '\\') + "-relit";
         RenderCommand.PrepareOutputFolder(outDir);
-        var (scene, files, compute) = Relighting.Write(src, byName.Values.ToList(), whiteArg, outDir, commandLine, metrics: a.Flag("--metrics"));
+        var (scene, files, compute) =
+            Relighting.Write(src, byName.Values.ToList(), whiteArg, outDir, commandLine, metrics: a.Flag("--metrics"));
         if (a.Flag("--metrics")) stdout.Write(File.ReadAllText(Path.Combine(outDir, "relight-metrics.csv")));
         if (!quiet)
             stderr.WriteLine(string.Create(CultureInfo.InvariantCulture,
-                $"relit {scene.Camera.Width}×{scene.Camera.Height}, {scene.Bands} bands ({string.Join(", ", byName.Values.Select(Describe))}{(whiteArg is null ? "" : $", white {whiteArg}")}) in {compute.TotalSeconds:0.###} s; wrote {files.Count} files to {outDir}; {clock.Elapsed.TotalSeconds:0.##} s in all"));
+                $"relit {scene.Camera.Width}×{scene.Camera.Height}, {scene.Bands} bands "
+                    + $"({string.Join(", ", byName.Values.Select(Describe))}{(whiteArg is null ? "" : $", white {whiteArg}")}) in "
+                    + $"{compute.TotalSeconds:0.###} s; wrote {files.Count} files to {outDir}; "
+                    + $"{clock.Elapsed.TotalSeconds:0.##} s in all"));
         return CommandLine.Success;
     }
 
     static string Describe(LightChange c) =>
-        c.Light + (c.Spectrum is null ? "" : "=" + c.Spectrum) + (c.Intensity is null ? "" : string.Create(CultureInfo.InvariantCulture, $" ×{c.Intensity}"));
+        c.Light + (c.Spectrum is null ? "" : "=" + c.Spectrum)
+            + (c.Intensity is null ? "" : string.Create(CultureInfo.InvariantCulture, $" ×{c.Intensity}"));
 
     static (string, string) Split(string v, string option, string hint)
     {

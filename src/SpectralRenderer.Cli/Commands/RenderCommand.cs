@@ -59,15 +59,20 @@ public static class RenderCommand
         var a = new Arguments("render", argv, Values, ["--quiet"], new Dictionary<string, string> { ["-o"] = "--out" });
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
         JitWarmup.Start(JitWarmup.Render);   // the hot loops compile on the other core while the scene loads
-        if (a.Positionals.Count != 1) throw new InputException("command line", a.Positionals.Count == 0 ? "no scene file given" : $"unexpected argument {MessageText.Quote(a.Positionals[1])}", "usage: spectral render SCENE.json -o OUTDIR");
+        if (a.Positionals.Count != 1)
+            throw new InputException("command line",
+                a.Positionals.Count == 0 ? "no scene file given" : $"unexpected argument {MessageText.Quote(a.Positionals[1])}",
+                "usage: spectral render SCENE.json -o OUTDIR");
         var scenePath = a.Positionals[0];
         bool fromStdin = scenePath == SceneLoader.StandardInput;
         var outDir = a.Value("--out") ?? Path.Combine("out", fromStdin ? "stdin" : Path.GetFileNameWithoutExtension(scenePath));
-        if (string.IsNullOrWhiteSpace(outDir)) throw new InputException("-o", "the output folder name is empty", "give a folder name, e.g. -o out/scene");
+        if (string.IsNullOrWhiteSpace(outDir))
+            throw new InputException("-o", "the output folder name is empty", "give a folder name, e.g. -o out/scene");
         bool quiet = a.Flag("--quiet");
 
         byte[]? text = null;
-        byte[] Text() => text ??= fromStdin ? SceneLoader.ReadAll(Console.OpenStandardInput()) : InputFile.ReadAllBytes(scenePath, "scene file");
+        byte[] Text() => text ??=
+            fromStdin ? SceneLoader.ReadAll(Console.OpenStandardInput()) : InputFile.ReadAllBytes(scenePath, "scene file");
         var options = RenderOptions.Parse(a.Given(RenderOptions.All), Text);   // options are checked before the scene is read
         var request = options.Request(scenePath, ShardRegion.Of(options, jobArray: true)) with
         {
@@ -81,19 +86,27 @@ public static class RenderCommand
         // SIGINT and SIGTERM (Signals, answered from the command's start) stop the render at the next pixel (and the
         // writers at the next file): the staged files are removed, the output folder keeps what it held, and the message says so.
         var progress = quiet ? null : ProgressBar.For(stderr);
-        job.Execute(new RenderObserver(Progress: progress is null ? null : progress.Report, StoppedAfter: Signals.StoppedAfter), Signals.Token);
+        job.Execute(new RenderObserver(Progress: progress is null ? null : progress.Report, StoppedAfter: Signals.StoppedAfter),
+            Signals.Token);
         progress?.Finish();
         var result = job.Result!;
         var scene = job.Scene;
         if (result.Rays.OverBudgetRays > 0)
-            stderr.WriteLine(MessageText.Line($"spectral render: warning: {result.Rays.OverBudgetRays} camera rays reached the ray budget of {scene.RayBudget} rays; their deepest reflections and refractions are missing",
+            stderr.WriteLine(MessageText.Line($"spectral render: warning: {result.Rays.OverBudgetRays} camera rays reached the ray budget "
+                + $"of {scene.RayBudget} rays; their deepest reflections and refractions are missing",
                 " (hint: raise \"ray_budget\", or lower \"max_depth\" or raise \"min_ray_weight\" in the scene)"));
         if (!quiet)
         {
             double secs = result.Elapsed.TotalSeconds;
             int triangles = job.Geometry?.TriangleCount ?? 0;
+            string shard = job.Shard is null ? "" : $", shard {job.Shard}";
+            string crop = job.Crop is { } c ? $" (film {scene.Camera.Width}×{scene.Camera.Height}, crop {c}{shard})" : "";
+            string mesh = triangles > 0 ? $", {triangles:N0} triangles ({job.DegenerateTriangles} degenerate skipped)" : "";
             stderr.WriteLine(string.Create(CultureInfo.InvariantCulture,
-                $"rendered {result.Image.Width}×{result.Image.Height}{(job.Crop is { } c ? $" (film {scene.Camera.Width}×{scene.Camera.Height}, crop {c}{(job.Shard is null ? "" : $", shard {job.Shard}")})" : "")}, {scene.Grid.Count} bands ({scene.Grid}), {scene.Camera.SamplesPerPixel} spp{(triangles > 0 ? $", {triangles:N0} triangles ({job.DegenerateTriangles} degenerate skipped)" : "")} in {secs:0.###} s ({result.Rays.Total / Math.Max(secs, 1e-9) / 1e6:0.##} Mrays/s, {result.Threads} threads); wrote {job.Files.Count} files to {outDir} in {job.WriteSeconds:0.##} s"));
+                $"rendered {result.Image.Width}×{result.Image.Height}{crop}, {scene.Grid.Count} bands ({scene.Grid}), "
+                    + $"{scene.Camera.SamplesPerPixel} spp{mesh} in {secs:0.###} s "
+                    + $"({result.Rays.Total / Math.Max(secs, 1e-9) / 1e6:0.##} Mrays/s, {result.Threads} threads); "
+                    + $"wrote {job.Files.Count} files to {outDir} in {job.WriteSeconds:0.##} s"));
         }
         return CommandLine.Success;
     }
@@ -111,7 +124,9 @@ public static class RenderCommand
         }
         catch (Exception e) when (e is IOException or UnauthorizedAccessException)
         {
-            string reason = e is PathTooLongException ? "the path is too long" : e.Message.Replace(Path.GetFullPath(outDir), "it").Replace(outDir, "it");
+            string reason = e is PathTooLongException
+                ? "the path is too long"
+                : e.Message.Replace(Path.GetFullPath(outDir), "it").Replace(outDir, "it");
             throw new InputException(outDir, $"cannot be written: {reason}", "choose a folder you can write to");
         }
     }

@@ -42,23 +42,28 @@ public static class SweepCommand
           --quiet            no progress or summary on stderr
         """;
 
-    static readonly string[] Values = ["-o", "--out", "--shard", "--shards", "--layout", "--formats", "--threads", "--models", "--emit", "--image"];
+    static readonly string[] Values =
+        ["-o", "--out", "--shard", "--shards", "--layout", "--formats", "--threads", "--models", "--emit", "--image"];
 
     [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
     public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
     {
         var a = new Arguments("sweep", argv, Values, ["--quiet"], new Dictionary<string, string> { ["-o"] = "--out" });
         if (a.Help) { stdout.WriteLine(Help); return CommandLine.Success; }
-        if (a.Positionals.Count != 1) throw new InputException("", a.Positionals.Count == 0 ? "no sweep plan given" : $"unexpected argument '{a.Positionals[1]}'", "usage: spectral sweep PLAN.json -o OUTDIR");
+        if (a.Positionals.Count != 1)
+            throw new InputException("", a.Positionals.Count == 0 ? "no sweep plan given" : $"unexpected argument '{a.Positionals[1]}'",
+                "usage: spectral sweep PLAN.json -o OUTDIR");
         var planPath = a.Positionals[0];
         var outDir = a.Value("--out") ?? Path.Combine("out", Path.GetFileNameWithoutExtension(planPath));
         string layout = a.Value("--layout") ?? "folders";
-        if (!SweepRunner.Layouts.Contains(layout)) throw new InputException("--layout", $"'{layout}' is not a layout", "folders (default) or pairs");
+        if (!SweepRunner.Layouts.Contains(layout))
+            throw new InputException("--layout", $"'{layout}' is not a layout", "folders (default) or pairs");
         int? shards = a.Int("--shards", 1, 1 << 20);
         bool quiet = a.Flag("--quiet");
         var models = a.Values("--models").Select(Path.GetFullPath).ToList();
         foreach (var m in models)
-            if (!Directory.Exists(m)) throw new InputException("--models", $"folder '{m}' does not exist", "pass the folder that holds the mesh files");
+            if (!Directory.Exists(m))
+                throw new InputException("--models", $"folder '{m}' does not exist", "pass the folder that holds the mesh files");
         var plan = SweepPlan.Load(planPath);
 
         if (a.Value("--emit") is { } emit)
@@ -90,7 +95,8 @@ public static class SweepCommand
         // pixel; the index is rebuilt from the job records whichever way the run ends, a forced stop included.
         var cancel = Signals.Token;
         Signals.OnForcedStop(() => SweepRunner.WriteIndex(plan, outDir, layout == "pairs" ? "pairs" : "folders"));
-        Signals.DescribeLeft(() => $"finished jobs are kept and listed in {Path.Combine(outDir, "index.csv")} (rebuilt); the running job left nothing under a final name; run the same command again to resume");
+        Signals.DescribeLeft(() => $"finished jobs are kept and listed in {Path.Combine(outDir, "index.csv")} (rebuilt); the running job "
+            + $"left nothing under a final name; run the same command again to resume");
         // One sweep at a time on a dataset: a second one exits 2 naming the folder (the jobs' folders are locked each too).
         // The slices of one job array share it by design (disjoint jobs; the index rebuilt one slice at a time).
         using var dataset = slice.Count > 1 ? null : OutputFolder.BeginFiles(outDir, ["index.csv", "index.jsonl"], "sweep index");
@@ -101,7 +107,10 @@ public static class SweepCommand
                 double f = (double)p.Finished / p.Jobs, secs = p.Elapsed.TotalSeconds;
                 int filled = (int)(f * 30);
                 string line = string.Create(CultureInfo.InvariantCulture,
-                    $"[{new string('#', filled)}{new string('.', 30 - filled)}] {p.Finished}/{p.Jobs} jobs  job {p.Job.Id} {p.Status} {p.Seconds:0.0} s  ({string.Join(", ", p.Job.Parameters.Where(x => x.Label.Length > 0).Select(x => $"{x.Axis}={x.Label}"))})  ETA {(f > 0 ? secs / f - secs : 0):0} s");
+                    $"[{new string('#', filled)}{new string('.', 30 - filled)}] {p.Finished}/{p.Jobs} jobs  job {p.Job.Id} {p.Status} "
+                        + $"{p.Seconds:0.0} s  "
+                        + $"({string.Join(", ", p.Job.Parameters.Where(x => x.Label.Length > 0).Select(x => $"{x.Axis}={x.Label}"))})  ETA "
+                        + $"{(f > 0 ? secs / f - secs : 0):0} s");
                 if (terminal) stderr.Write("\r" + line.PadRight(110)[..Math.Max(110, line.Length)]);
                 else stderr.WriteLine(line);
             };
@@ -110,12 +119,16 @@ public static class SweepCommand
             catch (OperationCanceledException)
             {
                 if (terminal && !quiet) stderr.WriteLine();
-                stderr.WriteLine($"spectral sweep: interrupted{(Signals.Signal.Length > 0 ? $" by {Signals.Signal}" : "")}{Signals.StoppedAfter()}; finished jobs are kept and listed in {Path.Combine(outDir, "index.csv")} (rebuilt); run the same command again to resume");
+                stderr.WriteLine($"spectral sweep: "
+                    + $"interrupted{(Signals.Signal.Length > 0 ? $" by {Signals.Signal}" : "")}{Signals.StoppedAfter()}; finished jobs are "
+                    + $"kept and listed in {Path.Combine(outDir, "index.csv")} (rebuilt); run the same command again to resume");
                 return CommandLine.Failure;
             }
             if (terminal && !quiet) stderr.WriteLine();
             if (!quiet)
-                stderr.WriteLine($"sweep {Path.GetFileName(planPath)}{(slice.Count > 1 ? $" slice {slice}" : "")}: {s.InSlice} of {s.Jobs} jobs here — {s.Rendered} rendered, {s.Skipped} already done, {s.Failed} failed; {s.DoneInIndex}/{s.Jobs} done in {Path.Combine(outDir, "index.csv")}");
+                stderr.WriteLine($"sweep {Path.GetFileName(planPath)}{(slice.Count > 1 ? $" slice {slice}" : "")}: {s.InSlice} of {s.Jobs} "
+                    + $"jobs here — {s.Rendered} rendered, {s.Skipped} already done, {s.Failed} failed; {s.DoneInIndex}/{s.Jobs} done in "
+                    + $"{Path.Combine(outDir, "index.csv")}");
             if (s.Failed > 0)
             {
                 stderr.WriteLine($"spectral sweep: {s.Failed} jobs failed (their errors are in index.jsonl and jobs/ID/job.json)");
@@ -135,7 +148,8 @@ public static class SweepCommand
         return Path.GetFileNameWithoutExtension(exe) == "dotnet" && dll.Length > 0 ? $"{Quote(exe)} {Quote(dll)}" : Quote(exe);
     }
 
-    static string Quote(string s) => s.Length > 0 && s.All(c => char.IsLetterOrDigit(c) || "/._-+=:,".Contains(c)) ? s : "'" + s.Replace("'", "'\\''") + "'";
+    static string Quote(string s) =>
+        s.Length > 0 && s.All(c => char.IsLetterOrDigit(c) || "/._-+=:,".Contains(c)) ? s : "'" + s.Replace("'", "'\\''") + "'";
 
     static string Common(SweepPlan plan, string outDir, string layout, Arguments a, List<string> models)
     {
@@ -151,17 +165,19 @@ public static class SweepCommand
     {
         var logs = Path.Combine(Path.GetFullPath(outDir), "logs");
         Directory.CreateDirectory(logs);
+        var sbatch = Path.Combine(Path.GetFullPath(outDir), "sweep.sbatch");
+        var threads = a.Value("--threads") is null ? " --threads \"${SLURM_CPUS_PER_TASK:-1}\"" : "";
         var script = $"""
             #!/bin/bash
             # {plan.Jobs.Count} jobs of {Path.GetFileName(plan.PlanPath)} as a Slurm job array of {tasks} tasks: task I runs the
             # jobs whose number mod {tasks} is I (spectral reads SLURM_ARRAY_TASK_ID/_MIN/_MAX/_STEP). Finished jobs are
-            # skipped, so resubmitting after a failure or pre-emption resumes. Submit with: sbatch {Path.Combine(Path.GetFullPath(outDir), "sweep.sbatch")}
+            # skipped, so resubmitting after a failure or pre-emption resumes. Submit with: sbatch {sbatch}
             #SBATCH --job-name=spectral-sweep
             #SBATCH --array=0-{tasks - 1}
             #SBATCH --output={logs}/%A_%a.out
             #SBATCH --cpus-per-task=1
             set -euo pipefail
-            exec {SpectralCommand()} {Common(plan, outDir, layout, a, models)}{(a.Value("--threads") is null ? " --threads \"${SLURM_CPUS_PER_TASK:-1}\"" : "")}
+            exec {SpectralCommand()} {Common(plan, outDir, layout, a, models)}{threads}
 
             """;
         var path = Path.Combine(outDir, "sweep.sbatch");
@@ -174,7 +190,10 @@ public static class SweepCommand
     {
         string image = a.Value("--image") ?? "spectral:latest";
         var args = ("spectral " + Common(plan, outDir, layout, a, models) + $" --shards {tasks} --quiet").Split(' ');
-        string name = "spectral-sweep-" + new string(Path.GetFileNameWithoutExtension(plan.PlanPath).ToLowerInvariant().Select(c => char.IsAsciiLetterOrDigit(c) ? c : '-').ToArray()).Trim('-');
+        string name = "spectral-sweep-"
+            + new string(Path.GetFileNameWithoutExtension(plan.PlanPath).ToLowerInvariant()
+                .Select(c => char.IsAsciiLetterOrDigit(c) ? c : '-').ToArray())
+                .Trim('-');
         if (name.Length > 52) name = name[..52].TrimEnd('-');
         var command = string.Join(", ", args.Select(x => "\"" + x.Replace("\\", "\\\\").Replace("\"", "\\\"") + "\""));
         string shared = Path.GetDirectoryName(plan.PlanPath)!;

@@ -6,7 +6,8 @@ using SpectralRenderer.Lighting;
 
 namespace SpectralRenderer.Cli.Commands;
 
-/// <summary>`spectral view OUTDIR [--serve]`: the spectral viewer page, written into the render folder and optionally served on loopback.</summary>
+/// <summary>`spectral view OUTDIR [--serve]`: the spectral viewer page, written into the render folder and optionally served on
+/// loopback.</summary>
 public static class ViewCommand
 {
     const string Help = """
@@ -47,7 +48,9 @@ public static class ViewCommand
         using var cancel = CancellationTokenSource.CreateLinkedTokenSource(Signals.Token);
         if (seconds is { } s) cancel.CancelAfter(TimeSpan.FromSeconds(s));
         Serve(Path.GetFullPath(dir), port ?? FreePort(), stdout, cancel.Token);
-        if (Signals.Token.IsCancellationRequested) stderr.WriteLine($"spectral view: stopped serving on {Signals.Signal}{Signals.StoppedAfter()}; {string.Join(" and ", files)} stay in {dir}");
+        if (Signals.Token.IsCancellationRequested)
+            stderr.WriteLine(
+                $"spectral view: stopped serving on {Signals.Signal}{Signals.StoppedAfter()}; {string.Join(" and ", files)} stay in {dir}");
         return CommandLine.Success;
     }
 
@@ -66,7 +69,10 @@ public static class ViewCommand
         using var listener = new HttpListener();
         listener.Prefixes.Add($"http://127.0.0.1:{port.ToString(CultureInfo.InvariantCulture)}/");
         try { listener.Start(); }
-        catch (HttpListenerException e) { throw new InputException("--port", $"cannot listen on 127.0.0.1:{port}: {e.Message}", "choose another --port"); }
+        catch (HttpListenerException e)
+        {
+            throw new InputException("--port", $"cannot listen on 127.0.0.1:{port}: {e.Message}", "choose another --port");
+        }
         stdout.WriteLine($"serving {root} at http://127.0.0.1:{port}/viewer.html");
         stdout.Flush();
         using var stop = cancel.Register(() => { try { listener.Stop(); } catch (ObjectDisposedException) { } });
@@ -89,7 +95,8 @@ public static class ViewCommand
         bool inside = path.StartsWith(root + Path.DirectorySeparatorChar, StringComparison.Ordinal);
         if (ctx.Request.HttpMethod is not ("GET" or "HEAD") || !inside || !File.Exists(path))
         {
-            res.StatusCode = inside || ctx.Request.HttpMethod is not ("GET" or "HEAD") ? (ctx.Request.HttpMethod is "GET" or "HEAD" ? 404 : 405) : 403;
+            res.StatusCode =
+                inside || ctx.Request.HttpMethod is not ("GET" or "HEAD") ? (ctx.Request.HttpMethod is "GET" or "HEAD" ? 404 : 405) : 403;
             res.Close();
             return;
         }

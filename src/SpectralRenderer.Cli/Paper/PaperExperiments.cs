@@ -29,7 +29,8 @@ public static class PaperExperiments
     [
         ("3.1", "paper-3.1-colorchecker-d65"),
         ("3.2", "paper-3.2-bunny-19"), ("3.2", "paper-3.2-bunny-14"), ("3.2", "paper-3.2-bunny-07"), ("3.2", "paper-3.2-bunny-05"),
-        ("3.3", "paper-3.3-statue-A"), ("3.3", "paper-3.3-statue-D65"), ("3.3", "paper-3.3-statue-led-blue"), ("3.3", "paper-3.3-statue-led-green"),
+        ("3.3", "paper-3.3-statue-A"), ("3.3", "paper-3.3-statue-D65"), ("3.3", "paper-3.3-statue-led-blue"),
+            ("3.3", "paper-3.3-statue-led-green"),
         ("3.4", "paper-3.4-bunny-analysis"),
     ];
 
@@ -41,7 +42,8 @@ public static class PaperExperiments
     {
         var meshes = scene.Objects.Where(o => o.Mesh is not null).ToList();
         string what = meshes.Count > 0
-            ? string.Join(", ", meshes.Select(o => $"{o.Name} in {scene.Materials[o.Material].DiffuseSpectrum?.Name ?? scene.Materials[o.Material].Name}"))
+            ? string.Join(", ",
+                meshes.Select(o => $"{o.Name} in {scene.Materials[o.Material].DiffuseSpectrum?.Name ?? scene.Materials[o.Material].Name}"))
             : $"{scene.Objects.Count} objects";
         var lights = scene.Lights.Select(l => l.Spectrum?.Name ?? l.Name).Distinct().ToList();
         return lights.Count == 0 ? what : $"{what} under {string.Join(" and ", lights)}";
@@ -56,7 +58,8 @@ public static class PaperExperiments
     /// analysis) are rendered first, so <paramref name="written"/> can start those sections while the other scenes
     /// render; the runs are returned in the order of <see cref="Scenes"/>.
     /// </remarks>
-    public static List<ExperimentRun> Run(string sceneDir, string outDir, double scale, IReadOnlyList<string> models, int threads, Action<string>? log = null, int? samplesPerPixel = null,
+    public static List<ExperimentRun> Run(string sceneDir, string outDir, double scale, IReadOnlyList<string> models, int threads,
+        Action<string>? log = null, int? samplesPerPixel = null,
         Action<ExperimentRun>? written = null)
     {
         var runs = new List<ExperimentRun>();
@@ -71,7 +74,13 @@ public static class PaperExperiments
                 render = RenderJob.Load(new RenderRequest
                 {
                     ScenePath = path,
-                    Overrides = new SceneOverrides { ModelDirectories = models, ResolutionScale = scale, SamplesPerPixel = samplesPerPixel, Formats = "png,bands,npy,aov" },
+                    Overrides = new SceneOverrides
+                    {
+                        ModelDirectories = models,
+                        ResolutionScale = scale,
+                        SamplesPerPixel = samplesPerPixel,
+                        Formats = "png,bands,npy,aov"
+                    },
                     Threads = threads,
                     OutDir = dir,
                     Geometries = geometries,
@@ -91,8 +100,10 @@ public static class PaperExperiments
             if (file.StartsWith("paper-3.1", StringComparison.Ordinal))
             {   // Fig. 3 also in the paper's own eq. 4.
                 // The pixels' own colours (exact on the tables by default), as preview.png uses them.
-                var eq4 = RenderOutputWriter.Preview(result.Image.Width, result.Image.Height, XyzPlanes.FromPixels(result.Xyz!), new DisplayEncoder(scene.Colorimeter, RgbSpace.Paper, scene.Output.Exposure));
-                AtomicFile.Write(Path.Combine(dir, "preview-eq4.png"), s => PngWriter.WriteRgb8(s, result.Image.Width, result.Image.Height, eq4));
+                var eq4 = RenderOutputWriter.Preview(result.Image.Width, result.Image.Height, XyzPlanes.FromPixels(result.Xyz!),
+                    new DisplayEncoder(scene.Colorimeter, RgbSpace.Paper, scene.Output.Exposure));
+                AtomicFile.Write(Path.Combine(dir, "preview-eq4.png"),
+                    s => PngWriter.WriteRgb8(s, result.Image.Width, result.Image.Height, eq4));
             }
             double write = render.WriteSeconds + clock.Elapsed.TotalSeconds;
             var run = new ExperimentRun(section, file, Describe(scene), dir, result.Image.Width, result.Image.Height, scene.Bands,

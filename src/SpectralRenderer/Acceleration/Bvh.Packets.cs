@@ -5,10 +5,12 @@ using SpectralRenderer.Geometry;
 
 namespace SpectralRenderer.Acceleration;
 
-/// <summary>What a <see cref="Bvh"/> leaf asks of its primitives for a <see cref="RayPacket"/>: the lanes given are those whose rays enter the leaf's box.</summary>
+/// <summary>What a <see cref="Bvh"/> leaf asks of its primitives for a <see cref="RayPacket"/>: the lanes given are those whose rays enter
+/// the leaf's box.</summary>
 internal interface IPacketIntersector
 {
-    /// <summary>Closest hit of primitive k for the given lanes: where it is hit at t in (0, TMax), sets TMax = t, Primitive = k, U, V.</summary>
+    /// <summary>Closest hit of primitive k for the given lanes: where it is hit at t in (0, TMax), sets TMax = t, Primitive = k, U,
+    /// V.</summary>
     void Intersect<TLanes>(int k, ref RayPacket packet, uint lanes) where TLanes : struct, ILanes<TLanes>;
 
     /// <summary>The lanes (of those given) whose rays hit primitive k at t in (0, TMax).</summary>

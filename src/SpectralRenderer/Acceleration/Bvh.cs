@@ -28,7 +28,8 @@ public sealed partial class Bvh
 
     /// <summary>Builds the hierarchy (in parallel on large inputs; the result does not depend on the thread count).</summary>
     /// <param name="maxLeafSize">Most primitives in one leaf; smaller leaves are made when the SAH prefers them.</param>
-    public static Bvh Build(ReadOnlySpan<Bounds3> primitiveBounds, int maxLeafSize = 4) => Build(primitiveBounds, maxLeafSize, parallel: true);
+    public static Bvh Build(ReadOnlySpan<Bounds3> primitiveBounds, int maxLeafSize = 4) =>
+        Build(primitiveBounds, maxLeafSize, parallel: true);
 
     /// <summary>As <see cref="Build(ReadOnlySpan{Bounds3}, int)"/>, optionally on the calling thread only.</summary>
     public static Bvh Build(ReadOnlySpan<Bounds3> primitiveBounds, int maxLeafSize, bool parallel)

@@ -74,7 +74,8 @@ sealed class BvhBuilder
         // (x86's maxps returns its second operand; Arm's NaN converts to 0) and ∞ (a subnormal spread) the last.
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
         public Vector128<int> Of(in Box b) =>
-            Vector128.ConvertToInt32Native(Vector128.MinNative(Vector128.MaxNative((b.Centroid2 - min) * scale, Vector128<float>.Zero), _last));
+            Vector128.ConvertToInt32Native(
+                Vector128.MinNative(Vector128.MaxNative((b.Centroid2 - min) * scale, Vector128<float>.Zero), _last));
     }
 
     readonly Box[] _boxes;      // permuted with _order
@@ -100,7 +101,8 @@ sealed class BvhBuilder
         }
         _maxLeafSize = maxLeafSize;
         _parallel = parallel;
-        _nodes = GC.AllocateUninitializedArray<BvhNode>(2 * bounds.Length - 1);   // each used slot is written once; Compact reads only those
+        // each used slot is written once; Compact reads only those
+        _nodes = GC.AllocateUninitializedArray<BvhNode>(2 * bounds.Length - 1);
     }
 
     public static (BvhNode[] nodes, int[] order, int maxDepth) Build(ReadOnlySpan<Bounds3> bounds, int maxLeafSize, bool parallel)
@@ -211,7 +213,8 @@ sealed class BvhBuilder
         return Math.Max(Subtree(start, mid, at + 1, depth + 1, left), Subtree(mid, end, second, depth + 1, right));
     }
 
-    /// <summary>A leaf in slot <paramref name="at"/>; the 2·count − 2 slots after it, which its range owns, stay unused (Compact skips them).</summary>
+    /// <summary>A leaf in slot <paramref name="at"/>; the 2·count − 2 slots after it, which its range owns, stay unused (Compact skips
+    /// them).</summary>
     int Leaf(int at, Vector3 min, Vector3 max, int start, int count, int depth)
     {
         _nodes[at] = BvhNode.Leaf(min, max, start, count);
@@ -223,7 +226,8 @@ sealed class BvhBuilder
     int ChildrenInParallel(int start, int mid, int end, int at, int depth, Extent left, Extent right)
     {
         int l = 0, r = 0;
-        Parallel.Invoke(() => l = Subtree(start, mid, at + 1, depth, left), () => r = Subtree(mid, end, at + 2 * (mid - start), depth, right));
+        Parallel.Invoke(() => l = Subtree(start, mid, at + 1, depth, left),
+            () => r = Subtree(mid, end, at + 2 * (mid - start), depth, right));
         return Math.Max(l, r);
     }
 
@@ -239,7 +243,8 @@ sealed class BvhBuilder
             partCounts[k] = new int[n];
             partBuckets[k] = new Box[n];
             Clear(partCounts[k], partBuckets[k]);
-            Fill(partCounts[k], partBuckets[k], start + (int)((long)count * k / chunks), start + (int)((long)count * (k + 1) / chunks), binning);
+            Fill(partCounts[k], partBuckets[k], start + (int)((long)count * k / chunks), start + (int)((long)count * (k + 1) / chunks),
+                binning);
         });
         for (int k = 0; k < chunks; k++)
             for (int i = 0; i < n; i++)
@@ -296,7 +301,8 @@ sealed class BvhBuilder
         Span<Box> buckets = stackalloc Box[3 * nb];
         Clear(counts, buckets);
         if (_parallel && count >= ParallelBinning) FillInParallel(counts, buckets, start, end, binning);
-        else if (count < SmallRange) FillAxis(counts.Slice(longest * nb, nb), buckets.Slice(longest * nb, nb), start, end, binning, longest);
+        else if (count < SmallRange)
+            FillAxis(counts.Slice(longest * nb, nb), buckets.Slice(longest * nb, nb), start, end, binning, longest);
         else Fill(counts, buckets, start, end, binning);
 
         int bestAxis = 0, bestSplit = -1;
@@ -362,9 +368,11 @@ sealed class BvhBuilder
     }
 
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    static int Bucket(Vector128<int> buckets, int axis) => axis == 0 ? buckets.ToScalar() : axis == 1 ? buckets.GetElement(1) : buckets.GetElement(2);
+    static int Bucket(Vector128<int> buckets, int axis) =>
+        axis == 0 ? buckets.ToScalar() : axis == 1 ? buckets.GetElement(1) : buckets.GetElement(2);
 
-    /// <summary>Orders the range by centroid along the axis (ties by primitive index, so the result is unique); returns the middle.</summary>
+    /// <summary>Orders the range by centroid along the axis (ties by primitive index, so the result is unique); returns the
+    /// middle.</summary>
     int MedianSplit(int start, int end, int axis, out Extent left, out Extent right)
     {
         int n = end - start;

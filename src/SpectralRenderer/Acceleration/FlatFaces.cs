@@ -40,7 +40,8 @@ public sealed class FlatFaces
             var m = Vector3.Cross(e1, e2);
             var g1 = Vector3.Cross(e2, m) / Vector3.Dot(e1, Vector3.Cross(e2, m));
             var g2 = Vector3.Cross(m, e1) / Vector3.Dot(e2, Vector3.Cross(m, e1));
-            ReadOnlySpan<float> values = [n.X, n.Y, n.Z, Vector3.Dot(n, c), g1.X, g1.Y, g1.Z, Vector3.Dot(g1, c), g2.X, g2.Y, g2.Z, Vector3.Dot(g2, c)];
+            ReadOnlySpan<float> values =
+                [n.X, n.Y, n.Z, Vector3.Dot(n, c), g1.X, g1.Y, g1.Z, Vector3.Dot(g1, c), g2.X, g2.Y, g2.Z, Vector3.Dot(g2, c)];
             int baseIndex = f / w * Fields * w + f % w;
             for (int i = 0; i < Fields; i++) _lanes[baseIndex + i * w] = values[i];
             _shape[f] = shape;
@@ -48,7 +49,8 @@ public sealed class FlatFaces
         }
     }
 
-    /// <summary>The faces of <paramref name="shapes"/> (indexed as given), or null when one is not a quad or box or there are too many.</summary>
+    /// <summary>The faces of <paramref name="shapes"/> (indexed as given), or null when one is not a quad or box or there are too
+    /// many.</summary>
     public static FlatFaces? TryBuild(IReadOnlyList<AnalyticShape> shapes)
     {
         var faces = new List<(Vector3, Vector3, Vector3, Vector3, int)>();
@@ -57,13 +59,15 @@ public sealed class FlatFaces
             var shape = shapes[s];
             var m = shape.ObjectToWorld;
             if (shape.Kind == ShapeKind.Quad)
-                faces.Add((Vector3.Transform(Vector3.Zero, m), Vector3.TransformNormal(Vector3.UnitX, m), Vector3.TransformNormal(Vector3.UnitY, m), shape.FlatNormal!.Value, s));
+                faces.Add((Vector3.Transform(Vector3.Zero, m), Vector3.TransformNormal(Vector3.UnitX, m),
+                    Vector3.TransformNormal(Vector3.UnitY, m), shape.FlatNormal!.Value, s));
             else if (shape.Kind == ShapeKind.Box)
                 for (int axis = 0; axis < 3; axis++)
                     for (int sign = -1; sign <= 1; sign += 2)
                     {
                         var outward = sign * Axis(axis);
-                        faces.Add((Vector3.Transform(0.5f * outward, m), Vector3.TransformNormal(Axis((axis + 1) % 3), m), Vector3.TransformNormal(Axis((axis + 2) % 3), m),
+                        faces.Add((Vector3.Transform(0.5f * outward, m), Vector3.TransformNormal(Axis((axis + 1) % 3), m),
+                            Vector3.TransformNormal(Axis((axis + 2) % 3), m),
                             Vector3.Normalize(Vector3.TransformNormal(outward, shape.NormalToWorld)), s));
                     }
             else return null;
@@ -136,7 +140,8 @@ public sealed class FlatFaces
 
     /// <summary>t where the ray meets each face's plane: (n·c − n·o)/(n·d).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    static Vector<float> Distance(Span<Vector<float>> v, int i, Vector<float> ox, Vector<float> oy, Vector<float> oz, Vector<float> dx, Vector<float> dy, Vector<float> dz)
+    static Vector<float> Distance(Span<Vector<float>> v, int i, Vector<float> ox, Vector<float> oy, Vector<float> oz, Vector<float> dx,
+        Vector<float> dy, Vector<float> dz)
     {
         var nd = v[i] * dx + v[i + 1] * dy + v[i + 2] * dz;
         var no = v[i] * ox + v[i + 1] * oy + v[i + 2] * oz;
@@ -145,7 +150,8 @@ public sealed class FlatFaces
 
     /// <summary>Lanes whose plane hit is in (0, TMax) and inside the parallelogram (|a|, |b| ≤ ½).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    static Vector<int> Inside(Span<Vector<float>> v, int i, Vector<float> t, Vector<float> ox, Vector<float> oy, Vector<float> oz, Vector<float> dx, Vector<float> dy, Vector<float> dz,
+    static Vector<int> Inside(Span<Vector<float>> v, int i, Vector<float> t, Vector<float> ox, Vector<float> oy, Vector<float> oz,
+        Vector<float> dx, Vector<float> dy, Vector<float> dz,
         Vector<float> tMax, Vector<float> half)
     {
         var px = ox + t * dx;

@@ -12,7 +12,8 @@ public interface IPrimitiveIntersector
     /// <summary>Called once per query before any primitive test, to precompute what depends on the ray only.</summary>
     void Prepare(in Ray ray);
 
-    /// <summary>Closest hit: if primitive k is hit at t in (0, ray.TMax), sets ray.TMax = t, fills hit (Primitive = k, U, V) and returns true.</summary>
+    /// <summary>Closest hit: if primitive k is hit at t in (0, ray.TMax), sets ray.TMax = t, fills hit (Primitive = k, U, V) and returns
+    /// true.</summary>
     bool Intersect(int k, ref Ray ray, ref Hit hit);
 
     /// <summary>Any hit of primitive k at t in (0, ray.TMax).</summary>

@@ -28,7 +28,8 @@ internal static class LaneMemory
         return ref Unsafe.AsRef<T>((void*)((start + Line - 1) & ~(nint)(Line - 1)));
     }
 
-    /// <summary><paramref name="count"/> values of <typeparamref name="T"/> from a line boundary inside <paramref name="memory"/>.</summary>
+    /// <summary><paramref name="count"/> values of <typeparamref name="T"/> from a line boundary inside
+    /// <paramref name="memory"/>.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static Span<T> Span<T>(Span<byte> memory, int count) where T : unmanaged =>
         MemoryMarshal.CreateSpan(ref At<T>(memory), count);

@@ -44,7 +44,8 @@ public struct RayPacket
     /// <summary>Empties the packet.</summary>
     public void Clear() => Active = 0;
 
-    /// <summary>Puts <paramref name="ray"/> into lane <paramref name="lane"/> (the traversal prepares all lanes at once, <see cref="Prepare{L}"/>).</summary>
+    /// <summary>Puts <paramref name="ray"/> into lane <paramref name="lane"/> (the traversal prepares all lanes at once,
+    /// <see cref="Prepare{L}"/>).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public void Set(int lane, in Ray ray)
     {
@@ -88,15 +89,20 @@ public struct RayPacket
             var sz = one / dkz;
             var sx = dkx * sz; var sy = dky * sz;
             var ux = L.And(zx, one); var uy = L.And(zy, one); var uz = L.And(zz, one);   // Unit(k_z)
-            L.Store(L.And(xx, one) - sx * ux, ref RowXx[c]); L.Store(L.And(xyM, one) - sx * uy, ref RowXy[c]); L.Store(L.And(xz, one) - sx * uz, ref RowXz[c]);
-            L.Store(L.And(yx, one) - sy * ux, ref RowYx[c]); L.Store(L.And(yy, one) - sy * uy, ref RowYy[c]); L.Store(L.And(yz, one) - sy * uz, ref RowYz[c]);
+            L.Store(L.And(xx, one) - sx * ux, ref RowXx[c]);
+            L.Store(L.And(xyM, one) - sx * uy, ref RowXy[c]);
+            L.Store(L.And(xz, one) - sx * uz, ref RowXz[c]);
+            L.Store(L.And(yx, one) - sy * ux, ref RowYx[c]);
+            L.Store(L.And(yy, one) - sy * uy, ref RowYy[c]);
+            L.Store(L.And(yz, one) - sy * uz, ref RowYz[c]);
             L.Store(sz * ux, ref RowZx[c]); L.Store(sz * uy, ref RowZy[c]); L.Store(sz * uz, ref RowZz[c]);
         }
     }
 
     /// <summary>The ray of lane <paramref name="lane"/>, with its current TMax.</summary>
     public readonly Ray Ray(int lane) =>
-        new(new Vector3(OriginX[lane], OriginY[lane], OriginZ[lane]), new Vector3(DirectionX[lane], DirectionY[lane], DirectionZ[lane]), TMax[lane]);
+        new(new Vector3(OriginX[lane], OriginY[lane], OriginZ[lane]), new Vector3(DirectionX[lane], DirectionY[lane], DirectionZ[lane]),
+            TMax[lane]);
 
     /// <summary>Bit a set when most active lanes run towards −a (a = x, y, z): the packet visits that side's child first.</summary>
     internal int NegativeAxes()
@@ -125,7 +131,8 @@ public struct RayPacket
 /// <summary>The SIMD width the packet kernels run at on this machine, chosen once at start-up.</summary>
 public static class PacketLanes
 {
-    /// <summary>16 with AVX-512, 8 with AVX2, 4 with SSE/NEON, else 1 (DOTNET_PreferredVectorBitWidth and DOTNET_EnableAVX… lower it).</summary>
+    /// <summary>16 with AVX-512, 8 with AVX2, 4 with SSE/NEON, else 1 (DOTNET_PreferredVectorBitWidth and DOTNET_EnableAVX… lower
+    /// it).</summary>
     public static int Width { get; } =
         Vector512.IsHardwareAccelerated ? 16 : Vector256.IsHardwareAccelerated ? 8 : Vector128.IsHardwareAccelerated ? 4 : 1;
 }

@@ -130,7 +130,8 @@ public partial struct TriangleSet
     [MethodImpl(MethodImplOptions.NoInlining)]
     static void EdgesInDouble<L>(uint lanes, L ax, L ay, L bx, L by, L cx, L cy, ref L u, ref L v, ref L w) where L : struct, ILanes<L>
     {
-        PacketFloats fax = default, fay = default, fbx = default, fby = default, fcx = default, fcy = default, fu = default, fv = default, fw = default;
+        PacketFloats fax =
+            default, fay = default, fbx = default, fby = default, fcx = default, fcy = default, fu = default, fv = default, fw = default;
         L.Store(ax, ref fax[0]); L.Store(ay, ref fay[0]); L.Store(bx, ref fbx[0]); L.Store(by, ref fby[0]);
         L.Store(cx, ref fcx[0]); L.Store(cy, ref fcy[0]); L.Store(u, ref fu[0]); L.Store(v, ref fv[0]); L.Store(w, ref fw[0]);
         for (; lanes != 0; lanes &= lanes - 1)

@@ -83,7 +83,8 @@ public partial struct TriangleSet : IPrimitiveIntersector, IPacketIntersector
     public bool Intersect(int k, ref Ray ray, ref Hit hit)
     {
         ref Vector3 c = ref _corners[3 * k];
-        if (!TriangleIntersection.Intersect(_ray, c, Unsafe.Add(ref c, 1), Unsafe.Add(ref c, 2), ray.TMax, out float t, out float b1, out float b2))
+        if (!TriangleIntersection.Intersect(_ray, c, Unsafe.Add(ref c, 1), Unsafe.Add(ref c, 2), ray.TMax, out float t, out float b1,
+            out float b2))
             return false;
         ray.TMax = t;
         hit.Primitive = k; hit.U = b1; hit.V = b2;

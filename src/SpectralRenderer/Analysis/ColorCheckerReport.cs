@@ -46,7 +46,8 @@ public static class ColorCheckerReport
             var refXyz = reference.OfReflectance(ColorChecker.Patch(patch), illuminant);
             var lab = Lab.FromXyz(xyz, reference.White);
             var refLab = Lab.FromXyz(refXyz, reference.White);
-            rows.Add(new PatchReport(patch, folder.ObjectNames[i], pixels, xyz, lab, refXyz, refLab, RgbSpace.Srgb.Encode8(xyz), DeltaE2000.Between(lab, refLab)));
+            rows.Add(new PatchReport(patch, folder.ObjectNames[i], pixels, xyz, lab, refXyz, refLab, RgbSpace.Srgb.Encode8(xyz),
+                DeltaE2000.Between(lab, refLab)));
         }
         rows.Sort((a, b) => a.Patch.CompareTo(b.Patch));
         return rows;
@@ -59,20 +60,25 @@ public static class ColorCheckerReport
     static TabulatedSpectrum HeadOnIlluminant(RenderFolder folder, List<(int Index, int Patch)> patches)
     {
         string where = folder.Path;
-        const string hint = "colorcheck compares with the 1 nm colour of each patch under the scene's lights; render a flat chart lit head-on by directional lights, e.g. scenes/paper-3.1-colorchecker-d65.json";
+        const string hint = "colorcheck compares with the 1 nm colour of each patch under the scene's lights; render a flat chart lit "
+            + "head-on by directional lights, e.g. scenes/paper-3.1-colorchecker-d65.json";
         var objects = folder.Manifest.Objects;
         Vector3? normal = null;
         foreach (var (i, patch) in patches)
         {
             if (objects[i].FlatNormal is not { Length: 3 } n)
-                throw new InputException(where, $"is not a flat chart: patch {patch} ('{folder.ObjectNames[i]}') is not a quad or plane", hint);
+                throw new InputException(where, $"is not a flat chart: patch {patch} ('{folder.ObjectNames[i]}') is not a quad or plane",
+                    hint);
             var v = new Vector3((float)n[0], (float)n[1], (float)n[2]);
             if (normal is { } first && Vector3.Dot(first, v) < HeadOnCos)
                 throw new InputException(where, $"is not a flat chart: patch {patch} faces another way than the first patch", hint);
             normal ??= v;
             var (lo, hi, mean) = LuminanceSpread(folder, i);
             if (mean > 0 && (hi - lo) / mean > UniformityTolerance)
-                throw new InputException(where, $"is not uniformly lit: the luminance of patch {patch} ('{folder.ObjectNames[i]}') varies by {(hi - lo) / mean:P1} across its pixels (shading, shadow or a highlight)", hint);
+                throw new InputException(where,
+                    $"is not uniformly lit: the luminance of patch {patch} ('{folder.ObjectNames[i]}') varies by {(hi - lo) / mean:P1} "
+                        + $"across its pixels (shading, shadow or a highlight)",
+                    hint);
         }
         if (folder.Manifest.GlobalAmbient)
             throw new InputException(where, "has global ambient light, which the head-on 1 nm reference does not include", hint);
@@ -83,15 +89,21 @@ public static class ColorCheckerReport
         foreach (var l in lights)
         {
             if (l.Kind != "directional")
-                throw new InputException(where, $"is not lit uniformly: light '{l.Name}' is a {l.Kind} light, whose irradiance varies over the chart", hint);
+                throw new InputException(where,
+                    $"is not lit uniformly: light '{l.Name}' is a {l.Kind} light, whose irradiance varies over the chart", hint);
             if (l.HasAmbient)
-                throw new InputException(where, $"light '{l.Name}' has an ambient term, which the head-on 1 nm reference does not include", hint);
+                throw new InputException(where, $"light '{l.Name}' has an ambient term, which the head-on 1 nm reference does not include",
+                    hint);
             if (l.Direction is not { Length: 3 } d || l.Spd is null)
-                throw new InputException(where, $"render.json does not record light '{l.Name}''s direction and spectrum", "re-render the scene with this version");
+                throw new InputException(where, $"render.json does not record light '{l.Name}''s direction and spectrum",
+                    "re-render the scene with this version");
             var dir = new Vector3((float)d[0], (float)d[1], (float)d[2]);
             double cos = -Vector3.Dot(dir, normal!.Value);
             if (cos < HeadOnCos)
-                throw new InputException(where, $"is not lit head-on: light '{l.Name}' meets the chart at {Math.Acos(Math.Clamp(cos, -1, 1)) * 180 / Math.PI:0.#}° from its normal", hint);
+                throw new InputException(where,
+                    $"is not lit head-on: light '{l.Name}' meets the chart at "
+                        + $"{Math.Acos(Math.Clamp(cos, -1, 1)) * 180 / Math.PI:0.#}° from its normal",
+                    hint);
             var s = l.Spd.Scaled(l.Intensity);
             sum = sum is null ? s : Sum(sum, s, grid);
         }
@@ -101,9 +113,12 @@ public static class ColorCheckerReport
     /// <summary>The sum of two tables on the union of their knots inside the band range (exact for piecewise-linear tables).</summary>
     static TabulatedSpectrum Sum(TabulatedSpectrum a, TabulatedSpectrum b, BandGrid grid)
     {
-        var knots = new SortedSet<double>(a.Wavelengths.ToArray().Concat(b.Wavelengths.ToArray()).Where(w => w >= grid.Start && w <= grid.End)) { grid.Start, grid.End };
+        var knots = new SortedSet<double>(a.Wavelengths.ToArray().Concat(b.Wavelengths.ToArray())
+            .Where(w => w >= grid.Start && w <= grid.End)) { grid.Start,
+            grid.End };
         var wl = knots.ToArray();
-        return new TabulatedSpectrum($"{a.Name}+{b.Name}", wl, wl.Select(w => a.Evaluate(w) + b.Evaluate(w)).ToArray(), Extrapolation.Clamp);
+        return new TabulatedSpectrum($"{a.Name}+{b.Name}", wl, wl.Select(w => a.Evaluate(w) + b.Evaluate(w)).ToArray(),
+            Extrapolation.Clamp);
     }
 
     static (double Lo, double Hi, double Mean) LuminanceSpread(RenderFolder folder, int index)
@@ -114,7 +129,9 @@ public static class ColorCheckerReport
         for (int p = 0; p < folder.ObjectIds.Length; p++)
         {
             if (folder.ObjectIds[p] != index) continue;
-            double y = folder.PixelXyz is { } xyz ? xyz.Y[p] : folder.ToXyz(Array.ConvertAll(folder.Image.Data.AsSpan(p * bands, bands).ToArray(), v => (double)v)).Y;
+            double y = folder.PixelXyz is { } xyz
+                ? xyz.Y[p]
+                : folder.ToXyz(Array.ConvertAll(folder.Image.Data.AsSpan(p * bands, bands).ToArray(), v => (double)v)).Y;
             lo = Math.Min(lo, y); hi = Math.Max(hi, y); sum += y; count++;
         }
         return (lo, hi, count > 0 ? sum / count : 0);

@@ -29,7 +29,8 @@ public sealed record PixelReconstruction(int X, int Y, string Label, string Obje
     double[] Radiance, double[] Reflectance, double[] Truth, double Rmse, double Gfc, double DeltaE00, double Scale, double Residual);
 
 /// <summary>Means of the metrics over a region's pixels.</summary>
-public sealed record RegionSummary(string Region, int Count, double MeanRmse, double MeanGfc, double MeanDeltaE00, double MeanScale, double MeanResidual);
+public sealed record RegionSummary(string Region, int Count, double MeanRmse, double MeanGfc, double MeanDeltaE00, double MeanScale,
+    double MeanResidual);
 
 /// <summary>
 /// The paper's §3.4 white-board calibration: reflectance(pixel) = pixel radiance ÷ white-board radiance, band by
@@ -55,7 +56,8 @@ public sealed class Reconstruction
 
     public static Reconstruction Compute(RenderFolder folder, RenderAovs aovs, WhiteReference white)
     {
-        var truth = aovs.Reflectance ?? throw new InputException(folder.Path, "has no ground-truth reflectance (reflectance.npy or reflectance.exr)",
+        var truth = aovs.Reflectance
+            ?? throw new InputException(folder.Path, "has no ground-truth reflectance (reflectance.npy or reflectance.exr)",
             "render with --formats including aov");
         var image = folder.Image;
         var r = new SpectralImage(image.Width, image.Height, image.Grid);
@@ -137,7 +139,8 @@ public sealed class Reconstruction
             for (int b = 0; b < sum.Length; b++) sum[b] += img.Data[i * img.Bands + b];
             count++;
         }
-        if (count == 0) throw new InputException(folder.Path, $"{description} covers no pixel", "choose an object that is visible, or a rectangle");
+        if (count == 0)
+            throw new InputException(folder.Path, $"{description} covers no pixel", "choose an object that is visible, or a rectangle");
         for (int b = 0; b < sum.Length; b++) sum[b] /= count;
         if (sum.All(v => v <= 0)) throw new InputException(folder.Path, $"{description} is black", "the white reference must be lit");
         return new WhiteReference(description, sum, mask, count);
@@ -168,8 +171,10 @@ public sealed class Reconstruction
         }
         var (c, residual) = SpectralMetrics.Scale(truth, est);
         int id = Folder.ObjectIds[i];
-        return new PixelReconstruction(x, y, label, id >= 0 && id < Folder.ObjectNames.Length ? Folder.ObjectNames[id] : "background", RegionOf(i),
-            radiance, est, truth, SpectralMetrics.Rmse(est, truth), SpectralMetrics.Gfc(est, truth), Colour.DeltaE00(est, truth), c, residual);
+        return new PixelReconstruction(x, y, label, id >= 0 && id < Folder.ObjectNames.Length ? Folder.ObjectNames[id] : "background",
+            RegionOf(i),
+            radiance, est, truth, SpectralMetrics.Rmse(est, truth), SpectralMetrics.Gfc(est, truth), Colour.DeltaE00(est, truth), c,
+                residual);
     }
 
     /// <summary>Every surface pixel's metrics, excluding the background and the white reference.</summary>

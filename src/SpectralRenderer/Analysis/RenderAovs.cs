@@ -50,7 +50,8 @@ public sealed class RenderAovs
     {
         var png = PngReader.Read(path);
         if (png.Width != image.Width || png.Height != image.Height)
-            throw new InputException(path, $"is {png.Width}×{png.Height} but the cube is {image.Width}×{image.Height}", "the render folder mixes files of different renders: render it again");
+            throw new InputException(path, $"is {png.Width}×{png.Height} but the cube is {image.Width}×{image.Height}",
+                "the render folder mixes files of different renders: render it again");
         int full = (1 << png.BitDepth) - 1;
         var mask = new bool[png.Width * png.Height];
         for (int i = 0; i < mask.Length; i++) mask[i] = png.Samples[i * png.Channels] * 2 > full;
@@ -66,7 +67,9 @@ public sealed class RenderAovs
         else if (File.Exists(exr)) r = ExrReader.Read(exr).Image;
         else return null;
         if (r.Width != image.Width || r.Height != image.Height || r.Bands != image.Bands)
-            throw new InputException(File.Exists(npy) ? npy : exr, $"is {r.Width}×{r.Height}×{r.Bands} but the cube is {image.Width}×{image.Height}×{image.Bands}", "the render folder mixes files of different renders: render it again");
+            throw new InputException(File.Exists(npy) ? npy : exr,
+                $"is {r.Width}×{r.Height}×{r.Bands} but the cube is {image.Width}×{image.Height}×{image.Bands}",
+                "the render folder mixes files of different renders: render it again");
         return r;
     }
 }

@@ -40,7 +40,8 @@ public sealed class RenderFolder
         if (File.Exists(exr))
         {
             var f = ExrReader.Read(exr);
-            if (f.OtherChannels.TryGetValue("X", out var px) && f.OtherChannels.TryGetValue("Y", out var py) && f.OtherChannels.TryGetValue("Z", out var pz))
+            if (f.OtherChannels.TryGetValue("X", out var px) && f.OtherChannels.TryGetValue("Y", out var py)
+                && f.OtherChannels.TryGetValue("Z", out var pz))
                 pixelXyz = (px, py, pz);
         }
         else pixelXyz = ReadColour(System.IO.Path.Combine(dir, Output.Products.ColourProduct.FileName), image);
@@ -58,7 +59,9 @@ public sealed class RenderFolder
         var grid = manifest.Grid;
         var image = SpectralFiles.Read(dir, grid);
         if (image.Width != manifest.Width || image.Height != manifest.Height || image.Bands != grid.Count)
-            throw new InputException($"{System.IO.Path.Combine(dir, RenderManifest.FileName)}: $.width", $"describes {manifest.Width}×{manifest.Height}×{grid.Count} but the spectral cube is {image.Width}×{image.Height}×{image.Bands}",
+            throw new InputException($"{System.IO.Path.Combine(dir, RenderManifest.FileName)}: $.width",
+                $"describes {manifest.Width}×{manifest.Height}×{grid.Count} but the spectral cube is "
+                    + $"{image.Width}×{image.Height}×{image.Bands}",
                 "the folder mixes two renders; render again into an empty folder");
         return (manifest, image);
     }
@@ -83,7 +86,9 @@ public sealed class RenderFolder
         var path = System.IO.Path.Combine(dir, "object-id.png");
         if (!File.Exists(path)) throw new InputException(dir, "has no object-id.png", "render with --formats including aov");
         var png = PngReader.Read(path);
-        if (png.Width != image.Width || png.Height != image.Height) throw new InputException(path, $"is {png.Width}×{png.Height} but the cube is {image.Width}×{image.Height}", "the render folder mixes files of different renders: render it again");
+        if (png.Width != image.Width || png.Height != image.Height)
+            throw new InputException(path, $"is {png.Width}×{png.Height} but the cube is {image.Width}×{image.Height}",
+                "the render folder mixes files of different renders: render it again");
         var ids = new int[png.Width * png.Height];
         for (int i = 0; i < ids.Length; i++) ids[i] = png.Samples[i * png.Channels] - 1;
         return ids;
@@ -94,7 +99,8 @@ public sealed class RenderFolder
     /// <summary>Eq. 3 with the render's own weights.</summary>
     public Xyz ToXyz(ReadOnlySpan<double> bands) => Manifest.ToXyz(bands);
 
-    /// <summary>The mean colour of the pixels showing object <paramref name="index"/>: of the render's own pixel XYZ when it has them, else eq. 3 on the mean spectrum.</summary>
+    /// <summary>The mean colour of the pixels showing object <paramref name="index"/>: of the render's own pixel XYZ when it has them, else
+    /// eq. 3 on the mean spectrum.</summary>
     public Xyz MeanXyz(int index)
     {
         if (PixelXyz is not { } p) return ToXyz(MeanSpectrum(index).Mean);

@@ -71,14 +71,16 @@ public sealed class ReflectanceDifference
     }
 
     /// <summary>D65 on <paramref name="grid"/> with the CIE 1931 (or 1964) observer and the given band scheme.</summary>
-    public static ReflectanceDifference UnderD65(BandGrid grid, BandIntegration scheme = BandIntegration.Weighted, int observerDegrees = 2) =>
+    public static ReflectanceDifference UnderD65(BandGrid grid, BandIntegration scheme = BandIntegration.Weighted,
+        int observerDegrees = 2) =>
         new(new Colorimeter(grid, observerDegrees == 10 ? Observer.Cie1964 : Observer.Cie1931, SpectrumLibrary.Resolve("D65"), scheme));
 
     public Colorimeter Colorimeter => _colorimeter;
 
     public Lab LabOf(ReadOnlySpan<double> reflectance)
     {
-        if (reflectance.Length != _light.Length) throw new ArgumentException($"reflectance of {reflectance.Length} bands on a {_light.Length}-band grid");
+        if (reflectance.Length != _light.Length)
+            throw new ArgumentException($"reflectance of {reflectance.Length} bands on a {_light.Length}-band grid");
         Span<double> l = stackalloc double[_light.Length];
         for (int b = 0; b < l.Length; b++) l[b] = _light[b] * reflectance[b];
         return Lab.FromXyz(_colorimeter.ToXyz(l), _colorimeter.White);

@@ -16,7 +16,8 @@ public sealed class Ciecam02
     readonly double _fl, _n, _nbb, _z, _c, _nc, _aw;
 
     /// <summary>Viewing conditions; "average" surround is F = 1, c = 0.69, N_c = 1.</summary>
-    public Ciecam02(Xyz white, double adaptingLuminance, double backgroundY, double f = 1.0, double c = 0.69, double nc = 1.0, double? degreeOfAdaptation = null)
+    public Ciecam02(Xyz white, double adaptingLuminance, double backgroundY, double f = 1.0, double c = 0.69, double nc = 1.0,
+        double? degreeOfAdaptation = null)
     {
         double la = adaptingLuminance;
         double d = degreeOfAdaptation ?? f * (1 - 1 / 3.6 * Math.Exp((-la - 42) / 92));

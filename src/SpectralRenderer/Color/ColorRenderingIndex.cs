@@ -75,7 +75,8 @@ public static class ColorRenderingIndex
         return v;
     }
 
-    /// <summary>XYZ of a sample (or of the source itself when <paramref name="reflectance"/> is null), Y of the perfect white = 100.</summary>
+    /// <summary>XYZ of a sample (or of the source itself when <paramref name="reflectance"/> is null), Y of the perfect white =
+    /// 100.</summary>
     static Xyz Tristimulus(double[] light, double[]? reflectance)
     {
         var o = Observer.Cie1931;

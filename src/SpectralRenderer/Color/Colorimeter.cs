@@ -132,7 +132,9 @@ public sealed class Colorimeter
 
     /// <summary>Eq. 3 with given weights, X = Σ_b Wx[b]·L[b] (and Y, Z), summed in double: the one XYZ sum of band values.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    public static Xyz ToXyz<T>(ReadOnlySpan<double> wx, ReadOnlySpan<double> wy, ReadOnlySpan<double> wz, ReadOnlySpan<T> bands) where T : struct, INumberBase<T>
+    public static Xyz ToXyz<T>(ReadOnlySpan<double> wx, ReadOnlySpan<double> wy, ReadOnlySpan<double> wz,
+        ReadOnlySpan<T> bands) where T : struct,
+        INumberBase<T>
     {
         double x = 0, y = 0, z = 0;
         for (int b = 0; b < wx.Length; b++)
@@ -143,10 +145,12 @@ public sealed class Colorimeter
         return new Xyz(x, y, z);
     }
 
-    /// <summary>XYZ of a reflectance lit head-on by the reference light at unit intensity (the white diffuser's radiance factor included).</summary>
+    /// <summary>XYZ of a reflectance lit head-on by the reference light at unit intensity (the white diffuser's radiance factor
+    /// included).</summary>
     public Xyz OfReflectance(TabulatedSpectrum reflectance) => OfReflectance(reflectance, ReferenceLight);
 
-    /// <summary>XYZ of a reflectance lit head-on by <paramref name="light"/> (an irradiance; radiance = light · R · <see cref="WhiteRadiance"/>).</summary>
+    /// <summary>XYZ of a reflectance lit head-on by <paramref name="light"/> (an irradiance; radiance = light · R ·
+    /// <see cref="WhiteRadiance"/>).</summary>
     public Xyz OfReflectance(TabulatedSpectrum reflectance, TabulatedSpectrum light) =>
         XyzOfProduct(light, reflectance) * WhiteRadiance;
 }

@@ -28,7 +28,8 @@ public sealed class DisplayEncoder
     readonly double _exposure;
     readonly GamutMapping _gamut;
 
-    public DisplayEncoder(Colorimeter colorimeter, RgbSpace space, double exposure = 1, bool adapt = false, GamutMapping gamut = GamutMapping.Clip)
+    public DisplayEncoder(Colorimeter colorimeter, RgbSpace space, double exposure = 1, bool adapt = false,
+        GamutMapping gamut = GamutMapping.Clip)
     {
         _colorimeter = colorimeter;
         Space = space;
@@ -43,7 +44,8 @@ public sealed class DisplayEncoder
     public double Exposure => _exposure;
     public GamutMapping Gamut => _gamut;
 
-    /// <summary>The colorimeter of eq. 3, whose <see cref="Colorimeter.ToXyz(ReadOnlySpan{float})"/> <see cref="Encode8(Xyz)"/> expects.</summary>
+    /// <summary>The colorimeter of eq. 3, whose <see cref="Colorimeter.ToXyz(ReadOnlySpan{float})"/> <see cref="Encode8(Xyz)"/>
+    /// expects.</summary>
     public Colorimeter Colorimeter => _colorimeter;
 
     public Xyz Xyz(ReadOnlySpan<float> bands) => _colorimeter.ToXyz(bands) * _exposure;
@@ -65,7 +67,8 @@ public sealed class DisplayEncoder
         return (Space.Encode8(r), Space.Encode8(g), Space.Encode8(b));
     }
 
-    /// <summary>Display-linear RGB of an XYZ (exposure already applied) after the gamut mapping (still unclipped under <see cref="GamutMapping.Clip"/>).</summary>
+    /// <summary>Display-linear RGB of an XYZ (exposure already applied) after the gamut mapping (still unclipped under
+    /// <see cref="GamutMapping.Clip"/>).</summary>
     public (double R, double G, double B) Mapped(Xyz xyz)
     {
         var v = Matrix3.Apply(_toRgb, xyz);
@@ -73,7 +76,8 @@ public sealed class DisplayEncoder
         return Desaturate(v.X, v.Y, v.Z, xyz.Y);
     }
 
-    /// <summary><see cref="GamutMapping.Desaturate"/> of linear RGB whose luminance is <paramref name="y"/> (the display white at luminance y is (y, y, y)).</summary>
+    /// <summary><see cref="GamutMapping.Desaturate"/> of linear RGB whose luminance is <paramref name="y"/> (the display white at luminance
+    /// y is (y, y, y)).</summary>
     public static (double R, double G, double B) Desaturate(double r, double g, double b, double y)
     {
         if (!(y > 0)) return (0, 0, 0);
@@ -92,7 +96,8 @@ public sealed class DisplayEncoder
     /// The exposure of <c>"exposure": "auto"</c>: 1 / the <paramref name="percentile"/> of the display-linear maximum channel
     /// (after the hue-keeping desaturation, before scaling) over the pixels that are not black; 1 for a black image.
     /// </summary>
-    public static double AutoExposure(Colorimeter colorimeter, RgbSpace space, bool adapt, int count, Func<int, Xyz> xyzOf, double percentile = 0.99)
+    public static double AutoExposure(Colorimeter colorimeter, RgbSpace space, bool adapt, int count, Func<int, Xyz> xyzOf,
+        double percentile = 0.99)
     {
         var probe = new DisplayEncoder(colorimeter, space, 1, adapt, GamutMapping.Clip);
         var maxima = new List<double>(count);

@@ -111,7 +111,8 @@ public sealed class RgbSpace
                 double edge = i / (double)Buckets;
                 while (k < 255 && _threshold[k + 1] <= edge) k++;
                 _bucketCode[i] = (byte)k;
-                if (i > 0 && _bucketCode[i] > _bucketCode[i - 1] + 1) throw new InvalidOperationException("two sRGB code thresholds in one bucket");
+                if (i > 0 && _bucketCode[i] > _bucketCode[i - 1] + 1)
+                    throw new InvalidOperationException("two sRGB code thresholds in one bucket");
             }
         }
 

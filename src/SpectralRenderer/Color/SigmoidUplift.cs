@@ -60,7 +60,8 @@ public sealed class SigmoidUplift
         return new Xyz(x, y, z);
     }
 
-    /// <summary>The reflectance (at <see cref="Wavelengths"/>) of an sRGB colour given as codes out of <paramref name="max"/> (255 or 65535).</summary>
+    /// <summary>The reflectance (at <see cref="Wavelengths"/>) of an sRGB colour given as codes out of <paramref name="max"/> (255 or
+    /// 65535).</summary>
     public double[] FromSrgbCodes(int r, int g, int b, int max)
     {
         long key = ((long)max << 48) | ((long)r << 32) | ((long)g << 16) | (long)b;
@@ -162,7 +163,8 @@ public sealed class SigmoidUplift
     static bool Solve3(double[,] m, double[] b, out double[] x)
     {
         double Det(double[,] a) =>
-            a[0, 0] * (a[1, 1] * a[2, 2] - a[1, 2] * a[2, 1]) - a[0, 1] * (a[1, 0] * a[2, 2] - a[1, 2] * a[2, 0]) + a[0, 2] * (a[1, 0] * a[2, 1] - a[1, 1] * a[2, 0]);
+            a[0, 0] * (a[1, 1] * a[2, 2] - a[1, 2] * a[2, 1]) - a[0, 1] * (a[1, 0] * a[2, 2] - a[1, 2] * a[2, 0])
+                + a[0, 2] * (a[1, 0] * a[2, 1] - a[1, 1] * a[2, 0]);
         double d = Det(m);
         x = new double[3];
         if (!(Math.Abs(d) > 1e-300) || !double.IsFinite(d)) return false;

@@ -48,7 +48,8 @@ public sealed class UpliftMetamerism
         return r;
     }
 
-    /// <summary>ΔE00 between the sigmoid and the box metamer of an sRGB colour (codes out of <paramref name="max"/>) under each light; null when the box metamer is not a reflectance.</summary>
+    /// <summary>ΔE00 between the sigmoid and the box metamer of an sRGB colour (codes out of <paramref name="max"/>) under each light; null
+    /// when the box metamer is not a reflectance.</summary>
     public double[]? Spread(int r, int g, int b, int max, IReadOnlyList<Colorimeter> lights)
     {
         var smooth = _uplift.FromSrgbCodes(r, g, b, max);
@@ -59,7 +60,8 @@ public sealed class UpliftMetamerism
         return result;
     }
 
-    /// <summary>ΔE00 between two reflectances tabulated at <see cref="SigmoidUplift.Wavelengths"/> under <paramref name="light"/>'s colorimeter.</summary>
+    /// <summary>ΔE00 between two reflectances tabulated at <see cref="SigmoidUplift.Wavelengths"/> under <paramref name="light"/>'s
+    /// colorimeter.</summary>
     public static double Difference(Colorimeter light, double[] a, double[] b)
     {
         var white = light.OfReflectance(Table(Enumerable.Repeat(1.0, a.Length).ToArray()));

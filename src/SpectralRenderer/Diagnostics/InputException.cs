@@ -33,7 +33,9 @@ public sealed class InputException : Exception
     static string Format(string where, string what, string? hint) =>
         string.IsNullOrEmpty(hint)
             ? string.IsNullOrEmpty(where) ? MessageText.Line(what) : MessageText.Line(where, ": ", what)
-            : string.IsNullOrEmpty(where) ? MessageText.Line(what, " (hint: ", hint, ")") : MessageText.Line(where, ": ", what, " (hint: ", hint, ")");
+            : string.IsNullOrEmpty(where)
+                ? MessageText.Line(what, " (hint: ", hint, ")")
+                : MessageText.Line(where, ": ", what, " (hint: ", hint, ")");
 
     /// <summary>Suggests the closest known name ("did you mean 'green'?") by edit distance.</summary>
     public static string? DidYouMean(string name, IEnumerable<string> known)

@@ -22,13 +22,16 @@ public static class InputFile
         long length = CheckedLength(path, what, maxBytes);
         try
         {
-            using var fs = new FileStream(path, FileMode.Open, FileAccess.Read, FileShare.ReadWrite | FileShare.Delete, 1, FileOptions.None);
+            using var fs =
+                new FileStream(path, FileMode.Open, FileAccess.Read, FileShare.ReadWrite | FileShare.Delete, 1, FileOptions.None);
             var bytes = new byte[length];
             int read = 0;
             while (read < bytes.Length)
             {
                 int n = fs.Read(bytes, read, bytes.Length - read);
-                if (n == 0) throw new InputException(path, $"{what} shrank while it was read ({read} of {length} bytes)", "do not change the file while spectral reads it");
+                if (n == 0)
+                    throw new InputException(path, $"{what} shrank while it was read ({read} of {length} bytes)",
+                        "do not change the file while spectral reads it");
                 read += n;
             }
             return bytes;
@@ -39,7 +42,8 @@ public static class InputFile
         }
         catch (Exception e) when (e is IOException or UnauthorizedAccessException)
         {
-            throw new InputException(path, $"{what} cannot be read: {e.Message}", "check the file's permissions and that it is a file, not a folder");
+            throw new InputException(path, $"{what} cannot be read: {e.Message}",
+                "check the file's permissions and that it is a file, not a folder");
         }
     }
 
@@ -69,8 +73,10 @@ public static class InputFile
             try { target = File.ResolveLinkTarget(path, returnFinalTarget: true); }
             catch (IOException) { target = null; }
             if (target is null || !target.Exists)
-                throw new InputException(path, $"{what} is a symbolic link to {MessageText.Quote(link, 80)}, which does not exist", "fix or remove the link");
-            if (target is DirectoryInfo) throw new InputException(path, $"{what} is a symbolic link to a folder", "give the path of a file");
+                throw new InputException(path, $"{what} is a symbolic link to {MessageText.Quote(link, 80)}, which does not exist",
+                    "fix or remove the link");
+            if (target is DirectoryInfo)
+                throw new InputException(path, $"{what} is a symbolic link to a folder", "give the path of a file");
             info = (FileInfo)target;
         }
         if (!info.Exists) throw new InputException(path, $"{what} not found", "check the path");

@@ -128,7 +128,7 @@ public sealed class JsonFields(string file, string hint)
         string range = Range(min, max);
         if (node is not JsonValue v || v.GetValueKind() != JsonValueKind.Number || !v.TryGetValue(out double d) || !double.IsFinite(d))
             throw Wrong(node, at, $"a finite number{range}");
-        if (d < min || d > max) throw Bad(at, $"is {Num(d)}, {(range.StartsWith(" ≥", StringComparison.Ordinal) || range.StartsWith(" ≤", StringComparison.Ordinal) ? "expected" : "outside")}{range}");
+        if (d < min || d > max) throw Bad(at, $"is {Num(d)}, {Expected(range)}{range}");
         return d;
     }
 
@@ -144,7 +144,7 @@ public sealed class JsonFields(string file, string hint)
             else throw Wrong(node, at, $"a whole number{range}");
         }
         if (n < min || n > max)
-            throw Bad(at, $"is {n.ToString(CultureInfo.InvariantCulture)}, {(range.StartsWith(" ≥", StringComparison.Ordinal) || range.StartsWith(" ≤", StringComparison.Ordinal) ? "expected" : "outside")}{range}");
+            throw Bad(at, $"is {n.ToString(CultureInfo.InvariantCulture)}, {Expected(range)}{range}");
         return n;
     }
 
@@ -209,7 +209,8 @@ public sealed class JsonFields(string file, string hint)
 
     public JsonObject Object(JsonObject o, string key, string at) => Object(o[key], $"{at}.{key}");
     public JsonObject? OptObject(JsonObject o, string key, string at) => o[key] is null ? null : Object(o[key], $"{at}.{key}");
-    public JsonArray Array(JsonObject o, string key, string at, int? count = null, int max = int.MaxValue) => Array(o[key], $"{at}.{key}", count, max);
+    public JsonArray Array(JsonObject o, string key, string at, int? count = null, int max = int.MaxValue) =>
+        Array(o[key], $"{at}.{key}", count, max);
     public JsonArray? OptArray(JsonObject o, string key, string at) => o[key] is null ? null : Array(o[key], $"{at}.{key}");
     public string String(JsonObject o, string key, string at) => String(o[key], $"{at}.{key}");
     public string? OptString(JsonObject o, string key, string at) => o[key] is null ? null : String(o[key], $"{at}.{key}");
@@ -221,7 +222,8 @@ public sealed class JsonFields(string file, string hint)
     public double? OptNumber(JsonObject o, string key, string at, double min = double.MinValue, double max = double.MaxValue) =>
         o[key] is null ? null : Number(o[key], $"{at}.{key}", min, max);
 
-    public int Int(JsonObject o, string key, string at, int min = int.MinValue, int max = int.MaxValue) => Int(o[key], $"{at}.{key}", min, max);
+    public int Int(JsonObject o, string key, string at, int min = int.MinValue, int max = int.MaxValue) =>
+        Int(o[key], $"{at}.{key}", min, max);
 
     public int? OptInt(JsonObject o, string key, string at, int min = int.MinValue, int max = int.MaxValue) =>
         o[key] is null ? null : Int(o[key], $"{at}.{key}", min, max);
@@ -229,10 +231,12 @@ public sealed class JsonFields(string file, string hint)
     public long? OptLong(JsonObject o, string key, string at, long min = long.MinValue, long max = long.MaxValue) =>
         o[key] is null ? null : Long(o[key], $"{at}.{key}", min, max);
 
-    public double[] Numbers(JsonObject o, string key, string at, int? count = null, double min = double.MinValue, double max = double.MaxValue) =>
+    public double[] Numbers(JsonObject o, string key, string at, int? count = null, double min = double.MinValue,
+        double max = double.MaxValue) =>
         Numbers(o[key], $"{at}.{key}", count, min, max);
 
-    public double[]? OptNumbers(JsonObject o, string key, string at, int? count = null, double min = double.MinValue, double max = double.MaxValue) =>
+    public double[]? OptNumbers(JsonObject o, string key, string at, int? count = null, double min = double.MinValue,
+        double max = double.MaxValue) =>
         o[key] is null ? null : Numbers(o[key], $"{at}.{key}", count, min, max);
 
     static string Range(double min, double max) =>
@@ -252,6 +256,10 @@ public sealed class JsonFields(string file, string hint)
             (_, long.MaxValue or int.MaxValue) => $" ≥ {min.ToString(CultureInfo.InvariantCulture)}",
             _ => $" {min.ToString(CultureInfo.InvariantCulture)}–{max.ToString(CultureInfo.InvariantCulture)}",
         };
+
+    /// <summary>How a value outside <paramref name="range"/> is told: "expected" for a one-sided bound, else "outside".</summary>
+    static string Expected(string range) =>
+        range.StartsWith(" ≥", StringComparison.Ordinal) || range.StartsWith(" ≤", StringComparison.Ordinal) ? "expected" : "outside";
 
     static string Num(double d) => d.ToString("G6", CultureInfo.InvariantCulture);
 }

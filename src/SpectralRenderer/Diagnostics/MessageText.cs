@@ -67,7 +67,8 @@ public static class MessageText
         if (c < 0x7F) return true;
         var cat = char.GetUnicodeCategory(c);
         return cat is not (UnicodeCategory.Control or UnicodeCategory.Format or UnicodeCategory.LineSeparator
-            or UnicodeCategory.ParagraphSeparator or UnicodeCategory.Surrogate or UnicodeCategory.OtherNotAssigned or UnicodeCategory.PrivateUse);
+            or UnicodeCategory.ParagraphSeparator or UnicodeCategory.Surrogate or UnicodeCategory.OtherNotAssigned
+            or UnicodeCategory.PrivateUse);
     }
 
     /// <summary>Cuts <paramref name="s"/> to at most <paramref name="max"/> characters, keeping its start and end around "…".</summary>

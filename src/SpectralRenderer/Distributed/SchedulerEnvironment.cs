@@ -47,7 +47,9 @@ public static class SchedulerEnvironment
         int step = Get(env, "SLURM_ARRAY_TASK_STEP") ?? 1;
         int? max = Get(env, "SLURM_ARRAY_TASK_MAX");
         int? taskCount = Get(env, "SLURM_ARRAY_TASK_COUNT");
-        if (step < 1) throw new InputException("SLURM_ARRAY_TASK_STEP", $"is {step}, not at least 1", "the array step must be a positive whole number (sbatch --array=0-9:2)");
+        if (step < 1)
+            throw new InputException("SLURM_ARRAY_TASK_STEP", $"is {step}, not at least 1",
+                "the array step must be a positive whole number (sbatch --array=0-9:2)");
         if ((id - min) % step != 0 || id < min)
             throw new InputException("SLURM_ARRAY_TASK_ID", $"{id} is not SLURM_ARRAY_TASK_MIN {min} + k·STEP {step}",
                 "shards need a regular array such as --array=0-3 or 0-30:10");
@@ -56,7 +58,8 @@ public static class SchedulerEnvironment
             throw new InputException("SLURM_ARRAY_TASK_COUNT", $"{c} tasks but MIN {min}, MAX {max}, STEP {step} make {r}",
                 "shards need a regular array such as --array=0-3, not a list");
         int count = Agree(fromRange ?? taskCount, shards, "the Slurm array's task count")
-            ?? throw new InputException("SLURM_ARRAY_TASK_ID", $"is {id} but neither SLURM_ARRAY_TASK_MAX nor SLURM_ARRAY_TASK_COUNT is set",
+            ?? throw new InputException("SLURM_ARRAY_TASK_ID",
+                $"is {id} but neither SLURM_ARRAY_TASK_MAX nor SLURM_ARRAY_TASK_COUNT is set",
                 "pass --shards N");
         return Shard.Checked((id - min) / step, count, $"SLURM_ARRAY_TASK_ID={id} (min {min}, step {step}, {count} tasks)");
     }

@@ -33,7 +33,8 @@ public readonly record struct Shard(int Index, int Count)
     public static Shard Checked(int index, int count, string where)
     {
         if (count < 1) throw new InputException(where, $"shard count {count} is not at least 1", "give --shard I/N with N ≥ 1");
-        if (index < 0 || index >= count) throw new InputException(where, $"shard index {index} is not in 0…{count - 1}", "shards count from 0");
+        if (index < 0 || index >= count)
+            throw new InputException(where, $"shard index {index} is not in 0…{count - 1}", "shards count from 0");
         return new Shard(index, count);
     }
 

@@ -71,7 +71,9 @@ public static class ShardMerge
                         break;
                     case ShardMerging.BandImages: break;   // above
                     case ShardMerging.FalseColour: photometry ??= MergePhotometryPictures(parts, staging, width, height); break;
-                    default: throw new InputException(Path.Combine(parts[0].Dir, "render.json"), $"lists '{f}', a file merge does not know", "merge shards written by the same version");
+                    default:
+                        throw new InputException(Path.Combine(parts[0].Dir, "render.json"), $"lists '{f}', a file merge does not know",
+                            "merge shards written by the same version");
                 }
             }
             var manifest = Manifest(parts, scale, commandLine);
@@ -99,14 +101,17 @@ public static class ShardMerge
                 throw new InputException(dir, "is also the output folder", "merge into a new folder with -o");
             var path = Path.Combine(dir, RenderManifest.FileName);
             if (!File.Exists(path))
-                throw new InputException(dir, "has no render.json: the shard is half-written (its render was interrupted or is still running)", "render the shard again");
+                throw new InputException(dir,
+                    "has no render.json: the shard is half-written (its render was interrupted or is still running)",
+                    "render the shard again");
             var m = RenderManifest.Read(dir);
             if (m.SceneHash is null || m.Files is null)
                 throw new InputException(path, "has no scene_hash or files", "render the shards with this version of spectral");
             var crop = m.Crop ?? PixelRect.Whole(m.Width, m.Height);
             foreach (var f in m.Files)
                 if (!File.Exists(Path.Combine(dir, f)))
-                    throw new InputException(dir, $"lacks {f}, which its render.json lists: the shard is half-written or was changed", "render the shard again");
+                    throw new InputException(dir, $"lacks {f}, which its render.json lists: the shard is half-written or was changed",
+                        "render the shard again");
             parts.Add(new Part(dir, m, crop));
         }
 
@@ -128,11 +133,14 @@ public static class ShardMerge
         foreach (var p in parts)
         {
             if (p.Crop.X0 != 0 || p.Crop.X1 != width)
-                throw new InputException(p.Dir, $"holds crop {p.Crop}, not full-width rows of the {width}-pixel film", "merge assembles --shard strips");
+                throw new InputException(p.Dir, $"holds crop {p.Crop}, not full-width rows of the {width}-pixel film",
+                    "merge assembles --shard strips");
             if (p.Crop.Y0 % 16 != 0)
-                throw new InputException(p.Dir, $"starts at row {p.Crop.Y0}, not on a 16-row OpenEXR chunk boundary", "merge assembles --shard strips");
+                throw new InputException(p.Dir, $"starts at row {p.Crop.Y0}, not on a 16-row OpenEXR chunk boundary",
+                    "merge assembles --shard strips");
             if (p.Crop.Y0 > next)
-                throw new InputException(p.Dir, $"starts at row {p.Crop.Y0} but rows {next}–{p.Crop.Y0 - 1} are in no shard given (a shard is missing)",
+                throw new InputException(p.Dir,
+                    $"starts at row {p.Crop.Y0} but rows {next}–{p.Crop.Y0 - 1} are in no shard given (a shard is missing)",
                     "give every shard folder of the render");
             if (p.Crop.Y0 < next)
                 throw new InputException(p.Dir, $"overlaps {previous!.Dir} in rows {p.Crop.Y0}–{next - 1}", "give each shard once");
@@ -140,7 +148,8 @@ public static class ShardMerge
             previous = p;
         }
         if (next != height)
-            throw new InputException(previous!.Dir, $"ends at row {next - 1} but the film has {height} rows (a shard is missing)", "give every shard folder of the render");
+            throw new InputException(previous!.Dir, $"ends at row {next - 1} but the film has {height} rows (a shard is missing)",
+                "give every shard folder of the render");
         return parts;
     }
 
@@ -154,7 +163,9 @@ public static class ShardMerge
         if (File.Exists(img))
         {
             using var fs = new FileStream(img, FileMode.Open, FileAccess.Read, FileShare.Read, 1 << 16);
-            if (fs.Length != 4L * width * h * bands) throw new InputException(img, $"has {fs.Length} bytes, {4L * width * h * bands} expected (half-written shard)", "the shard was not finished: render it again");
+            if (fs.Length != 4L * width * h * bands)
+                throw new InputException(img, $"has {fs.Length} bytes, {4L * width * h * bands} expected (half-written shard)",
+                    "the shard was not finished: render it again");
             fs.Position = 4L * b * width * h;
             fs.ReadExactly(System.Runtime.InteropServices.MemoryMarshal.AsBytes(plane));
             if (!BitConverter.IsLittleEndian) throw new PlatformNotSupportedException("merging shards needs a little-endian machine");
@@ -165,7 +176,9 @@ public static class ShardMerge
         {
             using var fs = new FileStream(npy, FileMode.Open, FileAccess.Read, FileShare.Read, 1 << 16);
             long start = NpyWriter.Preamble([h, width, bands]).Length;
-            if (fs.Length != start + 4L * width * h * bands) throw new InputException(npy, $"has {fs.Length} bytes, {start + 4L * width * h * bands} expected (half-written shard)", "the shard was not finished: render it again");
+            if (fs.Length != start + 4L * width * h * bands)
+                throw new InputException(npy, $"has {fs.Length} bytes, {start + 4L * width * h * bands} expected (half-written shard)",
+                    "the shard was not finished: render it again");
             fs.Position = start;
             var row = new float[width * bands];
             for (int y = 0; y < h; y++)
@@ -175,7 +188,8 @@ public static class ShardMerge
             }
             return;
         }
-        throw new InputException(p.Dir, "holds no float cube (spectral.img or spectral.npy) to rebuild the band images on the whole image's scale",
+        throw new InputException(p.Dir,
+            "holds no float cube (spectral.img or spectral.npy) to rebuild the band images on the whole image's scale",
             "render the shards with envi or npy in --formats");
     }
 
@@ -200,9 +214,12 @@ public static class ShardMerge
     }
 
     /// <summary>bands/*.png and bands.png of the whole image, one band plane at a time.</summary>
-    static void MergeBands(List<Part> parts, string outDir, int width, int height, int bands, float scale, List<string> bandFiles, bool mosaic, CancellationToken cancel)
+    static void MergeBands(List<Part> parts, string outDir, int width, int height, int bands, float scale, List<string> bandFiles,
+        bool mosaic, CancellationToken cancel)
     {
-        if (bandFiles.Count > 0 && bandFiles.Count != bands) throw new InputException(parts[0].Dir, $"lists {bandFiles.Count} band images for {bands} bands", "the shards come from different renders: render them again with the same scene");
+        if (bandFiles.Count > 0 && bandFiles.Count != bands)
+            throw new InputException(parts[0].Dir, $"lists {bandFiles.Count} band images for {bands} bands",
+                "the shards come from different renders: render them again with the same scene");
         if (bandFiles.Count > 0) Directory.CreateDirectory(Path.Combine(outDir, "bands"));
         var full = new float[width * height];
         var grey = new byte[2 * width * height];
@@ -221,7 +238,8 @@ public static class ShardMerge
             }
             if (mosaic) BandMosaic.Draw(thumbs, width, height, bands, b, full, scale, 256, grid);
         }
-        if (mosaic) AtomicFile.Write(Path.Combine(outDir, "bands.png"), s => PngWriter.WriteGray8(s, thumbs.Width, thumbs.Height, thumbs.Pixels));
+        if (mosaic)
+            AtomicFile.Write(Path.Combine(outDir, "bands.png"), s => PngWriter.WriteGray8(s, thumbs.Width, thumbs.Height, thumbs.Pixels));
     }
 
     /// <summary>
@@ -254,12 +272,16 @@ public static class ShardMerge
         var buffer = new byte[1 << 22];
         AtomicFile.Write(target, output =>
         {
-            var sources = parts.Select(p => new FileStream(Path.Combine(p.Dir, file), FileMode.Open, FileAccess.Read, FileShare.Read, 1 << 16)).ToList();
+            var sources = parts.Select(p =>
+                new FileStream(Path.Combine(p.Dir, file), FileMode.Open, FileAccess.Read, FileShare.Read, 1 << 16))
+                .ToList();
             try
             {
                 for (int i = 0; i < parts.Count; i++)
                     if (sources[i].Length != 4L * width * parts[i].Crop.Height * bands)
-                        throw new InputException(sources[i].Name, $"has {sources[i].Length} bytes, {4L * width * parts[i].Crop.Height * bands} expected (half-written shard)", "the shard was not finished: render it again");
+                        throw new InputException(sources[i].Name,
+                            $"has {sources[i].Length} bytes, {4L * width * parts[i].Crop.Height * bands} expected (half-written shard)",
+                            "the shard was not finished: render it again");
                 for (int b = 0; b < bands; b++)
                     for (int i = 0; i < parts.Count; i++)
                     {
@@ -276,7 +298,8 @@ public static class ShardMerge
     static void MergeEnviHeader(Part p, string file, string target, int height)
     {
         var text = File.ReadAllText(Path.Combine(p.Dir, file));
-        var merged = Regex.Replace(text, @"^lines = \d+$", string.Create(CultureInfo.InvariantCulture, $"lines = {height}"), RegexOptions.Multiline);
+        var merged =
+            Regex.Replace(text, @"^lines = \d+$", string.Create(CultureInfo.InvariantCulture, $"lines = {height}"), RegexOptions.Multiline);
         AtomicFile.WriteAllText(target, merged);
     }
 
@@ -308,7 +331,9 @@ public static class ShardMerge
             {
                 using var fs = new FileStream(Path.Combine(p.Dir, file), FileMode.Open, FileAccess.Read, FileShare.Read, 1 << 16);
                 long start = NpyWriter.Preamble([p.Crop.Height, width, .. inner]).Length, bytes = 4L * width * p.Crop.Height * perPixel;
-                if (fs.Length != start + bytes) throw new InputException(fs.Name, $"has {fs.Length} bytes, {start + bytes} expected (half-written shard)", "the shard was not finished: render it again");
+                if (fs.Length != start + bytes)
+                    throw new InputException(fs.Name, $"has {fs.Length} bytes, {start + bytes} expected (half-written shard)",
+                        "the shard was not finished: render it again");
                 fs.Position = start;
                 Copy(fs, output, bytes, buffer);
             }
@@ -349,11 +374,16 @@ public static class ShardMerge
         {
             var other = (byte[])exrs[i].Head.Clone();
             window.CopyTo(other.AsSpan(exrs[i].WindowAt, 16));
-            if (!other.AsSpan().SequenceEqual(head)) throw new InputException(Path.Combine(parts[i].Dir, name), $"has another header than {Path.Combine(parts[0].Dir, name)}", "the shards come from different renders: render them again with the same scene");
+            if (!other.AsSpan().SequenceEqual(head))
+                throw new InputException(Path.Combine(parts[i].Dir, name), $"has another header than {Path.Combine(parts[0].Dir, name)}",
+                    "the shards come from different renders: render them again with the same scene");
         }
         int chunks = exrs.Sum(e => e.Offsets.Length);
         int lines = exrs[0].LinesPerChunk;
-        if (chunks != (height + lines - 1) / lines) throw new InputException(Path.Combine(parts[0].Dir, name), $"the shards hold {chunks} chunks, {(height + lines - 1) / lines} expected", "a shard is missing or incomplete: render it again");
+        if (chunks != (height + lines - 1) / lines)
+            throw new InputException(Path.Combine(parts[0].Dir, name),
+                $"the shards hold {chunks} chunks, {(height + lines - 1) / lines} expected",
+                "a shard is missing or incomplete: render it again");
         var buffer = new byte[1 << 20];
         AtomicFile.Write(target, output =>
         {
@@ -379,7 +409,8 @@ public static class ShardMerge
         });
     }
 
-    /// <summary>Parses the header of a shard's scanline EXR, checks its dataWindow is the shard's crop, and reads its chunk table.</summary>
+    /// <summary>Parses the header of a shard's scanline EXR, checks its dataWindow is the shard's crop, and reads its chunk
+    /// table.</summary>
     static ExrParts ReadExrLayout(string path, PixelRect crop)
     {
         using var fs = new FileStream(path, FileMode.Open, FileAccess.Read, FileShare.Read, 1 << 16);
@@ -403,10 +434,14 @@ public static class ShardMerge
                 if (attr == "dataWindow" && type == "box2i" && size == 16)
                 {
                     windowAt = (int)at;
-                    data = new PixelRect(BinaryPrimitives.ReadInt32LittleEndian(value), BinaryPrimitives.ReadInt32LittleEndian(value.AsSpan(4)),
-                        BinaryPrimitives.ReadInt32LittleEndian(value.AsSpan(8)) + 1, BinaryPrimitives.ReadInt32LittleEndian(value.AsSpan(12)) + 1);
+                    data = new PixelRect(BinaryPrimitives.ReadInt32LittleEndian(value),
+                        BinaryPrimitives.ReadInt32LittleEndian(value.AsSpan(4)),
+                        BinaryPrimitives.ReadInt32LittleEndian(value.AsSpan(8)) + 1,
+                            BinaryPrimitives.ReadInt32LittleEndian(value.AsSpan(12)) + 1);
                 }
-                if (attr == "compression" && size == 1) lines = value[0] switch { 0 or 2 => 1, 3 => 16, _ => throw Bad($"has compression {value[0]}, which merge does not copy") };
+                if (attr == "compression" && size == 1)
+                    lines =
+                        value[0] switch { 0 or 2 => 1, 3 => 16, _ => throw Bad($"has compression {value[0]}, which merge does not copy") };
             }
             if (windowAt < 0 || lines == 0) throw Bad("has no dataWindow or compression");
             if (data != crop) throw Bad($"has data window {data}, not its crop {crop}");
@@ -417,7 +452,8 @@ public static class ShardMerge
             var sizes = new int[chunks];
             for (int c = 0; c < chunks; c++)
             {
-                if (offsets[c] <= headLength || offsets[c] + 8 > fs.Length) throw Bad($"is truncated (chunk {c} of {chunks} is missing: half-written shard)");
+                if (offsets[c] <= headLength || offsets[c] + 8 > fs.Length)
+                    throw Bad($"is truncated (chunk {c} of {chunks} is missing: half-written shard)");
                 fs.Position = offsets[c];
                 int y = r.ReadInt32();
                 sizes[c] = r.ReadInt32();
@@ -449,13 +485,21 @@ public static class ShardMerge
         foreach (var p in parts)
         {
             var png = PngReader.Read(Path.Combine(p.Dir, name));
-            if (png.Width != width || png.Height != p.Crop.Height) throw new InputException(Path.Combine(p.Dir, name), $"is {png.Width}×{png.Height}, not the shard's {p.Crop.Width}×{p.Crop.Height}", "the shards come from different renders: render them again with the same scene");
+            if (png.Width != width || png.Height != p.Crop.Height)
+                throw new InputException(Path.Combine(p.Dir, name),
+                    $"is {png.Width}×{png.Height}, not the shard's {p.Crop.Width}×{p.Crop.Height}",
+                    "the shards come from different renders: render them again with the same scene");
             first ??= png;
-            if (png.BitDepth != first.BitDepth || png.Channels != first.Channels) throw new InputException(Path.Combine(p.Dir, name), "has another pixel format than the first shard's", "the shards come from different renders: render them again with the same scene");
-            samples ??= new ushort[(long)width * height * first.Channels > Array.MaxLength ? throw new InputException(name, "is too large to merge", "render fewer pixels, or merge fewer formats") : width * height * first.Channels];
+            if (png.BitDepth != first.BitDepth || png.Channels != first.Channels)
+                throw new InputException(Path.Combine(p.Dir, name), "has another pixel format than the first shard's",
+                    "the shards come from different renders: render them again with the same scene");
+            samples ??= new ushort[(long)width * height * first.Channels > Array.MaxLength
+                ? throw new InputException(name, "is too large to merge", "render fewer pixels, or merge fewer formats")
+                : width * height * first.Channels];
             png.Samples.CopyTo(samples, (long)p.Crop.Y0 * width * first.Channels);
         }
-        // The writer's calls (RenderOutputWriter, AnalysisImages): RGB 8-bit preview, 16-bit object ids, 8-bit masks; adaptive filter, no text.
+        // The writer's calls (RenderOutputWriter, AnalysisImages): RGB 8-bit preview, 16-bit object ids, 8-bit masks; adaptive filter, no
+        // text.
         AtomicFile.Write(target, s =>
         {
             switch (first!.BitDepth, first.Channels)
@@ -463,7 +507,9 @@ public static class ShardMerge
                 case (8, 3): PngWriter.WriteRgb8(s, width, height, Array.ConvertAll(samples!, v => (byte)v)); break;
                 case (8, 1): PngWriter.WriteGray8(s, width, height, Array.ConvertAll(samples!, v => (byte)v)); break;
                 case (16, 1): PngWriter.WriteGray16(s, width, height, samples!); break;
-                default: throw new InputException(name, $"has {first.BitDepth}-bit samples × {first.Channels}, which merge does not write", "merge 8- or 16-bit grey or RGB images");
+                default:
+                    throw new InputException(name, $"has {first.BitDepth}-bit samples × {first.Channels}, which merge does not write",
+                        "merge 8- or 16-bit grey or RGB images");
             }
         });
     }
@@ -472,8 +518,8 @@ public static class ShardMerge
 
     /// <summary>
     /// The first shard's manifest as the whole render's: the band images' scale of the whole image, ray counts,
-    /// tiles and pixels whose colour fell back to the bands summed (each pixel's rays are the same wherever it is rendered), threads the most any shard used, the crop
-    /// removed; timings_s.render is the shards' summed render time and run the merge's.
+    /// tiles and pixels whose colour fell back to the bands summed (each pixel's rays are the same wherever it is rendered), threads the
+    /// most any shard used, the crop removed; timings_s.render is the shards' summed render time and run the merge's.
     /// </summary>
     static RenderManifest Manifest(List<Part> parts, float scale, string commandLine)
     {
@@ -499,7 +545,8 @@ public static class ShardMerge
             CreatedUtc = RenderManifest.Now(),
             BandImageScale = scale,
             RenderSeconds = render,
-            Rays = new ManifestRays(Sum(r => r.Primary), Sum(r => r.Shadow), Sum(r => r.Secondary), total, total / Math.Max(1e-9, render) / 1e6),
+            Rays = new ManifestRays(Sum(r => r.Primary), Sum(r => r.Shadow), Sum(r => r.Secondary), total,
+                total / Math.Max(1e-9, render) / 1e6),
             Threads = parts.Max(p => p.Manifest.Threads),
             Tiles = parts.Sum(p => p.Manifest.Tiles),
             FallbackPixels = parts.Sum(p => p.Manifest.FallbackPixels),

@@ -11,7 +11,8 @@ using SpectralRenderer.Scenes.Loading;
 namespace SpectralRenderer.Distributed;
 
 /// <summary>One job of a sweep: its number, id (its folder's name), the label of each axis value, and the scene edits.</summary>
-public sealed record SweepJob(int Index, string Id, IReadOnlyList<(string Axis, string Label)> Parameters, IReadOnlyList<(string Path, JsonNode? Value)> Edits);
+public sealed record SweepJob(int Index, string Id, IReadOnlyList<(string Axis, string Label)> Parameters,
+    IReadOnlyList<(string Path, JsonNode? Value)> Edits);
 
 /// <summary>
 /// A parameter sweep (docs/sweep-format.md): a base scene file and axes of scene edits whose Cartesian product is the
@@ -29,38 +30,55 @@ public sealed class SweepPlan
     /// <summary>The plan's "formats" for every job (null: the scene's own).</summary>
     public string? Formats { get; init; }
 
-    static readonly JsonDocumentOptions Options = new() { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true, AllowDuplicateProperties = false };
+    static readonly JsonDocumentOptions Options =
+        new() { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true, AllowDuplicateProperties = false };
 
     public static SweepPlan Load(string planPath)
     {
         var bytes = InputFile.ReadAllBytes(planPath, "sweep plan");
         // Found by fuzzing (fuzz/run.sh sweep): text that is not UTF-8 fails in the JSON reader's strings, not as bad input.
         if (!System.Text.Unicode.Utf8.IsValid(bytes)) throw new InputException(planPath, "is not valid UTF-8", "save the plan as UTF-8");
-        var locator = new JsonLocator(bytes, new JsonReaderOptions { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true });
+        var locator =
+            new JsonLocator(bytes, new JsonReaderOptions { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true });
         InputException Bad(string path, string what, string? hint = null) =>
-            new(locator.Locate(path) is { } pos ? $"{planPath}:{pos}: {path}" : $"{planPath}: {path}", what, hint ?? "see the sweep plan format in README.md");
+            new(locator.Locate(path) is { } pos ? $"{planPath}:{pos}: {path}" : $"{planPath}: {path}", what,
+                hint ?? "see the sweep plan format in README.md");
         // Found by fuzzing (fuzz/run.sh sweep): a key given twice in one object broke the JSON object's enumeration.
         if (locator.Duplicate is { } dup)
             throw new InputException($"{planPath}:{locator.Position(dup.Offset)}: {dup.Path}",
                 $"key {MessageText.Quote(dup.Path[(dup.Path.LastIndexOf('.') + 1)..])} appears a second time in this object",
                 "each key may appear once: remove or rename one of them");
         JsonObject plan;
-        try { plan = JsonNode.Parse(bytes, documentOptions: Options) as JsonObject ?? throw Bad("$", "is not a JSON object", "a plan is { \"scene\": …, \"axes\": [ … ] }"); }
-        catch (JsonException e) { throw new InputException(planPath, $"is not valid JSON: {e.Message.Split(" LineNumber:")[0]}", "check for a missing comma, quote or bracket"); }
+        try
+        {
+            plan = JsonNode.Parse(bytes, documentOptions: Options) as JsonObject
+                ?? throw Bad("$", "is not a JSON object", "a plan is { \"scene\": …, \"axes\": [ … ] }");
+        }
+        catch (JsonException e)
+        {
+            throw new InputException(planPath, $"is not valid JSON: {e.Message.Split(" LineNumber:")[0]}",
+                "check for a missing comma, quote or bracket");
+        }
         foreach (var (k, _) in plan)
             if (k is not ("scene" or "axes" or "set" or "extra" or "formats" or "name"))
-                throw Bad($"$.{k}", "is not a plan key", InputException.DidYouMean(k, ["scene", "axes", "set", "extra", "formats", "name"]) ?? "keys: scene, set, axes, extra, formats");
+                throw Bad($"$.{k}", "is not a plan key",
+                    InputException.DidYouMean(k, ["scene", "axes", "set", "extra", "formats", "name"])
+                        ?? "keys: scene, set, axes, extra, formats");
         if (plan["scene"] is not JsonValue sv || sv.GetValueKind() != JsonValueKind.String)
-            throw Bad("$.scene", "is missing or not a file name", "\"scene\": \"../scenes/paper-3.2-bunny-19.json\" (relative to the plan)");
+            throw Bad("$.scene", "is missing or not a file name",
+                "\"scene\": \"../scenes/paper-3.2-bunny-19.json\" (relative to the plan)");
         var scenePath = Path.GetFullPath(Path.Combine(Path.GetDirectoryName(Path.GetFullPath(planPath))!, sv.GetValue<string>()));
         var sceneBytes = InputFile.ReadAllBytes(scenePath, "base scene");
-        if (!System.Text.Unicode.Utf8.IsValid(sceneBytes)) throw new InputException(scenePath, "is not valid UTF-8", "save the scene file as UTF-8");
+        if (!System.Text.Unicode.Utf8.IsValid(sceneBytes))
+            throw new InputException(scenePath, "is not valid UTF-8", "save the scene file as UTF-8");
         JsonObject scene;
         try { scene = JsonNode.Parse(sceneBytes, documentOptions: Options) as JsonObject ?? throw new JsonException("not an object"); }
         catch (JsonException e)
         {
-            var place = JsonFields.Place(e, Encoding.UTF8.GetString(sceneBytes), new JsonReaderOptions { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true });
-            throw new InputException($"{scenePath}:{place}", $"is not a valid scene: {e.Message.Split(" LineNumber:")[0]}", "check for a missing comma, quote or bracket, or a key given twice");
+            var place = JsonFields.Place(e, Encoding.UTF8.GetString(sceneBytes),
+                new JsonReaderOptions { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true });
+            throw new InputException($"{scenePath}:{place}", $"is not a valid scene: {e.Message.Split(" LineNumber:")[0]}",
+                "check for a missing comma, quote or bracket, or a key given twice");
         }
 
         var fixedEdits = plan["set"] is JsonObject set ? Edits(set, "$.set", Bad) : [];
@@ -69,23 +87,32 @@ public sealed class SweepPlan
             for (int a = 0; a < axisArray.Count; a++)
             {
                 string at = $"$.axes[{a}]";
-                if (axisArray[a] is not JsonObject axis) throw Bad(at, "is not an object", "{ \"name\": …, \"path\": …, \"values\": [ … ] }");
+                if (axisArray[a] is not JsonObject axis)
+                    throw Bad(at, "is not an object", "{ \"name\": …, \"path\": …, \"values\": [ … ] }");
                 foreach (var (k, _) in axis)
-                    if (k is not ("name" or "path" or "values" or "labels")) throw Bad($"{at}.{k}", "is not an axis key", "keys: name, path, values, labels");
-                string name = axis["name"] is JsonValue n && n.GetValueKind() == JsonValueKind.String ? n.GetValue<string>() : throw Bad($"{at}.name", "is missing", "every axis has a name (a column of index.csv)");
-                if (axes.Any(x => x.Name == name) || name is "job" or "status" or "seconds" or "path") throw Bad($"{at}.name", $"'{name}' is taken", "axis names are unique and not job, status, seconds or path");
-                if (axis["values"] is not JsonArray values || values.Count == 0) throw Bad($"{at}.values", "is missing or empty", "a list of the values the axis takes");
+                    if (k is not ("name" or "path" or "values" or "labels"))
+                        throw Bad($"{at}.{k}", "is not an axis key", "keys: name, path, values, labels");
+                string name = axis["name"] is JsonValue n && n.GetValueKind() == JsonValueKind.String
+                    ? n.GetValue<string>()
+                    : throw Bad($"{at}.name", "is missing", "every axis has a name (a column of index.csv)");
+                if (axes.Any(x => x.Name == name) || name is "job" or "status" or "seconds" or "path")
+                    throw Bad($"{at}.name", $"'{name}' is taken", "axis names are unique and not job, status, seconds or path");
+                if (axis["values"] is not JsonArray values || values.Count == 0)
+                    throw Bad($"{at}.values", "is missing or empty", "a list of the values the axis takes");
                 var labels = axis["labels"] as JsonArray;
-                if (labels is not null && labels.Count != values.Count) throw Bad($"{at}.labels", $"has {labels.Count} labels for {values.Count} values");
+                if (labels is not null && labels.Count != values.Count)
+                    throw Bad($"{at}.labels", $"has {labels.Count} labels for {values.Count} values");
                 string? path = axis["path"] is JsonValue p && p.GetValueKind() == JsonValueKind.String ? p.GetValue<string>() : null;
                 if (path is not null && !PathSyntax.IsMatch(path))
-                    throw Bad($"{at}.path", $"'{path}' is not a scene path", "e.g. materials.patch.diffuse, lights[0].spectrum, objects[name=bunny].file");
+                    throw Bad($"{at}.path", $"'{path}' is not a scene path",
+                        "e.g. materials.patch.diffuse, lights[0].spectrum, objects[name=bunny].file");
                 var list = new List<(string, List<(string, JsonNode?)>)>();
                 for (int v = 0; v < values.Count; v++)
                 {
                     var edits = path is not null ? [(path, values[v]?.DeepClone())]
                         : values[v] is JsonObject o ? Edits(o, $"{at}.values[{v}]", Bad)
-                        : throw Bad($"{at}.values[{v}]", "is not an object of path: value edits, and the axis has no path", "give the axis a \"path\", or make each value { \"path\": value, … }");
+                        : throw Bad($"{at}.values[{v}]", "is not an object of path: value edits, and the axis has no path",
+                            "give the axis a \"path\", or make each value { \"path\": value, … }");
                     list.Add((Label(labels?[v] ?? values[v], v), edits));
                 }
                 axes.Add((name, list));
@@ -97,7 +124,9 @@ public sealed class SweepPlan
         long product = axes.Count == 0 ? 0 : axes.Aggregate(1L, (c, x) => c > MaxJobs ? c : c * x.Values.Count);
         long extras = (plan["extra"] as JsonArray)?.Count ?? 0;
         if (product + extras > MaxJobs)
-            throw Bad(product > MaxJobs ? "$.axes" : "$.extra", $"makes {(product > MaxJobs ? "more than 100,000" : (product + extras).ToString("N0", CultureInfo.InvariantCulture))} jobs, more than the limit of 100,000",
+            throw Bad(product > MaxJobs ? "$.axes" : "$.extra",
+                $"makes {(product > MaxJobs ? "more than 100,000" : (product + extras).ToString("N0", CultureInfo.InvariantCulture))} "
+                    + $"jobs, more than the limit of 100,000",
                 "split the sweep into several plans");
         int total = (int)product;
         int digits = Math.Max(4, (total + extras).ToString(CultureInfo.InvariantCulture).Length);
@@ -124,7 +153,8 @@ public sealed class SweepPlan
             for (int x = 0; x < extra.Count; x++)
             {
                 string at = $"$.extra[{x}]";
-                if (extra[x] is not JsonObject e || e["set"] is not JsonObject es) throw Bad(at, "is not { \"name\": …, \"set\": { path: value, … } }");
+                if (extra[x] is not JsonObject e || e["set"] is not JsonObject es)
+                    throw Bad(at, "is not { \"name\": …, \"set\": { path: value, … } }");
                 var parameters = new List<(string, string)> { ("extra", Label(e["name"] ?? JsonValue.Create(x), x)) };
                 jobs.Add(new SweepJob(jobs.Count, Id(jobs.Count), parameters, [.. fixedEdits, .. Edits(es, $"{at}.set", Bad)]));
             }
@@ -139,7 +169,15 @@ public sealed class SweepPlan
             JsonValue fv when fv.GetValueKind() == JsonValueKind.String => fv.GetValue<string>(),
             _ => throw Bad("$.formats", "is not a list of formats", "e.g. [\"npy\", \"png\"]"),
         };
-        var result = new SweepPlan { PlanPath = Path.GetFullPath(planPath), ScenePath = scenePath, BaseScene = scene, AxisNames = axisNames, Jobs = jobs, Formats = formats };
+        var result = new SweepPlan
+        {
+            PlanPath = Path.GetFullPath(planPath),
+            ScenePath = scenePath,
+            BaseScene = scene,
+            AxisNames = axisNames,
+            Jobs = jobs,
+            Formats = formats
+        };
         // Every edit must land: check each job's paths now, before any job runs.
         foreach (var job in jobs)
             try { result.SceneFor(job); }
@@ -164,7 +202,8 @@ public sealed class SweepPlan
             cancel.ThrowIfCancellationRequested();
             var scene = SceneFor(job);
             var meshes = string.Concat((scene["objects"] as JsonArray ?? []).OfType<JsonObject>()
-                .Where(o => o["type"] is JsonValue t && t.GetValueKind() == JsonValueKind.String && t.GetValue<string>().Equals("mesh", StringComparison.OrdinalIgnoreCase))
+                .Where(o => o["type"] is JsonValue t && t.GetValueKind() == JsonValueKind.String
+                    && t.GetValue<string>().Equals("mesh", StringComparison.OrdinalIgnoreCase))
                 .Select(o => o.ToJsonString()));
             var text = SceneBytes(job);
             try { SceneLoader.Parse(text, ScenePath, overrides with { LoadMeshes = meshSets.Add(meshes) }); }
@@ -178,7 +217,8 @@ public sealed class SweepPlan
     /// </summary>
     public InputException InJobScene(InputException e, SweepJob job, byte[] text, string outDir)
     {
-        if (!e.Where.StartsWith(ScenePath, StringComparison.Ordinal)) return new InputException(e.Where, $"sweep job {job.Id}: {e.What}", e.Hint) { Problem = e.Problem };
+        if (!e.Where.StartsWith(ScenePath, StringComparison.Ordinal))
+            return new InputException(e.Where, $"sweep job {job.Id}: {e.What}", e.Hint) { Problem = e.Problem };
         var file = Path.Combine(outDir, "jobs", job.Id, "scene.json");
         try
         {
@@ -194,7 +234,9 @@ public sealed class SweepPlan
         var list = new List<(string, JsonNode?)>();
         foreach (var (path, value) in o)
         {
-            if (!PathSyntax.IsMatch(path)) throw bad($"{at}", $"'{path}' is not a scene path", "e.g. materials.patch.diffuse, lights[0].spectrum, objects[name=bunny].file");
+            if (!PathSyntax.IsMatch(path))
+                throw bad($"{at}", $"'{path}' is not a scene path",
+                    "e.g. materials.patch.diffuse, lights[0].spectrum, objects[name=bunny].file");
             list.Add((path, value?.DeepClone()));
         }
         return list;
@@ -209,7 +251,9 @@ public sealed class SweepPlan
         _ => position.ToString(CultureInfo.InvariantCulture),
     };
 
-    static readonly Regex PathSyntax = new(@"^[A-Za-z_][\w-]*(\[(\d+|[A-Za-z_]\w*=[^\]]+)\])*(\.[A-Za-z_][\w-]*(\[(\d+|[A-Za-z_]\w*=[^\]]+)\])*)*$", RegexOptions.CultureInvariant);
+    static readonly Regex PathSyntax =
+        new(@"^[A-Za-z_][\w-]*(\[(\d+|[A-Za-z_]\w*=[^\]]+)\])*(\.[A-Za-z_][\w-]*(\[(\d+|[A-Za-z_]\w*=[^\]]+)\])*)*$",
+        RegexOptions.CultureInvariant);
     static readonly Regex Segment = new(@"([A-Za-z_][\w-]*)|\[(\d+)\]|\[([A-Za-z_]\w*)=([^\]]+)\]", RegexOptions.CultureInvariant);
 
     /// <summary>The job's scene: the base scene with the job's edits applied in order.</summary>
@@ -221,13 +265,17 @@ public sealed class SweepPlan
     }
 
     /// <summary>The job's scene file text (UTF-8), as the job renders it and as its folder keeps it.</summary>
-    public byte[] SceneBytes(SweepJob job) => Encoding.UTF8.GetBytes(SceneFor(job).ToJsonString(new JsonSerializerOptions { WriteIndented = true }));
+    public byte[] SceneBytes(SweepJob job) =>
+        Encoding.UTF8.GetBytes(SceneFor(job).ToJsonString(new JsonSerializerOptions { WriteIndented = true }));
 
-    /// <summary>SHA-256 of what a job computes (its scene text and the formats): a finished job is skipped only when it is unchanged.</summary>
+    /// <summary>SHA-256 of what a job computes (its scene text and the formats): a finished job is skipped only when it is
+    /// unchanged.</summary>
     public string JobHash(SweepJob job, string? formats) =>
-        "sha256:" + Convert.ToHexStringLower(SHA256.HashData([.. SceneBytes(job), .. Encoding.UTF8.GetBytes("\nformats=" + (formats ?? ""))]));
+        "sha256:"
+            + Convert.ToHexStringLower(SHA256.HashData([.. SceneBytes(job), .. Encoding.UTF8.GetBytes("\nformats=" + (formats ?? ""))]));
 
-    /// <summary>Puts <paramref name="value"/> at <paramref name="path"/>; missing object keys on the way are created, list elements must exist.</summary>
+    /// <summary>Puts <paramref name="value"/> at <paramref name="path"/>; missing object keys on the way are created, list elements must
+    /// exist.</summary>
     static void Set(JsonObject root, string path, JsonNode? value)
     {
         var segments = Segment.Matches(path).ToList();
@@ -240,31 +288,42 @@ public sealed class SweepPlan
             if (s.Groups[1].Success)
             {
                 string key = s.Groups[1].Value;
-                if (node is not JsonObject o) throw new InputException("", $"'{walked}' is not an object, so it has no '{key}' (path {path})", "check the path against the scene's structure");
+                if (node is not JsonObject o)
+                    throw new InputException("", $"'{walked}' is not an object, so it has no '{key}' (path {path})",
+                        "check the path against the scene's structure");
                 if (last) { o[key] = value; return; }
-                node = o[key] ??= segments[i + 1].Groups[1].Success ? new JsonObject() : throw new InputException("", $"the scene has no list '{walked}{(walked.Length > 0 ? "." : "")}{key}' (path {path})", "check the path against the scene's structure");
+                node = o[key] ??= segments[i + 1].Groups[1].Success
+                    ? new JsonObject()
+                    : throw new InputException("", $"the scene has no list '{walked}{(walked.Length > 0 ? "." : "")}{key}' (path {path})",
+                        "check the path against the scene's structure");
                 walked += (walked.Length > 0 ? "." : "") + key;
             }
             else
             {
-                if (node is not JsonArray list) throw new InputException("", $"'{walked}' is not a list (path {path})", "check the path against the scene's structure");
+                if (node is not JsonArray list)
+                    throw new InputException("", $"'{walked}' is not a list (path {path})", "check the path against the scene's structure");
                 int index;
                 if (s.Groups[2].Success)
                 {
                     index = int.Parse(s.Groups[2].Value, CultureInfo.InvariantCulture);
-                    if (index >= list.Count) throw new InputException("", $"'{walked}' has {list.Count} elements, so no [{index}] (path {path})", "lists count from 0");
+                    if (index >= list.Count)
+                        throw new InputException("", $"'{walked}' has {list.Count} elements, so no [{index}] (path {path})",
+                            "lists count from 0");
                 }
                 else
                 {
                     string key = s.Groups[3].Value, want = s.Groups[4].Value;
-                    index = list.Select((e, k) => (e, k)).FirstOrDefault(t => t.e is JsonObject eo && eo[key]?.ToString() == want, (null, -1)).Item2;
+                    index = list.Select((e, k) => (e, k))
+                        .FirstOrDefault(t => t.e is JsonObject eo && eo[key]?.ToString() == want, (null, -1)).Item2;
                     if (index < 0)
                         throw new InputException("", $"no element of '{walked}' has {key} '{want}' (path {path})",
-                            InputException.DidYouMean(want, list.OfType<JsonObject>().Select(e => e[key]?.ToString() ?? "")) ?? $"name the {walked} in the base scene");
+                            InputException.DidYouMean(want, list.OfType<JsonObject>().Select(e => e[key]?.ToString() ?? ""))
+                                ?? $"name the {walked} in the base scene");
                 }
                 walked += s.Value;
                 if (last) { list[index] = value; return; }
-                node = list[index] ?? throw new InputException("", $"'{walked}' is null (path {path})", "check the path against the scene's structure");
+                node = list[index]
+                    ?? throw new InputException("", $"'{walked}' is null (path {path})", "check the path against the scene's structure");
             }
         }
     }

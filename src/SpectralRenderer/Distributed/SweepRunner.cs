@@ -29,7 +29,8 @@ public sealed record SweepSummary(int Jobs, int InSlice, int Rendered, int Skipp
 /// </summary>
 public static class SweepRunner
 {
-    /// <summary>Dataset layouts: "folders" (jobs/ID/ only) or "pairs" (also cube/ID.npy and rgb/ID.png, the spectral-recovery layout).</summary>
+    /// <summary>Dataset layouts: "folders" (jobs/ID/ only) or "pairs" (also cube/ID.npy and rgb/ID.png, the spectral-recovery
+    /// layout).</summary>
     public static readonly string[] Layouts = ["folders", "pairs"];
 
     public static SweepSummary Run(SweepPlan plan, string outDir, Shard slice, SceneOverrides overrides, string layout, int threads,
@@ -84,7 +85,9 @@ public static class SweepRunner
 
     static string PairsFormats(string? formats)
     {
-        var set = formats is null ? new List<string>(OutputNames.ProductNames) : formats.Split(',', StringSplitOptions.TrimEntries | StringSplitOptions.RemoveEmptyEntries).ToList();
+        var set = formats is null
+            ? new List<string>(OutputNames.ProductNames)
+            : formats.Split(',', StringSplitOptions.TrimEntries | StringSplitOptions.RemoveEmptyEntries).ToList();
         if (set.Contains("all")) return "all";
         foreach (var f in new[] { "npy", "png" }) if (!set.Contains(f)) set.Add(f);
         return string.Join(',', set);
@@ -110,12 +113,14 @@ public static class SweepRunner
             var r = new JsonFields(path, "");
             string status = r.String(json, "status", "$");
             if (status is not ("done" or "failed")) return null;
-            return new JobRecord(status, r.OptNumber(json, "seconds", "$", 0, 1e9), r.OptString(json, "job_hash", "$"), r.OptString(json, "error", "$"));
+            return new JobRecord(status, r.OptNumber(json, "seconds", "$", 0, 1e9), r.OptString(json, "job_hash", "$"),
+                r.OptString(json, "error", "$"));
         }
         catch (InputException) { return null; }   // unreadable or damaged: the job counts as not done and runs again
     }
 
-    static void RenderJob(SweepPlan plan, SweepJob job, string dir, SceneOverrides overrides, int threads, GeometryCache geometries, CancellationToken cancel)
+    static void RenderJob(SweepPlan plan, SweepJob job, string dir, SceneOverrides overrides, int threads, GeometryCache geometries,
+        CancellationToken cancel)
     {
         Directory.CreateDirectory(dir);
         File.Delete(Path.Combine(dir, "job.json"));
@@ -198,7 +203,14 @@ public static class SweepRunner
             string status = record?.Status ?? "pending";
             double? seconds = record?.Seconds;
             string path = $"jobs/{job.Id}";
-            var row = new JsonObject { ["job"] = job.Id, ["status"] = status, ["seconds"] = seconds, ["path"] = path, ["parameters"] = Parameters(job) };
+            var row = new JsonObject
+            {
+                ["job"] = job.Id,
+                ["status"] = status,
+                ["seconds"] = seconds,
+                ["path"] = path,
+                ["parameters"] = Parameters(job)
+            };
             var cells = new List<string> { job.Id, status, seconds?.ToString("0.###", CultureInfo.InvariantCulture) ?? "", path };
             foreach (var axis in plan.AxisNames) cells.Add(job.Parameters.FirstOrDefault(p => p.Axis == axis).Label ?? "");
             if (layout == "pairs")

@@ -9,9 +9,9 @@ namespace SpectralRenderer.Geometry;
 /// <summary>
 /// Reads the geometry of a Wavefront OBJ file: <c>v</c>, <c>vn</c> and <c>f</c> (corners <c>v</c>, <c>v/vt</c>,
 /// <c>v//vn</c>, <c>v/vt/vn</c>; negative indices count back from the last element read; polygons are
-/// fan-triangulated), and <c>vt</c> (u v, kept per triangle corner when every corner names one). Every other keyword (<c>g</c>, <c>o</c>, <c>s</c>, <c>mtllib</c>, ...) is ignored.
-/// A vertex gets the file's normal when all corners using it name the same <c>vn</c>; otherwise the mesh's
-/// normals are computed. The file is parsed as UTF-8 bytes; numbers read exactly as float.Parse and int.Parse
+/// fan-triangulated), and <c>vt</c> (u v, kept per triangle corner when every corner names one). Every other keyword (<c>g</c>, <c>o</c>,
+/// <c>s</c>, <c>mtllib</c>, ...) is ignored. A vertex gets the file's normal when all corners using it name the same <c>vn</c>; otherwise
+/// the mesh's normals are computed. The file is parsed as UTF-8 bytes; numbers read exactly as float.Parse and int.Parse
 /// read them. Errors name "file:line".
 /// </summary>
 public static class ObjReader
@@ -88,7 +88,8 @@ public static class ObjReader
                 float u = ReadFloat(ref tokens, path, lineNumber, "vt");
                 var second = tokens.Next();   // v is optional (1D textures): 0
                 float v = second.Length == 0 ? 0 : TryParseFloat(second, out float vv) && float.IsFinite(vv) ? vv
-                    : throw new InputException($"{path}:{lineNumber}", $"vt: {MessageText.Quote(second)} is not a number", "write vt u v with finite numbers");
+                    : throw new InputException($"{path}:{lineNumber}", $"vt: {MessageText.Quote(second)} is not a number",
+                        "write vt u v with finite numbers");
                 if (texCoordCount == texCoords.Length) Array.Resize(ref texCoords, Math.Max(2 * texCoords.Length, guess));
                 texCoords[texCoordCount++] = new Vector2(u, v);
             }
@@ -108,25 +109,35 @@ public static class ObjReader
                             Array.Resize(ref cornerNormals, indices.Length);
                             Array.Resize(ref cornerTexCoords, indices.Length);
                         }
-                        cornerTexCoords[indexCount] = firstUv; cornerTexCoords[indexCount + 1] = previousUv; cornerTexCoords[indexCount + 2] = t;
+                        cornerTexCoords[indexCount] = firstUv;
+                        cornerTexCoords[indexCount + 1] = previousUv;
+                        cornerTexCoords[indexCount + 2] = t;
                         indices[indexCount] = firstVertex; indices[indexCount + 1] = previousVertex; indices[indexCount + 2] = p;
-                        cornerNormals[indexCount] = firstNormal; cornerNormals[indexCount + 1] = previousNormal; cornerNormals[indexCount + 2] = n;
+                        cornerNormals[indexCount] = firstNormal;
+                        cornerNormals[indexCount + 1] = previousNormal;
+                        cornerNormals[indexCount + 2] = n;
                         indexCount += 3;
                     }
                     (previousVertex, previousNormal, previousUv) = (p, n, t);
                 }
                 if (corners < 3)
-                    throw new InputException($"{path}:{lineNumber}", $"face has {corners} vertices (a face needs at least 3)", "write 'f' with three or more vertex indices, e.g. f 1 2 3");
+                    throw new InputException($"{path}:{lineNumber}", $"face has {corners} vertices (a face needs at least 3)",
+                        "write 'f' with three or more vertex indices, e.g. f 1 2 3");
                 faceCount++;
             }
         }
-        if (faceCount == 0) throw new InputException($"{path}:{Math.Max(1, lineNumber)}", "no faces before the end of the file (empty mesh)", "the file must contain 'f' lines");
+        if (faceCount == 0)
+            throw new InputException($"{path}:{Math.Max(1, lineNumber)}", "no faces before the end of the file (empty mesh)",
+                "the file must contain 'f' lines");
 
         var positionArray = positions[..positionCount];
         var mapped = MapNormals(positionCount, indices.AsSpan(0, indexCount), cornerNormals, normals.AsSpan(0, normalCount));
-        var mesh = new TriangleMesh(positionArray, indices, indexCount, mapped, path, CornerTexCoords(cornerTexCoords.AsSpan(0, indexCount), texCoords));
+        var mesh = new TriangleMesh(positionArray, indices, indexCount, mapped, path,
+            CornerTexCoords(cornerTexCoords.AsSpan(0, indexCount), texCoords));
         if (mesh.TriangleCount == 0)
-            throw new InputException($"{path}:{Math.Max(1, lineNumber)}", $"at the end of the file, all {mesh.DegenerateCount} triangles are degenerate (zero area)", "check the vertex coordinates: every triangle has zero area");
+            throw new InputException($"{path}:{Math.Max(1, lineNumber)}",
+                $"at the end of the file, all {mesh.DegenerateCount} triangles are degenerate (zero area)",
+                "check the vertex coordinates: every triangle has zero area");
         if (mesh.Normals is null) mesh.ComputeVertexNormals();
         return mesh;
     }
@@ -184,9 +195,11 @@ public static class ObjReader
     {
         var token = tokens.Next();
         if (token.Length == 0)
-            throw new InputException($"{path}:{line}", $"'{keyword}' needs 3 coordinates x y z", "write vertices as 'v x y z' (and normals as 'vn x y z')");
+            throw new InputException($"{path}:{line}", $"'{keyword}' needs 3 coordinates x y z",
+                "write vertices as 'v x y z' (and normals as 'vn x y z')");
         if (!TryParseFloat(token, out float value) || !float.IsFinite(value))
-            throw new InputException($"{path}:{line}", $"coordinate {MessageText.Quote(token)} is not a finite number", "coordinates are finite decimal numbers such as 0.25 or -1e-3");
+            throw new InputException($"{path}:{line}", $"coordinate {MessageText.Quote(token)} is not a finite number",
+                "coordinates are finite decimal numbers such as 0.25 or -1e-3");
         return value;
     }
 
@@ -268,11 +281,14 @@ public static class ObjReader
     static int Resolve(ReadOnlySpan<byte> token, int count, string what, string path, int line)
     {
         if (!TryParseInt(token, out int index))
-            throw new InputException($"{path}:{line}", $"{what} index {MessageText.Quote(token)} is not an integer", "face corners are v, v/vt, v//vn or v/vt/vn with integer indices");
+            throw new InputException($"{path}:{line}", $"{what} index {MessageText.Quote(token)} is not an integer",
+                "face corners are v, v/vt, v//vn or v/vt/vn with integer indices");
         int resolved = index > 0 ? index - 1 : count + index;
         if (index == 0 || resolved < 0 || resolved >= count)
             throw new InputException($"{path}:{line}", $"{what} index {index} out of range ({count} defined so far)",
-                index == 0 ? "OBJ indices start at 1; negative ones count back from the last" : $"indices run from 1 to {count} (or -1 to -{count} counting back)");
+                index == 0
+                    ? "OBJ indices start at 1; negative ones count back from the last"
+                    : $"indices run from 1 to {count} (or -1 to -{count} counting back)");
         return resolved;
     }
 

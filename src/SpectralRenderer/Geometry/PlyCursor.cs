@@ -63,7 +63,8 @@ ref struct PlyCursor(ReadOnlySpan<byte> data, int start, PlyFormat format, strin
             double d = type == PlyType.Float32
                 ? (le ? BinaryPrimitives.ReadSingleLittleEndian(bytes) : BinaryPrimitives.ReadSingleBigEndian(bytes))
                 : (le ? BinaryPrimitives.ReadDoubleLittleEndian(bytes) : BinaryPrimitives.ReadDoubleBigEndian(bytes));
-            if (d != Math.Floor(d) || Math.Abs(d) >= 1e15) throw Error($"{d} is not an integer", "list counts and indices are whole numbers");
+            if (d != Math.Floor(d) || Math.Abs(d) >= 1e15)
+                throw Error($"{d} is not an integer", "list counts and indices are whole numbers");
             return (long)d;
         }
         return DecodeInteger(type, bytes, le);
@@ -121,7 +122,8 @@ ref struct PlyCursor(ReadOnlySpan<byte> data, int start, PlyFormat format, strin
     {
         _valueStart = _pos;
         if (_data.Length - _pos < size)
-            throw Error($"unexpected end of file (truncated data: needs {size} more bytes, {_data.Length - _pos} left)", "the file was cut short or its header's counts are wrong: export the mesh again");
+            throw Error($"unexpected end of file (truncated data: needs {size} more bytes, {_data.Length - _pos} left)",
+                "the file was cut short or its header's counts are wrong: export the mesh again");
         var bytes = _data.Slice(_pos, size);
         _pos += size;
         return bytes;
@@ -136,7 +138,9 @@ ref struct PlyCursor(ReadOnlySpan<byte> data, int start, PlyFormat format, strin
         int start = i;
         while (i < _data.Length && !IsSpace(_data[i])) i++;
         _pos = i;
-        if (start == i) throw Error("unexpected end of file (truncated data)", "the file was cut short or its header's counts are wrong: export the mesh again");
+        if (start == i)
+            throw Error("unexpected end of file (truncated data)",
+                "the file was cut short or its header's counts are wrong: export the mesh again");
         return _data[start..i];
     }
 

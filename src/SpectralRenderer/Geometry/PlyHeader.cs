@@ -77,7 +77,8 @@ sealed class PlyHeader
     public static PlyHeader Parse(ReadOnlySpan<byte> data, string path)
     {
         if (!data.StartsWith("ply"u8))
-            throw new InputException($"{path}:1", "not a PLY file (it must start with 'ply')", "is this a PLY mesh? OBJ meshes need the .obj extension");
+            throw new InputException($"{path}:1", "not a PLY file (it must start with 'ply')",
+                "is this a PLY mesh? OBJ meshes need the .obj extension");
         PlyFormat? format = null;
         var elements = new List<PlyElement>();
         int pos = 0, lineNumber = 0;
@@ -85,7 +86,9 @@ sealed class PlyHeader
         {
             lineNumber++;
             int eol = data[pos..].IndexOf((byte)'\n');
-            if (eol < 0) throw new InputException($"{path}:{lineNumber}", "the header has no 'end_header' line (truncated file?)", "the file may be truncated: export the mesh again");
+            if (eol < 0)
+                throw new InputException($"{path}:{lineNumber}", "the header has no 'end_header' line (truncated file?)",
+                    "the file may be truncated: export the mesh again");
             string line = Encoding.ASCII.GetString(data.Slice(pos, eol)).Trim();
             pos += eol + 1;
             string where = $"{path}:{lineNumber}";
@@ -115,16 +118,21 @@ sealed class PlyHeader
                     elements.Add(new PlyElement(words[1], count, [], lineNumber));
                     break;
                 case "property":
-                    if (elements.Count == 0) throw new InputException(where, "property before any element", "declare 'element NAME COUNT' before its 'property' lines");
+                    if (elements.Count == 0)
+                        throw new InputException(where, "property before any element",
+                            "declare 'element NAME COUNT' before its 'property' lines");
                     elements[^1].Properties.Add(ParseProperty(words, line, where));
                     break;
                 case "end_header":
-                    if (format is null) throw new InputException(where, "the header has no 'format' line", "add 'format ascii 1.0' (or binary_little_endian/binary_big_endian) after 'ply'");
+                    if (format is null)
+                        throw new InputException(where, "the header has no 'format' line",
+                            "add 'format ascii 1.0' (or binary_little_endian/binary_big_endian) after 'ply'");
                     var header = new PlyHeader { Format = format.Value, DataStart = pos };
                     header.Elements.AddRange(elements);
                     return header;
                 default:
-                    throw new InputException(where, $"unknown header keyword {MessageText.Quote(words[0])}", "header lines are ply, format, comment, obj_info, element, property and end_header");
+                    throw new InputException(where, $"unknown header keyword {MessageText.Quote(words[0])}",
+                        "header lines are ply, format, comment, obj_info, element, property and end_header");
             }
         }
     }
@@ -142,7 +150,8 @@ sealed class PlyHeader
             if (!TryParseType(typeWords[i], out types[i]))
                 throw new InputException(where, $"unknown property type '{typeWords[i]}'", string.Join(" ", TypeNames));
         if (isList && !IsInteger(types[0]))
-            throw new InputException(where, $"list count type '{typeWords[0]}' is not an integer type", "a list count is char, uchar, short, ushort, int or uint");
+            throw new InputException(where, $"list count type '{typeWords[0]}' is not an integer type",
+                "a list count is char, uchar, short, ushort, int or uint");
         return isList ? new PlyProperty(words[4], types[1], true, types[0]) : new PlyProperty(words[2], types[0], false, default);
     }
 }

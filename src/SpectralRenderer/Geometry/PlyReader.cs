@@ -30,17 +30,22 @@ public static class PlyReader
         PlyElement? vertexElement = null;
         foreach (var e in elements)
             if (e.Name == "vertex") { vertexElement = e; break; }
-        if (vertexElement is null) throw new InputException($"{path}: header", "the header declares no 'vertex' element", "a mesh needs 'element vertex N' with x, y, z properties");
+        if (vertexElement is null)
+            throw new InputException($"{path}: header", "the header declares no 'vertex' element",
+                "a mesh needs 'element vertex N' with x, y, z properties");
         for (int a = 0; a < 3; a++)
         {
             int i = vertexElement.IndexOf("xyz"[a..(a + 1)]);
             if (i < 0 || vertexElement.Properties[i].IsList)
-                throw new InputException($"{path}:{vertexElement.HeaderLine}", $"element 'vertex' has no scalar property '{"xyz"[a]}'", "declare 'property float x' (and y, z) in the vertex element");
+                throw new InputException($"{path}:{vertexElement.HeaderLine}", $"element 'vertex' has no scalar property '{"xyz"[a]}'",
+                    "declare 'property float x' (and y, z) in the vertex element");
         }
         bool hasFaces = false;
         foreach (var e in elements) hasFaces |= e.Name is "face" or "tristrips";
         if (!hasFaces)
-            throw new InputException($"{path}: header", "the header declares no 'face' or 'tristrips' element (a point cloud is not a mesh)", "a mesh needs 'element face N' with a vertex_indices list");
+            throw new InputException($"{path}: header",
+                "the header declares no 'face' or 'tristrips' element (a point cloud is not a mesh)",
+                "a mesh needs 'element face N' with a vertex_indices list");
 
         // Header checks come before any data is read.
         var listIndex = new int[elements.Count]; // the vertex-index list of each face/tristrips element
@@ -61,7 +66,8 @@ public static class PlyReader
             // Each instance takes at least one byte: refuse absurd counts before allocating for them.
             if (element.Count > data.Length - pos)
                 throw PlyCursor.Error(path, element.Name, 0, pos,
-                    $"{element.Count} instances cannot fit in the {data.Length - pos} bytes left (truncated file?)", "the header's element counts do not match the data: export the mesh again");
+                    $"{element.Count} instances cannot fit in the {data.Length - pos} bytes left (truncated file?)",
+                        "the header's element counts do not match the data: export the mesh again");
             bool strips = element.Name == "tristrips";
             int end = !binary ? -1
                 : ReferenceEquals(element, vertexElement) ? ReadVertices(data, pos, element, le, path, mesh)
@@ -86,7 +92,9 @@ public static class PlyReader
         }
         var result = new TriangleMesh(mesh.Positions, mesh.Indices, mesh.IndexCount, mesh.Normals, path, cornerUvs);
         if (result.TriangleCount == 0)
-            throw new InputException($"{path}: end of data", result.DegenerateCount == 0 ? "no faces (empty mesh)" : $"all {result.DegenerateCount} triangles are degenerate", "check the vertex coordinates and faces: nothing of area is left");
+            throw new InputException($"{path}: end of data",
+                result.DegenerateCount == 0 ? "no faces (empty mesh)" : $"all {result.DegenerateCount} triangles are degenerate",
+                "check the vertex coordinates and faces: nothing of area is left");
         if (result.Normals is null) result.ComputeVertexNormals();
         return result;
     }
@@ -158,9 +166,11 @@ public static class PlyReader
         int i = e.IndexOf("vertex_indices");
         if (i < 0) i = e.IndexOf("vertex_index");
         if (i < 0 || !e.Properties[i].IsList)
-            throw new InputException($"{path}:{e.HeaderLine}", $"element '{e.Name}' has no list property 'vertex_indices'", "faces are 'property list uchar int vertex_indices'");
+            throw new InputException($"{path}:{e.HeaderLine}", $"element '{e.Name}' has no list property 'vertex_indices'",
+                "faces are 'property list uchar int vertex_indices'");
         if (!PlyHeader.IsInteger(e.Properties[i].Type))
-            throw new InputException($"{path}:{e.HeaderLine}", $"element '{e.Name}': vertex indices must have an integer type", "declare vertex_indices as a list of int or uint");
+            throw new InputException($"{path}:{e.HeaderLine}", $"element '{e.Name}': vertex indices must have an integer type",
+                "declare vertex_indices as a list of int or uint");
         return i;
     }
 
@@ -237,7 +247,8 @@ public static class PlyReader
     /// the common x y z layout does not compile it).</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     static void ReadRecords(ReadOnlySpan<byte> data, int start, int stride, PlyElement e, ReadOnlySpan<int> offsets,
-        ReadOnlySpan<PlyType> types, ReadOnlySpan<int> targets, bool le, string path, Vector3[] positions, Vector3[]? normals, Vector2[]? uvs)
+        ReadOnlySpan<PlyType> types, ReadOnlySpan<int> targets, bool le, string path, Vector3[] positions, Vector3[]? normals,
+            Vector2[]? uvs)
     {
         Span<float> v = stackalloc float[Roles];
         for (int k = 0; k < positions.Length; k++)
@@ -265,7 +276,8 @@ public static class PlyReader
             if (!float.IsFinite(value))
             {
                 string name = RoleNames[targets[j]];
-                throw PlyCursor.Error(path, e.Name, k, record + offsets[j], $"property '{name}' is {value}, not a finite number", "vertex coordinates must be finite numbers: export the mesh again");
+                throw PlyCursor.Error(path, e.Name, k, record + offsets[j], $"property '{name}' is {value}, not a finite number",
+                    "vertex coordinates must be finite numbers: export the mesh again");
             }
         }
     }
@@ -298,9 +310,12 @@ public static class PlyReader
                 int countSize = PlyHeader.SizeOf(p.CountType);
                 if (data.Length - pos < countSize) return -1;
                 long n = PlyCursor.DecodeInteger(p.CountType, data[pos..], le);
-                if (n < 0) throw PlyCursor.Error(path, e.Name, k, pos, $"list '{p.Name}' has negative length {n}", "the file is corrupt at this place: export the mesh again");
+                if (n < 0)
+                    throw PlyCursor.Error(path, e.Name, k, pos, $"list '{p.Name}' has negative length {n}",
+                        "the file is corrupt at this place: export the mesh again");
                 if (i == listIndex && !strips && n < 3)
-                    throw PlyCursor.Error(path, e.Name, k, pos, $"face has {n} vertices (a face needs at least 3)", "every face needs three or more vertex indices");
+                    throw PlyCursor.Error(path, e.Name, k, pos, $"face has {n} vertices (a face needs at least 3)",
+                        "every face needs three or more vertex indices");
                 pos += countSize;
                 if (n * size > data.Length - pos) return -1;
                 int bytes = (int)n * size;
@@ -311,7 +326,9 @@ public static class PlyReader
                     for (int j = 0; j < items.Length; j++)
                         if ((uint)items[j] >= (uint)vertexCount && !(strips && items[j] == -1))
                             throw PlyCursor.Error(path, e.Name, k, pos + j * size,
-                                $"vertex index {PlyCursor.DecodeInteger(p.Type, data[(pos + j * size)..], le)} out of range ({vertexCount} vertices)", "vertex indices count from 0 to the vertex count − 1");
+                                $"vertex index {PlyCursor.DecodeInteger(p.Type, data[(pos + j * size)..], le)} out of "
+                                    + $"range ({vertexCount} vertices)",
+                                    "vertex indices count from 0 to the vertex count − 1");
                     if (strips) mesh.AddStrips(items);
                     else mesh.AddFan(items);
                 }
@@ -363,7 +380,9 @@ public static class PlyReader
                 var p = e.Properties[i];
                 if (roles[i] < 0) { cursor.Skip(p); continue; }
                 float value = (float)cursor.ReadReal(p.Type);
-                if (!float.IsFinite(value)) throw cursor.Error($"property '{p.Name}' is {value}, not a finite number", "vertex coordinates must be finite numbers: export the mesh again");
+                if (!float.IsFinite(value))
+                    throw cursor.Error($"property '{p.Name}' is {value}, not a finite number",
+                        "vertex coordinates must be finite numbers: export the mesh again");
                 v[roles[i]] = value;
             }
             positions[k] = new Vector3(v[0], v[1], v[2]);
@@ -393,7 +412,8 @@ public static class PlyReader
             {
                 if (i != listIndex) { cursor.Skip(e.Properties[i]); continue; }
                 long n = cursor.ReadCount(list);
-                if (!strips && n < 3) throw cursor.Error($"face has {n} vertices (a face needs at least 3)", "every face needs three or more vertex indices");
+                if (!strips && n < 3)
+                    throw cursor.Error($"face has {n} vertices (a face needs at least 3)", "every face needs three or more vertex indices");
                 // Each item takes at least one byte: refuse absurd counts before allocating for them.
                 var items = mesh.List((int)Math.Min(n, cursor.Remaining + 1));
                 for (int c = 0; c < n; c++)
@@ -401,7 +421,8 @@ public static class PlyReader
                     long raw = cursor.ReadInteger(list.Type);
                     if (strips && (raw == -1 || (list.Type == PlyType.UInt32 && raw == uint.MaxValue))) { items[c] = -1; continue; }
                     if (raw < 0 || raw >= vertexCount)
-                        throw cursor.Error($"vertex index {raw} out of range ({vertexCount} vertices)", "vertex indices count from 0 to the vertex count − 1");
+                        throw cursor.Error($"vertex index {raw} out of range ({vertexCount} vertices)",
+                            "vertex indices count from 0 to the vertex count − 1");
                     items[c] = (int)raw;
                 }
                 if (strips) mesh.AddStrips(items);

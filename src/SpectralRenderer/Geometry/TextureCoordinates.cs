@@ -65,7 +65,8 @@ public static class TextureCoordinates
 
     /// <summary>(u, v) interpolated over a triangle with barycentrics (b1, b2) from its corners' coordinates, and the density.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    public static Vector2 OfTriangle(Vector2 t0, Vector2 t1, Vector2 t2, float b1, float b2, Vector3 p0, Vector3 p1, Vector3 p2, out float uvPerLength)
+    public static Vector2 OfTriangle(Vector2 t0, Vector2 t1, Vector2 t2, float b1, float b2, Vector3 p0, Vector3 p1, Vector3 p2,
+        out float uvPerLength)
     {
         var e1 = t1 - t0;
         var e2 = t2 - t0;

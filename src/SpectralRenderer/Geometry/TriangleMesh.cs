@@ -27,7 +27,8 @@ public sealed class TriangleMesh
 
     /// <summary>A mesh from the first <paramref name="indexCount"/> entries of <paramref name="indices"/> (a reader's
     /// buffer, which the mesh takes over).</summary>
-    internal TriangleMesh(Vector3[] positions, int[] indices, int indexCount, Vector3[]? normals, string source, Vector2[]? cornerTexCoords = null)
+    internal TriangleMesh(Vector3[] positions, int[] indices, int indexCount, Vector3[]? normals, string source,
+        Vector2[]? cornerTexCoords = null)
     {
         if (indexCount % 3 != 0) throw new ArgumentException("indices must come in threes", nameof(indices));
         if (normals is not null && normals.Length != positions.Length)
@@ -36,7 +37,8 @@ public sealed class TriangleMesh
         Normals = normals;
         Source = source;
         (Indices, DegenerateCount) = DropDegenerate(positions, indices, indexCount, cornerTexCoords);
-        if (cornerTexCoords is not null) TexCoords = cornerTexCoords.Length == Indices.Length ? cornerTexCoords : cornerTexCoords[..Indices.Length];
+        if (cornerTexCoords is not null)
+            TexCoords = cornerTexCoords.Length == Indices.Length ? cornerTexCoords : cornerTexCoords[..Indices.Length];
     }
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
@@ -84,7 +86,10 @@ public sealed class TriangleMesh
         var n = new Vector3[Positions.Length];
         var (positions, indices) = (Positions, Indices);
         if (parts <= 1) AccumulateNormals(positions, indices, n, 0, n.Length);
-        else Parallel.For(0, parts, part => AccumulateNormals(positions, indices, n, (int)((long)n.Length * part / parts), (int)((long)n.Length * (part + 1) / parts)));
+        else
+            Parallel.For(0, parts,
+                part => AccumulateNormals(positions, indices, n, (int)((long)n.Length * part / parts),
+                    (int)((long)n.Length * (part + 1) / parts)));
         Normals = n;
     }
 

@@ -13,7 +13,8 @@ public static class BandMosaic
     public static (int Width, int Height, byte[] Pixels) Build(SpectralImage image, float scale, int maxThumb = 256) =>
         Build(image.Width, image.Height, image.BandPlanes(), scale, maxThumb);
 
-    /// <summary>As <see cref="Build(SpectralImage, float, int)"/>, from band-sequential planes (<see cref="SpectralImage.CopyBands"/>).</summary>
+    /// <summary>As <see cref="Build(SpectralImage, float, int)"/>, from band-sequential planes
+    /// (<see cref="SpectralImage.CopyBands"/>).</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     internal static (int Width, int Height, byte[] Pixels) Build(int width, int height, float[] bands, float scale, int maxThumb = 256) =>
         Build(width, height, bands, scale, maxThumb, null);
@@ -22,7 +23,8 @@ public static class BandMosaic
     /// As above, each thumbnail with its band's wavelengths ("380-400 nm") written in a strip above it in a 3 × 5 pixel
     /// font (twice the size when the thumbnail is wide enough), white on the mosaic's dark grey.
     /// </summary>
-    internal static (int Width, int Height, byte[] Pixels) Build(int width, int height, float[] bands, float scale, int maxThumb, Spectra.BandGrid? labels)
+    internal static (int Width, int Height, byte[] Pixels) Build(int width, int height, float[] bands, float scale, int maxThumb,
+        Spectra.BandGrid? labels)
     {
         int plane = width * height, n = bands.Length / plane;
         var mosaic = Blank(width, height, n, maxThumb, labels);
@@ -35,7 +37,8 @@ public static class BandMosaic
     /// The mosaic of <paramref name="n"/> bands of a width × height image before any band is drawn: the background grey,
     /// and each band's wavelengths in the strip above its thumbnail when <paramref name="labels"/> is given.
     /// </summary>
-    internal static (int Width, int Height, byte[] Pixels) Blank(int width, int height, int n, int maxThumb = 256, Spectra.BandGrid? labels = null)
+    internal static (int Width, int Height, byte[] Pixels) Blank(int width, int height, int n, int maxThumb = 256,
+        Spectra.BandGrid? labels = null)
     {
         var (cols, rows, _, tw, th, strip, glyph) = Layout(width, height, n, maxThumb, labels);
         int w = cols * tw + (cols + 1) * Gap, h = rows * (th + strip) + (rows + 1) * Gap;
@@ -48,7 +51,8 @@ public static class BandMosaic
     }
 
     /// <summary>Columns, rows, the box-filter step, a thumbnail's size, the label strip's height and the glyph scale.</summary>
-    static (int Cols, int Rows, int Step, int ThumbW, int ThumbH, int Strip, int Glyph) Layout(int width, int height, int n, int maxThumb, Spectra.BandGrid? labels)
+    static (int Cols, int Rows, int Step, int ThumbW, int ThumbH, int Strip, int Glyph) Layout(int width, int height, int n, int maxThumb,
+        Spectra.BandGrid? labels)
     {
         int cols = (int)Math.Ceiling(Math.Sqrt(n * 1.25));
         int rows = (n + cols - 1) / cols;
@@ -66,7 +70,8 @@ public static class BandMosaic
 
     /// <summary>Draws band b's thumbnail (its row-major width × height plane) into the mosaic from <see cref="Blank"/>.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    internal static void Draw((int Width, int Height, byte[] Pixels) mosaic, int width, int height, int n, int b, ReadOnlySpan<float> band, float scale, int maxThumb = 256, Spectra.BandGrid? labels = null)
+    internal static void Draw((int Width, int Height, byte[] Pixels) mosaic, int width, int height, int n, int b, ReadOnlySpan<float> band,
+        float scale, int maxThumb = 256, Spectra.BandGrid? labels = null)
     {
         var (cols, _, step, tw, th, strip, _) = Layout(width, height, n, maxThumb, labels);
         int w = mosaic.Width;

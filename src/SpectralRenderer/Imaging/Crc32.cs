@@ -36,8 +36,10 @@ public static class Crc32
         for (; i + 8 <= data.Length; i += 8)
         {
             uint lo = BinaryPrimitives.ReadUInt32LittleEndian(data[i..]) ^ c, hi = BinaryPrimitives.ReadUInt32LittleEndian(data[(i + 4)..]);
-            c = t[7 * 256 + (int)(lo & 0xff)] ^ t[6 * 256 + (int)((lo >> 8) & 0xff)] ^ t[5 * 256 + (int)((lo >> 16) & 0xff)] ^ t[4 * 256 + (int)(lo >> 24)]
-              ^ t[3 * 256 + (int)(hi & 0xff)] ^ t[2 * 256 + (int)((hi >> 8) & 0xff)] ^ t[256 + (int)((hi >> 16) & 0xff)] ^ t[(int)(hi >> 24)];
+            c = t[7 * 256 + (int)(lo & 0xff)] ^ t[6 * 256 + (int)((lo >> 8) & 0xff)] ^ t[5 * 256 + (int)((lo >> 16) & 0xff)] ^ t[4 * 256
+                + (int)(lo >> 24)]
+              ^ t[3 * 256 + (int)(hi & 0xff)] ^ t[2 * 256 + (int)((hi >> 8) & 0xff)] ^ t[256
+                  + (int)((hi >> 16) & 0xff)] ^ t[(int)(hi >> 24)];
         }
         for (; i < data.Length; i++) c = t[(int)((c ^ data[i]) & 0xff)] ^ (c >> 8);
         return ~c;

@@ -28,7 +28,8 @@ public static class EnviReader
     {
         text = text.Replace("\r\n", "\n");
         if (!text.TrimStart().StartsWith("ENVI", StringComparison.Ordinal))
-            throw new InputException($"{where}: line 1", "not an ENVI header (the first line is not 'ENVI')", "an ENVI header starts with the line ENVI");
+            throw new InputException($"{where}: line 1", "not an ENVI header (the first line is not 'ENVI')",
+                "an ENVI header starts with the line ENVI");
         var d = new Dictionary<string, string>(StringComparer.OrdinalIgnoreCase);
         int pos = text.IndexOf('\n');
         while (pos >= 0 && pos < text.Length)
@@ -44,7 +45,8 @@ public static class EnviReader
             if (value.StartsWith('{') && !value.Contains('}'))
             {
                 int close = text.IndexOf('}', pos);
-                if (close < 0) throw new InputException($"{where}: header '{key}'", $"'{key}' has an unclosed '{{'", "close the list with '}'");
+                if (close < 0)
+                    throw new InputException($"{where}: header '{key}'", $"'{key}' has an unclosed '{{'", "close the list with '}'");
                 value = line[(eq + 1)..].Trim() + text[pos..(close + 1)];
                 pos = text.IndexOf('\n', close);
                 if (pos < 0) pos = text.Length;
@@ -94,25 +96,37 @@ public static class EnviReader
         double[] Numbers(string key) => h.TryGetValue(key, out var v)
             ? v.Split(',', StringSplitOptions.TrimEntries | StringSplitOptions.RemoveEmptyEntries).Select(s =>
                 double.TryParse(s, NumberStyles.Float, CultureInfo.InvariantCulture, out var d) ? d
-                    : throw new InputException($"{where}: header '{key}'", $"'{key}' value {MessageText.Quote(s)} is not a number", "list numbers separated by commas inside { }")).ToArray()
+                    : throw new InputException($"{where}: header '{key}'", $"'{key}' value {MessageText.Quote(s)} is not a number",
+                        "list numbers separated by commas inside { }"))
+                        .ToArray()
             : [];
         var centres = Numbers("wavelength");
         var fwhm = Numbers("fwhm");
-        if (centres.Length != bands) throw new InputException($"{where}: header 'wavelength'", $"'wavelength' lists {centres.Length} values for {bands} bands", "give one wavelength per band");
+        if (centres.Length != bands)
+            throw new InputException($"{where}: header 'wavelength'", $"'wavelength' lists {centres.Length} values for {bands} bands",
+                "give one wavelength per band");
         var units = h.GetValueOrDefault("wavelength units", "Nanometers").Trim().ToLowerInvariant();
         double scale = units switch { "nanometers" or "nm" => 1, "micrometers" or "um" or "microns" => 1000, _ => 0 };
-        if (scale == 0) throw new InputException($"{where}: header 'wavelength units'", $"wavelength units {MessageText.Quote(units)} are not supported", "use Nanometers");
+        if (scale == 0)
+            throw new InputException($"{where}: header 'wavelength units'",
+                $"wavelength units {MessageText.Quote(units)} are not supported", "use Nanometers");
         for (int i = 0; i < centres.Length; i++) centres[i] *= scale;
         for (int i = 0; i < fwhm.Length; i++) fwhm[i] *= scale;
         double width = fwhm.Length == bands ? fwhm[0]
             : bands > 1 ? (centres[^1] - centres[0]) / (bands - 1)
-            : throw new InputException($"{where}: header 'fwhm'", "one band and no 'fwhm': the band width is unknown", "add a 'fwhm' with the band width in nm");
+            : throw new InputException($"{where}: header 'fwhm'", "one band and no 'fwhm': the band width is unknown",
+                "add a 'fwhm' with the band width in nm");
         BandGrid grid;
         try { grid = new BandGrid(Snap(centres[0] - width / 2), Snap(centres[^1] + (fwhm.Length == bands ? fwhm[^1] : width) / 2), bands); }
-        catch (ArgumentOutOfRangeException e) { throw new InputException($"{where}: header 'wavelength'", $"wavelengths: {e.Message}", "wavelengths must be positive and ascending"); }
+        catch (ArgumentOutOfRangeException e)
+        {
+            throw new InputException($"{where}: header 'wavelength'", $"wavelengths: {e.Message}",
+                "wavelengths must be positive and ascending");
+        }
         for (int b = 0; b < bands; b++)
             if (Math.Abs(centres[b] - grid.Centre(b)) > 1e-6 * Math.Max(1, grid.Width))
-                throw new InputException($"{where}: header 'wavelength'", $"band {BandGrid.Number(b)} at {centres[b]} nm breaks the even spacing", "only equal-width band grids are supported");
+                throw new InputException($"{where}: header 'wavelength'",
+                    $"band {BandGrid.Number(b)} at {centres[b]} nm breaks the even spacing", "only equal-width band grids are supported");
         return grid;
     }
 }
@@ -164,9 +178,11 @@ public sealed class EnviCube
         int type = Int("data type"), order = Int("byte order", 0);
         string interleave = h.GetValueOrDefault("interleave", "bsq").Trim().ToLowerInvariant();
         if (type is not (4 or 5))
-            throw new InputException($"{where}: header 'data type'", $"ENVI data type {type} is not supported", "only 4 (float32) and 5 (float64)");
+            throw new InputException($"{where}: header 'data type'", $"ENVI data type {type} is not supported",
+                "only 4 (float32) and 5 (float64)");
         if (interleave is not ("bsq" or "bil" or "bip"))
-            throw new InputException($"{where}: header 'interleave'", $"unknown interleave {MessageText.Quote(interleave)}", "use bsq, bil or bip");
+            throw new InputException($"{where}: header 'interleave'", $"unknown interleave {MessageText.Quote(interleave)}",
+                "use bsq, bil or bip");
         if (w < 1 || lines < 1 || bands < 1 || bands > BandGrid.MaxBands)
             throw new InputException($"{where}: header 'samples', 'lines', 'bands'", $"bad size {w}×{lines}×{bands}",
                 $"samples, lines and bands must be at least 1 (bands at most {BandGrid.MaxBands})");
@@ -183,7 +199,8 @@ public sealed class EnviCube
         long total = (long)Width * Height * Bands;
         if (total * SampleBytes + Offset > available)
             throw new InputException($"{_where}: data",
-                $"the header declares {Width}×{Height}×{Bands} samples of {SampleBytes} bytes, but the image file holds only {available} bytes",
+                $"the header declares {Width}×{Height}×{Bands} samples of {SampleBytes} bytes, but the image "
+                    + $"file holds only {available} bytes",
                 "the image is truncated or the header does not belong to it");
     }
 

@@ -20,9 +20,11 @@ public static class EnviWriter
     public static void Write(string imagePath, SpectralImage image, string? description = null) =>
         Write(imagePath, image, image.BandPlanes(), description);
 
-    /// <summary>As <see cref="Write(string, SpectralImage, string?)"/>, from the image's band planes (<see cref="SpectralImage.CopyBands"/>) — already BSQ.</summary>
+    /// <summary>As <see cref="Write(string, SpectralImage, string?)"/>, from the image's band planes
+    /// (<see cref="SpectralImage.CopyBands"/>) — already BSQ.</summary>
     /// <param name="extra">Further header keys (e.g. "radiometry", "data units"), written after the standard ones.</param>
-    internal static void Write(string imagePath, SpectralImage image, float[] bands, string? description = null, IReadOnlyDictionary<string, string>? extra = null)
+    internal static void Write(string imagePath, SpectralImage image, float[] bands, string? description = null,
+        IReadOnlyDictionary<string, string>? extra = null)
     {
         AtomicFile.Write(imagePath, s => WriteData(s, bands));
         AtomicFile.WriteAllText(HeaderPath(imagePath), Header(image, description, extra));
@@ -43,7 +45,8 @@ public static class EnviWriter
         sb.Append($"description = {{{description.Replace('{', '(').Replace('}', ')').Replace("\r", " ").Replace("\n", " ")}}}\n");
         sb.Append(inv, $"samples = {width}\nlines = {height}\nbands = {bandNames.Count}\n");
         sb.Append("header offset = 0\nfile type = ENVI Standard\ndata type = 4\ninterleave = bsq\nbyte order = 0\n");
-        sb.Append("band names = {").AppendJoin(", ", bandNames.Select(b => b.Replace(',', ';').Replace('{', '(').Replace('}', ')'))).Append("}\n");
+        sb.Append("band names = {").AppendJoin(", ", bandNames.Select(b => b.Replace(',', ';').Replace('{', '(').Replace('}', ')')))
+            .Append("}\n");
         if (extra is not null)
             foreach (var (k, v) in extra) sb.Append($"{k} = {v.Replace('{', '(').Replace('}', ')').Replace("\n", " ")}\n");
         AtomicFile.WriteAllText(HeaderPath(imagePath), sb.ToString());

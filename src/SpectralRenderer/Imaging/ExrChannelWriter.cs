@@ -18,7 +18,8 @@ public static class ExrChannelWriter
     {
         var sorted = channels.OrderBy(c => c.Name, StringComparer.Ordinal).ToArray();
         foreach (var c in sorted)
-            if (c.Plane.Length != width * height) throw new ArgumentException($"channel {c.Name} holds {c.Plane.Length} values, {width}×{height} expected");
+            if (c.Plane.Length != width * height)
+                throw new ArgumentException($"channel {c.Name} holds {c.Plane.Length} values, {width}×{height} expected");
         var chlist = new MemoryStream();
         using (var cw = new BinaryWriter(chlist, Encoding.UTF8, true))
         {
@@ -36,7 +37,8 @@ public static class ExrChannelWriter
             ("channels", "chlist", chlist.ToArray()),
             ("compression", "compression", [0]),                                   // NO_COMPRESSION
             ("dataWindow", "box2i", Box(dataX, dataY, dataX + width - 1, dataY + height - 1)),
-            ("displayWindow", "box2i", displayWidth > 0 ? Box(0, 0, displayWidth - 1, displayHeight - 1) : Box(0, 0, width - 1, height - 1)),
+            ("displayWindow", "box2i",
+                displayWidth > 0 ? Box(0, 0, displayWidth - 1, displayHeight - 1) : Box(0, 0, width - 1, height - 1)),
             ("lineOrder", "lineOrder", [0]),                                       // INCREASING_Y
             ("pixelAspectRatio", "float", BitConverter.GetBytes(1f)),
             ("screenWindowCenter", "v2f", new byte[8]),
@@ -44,7 +46,8 @@ public static class ExrChannelWriter
         };
         foreach (var (k, v) in attributes) attrs.Add((k, "string", Encoding.UTF8.GetBytes(v)));
         attrs.Sort((a, b) => string.CompareOrdinal(a.Name, b.Name));
-        bool longNames = sorted.Any(c => Encoding.UTF8.GetByteCount(c.Name) > 31) || attrs.Any(a => Encoding.UTF8.GetByteCount(a.Name) > 31);
+        bool longNames =
+            sorted.Any(c => Encoding.UTF8.GetByteCount(c.Name) > 31) || attrs.Any(a => Encoding.UTF8.GetByteCount(a.Name) > 31);
 
         AtomicFile.Write(path, stream =>
         {

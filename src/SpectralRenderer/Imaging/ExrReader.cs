@@ -55,12 +55,14 @@ public static class ExrReader
         for (int c = 0; c < channels.Count; c++)
         {
             var m = SpectralName.Match(channels[c].Name);
-            if (m.Success) spectral.Add((c, double.Parse(m.Groups[2].Value.Replace(',', '.'), CultureInfo.InvariantCulture), m.Groups[1].Value));
+            if (m.Success)
+                spectral.Add((c, double.Parse(m.Groups[2].Value.Replace(',', '.'), CultureInfo.InvariantCulture), m.Groups[1].Value));
         }
         string kind = spectral.Any(s => s.Kind == "S0") ? "S0" : "T";
         spectral = spectral.Where(s => s.Kind == kind).OrderBy(s => s.Lambda).ToList();
         if (spectral.Count == 0)
-            throw new InputException($"{where}: header attribute 'channels'", "no spectral channels", "expected channels named S0.<λ>nm or T.<λ>nm (Fichet et al. 2021), e.g. S0.390,000000nm");
+            throw new InputException($"{where}: header attribute 'channels'", "no spectral channels",
+                "expected channels named S0.<λ>nm or T.<λ>nm (Fichet et al. 2021), e.g. S0.390,000000nm");
 
         var grid = Grid(spectral.Select(s => s.Lambda).ToArray(), strings.GetValueOrDefault("spectralBandEdges"), edgeVector, where);
         var image = new SpectralImage(width, height, grid);
@@ -88,12 +90,17 @@ public static class ExrReader
         var r = new Cursor(bytes, where);
         // Magic number and version field.
         if (bytes.Length < 8 || BinaryPrimitives.ReadInt32LittleEndian(bytes) != ExrWriter.Magic)
-            throw new InputException($"{where}: byte 0", "not an OpenEXR file (no magic number 20000630)", "is this an OpenEXR image? it must start with 76 2f 31 01");
+            throw new InputException($"{where}: byte 0", "not an OpenEXR file (no magic number 20000630)",
+                "is this an OpenEXR image? it must start with 76 2f 31 01");
         r.Pos = 4;
         int version = r.Int();
-        if ((version & 0xff) != 2) throw new InputException($"{where}: byte 4", $"OpenEXR version {version & 0xff} is not supported", "only version 2");
-        if ((version & 0x200) != 0) throw new InputException($"{where}: byte 4", "tiled OpenEXR files are not supported", "write scanline images");
-        if ((version & 0x1800) != 0) throw new InputException($"{where}: byte 4", "multi-part or deep OpenEXR files are not supported", "only single-part scanline images");
+        if ((version & 0xff) != 2)
+            throw new InputException($"{where}: byte 4", $"OpenEXR version {version & 0xff} is not supported", "only version 2");
+        if ((version & 0x200) != 0)
+            throw new InputException($"{where}: byte 4", "tiled OpenEXR files are not supported", "write scanline images");
+        if ((version & 0x1800) != 0)
+            throw new InputException($"{where}: byte 4", "multi-part or deep OpenEXR files are not supported",
+                "only single-part scanline images");
 
         // Header: attributes until an empty name.
         var channels = new List<(string Name, int Type)>();
@@ -122,10 +129,15 @@ public static class ExrReader
                         int pixelType = c.Int();
                         c.Pos += 4;                              // pLinear + reserved
                         int xs = c.Int(), ys = c.Int();
-                        if (xs != 1 || ys != 1) throw new InputException($"{where}: header attribute 'channels'", $"channel {ch} is subsampled ({xs}×{ys})", "only full-resolution channels are supported");
-                        if (pixelType is < 0 or > 2) throw new InputException($"{where}: header attribute 'channels'", $"channel {ch} has unknown pixel type {pixelType}", "pixel types are 0 (UINT), 1 (HALF) or 2 (FLOAT)");
+                        if (xs != 1 || ys != 1)
+                            throw new InputException($"{where}: header attribute 'channels'", $"channel {ch} is subsampled ({xs}×{ys})",
+                                "only full-resolution channels are supported");
+                        if (pixelType is < 0 or > 2)
+                            throw new InputException($"{where}: header attribute 'channels'",
+                                $"channel {ch} has unknown pixel type {pixelType}", "pixel types are 0 (UINT), 1 (HALF) or 2 (FLOAT)");
                         if (channels.Any(c => c.Name == ch))   // found by fuzzing
-                            throw new InputException($"{where}: header attribute 'channels'", $"channel {MessageText.Quote(ch)} appears twice", "the file is corrupt: write it again");
+                            throw new InputException($"{where}: header attribute 'channels'",
+                                $"channel {MessageText.Quote(ch)} appears twice", "the file is corrupt: write it again");
                         channels.Add((ch, pixelType));
                     }
                     break;
@@ -151,29 +163,34 @@ public static class ExrReader
                     break;
                 case "floatvector" when name == "spectralBandEdges":
                     edgeVector = new float[value.Length / 4];
-                    for (int i = 0; i < edgeVector.Length; i++) edgeVector[i] = BinaryPrimitives.ReadSingleLittleEndian(value.AsSpan(4 * i));
+                    for (int i = 0; i < edgeVector.Length; i++)
+                        edgeVector[i] = BinaryPrimitives.ReadSingleLittleEndian(value.AsSpan(4 * i));
                     break;
             }
         }
         if (channels.Count == 0 || compression is null || !haveWindow)
-            throw new InputException($"{where}: header", "the header lacks channels, compression or dataWindow", "the file is not a complete OpenEXR image: write it again");
+            throw new InputException($"{where}: header", "the header lacks channels, compression or dataWindow",
+                "the file is not a complete OpenEXR image: write it again");
         int lines = compression switch
         {
             0 or 2 => 1,
             3 => 16,
-            _ => throw new InputException($"{where}: header attribute 'compression'", $"OpenEXR compression {CompressionName(compression.Value)} is not supported",
+            _ => throw new InputException($"{where}: header attribute 'compression'",
+                $"OpenEXR compression {CompressionName(compression.Value)} is not supported",
                 "re-save with ZIP or no compression, e.g. oiiotool in.exr --compression zip -o out.exr"),
         };
         long w = (long)xMax - xMin + 1, h = (long)yMax - yMin + 1;
         if (w < 1 || h < 1 || w * h * channels.Count > Array.MaxLength)
-            throw new InputException($"{where}: header attribute 'dataWindow'", $"data window {w}×{h} is empty or too large", "the dataWindow attribute is damaged: write the file again");
+            throw new InputException($"{where}: header attribute 'dataWindow'", $"data window {w}×{h} is empty or too large",
+                "the dataWindow attribute is damaged: write the file again");
         int width = (int)w, height = (int)h;
         // Declared sizes against the file, before anything is allocated: every sample takes at least 2 bytes
         // uncompressed, and deflate shrinks data at most 1032:1 (RFC 1951: 258 bytes per 2-bit code, with headers).
         long rawBytes = 2L * w * h * channels.Count;
         long chunkTable = 8L * ((h + lines - 1) / lines);
         if (chunkTable > bytes.Length || rawBytes > (compression == 0 ? 1 : ExrZip.MaxRatio) * (long)bytes.Length)
-            throw new InputException($"{where}: header attribute 'dataWindow'", $"the header declares {w}×{h} pixels of {channels.Count} channels, more than the {bytes.Length}-byte file can hold",
+            throw new InputException($"{where}: header attribute 'dataWindow'",
+                $"the header declares {w}×{h} pixels of {channels.Count} channels, more than the {bytes.Length}-byte file can hold",
                 "the file is truncated or its dataWindow is damaged: write it again");
 
         // Line offset table, then the chunks: y, data size, data.
@@ -182,19 +199,24 @@ public static class ExrReader
         for (int i = 0; i < chunkCount; i++) offsets[i] = r.Long();
         int[] sampleBytes = channels.Select(c => c.Type == 1 ? 2 : 4).ToArray();
         long lineBytesLong = (long)sampleBytes.Sum() * width;
-        if (lineBytesLong * lines > int.MaxValue) throw new InputException($"{where}: header attribute 'dataWindow'", $"a chunk of {lines} scanlines of {width} pixels × {channels.Count} channels exceeds 2 GiB", "write smaller images");
+        if (lineBytesLong * lines > int.MaxValue)
+            throw new InputException($"{where}: header attribute 'dataWindow'",
+                $"a chunk of {lines} scanlines of {width} pixels × {channels.Count} channels exceeds 2 GiB", "write smaller images");
         int lineBytes = (int)lineBytesLong;
         var planes = channels.Select(_ => new float[width * height]).ToArray();
         var done = new bool[chunkCount];
         for (int i = 0; i < chunkCount; i++)
         {
             if (offsets[i] <= 0 || offsets[i] >= bytes.Length)
-                throw new InputException($"{where}: chunk {i}", $"file is truncated or incomplete (chunk {i} of {chunkCount} is missing)", "the file was cut short: write it again");
+                throw new InputException($"{where}: chunk {i}", $"file is truncated or incomplete (chunk {i} of {chunkCount} is missing)",
+                    "the file was cut short: write it again");
             r.Pos = offsets[i];
             int y = r.Int();
             int size = r.Int();
             long rel = (long)y - yMin;
-            if (rel < 0 || rel >= height || rel % lines != 0) throw new InputException($"{where}: chunk {i}", $"chunk {i} has invalid y coordinate {y}", "the file is corrupt: write it again");
+            if (rel < 0 || rel >= height || rel % lines != 0)
+                throw new InputException($"{where}: chunk {i}", $"chunk {i} has invalid y coordinate {y}",
+                    "the file is corrupt: write it again");
             int chunk = (int)(rel / lines);
             int n = Math.Min(lines, height - (int)rel);
             int expected = n * lineBytes;
@@ -205,9 +227,13 @@ public static class ExrReader
             else if (compression != 0 && size < expected)
             {
                 raw = new byte[expected];
-                if (!ExrZip.TryDecompress(data, raw)) throw new InputException($"{where}: chunk {i}", $"chunk at y = {y} does not decompress to {expected} bytes (corrupt file)", "the file is corrupt: write it again");
+                if (!ExrZip.TryDecompress(data, raw))
+                    throw new InputException($"{where}: chunk {i}",
+                        $"chunk at y = {y} does not decompress to {expected} bytes (corrupt file)", "the file is corrupt: write it again");
             }
-            else throw new InputException($"{where}: chunk {i}", $"chunk at y = {y} has {size} bytes, {expected} expected", "the file is corrupt: write it again");
+            else
+                throw new InputException($"{where}: chunk {i}", $"chunk at y = {y} has {size} bytes, {expected} expected",
+                    "the file is corrupt: write it again");
             int at = 0;
             for (int line = 0; line < n; line++)
             {
@@ -218,20 +244,26 @@ public static class ExrReader
                     switch (channels[c].Type)
                     {
                         case 2:
-                            for (int x = 0; x < width; x++, at += 4) plane[row + x] = BinaryPrimitives.ReadSingleLittleEndian(raw.AsSpan(at));
+                            for (int x = 0; x < width; x++, at += 4)
+                                plane[row + x] = BinaryPrimitives.ReadSingleLittleEndian(raw.AsSpan(at));
                             break;
                         case 1:
-                            for (int x = 0; x < width; x++, at += 2) plane[row + x] = (float)BitConverter.UInt16BitsToHalf(BinaryPrimitives.ReadUInt16LittleEndian(raw.AsSpan(at)));
+                            for (int x = 0; x < width; x++, at += 2)
+                                plane[row + x] =
+                                    (float)BitConverter.UInt16BitsToHalf(BinaryPrimitives.ReadUInt16LittleEndian(raw.AsSpan(at)));
                             break;
                         default:
-                            for (int x = 0; x < width; x++, at += 4) plane[row + x] = BinaryPrimitives.ReadUInt32LittleEndian(raw.AsSpan(at));
+                            for (int x = 0; x < width; x++, at += 4)
+                                plane[row + x] = BinaryPrimitives.ReadUInt32LittleEndian(raw.AsSpan(at));
                             break;
                     }
                 }
             }
             done[chunk] = true;
         }
-        if (done.Any(d => !d)) throw new InputException($"{where}: chunk table", "some scanlines have no chunk (incomplete file)", "the file was cut short: write it again");
+        if (done.Any(d => !d))
+            throw new InputException($"{where}: chunk table", "some scanlines have no chunk (incomplete file)",
+                "the file was cut short: write it again");
         return (width, height, channels, planes, strings, kappa, edgeVector, compression.Value);
     }
 
@@ -246,32 +278,50 @@ public static class ExrReader
             edges = new double[parts.Length];
             for (int i = 0; i < parts.Length; i++)
                 if (!double.TryParse(parts[i], NumberStyles.Float, CultureInfo.InvariantCulture, out edges[i]))
-                    throw new InputException($"{where}: header attribute 'spectralBandEdges'", $"spectralBandEdges value '{parts[i]}' is not a number", "spectralBandEdges lists band edges in nm separated by commas");
+                    throw new InputException($"{where}: header attribute 'spectralBandEdges'",
+                        $"spectralBandEdges value '{parts[i]}' is not a number",
+                        "spectralBandEdges lists band edges in nm separated by commas");
         }
         else if (edgeVector is not null) edges = edgeVector.Select(e => (double)e).ToArray();
 
         BandGrid grid;
         if (edges is not null)
         {
-            if (edges.Length != n + 1) throw new InputException($"{where}: header attribute 'spectralBandEdges'", $"spectralBandEdges has {edges.Length} edges for {n} spectral channels", "give one more edge than there are spectral channels");
+            if (edges.Length != n + 1)
+                throw new InputException($"{where}: header attribute 'spectralBandEdges'",
+                    $"spectralBandEdges has {edges.Length} edges for {n} spectral channels",
+                    "give one more edge than there are spectral channels");
             try { grid = new BandGrid(edges[0], edges[^1], n); }
-            catch (ArgumentOutOfRangeException e) { throw new InputException($"{where}: header attribute 'spectralBandEdges'", $"spectralBandEdges: {e.Message}", "band edges must be positive and ascending"); }
+            catch (ArgumentOutOfRangeException e)
+            {
+                throw new InputException($"{where}: header attribute 'spectralBandEdges'", $"spectralBandEdges: {e.Message}",
+                    "band edges must be positive and ascending");
+            }
             for (int i = 0; i <= n; i++)
                 if (Math.Abs(edges[i] - grid.Edges()[i]) > 1e-6 * grid.Width)
-                    throw new InputException($"{where}: header attribute 'spectralBandEdges'", "spectralBandEdges are not evenly spaced", "only equal-width band grids are supported");
+                    throw new InputException($"{where}: header attribute 'spectralBandEdges'", "spectralBandEdges are not evenly spaced",
+                        "only equal-width band grids are supported");
         }
         else
         {
-            if (n < 2) throw new InputException($"{where}: header attribute 'channels'", "one spectral channel and no spectralBandEdges attribute: the band width is unknown", "add a spectralBandEdges attribute");
+            if (n < 2)
+                throw new InputException($"{where}: header attribute 'channels'",
+                    "one spectral channel and no spectralBandEdges attribute: the band width is unknown",
+                    "add a spectralBandEdges attribute");
             double width = (centres[^1] - centres[0]) / (n - 1);
             // Names carry 6 decimals, so the recovered edges are good to ~1e-6 nm: round them to 1e-5 nm.
             try { grid = new BandGrid(Math.Round(centres[0] - width / 2, 5), Math.Round(centres[^1] + width / 2, 5), n); }
-            catch (ArgumentOutOfRangeException e) { throw new InputException($"{where}: header attribute 'channels'", $"spectral channels: {e.Message}", "spectral channels are named S0.<λ>nm at evenly spaced wavelengths"); }
+            catch (ArgumentOutOfRangeException e)
+            {
+                throw new InputException($"{where}: header attribute 'channels'", $"spectral channels: {e.Message}",
+                    "spectral channels are named S0.<λ>nm at evenly spaced wavelengths");
+            }
         }
         // The channel names carry centres with 6 decimals.
         for (int b = 0; b < n; b++)
             if (Math.Abs(centres[b] - grid.Centre(b)) > Math.Max(1e-5, 1e-3 * grid.Width))
-                throw new InputException($"{where}: header attribute 'channels'", $"spectral channel at {centres[b]} nm is not the centre of band {BandGrid.Number(b)} ({grid.Centre(b)} nm)",
+                throw new InputException($"{where}: header attribute 'channels'",
+                    $"spectral channel at {centres[b]} nm is not the centre of band {BandGrid.Number(b)} ({grid.Centre(b)} nm)",
                     "only evenly spaced bands are supported");
         return grid;
     }
@@ -293,7 +343,8 @@ public static class ExrReader
     {
         public long Pos;
 
-        public InputException Truncated() => new($"{where}: byte {Pos}", "file is truncated or corrupt", "the OpenEXR data ends early: write the file again");
+        public InputException Truncated() =>
+            new($"{where}: byte {Pos}", "file is truncated or corrupt", "the OpenEXR data ends early: write the file again");
 
         public ReadOnlySpan<byte> Take(int n)
         {

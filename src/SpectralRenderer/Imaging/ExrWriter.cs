@@ -61,7 +61,8 @@ public static class ExrWriter
     static void Write(Stream stream, int w, int h, BandGrid grid, float[] bands, XyzPlanes? xyz, ExrOptions options)
     {
         int n = w * h;
-        if (bands.Length != n * grid.Count) throw new ArgumentException($"band planes hold {bands.Length} values, {w}×{h}×{grid.Count} expected");
+        if (bands.Length != n * grid.Count)
+            throw new ArgumentException($"band planes hold {bands.Length} values, {w}×{h}×{grid.Count} expected");
 
         // Channels, each a row-major H × W plane, sorted by name in byte order as OpenEXR's ChannelList is.
         // (Plain arrays and a small sort of our own: no generic collection code to compile at startup.)
@@ -98,7 +99,8 @@ public static class ExrWriter
         }
         SortByName(names, planes);
         for (int c = 1; c < count; c++)
-            if (names[c] == names[c - 1]) throw new ArgumentException("two EXR channels have the same name (are two bands centred on the same wavelength?)");
+            if (names[c] == names[c - 1])
+                throw new ArgumentException("two EXR channels have the same name (are two bands centred on the same wavelength?)");
 
         var header = Header(w, h, grid, options, names, out bool longNames);
 
@@ -119,7 +121,8 @@ public static class ExrWriter
             {
                 var chunk = raw.AsSpan(0, size);
                 ScanLineBlock(planes, w, y0, y1, sampleBytes, chunk);
-                byte[]? z = options.Compression == ExrCompression.Zip ? ExrZip.CompressChunk(chunk, sampleBytes, options.DeflateEveryChunk) : null;
+                byte[]? z =
+                    options.Compression == ExrCompression.Zip ? ExrZip.CompressChunk(chunk, sampleBytes, options.DeflateEveryChunk) : null;
                 chunks[c] = z ?? (rowsAreRaw ? null : chunk.ToArray());
             }
             finally { ArrayPool<byte>.Shared.Return(raw); }
@@ -142,7 +145,8 @@ public static class ExrWriter
         }
         for (int c = 0; c < chunkCount; c++)
         {
-            BinaryPrimitives.WriteInt32LittleEndian(word, options.DataY + c * lines);    // y of the chunk's first scanline: chunks start at the data window's yMin
+            // y of the chunk's first scanline: chunks start at the data window's yMin
+            BinaryPrimitives.WriteInt32LittleEndian(word, options.DataY + c * lines);
             BinaryPrimitives.WriteInt32LittleEndian(word[4..], sizes[c]); // pixel data size
             stream.Write(word);
             if (chunks[c] is { } bytes) { stream.Write(bytes); continue; }
@@ -176,7 +180,8 @@ public static class ExrWriter
         return start;
     }
 
-    /// <summary>File layout, "Scan Line Blocks": per scanline y0 … y1 − 1, per channel (sorted), all pixels of that channel, little-endian.</summary>
+    /// <summary>File layout, "Scan Line Blocks": per scanline y0 … y1 − 1, per channel (sorted), all pixels of that channel,
+    /// little-endian.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     static void ScanLineBlock(ReadOnlyMemory<float>[] planes, int w, int y0, int y1, int sampleBytes, Span<byte> raw)
     {
@@ -258,7 +263,8 @@ public static class ExrWriter
 
         // JCGT 2021 §3: the layout version and, for emissive images, the radiometric units.
         attrs.Add(new("spectralLayoutVersion", "string", Encoding.UTF8.GetBytes(LayoutVersion)));
-        if (!options.Reflective && options.EmissiveUnits is { } units) attrs.Add(new("emissiveUnits", "string", Encoding.UTF8.GetBytes(units)));
+        if (!options.Reflective && options.EmissiveUnits is { } units)
+            attrs.Add(new("emissiveUnits", "string", Encoding.UTF8.GetBytes(units)));
         var edges = new StringBuilder();
         foreach (double e in grid.Edges()) edges.Append(edges.Length > 0 ? "," : "").Append(e.ToString("R", CultureInfo.InvariantCulture));
         attrs.Add(new("spectralBandEdges", "string", Encoding.UTF8.GetBytes(edges.ToString())));
@@ -266,7 +272,8 @@ public static class ExrWriter
         {
             attrs.Add(new("spectralKappa", "double", BitConverter.GetBytes(cm.Kappa)));
             attrs.Add(new("spectralIntegration", "string", Encoding.UTF8.GetBytes(
-                $"{cm.Scheme.ToString().ToLowerInvariant()}; observer {cm.Observer.Name}; reference light {cm.ReferenceLight.Name}; {(cm.Absolute ? "absolute" : "relative")}")));
+                $"{cm.Scheme.ToString().ToLowerInvariant()}; observer {cm.Observer.Name}; reference light {cm.ReferenceLight.Name}; "
+                    + $"{(cm.Absolute ? "absolute" : "relative")}")));
         }
         if (options.Attributes is not null)
             foreach (var (k, v) in options.Attributes)
@@ -285,7 +292,8 @@ public static class ExrWriter
         var bw = new BinaryWriter(ms);
         foreach (var a in sorted)
         {
-            if (Encoding.UTF8.GetByteCount(a.Name) > 255) throw new ArgumentException($"EXR attribute name '{a.Name}' is longer than 255 bytes");
+            if (Encoding.UTF8.GetByteCount(a.Name) > 255)
+                throw new ArgumentException($"EXR attribute name '{a.Name}' is longer than 255 bytes");
             bw.Write(Encoding.UTF8.GetBytes(a.Name)); bw.Write((byte)0);
             bw.Write(Encoding.ASCII.GetBytes(a.Type)); bw.Write((byte)0);
             bw.Write(a.Value.Length);

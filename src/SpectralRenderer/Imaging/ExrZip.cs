@@ -75,7 +75,8 @@ static class ExrZip
         }
     }
 
-    /// <summary>Predictor and deflate (level 1, default strategy: its LZ77 matches catch repeated pixels, whose bytes recur every other byte after the reordering).</summary>
+    /// <summary>Predictor and deflate (level 1, default strategy: its LZ77 matches catch repeated pixels, whose bytes recur every other
+    /// byte after the reordering).</summary>
     public static byte[] Compress(ReadOnlySpan<byte> raw)
     {
         var t = ArrayPool<byte>.Shared.Rent(Math.Max(1, raw.Length));
@@ -124,7 +125,8 @@ static class ExrZip
         for (int k = j; k < pairs; k++) d[half + k] = (byte)(raw[2 * k + 1] - raw[2 * k - 1] + 128);
     }
 
-    /// <summary>Inverse of <see cref="Compress"/>; returns false when the stream does not inflate to exactly <paramref name="output"/>.Length bytes.</summary>
+    /// <summary>Inverse of <see cref="Compress"/>; returns false when the stream does not inflate to exactly
+    /// <paramref name="output"/>.Length bytes.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public static bool TryDecompress(ReadOnlySpan<byte> compressed, Span<byte> output)
     {
@@ -136,7 +138,8 @@ static class ExrZip
             z.ReadExactly(t);
             if (z.ReadByte() != -1) return false;
         }
-        catch (Exception e) when (e is InvalidDataException or EndOfStreamException or IOException)   // ZLibException is an IOException (found by fuzzing)
+        // ZLibException is an IOException (found by fuzzing)
+        catch (Exception e) when (e is InvalidDataException or EndOfStreamException or IOException)
         {
             return false;
         }

@@ -13,7 +13,8 @@ namespace SpectralRenderer.Imaging;
 public sealed record FalseColour(double Low, double High, bool Log, string Quantity, string Unit)
 {
     /// <summary>The ramp's stops, sRGB 8-bit, evenly spaced from t = 0 to 1.</summary>
-    public static readonly (byte R, byte G, byte B)[] Stops = [(0, 0, 128), (0, 0, 255), (0, 255, 255), (0, 255, 0), (255, 255, 0), (255, 0, 0)];
+    public static readonly (byte R, byte G, byte B)[] Stops =
+        [(0, 0, 128), (0, 0, 255), (0, 255, 255), (0, 255, 0), (255, 255, 0), (255, 0, 0)];
 
     /// <summary>
     /// The scale for these values: linear from 0 to the nice top of the largest, or logarithmic over whole decades down to
@@ -99,11 +100,14 @@ public sealed record FalseColour(double Low, double High, bool Log, string Quant
                 new XAttribute("stop-color", $"#{r:x2}{g:x2}{b:x2}")));
         }
         var root = new XElement(svg + "svg", new XAttribute("width", width), new XAttribute("height", height),
-            new XAttribute("viewBox", $"0 0 {width} {height}"), new XAttribute("font-family", "sans-serif"), new XAttribute("font-size", 12),
-            new XAttribute("data-quantity", Quantity), new XAttribute("data-unit", Unit), new XAttribute("data-scale", Log ? "log10" : "linear"),
+            new XAttribute("viewBox", $"0 0 {width} {height}"), new XAttribute("font-family", "sans-serif"),
+                new XAttribute("font-size", 12),
+            new XAttribute("data-quantity", Quantity), new XAttribute("data-unit", Unit),
+                new XAttribute("data-scale", Log ? "log10" : "linear"),
             new XAttribute("data-low", Number(Low)), new XAttribute("data-high", Number(High)),
             new XElement(svg + "defs", gradient),
-            new XElement(svg + "text", new XAttribute("x", barX), new XAttribute("y", 18), new XAttribute("font-weight", "bold"), $"{Quantity} ({Unit})"),
+            new XElement(svg + "text", new XAttribute("x", barX), new XAttribute("y", 18), new XAttribute("font-weight", "bold"),
+                $"{Quantity} ({Unit})"),
             new XElement(svg + "text", new XAttribute("x", barX), new XAttribute("y", 32), new XAttribute("font-size", 10),
                 Log ? "logarithmic scale" : "linear scale; 0 is black"),
             new XElement(svg + "rect", new XAttribute("x", barX), new XAttribute("y", barY), new XAttribute("width", barW),
@@ -116,11 +120,13 @@ public sealed record FalseColour(double Low, double High, bool Log, string Quant
             root.Add(new XElement(svg + "line", new XAttribute("x1", barX + barW), new XAttribute("x2", barX + barW + 6),
                 new XAttribute("y1", at), new XAttribute("y2", at), new XAttribute("stroke", "#000")));
             root.Add(new XElement(svg + "text", new XAttribute("x", barX + barW + 10), new XAttribute("y", at),
-                new XAttribute("dominant-baseline", "middle"), new XAttribute("class", "tick"), new XAttribute("data-value", v.ToString("R", CultureInfo.InvariantCulture)),
+                new XAttribute("dominant-baseline", "middle"), new XAttribute("class", "tick"),
+                    new XAttribute("data-value", v.ToString("R", CultureInfo.InvariantCulture)),
                 $"{Number(v)} {Unit}"));
         }
         if (note is not null)
-            root.Add(new XElement(svg + "text", new XAttribute("x", 4), new XAttribute("y", height - 8), new XAttribute("font-size", 9), note));
+            root.Add(
+                new XElement(svg + "text", new XAttribute("x", 4), new XAttribute("y", height - 8), new XAttribute("font-size", 9), note));
         return new XDocument(root).ToString();
     }
 }

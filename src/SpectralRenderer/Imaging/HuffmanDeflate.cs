@@ -130,7 +130,8 @@ public sealed class HuffmanDeflate : IDisposable
             int end = Math.Min(data.Length, i + 5552);
             for (; i + 4 <= end; i += 4)
             {
-                uint b0 = Unsafe.Add(ref src, i), b1 = Unsafe.Add(ref src, i + 1), b2 = Unsafe.Add(ref src, i + 2), b3 = Unsafe.Add(ref src, i + 3);
+                uint b0 = Unsafe.Add(ref src, i), b1 = Unsafe.Add(ref src, i + 1), b2 = Unsafe.Add(ref src, i + 2),
+                    b3 = Unsafe.Add(ref src, i + 3);
                 Unsafe.Add(ref h, b0)++; Unsafe.Add(ref h, 256 + b1)++; Unsafe.Add(ref h, 512 + b2)++; Unsafe.Add(ref h, 768 + b3)++;
                 s2 += 4 * s1 + 4 * b0 + 3 * b1 + 2 * b2 + b3;
                 s1 += b0 + b1 + b2 + b3;
@@ -256,7 +257,8 @@ public sealed class HuffmanDeflate : IDisposable
             for (int c = perLength[l]; c > 0; c--) lengths[sym[k++]] = (byte)l;
     }
 
-    /// <summary>RFC 1951 §3.2.2 canonical codes from the lengths, bit-reversed (deflate sends codes most significant bit first into an LSB-first stream), with the length in the high half.</summary>
+    /// <summary>RFC 1951 §3.2.2 canonical codes from the lengths, bit-reversed (deflate sends codes most significant bit first into an
+    /// LSB-first stream), with the length in the high half.</summary>
     static void Codes(byte[] lengths, uint[] codes)
     {
         Span<int> perLength = stackalloc int[16];

@@ -31,10 +31,12 @@ public static class NpyWriter
     /// </summary>
     public static byte[] Preamble(ReadOnlySpan<int> shape) => Preamble(shape, "<f4");
 
-    /// <summary>The preamble of a C-order array of this shape whose elements have NumPy type <paramref name="descr"/> (e.g. <c>&lt;f4</c>, <c>&lt;i4</c>).</summary>
+    /// <summary>The preamble of a C-order array of this shape whose elements have NumPy type <paramref name="descr"/> (e.g. <c>&lt;f4</c>,
+    /// <c>&lt;i4</c>).</summary>
     public static byte[] Preamble(ReadOnlySpan<int> shape, string descr)
     {
-        string dims = shape.Length == 1 ? $"{shape[0]}," : string.Join(", ", shape.ToArray().Select(d => d.ToString(CultureInfo.InvariantCulture)));
+        string dims =
+            shape.Length == 1 ? $"{shape[0]}," : string.Join(", ", shape.ToArray().Select(d => d.ToString(CultureInfo.InvariantCulture)));
         string dict = $"{{'descr': '{descr}', 'fortran_order': False, 'shape': ({dims}), }}";
         int preamble = Magic.Length + 2 + 2;
         int total = (preamble + dict.Length + 1 + 63) / 64 * 64;

@@ -26,7 +26,8 @@ public static class PngReader
         stream.CopyTo(ms);
         var bytes = ms.ToArray().AsSpan();
         if (bytes.Length < 8 || !bytes[..8].SequenceEqual(PngWriter.Signature))
-            throw new InputException($"{where}: byte 0", "not a PNG file (bad signature)", "is this a PNG image? it must start with 89 50 4E 47");
+            throw new InputException($"{where}: byte 0", "not a PNG file (bad signature)",
+                "is this a PNG image? it must start with 89 50 4E 47");
         int pos = 8, width = 0, height = 0, depth = 0, type = -1;
         var idat = new MemoryStream();
         var text = new Dictionary<string, string>();
@@ -35,21 +36,26 @@ public static class PngReader
         {
             if (pos + 12 > bytes.Length) throw new InputException($"{where}: byte {pos}", "file is truncated", "the PNG has no IEND chunk");
             int length = BinaryPrimitives.ReadInt32BigEndian(bytes[pos..]);
-            if (length < 0 || pos + 12L + length > bytes.Length) throw new InputException($"{where}: byte {pos}", "file is truncated", "the file was cut short: write it again");
+            if (length < 0 || pos + 12L + length > bytes.Length)
+                throw new InputException($"{where}: byte {pos}", "file is truncated", "the file was cut short: write it again");
             var chunkType = Encoding.ASCII.GetString(bytes.Slice(pos + 4, 4));
             var data = bytes.Slice(pos + 8, length);
             uint crc = BinaryPrimitives.ReadUInt32BigEndian(bytes[(pos + 8 + length)..]);
             if (crc != Crc32.Compute(bytes.Slice(pos + 4, length + 4)))
-                throw new InputException($"{where}: chunk {chunkType} at byte {pos}", $"CRC mismatch in chunk {chunkType}", "the file is corrupt: write it again");
+                throw new InputException($"{where}: chunk {chunkType} at byte {pos}", $"CRC mismatch in chunk {chunkType}",
+                    "the file is corrupt: write it again");
             switch (chunkType)
             {
                 case "IHDR":
                     width = BinaryPrimitives.ReadInt32BigEndian(data);
                     height = BinaryPrimitives.ReadInt32BigEndian(data[4..]);
                     depth = data[8]; type = data[9];
-                    if (data[12] != 0) throw new InputException($"{where}: chunk IHDR", "interlaced PNG is not supported", "save the image without interlacing");
+                    if (data[12] != 0)
+                        throw new InputException($"{where}: chunk IHDR", "interlaced PNG is not supported",
+                            "save the image without interlacing");
                     if (type is not (0 or 2) || depth is not (8 or 16))
-                        throw new InputException($"{where}: chunk IHDR", $"colour type {type} at {depth} bits is not supported", "only 8/16-bit grey and RGB");
+                        throw new InputException($"{where}: chunk IHDR", $"colour type {type} at {depth} bits is not supported",
+                            "only 8/16-bit grey and RGB");
                     break;
                 case "IDAT": idat.Write(data); break;
                 case "tEXt":
@@ -60,12 +66,14 @@ public static class PngReader
             }
             pos += 12 + length;
         }
-        if (type < 0) throw new InputException($"{where}: byte {pos}", "no IHDR chunk", "the file is not a complete PNG image: write it again");
+        if (type < 0)
+            throw new InputException($"{where}: byte {pos}", "no IHDR chunk", "the file is not a complete PNG image: write it again");
         int channels = type == 2 ? 3 : 1, bpp = channels * depth / 8;
         // Declared sizes against the data, before allocating: zlib inflates at most 1032:1 (RFC 1950/1951).
         long rowBytesLong = (long)width * bpp;
         if (width < 1 || height < 1 || (rowBytesLong + 1) * height > 1032L * idat.Length + 1024 || rowBytesLong * height > Array.MaxLength)
-            throw new InputException($"{where}: chunk IHDR", $"IHDR declares {width}×{height} pixels, more than the {idat.Length} bytes of image data can hold",
+            throw new InputException($"{where}: chunk IHDR",
+                $"IHDR declares {width}×{height} pixels, more than the {idat.Length} bytes of image data can hold",
                 "the file is truncated or its header is damaged: write it again");
         int rowBytes = (int)rowBytesLong;
         var raw = new byte[(long)height * rowBytes];
@@ -90,7 +98,8 @@ public static class PngReader
                         2 => (byte)b,
                         3 => (byte)((a + b) / 2),
                         4 => (byte)PngWriter.Paeth(a, b, c),
-                        _ => throw new InputException($"{where}: row {y}", $"row {y} has unknown filter type {line[0]}", "the file is corrupt: write it again"),
+                        _ => throw new InputException($"{where}: row {y}", $"row {y} has unknown filter type {line[0]}",
+                            "the file is corrupt: write it again"),
                     };
                 }
                 x.CopyTo(prior);
@@ -98,7 +107,8 @@ public static class PngReader
         }
         catch (Exception e) when (e is EndOfStreamException or InvalidDataException)
         {
-            throw new InputException($"{where}: chunk IDAT", "the image data is truncated or corrupt", "the file is corrupt or cut short: write it again");
+            throw new InputException($"{where}: chunk IDAT", "the image data is truncated or corrupt",
+                "the file is corrupt or cut short: write it again");
         }
         var samples = new ushort[(long)width * height * channels];
         for (int i = 0; i < samples.Length; i++)

@@ -125,7 +125,8 @@ public static class PngWriter
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     static void Write(Stream stream, int width, int height, byte bitDepth, byte colourType, int bpp,
-        ReadOnlySpan<byte> pixels, IReadOnlyDictionary<string, string>? text, PngFilter filter, double? gamma = null, bool huffmanOnly = false)
+        ReadOnlySpan<byte> pixels, IReadOnlyDictionary<string, string>? text, PngFilter filter, double? gamma = null,
+            bool huffmanOnly = false)
     {
         stream.Write(Signature);
 
@@ -260,7 +261,8 @@ public static class PngWriter
         }
     }
 
-    /// <summary>§9.2: filter types 0–4 on one row (<paramref name="b"/>, the row above, is empty for the first row: zeros); out[0] receives the type byte.</summary>
+    /// <summary>§9.2: filter types 0–4 on one row (<paramref name="b"/>, the row above, is empty for the first row: zeros); out[0] receives
+    /// the type byte.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     internal static void FilterRow(int type, ReadOnlySpan<byte> x, ReadOnlySpan<byte> b, int bpp, Span<byte> output)
     {

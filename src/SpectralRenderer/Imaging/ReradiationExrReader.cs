@@ -56,9 +56,11 @@ public static class ReradiationExrReader
         diagonal.Sort((x, y) => x.Lambda.CompareTo(y.Lambda));
         foreach (var (lambda, c) in diagonal)
             if (!(lambda > 0) || !double.IsFinite(lambda))
-                throw Error(path, channels[c].Name, "names a wavelength that is not positive and finite", "wavelengths in nm, e.g. T.550nm");
+                throw Error(path, channels[c].Name, "names a wavelength that is not positive and finite",
+                    "wavelengths in nm, e.g. T.550nm");
         if (diagonal.Count < 2)
-            throw Error(path, channels[diagonal[0].Channel].Name, "is the only diagonal channel", "a matrix needs at least two wavelengths");
+            throw Error(path, channels[diagonal[0].Channel].Name, "is the only diagonal channel",
+                "a matrix needs at least two wavelengths");
         int n = diagonal.Count;
         var wl = diagonal.Select(x => x.Lambda).ToArray();
         double spacing = double.PositiveInfinity;
@@ -75,9 +77,11 @@ public static class ReradiationExrReader
             if (Math.Abs(gap - spacing) <= 1e-6 * spacing) continue;
             string name = channels[diagonal[j].Channel].Name, previous = channels[diagonal[j - 1].Channel].Name;
             throw k >= 2 && Math.Abs(gap - k * spacing) <= 1e-6 * k * spacing
-                ? Error(path, name, $"follows {previous}: no diagonal channel at {Nm(wl[j - 1] + spacing)} nm (the matrix's step is {Nm(spacing)} nm)",
+                ? Error(path, name,
+                    $"follows {previous}: no diagonal channel at {Nm(wl[j - 1] + spacing)} nm (the matrix's step is {Nm(spacing)} nm)",
                     "every wavelength of the matrix needs its diagonal channel T.<λ>nm, the reflectance (0 where it reflects nothing)")
-                : Error(path, name, $"follows {previous}: the diagonal's wavelengths are not evenly spaced (smallest step {Nm(spacing)} nm)",
+                : Error(path, name,
+                    $"follows {previous}: the diagonal's wavelengths are not evenly spaced (smallest step {Nm(spacing)} nm)",
                     "give the matrix on one evenly spaced wavelength list");
         }
         int Index(double lambda)
@@ -94,8 +98,10 @@ public static class ReradiationExrReader
         {
             int i = Index(a), o = Index(b);
             if (i < 0 || o < 0)
-                throw Error(path, channels[c].Name, $"{(i < 0 ? "excitation" : "emission")} {Nm(i < 0 ? a : b)} nm has no diagonal channel T.<λ>nm",
-                    $"the matrix's wavelengths are its diagonal's, {Nm(wl[0])}–{Nm(wl[^1])} nm every {Nm(spacing)} nm: add the diagonal or fix the name");
+                throw Error(path, channels[c].Name,
+                    $"{(i < 0 ? "excitation" : "emission")} {Nm(i < 0 ? a : b)} nm has no diagonal channel T.<λ>nm",
+                    $"the matrix's wavelengths are its diagonal's, {Nm(wl[0])}–{Nm(wl[^1])} nm every {Nm(spacing)} nm: "
+                        + $"add the diagonal or fix the name");
             if (source[o * n + i] >= 0)
                 throw Error(path, channels[c].Name, $"gives D[{Nm(b)}, {Nm(a)}] a second time (also {channels[source[o * n + i]].Name})",
                     "keep one channel per pair of wavelengths");
@@ -110,13 +116,16 @@ public static class ReradiationExrReader
             {
                 float v = plane[p];
                 if (!float.IsFinite(v))
-                    throw Error(path, name, $"pixel ({p % width}, {p / width}) is not finite ({v.ToString(CultureInfo.InvariantCulture)})", "a re-radiation matrix holds finite numbers");
+                    throw Error(path, name, $"pixel ({p % width}, {p / width}) is not finite ({v.ToString(CultureInfo.InvariantCulture)})",
+                        "a re-radiation matrix holds finite numbers");
                 if (v < 0)
-                    throw Error(path, name, $"pixel ({p % width}, {p / width}) is negative ({v.ToString("G4", CultureInfo.InvariantCulture)})",
+                    throw Error(path, name,
+                        $"pixel ({p % width}, {p / width}) is negative ({v.ToString("G4", CultureInfo.InvariantCulture)})",
                         "a re-radiation matrix is non-negative");
                 if (v != plane[0])
                     throw Error(path, name, $"differs between pixels (0, 0) and ({p % width}, {p / width}) of the {width}×{height} image",
-                        "a material takes one matrix: give a 1×1 image (or a uniform one), e.g. oiiotool in.exr --cut 1x1+X+Y -o pixel.exr");
+                        "a material takes one matrix: give a 1×1 image (or a uniform one), e.g. oiiotool "
+                            + "in.exr --cut 1x1+X+Y -o pixel.exr");
             }
             d[k] = plane[0];
         }
@@ -124,7 +133,8 @@ public static class ReradiationExrReader
         int bad = matrix.PhotonExcess(ReradiationCsvReader.PhotonTolerance, out double emitted, out double absorbed);
         if (bad >= 0)
             throw Error(path, channels[diagonal[bad].Channel].Name,
-                $"excitation {Nm(wl[bad])} nm re-emits {emitted / wl[bad]:G4} photons per incident photon but absorbs only {absorbed / wl[bad]:G4} (1 − D[i,i])",
+                $"excitation {Nm(wl[bad])} nm re-emits {emitted / wl[bad]:G4} photons per incident photon but absorbs only "
+                    + $"{absorbed / wl[bad]:G4} (1 − D[i,i])",
                 "a passive surface emits at most the photons it absorbs: Σ_o D[o,i]·λo ≤ (1 − D[i,i])·λi over the channels T.λi.λo");
         return matrix;
     }

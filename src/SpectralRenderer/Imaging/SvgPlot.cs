@@ -65,10 +65,12 @@ public sealed class SvgPlot
             new(ns + "line", new XAttribute("x1", F(xa)), new XAttribute("y1", F(ya)), new XAttribute("x2", F(xb)),
                 new XAttribute("y2", F(yb)), new XAttribute("stroke", stroke), new XAttribute("stroke-width", F(width)));
 
-        var svg = new XElement(ns + "svg", new XAttribute("version", "1.1"), new XAttribute("width", Width), new XAttribute("height", Height),
+        var svg =
+            new XElement(ns + "svg", new XAttribute("version", "1.1"), new XAttribute("width", Width), new XAttribute("height", Height),
             new XAttribute("viewBox", $"0 0 {Width} {Height}"), new XAttribute("font-family", "Helvetica, Arial, sans-serif"));
         svg.Add(new XElement(ns + "title", Title));
-        svg.Add(new XElement(ns + "rect", new XAttribute("width", Width), new XAttribute("height", Height), new XAttribute("fill", "white")));
+        svg.Add(
+            new XElement(ns + "rect", new XAttribute("width", Width), new XAttribute("height", Height), new XAttribute("fill", "white")));
         svg.Add(Text(left + pw / 2, 24, Title, size: 15));
 
         var axes = new XElement(ns + "g", new XAttribute("class", "axes"));
@@ -112,7 +114,8 @@ public sealed class SvgPlot
         return new XDocument(new XDeclaration("1.0", "utf-8", null), svg).Declaration + "\n" + svg.ToString() + "\n";
     }
 
-    /// <summary>Tick positions at a "nice" step (1, 2 or 5 × 10^k) covering [lo, hi] with about <paramref name="target"/> intervals.</summary>
+    /// <summary>Tick positions at a "nice" step (1, 2 or 5 × 10^k) covering [lo, hi] with about <paramref name="target"/>
+    /// intervals.</summary>
     public static double[] Ticks(double lo, double hi, int target)
     {
         if (!(hi > lo)) { double pad = lo == 0 ? 1 : Math.Abs(lo) * 0.1; lo -= pad; hi += pad; }

@@ -21,11 +21,14 @@ public static class WavelengthsCsv
         return sb.ToString();
     }
 
-    /// <summary>Band <paramref name="b"/>'s columns of <see cref="Header"/> (number from 1, edges and centre in nm, round-trip exact), without a line end: the one writer of band rows.</summary>
+    /// <summary>Band <paramref name="b"/>'s columns of <see cref="Header"/> (number from 1, edges and centre in nm, round-trip exact),
+    /// without a line end: the one writer of band rows.</summary>
     public static StringBuilder AppendRow(StringBuilder sb, BandGrid grid, int b)
     {
         var inv = CultureInfo.InvariantCulture;
-        return sb.Append(inv, $"{BandGrid.Number(b)},{grid.Lower(b).ToString("R", inv)},{grid.Centre(b).ToString("R", inv)},{grid.Upper(b).ToString("R", inv)}");
+        return sb.Append(inv,
+            $"{BandGrid.Number(b)},{grid.Lower(b).ToString("R", inv)},{grid.Centre(b).ToString("R", inv)},"
+                + $"{grid.Upper(b).ToString("R", inv)}");
     }
 
     public static void Write(string path, BandGrid grid) => AtomicFile.WriteAllText(path, Format(grid));
@@ -37,19 +40,26 @@ public static class WavelengthsCsv
         var lines = InputFile.ReadAllText(path, "wavelengths.csv").Split('\n').Select((l, i) => (Text: l.TrimEnd('\r'), Row: i + 1))
             .Where(l => l.Text.Trim().Length > 0).ToArray();
         if (lines.Length < 2 || lines[0].Text.Trim() != Header)
-            throw new InputException(lines.Length == 0 ? $"{path}:1:1" : $"{path}:{lines[0].Row}:1", "not a wavelengths.csv", $"the first line must be {Header}");
+            throw new InputException(lines.Length == 0 ? $"{path}:1:1" : $"{path}:{lines[0].Row}:1", "not a wavelengths.csv",
+                $"the first line must be {Header}");
         var rows = lines.Skip(1).Select(l =>
         {
             var p = l.Text.Split(',');
             if (p.Length != 4)
-                throw new InputException($"{path}:{l.Row}:{Math.Min(p.Length, 4) + 1}", $"bad row {MessageText.Quote(l.Text)}: {p.Length} cells, not 4", "band,start_nm,centre_nm,end_nm");
+                throw new InputException($"{path}:{l.Row}:{Math.Min(p.Length, 4) + 1}",
+                    $"bad row {MessageText.Quote(l.Text)}: {p.Length} cells, not 4", "band,start_nm,centre_nm,end_nm");
             if (!double.TryParse(p[1], NumberStyles.Float, CultureInfo.InvariantCulture, out var lo))
-                throw new InputException($"{path}:{l.Row}:2", $"start_nm {MessageText.Quote(p[1])} is not a number", "band,start_nm,centre_nm,end_nm");
+                throw new InputException($"{path}:{l.Row}:2", $"start_nm {MessageText.Quote(p[1])} is not a number",
+                    "band,start_nm,centre_nm,end_nm");
             if (!double.TryParse(p[3], NumberStyles.Float, CultureInfo.InvariantCulture, out var hi))
-                throw new InputException($"{path}:{l.Row}:4", $"end_nm {MessageText.Quote(p[3])} is not a number", "band,start_nm,centre_nm,end_nm");
+                throw new InputException($"{path}:{l.Row}:4", $"end_nm {MessageText.Quote(p[3])} is not a number",
+                    "band,start_nm,centre_nm,end_nm");
             return (lo, hi);
         }).ToArray();
         try { return new BandGrid(rows[0].lo, rows[^1].hi, rows.Length); }
-        catch (ArgumentOutOfRangeException e) { throw new InputException(path, e.Message, "wavelengths.csv lists evenly spaced, ascending band edges: render the folder again"); }
+        catch (ArgumentOutOfRangeException e)
+        {
+            throw new InputException(path, e.Message, "wavelengths.csv lists evenly spaced, ascending band edges: render the folder again");
+        }
     }
 }

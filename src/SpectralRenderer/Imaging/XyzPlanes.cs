@@ -25,14 +25,20 @@ public sealed class XyzPlanes
     {
         int pixels = interleaved.Length / 3;
         var xyz = new XyzPlanes(new double[pixels], new double[pixels], new double[pixels]);
-        for (int i = 0; i < pixels; i++) { xyz.X[i] = interleaved[3 * i]; xyz.Y[i] = interleaved[3 * i + 1]; xyz.Z[i] = interleaved[3 * i + 2]; }
+        for (int i = 0; i < pixels; i++)
+        {
+            xyz.X[i] = interleaved[3 * i];
+            xyz.Y[i] = interleaved[3 * i + 1];
+            xyz.Z[i] = interleaved[3 * i + 2];
+        }
         return xyz;
     }
 
     public static XyzPlanes Compute(Colorimeter cm, ReadOnlyMemory<float> bands, int pixels)
     {
         int count = cm.Grid.Count;
-        if (bands.Length != pixels * count) throw new ArgumentException($"band planes hold {bands.Length} values, {pixels}×{count} expected");
+        if (bands.Length != pixels * count)
+            throw new ArgumentException($"band planes hold {bands.Length} values, {pixels}×{count} expected");
         var xyz = new XyzPlanes(new double[pixels], new double[pixels], new double[pixels]);
         const int Block = 2048;   // pixels per step: the three accumulator runs (48 KB) stay in L2 across the bands
         Parallel.For(0, (pixels + Block - 1) / Block, k =>
@@ -75,9 +81,12 @@ public sealed class XyzPlanes
                 for (; i + 2 * d <= n; i += 2 * d)
                 {
                     Vector.Widen(new Vector<float>(v[i..]), out var lo, out var hi);   // float → double is exact
-                    (new Vector<double>(x[i..]) + vx * lo).CopyTo(x[i..]); (new Vector<double>(x[(i + d)..]) + vx * hi).CopyTo(x[(i + d)..]);
-                    (new Vector<double>(y[i..]) + vy * lo).CopyTo(y[i..]); (new Vector<double>(y[(i + d)..]) + vy * hi).CopyTo(y[(i + d)..]);
-                    (new Vector<double>(z[i..]) + vz * lo).CopyTo(z[i..]); (new Vector<double>(z[(i + d)..]) + vz * hi).CopyTo(z[(i + d)..]);
+                    (new Vector<double>(x[i..]) + vx * lo).CopyTo(x[i..]);
+                    (new Vector<double>(x[(i + d)..]) + vx * hi).CopyTo(x[(i + d)..]);
+                    (new Vector<double>(y[i..]) + vy * lo).CopyTo(y[i..]);
+                    (new Vector<double>(y[(i + d)..]) + vy * hi).CopyTo(y[(i + d)..]);
+                    (new Vector<double>(z[i..]) + vz * lo).CopyTo(z[i..]);
+                    (new Vector<double>(z[(i + d)..]) + vz * hi).CopyTo(z[(i + d)..]);
                 }
             }
             for (; i < n; i++) { x[i] += wx * v[i]; y[i] += wy * v[i]; z[i] += wz * v[i]; }

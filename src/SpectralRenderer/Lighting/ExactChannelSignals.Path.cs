@@ -39,12 +39,14 @@ public static partial class ExactChannelSignals
                 scene = SceneLoader.Parse(src.Scene.WithLights([], null), src.ScenePath, src.Overrides with { LoadMeshes = true });
                 if (scene.TargetError > 0)
                 {   // Adaptive sampling stopped each pixel at its own sample count, which a trace with spp samples does not repeat.
-                    reason = "the path render sampled adaptively (target_error): its pixels' samples cannot be traced again; render with the lights output for the exact route";
+                    reason = "the path render sampled adaptively (target_error): its pixels' samples cannot be traced again; render with "
+                        + "the lights output for the exact route";
                     return null;
                 }
                 if (scene.Camera.Width != cs.Width || scene.Camera.Height != cs.Height)
                 {
-                    reason = $"the rebuilt scene is {scene.Camera.Width}×{scene.Camera.Height}, the cube {cs.Width}×{cs.Height} (a crop or shard)";
+                    reason = $"the rebuilt scene is {scene.Camera.Width}×{scene.Camera.Height}, the cube "
+                        + $"{cs.Width}×{cs.Height} (a crop or shard)";
                     return null;
                 }
                 if (FilmTooLarge(scene, sensor) is { } why) { reason = why; return null; }
@@ -56,7 +58,8 @@ public static partial class ExactChannelSignals
                 var clock = System.Diagnostics.Stopwatch.StartNew();
                 film = integrator.TraceFineFilm(scene, threads < 0 ? 0 : threads);
                 from = string.Create(CultureInfo.InvariantCulture,
-                    $"the render's camera samples traced again from render.json's resolved scene (the same paths, {clock.Elapsed.TotalSeconds:F1} s)");
+                    $"the render's camera samples traced again from render.json's resolved scene (the same paths, "
+                        + $"{clock.Elapsed.TotalSeconds:F1} s)");
             }
         }
         catch (InputException e) { reason = $"the path render's scene cannot be rebuilt for its fine grid ({e.Message})"; return null; }
@@ -67,11 +70,13 @@ public static partial class ExactChannelSignals
     /// The exact route of a path render from its fine film (<paramref name="from"/> says where the film came from: a folder's
     /// lights/, traced again, or a render held in memory), or null (with the reason) when it does not match the cube.
     /// </summary>
-    public static Result? Compute(CameraScene cs, SensorModel sensor, Scene scene, PathFineFilm film, string from, int threads, out string reason)
+    public static Result? Compute(CameraScene cs, SensorModel sensor, Scene scene, PathFineFilm film, string from, int threads,
+        out string reason)
     {
         if (film.Width != cs.Width || film.Height != cs.Height || film.SubBands != cs.Grid.Count * film.PerBand)
         {
-            reason = $"the fine film is {film.Width}×{film.Height}×{film.SubBands} sub-bands, the cube {cs.Width}×{cs.Height}×{cs.Grid.Count} bands (a crop or shard)";
+            reason = $"the fine film is {film.Width}×{film.Height}×{film.SubBands} sub-bands, the cube "
+                + $"{cs.Width}×{cs.Height}×{cs.Grid.Count} bands (a crop or shard)";
             return null;
         }
 
@@ -79,11 +84,14 @@ public static partial class ExactChannelSignals
         // ∫_f η_c(λ)·λ dλ per channel and sub-band, at the sensitivity's full resolution.
         var g = new double[cc * sub];
         for (int c = 0; c < cc; c++)
-            for (int f = 0; f < sub; f++) g[c * sub + f] = ChannelWeights.ExactIntegral(sensor.Channels[c], null, null, film.Lower[f], film.Upper[f]);
+            for (int f = 0; f < sub; f++)
+                g[c * sub + f] = ChannelWeights.ExactIntegral(sensor.Channels[c], null, null, film.Lower[f], film.Upper[f]);
         // With the lens's optics each output band's share (its sub-bands) goes through them on its own, as on the Whitted route.
         var optics = Optics.For(sensor, cs.Width, cs.Height, cs.FovDegrees, scene.Grid);
         int parts = optics.Any ? scene.Bands : 1;
-        int[]? planeOf = sensor.Arrangement == Arrangement.Mosaic ? Enumerable.Range(0, n).Select(i => sensor.ChannelAt(i % cs.Width, i / cs.Width)).ToArray() : null;
+        int[]? planeOf = sensor.Arrangement == Arrangement.Mosaic
+            ? Enumerable.Range(0, n).Select(i => sensor.ChannelAt(i % cs.Width, i / cs.Width)).ToArray()
+            : null;
         var sum = optics.Any ? new double[(long)n * cc] : null;
         var plane = new float[n * cc];
         var data = film.Data;
@@ -106,7 +114,8 @@ public static partial class ExactChannelSignals
                 }
             });
             if (sum is null) continue;
-            Optics.Apply(plane, cs.Width, cs.Height, cc, optics.Illumination, optics.Kernels is { } ks ? [ks[part]] : null, threads, planeOf);
+            Optics.Apply(plane, cs.Width, cs.Height, cc, optics.Illumination, optics.Kernels is { } ks ? [ks[part]] : null, threads,
+                planeOf);
             for (int i = 0; i < plane.Length; i++) sum[i] += plane[i];
         }
         if (sum is not null) for (int i = 0; i < plane.Length; i++) plane[i] = (float)sum[i];
@@ -114,9 +123,12 @@ public static partial class ExactChannelSignals
         var (whiteScale, whiteSource) = PathWhite(cs);
         reason = "";
         string width = (film.Upper[0] - film.Lower[0]).ToString("0.###", CultureInfo.InvariantCulture);
-        string route = "exact (path): rate_c = sum over the fine grid's sub-bands f of L_f * integral_f(eta_c * lambda/(h c)) at the sensitivity's full resolution, " +
+        string route = "exact (path): rate_c = sum over the fine grid's sub-bands f of L_f * integral_f(eta_c * lambda/(h c)) at the "
+            + "sensitivity's full resolution, " +
             $"{sub} sub-bands of {width} nm ({per} per band) from {from}" +
-            (optics.Any ? "; each band's share through the lens (cos4th fall-off, Airy blur at the band centre) before the bands are summed" : "");
+            (optics.Any
+                ? "; each band's share through the lens (cos4th fall-off, Airy blur at the band centre) before the bands are summed"
+                : "");
         return new Result(plane, whiteScale, route, whiteSource, optics.Any);
     }
 
@@ -129,7 +141,8 @@ public static partial class ExactChannelSignals
         long need = PathFineFilm.Bytes(scene) + 12L * scene.Camera.Width * scene.Camera.Height * sensor.ChannelCount;
         long usable = (long)(0.9 * GC.GetGCMemoryInfo().TotalAvailableMemoryBytes) - GC.GetTotalMemory(false);
         return need <= usable ? null
-            : $"the path render's fine film needs about {InputFile.Size(need)}, more than the {InputFile.Size(Math.Max(0, usable))} this process has left; a coarser \"spectral_grid\" or fewer pixels, or --signals bands";
+            : $"the path render's fine film needs about {InputFile.Size(need)}, more than the {InputFile.Size(Math.Max(0, usable))} this "
+                + $"process has left; a coarser \"spectral_grid\" or fewer pixels, or --signals bands";
     }
 
     /// <summary>
@@ -138,11 +151,15 @@ public static partial class ExactChannelSignals
     /// </summary>
     public static (double Scale, string Source)? BandRouteWhite(CameraScene cs, Scene scene, ITermRoute? transfer, bool path) =>
         path ? PathWhite(cs)
-        : transfer is not null && transfer.Width == cs.Width && transfer.Height == cs.Height ? WhiteScale(cs, scene, transfer, scene.Radiometry == Radiometry.Physical)
+        : transfer is not null && transfer.Width == cs.Width && transfer.Height == cs.Height
+            ? WhiteScale(cs, scene, transfer, scene.Radiometry == Radiometry.Physical)
         : null;
 
-    /// <summary>A path render's white: read off its ColorChecker (<see cref="ChartWhite"/>), its light at the chart being every bounce.</summary>
+    /// <summary>A path render's white: read off its ColorChecker (<see cref="ChartWhite"/>), its light at the chart being every
+    /// bounce.</summary>
     static (double Scale, string Source) PathWhite(CameraScene cs) => ChartWhite.Scale(cs) is { } s
-        ? (s, "the ColorChecker in the render: its patches' band values against the light's × their reflectances (least squares; a path render)")
+        ? (s,
+            "the ColorChecker in the render: its patches' band values against the light's × their reflectances "
+                + "(least squares; a path render)")
         : (1, "1: the light's band values (a path render without a ColorChecker to read its white off)");
 }

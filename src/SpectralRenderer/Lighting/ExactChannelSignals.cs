@@ -30,9 +30,12 @@ public static partial class ExactChannelSignals
     /// </summary>
     public sealed record Result(float[] Integrals, double WhiteScale, string Route, string WhiteScaleSource, bool OpticsApplied);
 
-    /// <summary>The camera's input on the exact route, or null (the band cube) when the folder cannot give it (the report's camera comparison).</summary>
+    /// <summary>The camera's input on the exact route, or null (the band cube) when the folder cannot give it (the report's camera
+    /// comparison).</summary>
     public static (RadianceCube Cube, double WhiteScale)? Input(CameraScene cs, SensorModel sensor) =>
-        Compute(cs, sensor, -1, out _) is { } r ? (cs.Cube(1) with { ChannelIntegrals = r.Integrals, Route = r.Route, OpticsApplied = r.OpticsApplied }, r.WhiteScale) : null;
+        Compute(cs, sensor, -1, out _) is { } r
+            ? (cs.Cube(1) with { ChannelIntegrals = r.Integrals, Route = r.Route, OpticsApplied = r.OpticsApplied }, r.WhiteScale)
+            : null;
 
     /// <summary>The exact route for <paramref name="cs"/>'s render, or null (with the reason) when the folder cannot give it.</summary>
     public static Result? Compute(CameraScene cs, SensorModel sensor, int threads, out string reason)
@@ -140,7 +143,8 @@ public static partial class ExactChannelSignals
     {
         if (transfer.Width != cs.Width || transfer.Height != cs.Height || transfer.Bands != cs.Grid.Count)
         {
-            reason = $"the rebuilt scene is {transfer.Width}×{transfer.Height}×{transfer.Bands}, the cube {cs.Width}×{cs.Height}×{cs.Grid.Count} (a crop or shard)";
+            reason = $"the rebuilt scene is {transfer.Width}×{transfer.Height}×{transfer.Bands}, the cube "
+                + $"{cs.Width}×{cs.Height}×{cs.Grid.Count} (a crop or shard)";
             return null;
         }
 
@@ -183,7 +187,8 @@ public static partial class ExactChannelSignals
                     ? (Matrix: fl, Cells: fl.ShiftedCells(se.Integrate, scene.Grid.Start, scene.Grid.End)) : default;
                 for (int part = 0; part < parts; part++)
                 {
-                    double lo = parts == 1 ? scene.Grid.Start : scene.Grid.Lower(part), hi = parts == 1 ? scene.Grid.End : scene.Grid.Upper(part);
+                    double lo =
+                        parts == 1 ? scene.Grid.Start : scene.Grid.Lower(part), hi = parts == 1 ? scene.Grid.End : scene.Grid.Upper(part);
                     for (int c = 0; c < cc; c++)
                     {
                         double v = ChannelWeights.ExactIntegral(sensor.Channels[c], se, sm, lo, hi);
@@ -197,7 +202,8 @@ public static partial class ExactChannelSignals
                 bandRoute++;
                 comp.BandValues(tables, padded);
                 for (int c = 0; c < cc; c++)
-                    for (int b = 0; b < scene.Bands; b++) t[(parts == 1 ? 0 : b) * cc + c] += padded[b] * bandWeights[c, b] / bandWeights.Factor;
+                    for (int b = 0; b < scene.Bands; b++)
+                        t[(parts == 1 ? 0 : b) * cc + c] += padded[b] * bandWeights[c, b] / bandWeights.Factor;
             }
         }
         // Σ_c F_c · T_c per pixel, in doubles, one pixel range per task (components' pixels ascend); per band through the optics.
@@ -205,7 +211,9 @@ public static partial class ExactChannelSignals
         var share = optics.Any ? new double[(long)n * cc] : sum;
         var plane = optics.Any ? new float[n * cc] : null;
         // A mosaic reads one channel per pixel: only that one is blurred.
-        int[]? planeOf = sensor.Arrangement == Arrangement.Mosaic ? Enumerable.Range(0, n).Select(i => sensor.ChannelAt(i % cs.Width, i / cs.Width)).ToArray() : null;
+        int[]? planeOf = sensor.Arrangement == Arrangement.Mosaic
+            ? Enumerable.Range(0, n).Select(i => sensor.ChannelAt(i % cs.Width, i / cs.Width)).ToArray()
+            : null;
         var parallel = new ParallelOptions { MaxDegreeOfParallelism = threads };
         const int Chunk = 8192;
         for (int part = 0; part < parts; part++)
@@ -244,7 +252,8 @@ public static partial class ExactChannelSignals
             });
             if (plane is null) continue;
             for (int i = 0; i < plane.Length; i++) plane[i] = (float)share[i];
-            Optics.Apply(plane, cs.Width, cs.Height, cc, optics.Illumination, optics.Kernels is { } ks ? [ks[part]] : null, threads, planeOf);
+            Optics.Apply(plane, cs.Width, cs.Height, cc, optics.Illumination, optics.Kernels is { } ks ? [ks[part]] : null, threads,
+                planeOf);
             for (int i = 0; i < plane.Length; i++) sum[i] += plane[i];
         }
         var integrals = GC.AllocateUninitializedArray<float>(sum.Length);
@@ -253,14 +262,21 @@ public static partial class ExactChannelSignals
         var (whiteScale, whiteSource) = WhiteScale(cs, scene, transfer, physical);
         var inv = CultureInfo.InvariantCulture;
         reason = "";
-        string route = $"exact: rate_c = sum over eq. 2 terms of F * s * integral(eta_c * lambda/(h c) * E_k * m) at full spectral resolution, " +
+        string route = $"exact: rate_c = sum over eq. 2 terms of F * s * integral(eta_c * lambda/(h c) * E_k * "
+            + $"m) at full spectral resolution, " +
             $"{transfer.Components.Length} components from {from}" +
-            (bandRoute > 0 ? string.Create(inv, $"; {bandRoute} components (coloured mirror/glass chain, dispersion or band-valued spectra) by their band values") : "") +
-            (optics.Any ? "; each band's share through the lens (cos4th fall-off, Airy blur at the band centre) before the bands are summed" : "");
+            (bandRoute > 0
+                ? string.Create(inv,
+                    $"; {bandRoute} components (coloured mirror/glass chain, dispersion or band-valued spectra) by their band values")
+                : "") +
+            (optics.Any
+                ? "; each band's share through the lens (cos4th fall-off, Airy blur at the band centre) before the bands are summed"
+                : "");
         return new Result(integrals, whiteScale, route, whiteSource, optics.Any);
     }
 
-    /// <summary>The light spectrum, material spectrum (null: none) and constant factor of a component's term, as <see cref="TermTables"/> forms it.</summary>
+    /// <summary>The light spectrum, material spectrum (null: none) and constant factor of a component's term, as <see cref="TermTables"/>
+    /// forms it.</summary>
     /// <summary>
     /// ∫_lo^hi η_c(λ)·λ·L_s(λ) dλ of a fluorescent term's shifted emission L_s, constant over each of the matrix's emission
     /// cells (<see cref="ReradiationMatrix.ShiftedCells"/>, as the render's exact colour takes it: <see cref="FluorescentTerms"/>).
@@ -333,7 +349,8 @@ public static partial class ExactChannelSignals
         return comp.Lobe switch
         {
             TransferLobe.Diffuse => (scene.Lights[comp.Light].Intensity, mat!.Diffuse, physical ? 1 / Math.PI : 1),
-            TransferLobe.Specular => (scene.Lights[comp.Light].Intensity, mat!.Specular, physical ? mat.Model.EnergyNormalisation(mat.Shininess) : 1),
+            TransferLobe.Specular =>
+                (scene.Lights[comp.Light].Intensity, mat!.Specular, physical ? mat.Model.EnergyNormalisation(mat.Shininess) : 1),
             TransferLobe.Ambient => (scene.Lights[comp.Light].Ambient, mat!.Ambient, 1),
             TransferLobe.GlobalAmbient => (scene.GlobalAmbient, mat!.Ambient, 1),
             _ => (scene.Background, null, 1),
@@ -377,7 +394,10 @@ public static partial class ExactChannelSignals
         }
         if (physical) scale /= Math.PI;
         if (!(scale > 0)) return (1, "1: no light reaches a diffuse surface directly");
-        return (scale, (chartPixels > 0 ? "the lights' direct diffuse factor over the ColorChecker patches" : "the lights' largest direct diffuse factor in the image")
+        return (scale,
+            (chartPixels > 0
+                ? "the lights' direct diffuse factor over the ColorChecker patches"
+                : "the lights' largest direct diffuse factor in the image")
             + " × their intensity" + (physical ? " / π (physical radiometry)" : ""));
     }
 }

@@ -26,7 +26,8 @@ public sealed record LightChange(string Light, string? Spectrum, double? Intensi
 /// </summary>
 public static class Relighting
 {
-    public sealed record Source(string Dir, RenderManifest Manifest, ManifestScene Scene, string ScenePath, SceneOverrides Overrides, string[] LightNames);
+    public sealed record Source(string Dir, RenderManifest Manifest, ManifestScene Scene, string ScenePath, SceneOverrides Overrides,
+        string[] LightNames);
 
     /// <summary>A render folder read through its manifest: the resolved scene and the overrides it was rendered with.</summary>
     public static Source Open(string dir)
@@ -34,11 +35,13 @@ public static class Relighting
         if (!Directory.Exists(dir)) throw new InputException(dir, "no such render folder", "give the -o folder of a 'spectral render' run");
         var manifest = RenderManifest.Read(dir).Whole(dir);
         if (manifest.ResolvedScene is not { } scene)
-            throw new InputException(Path.Combine(dir, RenderManifest.FileName), "has no resolved_scene", "render again with this version of spectral");
+            throw new InputException(Path.Combine(dir, RenderManifest.FileName), "has no resolved_scene",
+                "render again with this version of spectral");
         // No ray is traced: the meshes' triangles are not needed (nor their files present).
         var overrides = Pipeline.RenderJob.Overrides(manifest.Run?.Overrides) with { LoadMeshes = false };
         var names = scene.Lights.Select(l => l.Name).ToArray();
-        return new Source(dir, manifest, scene, manifest.Scene.Length > 0 ? manifest.Scene : Path.Combine(dir, "scene.json"), overrides, names);
+        return new Source(dir, manifest, scene, manifest.Scene.Length > 0 ? manifest.Scene : Path.Combine(dir, "scene.json"), overrides,
+            names);
     }
 
     /// <summary>The scene of <paramref name="src"/> with the changes applied, loaded as a render would load it.</summary>
@@ -50,11 +53,15 @@ public static class Relighting
         {
             int k = Array.IndexOf(src.LightNames, c.Light);
             if (k < 0 && NotRelightable(src, c.Light) is { } what)
-                throw new InputException($"--light {c.Light}", $"'{c.Light}' is {what}: a relight changes the scene's lights (point, spot, directional, goniometric); emitting surfaces and the sky are kept as rendered",
+                throw new InputException($"--light {c.Light}",
+                    $"'{c.Light}' is {what}: a relight changes the scene's lights (point, spot, directional, goniometric); emitting "
+                        + $"surfaces and the sky are kept as rendered",
                     $"change it in the scene file and render again; relightable lights: {string.Join(", ", src.LightNames)}");
             if (k < 0)
                 throw new InputException($"--light {c.Light}", $"the render has no light named '{c.Light}'",
-                    InputException.DidYouMean(c.Light, src.LightNames) is { } d ? d : $"its lights are: {string.Join(", ", src.LightNames)}");
+                    InputException.DidYouMean(c.Light, src.LightNames) is { } d
+                        ? d
+                        : $"its lights are: {string.Join(", ", src.LightNames)}");
             if (c.Spectrum is not null) Check(src, c.Spectrum, c.Where ?? $"--light {c.Light}");
             edits.Add((k, c.Spectrum, c.Intensity));
         }
@@ -62,12 +69,15 @@ public static class Relighting
         return SceneLoader.Parse(src.Scene.WithLights(edits, white), src.ScenePath, src.Overrides);
     }
 
-    /// <summary>What <paramref name="name"/> is when it is a source of light a relight keeps (an emitting material, the sky), else null.</summary>
+    /// <summary>What <paramref name="name"/> is when it is a source of light a relight keeps (an emitting material, the sky), else
+    /// null.</summary>
     static string? NotRelightable(Source src, string name)
     {
         var doc = src.Scene.ToJson();
         if (doc["materials"]?[name] is JsonObject m && m["emission"] is not null) return "an emitting material (an area light)";
-        return name is "sky" or "background" && (doc["sky"] is not null || doc["background"] is not null) ? "the scene's sky (its background)" : null;
+        return name is "sky" or "background" && (doc["sky"] is not null || doc["background"] is not null)
+            ? "the scene's sky (its background)"
+            : null;
     }
 
     /// <summary>A spectrum named on the command line resolves (or is one of the scene's own named spectra).</summary>
@@ -78,7 +88,8 @@ public static class Relighting
     }
 
     /// <summary>Relights <paramref name="src"/> into <paramref name="outDir"/>: every file a render writes.</summary>
-    public static (Scene Scene, List<string> Files, TimeSpan Compute) Write(Source src, IReadOnlyList<LightChange> changes, string? white, string outDir,
+    public static (Scene Scene, List<string> Files, TimeSpan Compute) Write(Source src, IReadOnlyList<LightChange> changes, string? white,
+        string outDir,
         string commandLine, CancellationToken cancel = default, bool metrics = false)
     {
         var scene = ChangedScene(src, changes, white);
@@ -163,14 +174,16 @@ public static class Relighting
     public static ReusedFiles? Reusable(Source src, Scene scene, PixelRect crop)
     {
         if (src.Manifest.Build != RenderOutputWriter.EngineBuild || src.Manifest.Files is not { } listed) return null;
-        // What the products say a relight may copy: files of the geometry alone; the ground truth when the materials and its header are the source's.
+        // What the products say a relight may copy: files of the geometry alone; the ground truth when the materials and its header are the
+        // source's.
         var names = new List<string>();
         foreach (var file in listed)
         {
             switch (Output.Products.OutputProductTable.Owner(file)?.Reuse(file) ?? Output.Products.RelightReuse.Never)
             {
                 case Output.Products.RelightReuse.Geometry: names.Add(file); break;
-                case Output.Products.RelightReuse.SameMaterials when SameMaterials(src, scene) && SameHeader(src, file, AnalysisImages.ReflectanceFileStart(scene, crop)):
+                case Output.Products.RelightReuse.SameMaterials when SameMaterials(src, scene)
+                    && SameHeader(src, file, AnalysisImages.ReflectanceFileStart(scene, crop)):
                     names.Add(file); break;
             }
         }
@@ -242,7 +255,8 @@ public static class Relighting
         {
             if (count[o] == 0) continue;
             objs.Add(new RelightObjectMetrics(relit.Objects[o].Name, count[o], sum[o] / count[o], max[o]));
-            csv.Append(CultureInfo.InvariantCulture, $"object,{relit.Objects[o].Name},{count[o]},{sum[o] / count[o]:0.0000},{max[o]:0.0000},,,\n");
+            csv.Append(CultureInfo.InvariantCulture,
+                $"object,{relit.Objects[o].Name},{count[o]},{sum[o] / count[o]:0.0000},{max[o]:0.0000},,,\n");
         }
         return (new RelightMetrics(relit.ReferenceWhite.Name, lights, objs), csv.ToString());
     }
@@ -259,7 +273,9 @@ public static class Relighting
     {
         var lines = InputFile.ReadAllText(path).Replace("\r\n", "\n").Split('\n').Select((l, i) => (Text: l, Row: i + 1))
             .Where(l => l.Text.Trim().Length > 0).ToArray();
-        if (lines.Length < 2) throw new InputException($"{path}:{(lines.Length == 0 ? 1 : lines[0].Row + 1)}:1", "a sweep needs a header and at least one row", "e.g. header 'D65,D65.intensity' then 'A,1'");
+        if (lines.Length < 2)
+            throw new InputException($"{path}:{(lines.Length == 0 ? 1 : lines[0].Row + 1)}:1",
+                "a sweep needs a header and at least one row", "e.g. header 'D65,D65.intensity' then 'A,1'");
         var header = lines[0].Text.Split(',').Select(h => h.Trim()).ToArray();
         int headerRow = lines[0].Row;
         for (int c = 0; c < header.Length; c++)
@@ -270,14 +286,16 @@ public static class Relighting
                 throw new InputException($"{path}:{headerRow}:{c + 1}", $"column {MessageText.Quote(h)} names no light of the render",
                     $"columns: white, a light's name (its spectrum) or NAME.intensity; lights: {string.Join(", ", lightNames)}");
             if (Array.IndexOf(header, h) < c)
-                throw new InputException($"{path}:{headerRow}:{c + 1}", $"column {MessageText.Quote(h)} appears twice", "give every column once");
+                throw new InputException($"{path}:{headerRow}:{c + 1}", $"column {MessageText.Quote(h)} appears twice",
+                    "give every column once");
         }
         var rows = new List<SweepRow>();
         foreach (var (text, row) in lines.Skip(1))
         {
             var cells = text.Split(',').Select(x => x.Trim()).ToArray();
             if (cells.Length != header.Length)
-                throw new InputException($"{path}:{row}:{Math.Min(cells.Length, header.Length) + 1}", $"{cells.Length} cells, the header names {header.Length}", "every row needs one cell per header column");
+                throw new InputException($"{path}:{row}:{Math.Min(cells.Length, header.Length) + 1}",
+                    $"{cells.Length} cells, the header names {header.Length}", "every row needs one cell per header column");
             var changes = new Dictionary<string, LightChange>();
             string? white = null, whiteWhere = null;
             for (int c = 0; c < cells.Length; c++)
@@ -290,11 +308,15 @@ public static class Relighting
                 {
                     var name = h[..^".intensity".Length];
                     // The range a scene's "intensity" takes (as --intensity), so the scene file is never blamed for it.
-                    if (!double.TryParse(cells[c], NumberStyles.Float, CultureInfo.InvariantCulture, out double f) || !double.IsFinite(f) || f < 0 || f > 1e30)
-                        throw new InputException(where, $"{MessageText.Quote(cells[c])} is not a non-negative intensity ≤ 1e30", "intensities are plain non-negative numbers, e.g. 0.5");
+                    if (!double.TryParse(cells[c], NumberStyles.Float, CultureInfo.InvariantCulture, out double f) || !double.IsFinite(f)
+                        || f < 0 || f > 1e30)
+                        throw new InputException(where, $"{MessageText.Quote(cells[c])} is not a non-negative intensity ≤ 1e30",
+                            "intensities are plain non-negative numbers, e.g. 0.5");
                     changes[name] = (changes.GetValueOrDefault(name) ?? new LightChange(name, null, null)) with { Intensity = f };
                 }
-                else changes[h] = (changes.GetValueOrDefault(h) ?? new LightChange(h, null, null)) with { Spectrum = cells[c], Where = where };
+                else
+                    changes[h] =
+                        (changes.GetValueOrDefault(h) ?? new LightChange(h, null, null)) with { Spectrum = cells[c], Where = where };
             }
             rows.Add(new SweepRow(changes.Values.ToList(), white, whiteWhere, row));
         }

@@ -67,7 +67,8 @@ public static class SpectralViewer
         foreach (var o in manifest.Objects)
         {
             var mat = o.Material;
-            JsonNode? reflectance = transfer?["materials"]?.AsArray().FirstOrDefault(m => (string?)m!["name"] == mat && m["diffuse_spectrum"] is not null)?["diffuse_band_values"]?.DeepClone();
+            JsonNode? reflectance = transfer?["materials"]?.AsArray()
+                .FirstOrDefault(m => (string?)m!["name"] == mat && m["diffuse_spectrum"] is not null)?["diffuse_band_values"]?.DeepClone();
             if (reflectance is null && o.Reflectance is { } name)
             {
                 try { reflectance = Numbers(cm.Project(SpectrumLibrary.Resolve(name))); }
@@ -125,7 +126,8 @@ public static class SpectralViewer
             var components = ((ITermRoute)TransferFiles.Read(dir, Relighting.ChangedScene(src, [], null))).Components;
             var presets = new JsonArray();
             var lights = new JsonArray();
-            JsonArray PresetComponents(Func<int, float[]?> p) => new(Enumerable.Range(0, comps.Count).Select(c => p(c) is { } v ? (JsonNode)Numbers(v.Select(x => (double)x)) : null).ToArray());
+            JsonArray PresetComponents(Func<int, float[]?> p) => new(Enumerable.Range(0, comps.Count)
+                .Select(c => p(c) is { } v ? (JsonNode)Numbers(v.Select(x => (double)x)) : null).ToArray());
             void Add(string name, JsonArray values, TabulatedSpectrum? spectrum)
             {
                 double? ra = null, rf = null;
@@ -157,9 +159,12 @@ public static class SpectralViewer
                 try { s = SpectrumLibrary.Resolve(spectrumName); } catch (InputException) { }
                 int kk = k;
                 Add(preset, PresetComponents(c => components[c].FollowsLight && components[c].Light == kk && intensity > 0
-                    ? comps[c]!["band_values"]!.AsArray().Concat(comps[c]!["xyz"]!.AsArray()).Select(v => (float)((double)v! / intensity)).ToArray() : null), s);
+                    ? comps[c]!["band_values"]!.AsArray().Concat(comps[c]!["xyz"]!.AsArray()).Select(v => (float)((double)v! / intensity))
+                        .ToArray() : null),
+                        s);
                 presetLuminous.Add(luminous0 is null ? null : new JsonArray(Enumerable.Range(0, tl.Count)
-                    .Select(j => j == kk && intensity > 0 ? (JsonNode)JsonValue.Create(luminous0.LuminousOf(kk) / intensity) : null).ToArray()));
+                    .Select(j => j == kk && intensity > 0 ? (JsonNode)JsonValue.Create(luminous0.LuminousOf(kk) / intensity) : null)
+                    .ToArray()));
                 var ph = listed?.Photometric;
                 lights.Add((JsonNode)new JsonObject
                 {
@@ -168,7 +173,12 @@ public static class SpectralViewer
                     ["intensity"] = intensity,
                     // Photometric units shown beside the slider: the value per unit of the scale (cd, lm, lx, cd/m²).
                     ["photometric"] = ph is null || !(ph.RadiometricScale > 0) ? null
-                        : new JsonObject { ["quantity"] = ph.Quantity, ["unit"] = ph.Unit, ["per_intensity"] = ph.Value / ph.RadiometricScale },
+                        : new JsonObject
+                        {
+                            ["quantity"] = ph.Quantity,
+                            ["unit"] = ph.Unit,
+                            ["per_intensity"] = ph.Value / ph.RadiometricScale
+                        },
                 });
             }
             foreach (var name in Presets)
@@ -232,14 +242,16 @@ public static class SpectralViewer
         AtomicFile.Write(Path.Combine(dir, "viewer-data.js"), stream =>
         {
             using var w = new StreamWriter(stream, new UTF8Encoding(false), 1 << 16, leaveOpen: true);
-            w.Write("// The data of viewer.html, written by `spectral view` (see its help). Arrays: little-endian, base64.\nwindow.SPECTRAL_VIEWER = ");
+            w.Write("// The data of viewer.html, written by `spectral view` (see its help). Arrays: little-endian, "
+                + "base64.\nwindow.SPECTRAL_VIEWER = ");
             w.Write(data.ToJsonString());
             w.Write(";\n");
             foreach (var (name, bytes) in binary)
             {
                 w.Write($"window.SPECTRAL_VIEWER.{name} = \"");
                 const int Piece = 3 << 16;
-                for (int at = 0; at < bytes.Length; at += Piece) w.Write(Convert.ToBase64String(bytes, at, Math.Min(Piece, bytes.Length - at)));
+                for (int at = 0; at < bytes.Length; at += Piece)
+                    w.Write(Convert.ToBase64String(bytes, at, Math.Min(Piece, bytes.Length - at)));
                 w.Write("\";\n");
             }
         });

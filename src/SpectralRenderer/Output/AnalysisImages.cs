@@ -30,11 +30,13 @@ public static class AnalysisImages
             }
             done(name);
         }
-        AtomicFile.Write(Path.Combine(outDir, "mask-highlight.png"), s => PngWriter.WriteGray8(s, image.Width, image.Height, result.Highlights));
+        AtomicFile.Write(Path.Combine(outDir, "mask-highlight.png"),
+            s => PngWriter.WriteGray8(s, image.Width, image.Height, result.Highlights));
         done("mask-highlight.png");
 
         if (reuse?.Copy("reflectance.exr", outDir) != true)
-            ExrWriter.Write(Path.Combine(outDir, "reflectance.exr"), image.Width, image.Height, image.Grid, GroundTruthBands(scene, result), null, ReflectanceOptions(scene, result.Crop));
+            ExrWriter.Write(Path.Combine(outDir, "reflectance.exr"), image.Width, image.Height, image.Grid, GroundTruthBands(scene, result),
+                null, ReflectanceOptions(scene, result.Crop));
         done("reflectance.exr");
     }
 
@@ -60,11 +62,13 @@ public static class AnalysisImages
         DisplayHeight = scene.Camera.Height
     };
 
-    /// <summary>The bytes reflectance.exr of this scene starts with (magic, version, header): what the writer's settings alone decide.</summary>
+    /// <summary>The bytes reflectance.exr of this scene starts with (magic, version, header): what the writer's settings alone
+    /// decide.</summary>
     public static byte[] ReflectanceFileStart(Scene scene, PixelRect crop) =>
         ExrWriter.FileStart(crop.Width, crop.Height, scene.Grid, ReflectanceOptions(scene, crop));
 
-    /// <summary>The ground-truth diffuse reflectance of what each pixel sees (reflectance.exr), as band-sequential planes (<see cref="SpectralImage.CopyBands"/>), built directly.</summary>
+    /// <summary>The ground-truth diffuse reflectance of what each pixel sees (reflectance.exr), as band-sequential planes
+    /// (<see cref="SpectralImage.CopyBands"/>), built directly.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public static float[] GroundTruthBands(Scene scene, RenderResult result)
     {

@@ -34,8 +34,10 @@ public static class CalculationGridFiles
     {
         double min = lux.Min(), mean = lux.Average(), max = lux.Max();
         var n = grid.Normal;
-        return string.Create(CultureInfo.InvariantCulture, $"{grid.PointsU}×{grid.PointsV} points on the work plane (normal {n.X:0.###},{n.Y:0.###},{n.Z:0.###}): " +
-            $"illuminance min {min:G4} lx, mean {mean:G4} lx, max {max:G4} lx, uniformity U0 = min/mean {(mean > 0 ? min / mean : 0):0.###}");
+        return string.Create(CultureInfo.InvariantCulture,
+            $"{grid.PointsU}×{grid.PointsV} points on the work plane (normal {n.X:0.###},{n.Y:0.###},{n.Z:0.###}): " +
+            $"illuminance min {min:G4} lx, mean {mean:G4} lx, max {max:G4} lx, uniformity U0 = min/mean "
+                + $"{(mean > 0 ? min / mean : 0):0.###}");
     }
 
     /// <summary>The grid as SVG cells (U to the right, V up, each cell's lx in its title) beside its false-colour legend.</summary>
@@ -48,7 +50,8 @@ public static class CalculationGridFiles
         double cell = Math.Min(area * lengthU / Math.Max(lengthU, lengthV) / nu, area * lengthV / Math.Max(lengthU, lengthV) / nv);
         double w = cell * nu, h = cell * nv;
         var inv = CultureInfo.InvariantCulture;
-        var root = new XElement(svg + "svg", new XAttribute("width", (int)Math.Ceiling(w + 260)), new XAttribute("height", (int)Math.Ceiling(Math.Max(h + 60, 400))),
+        var root = new XElement(svg + "svg", new XAttribute("width", (int)Math.Ceiling(w + 260)),
+            new XAttribute("height", (int)Math.Ceiling(Math.Max(h + 60, 400))),
             new XAttribute("font-family", "sans-serif"), new XAttribute("font-size", 12),
             new XElement(svg + "text", new XAttribute("x", 10), new XAttribute("y", 20), new XAttribute("font-weight", "bold"),
                 $"Illuminance on the work plane — {title} ({nu} × {nv} points; U → right, V ↑)"));
@@ -57,8 +60,10 @@ public static class CalculationGridFiles
             {
                 double value = lux[j * nu + i];
                 var (r, g, b) = FalseColour.Colour(scale.Position(value));
-                root.Add(new XElement(svg + "rect", new XAttribute("x", (10 + i * cell).ToString("F2", inv)), new XAttribute("y", (40 + (nv - 1 - j) * cell).ToString("F2", inv)),
-                    new XAttribute("width", cell.ToString("F2", inv)), new XAttribute("height", cell.ToString("F2", inv)), new XAttribute("fill", $"#{r:x2}{g:x2}{b:x2}"),
+                root.Add(new XElement(svg + "rect", new XAttribute("x", (10 + i * cell).ToString("F2", inv)),
+                    new XAttribute("y", (40 + (nv - 1 - j) * cell).ToString("F2", inv)),
+                    new XAttribute("width", cell.ToString("F2", inv)), new XAttribute("height", cell.ToString("F2", inv)),
+                        new XAttribute("fill", $"#{r:x2}{g:x2}{b:x2}"),
                     new XAttribute("data-lx", value.ToString("R", inv)),
                     new XElement(svg + "title", $"point ({i}, {j}): {value.ToString("G4", inv)} lx")));
             }

@@ -10,7 +10,8 @@ namespace SpectralRenderer.Output;
 /// </summary>
 public sealed record ManifestSampling(string Sampler, uint Seed, ManifestNoise? Noise, ManifestAdaptive? Adaptive)
 {
-    public const string Estimator = "standard error of each pixel's mean from its own n samples: s/sqrt(n), s^2 the unbiased sample variance";
+    public const string Estimator =
+        "standard error of each pixel's mean from its own n samples: s/sqrt(n), s^2 the unbiased sample variance";
     public const string RelativeUnit = "1 (a fraction: the standard error of the pixel's mean luminance Y divided by that mean)";
 
     public JsonObject ToJson()
@@ -54,9 +55,13 @@ public sealed record ManifestSampling(string Sampler, uint Seed, ManifestNoise? 
         var rel = n?["relative_error_of_luminance"] as JsonObject;
         var a = o["adaptive"] as JsonObject;
         return new ManifestSampling(Str(o, "sampler") ?? "independent", (uint)(Num(o, "seed") ?? 0),
-            n is null ? null : new ManifestNoise(Str(n, "band_unit") ?? "", Str(n, "luminance_unit") ?? "", Num(rel, "mean"), Num(rel, "max"),
+            n is null
+                ? null
+                : new ManifestNoise(Str(n, "band_unit") ?? "", Str(n, "luminance_unit") ?? "", Num(rel, "mean"), Num(rel, "max"),
                 (long)(Num(rel, "pixels") ?? 0)),
-            a is null ? null : new ManifestAdaptive(Num(a, "target_error") ?? 0, (int)(Num(a, "spp_cap") ?? 0), (int)(Num(a, "spp_min") ?? 0),
+            a is null
+                ? null
+                : new ManifestAdaptive(Num(a, "target_error") ?? 0, (int)(Num(a, "spp_cap") ?? 0), (int)(Num(a, "spp_min") ?? 0),
                 Num(a, "spp_mean") ?? 0, (int)(Num(a, "spp_max") ?? 0)));
     }
 }

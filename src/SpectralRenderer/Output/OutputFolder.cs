@@ -83,7 +83,8 @@ public sealed class OutputFolder : IDisposable
         var owned = new HashSet<string>(StringComparer.Ordinal);
         foreach (var n in names)
         {
-            if (!JsonFields.IsRelativeName(n, out var why)) throw new InputException(option, $"the file name {MessageText.Quote(n, 80)} {why}", "give a plain file name");
+            if (!JsonFields.IsRelativeName(n, out var why))
+                throw new InputException(option, $"the file name {MessageText.Quote(n, 80)} {why}", "give a plain file name");
             owned.Add(n);
         }
         return Open(dir, null, what, owned, option);
@@ -91,12 +92,14 @@ public sealed class OutputFolder : IDisposable
 
     static OutputFolder Open(string outDir, string? manifest, string what, HashSet<string>? owned, string option)
     {
-        if (string.IsNullOrWhiteSpace(outDir)) throw new InputException(option, "the output folder name is empty", "give a folder name, e.g. -o out/scene");
+        if (string.IsNullOrWhiteSpace(outDir))
+            throw new InputException(option, "the output folder name is empty", "give a folder name, e.g. -o out/scene");
         string full;
         try { full = RealPath(Path.GetFullPath(outDir).TrimEnd(Path.DirectorySeparatorChar)); }
         catch (Exception e) when (e is ArgumentException or PathTooLongException or NotSupportedException or IOException)
         { throw new InputException(outDir, "is not a usable folder name", $"choose another {option}"); }
-        if (File.Exists(full) && !Directory.Exists(full)) throw new InputException(outDir, "exists and is a file, not a folder", $"choose another {option}");
+        if (File.Exists(full) && !Directory.Exists(full))
+            throw new InputException(outDir, "exists and is a file, not a folder", $"choose another {option}");
         var parent = Path.GetDirectoryName(full) ?? throw new InputException(outDir, "is the root folder", "choose a folder below it");
         var folder = new OutputFolder(full, parent, Path.GetFileName(full), manifest, what, owned);
         try
@@ -111,7 +114,9 @@ public sealed class OutputFolder : IDisposable
         catch (Exception e) when (e is IOException or UnauthorizedAccessException)
         {
             folder.Release();
-            string reason = e is PathTooLongException ? "the path is too long" : e.Message.Replace(full, "it").Replace(parent, "its folder");
+            string reason = e is PathTooLongException
+                ? "the path is too long"
+                : e.Message.Replace(full, "it").Replace(parent, "its folder");
             throw new InputException(outDir, $"cannot be written: {reason}", "choose a folder you can write to");
         }
         catch
@@ -137,13 +142,15 @@ public sealed class OutputFolder : IDisposable
             try { fs = new FileStream(LockPath, FileMode.OpenOrCreate, FileAccess.ReadWrite, FileShare.None); }
             catch (IOException e) when (File.Exists(LockPath) && e is not PathTooLongException)
             {
-                throw new InputException(given, $"is being written by another spectral process (its lock {Path.GetFileName(LockPath)} is held)",
+                throw new InputException(given,
+                    $"is being written by another spectral process (its lock {Path.GetFileName(LockPath)} is held)",
                     "wait for that run to finish, or write to another folder");
             }
             if (!LockFileRemoved(fs)) { _lock = fs; return; }
             fs.Dispose();   // its holder removed the file between our open and our lock: lock the new one
         }
-        throw new InputException(given, "cannot be locked: its lock file keeps changing", "wait for the other spectral processes to finish");
+        throw new InputException(given, "cannot be locked: its lock file keeps changing",
+            "wait for the other spectral processes to finish");
     }
 
     /// <summary>Whether the locked file is no longer at its path (Linux: /proc/self/fd says "(deleted)").</summary>
@@ -181,7 +188,8 @@ public sealed class OutputFolder : IDisposable
         }
     }
 
-    /// <summary>Abandons the folder unless it was swapped in (<see cref="Abandon"/>): `using` a folder removes its staging on every exit.</summary>
+    /// <summary>Abandons the folder unless it was swapped in (<see cref="Abandon"/>): `using` a folder removes its staging on every
+    /// exit.</summary>
     public void Dispose() => Abandon();
 
     /// <summary>
@@ -213,7 +221,8 @@ public sealed class OutputFolder : IDisposable
     public bool HoldsRender => File.Exists(Path.Combine(Final, RenderManifest.FileName));
 
     /// <summary>Whether the final folder holds this kind of result now (its manifest, or any of the owned names).</summary>
-    public bool HoldsResult => Manifest is { } m ? File.Exists(Path.Combine(Final, m)) : _owned!.Any(n => File.Exists(Path.Combine(Final, n)));
+    public bool HoldsResult =>
+        Manifest is { } m ? File.Exists(Path.Combine(Final, m)) : _owned!.Any(n => File.Exists(Path.Combine(Final, n)));
 
     /// <summary>
     /// Swaps the staged files in: <paramref name="files"/> (relative paths; the manifest among them) replace the files
@@ -231,7 +240,8 @@ public sealed class OutputFolder : IDisposable
                 if (!JsonFields.IsRelativeName(f, out var why)) throw new InvalidOperationException($"file name '{f}' {why}");
                 var dest = Path.Combine(Final, f);
                 if ((File.Exists(dest) || Directory.Exists(dest)) && !previous.Contains(f))
-                    throw new InputException(dest, $"exists and was not written by the previous {What} ({Manifest ?? "it"} does not list it)",
+                    throw new InputException(dest,
+                        $"exists and was not written by the previous {What} ({Manifest ?? "it"} does not list it)",
                         "move it away or choose another -o: spectral never replaces a file it did not write");
             }
             Directory.CreateDirectory(Final);
@@ -365,7 +375,8 @@ public sealed class OutputFolder : IDisposable
         {
             var p = Path.Combine(Final, name);
             if (IsLink(p))
-                throw new InputException(p, $"is a symbolic link to {MessageText.Quote(new FileInfo(p).LinkTarget, 80)}, not a folder of the {What}",
+                throw new InputException(p,
+                    $"is a symbolic link to {MessageText.Quote(new FileInfo(p).LinkTarget, 80)}, not a folder of the {What}",
                     "remove the link or choose another -o: spectral never writes or removes through a link");
             if (name == "bands" && Manifest == RenderManifest.FileName && File.Exists(p) && previous?.Contains(name) != true)
                 throw new InputException(p, "is a file where the render writes its bands/ folder", "move it away or choose another -o");
@@ -399,7 +410,10 @@ public sealed class OutputFolder : IDisposable
                 set.Add(f);
             }
         }
-        catch (Exception e) when (e is JsonException or IOException or UnauthorizedAccessException or InvalidOperationException) { set.Clear(); }
+        catch (Exception e) when (e is JsonException or IOException or UnauthorizedAccessException or InvalidOperationException)
+        {
+            set.Clear();
+        }
         return set;
     }
 
@@ -424,7 +438,11 @@ public sealed class OutputFolder : IDisposable
         {
             var n = Path.GetFileName(dir);
             string rest = n[(_name.Length + 1)..];
-            string? tag = rest.StartsWith(StagingTag, StringComparison.Ordinal) ? StagingTag : rest.StartsWith(AsideTag, StringComparison.Ordinal) ? AsideTag : null;
+            string? tag = rest.StartsWith(StagingTag, StringComparison.Ordinal)
+                ? StagingTag
+                : rest.StartsWith(AsideTag, StringComparison.Ordinal)
+                ? AsideTag
+                : null;
             if (tag is null || IsLink(dir)) continue;
             var idPart = rest[tag.Length..^TmpSuffix.Length];
             int dash = idPart.IndexOf('-');
@@ -449,7 +467,8 @@ public sealed class OutputFolder : IDisposable
         var root = Path.GetPathRoot(fullPath) ?? "/";
         string current = root;
         int hops = 0;
-        var pending = new Stack<string>(fullPath[root.Length..].Split(Path.DirectorySeparatorChar, StringSplitOptions.RemoveEmptyEntries).Reverse());
+        var pending =
+            new Stack<string>(fullPath[root.Length..].Split(Path.DirectorySeparatorChar, StringSplitOptions.RemoveEmptyEntries).Reverse());
         while (pending.Count > 0)
         {
             var part = pending.Pop();
@@ -459,7 +478,8 @@ public sealed class OutputFolder : IDisposable
             if (new FileInfo(next).LinkTarget is { } target)
             {
                 if (++hops > 40) throw new IOException($"too many symbolic links in {fullPath}");
-                foreach (var p in target.Split(Path.DirectorySeparatorChar, StringSplitOptions.RemoveEmptyEntries).Reverse()) pending.Push(p);
+                foreach (var p in target.Split(Path.DirectorySeparatorChar, StringSplitOptions.RemoveEmptyEntries).Reverse())
+                    pending.Push(p);
                 if (Path.IsPathRooted(target)) current = root;
                 continue;
             }
@@ -485,7 +505,11 @@ public sealed class OutputFolder : IDisposable
             return File.Exists(Path.Combine(a, probe));
         }
         catch (Exception e) when (e is IOException or UnauthorizedAccessException) { return false; }
-        finally { try { File.Delete(Path.Combine(b, probe)); } catch (Exception e) when (e is IOException or UnauthorizedAccessException) { } }
+        finally
+        {
+            try { File.Delete(Path.Combine(b, probe)); }
+            catch (Exception e) when (e is IOException or UnauthorizedAccessException) { }
+        }
     }
 
     /// <summary>The swap's journal: folder names beside the target, the manifest's name, the old and the new file names.</summary>
@@ -500,7 +524,8 @@ public sealed class OutputFolder : IDisposable
             ["files"] = new JsonArray(Files.Select(f => (JsonNode)f).ToArray()),
         }.ToJsonString() + "\n";
 
-        /// <summary>A journal read back and checked: its folders are this target's staging and aside, its names inside the folder.</summary>
+        /// <summary>A journal read back and checked: its folders are this target's staging and aside, its names inside the
+        /// folder.</summary>
         public static Journal Read(string path, string name)
         {
             var json = JsonFields.ParseFile(path, "swap journal", "");
@@ -508,13 +533,16 @@ public sealed class OutputFolder : IDisposable
             string Folder(string key, string tag)
             {
                 var v = r.String(json, key, "$");
-                if (!v.StartsWith($".{name}{tag}", StringComparison.Ordinal) || !v.EndsWith(TmpSuffix, StringComparison.Ordinal) || v.Contains('/'))
-                    throw new InputException($"{path}: $.{key}", $"{MessageText.Quote(v, 80)} is not this folder's {(tag == StagingTag ? "staging" : "aside")} folder",
+                if (!v.StartsWith($".{name}{tag}", StringComparison.Ordinal) || !v.EndsWith(TmpSuffix, StringComparison.Ordinal)
+                    || v.Contains('/'))
+                    throw new InputException($"{path}: $.{key}",
+                        $"{MessageText.Quote(v, 80)} is not this folder's {(tag == StagingTag ? "staging" : "aside")} folder",
                         "move the journal away and check the folder by hand");
                 return v;
             }
             string[] Names(string key) => [.. (r.OptArray(json, key, "$") ?? []).Select((n, i) => r.RelativeName(n, $"$.{key}[{i}]"))];
-            return new Journal(Folder("staging", StagingTag), Folder("aside", AsideTag), r.OptString(json, "manifest", "$"), Names("previous"), Names("files"));
+            return new Journal(Folder("staging", StagingTag), Folder("aside", AsideTag), r.OptString(json, "manifest", "$"),
+                Names("previous"), Names("files"));
         }
     }
 }

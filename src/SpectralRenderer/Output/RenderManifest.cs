@@ -8,16 +8,22 @@ using SpectralRenderer.Spectra;
 namespace SpectralRenderer.Output;
 
 /// <summary>An object of the scene as render.json lists it: its id in object-id.png (1-based, 0 = background).</summary>
-/// <param name="FlatNormal">The world normal of a flat shape (quad, plane), so analysis can tell a chart lit head-on; null otherwise.</param>
+/// <param name="FlatNormal">The world normal of a flat shape (quad, plane), so analysis can tell a chart lit head-on; null
+/// otherwise.</param>
 public sealed record ManifestObject(int Id, string Name, string Material, string? Reflectance, double[]? FlatNormal = null);
 
-/// <summary>A light as render.json lists it: k in mask-lit-&lt;k&gt;.png, its kind ("point", "spot", "directional") and spectrum name.</summary>
-/// <param name="Intensity">The scene's intensity, the factor on <paramref name="Spd"/>; <paramref name="IntensityUnit"/> says what it is in.</param>
-/// <param name="Position">Point and spot lights; <paramref name="Direction"/> the direction spot and directional lights shine towards.</param>
+/// <summary>A light as render.json lists it: k in mask-lit-&lt;k&gt;.png, its kind ("point", "spot", "directional") and spectrum
+/// name.</summary>
+/// <param name="Intensity">The scene's intensity, the factor on <paramref name="Spd"/>; <paramref name="IntensityUnit"/> says what it is
+/// in.</param>
+/// <param name="Position">Point and spot lights; <paramref name="Direction"/> the direction spot and directional lights shine
+/// towards.</param>
 /// <param name="Attenuation">[c0, c1, c2] of d = 1/(c0 + c1·r + c2·r²); null for directional lights (no attenuation).</param>
 /// <param name="Photometric">The photometric value the scene gave instead of an intensity (physical radiometry), or null.</param>
-public sealed record ManifestLight(int Index, string Name, string Kind, string? Spectrum, double Intensity = 1, string? IntensityUnit = null,
-    bool HasAmbient = false, double[]? Position = null, double[]? Direction = null, double[]? Attenuation = null, TabulatedSpectrum? Spd = null,
+public sealed record ManifestLight(int Index, string Name, string Kind, string? Spectrum, double Intensity = 1,
+    string? IntensityUnit = null,
+    bool HasAmbient =
+        false, double[]? Position = null, double[]? Direction = null, double[]? Attenuation = null, TabulatedSpectrum? Spd = null,
     ManifestPhotometry? Photometric = null);
 
 /// <summary>
@@ -103,7 +109,8 @@ public sealed record RenderManifest
     /// film. Its images are crop-sized; the ENVI and NPY cubes start at film pixel (X0, Y0), the EXRs say it in dataWindow.
     /// </summary>
     public Rendering.PixelRect? Crop { get; init; }
-    /// <summary>The sampler and how exact the render is (per-pixel standard errors, adaptive sampling); null: the independent sampler, no statistics.</summary>
+    /// <summary>The sampler and how exact the render is (per-pixel standard errors, adaptive sampling); null: the independent sampler, no
+    /// statistics.</summary>
     public ManifestSampling? Sampling { get; init; }
 
     /// <summary>
@@ -113,7 +120,9 @@ public sealed record RenderManifest
     public RenderManifest Whole(string dir)
     {
         if (Crop is not { } c) return this;
-        throw new InputException(dir, $"holds a crop of the film (pixels {c.X0}–{c.X1 - 1} × {c.Y0}–{c.Y1 - 1} of {Width}×{Height}, from --crop or --shard), not a whole render",
+        throw new InputException(dir,
+            $"holds a crop of the film (pixels {c.X0}–{c.X1 - 1} × {c.Y0}–{c.Y1 - 1} of {Width}×{Height}, from --crop "
+                + $"or --shard), not a whole render",
             "assemble the shards with 'spectral merge SHARD_DIR… -o OUT' first, or render without --crop");
     }
 
@@ -162,7 +171,8 @@ public sealed record RenderManifest
                     ["unit"] = ph.Unit,
                     ["radiometric_scale"] = ph.RadiometricScale,
                     ["luminous_per_unit_scale"] = ph.LuminousPerUnit,
-                    ["note"] = "value = radiometric_scale × luminous_per_unit_scale (683 lm/W · ∫V(λ)·spectrum dλ, CIE 1924 V) × the light's solid angle (4π sr for a point light's lm, the spot's ∫c_spot dΩ; 1 for cd and lx)",
+                    ["note"] = "value = radiometric_scale × luminous_per_unit_scale (683 lm/W · ∫V(λ)·spectrum dλ, CIE 1924 V) × the "
+                        + "light's solid angle (4π sr for a point light's lm, the spot's ∫c_spot dΩ; 1 for cd and lx)",
                 };
             lights.Add((JsonNode)e);
         }
@@ -199,7 +209,8 @@ public sealed record RenderManifest
                 ["fallback_pixels"] = FallbackPixels,
                 ["observer"] = ObserverDegrees,
                 ["reference_white"] = ReferenceWhite.Name,
-                ["reference_white_spd"] = new JsonObject { ["wavelengths_nm"] = Arr(ReferenceWhite.Wavelengths), ["values"] = Arr(ReferenceWhite.Values) },
+                ["reference_white_spd"] =
+                    new JsonObject { ["wavelengths_nm"] = Arr(ReferenceWhite.Wavelengths), ["values"] = Arr(ReferenceWhite.Values) },
                 ["kappa"] = Kappa,
                 ["white_xyz"] = Arr([White.X, White.Y, White.Z]),
                 ["weights_x"] = Arr(Wx),
@@ -361,7 +372,8 @@ public sealed record RenderManifest
             if (r.OptObject(l, "photometric", at) is { } po)
             {
                 string pat = $"{at}.photometric";
-                photometric = new ManifestPhotometry(r.String(po, "quantity", pat), r.OptNumber(po, "value", pat) ?? 0, r.String(po, "unit", pat),
+                photometric =
+                    new ManifestPhotometry(r.String(po, "quantity", pat), r.OptNumber(po, "value", pat) ?? 0, r.String(po, "unit", pat),
                     r.OptNumber(po, "radiometric_scale", pat) ?? 0, r.OptNumber(po, "luminous_per_unit_scale", pat) ?? 0);
             }
             return new ManifestLight(r.OptInt(l, "index", at, 0, int.MaxValue) ?? i, name, r.OptString(l, "kind", at) ?? "point",
@@ -447,7 +459,8 @@ public sealed record RenderManifest
         var wl = r.Numbers(o, "wavelengths_nm", at, null, 1, 100_000);
         if (wl.Length < 1) throw r.Bad($"{at}.wavelengths_nm", "is empty");
         for (int i = 1; i < wl.Length; i++)
-            if (!(wl[i] > wl[i - 1])) throw r.Bad($"{at}.wavelengths_nm[{i}]", $"is {wl[i]}, not above the one before (wavelengths ascend)");
+            if (!(wl[i] > wl[i - 1]))
+                throw r.Bad($"{at}.wavelengths_nm[{i}]", $"is {wl[i]}, not above the one before (wavelengths ascend)");
         return (wl, r.Numbers(o, "values", at, wl.Length));
     }
 
@@ -459,8 +472,10 @@ public sealed record RenderManifest
         {
             const string ov = "$.run.overrides";
             var models = r.OptArray(v, "models", ov) is { } ms ? ms.Select((m, i) => r.String(m, $"{ov}.models[{i}]")).ToArray() : [];
-            overrides = new ManifestOverrides(r.OptInt(v, "width", ov, 1, 32768), r.OptInt(v, "height", ov, 1, 32768), r.OptString(v, "bands", ov),
-                r.OptString(v, "wave", ov), r.OptInt(v, "spp", ov, 1, 1 << 20), r.OptString(v, "rgb", ov), r.OptString(v, "integration", ov),
+            overrides =
+                new ManifestOverrides(r.OptInt(v, "width", ov, 1, 32768), r.OptInt(v, "height", ov, 1, 32768), r.OptString(v, "bands", ov),
+                r.OptString(v, "wave", ov), r.OptInt(v, "spp", ov, 1, 1 << 20), r.OptString(v, "rgb", ov),
+                    r.OptString(v, "integration", ov),
                 r.OptString(v, "formats", ov), r.OptString(v, "exr_compression", ov), models);
         }
         return new ManifestRun
@@ -518,12 +533,15 @@ public sealed record RenderManifest
             {
                 string a = $"{at}.changes[{i}]";
                 var c = r.Object(node, a);
-                return new ManifestLightChange(r.OptString(c, "light", a) ?? "", r.OptString(c, "spectrum", a), r.OptNumber(c, "intensity", a));
+                return new ManifestLightChange(r.OptString(c, "light", a) ?? "", r.OptString(c, "spectrum", a),
+                    r.OptNumber(c, "intensity", a));
             }).ToArray() : [],
             White = r.OptString(o, "white", at),
             ComputeSeconds = r.OptNumber(o, "compute_s", at, 0) ?? 0,
             Metrics = metrics,
-            CopiedFiles = r.OptArray(o, "copied_files", at) is { } cf ? cf.Select((f, i) => r.RelativeName(f, $"{at}.copied_files[{i}]")).ToArray() : null,
+            CopiedFiles = r.OptArray(o, "copied_files", at) is { } cf
+                ? cf.Select((f, i) => r.RelativeName(f, $"{at}.copied_files[{i}]")).ToArray()
+                : null,
         };
     }
 

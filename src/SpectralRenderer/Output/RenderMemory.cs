@@ -13,8 +13,10 @@ namespace SpectralRenderer.Output;
 /// </summary>
 public static class RenderMemory
 {
-    /// <summary>The parts of the estimate, largest first, in bytes, for a render by <paramref name="integrator"/> (null: the scene's).</summary>
-    public static List<(string Part, long Bytes)> Estimate(Scene scene, int threads, IReadOnlyList<OutputProduct>? named = null, string? integrator = null)
+    /// <summary>The parts of the estimate, largest first, in bytes, for a render by <paramref name="integrator"/> (null: the
+    /// scene's).</summary>
+    public static List<(string Part, long Bytes)> Estimate(Scene scene, int threads, IReadOnlyList<OutputProduct>? named = null,
+        string? integrator = null)
     {
         long n = (long)scene.Camera.Width * scene.Camera.Height, bands = scene.Bands;
         var p = scene.Output.Products;
@@ -57,13 +59,15 @@ public static class RenderMemory
         if (need <= usable) return;
         string top = $"{parts[0].Part} {InputFile.Size(parts[0].Bytes)}";
         throw new InputException($"{scene.SourcePath}: $.camera",
-            $"a {scene.Camera.Width}×{scene.Camera.Height}×{scene.Bands} render needs about {InputFile.Size(need)} ({top}, …), more than the {InputFile.Size(Math.Max(0, usable))} left of {LimitName()} {InputFile.Size(available)}",
+            $"a {scene.Camera.Width}×{scene.Camera.Height}×{scene.Bands} render needs about {InputFile.Size(need)} ({top}, …), more than "
+                + $"the {InputFile.Size(Math.Max(0, usable))} left of {LimitName()} {InputFile.Size(available)}",
             "lower the width, height or band count, or write fewer --formats");
     }
 
     static string LimitName()
     {
-        if (AppContext.GetData("GCHeapHardLimit") is not null || Environment.GetEnvironmentVariable("DOTNET_GCHeapHardLimit") is { Length: > 0 }
+        if (AppContext.GetData("GCHeapHardLimit") is not null
+            || Environment.GetEnvironmentVariable("DOTNET_GCHeapHardLimit") is { Length: > 0 }
             || Environment.GetEnvironmentVariable("DOTNET_GCHeapHardLimitPercent") is { Length: > 0 })
             return "the GC heap limit of";
         try

@@ -25,7 +25,8 @@ public static class RenderOutputWriter
     /// <summary>This engine build's identity (render.json "build"): the module version id of its assembly.</summary>
     public static string EngineBuild { get; } = typeof(RenderOutputWriter).Assembly.ManifestModule.ModuleVersionId.ToString("N");
 
-    public static List<string> Write(Scene scene, RenderResult result, string outDir, ManifestRun? run = null, CancellationToken cancel = default,
+    public static List<string> Write(Scene scene, RenderResult result, string outDir, ManifestRun? run = null,
+        CancellationToken cancel = default,
         ILightTransfer? transfer = null, ReusedFiles? reuse = null, IReadOnlyList<OutputProduct>? named = null,
         RenderTracer? tracer = null) =>
         Write(scene, result, OutputFolder.Begin(outDir), run, cancel, transfer, reuse, named, tracer);
@@ -34,10 +35,12 @@ public static class RenderOutputWriter
     /// Writes the render into <paramref name="folder"/>'s staging folder and swaps it in whole (<see cref="OutputFolder"/>).
     /// Interrupted or failed, the staged files are removed and the folder holds what it held before.
     /// </summary>
-    /// <param name="reuse">Files another folder holds exactly as this render would write them (a relit render's light-independent files): copied, not encoded.</param>
+    /// <param name="reuse">Files another folder holds exactly as this render would write them (a relit render's light-independent files):
+    /// copied, not encoded.</param>
     /// <param name="named">Products asked for by name beyond the scene's formats (<see cref="OutputProductTable.Named"/>).</param>
     /// <param name="tracer">The render's geometry and integrator, for products that trace rays (photometry's illuminance).</param>
-    public static List<string> Write(Scene scene, RenderResult result, OutputFolder folder, ManifestRun? run = null, CancellationToken cancel = default,
+    public static List<string> Write(Scene scene, RenderResult result, OutputFolder folder, ManifestRun? run = null,
+        CancellationToken cancel = default,
         ILightTransfer? transfer = null, ReusedFiles? reuse = null, IReadOnlyList<OutputProduct>? named = null,
         RenderTracer? tracer = null)
     {
@@ -46,7 +49,9 @@ public static class RenderOutputWriter
         catch (OperationCanceledException e) when (e is not InterruptedException)
         {
             folder.Abandon();
-            throw new InterruptedException($"interrupted while writing: the new render's partial files were removed; {folder.Final} {(folder.HoldsRender ? "still holds the previous render, unchanged" : "holds no render")}", e.CancellationToken);
+            throw new InterruptedException($"interrupted while writing: the new render's partial files were removed; {folder.Final} "
+                + $"{(folder.HoldsRender ? "still holds the previous render, unchanged" : "holds no render")}",
+                e.CancellationToken);
         }
         catch
         {
@@ -69,7 +74,8 @@ public static class RenderOutputWriter
         if (bad > 0)
         {
             int px = first / image.Bands;
-            throw new WorkFailedException($"the render produced {bad} non-finite band values (the first at pixel {px % image.Width},{px / image.Width}, band {first % image.Bands}); nothing was written");
+            throw new WorkFailedException($"the render produced {bad} non-finite band values (the first at pixel "
+                + $"{px % image.Width},{px / image.Width}, band {first % image.Bands}); nothing was written");
         }
     }
 
@@ -178,7 +184,11 @@ public static class RenderOutputWriter
         var written = new List<string>();
         foreach (var g in groups) written.AddRange(g);
         // Wall seconds from the pixels to every file but render.json written (not hashed: a timing).
-        var final = manifest! with { Files = written.ToArray(), Run = run is null ? null : run with { WriteSeconds = writeClock.Elapsed.TotalSeconds } };
+        var final = manifest! with
+        {
+            Files = written.ToArray(),
+            Run = run is null ? null : run with { WriteSeconds = writeClock.Elapsed.TotalSeconds }
+        };
         if (NonFinite(final.ToJson()) is { } bad)
             throw new WorkFailedException($"render.json would hold a non-finite number at {bad}; nothing was written");
         AtomicFile.WriteAllText(Path.Combine(outDir, RenderManifest.FileName), final.ToJsonText());
@@ -204,13 +214,15 @@ public static class RenderOutputWriter
     }
 
     /// <summary>bands/: one 16-bit PNG per band, all on the scale of the brightest band value.</summary>
-    internal static void WriteBands(Scene scene, SpectralImage image, float[] bands, float scale, string outDir, Action<string> done, CancellationToken cancel)
+    internal static void WriteBands(Scene scene, SpectralImage image, float[] bands, float scale, string outDir, Action<string> done,
+        CancellationToken cancel)
     {
         var dir = Path.Combine(outDir, "bands");
         Directory.CreateDirectory(dir);
         int n = image.Width * image.Height;
         var names = new string[image.Bands];
-        Parallel.For(0, image.Bands, new ParallelOptions { CancellationToken = cancel }, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (b) =>
+        Parallel.For(0, image.Bands, new ParallelOptions { CancellationToken = cancel },
+            [MethodImpl(MethodImplOptions.AggressiveOptimization)] (b) =>
         {
             var plane = bands.AsSpan(b * n, n);
             var grey = ArrayPool<byte>.Shared.Rent(2 * n);
@@ -219,7 +231,8 @@ public static class RenderOutputWriter
                 BandSamples16(plane, scale, grey.AsSpan(0, 2 * n));
                 names[b] = BandFileName(scene, b);
                 var text = BandText(scene, b, scale);
-                AtomicFile.Write(Path.Combine(dir, names[b]), s => WriteBandImage(s, image.Width, image.Height, grey.AsSpan(0, 2 * n), text));
+                AtomicFile.Write(Path.Combine(dir, names[b]),
+                    s => WriteBandImage(s, image.Width, image.Height, grey.AsSpan(0, 2 * n), text));
             }
             finally { ArrayPool<byte>.Shared.Return(grey); }
         });
@@ -247,18 +260,21 @@ public static class RenderOutputWriter
         {
             ["Title"] = string.Create(inv, $"band {b + 1} of {g.Count}: {g.Lower(b):0.###}-{g.Upper(b):0.###} nm"),
             ["Software"] = $"spectral {typeof(RenderOutputWriter).Assembly.GetName().Version?.ToString(3)}",
-            ["Scale"] = string.Create(inv, $"band value = sample / 65535 * {scale:R} {unit} (linear samples, gAMA 1.0; values above the scale clip)"),
+            ["Scale"] = string.Create(inv,
+                $"band value = sample / 65535 * {scale:R} {unit} (linear samples, gAMA 1.0; values above the scale clip)"),
             ["Radiometry"] = radiometry,
         };
     }
 
-    /// <summary>What a band value is, in ASCII: spectral radiance in W m^-2 sr^-1 nm^-1 (physical) or eq. 2's relative units (paper).</summary>
+    /// <summary>What a band value is, in ASCII: spectral radiance in W m^-2 sr^-1 nm^-1 (physical) or eq. 2's relative units
+    /// (paper).</summary>
     /// <summary>render.json's "sampling", or null for the independent sampler of seed 0 without per-pixel statistics.</summary>
     static ManifestSampling? Sampling(Scene scene, RenderResult result, Colorimeter c)
     {
         if (result.Sampler == SamplerSettings.Independent && result.Noise is null) return null;
         var noise = result.Noise is { } n && result.Xyz is { } xyz
-            ? ManifestNoise.Of(n, xyz, scene.Bands, RadianceUnit(scene), c.Absolute && scene.Radiometry == Radiometry.Physical ? "cd/m^2" : "Y as radiometry.xyz states it")
+            ? ManifestNoise.Of(n, xyz, scene.Bands, RadianceUnit(scene),
+                c.Absolute && scene.Radiometry == Radiometry.Physical ? "cd/m^2" : "Y as radiometry.xyz states it")
             : null;
         var adaptive = result.SamplesUsed is { } used ? ManifestAdaptive.Of(result.TargetError, scene.Camera.SamplesPerPixel, used) : null;
         return new ManifestSampling(Samplers.Name(result.Sampler.Kind), result.Sampler.Seed, noise, adaptive);
@@ -266,7 +282,8 @@ public static class RenderOutputWriter
 
     public static string RadianceUnit(Scene scene) => scene.Radiometry == Radiometry.Physical
         ? "W.m^-2.sr^-1.nm^-1 (spectral radiance, band mean)"
-        : "relative units (paper radiometry: eq. 2 without units; a white diffuser lit head-on by the reference white at intensity 1 has band value E_b)";
+        : "relative units (paper radiometry: eq. 2 without units; a white diffuser lit head-on by the reference white at "
+            + "intensity 1 has band value E_b)";
 
     /// <summary>
     /// A band image's 16-bit samples RgbSpace.To16(clamp(v / scale, 0, 1)) (0 when scale is not positive), big-endian as PNG
@@ -297,14 +314,17 @@ public static class RenderOutputWriter
 
             Vector<ulong> Bits(Vector<double> f) => Vector.AsVectorUInt64(Vector.Floor(f * full + half) + magic);
         }
-        for (; i < plane.Length; i++) BinaryPrimitives.WriteUInt16BigEndian(bigEndian[(2 * i)..], RgbSpace.To16(Math.Clamp(plane[i] / scale, 0, 1)));
+        for (; i < plane.Length; i++)
+            BinaryPrimitives.WriteUInt16BigEndian(bigEndian[(2 * i)..], RgbSpace.To16(Math.Clamp(plane[i] / scale, 0, 1)));
 
         static Vector<float> Clamp01(Vector<float> v) =>
-            Vector.ConditionalSelect(Vector.Equals(v, v), Vector.Min(Vector.Max(v, Vector<float>.Zero), Vector<float>.One), Vector<float>.Zero);
+            Vector.ConditionalSelect(Vector.Equals(v, v), Vector.Min(Vector.Max(v, Vector<float>.Zero), Vector<float>.One),
+                Vector<float>.Zero);
     }
 
     public static string BandFileName(Scene scene, int b) =>
-        string.Create(CultureInfo.InvariantCulture, $"band-{Spectra.BandGrid.Number(b):00}-{scene.Grid.Lower(b):0.###}-{scene.Grid.Upper(b):0.###}nm.png");
+        string.Create(CultureInfo.InvariantCulture,
+            $"band-{Spectra.BandGrid.Number(b):00}-{scene.Grid.Lower(b):0.###}-{scene.Grid.Upper(b):0.###}nm.png");
 
     public static byte[] Preview(SpectralImage image, DisplayEncoder encoder) =>
         Preview(image.Width, image.Height, XyzPlanes.Compute(encoder.Colorimeter, image), encoder);
@@ -338,7 +358,8 @@ public static class RenderOutputWriter
             if (o.Shape is { Kind: Geometry.ShapeKind.Quad or Geometry.ShapeKind.Plane } shape)
             {
                 var nrm = System.Numerics.Vector3.Normalize(System.Numerics.Vector3.TransformNormal(
-                    shape.Kind == Geometry.ShapeKind.Quad ? System.Numerics.Vector3.UnitZ : System.Numerics.Vector3.UnitY, shape.NormalToWorld));
+                    shape.Kind == Geometry.ShapeKind.Quad ? System.Numerics.Vector3.UnitZ : System.Numerics.Vector3.UnitY,
+                        shape.NormalToWorld));
                 normal = [nrm.X, nrm.Y, nrm.Z];
             }
             objects[i] = new ManifestObject(i + 1, o.Name, m.Name, m.DiffuseSpectrum?.Name, normal);
@@ -374,14 +395,20 @@ public static class RenderOutputWriter
             Wz = c.Wz,
             Rgb = scene.Output.Rgb.Name,
             Exposure = preview?.Exposure ?? scene.Output.Exposure,
-            ExposureMode = scene.Output.ExposureAuto ? "auto (99th percentile of the display-linear maximum channel of non-black pixels → 1)" : "fixed",
+            ExposureMode = scene.Output.ExposureAuto
+                ? "auto (99th percentile of the display-linear maximum channel of non-black pixels → 1)"
+                : "fixed",
             Gamut = scene.Output.Gamut.ToString().ToLowerInvariant(),
             Radiometry = scene.Radiometry.ToString().ToLowerInvariant(),
             BandUnit = RadianceUnit(scene),
-            XyzUnit = c.Absolute ? (scene.Radiometry == Radiometry.Physical ? "absolute: Y in cd/m^2 (683 lm/W)" : "absolute: κ = 683 applied to relative radiance (no photometric unit)")
+            XyzUnit = c.Absolute
+                ? (scene.Radiometry == Radiometry.Physical
+                    ? "absolute: Y in cd/m^2 (683 lm/W)"
+                    : "absolute: κ = 683 applied to relative radiance (no photometric unit)")
                 : "relative: Y = 1 for a perfect white diffuser lit head-on by the reference white at intensity 1",
             PixelXyz = scene.Integration == BandIntegration.Exact
-                ? "exact: each term's κ∫x̄·E·m dλ on the full tables (spectral.exr X Y Z, R G B and preview.png); the weights give the cube's own colour, which differs"
+                ? "exact: each term's κ∫x̄·E·m dλ on the full tables (spectral.exr X Y Z, R G B and preview.png); the weights give the "
+                    + "cube's own colour, which differs"
                 : "eq. 3 on the band values with the weights",
             FallbackPixels = result.FallbackPixels,
             GlobalAmbient = scene.HasGlobalAmbient,

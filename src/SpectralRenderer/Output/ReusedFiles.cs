@@ -11,7 +11,8 @@ public sealed class ReusedFiles(string from, IEnumerable<string> names)
     public string From { get; } = from;
     public IReadOnlySet<string> Names => _names;
 
-    /// <summary>Copies <paramref name="name"/> from <see cref="From"/> into <paramref name="outDir"/> when it is one of the reused files.</summary>
+    /// <summary>Copies <paramref name="name"/> from <see cref="From"/> into <paramref name="outDir"/> when it is one of the reused
+    /// files.</summary>
     public bool Copy(string name, string outDir)
     {
         if (!_names.Contains(name)) return false;

@@ -15,7 +15,8 @@ namespace SpectralRenderer.Output;
 /// </summary>
 public static class SceneHash
 {
-    static readonly string[] Keys = ["tool", "version", "width", "height", "spp", "bands", "colour", "objects", "lights", "aov", "resolved_scene"];
+    static readonly string[] Keys =
+        ["tool", "version", "width", "height", "spp", "bands", "colour", "objects", "lights", "aov", "resolved_scene"];
 
     public static string Of(JsonObject manifest, OutputProducts products, ExrCompressionChoice exrCompression)
     {
@@ -29,7 +30,8 @@ public static class SceneHash
             if (key == "colour" && value is JsonObject c) c.Remove("fallback_pixels");
             identity[key] = value;
         }
-        identity["formats"] = new JsonArray(OutputNames.Products.Where(p => (products & p.Product) != 0).Select(p => (JsonNode)JsonValue.Create(p.Name)!).ToArray());
+        identity["formats"] = new JsonArray(OutputNames.Products.Where(p => (products & p.Product) != 0)
+            .Select(p => (JsonNode)JsonValue.Create(p.Name)!).ToArray());
         identity["exr_compression"] = OutputNames.Name(exrCompression);
         return "sha256:" + Convert.ToHexStringLower(SHA256.HashData(Encoding.UTF8.GetBytes(identity.ToJsonString())));
     }

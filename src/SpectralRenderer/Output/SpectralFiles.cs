@@ -15,7 +15,8 @@ public static class SpectralFiles
     /// <param name="xyz">Their <see cref="XyzPlanes"/> of scene.Colorimeter when the caller has them already.</param>
     /// <param name="crop">The film pixels the image holds: the EXR's data window inside the film's display window.</param>
     /// <param name="extra">Further channels (the noise product's stderr layer), or null.</param>
-    internal static void WriteExr(Scene scene, SpectralImage image, float[] bands, XyzPlanes? xyz, PixelRect crop, string outDir, Action<string> done,
+    internal static void WriteExr(Scene scene, SpectralImage image, float[] bands, XyzPlanes? xyz, PixelRect crop, string outDir,
+        Action<string> done,
         IReadOnlyList<(string Name, float[] Plane)>? extra = null)
     {
         ExrWriter.Write(Path.Combine(outDir, "spectral.exr"), image.Width, image.Height, image.Grid, bands, xyz, new ExrOptions
@@ -43,7 +44,10 @@ public static class SpectralFiles
     /// <summary>spectral.img and spectral.hdr.</summary>
     internal static void WriteEnvi(Scene scene, SpectralImage image, float[] bands, string outDir, Action<string> done)
     {
-        EnviWriter.Write(Path.Combine(outDir, "spectral.img"), image, bands, $"SpectralRenderer render of {Path.GetFileName(scene.SourcePath)}; {scene.Radiometry.ToString().ToLowerInvariant()} radiometry, band values in {RenderOutputWriter.RadianceUnit(scene)}; {scene.Integration.ToString().ToLowerInvariant()} band integration",
+        EnviWriter.Write(Path.Combine(outDir, "spectral.img"), image, bands,
+            $"SpectralRenderer render of {Path.GetFileName(scene.SourcePath)}; {scene.Radiometry.ToString().ToLowerInvariant()} "
+                + $"radiometry, band values in {RenderOutputWriter.RadianceUnit(scene)}; "
+                + $"{scene.Integration.ToString().ToLowerInvariant()} band integration",
             new Dictionary<string, string>
             {
                 ["radiometry"] = scene.Radiometry.ToString().ToLowerInvariant(),

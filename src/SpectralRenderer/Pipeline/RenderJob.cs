@@ -112,7 +112,8 @@ public sealed class RenderJob
         var products = Scene.Output.Products;
         if (Shard is not null && (products & OutputProducts.Bands) != 0 && (products & (OutputProducts.Envi | OutputProducts.Npy)) == 0)
             throw new InputException("--shard",
-                "band images need a float cube in each shard: merge rescales them to the whole image's brightest value", "add envi or npy to --formats");
+                "band images need a float cube in each shard: merge rescales them to the whole image's brightest value",
+                    "add envi or npy to --formats");
         bool shards = transfer?.Shards == true;
         if (Crop is not null && lights && !(Shard is not null && shards))
             throw new InputException("--formats", shards
@@ -120,10 +121,13 @@ public sealed class RenderJob
                     : "the per-light outputs (lights) are written for whole renders only, not for a crop or shard",
                 "render lights without --crop" + (shards ? "" : "/--shard"));
         if ((products & OutputProducts.Noise) != 0 && Scene.Camera.SamplesPerPixel < 2)
-            throw new InputException("--formats", $"noise is each pixel's standard error from its samples and needs at least 2 samples per pixel, found spp {Scene.Camera.SamplesPerPixel}",
+            throw new InputException("--formats",
+                $"noise is each pixel's standard error from its samples and needs at least 2 samples per pixel, found spp "
+                    + $"{Scene.Camera.SamplesPerPixel}",
                 "give --spp 2 or more (or the scene's camera.spp), or leave noise out of the formats");
         if ((products & OutputProducts.Noise) != 0 && Request.FromTransfer is not null)
-            throw new InputException("--formats", "noise is measured from a render's samples; a relit render is recombined from the per-light transfer and has none",
+            throw new InputException("--formats",
+                "noise is measured from a render's samples; a relit render is recombined from the per-light transfer and has none",
                 "leave noise out of the formats of the relit render");
         if (Crop is not null && Scene.Output.ExposureAuto)
             throw new InputException(Request.ScenePath.Length > 0 ? Request.ScenePath : Scene.SourcePath,

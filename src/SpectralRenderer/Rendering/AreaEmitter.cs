@@ -68,7 +68,8 @@ internal sealed class AreaEmitter
                     _centre = Vector3.Transform(Vector3.Zero, m);
                     float rx = Vector3.TransformNormal(Vector3.UnitX, m).Length(), ry = Vector3.TransformNormal(Vector3.UnitY, m).Length(),
                         rz = Vector3.TransformNormal(Vector3.UnitZ, m).Length();
-                    if (Math.Abs(rx - ry) > 1e-4f * rx || Math.Abs(rx - rz) > 1e-4f * rx) throw new InputException(where, $"object '{o.Name}' emits but is not round (scaled unevenly)",
+                    if (Math.Abs(rx - ry) > 1e-4f * rx || Math.Abs(rx - rz) > 1e-4f * rx)
+                        throw new InputException(where, $"object '{o.Name}' emits but is not round (scaled unevenly)",
                             "an emitting sphere needs one radius; use a mesh for an emitting ellipsoid");
                     _radius = rx;
                     _area = 4 * MathF.PI * _radius * _radius;
@@ -107,7 +108,8 @@ internal sealed class AreaEmitter
         _area = (float)sum;
     }
 
-    static (Vector3[], Vector3[], Vector3[], Vector3[]) Faces(AnalyticShape shape, IReadOnlyList<(Vector3 Corner, Vector3 U, Vector3 V, Vector3 N)> faces)
+    static (Vector3[], Vector3[], Vector3[], Vector3[]) Faces(AnalyticShape shape,
+        IReadOnlyList<(Vector3 Corner, Vector3 U, Vector3 V, Vector3 N)> faces)
     {
         var m = shape.ObjectToWorld;
         int n = faces.Count;
@@ -196,7 +198,8 @@ internal sealed class AreaEmitter
         return AreaToSolidAngle(p, x, nx, 1 / _area, out pdf);
     }
 
-    /// <summary>The solid-angle density with which <see cref="Sample(Vector3, Vector2, out Vector3, out Vector3, out float)"/> from <paramref name="p"/> picks point
+    /// <summary>The solid-angle density with which <see cref="Sample(Vector3, Vector2, out Vector3, out Vector3, out float)"/> from
+    /// <paramref name="p"/> picks point
     /// <paramref name="x"/> (normal <paramref name="nx"/>) of this emitter.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public float Pdf(Vector3 p, Vector3 x, Vector3 nx)
@@ -229,7 +232,8 @@ internal sealed class AreaEmitter
         float b1 = det != 0 ? (r1 * a22 - r2 * a12) / det : 0, b2 = det != 0 ? (r2 * a11 - r1 * a12) / det : 0;
         var p0 = _corner[face];
         return _meshUvs is { } uvs
-            ? TextureCoordinates.OfTriangle(uvs[3 * face], uvs[3 * face + 1], uvs[3 * face + 2], b1, b2, p0, p0 + e1, p0 + e2, out uvPerLength)
+            ? TextureCoordinates.OfTriangle(uvs[3 * face], uvs[3 * face + 1], uvs[3 * face + 2], b1, b2, p0, p0 + e1, p0 + e2,
+                out uvPerLength)
             : TextureCoordinates.OfTriangle(Vector2.Zero, Vector2.UnitX, Vector2.UnitY, b1, b2, p0, p0 + e1, p0 + e2, out uvPerLength);
     }
 

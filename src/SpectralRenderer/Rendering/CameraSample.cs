@@ -79,10 +79,13 @@ public struct Sampler(int x, int y, int sample, int dimension = 0, SamplerSettin
         return (h >> 8) * (1f / (1 << 24));
     }
 
-    /// <summary>The value of the 2D dimension pair <paramref name="dimension"/> (from <see cref="Reserve2D"/>), as <see cref="Next2D"/> draws it there.</summary>
+    /// <summary>The value of the 2D dimension pair <paramref name="dimension"/> (from <see cref="Reserve2D"/>), as <see cref="Next2D"/>
+    /// draws it there.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public readonly (float U, float V) At2D(int dimension) =>
-        _settings.Kind == SamplerKind.Sobol ? OwenSobol.Sample2DReversed(_sReversed, PixelSeed((uint)dimension)) : (At1D(dimension), At1D(dimension + 1));
+        _settings.Kind == SamplerKind.Sobol
+            ? OwenSobol.Sample2DReversed(_sReversed, PixelSeed((uint)dimension))
+            : (At1D(dimension), At1D(dimension + 1));
 
     /// <summary>The scramble seed of dimension <paramref name="d"/> of this pixel (the sample index is not in it: the
     /// pixel's samples are one scrambled sequence).</summary>

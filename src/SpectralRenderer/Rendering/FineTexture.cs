@@ -48,14 +48,16 @@ internal sealed class FineTexture : TexelLevels
     /// </summary>
     public static long Bytes(Scene scene)
     {
-        var textures = scene.Materials.SelectMany(m => new[] { m.DiffuseTexture, m.SpecularTexture, m.Emission?.Texture }).OfType<TextureBinding>().ToList();
+        var textures = scene.Materials.SelectMany(m => new[] { m.DiffuseTexture, m.SpecularTexture, m.Emission?.Texture })
+            .OfType<TextureBinding>().ToList();
         if (textures.Count == 0) return 0;
         var settings = scene.Integrator is { Name: "path" } s ? s : new IntegratorSettings("path");
         int padded = new FineGrid(scene, settings.SpectralGrid).Padded;
         return textures.Sum(t => TexelsWithMips(t.Texture.Width, t.Texture.Height) * padded * sizeof(float));
     }
 
-    /// <summary>The texture at <paramref name="uv"/> for a footprint <paramref name="width"/> wide (uv units) into <paramref name="dst"/>: Σ weight·texel.</summary>
+    /// <summary>The texture at <paramref name="uv"/> for a footprint <paramref name="width"/> wide (uv units) into <paramref name="dst"/>:
+    /// Σ weight·texel.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public void Filter(Vector2 uv, float width, Span<float> dst)
     {

@@ -22,5 +22,6 @@ public interface IPacketIntegrator : IIntegrator
     /// into objects[lane], what the ray saw into infos[lane], and into fallbacks[lane] whether one of its terms had to
     /// fall back to eq. 3 on the band values (<see cref="RayCounters.Fallback"/>). Allocates nothing.
     /// </summary>
-    void Radiance(ref RayPacket packet, Span<float> results, Span<int> objects, Span<PixelInfo> infos, Span<bool> fallbacks, Span<float> scratch, ref RayCounters counters);
+    void Radiance(ref RayPacket packet, Span<float> results, Span<int> objects, Span<PixelInfo> infos, Span<bool> fallbacks,
+        Span<float> scratch, ref RayCounters counters);
 }

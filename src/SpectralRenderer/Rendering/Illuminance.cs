@@ -28,7 +28,8 @@ public sealed class Illuminance
     public Illuminance(Scene scene, SceneGeometry? geometry)
     {
         if (scene.Radiometry != Radiometry.Physical)
-            throw new Diagnostics.InputException($"{scene.SourcePath}: $.radiometry", "illuminance and luminance need physical radiometry (eq. 2's paper units are relative)",
+            throw new Diagnostics.InputException($"{scene.SourcePath}: $.radiometry",
+                "illuminance and luminance need physical radiometry (eq. 2's paper units are relative)",
                 "add \"radiometry\": \"physical\" to the scene");
         _scene = scene;
         _geometry = geometry;
@@ -41,7 +42,8 @@ public sealed class Illuminance
         _yToLuminance = Colorimeter.Km / scene.Colorimeter.Kappa;
     }
 
-    /// <summary>K_m/κ when luminance is the exact colour's Y times it (the observer's ȳ is V), else null (bands: <see cref="BandV"/>).</summary>
+    /// <summary>K_m/κ when luminance is the exact colour's Y times it (the observer's ȳ is V), else null (bands:
+    /// <see cref="BandV"/>).</summary>
     public double? YToLuminance => _yIsV ? _yToLuminance : null;
 
     /// <summary>K_m ∫_b V dλ per band: a band mean's luminance weight (cd/m² per W·m⁻²·sr⁻¹·nm⁻¹).</summary>

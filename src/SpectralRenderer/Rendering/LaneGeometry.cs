@@ -33,7 +33,9 @@ internal static class LaneGeometry
     }
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    internal static void CameraRays<L>(Scenes.Camera camera, ref RayPacket p, ref PacketFloats filmX, ref PacketFloats filmY, uint lanes) where L : struct, ILanes<L>
+    internal static void CameraRays<L>(Scenes.Camera camera, ref RayPacket p, ref PacketFloats filmX, ref PacketFloats filmY,
+        uint lanes) where L : struct,
+        ILanes<L>
     {
         // sx = (2·px / W − 1)·tan(fov/2)·aspect, sy = (1 − 2·py / H)·tan(fov/2), d = Normalize(w + sx·u + sy·v).
         var one = L.Splat(1); var two = L.Splat(2);
@@ -66,16 +68,20 @@ internal static class LaneGeometry
     /// at a time: a lane meets plane i where n·d ≠ 0 and t = (offset − n·o) / (n·d) lies in (0, TMax); its TMax becomes t
     /// and <paramref name="plane"/> the plane's index. Returns the lanes that met a plane.
     /// </summary>
-    public static uint Planes(ReadOnlySpan<(Vector3 Normal, float Offset)> planes, ref RayPacket packet, uint lanes, ref PacketInts plane) => PacketLanes.Width switch
-    {
-        16 => Planes<Lanes512>(planes, ref packet, lanes, ref plane),
-        8 => Planes<Lanes256>(planes, ref packet, lanes, ref plane),
-        4 => Planes<Lanes128>(planes, ref packet, lanes, ref plane),
-        _ => Planes<Lanes1>(planes, ref packet, lanes, ref plane),
-    };
+    public static uint Planes(ReadOnlySpan<(Vector3 Normal, float Offset)> planes, ref RayPacket packet, uint lanes,
+        ref PacketInts plane) =>
+        PacketLanes.Width switch
+        {
+            16 => Planes<Lanes512>(planes, ref packet, lanes, ref plane),
+            8 => Planes<Lanes256>(planes, ref packet, lanes, ref plane),
+            4 => Planes<Lanes128>(planes, ref packet, lanes, ref plane),
+            _ => Planes<Lanes1>(planes, ref packet, lanes, ref plane),
+        };
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    internal static uint Planes<L>(ReadOnlySpan<(Vector3 Normal, float Offset)> planes, ref RayPacket p, uint lanes, ref PacketInts plane) where L : struct, ILanes<L>
+    internal static uint Planes<L>(ReadOnlySpan<(Vector3 Normal, float Offset)> planes, ref RayPacket p, uint lanes,
+        ref PacketInts plane) where L : struct,
+        ILanes<L>
     {
         uint chunkMask = L.Count >= 32 ? uint.MaxValue : (1u << L.Count) - 1;
         var zero = L.Splat(0);
@@ -105,17 +111,20 @@ internal static class LaneGeometry
         return found;
     }
 
-    /// <summary>The lanes (of those given) whose rays meet one of the planes at t in (0, TMax): the plane test of <see cref="Planes"/>, any hit.</summary>
-    public static uint PlanesBlock(ReadOnlySpan<(Vector3 Normal, float Offset)> planes, ref RayPacket packet, uint lanes) => PacketLanes.Width switch
-    {
-        16 => PlanesBlock<Lanes512>(planes, ref packet, lanes),
-        8 => PlanesBlock<Lanes256>(planes, ref packet, lanes),
-        4 => PlanesBlock<Lanes128>(planes, ref packet, lanes),
-        _ => PlanesBlock<Lanes1>(planes, ref packet, lanes),
-    };
+    /// <summary>The lanes (of those given) whose rays meet one of the planes at t in (0, TMax): the plane test of <see cref="Planes"/>, any
+    /// hit.</summary>
+    public static uint PlanesBlock(ReadOnlySpan<(Vector3 Normal, float Offset)> planes, ref RayPacket packet, uint lanes) =>
+        PacketLanes.Width switch
+        {
+            16 => PlanesBlock<Lanes512>(planes, ref packet, lanes),
+            8 => PlanesBlock<Lanes256>(planes, ref packet, lanes),
+            4 => PlanesBlock<Lanes128>(planes, ref packet, lanes),
+            _ => PlanesBlock<Lanes1>(planes, ref packet, lanes),
+        };
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    internal static uint PlanesBlock<L>(ReadOnlySpan<(Vector3 Normal, float Offset)> planes, ref RayPacket p, uint lanes) where L : struct, ILanes<L>
+    internal static uint PlanesBlock<L>(ReadOnlySpan<(Vector3 Normal, float Offset)> planes, ref RayPacket p, uint lanes) where L : struct,
+        ILanes<L>
     {
         uint chunkMask = L.Count >= 32 ? uint.MaxValue : (1u << L.Count) - 1;
         var zero = L.Splat(0);
@@ -148,7 +157,8 @@ internal static class LaneGeometry
     /// then Normalize(n). The other lanes keep the normals already in <paramref name="hits"/> (planes, analytic shapes).
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    internal static void Records<L>(ref RayPacket p, uint mesh, uint smooth, in TriangleLanes t, ref HitLanes hits) where L : struct, ILanes<L>
+    internal static void Records<L>(ref RayPacket p, uint mesh, uint smooth, in TriangleLanes t, ref HitLanes hits) where L : struct,
+        ILanes<L>
     {
         uint chunkMask = L.Count >= 32 ? uint.MaxValue : (1u << L.Count) - 1;
         var zero = L.Splat(0); var one = L.Splat(1);
@@ -160,9 +170,15 @@ internal static class LaneGeometry
             L.Store(L.Load(ref p.OriginZ[c]) + tt * L.Load(ref p.DirectionZ[c]), ref hits.PZ[c]);
             uint m = (mesh >> c) & chunkMask;
             if (m == 0) continue;
-            var ax = L.Load(ref Unsafe.AsRef(in t.AX[c])); var ay = L.Load(ref Unsafe.AsRef(in t.AY[c])); var az = L.Load(ref Unsafe.AsRef(in t.AZ[c]));
-            var e1x = L.Load(ref Unsafe.AsRef(in t.BX[c])) - ax; var e1y = L.Load(ref Unsafe.AsRef(in t.BY[c])) - ay; var e1z = L.Load(ref Unsafe.AsRef(in t.BZ[c])) - az;
-            var e2x = L.Load(ref Unsafe.AsRef(in t.CX[c])) - ax; var e2y = L.Load(ref Unsafe.AsRef(in t.CY[c])) - ay; var e2z = L.Load(ref Unsafe.AsRef(in t.CZ[c])) - az;
+            var ax = L.Load(ref Unsafe.AsRef(in t.AX[c]));
+            var ay = L.Load(ref Unsafe.AsRef(in t.AY[c]));
+            var az = L.Load(ref Unsafe.AsRef(in t.AZ[c]));
+            var e1x = L.Load(ref Unsafe.AsRef(in t.BX[c])) - ax;
+            var e1y = L.Load(ref Unsafe.AsRef(in t.BY[c])) - ay;
+            var e1z = L.Load(ref Unsafe.AsRef(in t.BZ[c])) - az;
+            var e2x = L.Load(ref Unsafe.AsRef(in t.CX[c])) - ax;
+            var e2y = L.Load(ref Unsafe.AsRef(in t.CY[c])) - ay;
+            var e2z = L.Load(ref Unsafe.AsRef(in t.CZ[c])) - az;
             var cx = e1y * e2z - e1z * e2y;
             var cy = e1z * e2x - e1x * e2z;
             var cz = e1x * e2y - e1y * e2x;
@@ -178,13 +194,18 @@ internal static class LaneGeometry
             {
                 var u = L.Load(ref p.U[c]); var v = L.Load(ref p.V[c]);
                 var w = one - u - v;
-                var sx = w * L.Load(ref Unsafe.AsRef(in t.NAX[c])) + u * L.Load(ref Unsafe.AsRef(in t.NBX[c])) + v * L.Load(ref Unsafe.AsRef(in t.NCX[c]));
-                var sy = w * L.Load(ref Unsafe.AsRef(in t.NAY[c])) + u * L.Load(ref Unsafe.AsRef(in t.NBY[c])) + v * L.Load(ref Unsafe.AsRef(in t.NCY[c]));
-                var sz = w * L.Load(ref Unsafe.AsRef(in t.NAZ[c])) + u * L.Load(ref Unsafe.AsRef(in t.NBZ[c])) + v * L.Load(ref Unsafe.AsRef(in t.NCZ[c]));
+                var sx = w * L.Load(ref Unsafe.AsRef(in t.NAX[c])) + u * L.Load(ref Unsafe.AsRef(in t.NBX[c]))
+                    + v * L.Load(ref Unsafe.AsRef(in t.NCX[c]));
+                var sy = w * L.Load(ref Unsafe.AsRef(in t.NAY[c])) + u * L.Load(ref Unsafe.AsRef(in t.NBY[c]))
+                    + v * L.Load(ref Unsafe.AsRef(in t.NCY[c]));
+                var sz = w * L.Load(ref Unsafe.AsRef(in t.NAZ[c])) + u * L.Load(ref Unsafe.AsRef(in t.NBZ[c]))
+                    + v * L.Load(ref Unsafe.AsRef(in t.NCZ[c]));
                 var squared = sx * sx + sy * sy + sz * sz;
                 var interpolated = L.And(L.FromBits(s), L.Greater(squared, zero));
                 var sl = L.Sqrt(squared);
-                nx = L.Select(interpolated, sx / sl, nx); ny = L.Select(interpolated, sy / sl, ny); nz = L.Select(interpolated, sz / sl, nz);
+                nx = L.Select(interpolated, sx / sl, nx);
+                ny = L.Select(interpolated, sy / sl, ny);
+                nz = L.Select(interpolated, sz / sl, nz);
             }
             L.Store(L.Select(isMesh, nx, L.Load(ref hits.NX[c])), ref hits.NX[c]);
             L.Store(L.Select(isMesh, ny, L.Load(ref hits.NY[c])), ref hits.NY[c]);
@@ -202,15 +223,23 @@ internal static class LaneGeometry
         var zero = L.Splat(0); var eps = L.Splat(epsilon);
         for (int c = 0; c < RayPacket.Size; c += L.Count)
         {
-            var vx = L.Negate(L.Load(ref p.DirectionX[c])); var vy = L.Negate(L.Load(ref p.DirectionY[c])); var vz = L.Negate(L.Load(ref p.DirectionZ[c]));
-            var gx = L.Load(ref Unsafe.AsRef(in h.GX[c])); var gy = L.Load(ref Unsafe.AsRef(in h.GY[c])); var gz = L.Load(ref Unsafe.AsRef(in h.GZ[c]));
+            var vx = L.Negate(L.Load(ref p.DirectionX[c]));
+            var vy = L.Negate(L.Load(ref p.DirectionY[c]));
+            var vz = L.Negate(L.Load(ref p.DirectionZ[c]));
+            var gx = L.Load(ref Unsafe.AsRef(in h.GX[c]));
+            var gy = L.Load(ref Unsafe.AsRef(in h.GY[c]));
+            var gz = L.Load(ref Unsafe.AsRef(in h.GZ[c]));
             var outside = L.LessOrEqual(zero, gx * vx + gy * vy + gz * vz);
             gx = L.Select(outside, gx, L.Negate(gx)); gy = L.Select(outside, gy, L.Negate(gy)); gz = L.Select(outside, gz, L.Negate(gz));
-            var nx = L.Load(ref Unsafe.AsRef(in h.NX[c])); var ny = L.Load(ref Unsafe.AsRef(in h.NY[c])); var nz = L.Load(ref Unsafe.AsRef(in h.NZ[c]));
+            var nx = L.Load(ref Unsafe.AsRef(in h.NX[c]));
+            var ny = L.Load(ref Unsafe.AsRef(in h.NY[c]));
+            var nz = L.Load(ref Unsafe.AsRef(in h.NZ[c]));
             L.Store(L.Select(outside, nx, L.Negate(nx)), ref at.NX[c]);
             L.Store(L.Select(outside, ny, L.Negate(ny)), ref at.NY[c]);
             L.Store(L.Select(outside, nz, L.Negate(nz)), ref at.NZ[c]);
-            var px = L.Load(ref Unsafe.AsRef(in h.PX[c])); var py = L.Load(ref Unsafe.AsRef(in h.PY[c])); var pz = L.Load(ref Unsafe.AsRef(in h.PZ[c]));
+            var px = L.Load(ref Unsafe.AsRef(in h.PX[c]));
+            var py = L.Load(ref Unsafe.AsRef(in h.PY[c]));
+            var pz = L.Load(ref Unsafe.AsRef(in h.PZ[c]));
             L.Store(px, ref at.PX[c]); L.Store(py, ref at.PY[c]); L.Store(pz, ref at.PZ[c]);
             L.Store(px + eps * gx, ref at.AX[c]); L.Store(py + eps * gy, ref at.AY[c]); L.Store(pz + eps * gz, ref at.AZ[c]);
         }
@@ -248,7 +277,8 @@ internal static class LaneGeometry
             reached |= m << c;
             if (m == 0) continue;
             var dx = tx / r; var dy = ty / r; var dz = tz / r;
-            var nl = L.Load(ref Unsafe.AsRef(in at.NX[c])) * dx + L.Load(ref Unsafe.AsRef(in at.NY[c])) * dy + L.Load(ref Unsafe.AsRef(in at.NZ[c])) * dz;
+            var nl = L.Load(ref Unsafe.AsRef(in at.NX[c])) * dx + L.Load(ref Unsafe.AsRef(in at.NY[c])) * dy
+                + L.Load(ref Unsafe.AsRef(in at.NZ[c])) * dz;
             L.Store(one / (c0 + c1 * r + c2 * r * r), ref attenuation[c]);
             L.Store(nl, ref cosine[c]);
             uint lit = m & ~L.Bits(L.LessOrEqual(nl, zero));
@@ -265,7 +295,8 @@ internal static class LaneGeometry
     }
 }
 
-/// <summary>A packet's closest hits in lanes: point P, unit face normal G and unit shading normal N (outward, not yet facing the ray), object.</summary>
+/// <summary>A packet's closest hits in lanes: point P, unit face normal G and unit shading normal N (outward, not yet facing the ray),
+/// object.</summary>
 internal struct HitLanes
 {
     public PacketFloats PX, PY, PZ, GX, GY, GZ, NX, NY, NZ;
@@ -288,17 +319,34 @@ internal struct TriangleLanes
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public void SetCorners(int lane, Vector3 a, Vector3 b, Vector3 c)
     {
-        AX[lane] = a.X; AY[lane] = a.Y; AZ[lane] = a.Z; BX[lane] = b.X; BY[lane] = b.Y; BZ[lane] = b.Z; CX[lane] = c.X; CY[lane] = c.Y; CZ[lane] = c.Z;
+        AX[lane] = a.X;
+        AY[lane] = a.Y;
+        AZ[lane] = a.Z;
+        BX[lane] = b.X;
+        BY[lane] = b.Y;
+        BZ[lane] = b.Z;
+        CX[lane] = c.X;
+        CY[lane] = c.Y;
+        CZ[lane] = c.Z;
     }
 
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public void SetNormals(int lane, Vector3 a, Vector3 b, Vector3 c)
     {
-        NAX[lane] = a.X; NAY[lane] = a.Y; NAZ[lane] = a.Z; NBX[lane] = b.X; NBY[lane] = b.Y; NBZ[lane] = b.Z; NCX[lane] = c.X; NCY[lane] = c.Y; NCZ[lane] = c.Z;
+        NAX[lane] = a.X;
+        NAY[lane] = a.Y;
+        NAZ[lane] = a.Z;
+        NBX[lane] = b.X;
+        NBY[lane] = b.Y;
+        NBZ[lane] = b.Z;
+        NCX[lane] = c.X;
+        NCY[lane] = c.Y;
+        NCZ[lane] = c.Z;
     }
 }
 
-/// <summary>A packet's shading points in lanes: hit position P, shading normal N and the shadow-ray origin A = P + ε·n_g (the viewer's side).</summary>
+/// <summary>A packet's shading points in lanes: hit position P, shading normal N and the shadow-ray origin A = P + ε·n_g (the viewer's
+/// side).</summary>
 internal struct ShadingLanes
 {
     public PacketFloats PX, PY, PZ, NX, NY, NZ, AX, AY, AZ;

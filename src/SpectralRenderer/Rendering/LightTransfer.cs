@@ -49,12 +49,15 @@ public sealed record TransferComponent(int Light, TransferLobe Lobe, int Materia
         "ambient" => TransferLobe.Ambient,
         "global-ambient" => TransferLobe.GlobalAmbient,
         "background" => TransferLobe.Background,
-        _ => throw new InputException("lights.json", $"unknown component lobe '{s}'", "the light-transfer files are damaged: render the folder again"),
+        _ => throw new InputException("lights.json", $"unknown component lobe '{s}'",
+            "the light-transfer files are damaged: render the folder again"),
     };
 
-    /// <summary>A stable text key such as <c>0:diffuse:2</c>, <c>1:specular:3&lt;mirror:1</c> or, for band 5 only, <c>0:diffuse:2&lt;transmit:0@5</c>.</summary>
+    /// <summary>A stable text key such as <c>0:diffuse:2</c>, <c>1:specular:3&lt;mirror:1</c> or, for band 5 only,
+    /// <c>0:diffuse:2&lt;transmit:0@5</c>.</summary>
     public string Key => $"{Light}:{LobeName(Lobe)}:{Material}" +
-        string.Concat(Chain.Reverse().Select(c => $"<{(c.Transmit ? "transmit" : "mirror")}:{c.Material}")) + (Band >= 0 ? $"@{Band + 1}" : "");
+        string.Concat(Chain.Reverse().Select(c => $"<{(c.Transmit ? "transmit" : "mirror")}:{c.Material}"))
+            + (Band >= 0 ? $"@{Band + 1}" : "");
 
     /// <summary>
     /// P into <paramref name="dst"/> (padded: the bands, then X, Y, Z in the colour lanes): the scene's term table of this
@@ -154,8 +157,10 @@ public sealed record TransferComponent(int Light, TransferLobe Lobe, int Materia
         return columns;
     }
 
-    /// <summary>Does the chain pass a mirror or transmittance that varies over the bands, or a dispersive split (so the colour lanes cannot be exact)?</summary>
-    public bool Coloured(TermTables tables) => Band >= 0 || Chain.Any(c => c.Transmit ? tables.TransmitColoured[c.Material] : tables.MirrorColoured[c.Material]);
+    /// <summary>Does the chain pass a mirror or transmittance that varies over the bands, or a dispersive split (so the colour lanes cannot
+    /// be exact)?</summary>
+    public bool Coloured(TermTables tables) =>
+        Band >= 0 || Chain.Any(c => c.Transmit ? tables.TransmitColoured[c.Material] : tables.MirrorColoured[c.Material]);
 
 }
 
@@ -250,9 +255,11 @@ internal sealed partial class LightTransfer
     public static LightTransfer Trace(Scene scene, SceneGeometry geometry, int threads = 0, CancellationToken cancel = default)
     {
         if (scene.MaxDepth > MaxChain)
-            throw new InputException("max_depth", $"the 'lights' output supports max_depth ≤ {MaxChain}, the scene has {scene.MaxDepth}", $"set max_depth to {MaxChain} or less");
+            throw new InputException("max_depth", $"the 'lights' output supports max_depth ≤ {MaxChain}, the scene has {scene.MaxDepth}",
+                $"set max_depth to {MaxChain} or less");
         if (scene.Lights.Count > 254 || scene.Materials.Count > 4094)
-            throw new InputException("lights", "the 'lights' output supports at most 255 lights and 4095 materials", "render fewer lights or materials with the 'lights' output");
+            throw new InputException("lights", "the 'lights' output supports at most 255 lights and 4095 materials",
+                "render fewer lights or materials with the 'lights' output");
         var t = new Tracer(scene, geometry);
         return t.Run(threads, cancel);
     }
@@ -354,7 +361,8 @@ internal sealed partial class LightTransfer
         }
     }
 
-    /// <summary>The highlight mask (<see cref="PixelInfo.Highlight"/>) from the luminances of eq. 2's terms at the centre rays, under new light band values.</summary>
+    /// <summary>The highlight mask (<see cref="PixelInfo.Highlight"/>) from the luminances of eq. 2's terms at the centre rays, under new
+    /// light band values.</summary>
     public byte[] CentreHighlights(Scene scene)
     {
         var tables = new TermTables(scene, TexelContent.None);
@@ -569,7 +577,8 @@ internal sealed partial class LightTransfer
                 foreach (var (m, t) in comp.Chain)
                     for (int b = 0; b < _scene.Bands; b++) weights[b] *= t ? _materials[m].Transmit[b] : _materials[m].Mirror[b];
                 if (comp.Band >= 0) for (int b = 0; b < _scene.Bands; b++) if (b != comp.Band) weights[b] = 0;
-                groupKey[c] = $"{comp.Light}:{(int)comp.Lobe}:{comp.Material}@{comp.Band}:{Convert.ToHexString(System.Runtime.InteropServices.MemoryMarshal.AsBytes(weights.AsSpan(0, _scene.Bands)))}";
+                var weightBytes = System.Runtime.InteropServices.MemoryMarshal.AsBytes(weights.AsSpan(0, _scene.Bands));
+                groupKey[c] = $"{comp.Light}:{(int)comp.Lobe}:{comp.Material}@{comp.Band}:{Convert.ToHexString(weightBytes)}";
             }
             // One representative per group: the component with the smallest key (shortest chains first).
             var groups = Enumerable.Range(0, registered).GroupBy(c => groupKey[c])

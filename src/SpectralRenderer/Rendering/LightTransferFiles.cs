@@ -75,7 +75,8 @@ internal static class LightTransferFiles
             WriteArrays(t, dir, done);
             if (t.Texels is not null) WriteTexels(scene, t, dir, done);
         }
-        AtomicFile.WriteAllText(Path.Combine(dir, "lights.json"), Describe(scene, t).ToJsonString(new JsonSerializerOptions { WriteIndented = true }));
+        AtomicFile.WriteAllText(Path.Combine(dir, "lights.json"),
+            Describe(scene, t).ToJsonString(new JsonSerializerOptions { WriteIndented = true }));
         done($"{Folder}/lights.json");
     }
 
@@ -140,7 +141,8 @@ internal static class LightTransferFiles
 
     static long CentreTexelCount(Scene scene, int[] ids) => ids.Sum(id => (long)CentreTexelsOf(scene, id));
 
-    /// <summary>Whether <paramref name="path"/> is <paramref name="preamble"/> followed by exactly <paramref name="dataBytes"/> bytes of data.</summary>
+    /// <summary>Whether <paramref name="path"/> is <paramref name="preamble"/> followed by exactly <paramref name="dataBytes"/> bytes of
+    /// data.</summary>
     static bool Canonical(string path, byte[] preamble, long dataBytes)
     {
         if (new FileInfo(path).Length != preamble.Length + dataBytes) return false;
@@ -224,12 +226,15 @@ internal static class LightTransferFiles
         }).ToArray());
         return new JsonObject
         {
-            ["layout"] = "L_b(pixel) = sum over components c and entries j in [c.offset, c.offset + c.count) with pixels[j] = pixel of factors[j] * c.band_values[b]; the pixel's XYZ the same sum of factors[j] * c.xyz (eq. 3 on L_b where ids[2] marks a colour fallback)",
+            ["layout"] = "L_b(pixel) = sum over components c and entries j in [c.offset, c.offset + c.count) with pixels[j] = pixel of "
+                + "factors[j] * c.band_values[b]; the pixel's XYZ the same sum of factors[j] * c.xyz (eq. 3 on L_b where "
+                + "ids[2] marks a colour fallback)",
             ["width"] = t.Width,
             ["height"] = t.Height,
             ["bands"] = t.Bands,
             ["band_scheme"] = scene.Integration.ToString().ToLowerInvariant(),
-            ["exact_for"] = "every band scheme: a component's band values and XYZ are the scene's term tables (exact band means of E·m and their exact XYZ under 'exact') times the chain's weights, as the integrator multiplies them",
+            ["exact_for"] = "every band scheme: a component's band values and XYZ are the scene's term tables (exact band means of E·m and "
+                + "their exact XYZ under 'exact') times the chain's weights, as the integrator multiplies them",
             ["lights"] = lights,
             ["materials"] = materials,
             ["components"] = comps,
@@ -280,7 +285,8 @@ internal static class LightTransferFiles
     public static Layout ParseLayout(JsonObject json, string jsonPath, Scene scene)
     {
         var r = new JsonFields(jsonPath, Damaged);
-        int width = r.Int(json, "width", "$", 1, 32768), height = r.Int(json, "height", "$", 1, 32768), bands = r.Int(json, "bands", "$", 1, 100_000);
+        int width = r.Int(json, "width", "$", 1, 32768), height = r.Int(json, "height", "$", 1, 32768),
+            bands = r.Int(json, "bands", "$", 1, 100_000);
         if (bands != scene.Bands) throw r.Bad("$.bands", $"is {bands}, but the render has {scene.Bands} bands");
         int k = scene.Lights.Count;
         r.Array(json, "lights", "$", k);
@@ -306,7 +312,8 @@ internal static class LightTransferFiles
             TransferLobe lobe = lobeName switch
             {
                 "diffuse" or "specular" or "ambient" or "global-ambient" or "background" => TransferComponent.ParseLobe(lobeName),
-                _ => throw r.Bad($"{at}.lobe", $"is {MessageText.Quote(lobeName)}, not diffuse, specular, ambient, global-ambient or background"),
+                _ => throw r.Bad($"{at}.lobe",
+                    $"is {MessageText.Quote(lobeName)}, not diffuse, specular, ambient, global-ambient or background"),
             };
             bool ofLight = lobe is TransferLobe.Diffuse or TransferLobe.Specular or TransferLobe.Ambient;
             int light = r.Int(o, "light", at, ofLight ? 0 : -1, ofLight ? k - 1 : -1);
@@ -320,13 +327,15 @@ internal static class LightTransferFiles
                 string ca = $"{at}.chain[{i}]";
                 var x = r.Object(chainNodes[i], ca);
                 string weight = r.String(x, "weight", ca);
-                if (weight is not ("mirror" or "transmit")) throw r.Bad($"{ca}.weight", $"is {MessageText.Quote(weight)}, not mirror or transmit");
+                if (weight is not ("mirror" or "transmit"))
+                    throw r.Bad($"{ca}.weight", $"is {MessageText.Quote(weight)}, not mirror or transmit");
                 chain[i] = (Mat(x["material"], $"{ca}.material"), weight == "transmit");
             }
             int band = r.OptInt(o, "band", at, 1, bands) is { } b ? b - 1 : -1;
             comps[c] = new TransferComponent(light, lobe, material, chain) { Band = band };
             int offset = r.Int(o, "offset", at, 0), count = r.Int(o, "count", at, 0, width * height);
-            if (offset + (long)count > Array.MaxLength) throw r.Bad($"{at}.count", $"puts entries beyond {Array.MaxLength}, the most one array holds");
+            if (offset + (long)count > Array.MaxLength)
+                throw r.Bad($"{at}.count", $"puts entries beyond {Array.MaxLength}, the most one array holds");
             offsets[c] = (offset, count);
             entries += count;
             merged[c] = r.OptInt(o, "merged_chains", at, 1) ?? 1;
@@ -353,8 +362,10 @@ internal static class LightTransferFiles
         if (entries > Array.MaxLength) throw r.Bad("$.components", $"count {entries} entries in all, more than one array holds");
         for (int c = 0; c < comps.Length; c++)
             if (offsets[c].Item1 + (long)offsets[c].Item2 > entries)
-                throw r.Bad($"$.components[{c}].offset", $"entries {offsets[c].Item1}…{offsets[c].Item1 + (long)offsets[c].Item2 - 1} lie outside the {entries} stored");
-        if (2L * k * width * height > Array.MaxLength) throw r.Bad("$.width", $"{width}×{height} pixels × {k} lights is more than one array holds");
+                throw r.Bad($"$.components[{c}].offset",
+                    $"entries {offsets[c].Item1}…{offsets[c].Item1 + (long)offsets[c].Item2 - 1} lie outside the {entries} stored");
+        if (2L * k * width * height > Array.MaxLength)
+            throw r.Bad("$.width", $"{width}×{height} pixels × {k} lights is more than one array holds");
         return new Layout(width, height, bands, comps, offsets, merged, entries) { Texels = texels, TexelFloats = texelFloats };
     }
 
@@ -364,7 +375,8 @@ internal static class LightTransferFiles
         var dir = Path.Combine(outDir, Folder);
         var jsonPath = Path.Combine(dir, "lights.json");
         if (!File.Exists(jsonPath))
-            throw new InputException(outDir, "has no per-light outputs (lights/lights.json)", "render with --formats …,lights or \"output\": { \"light_groups\": true }");
+            throw new InputException(outDir, "has no per-light outputs (lights/lights.json)",
+                "render with --formats …,lights or \"output\": { \"light_groups\": true }");
         var layout = ParseLayout(JsonFields.ParseFile(jsonPath, "lights.json", Damaged), jsonPath, scene);
         int width = layout.Width, height = layout.Height, bands = layout.Bands;
         int n = width * height;
@@ -377,7 +389,8 @@ internal static class LightTransferFiles
             using var s = new FileStream(path, FileMode.Open, FileAccess.Read, FileShare.Read, bufferSize: 1);   // one read into the array
             var (shape, data) = NpyReader.Read(s, path);
             if (!shape.SequenceEqual(expected))
-                throw new InputException(path, $"has shape ({string.Join(", ", shape)}), lights.json says ({string.Join(", ", expected)})", "the folder mixes two renders; render again");
+                throw new InputException(path, $"has shape ({string.Join(", ", shape)}), lights.json says ({string.Join(", ", expected)})",
+                    "the folder mixes two renders; render again");
             return data;
         }
         long nnz = layout.Entries;
@@ -388,15 +401,22 @@ internal static class LightTransferFiles
             if (!File.Exists(path)) throw new InputException(outDir, $"misses {Folder}/pixels.npy", "render again with the lights output");
             using var s = new FileStream(path, FileMode.Open, FileAccess.Read, FileShare.Read, bufferSize: 1);
             var (shape, data) = NpyInt32.Read(s, path);
-            if (shape.Length != 1 || shape[0] != nnz) throw new InputException(path, $"holds {string.Join("×", shape)} entries, lights.json says {nnz}", "the folder mixes two renders; render again");
+            if (shape.Length != 1 || shape[0] != nnz)
+                throw new InputException(path, $"holds {string.Join("×", shape)} entries, lights.json says {nnz}",
+                    "the folder mixes two renders; render again");
             pix = data;
         }
-        foreach (int p in pix) if ((uint)p >= (uint)n) throw new InputException(Path.Combine(dir, "pixels.npy"), $"pixel {p} is outside the {width}×{height} image", "the light-transfer files are damaged: render the folder again");
+        foreach (int p in pix)
+            if ((uint)p >= (uint)n)
+                throw new InputException(Path.Combine(dir, "pixels.npy"), $"pixel {p} is outside the {width}×{height} image",
+                    "the light-transfer files are damaged: render the folder again");
         var offsets = layout.Offsets;
         foreach (var (o, c) in offsets)
         {
             for (int j = o + 1; j < o + c; j++)
-                if (pix[j] <= pix[j - 1]) throw new InputException(Path.Combine(dir, "pixels.npy"), $"entry {j}: pixels of a component must ascend", "render again");
+                if (pix[j] <= pix[j - 1])
+                    throw new InputException(Path.Combine(dir, "pixels.npy"), $"entry {j}: pixels of a component must ascend",
+                        "render again");
         }
         int k = scene.Lights.Count;
         var centre = Load("centre.npy", [2 * k, height, width]);
@@ -409,7 +429,8 @@ internal static class LightTransferFiles
         for (int i = 0; i < n; i++)
         {
             if (!(ids[i] >= 0 && ids[i] <= scene.Objects.Count && ids[i] == MathF.Floor(ids[i])))
-                throw new InputException(Path.Combine(dir, "ids.npy"), $"pixel {i % width},{i / width}: object {ids[i]} is not 0 (background) or one of the scene's {scene.Objects.Count}",
+                throw new InputException(Path.Combine(dir, "ids.npy"),
+                    $"pixel {i % width},{i / width}: object {ids[i]} is not 0 (background) or one of the scene's {scene.Objects.Count}",
                     "the light-transfer files are damaged: render the folder again");
             objectIds[i] = (int)ids[i] - 1; litMasks[i] = (uint)ids[n + i]; fallback[i] = ids[2 * n + i] != 0;
             idsKept &= objectIds[i] + 1 == ids[i] && litMasks[i] == ids[n + i] && (fallback[i] ? 1f : 0f) == ids[2 * n + i];

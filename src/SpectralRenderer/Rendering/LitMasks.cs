@@ -14,7 +14,8 @@ public sealed class LitMasks
 
     readonly byte[] _bytes;
 
-    /// <summary>Masks for <paramref name="pixels"/> pixels of a scene with <paramref name="lights"/> lights, each to be set once (not zeroed first).</summary>
+    /// <summary>Masks for <paramref name="pixels"/> pixels of a scene with <paramref name="lights"/> lights, each to be set once (not
+    /// zeroed first).</summary>
     public LitMasks(int pixels, int lights)
     {
         Count = pixels;
@@ -54,7 +55,8 @@ public sealed class LitMasks
 
     /// <summary>Does light <paramref name="light"/> reach the surface pixel <paramref name="pixel"/> sees?</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    public bool IsLit(int pixel, int light) => (uint)light < 8u * (uint)BytesPerPixel && (_bytes[pixel * BytesPerPixel + (light >> 3)] & (1 << (light & 7))) != 0;
+    public bool IsLit(int pixel, int light) =>
+        (uint)light < 8u * (uint)BytesPerPixel && (_bytes[pixel * BytesPerPixel + (light >> 3)] & (1 << (light & 7))) != 0;
 
     /// <summary>The masks, one uint per pixel.</summary>
     public uint[] ToArray()

@@ -112,7 +112,8 @@ public static class OwenSobol
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static (float U, float V) Sample2D(uint index, uint seed) => Sample2DReversed(ReverseBits(index), seed);
 
-    /// <summary>The 1D point (Owen-scrambled van der Corput) of sample <paramref name="index"/> for a dimension seeded <paramref name="seed"/>.</summary>
+    /// <summary>The 1D point (Owen-scrambled van der Corput) of sample <paramref name="index"/> for a dimension seeded
+    /// <paramref name="seed"/>.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static float Sample1D(uint index, uint seed) => Sample1DReversed(ReverseBits(index), seed);
 

@@ -40,13 +40,16 @@ public sealed class PathFineFilm
         int sub = grid.Count;
         long size = (long)cam.Width * cam.Height * sub;
         if (size > Array.MaxLength)
-            throw new InputException("camera", $"the path render's fine film needs {size} floats ({cam.Width}×{cam.Height} pixels × {sub} sub-bands), more than one array holds",
+            throw new InputException("camera",
+                $"the path render's fine film needs {size} floats ({cam.Width}×{cam.Height} pixels × {sub} "
+                    + $"sub-bands), more than one array holds",
                 "a coarser \"spectral_grid\" or fewer pixels; or --signals bands");
         var data = new float[size];
         var rect = PixelRect.Whole(cam.Width, cam.Height);
         // No centre ray beyond the samples (analysis off): with spp = 1 the centre ray is the pixel's one sample, as in the render.
         var sampling = new PixelSampling(cam, scene.RayBudget, analysis: false, integrator.Sampler);
-        Renderer.RunTiles(rect, threads, null, Stopwatch.StartNew(), cancel, () => new TileWork(integrator, sampling, cam.Width, data, cancel));
+        Renderer.RunTiles(rect, threads, null, Stopwatch.StartNew(), cancel,
+            () => new TileWork(integrator, sampling, cam.Width, data, cancel));
         return Of(grid, cam.Width, cam.Height, data);
     }
 
@@ -98,7 +101,8 @@ public sealed class PathFineFilm
             Renderer.SampleTile(ref sink, in sampling, x0, y0, x1, y1, cancel, ref counters);
         }
 
-        /// <summary>A pixel's samples summed with the film's weights (<see cref="Renderer"/>'s RadianceSamples, on the fine grid).</summary>
+        /// <summary>A pixel's samples summed with the film's weights (<see cref="Renderer"/>'s RadianceSamples, on the fine
+        /// grid).</summary>
         readonly struct Samples(TileWork w) : ISampleSink
         {
             public void BeginPixel(int x, int y, ref RayCounters counters) => w._sum.AsSpan().Clear();

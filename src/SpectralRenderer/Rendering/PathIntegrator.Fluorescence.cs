@@ -206,7 +206,8 @@ internal sealed partial class PathIntegrator
         FluorescentShift.Add(saved, v);
     }
 
-    /// <summary>The path's end after shifted bounces: the film is the saved film plus the light collected since the last, carried.</summary>
+    /// <summary>The path's end after shifted bounces: the film is the saved film plus the light collected since the last,
+    /// carried.</summary>
     void FinishShifted(Span<float> film, Span<float> scratch, int shifted)
     {
         Fold(film, scratch, shifted);

@@ -30,7 +30,8 @@ internal sealed partial class PathIntegrator
         if (_textured) _pixelAngle = 2 * MathF.Tan(scene.Camera.Fov * MathF.PI / 360) / Math.Max(1, scene.Camera.Height);
     }
 
-    /// <summary>The footprint (uv units) of a lookup at distance <paramref name="t"/>, cosine <paramref name="cos"/> and mapping density <paramref name="density"/>.</summary>
+    /// <summary>The footprint (uv units) of a lookup at distance <paramref name="t"/>, cosine <paramref name="cos"/> and mapping density
+    /// <paramref name="density"/>.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     float Footprint(float t, float cos, float density) => t * _pixelAngle / MathF.Max(MathF.Abs(cos), 0.25f) * density;
 
@@ -74,7 +75,8 @@ internal sealed partial class PathIntegrator
     }
 
     /// <summary>The radiance a textured emitter sends from point <paramref name="x"/> (normal <paramref name="nx"/>) of
-    /// <paramref name="face"/> along −<paramref name="wi"/>, seen from <paramref name="distance"/> away, into <paramref name="texel"/>.</summary>
+    /// <paramref name="face"/> along −<paramref name="wi"/>, seen from <paramref name="distance"/> away, into
+    /// <paramref name="texel"/>.</summary>
     ReadOnlySpan<float> EmittedAt(AreaEmitter emitter, int face, Vector3 x, Vector3 nx, Vector3 wi, float distance, Span<float> texel)
     {
         var uv = emitter.TexCoord(face, x, out float density);

@@ -142,7 +142,8 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         uint mask = 0;
         for (int k = 0; k < Math.Min(_lights.Length, 32); k++)
         {
-            if (!_lights[k].Sample(p, new Vector2(0.5f, 0.5f), out var inc) || !(inc.Factor > 0) || Vector3.Dot(front, inc.Direction) <= 0) continue;
+            if (!_lights[k].Sample(p, new Vector2(0.5f, 0.5f), out var inc) || !(inc.Factor > 0) || Vector3.Dot(front, inc.Direction) <= 0)
+                continue;
             if (!_geometry.Occluded(ShadowRay(p, ng, inc.Direction, inc.Distance))) mask |= 1u << k;
         }
         return mask;
@@ -163,7 +164,8 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         void NextEvent(int light, Span<float> beta, Span<float> f, ReadOnlySpan<float> radiance, float s);
         /// <summary>β ⊙ (S·E) · s: a fluorescent surface's shifted lobe S excited by next-event light <paramref name="light"/>.</summary>
         void Shifted(int light, FluorescentShift shift, Span<float> beta, ReadOnlySpan<float> radiance, float s);
-        /// <summary>Where emitters and the sky go: a path continued through a shifted lobe remaps it (PathIntegrator.Fluorescence.cs).</summary>
+        /// <summary>Where emitters and the sky go: a path continued through a shifted lobe remaps it
+        /// (PathIntegrator.Fluorescence.cs).</summary>
         Span<float> Fixed { get; }
         /// <summary>
         /// A shifted bounce through <paramref name="shift"/> with factor g = β·<paramref name="w"/>: what the path finds from

@@ -56,7 +56,8 @@ internal sealed partial class PathTransfer
     public int PerPixel => (Lights + 1) * SubBands;
 
     /// <summary>The grid width the path integrator uses for <paramref name="scene"/> (its "spectral_grid", 5 nm by default).</summary>
-    public static double GridWidth(Scene scene) => scene.Integrator is { Name: "path" } s ? s.SpectralGrid : IntegratorSettings.DefaultSpectralGrid;
+    public static double GridWidth(Scene scene) =>
+        scene.Integrator is { Name: "path" } s ? s.SpectralGrid : IntegratorSettings.DefaultSpectralGrid;
 
     /// <summary>Floats per pixel of the shift blocks: K × rows × columns.</summary>
     public long BlockPerPixel => (long)Lights * Shift.Size;
@@ -70,7 +71,8 @@ internal sealed partial class PathTransfer
         return 4L * pixels * ((k + 1) * grid.Count + block);
     }
 
-    /// <summary>Traces the camera samples of <paramref name="region"/> again (the render's samples, bit for bit) recording T and F.</summary>
+    /// <summary>Traces the camera samples of <paramref name="region"/> again (the render's samples, bit for bit) recording T and
+    /// F.</summary>
     public static PathTransfer Trace(Scene scene, PathIntegrator integrator, int threads = 0, CancellationToken cancel = default,
         PixelRect? region = null)
     {
@@ -80,7 +82,9 @@ internal sealed partial class PathTransfer
         var shift = lights > 0 ? integrator.ShiftBlock : default;
         long size = (long)rect.Width * rect.Height * (lights + 1) * sub;
         if (size > Array.MaxLength)
-            throw new InputException("--formats", $"the path render's per-light transfer needs {size} floats ({rect.Width}×{rect.Height} pixels × {lights + 1} groups × {sub} sub-bands), more than one array holds",
+            throw new InputException("--formats",
+                $"the path render's per-light transfer needs {size} floats ({rect.Width}×{rect.Height} pixels × {lights + 1} groups × "
+                    + $"{sub} sub-bands), more than one array holds",
                 "render fewer pixels or lights with the lights output, or a coarser \"spectral_grid\"");
         long blockSize = (long)rect.Width * rect.Height * lights * shift.Size;
         if (blockSize > Array.MaxLength)
@@ -175,7 +179,9 @@ internal sealed partial class PathTransfer
     {
         var grid = new FineGrid(scene, SpectralGrid);
         if (grid.Count != SubBands || scene.Bands != Bands || scene.Lights.Count != Lights)
-            throw new InputException("lights/lights.json", $"the transfer has {Lights} lights × {SubBands} sub-bands of {Bands} bands, the scene rebuilds as {scene.Lights.Count} × {grid.Count} of {scene.Bands}",
+            throw new InputException("lights/lights.json",
+                $"the transfer has {Lights} lights × {SubBands} sub-bands of {Bands} bands, the scene rebuilds as {scene.Lights.Count} "
+                    + $"× {grid.Count} of {scene.Bands}",
                 "the scene file changed since the render; render again");
         int padded = grid.Padded, bands = Bands, w = Region.Width;
         var e = LightSpectra(scene, grid);

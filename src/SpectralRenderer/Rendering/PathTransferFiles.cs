@@ -101,7 +101,8 @@ internal static class PathTransferFiles
         }
         AtomicFile.Write(Path.Combine(dir, IdsFile), s => NpyWriter.Write(s, [h, w, 3], ids));
         done($"{LightTransferFiles.Folder}/{IdsFile}");
-        AtomicFile.WriteAllText(Path.Combine(dir, "lights.json"), Describe(scene, t).ToJsonString(new JsonSerializerOptions { WriteIndented = true }));
+        AtomicFile.WriteAllText(Path.Combine(dir, "lights.json"),
+            Describe(scene, t).ToJsonString(new JsonSerializerOptions { WriteIndented = true }));
         done($"{LightTransferFiles.Folder}/lights.json");
     }
 
@@ -136,7 +137,8 @@ internal static class PathTransferFiles
             ["groups"] = groups,
             ["files"] = new JsonObject
             {
-                ["transfer"] = "transfer.npy: float32 [H, W, K + 1, F]: light k's path weights T_k,f (radiance per unit of its spectrum x intensity), then the emitters' and sky's radiance (W m^-2 sr^-1 nm^-1)",
+                ["transfer"] = "transfer.npy: float32 [H, W, K + 1, F]: light k's path weights T_k,f (radiance per unit of its spectrum x "
+                    + "intensity), then the emitters' and sky's radiance (W m^-2 sr^-1 nm^-1)",
                 ["ids"] = "ids.npy: float32 [H, W, 3]: object index + 1 seen by the centre ray (0 = background), then the lit mask " +
                     "(bit k = light k reaches that point) as its low and high 16 bits",
             },
@@ -182,7 +184,8 @@ internal static class PathTransferFiles
         var jsonPath = Path.Combine(dir, "lights.json");
         var json = JsonFields.ParseFile(jsonPath, "lights.json", Damaged);
         var r = new JsonFields(jsonPath, Damaged);
-        int width = r.Int(json, "width", "$", 1, 32768), height = r.Int(json, "height", "$", 1, 32768), bands = r.Int(json, "bands", "$", 1, 100_000);
+        int width = r.Int(json, "width", "$", 1, 32768), height = r.Int(json, "height", "$", 1, 32768),
+            bands = r.Int(json, "bands", "$", 1, 100_000);
         if (bands != scene.Bands) throw r.Bad("$.bands", $"is {bands}, but the scene rebuilds with {scene.Bands} bands");
         int k = scene.Lights.Count;
         r.Array(json, "lights", "$", k);
@@ -201,11 +204,13 @@ internal static class PathTransferFiles
         float[] Load(string file, int[] expected)
         {
             var path = Path.Combine(dir, file);
-            if (!File.Exists(path)) throw new InputException(outDir, $"misses {LightTransferFiles.Folder}/{file}", "render again with the lights output");
+            if (!File.Exists(path))
+                throw new InputException(outDir, $"misses {LightTransferFiles.Folder}/{file}", "render again with the lights output");
             using var s = new FileStream(path, FileMode.Open, FileAccess.Read, FileShare.Read, bufferSize: 1);
             var (shape, data) = NpyReader.Read(s, path);
             if (!shape.SequenceEqual(expected))
-                throw new InputException(path, $"has shape ({string.Join(", ", shape)}), lights.json says ({string.Join(", ", expected)})", "the folder mixes two renders; render again");
+                throw new InputException(path, $"has shape ({string.Join(", ", shape)}), lights.json says ({string.Join(", ", expected)})",
+                    "the folder mixes two renders; render again");
             return data;
         }
         var data = Load(TransferFile, [height, width, k + 1, sub]);
@@ -217,10 +222,12 @@ internal static class PathTransferFiles
         {
             float id = ids[3 * i], low = ids[3 * i + 1], high = ids[3 * i + 2];
             if (!(id >= 0 && id <= scene.Objects.Count && id == MathF.Floor(id)))
-                throw new InputException(Path.Combine(dir, IdsFile), $"pixel {i % width},{i / width}: object {id} is not 0 (background) or one of the scene's {scene.Objects.Count}",
+                throw new InputException(Path.Combine(dir, IdsFile),
+                    $"pixel {i % width},{i / width}: object {id} is not 0 (background) or one of the scene's {scene.Objects.Count}",
                     "the light-transfer files are damaged: render the folder again");
             if (!(low >= 0 && low <= 0xFFFF && low == MathF.Floor(low) && high >= 0 && high <= 0xFFFF && high == MathF.Floor(high)))
-                throw new InputException(Path.Combine(dir, IdsFile), $"pixel {i % width},{i / width}: lit mask halves {low}, {high} are not whole numbers 0–65535",
+                throw new InputException(Path.Combine(dir, IdsFile),
+                    $"pixel {i % width},{i / width}: lit mask halves {low}, {high} are not whole numbers 0–65535",
                     "the light-transfer files are damaged: render the folder again");
             objectIds[i] = (int)id - 1;
             lit[i] = (uint)low | (uint)high << 16;

@@ -24,8 +24,10 @@ public readonly record struct PixelRect(int X0, int Y0, int X1, int Y1)
     {
         var parts = text.Split(',');
         var v = new int[4];
-        if (parts.Length != 4 || !parts.Select((p, i) => int.TryParse(p.Trim(), NumberStyles.Integer, CultureInfo.InvariantCulture, out v[i])).All(ok => ok))
-            throw new InputException(where, $"'{text}' is not X0,Y0,X1,Y1 (four whole numbers)", "e.g. --crop 0,0,512,256: columns 0–511, rows 0–255");
+        if (parts.Length != 4
+            || !parts.Select((p, i) => int.TryParse(p.Trim(), NumberStyles.Integer, CultureInfo.InvariantCulture, out v[i])).All(ok => ok))
+            throw new InputException(where, $"'{text}' is not X0,Y0,X1,Y1 (four whole numbers)",
+                "e.g. --crop 0,0,512,256: columns 0–511, rows 0–255");
         var r = new PixelRect(v[0], v[1], v[2], v[3]);
         if (r.X0 < 0 || r.Y0 < 0 || r.X1 > width || r.Y1 > height || r.Width < 1 || r.Height < 1)
             throw new InputException(where, $"{r} is not a non-empty rectangle inside the {width}×{height} image",

@@ -6,11 +6,13 @@ public struct RayCounters
     public long Primary;
     public long Shadow;
     public long Secondary;
-    /// <summary>Terms whose colour lanes could not be exact (a coloured mirror or transmittance, dispersion, per-band Fresnel): see <see cref="RenderResult.FallbackPixels"/>.</summary>
+    /// <summary>Terms whose colour lanes could not be exact (a coloured mirror or transmittance, dispersion, per-band Fresnel): see
+    /// <see cref="RenderResult.FallbackPixels"/>.</summary>
     public long Fallback;
     public readonly long Total => Primary + Shadow + Secondary;
 
-    /// <summary>The <see cref="Total"/> at which the current camera ray's budget is spent (set by the renderer per camera ray; 0 = none).</summary>
+    /// <summary>The <see cref="Total"/> at which the current camera ray's budget is spent (set by the renderer per camera ray; 0 =
+    /// none).</summary>
     public long BudgetEnd;
     /// <summary>Set when the current camera ray's branches were cut short by the budget.</summary>
     public bool OverBudget;

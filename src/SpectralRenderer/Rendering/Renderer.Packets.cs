@@ -84,7 +84,8 @@ public sealed partial class Renderer
         if (st.Lanes > 0) Flush(st, ref counters);
     }
 
-    /// <summary>Traces the packet and puts each lane's radiance where it belongs: a pixel (spp = 1), a pixel's sum, or its analysis images.</summary>
+    /// <summary>Traces the packet and puts each lane's radiance where it belongs: a pixel (spp = 1), a pixel's sum, or its analysis
+    /// images.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     static void Flush(PacketTileState st, ref RayCounters counters)
     {

@@ -37,7 +37,8 @@ public sealed partial class Renderer
                     int n = 0;
                     for (int s = 0; s < cap; s++)
                     {
-                        if (cancel.IsCancellationRequested) cancel.ThrowIfCancellationRequested();   // a stop waits for one camera ray's tree at most
+                        // a stop waits for one camera ray's tree at most
+                        if (cancel.IsCancellationRequested) cancel.ThrowIfCancellationRequested();
                         // Non-adaptive: weight 1/spp as the plain loop sums it (the same picture); adaptive: weight 1, scaled at the end.
                         long fallback = counters.Fallback;
                         Camera(ref sink, sampling.Sample(x, y, s), target > 0 ? 1f : sampling.Weight, false, budget, ref counters);

@@ -64,7 +64,8 @@ public sealed partial class Renderer
     /// </summary>
     public static void ReturnLoadGarbage() => GC.Collect(2, GCCollectionMode.Aggressive, blocking: true, compacting: true);
 
-    public static RenderResult Render(Scene scene, int threads = 0, Action<RenderProgress>? progress = null, CancellationToken cancel = default, PixelRect? crop = null)
+    public static RenderResult Render(Scene scene, int threads = 0, Action<RenderProgress>? progress = null,
+        CancellationToken cancel = default, PixelRect? crop = null)
     {
         var geometry = new SceneGeometry(scene);
         return Render(scene, Integrators.Create(scene, geometry), threads, progress, cancel, crop);
@@ -73,10 +74,12 @@ public sealed partial class Renderer
     /// <param name="crop">Renders only these pixels of the film (--crop, --shard): the tiles are the whole film's
     /// 32 × 32 grid clipped to the crop, and each pixel is computed from its own film coordinates, so a crop holds the
     /// same values as the same pixels of a whole render.</param>
-    /// <param name="packets">Trace camera rays in packets when the integrator can (<see cref="IPacketIntegrator"/>; the default); false traces every ray alone (the same image).</param>
+    /// <param name="packets">Trace camera rays in packets when the integrator can (<see cref="IPacketIntegrator"/>; the default); false
+    /// traces every ray alone (the same image).</param>
     /// <param name="noise">Record each pixel's standard error (<see cref="RenderResult.Noise"/>); also on with the scene's
     /// <see cref="Scene.TargetError"/> (adaptive sampling, spp the cap).</param>
-    public static RenderResult Render(Scene scene, IIntegrator integrator, int threads = 0, Action<RenderProgress>? progress = null, CancellationToken cancel = default, PixelRect? crop = null, bool packets = true,
+    public static RenderResult Render(Scene scene, IIntegrator integrator, int threads = 0, Action<RenderProgress>? progress = null,
+        CancellationToken cancel = default, PixelRect? crop = null, bool packets = true,
         bool noise = false)
     {
         var cam = scene.Camera;

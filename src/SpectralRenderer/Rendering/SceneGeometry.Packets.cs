@@ -30,7 +30,11 @@ public sealed partial class SceneGeometry
                 var ray = packet.Ray(lane);
                 var a = _analytic;
                 analyticHits[lane] = new Hit();
-                if (_analyticBvh.Intersect(ref a, ref ray, ref analyticHits[lane])) { analytic |= 1u << lane; packet.TMax[lane] = ray.TMax; }
+                if (_analyticBvh.Intersect(ref a, ref ray, ref analyticHits[lane]))
+                {
+                    analytic |= 1u << lane;
+                    packet.TMax[lane] = ray.TMax;
+                }
             }
         // The planes' lanes and the corners on cache-line boundaries (LaneMemory), not zeroed: each lane used is filled.
         Span<byte> laneMemory = stackalloc byte[LaneMemory.Bytes<RecordLanes>()];

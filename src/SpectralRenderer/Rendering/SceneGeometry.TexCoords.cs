@@ -9,7 +9,8 @@ public sealed partial class SceneGeometry
 {
     readonly AnalyticShape[] _planeShapes;
 
-    /// <summary>The (u, v) of <paramref name="hit"/> and the mapping's density there (uv units per world length, for the mip level).</summary>
+    /// <summary>The (u, v) of <paramref name="hit"/> and the mapping's density there (uv units per world length, for the mip
+    /// level).</summary>
     public Vector2 TexCoord(in SurfaceHit hit, out float uvPerLength)
     {
         switch (hit.Kind)
@@ -22,8 +23,10 @@ public sealed partial class SceneGeometry
                     var (p0, p1, p2) = _triangles.Corners(k);
                     var uvs = m.TexCoords;
                     return uvs is null
-                        ? TextureCoordinates.OfTriangle(Vector2.Zero, Vector2.UnitX, Vector2.UnitY, hit.B1, hit.B2, p0, p1, p2, out uvPerLength)
-                        : TextureCoordinates.OfTriangle(uvs[3 * tri], uvs[3 * tri + 1], uvs[3 * tri + 2], hit.B1, hit.B2, p0, p1, p2, out uvPerLength);
+                        ? TextureCoordinates.OfTriangle(Vector2.Zero, Vector2.UnitX, Vector2.UnitY, hit.B1, hit.B2, p0, p1, p2,
+                            out uvPerLength)
+                        : TextureCoordinates.OfTriangle(uvs[3 * tri], uvs[3 * tri + 1], uvs[3 * tri + 2], hit.B1, hit.B2, p0, p1, p2,
+                            out uvPerLength);
                 }
             case 2: return TextureCoordinates.OfShape(_analytic[hit.Primitive], hit.Position, out uvPerLength);
             case 3: return TextureCoordinates.OfShape(_planeShapes[hit.Primitive], hit.Position, out uvPerLength);

@@ -25,7 +25,8 @@ public sealed partial class SceneGeometry
     readonly (Vector3 Normal, float Offset)[] _planes;   // n·x = offset, world space
     readonly int[] _planeObject;
 
-    /// <param name="cache">Where a BVH built for the same triangles by an earlier scene can be found (and this one's kept); null: built here.</param>
+    /// <param name="cache">Where a BVH built for the same triangles by an earlier scene can be found (and this one's kept); null: built
+    /// here.</param>
     public SceneGeometry(Scene scene, GeometryCache? cache = null)
     {
         var meshes = new List<TriangleMesh>();
@@ -101,10 +102,10 @@ public sealed partial class SceneGeometry
     }
 
     /// <summary>
-    /// As <see cref="Intersect(ref Ray, out SurfaceHit)"/>, for rays scattered in every direction one at a time (the path integrator's): a scene's few
-    /// quads and boxes are met as <see cref="FlatFaces"/> all at once instead of through their BVH. The hit agrees with
-    /// <see cref="Intersect(ref Ray, out SurfaceHit)"/>'s to float rounding (world-space instead of object-space distances), not bit for bit, so the
-    /// whitted integrator keeps <see cref="Intersect(ref Ray, out SurfaceHit)"/>.
+    /// As <see cref="Intersect(ref Ray, out SurfaceHit)"/>, for rays scattered in every direction one at a time (the path integrator's): a
+    /// scene's few quads and boxes are met as <see cref="FlatFaces"/> all at once instead of through their BVH. The hit agrees with
+    /// <see cref="Intersect(ref Ray, out SurfaceHit)"/>'s to float rounding (world-space instead of object-space distances), not bit for
+    /// bit, so the whitted integrator keeps <see cref="Intersect(ref Ray, out SurfaceHit)"/>.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public bool IntersectScattered(ref Ray ray, out SurfaceHit hit)

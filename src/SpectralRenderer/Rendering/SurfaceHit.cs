@@ -12,7 +12,8 @@ public struct SurfaceHit
     /// <summary>Unit geometric (face) normal: decides the side and offsets secondary rays.</summary>
     public Vector3 GeometricNormal;
     public int Object;
-    /// <summary>What was hit, for texture coordinates (<see cref="SceneGeometry.TexCoord"/>): 1 triangle, 2 analytic shape, 3 plane.</summary>
+    /// <summary>What was hit, for texture coordinates (<see cref="SceneGeometry.TexCoord"/>): 1 triangle, 2 analytic shape, 3
+    /// plane.</summary>
     public int Kind;
     /// <summary>The triangle (BVH order), analytic shape or plane index within its kind.</summary>
     public int Primitive;

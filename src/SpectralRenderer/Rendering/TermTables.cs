@@ -75,7 +75,8 @@ public sealed class TermTables
     public float[][] GlobalAmbient { get; }
     /// <summary>The background radiance with its colour lanes.</summary>
     public float[] Background { get; }
-    /// <summary>k_r and k_t as weights on an incoming radiance: their colour lanes hold the weight when it is the same in every band.</summary>
+    /// <summary>k_r and k_t as weights on an incoming radiance: their colour lanes hold the weight when it is the same in every
+    /// band.</summary>
     public float[][] Mirror { get; }
     public float[][] Transmit { get; }
     /// <summary>True when k_r (k_t) varies over the bands: then the colour lanes of what it weights cannot be exact.</summary>
@@ -84,7 +85,8 @@ public sealed class TermTables
 
     public int Index(int light, int material) => light * _materials + material;
 
-    /// <summary>The padded table of the radiance a ⊙ b · factor: exact band means of the product and its XYZ when both spectra are known.</summary>
+    /// <summary>The padded table of the radiance a ⊙ b · factor: exact band means of the product and its XYZ when both spectra are
+    /// known.</summary>
     static float[] Product(Scene scene, float[] a, float[] b, double factor)
     {
         var cm = scene.Colorimeter;

@@ -45,7 +45,8 @@ public abstract class TexelLevels
     readonly int _shift, _mask;
     readonly UvTransform _uv;
 
-    /// <summary>The levels of a <paramref name="width"/> × <paramref name="height"/> image, <paramref name="stride"/> floats per texel, placed by <paramref name="uv"/>.</summary>
+    /// <summary>The levels of a <paramref name="width"/> × <paramref name="height"/> image, <paramref name="stride"/> floats per texel,
+    /// placed by <paramref name="uv"/>.</summary>
     protected TexelLevels(string source, int width, int height, int stride, UvTransform uv)
     {
         _uv = uv;

@@ -53,7 +53,8 @@ public sealed class TextureTables
                 continue;
             }
             if (mat.DiffuseTexture is { } d) diffuse[m] = TexturedTerms.ForDiffuse(scene, d, ambient);
-            if (mat.Fluorescence is { HasShift: true } fl && diffuse[m] is { } texels) texels.AddShift(scene, fl);   // the texels are its diagonal
+            // the texels are its diagonal
+            if (mat.Fluorescence is { HasShift: true } fl && diffuse[m] is { } texels) texels.AddShift(scene, fl);
             if (mat.SpecularTexture is { } s) specular[m] = TexturedTerms.ForSpecular(scene, s, mat);
         }
         return new TextureTables(diffuse, specular);

@@ -19,7 +19,8 @@ internal sealed partial class WhittedIntegrator
     /// <inheritdoc/>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     [SkipLocalsInit]
-    public void Radiance(ref RayPacket packet, Span<float> results, Span<int> objects, Span<PixelInfo> infos, Span<bool> fallbacks, Span<float> scratch, ref RayCounters counters)
+    public void Radiance(ref RayPacket packet, Span<float> results, Span<int> objects, Span<PixelInfo> infos, Span<bool> fallbacks,
+        Span<float> scratch, ref RayCounters counters)
     {
         Span<int> material = stackalloc int[RayPacket.Size];
         // The lane structures on cache-line boundaries (LaneMemory), not zeroed: the lanes found are filled.
@@ -91,10 +92,18 @@ internal sealed partial class WhittedIntegrator
                 ref var nl = ref lk.Cosine;
                 switch (PacketLanes.Width)
                 {
-                    case 16: LaneGeometry.PointLight<Lanes512>(in point, eps, shaded, in at, ref shadows, ref d, ref nl, out lk.Reached); break;
-                    case 8: LaneGeometry.PointLight<Lanes256>(in point, eps, shaded, in at, ref shadows, ref d, ref nl, out lk.Reached); break;
-                    case 4: LaneGeometry.PointLight<Lanes128>(in point, eps, shaded, in at, ref shadows, ref d, ref nl, out lk.Reached); break;
-                    default: LaneGeometry.PointLight<Lanes1>(in point, eps, shaded, in at, ref shadows, ref d, ref nl, out lk.Reached); break;
+                    case 16:
+                        LaneGeometry.PointLight<Lanes512>(in point, eps, shaded, in at, ref shadows, ref d, ref nl, out lk.Reached);
+                        break;
+                    case 8:
+                        LaneGeometry.PointLight<Lanes256>(in point, eps, shaded, in at, ref shadows, ref d, ref nl, out lk.Reached);
+                        break;
+                    case 4:
+                        LaneGeometry.PointLight<Lanes128>(in point, eps, shaded, in at, ref shadows, ref d, ref nl, out lk.Reached);
+                        break;
+                    default:
+                        LaneGeometry.PointLight<Lanes1>(in point, eps, shaded, in at, ref shadows, ref d, ref nl, out lk.Reached);
+                        break;
                 }
                 ((Span<float>)lk.Spot).Fill(1f);
             }
@@ -142,7 +151,8 @@ internal sealed partial class WhittedIntegrator
         public RayPacket Shadows;
     }
 
-    /// <summary>Most terms a lane lists: the global ambient and, per light, its ambient and its diffuse (+ specular) term, for 8 lights.</summary>
+    /// <summary>Most terms a lane lists: the global ambient and, per light, its ambient and its diffuse (+ specular) term, for 8
+    /// lights.</summary>
     const int TermsPerLane = 17;
 
     /// <summary>One light's results for the lanes of a packet: d_k, c_spot, n·l and (lanes lit) the direction l; the lanes it
@@ -185,7 +195,8 @@ internal sealed partial class WhittedIntegrator
     }
 
     /// <summary>A packet lane's terms: listed as <see cref="SpectralTerm"/>s for the one-pass band sum (or added at once), and what the
-    /// camera ray saw for the analysis images: the local step only (<see cref="ITermSink"/>; lanes that recurse are walked alone).</summary>
+    /// camera ray saw for the analysis images: the local step only (<see cref="ITermSink"/>; lanes that recurse are walked
+    /// alone).</summary>
     ref struct LaneSink : ITermSink
     {
         readonly WhittedIntegrator _owner;
@@ -255,7 +266,8 @@ internal sealed partial class WhittedIntegrator
     /// Any light, lane by lane (<see cref="Light.Illuminate"/>): the lanes it reaches, their attenuation, c_spot and n·l, and
     /// for those facing it (not n·l ≤ 0) the shadow ray in <paramref name="shadows"/>, whose active lanes they become.
     /// </summary>
-    uint IlluminateLanes(Light light, uint lanes, in ShadingLanes at, ref RayPacket shadows, ref PacketFloats attenuation, ref PacketFloats cosine, ref PacketFloats spot)
+    uint IlluminateLanes(Light light, uint lanes, in ShadingLanes at, ref RayPacket shadows, ref PacketFloats attenuation,
+        ref PacketFloats cosine, ref PacketFloats spot)
     {
         float eps = _geometry.Epsilon;
         uint reached = 0;
@@ -269,7 +281,9 @@ internal sealed partial class WhittedIntegrator
             attenuation[lane] = ls.Attenuation; cosine[lane] = nl; spot[lane] = ls.Spot;
             if (nl <= 0) continue;
             float dist = ls.Distance;
-            shadows.Set(lane, new Ray(new Vector3(at.AX[lane], at.AY[lane], at.AZ[lane]), ls.Direction, float.IsInfinity(dist) ? float.PositiveInfinity : dist - 2 * eps));
+            shadows.Set(lane,
+                new Ray(new Vector3(at.AX[lane], at.AY[lane], at.AZ[lane]), ls.Direction,
+                    float.IsInfinity(dist) ? float.PositiveInfinity : dist - 2 * eps));
         }
         return reached;
     }

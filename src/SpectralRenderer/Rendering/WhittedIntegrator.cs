@@ -53,11 +53,17 @@ internal sealed partial class WhittedIntegrator : IPacketIntegrator, IAnalysisIn
         int at = 0;
         int Put(float[] table) { table.AsSpan().CopyTo(Flat[at..]); at += _padded; return at - _padded; }
         for (int m = 0; m < materials; m++) _globalAmbientAt[m] = Put(_tables.GlobalAmbient[m]);
-        for (int t = 0; t < pairs; t++) { _ambientAt[t] = Put(_tables.Ambient[t]); _diffuseAt[t] = Put(_tables.Diffuse[t]); _specularAt[t] = Put(_tables.Specular[t]); }
+        for (int t = 0; t < pairs; t++)
+        {
+            _ambientAt[t] = Put(_tables.Ambient[t]);
+            _diffuseAt[t] = Put(_tables.Diffuse[t]);
+            _specularAt[t] = Put(_tables.Specular[t]);
+        }
         // Per (light, material), the direct pair's offsets and its Y colour lane, in one place for a lane's Direct term.
         int y = scene.Bands + 1;
         _direct = new DirectPair[pairs];
-        for (int t = 0; t < pairs; t++) _direct[t] = new DirectPair(_diffuseAt[t], _specularAt[t], _tables.Diffuse[t][y], _tables.Specular[t][y]);
+        for (int t = 0; t < pairs; t++)
+            _direct[t] = new DirectPair(_diffuseAt[t], _specularAt[t], _tables.Diffuse[t][y], _tables.Specular[t][y]);
     }
 
     /// <summary>A (light, material) pair's diffuse and specular tables in <see cref="Flat"/> and their Y colour lane (the

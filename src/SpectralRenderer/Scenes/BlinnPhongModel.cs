@@ -8,7 +8,8 @@ public sealed class BlinnPhongModel : SpecularModel
 {
     public override string Name => "blinn-phong";
 
-    /// <summary>(n + 8)/(8π): the normalised Blinn–Phong lobe (Akenine-Möller et al., Real-Time Rendering 4th ed. §9.8; Blinn 1977).</summary>
+    /// <summary>(n + 8)/(8π): the normalised Blinn–Phong lobe (Akenine-Möller et al., Real-Time Rendering 4th ed. §9.8; Blinn
+    /// 1977).</summary>
     public override double EnergyNormalisation(double shininess) => (shininess + 8) / (8 * Math.PI);
 
     /// <summary>The half-vector h drawn with density (s+1)/(2π)·(n·h)^s, l its mirror of v: p(l) = p(h)/(4 v·h).</summary>

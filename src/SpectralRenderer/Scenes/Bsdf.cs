@@ -27,8 +27,8 @@ public readonly record struct BsdfSample(Vector3 Wi, float Pdf, BsdfFlags Flags)
 /// L_o = ∫ f · L_i · cos θ_i dωi. ωo points towards the viewer, ωi towards the light, n is the unit shading normal
 /// (either side: the surfaces of eq. 2 are two-sided, the side ωo is on counts as the front). Band spectra are spans
 /// of band values; the BSDF fills as many as the span holds (at most the scene's padded band count).
-/// The smooth lobes answer <see cref="Evaluate(Vector3, Vector3, Vector3, Span{float})"/>, <see cref="Sample"/> and <see cref="Pdf"/>; the delta lobes
-/// (perfect mirror k_r, specular transmission k_t) answer <see cref="SampleMirror"/> and <see cref="SampleTransmission"/>.
+/// The smooth lobes answer <see cref="Evaluate(Vector3, Vector3, Vector3, Span{float})"/>, <see cref="Sample"/> and <see cref="Pdf"/>; the
+/// delta lobes (perfect mirror k_r, specular transmission k_t) answer <see cref="SampleMirror"/> and <see cref="SampleTransmission"/>.
 /// </summary>
 public abstract class Bsdf
 {
@@ -50,7 +50,8 @@ public abstract class Bsdf
     /// an empty span keeps its own. Sampling and <see cref="Pdf"/> stay the BSDF's (an estimator's weight f·cos/pdf stays
     /// unbiased for any density that covers f).
     /// </summary>
-    public virtual void Evaluate(Vector3 wo, Vector3 wi, Vector3 n, ReadOnlySpan<float> diffuse, ReadOnlySpan<float> specular, Span<float> f) =>
+    public virtual void Evaluate(Vector3 wo, Vector3 wi, Vector3 n, ReadOnlySpan<float> diffuse, ReadOnlySpan<float> specular,
+        Span<float> f) =>
         throw new NotSupportedException($"{GetType().Name} takes no textures");
 
     /// <summary>The solid-angle density with which <see cref="Sample"/> draws <paramref name="wi"/>.</summary>
@@ -155,7 +156,8 @@ public sealed class LambertianBsdf(float[] reflectance) : Bsdf
     public override bool TakesTextures => true;
 
     /// <summary>f = ρ_texel/π (a Lambertian surface has no specular weight).</summary>
-    public override void Evaluate(Vector3 wo, Vector3 wi, Vector3 n, ReadOnlySpan<float> diffuse, ReadOnlySpan<float> specular, Span<float> f)
+    public override void Evaluate(Vector3 wo, Vector3 wi, Vector3 n, ReadOnlySpan<float> diffuse, ReadOnlySpan<float> specular,
+        Span<float> f)
     {
         float scale = SameSide(wo, wi, n) ? 1 / MathF.PI : 0;
         var rho = diffuse.IsEmpty ? Reflectance.AsSpan(0, f.Length) : diffuse[..f.Length];

@@ -13,7 +13,8 @@ public sealed class ConductorBsdf : Bsdf
 {
     readonly float[] _n, _k;
 
-    /// <param name="n">the real part of the index per band (padded; a band where n and k are both 0 is padding and reflects nothing)</param>
+    /// <param name="n">the real part of the index per band (padded; a band where n and k are both 0 is padding and reflects
+    /// nothing)</param>
     /// <param name="k">the extinction coefficient per band</param>
     /// <param name="alpha">GGX roughness α ∈ [0, 1]; 0: the smooth mirror</param>
     public ConductorBsdf(float[] n, float[] k, float alpha)

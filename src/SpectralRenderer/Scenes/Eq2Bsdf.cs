@@ -65,7 +65,8 @@ public sealed class Eq2Bsdf : Bsdf
     public override bool TakesTextures => true;
 
     /// <summary>f = m_diff/π + m_spec·N(s)·factor with a texel's m_diff and/or m_spec (empty: the material's own).</summary>
-    public override void Evaluate(Vector3 wo, Vector3 wi, Vector3 n, ReadOnlySpan<float> diffuse, ReadOnlySpan<float> specular, Span<float> f)
+    public override void Evaluate(Vector3 wo, Vector3 wi, Vector3 n, ReadOnlySpan<float> diffuse, ReadOnlySpan<float> specular,
+        Span<float> f)
     {
         var front = Vector3.Dot(wo, n) >= 0 ? n : -n;
         float nl = Vector3.Dot(front, wi);

@@ -21,14 +21,17 @@ public static class EulumdatReader
         string Line(string what)
         {
             if (at >= lines.Length)
-                throw new InputException($"{file}:{lines.Length}", $"the file ends before {what} (line {at + 1})", "an EULUMDAT file has a fixed sequence of lines: it is cut short");
+                throw new InputException($"{file}:{lines.Length}", $"the file ends before {what} (line {at + 1})",
+                    "an EULUMDAT file has a fixed sequence of lines: it is cut short");
             return lines[at++].Trim();
         }
         double Number(string what)
         {
             var t = Line(what);
-            if (!double.TryParse(t.Replace(',', '.'), NumberStyles.Float, CultureInfo.InvariantCulture, out double v) || !double.IsFinite(v))
-                throw new InputException($"{file}:{at}", $"{what} is {MessageText.Quote(t, 40)}, not a number", "EULUMDAT has one number per line here");
+            if (!double.TryParse(t.Replace(',', '.'), NumberStyles.Float, CultureInfo.InvariantCulture, out double v)
+                || !double.IsFinite(v))
+                throw new InputException($"{file}:{at}", $"{what} is {MessageText.Quote(t, 40)}, not a number",
+                    "EULUMDAT has one number per line here");
             return v;
         }
         int Count(string what, int min, int max)
@@ -61,25 +64,31 @@ public static class EulumdatReader
             Line("the colour rendering");
             Number("the wattage");
         }
-        if (!(flux > 0)) throw new InputException($"{file}:{at}", "the first lamp set's luminous flux is 0", "intensities are cd per 1000 lm of the lamps: give their flux");
+        if (!(flux > 0))
+            throw new InputException($"{file}:{at}", "the first lamp set's luminous flux is 0",
+                "intensities are cd per 1000 lm of the lamps: give their flux");
         for (int i = 0; i < 10; i++) Number("a direct ratio");
         var c = new double[mc];
         for (int i = 0; i < mc; i++)
         {
             c[i] = Number($"C angle {i + 1} of {mc}");
             if (c[i] < 0 || c[i] >= 360 || (i > 0 && !(c[i] > c[i - 1])))
-                throw new InputException($"{file}:{at}", $"C angle {c[i]:g} is not in 0–360° after {(i > 0 ? c[i - 1] : 0):g}", "C angles ascend from 0 below 360°");
+                throw new InputException($"{file}:{at}", $"C angle {c[i]:g} is not in 0–360° after {(i > 0 ? c[i - 1] : 0):g}",
+                    "C angles ascend from 0 below 360°");
         }
         var g = new double[ng];
         for (int i = 0; i < ng; i++)
         {
             g[i] = Number($"γ angle {i + 1} of {ng}");
             if (g[i] < 0 || g[i] > 180 || (i > 0 && !(g[i] > g[i - 1])))
-                throw new InputException($"{file}:{at}", $"γ angle {g[i]:g} is not in 0–180° after {(i > 0 ? g[i - 1] : 0):g}", "γ angles ascend from 0 to at most 180°");
+                throw new InputException($"{file}:{at}", $"γ angle {g[i]:g} is not in 0–180° after {(i > 0 ? g[i - 1] : 0):g}",
+                    "γ angles ascend from 0 to at most 180°");
         }
-        if (c[0] != 0 && isym != 1) throw new InputException($"{file}:{at - ng - mc + 1}", $"the first C angle is {c[0]:g}", "C angles start at 0");
+        if (c[0] != 0 && isym != 1)
+            throw new InputException($"{file}:{at - ng - mc + 1}", $"the first C angle is {c[0]:g}", "C angles start at 0");
         if ((isym is 2 or 3 && mc % 2 != 0) || (isym is 3 or 4 && mc % 4 != 0))
-            throw new InputException($"{file}:4", $"Mc = {mc} does not split into the planes symmetry {isym} needs", "Mc must be a multiple of 4 for Isym 3 and 4, of 2 for Isym 2");
+            throw new InputException($"{file}:4", $"Mc = {mc} does not split into the planes symmetry {isym} needs",
+                "Mc must be a multiple of 4 for Isym 3 and 4, of 2 for Isym 2");
         // The planes present (EULUMDAT Mc1 … Mc2, 1-based; Isym 3 wraps past 360).
         var (first, count, symmetry) = isym switch
         {
@@ -107,11 +116,16 @@ public static class EulumdatReader
         if (isym == 3)
             for (int p = 1; p < count; p++)
                 if (!(horizontal[p] > horizontal[p - 1]))
-                    throw new InputException($"{file}:{at}", "the C angles of Isym 3 do not run from 270° through 360° to 90°", "Isym 3 needs C-planes evenly around the circle");
-        if (isym == 2 && horizontal[^1] != 180 || isym == 4 && horizontal[^1] != 90 || isym == 3 && (horizontal[0] != 270 || horizontal[^1] != 450))
-            throw new InputException($"{file}:{at}", $"the planes symmetry {isym} needs end at C {horizontal[^1] % 360:g}", "Isym 2 needs C0–C180, 3 C270–C90, 4 C0–C90: evenly spaced C angles");
+                    throw new InputException($"{file}:{at}", "the C angles of Isym 3 do not run from 270° through 360° to 90°",
+                        "Isym 3 needs C-planes evenly around the circle");
+        if (isym == 2 && horizontal[^1] != 180 || isym == 4 && horizontal[^1] != 90
+            || isym == 3 && (horizontal[0] != 270 || horizontal[^1] != 450))
+            throw new InputException($"{file}:{at}", $"the planes symmetry {isym} needs end at C {horizontal[^1] % 360:g}",
+                "Isym 2 needs C0–C180, 3 C270–C90, 4 C0–C90: evenly spaced C angles");
         while (at < lines.Length && string.IsNullOrWhiteSpace(lines[at])) at++;
-        if (at < lines.Length) throw new InputException($"{file}:{at + 1}", "lines after the intensity table", "Mc, Ng and Isym say where the table ends: check them");
+        if (at < lines.Length)
+            throw new InputException($"{file}:{at + 1}", "lines after the intensity table",
+                "Mc, Ng and Isym say where the table ends: check them");
         return new PhotometricFile(new CandelaTable(g, horizontal, rows, symmetry, file), flux, "EULUMDAT");
     }
 }

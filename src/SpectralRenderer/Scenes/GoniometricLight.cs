@@ -28,7 +28,8 @@ public sealed class GoniometricLight(LightEmission emission, CandelaTable table,
 
     public override LightDescription Describe(Radiometry radiometry) =>
         new(Type, "W.sr^-1.nm^-1 (radiant intensity) = spectrum × intensity × the file's cd / (683 lm/W · ∫V·spectrum dλ)",
-            LightDescription.Of(Position), LightDescription.Of(Vector3.TransformNormal(-Vector3.UnitY, Orientation)), LightDescription.Of(Falloff));
+            LightDescription.Of(Position), LightDescription.Of(Vector3.TransformNormal(-Vector3.UnitY, Orientation)),
+                LightDescription.Of(Falloff));
 
     /// <summary>(C, γ) in degrees of the direction <paramref name="w"/> (world, unit) leaving the luminaire.</summary>
     public (double C, double Gamma) Angles(Vector3 w)

@@ -24,10 +24,12 @@ public static class IesReader
         var lines = text.Replace("\r\n", "\n").Replace('\r', '\n').TrimEnd('\n').Split('\n');
         int l = 0;
         if (lines.Length == 0 || lines.All(string.IsNullOrWhiteSpace))
-            throw new InputException($"{file}:1", "the file is empty", "an IES LM-63 file starts with IESNA:LM-63-2002 and has a TILT= line");
+            throw new InputException($"{file}:1", "the file is empty",
+                "an IES LM-63 file starts with IESNA:LM-63-2002 and has a TILT= line");
         while (l < lines.Length && !lines[l].TrimStart().StartsWith("TILT", StringComparison.OrdinalIgnoreCase)) l++;
         if (l == lines.Length)
-            throw new InputException($"{file}:{lines.Length}", "no TILT= line", "an IES LM-63 file has TILT=NONE (or INCLUDE) before its numbers");
+            throw new InputException($"{file}:{lines.Length}", "no TILT= line",
+                "an IES LM-63 file has TILT=NONE (or INCLUDE) before its numbers");
         var tilt = lines[l].Trim();
         int eq = tilt.IndexOf('=');
         string mode = eq < 0 ? "" : tilt[(eq + 1)..].Trim();
@@ -41,7 +43,8 @@ public static class IesReader
             for (int i = 0; i < 2 * n; i++) tokens.Number("a tilt angle or factor");
         }
         else if (!mode.Equals("NONE", StringComparison.OrdinalIgnoreCase))
-            throw new InputException($"{file}:{l + 1}", $"TILT={MessageText.Quote(mode, 40)} is not supported", "use TILT=NONE or TILT=INCLUDE");
+            throw new InputException($"{file}:{l + 1}", $"TILT={MessageText.Quote(mode, 40)} is not supported",
+                "use TILT=NONE or TILT=INCLUDE");
 
         int lamps = tokens.Count("the number of lamps", 1, 1000);
         double lumens = tokens.Number("the lumens per lamp");
@@ -49,7 +52,9 @@ public static class IesReader
         int nv = tokens.Count("the number of vertical angles", 1, MaxAngles);
         int nh = tokens.Count("the number of horizontal angles", 1, MaxAngles);
         int type = tokens.Count("the photometric type", 1, 3);
-        if (type != 1) throw tokens.Error($"photometric type {type} ({(type == 2 ? "B" : "A")}) is not supported", "type C (1), the type of almost all building luminaires");
+        if (type != 1)
+            throw tokens.Error($"photometric type {type} ({(type == 2 ? "B" : "A")}) is not supported",
+                "type C (1), the type of almost all building luminaires");
         tokens.Count("the units type", 1, 2);
         for (int i = 0; i < 3; i++) tokens.Number("a luminous opening dimension");
         double ballast = tokens.NonNegative("the ballast factor");
@@ -57,7 +62,8 @@ public static class IesReader
         tokens.Number("the input watts");
         var vertical = tokens.Angles("vertical", nv, 0, 180);
         if (vertical[0] != 0 && vertical[0] != 90)
-            throw tokens.Error($"the first vertical angle is {vertical[0]:0.###}", "type C vertical angles start at 0 (or 90 for an uplight)");
+            throw tokens.Error($"the first vertical angle is {vertical[0]:0.###}",
+                "type C vertical angles start at 0 (or 90 for an uplight)");
         var horizontal = tokens.Angles("horizontal", nh, 0, 360);
         CandelaSymmetry symmetry;
         if (nh == 1 && horizontal[0] == 0) symmetry = CandelaSymmetry.Axial;
@@ -75,7 +81,8 @@ public static class IesReader
             for (int v = 0; v < nv; v++) rows[h][v] = tokens.NonNegative("a candela value") * factor;
         }
         tokens.End();
-        return new PhotometricFile(new CandelaTable(vertical, horizontal, rows, symmetry, file), lumens > 0 ? lamps * lumens : null, "IES LM-63");
+        return new PhotometricFile(new CandelaTable(vertical, horizontal, rows, symmetry, file), lumens > 0 ? lamps * lumens : null,
+            "IES LM-63");
     }
 
     /// <summary>The numbers of a text, with the line each came from, for errors.</summary>
@@ -100,11 +107,13 @@ public static class IesReader
         public double Number(string what)
         {
             if (_next >= _items.Count)
-                throw new InputException($"{_file}:{_lastLine}", $"the file ends before {what}", "the file is cut short: check the angle counts against the values");
+                throw new InputException($"{_file}:{_lastLine}", $"the file ends before {what}",
+                    "the file is cut short: check the angle counts against the values");
             var (text, line) = _items[_next++];
             _lastLine = line;
             if (!double.TryParse(text, NumberStyles.Float, CultureInfo.InvariantCulture, out double v) || !double.IsFinite(v))
-                throw new InputException($"{_file}:{line}", $"{what} is {MessageText.Quote(text, 40)}, not a number", "IES values are plain decimal numbers");
+                throw new InputException($"{_file}:{line}", $"{what} is {MessageText.Quote(text, 40)}, not a number",
+                    "IES values are plain decimal numbers");
             return v;
         }
 
@@ -123,7 +132,9 @@ public static class IesReader
         public int Count(string what, int min, int max)
         {
             double v = Number(what);
-            return v == Math.Floor(v) && v >= min && v <= max ? (int)v : throw Error($"{what} is {v:g}", $"a whole number from {min} to {max}");
+            return v == Math.Floor(v) && v >= min && v <= max
+                ? (int)v
+                : throw Error($"{what} is {v:g}", $"a whole number from {min} to {max}");
         }
 
         public double[] Angles(string kind, int n, double min, double max)
@@ -132,8 +143,10 @@ public static class IesReader
             for (int i = 0; i < n; i++)
             {
                 a[i] = Number($"{kind} angle {i + 1} of {n}");
-                if (a[i] < min || a[i] > max) throw Error($"{kind} angle {a[i]:g} is outside {min:g}–{max:g}°", $"type C {kind} angles lie in {min:g}–{max:g}°");
-                if (i > 0 && !(a[i] > a[i - 1])) throw Error($"{kind} angles are not ascending ({a[i - 1]:g} then {a[i]:g})", "list the angles in increasing order");
+                if (a[i] < min || a[i] > max)
+                    throw Error($"{kind} angle {a[i]:g} is outside {min:g}–{max:g}°", $"type C {kind} angles lie in {min:g}–{max:g}°");
+                if (i > 0 && !(a[i] > a[i - 1]))
+                    throw Error($"{kind} angles are not ascending ({a[i - 1]:g} then {a[i]:g})", "list the angles in increasing order");
             }
             return a;
         }

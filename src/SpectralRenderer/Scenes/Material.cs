@@ -54,7 +54,8 @@ public sealed class Material
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public float SpecularFactor(Vector3 n, Vector3 l, Vector3 v, float nl) => Model.Evaluate(n, l, v, nl, Shininess);
 
-    /// <summary>η = n_i / n_t for a ray arriving from outside (n_i = 1) or inside, at band <paramref name="band"/> (−1: all bands, band 0's index).</summary>
+    /// <summary>η = n_i / n_t for a ray arriving from outside (n_i = 1) or inside, at band <paramref name="band"/> (−1: all bands, band 0's
+    /// index).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public float Eta(bool outside, int band)
     {
@@ -66,7 +67,8 @@ public sealed class Material
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public float MirrorFactor(float cosI, bool outside, int band) => Fresnel ? Dielectric.Reflectance(cosI, Eta(outside, band)) : 1f;
 
-    /// <summary>The factor on k_t for a refracted (not totally reflected) ray: 1 − Fresnel reflectance when <see cref="Fresnel"/>, else 1.</summary>
+    /// <summary>The factor on k_t for a refracted (not totally reflected) ray: 1 − Fresnel reflectance when <see cref="Fresnel"/>, else
+    /// 1.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public float TransmitFactor(float cosI, float eta) => Fresnel ? 1 - Dielectric.Reflectance(cosI, eta) : 1f;
 }

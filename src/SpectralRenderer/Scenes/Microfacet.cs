@@ -57,13 +57,15 @@ public static class Ggx
         return Vector3.Normalize(new Vector3(alpha * nh.X, alpha * nh.Y, MathF.Max(1e-7f, nh.Z)));
     }
 
-    /// <summary>The solid-angle density of ωi = reflect(ωo, h) for h drawn by <see cref="SampleVisibleNormal"/>: G₁(ωo)·D(h)/(4 cos θo).</summary>
+    /// <summary>The solid-angle density of ωi = reflect(ωo, h) for h drawn by <see cref="SampleVisibleNormal"/>: G₁(ωo)·D(h)/(4 cos
+    /// θo).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static float ReflectionPdf(float cosO, float cosH, float alpha) => G1(cosO, alpha) * D(cosH, alpha) / (4 * cosO);
 
     /// <summary><paramref name="v"/> in the frame (t, b, n): its components along t, b and n.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    public static Vector3 ToLocal(Vector3 v, Vector3 t, Vector3 b, Vector3 n) => new(Vector3.Dot(v, t), Vector3.Dot(v, b), Vector3.Dot(v, n));
+    public static Vector3 ToLocal(Vector3 v, Vector3 t, Vector3 b, Vector3 n) =>
+        new(Vector3.Dot(v, t), Vector3.Dot(v, b), Vector3.Dot(v, n));
 }
 
 /// <summary>

@@ -42,7 +42,8 @@ public enum ExrCompressionChoice
     None,
 }
 
-/// <summary>The names a scene file and the command line use for <see cref="OutputProducts"/> and <see cref="ExrCompressionChoice"/>.</summary>
+/// <summary>The names a scene file and the command line use for <see cref="OutputProducts"/> and
+/// <see cref="ExrCompressionChoice"/>.</summary>
 public static class OutputNames
 {
     public static readonly IReadOnlyList<(OutputProducts Product, string Name)> Products =
@@ -69,11 +70,13 @@ public sealed class OutputOptions
     public RgbSpace Rgb { get; set; } = RgbSpace.Srgb;
     /// <summary>The preview's exposure (XYZ multiplier before the RGB matrix); see <see cref="ExposureAuto"/>.</summary>
     public double Exposure { get; set; } = 1.0;
-    /// <summary><c>"exposure": "auto"</c>: the 99th percentile of the display-linear maximum channel of the non-black pixels maps to 1.</summary>
+    /// <summary><c>"exposure": "auto"</c>: the 99th percentile of the display-linear maximum channel of the non-black pixels maps to
+    /// 1.</summary>
     public bool ExposureAuto { get; set; }
     /// <summary>How the preview brings out-of-gamut colours inside (<c>"gamut": "clip"</c>, the default, or <c>"desaturate"</c>).</summary>
     public GamutMapping Gamut { get; set; } = GamutMapping.Clip;
-    /// <summary>Bradford-adapt from the scene's reference white to the RGB space's white (off by default: §3.3 is about seeing the light's colour).</summary>
+    /// <summary>Bradford-adapt from the scene's reference white to the RGB space's white (off by default: §3.3 is about seeing the light's
+    /// colour).</summary>
     public bool Adapt { get; set; }
     /// <summary>A pixel is in a highlight when its specular term's luminance exceeds this fraction of the diffuse term's.</summary>
     public double HighlightFraction { get; set; } = 0.1;

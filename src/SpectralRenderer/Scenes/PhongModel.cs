@@ -8,7 +8,8 @@ public sealed class PhongModel : SpecularModel
 {
     public override string Name => "phong";
 
-    /// <summary>(n + 2)/(2π): the energy-conserving modified Phong lobe (Lafortune &amp; Willems 1994), albedo m_spec at normal incidence.</summary>
+    /// <summary>(n + 2)/(2π): the energy-conserving modified Phong lobe (Lafortune &amp; Willems 1994), albedo m_spec at normal
+    /// incidence.</summary>
     public override double EnergyNormalisation(double shininess) => (shininess + 2) / (2 * Math.PI);
 
     /// <summary>l drawn about the mirror direction r of v with density (s+1)/(2π)·(r·l)^s (Lafortune &amp; Willems 1994).</summary>

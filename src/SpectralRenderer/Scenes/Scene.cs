@@ -49,7 +49,8 @@ public sealed class Scene
     /// background radiances, every material lobe), by array identity: the integrator integrates their products exactly.
     /// An array without an entry (a zero lobe, a hand-made scene) is used as band values only.
     /// </summary>
-    public IReadOnlyDictionary<float[], TabulatedSpectrum> Spectra { get; init; } = new Dictionary<float[], TabulatedSpectrum>(ReferenceEqualityComparer.Instance);
+    public IReadOnlyDictionary<float[], TabulatedSpectrum> Spectra { get; init; } =
+        new Dictionary<float[], TabulatedSpectrum>(ReferenceEqualityComparer.Instance);
     public required Camera Camera { get; set; }
     public required List<Material> Materials { get; init; }
     public required List<Light> Lights { get; init; }
@@ -75,7 +76,8 @@ public sealed class Scene
     public float MinRayWeight { get; init; } = DefaultMinRayWeight;
     // Off by default: relighting (the per-light transfer) traces the full tree and must equal a render.
     public const float DefaultMinRayWeight = 0f;
-    /// <summary>The most rays one camera ray may cost, itself and its shadow, reflected and refracted rays included; beyond it, its branches end and the ray is counted.</summary>
+    /// <summary>The most rays one camera ray may cost, itself and its shadow, reflected and refracted rays included; beyond it, its
+    /// branches end and the ray is counted.</summary>
     public int RayBudget { get; init; } = DefaultRayBudget;
     public const int DefaultRayBudget = 20_000;
     public required OutputOptions Output { get; init; }

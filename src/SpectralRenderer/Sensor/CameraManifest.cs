@@ -8,7 +8,8 @@ public static class CameraManifest
 {
     public const int Version = 1;
 
-    public static JsonObject Build(RawFrame raw, ColourCorrection colour, BandGrid grid, string lightName, double radianceScale, string radianceScaleSource,
+    public static JsonObject Build(RawFrame raw, ColourCorrection colour, BandGrid grid, string lightName, double radianceScale,
+        string radianceScaleSource,
         string route = RadianceCube.BandRoute, string whiteScaleSource = "1: the light's band values (the paper's white)")
     {
         bool exact = route.StartsWith("exact", StringComparison.Ordinal);
@@ -81,14 +82,16 @@ public static class CameraManifest
                 ["system_gain_dn_per_e"] = s.SystemGain,
                 ["dn_scale"] = "DN = black + V·G/V_swing·(white − black), white = 2^bits − 1: the voltage swing maps to white − black DN "
                     + "(ISETCam maps it to 2^bits without a black offset); K = g·G·(white − black)/V_swing DN per electron",
-                ["exposure"] = s.ExposureSeconds is null ? $"auto: brightest expected pixel at {s.AutoExposureFraction} of the full well" : "given",
+                ["exposure"] =
+                    s.ExposureSeconds is null ? $"auto: brightest expected pixel at {s.AutoExposureFraction} of the full well" : "given",
                 ["fixed_pattern_seed"] = s.FixedPatternSeed,
                 ["channels"] = channels,
             },
             ["simulation"] = new JsonObject
             {
                 ["seed"] = raw.Options.Seed,
-                ["noise"] = raw.Options.Noise ? "on: shot (Poisson), dark current (Poisson), read (Gaussian), PRNU, DSNU, full-well clip, quantisation"
+                ["noise"] = raw.Options.Noise
+                    ? "on: shot (Poisson), dark current (Poisson), read (Gaussian), PRNU, DSNU, full-well clip, quantisation"
                     : "off: expected signal only (no noise, no dark current, no quantisation); full-well and white clipping kept",
                 ["exposure_s"] = Array(raw.ExposureSeconds),
                 ["peak_expected_electrons"] = Array(raw.PeakElectrons),
@@ -96,26 +99,31 @@ public static class CameraManifest
                 ["radiance_scale_source"] = radianceScaleSource,
                 ["light"] = lightName,
                 ["bands"] = grid.ToString(),
-                ["weights"] = "w_c,b = s·A·ff·πT/(1+4N²)·Δλ·∫_b η_c λ E dλ / (h c ∫_b E dλ): photo-electrons per second per band unit, prefiltered by the light E",
+                ["weights"] = "w_c,b = s·A·ff·πT/(1+4N²)·Δλ·∫_b η_c λ E dλ / (h c ∫_b E dλ): photo-electrons per second per band "
+                    + "unit, prefiltered by the light E",
                 ["signal_route"] = route,
                 ["white_radiance_scale"] = colour.WhiteScale,
                 ["white_radiance_scale_source"] = whiteScaleSource,
                 ["electrons_formula"] = exact
-                    ? "e = Poisson(t·ė_c·(1 + PRNU) + t·dark), ė_c = s·A·ff·πT/(1+4N²)·Σ_terms F·∫η_c·λ·E_k·m dλ/(h c), clipped at the full well"
+                    ? "e = Poisson(t·ė_c·(1 + PRNU) + t·dark), ė_c = s·A·ff·πT/(1+4N²)·Σ_terms F·∫η_c·λ·E_k·m "
+                        + "dλ/(h c), clipped at the full well"
                     : "e = Poisson(t·Σ_b w_c,b·L_b·(1 + PRNU) + t·dark), clipped at the full well",
                 ["dn_formula"] = "DN = round(black + (e·g + DSNU + read)·G/V_swing·(white − black)), clipped to [0, white]",
             },
             ["processing"] = new JsonObject
             {
-                ["white_balance"] = "each channel divided by its expected response to the white diffuser under the light (radiance: white_radiance_scale × the light)",
+                ["white_balance"] = "each channel divided by its expected response to the white diffuser under the light (radiance: "
+                    + "white_radiance_scale × the light)",
                 ["colour_matrix_xyz_from_balanced"] = matrix,
-                ["colour_matrix_fit"] = "least squares on the 24 ColorChecker (Ohta) patches under the light: simulated balanced signals → 1 nm CIE XYZ (white Y = 1)",
+                ["colour_matrix_fit"] = "least squares on the 24 ColorChecker (Ohta) patches under the light: simulated balanced "
+                    + "signals → 1 nm CIE XYZ (white Y = 1)",
                 ["output"] = "sRGB (IEC 61966-2-1), no chromatic adaptation",
             },
         };
     }
 
-    /// <summary>What the lens did (<see cref="Optics"/>): the models, their sources, the focal length from the render's field of view, the kernels.</summary>
+    /// <summary>What the lens did (<see cref="Optics"/>): the models, their sources, the focal length from the render's field of view, the
+    /// kernels.</summary>
     static JsonObject OpticsJson(SensorModel s, Optics.Plan? plan)
     {
         var o = new JsonObject
@@ -124,17 +132,21 @@ public static class CameraManifest
             ["psf"] = s.Psf == PsfModel.Diffraction ? "diffraction" : "none",
             ["field_of_view_deg"] = plan?.FovDegrees,
             ["focal_length_mm"] = plan?.FocalLengthMm,
-            ["focal_length_source"] = "f = rows × pixel pitch / (2 tan(fov/2)): the sensor under the render camera's vertical field of view",
+            ["focal_length_source"] =
+                "f = rows × pixel pitch / (2 tan(fov/2)): the sensor under the render camera's vertical field of view",
         };
         if (s.OffAxis == OffAxisModel.Cos4th)
         {
-            o["off_axis_formula"] = "irradiance × cos⁴φ, tan²φ = s_x² + s_y² at the pixel centre (the render camera's ray); ISETCam cos4th.m (distant image)";
+            o["off_axis_formula"] =
+                "irradiance × cos⁴φ, tan²φ = s_x² + s_y² at the pixel centre (the render camera's ray); ISETCam cos4th.m (distant image)";
             o["min_relative_illumination"] = plan?.MinIllumination;
         }
         if (s.Psf == PsfModel.Diffraction && plan?.Kernels is { } ks)
         {
-            o["psf_formula"] = "Airy pattern π/(4(λN)²)·[2J1(v)/v]², v = πr/(λN), at each band's centre (Goodman, Fourier Optics, eq. 4-31), "
-                + "against the pixel-pair triangle, cut where the encircled energy reaches " + Optics.PsfEnergy.ToString(System.Globalization.CultureInfo.InvariantCulture)
+            o["psf_formula"] = "Airy pattern π/(4(λN)²)·[2J1(v)/v]², v = πr/(λN), at each band's centre "
+                + "(Goodman, Fourier Optics, eq. 4-31), "
+                + "against the pixel-pair triangle, cut where the encircled energy reaches "
+                    + Optics.PsfEnergy.ToString(System.Globalization.CultureInfo.InvariantCulture)
                 + " and normalised to 1; edges clamped";
             o["psf_first_zero_um"] = Array(ks.Select(k => 1.2196698912665045 * k.WavelengthNm * 1e-3 * s.FNumber));
             o["psf_kernel_radius_px"] = new JsonArray(ks.Select(k => (JsonNode)k.Radius).ToArray());

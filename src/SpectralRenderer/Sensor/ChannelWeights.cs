@@ -17,7 +17,13 @@ public sealed class ChannelWeights
     /// <summary>Planck constant (J·s) and speed of light (m/s), CODATA 2018 exact values.</summary>
     public const double H = 6.62607015e-34, C = 299792458;
 
-    ChannelWeights(int channels, int bands, double[] values, double factor) { Channels = channels; Bands = bands; Values = values; Factor = factor; }
+    ChannelWeights(int channels, int bands, double[] values, double factor)
+    {
+        Channels = channels;
+        Bands = bands;
+        Values = values;
+        Factor = factor;
+    }
 
     /// <summary>s · A·ff·πT/(1 + 4N²) · 10⁻⁹/(h c): e⁻/s per unit of ∫ L(λ) η(λ) λ dλ (L in band units, λ in nm).</summary>
     public double Factor { get; }
@@ -48,7 +54,9 @@ public sealed class ChannelWeights
                 double w = ch.Lens is not null   // a lens transmittance spectrum: η·T·λ·E, degree 4, by Gauss–Legendre
                     ? e[b] > 1e-12 * peak ? ExactIntegral(ch, light, null, lo, hi) / e[b] * width : ExactIntegral(ch, null, null, lo, hi)
                     : perEnergy
-                    ? SensorChannel.EnergyReferenceNm * (e[b] > 1e-12 * peak ? TabulatedSpectrum.IntegrateProduct(qe, light, lo, hi) / e[b] * width : qe.Integrate(lo, hi))
+                    ? SensorChannel.EnergyReferenceNm * (e[b] > 1e-12 * peak
+                        ? TabulatedSpectrum.IntegrateProduct(qe, light, lo, hi) / e[b] * width
+                        : qe.Integrate(lo, hi))
                     : e[b] > 1e-12 * peak
                     ? IntegrateTimesWavelength(qe, light, lo, hi) / e[b] * width
                     : IntegrateTimesWavelength(qe, null, lo, hi);
@@ -92,7 +100,8 @@ public sealed class ChannelWeights
 
     static double At(TabulatedSpectrum s, double x) => Outside(s, x) ? 0 : Value(s, x);
 
-    /// <summary>∫_lo^hi a(λ)·b(λ)·λ dλ of piecewise-linear a, b (b null = 1), exactly (Simpson on each interval between merged knots).</summary>
+    /// <summary>∫_lo^hi a(λ)·b(λ)·λ dλ of piecewise-linear a, b (b null = 1), exactly (Simpson on each interval between merged
+    /// knots).</summary>
     public static double IntegrateTimesWavelength(TabulatedSpectrum a, TabulatedSpectrum? b, double lo, double hi)
     {
         var knots = new List<double> { lo, hi };
@@ -113,7 +122,8 @@ public sealed class ChannelWeights
         double F(double x) => Value(a, x) * (b is null ? 1 : Value(b, x)) * x;
     }
 
-    /// <summary>Knots include the table's ends, so an interval lies wholly inside or outside; outside a zero-extrapolated table the factor is 0.</summary>
+    /// <summary>Knots include the table's ends, so an interval lies wholly inside or outside; outside a zero-extrapolated table the factor
+    /// is 0.</summary>
     static bool Outside(TabulatedSpectrum s, double x) => s.Extrapolation == Extrapolation.Zero && (x < s.First || x > s.Last);
 
     /// <summary>The interpolant at λ, its end values beyond the table.</summary>

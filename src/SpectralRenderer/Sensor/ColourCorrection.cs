@@ -98,7 +98,12 @@ public sealed class ColourCorrection
     public Xyz ToXyz(ReadOnlySpan<double> balanced)
     {
         double x = 0, y = 0, z = 0;
-        for (int c = 0; c < balanced.Length; c++) { x += Matrix[0, c] * balanced[c]; y += Matrix[1, c] * balanced[c]; z += Matrix[2, c] * balanced[c]; }
+        for (int c = 0; c < balanced.Length; c++)
+        {
+            x += Matrix[0, c] * balanced[c];
+            y += Matrix[1, c] * balanced[c];
+            z += Matrix[2, c] * balanced[c];
+        }
         return new Xyz(x, y, z);
     }
 }

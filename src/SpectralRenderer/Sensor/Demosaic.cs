@@ -45,7 +45,13 @@ public static class Demosaic
         public static BilinearTaps Of(SensorModel sensor, int w)
         {
             int ph = sensor.Pattern!.GetLength(0), pw = sensor.Pattern.GetLength(1), cc = sensor.ChannelCount, phases = ph * pw;
-            var t = new BilinearTaps { Offset = new int[phases][], Channel = new int[phases][], Weight = new double[phases][], Total = new double[phases][] };
+            var t = new BilinearTaps
+            {
+                Offset = new int[phases][],
+                Channel = new int[phases][],
+                Weight = new double[phases][],
+                Total = new double[phases][]
+            };
             for (int py = 0; py < ph; py++)
                 for (int px = 0; px < pw; px++)
                 {
@@ -140,7 +146,8 @@ public static class Demosaic
             {
                 // Which of red and blue shares this row?
                 int rowMate = sensor.ChannelAt(x + 1, y);
-                double horizontal = Apply(AtGreenRowNeighbours, input, w, h, x, y), vertical = Apply(AtGreenColumnNeighbours, input, w, h, x, y);
+                double horizontal =
+                    Apply(AtGreenRowNeighbours, input, w, h, x, y), vertical = Apply(AtGreenColumnNeighbours, input, w, h, x, y);
                 g = v;
                 if (rowMate == R) { r = horizontal; b = vertical; } else { b = horizontal; r = vertical; }
             }

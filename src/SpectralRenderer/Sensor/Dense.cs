@@ -1,6 +1,7 @@
 namespace SpectralRenderer.Sensor;
 
-/// <summary>Small dense matrices (double[rows, columns]): products, solves and the symmetric eigenproblem, for fits of a few dozen unknowns.</summary>
+/// <summary>Small dense matrices (double[rows, columns]): products, solves and the symmetric eigenproblem, for fits of a few dozen
+/// unknowns.</summary>
 public static class Dense
 {
     public static double[,] Multiply(double[,] a, double[,] b)

@@ -14,7 +14,8 @@ public static class DngWriter
 {
     const ushort Byte = 1, Ascii = 2, Short = 3, Long = 4, Rational = 5, SRational = 10;
 
-    /// <summary>EXIF LightSource codes for CalibrationIlluminant1 (DNG 1.4 table): 21 D65, 17 standard light A, 23 D50, 0 unknown.</summary>
+    /// <summary>EXIF LightSource codes for CalibrationIlluminant1 (DNG 1.4 table): 21 D65, 17 standard light A, 23 D50, 0
+    /// unknown.</summary>
     public static ushort IlluminantCode(string light) => light.ToUpperInvariant() switch
     {
         "D65" => 21,
@@ -23,7 +24,8 @@ public static class DngWriter
         _ => 0,
     };
 
-    public static void Write(string path, RawFrame raw, double[,] xyzToCamera, double[] asShotNeutral, ushort illuminant, string software) =>
+    public static void Write(string path, RawFrame raw, double[,] xyzToCamera, double[] asShotNeutral, ushort illuminant,
+        string software) =>
         AtomicFile.Write(path, s => Write(s, raw, xyzToCamera, asShotNeutral, illuminant, software));
 
     public static void Write(Stream stream, RawFrame raw, double[,] xyzToCamera, double[] asShotNeutral, ushort illuminant, string software)

@@ -7,12 +7,15 @@ namespace SpectralRenderer.Sensor;
 /// after demosaicking a mosaic), the white-balanced signal s = ė/ė_white, its XYZ through the colour-correction
 /// matrix, and 8-bit sRGB (both empty when the display stage was not asked for).
 /// </summary>
-public sealed record ProcessedImage(int Width, int Height, int Channels, float[] Rates, float[] Balanced, Xyz[] Xyz, byte[] Srgb8, DemosaicMethod? Demosaicked);
+public sealed record ProcessedImage(int Width, int Height, int Channels, float[] Rates, float[] Balanced, Xyz[] Xyz, byte[] Srgb8,
+    DemosaicMethod? Demosaicked);
 
 public static class ImageProcessing
 {
-    /// <param name="display">Whether to compute the colour-corrected XYZ and sRGB of every pixel (false: only the rates and the balanced signals, for recovery).</param>
-    public static ProcessedImage Run(RawFrame raw, ColourCorrection colour, DemosaicMethod method = DemosaicMethod.Malvar, bool display = true)
+    /// <param name="display">Whether to compute the colour-corrected XYZ and sRGB of every pixel (false: only the rates and the balanced
+    /// signals, for recovery).</param>
+    public static ProcessedImage Run(RawFrame raw, ColourCorrection colour, DemosaicMethod method = DemosaicMethod.Malvar,
+        bool display = true)
     {
         var sensor = raw.Sensor;
         int w = raw.Width, h = raw.Height, cc = sensor.ChannelCount, pixels = w * h;
@@ -32,7 +35,9 @@ public static class ImageProcessing
             used = method == DemosaicMethod.Malvar && !sensor.IsBayer ? DemosaicMethod.Bilinear : method;
             var balanced = Demosaic.Run(sensor, site, w, h, used.Value);
             rates = new float[balanced.Length];
-            for (int i = 0; i < pixels; i++) for (int c = 0; c < cc; c++) rates[i * cc + c] = (float)(balanced[i * cc + c] * colour.WhiteRate[c]);
+            for (int i = 0; i < pixels; i++)
+                for (int c = 0; c < cc; c++)
+                    rates[i * cc + c] = (float)(balanced[i * cc + c] * colour.WhiteRate[c]);
             return Finish(w, h, cc, rates, balanced, colour, used, display);
         }
         rates = new float[pixels * cc];
@@ -47,7 +52,8 @@ public static class ImageProcessing
         return Finish(w, h, cc, rates, bal, colour, used, display);
     }
 
-    static ProcessedImage Finish(int w, int h, int cc, float[] rates, float[] balanced, ColourCorrection colour, DemosaicMethod? used, bool display)
+    static ProcessedImage Finish(int w, int h, int cc, float[] rates, float[] balanced, ColourCorrection colour, DemosaicMethod? used,
+        bool display)
     {
         if (!display) return new ProcessedImage(w, h, cc, rates, balanced, [], [], used);
         int pixels = w * h;

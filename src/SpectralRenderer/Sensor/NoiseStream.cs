@@ -16,7 +16,8 @@ public struct NoiseStream
 
     public NoiseStream(ulong seed, ulong kind, long pixel, int channel) : this(Family(seed, kind), pixel, channel) { }
 
-    /// <summary>The stream of (pixel, channel) in the family <see cref="Family"/>(seed, kind): the same stream as the four-value constructor, one hash cheaper.</summary>
+    /// <summary>The stream of (pixel, channel) in the family <see cref="Family"/>(seed, kind): the same stream as the four-value
+    /// constructor, one hash cheaper.</summary>
     public NoiseStream(ulong family, long pixel, int channel)
     {
         _key = Mix(family ^ (ulong)pixel * PixelStep ^ (ulong)channel << 48);
@@ -115,17 +116,20 @@ public struct NoiseStream
         }
     }
 
-    /// <summary>ln x: the vectorised logarithm of .NET's <see cref="Vector512.Log(Vector512{double})"/> in one lane where AVX-512 runs the lanes, else <see cref="Math.Log(double)"/>.</summary>
+    /// <summary>ln x: the vectorised logarithm of .NET's <see cref="Vector512.Log(Vector512{double})"/> in one lane where AVX-512 runs the
+    /// lanes, else <see cref="Math.Log(double)"/>.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     internal static double Ln(double x) => Vector512.IsHardwareAccelerated ? Vector512.Log(Vector512.Create(x)).ToScalar() : Math.Log(x);
 
-    /// <summary>eˣ, as <see cref="Ln"/>: <see cref="Vector512.Exp(Vector512{double})"/> in one lane, else <see cref="Math.Exp(double)"/>.</summary>
+    /// <summary>eˣ, as <see cref="Ln"/>: <see cref="Vector512.Exp(Vector512{double})"/> in one lane, else
+    /// <see cref="Math.Exp(double)"/>.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     internal static double Exp(double x) => Vector512.IsHardwareAccelerated ? Vector512.Exp(Vector512.Create(x)).ToScalar() : Math.Exp(x);
 
     internal const double LnSqrtTwoPi = 0.91893853320467274178;
 
-    internal static readonly double[] SmallLogFactorials = Enumerable.Range(0, 16).Select(k => Enumerable.Range(1, k).Sum(i => Math.Log(i))).ToArray();
+    internal static readonly double[] SmallLogFactorials = Enumerable.Range(0, 16).Select(k => Enumerable.Range(1, k).Sum(i => Math.Log(i)))
+        .ToArray();
 
     /// <summary>ln k!: a table below 16, else Stirling's series to 1/k⁵ (error &lt; 1e-12).</summary>
     public static double LogFactorial(double k)
@@ -160,12 +164,14 @@ public static class NoiseLanes
 
     /// <summary>The random bits number <paramref name="counter"/> (per lane) of each stream.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    public static Vector512<ulong> Bits(Vector512<ulong> keys, Vector512<ulong> counter) => Mix(keys + counter * Vector512.Create(NoiseStream.CounterStep));
+    public static Vector512<ulong> Bits(Vector512<ulong> keys, Vector512<ulong> counter) =>
+        Mix(keys + counter * Vector512.Create(NoiseStream.CounterStep));
 
     /// <summary><see cref="NoiseStream.Uniform"/> as number <paramref name="counter"/> of each stream.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static Vector512<double> Uniform(Vector512<ulong> keys, Vector512<ulong> counter) =>
-        (Vector512.ConvertToDouble(Vector512.ShiftRightLogical(Bits(keys, counter), 11)) + Vector512.Create(0.5)) * Vector512.Create(1.0 / (1UL << 53));
+        (Vector512.ConvertToDouble(Vector512.ShiftRightLogical(Bits(keys, counter), 11)) + Vector512.Create(0.5)) * Vector512.Create(
+            1.0 / (1UL << 53));
 
     /// <summary>
     /// <see cref="NoiseStream.Normal"/> drawn with number <paramref name="counter"/>, in the lanes where
@@ -187,7 +193,8 @@ public static class NoiseLanes
         {
             var x = Ziggurat.X;
             edge = Vector512.Create(x[layer[0]], x[layer[1]], x[layer[2]], x[layer[3]], x[layer[4]], x[layer[5]], x[layer[6]], x[layer[7]]);
-            next = Vector512.Create(x[layer[0] + 1], x[layer[1] + 1], x[layer[2] + 1], x[layer[3] + 1], x[layer[4] + 1], x[layer[5] + 1], x[layer[6] + 1], x[layer[7] + 1]);
+            next = Vector512.Create(x[layer[0] + 1], x[layer[1] + 1], x[layer[2] + 1], x[layer[3] + 1], x[layer[4] + 1], x[layer[5] + 1],
+                x[layer[6] + 1], x[layer[7] + 1]);
         }
         var value = Vector512.ConvertToDouble(Vector512.ShiftRightLogical(bits, 11)) * Vector512.Create(1.0 / (1UL << 53)) * edge;
         decided = Vector512.LessThan(value, next);
@@ -202,7 +209,8 @@ public static class NoiseLanes
     /// accepted within <see cref="MaxTries"/> tries.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    public static Vector512<double> Poisson(Vector512<ulong> keys, Vector512<double> mu, out Vector512<ulong> next, out Vector512<double> decided)
+    public static Vector512<double> Poisson(Vector512<ulong> keys, Vector512<double> mu, out Vector512<ulong> next,
+        out Vector512<double> decided)
     {
         var zero = Vector512<double>.Zero;
         var ten = Vector512.Create(10.0);
@@ -245,7 +253,8 @@ public static class NoiseLanes
             var us = Vector512.Create(0.5) - Vector512.Abs(u);
             var k = Vector512.Floor((Vector512.Create(2.0) * a / us + b) * u + mu + Vector512.Create(0.43));
             var accept = pending & Vector512.GreaterThanOrEqual(us, Vector512.Create(0.07)) & Vector512.LessThanOrEqual(v, vr);
-            var test = pending & ~accept & ~(Vector512.LessThan(k, zero) | (Vector512.LessThan(us, Vector512.Create(0.013)) & Vector512.GreaterThan(v, us)));
+            var test = pending & ~accept & ~(
+                Vector512.LessThan(k, zero) | (Vector512.LessThan(us, Vector512.Create(0.013)) & Vector512.GreaterThan(v, us)));
             if (Any(test))
             {
                 if (!haveLogMu) { logMu = Vector512.Log(mu); haveLogMu = true; }

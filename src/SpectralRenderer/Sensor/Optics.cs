@@ -16,7 +16,8 @@ public enum OffAxisModel
 /// <summary>Point spread of the lens (sensor file key <c>"psf"</c>).</summary>
 public enum PsfModel
 {
-    /// <summary>The diffraction-limited Airy pattern of a circular pupil at the f-number, per band (ISETCam's default diffraction-limited optics).</summary>
+    /// <summary>The diffraction-limited Airy pattern of a circular pupil at the f-number, per band (ISETCam's default diffraction-limited
+    /// optics).</summary>
     Diffraction,
     /// <summary>No blur: a pixel receives only its own radiance.</summary>
     None,
@@ -53,21 +54,24 @@ public static class Optics
     /// <see cref="OffAxisModel.None"/>, or no field of view known for a cube that is not a render) and one kernel per band
     /// at its centre wavelength (null: <see cref="PsfModel.None"/>).
     /// </summary>
-    public sealed record Plan(OffAxisModel OffAxis, PsfModel Psf, double? FovDegrees, double? FocalLengthMm, double[]? Illumination, Kernel[]? Kernels)
+    public sealed record Plan(OffAxisModel OffAxis, PsfModel Psf, double? FovDegrees, double? FocalLengthMm, double[]? Illumination,
+        Kernel[]? Kernels)
     {
         public bool Any => Illumination is not null || Kernels is not null;
         /// <summary>The darkest pixel's relative illumination (1 without fall-off).</summary>
         public double MinIllumination => Illumination is { Length: > 0 } r ? r.Min() : 1;
     }
 
-    /// <summary>The plan for <paramref name="sensor"/> on a render of <paramref name="width"/> × <paramref name="height"/> pixels with vertical field of view <paramref name="fovDegrees"/>.</summary>
+    /// <summary>The plan for <paramref name="sensor"/> on a render of <paramref name="width"/> × <paramref name="height"/> pixels with
+    /// vertical field of view <paramref name="fovDegrees"/>.</summary>
     public static Plan For(SensorModel sensor, int width, int height, double? fovDegrees, Spectra.BandGrid grid)
     {
         var illumination = sensor.OffAxis == OffAxisModel.Cos4th && fovDegrees is { } f ? RelativeIllumination(width, height, f) : null;
         var kernels = sensor.Psf == PsfModel.Diffraction
             ? Enumerable.Range(0, grid.Count).Select(b => AiryKernel(grid.Centre(b), sensor.FNumber, sensor.PixelSizeMicrons)).ToArray()
             : null;
-        return new Plan(sensor.OffAxis, sensor.Psf, fovDegrees, fovDegrees is { } fv ? FocalLengthMm(height, sensor.PixelSizeMicrons, fv) : null,
+        return new Plan(sensor.OffAxis, sensor.Psf, fovDegrees,
+            fovDegrees is { } fv ? FocalLengthMm(height, sensor.PixelSizeMicrons, fv) : null,
             illumination, kernels);
     }
 
@@ -95,7 +99,8 @@ public static class Optics
         return r;
     }
 
-    /// <summary>The focal length (mm) that gives a sensor of <paramref name="rows"/> rows of pitch p the render's vertical field of view.</summary>
+    /// <summary>The focal length (mm) that gives a sensor of <paramref name="rows"/> rows of pitch p the render's vertical field of
+    /// view.</summary>
     public static double FocalLengthMm(int rows, double pixelMicrons, double fovDegrees) =>
         rows * pixelMicrons * 1e-3 / (2 * Math.Tan(fovDegrees * Math.PI / 360));
 
@@ -147,7 +152,8 @@ public static class Optics
         return sign * Math.Sqrt(2 / (Math.PI * x)) * (p * Math.Cos(chi) - qq * Math.Sin(chi));
     }
 
-    /// <summary>A pixel-to-pixel kernel: (2R + 1)² weights, row-major, summing to 1, and the Airy energy its disc held before normalisation.</summary>
+    /// <summary>A pixel-to-pixel kernel: (2R + 1)² weights, row-major, summing to 1, and the Airy energy its disc held before
+    /// normalisation.</summary>
     public sealed record Kernel(int Radius, double[] Weights, double CapturedEnergy, double WavelengthNm)
     {
         public int Side => 2 * Radius + 1;
@@ -156,7 +162,8 @@ public static class Optics
 
     static readonly ConcurrentDictionary<(double, double, double, double), Kernel> Kernels = new();
 
-    /// <summary>The Airy kernel at <paramref name="wavelengthNm"/> for pixels of pitch p µm (cached), cut at the radius holding <paramref name="energy"/>.</summary>
+    /// <summary>The Airy kernel at <paramref name="wavelengthNm"/> for pixels of pitch p µm (cached), cut at the radius holding
+    /// <paramref name="energy"/>.</summary>
     public static Kernel AiryKernel(double wavelengthNm, double fNumber, double pixelMicrons, double energy = PsfEnergy) =>
         Kernels.GetOrAdd((wavelengthNm, fNumber, pixelMicrons, energy), k => BuildKernel(k.Item1, k.Item2, k.Item3, k.Item4));
 
@@ -271,7 +278,8 @@ public static class Optics
                     int k = planeOf[y * width + x];
                     float v = 0;
                     foreach (var (dx, dy, off) in taps)
-                        v += weights[off + k] * src[(Math.Clamp(y - dy, 0, height - 1) * width + Math.Clamp(x - dx, 0, width - 1)) * stride + k];
+                        v += weights[off + k] * src[(Math.Clamp(y - dy, 0, height - 1) * width + Math.Clamp(x - dx, 0, width - 1)) * stride
+                            + k];
                     data[o + k] = v;
                     continue;
                 }

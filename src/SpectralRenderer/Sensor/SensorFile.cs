@@ -41,37 +41,58 @@ public static class SensorFile
             JsonValue v when v.TryGetValue(out string? name) && name.Length > 0 =>
                 SensorPresets.Names.Contains(name.ToLowerInvariant()) || baseDirectory is null || Path.IsPathRooted(name)
                     ? Resolve(name) : Resolve(Path.Combine(baseDirectory, name)),
-            _ => throw new InputException($"{sceneFile}: {root}", "must be a preset name, a sensor file or a sensor object", $"e.g. \"mosaic-16\" or {{ \"preset\": \"wheel-6\", \"f_number\": 2.8 }}"),
+            _ => throw new InputException($"{sceneFile}: {root}", "must be a preset name, a sensor file or a sensor object",
+                $"e.g. \"mosaic-16\" or {{ \"preset\": \"wheel-6\", \"f_number\": 2.8 }}"),
         };
     }
 
     /// <summary>A preset name, or a path to a JSON file.</summary>
     public static SensorModel Resolve(string nameOrFile)
     {
-        if (!nameOrFile.EndsWith(".json", StringComparison.OrdinalIgnoreCase) && !File.Exists(nameOrFile)) return SensorPresets.Get(nameOrFile);
+        if (!nameOrFile.EndsWith(".json", StringComparison.OrdinalIgnoreCase) && !File.Exists(nameOrFile))
+            return SensorPresets.Get(nameOrFile);
         var text = InputFile.ReadAllText(nameOrFile, "sensor file");
         JsonNode? node;
-        try { node = JsonNode.Parse(text, documentOptions: new JsonDocumentOptions { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true, AllowDuplicateProperties = false }); }
+        try
+        {
+            node = JsonNode.Parse(text,
+                documentOptions: new JsonDocumentOptions
+                {
+                    CommentHandling = JsonCommentHandling.Skip,
+                    AllowTrailingCommas = true,
+                    AllowDuplicateProperties = false
+                });
+        }
         catch (JsonException e)
         {
-            throw new InputException($"{nameOrFile}:{JsonFields.Place(e, text, new JsonReaderOptions { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true })}",
-                $"broken JSON: {e.Message}", e.LineNumber is null ? "give each key once in its object" : "check for a missing comma, quote or bracket just before this place");
+            var reader = new JsonReaderOptions { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true };
+            throw new InputException($"{nameOrFile}:{JsonFields.Place(e, text, reader)}",
+                $"broken JSON: {e.Message}",
+                    e.LineNumber is null
+                        ? "give each key once in its object"
+                        : "check for a missing comma, quote or bracket just before this place");
         }
-        if (node is not JsonObject obj) throw new InputException(nameOrFile, "is not a JSON object", "a sensor file is { \"preset\": …, \"channels\": […], … }");
+        if (node is not JsonObject obj)
+            throw new InputException(nameOrFile, "is not a JSON object", "a sensor file is { \"preset\": …, \"channels\": […], … }");
         return Parse(obj, nameOrFile, Path.GetDirectoryName(Path.GetFullPath(nameOrFile)));
     }
 
-    /// <param name="root">where the sensor object sits in <paramref name="file"/>: "$" for a sensor file, "$.camera.sensor" inline in a scene.</param>
+    /// <param name="root">where the sensor object sits in <paramref name="file"/>: "$" for a sensor file, "$.camera.sensor" inline in a
+    /// scene.</param>
     public static SensorModel Parse(JsonObject o, string file, string? baseDirectory = null, string root = "$")
     {
         string at = $"{file}: {root}";
         foreach (var (key, _) in o)
-            if (!Keys.Contains(key)) throw new InputException($"{at}.{key}", "unknown key", InputException.DidYouMean(key, Keys) ?? $"keys: {string.Join(", ", Keys)}");
+            if (!Keys.Contains(key))
+                throw new InputException($"{at}.{key}", "unknown key",
+                    InputException.DidYouMean(key, Keys) ?? $"keys: {string.Join(", ", Keys)}");
         var s = SensorPresets.Get(Str(o, "preset", at) ?? "isetcam", $"{at}.preset");
         double peak = Num(o, "peak_qe", at, 0, 1) ?? SensorPresets.DefaultPeakQe;
         if (o["channels"] is JsonNode ch)
         {
-            if (ch is not JsonArray arr || arr.Count == 0) throw new InputException($"{at}.channels", "must be a non-empty array of channels", "e.g. \"channels\": [{\"name\": \"R\", \"gaussian\": {\"centre_nm\": 600, \"fwhm_nm\": 40}}]");
+            if (ch is not JsonArray arr || arr.Count == 0)
+                throw new InputException($"{at}.channels", "must be a non-empty array of channels",
+                    "e.g. \"channels\": [{\"name\": \"R\", \"gaussian\": {\"centre_nm\": 600, \"fwhm_nm\": 40}}]");
             var channels = arr.Select((c, i) => Channel(c, $"{at}.channels[{i}]", baseDirectory)).ToArray();
             s = s with { Channels = SensorPresets.Scale(channels, peak) };
         }
@@ -87,12 +108,14 @@ public static class SensorFile
                     _ => throw new InputException($"{at}.arrangement", $"'{a}' is not an arrangement", "full, mosaic or wheel"),
                 },
             };
-        if (o["pattern"] is JsonNode p) s = s with { Pattern = Pattern(p, s, $"{at}.pattern"), PatternName = p is JsonValue ? Str(o, "pattern", at) : "custom" };
+        if (o["pattern"] is JsonNode p)
+            s = s with { Pattern = Pattern(p, s, $"{at}.pattern"), PatternName = p is JsonValue ? Str(o, "pattern", at) : "custom" };
         if (s.Arrangement == Arrangement.Mosaic)
         {
             if (s.Pattern is null) throw new InputException($"{at}.pattern", "a mosaic needs a pattern", "e.g. \"RGGB\" or [[0,1],[1,2]]");
             foreach (var v in s.Pattern)
-                if (v < 0 || v >= s.ChannelCount) throw new InputException($"{at}.pattern", $"channel {v} does not exist", $"channels 0–{s.ChannelCount - 1}");
+                if (v < 0 || v >= s.ChannelCount)
+                    throw new InputException($"{at}.pattern", $"channel {v} does not exist", $"channels 0–{s.ChannelCount - 1}");
         }
         double? exposure = null;
         bool auto = false;
@@ -107,7 +130,9 @@ public static class SensorFile
         {
             var t = SpectrumLibrary.Resolve(tName, baseDirectory, $"{at}.transmittance");
             foreach (var v in t.Values)
-                if (v < 0 || v > 1) throw new InputException($"{at}.transmittance", $"spectrum '{tName}' has values outside 0–1", "a transmittance is a fraction at each wavelength");
+                if (v < 0 || v > 1)
+                    throw new InputException($"{at}.transmittance", $"spectrum '{tName}' has values outside 0–1",
+                        "a transmittance is a fraction at each wavelength");
             s = s with { Channels = s.Channels.Select(c => c with { Lens = t }).ToArray(), TransmittanceSource = tName };
             transmittance = 1;
         }
@@ -116,7 +141,12 @@ public static class SensorFile
         {
             OffAxis = Str(o, "off_axis", at) is { } oa ? ParseOffAxis(oa, $"{at}.off_axis") : s.OffAxis,
             Psf = Str(o, "psf", at) is { } ps ? ParsePsf(ps, $"{at}.psf") : s.Psf,
-            Name = Str(o, "name", at) ?? (root != "$" ? InlineName : file.EndsWith(".json", StringComparison.OrdinalIgnoreCase) ? Path.GetFileNameWithoutExtension(file) : s.Name),
+            Name = Str(o, "name", at)
+                ?? (root != "$"
+                    ? InlineName
+                    : file.EndsWith(".json", StringComparison.OrdinalIgnoreCase)
+                    ? Path.GetFileNameWithoutExtension(file)
+                    : s.Name),
             Source = Str(o, "source", at) ?? $"{(root != "$" ? $"{file} {root}" : file)} (over preset {s.Name})",
             FNumber = Num(o, "f_number", at, 0.1, 1000) ?? s.FNumber,
             OpticsTransmittance = transmittance ?? s.OpticsTransmittance,
@@ -150,17 +180,24 @@ public static class SensorFile
     {
         "diffraction" => PsfModel.Diffraction,
         "none" => PsfModel.None,
-        _ => throw new InputException(where, $"'{value}' is not a point spread model", "diffraction (the Airy pattern at the f-number) or none"),
+        _ => throw new InputException(where, $"'{value}' is not a point spread model",
+            "diffraction (the Airy pattern at the f-number) or none"),
     };
 
     static SensorChannel Channel(JsonNode? node, string where, string? baseDirectory)
     {
-        if (node is not JsonObject c) throw new InputException(where, "a channel is an object", "{ \"name\": \"F1\", \"gaussian\": { \"centre_nm\": 450, \"fwhm_nm\": 40 } }");
+        if (node is not JsonObject c)
+            throw new InputException(where, "a channel is an object",
+                "{ \"name\": \"F1\", \"gaussian\": { \"centre_nm\": 450, \"fwhm_nm\": 40 } }");
         var name = Str(c, "name", where) ?? throw new InputException(where, "a channel needs a \"name\"", "give each channel a \"name\"");
         if (c["gaussian"] is JsonObject g)
         {
-            double centre = Num(g, "centre_nm", where + ".gaussian", 100, 3000) ?? throw new InputException(where + ".gaussian", "needs centre_nm", "e.g. \"gaussian\": {\"centre_nm\": 550, \"fwhm_nm\": 40}");
-            double fwhm = Num(g, "fwhm_nm", where + ".gaussian", 0.1, 2000) ?? throw new InputException(where + ".gaussian", "needs fwhm_nm", "e.g. \"gaussian\": {\"centre_nm\": 550, \"fwhm_nm\": 40}");
+            double centre = Num(g, "centre_nm", where + ".gaussian", 100, 3000)
+                ?? throw new InputException(where + ".gaussian", "needs centre_nm",
+                    "e.g. \"gaussian\": {\"centre_nm\": 550, \"fwhm_nm\": 40}");
+            double fwhm = Num(g, "fwhm_nm", where + ".gaussian", 0.1, 2000)
+                ?? throw new InputException(where + ".gaussian", "needs fwhm_nm",
+                    "e.g. \"gaussian\": {\"centre_nm\": 550, \"fwhm_nm\": 40}");
             return SensorPresets.Gaussian(name, centre, fwhm);
         }
         if (c["box"] is JsonArray box && box.Count == 2)
@@ -174,7 +211,8 @@ public static class SensorFile
             var s = SpectrumLibrary.Resolve(spec, baseDirectory, where + ".spectrum");
             return new SensorChannel(name, s.WithExtrapolation(Extrapolation.Zero), spec);
         }
-        throw new InputException(where, "a channel needs one of \"gaussian\", \"box\" or \"spectrum\"", "e.g. \"spectrum\": \"my-camera.csv:red\"");
+        throw new InputException(where, "a channel needs one of \"gaussian\", \"box\" or \"spectrum\"",
+            "e.g. \"spectrum\": \"my-camera.csv:red\"");
     }
 
     static int[,] Pattern(JsonNode node, SensorModel s, string where)
@@ -188,7 +226,9 @@ public static class SensorFile
             for (int i = 0; i < text.Length; i++)
             {
                 int c = Array.FindIndex(s.Channels, ch => char.ToUpperInvariant(ch.Name[0]) == char.ToUpperInvariant(text[i]));
-                if (c < 0) throw new InputException(where, $"'{text[i]}' names no channel", $"channels: {string.Join(", ", s.Channels.Select(ch => ch.Name))}");
+                if (c < 0)
+                    throw new InputException(where, $"'{text[i]}' names no channel",
+                        $"channels: {string.Join(", ", s.Channels.Select(ch => ch.Name))}");
                 p[i / side, i % side] = c;
             }
             return p;
@@ -214,9 +254,12 @@ public static class SensorFile
     {
         if (o[key] is not JsonNode n) return null;
         string path = where.Contains(": $") ? $"{where}.{key}" : $"{where}: $.{key}";
-        if (n is not JsonValue v || !v.TryGetValue(out double d) || !double.IsFinite(d)) throw new InputException(path, "must be a number", "write a plain finite number");
+        if (n is not JsonValue v || !v.TryGetValue(out double d) || !double.IsFinite(d))
+            throw new InputException(path, "must be a number", "write a plain finite number");
         if (d < min || d > max || (whole && d != Math.Floor(d)))
-            throw new InputException(path, string.Create(CultureInfo.InvariantCulture, $"{d} is outside {min}–{max}{(whole ? " or not whole" : "")}"), $"give a value in {min}–{max}");
+            throw new InputException(path,
+                string.Create(CultureInfo.InvariantCulture, $"{d} is outside {min}–{max}{(whole ? " or not whole" : "")}"),
+                $"give a value in {min}–{max}");
         return d;
     }
 }

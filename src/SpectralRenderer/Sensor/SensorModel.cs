@@ -7,7 +7,8 @@ public enum Arrangement
 {
     /// <summary>Every channel at every pixel (an ideal or a three-layer sensor), one exposure.</summary>
     Full,
-    /// <summary>A colour-filter array: one channel per pixel, repeating <see cref="SensorModel.Pattern"/> (Bayer RGGB, a 4 × 4 snapshot mosaic …).</summary>
+    /// <summary>A colour-filter array: one channel per pixel, repeating <see cref="SensorModel.Pattern"/> (Bayer RGGB, a 4 × 4 snapshot
+    /// mosaic …).</summary>
     Mosaic,
     /// <summary>A monochrome sensor behind a filter wheel: one exposure per filter, every pixel each time.</summary>
     Wheel,
@@ -46,13 +47,15 @@ public sealed record SensorModel
     public required string Source { get; init; }
     public required SensorChannel[] Channels { get; init; }
     public Arrangement Arrangement { get; init; } = Arrangement.Full;
-    /// <summary>For <see cref="Arrangement.Mosaic"/>: channel index at [row, column] of the repeating tile (row 0 at the image top).</summary>
+    /// <summary>For <see cref="Arrangement.Mosaic"/>: channel index at [row, column] of the repeating tile (row 0 at the image
+    /// top).</summary>
     public int[,]? Pattern { get; init; }
     /// <summary>The pattern's name as written (e.g. "RGGB"), for the manifest and the DNG.</summary>
     public string? PatternName { get; init; }
 
     public double FNumber { get; init; } = 4;
-    /// <summary>The lens's constant transmittance T (a spectrum T(λ), when given, is each channel's <see cref="SensorChannel.Lens"/>, and this is 1).</summary>
+    /// <summary>The lens's constant transmittance T (a spectrum T(λ), when given, is each channel's <see cref="SensorChannel.Lens"/>, and
+    /// this is 1).</summary>
     public double OpticsTransmittance { get; init; } = 1;
     /// <summary>Where T(λ) came from (a spectrum name or CSV column), null for a constant.</summary>
     public string? TransmittanceSource { get; init; }
@@ -79,7 +82,8 @@ public sealed record SensorModel
     public int AdcBits { get; init; } = 12;
     /// <summary>Digital number of zero signal.</summary>
     public double BlackLevel { get; init; }
-    /// <summary>Exposure time (s); null for auto: the brightest expected pixel at <see cref="AutoExposureFraction"/> of the full well.</summary>
+    /// <summary>Exposure time (s); null for auto: the brightest expected pixel at <see cref="AutoExposureFraction"/> of the full
+    /// well.</summary>
     public double? ExposureSeconds { get; init; }
     public double AutoExposureFraction { get; init; } = 0.8;
     /// <summary>Seed of the fixed-pattern noise (PRNU, DSNU): one sensor, the same pattern in every frame.</summary>
@@ -93,7 +97,8 @@ public sealed record SensorModel
     public double DarkCurrentElectronsPerSecond => DarkVoltage / ConversionGain;
     public double ReadNoiseElectrons => ReadNoiseVolts / ConversionGain;
     /// <summary>Pixel area × fill factor × π·T / (1 + 4N²): m²·sr turning radiance into the power on the photosensitive area.</summary>
-    public double Etendue => PixelSizeMicrons * 1e-6 * PixelSizeMicrons * 1e-6 * FillFactor * Math.PI * OpticsTransmittance / (1 + 4 * FNumber * FNumber);
+    public double Etendue =>
+        PixelSizeMicrons * 1e-6 * PixelSizeMicrons * 1e-6 * FillFactor * Math.PI * OpticsTransmittance / (1 + 4 * FNumber * FNumber);
 
     /// <summary>Independent exposures: one per filter for a wheel, else one.</summary>
     public int Exposures => Arrangement == Arrangement.Wheel ? ChannelCount : 1;
@@ -103,5 +108,6 @@ public sealed record SensorModel
     /// <summary>The channel measured at pixel (x, y) of a mosaic.</summary>
     public int ChannelAt(int x, int y) => Pattern![y % Pattern.GetLength(0), x % Pattern.GetLength(1)];
 
-    public bool IsBayer => Arrangement == Arrangement.Mosaic && ChannelCount == 3 && Pattern is { } p && p.GetLength(0) == 2 && p.GetLength(1) == 2;
+    public bool IsBayer =>
+        Arrangement == Arrangement.Mosaic && ChannelCount == 3 && Pattern is { } p && p.GetLength(0) == 2 && p.GetLength(1) == 2;
 }

@@ -56,7 +56,8 @@ public static class SensorPresets
         {
             Name = "isetcam",
             Arrangement = Arrangement.Full,
-            Source = "ISETCam pixelCreate/sensorCreate defaults: monochrome, quantum efficiency 1 at every wavelength (pixel 'spectralQE' ones)",
+            Source =
+                "ISETCam pixelCreate/sensorCreate defaults: monochrome, quantum efficiency 1 at every wavelength (pixel 'spectralQE' ones)",
             Channels = [new SensorChannel("Y", new TabulatedSpectrum("qe 1", [1.0, 1e5], [1.0, 1.0], Extrapolation.Clamp), "QE 1")],
         }),
         ("nikon-d5100", () => Bayer("nikon-d5100", "camera-nikon-5100-npl.csv", ["red", "green", "blue"],
@@ -66,20 +67,23 @@ public static class SensorPresets
         // The Sigma's sensitivities behind an RGGB Bayer mosaic, as issue 12 specifies the preset: the NPL curves on the
         // same photosite layout as the Nikon and the Canon, so the three RGB cameras differ by their curves only.
         ("sigma-sd-merrill", () => Bayer("sigma-sd-merrill", "camera-sigma-sdmerill-npl.csv", ["red", "green", "blue"],
-            "Sigma SD Merrill sensitivities, Darrodi et al., JOSA A 32(3) 381 (2015), NPL; 400–680 nm, zero outside; on an RGGB Bayer layout (the camera itself is a Foveon X3: sigma-sd-merrill-x3)")),
+            "Sigma SD Merrill sensitivities, Darrodi et al., JOSA A 32(3) 381 (2015), NPL; 400–680 nm, zero outside; on an RGGB Bayer "
+                + "layout (the camera itself is a Foveon X3: sigma-sd-merrill-x3)")),
         // The camera as built: a Foveon X3 stacks three photodiodes in each pixel, so every channel at every pixel, no mosaic.
         ("sigma-sd-merrill-x3", () => new SensorModel
         {
             Name = "sigma-sd-merrill-x3",
             Arrangement = Arrangement.Full,
-            Source = "Sigma SD Merrill (Foveon X3, three stacked layers per pixel) sensitivities, Darrodi et al., JOSA A 32(3) 381 (2015), NPL; 400–680 nm, zero outside",
+            Source = "Sigma SD Merrill (Foveon X3, three stacked layers per pixel) sensitivities, Darrodi et al., JOSA A 32(3) 381 "
+                + "(2015), NPL; 400–680 nm, zero outside",
             Channels = FromCsv("camera-sigma-sdmerill-npl.csv", ["red", "green", "blue"], ["R", "G", "B"]),
         }),
         ("wheel-6", () => new SensorModel
         {
             Name = "wheel-6",
             Arrangement = Arrangement.Wheel,
-            Source = "a monochrome sensor behind a wheel of 6 Gaussian filters, 420–670 nm every 50 nm, FWHM 40 nm (the 5–7 filter practice the paper cites)",
+            Source = "a monochrome sensor behind a wheel of 6 Gaussian filters, 420–670 nm every 50 nm, FWHM 40 nm (the 5–7 "
+                + "filter practice the paper cites)",
             Channels = Scale(Enumerable.Range(0, 6).Select(i => Gaussian($"F{420 + 50 * i}", 420 + 50 * i, 40)).ToArray(), DefaultPeakQe),
         }),
         ("mosaic-16", () => new SensorModel
@@ -87,15 +91,19 @@ public static class SensorPresets
             Name = "mosaic-16",
             Arrangement = Arrangement.Mosaic,
             PatternName = "4x4",
-            Source = "a 4 × 4 snapshot multispectral mosaic: 16 Gaussian filters 410–690 nm evenly spaced (18.67 nm), FWHM 25 nm, in raster order",
-            Channels = Scale(Enumerable.Range(0, 16).Select(i => { double c = 410 + 280.0 / 15 * i; return Gaussian($"F{c:0}", c, 25); }).ToArray(), DefaultPeakQe),
+            Source = "a 4 × 4 snapshot multispectral mosaic: 16 Gaussian filters 410–690 nm evenly spaced (18.67 "
+                + "nm), FWHM 25 nm, in raster order",
+            Channels = Scale(Enumerable.Range(0, 16).Select(i => { double c = 410 + 280.0 / 15 * i; return Gaussian($"F{c:0}", c, 25); })
+                .ToArray(),
+                DefaultPeakQe),
             Pattern = new int[4, 4] { { 0, 1, 2, 3 }, { 4, 5, 6, 7 }, { 8, 9, 10, 11 }, { 12, 13, 14, 15 } },
         }),
         ("cie-xyz", () => new SensorModel
         {
             Name = "cie-xyz",
             Arrangement = Arrangement.Full,
-            Source = "an ideal colorimetric sensor: η_c(λ) ∝ CMF_c(λ)·(555 nm / λ) (CIE 1931 2°), so the electron count ∝ ∫ L·CMF dλ, i.e. ∝ XYZ",
+            Source = "an ideal colorimetric sensor: η_c(λ) ∝ CMF_c(λ)·(555 nm / λ) (CIE 1931 2°), so the electron "
+                + "count ∝ ∫ L·CMF dλ, i.e. ∝ XYZ",
             Channels = CieXyz(),
         }),
     ];
@@ -113,10 +121,13 @@ public static class SensorPresets
     static SensorChannel[] FromCsv(string file, string[] columns, string[] names)
     {
         var table = SpectrumLibrary.DataTable(file);
-        return Scale(columns.Select((c, i) => new SensorChannel(names[i], table[c].WithExtrapolation(Extrapolation.Zero), $"{file}:{c}")).ToArray(), DefaultPeakQe);
+        return Scale(columns.Select((c, i) => new SensorChannel(names[i], table[c].WithExtrapolation(Extrapolation.Zero), $"{file}:{c}"))
+            .ToArray(),
+            DefaultPeakQe);
     }
 
-    /// <summary>A Gaussian transmittance of centre μ and full width at half maximum w (σ = w / (2√(2 ln 2))), tabulated every 0.5 nm to ±4 w.</summary>
+    /// <summary>A Gaussian transmittance of centre μ and full width at half maximum w (σ = w / (2√(2 ln 2))), tabulated every 0.5 nm to ±4
+    /// w.</summary>
     public static SensorChannel Gaussian(string name, double centre, double fwhm)
     {
         double sigma = fwhm / (2 * Math.Sqrt(2 * Math.Log(2)));
@@ -129,7 +140,8 @@ public static class SensorPresets
             double d = (wl[i] - centre) / sigma;
             v[i] = Math.Exp(-0.5 * d * d);
         }
-        return new SensorChannel(name, new TabulatedSpectrum(name, wl, v, Extrapolation.Zero), $"Gaussian {centre:0.##} nm, FWHM {fwhm:0.##} nm");
+        return new SensorChannel(name, new TabulatedSpectrum(name, wl, v, Extrapolation.Zero),
+            $"Gaussian {centre:0.##} nm, FWHM {fwhm:0.##} nm");
     }
 
     /// <summary>A box transmittance: 1 on [lo, hi], 0 outside.</summary>
@@ -141,7 +153,8 @@ public static class SensorPresets
     {
         var obs = observerDegrees == 10 ? Observer.Cie1964 : Observer.Cie1931;
         SensorChannel Of(string n, TabulatedSpectrum cmf) =>
-            new(n, cmf.WithExtrapolation(Extrapolation.Zero), $"{obs.Name} {n.ToLowerInvariant()}-bar per unit energy (η = CMF·555/λ)", PerEnergy: true);
+            new(n, cmf.WithExtrapolation(Extrapolation.Zero), $"{obs.Name} {n.ToLowerInvariant()}-bar per unit energy (η = CMF·555/λ)",
+                PerEnergy: true);
         return Scale([Of("X", obs.XBar), Of("Y", obs.YBar), Of("Z", obs.ZBar)], DefaultPeakQe);
     }
 

@@ -24,7 +24,8 @@ public static partial class SensorSimulation
         for (; j + 8 <= n; j += 8)
         {
             var pixels = Vector256.Create<int>(pixelOf.AsSpan(j, 8));
-            var pixel = Vector512.Create((ulong)rowPixel) + Vector512.Create(Vector256.WidenLower(pixels), Vector256.WidenUpper(pixels)).AsUInt64();
+            var pixel = Vector512.Create((ulong)rowPixel)
+                + Vector512.Create(Vector256.WidenLower(pixels), Vector256.WidenUpper(pixels)).AsUInt64();
             var chans = Vector256.Create<int>(channels.Slice(j, 8));
             var channel = Vector512.Create(Vector256.WidenLower(chans), Vector256.WidenUpper(chans)).AsUInt64();
             var t = Vector512.Create<double>(te.Slice(j, 8));
@@ -60,7 +61,8 @@ public static partial class SensorSimulation
             for (int l = 0; l < 8; l++)
             {
                 int i = rowStart + j + l;
-                dn[i] = (mask >> l & 1) != 0 ? result.GetElement(l) : r.Photosite(dn[i], te[j + l], rowPixel + pixelOf[j + l], channels[j + l]);
+                dn[i] =
+                    (mask >> l & 1) != 0 ? result.GetElement(l) : r.Photosite(dn[i], te[j + l], rowPixel + pixelOf[j + l], channels[j + l]);
             }
         }
         return j;

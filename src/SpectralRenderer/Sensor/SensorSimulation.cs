@@ -25,12 +25,14 @@ public sealed record RadianceCube(int Width, int Height, BandGrid Grid, float[] 
     /// <summary>What made the channel signals, in words (camera.json's "signal_route").</summary>
     public string Route { get; init; } = BandRoute;
 
-    /// <summary>The render camera's vertical field of view (degrees), which sets the field angle of each pixel (cos⁴); null when unknown.</summary>
+    /// <summary>The render camera's vertical field of view (degrees), which sets the field angle of each pixel (cos⁴); null when
+    /// unknown.</summary>
     public double? FovDegrees { get; init; }
 
     /// <summary>
     /// Whether the sensor's optics (<see cref="Optics"/>: cos⁴, the Airy blur per band) are already in the data — the exact
-    /// route applies them to its per-band integrals before summing the bands. Else <see cref="SensorSimulation.Run"/> applies them to the band cube.
+    /// route applies them to its per-band integrals before summing the bands. Else <see cref="SensorSimulation.Run"/> applies them to the
+    /// band cube.
     /// </summary>
     public bool OpticsApplied { get; init; }
 
@@ -47,7 +49,8 @@ public sealed record SimulationOptions
     /// </summary>
     public bool Noise { get; init; } = true;
     public int Threads { get; init; } = -1;
-    /// <summary>Photosite by photosite only, without the 8-lane path (which gives the same bits): for the tests that compare them.</summary>
+    /// <summary>Photosite by photosite only, without the 8-lane path (which gives the same bits): for the tests that compare
+    /// them.</summary>
     internal bool ScalarOnly { get; init; }
 }
 
@@ -90,9 +93,12 @@ public sealed record RawFrame(int Width, int Height, int Planes, float[] Dn, dou
         if (top <= 0.01 && bottom <= 0.01) return null;
         var inv = System.Globalization.CultureInfo.InvariantCulture;
         var parts = new List<string>();
-        if (top > 0.01) parts.Add(string.Create(inv, $"{top * 100:0.##} % of photosites clipped at the full well or the white level ({WhiteLevelText()})"));
+        if (top > 0.01)
+            parts.Add(
+                string.Create(inv, $"{top * 100:0.##} % of photosites clipped at the full well or the white level ({WhiteLevelText()})"));
         if (bottom > 0.01) parts.Add(string.Create(inv, $"{bottom * 100:0.##} % cut off below black at 0 DN"));
-        string hint = top > 0.01 ? "try --exposure auto (or a shorter exposure)" : "a black level above 0 DN keeps the read noise of dark sites";
+        string hint =
+            top > 0.01 ? "try --exposure auto (or a shorter exposure)" : "a black level above 0 DN keeps the read noise of dark sites";
         return $"warning: {string.Join(", ", parts)}; their SNR is left out and their colour is wrong: {hint}";
     }
 
@@ -127,7 +133,8 @@ public static partial class SensorSimulation
             cube = cube with { Data = data };
         }
         else if (cube.ChannelIntegrals is not null && optics.Any && !cube.OpticsApplied)
-            throw new ArgumentException("exact channel integrals without the optics applied: give them per band through the optics (Cli/ExactChannelSignals) or a sensor with off_axis and psf none");
+            throw new ArgumentException("exact channel integrals without the optics applied: give them per band through the optics "
+                + "(Cli/ExactChannelSignals) or a sensor with off_axis and psf none");
         if (cube.ChannelIntegrals is { } exact)
         {
             if (exact.Length != w * h * sensor.ChannelCount)
@@ -138,7 +145,9 @@ public static partial class SensorSimulation
 
         // Exposure: given, or auto so that the brightest expected pixel of each exposure reaches a fraction of the full well.
         var peakRate = new double[exposures];
-        for (int y = 0; y < h; y++) for (int k = 0; k < planes; k++) peakRate[exposures == 1 ? 0 : k] = Math.Max(peakRate[exposures == 1 ? 0 : k], rowPeaks[y * planes + k]);
+        for (int y = 0; y < h; y++)
+            for (int k = 0; k < planes; k++)
+                peakRate[exposures == 1 ? 0 : k] = Math.Max(peakRate[exposures == 1 ? 0 : k], rowPeaks[y * planes + k]);
         var t = new double[exposures];
         var peakElectrons = new double[exposures];
         for (int e = 0; e < exposures; e++)
@@ -166,9 +175,11 @@ public static partial class SensorSimulation
     {
         public readonly int Bands, Channels, Planes, Stride;
         public readonly bool Mosaic;
-        /// <summary>Per channel, its weights over the bands padded with zeros to whole <see cref="Vector{T}"/>s (mosaic: one channel per photosite).</summary>
+        /// <summary>Per channel, its weights over the bands padded with zeros to whole <see cref="Vector{T}"/>s (mosaic: one channel per
+        /// photosite).</summary>
         public readonly float[] ByChannel;
-        /// <summary>Per band, one <see cref="Vector{T}"/> of every channel's weight (full and wheel, up to Vector&lt;float&gt;.Count channels).</summary>
+        /// <summary>Per band, one <see cref="Vector{T}"/> of every channel's weight (full and wheel, up to Vector&lt;float&gt;.Count
+        /// channels).</summary>
         public readonly float[] ByBand;
         /// <summary>The mosaic's channel at [row % rows, column % columns], row-major.</summary>
         public readonly int[] Pattern;
@@ -190,7 +201,10 @@ public static partial class SensorSimulation
             PatternRows = Mosaic ? sensor.Pattern!.GetLength(0) : 1;
             PatternColumns = Mosaic ? sensor.Pattern!.GetLength(1) : 1;
             Pattern = new int[PatternRows * PatternColumns];
-            if (Mosaic) for (int r = 0; r < PatternRows; r++) for (int c = 0; c < PatternColumns; c++) Pattern[r * PatternColumns + c] = sensor.Pattern![r, c];
+            if (Mosaic)
+                for (int r = 0; r < PatternRows; r++)
+                    for (int c = 0; c < PatternColumns; c++)
+                        Pattern[r * PatternColumns + c] = sensor.Pattern![r, c];
             int n = width * Planes;
             PixelOf = new int[n];
             ChannelOf = new int[PatternRows * n];
@@ -272,7 +286,8 @@ public static partial class SensorSimulation
                 if (vector)
                 {
                     var acc = Vector<float>.Zero;
-                    for (int j = 0; j < nv; j++) acc += new Vector<float>(data, off + j * vc) * new Vector<float>(l.ByChannel, k * stride + j * vc);
+                    for (int j = 0; j < nv; j++)
+                        acc += new Vector<float>(data, off + j * vc) * new Vector<float>(l.ByChannel, k * stride + j * vc);
                     s = Vector.Sum(acc);
                 }
                 else
@@ -287,7 +302,8 @@ public static partial class SensorSimulation
         }
     }
 
-    /// <summary>ė_c = max(0, factor · ∫ L η_c λ dλ) of row y from the exact channel integrals (a mosaic photosite: its channel's).</summary>
+    /// <summary>ė_c = max(0, factor · ∫ L η_c λ dλ) of row y from the exact channel integrals (a mosaic photosite: its
+    /// channel's).</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     static void ExactRates(Layout l, float[] exact, double factor, int w, float[] rates, float[] rowPeaks, int y)
     {
@@ -312,7 +328,8 @@ public static partial class SensorSimulation
         var te = exposureOf.AsSpan((y % l.PatternRows) * n, n);
         if (!r.Noise)
         {
-            for (int j = 0; j < n; j++) dn[rowStart + j] = (float)Math.Min(Math.Min(dn[rowStart + j] * te[j], r.FullWell) * r.SystemGain + r.Black, r.White);
+            for (int j = 0; j < n; j++)
+                dn[rowStart + j] = (float)Math.Min(Math.Min(dn[rowStart + j] * te[j], r.FullWell) * r.SystemGain + r.Black, r.White);
             return;
         }
         int done = r.Lanes ? ExposeLanes(r, l.PixelOf, channels, te, w, y, dn) : 0;
@@ -330,7 +347,10 @@ public static partial class SensorSimulation
         {
             FullWell = sensor.FullWellElectrons; SystemGain = sensor.SystemGain; Black = sensor.BlackLevel; White = sensor.WhiteLevel;
             VoltToDn = sensor.AnalogGain / sensor.VoltageSwing * (White - Black); ConversionGain = sensor.ConversionGain;
-            Dark = sensor.DarkCurrentElectronsPerSecond; Prnu = sensor.PrnuPercent / 100; Dsnu = sensor.DsnuVolts; Read = sensor.ReadNoiseVolts;
+            Dark = sensor.DarkCurrentElectronsPerSecond;
+            Prnu = sensor.PrnuPercent / 100;
+            Dsnu = sensor.DsnuVolts;
+            Read = sensor.ReadNoiseVolts;
             PrnuFamily = NoiseStream.Family(sensor.FixedPatternSeed, KindPrnu);
             DsnuFamily = NoiseStream.Family(sensor.FixedPatternSeed, KindDsnu);
             Temporal = NoiseStream.Family(o.Seed, KindTemporal);
@@ -356,7 +376,8 @@ public static partial class SensorSimulation
         }
     }
 
-    /// <summary>Round half away from zero (as <see cref="Math.Round(double, MidpointRounding)"/> does it: truncate x + 0.5⁻) after clipping at 0, then at the white level.</summary>
+    /// <summary>Round half away from zero (as <see cref="Math.Round(double, MidpointRounding)"/> does it: truncate x + 0.5⁻) after clipping
+    /// at 0, then at the white level.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     static double Quantise(double x, double white) => Math.Min(Math.Floor(Math.Max(x, 0) + HalfBelow), white);
 

@@ -50,7 +50,8 @@ public sealed class BandGrid : IEquatable<BandGrid>
         return e;
     }
 
-    /// <summary>Parses band edges "start:end:count", e.g. "380:780:20" or "395:705:31" (31 bands of 10 nm; <see cref="ParseWave"/> for centres).</summary>
+    /// <summary>Parses band edges "start:end:count", e.g. "380:780:20" or "395:705:31" (31 bands of 10 nm; <see cref="ParseWave"/> for
+    /// centres).</summary>
     public static BandGrid Parse(string text, string where = "--bands")
     {
         var parts = text.Split(':');

@@ -28,7 +28,8 @@ public static class ColorChecker
         int paren = name.IndexOf('(');
         if (paren > 0) name = name[..paren].Trim();
         var words = name.Split(' ');
-        if (words.Length == 2 && double.TryParse(words[1], System.Globalization.NumberStyles.Float, System.Globalization.CultureInfo.InvariantCulture, out _))
+        if (words.Length == 2
+            && double.TryParse(words[1], System.Globalization.NumberStyles.Float, System.Globalization.CultureInfo.InvariantCulture, out _))
             return words[0] == "neutral" ? $"neutral-{words[1]}" : words[0]; // "white 9.5" → white, "neutral 8" → neutral-8
         return string.Join('-', words);
     }
@@ -54,7 +55,8 @@ public static class ColorChecker
             if (Key(i) == normal || Name(i).Replace(' ', '-').ToLowerInvariant() == normal)
                 return Patch(i);
         throw new InputException(where, $"unknown ColorChecker patch '{key}'",
-            InputException.DidYouMean(key, Enumerable.Range(1, PatchCount).Select(Key)) ?? "use 1–24 or a name such as green, dark-skin, neutral-8");
+            InputException.DidYouMean(key, Enumerable.Range(1, PatchCount).Select(Key))
+                ?? "use 1–24 or a name such as green, dark-skin, neutral-8");
     }
 
     static TabulatedSpectrum Rename(TabulatedSpectrum s, int number) =>

@@ -29,14 +29,16 @@ public static class CsvSpectrumReader
 
         var header = lines[0].TrimStart('\uFEFF').Split(',').Select(h => h.Trim()).ToArray();
         if (header.Length < 2)
-            throw new InputException($"{path}:1:{header.Length + 1}", "the header names fewer than two columns", "expected e.g. wavelength_nm,value");
+            throw new InputException($"{path}:1:{header.Length + 1}", "the header names fewer than two columns",
+                "expected e.g. wavelength_nm,value");
         for (int c = 0; c < header.Length; c++)
         {
             if (header[c].Length == 0)
                 throw new InputException($"{path}:1:{c + 1}", $"column {c + 1} has no name", "every column needs a name in the header");
             for (int d = 0; d < c; d++)
                 if (header[d] == header[c])
-                    throw new InputException($"{path}:1:{c + 1}", $"column name '{header[c]}' appears twice", "give every column its own name");
+                    throw new InputException($"{path}:1:{c + 1}", $"column name '{header[c]}' appears twice",
+                        "give every column its own name");
         }
         if (n == 1)
             throw new InputException($"{path}:2:1", "the file has a header but no data rows", "add rows of wavelength_nm,value");
@@ -55,29 +57,38 @@ public static class CsvSpectrumReader
             if (cells.Length != header.Length)
                 throw new InputException($"{path}:{lineNo}:{Math.Min(cells.Length, header.Length) + 1}",
                     cells.Length < header.Length
-                        ? $"missing column: {cells.Length} cells, the header names {header.Length} (first missing: '{header[cells.Length]}')"
+                        ? $"missing column: {cells.Length} cells, the header names {header.Length} (first "
+                            + $"missing: '{header[cells.Length]}')"
                         : $"{cells.Length} cells, the header names only {header.Length}", "every row needs one cell per header column");
             for (int c = 0; c < cells.Length; c++)
             {
                 var cell = cells[c].Trim();
                 if (!double.TryParse(cell, NumberStyles.Float, CultureInfo.InvariantCulture, out double v))
-                    throw new InputException($"{path}:{lineNo}:{c + 1}", $"{MessageText.Quote(cell)} in column {MessageText.Quote(header[c])} is not a number", "cells are plain numbers with a '.' decimal point, e.g. 0.25");
+                    throw new InputException($"{path}:{lineNo}:{c + 1}",
+                        $"{MessageText.Quote(cell)} in column {MessageText.Quote(header[c])} is not a number",
+                        "cells are plain numbers with a '.' decimal point, e.g. 0.25");
                 if (!double.IsFinite(v) || Math.Abs(v) > float.MaxValue)
-                    throw new InputException($"{path}:{lineNo}:{c + 1}", $"{cell} in column '{header[c]}' is not finite", "spectral values must be finite numbers");
+                    throw new InputException($"{path}:{lineNo}:{c + 1}", $"{cell} in column '{header[c]}' is not finite",
+                        "spectral values must be finite numbers");
                 if (c == 0)
                 {
                     if (v <= 0)
-                        throw new InputException($"{path}:{lineNo}:{c + 1}", $"wavelength {cell} nm is not positive", "wavelengths are in nm and positive");
+                        throw new InputException($"{path}:{lineNo}:{c + 1}", $"wavelength {cell} nm is not positive",
+                            "wavelengths are in nm and positive");
                     if (wl.Count > 0 && v == wl[^1])
-                        throw new InputException($"{path}:{lineNo}:{c + 1}", $"wavelength {cell} nm appears twice", "each wavelength needs exactly one row");
+                        throw new InputException($"{path}:{lineNo}:{c + 1}", $"wavelength {cell} nm appears twice",
+                            "each wavelength needs exactly one row");
                     if (wl.Count > 0 && v < wl[^1])
-                        throw new InputException($"{path}:{lineNo}:{c + 1}", $"wavelength {cell} nm follows {wl[^1].ToString(CultureInfo.InvariantCulture)} nm: not ascending", "sort the rows by wavelength");
+                        throw new InputException($"{path}:{lineNo}:{c + 1}",
+                            $"wavelength {cell} nm follows {wl[^1].ToString(CultureInfo.InvariantCulture)} nm: not ascending",
+                            "sort the rows by wavelength");
                     wl.Add(v);
                 }
                 else
                 {
                     if (v < 0 && !allowNegative)
-                        throw new InputException($"{path}:{lineNo}:{c + 1}", $"negative value {cell} in column '{header[c]}'", "reflectances, powers and sensitivities cannot be negative");
+                        throw new InputException($"{path}:{lineNo}:{c + 1}", $"negative value {cell} in column '{header[c]}'",
+                            "reflectances, powers and sensitivities cannot be negative");
                     cols[c - 1].Add(v);
                 }
             }

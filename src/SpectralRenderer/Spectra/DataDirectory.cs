@@ -20,7 +20,8 @@ public static class DataDirectory
             if (File.Exists(System.IO.Path.Combine(candidate, Marker))) return candidate;
         }
         throw new DirectoryNotFoundException(
-            $"the spectral data folder (with {Marker}) was not found beside the executable; set SPECTRAL_DATA to the project's data/ folder");
+            $"the spectral data folder (with {Marker}) was not found beside the executable; set "
+                + $"SPECTRAL_DATA to the project's data/ folder");
     }
 
     public static string File_(string name) => System.IO.Path.Combine(Path, name);

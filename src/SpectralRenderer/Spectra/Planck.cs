@@ -42,7 +42,8 @@ public static class Planck
     {
         if (!double.TryParse(text.Trim().TrimEnd('K', 'k'), System.Globalization.NumberStyles.Float,
                 System.Globalization.CultureInfo.InvariantCulture, out double t) || !double.IsFinite(t) || t < 100 || t > 1e6)
-            throw new InputException(where, $"'{name}' needs a temperature in kelvin between 100 and 1000000 after 'blackbody:'", "e.g. blackbody:3000");
+            throw new InputException(where, $"'{name}' needs a temperature in kelvin between 100 and 1000000 after 'blackbody:'",
+                "e.g. blackbody:3000");
         return Spectrum(t, name);
     }
 }

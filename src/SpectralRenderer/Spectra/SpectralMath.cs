@@ -151,7 +151,8 @@ public static class SpectralMath
         if (n > 3) s3.StoreUnsafe(ref d, (nuint)(3 * w));
     }
 
-    /// <summary>dst = 0 + a · s: band for band what <see cref="Clear"/> and then <see cref="AddScaled"/> leave (0 + (−0) = +0), in one pass.</summary>
+    /// <summary>dst = 0 + a · s: band for band what <see cref="Clear"/> and then <see cref="AddScaled"/> leave (0 + (−0) = +0), in one
+    /// pass.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static void SetScaled(Span<float> dst, ReadOnlySpan<float> a, float s)
     {
@@ -176,7 +177,8 @@ public static class SpectralMath
         return false;
     }
 
-    /// <summary>The first dst.Length values of a padded spectrum into dst, in whole vectors (the last one overlapping) when dst holds at least one.</summary>
+    /// <summary>The first dst.Length values of a padded spectrum into dst, in whole vectors (the last one overlapping) when dst holds at
+    /// least one.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static void CopyBands(ReadOnlySpan<float> padded, Span<float> dst)
     {

@@ -56,12 +56,14 @@ public static class SpectrumLibrary
 
     /// <summary>Every built-in name, for help texts and "did you mean".</summary>
     public static IEnumerable<string> KnownNames =>
-        Builtins.Select(b => b.Name).Concat(ColorChecker.PatchKeys.Select(k => "colorchecker:" + k)).Append("constant:<value>").Append("blackbody:<K>").Append("daylight:<K>");
+        Builtins.Select(b => b.Name).Concat(ColorChecker.PatchKeys.Select(k => "colorchecker:" + k)).Append("constant:<value>")
+            .Append("blackbody:<K>").Append("daylight:<K>");
 
     public static SpectralTable Table(string path) => Tables.GetOrAdd(System.IO.Path.GetFullPath(path), CsvSpectrumReader.Read);
     public static SpectralTable DataTable(string file) => Table(DataDirectory.File_(file));
 
-    /// <summary>Resolves a name. <paramref name="baseDirectory"/> anchors relative CSV paths; <paramref name="where"/> names the place for errors.</summary>
+    /// <summary>Resolves a name. <paramref name="baseDirectory"/> anchors relative CSV paths; <paramref name="where"/> names the place for
+    /// errors.</summary>
     public static TabulatedSpectrum Resolve(string name, string? baseDirectory = null, string where = "spectrum")
     {
         name = name.Trim();
@@ -92,7 +94,8 @@ public static class SpectrumLibrary
             var column = name[(colon + 1)..];
             var path = System.IO.Path.IsPathRooted(file) ? file : System.IO.Path.Combine(baseDirectory ?? ".", file);
             if (!File.Exists(path) && !Directory.Exists(path))
-                throw new InputException(where, $"CSV file {MessageText.Quote(file, 80)} not found", "check the name: a relative path starts at the scene's folder");
+                throw new InputException(where, $"CSV file {MessageText.Quote(file, 80)} not found",
+                    "check the name: a relative path starts at the scene's folder");
             var table = Table(path);
             if (!table.TryGet(column, out var s))
                 throw new InputException(where, $"{file} has no column '{column}'",
@@ -104,7 +107,8 @@ public static class SpectrumLibrary
 
         throw new InputException(where, $"unknown spectrum '{name}'",
             InputException.DidYouMean(name, Builtins.Select(b => b.Name).Concat(ColorChecker.PatchKeys.Select(k => "colorchecker:" + k)))
-            ?? "built-in names: D65, A, D50, E, FL2, FL11, led-blue, led-green, led-rgb, led-yag, colorchecker:1..24, constant:<v>, blackbody:<K>, daylight:<K>, file.csv:column");
+            ?? "built-in names: D65, A, D50, E, FL2, FL11, led-blue, led-green, led-rgb, led-yag, colorchecker:1..24, constant:<v>, "
+                + "blackbody:<K>, daylight:<K>, file.csv:column");
     }
 
     static TabulatedSpectrum Rename(TabulatedSpectrum s, string name) =>

@@ -135,7 +135,8 @@ public sealed class TabulatedSpectrum
         return (min, max);
     }
 
-    /// <summary>The interpolant's values at both ends of [x0, x1], an interval between knots (zero outside the table under <see cref="Extrapolation.Zero"/>).</summary>
+    /// <summary>The interpolant's values at both ends of [x0, x1], an interval between knots (zero outside the table under
+    /// <see cref="Extrapolation.Zero"/>).</summary>
     (double, double) Ends(double x0, double x1) =>
         Extrapolation == Extrapolation.Zero && (x1 <= First || x0 >= Last) ? (0, 0) : (Evaluate(x0), Evaluate(x1));
 

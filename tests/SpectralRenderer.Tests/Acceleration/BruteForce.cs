@@ -37,7 +37,8 @@ static class BruteForce
             bool fa = set.Bvh.Intersect(ref s, ref a, ref ha);
             bool fb = Intersect(ref s, s.Count, ref b, ref hb);
             bool agree = fa == fb && (!fa || ha.Primitive == hb.Primitive && a.TMax == b.TMax
-                                            || Math.Abs(a.TMax - b.TMax) <= 1e-5f * b.TMax && SameDistance(s, rays[i], ha.Primitive, b.TMax));
+                                            || Math.Abs(a.TMax - b.TMax) <= 1e-5f * b.TMax
+                                                && SameDistance(s, rays[i], ha.Primitive, b.TMax));
             if (!agree) acc.Item1++;
             // Occlusion up to just beyond half the closest distance, and unbounded.
             var half = rays[i]; half.TMax = fb ? 0.5f * b.TMax : rays[i].TMax;
@@ -45,7 +46,12 @@ static class BruteForce
             if (set.Bvh.Occluded(ref s, rays[i]) != fb) acc.Item2++;
             if (fb) acc.Item3++;
             return acc;
-        }, acc => { Interlocked.Add(ref closest, acc.Item1); Interlocked.Add(ref occluded, acc.Item2); Interlocked.Add(ref hits, acc.Item3); });
+        }, acc =>
+        {
+            Interlocked.Add(ref closest, acc.Item1);
+            Interlocked.Add(ref occluded, acc.Item2);
+            Interlocked.Add(ref hits, acc.Item3);
+        });
         return (closest, occluded, hits);
     }
 

@@ -22,7 +22,8 @@ public class BvhTests(ITestOutputHelper output)
         return new TriangleMesh(p, Enumerable.Range(0, 3 * count).ToArray(), source: "soup");
     }
 
-    /// <summary>Rays from random points around the bounds towards random points inside; every 10th is axis-aligned (zero direction components).</summary>
+    /// <summary>Rays from random points around the bounds towards random points inside; every 10th is axis-aligned (zero direction
+    /// components).</summary>
     internal static Ray[] Rays(Bounds3 b, int count, int seed)
     {
         var rng = new Random(seed);
@@ -40,7 +41,9 @@ public class BvhTests(ITestOutputHelper output)
             }
             else
             {
-                var o = b.Centre + (0.5f + rng.NextSingle()) * e.Length() * Vector3.Normalize(new Vector3(rng.NextSingle() - 0.5f, rng.NextSingle() - 0.5f, rng.NextSingle() - 0.5f));
+                var o = b.Centre
+                    + (0.5f + rng.NextSingle()) * e.Length() * Vector3.Normalize(
+                        new Vector3(rng.NextSingle() - 0.5f, rng.NextSingle() - 0.5f, rng.NextSingle() - 0.5f));
                 if (i % 10 == 1) o = inside; // some rays start inside the geometry
                 rays[i] = new Ray(o, Vector3.Normalize(b.Min + new Vector3(rng.NextSingle(), rng.NextSingle(), rng.NextSingle()) * e - o));
             }
@@ -108,7 +111,8 @@ public class BvhTests(ITestOutputHelper output)
                 {
                     seen[k]++;
                     var b = bounds[bvh.PrimitiveOrder[k]];
-                    Assert.True(Vector3.Min(b.Min, n.Min) == n.Min && Vector3.Max(b.Max, n.Max) == n.Max, "leaf bounds contain their primitives");
+                    Assert.True(Vector3.Min(b.Min, n.Min) == n.Min && Vector3.Max(b.Max, n.Max) == n.Max,
+                        "leaf bounds contain their primitives");
                 }
             }
             Assert.All(seen, s => Assert.Equal(1, s));
@@ -129,9 +133,12 @@ public class BvhTests(ITestOutputHelper output)
         var soup = Soup(3_000, 9);
         var cases = new List<Bounds3[]>
         {
-            Enumerable.Range(0, soup.TriangleCount).Select(t => { var (a, b, c) = soup.Triangle(t); var x = new Bounds3(a, a); x.Include(b); x.Include(c); return x; }).ToArray(),
+            Enumerable.Range(0, soup.TriangleCount)
+                .Select(t => { var (a, b, c) = soup.Triangle(t); var x = new Bounds3(a, a); x.Include(b); x.Include(c); return x; })
+                .ToArray(),
             Enumerable.Repeat(new Bounds3(new Vector3(1, 2, 3), new Vector3(2, 3, 4)), 500).ToArray(),
-            Enumerable.Range(0, 700).Select(i => new Bounds3(new Vector3(i % 37, i / 37, 0), new Vector3(i % 37 + 0.5f, i / 37 + 0.5f, 0))).ToArray(),
+            Enumerable.Range(0, 700).Select(i => new Bounds3(new Vector3(i % 37, i / 37, 0), new Vector3(i % 37 + 0.5f, i / 37 + 0.5f, 0)))
+                .ToArray(),
             new[] { new Bounds3(Vector3.Zero, Vector3.One) },
         };
         foreach (var bounds in cases)
@@ -157,7 +164,8 @@ public class BvhTests(ITestOutputHelper output)
                     Assert.Equal(at + 1 + left.Nodes, n.Offset);   // the second child right after the first child's subtree
                     var right = Walk(n.Offset, first + left.Primitives);
                     foreach (var c in new[] { nodes[at + 1], nodes[n.Offset] })
-                        Assert.True(Vector3.Min(c.Min, n.Min) == n.Min && Vector3.Max(c.Max, n.Max) == n.Max, "a node's box holds its children's");
+                        Assert.True(Vector3.Min(c.Min, n.Min) == n.Min && Vector3.Max(c.Max, n.Max) == n.Max,
+                            "a node's box holds its children's");
                     return (left.Primitives + right.Primitives, 1 + left.Nodes + right.Nodes);
                 }
                 var root = Walk(0, 0);

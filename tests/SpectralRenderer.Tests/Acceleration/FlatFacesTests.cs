@@ -54,7 +54,8 @@ public class FlatFacesTests(ITestOutputHelper output)
         {
             var origin = 3 * new Vector3(rng.NextSingle() * 2 - 1, rng.NextSingle() * 2 - 1, rng.NextSingle() * 2 - 1);
             // aimed near a random shape's centre, so most rays meet something
-            var target = Vector3.Transform(Vector3.Zero, shapes[rng.Next(count)].ObjectToWorld) + 0.6f * new Vector3(rng.NextSingle() - 0.5f, rng.NextSingle() - 0.5f, rng.NextSingle() - 0.5f);
+            var target = Vector3.Transform(Vector3.Zero, shapes[rng.Next(count)].ObjectToWorld)
+                + 0.6f * new Vector3(rng.NextSingle() - 0.5f, rng.NextSingle() - 0.5f, rng.NextSingle() - 0.5f);
             var d = Vector3.Normalize(target - origin);
             if (i % 10 == 0) d = (i / 10 % 3) switch { 0 => Vector3.UnitX, 1 => -Vector3.UnitY, _ => Vector3.UnitZ };   // zero components
             float tMax = i % 4 == 0 ? 1 + 3 * rng.NextSingle() : float.PositiveInfinity;   // shadow-ray-like segments too
@@ -69,15 +70,18 @@ public class FlatFacesTests(ITestOutputHelper output)
             {
                 // Only where two answers are a rounding apart: a hit within 1e-4 of a face's edge, or of another face's distance.
                 var p = ray.At(expected >= 0 ? tExpected : probe.TMax);
-                Assert.True(NearAnEdge(shapes, p), $"ray {i}: flat faces say shape {got} (t {probe.TMax}), object space {expected} (t {tExpected})");
+                Assert.True(NearAnEdge(shapes, p),
+                    $"ray {i}: flat faces say shape {got} (t {probe.TMax}), object space {expected} (t {tExpected})");
                 edgeCases++;
                 continue;
             }
             Assert.Equal(expected >= 0, occluded);
             if (expected < 0) continue;
             hits++;
-            Assert.True(MathF.Abs(probe.TMax - tExpected) <= 1e-5f * MathF.Max(1, tExpected), $"ray {i}: t {probe.TMax} against {tExpected}");
-            Assert.True(Vector3.Distance(faces.Normal(face), nExpected) < 1e-5f, $"ray {i}: normal {faces.Normal(face)} against {nExpected}");
+            Assert.True(MathF.Abs(probe.TMax - tExpected) <= 1e-5f * MathF.Max(1, tExpected),
+                $"ray {i}: t {probe.TMax} against {tExpected}");
+            Assert.True(Vector3.Distance(faces.Normal(face), nExpected) < 1e-5f,
+                $"ray {i}: normal {faces.Normal(face)} against {nExpected}");
         }
         output.WriteLine($"{count} shapes: {hits} hits agree, {edgeCases} rays at an edge differ");
         Assert.True(hits > 1000);
@@ -100,7 +104,8 @@ public class FlatFacesTests(ITestOutputHelper output)
     public void Spheres_and_too_many_faces_keep_the_hierarchy()
     {
         Assert.Null(FlatFaces.TryBuild([new AnalyticShape(ShapeKind.Sphere, Matrix4x4.Identity)]));
-        var boxes = Enumerable.Range(0, FlatFaces.MaxFaces / 6 + 1).Select(i => new AnalyticShape(ShapeKind.Box, Matrix4x4.CreateTranslation(i, 0, 0))).ToArray();
+        var boxes = Enumerable.Range(0, FlatFaces.MaxFaces / 6 + 1)
+            .Select(i => new AnalyticShape(ShapeKind.Box, Matrix4x4.CreateTranslation(i, 0, 0))).ToArray();
         Assert.Null(FlatFaces.TryBuild(boxes));
     }
 }

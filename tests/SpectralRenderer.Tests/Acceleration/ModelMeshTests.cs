@@ -31,7 +31,8 @@ public class ModelMeshTests(ITestOutputHelper output)
         var path = ModelFiles.Require("igea.ply");
         var sw = Stopwatch.StartNew();
         var m = PlyReader.Read(path);
-        output.WriteLine($"igea.ply: {sw.Elapsed.TotalMilliseconds:F0} ms (this build, first call); {m.TriangleCount} triangles, {m.DegenerateCount} degenerate");
+        output.WriteLine($"igea.ply: {sw.Elapsed.TotalMilliseconds:F0} ms (this build, first call); {m.TriangleCount} triangles, "
+            + $"{m.DegenerateCount} degenerate");
         Assert.Equal(134_345, m.Positions.Length);
         Assert.Equal(268_686, m.TriangleCount);
         Assert.Equal(0, m.DegenerateCount);

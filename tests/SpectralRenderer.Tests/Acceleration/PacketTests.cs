@@ -39,7 +39,8 @@ public class PacketTests(ITestOutputHelper output)
         Skip.If(width == 4 && !Vector128.IsHardwareAccelerated, "no 128-bit SIMD here");
     }
 
-    /// <summary>What the comparison found: lanes compared, lanes that hit, disagreements, ties (a different primitive at the same distance).</summary>
+    /// <summary>What the comparison found: lanes compared, lanes that hit, disagreements, ties (a different primitive at the same
+    /// distance).</summary>
     record struct Tally(int Lanes, int Hits, int Different, int Ties, int Occlusion);
 
     /// <summary>
@@ -82,7 +83,8 @@ public class PacketTests(ITestOutputHelper output)
                     else if (!sameBits || packet.Primitive[lane] != h.Primitive) t.Different++;
                     half.TMax[lane] = 0.5f * ray.TMax;
                 }
-                else if (BitConverter.SingleToInt32Bits(packet.TMax[lane]) != BitConverter.SingleToInt32Bits(rays[first + lane].TMax)) t.Different++;
+                else if (BitConverter.SingleToInt32Bits(packet.TMax[lane]) != BitConverter.SingleToInt32Bits(rays[first + lane].TMax))
+                    t.Different++;
                 if (bruteForce)
                 {
                     var b = rays[first + lane]; var hb = new Hit();
@@ -207,7 +209,8 @@ public class PacketTests(ITestOutputHelper output)
         for (int first = 0; first < dirs.Count; first += RayPacket.Size)
         {
             var p = new RayPacket();
-            for (int lane = 0; lane < RayPacket.Size && first + lane < dirs.Count; lane++) p.Set(lane, new Ray(Vector3.One, dirs[first + lane]));
+            for (int lane = 0; lane < RayPacket.Size && first + lane < dirs.Count; lane++)
+                p.Set(lane, new Ray(Vector3.One, dirs[first + lane]));
             switch (width)
             {
                 case 16: p.Prepare<Lanes512>(); break;
@@ -219,10 +222,13 @@ public class PacketTests(ITestOutputHelper output)
             {
                 var d = dirs[first + lane];
                 var s = new ShearedRay(new Ray(Vector3.One, d));
-                float[] expected = [s.RowX.X, s.RowX.Y, s.RowX.Z, s.RowY.X, s.RowY.Y, s.RowY.Z, s.RowZ.X, s.RowZ.Y, s.RowZ.Z, 1 / d.X, 1 / d.Y, 1 / d.Z];
-                float[] actual = [p.RowXx[lane], p.RowXy[lane], p.RowXz[lane], p.RowYx[lane], p.RowYy[lane], p.RowYz[lane], p.RowZx[lane], p.RowZy[lane], p.RowZz[lane],
+                float[] expected =
+                    [s.RowX.X, s.RowX.Y, s.RowX.Z, s.RowY.X, s.RowY.Y, s.RowY.Z, s.RowZ.X, s.RowZ.Y, s.RowZ.Z, 1 / d.X, 1 / d.Y, 1 / d.Z];
+                float[] actual = [p.RowXx[lane], p.RowXy[lane], p.RowXz[lane], p.RowYx[lane], p.RowYy[lane], p.RowYz[lane], p.RowZx[lane],
+                    p.RowZy[lane], p.RowZz[lane],
                                   p.InverseX[lane], p.InverseY[lane], p.InverseZ[lane]];
-                Assert.True(expected.Select(Bits).SequenceEqual(actual.Select(Bits)), $"direction {d}: [{string.Join(", ", expected)}] vs [{string.Join(", ", actual)}]");
+                Assert.True(expected.Select(Bits).SequenceEqual(actual.Select(Bits)),
+                    $"direction {d}: [{string.Join(", ", expected)}] vs [{string.Join(", ", actual)}]");
                 Assert.Equal(d.X < 0 || Bits(d.X) < 0, Bits(p.NegativeX[lane]) == -1);
                 Assert.Equal(Bits(d.Z) < 0, Bits(p.NegativeZ[lane]) == -1);
             }

@@ -47,7 +47,8 @@ static class AnalysisFolder
         var grid = NpyReader.ReadImage(npy).Grid;
         int n = grid.Count;
         var white = Enumerable.Range(0, n).Select(b => (double)(float)(0.5 + 0.05 * b)).ToArray();
-        var truth = SpectralRenderer.Spectra.BandProjection.Means(SpectralRenderer.Spectra.ColorChecker.Patch(14), grid).Select(v => (double)(float)v).ToArray();
+        var truth = SpectralRenderer.Spectra.BandProjection.Means(SpectralRenderer.Spectra.ColorChecker.Patch(14), grid)
+            .Select(v => (double)(float)v).ToArray();
         var image = new SpectralImage(W, H, grid);
         var reflectance = new SpectralImage(W, H, grid);
         var ids = new ushort[W * H];

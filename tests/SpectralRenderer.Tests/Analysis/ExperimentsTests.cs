@@ -17,9 +17,11 @@ public class ExperimentsTests
         throw new DirectoryNotFoundException("scenes/");
     }
 
-    static bool HaveModels => Environment.GetEnvironmentVariable("SPECTRAL_MODELS") is { Length: > 0 } m && File.Exists(Path.Combine(m, "stanford-bunny.obj"));
+    static bool HaveModels =>
+        Environment.GetEnvironmentVariable("SPECTRAL_MODELS") is { Length: > 0 } m && File.Exists(Path.Combine(m, "stanford-bunny.obj"));
 
-    static string? Chromium() => new[] { "/usr/bin/chromium", "/usr/bin/chromium-browser", "/usr/bin/google-chrome" }.FirstOrDefault(File.Exists);
+    static string? Chromium() =>
+        new[] { "/usr/bin/chromium", "/usr/bin/chromium-browser", "/usr/bin/google-chrome" }.FirstOrDefault(File.Exists);
 
     [SkippableFact]
     [Trait("Category", "Interop")]
@@ -28,7 +30,8 @@ public class ExperimentsTests
         var chromium = Chromium();
         Skip.If(chromium is null, "chromium is not installed (Debian package chromium; .ci/run installs it)");
         var outDir = Path.Combine(Reference.TempDir(), "experiments");
-        var (code, stdout, err) = CliRunner.Run("experiments", "--out", outDir, "--scale", "0.25", "--scenes", Path.Combine(Repo(), "scenes"), "--quiet");
+        var (code, stdout, err) =
+            CliRunner.Run("experiments", "--out", outDir, "--scale", "0.25", "--scenes", Path.Combine(Repo(), "scenes"), "--quiet");
         Assert.True(code == 0, err);
         var report = Path.Combine(outDir, "report.html");
         Assert.True(File.Exists(report), stdout);
@@ -36,8 +39,10 @@ public class ExperimentsTests
         Assert.DoesNotContain("http://", html.Replace("http://www.w3.org/2000/svg", ""));
         Assert.DoesNotContain("https://", html);
 
-        string[] flags = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run", "--disable-background-networking",
-            "--disable-component-update", "--disable-sync", $"--user-data-dir={Path.Combine(outDir, ".chromium")}", "--window-size=1200,6000"];
+        string[] flags =
+            ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run", "--disable-background-networking",
+            "--disable-component-update", "--disable-sync", $"--user-data-dir={Path.Combine(outDir, ".chromium")}",
+                "--window-size=1200,6000"];
         var dom = RunChromium(chromium!, [.. flags, "--dump-dom", $"file://{report}"]);
         int at = dom.IndexOf("data-selfcheck=\"", StringComparison.Ordinal);
         Assert.True(at >= 0, "the page's self-check did not run");
@@ -75,7 +80,8 @@ public class ExperimentsTests
     {
         Skip.IfNot(HaveModels, "SPECTRAL_MODELS does not point at the meshes (stanford-bunny.obj); .ci/run sets it to ../shared/models");
         var outDir = Path.Combine(Reference.TempDir(), "a34");
-        var (code, _, err) = CliRunner.Run("render", Path.Combine(Repo(), "scenes", "paper-3.4-bunny-analysis.json"), "-o", outDir, "--formats", "npy,aov", "--quiet");
+        var (code, _, err) = CliRunner.Run("render", Path.Combine(Repo(), "scenes", "paper-3.4-bunny-analysis.json"), "-o", outDir,
+            "--formats", "npy,aov", "--quiet");
         Assert.True(code == 0, err);
         var folder = RenderFolder.Open(outDir);
         var aovs = RenderAovs.Open(folder);
@@ -104,7 +110,12 @@ public class ExperimentsTests
         // Highlight: reconstruction − truth follows light ÷ white (flat for a white board lit by the light itself).
         var high = surface.Where(p => p.Region == PixelRegion.Highlight).MaxBy(p => p.Radiance.Sum())!;
         var error = high.Reflectance.Zip(high.Truth, (r, t) => r - t).ToArray();
-        var lightOverWhite = Enumerable.Range(0, error.Length).Select(b => rec.White.Spectrum[b] > 0 ? SpectralRenderer.Spectra.SpectrumLibrary.Resolve("D65").Mean(folder.Image.Grid.Lower(b), folder.Image.Grid.Upper(b)) / rec.White.Spectrum[b] : 0).ToArray();
+        var lightOverWhite = Enumerable.Range(0, error.Length)
+            .Select(b => rec.White.Spectrum[b] > 0
+                ? SpectralRenderer.Spectra.SpectrumLibrary.Resolve("D65")
+                    .Mean(folder.Image.Grid.Lower(b), folder.Image.Grid.Upper(b)) / rec.White.Spectrum[b]
+                : 0)
+            .ToArray();
         double gfc = SpectralMetrics.Gfc(error, lightOverWhite);
         Assert.True(gfc >= 0.99, $"highlight ({high.X},{high.Y}): GFC of the error with light/white = {gfc}");
     }

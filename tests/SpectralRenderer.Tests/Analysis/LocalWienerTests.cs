@@ -44,7 +44,8 @@ public class LocalWienerTests(ITestOutputHelper output)
         var l = estimator.Local!;
         output.WriteLine($"{preset}: mean ColorChecker RMSE, 380–780 / 400–700 / 720–780 nm");
         output.WriteLine($"  wiener:       {wiener.All:F4} / {wiener.Visible:F4} / {wiener.Nir:F4}");
-        output.WriteLine($"  wiener-local: {local.All:F4} / {local.Visible:F4} / {local.Nir:F4}  (h_c {l.ChromaticityWidth}, h_I {l.IntensityWidth}, β {l.Shrinkage}; training leave-one-out {l.LeaveOneOutRmse:F4})");
+        output.WriteLine($"  wiener-local: {local.All:F4} / {local.Visible:F4} / {local.Nir:F4}  (h_c {l.ChromaticityWidth}, h_I "
+            + $"{l.IntensityWidth}, β {l.Shrinkage}; training leave-one-out {l.LeaveOneOutRmse:F4})");
         Assert.True(local.All < wiener.All && local.Visible < wiener.Visible && local.Nir < wiener.Nir, $"{local} vs {wiener}");
         Assert.True(local.All <= atMost, $"all {local.All}");
         Assert.True(local.Visible <= bar, $"visible {local.Visible}");
@@ -94,14 +95,16 @@ public class LocalWienerTests(ITestOutputHelper output)
             var k = new double[n, n];
             for (int j = 0; j < t; j++)
                 for (int p = 0; p < n; p++)
-                    for (int r = 0; r < n; r++) k[p, r] += (1 - beta) * w[j] * (Rawtoaces.Samples[j][p] - mu[p]) * (Rawtoaces.Samples[j][r] - mu[r]) / sw;
+                    for (int r = 0; r < n; r++)
+                        k[p, r] += (1 - beta) * w[j] * (Rawtoaces.Samples[j][p] - mu[p]) * (Rawtoaces.Samples[j][r] - mu[r]) / sw;
             k = Dense.Add(k, Dense.Multiply(Dense.Identity(n, beta), kr));
             var kat = Dense.Multiply(k, Dense.Transpose(a));
             var m = Dense.Multiply(a, kat);
             for (int i = 0; i < c; i++) m[i, i] += noise[i];
             var g = Dense.SolveRight(kat, m);
             var amu = Dense.Multiply(a, mu);
-            var reference = Enumerable.Range(0, n).Select(b => mu[b] + Enumerable.Range(0, c).Sum(i => g[b, i] * (sf[i] - amu[i]))).ToArray();
+            var reference = Enumerable.Range(0, n).Select(b => mu[b] + Enumerable.Range(0, c).Sum(i => g[b, i] * (sf[i] - amu[i])))
+                .ToArray();
 
             var got = new double[n];
             local.Apply(sf.Select(v => (float)v).ToArray(), got);
@@ -127,7 +130,8 @@ public class LocalWienerTests(ITestOutputHelper output)
         for (int i = 0; i < c; i++) for (int b = 0; b < n; b++) scaled[i, b] *= Math.Pow(10, i - 2);
         var local = LocalWiener.Build(a, Rawtoaces, new double[c]);
         var localScaled = LocalWiener.Build(scaled, Rawtoaces, new double[c]);
-        Assert.Equal((local.ChromaticityWidth, local.IntensityWidth, local.Shrinkage), (localScaled.ChromaticityWidth, localScaled.IntensityWidth, localScaled.Shrinkage));
+        Assert.Equal((local.ChromaticityWidth, local.IntensityWidth, local.Shrinkage),
+            (localScaled.ChromaticityWidth, localScaled.IntensityWidth, localScaled.Shrinkage));
         double wideDiff = 0, scaleDiff = 0;
         foreach (var patch in Chart)
         {
@@ -138,7 +142,11 @@ public class LocalWienerTests(ITestOutputHelper output)
             wiener.Apply(s, y);
             local.Apply(s, z);
             localScaled.Apply(ss, u);
-            for (int b = 0; b < n; b++) { wideDiff = Math.Max(wideDiff, Math.Abs(x[b] - y[b])); scaleDiff = Math.Max(scaleDiff, Math.Abs(z[b] - u[b])); }
+            for (int b = 0; b < n; b++)
+            {
+                wideDiff = Math.Max(wideDiff, Math.Abs(x[b] - y[b]));
+                scaleDiff = Math.Max(scaleDiff, Math.Abs(z[b] - u[b]));
+            }
         }
         output.WriteLine($"infinitely wide vs wiener {wideDiff:E2}; channels scaled by 10^(i−2) {scaleDiff:E2}");
         Assert.True(wideDiff < 1e-6, $"{wideDiff}");

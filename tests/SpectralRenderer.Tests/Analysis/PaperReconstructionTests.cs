@@ -59,7 +59,8 @@ public class PaperReconstructionTests
         for (int i = 0; i < 20; i++) h = Vector3.Normalize(l + Vector3.Normalize(camera.Position - h));
         string Px(Vector3 p, string label) { var q = camera.Project(p)!.Value; return $"{(int)q.X},{(int)q.Y}:{label}"; }
         (code, var stdout, err) = CliRunner.Run("reconstruct", outDir, "--white-region", "0,0,20,10",
-            "--pixel", Px(l, "lit"), "--pixel", Px(Vector3.Normalize(new Vector3(0, -0.95f, 0.3f)), "shadow"), "--pixel", Px(h, "highlight"), "--csv");
+            "--pixel", Px(l, "lit"), "--pixel", Px(Vector3.Normalize(new Vector3(0, -0.95f, 0.3f)), "shadow"), "--pixel",
+                Px(h, "highlight"), "--csv");
         Assert.True(code == 0, err);
         var metrics = stdout.Trim().Split('\n').Skip(1).Select(r => r.Split(',')).Where(r => r[0] == "pixel").ToDictionary(r => r[1]);
         Assert.Equal("lit", metrics["lit"][5]);
@@ -100,7 +101,14 @@ public class PaperReconstructionTests
     static (double Alpha, double Beta) TwoComponentFit(double[] v, double[] a, double[] b)
     {
         double aa = 0, ab = 0, bb = 0, va = 0, vb = 0;
-        for (int i = 0; i < v.Length; i++) { aa += a[i] * a[i]; ab += a[i] * b[i]; bb += b[i] * b[i]; va += v[i] * a[i]; vb += v[i] * b[i]; }
+        for (int i = 0; i < v.Length; i++)
+        {
+            aa += a[i] * a[i];
+            ab += a[i] * b[i];
+            bb += b[i] * b[i];
+            va += v[i] * a[i];
+            vb += v[i] * b[i];
+        }
         double det = aa * bb - ab * ab;
         return ((va * bb - vb * ab) / det, (vb * aa - va * ab) / det);
     }

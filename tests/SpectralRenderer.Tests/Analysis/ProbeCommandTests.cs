@@ -13,7 +13,8 @@ public class ProbeCommandTests
     {
         var dir = AnalysisFolder.Render();
         var image = NpyReader.ReadImage(Path.Combine(dir, "spectral.npy"));
-        var (code, stdout, err) = CliRunner.Run("probe", dir, "--pixel", "8,5:ball", "--pixel", "1,1:board, corner", "--pixel", "15,11", "--csv");
+        var (code, stdout, err) =
+            CliRunner.Run("probe", dir, "--pixel", "8,5:ball", "--pixel", "1,1:board, corner", "--pixel", "15,11", "--csv");
         Assert.True(code == 0, err);
         Assert.Equal("", err);
         var lines = stdout.TrimEnd('\n').Split('\n');
@@ -66,6 +67,7 @@ public class ProbeCommandTests
     {
         var (code, _, err) = CliRunner.Run("probe", "/nonexistent/render", "--pixel", "1,1");
         Assert.Equal(2, code);
-        Assert.Equal("spectral probe: /nonexistent/render: no such render folder (hint: give the -o folder of a 'spectral render' run)\n", err.Replace("\r", ""));
+        Assert.Equal("spectral probe: /nonexistent/render: no such render folder (hint: give the -o folder of a 'spectral render' run)\n",
+            err.Replace("\r", ""));
     }
 }

@@ -95,12 +95,14 @@ public class ReconstructionTests
     [Theory]
     [InlineData(new[] { "--white-object", "bord" }, "--white-object: no object 'bord' in", "did you mean 'board'?")]
     [InlineData(new[] { "--white-object", "board", "--pixel", "16,3" }, "--pixel: 16,3 is outside the 16×12 image", "x in 0–15")]
-    [InlineData(new[] { "--white-region", "0,0,3,13" }, "--white-region: 0,0,3,13 is not a non-empty rectangle inside the 16×12 image", "X1 and Y1 are exclusive (as for --crop)")]
+    [InlineData(new[] { "--white-region", "0,0,3,13" }, "--white-region: 0,0,3,13 is not a non-empty rectangle inside the 16×12 image",
+        "X1 and Y1 are exclusive (as for --crop)")]
     [InlineData(new[] { "--white-region", "3,0,3,5" }, "--white-region: 3,0,3,5 is not a non-empty rectangle", "0 ≤ X0 < X1 ≤ 16")]
     [InlineData(new[] { "--white-region", "0,0,3" }, "'0,0,3' is not X0,Y0,X1,Y1", "four whole pixel numbers")]
     [InlineData(new[] { "--white-region", "0,11,4,12" }, "region 0,11,4,12 (columns 0–3, rows 11–11) is black", "must be lit")]
     [InlineData(new string[0], "give exactly one of --white-object NAME and --white-region", "--white-object board")]
-    [InlineData(new[] { "--white-object", "board", "--white-objet", "x" }, "unknown option '--white-objet'", "did you mean '--white-object'?")]
+    [InlineData(new[] { "--white-object", "board", "--white-objet", "x" }, "unknown option '--white-objet'",
+        "did you mean '--white-object'?")]
     public void Bad_input_gives_one_line_and_exit_2(string[] options, string what, string hint)
     {
         var (dir, _, _) = AnalysisFolder.Synthetic();

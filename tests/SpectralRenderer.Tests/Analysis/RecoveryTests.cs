@@ -5,7 +5,8 @@ using SpectralRenderer.Tests.Cli;
 
 namespace SpectralRenderer.Tests.Analysis;
 
-/// <summary>`spectral recover` on the §3.1 chart: the issue's RMSE bars, multispectral against RGB, an exactly invertible sensor, white calibration.</summary>
+/// <summary>`spectral recover` on the §3.1 chart: the issue's RMSE bars, multispectral against RGB, an exactly invertible sensor, white
+/// calibration.</summary>
 public class RecoveryTests
 {
     static string Repo()
@@ -108,7 +109,8 @@ public class RecoveryTests
         var on = Recover("mosaic-16", "on");
         var rgb = Recover("nikon-d5100", "on");
         // The pseudo-inverse has no prior and amplifies noise through 16 narrow channels; the other methods do not.
-        foreach (var m in Methods.Where(m => m != "pinv")) Assert.True(on[(m, "colorchecker")].Rmse < rgb[(m, "colorchecker")].Rmse, $"{m}: mosaic-16 vs RGB with noise");
+        foreach (var m in Methods.Where(m => m != "pinv"))
+            Assert.True(on[(m, "colorchecker")].Rmse < rgb[(m, "colorchecker")].Rmse, $"{m}: mosaic-16 vs RGB with noise");
         Assert.True(on[("wiener", "colorchecker")].Rmse >= off[("wiener", "colorchecker")].Rmse - 1e-4);
         // Wiener is the least-squares-optimal linear estimate: with noise it is not worse than the pseudo-inverse.
         Assert.True(on[("wiener", "colorchecker")].Rmse <= on[("pinv", "colorchecker")].Rmse);
@@ -129,12 +131,15 @@ public class RecoveryTests
             var score = atMost.Keys.ToDictionary(s => s, s => Recover(s, noise, "--method", "wiener,wiener-local"));
             foreach (var (sensor, limit) in atMost)
             {
-                double wiener = score[sensor][("wiener", "colorchecker")].Rmse, local = score[sensor][("wiener-local", "colorchecker")].Rmse;
+                double wiener = score[sensor][("wiener", "colorchecker")].Rmse,
+                    local = score[sensor][("wiener-local", "colorchecker")].Rmse;
                 Assert.True(local < wiener, $"{sensor}, noise {noise}: wiener-local {local} vs wiener {wiener}");
                 if (noise == "off") Assert.True(local <= limit, $"{sensor}: wiener-local {local}");
             }
-            Assert.True(score["wheel-6"][("wiener-local", "colorchecker")].Rmse < score["nikon-d5100"][("wiener-local", "colorchecker")].Rmse);
-            Assert.True(score["mosaic-16"][("wiener-local", "colorchecker")].Rmse < score["nikon-d5100"][("wiener-local", "colorchecker")].Rmse);
+            Assert.True(score["wheel-6"][("wiener-local", "colorchecker")].Rmse < score["nikon-d5100"][("wiener-local", "colorchecker")]
+                .Rmse);
+            Assert.True(score["mosaic-16"][("wiener-local", "colorchecker")].Rmse < score["nikon-d5100"][("wiener-local", "colorchecker")]
+                .Rmse);
         }
     }
 
@@ -144,11 +149,13 @@ public class RecoveryTests
         // 20 box channels, one per band of 380:780:20, every channel at every pixel: A is diagonal and invertible, so the
         // pseudo-inverse returns every band of every reflectance exactly (an analytic case, whatever the prior).
         var sensor = Path.Combine(ProductChart.Value, "boxes.json");
-        var channels = string.Join(",\n", Enumerable.Range(0, 20).Select(b => $$"""{ "name": "B{{b:00}}", "box": [{{380 + 20 * b}}, {{400 + 20 * b}}] }"""));
+        var channels = string.Join(",\n",
+            Enumerable.Range(0, 20).Select(b => $$"""{ "name": "B{{b:00}}", "box": [{{380 + 20 * b}}, {{400 + 20 * b}}] }"""));
         File.WriteAllText(sensor, $$"""{ "name": "boxes", "arrangement": "full", "channels": [ {{channels}} ] }""");
         var cam = Path.Combine(ProductChart.Value, "camera-boxes");
         // A cube of band products read as values (--signals bands), the case of a cube that is not a render.
-        var (code, _, err) = CliRunner.Run("camera", ProductChart.Value, "--sensor", sensor, "--noise", "off", "-o", cam, "--signals", "bands",
+        var (code, _, err) =
+            CliRunner.Run("camera", ProductChart.Value, "--sensor", sensor, "--noise", "off", "-o", cam, "--signals", "bands",
             "--off-axis", "none", "--psf", "none");   // each pixel its own band products: no lens
         Assert.True(code == 0, err);
         (code, var csv, err) = CliRunner.Run("recover", cam, "--method", "pinv,wiener", "--csv");
@@ -169,17 +176,20 @@ public class RecoveryTests
         var root = Reference.TempDir();
         File.WriteAllText(Path.Combine(root, "scene.json"), AnalysisFolder.Scene);
         var dir = Path.Combine(root, "out");
-        var (rc, _, rerr) = CliRunner.Run("render", Path.Combine(root, "scene.json"), "-o", dir, "--width", "96", "--height", "72", "--quiet", "--formats", "npy,aov");
+        var (rc, _, rerr) = CliRunner.Run("render", Path.Combine(root, "scene.json"), "-o", dir, "--width", "96", "--height", "72",
+            "--quiet", "--formats", "npy,aov");
         Assert.True(rc == 0, rerr);
         var cam = Path.Combine(dir, "cam");
-        var (code, _, err) = CliRunner.Run("camera", dir, "--sensor", "wheel-6", "--noise", "off", "-o", cam);   // no demosaicking across the ball's edge
+        // no demosaicking across the ball's edge
+        var (code, _, err) = CliRunner.Run("camera", dir, "--sensor", "wheel-6", "--noise", "off", "-o", cam);
         Assert.True(code == 0, err);
         var inv = CultureInfo.InvariantCulture;
         Dictionary<string, (double Rmse, double Gfc)> Rmse(params string[] extra)
         {
             var (c, csv, e) = CliRunner.Run(["recover", cam, "--method", "wiener", "--range", "400:700", "--csv", .. extra]);
             Assert.True(c == 0, e);
-            return csv.Trim().Split('\n').Skip(1).Select(l => l.Split(',')).ToDictionary(f => f[1], f => (double.Parse(f[3], inv), double.Parse(f[4], inv)));
+            return csv.Trim().Split('\n').Skip(1).Select(l => l.Split(','))
+                .ToDictionary(f => f[1], f => (double.Parse(f[3], inv), double.Parse(f[4], inv)));
         }
         var plain = Rmse();
         var calibrated = Rmse("--white-object", "board");

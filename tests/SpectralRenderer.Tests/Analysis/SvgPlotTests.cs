@@ -11,7 +11,8 @@ public class SvgPlotTests
     [Fact]
     public void Plot_parses_as_XML_with_one_polyline_per_series()
     {
-        var plot = new SvgPlot { Title = "Spectra <of> \"pixels\" & more", XLabel = "wavelength (nm)", YLabel = "radiance (W·m⁻²·sr⁻¹·nm⁻¹)" };
+        var plot =
+            new SvgPlot { Title = "Spectra <of> \"pixels\" & more", XLabel = "wavelength (nm)", YLabel = "radiance (W·m⁻²·sr⁻¹·nm⁻¹)" };
         double[] x = [390, 410, 430, 450];
         plot.Add("lit & <bright>", x, [0.1, 0.2, 0.3, 0.25]);
         plot.Add("shadow", x, [0.01, 0.02, 0.03, 0.025]);

@@ -13,7 +13,8 @@ public class LayeringTests
 {
     const string R = "SpectralRenderer.";
 
-    /// <summary>The arrows: a layer → the layers it may use directly. A namespace inside a layer's (a.b.c in a.b) belongs to it unless listed itself.</summary>
+    /// <summary>The arrows: a layer → the layers it may use directly. A namespace inside a layer's (a.b.c in a.b) belongs to it unless
+    /// listed itself.</summary>
     public static readonly IReadOnlyDictionary<string, string[]> Allowed = new Dictionary<string, string[]>(StringComparer.Ordinal)
     {
         [R + "Diagnostics"] = [],
@@ -29,7 +30,8 @@ public class LayeringTests
         [R + "Sensor"] = ["Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Analysis"] = ["Output", "Sensor", "Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Pipeline"] = ["Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Geometry", "Spectra", "Color", "Diagnostics"],
-        [R + "Lighting"] = ["Analysis", "Sensor", "Pipeline", "Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra", "Color", "Diagnostics"],
+        [R + "Lighting"] = ["Analysis", "Sensor", "Pipeline", "Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra",
+            "Color", "Diagnostics"],
         [R + "Distributed"] = ["Pipeline", "Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Cli"] = ["*"],
         [R + "Native"] = ["Distributed", "Lighting", "Analysis", "Sensor", "Pipeline", "Output", "Rendering", "Scenes.Loading", "Scenes",
@@ -41,7 +43,8 @@ public class LayeringTests
         rules.Keys.Where(k => ns == k || ns.StartsWith(k + ".", StringComparison.Ordinal)).MaxBy(k => k.Length);
 
     /// <summary>Every edge of <paramref name="graph"/> the rules do not allow, and every namespace of ours without a layer.</summary>
-    public static List<string> Violations(IReadOnlyDictionary<string, SortedSet<string>> graph, IReadOnlyDictionary<string, string[]> rules, string root = "SpectralRenderer")
+    public static List<string> Violations(IReadOnlyDictionary<string, SortedSet<string>> graph, IReadOnlyDictionary<string, string[]> rules,
+        string root = "SpectralRenderer")
     {
         var bad = new List<string>();
         foreach (var (from, targets) in graph.OrderBy(p => p.Key, StringComparer.Ordinal))
@@ -57,7 +60,8 @@ public class LayeringTests
                 if (target == layer) continue;
                 string? targetShort = target is null ? null : target[(root.Length + 1)..];
                 if (ok.Contains("*") || (targetShort is not null && ok.Contains(targetShort))) continue;
-                bad.Add($"{from} → {to}: {layer[(root.Length + 1)..]} may use only {(ok.Length == 0 ? "nothing of ours" : string.Join(", ", ok))}");
+                bad.Add($"{from} → {to}: {layer[(root.Length + 1)..]} may use only "
+                    + $"{(ok.Length == 0 ? "nothing of ours" : string.Join(", ", ok))}");
             }
         }
         return bad;
@@ -77,7 +81,8 @@ public class LayeringTests
         Assert.NotNull(d);
         var src = Path.Combine(d.FullName, "src");
         var files = Directory.EnumerateFiles(src, "*.cs", SearchOption.AllDirectories)
-            .Where(f => !f.Contains($"{Path.DirectorySeparatorChar}obj{Path.DirectorySeparatorChar}") && !f.Contains($"{Path.DirectorySeparatorChar}bin{Path.DirectorySeparatorChar}"));
+            .Where(f => !f.Contains($"{Path.DirectorySeparatorChar}obj{Path.DirectorySeparatorChar}")
+                && !f.Contains($"{Path.DirectorySeparatorChar}bin{Path.DirectorySeparatorChar}"));
         return SourceDependencies.Read(files);
     }
 
@@ -113,12 +118,16 @@ public class LayeringTests
             "SpectralRenderer.Scenes.OutputProducts.Png", "SpectralRenderer.Spectra"], graph["SpectralRenderer.Imaging"]);
         var bad = Violations(graph, Allowed);
         Assert.Equal(3, bad.Count);
-        Assert.Contains(bad, b => b.StartsWith("SpectralRenderer.Imaging → SpectralRenderer.Rendering.Renderer.TileSize", StringComparison.Ordinal));
-        Assert.Contains(bad, b => b.StartsWith("SpectralRenderer.Imaging → SpectralRenderer.Scenes.OutputProducts.Png", StringComparison.Ordinal));
-        Assert.Contains(bad, b => b.StartsWith("SpectralRenderer.Imaging → SpectralRenderer.Output.RenderManifest", StringComparison.Ordinal));
+        Assert.Contains(bad,
+            b => b.StartsWith("SpectralRenderer.Imaging → SpectralRenderer.Rendering.Renderer.TileSize", StringComparison.Ordinal));
+        Assert.Contains(bad,
+            b => b.StartsWith("SpectralRenderer.Imaging → SpectralRenderer.Scenes.OutputProducts.Png", StringComparison.Ordinal));
+        Assert.Contains(bad,
+            b => b.StartsWith("SpectralRenderer.Imaging → SpectralRenderer.Output.RenderManifest", StringComparison.Ordinal));
     }
 
-    /// <summary>The name of namespace <paramref name="to"/> as written inside <paramref name="from"/>: relative to the namespace both are in.</summary>
+    /// <summary>The name of namespace <paramref name="to"/> as written inside <paramref name="from"/>: relative to the namespace both are
+    /// in.</summary>
     static string Relative(string to, string from)
     {
         string[] a = from.Split('.'), b = to.Split('.');
@@ -168,7 +177,8 @@ public class LayeringTests
         // source reader could not see such an edge: the rules must allow it.
         foreach (var (layer, ok) in Allowed)
             foreach (var outer in Allowed.Keys.Where(k => layer.StartsWith(k + ".", StringComparison.Ordinal)))
-                Assert.True(ok.Contains("*") || ok.Contains(outer[R.Length..]), $"{layer} must be allowed to use {outer}, which encloses it");
+                Assert.True(ok.Contains("*") || ok.Contains(outer[R.Length..]),
+                    $"{layer} must be allowed to use {outer}, which encloses it");
     }
 
     const string Layers = "SpectralRenderer.Tests.Architecture.Probe.Layers";

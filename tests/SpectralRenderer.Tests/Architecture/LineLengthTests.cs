@@ -3,9 +3,9 @@ using System.Text.RegularExpressions;
 namespace SpectralRenderer.Tests.Architecture;
 
 /// <summary>
-/// .editorconfig's max_line_length for C# is the longest line the code keeps: no line of a .cs file under src/ or tests/
-/// (obj/, bin/ and the bad-input corpus aside) is longer, counted in characters (Unicode scalar values; the tree has no
-/// tabs). .ci/run checks the same with grep beside `dotnet format`.
+/// .editorconfig's max_line_length for C# (140) holds: no line of a .cs file under src/ or tests/ (obj/, bin/ and the
+/// bad-input corpus aside) is longer, counted in characters (Unicode scalar values; the tree has no tabs). .ci/run checks
+/// the same with grep beside `dotnet format`; scripts/wrap-lines.py wraps a longer line.
 /// </summary>
 public partial class LineLengthTests
 {
@@ -36,6 +36,8 @@ public partial class LineLengthTests
     public void No_line_of_the_code_is_longer_than_the_editorconfig_limit()
     {
         int limit = Limit();
+        // Issue 38 restored the limit of 140 after 4b9ed7f had raised it to fit the code; it is not raised again.
+        Assert.True(limit <= 140, $".editorconfig's max_line_length is {limit}: the rule is 140 at most; wrap the long lines instead");
         var files = SourceFiles().ToList();
         Assert.True(files.Count > 200, $"only {files.Count} .cs files found under src/ and tests/");
         var over = new List<string>();

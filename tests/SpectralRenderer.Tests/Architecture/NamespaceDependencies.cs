@@ -125,8 +125,16 @@ public static class NamespaceDependencies
     /// <summary>Decodes signatures, recording the namespace of every type it meets.</summary>
     sealed class Collector(MetadataReader md, HashSet<string> seen) : ISignatureTypeProvider<int, object?>
     {
-        public int GetTypeFromDefinition(MetadataReader reader, TypeDefinitionHandle handle, byte rawTypeKind) { seen.Add(NamespaceOf(md, handle)); return 0; }
-        public int GetTypeFromReference(MetadataReader reader, TypeReferenceHandle handle, byte rawTypeKind) { seen.Add(NamespaceOf(md, handle)); return 0; }
+        public int GetTypeFromDefinition(MetadataReader reader, TypeDefinitionHandle handle, byte rawTypeKind)
+        {
+            seen.Add(NamespaceOf(md, handle));
+            return 0;
+        }
+        public int GetTypeFromReference(MetadataReader reader, TypeReferenceHandle handle, byte rawTypeKind)
+        {
+            seen.Add(NamespaceOf(md, handle));
+            return 0;
+        }
         public int GetTypeFromSpecification(MetadataReader reader, object? context, TypeSpecificationHandle handle, byte rawTypeKind) =>
             md.GetTypeSpecification(handle).DecodeSignature(this, context);
         public int GetPrimitiveType(PrimitiveTypeCode typeCode) => 0;

@@ -70,7 +70,8 @@ public static partial class SourceDependencies
         }
     }
 
-    /// <summary>The table's namespaces and every namespace enclosing one of them (SpectralRenderer.Scenes.Loading → SpectralRenderer.Scenes, SpectralRenderer).</summary>
+    /// <summary>The table's namespaces and every namespace enclosing one of them (SpectralRenderer.Scenes.Loading →
+    /// SpectralRenderer.Scenes, SpectralRenderer).</summary>
     public static HashSet<string> Namespaces(IReadOnlyDictionary<string, string[]> rules)
     {
         var set = new HashSet<string>(StringComparer.Ordinal);

@@ -27,7 +27,8 @@ public class EndToEndTests
     public void Paper_scheme_render_reproduces_the_20_band_reference_and_its_delta_E()
     {
         var outDir = Path.Combine(Reference.TempDir(), "chart");
-        var (code, _, err) = CliRunner.Run("render", Scene(), "-o", outDir, "--width", "240", "--height", "160", "--integration", "paper", "--quiet");
+        var (code, _, err) =
+            CliRunner.Run("render", Scene(), "-o", outDir, "--width", "240", "--height", "160", "--integration", "paper", "--quiet");
         Assert.True(code == 0, err);
         (code, var stdout, err) = CliRunner.Run("colorcheck", outDir, "--csv");
         Assert.True(code == 0, err);
@@ -48,7 +49,8 @@ public class EndToEndTests
         var outDir = Path.Combine(Reference.TempDir(), "chart");
         var (code, _, err) = CliRunner.Run("render", Scene(), "-o", outDir, "--width", "180", "--height", "120", "--quiet");
         Assert.True(code == 0, err);
-        foreach (var f in new[] { "preview.png", "bands.png", "bands/band-08-520-540nm.png", "spectral.exr", "spectral.hdr", "spectral.img", "spectral.npy", "wavelengths.csv", "object-id.png", "render.json" })
+        foreach (var f in new[] { "preview.png", "bands.png", "bands/band-08-520-540nm.png", "spectral.exr", "spectral.hdr", "spectral.img",
+            "spectral.npy", "wavelengths.csv", "object-id.png", "render.json" })
             Assert.True(File.Exists(Path.Combine(outDir, f)), f);
         Assert.Equal(20, Directory.GetFiles(Path.Combine(outDir, "bands"), "band-*.png").Length);
         var json = JsonNode.Parse(File.ReadAllText(Path.Combine(outDir, "render.json")))!;
@@ -68,8 +70,10 @@ public class EndToEndTests
         for (int p = 0; p < 24; p++)
         {
             var lab = CieLab(rows[p].D("X"), rows[p].D("Y"), rows[p].D("Z"), white);
-            var d = SpectralRenderer.Color.DeltaE2000.Between(lab, new SpectralRenderer.Color.Lab(reference[p].D("L"), reference[p].D("a"), reference[p].D("b")));
-            Assert.True(Math.Abs(d - rows[p].D("dE00")) < 1e-3, $"patch {p + 1}: colorcheck says ΔE00 {rows[p]["dE00"]}, the reference table gives {d:F4}");
+            var d = SpectralRenderer.Color.DeltaE2000.Between(lab,
+                new SpectralRenderer.Color.Lab(reference[p].D("L"), reference[p].D("a"), reference[p].D("b")));
+            Assert.True(Math.Abs(d - rows[p].D("dE00")) < 1e-3,
+                $"patch {p + 1}: colorcheck says ΔE00 {rows[p]["dE00"]}, the reference table gives {d:F4}");
             de.Add(d);
         }
         // Exact integration (the default): every patch's pixel colour within ΔE00 0.02 of the 1 nm reference (issue 11).
@@ -77,7 +81,8 @@ public class EndToEndTests
         // The summary line states those figures (to its 3 decimals), whatever they become.
         (code, stdout, _) = CliRunner.Run("colorcheck", outDir);
         Assert.Equal(0, code);
-        var m = System.Text.RegularExpressions.Regex.Match(stdout, @"ΔE00 against 1 nm: mean (\d+\.\d{3}), max (\d+\.\d{3}) over 24 patches");
+        var m =
+            System.Text.RegularExpressions.Regex.Match(stdout, @"ΔE00 against 1 nm: mean (\d+\.\d{3}), max (\d+\.\d{3}) over 24 patches");
         Assert.True(m.Success, stdout);
         Assert.Equal(de.Average(), double.Parse(m.Groups[1].Value, CultureInfo.InvariantCulture), 0.0011);
         Assert.Equal(de.Max(), double.Parse(m.Groups[2].Value, CultureInfo.InvariantCulture), 0.0011);
@@ -131,7 +136,8 @@ public class BenchCommandTests
         File.WriteAllText(scene, """
         { "camera": { "position": [0, 1, 6], "look_at": [0, 0.5, 0], "width": 10, "height": 10 },
           "materials": { "m": { "diffuse": 0.5, "mirror": 0.5 } },
-          "lights": [ { "type": "point", "position": [2, 4, 3], "spectrum": "D65" }, { "type": "directional", "direction": [0, -1, 0], "spectrum": "A" } ],
+          "lights": [ { "type": "point", "position": [2, 4, 3], "spectrum": "D65" }, { "type": "directional", "direction": [0, -1, 0],
+            "spectrum": "A" } ],
           "objects": [ { "type": "sphere", "center": [0, 1, 0], "radius": 1, "material": "m" }, { "type": "plane", "material": "m" } ],
           "max_depth": 1 }
         """);
@@ -142,7 +148,8 @@ public class BenchCommandTests
         Assert.Equal("40", kv["width"]);
         Assert.Equal("30", kv["height"]);
         Assert.Equal(1200, long.Parse(kv["primary"]));
-        // Every primary ray hits the floor or the sphere: at most one mirror ray and two shadow rays per hit, and at most two per mirror hit.
+        // Every primary ray hits the floor or the sphere: at most one mirror ray and two shadow rays per hit, and at most two per mirror
+        // hit.
         long secondary = long.Parse(kv["secondary"]), shadow = long.Parse(kv["shadow"]);
         Assert.True(secondary > 0 && secondary <= 1200, $"{secondary} secondary");
         Assert.True(shadow > 1200 && shadow <= 2 * (1200 + secondary), $"{shadow} shadow");

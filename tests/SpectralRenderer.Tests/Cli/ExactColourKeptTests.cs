@@ -71,7 +71,8 @@ public class ExactColourKeptTests
         for (int i = 0; i < 3; i++)
         {
             shards.Add(Path.Combine(dir, $"shard-{i}"));
-            var (code, _, err) = CliRunner.Run(["render", ShardMergeTests.Scene("paper-3.1-colorchecker-d65.json"), "-o", shards[^1], "--quiet",
+            var (code, _, err) =
+                CliRunner.Run(["render", ShardMergeTests.Scene("paper-3.1-colorchecker-d65.json"), "-o", shards[^1], "--quiet",
                 .. Size, "--formats", "npy,aov", "--shard", $"{i}/3"]);
             Assert.True(code == 0, err);
         }

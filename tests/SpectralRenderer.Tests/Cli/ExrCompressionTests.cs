@@ -31,7 +31,8 @@ public class ExrCompressionTests
         foreach (var (choice, attribute) in new[] { ("zip", 3), ("zip-all", 3), ("none", 0) })
         {
             var dir = Reference.TempDir();
-            var (code, _, err) = CliRunner.Run("render", Scene(), "-o", dir, "--formats", "exr,npy", "--exr-compression", choice, "--quiet");
+            var (code, _, err) =
+                CliRunner.Run("render", Scene(), "-o", dir, "--formats", "exr,npy", "--exr-compression", choice, "--quiet");
             Assert.True(code == 0, err);
             var exr = ExrReader.Read(Path.Combine(dir, "spectral.exr"));
             var npy = NpyReader.ReadImage(Path.Combine(dir, "spectral.npy"), exr.Image.Grid);
@@ -58,7 +59,8 @@ public class ExrCompressionTests
         var path = Scene();
         var text = File.ReadAllText(path).TrimEnd().TrimEnd('}') + ",\n  \"output\": { \"exr_compression\": \"zip-all\" } }";
         File.WriteAllText(path, text);
-        Assert.Equal(SpectralRenderer.Scenes.ExrCompressionChoice.ZipAll, SpectralRenderer.Scenes.Loading.SceneLoader.Load(path).Output.ExrCompression);
+        Assert.Equal(SpectralRenderer.Scenes.ExrCompressionChoice.ZipAll,
+            SpectralRenderer.Scenes.Loading.SceneLoader.Load(path).Output.ExrCompression);
         File.WriteAllText(path, text.Replace("\"zip-all\"", "\"lzw\""));
         var e = Assert.Throws<SpectralRenderer.Diagnostics.InputException>(() => SpectralRenderer.Scenes.Loading.SceneLoader.Load(path));
         int line = text.Split('\n').Length;

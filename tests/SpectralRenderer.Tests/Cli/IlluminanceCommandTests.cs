@@ -105,7 +105,8 @@ public class IlluminanceCommandTests(Xunit.Abstractions.ITestOutputHelper output
             """;
         var dir = Reference.TempDir();
         File.WriteAllText(Path.Combine(dir, "lum.ies"), ies);
-        var json = Scene($$"""{ "type": "goniometric", "position": [0, {{h}}, 0], "file": "{{Path.Combine(dir, "lum.ies")}}", "spectrum": "D65" }""");
+        var json = Scene(
+            $$"""{ "type": "goniometric", "position": [0, {{h}}, 0], "file": "{{Path.Combine(dir, "lum.ies")}}", "spectrum": "D65" }""");
         var rows = Run(json, "-1.5,0,1.5:3,0,0:0,0,-3", "4,4", out _);
         Assert.Equal(16, rows.Length);
         foreach (var (x, _, z, lx) in rows)

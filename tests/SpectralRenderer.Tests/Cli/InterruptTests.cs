@@ -28,7 +28,8 @@ public class InterruptTests
         var err = p.StandardError.ReadToEndAsync();
         // Wait until the render's staging folder exists beside OUTDIR (the scene is loaded and rendering has begun), then interrupt.
         var clock = Stopwatch.StartNew();
-        while (!Directory.EnumerateDirectories(dir).Any(d => Path.GetFileName(d).StartsWith(".out.render-", StringComparison.Ordinal)) && clock.Elapsed.TotalSeconds < 30 && !p.HasExited)
+        while (!Directory.EnumerateDirectories(dir).Any(d => Path.GetFileName(d).StartsWith(".out.render-", StringComparison.Ordinal))
+            && clock.Elapsed.TotalSeconds < 30 && !p.HasExited)
             Thread.Sleep(20);
         Thread.Sleep(300);
         Assert.False(p.HasExited, "the render finished before it could be interrupted");

@@ -37,8 +37,10 @@ public class SignalTests
         File.WriteAllText(Path.Combine(dir, "s.json"), Scene);
         Ok("render", Path.Combine(dir, "s.json"), "-o", Path.Combine(dir, "r"), "--formats", "png,npy,aov,lights", "--quiet");
         foreach (var i in new[] { "0", "1" })
-            Ok("render", Path.Combine(dir, "s.json"), "--height", "64", "--formats", "npy", "--shard", $"{i}/2", "-o", Path.Combine(dir, i == "0" ? "a" : "b"), "--quiet");
-        File.WriteAllText(Path.Combine(dir, "plan.json"), """{ "scene": "s.json", "axes": [ { "name": "light", "path": "lights[0].spectrum", "values": ["D65", "A"] } ] }""");
+            Ok("render", Path.Combine(dir, "s.json"), "--height", "64", "--formats", "npy", "--shard", $"{i}/2", "-o",
+                Path.Combine(dir, i == "0" ? "a" : "b"), "--quiet");
+        File.WriteAllText(Path.Combine(dir, "plan.json"),
+            """{ "scene": "s.json", "axes": [ { "name": "light", "path": "lights[0].spectrum", "values": ["D65", "A"] } ] }""");
         return dir;
     });
 
@@ -112,7 +114,8 @@ public class SignalTests
             """;
         File.WriteAllText(Path.Combine(d, "one.json"), Scene(1));
         File.WriteAllText(Path.Combine(d, "many.json"), Scene(200));
-        var (code, _, warning) = CliRunner.Run("render", Path.Combine(d, "one.json"), "-o", Path.Combine(d, "one"), "--formats", "npy", "--quiet");
+        var (code, _, warning) =
+            CliRunner.Run("render", Path.Combine(d, "one.json"), "-o", Path.Combine(d, "one"), "--formats", "npy", "--quiet");
         Assert.True(code == 0, warning);
         Assert.Contains("4 camera rays reached the ray budget of 20000 rays", warning);
 
@@ -120,7 +123,8 @@ public class SignalTests
         using var p = Start(null, "render", Path.Combine(d, "many.json"), "-o", o, "--formats", "npy", "--quiet");
         var err = p.StandardError.ReadToEndAsync();
         var wait = Stopwatch.StartNew();
-        while (!Directory.EnumerateDirectories(d).Any(e => Path.GetFileName(e).StartsWith(".o.render-", StringComparison.Ordinal)) && !p.HasExited
+        while (!Directory.EnumerateDirectories(d).Any(e => Path.GetFileName(e).StartsWith(".o.render-", StringComparison.Ordinal))
+            && !p.HasExited
                && wait.Elapsed < TimeSpan.FromSeconds(60))
             Thread.Sleep(10);
         Thread.Sleep(500);   // inside the camera rays' trees
@@ -180,7 +184,8 @@ public class SignalTests
         var err = p.StandardError.ReadToEndAsync();
         var staging = $".{Path.GetFileName(target)}.render-";
         var wait = Stopwatch.StartNew();
-        while (!Directory.EnumerateDirectories(t).Any(e => Path.GetFileName(e).StartsWith(staging, StringComparison.Ordinal)) && !p.HasExited
+        while (!Directory.EnumerateDirectories(t).Any(e => Path.GetFileName(e).StartsWith(staging, StringComparison.Ordinal))
+            && !p.HasExited
                && wait.Elapsed < TimeSpan.FromSeconds(60))
             Thread.Sleep(10);
         Assert.False(p.HasExited, $"{name} ended before the signal: {(p.HasExited ? err.Result : "")}");
@@ -208,7 +213,8 @@ public class SignalTests
         else
         {
             Assert.Equal(before, after);
-            Assert.Matches(name is "recover" or "probe" or "reconstruct" ? "is as it was" : before.Length > 0 ? "unchanged" : "holds no", line);
+            Assert.Matches(name is "recover" or "probe" or "reconstruct" ? "is as it was" : before.Length > 0 ? "unchanged" : "holds no",
+                line);
         }
     }
 }

@@ -19,7 +19,8 @@ public class TruthfulFilesTests
     public void Paper_3_1_preview_patch_codes_equal_the_1nm_reference_within_one()
     {
         var outDir = Path.Combine(Reference.TempDir(), "out");
-        var (code, _, err) = CliRunner.Run("render", Repo("scenes/paper-3.1-colorchecker-d65.json"), "-o", outDir, "--quiet", "--formats", "png,aov");
+        var (code, _, err) =
+            CliRunner.Run("render", Repo("scenes/paper-3.1-colorchecker-d65.json"), "-o", outDir, "--quiet", "--formats", "png,aov");
         Assert.True(code == 0, err);
         var preview = PngReader.Read(Path.Combine(outDir, "preview.png"));
         var ids = PngReader.Read(Path.Combine(outDir, "object-id.png"));
@@ -47,7 +48,8 @@ public class TruthfulFilesTests
     {
         var igea = ModelFiles.Require("igea.ply");
         var outDir = Path.Combine(Reference.TempDir(), "out");
-        var (code, _, err) = CliRunner.Run("render", Repo("scenes/paper-3.3-statue-led-blue.json"), "-o", outDir, "--quiet", "--formats", "png,aov",
+        var (code, _, err) =
+            CliRunner.Run("render", Repo("scenes/paper-3.3-statue-led-blue.json"), "-o", outDir, "--quiet", "--formats", "png,aov",
             "--models", Path.GetDirectoryName(igea)!);
         Assert.True(code == 0, err);
         var preview = PngReader.Read(Path.Combine(outDir, "preview.png"));
@@ -60,7 +62,8 @@ public class TruthfulFilesTests
             if (preview.Samples[3 * i] == 255 || preview.Samples[3 * i + 1] == 255 || preview.Samples[3 * i + 2] == 255) clipped++;
         }
         Assert.True(statue > 10000, $"{statue} statue pixels");
-        Assert.True(clipped <= 0.02 * statue, $"{clipped} of {statue} statue pixels ({100.0 * clipped / statue:F2} %) have a channel at 255");
+        Assert.True(clipped <= 0.02 * statue,
+            $"{clipped} of {statue} statue pixels ({100.0 * clipped / statue:F2} %) have a channel at 255");
     }
 
     static (string Dir, JsonNode Json) RenderSmall(string radiometry)

@@ -51,7 +51,8 @@ public class IlluminantSpectraTests
     {
         // CIE A is Planck's law with c2 = 1.435e-2 m·K at 2848 K, i.e. 2848·c2/1.435e-2 K on the current c2.
         var a = SpectrumLibrary.Resolve("A");
-        var bb = SpectrumLibrary.Resolve("blackbody:" + (2848 * Planck.C2 / 1.435e7).ToString(System.Globalization.CultureInfo.InvariantCulture));
+        var bb = SpectrumLibrary.Resolve("blackbody:"
+            + (2848 * Planck.C2 / 1.435e7).ToString(System.Globalization.CultureInfo.InvariantCulture));
         for (int l = 380; l <= 780; l += 5)
             Assert.Equal(a.Evaluate(l), bb.Evaluate(l), a.Evaluate(l) * 2e-5);
         Assert.Equal(100, SpectrumLibrary.Resolve("blackbody:5000").Evaluate(560), 1e-12);
@@ -93,7 +94,8 @@ public class IlluminantSpectraTests
     }
 }
 
-/// <summary>Sprague interpolation reproduces a quartic exactly (its derivative estimates are fourth-order) and passes through the samples.</summary>
+/// <summary>Sprague interpolation reproduces a quartic exactly (its derivative estimates are fourth-order) and passes through the
+/// samples.</summary>
 public class SpragueTests
 {
     [Fact]

@@ -37,7 +37,8 @@ public class ColorimetryTests(ITestOutputHelper output)
             Assert.True(Math.Abs(xyz.X - r.D("X")) < 1e-6 && Math.Abs(xyz.Y - r.D("Y")) < 1e-6 && Math.Abs(xyz.Z - r.D("Z")) < 1e-6,
                 $"patch {p}: {xyz} vs {r["X"]},{r["Y"]},{r["Z"]}");
             var lab = Lab.FromXyz(xyz, reference.White);
-            Assert.True(Math.Abs(lab.L - r.D("L")) < 1e-6 && Math.Abs(lab.A - r.D("a")) < 1e-6 && Math.Abs(lab.B - r.D("b")) < 1e-6, $"patch {p} Lab {lab}");
+            Assert.True(Math.Abs(lab.L - r.D("L")) < 1e-6 && Math.Abs(lab.A - r.D("a")) < 1e-6 && Math.Abs(lab.B - r.D("b")) < 1e-6,
+                $"patch {p} Lab {lab}");
             var (lr, lg, lb) = RgbSpace.Srgb.Linear(xyz);
             Assert.Equal(r.D("srgb_linear_r"), lr, 6);
             Assert.Equal(r.D("srgb_linear_g"), lg, 6);
@@ -62,8 +63,10 @@ public class ColorimetryTests(ITestOutputHelper output)
         {
             var r = rows[p - 1];
             var xyz = c.OfReflectance(ColorChecker.Patch(p));
-            Assert.True(Math.Abs(xyz.X - r.D("X")) < 1e-6 && Math.Abs(xyz.Y - r.D("Y")) < 1e-6 && Math.Abs(xyz.Z - r.D("Z")) < 1e-6, $"patch {p}: {xyz}");
-            var de = DeltaE2000.Between(Lab.FromXyz(xyz, reference.White), Lab.FromXyz(reference.OfReflectance(ColorChecker.Patch(p)), reference.White));
+            Assert.True(Math.Abs(xyz.X - r.D("X")) < 1e-6 && Math.Abs(xyz.Y - r.D("Y")) < 1e-6 && Math.Abs(xyz.Z - r.D("Z")) < 1e-6,
+                $"patch {p}: {xyz}");
+            var de = DeltaE2000.Between(Lab.FromXyz(xyz, reference.White),
+                Lab.FromXyz(reference.OfReflectance(ColorChecker.Patch(p)), reference.White));
             Assert.Equal(r.D("dE00_vs_1nm"), de, 4);
         }
     }
@@ -108,7 +111,8 @@ public class ColorimetryTests(ITestOutputHelper output)
         for (int p = 1; p <= 24; p++)
         {
             var patch = ColorChecker.Patch(p);
-            double d = DeltaE2000.Between(Lab.FromXyz(c.OfReflectance(patch), reference.White), Lab.FromXyz(reference.OfReflectance(patch), reference.White));
+            double d = DeltaE2000.Between(Lab.FromXyz(c.OfReflectance(patch), reference.White),
+                Lab.FromXyz(reference.OfReflectance(patch), reference.White));
             sum += d; max = Math.Max(max, d);
         }
         return (sum / 24, max);

@@ -20,7 +20,8 @@ public class ExactColourTests
     {
         // The LEDs at their tables' scale (peak 1), the light level these bars were set at: since issue 27 they carry D65's
         // luminous flux, and a saturated patch under the bright blue LED alone is 0.026 from the 1 nm summation.
-        static TabulatedSpectrum AtTableScale(string n) => n.StartsWith("led-", StringComparison.Ordinal) ? S(n).Scaled(1 / S(n).Values.ToArray().Max()) : S(n);
+        static TabulatedSpectrum AtTableScale(string n) =>
+            n.StartsWith("led-", StringComparison.Ordinal) ? S(n).Scaled(1 / S(n).Values.ToArray().Max()) : S(n);
         var spds = lights.Split('+').Select(n => (AtTableScale(n), 1.0)).ToArray();
         var c = new Colorimeter(BandGrid.Parse(grid), Observer.Cie1931, S(white), BandIntegration.Exact);
         var refWhite = Cie015.White(S(white));
@@ -49,7 +50,8 @@ public class ExactColourTests
         for (int p = 1; p <= 24; p++)
         {
             var patch = ColorChecker.Patch(p);
-            var de = DeltaE2000.Between(Lab.FromXyz(c.OfReflectance(patch, S("led-blue")), refWhite), Lab.FromXyz(Cie015.Of(patch, [(S("led-blue"), 1)], S("D65")), refWhite));
+            var de = DeltaE2000.Between(Lab.FromXyz(c.OfReflectance(patch, S("led-blue")), refWhite),
+                Lab.FromXyz(Cie015.Of(patch, [(S("led-blue"), 1)], S("D65")), refWhite));
             max = Math.Max(max, de);
         }
         Assert.True(max > atLeast, $"{scheme} max ΔE00 {max:F3}");

@@ -8,9 +8,11 @@ public class SrgbEncodeTests
     static byte Reference(RgbSpace space, double x) => RgbSpace.To8(space.Encode(x));
 
     static void Same(RgbSpace space, double x) =>
-        Assert.True(Reference(space, x) == space.Encode8(x), $"{space.Name} {x:R} ({BitConverter.DoubleToInt64Bits(x):x}): table {space.Encode8(x)}, formula {Reference(space, x)}");
+        Assert.True(Reference(space, x) == space.Encode8(x),
+            $"{space.Name} {x:R} ({BitConverter.DoubleToInt64Bits(x):x}): table {space.Encode8(x)}, formula {Reference(space, x)}");
 
-    /// <summary>The least double in [0, 1] the formula codes at k or above, by bisection over the bit patterns (positive doubles order as their bits).</summary>
+    /// <summary>The least double in [0, 1] the formula codes at k or above, by bisection over the bit patterns (positive doubles order as
+    /// their bits).</summary>
     static double Boundary(int k)
     {
         long lo = 0, hi = BitConverter.DoubleToInt64Bits(1.0);
@@ -53,7 +55,8 @@ public class SrgbEncodeTests
             for (int i = 0; i < 500_000; i++)   // any bit pattern below 1: tiny values as often as large ones
                 Same(space, BitConverter.Int64BitsToDouble(rng.NextInt64(0, BitConverter.DoubleToInt64Bits(1.0))));
             foreach (double x in new[] { double.NaN, double.NegativeInfinity, double.PositiveInfinity, -0.0, 0.0, double.Epsilon,
-                         1.0, Math.BitDecrement(1.0), Math.BitIncrement(1.0), 0.0031308, Math.BitIncrement(0.0031308), Math.BitDecrement(0.0031308), -1e-300, 7.5 })
+                         1.0, Math.BitDecrement(1.0), Math.BitIncrement(1.0), 0.0031308, Math.BitIncrement(0.0031308),
+                             Math.BitDecrement(0.0031308), -1e-300, 7.5 })
                 Same(space, x);
             for (int i = 0; i <= 4096; i++)
             {

@@ -101,7 +101,8 @@ public class CorpusTests
         return dir;
     });
 
-    /// <summary>Set-up runs (<paramref name="runs"/>: good.json rendered, a camera run) into a folder of their own, made once and copied per case.</summary>
+    /// <summary>Set-up runs (<paramref name="runs"/>: good.json rendered, a camera run) into a folder of their own, made once and copied
+    /// per case.</summary>
     static Lazy<string> Cached(params string[][] runs) => new(() =>
     {
         var dir = Reference.TempDir();
@@ -113,12 +114,15 @@ public class CorpusTests
         return dir;
     });
 
-    static readonly Lazy<string> LightsRender = Cached(["render", "{in}/good.json", "-o", "{dir}/r", "--formats", "npy,aov,lights", "--quiet"]);
+    static readonly Lazy<string> LightsRender =
+        Cached(["render", "{in}/good.json", "-o", "{dir}/r", "--formats", "npy,aov,lights", "--quiet"]);
     static readonly Lazy<string> CameraRun = Cached(["render", "{in}/good.json", "-o", "{dir}/r", "--formats", "npy,aov", "--quiet"],
         ["camera", "{dir}/r", "--sensor", "isetcam", "--noise", "off", "-o", "{dir}/cam"]);
     static readonly Lazy<string> Shards = Cached(
-        ["render", "{in}/good.json", "--width", "8", "--height", "64", "--formats", "npy,aov", "--shard", "0/2", "-o", "{dir}/a", "--quiet"],
-        ["render", "{in}/good.json", "--width", "8", "--height", "64", "--formats", "npy,aov", "--shard", "1/2", "-o", "{dir}/b", "--quiet"]);
+        ["render", "{in}/good.json", "--width", "8", "--height", "64", "--formats", "npy,aov", "--shard", "0/2", "-o", "{dir}/a",
+            "--quiet"],
+        ["render", "{in}/good.json", "--width", "8", "--height", "64", "--formats", "npy,aov", "--shard", "1/2", "-o", "{dir}/b",
+            "--quiet"]);
     static readonly Lazy<string> Crop = Cached(["render", "{in}/good.json", "--crop", "0,0,4,3", "-o", "{dir}/r", "--quiet"]);
 
     static void Setup(string step, string tmp)

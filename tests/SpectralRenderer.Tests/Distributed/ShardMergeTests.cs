@@ -17,14 +17,17 @@ public class ShardMergeTests
     /// <summary>render.json keys that describe the run rather than the image (the merge's are its own).</summary>
     public static readonly string[] RunFields = ["created_utc", "timings_s", "threads", "run"];
 
-    /// <summary>Every file of two render folders equal byte for byte; render.json equal but for <see cref="RunFields"/> and rays.mrays_per_s.</summary>
+    /// <summary>Every file of two render folders equal byte for byte; render.json equal but for <see cref="RunFields"/> and
+    /// rays.mrays_per_s.</summary>
     internal static void AssertSameRender(string expected, string actual)
     {
-        static List<string> Files(string d) => Directory.GetFiles(d, "*", SearchOption.AllDirectories).Select(f => Path.GetRelativePath(d, f)).Order(StringComparer.Ordinal).ToList();
+        static List<string> Files(string d) => Directory.GetFiles(d, "*", SearchOption.AllDirectories)
+            .Select(f => Path.GetRelativePath(d, f)).Order(StringComparer.Ordinal).ToList();
         var files = Files(expected);
         Assert.Equal(files, Files(actual));
         foreach (var f in files.Where(f => f != "render.json"))
-            Assert.True(File.ReadAllBytes(Path.Combine(expected, f)).AsSpan().SequenceEqual(File.ReadAllBytes(Path.Combine(actual, f))), $"{f} differs");
+            Assert.True(File.ReadAllBytes(Path.Combine(expected, f)).AsSpan().SequenceEqual(File.ReadAllBytes(Path.Combine(actual, f))),
+                $"{f} differs");
         Assert.Equal(Manifest(expected), Manifest(actual));
 
         static string Manifest(string dir)
@@ -80,7 +83,8 @@ public class ShardMergeTests
             { "radiometry": "physical", "scaling": "absolute", "white": "D65", "bands": "400:700:50", "integrator": "{{integrator}}",
               "camera": { "position": [0, 0, 5], "look_at": [0, 0, 0], "fov": 50, "width": 8, "height": 96, "spp": 1 },
               "materials": { "white": { "diffuse": 0.8 }, "grey": { "diffuse": 0.3 } },
-              "lights": [ { "type": "spot", "position": [0.5, 1, 3], "look_at": [0, 0, 0], "cutoff": 25, "spectrum": "A", "luminous_intensity": 500 },
+              "lights": [ { "type": "spot", "position": [0.5, 1, 3], "look_at": [0, 0, 0], "cutoff": 25, "spectrum": "A",
+                "luminous_intensity": 500 },
                           { "type": "point", "position": [-1, -2, 2], "spectrum": "led-blue", "luminous_flux": 2000 } ],
               "objects": [ { "type": "quad", "center": [0, 0, 0], "size": 6, "material": "white" },
                            { "type": "box", "center": [0, 0.3, 0.6], "size": [0.6, 0.6, 0.6], "material": "grey" } ],
@@ -93,7 +97,8 @@ public class ShardMergeTests
         Assert.True(code == 0, err);
         AssertSameRender(Path.Combine(dir, "whole"), Path.Combine(dir, "merged"));
         Assert.True(File.Exists(Path.Combine(dir, "merged", "illuminance-scale.svg")));
-        Assert.True(File.Exists(Path.Combine(dir, "merged", "grids", "floor.csv")));   // the scene's calculation grid, the same in every shard
+        // the scene's calculation grid, the same in every shard
+        Assert.True(File.Exists(Path.Combine(dir, "merged", "grids", "floor.csv")));
     }
 
     [SkippableFact]
@@ -129,7 +134,8 @@ public class ShardMergeTests
         var m = JsonNode.Parse(File.ReadAllText(Path.Combine(dir, "crop", "render.json")))!;
         Assert.Equal("""{"x0":13,"y0":21,"x1":77,"y1":50}""", m["crop"]!.ToJsonString());
         Assert.Equal(90, m["width"]!.GetValue<int>());
-        Assert.Equal(JsonNode.Parse(File.ReadAllText(Path.Combine(dir, "whole", "render.json")))!["scene_hash"]!.GetValue<string>(), m["scene_hash"]!.GetValue<string>());
+        Assert.Equal(JsonNode.Parse(File.ReadAllText(Path.Combine(dir, "whole", "render.json")))!["scene_hash"]!.GetValue<string>(),
+            m["scene_hash"]!.GetValue<string>());
         // The EXR reads back as the crop (its data window); exrheader checks the windows below.
         var exr = ExrReader.Read(Path.Combine(dir, "crop", "spectral.exr")).Image;
         Assert.Equal((64, 29), (exr.Width, exr.Height));
@@ -176,7 +182,8 @@ public class ShardMergeTests
         Assert.Equal(2, overlap.Code);
         Assert.Contains("overlaps", overlap.Err);
 
-        Render(scene, Path.Combine(dir, "other"), ["--width", "64", "--height", "96", "--formats", "envi,png", "--spp", "3", "--shard", "1/3"]);
+        Render(scene, Path.Combine(dir, "other"),
+            ["--width", "64", "--height", "96", "--formats", "envi,png", "--spp", "3", "--shard", "1/3"]);
         var foreign = Merge(s[0], Path.Combine(dir, "other"), s[2], "-o", outDir);
         Assert.Equal(2, foreign.Code);
         Assert.Contains("another scene or settings", foreign.Err);
@@ -212,12 +219,20 @@ public class ShardEnvironmentTests
     {
         // As a Slurm array task 2 of --array=0-3 would; --shard none opts out.
         var dir = Reference.TempDir();
-        var vars = new Dictionary<string, string> { ["SLURM_ARRAY_TASK_ID"] = "2", ["SLURM_ARRAY_TASK_MIN"] = "0", ["SLURM_ARRAY_TASK_MAX"] = "3", ["SLURM_ARRAY_TASK_STEP"] = "1" };
+        var vars = new Dictionary<string, string>
+        {
+            ["SLURM_ARRAY_TASK_ID"] = "2",
+            ["SLURM_ARRAY_TASK_MIN"] = "0",
+            ["SLURM_ARRAY_TASK_MAX"] = "3",
+            ["SLURM_ARRAY_TASK_STEP"] = "1"
+        };
         try
         {
             foreach (var (k, v) in vars) Environment.SetEnvironmentVariable(k, v);
-            ShardMergeTests.Render(ShardMergeTests.Scene("glass-mirror.json"), Path.Combine(dir, "env"), "--width", "40", "--height", "128", "--formats", "npy");
-            ShardMergeTests.Render(ShardMergeTests.Scene("glass-mirror.json"), Path.Combine(dir, "none"), "--width", "40", "--height", "128", "--formats", "npy", "--shard", "none");
+            ShardMergeTests.Render(ShardMergeTests.Scene("glass-mirror.json"), Path.Combine(dir, "env"), "--width", "40", "--height", "128",
+                "--formats", "npy");
+            ShardMergeTests.Render(ShardMergeTests.Scene("glass-mirror.json"), Path.Combine(dir, "none"), "--width", "40", "--height",
+                "128", "--formats", "npy", "--shard", "none");
         }
         finally { foreach (var k in vars.Keys) Environment.SetEnvironmentVariable(k, null); }
         var m = JsonNode.Parse(File.ReadAllText(Path.Combine(dir, "env", "render.json")))!;

@@ -77,7 +77,8 @@ public class ShardTests
     [Fact]
     public void Slurm_count_alone_serves_when_max_is_absent()
     {
-        var r = SchedulerEnvironment.Resolve(null, Env(("SLURM_ARRAY_TASK_ID", "5"), ("SLURM_ARRAY_TASK_MIN", "4"), ("SLURM_ARRAY_TASK_COUNT", "3")));
+        var r = SchedulerEnvironment.Resolve(null,
+            Env(("SLURM_ARRAY_TASK_ID", "5"), ("SLURM_ARRAY_TASK_MIN", "4"), ("SLURM_ARRAY_TASK_COUNT", "3")));
         Assert.Equal(new Shard(1, 3), r!.Value.Shard);
     }
 
@@ -86,7 +87,8 @@ public class ShardTests
     {
         // sbatch --array=1,3,7: Slurm sets MIN 1, MAX 7, STEP 1, COUNT 3.
         var e = Assert.Throws<InputException>(() => SchedulerEnvironment.Resolve(null, Env(("SLURM_ARRAY_TASK_ID", "3"),
-            ("SLURM_ARRAY_TASK_MIN", "1"), ("SLURM_ARRAY_TASK_MAX", "7"), ("SLURM_ARRAY_TASK_STEP", "1"), ("SLURM_ARRAY_TASK_COUNT", "3"))));
+            ("SLURM_ARRAY_TASK_MIN", "1"), ("SLURM_ARRAY_TASK_MAX", "7"), ("SLURM_ARRAY_TASK_STEP", "1"),
+                ("SLURM_ARRAY_TASK_COUNT", "3"))));
         Assert.Contains("regular array", e.Message);
     }
 
@@ -102,9 +104,11 @@ public class ShardTests
     [Fact]
     public void Aws_batch_index_with_its_array_size()
     {
-        Assert.Equal((new Shard(7, 16), "AWS Batch"), SchedulerEnvironment.Resolve(null, Env(("AWS_BATCH_JOB_ARRAY_INDEX", "7"), ("AWS_BATCH_JOB_ARRAY_SIZE", "16"))));
+        Assert.Equal((new Shard(7, 16), "AWS Batch"),
+            SchedulerEnvironment.Resolve(null, Env(("AWS_BATCH_JOB_ARRAY_INDEX", "7"), ("AWS_BATCH_JOB_ARRAY_SIZE", "16"))));
         Assert.Equal(new Shard(1, 2), SchedulerEnvironment.Resolve(2, Env(("AWS_BATCH_JOB_ARRAY_INDEX", "1")))!.Value.Shard);
-        Assert.Throws<InputException>(() => SchedulerEnvironment.Resolve(8, Env(("AWS_BATCH_JOB_ARRAY_INDEX", "1"), ("AWS_BATCH_JOB_ARRAY_SIZE", "16"))));
+        Assert.Throws<InputException>(() =>
+            SchedulerEnvironment.Resolve(8, Env(("AWS_BATCH_JOB_ARRAY_INDEX", "1"), ("AWS_BATCH_JOB_ARRAY_SIZE", "16"))));
     }
 
     [Fact]

@@ -17,13 +17,16 @@ public class SlurmClusterTests
     {
         Skip.IfNot(OperatingSystem.IsLinux(), "the one-node Slurm cluster needs Linux");
         foreach (var tool in new[] { "/usr/bin/sbatch", "/usr/sbin/slurmctld", "/usr/sbin/slurmd", "/usr/sbin/munged" })
-            Skip.IfNot(File.Exists(tool), $"Slurm is not installed ({tool} is missing): .ci/run installs Debian's slurm-wlm and munge as root");
+            Skip.IfNot(File.Exists(tool),
+                $"Slurm is not installed ({tool} is missing): .ci/run installs Debian's slurm-wlm and munge as root");
         Skip.IfNot(File.Exists("/usr/bin/python3"), "tests/slurm/ci.sh compares the manifests with python3, which is not installed");
         Skip.IfNot(Environment.UserName == "root", "the one-node Slurm cluster runs slurmd and munged as root");
         Skip.If(Environment.GetEnvironmentVariable("SLURM_JOB_ID") is not null, "already inside a Slurm job: a second cluster would clash");
         var repo = Path.GetFullPath(Path.Combine(AppContext.BaseDirectory, "../../../../.."));
-        var psi = new ProcessStartInfo("/bin/bash") { RedirectStandardOutput = true, RedirectStandardError = true, UseShellExecute = false };
-        foreach (var a in new[] { Path.Combine(repo, "tests/slurm/ci.sh"), Path.Combine(AppContext.BaseDirectory, "spectral.dll"), Path.Combine(Reference.TempDir(), "slurm") })
+        var psi =
+            new ProcessStartInfo("/bin/bash") { RedirectStandardOutput = true, RedirectStandardError = true, UseShellExecute = false };
+        foreach (var a in new[] { Path.Combine(repo, "tests/slurm/ci.sh"), Path.Combine(AppContext.BaseDirectory, "spectral.dll"),
+            Path.Combine(Reference.TempDir(), "slurm") })
             psi.ArgumentList.Add(a);
         using var p = Process.Start(psi)!;
         var output = p.StandardOutput.ReadToEndAsync();

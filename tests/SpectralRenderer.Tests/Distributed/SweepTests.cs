@@ -26,7 +26,8 @@ public class SweepTests
             { "scene": "scene.json",
               "formats": {{formats}},
               "axes": [
-                { "name": "patch", "path": "objects[name=sphere].material", "values": ["ball", "floor", "ball"], "labels": ["ball", "floor", "ball-again"] },
+                { "name": "patch", "path": "objects[name=sphere].material", "values": ["ball", "floor", "ball"], "labels": ["ball", "floor",
+                  "ball-again"] },
                 { "name": "light", "path": "lights[0].spectrum", "values": ["D65", "A"] }, {{extraAxes}}
               ],
               "extra": [ { "name": "wide", "set": { "camera.fov": 60, "bands": "400:700:31" } } ],
@@ -53,7 +54,8 @@ public class SweepTests
     }
 
     [Theory]
-    [InlineData("{ \"name\": \"x\", \"path\": \"objects[name=cube].material\", \"values\": [\"ball\"] }", "no element of 'objects' has name 'cube'")]
+    [InlineData("{ \"name\": \"x\", \"path\": \"objects[name=cube].material\", \"values\": [\"ball\"] }",
+        "no element of 'objects' has name 'cube'")]
     [InlineData("{ \"name\": \"x\", \"path\": \"lights[3].spectrum\", \"values\": [\"A\"] }", "has 1 elements, so no [3]")]
     [InlineData("{ \"name\": \"light\", \"path\": \"bands\", \"values\": [\"400:700:31\"] }", "'light' is taken")]
     [InlineData("{ \"name\": \"x\", \"path\": \"bad path!\", \"values\": [1] }", "")]
@@ -72,7 +74,8 @@ public class SweepTests
         var dir = Reference.TempDir();
         // Job 0006 (the extra job) gets both "bands" and "wave", which a scene may not have together.
         var plan = Plan(dir);
-        File.WriteAllText(plan, File.ReadAllText(plan).Replace("\"bands\": \"400:700:31\"", "\"bands\": \"400:700:31\", \"wave\": \"400:10:700\""));
+        File.WriteAllText(plan,
+            File.ReadAllText(plan).Replace("\"bands\": \"400:700:31\"", "\"bands\": \"400:700:31\", \"wave\": \"400:10:700\""));
         var outDir = Path.Combine(dir, "out");
         var (code, _, err) = CliRunner.Run("sweep", plan, "-o", outDir, "--quiet");
         Assert.Equal(2, code);
@@ -95,7 +98,8 @@ public class SweepTests
 
     static Dictionary<string, string> Finished(string outDir) =>
         Directory.GetDirectories(Path.Combine(outDir, "jobs")).Where(d => File.Exists(Path.Combine(d, "job.json")))
-            .ToDictionary(d => Path.GetFileName(d), d => JsonNode.Parse(File.ReadAllText(Path.Combine(d, "job.json")))!["finished_utc"]!.GetValue<string>());
+            .ToDictionary(d => Path.GetFileName(d),
+                d => JsonNode.Parse(File.ReadAllText(Path.Combine(d, "job.json")))!["finished_utc"]!.GetValue<string>());
 
     [Fact]
     public void Slices_render_every_job_once_and_a_rerun_renders_nothing_again()
@@ -107,7 +111,8 @@ public class SweepTests
         Assert.True(first.Exit == 0, first.Err);
         var index = Index(outDir);
         Assert.Equal(7, index.Count);
-        Assert.Equal(["done", "pending", "pending", "done", "pending", "pending", "done"], index.Select(r => r["status"]!.GetValue<string>()));
+        Assert.Equal(["done", "pending", "pending", "done", "pending", "pending", "done"],
+            index.Select(r => r["status"]!.GetValue<string>()));
         foreach (var s in new[] { "1/3", "2/3" }) Assert.Equal(0, CliRunner.Run("sweep", plan, "-o", outDir, "--shard", s, "--quiet").Exit);
         var finished = Finished(outDir);
         Assert.Equal(7, finished.Count);
@@ -127,7 +132,8 @@ public class SweepTests
         Assert.EndsWith(",jobs/0003,floor,A,", csv[4]);
         Assert.EndsWith(",jobs/0006,,,wide", csv[7]);
         // Each job is a render folder of its own scene: the extra job has 31 bands.
-        Assert.Equal(31, JsonNode.Parse(File.ReadAllText(Path.Combine(outDir, "jobs", "0006", "render.json")))!["bands"]!["count"]!.GetValue<int>());
+        Assert.Equal(31,
+            JsonNode.Parse(File.ReadAllText(Path.Combine(outDir, "jobs", "0006", "render.json")))!["bands"]!["count"]!.GetValue<int>());
     }
 
     [Fact]
@@ -155,8 +161,10 @@ public class SweepTests
         foreach (var row in Index(outDir))
         {
             string id = row["job"]!.GetValue<string>();
-            Assert.Equal(File.ReadAllBytes(Path.Combine(outDir, "jobs", id, "spectral.npy")), File.ReadAllBytes(Path.Combine(outDir, row["cube"]!.GetValue<string>())));
-            Assert.Equal(File.ReadAllBytes(Path.Combine(outDir, "jobs", id, "preview.png")), File.ReadAllBytes(Path.Combine(outDir, row["rgb"]!.GetValue<string>())));
+            Assert.Equal(File.ReadAllBytes(Path.Combine(outDir, "jobs", id, "spectral.npy")),
+                File.ReadAllBytes(Path.Combine(outDir, row["cube"]!.GetValue<string>())));
+            Assert.Equal(File.ReadAllBytes(Path.Combine(outDir, "jobs", id, "preview.png")),
+                File.ReadAllBytes(Path.Combine(outDir, row["rgb"]!.GetValue<string>())));
         }
     }
 
@@ -197,7 +205,10 @@ public class SweepInterruptTests
         var dir = Reference.TempDir();
         // 3 × 2 + 1 jobs, each big enough (~0.2–1 s) to be caught midway.
         var plan = SweepTests.Plan(dir);
-        File.WriteAllText(plan, File.ReadAllText(plan).Replace("\"scene\": \"scene.json\",", "\"scene\": \"scene.json\", \"set\": { \"camera.width\": 400, \"camera.height\": 300, \"camera.spp\": 4 },"));
+        File.WriteAllText(plan,
+            File.ReadAllText(plan)
+                .Replace("\"scene\": \"scene.json\",",
+                    "\"scene\": \"scene.json\", \"set\": { \"camera.width\": 400, \"camera.height\": 300, \"camera.spp\": 4 },"));
         var outDir = Path.Combine(dir, "out");
         var dll = Path.Combine(AppContext.BaseDirectory, "spectral.dll");
         var psi = new ProcessStartInfo("dotnet") { RedirectStandardError = true, RedirectStandardOutput = true, UseShellExecute = false };
@@ -205,7 +216,9 @@ public class SweepInterruptTests
         using var p = Process.Start(psi)!;
         var err = p.StandardError.ReadToEndAsync();
         var clock = Stopwatch.StartNew();
-        int Done() => Directory.Exists(Path.Combine(outDir, "jobs")) ? Directory.GetFiles(Path.Combine(outDir, "jobs"), "job.json", SearchOption.AllDirectories).Length : 0;
+        int Done() => Directory.Exists(Path.Combine(outDir, "jobs"))
+            ? Directory.GetFiles(Path.Combine(outDir, "jobs"), "job.json", SearchOption.AllDirectories).Length
+            : 0;
         while (Done() < 2 && clock.Elapsed.TotalSeconds < 60 && !p.HasExited) Thread.Sleep(10);
         Thread.Sleep(100);
         Assert.False(p.HasExited, "the sweep finished before it could be interrupted");
@@ -225,6 +238,7 @@ public class SweepInterruptTests
         var rows = File.ReadAllLines(Path.Combine(outDir, "index.jsonl")).Select(l => JsonNode.Parse(l)!).ToList();
         Assert.Equal(Enumerable.Range(0, 7).Select(i => $"{i:0000}"), rows.Select(r => r!["job"]!.GetValue<string>()));
         Assert.All(rows, r => Assert.Equal("done", r!["status"]!.GetValue<string>()));
-        Assert.DoesNotContain(Directory.GetFiles(outDir, "*", SearchOption.AllDirectories), f => f.EndsWith(".tmp", StringComparison.Ordinal));
+        Assert.DoesNotContain(Directory.GetFiles(outDir, "*", SearchOption.AllDirectories),
+            f => f.EndsWith(".tmp", StringComparison.Ordinal));
     }
 }

@@ -59,9 +59,11 @@ public class BandNotationTests
         var byKey = SceneText.Load(Scene.Replace("\"camera\"", "\"wave\": \"400:10:700\", \"camera\"")).Grid;
         Assert.Equal(byEdges, byWave);
         Assert.Equal(byEdges, byKey);
-        var both = Assert.Throws<InputException>(() => SceneText.Load(Scene.Replace("\"camera\"", "\"wave\": \"400:10:700\", \"bands\": \"380:780:20\", \"camera\"")));
+        var both = Assert.Throws<InputException>(() =>
+            SceneText.Load(Scene.Replace("\"camera\"", "\"wave\": \"400:10:700\", \"bands\": \"380:780:20\", \"camera\"")));
         Assert.Contains("both", both.Message);
-        var (code, _, err) = CliRunner.Run("render", WriteScene(Scene), "--wave", "400:10:700", "--bands", "20", "--quiet", "-o", Reference.TempDir());
+        var (code, _, err) =
+            CliRunner.Run("render", WriteScene(Scene), "--wave", "400:10:700", "--bands", "20", "--quiet", "-o", Reference.TempDir());
         Assert.Equal(2, code);
         Assert.Contains("--wave and --bands", err);
     }
@@ -89,7 +91,8 @@ public class BandNotationTests
     public void Bands_are_numbered_from_1_in_png_names_wavelengths_csv_and_probe()
     {
         var outDir = Path.Combine(Reference.TempDir(), "out");
-        var (code, _, err) = CliRunner.Run("render", WriteScene(Scene), "--wave", "400:10:700", "--formats", "bands,npy", "--quiet", "-o", outDir);
+        var (code, _, err) =
+            CliRunner.Run("render", WriteScene(Scene), "--wave", "400:10:700", "--formats", "bands,npy", "--quiet", "-o", outDir);
         Assert.True(code == 0, err);
 
         // wavelengths.csv: band k (1…31) is centred on 400 + 10·(k − 1) nm, 10 nm wide.

@@ -119,7 +119,9 @@ public class ModelScriptTests
 
             """.Replace("\r\n", "\n"), File.ReadAllText(Path.Combine(dir, "quad.obj")));
         // A polygon that is not a triangle is refused, and nothing is left under the output name.
-        File.WriteAllText(Path.Combine(dir, "bad.ply"), "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n");
+        File.WriteAllText(Path.Combine(dir, "bad.ply"),
+            "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list "
+                + "uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n");
         (code, _, err) = Repo.Run(bash, [Script, "--ply-to-obj", Path.Combine(dir, "bad.ply"), Path.Combine(dir, "bad.obj")]);
         Assert.Equal(2, code);
         Assert.Contains("only triangles", err);
@@ -135,16 +137,20 @@ public class ModelScriptTests
         var lines = File.ReadAllLines(obj);
         var v = lines.Where(l => l.StartsWith("v ", StringComparison.Ordinal)).Select(l => l[2..]).ToList();
         var f = lines.Where(l => l.StartsWith("f ", StringComparison.Ordinal))
-            .Select(l => string.Join(' ', l[2..].Split(' ').Select(i => int.Parse(i, System.Globalization.CultureInfo.InvariantCulture) - 1))).ToList();
+            .Select(l =>
+                string.Join(' ', l[2..].Split(' ').Select(i => int.Parse(i, System.Globalization.CultureInfo.InvariantCulture) - 1)))
+            .ToList();
         // bun_zipper.ply's layout: x y z confidence intensity, then "3 i j k" faces, 0-based.
         var ply = new StringBuilder("ply\nformat ascii 1.0\ncomment zipper output\n")
-            .Append($"element vertex {v.Count}\nproperty float x\nproperty float y\nproperty float z\nproperty float confidence\nproperty float intensity\n")
+            .Append($"element vertex {v.Count}\nproperty float x\nproperty float y\nproperty float z\nproperty float "
+                + $"confidence\nproperty float intensity\n")
             .Append($"element face {f.Count}\nproperty list uchar int vertex_indices\nend_header\n");
         foreach (var p in v) ply.Append(p).Append(" 1 0.5\n");
         foreach (var t in f) ply.Append("3 ").Append(t).Append('\n');
         var dir = Reference.TempDir();
         File.WriteAllText(Path.Combine(dir, "bun_zipper.ply"), ply.ToString());
-        var (code, _, err) = Repo.Run(bash, [Script, "--ply-to-obj", Path.Combine(dir, "bun_zipper.ply"), Path.Combine(dir, "stanford-bunny.obj")]);
+        var (code, _, err) =
+            Repo.Run(bash, [Script, "--ply-to-obj", Path.Combine(dir, "bun_zipper.ply"), Path.Combine(dir, "stanford-bunny.obj")]);
         Assert.True(code == 0, err);
         var hash = Convert.ToHexStringLower(SHA256.HashData(File.ReadAllBytes(Path.Combine(dir, "stanford-bunny.obj"))));
         Assert.Equal(Sums()["stanford-bunny.obj"], hash);
@@ -160,7 +166,8 @@ public class ModelScriptTests
             ? "#!/bin/sh\necho 'curl: (6) Could not resolve host' >&2\nexit 6\n"
             : "#!/bin/bash\nwhile [ $# -gt 0 ]; do case $1 in -o) out=$2; shift 2;; -*) shift;; *) url=$1; shift;; esac; done\n"
               + $"cp \"{source}/${{url##*/}}\" \"$out\"\n");
-        if (!OperatingSystem.IsWindows()) File.SetUnixFileMode(curl, UnixFileMode.UserRead | UnixFileMode.UserWrite | UnixFileMode.UserExecute);
+        if (!OperatingSystem.IsWindows())
+            File.SetUnixFileMode(curl, UnixFileMode.UserRead | UnixFileMode.UserWrite | UnixFileMode.UserExecute);
         return bin;
     }
 

@@ -26,12 +26,18 @@ public class NativeBuildTests : IClassFixture<NativeBuildTests.Native>
         {
             var out_ = Path.Combine(Work, "native");
             var env = new Dictionary<string, string?> { ["DOTNET_CLI_TELEMETRY_OPTOUT"] = "1", ["DOTNET_NOLOGO"] = "1" };
-            var (code, stdout, stderr) = Repo.Run("dotnet", ["publish", Repo.PathOf("src", "SpectralRenderer.Cli", "SpectralRenderer.Cli.csproj"),
-                "-c", "Release", "-p:SpectralNative=true", "--artifacts-path", Path.Combine(Work, "artifacts"), "-o", out_], env: env, timeoutMs: 600_000);
+            var (code, stdout, stderr) =
+                Repo.Run("dotnet", ["publish", Repo.PathOf("src", "SpectralRenderer.Cli", "SpectralRenderer.Cli.csproj"),
+                "-c", "Release", "-p:SpectralNative=true", "--artifacts-path", Path.Combine(Work, "artifacts"), "-o", out_], env: env,
+                    timeoutMs: 600_000);
             var log = stdout + stderr;
             // Offline (no NuGet for the ILCompiler packs) or without a linker, there is no native build to test: say why.
             if (code != 0 && (log.Contains("NU1101") || log.Contains("NU1301") || log.Contains("NU1102")))
-            { Unavailable = "the ILCompiler packs could not be restored from NuGet: " + log.Split('\n').First(l => l.Contains("NU1")).Trim(); return; }
+            {
+                Unavailable = "the ILCompiler packs could not be restored from NuGet: "
+                    + log.Split('\n').First(l => l.Contains("NU1")).Trim();
+                return;
+            }
             Assert.True(code == 0, $"dotnet publish -p:SpectralNative=true failed:\n{log}");
             Exe = Path.Combine(out_, OperatingSystem.IsWindows() ? "spectral.exe" : "spectral");
         }
@@ -50,7 +56,8 @@ public class NativeBuildTests : IClassFixture<NativeBuildTests.Native>
 
     (int Exit, string Out, string Err) RunNative(params string[] args) => Repo.Run(Exe(), args, workDir: native.Work);
 
-    /// <summary>The folders as <see cref="ShardMergeTests.AssertSameRender"/> compares them, "build" aside (another compilation of the engine).</summary>
+    /// <summary>The folders as <see cref="ShardMergeTests.AssertSameRender"/> compares them, "build" aside (another compilation of the
+    /// engine).</summary>
     static void AssertSameFolder(string expected, string actual)
     {
         foreach (var dir in new[] { expected, actual })
@@ -84,7 +91,8 @@ public class NativeBuildTests : IClassFixture<NativeBuildTests.Native>
     {
         var exe = Exe();
         string jit = Path.Combine(native.Work, "chart-jit"), aot = Path.Combine(native.Work, "chart-native");
-        string[] args = ["render", Scene("paper-3.1-colorchecker-d65.json"), "--width", "120", "--height", "80", "--spp", "2", "--formats", "all,lights", "--quiet"];
+        string[] args = ["render", Scene("paper-3.1-colorchecker-d65.json"), "--width", "120", "--height", "80", "--spp", "2", "--formats",
+            "all,lights", "--quiet"];
         var (code, _, err) = CliRunner.Run([.. args, "-o", jit]);
         Assert.True(code == 0, err);
         (code, _, err) = Repo.Run(exe, [.. args, "-o", aot], workDir: native.Work);
@@ -106,7 +114,10 @@ public class NativeBuildTests : IClassFixture<NativeBuildTests.Native>
     {
         var exe = Exe();
         var source = Path.Combine(native.Work, "source");
-        var (code, _, err) = Repo.Run(exe, ["render", Scene("paper-3.1-colorchecker-d65.json"), "-o", source, "--width", "96", "--height", "64", "--formats", "all,lights", "--quiet"], workDir: native.Work);
+        var (code, _, err) = Repo.Run(exe,
+            ["render", Scene("paper-3.1-colorchecker-d65.json"), "-o", source, "--width", "96", "--height", "64", "--formats", "all,lights",
+                "--quiet"],
+            workDir: native.Work);
         Assert.True(code == 0, err);
 
         string rj = Path.Combine(native.Work, "relit-jit"), ra = Path.Combine(native.Work, "relit-native");
@@ -125,7 +136,8 @@ public class NativeBuildTests : IClassFixture<NativeBuildTests.Native>
         (code, _, err) = Repo.Run(exe, ["camera", source, "--sensor", "nikon-d5100", "--seed", "7", "-o", ca], workDir: native.Work);
         Assert.True(code == 0, err);
         foreach (var f in new[] { "raw.npy", "raw.png", "raw.dng", "processed.png", "patches.csv", "camera.json" })
-            Assert.True(File.ReadAllBytes(Path.Combine(cj, f)).AsSpan().SequenceEqual(File.ReadAllBytes(Path.Combine(ca, f))), $"camera {f} differs");
+            Assert.True(File.ReadAllBytes(Path.Combine(cj, f)).AsSpan().SequenceEqual(File.ReadAllBytes(Path.Combine(ca, f))),
+                $"camera {f} differs");
     }
 
     [SkippableFact]

@@ -16,10 +16,13 @@ public class PythonSnippetTests
     static string? PythonWithNumpy(out string reason)
     {
         // Debian's python3 first (.ci/run installs python3-numpy there), then whichever python3 is on the PATH.
-        var candidates = new[] { "/usr/bin/python3", Imaging.Tool.Find("python3") }.Where(p => p is not null && File.Exists(p)).Distinct().ToList();
+        var candidates = new[] { "/usr/bin/python3", Imaging.Tool.Find("python3") }.Where(p => p is not null && File.Exists(p)).Distinct()
+            .ToList();
         foreach (var python in candidates)
             if (Repo.Run(python!, ["-c", "import numpy"]).Exit == 0) { reason = ""; return python; }
-        reason = candidates.Count == 0 ? "python3 is not installed" : $"numpy is not importable by {string.Join(" or ", candidates)} (Debian package python3-numpy; .ci/run installs it)";
+        reason = candidates.Count == 0
+            ? "python3 is not installed"
+            : $"numpy is not importable by {string.Join(" or ", candidates)} (Debian package python3-numpy; .ci/run installs it)";
         return null;
     }
 
@@ -36,9 +39,11 @@ public class PythonSnippetTests
 
         var work = Reference.TempDir();
         var scene = Repo.PathOf("scenes", "paper-3.1-colorchecker-d65.json");
-        var (code, _, err) = CliRunner.Run("render", scene, "-o", Path.Combine(work, "out", "colorchecker"), "--width", "72", "--formats", "exr,npy", "--quiet");
+        var (code, _, err) = CliRunner.Run("render", scene, "-o", Path.Combine(work, "out", "colorchecker"), "--width", "72", "--formats",
+            "exr,npy", "--quiet");
         Assert.True(code == 0, err);
-        File.WriteAllText(Path.Combine(work, "snippet.py"), snippet + "\nprint('XYZ-MEAN', *(repr(float(v)) for v in xyz.reshape(-1, 3).mean(axis=0)))\n");
+        File.WriteAllText(Path.Combine(work, "snippet.py"),
+            snippet + "\nprint('XYZ-MEAN', *(repr(float(v)) for v in xyz.reshape(-1, 3).mean(axis=0)))\n");
         (code, var stdout, err) = Repo.Run(python!, ["snippet.py"], workDir: work);
         Assert.True(code == 0, $"the README snippet failed:\n{err}");
         var line = stdout.Split('\n').Single(l => l.StartsWith("XYZ-MEAN ", StringComparison.Ordinal)).Split(' ')[1..];
@@ -56,9 +61,11 @@ public class PythonSnippetTests
                 for (int x = 0; x < cube.Width; x++)
                     for (int b = 0; b < cube.Bands; b++) sum += w[b] * cube[x, y, b];
             double mean = sum / (cube.Width * cube.Height);
-            Assert.True(Math.Abs(fromPython[c] - mean) <= 1e-6 * Math.Max(1, Math.Abs(mean)), $"{"XYZ"[c]}: python {fromPython[c]:G9}, eq. 3 here {mean:G9}");
+            Assert.True(Math.Abs(fromPython[c] - mean) <= 1e-6 * Math.Max(1, Math.Abs(mean)),
+                $"{"XYZ"[c]}: python {fromPython[c]:G9}, eq. 3 here {mean:G9}");
             double exact = exr.OtherChannels["XYZ"[c].ToString()].Select(v => (double)v).Average();
-            Assert.True(Math.Abs(fromPython[c] - exact) <= 0.005 * exact, $"{"XYZ"[c]}: cube colour {fromPython[c]:G9}, exact pixel colour {exact:G9}");
+            Assert.True(Math.Abs(fromPython[c] - exact) <= 0.005 * exact,
+                $"{"XYZ"[c]}: cube colour {fromPython[c]:G9}, exact pixel colour {exact:G9}");
         }
         Assert.True(fromPython[1] > 0.05, "the chart is lit");
     }

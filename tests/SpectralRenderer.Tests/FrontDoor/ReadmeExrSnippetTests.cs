@@ -18,7 +18,8 @@ public class ReadmeExrSnippetTests
 
     static string? Python(string work, out string reason)
     {
-        var candidates = new[] { Environment.GetEnvironmentVariable("SPECTRAL_ANCHORS_PYTHON"), "/usr/bin/python3", Imaging.Tool.Find("python3") }
+        var candidates = new[] { Environment.GetEnvironmentVariable("SPECTRAL_ANCHORS_PYTHON"), "/usr/bin/python3",
+            Imaging.Tool.Find("python3") }
             .Where(p => p is not null && File.Exists(p)).Distinct().ToList();
         foreach (var python in candidates)
             if (Repo.Run(python!, ["-c", "import " + string.Join(", ", Modules)]).Exit == 0) { reason = ""; return python; }
@@ -31,7 +32,9 @@ public class ReadmeExrSnippetTests
         }
         var venv = Path.Combine(work, "venv");
         var made = Repo.Run(system, ["-m", "venv", venv]);
-        var pip = made.Exit == 0 ? Repo.Run(Path.Combine(venv, "bin", "pip"), ["install", "-q", "--no-index", "--find-links", wheels, .. Modules.Select(m => m.ToLowerInvariant())])
+        var pip = made.Exit == 0
+            ? Repo.Run(Path.Combine(venv, "bin", "pip"),
+                ["install", "-q", "--no-index", "--find-links", wheels, .. Modules.Select(m => m.ToLowerInvariant())])
             : made;
         reason = pip.Exit == 0 ? "" : $"could not make a venv with {string.Join(", ", Modules)} from {wheels}: {pip.Err.Trim()}";
         return pip.Exit == 0 ? Path.Combine(venv, "bin", "python") : null;
@@ -46,7 +49,8 @@ public class ReadmeExrSnippetTests
         Skip.If(python is null, reason);
         var readme = File.ReadAllText(Repo.PathOf("README.md"));
         var section = readme[readme.IndexOf("## Using the outputs from Python", StringComparison.Ordinal)..];
-        var snippets = Regex.Matches(section, @"^```python\s*\n(.*?)^```", RegexOptions.Multiline | RegexOptions.Singleline).Select(m => m.Groups[1].Value).ToList();
+        var snippets = Regex.Matches(section, @"^```python\s*\n(.*?)^```", RegexOptions.Multiline | RegexOptions.Singleline)
+            .Select(m => m.Groups[1].Value).ToList();
         Assert.Contains("OpenEXR.File", snippets[1]);
 
         var folder = Path.Combine(work, "out", "colorchecker");
@@ -76,7 +80,8 @@ public class ReadmeExrSnippetTests
         var bands = Line("BANDS");
         Assert.Equal(centres.Length, bands.Length);
         for (int b = 0; b < bands.Length; b++)
-            Assert.True(Math.Abs(D(bands[b][3..^2].Replace(',', '.')) - centres[b]) < 0.01, $"band {b + 1}: {bands[b]}, centre {centres[b]} nm");
+            Assert.True(Math.Abs(D(bands[b][3..^2].Replace(',', '.')) - centres[b]) < 0.01,
+                $"band {b + 1}: {bands[b]}, centre {centres[b]} nm");
         var envi = Line("ENVI");
         var cube = NpyReader.ReadImage(Path.Combine(folder, "spectral.npy"));
         Assert.Equal([cube.Height, cube.Width, cube.Bands], envi[..3].Select(int.Parse));

@@ -40,7 +40,8 @@ public partial class SceneDocsTests
 
     static string[] Allowed(InputException e)
     {
-        Assert.True(e.Hint is not null && e.Hint.StartsWith("allowed here: ", StringComparison.Ordinal), $"expected the list of allowed keys: {e.Message}");
+        Assert.True(e.Hint is not null && e.Hint.StartsWith("allowed here: ", StringComparison.Ordinal),
+            $"expected the list of allowed keys: {e.Message}");
         return e.Hint![14..].Split(", ");
     }
 
@@ -63,10 +64,14 @@ public partial class SceneDocsTests
         Add("output", "$.output", s => s["output"] = With([]));
         Add("Spectrum values", "spectrum object", s => s["lights"]![0]!["spectrum"] = With(new JsonObject { ["name"] = "D65" }));
         Add("materials", "$.materials.m", s => s["materials"]!["m"]![Unknown] = 1);
-        Add("materials", "$.materials.m.ior", s => s["materials"]!["m"]!["ior"] = With(new JsonObject { ["cauchy"] = new JsonArray(1.5, 0) }));
-        Add("materials", "$.materials.m.ior.sellmeier", s => s["materials"]!["m"]!["ior"] = new JsonObject { ["sellmeier"] = With(new JsonObject { ["B1"] = 1 }) });
-        Add("materials", "$.materials.m.diffuse (texture)", s => s["materials"]!["m"]!["diffuse"] = With(new JsonObject { ["texture"] = "t.png" }));
-        Add("materials", "$.materials.m.diffuse.uv_transform", s => s["materials"]!["m"]!["diffuse"] = new JsonObject { ["texture"] = "t.png", ["uv_transform"] = With([]) });
+        Add("materials", "$.materials.m.ior",
+            s => s["materials"]!["m"]!["ior"] = With(new JsonObject { ["cauchy"] = new JsonArray(1.5, 0) }));
+        Add("materials", "$.materials.m.ior.sellmeier",
+            s => s["materials"]!["m"]!["ior"] = new JsonObject { ["sellmeier"] = With(new JsonObject { ["B1"] = 1 }) });
+        Add("materials", "$.materials.m.diffuse (texture)",
+            s => s["materials"]!["m"]!["diffuse"] = With(new JsonObject { ["texture"] = "t.png" }));
+        Add("materials", "$.materials.m.diffuse.uv_transform",
+            s => s["materials"]!["m"]!["diffuse"] = new JsonObject { ["texture"] = "t.png", ["uv_transform"] = With([]) });
         Add("materials", "$.materials.m.emission", s => s["materials"]!["m"]!["emission"] = With(new JsonObject { ["spectrum"] = "D65" }));
         Add("materials", "$.materials.m.fluorescence",
             s => s["materials"]!["m"] = new JsonObject { ["fluorescence"] = With(new JsonObject { ["matrix"] = "m.csv" }) });
@@ -80,7 +85,11 @@ public partial class SceneDocsTests
         Add("Path tracing", "$.integrator", s => s["integrator"] = With(new JsonObject { ["type"] = "path" }));
         Add("Path tracing", "$.background", s => s["background"] = With(new JsonObject { ["spectrum"] = "D65", ["luminance"] = 1 }));
         Add("Path tracing", "$.sky", s => s["sky"] = With(new JsonObject { ["type"] = "daylight" }));
-        Add("Radiometry", "$.calculation_grids[0]", s => { s["radiometry"] = "physical"; s["calculation_grids"] = new JsonArray(With([])); });
+        Add("Radiometry", "$.calculation_grids[0]", s =>
+        {
+            s["radiometry"] = "physical";
+            s["calculation_grids"] = new JsonArray(With([]));
+        });
 
         var lightTypes = Fail(s => s["lights"]![0]!["type"] = Unknown, dir);
         Assert.StartsWith("use ", lightTypes.Hint);
@@ -136,7 +145,8 @@ public partial class SceneDocsTests
         // every registered shape: disk, cylinder). A new one must join the probe.
         var sources = Directory.GetFiles(Repo.PathOf("src", "SpectralRenderer"), "*.cs", SearchOption.AllDirectories)
             .Where(f => !f.Contains($"{Path.DirectorySeparatorChar}obj{Path.DirectorySeparatorChar}", StringComparison.Ordinal));
-        var calls = sources.SelectMany(f => KeysCall().Matches(File.ReadAllText(f)).Select(m => $"{Path.GetFileName(f)}: {m.Value}")).ToList();
+        var calls = sources.SelectMany(f => KeysCall().Matches(File.ReadAllText(f)).Select(m => $"{Path.GetFileName(f)}: {m.Value}"))
+            .ToList();
         Assert.True(calls.Count == 21,
             $"{calls.Count} Keys(...) calls, the probe knows 21; add the new one to AcceptedKeys:\n" + string.Join("\n", calls));
     }
@@ -152,7 +162,8 @@ public partial class SceneDocsTests
     }
 
     static List<string> ExampleBlocks(string markdown) =>
-        Regex.Matches(markdown, @"^```json\s*\n(.*?)^```", RegexOptions.Multiline | RegexOptions.Singleline).Select(m => m.Groups[1].Value).ToList();
+        Regex.Matches(markdown, @"^```json\s*\n(.*?)^```", RegexOptions.Multiline | RegexOptions.Singleline).Select(m => m.Groups[1].Value)
+            .ToList();
 
     [Fact]
     public void The_docs_have_examples_to_run() => Assert.True(Examples().Count >= 2);
@@ -165,7 +176,8 @@ public partial class SceneDocsTests
         var dir = Reference.TempDir();
         var scene = Path.Combine(dir, "example.json");
         File.WriteAllText(scene, json);
-        List<string> args = ["render", scene, "-o", Path.Combine(dir, "out"), "--width", "96", "--spp", "1", "--formats", "png,aov", "--quiet"];
+        List<string> args =
+            ["render", scene, "-o", Path.Combine(dir, "out"), "--width", "96", "--spp", "1", "--formats", "png,aov", "--quiet"];
         foreach (Match m in Regex.Matches(json, "\"file\"\\s*:\\s*\"([^\"]+)\""))
         {
             var mesh = ModelFiles.Require(m.Groups[1].Value);
@@ -186,7 +198,8 @@ public partial class SceneDocsTests
             count++;
         }
         Assert.True(count > ids.Width * ids.Height / 10, $"{file} example {index + 1}: objects cover only {count} pixels");
-        Assert.True(sum / count >= 40, $"{file} example {index + 1}: the subject's mean 8-bit level is {sum / count:F1}, below 40 (too dark to show anything)");
+        Assert.True(sum / count >= 40,
+            $"{file} example {index + 1}: the subject's mean 8-bit level is {sum / count:F1}, below 40 (too dark to show anything)");
     }
 
     // ---- fit and transform ---------------------------------------------------------------------------
@@ -208,7 +221,8 @@ public partial class SceneDocsTests
         AssertNear(new Vector3(-0.25f, 0, -0.25f), b.Min);
         AssertNear(new Vector3(0.25f, 2, 0.25f), b.Max);
 
-        var e = Assert.Throws<InputException>(() => SceneLoader.Parse(Encoding.UTF8.GetBytes(Scene("{ \"translate\": [1, 0, 0] }")), Path.Combine(dir, "scene.json")));
+        var e = Assert.Throws<InputException>(() =>
+            SceneLoader.Parse(Encoding.UTF8.GetBytes(Scene("{ \"translate\": [1, 0, 0] }")), Path.Combine(dir, "scene.json")));
         Assert.Contains("$.objects[0].transform.translate: has no effect with fit", e.Message);
         Assert.Contains("move fit.min and fit.max", e.Message);
     }

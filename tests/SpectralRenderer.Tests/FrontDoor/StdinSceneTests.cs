@@ -3,7 +3,8 @@ namespace SpectralRenderer.Tests.FrontDoor;
 /// <summary>`spectral render -` reads the scene from standard input; its relative paths resolve from the working folder.</summary>
 public class StdinSceneTests
 {
-    static string Cli => Repo.PathOf("src", "SpectralRenderer.Cli", "bin", Repo.Configuration, "net10.0", OperatingSystem.IsWindows() ? "spectral.exe" : "spectral");
+    static string Cli => Repo.PathOf("src", "SpectralRenderer.Cli", "bin", Repo.Configuration, "net10.0",
+        OperatingSystem.IsWindows() ? "spectral.exe" : "spectral");
 
     [Fact]
     public void Render_dash_reads_the_scene_from_stdin_and_resolves_paths_from_the_working_folder()

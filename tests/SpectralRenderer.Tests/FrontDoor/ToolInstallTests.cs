@@ -22,7 +22,8 @@ public class ToolInstallTests
             </configuration>
             """);
         var env = new Dictionary<string, string?> { ["DOTNET_CLI_TELEMETRY_OPTOUT"] = "1", ["DOTNET_NOLOGO"] = "1" };
-        List<string> pack = ["pack", Repo.PathOf("src", "SpectralRenderer.Cli", "SpectralRenderer.Cli.csproj"), "-c", Repo.Configuration, "--no-build", "-o", feed];
+        List<string> pack = ["pack", Repo.PathOf("src", "SpectralRenderer.Cli", "SpectralRenderer.Cli.csproj"), "-c", Repo.Configuration,
+            "--no-build", "-o", feed];
 #if NO_READY_TO_RUN
         pack.Add("-p:SpectralReadyToRun=false");
 #endif
@@ -30,7 +31,8 @@ public class ToolInstallTests
         Assert.True(code == 0, $"dotnet pack failed:\n{stdout}\n{stderr}");
         Assert.Single(Directory.GetFiles(feed, "SpectralRenderer.Cli.*.nupkg"));
 
-        (code, stdout, stderr) = Repo.Run("dotnet", ["tool", "install", "SpectralRenderer.Cli", "--tool-path", tools, "--configfile", config], workDir: work, env: env);
+        (code, stdout, stderr) = Repo.Run("dotnet",
+            ["tool", "install", "SpectralRenderer.Cli", "--tool-path", tools, "--configfile", config], workDir: work, env: env);
         Assert.True(code == 0, $"dotnet tool install failed:\n{stdout}\n{stderr}");
 
         var spectral = Path.Combine(tools, OperatingSystem.IsWindows() ? "spectral.exe" : "spectral");

@@ -6,7 +6,8 @@ using SpectralRenderer.Geometry;
 
 namespace SpectralRenderer.Tests.Geometry;
 
-/// <summary>The box [0,1]×[0,2]×[0,3] written as OBJ and as four kinds of PLY loads to the same 12 triangles, and rays hit it where the slab method says.</summary>
+/// <summary>The box [0,1]×[0,2]×[0,3] written as OBJ and as four kinds of PLY loads to the same 12 triangles, and rays hit it where the
+/// slab method says.</summary>
 public class CubeFormatsTests
 {
     static readonly Vector3 BoxMax = new(1, 2, 3);
@@ -148,7 +149,8 @@ public class CubeFormatsTests
         for (int i = 0; i < 2000; i++)
         {
             // From a sphere of radius 10 around the box towards a random point inside it.
-            var o = BoxMax / 2 + 10 * Vector3.Normalize(new Vector3(rng.NextSingle() - 0.5f, rng.NextSingle() - 0.5f, rng.NextSingle() - 0.5f));
+            var o =
+                BoxMax / 2 + 10 * Vector3.Normalize(new Vector3(rng.NextSingle() - 0.5f, rng.NextSingle() - 0.5f, rng.NextSingle() - 0.5f));
             var target = new Vector3(rng.NextSingle(), rng.NextSingle(), rng.NextSingle()) * BoxMax;
             var d = Vector3.Normalize(target - o);
             var ray = new Ray(o, d);

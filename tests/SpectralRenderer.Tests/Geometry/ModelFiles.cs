@@ -22,7 +22,8 @@ static class ModelFiles
                 candidates.Add(Path.GetFullPath(Path.Combine(d.FullName, dir, name)));
         foreach (var c in candidates)
             if (File.Exists(c)) { reason = ""; return c; }
-        reason = $"{name} not found under SPECTRAL_MODELS='{dir}' (tried {candidates[0]}{(candidates.Count > 1 ? " and its parents" : "")})";
+        reason =
+            $"{name} not found under SPECTRAL_MODELS='{dir}' (tried {candidates[0]}{(candidates.Count > 1 ? " and its parents" : "")})";
         return null;
     }
 

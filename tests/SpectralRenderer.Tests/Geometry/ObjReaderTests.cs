@@ -16,7 +16,8 @@ public class ObjReaderTests
     [InlineData("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", "bad.obj:4: ", "vertex index 0 out of range")]
     [InlineData("v 0 0 0\nv 1 0 0\nv 0 1 0\nf -4 -2 -1\n", "bad.obj:4: ", "vertex index -4 out of range")]
     [InlineData("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 a 3\n", "bad.obj:4: ", "vertex index 'a' is not an integer")]
-    [InlineData("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/2 3/1\n", "bad.obj:5: ", "texture coordinate index 2 out of range (1 defined so far)")]
+    [InlineData("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/2 3/1\n", "bad.obj:5: ",
+        "texture coordinate index 2 out of range (1 defined so far)")]
     [InlineData("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//2\n", "bad.obj:5: ", "normal index 2 out of range (1 defined so far)")]
     [InlineData("# a\nv 0 0 x\n", "bad.obj:2: ", "coordinate 'x' is not a finite number")]
     [InlineData("v 0 0 nan\n", "bad.obj:1: ", "coordinate 'nan' is not a finite number")]
@@ -43,7 +44,8 @@ public class ObjReaderTests
     [Fact]
     public void Unknown_keywords_comments_groups_and_materials_are_ignored()
     {
-        var m = Parse("mtllib a.mtl\r\no thing\ng part\ns 1\nusemtl red\ncstype bezier\nv 0 0 0 # origin\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1\n");
+        var m = Parse(
+            "mtllib a.mtl\r\no thing\ng part\ns 1\nusemtl red\ncstype bezier\nv 0 0 0 # origin\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1\n");
         Assert.Equal(1, m.TriangleCount);
         Assert.Equal([0, 1, 2], m.Indices);
     }
@@ -124,18 +126,25 @@ public class ObjReaderTests
         bool expectedOk = float.TryParse(text, NumberStyles.Float, CultureInfo.InvariantCulture, out float expected);
         bool ok = ObjReader.TryParseFloat(bytes, out float value);
         Assert.True(expectedOk == ok, $"'{text}': parsed {ok}, float.TryParse {expectedOk}");
-        if (ok) Assert.True(BitConverter.SingleToInt32Bits(expected) == BitConverter.SingleToInt32Bits(value), $"'{text}': {value:R} != {expected:R}");
+        if (ok)
+            Assert.True(BitConverter.SingleToInt32Bits(expected) == BitConverter.SingleToInt32Bits(value),
+                $"'{text}': {value:R} != {expected:R}");
     }
 
     [Theory]
     [InlineData("0"), InlineData("-0"), InlineData("+0.5"), InlineData(".5"), InlineData("5."), InlineData("-.25"), InlineData("007.50")]
-    [InlineData("-0.037830"), InlineData("90.848602"), InlineData("-235.313995"), InlineData("0.1"), InlineData("0.3"), InlineData("3.14159265358979")]
+    [InlineData("-0.037830"), InlineData("90.848602"), InlineData("-235.313995"), InlineData("0.1"), InlineData("0.3"),
+        InlineData("3.14159265358979")]
     // Exactly halfway between two floats: ties go to even.
-    [InlineData("16777217"), InlineData("16777219"), InlineData("-16777217.0"), InlineData("33554434"), InlineData("0.000000059604644775390625")]
-    [InlineData("999999999999999"), InlineData("9999999999999999"), InlineData("123456789012345678901234567890"), InlineData("0.0000000000000000000001")]
-    [InlineData("1e5"), InlineData("1E-5"), InlineData("-2.5e+3"), InlineData("1e39"), InlineData("1e-46"), InlineData("340282356779733661637539395458142568448")]
+    [InlineData("16777217"), InlineData("16777219"), InlineData("-16777217.0"), InlineData("33554434"),
+        InlineData("0.000000059604644775390625")]
+    [InlineData("999999999999999"), InlineData("9999999999999999"), InlineData("123456789012345678901234567890"),
+        InlineData("0.0000000000000000000001")]
+    [InlineData("1e5"), InlineData("1E-5"), InlineData("-2.5e+3"), InlineData("1e39"), InlineData("1e-46"),
+        InlineData("340282356779733661637539395458142568448")]
     [InlineData("Infinity"), InlineData("-Infinity"), InlineData("NaN"), InlineData("∞")]
-    [InlineData(""), InlineData("-"), InlineData("+"), InlineData("."), InlineData("-."), InlineData("1.2.3"), InlineData("1-"), InlineData("0x10"), InlineData("1,5"), InlineData("--1"), InlineData("١")]
+    [InlineData(""), InlineData("-"), InlineData("+"), InlineData("."), InlineData("-."), InlineData("1.2.3"), InlineData("1-"),
+        InlineData("0x10"), InlineData("1,5"), InlineData("--1"), InlineData("١")]
     public void Coordinates_parse_exactly_as_float_Parse(string text) => SameAsFloatParse(text);
 
     [Fact]
@@ -160,13 +169,16 @@ public class ObjReaderTests
         for (int n = 0; n < 100_000; n++)
         {
             float f = BitConverter.Int32BitsToSingle(rng.Next()) * (rng.Next(2) == 0 ? 1 : -1);
-            if (float.IsFinite(f) && MathF.Abs(f) is > 1e-6f and < 1e8f) SameAsFloatParse(f.ToString("0.##########", CultureInfo.InvariantCulture));
+            if (float.IsFinite(f) && MathF.Abs(f) is > 1e-6f and < 1e8f)
+                SameAsFloatParse(f.ToString("0.##########", CultureInfo.InvariantCulture));
         }
     }
 
     [Theory]
-    [InlineData("0"), InlineData("-0"), InlineData("+7"), InlineData("123456789"), InlineData("1234567890"), InlineData("2147483647"), InlineData("2147483648")]
-    [InlineData("-2147483648"), InlineData("-2147483649"), InlineData("0000000000012"), InlineData(""), InlineData("-"), InlineData("+"), InlineData("1a"), InlineData("a1"), InlineData("1.0"), InlineData("١")]
+    [InlineData("0"), InlineData("-0"), InlineData("+7"), InlineData("123456789"), InlineData("1234567890"), InlineData("2147483647"),
+        InlineData("2147483648")]
+    [InlineData("-2147483648"), InlineData("-2147483649"), InlineData("0000000000012"), InlineData(""), InlineData("-"), InlineData("+"),
+        InlineData("1a"), InlineData("a1"), InlineData("1.0"), InlineData("١")]
     public void Indices_parse_exactly_as_int_Parse(string text)
     {
         bool expectedOk = int.TryParse(text, NumberStyles.AllowLeadingSign, CultureInfo.InvariantCulture, out int expected);

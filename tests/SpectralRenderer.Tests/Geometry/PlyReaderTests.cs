@@ -42,12 +42,19 @@ public class PlyReaderTests
     [InlineData("plx\nformat ascii 1.0\nend_header\n", ":1: not a PLY file")]
     [InlineData("ply\nformat binary_middle_endian 1.0\nend_header\n", ":2: unknown format 'binary_middle_endian'")]
     [InlineData("ply\nformat ascii 1.0\nelement vertex 3\nproperty float16 x\nend_header\n", ":4: unknown property type 'float16'")]
-    [InlineData("ply\nformat ascii 1.0\nelement vertex 3\nproperty list float int x\nend_header\n", ":4: list count type 'float' is not an integer type")]
-    [InlineData("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n", ":3: element 'vertex' has no scalar property 'z'")]
+    [InlineData("ply\nformat ascii 1.0\nelement vertex 3\nproperty list float int x\nend_header\n",
+        ":4: list count type 'float' is not an integer type")]
+    [InlineData("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nelement face 0\nproperty list uchar "
+        + "int vertex_indices\nend_header\n",
+        ":3: element 'vertex' has no scalar property 'z'")]
     [InlineData("ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\n", ":5: the header has no 'end_header' line")]
-    [InlineData("ply\nformat ascii 1.0\n" + TriangleVertices + "end_header\n0 0 0 1 0 0 0 1 0\n", ": header: the header declares no 'face' or 'tristrips' element")]
-    [InlineData("ply\nformat ascii 1.0\n" + TriangleVertices + "element face 1\nproperty list uchar float vertex_indices\nend_header\n", ":7: element 'face': vertex indices must have an integer type")]
-    [InlineData("ply\nformat ascii 1.0\n" + TriangleVertices + "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0 1 0 0 0 1 0\n3 0 1 2\nfoo", "")]
+    [InlineData("ply\nformat ascii 1.0\n" + TriangleVertices + "end_header\n0 0 0 1 0 0 0 1 0\n",
+        ": header: the header declares no 'face' or 'tristrips' element")]
+    [InlineData("ply\nformat ascii 1.0\n" + TriangleVertices + "element face 1\nproperty list uchar float vertex_indices\nend_header\n",
+        ":7: element 'face': vertex indices must have an integer type")]
+    [InlineData("ply\nformat ascii 1.0\n" + TriangleVertices
+        + "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0 1 0 0 0 1 0\n3 0 1 2\nfoo",
+        "")]
     public void Broken_headers_are_rejected_with_file_and_line(string text, string tail)
     {
         if (tail == "") { Assert.Equal(1, PlyReader.Parse(Encoding.ASCII.GetBytes(text), "ok.ply").TriangleCount); return; }
@@ -72,38 +79,48 @@ public class PlyReaderTests
     {
         int start = BinaryTriangle.Length;
         var e = Fails(File(BinaryTriangle, Le(0, 0, 0, 1, 0, 0, 0, 1)));
-        Assert.Equal($": element 'vertex' #2 at byte {start + 32}: unexpected end of file (truncated data: needs 4 more bytes, 0 left)", Tail(e));
+        Assert.Equal($": element 'vertex' #2 at byte {start + 32}: unexpected end of file (truncated data: needs 4 more bytes, 0 left)",
+            Tail(e));
         e = Fails(File(BinaryTriangle, Le(0, 0, 0, 1, 0, 0, 0, 1, 0), [3], LeInts(0, 1, 2), [3], LeInts(0, 1)));
-        Assert.Equal($": element 'face' #1 at byte {start + 36 + 13 + 9}: unexpected end of file (truncated data: needs 4 more bytes, 0 left)", Tail(e));
+        Assert.Equal(
+            $": element 'face' #1 at byte {start + 36 + 13 + 9}: unexpected end of file (truncated data: needs 4 more bytes, 0 left)",
+            Tail(e));
     }
 
     [Fact]
     public void Ascii_errors_give_the_byte_of_the_bad_value()
     {
-        var text = "ply\nformat ascii 1.0\n" + TriangleVertices + "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 abc 0\n0 1 0\n3 0 1 2\n";
+        var text = "ply\nformat ascii 1.0\n" + TriangleVertices
+            + "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 abc 0\n0 1 0\n3 0 1 2\n";
         var e = Fails(Encoding.ASCII.GetBytes(text));
         Assert.Equal($": element 'vertex' #1 at byte {text.IndexOf("abc", StringComparison.Ordinal)}: 'abc' is not a number", Tail(e));
 
-        text = "ply\nformat ascii 1.0\n" + TriangleVertices + "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n";
+        text = "ply\nformat ascii 1.0\n" + TriangleVertices
+            + "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n";
         e = Fails(Encoding.ASCII.GetBytes(text));
         Assert.Contains("element 'face' #0 at byte", e.Message);
         Assert.EndsWith("face has 2 vertices (a face needs at least 3)", e.Unhinted());
 
-        text = "ply\nformat ascii 1.0\n" + TriangleVertices + "element face 1\nproperty list int int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n-3 0 1 2\n";
+        text = "ply\nformat ascii 1.0\n" + TriangleVertices
+            + "element face 1\nproperty list int int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n-3 0 1 2\n";
         Assert.EndsWith("list 'vertex_indices' has negative length -3", Fails(Encoding.ASCII.GetBytes(text)).Unhinted());
 
-        text = "ply\nformat ascii 1.0\n" + TriangleVertices + "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n";
-        Assert.EndsWith($"element 'face' #0 at byte {text.Length}: unexpected end of file (truncated data)", Fails(Encoding.ASCII.GetBytes(text)).Unhinted());
+        text = "ply\nformat ascii 1.0\n" + TriangleVertices
+            + "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n";
+        Assert.EndsWith($"element 'face' #0 at byte {text.Length}: unexpected end of file (truncated data)",
+            Fails(Encoding.ASCII.GetBytes(text)).Unhinted());
     }
 
     [Fact]
     public void Strip_indices_out_of_range_and_absurd_counts_are_reported()
     {
-        var header = "ply\nformat binary_little_endian 1.0\n" + TriangleVertices + "element tristrips 1\nproperty list int int vertex_indices\nend_header\n";
+        var header = "ply\nformat binary_little_endian 1.0\n" + TriangleVertices
+            + "element tristrips 1\nproperty list int int vertex_indices\nend_header\n";
         var e = Fails(File(header, Le(0, 0, 0, 1, 0, 0, 0, 1, 0), LeInts(4, 0, 1, -1, 3)));
         Assert.Equal($": element 'tristrips' #0 at byte {header.Length + 36 + 16}: vertex index 3 out of range (3 vertices)", Tail(e));
 
-        var huge = "ply\nformat binary_little_endian 1.0\nelement vertex 2000000000\nproperty float x\nproperty float y\nproperty float z\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n";
+        var huge = "ply\nformat binary_little_endian 1.0\nelement vertex 2000000000\nproperty float x\nproperty float y\nproperty float "
+            + "z\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n";
         Assert.Contains("element 'vertex' #0 at byte", Fails(File(huge, Le(0, 0, 0))).Message);
         Assert.Contains("2000000000 instances cannot fit", Fails(File(huge, Le(0, 0, 0))).Message);
     }
@@ -112,7 +129,8 @@ public class PlyReaderTests
     public void Unknown_elements_and_properties_are_skipped_including_lists()
     {
         var header = "ply\nformat binary_big_endian 1.0\ncomment skip me\nobj_info x\n" +
-                     "element vertex 3\nproperty uint8 red\nproperty double z\nproperty list uchar short junk\nproperty float64 y\nproperty int16 x\n" +
+                     "element vertex 3\nproperty uint8 red\nproperty double z\nproperty list uchar short "
+                         + "junk\nproperty float64 y\nproperty int16 x\n" +
                      "element material 2\nproperty list uint int16 names\nproperty float shine\n" +
                      "element face 1\nproperty int flags\nproperty list uint16 uint32 vertex_index\nproperty uchar tag\nend_header\n";
         var body = new List<byte>();
@@ -155,12 +173,30 @@ public class PlyReaderTests
             {
                 case "char": b[0] = (byte)(sbyte)v; break;
                 case "uchar": b[0] = (byte)v; break;
-                case "short": if (littleEndian) BinaryPrimitives.WriteInt16LittleEndian(b, (short)v); else BinaryPrimitives.WriteInt16BigEndian(b, (short)v); break;
-                case "ushort": if (littleEndian) BinaryPrimitives.WriteUInt16LittleEndian(b, (ushort)v); else BinaryPrimitives.WriteUInt16BigEndian(b, (ushort)v); break;
-                case "int": if (littleEndian) BinaryPrimitives.WriteInt32LittleEndian(b, (int)v); else BinaryPrimitives.WriteInt32BigEndian(b, (int)v); break;
-                case "uint": if (littleEndian) BinaryPrimitives.WriteUInt32LittleEndian(b, (uint)v); else BinaryPrimitives.WriteUInt32BigEndian(b, (uint)v); break;
-                case "float": if (littleEndian) BinaryPrimitives.WriteSingleLittleEndian(b, (float)v); else BinaryPrimitives.WriteSingleBigEndian(b, (float)v); break;
-                default: if (littleEndian) BinaryPrimitives.WriteDoubleLittleEndian(b, v); else BinaryPrimitives.WriteDoubleBigEndian(b, v); break;
+                case "short":
+                    if (littleEndian) BinaryPrimitives.WriteInt16LittleEndian(b, (short)v);
+                    else BinaryPrimitives.WriteInt16BigEndian(b, (short)v);
+                    break;
+                case "ushort":
+                    if (littleEndian) BinaryPrimitives.WriteUInt16LittleEndian(b, (ushort)v);
+                    else BinaryPrimitives.WriteUInt16BigEndian(b, (ushort)v);
+                    break;
+                case "int":
+                    if (littleEndian) BinaryPrimitives.WriteInt32LittleEndian(b, (int)v);
+                    else BinaryPrimitives.WriteInt32BigEndian(b, (int)v);
+                    break;
+                case "uint":
+                    if (littleEndian) BinaryPrimitives.WriteUInt32LittleEndian(b, (uint)v);
+                    else BinaryPrimitives.WriteUInt32BigEndian(b, (uint)v);
+                    break;
+                case "float":
+                    if (littleEndian) BinaryPrimitives.WriteSingleLittleEndian(b, (float)v);
+                    else BinaryPrimitives.WriteSingleBigEndian(b, (float)v);
+                    break;
+                default:
+                    if (littleEndian) BinaryPrimitives.WriteDoubleLittleEndian(b, v);
+                    else BinaryPrimitives.WriteDoubleBigEndian(b, v);
+                    break;
             }
             _bytes.AddRange(b[..n]);
             return this;
@@ -188,7 +224,10 @@ public class PlyReaderTests
                 strips.Value("uchar", list.Length);
                 foreach (int i in list) strips.Value(type, i == -1 && type == "uint" ? uint.MaxValue : i);
             }
-            var m = PlyReader.Parse(File($"ply\nformat {format} 1.0\n{vertices}element tristrips {lists.Length}\nproperty list uchar {type} vertex_indices\nend_header\n", strips.Bytes), "s.ply");
+            var m = PlyReader.Parse(File($"ply\nformat {format} 1.0\n{vertices}element tristrips {lists.Length}\nproperty list uchar "
+                + $"{type} vertex_indices\nend_header\n",
+                strips.Bytes),
+                "s.ply");
             Assert.Equal([0, 1, 2, 2, 1, 3, 3, 2, 1], m.Indices);
 
             // A quad and a triangle as faces, with a scalar before and a list after the indices.
@@ -200,7 +239,10 @@ public class PlyReaderTests
                 foreach (int i in face) faces.Value(type, i);
                 faces.Value("ushort", 2).Value("double", 1).Value("double", 2);
             }
-            m = PlyReader.Parse(File($"ply\nformat {format} 1.0\n{vertices}element face 2\nproperty short flags\nproperty list uint {type} vertex_indices\nproperty list ushort double junk\nend_header\n", faces.Bytes), "f.ply");
+            m = PlyReader.Parse(File($"ply\nformat {format} 1.0\n{vertices}element face 2\nproperty short flags\nproperty list uint {type} "
+                + $"vertex_indices\nproperty list ushort double junk\nend_header\n",
+                faces.Bytes),
+                "f.ply");
             Assert.Equal([0, 1, 3, 0, 3, 2, 3, 2, 1], m.Indices);
         }
     }
@@ -209,11 +251,13 @@ public class PlyReaderTests
     public void Binary_vertices_that_are_not_finite_name_the_property_and_its_byte()
     {
         // Three floats per vertex (read as they lie in memory), and with normals and a double (read value by value).
-        var header = "ply\nformat binary_little_endian 1.0\n" + TriangleVertices + "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+        var header = "ply\nformat binary_little_endian 1.0\n" + TriangleVertices
+            + "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
         var e = Fails(File(header, Le(0, 0, 0, 1, float.NaN, 0, 0, 1, 0), [3], LeInts(0, 1, 2)));
         Assert.Equal($": element 'vertex' #1 at byte {header.Length + 16}: property 'y' is NaN, not a finite number", Tail(e));
 
-        header = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty double z\nproperty float nx\nproperty float ny\nproperty float nz\n" +
+        header = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty double z\nproperty "
+            + "float nx\nproperty float ny\nproperty float nz\n" +
                  "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
         var body = new Body(true);
         foreach (var (x, y, z) in new[] { (0.0, 0.0, 0.0), (1.0, 0.0, 1e300), (0.0, 1.0, 0.0) })
@@ -229,10 +273,12 @@ public class PlyReaderTests
     [Fact]
     public void A_uint32_index_past_int_range_is_reported_as_written()
     {
-        var header = "ply\nformat binary_big_endian 1.0\n" + TriangleVertices + "element face 1\nproperty list uchar uint vertex_indices\nend_header\n";
+        var header = "ply\nformat binary_big_endian 1.0\n" + TriangleVertices
+            + "element face 1\nproperty list uchar uint vertex_indices\nend_header\n";
         var body = new Body(false);
         foreach (float v in Square[..9]) body.Value("float", v);
         body.Value("uchar", 3).Value("uint", 0).Value("uint", 3_000_000_000).Value("uint", 2);
-        Assert.Equal($": element 'face' #0 at byte {header.Length + 36 + 1 + 4}: vertex index 3000000000 out of range (3 vertices)", Tail(Fails(File(header, body.Bytes))));
+        Assert.Equal($": element 'face' #0 at byte {header.Length + 36 + 1 + 4}: vertex index 3000000000 out of range (3 vertices)",
+            Tail(Fails(File(header, body.Bytes))));
     }
 }

@@ -25,7 +25,8 @@ public class TriangleIntersectionTests
     {
         Assert.False(TriangleIntersection.Intersect(new Ray(new Vector3(3, 1.5f, 1), -Vector3.UnitZ), P0, P1, P2, out _, out _, out _));
         Assert.False(TriangleIntersection.Intersect(new Ray(new Vector3(1, 0.5f, 1), Vector3.UnitZ), P0, P1, P2, out _, out _, out _));
-        Assert.False(TriangleIntersection.Intersect(new Ray(new Vector3(1, 0.5f, 1), -Vector3.UnitZ, 0.999f), P0, P1, P2, out _, out _, out _));
+        Assert.False(
+            TriangleIntersection.Intersect(new Ray(new Vector3(1, 0.5f, 1), -Vector3.UnitZ, 0.999f), P0, P1, P2, out _, out _, out _));
         // Parallel to the plane.
         Assert.False(TriangleIntersection.Intersect(new Ray(new Vector3(-1, 0.5f, 0), Vector3.UnitX), P0, P1, P2, out _, out _, out _));
     }
@@ -36,7 +37,9 @@ public class TriangleIntersectionTests
         // A fan of 7 thin triangles around a shared vertex; rays aimed exactly at the shared edges and the centre
         // (in float) must hit at least one triangle — the property of the Woop–Benthin–Wald test.
         var centre = new Vector3(0.1f, 0.3f, 0.7f);
-        var ring = Enumerable.Range(0, 7).Select(i => centre + new Vector3(MathF.Cos(i * 0.9f), MathF.Sin(i * 0.9f), 0.05f * MathF.Sin(i))).ToArray(); // nearly flat: no fold-over silhouettes
+        // nearly flat: no fold-over silhouettes
+        var ring = Enumerable.Range(0, 7).Select(i => centre + new Vector3(MathF.Cos(i * 0.9f), MathF.Sin(i * 0.9f), 0.05f * MathF.Sin(i)))
+            .ToArray();
         var rng = new Random(3);
         int misses = 0;
         for (int n = 0; n < 20000; n++)

@@ -7,7 +7,8 @@ namespace SpectralRenderer.Tests.Imaging;
 /// <summary>The mosaic (the paper's Fig. 2) from band planes gives the bytes of the per-pixel definition.</summary>
 public class BandMosaicTests
 {
-    /// <summary>The definition: each thumbnail pixel the box mean of its step × step block (rows, then columns), over the scale, sRGB-encoded.</summary>
+    /// <summary>The definition: each thumbnail pixel the box mean of its step × step block (rows, then columns), over the scale,
+    /// sRGB-encoded.</summary>
     static byte[] Reference(SpectralImage image, float scale, int maxThumb, out int w, out int h)
     {
         int n = image.Bands, gap = 4;

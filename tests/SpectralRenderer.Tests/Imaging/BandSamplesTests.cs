@@ -17,7 +17,8 @@ public class BandSamplesTests
         {
             ushort want = scale > 0 ? RgbSpace.To16(Math.Clamp(plane[i] / scale, 0, 1)) : (ushort)0;
             ushort actual = BinaryPrimitives.ReadUInt16BigEndian(got.AsSpan(2 * i));
-            if (want != actual) Assert.Fail($"v = {plane[i]:R} ({BitConverter.SingleToInt32Bits(plane[i]):x8}), scale {scale:R}: {actual}, formula {want}");
+            if (want != actual)
+                Assert.Fail($"v = {plane[i]:R} ({BitConverter.SingleToInt32Bits(plane[i]):x8}), scale {scale:R}: {actual}, formula {want}");
         }
         Assert.Equal(0xA5, got[^1]);   // nothing written past the samples
     }

@@ -84,7 +84,8 @@ public class EnviTests
         EnviWriter.Write(path, Synthetic.Image());
         File.WriteAllBytes(path, File.ReadAllBytes(path)[..1000]);
         Assert.Contains("truncated", Assert.Throws<InputException>(() => EnviReader.Read(path)).Message);
-        File.WriteAllText(EnviWriter.HeaderPath(path), File.ReadAllText(EnviWriter.HeaderPath(path)).Replace("data type = 4", "data type = 12"));
+        File.WriteAllText(EnviWriter.HeaderPath(path),
+            File.ReadAllText(EnviWriter.HeaderPath(path)).Replace("data type = 4", "data type = 12"));
         Assert.Contains("data type 12", Assert.Throws<InputException>(() => EnviReader.Read(path)).Message);
         Assert.Throws<InputException>(() => EnviReader.ParseHeader("P6\n"));
     }
@@ -140,6 +141,7 @@ public class NpyTests
         var b = ms.ToArray();
         Assert.Contains("truncated", Assert.Throws<InputException>(() => NpyReader.Read(new MemoryStream(b[..500]))).Message);
         Assert.Contains("magic", Assert.Throws<InputException>(() => NpyReader.Read(new MemoryStream("not numpy"u8.ToArray()))).Message);
-        Assert.Contains("bands", Assert.Throws<InputException>(() => NpyReader.ReadImage(new MemoryStream(b), new BandGrid(400, 700, 31))).Message);
+        Assert.Contains("bands",
+            Assert.Throws<InputException>(() => NpyReader.ReadImage(new MemoryStream(b), new BandGrid(400, 700, 31))).Message);
     }
 }

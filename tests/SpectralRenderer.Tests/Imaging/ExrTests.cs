@@ -267,7 +267,8 @@ public class ExrTests
         // Long buffers take the vector path: compare with a plain count, for 4- and 2-byte samples.
         var rng = new Random(3);
         var raw = new byte[4 * 100_003];
-        for (int i = 0; i < raw.Length; i += 4) if (rng.Next(3) != 0) rng.NextBytes(raw.AsSpan(i, 4)); else raw.AsSpan(i - (i > 0 ? 4 : 0), 4).CopyTo(raw.AsSpan(i));
+        for (int i = 0; i < raw.Length; i += 4) if (rng.Next(3) != 0) rng.NextBytes(raw.AsSpan(i, 4));
+        else raw.AsSpan(i - (i > 0 ? 4 : 0), 4).CopyTo(raw.AsSpan(i));
         foreach (int size in new[] { 4, 2 })
         {
             int samples = raw.Length / size, repeats = 0;
@@ -284,7 +285,8 @@ public class ExrTests
         long first = BinaryPrimitives.ReadInt64LittleEndian(b.AsSpan(tableAt));
         int count = (int)((first - tableAt) / 8);
         return Enumerable.Range(0, count)
-            .Select(c => BinaryPrimitives.ReadInt32LittleEndian(b.AsSpan((int)BinaryPrimitives.ReadInt64LittleEndian(b.AsSpan(tableAt + 8 * c)) + 4)))
+            .Select(c => BinaryPrimitives.ReadInt32LittleEndian(
+                b.AsSpan((int)BinaryPrimitives.ReadInt64LittleEndian(b.AsSpan(tableAt + 8 * c)) + 4)))
             .ToList();
     }
 

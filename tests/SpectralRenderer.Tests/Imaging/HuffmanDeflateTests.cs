@@ -25,7 +25,8 @@ public class HuffmanDeflateTests
         return ms.ToArray();
     }
 
-    public static TheoryData<string> Inputs => ["empty", "one byte", "one value repeated", "uniform random", "all 256 values once", "skewed (Fibonacci counts)", "image residuals"];
+    public static TheoryData<string> Inputs => ["empty", "one byte", "one value repeated", "uniform random", "all 256 values once",
+        "skewed (Fibonacci counts)", "image residuals"];
 
     static byte[] Input(string name)
     {
@@ -49,7 +50,8 @@ public class HuffmanDeflateTests
                 {
                     // Small signed residuals around 0 as a Sub-filtered smooth image gives, a few large ones.
                     var b = new byte[500_000];
-                    for (int i = 0; i < b.Length; i++) b[i] = (byte)(rng.Next(100) < 3 ? rng.Next(256) : (int)Math.Round(rng.NextDouble() * 6 - 3));
+                    for (int i = 0; i < b.Length; i++)
+                        b[i] = (byte)(rng.Next(100) < 3 ? rng.Next(256) : (int)Math.Round(rng.NextDouble() * 6 - 3));
                     return b;
                 }
         }
@@ -101,7 +103,8 @@ public class HuffmanDeflateTests
             {
                 var freq = new int[symbols];
                 // Geometric-ish counts spanning many octaves make deep unconstrained trees.
-                for (int s = 0; s < symbols; s++) freq[s] = trial % 3 == 0 && s % 5 == 0 ? 0 : (int)Math.Min(int.MaxValue / 512, Math.Pow(1.9, rng.Next(0, 30)));
+                for (int s = 0; s < symbols; s++)
+                    freq[s] = trial % 3 == 0 && s % 5 == 0 ? 0 : (int)Math.Min(int.MaxValue / 512, Math.Pow(1.9, rng.Next(0, 30)));
                 var lengths = new byte[symbols];
                 HuffmanDeflate.BuildCode(freq, lengths, maxBits);
                 double kraft = 0;

@@ -61,7 +61,8 @@ public class InteropTests(ITestOutputHelper output)
     public void Oiiotool_stats_match_ours_per_channel(ExrCompression compression, bool deflateEveryChunk)
     {
         var exe = Require("oiiotool", "openimageio-tools");
-        var file = WriteExr(Reference.TempDir(), new ExrOptions { Compression = compression, Xyz = true, DeflateEveryChunk = deflateEveryChunk });
+        var file =
+            WriteExr(Reference.TempDir(), new ExrOptions { Compression = compression, Xyz = true, DeflateEveryChunk = deflateEveryChunk });
         var (exit, stdout, stderr) = Tool.Run(exe, ["--info", "-v", "--stats", file]);
         output.WriteLine(stdout);
         Assert.True(exit == 0, stderr);
@@ -69,7 +70,8 @@ public class InteropTests(ITestOutputHelper output)
         {
             var m = Regex.Match(stdout, $@"Stats {name}: ([^(\n]+)");
             Assert.True(m.Success, $"no 'Stats {name}' line");
-            return m.Groups[1].Value.Split(' ', StringSplitOptions.RemoveEmptyEntries).Select(v => double.Parse(v, CultureInfo.InvariantCulture)).ToArray();
+            return m.Groups[1].Value.Split(' ', StringSplitOptions.RemoveEmptyEntries)
+                .Select(v => double.Parse(v, CultureInfo.InvariantCulture)).ToArray();
         }
         var (min, max, avg) = (Row("Min"), Row("Max"), Row("Avg"));
 
@@ -112,7 +114,8 @@ public class InteropTests(ITestOutputHelper output)
         output.WriteLine(stdout);
         Assert.True(exit == 0, stderr);
         Assert.Contains("1024 x  520, 1 channel, uint16 png", stdout);
-        int Stat(string name) => int.Parse(Regex.Match(stdout, $@"Stats {name}: (\d+) \(of 65535\)").Groups[1].Value, CultureInfo.InvariantCulture);
+        int Stat(string name) =>
+            int.Parse(Regex.Match(stdout, $@"Stats {name}: (\d+) \(of 65535\)").Groups[1].Value, CultureInfo.InvariantCulture);
         Assert.Equal(samples.Min(), Stat("Min"));
         Assert.Equal(samples.Max(), Stat("Max"));
         var avg = double.Parse(Regex.Match(stdout, @"Stats Avg: ([0-9.]+) \(of 65535\)").Groups[1].Value, CultureInfo.InvariantCulture);
@@ -149,7 +152,8 @@ public class InteropTests(ITestOutputHelper output)
             Assert.Equal(img.Grid.Centre(b), D("wavelength"));
             Assert.Equal("Nanometers", md.GetProperty("wavelength_units").GetString());
             img.CopyBand(b, plane);
-            output.WriteLine($"band {b + 1}: {D("wavelength")} nm min {D("STATISTICS_MINIMUM")} max {D("STATISTICS_MAXIMUM")} mean {D("STATISTICS_MEAN")}");
+            output.WriteLine($"band {b + 1}: {D("wavelength")} nm min {D("STATISTICS_MINIMUM")} max "
+                + $"{D("STATISTICS_MAXIMUM")} mean {D("STATISTICS_MEAN")}");
             Close(plane.Min(), D("STATISTICS_MINIMUM"), $"band {b} min");
             Close(plane.Max(), D("STATISTICS_MAXIMUM"), $"band {b} max");
             Close(plane.Average(v => (double)v), D("STATISTICS_MEAN"), $"band {b} mean");
@@ -189,14 +193,16 @@ public class InteropTests(ITestOutputHelper output)
         {
             var samples = new ushort[w * h];
             for (int y = 0; y < h; y++)
-                for (int x = 0; x < w; x++) samples[y * w + x] = (ushort)(20000 + 9000 * Math.Sin(x * 0.01) * Math.Cos(y * 0.013) + (x * 7919 + y * 104729) % 61);
+                for (int x = 0; x < w; x++)
+                    samples[y * w + x] = (ushort)(20000 + 9000 * Math.Sin(x * 0.01) * Math.Cos(y * 0.013) + (x * 7919 + y * 104729) % 61);
             var p = Path.Combine(dir, $"huffman-{w}x{h}.png");
             AtomicFile.Write(p, s => PngWriter.WriteGray16(s, w, h, samples, filter: PngFilter.Sub, huffmanOnly: true));
             pngs.Add(new { path = p, width = w, height = h, depth = 16, colour = 0, samples = samples.Select(v => (int)v) });
         }
 
         var manifest = Path.Combine(dir, "manifest.json");
-        File.WriteAllText(manifest, JsonSerializer.Serialize(new { npy = new { path = npy, shape = new[] { H, W, img.Bands }, values }, pngs }));
+        File.WriteAllText(manifest,
+            JsonSerializer.Serialize(new { npy = new { path = npy, shape = new[] { H, W, img.Bands }, values }, pngs }));
         var script = Path.Combine(AppContext.BaseDirectory, "Imaging", "check_outputs.py");
         var (exit, stdout, stderr) = Tool.Run(exe, [script, manifest]);
         output.WriteLine(stdout);

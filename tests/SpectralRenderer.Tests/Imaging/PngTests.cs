@@ -51,7 +51,8 @@ public class PngTests
     {
         var rgb = Rgb();
         var ms = new MemoryStream();
-        PngWriter.WriteRgb8(ms, W, H, rgb, new Dictionary<string, string> { ["Software"] = "SpectralRenderer", ["Comment"] = "bands 380:780:20" }, filter);
+        PngWriter.WriteRgb8(ms, W, H, rgb,
+            new Dictionary<string, string> { ["Software"] = "SpectralRenderer", ["Comment"] = "bands 380:780:20" }, filter);
         var png = PngReader.Read(new MemoryStream(ms.ToArray()));
         Assert.Equal((W, H, 8, 2, 3), (png.Width, png.Height, png.BitDepth, png.ColourType, png.Channels));
         Assert.Equal(rgb.Select(b => (ushort)b).ToArray(), png.Samples);
@@ -145,7 +146,8 @@ public class PngTests
         BinaryPrimitives.WriteUInt32BigEndian(crc, Crc32.Update(Crc32.Compute("IDAT"u8), idat));
         forged.Write(crc);
         forged.Write(c.AsSpan(c.Length - 12));
-        Assert.Contains("truncated or corrupt", Assert.Throws<SpectralRenderer.Diagnostics.InputException>(() => PngReader.Read(new MemoryStream(forged.ToArray()))).Message);
+        Assert.Contains("truncated or corrupt",
+            Assert.Throws<SpectralRenderer.Diagnostics.InputException>(() => PngReader.Read(new MemoryStream(forged.ToArray()))).Message);
     }
 
     static byte[] Inflate(byte[] png)
@@ -163,7 +165,8 @@ public class PngTests
         return outp.ToArray();
     }
 
-    /// <summary>§9.2 filters and §9.4 Paeth written out as the standard gives them, byte by byte, the row above as zeros when absent.</summary>
+    /// <summary>§9.2 filters and §9.4 Paeth written out as the standard gives them, byte by byte, the row above as zeros when
+    /// absent.</summary>
     static byte[] ReferenceFilter(int type, byte[] x, byte[]? above, int bpp)
     {
         var b = above ?? new byte[x.Length];
@@ -195,7 +198,8 @@ public class PngTests
                         var o = new byte[n + 2];
                         o[^1] = 0x5A;
                         PngWriter.FilterRow(type, x, b ?? ReadOnlySpan<byte>.Empty, bpp, o);
-                        Assert.True(ReferenceFilter(type, x, b, bpp).AsSpan().SequenceEqual(o.AsSpan(0, n + 1)), $"filter {type}, bpp {bpp}, {n} bytes, first row {b is null}");
+                        Assert.True(ReferenceFilter(type, x, b, bpp).AsSpan().SequenceEqual(o.AsSpan(0, n + 1)),
+                            $"filter {type}, bpp {bpp}, {n} bytes, first row {b is null}");
                         Assert.Equal(0x5A, o[^1]);
                         long sum = 0;
                         for (int i = 1; i <= n; i++) sum += Math.Abs((int)(sbyte)o[i]);

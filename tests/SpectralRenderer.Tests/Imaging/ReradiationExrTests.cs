@@ -135,17 +135,24 @@ public sealed class ReradiationExrTests(ITestOutputHelper output) : IDisposable
         string someShift = good.First(c => c.Name.StartsWith($"T.{Fichet(Cells[13])}.", StringComparison.Ordinal)).Name;
         var cases = new (string File, List<(string Name, float[] Plane)> Channels, int W, int H, string Channel, string What)[]
         {
-            ("no-middle-diagonal.exr", good.Where(c => c.Name != middle).ToList(), 1, 1, $"T.{Fichet(Cells[41])}", "no diagonal channel at 502.5 nm"),
-            ("no-first-diagonal.exr", good.Where(c => c.Name != first).ToList(), 1, 1, shiftedFromFirst, "excitation 302.5 nm has no diagonal"),
+            ("no-middle-diagonal.exr", good.Where(c => c.Name != middle).ToList(), 1, 1, $"T.{Fichet(Cells[41])}",
+                "no diagonal channel at 502.5 nm"),
+            ("no-first-diagonal.exr", good.Where(c => c.Name != first).ToList(), 1, 1, shiftedFromFirst,
+                "excitation 302.5 nm has no diagonal"),
             ("malformed.exr", [.. good, ("T.550nm.600", [0f])], 1, 1, "T.550nm.600", "is not a reflective channel name"),
             ("malformed-number.exr", [.. good, ("T.abcnm", [0f])], 1, 1, "T.abcnm", "is not a reflective channel name"),
-            ("nan.exr", good.Select(c => c.Name == someShift ? (c.Name, new[] { float.NaN }) : c).ToList(), 1, 1, someShift, "is not finite"),
-            ("infinite.exr", good.Select(c => c.Name == middle ? (c.Name, new[] { float.PositiveInfinity }) : c).ToList(), 1, 1, middle, "is not finite"),
-            ("negative.exr", good.Select(c => c.Name == someShift ? (c.Name, new[] { -1e-3f }) : c).ToList(), 1, 1, someShift, "is negative"),
+            ("nan.exr", good.Select(c => c.Name == someShift ? (c.Name, new[] { float.NaN }) : c).ToList(), 1, 1, someShift,
+                "is not finite"),
+            ("infinite.exr", good.Select(c => c.Name == middle ? (c.Name, new[] { float.PositiveInfinity }) : c).ToList(), 1, 1, middle,
+                "is not finite"),
+            ("negative.exr", good.Select(c => c.Name == someShift ? (c.Name, new[] { -1e-3f }) : c).ToList(), 1, 1, someShift,
+                "is negative"),
             ("twice.exr", [.. good, ($"{middle}.{Fichet(Cells[40])}", [0.5f])], 1, 1, middle, "a second time"),
-            ("varying.exr", Channels(d, 4).Select(c => c.Name == middle ? (c.Name, new[] { 0.5f, 0.5f, 0.5f, 0.6f }) : c).ToList(), 2, 2, middle,
+            ("varying.exr", Channels(d, 4).Select(c => c.Name == middle ? (c.Name, new[] { 0.5f, 0.5f, 0.5f, 0.6f }) : c).ToList(), 2, 2,
+                middle,
                 "differs between pixels (0, 0) and (1, 1)"),
-            ("bright.exr", good.Select(c => c.Name == someShift ? (c.Name, new[] { 0.9f }) : c).ToList(), 1, 1, $"T.{Fichet(Cells[13])}", "re-emits"),
+            ("bright.exr", good.Select(c => c.Name == someShift ? (c.Name, new[] { 0.9f }) : c).ToList(), 1, 1, $"T.{Fichet(Cells[13])}",
+                "re-emits"),
         };
         foreach (var (file, channels, w, h, channel, what) in cases)
         {
@@ -190,7 +197,8 @@ public sealed class ReradiationExrTests(ITestOutputHelper output) : IDisposable
         var path = WriteExr("paper.exr", channels);
         var (exit, stdout, stderr) = Tool.Run(exrheader, [path]);
         Assert.True(exit == 0, stderr);
-        var listed = Regex.Matches(stdout, @"^\s{4}(T\.\S+), 32-bit floating-point, sampling 1 1$", RegexOptions.Multiline).Select(m => m.Groups[1].Value);
+        var listed = Regex.Matches(stdout, @"^\s{4}(T\.\S+), 32-bit floating-point, sampling 1 1$", RegexOptions.Multiline)
+            .Select(m => m.Groups[1].Value);
         Assert.Equal(channels.Select(c => c.Name).Order(StringComparer.Ordinal), listed);
         output.WriteLine($"exrheader lists {listed.Count()} T. channels, e.g. {channels[1].Name}");
 

@@ -57,7 +57,8 @@ static class Tool
         return null;
     }
 
-    public static (int Exit, string Out, string Err) Run(string exe, IEnumerable<string> args, int timeoutMs = 20000, string? workDir = null)
+    public static (int Exit, string Out, string Err) Run(string exe, IEnumerable<string> args, int timeoutMs = 20000,
+        string? workDir = null)
     {
         var psi = new ProcessStartInfo(exe)
         {

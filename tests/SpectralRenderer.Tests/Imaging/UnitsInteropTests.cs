@@ -2,7 +2,8 @@ using SpectralRenderer.Tests.Cli;
 
 namespace SpectralRenderer.Tests.Imaging;
 
-/// <summary>What a render's files say about their units, as exrheader, gdalinfo and oiiotool read them (skipped without the tools).</summary>
+/// <summary>What a render's files say about their units, as exrheader, gdalinfo and oiiotool read them (skipped without the
+/// tools).</summary>
 public class UnitsInteropTests
 {
     static string Require(string tool, string package)

@@ -15,7 +15,8 @@ public class XyzPlanesTests
     {
         var rng = new Random(w + h);
         var img = new SpectralImage(w, h, BandGrid.Default);
-        for (int i = 0; i < img.Data.Length; i++) img.Data[i] = rng.Next(10) == 0 ? 0f : (float)(rng.NextDouble() * Math.Pow(10, rng.Next(-6, 4)));
+        for (int i = 0; i < img.Data.Length; i++)
+            img.Data[i] = rng.Next(10) == 0 ? 0f : (float)(rng.NextDouble() * Math.Pow(10, rng.Next(-6, 4)));
         var cm = Synthetic.Colorimeter;
         var xyz = XyzPlanes.Compute(cm, img.BandPlanes(), w * h);
         var fromCube = XyzPlanes.Compute(cm, img);   // the preview's path when no band planes are written
@@ -29,12 +30,14 @@ public class XyzPlanesTests
                 var got = xyz[y * w + x];
                 Assert.True(BitConverter.DoubleToInt64Bits(want.X) == BitConverter.DoubleToInt64Bits(got.X)
                     && BitConverter.DoubleToInt64Bits(want.Y) == BitConverter.DoubleToInt64Bits(got.Y)
-                    && BitConverter.DoubleToInt64Bits(want.Z) == BitConverter.DoubleToInt64Bits(got.Z), $"pixel ({x}, {y}): {got} != {want}");
+                    && BitConverter.DoubleToInt64Bits(want.Z) == BitConverter.DoubleToInt64Bits(got.Z),
+                        $"pixel ({x}, {y}): {got} != {want}");
             }
         Assert.True(xyz.Y.Max() > 0);
 
         // The preview from the planes: the bytes of the per-pixel encoder, in both RGB modes, with exposure and adaptation.
-        foreach (var encoder in new[] { new DisplayEncoder(cm, RgbSpace.Srgb, 3.5, adapt: true), new DisplayEncoder(cm, RgbSpace.Paper, 0.7) })
+        foreach (
+            var encoder in new[] { new DisplayEncoder(cm, RgbSpace.Srgb, 3.5, adapt: true), new DisplayEncoder(cm, RgbSpace.Paper, 0.7) })
         {
             var rgb = RenderOutputWriter.Preview(img, encoder);
             for (int y = 0; y < h; y++)

@@ -62,7 +62,8 @@ public class CalculationGridTests(ITestOutputHelper output)
     }
 
     /// <summary>The rows at the cell centres O + (i + ½)/NU·U + (j + ½)/NV·V, i fastest, each against the closed form.</summary>
-    void CheckGrid(string name, (double X, double Y, double Z, double Lx)[] rows, double[] o, double[] u, double[] v, int nu, int nv, double nx, double nz)
+    void CheckGrid(string name, (double X, double Y, double Z, double Lx)[] rows, double[] o, double[] u, double[] v, int nu, int nv,
+        double nx, double nz)
     {
         Assert.Equal(nu * nv, rows.Length);
         for (int k = 0; k < rows.Length; k++)
@@ -85,7 +86,8 @@ public class CalculationGridTests(ITestOutputHelper output)
         Assert.True(code == 0, err);
         CheckGrid("floor", Csv(Path.Combine(dir, "grids", "floor.csv")), [-1.5, -1.5, 0], [3, 0, 0], [0, 3, 0], 5, 4, 0, 1);
         CheckGrid("wall", Csv(Path.Combine(dir, "grids", "wall.csv")), [-1, -1, 0.5], [0, 2, 0], [0, 0, 1], 3, 2, 1, 0);
-        var files = JsonNode.Parse(File.ReadAllText(Path.Combine(dir, "render.json")))!["files"]!.AsArray().Select(f => (string)f!).ToArray();
+        var files = JsonNode.Parse(File.ReadAllText(Path.Combine(dir, "render.json")))!["files"]!.AsArray().Select(f => (string)f!)
+            .ToArray();
         Assert.Contains("grids/floor.csv", files);
         Assert.Contains("grids/wall.svg", files);
         // The heat map: one cell per point holding its lx, and a legend in lx.
@@ -171,7 +173,8 @@ public class CalculationGridTests(ITestOutputHelper output)
               "materials": { "wall": { "diffuse": {{rho}} } },
               "lights": [ { "type": "point", "position": [0, 0, 0], "spectrum": "D65", "luminous_flux": {{flux}} } ],
               "objects": [ { "type": "sphere", "center": [0, 0, 0], "radius": {{r}}, "material": "wall" } ],
-              "calculation_grids": [ { "name": "inside", "origin": [-0.3, -0.3, -0.5], "u": [0.6, 0, 0], "v": [0, 0.6, 0], "points": [3, 3] } ] }
+              "calculation_grids": [ { "name": "inside", "origin": [-0.3, -0.3, -0.5], "u": [0.6, 0, 0], "v": [0, 0.6, 0], "points": [3,
+                3] } ] }
             """;
         var scene = Write(json);
         var dir = Path.Combine(Path.GetDirectoryName(scene)!, "out");
@@ -200,7 +203,8 @@ public class CalculationGridTests(ITestOutputHelper output)
         Assert.True(code == 0, err);
         CheckGrid("relit floor", Csv(Path.Combine(dir, "d65", "grids", "floor.csv")), [-1.5, -1.5, 0], [3, 0, 0], [0, 3, 0], 5, 4, 0, 1);
         // Switched off, the grid is dark: its files are traced again, not copied from the source.
-        (code, _, err) = CliRunner.Run("relight", Path.Combine(dir, "r"), "-o", Path.Combine(dir, "off"), "--quiet", "--intensity", "key=0");
+        (code, _, err) =
+            CliRunner.Run("relight", Path.Combine(dir, "r"), "-o", Path.Combine(dir, "off"), "--quiet", "--intensity", "key=0");
         Assert.True(code == 0, err);
         Assert.All(Csv(Path.Combine(dir, "off", "grids", "wall.csv")), row => Assert.Equal(0, row.Lx));
     }

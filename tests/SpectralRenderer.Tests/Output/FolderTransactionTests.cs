@@ -49,13 +49,15 @@ public class FolderTransactionTests
         File.WriteAllText(s, Scene);
         Ok("render", s, "-o", Path.Combine(dir, "r"), "--formats", "png,npy,aov,lights", "--quiet");
         foreach (var i in new[] { "0", "1" })
-            Ok("render", s, "--width", "8", "--height", "64", "--formats", "npy,aov", "--shard", $"{i}/2", "-o", Path.Combine(dir, i == "0" ? "a" : "b"), "--quiet");
+            Ok("render", s, "--width", "8", "--height", "64", "--formats", "npy,aov", "--shard", $"{i}/2", "-o",
+                Path.Combine(dir, i == "0" ? "a" : "b"), "--quiet");
         return dir;
     });
 
     static string Base() => Shared.Value;
 
-    /// <summary>(the run that leaves an old result, the command, the folder it writes) for each command; {d} = the base folder, {t} = the target.</summary>
+    /// <summary>(the run that leaves an old result, the command, the folder it writes) for each command; {d} = the base folder, {t} = the
+    /// target.</summary>
     public static TheoryData<string> Commands() => ["render", "relight", "merge", "camera", "recover", "probe", "reconstruct"];
 
     static (string[] Before, string[] Command, string Target) Plan(string name, string d, string t) => name switch
@@ -64,12 +66,14 @@ public class FolderTransactionTests
                      ["render", $"{d}/s.json", "-o", t, "--formats", "png,envi,aov", "--quiet"], t),
         "relight" => (["relight", $"{d}/r", "--light", "key=A", "-o", t, "--quiet"],
                       ["relight", $"{d}/r", "--light", "key=blackbody:3000", "-o", t, "--quiet"], t),
-        "merge" => (["render", $"{d}/s.json", "-o", t, "--formats", "png", "--quiet"], ["merge", $"{d}/a", $"{d}/b", "-o", t, "--quiet"], t),
+        "merge" =>
+            (["render", $"{d}/s.json", "-o", t, "--formats", "png", "--quiet"], ["merge", $"{d}/a", $"{d}/b", "-o", t, "--quiet"], t),
         "camera" => (["camera", $"{d}/r", "--sensor", "isetcam", "--noise", "off", "-o", t],
                      ["camera", $"{d}/r", "--sensor", "nikon-d5100", "--noise", "off", "-o", t], t),
         "recover" => (["recover", t, "--method", "pinv"], ["recover", t, "--method", "pinv,wiener"], t),
         "probe" => (["probe", $"{d}/r", "--pixel", "1,1", "-o", $"{t}/p"], ["probe", $"{d}/r", "--pixel", "2,2", "-o", $"{t}/p"], t),
-        "reconstruct" => (["reconstruct", t, "--white-object", "board", "--pixel", "1,1"], ["reconstruct", t, "--white-object", "board", "--pixel", "2,2"], t),
+        "reconstruct" => (["reconstruct", t, "--white-object", "board", "--pixel", "1,1"],
+            ["reconstruct", t, "--white-object", "board", "--pixel", "2,2"], t),
         _ => throw new ArgumentException(name),
     };
 
@@ -227,14 +231,21 @@ public class FolderTransactionTests
 
     static Process Start(string dir, IDictionary<string, string>? env, params string[] args)
     {
-        var psi = new ProcessStartInfo("dotnet") { RedirectStandardError = true, RedirectStandardOutput = true, UseShellExecute = false, WorkingDirectory = dir };
+        var psi = new ProcessStartInfo("dotnet")
+        {
+            RedirectStandardError = true,
+            RedirectStandardOutput = true,
+            UseShellExecute = false,
+            WorkingDirectory = dir
+        };
         psi.ArgumentList.Add(Path.Combine(AppContext.BaseDirectory, "spectral.dll"));
         foreach (var a in args) psi.ArgumentList.Add(a);
         foreach (var (k, v) in env ?? new Dictionary<string, string>()) psi.Environment[k] = v;
         return Process.Start(psi)!;
     }
 
-    /// <summary>The bar: a real kill -9 (SIGKILL, from the process itself at the step) at each step of a render's swap, then the same command.</summary>
+    /// <summary>The bar: a real kill -9 (SIGKILL, from the process itself at the step) at each step of a render's swap, then the same
+    /// command.</summary>
     [SkippableFact]
     [Trait("Category", "Slow")]
     public void A_render_killed_9_at_each_step_of_its_swap_then_run_again_is_one_whole_render()
@@ -251,7 +262,13 @@ public class FolderTransactionTests
         for (int k = 1; k < 100; k++)
         {
             Ok(before);
-            using var p = Start(w, new Dictionary<string, string> { ["SPECTRAL_TEST_KILL_AT_SWAP_STEP"] = k.ToString(System.Globalization.CultureInfo.InvariantCulture) }, run);
+            using var p = Start(w,
+                new Dictionary<string, string>
+                {
+                    ["SPECTRAL_TEST_KILL_AT_SWAP_STEP"] = k.ToString(
+                    System.Globalization.CultureInfo.InvariantCulture)
+                },
+                run);
             Assert.True(p.WaitForExit(60_000));
             if (p.ExitCode == 0) break;
             Assert.Equal(137, p.ExitCode);   // 128 + SIGKILL

@@ -34,7 +34,8 @@ public class PhotometryOutputTests(ITestOutputHelper output)
         var dir = Reference.TempDir();
         var scene = Path.Combine(dir, "scene.json");
         File.WriteAllText(scene, json);
-        var (code, _, err) = CliRunner.Run(["render", scene, "-o", Path.Combine(dir, "out"), "--quiet", "--formats", "png,photometry", .. more]);
+        var (code, _, err) =
+            CliRunner.Run(["render", scene, "-o", Path.Combine(dir, "out"), "--quiet", "--formats", "png,photometry", .. more]);
         Assert.True(code == 0, err);
         return Path.Combine(dir, "out");
     }
@@ -107,7 +108,8 @@ public class PhotometryOutputTests(ITestOutputHelper output)
         {
             // The path tracer's internal grid at 1 nm: its colour of a narrow LED is then as exact as the bands' tables.
             string settings = integrator == "path" ? "\"integrator\": { \"type\": \"path\", \"spectral_grid\": 1 }," : "";
-            var (l, e) = Mean(Render(Scene($$"""{ "type": "point", "position": [0, 0, 2], "spectrum": "{{spectrum}}", "luminous_intensity": 1000 }""",
+            var (l, e) = Mean(
+                Render(Scene($$"""{ "type": "point", "position": [0, 0, 2], "spectrum": "{{spectrum}}", "luminous_intensity": 1000 }""",
                 extra: settings)));
             Check($"{spectrum} {integrator}: illuminance (lx)", e, 250);
             Check($"{spectrum} {integrator}: luminance (cd/m²)", l, 250 / Math.PI);
@@ -117,7 +119,9 @@ public class PhotometryOutputTests(ITestOutputHelper output)
     [Theory, MemberData(nameof(Spectra))]
     public void A_directional_light_of_500_lx_on_reflectance_half_reads_back_500_lx_and_500_times_half_over_pi(string spectrum)
     {
-        var (l, e) = Mean(Render(Scene($$"""{ "type": "directional", "direction": [0, 0, -1], "spectrum": "{{spectrum}}", "illuminance": 500 }""", "0.5")));
+        var (l,
+            e) = Mean(Render(
+                Scene($$"""{ "type": "directional", "direction": [0, 0, -1], "spectrum": "{{spectrum}}", "illuminance": 500 }""", "0.5")));
         Check($"{spectrum}: illuminance (lx)", e, 500);
         Check($"{spectrum}: luminance (cd/m²)", l, 500 * 0.5 / Math.PI);
     }
@@ -132,7 +136,8 @@ public class PhotometryOutputTests(ITestOutputHelper output)
             .Replace("\"diffuser\": { \"diffuse\": 1 } }", $$"""
                 "diffuser": { "diffuse": 1 }, "bulb": { "diffuse": 0, "emission": { "spectrum": "{{spectrum}}", "luminous_flux": 1000 } } }
                 """)
-            .Replace("\"material\": \"diffuser\" } ]", "\"material\": \"diffuser\" }, { \"type\": \"sphere\", \"center\": [0, 0, 2], \"radius\": 0.1, \"material\": \"bulb\" } ]");
+            .Replace("\"material\": \"diffuser\" } ]",
+                "\"material\": \"diffuser\" }, { \"type\": \"sphere\", \"center\": [0, 0, 2], \"radius\": 0.1, \"material\": \"bulb\" } ]");
         var (l, _) = Mean(Render(json));
         double e = 1000 / (4 * Math.PI * 2 * 2);
         Check($"{spectrum} sphere of 1000 lm at 2 m: illuminance π·L/ρ (lx)", Math.PI * l, e);
@@ -143,9 +148,12 @@ public class PhotometryOutputTests(ITestOutputHelper output)
     {
         // A directional light of 400 lx at 60° from the normal: E = 400·cos 60° = 200 lx everywhere lit; a box between
         // it and part of the quad leaves 0 lx there (the luminance there too: no other light).
-        var json = Scene("""{ "type": "directional", "direction": [0, -0.8660254, -0.5], "spectrum": "D65", "illuminance": 400 }""", size: 8)
+        var json = Scene("""{ "type": "directional", "direction": [0, -0.8660254, -0.5], "spectrum": "D65", "illuminance": 400 }""",
+            size: 8)
             .Replace("\"fov\": 1", "\"fov\": 40")
-            .Replace("\"material\": \"diffuser\" } ]", "\"material\": \"diffuser\" }, { \"type\": \"box\", \"center\": [0, 1.2, 0.6], \"size\": [4, 0.4, 0.4], \"material\": \"diffuser\" } ]");
+            .Replace("\"material\": \"diffuser\" } ]",
+                "\"material\": \"diffuser\" }, { \"type\": \"box\", \"center\": [0, 1.2, 0.6], \"size\": [4, 0.4, 0.4], "
+                    + "\"material\": \"diffuser\" } ]");
         var exr = ReadExr(Path.Combine(Render(json), "photometry.exr"));
         var e = exr.Channels["illuminance"];
         var lit = e.Where(v => v > 1).ToArray();
@@ -219,12 +227,19 @@ public class PhotometryOutputTests(ITestOutputHelper output)
                     for (int j = 0; j <= 1000; j++)
                     {
                         double f = j / 1000.0, d = 0;
-                        for (int ch = 0; ch < 3; ch++) { double x = stops[k][ch] + (stops[k + 1][ch] - stops[k][ch]) * f - c[ch]; d += x * x; }
+                        for (int ch = 0; ch < 3; ch++)
+                        {
+                            double x = stops[k][ch] + (stops[k + 1][ch] - stops[k][ch]) * f - c[ch];
+                            d += x * x;
+                        }
                         if (d < best) { best = d; tBest = (k + f) / (stops.Length - 1); }
                     }
-                double value = log ? Math.Pow(10, Math.Log10(low) + tBest * (Math.Log10(high) - Math.Log10(low))) : low + tBest * (high - low);
+                double value =
+                    log ? Math.Pow(10, Math.Log10(low) + tBest * (Math.Log10(high) - Math.Log10(low))) : low + tBest * (high - low);
                 double v = Math.Clamp(values[i], low, high);
-                double err = log ? Math.Abs(Math.Log10(value) - Math.Log10(v)) / (Math.Log10(high) - Math.Log10(low)) : Math.Abs(value - v) / (high - low);
+                double err = log
+                    ? Math.Abs(Math.Log10(value) - Math.Log10(v)) / (Math.Log10(high) - Math.Log10(low))
+                    : Math.Abs(value - v) / (high - low);
                 Assert.True(err < 0.01, $"{quantity} pixel {i}: colour {string.Join(",", c)} reads {value}, the EXR holds {values[i]}");
             }
         }
@@ -258,7 +273,8 @@ public class PhotometryOutputTests(ITestOutputHelper output)
     {
         var dir = Reference.TempDir();
         var scene = Path.Combine(dir, "scene.json");
-        File.WriteAllText(scene, Scene("", extra: "\"integrator\": \"path\",").Replace("\"diffuse\": 1 }", $"\"diffuse\": 1, {emission} }}"));
+        File.WriteAllText(scene,
+            Scene("", extra: "\"integrator\": \"path\",").Replace("\"diffuse\": 1 }", $"\"diffuse\": 1, {emission} }}"));
         var (code, _, err) = CliRunner.Run("render", scene, "-o", Path.Combine(dir, "out"), "--quiet");
         Assert.Equal(2, code);
         Assert.Single(err.TrimEnd().Split('\n'));

@@ -135,7 +135,11 @@ public class RenderFolderSafetyTests
         var staleAside = Path.Combine(dir, $".out.old-{dead}-{Guid.NewGuid():N}.tmp");
         var live = Path.Combine(dir, $".out.render-{Environment.ProcessId}-{Guid.NewGuid():N}.tmp");
         var other = Path.Combine(dir, $".other.render-{dead}-{Guid.NewGuid():N}.tmp");
-        foreach (var d in new[] { stale, staleAside, live, other }) { Directory.CreateDirectory(d); File.WriteAllText(Path.Combine(d, "x.png"), "x"); }
+        foreach (var d in new[] { stale, staleAside, live, other })
+        {
+            Directory.CreateDirectory(d);
+            File.WriteAllText(Path.Combine(d, "x.png"), "x");
+        }
         Assert.Equal(0, CliRunner.Run("render", scene, "-o", Path.Combine(dir, "out"), "--quiet").Exit);
         Assert.False(Directory.Exists(stale));
         Assert.False(Directory.Exists(staleAside));
@@ -175,12 +179,15 @@ public class RenderFolderSafetyTests
         var err = p.StandardError.ReadToEndAsync();
         // Wait until the render has begun (its staging folder exists), then let it run into the tiles.
         var wait = Stopwatch.StartNew();
-        while (!Directory.EnumerateDirectories(dir).Any(d => Path.GetFileName(d).StartsWith(".out.render-", StringComparison.Ordinal)) && !p.HasExited && wait.Elapsed < TimeSpan.FromSeconds(30))
+        while (!Directory.EnumerateDirectories(dir).Any(d => Path.GetFileName(d).StartsWith(".out.render-", StringComparison.Ordinal))
+            && !p.HasExited && wait.Elapsed < TimeSpan.FromSeconds(30))
             Thread.Sleep(20);
-        Assert.False(p.HasExited, $"the render ended before the signal (exit {(p.HasExited ? p.ExitCode : 0)}): {(p.HasExited ? err.Result : "")}");
+        Assert.False(p.HasExited,
+            $"the render ended before the signal (exit {(p.HasExited ? p.ExitCode : 0)}): {(p.HasExited ? err.Result : "")}");
         Assert.True(wait.Elapsed < TimeSpan.FromSeconds(30), "the render did not start within 30 s");
         Thread.Sleep(700);
-        Assert.False(p.HasExited, $"the pathological render ended before the signal (exit {(p.HasExited ? p.ExitCode : 0)}): {(p.HasExited ? err.Result : "")}");
+        Assert.False(p.HasExited,
+            $"the pathological render ended before the signal (exit {(p.HasExited ? p.ExitCode : 0)}): {(p.HasExited ? err.Result : "")}");
         var clock = Stopwatch.StartNew();
         Assert.Equal(0, kill(p.Id, signal));
         Assert.True(p.WaitForExit(5000), $"{name} did not stop the render within 5 s");
@@ -224,7 +231,8 @@ public class RenderMemoryTests
         File.WriteAllText(scene, Big);
         var psi = new ProcessStartInfo("dotnet") { RedirectStandardError = true, RedirectStandardOutput = true, UseShellExecute = false };
         psi.Environment["DOTNET_GCHeapHardLimit"] = "0x20000000";   // 512 MiB
-        foreach (var a in new[] { Path.Combine(AppContext.BaseDirectory, "spectral.dll"), "render", scene, "-o", Path.Combine(dir, "out"), "--quiet" }.Concat(extra))
+        foreach (var a in new[] { Path.Combine(AppContext.BaseDirectory, "spectral.dll"), "render", scene, "-o", Path.Combine(dir, "out"),
+            "--quiet" }.Concat(extra))
             psi.ArgumentList.Add(a);
         using var p = Process.Start(psi)!;
         var err = p.StandardError.ReadToEndAsync();

@@ -95,7 +95,8 @@ public class OutputProductTests
         var scene = Path.Combine(dir, "scene.json");
         File.WriteAllText(scene, Scene);
         var outDir = Path.Combine(dir, "out");
-        var (code, _, err) = global::SpectralRenderer.Tests.Cli.CliRunner.Run("render", scene, "-o", outDir, "--quiet", "--formats", "npy,test-luminance-csv");
+        var (code, _, err) = global::SpectralRenderer.Tests.Cli.CliRunner.Run("render", scene, "-o", outDir, "--quiet", "--formats",
+            "npy,test-luminance-csv");
         Assert.True(code == 0, err);
         Assert.Equal(["spectral.npy", "wavelengths.csv", "xyz.npy", "luminance.csv"], RenderManifest.Read(outDir).Files);
         Assert.Equal(1 + 9 * 7, File.ReadAllLines(Path.Combine(outDir, "luminance.csv")).Length);
@@ -113,7 +114,8 @@ public class OutputProductTests
     {
         foreach (var f in new[] { "preview.png", "bands/band-01-400-410nm.png", "bands.png", "object-id.png", "mask-lit-0.png",
             "mask-highlight.png",
-            "reflectance.exr", "spectral.exr", "spectral.img", "spectral.hdr", "spectral.npy", "wavelengths.csv", "lights/lights.json", "grids/desk.csv" })
+            "reflectance.exr", "spectral.exr", "spectral.img", "spectral.hdr", "spectral.npy", "wavelengths.csv", "lights/lights.json",
+                "grids/desk.csv" })
             Assert.Single(OutputProductTable.All, p => p.Owns(f));
     }
 }

@@ -250,7 +250,8 @@ public class PathFluorescentRelightTests(Xunit.Abstractions.ITestOutputHelper ou
         File.WriteAllText(Path.Combine(dir, "diagonal.csv"), FluorescenceTests.MatrixCsv(Cells, diagonal));
         File.WriteAllText(Path.Combine(dir, "plain.csv"), csv.ToString());
         var matrix = Path.Combine(dir, "matrix");
-        var (code, err) = PathRelightTests.Cli("render", Write(dir, "m.json", Room(matrix: "diagonal.csv")), "-o", matrix, "--formats", "npy,lights");
+        var (code, err) =
+            PathRelightTests.Cli("render", Write(dir, "m.json", Room(matrix: "diagonal.csv")), "-o", matrix, "--formats", "npy,lights");
         Assert.True(code == 0, err);
         var plainScene = Room().Replace("{ \"type\": \"lambertian\", \"fluorescence\": { \"matrix\": \"oba.csv\" } }",
             $"{{ \"type\": \"lambertian\", \"reflectance\": \"{Path.Combine(dir, "plain.csv").Replace("\\", "/")}:R\" }}");

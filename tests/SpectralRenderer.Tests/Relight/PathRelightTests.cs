@@ -27,12 +27,15 @@ public class PathRelightTests(Xunit.Abstractions.ITestOutputHelper output)
             "gloss": { "diffuse": 0.05, "specular": 0.2, "shininess": 60, "mirror": 0.7 } },
           "lights": [
             { "type": "point", "name": "bulb", "position": [0.5, 1.6, 0.5], "spectrum": "{{bulb}}", "intensity": {{Num(bulbIntensity)}} },
-            { "type": "spot", "name": "spot", "position": [-0.5, 1.8, 0.5], "look_at": [0, 0, 0], "spectrum": "D65", "intensity": {{Num(spotIntensity)}} } ],
+            { "type": "spot", "name": "spot", "position": [-0.5, 1.8, 0.5], "look_at": [0, 0, 0], "spectrum": "D65",
+              "intensity": {{Num(spotIntensity)}} } ],
           "objects": [
-            { "type": "quad", "name": "floor", "center": [0, 0, 0], "size": [2, 2], "normal": [0, 1, 0], "up": [0, 0, -1], "material": "white" },
+            { "type": "quad", "name": "floor", "center": [0, 0, 0], "size": [2, 2], "normal": [0, 1, 0], "up": [0, 0, -1],
+              "material": "white" },
             { "type": "quad", "name": "back", "center": [0, 1, -1], "size": [2, 2], "normal": [0, 0, 1], "material": "white" },
             { "type": "quad", "name": "left", "center": [-1, 1, 0], "size": [2, 2], "normal": [1, 0, 0], "material": "red" },
-            { "type": "quad", "name": "lamp", "center": [0, 1.99, 0], "size": [0.5, 0.5], "normal": [0, -1, 0], "up": [0, 0, -1], "material": "lamp" },
+            { "type": "quad", "name": "lamp", "center": [0, 1.99, 0], "size": [0.5, 0.5], "normal": [0, -1, 0], "up": [0, 0, -1],
+              "material": "lamp" },
             { "type": "sphere", "name": "ball", "center": [0.4, 0.3, -0.3], "radius": 0.3, "material": "gloss" } ] }
         """;
 
@@ -85,7 +88,8 @@ public class PathRelightTests(Xunit.Abstractions.ITestOutputHelper output)
         double bands = WorstRelative(Npy(direct, "spectral.npy"), Npy(relit, "spectral.npy"));
         double colour = WorstRelative(Npy(direct, "xyz.npy"), Npy(relit, "xyz.npy"));
         output.WriteLine($"relit vs direct: worst relative difference {bands:0.###e0} (bands), {colour:0.###e0} (XYZ)");
-        Assert.True(bands <= 1e-5 && colour <= 1e-5, $"relit differs from the direct render by {bands:0.###e0} (bands), {colour:0.###e0} (XYZ)");
+        Assert.True(bands <= 1e-5 && colour <= 1e-5,
+            $"relit differs from the direct render by {bands:0.###e0} (bands), {colour:0.###e0} (XYZ)");
         // The change is not small: the relight did something.
         Assert.True(WorstRelative(Npy(direct, "spectral.npy"), Npy(source, "spectral.npy")) > 0.1);
 
@@ -142,14 +146,16 @@ public class PathRelightTests(Xunit.Abstractions.ITestOutputHelper output)
         // The merged transfer relights as the whole render's does, bit for bit.
         foreach (var (from, to) in new[] { (whole, "relit-whole"), (merged, "relit-merged") })
             Assert.Equal(0, Cli("relight", from, "-o", Path.Combine(dir, to), "--light", "bulb=D65").Exit);
-        Assert.Equal(File.ReadAllBytes(Path.Combine(dir, "relit-whole", "spectral.npy")), File.ReadAllBytes(Path.Combine(dir, "relit-merged", "spectral.npy")));
+        Assert.Equal(File.ReadAllBytes(Path.Combine(dir, "relit-whole", "spectral.npy")),
+            File.ReadAllBytes(Path.Combine(dir, "relit-merged", "spectral.npy")));
     }
 
     [Fact]
     public void The_memory_estimate_counts_the_path_transfer()
     {
         // 16 × 16 pixels, (2 lights + emitters and sky) groups, 6 bands of 50 nm in 5 nm sub-bands: 60 floats per group.
-        var scene = SceneLoader.Parse(System.Text.Encoding.UTF8.GetBytes(Scene("A", 0.2, 0.3)), "a.json", new SceneOverrides { Formats = "npy,lights" });
+        var scene = SceneLoader.Parse(System.Text.Encoding.UTF8.GetBytes(Scene("A", 0.2, 0.3)), "a.json",
+            new SceneOverrides { Formats = "npy,lights" });
         var part = RenderMemory.Estimate(scene, 1).Single(p => p.Part.Contains("transfer"));
         Assert.Equal(4L * 16 * 16 * 3 * (6 * 50 / 5), part.Bytes);
     }

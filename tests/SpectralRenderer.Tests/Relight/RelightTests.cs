@@ -29,9 +29,11 @@ public class RelightTests(Xunit.Abstractions.ITestOutputHelper output)
           "ambient": { "name": "D65", "scale": 0.05 },
           "background": 0.02,
           "lights": [
-            { "type": "point", "name": "key", "position": [2, 4, 3], "spectrum": "{{first}}", "intensity": 1, "attenuation": [0.5, 0.05, 0.02] },
+            { "type": "point", "name": "key", "position": [2, 4, 3], "spectrum": "{{first}}", "intensity": 1, "attenuation": [0.5, 0.05,
+              0.02] },
             { "type": "spot", "name": "blue", "position": [-2, 3, 2], "look_at": [0, 0.5, 0], "cutoff": 35, "exponent": 4,
-              "spectrum": "{{second}}", "intensity": {{secondIntensity.ToString(System.Globalization.CultureInfo.InvariantCulture)}}, "ambient": { "name": "D65", "scale": 0.02 } }
+              "spectrum": "{{second}}", "intensity": {{secondIntensity.ToString(System.Globalization.CultureInfo.InvariantCulture)}},
+                "ambient": { "name": "D65", "scale": 0.02 } }
           ],
           "objects": [
             { "type": "sphere", "name": "ball", "center": [-0.9, 0.5, 0], "radius": 0.5, "material": "green" },
@@ -77,7 +79,8 @@ public class RelightTests(Xunit.Abstractions.ITestOutputHelper output)
             {
                 double tol = 1e-5 * Math.Abs(da[i]) + 1e-30;
                 if (Math.Abs(da[i] - db[i]) > tol)
-                    Assert.Fail($"value {i} (pixel {i / sa[2]}, band {i % sa[2]}): direct {da[i]:R}, relit {db[i]:R}, relative {Math.Abs(da[i] - db[i]) / Math.Abs(da[i]):0.###e0}");
+                    Assert.Fail($"value {i} (pixel {i / sa[2]}, band {i % sa[2]}): direct {da[i]:R}, relit {db[i]:R}, relative "
+                        + $"{Math.Abs(da[i] - db[i]) / Math.Abs(da[i]):0.###e0}");
                 if (da[i] != 0) { nonzero++; worstRel = Math.Max(worstRel, Math.Abs(da[i] - db[i]) / Math.Abs(da[i])); }
             }
             Assert.True(nonzero > da.Length / 2, "the images are mostly black: the comparison would prove nothing");
@@ -95,7 +98,8 @@ public class RelightTests(Xunit.Abstractions.ITestOutputHelper output)
             worst = Math.Max(worst, DeltaE2000.Between(Lab.FromXyz(xa, white), Lab.FromXyz(xb, white)));
         }
         Assert.True(worst <= 0.01, $"worst ΔE00 {worst}");
-        output.WriteLine($"relit vs direct: worst relative band difference {worstRel:0.###e0}, worst ΔE00 of the EXR's XYZ {worst:0.###e0}");
+        output.WriteLine(
+            $"relit vs direct: worst relative band difference {worstRel:0.###e0}, worst ΔE00 of the EXR's XYZ {worst:0.###e0}");
         // Every file the render wrote, the relit folder has too (and render.json says it was relit).
         var files = (JsonArray)json["files"]!;
         foreach (var f in files) Assert.True(File.Exists(Path.Combine(relit, (string)f!)), $"relit folder misses {f}");
@@ -145,7 +149,8 @@ public class RelightTests(Xunit.Abstractions.ITestOutputHelper output)
     public void Physical_radiometry_scene_relit_equals_a_direct_render()
     {
         var dir = Reference.TempDir();
-        string Physical(string a, string b) => TwoLightScene(a, b).Replace("\"bands\": \"380:780:20\",", "\"bands\": \"380:780:20\", \"radiometry\": \"physical\",");
+        string Physical(string a, string b) =>
+            TwoLightScene(a, b).Replace("\"bands\": \"380:780:20\",", "\"bands\": \"380:780:20\", \"radiometry\": \"physical\",");
         var underA = Write(dir, "a.json", Physical("A", "A"));
         Render(underA, Path.Combine(dir, "A"), "--formats", "npy,exr,lights");
         Render(Write(dir, "t.json", Physical("FL11", "led-blue")), Path.Combine(dir, "direct"), "--formats", "npy,exr,lights");
@@ -159,19 +164,23 @@ public class RelightTests(Xunit.Abstractions.ITestOutputHelper output)
         var dir = Reference.TempDir();
         Render(Write(dir, "s.json", TwoLightScene("A", "A")), Path.Combine(dir, "r"), "--formats", "npy,lights");
         // Relit to the same lights: no object's colour moves.
-        var (code, stdout, err) = CliRunner.Run("relight", Path.Combine(dir, "r"), "--light", "key=A", "-o", Path.Combine(dir, "same"), "--metrics", "--quiet");
+        var (code, stdout, err) =
+            CliRunner.Run("relight", Path.Combine(dir, "r"), "--light", "key=A", "-o", Path.Combine(dir, "same"), "--metrics", "--quiet");
         Assert.True(code == 0, err);
         var same = File.ReadAllLines(Path.Combine(dir, "same", "relight-metrics.csv")).Skip(1).Select(l => l.Split(',')).ToArray();
-        foreach (var o in same.Where(r => r[0] == "object")) Assert.Equal(0, double.Parse(o[4], System.Globalization.CultureInfo.InvariantCulture));
+        foreach (var o in same.Where(r => r[0] == "object"))
+            Assert.Equal(0, double.Parse(o[4], System.Globalization.CultureInfo.InvariantCulture));
         // To FL11 and the blue LED: Ra and Rf of FL11 as in the reference table, the objects' colours shift.
-        (code, stdout, err) = CliRunner.Run("relight", Path.Combine(dir, "r"), "--light", "key=FL11", "--light", "blue=led-blue", "-o", Path.Combine(dir, "fl"), "--metrics", "--quiet");
+        (code, stdout, err) = CliRunner.Run("relight", Path.Combine(dir, "r"), "--light", "key=FL11", "--light", "blue=led-blue", "-o",
+            Path.Combine(dir, "fl"), "--metrics", "--quiet");
         Assert.True(code == 0, err);
         var rows = File.ReadAllLines(Path.Combine(dir, "fl", "relight-metrics.csv")).Skip(1).Select(l => l.Split(',')).ToArray();
         var key = rows.Single(r => r[0] == "light" && r[1] == "key");
         var refRow = Reference.Rows("colour-rendering.csv").Single(r => r["column"] == "FL11");
         Assert.Equal(refRow.D("Ra_CIE13.3"), double.Parse(key[5], System.Globalization.CultureInfo.InvariantCulture), 0.1);
         Assert.Equal(refRow.D("Rf_CIE224_2017"), double.Parse(key[6], System.Globalization.CultureInfo.InvariantCulture), 0.1);
-        Assert.Contains(rows, r => r[0] == "object" && r[1] == "ball" && double.Parse(r[3], System.Globalization.CultureInfo.InvariantCulture) > 1);
+        Assert.Contains(rows,
+            r => r[0] == "object" && r[1] == "ball" && double.Parse(r[3], System.Globalization.CultureInfo.InvariantCulture) > 1);
         Assert.Contains("relight-metrics.csv", stdout.Length > 0 ? "relight-metrics.csv" : "");
         Assert.NotNull(JsonNode.Parse(File.ReadAllText(Path.Combine(dir, "fl", "render.json")))!["run"]!["relit"]!["metrics"]);
     }
@@ -231,7 +240,8 @@ public class RelightTests(Xunit.Abstractions.ITestOutputHelper output)
         }
         Relight(Path.Combine(dir, "r"), Path.Combine(dir, "encoded"), "--light", "key=D65");
         foreach (var f in arrays) Assert.Equal(source[f], File.ReadAllBytes(Path.Combine(dir, "encoded", "lights", f)));
-        Assert.Equal(File.ReadAllBytes(Path.Combine(dir, "copied", "spectral.npy")), File.ReadAllBytes(Path.Combine(dir, "encoded", "spectral.npy")));
+        Assert.Equal(File.ReadAllBytes(Path.Combine(dir, "copied", "spectral.npy")),
+            File.ReadAllBytes(Path.Combine(dir, "encoded", "spectral.npy")));
     }
 
     [Fact]
@@ -244,14 +254,20 @@ public class RelightTests(Xunit.Abstractions.ITestOutputHelper output)
         string[] formats = ["--formats", "npy,exr,aov,lights"];
         Render(Write(dir, "a.json", TwoLightScene("A", "A")), Path.Combine(dir, "A"), formats);
         Render(Write(dir, "t.json", TwoLightScene("FL11", "led-blue")), Path.Combine(dir, "direct"), formats);
-        Render(Write(dir, "w.json", TwoLightScene("FL11", "led-blue").Replace("\"white\": \"D65\"", "\"white\": \"A\"")), Path.Combine(dir, "direct-white"), formats);
-        string[] same = ["object-id.png", "mask-lit-0.png", "mask-lit-1.png", "reflectance.exr", "lights/factors.npy", "lights/pixels.npy", "lights/centre.npy", "lights/ids.npy"];
+        Render(Write(dir, "w.json", TwoLightScene("FL11", "led-blue").Replace("\"white\": \"D65\"", "\"white\": \"A\"")),
+            Path.Combine(dir, "direct-white"), formats);
+        string[] same = ["object-id.png", "mask-lit-0.png", "mask-lit-1.png", "reflectance.exr", "lights/factors.npy", "lights/pixels.npy",
+            "lights/centre.npy", "lights/ids.npy"];
         void Check(string direct, string relit)
         {
-            foreach (var f in same) Assert.True(File.ReadAllBytes(Path.Combine(direct, f)).AsSpan().SequenceEqual(File.ReadAllBytes(Path.Combine(relit, f))), $"{relit}/{f} differs from {direct}/{f}");
+            foreach (var f in same)
+                Assert.True(File.ReadAllBytes(Path.Combine(direct, f)).AsSpan().SequenceEqual(File.ReadAllBytes(Path.Combine(relit, f))),
+                    $"{relit}/{f} differs from {direct}/{f}");
             AssertSameRender(direct, relit);
         }
-        string[] Copied(string relit) => JsonNode.Parse(File.ReadAllText(Path.Combine(relit, "render.json")))!["run"]!["relit"]!["copied_files"]!.AsArray().Select(f => (string)f!).ToArray();
+        string[] Copied(string relit) =>
+            JsonNode.Parse(File.ReadAllText(Path.Combine(relit, "render.json")))!["run"]!["relit"]!["copied_files"]!.AsArray()
+            .Select(f => (string)f!).ToArray();
         string[] lights = ["--light", "key=FL11", "--light", "blue=led-blue"];
         Relight(Path.Combine(dir, "A"), Path.Combine(dir, "copied"), lights);
         Check(Path.Combine(dir, "direct"), Path.Combine(dir, "copied"));
@@ -266,7 +282,8 @@ public class RelightTests(Xunit.Abstractions.ITestOutputHelper output)
         File.WriteAllText(manifest, json.ToJsonString());
         Relight(Path.Combine(dir, "A"), Path.Combine(dir, "encoded"), lights);
         Check(Path.Combine(dir, "direct"), Path.Combine(dir, "encoded"));
-        Assert.Equal(same.Where(f => f.StartsWith("lights/", StringComparison.Ordinal)).Order(StringComparer.Ordinal), Copied(Path.Combine(dir, "encoded")));
+        Assert.Equal(same.Where(f => f.StartsWith("lights/", StringComparison.Ordinal)).Order(StringComparer.Ordinal),
+            Copied(Path.Combine(dir, "encoded")));
     }
 
     [Fact]
@@ -274,10 +291,12 @@ public class RelightTests(Xunit.Abstractions.ITestOutputHelper output)
     {
         // Nothing is traced, so a mesh's triangles are not needed: the relight works after the mesh file is gone.
         var dir = Reference.TempDir();
-        File.WriteAllText(Path.Combine(dir, "tetra.obj"), "v -0.6 0 -0.4\nv 0.6 0 -0.4\nv 0 0 0.7\nv 0 1 0\nf 1 2 4\nf 2 3 4\nf 3 1 4\nf 1 3 2\n");
+        File.WriteAllText(Path.Combine(dir, "tetra.obj"),
+            "v -0.6 0 -0.4\nv 0.6 0 -0.4\nv 0 0 0.7\nv 0 1 0\nf 1 2 4\nf 2 3 4\nf 3 1 4\nf 1 3 2\n");
         string Scene(string spectrum, double intensity) => TwoLightScene(spectrum, "led-blue", intensity).Replace(
             "{ \"type\": \"sphere\", \"name\": \"ball\", \"center\": [-0.9, 0.5, 0], \"radius\": 0.5, \"material\": \"green\" }",
-            "{ \"type\": \"mesh\", \"name\": \"ball\", \"file\": \"tetra.obj\", \"fit\": { \"min\": [-1.4, 0, -0.5], \"max\": [-0.4, 1, 0.5] }, \"material\": \"green\" }");
+            "{ \"type\": \"mesh\", \"name\": \"ball\", \"file\": \"tetra.obj\", \"fit\": { \"min\": [-1.4, 0, -0.5], \"max\": [-0.4, 1, "
+                + "0.5] }, \"material\": \"green\" }");
         Assert.Contains("tetra.obj", Scene("A", 1));
         Render(Write(dir, "a.json", Scene("A", 1)), Path.Combine(dir, "A"), "--formats", "npy,exr,lights");
         Render(Write(dir, "t.json", Scene("FL11", 0.5)), Path.Combine(dir, "direct"), "--formats", "npy,exr,lights");

@@ -31,7 +31,8 @@ public class ViewerBrowserTests(ITestOutputHelper output)
         Skip.If(node is null, "node is not installed (Debian package nodejs); skipping the browser test");
         Skip.If(Tool.Find("chromium") is null, "chromium is not installed (Debian package chromium); skipping the browser test");
         var dir = Path.Combine(Repo(), "tests", "browser");
-        Skip.If(!Directory.Exists(Path.Combine(dir, "node_modules", "playwright-core")), "playwright-core is not installed: run 'npm ci' in tests/browser (.ci/run does)");
+        Skip.If(!Directory.Exists(Path.Combine(dir, "node_modules", "playwright-core")),
+            "playwright-core is not installed: run 'npm ci' in tests/browser (.ci/run does)");
         return Path.Combine(dir, "viewer-check.mjs");
     }
 
@@ -81,7 +82,8 @@ public class ViewerBrowserTests(ITestOutputHelper output)
         Assert.Contains("ball", (string)r["where"]!);
         // The ground truth of the green ball: ColorChecker #14's band means.
         var reflectance = r["reflectance"]!.AsArray().Select(v => (double)v!).ToArray();
-        var cm = new SpectralRenderer.Color.Colorimeter(SpectralRenderer.Spectra.BandGrid.Parse("380:780:20"), SpectralRenderer.Color.Observer.Cie1931, SpectralRenderer.Spectra.SpectrumLibrary.Resolve("D65"));
+        var cm = new SpectralRenderer.Color.Colorimeter(SpectralRenderer.Spectra.BandGrid.Parse("380:780:20"),
+            SpectralRenderer.Color.Observer.Cie1931, SpectralRenderer.Spectra.SpectrumLibrary.Resolve("D65"));
         var expected = cm.Project(SpectralRenderer.Spectra.SpectrumLibrary.Resolve("colorchecker:14"));
         for (int b = 0; b < expected.Length; b++) Assert.Equal(expected[b], reflectance[b], 1e-6);
 
@@ -107,11 +109,13 @@ public class ViewerBrowserTests(ITestOutputHelper output)
         Run("render", scene, "-o", Path.Combine(dir, "r"), "--quiet", "--formats", "png,npy,aov,lights");
         Run("view", Path.Combine(dir, "r"));
         int x = 14, y = 20;
-        var r = Check(Path.Combine(dir, "r", "viewer.html"), $$"""{"light":"blue","preset":"render: A (blue)","drag":1,"read":[{{x}},{{y}}]}""");
+        var r = Check(Path.Combine(dir, "r", "viewer.html"),
+            $$"""{"light":"blue","preset":"render: A (blue)","drag":1,"read":[{{x}},{{y}}]}""");
         Assert.Equal(12, (double)r["sliderMax"]!, 9);
         double dragged = (double)r["dragged"]!;
         Assert.True(dragged > 4, $"the slider stopped at {dragged}");
-        Run("relight", Path.Combine(dir, "r"), "--intensity", $"blue={dragged.ToString("R", System.Globalization.CultureInfo.InvariantCulture)}",
+        Run("relight", Path.Combine(dir, "r"), "--intensity",
+            $"blue={dragged.ToString("R", System.Globalization.CultureInfo.InvariantCulture)}",
             "-o", Path.Combine(dir, "relit"), "--quiet");
         var png = PngReader.Read(Path.Combine(dir, "relit", "preview.png"));
         int i = (y * png.Width + x) * png.Channels;
@@ -178,11 +182,13 @@ public class ViewerBrowserTests(ITestOutputHelper output)
 
         // Another spectrum: the lamp to A at twice the render's scale, against photometry.exr of that scene rendered.
         double x = 2 * scale0;
-        r = Check(page, $$"""{"light":"lamp","preset":"A","intensity":{{x.ToString("R", CultureInfo.InvariantCulture)}},"readout":[4,4]}""");
+        r = Check(page,
+            $$"""{"light":"lamp","preset":"A","intensity":{{x.ToString("R", CultureInfo.InvariantCulture)}},"readout":[4,4]}""");
         File.WriteAllText(scene, PhotometricScene("A", $"\"intensity\": {x.ToString("R", CultureInfo.InvariantCulture)}"));
         Run("render", scene, "-o", Path.Combine(dir, "a"), "--quiet", "--formats", "png,photometry");
         var a = SpectralRenderer.Tests.Output.PhotometryOutputTests.ReadExr(Path.Combine(dir, "a", "photometry.exr"));
-        output.WriteLine($"A at ×{x:G6}: page {(double)r["illuminance"]!:G7} lx, {(double)r["luminance"]!:G7} cd/m²; render {a.Channels["illuminance"][40]:G7} lx, {a.Channels["luminance"][40]:G7} cd/m²");
+        output.WriteLine($"A at ×{x:G6}: page {(double)r["illuminance"]!:G7} lx, {(double)r["luminance"]!:G7} cd/m²; render "
+            + $"{a.Channels["illuminance"][40]:G7} lx, {a.Channels["luminance"][40]:G7} cd/m²");
         Near("illuminance under A vs its render", a.Channels["illuminance"][40], (double)r["illuminance"]!, 1e-5);
         Near("luminance under A vs its render", a.Channels["luminance"][40], (double)r["luminance"]!, 1e-4);
         Assert.True((double)r["illuminance"]! > 400, "the lamp under A at twice its scale should light the centre more than before");
@@ -198,7 +204,8 @@ public class ViewerBrowserTests(ITestOutputHelper output)
             for (int c = 0; c < 3; c++)
             {
                 int page = canvas[4 * p + c], file = png.Samples[p * png.Channels + c];
-                Assert.True(Math.Abs(page - file) <= 1, $"pixel {p % png.Width},{p / png.Width} channel {c}: page {page}, preview.png {file}");
+                Assert.True(Math.Abs(page - file) <= 1,
+                    $"pixel {p % png.Width},{p / png.Width} channel {c}: page {page}, preview.png {file}");
                 if (page == file) exact++;
             }
         Assert.True(exact >= 0.99 * 3 * png.Width * png.Height, $"only {exact} of {3 * png.Width * png.Height} codes equal preview.png");
@@ -213,9 +220,11 @@ public class ViewerBrowserTests(ITestOutputHelper output)
     {
         Script();
         var dir = Reference.TempDir();
-        Run("render", Path.Combine(Repo(), "scenes", "glass-mirror.json"), "-o", Path.Combine(dir, "r"), "--quiet", "--formats", "png,npy,lights", "--width", "64", "--height", "48");
+        Run("render", Path.Combine(Repo(), "scenes", "glass-mirror.json"), "-o", Path.Combine(dir, "r"), "--quiet", "--formats",
+            "png,npy,lights", "--width", "64", "--height", "48");
         Run("view", Path.Combine(dir, "r"));
-        var r = Check(Path.Combine(dir, "r", "viewer.html"), """{"light":"light-0","preset":"FL11","intensity":1,"read":[32,24],"canvas":true}""");
+        var r = Check(Path.Combine(dir, "r", "viewer.html"),
+            """{"light":"light-0","preset":"FL11","intensity":1,"read":[32,24],"canvas":true}""");
         Run("relight", Path.Combine(dir, "r"), "--light", "light-0=FL11", "-o", Path.Combine(dir, "relit"), "--quiet");
         AssertCanvasIs(r, PngReader.Read(Path.Combine(dir, "relit", "preview.png")));
     }
@@ -234,18 +243,29 @@ public class ViewerBrowserTests(ITestOutputHelper output)
         Run("render", scene, "-o", Path.Combine(dir, "r"), "--quiet", "--formats", "npy,lights");
         Run("view", Path.Combine(dir, "r"));
         var rows = Reference.Rows("ciede2000-sharma-2005.csv");
-        string pairs = "[" + string.Join(",", rows.Select(q => "[" + string.Join(",", new[] { "L1", "a1", "b1", "L2", "a2", "b2" }.Select(k => q[k])) + "]")) + "]";
+        string pairs = "["
+            + string.Join(",",
+                rows.Select(q => "[" + string.Join(",", new[] { "L1", "a1", "b1", "L2", "a2", "b2" }.Select(k => q[k])) + "]"))
+            + "]";
         int x = 14, y = 20;
-        var r = Check(Path.Combine(dir, "r", "viewer.html"), $$"""{"light":"key","preset":"D65","intensity":1,"read":[{{x}},{{y}}],"storeA":true,"dePairs":{{pairs}}}""");
+        var r = Check(Path.Combine(dir, "r", "viewer.html"),
+            $$"""{"light":"key","preset":"D65","intensity":1,"read":[{{x}},{{y}}],"storeA":true,"dePairs":{{pairs}}}""");
         var page = r["dePairs"]!.AsArray().Select(v => (double)v!).ToArray();
         Assert.Equal(34, page.Length);
         for (int k = 0; k < rows.Count; k++)
-            Assert.True(Math.Abs(page[k] - double.Parse(rows[k]["dE00"], CultureInfo.InvariantCulture)) <= 1e-4, $"pair {rows[k]["pair"]}: page {page[k]:F6}, Sharma {rows[k]["dE00"]}");
+            Assert.True(Math.Abs(page[k] - double.Parse(rows[k]["dE00"], CultureInfo.InvariantCulture)) <= 1e-4,
+                $"pair {rows[k]["pair"]}: page {page[k]:F6}, Sharma {rows[k]["dE00"]}");
 
-        var white = JsonNode.Parse(File.ReadAllText(Path.Combine(dir, "r", "render.json")))!["colour"]!["white_xyz"]!.AsArray().Select(v => (double)v!).ToArray();
+        var white = JsonNode.Parse(File.ReadAllText(Path.Combine(dir, "r", "render.json")))!["colour"]!["white_xyz"]!.AsArray()
+            .Select(v => (double)v!).ToArray();
         var w = new SpectralRenderer.Color.Xyz(white[0], white[1], white[2]);
-        SpectralRenderer.Color.Xyz Xyz(string key) { var a = r[key]!.AsArray().Select(v => (double)v!).ToArray(); return new(a[0], a[1], a[2]); }
-        double expected = SpectralRenderer.Color.DeltaE2000.Between(SpectralRenderer.Color.Lab.FromXyz(Xyz("xyzA"), w), SpectralRenderer.Color.Lab.FromXyz(Xyz("xyz"), w));
+        SpectralRenderer.Color.Xyz Xyz(string key)
+        {
+            var a = r[key]!.AsArray().Select(v => (double)v!).ToArray();
+            return new(a[0], a[1], a[2]);
+        }
+        double expected = SpectralRenderer.Color.DeltaE2000.Between(SpectralRenderer.Color.Lab.FromXyz(Xyz("xyzA"), w),
+            SpectralRenderer.Color.Lab.FromXyz(Xyz("xyz"), w));
         Assert.True(expected > 1, $"A → D65 should change the ball's colour visibly (ΔE00 {expected})");
         Assert.Equal(expected, (double)r["pixelDe"]!, 1e-6 * expected);
         Assert.InRange((double)r["de"]!["max"]!, expected, double.MaxValue);
@@ -261,7 +281,8 @@ public class ViewerBrowserTests(ITestOutputHelper output)
         Run("render", scene, "-o", Path.Combine(dir, "r"), "--quiet", "--formats", "npy,lights");
         File.WriteAllText(Path.Combine(dir, "secret.txt"), "not served");
         var stdout = new StringWriter();
-        var serving = Task.Run(() => SpectralRenderer.Cli.CommandLine.Run(["view", Path.Combine(dir, "r"), "--serve", "--for", "60"], stdout, new StringWriter()));
+        var serving = Task.Run(() =>
+            SpectralRenderer.Cli.CommandLine.Run(["view", Path.Combine(dir, "r"), "--serve", "--for", "60"], stdout, new StringWriter()));
         string? url = null;
         for (int t = 0; t < 200 && url is null; t++)
         {
@@ -298,11 +319,16 @@ public class ViewerTimingTests(ITestOutputHelper output)
         var dir = Reference.TempDir();
         var scene = Path.Combine(dir, "s.json");
         File.WriteAllText(scene, RelightTests.TwoLightScene("A", "A").Replace("\"spp\": 2", "\"spp\": 1"));
-        ViewerBrowserTests.Run("render", scene, "-o", Path.Combine(dir, "r"), "--quiet", "--formats", "lights", "--width", "1024", "--height", "768");
+        ViewerBrowserTests.Run("render", scene, "-o", Path.Combine(dir, "r"), "--quiet", "--formats", "lights", "--width", "1024",
+            "--height", "768");
         ViewerBrowserTests.Run("view", Path.Combine(dir, "r"));
-        var r = ViewerBrowserTests.Check(output, Path.Combine(dir, "r", "viewer.html"), """{"light":"key","preset":"FL11","intensity":1.5,"read":[512,400],"storeA":true,"timeRuns":9}""");
+        var r = ViewerBrowserTests.Check(output, Path.Combine(dir, "r", "viewer.html"),
+            """{"light":"key","preset":"FL11","intensity":1.5,"read":[512,400],"storeA":true,"timeRuns":9}""");
         double relight = (double)r["relightMs"]!, draw = (double)r["drawMs"]!;
-        output.WriteLine(string.Create(CultureInfo.InvariantCulture, $"viewer relight 1024x768x20: {relight:0.0} ms (XYZ of every pixel, bar < 100 ms), {draw:0.0} ms (full redraw: relight, display encoding, putImageData), median of 9, components {JsonNode.Parse(File.ReadAllText(Path.Combine(dir, "r", "lights", "lights.json")))!["components"]!.AsArray().Count}"));
+        output.WriteLine(string.Create(CultureInfo.InvariantCulture,
+            $"viewer relight 1024x768x20: {relight:0.0} ms (XYZ of every pixel, bar < 100 ms), {draw:0.0} ms (full redraw: relight, "
+                + $"display encoding, putImageData), median of 9, components "
+                + $"{JsonNode.Parse(File.ReadAllText(Path.Combine(dir, "r", "lights", "lights.json")))!["components"]!.AsArray().Count}"));
         Assert.Equal([1024, 768, 20], r["size"]!.AsArray().Select(v => (int)v!).ToArray());
         Assert.True(relight > 0 && draw > 0, $"timings {relight} ms, {draw} ms");
         Assert.True((double)r["de"]!["max"]! > 0, "the ΔE00 map between A and FL11 should not be zero");

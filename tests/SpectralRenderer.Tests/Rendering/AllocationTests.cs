@@ -14,7 +14,8 @@ public class AllocationTests
 {
     const string Json = """
     { "camera": { "position": [0, 1, 6], "look_at": [0, 0.5, 0], "width": 64, "height": 64, "spp": 2 },
-      "materials": { "m": { "diffuse": "colorchecker:14", "specular": 0.3, "mirror": 0.2 }, "glass": { "diffuse": 0, "transmit": 0.8, "ior": 1.5 } },
+      "materials": { "m": { "diffuse": "colorchecker:14", "specular": 0.3, "mirror": 0.2 }, "glass": { "diffuse": 0, "transmit": 0.8,
+        "ior": 1.5 } },
       "ambient": 0.05,
       "lights": [ { "type": "point", "position": [2, 4, 3], "spectrum": "D65", "intensity": 0.2 } ],
       "objects": [ { "type": "sphere", "center": [0, 1, 0], "radius": 1, "material": "m" },
@@ -57,8 +58,10 @@ public class AllocationTests
     public void Allocated_bytes_beyond_the_result_buffers_are_O_tiles_not_O_pixels(bool packets)
     {
         // An unoptimised (Debug) engine keeps structs in memory the optimiser would keep in registers.
-        var debuggable = (System.Diagnostics.DebuggableAttribute?)Attribute.GetCustomAttribute(typeof(Renderer).Assembly, typeof(System.Diagnostics.DebuggableAttribute));
-        Skip.If(debuggable?.IsJITOptimizerDisabled == true, "the engine is a Debug build; run the tests with -c Release as the README says");
+        var debuggable = (System.Diagnostics.DebuggableAttribute?)Attribute.GetCustomAttribute(typeof(Renderer).Assembly,
+            typeof(System.Diagnostics.DebuggableAttribute));
+        Skip.If(debuggable?.IsJITOptimizerDisabled == true,
+            "the engine is a Debug build; run the tests with -c Release as the README says");
         var small = Measure(64, packets);
         var large = Measure(256, packets);
         long smallLoop = small.Allocated - small.Outputs, largeLoop = large.Allocated - large.Outputs;

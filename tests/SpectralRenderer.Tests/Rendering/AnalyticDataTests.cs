@@ -82,7 +82,8 @@ public class AnalyticDataTests
                 if (check["Y"] is { } y)
                 {
                     double actualY = scene.Colorimeter.ToXyz(pixel).Y;
-                    Assert.True(Math.Abs(actualY - (double)y) <= (double)check["tolerance_Y"]!, $"{file}, {where}: Y = {actualY:G9}, expected {(double)y}");
+                    Assert.True(Math.Abs(actualY - (double)y) <= (double)check["tolerance_Y"]!,
+                        $"{file}, {where}: Y = {actualY:G9}, expected {(double)y}");
                 }
             }
         }

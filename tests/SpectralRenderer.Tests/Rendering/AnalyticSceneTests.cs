@@ -16,7 +16,8 @@ public class AnalyticSceneTests
     static float[] Project(Scene s, string name) => SpectralMath.ToPadded(s.Colorimeter.Project(SpectrumLibrary.Resolve(name)));
 
     static void Close(double expected, double actual, double rel, string what) =>
-        Assert.True(Math.Abs(actual - expected) <= rel * Math.Max(Math.Abs(expected), 1e-6), $"{what}: expected {expected:G9}, got {actual:G9}");
+        Assert.True(Math.Abs(actual - expected) <= rel * Math.Max(Math.Abs(expected), 1e-6),
+            $"{what}: expected {expected:G9}, got {actual:G9}");
 
     /// <summary>Ray–sphere in double precision, nearest t &gt; 0.</summary>
     static double? HitSphere(Ray r, Vector3 c, double radius)
@@ -98,7 +99,8 @@ public class AnalyticSceneTests
                     var toL = new Vector3(0, 6, 0) - p;
                     double cos = toL.Y / toL.Length();
                     var e = Project(scene, "E");
-                    for (int b = 0; b < scene.Bands; b++) Close(0.09 + 0.01 * e[b] * 0.5 * cos, img[x, y, b], 1e-4, $"lit ({x},{y}) band {b}");
+                    for (int b = 0; b < scene.Bands; b++)
+                        Close(0.09 + 0.01 * e[b] * 0.5 * cos, img[x, y, b], 1e-4, $"lit ({x},{y}) band {b}");
                 }
             }
         Assert.True(shadowed > 10 && lit > 100, $"{shadowed} shadowed, {lit} lit floor pixels");

@@ -98,7 +98,8 @@ public class BandPlanesTests
         var truth = new SpectralImage(result.Image.Width, result.Image.Height, result.Image.Grid);
         for (int i = 0; i < result.ObjectIds.Length; i++)
             if (result.ObjectIds[i] >= 0)
-                scene.Materials[scene.Objects[result.ObjectIds[i]].Material].Diffuse.AsSpan(0, truth.Bands).CopyTo(truth.Data.AsSpan(i * truth.Bands));
+                scene.Materials[scene.Objects[result.ObjectIds[i]].Material].Diffuse.AsSpan(0, truth.Bands)
+                    .CopyTo(truth.Data.AsSpan(i * truth.Bands));
         var planes = AnalysisImages.GroundTruthBands(scene, result);
         Synthetic.AssertBitExact(PerBand(truth), planes, "ground truth planes");
         Assert.Contains(result.ObjectIds, id => id < 0);                       // background (0) and both objects are in view

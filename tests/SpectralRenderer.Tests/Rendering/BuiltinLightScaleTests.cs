@@ -82,7 +82,8 @@ public class BuiltinLightScaleTests(Xunit.Abstractions.ITestOutputHelper output)
         """;
 
     [Theory, MemberData(nameof(Builtins))]
-    public void Swapping_D65_for_a_built_in_light_at_the_same_photometric_value_keeps_the_luminance(string name, string file, string column, bool luminous)
+    public void Swapping_D65_for_a_built_in_light_at_the_same_photometric_value_keeps_the_luminance(string name, string file, string column,
+        bool luminous)
     {
         _ = (file, column);
         double d65 = SceneText.Render(Diffuser("D65", "\"luminous_intensity\": 800")).Xyz![1];

@@ -33,7 +33,8 @@ public class ChartColourTests(Xunit.Abstractions.ITestOutputHelper output)
         // luminous flux, and a saturated patch under the bright blue LED alone is 0.026 from the 1 nm summation.
         double Scale(string n) => n.StartsWith("led-", StringComparison.Ordinal) ? 1 / S(n).Values.ToArray().Max() : 1;
         var lightJson = string.Join(", ", names.Select(n =>
-            $$"""{ "type": "directional", "direction": [0, 0, -1], "spectrum": "{{n}}", "intensity": {{Scale(n).ToString("R", System.Globalization.CultureInfo.InvariantCulture)}} }"""));
+            $$"""{ "type": "directional", "direction": [0, 0, -1], "spectrum": "{{n}}",""" +
+                $$""" "intensity": {{Scale(n).ToString("R", System.Globalization.CultureInfo.InvariantCulture)}} }"""));
         var scene = SceneText.Load($$"""
         { "bands": "{{grid}}", "white": "{{white}}", "radiometry": "{{radiometry}}",
           "camera": { "position": [0, 0, 20], "look_at": [0, 0, 0], "fov": 16, "width": 72, "height": 48 },
@@ -49,7 +50,13 @@ public class ChartColourTests(Xunit.Abstractions.ITestOutputHelper output)
             int obj = scene.Objects.FindIndex(o => o.Name == $"patch-{p:00}");
             double x = 0, y = 0, z = 0; int count = 0;
             for (int i = 0; i < result.ObjectIds.Length; i++)
-                if (result.ObjectIds[i] == obj) { x += result.Xyz![3 * i]; y += result.Xyz[3 * i + 1]; z += result.Xyz[3 * i + 2]; count++; }
+                if (result.ObjectIds[i] == obj)
+                {
+                    x += result.Xyz![3 * i];
+                    y += result.Xyz[3 * i + 1];
+                    z += result.Xyz[3 * i + 2];
+                    count++;
+                }
             Assert.True(count > 10, $"patch {p}: {count} pixels");
             var rendered = new Xyz(x / count, y / count, z / count);
             var reference = Cie015.Of(ColorChecker.Patch(p), spds, S(white));

@@ -15,7 +15,8 @@ public class DaylightSkyTests
         var lines = File.ReadAllLines(Repo.PathOf("data", file)).Where(l => l.Length > 0 && !l.StartsWith('#')).ToArray();
         int c = Array.IndexOf(lines[0].Split(','), column);
         var rows = lines.Skip(1).Select(l => l.Split(','))
-            .Select(p => (W: double.Parse(p[0], CultureInfo.InvariantCulture), V: double.Parse(p[c], CultureInfo.InvariantCulture))).ToArray();
+            .Select(p => (W: double.Parse(p[0], CultureInfo.InvariantCulture), V: double.Parse(p[c], CultureInfo.InvariantCulture)))
+            .ToArray();
         return l =>
         {
             int i = Array.FindLastIndex(rows, r => r.W <= l);
@@ -62,7 +63,8 @@ public class DaylightSkyTests
         var e = Assert.Throws<SpectralRenderer.Diagnostics.InputException>(() =>
             SceneText.Load(Scene("""{ "type": "daylight", "cct": 3000, "luminance": 1 }""")));
         Assert.Contains("$.sky.cct", e.Message);
-        e = Assert.Throws<SpectralRenderer.Diagnostics.InputException>(() => SceneText.Load(Scene("""{ "type": "daylight", "cct": 6500 }""")));
+        e = Assert.Throws<SpectralRenderer.Diagnostics.InputException>(() =>
+            SceneText.Load(Scene("""{ "type": "daylight", "cct": 6500 }""")));
         Assert.Contains("luminance", e.Message);
     }
 }

@@ -228,7 +228,8 @@ public sealed class FluorescenceTests(Xunit.Abstractions.ITestOutputHelper outpu
         string sky = path;
         string Sky(string material) => Scene(material, extra: sky).Replace("\"background\": 0", "\"background\": 1")
             .Replace("\"lights\": [ { \"type\": \"directional\", \"direction\": [0, 0, -1], \"spectrum\": \"D50\" } ]", "\"lights\": []");
-        var (withShift, error) = PathIntegratorTests.Estimate(SceneText.Load(Sky(full)), new SpectralRenderer.Geometry.Ray(new System.Numerics.Vector3(0, 0, 5),
+        var (withShift, error) =
+            PathIntegratorTests.Estimate(SceneText.Load(Sky(full)), new SpectralRenderer.Geometry.Ray(new System.Numerics.Vector3(0, 0, 5),
             new System.Numerics.Vector3(0, 0, -1)), 4000);
         var without = RenderPath(Sky(diag)).Image;
         var l = Shifted(d, Enumerable.Repeat(1.0, Cells.Length).ToArray());
@@ -237,7 +238,8 @@ public sealed class FluorescenceTests(Xunit.Abstractions.ITestOutputHelper outpu
         {
             double expected = without[0, 0, b] + (l[2 * b] + l[2 * b + 1]) / 2;
             worst = Math.Max(worst, Math.Abs(withShift[b] - expected) / error[b]);
-            Assert.True(Math.Abs(withShift[b] - expected) <= 4 * error[b] + 1e-5 * expected, $"sky, band {b}: {withShift[b]} vs {expected} (±{error[b]:g2})");
+            Assert.True(Math.Abs(withShift[b] - expected) <= 4 * error[b] + 1e-5 * expected,
+                $"sky, band {b}: {withShift[b]} vs {expected} (±{error[b]:g2})");
         }
         output.WriteLine($"path under a uniform sky: largest |rendered − (R + S·1)| {worst:F2} standard errors");
     }

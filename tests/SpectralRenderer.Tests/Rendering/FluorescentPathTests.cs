@@ -168,10 +168,13 @@ public sealed class FluorescentPathTests(Xunit.Abstractions.ITestOutputHelper ou
                 separation = Math.Max(separation, Math.Abs(expected[b] - old[b]) / error[b]);
             }
             Assert.True(Math.Abs(mean[b] - expected[b]) <= allowed,
-                $"{label}, band {Cells[b]} nm: {mean[b]:F5} vs (I − R − S)⁻¹·L_e = {expected[b]:F5} (±{error[b]:g2}); next-event excitation only: {old[b]:F5}");
+                $"{label}, band {Cells[b]} nm: {mean[b]:F5} vs (I − R − S)⁻¹·L_e = {expected[b]:F5} (±{error[b]:g2}); "
+                    + $"next-event excitation only: {old[b]:F5}");
         }
-        output.WriteLine($"{label} furnace: largest |path − solution| {worst:F2} standard errors; at {Cells[peak]} nm path {mean[peak]:F4} ± " +
-            $"{error[peak]:F4}, solution {expected[peak]:F4}, next-event excitation only {old[peak]:F4} (up to {separation:F0} standard errors away)");
+        output.WriteLine(
+            $"{label} furnace: largest |path − solution| {worst:F2} standard errors; at {Cells[peak]} nm path {mean[peak]:F4} ± " +
+            $"{error[peak]:F4}, solution {expected[peak]:F4}, next-event excitation only {old[peak]:F4} (up to "
+                + $"{separation:F0} standard errors away)");
         Assert.True(separation > 20, "the test must tell indirect excitation from its absence");
         return mean;
     }
@@ -298,7 +301,8 @@ public sealed class FluorescentPathTests(Xunit.Abstractions.ITestOutputHelper ou
         double la = sumLa / n, laError = Math.Sqrt(Math.Max(0, sumLa2 / n - la * la) / (n - 1));
         double allowed = 4 * differenceError;
         output.WriteLine($"excitation {Cells[a]} nm: photons re-emitted {emitted:G6}, absorbed {absorbed:G6} (× π·w/hc), " +
-            $"ratio {emitted / absorbed:F4} ± {differenceError / absorbed:F4}; L_a {la:F5} ± {laError:F5}, expected 0.5/(1 − R) = {0.5 / (1 - r):F5}");
+            $"ratio {emitted / absorbed:F4} ± {differenceError / absorbed:F4}; L_a {la:F5} ± {laError:F5}, expected "
+                + $"0.5/(1 − R) = {0.5 / (1 - r):F5}");
         Assert.True(difference <= allowed, $"{Cells[a]} nm re-emits more photons than it absorbs");
         Assert.True(Math.Abs(difference) <= allowed, $"{Cells[a]} nm: re-emitted − absorbed {difference} (±{differenceError:g2})");
         Assert.True(allowed < 0.1 * r * absorbed, "the test must tell this from next-event excitation only, which re-emits (1 − R) of it");

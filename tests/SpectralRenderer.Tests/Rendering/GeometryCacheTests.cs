@@ -61,7 +61,9 @@ public class GeometryCacheTests
         File.WriteAllText(Path.Combine(dir, "cube.obj"), Obj);
         var cache = new GeometryCache();
         var scenes = Enumerable.Range(0, GeometryCache.Capacity + 1)
-            .Select(k => Load(dir, "D65", $$"""{ "translate": [{{(k * 0.05).ToString(System.Globalization.CultureInfo.InvariantCulture)}}, 0, 0] }""")).ToList();
+            .Select(k => Load(dir, "D65",
+                $$"""{ "translate": [{{(k * 0.05).ToString(System.Globalization.CultureInfo.InvariantCulture)}}, 0, 0] }"""))
+            .ToList();
         foreach (var s in scenes) _ = new SceneGeometry(s, cache);
         Assert.Equal(0, cache.Reused);
         _ = new SceneGeometry(scenes[^1], cache);   // the newest is held

@@ -46,7 +46,8 @@ public class GoniometricLightTests(Xunit.Abstractions.ITestOutputHelper output)
         };
         var sb = new StringBuilder();
         foreach (var l in new[] { "test", "1", $"{isym}", $"{mc}", "30", $"{ng}", "15", "report", "luminaire", "0", "t.ldt", "today",
-                     "100", "100", "50", "100", "100", "0", "0", "0", "0", "100", "80", "1", "0", "1", "1", "LED", "2000", "4000K", "80", "20" })
+                     "100", "100", "50", "100", "100", "0", "0", "0", "0", "100", "80", "1", "0", "1", "1", "LED", "2000", "4000K", "80",
+                         "20" })
             sb.Append(l).Append('\n');
         for (int i = 0; i < 10; i++) sb.Append("0.5\n");
         foreach (var x in c) sb.Append(F(x)).Append('\n');
@@ -56,13 +57,16 @@ public class GoniometricLightTests(Xunit.Abstractions.ITestOutputHelper output)
     }
 
     // Distributions with structure in C and γ, equal in every plane at the nadir and the zenith.
-    static double Down(double c, double g) => 800 * Math.Cos(g * Math.PI / 180) * (1 + 0.4 * Math.Sin(g * Math.PI / 180) * Math.Cos(2 * c * Math.PI / 180)) + 50;
-    static double Round(double c, double g) => 300 + 200 * Math.Cos(g * Math.PI / 180) + 60 * Math.Sin(g * Math.PI / 180) * (1 + Math.Cos(c * Math.PI / 180));
+    static double Down(double c, double g) =>
+        800 * Math.Cos(g * Math.PI / 180) * (1 + 0.4 * Math.Sin(g * Math.PI / 180) * Math.Cos(2 * c * Math.PI / 180)) + 50;
+    static double Round(double c, double g) =>
+        300 + 200 * Math.Cos(g * Math.PI / 180) + 60 * Math.Sin(g * Math.PI / 180) * (1 + Math.Cos(c * Math.PI / 180));
 
     /// <summary>Illuminance π·L on a white plane 3 m from the luminaire along (C, γ), the plane tilted by α.</summary>
     static double Measured(string file, double c, double g, double alpha, string rotate = "")
     {
-        var l = new GoniometricLight(new LightEmission("x", [], [], false), new CandelaTable([0], [0], [[1]], CandelaSymmetry.Axial, "x"), 1);
+        var l =
+            new GoniometricLight(new LightEmission("x", [], [], false), new CandelaTable([0], [0], [[1]], CandelaSymmetry.Axial, "x"), 1);
         var d = l.Direction(c, g);
         var target = 3 * d;
         // Tilt the plane's normal from −d by α about an axis perpendicular to d.
@@ -120,8 +124,10 @@ public class GoniometricLightTests(Xunit.Abstractions.ITestOutputHelper output)
         double[] h = [0, 30, 60, 90];
         var file = Write("quadrant.ies", Ies(Gamma0To90, h, Down));
         // Angles in the file, and their images: C, 180 − C, 180 + C, 360 − C.
-        var angles = from c in h from image in new[] { c, 180 - c, 180 + c, 360 - c } from g in Gamma0To90.SkipLast(1) select (image % 360, g);
-        Check("IES quadrant", file, angles.Distinct(), (c, g) => 1.8 * Down(c > 180 ? (c > 270 ? 360 - c : c - 180) : (c > 90 ? 180 - c : c), g));
+        var angles =
+            from c in h from image in new[] { c, 180 - c, 180 + c, 360 - c } from g in Gamma0To90.SkipLast(1) select (image % 360, g);
+        Check("IES quadrant", file, angles.Distinct(),
+            (c, g) => 1.8 * Down(c > 180 ? (c > 270 ? 360 - c : c - 180) : (c > 90 ? 180 - c : c), g));
     }
 
     [Fact]
@@ -168,7 +174,8 @@ public class GoniometricLightTests(Xunit.Abstractions.ITestOutputHelper output)
         double[] h = [0, 30, 60, 90];
         var file = Write("quadrant.ies", Ies(Gamma0To90, h, Down));
         // Turned 90° about x: the nadir (−y) now points along −z... measured along the turned direction it is the nadir value.
-        var l = new GoniometricLight(new LightEmission("x", [], [], false), new CandelaTable([0], [0], [[1]], CandelaSymmetry.Axial, "x"), 1)
+        var l = new GoniometricLight(new LightEmission("x", [], [], false), new CandelaTable([0], [0], [[1]], CandelaSymmetry.Axial, "x"),
+            1)
         { Orientation = Matrix4x4.CreateRotationX(MathF.PI / 2) };
         var d = l.Direction(0, 0);
         Assert.True(Vector3.Distance(d, -Vector3.UnitZ) < 1e-6, $"nadir turned to {d}");
@@ -179,10 +186,12 @@ public class GoniometricLightTests(Xunit.Abstractions.ITestOutputHelper output)
 
     [Theory]
     [InlineData("t.ies", "IESNA:LM-63-2002\n1 2 3\n", "t.ies:2", "no TILT= line")]
-    [InlineData("t.ies", "IESNA:LM-63-2002\nTILT=NONE\n1 1000 1 3 1 1 2 0 0 0\n1 1 0\n0 45 90\n0\n10 20\n", "t.ies:7", "ends before a candela value")]
+    [InlineData("t.ies", "IESNA:LM-63-2002\nTILT=NONE\n1 1000 1 3 1 1 2 0 0 0\n1 1 0\n0 45 90\n0\n10 20\n", "t.ies:7",
+        "ends before a candela value")]
     [InlineData("t.ies", "IESNA:LM-63-2002\nTILT=NONE\n1 1000 1 3 1 1 2 0 0 0\n1 1 0\n0 90 45\n0\n10 20 30\n", "t.ies:5", "not ascending")]
     [InlineData("t.ies", "IESNA:LM-63-2002\nTILT=NONE\n1 1000 1 2 1 2 2 0 0 0\n1 1 0\n0 90\n0\n10 20\n", "t.ies:3", "photometric type 2")]
-    [InlineData("t.ies", "IESNA:LM-63-2002\nTILT=NONE\n1 1000 1 2 2 1 2 0 0 0\n1 1 0\n0 90\n0 90\n10 20\n1 x\n", "t.ies:8", "'x', not a number")]
+    [InlineData("t.ies", "IESNA:LM-63-2002\nTILT=NONE\n1 1000 1 2 2 1 2 0 0 0\n1 1 0\n0 90\n0 90\n10 20\n1 x\n", "t.ies:8",
+        "'x', not a number")]
     [InlineData("t.ies", "IESNA:LM-63-2002\nTILT=lamp.tlt\n", "t.ies:2", "not supported")]
     [InlineData("t.ldt", "test\n1\n5\n", "t.ldt:3", "symmetry indicator")]
     [InlineData("t.ldt", "test\n1\n1\n12\n30\n3\n", "t.ldt:6", "ends before")]

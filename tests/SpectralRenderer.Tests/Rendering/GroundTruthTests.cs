@@ -74,7 +74,9 @@ public class GroundTruthTests(Xunit.Abstractions.ITestOutputHelper output)
                     if (expected < 1e-30) { Assert.True(Math.Abs(img[x, y, b] - expected) < 1e-36, $"tail band {b}"); continue; }
                     double rel = Math.Abs(img[x, y, b] - expected) / expected;
                     worst = Math.Max(worst, rel);
-                    Assert.True(rel <= 1e-5, $"{light} pixel ({x},{y}) band {b} ({g.Lower(b)}–{g.Upper(b)} nm): {img[x, y, b]:G9} vs {expected:G9}, {rel:E2} relative");
+                    Assert.True(rel <= 1e-5,
+                        $"{light} pixel ({x},{y}) band {b} ({g.Lower(b)}–{g.Upper(b)} nm): {img[x, y, b]:G9} vs "
+                            + $"{expected:G9}, {rel:E2} relative");
                 }
             }
         Assert.True(lit > 150, $"{lit} lit pixels");
@@ -103,7 +105,8 @@ public class GroundTruthTests(Xunit.Abstractions.ITestOutputHelper output)
           "objects": [ { "type": "quad", "center": [0, 0, 0], "size": 4, "material": "white" } ] }
         """;
         var rel = SceneText.Render(Json("relative"));
-        for (int b = 0; b < 20; b++) Assert.True(Math.Abs(rel.Image[2, 2, b] * Math.PI - 1) <= 1e-6, $"band {b}: {rel.Image[2, 2, b]:G9} vs 1/π");
+        for (int b = 0; b < 20; b++)
+            Assert.True(Math.Abs(rel.Image[2, 2, b] * Math.PI - 1) <= 1e-6, $"band {b}: {rel.Image[2, 2, b]:G9} vs 1/π");
         Assert.True(Math.Abs(rel.Xyz![3 * 12 + 1] - 1) <= 1e-6, $"relative Y {rel.Xyz[3 * 12 + 1]}");
         var abs = SceneText.Render(Json("absolute"));
         // ∫ȳ over 380–780 nm by the trapezoid rule on the 1 nm CIE table.
@@ -125,7 +128,8 @@ public class GroundTruthTests(Xunit.Abstractions.ITestOutputHelper output)
           "lights": [ { "type": "point", "position": [0, 0, 2], "spectrum": { "constant": 1 }, "intensity": 1 } ],
           "objects": [ { "type": "quad", "center": [0, 0, 0], "size": 4, "material": "white" } ] }
         """);
-        for (int b = 0; b < 20; b++) Assert.True(Math.Abs(r.Image[0, 0, b] * 4 * Math.PI - 1) <= 1e-6, $"band {b}: {r.Image[0, 0, b]:G9} vs 1/(4π)");
+        for (int b = 0; b < 20; b++)
+            Assert.True(Math.Abs(r.Image[0, 0, b] * 4 * Math.PI - 1) <= 1e-6, $"band {b}: {r.Image[0, 0, b]:G9} vs 1/(4π)");
     }
 
     public static TheoryData<string, string> Furnaces => new()
@@ -141,7 +145,8 @@ public class GroundTruthTests(Xunit.Abstractions.ITestOutputHelper output)
         string geometry = shape switch
         {
             "sphere" => """{ "type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "glass" }""",
-            "box" => """{ "type": "box", "center": [0, 0, 0], "size": [1.6, 1.6, 1.6], "transform": { "rotate": [30, 40, 0] }, "material": "glass" }""",
+            "box" => """{ "type": "box", "center": [0, 0, 0], "size": [1.6, 1.6, 1.6], "transform": { "rotate": [30, 40, 0] },""" +
+                """ "material": "glass" }""",
             _ => """{ "type": "plane", "point": [0, -0.5, 0], "normal": [0, 1, 0], "material": "glass" }""",
         };
         int depth = shape == "plane" ? 3 : 9;
@@ -161,7 +166,8 @@ public class GroundTruthTests(Xunit.Abstractions.ITestOutputHelper output)
         else
         {
             // Paths cut at the depth limit lose the energy of their last branch; most pixels have none left.
-            var pixels = Enumerable.Range(0, img.Width * img.Height).Select(p => img.Data.AsSpan(p * img.Bands, img.Bands).ToArray().Min()).OrderBy(v => v).ToArray();
+            var pixels = Enumerable.Range(0, img.Width * img.Height).Select(p => img.Data.AsSpan(p * img.Bands, img.Bands).ToArray().Min())
+                .OrderBy(v => v).ToArray();
             Assert.True(pixels[pixels.Length / 2] >= 1 - 1e-4, $"{shape}: median pixel {pixels[pixels.Length / 2]:G7}");
         }
     }

@@ -28,7 +28,8 @@ public class LaneGeometryTests
     static int Bits(float f) => BitConverter.SingleToInt32Bits(f);
 
     static void Same(float expected, float actual, string what) =>
-        Assert.True(Bits(expected) == Bits(actual), $"{what}: expected {expected:R} ({Bits(expected):X8}), lanes {actual:R} ({Bits(actual):X8})");
+        Assert.True(Bits(expected) == Bits(actual),
+            $"{what}: expected {expected:R} ({Bits(expected):X8}), lanes {actual:R} ({Bits(actual):X8})");
 
     static void Same(Vector3 expected, float x, float y, float z, string what)
     {
@@ -43,7 +44,8 @@ public class LaneGeometryTests
     public void Camera_rays_in_lanes_are_Camera_Generate_bit_for_bit(int width)
     {
         SkipUnsupported(width);
-        var cam = new SpectralRenderer.Scenes.Camera(new Vector3(0.3f, 1.7f, 5.6f), new Vector3(0, 0.85f, 0), Vector3.UnitY, 32, 641, 479, 1);
+        var cam =
+            new SpectralRenderer.Scenes.Camera(new Vector3(0.3f, 1.7f, 5.6f), new Vector3(0, 0.85f, 0), Vector3.UnitY, 32, 641, 479, 1);
         var r = new Random(14);
         var p = new RayPacket();
         PacketFloats fx = default, fy = default;
@@ -81,7 +83,8 @@ public class LaneGeometryTests
     {
         SkipUnsupported(width);
         // A floor, a tilted plane and a wall; rays from above and below, parallel to the floor (n·d = 0), with short TMax.
-        (Vector3 Normal, float Offset)[] planes = [(Vector3.UnitY, 0), (Vector3.Normalize(new Vector3(0.3f, 1, -0.2f)), 0.7f), (Vector3.UnitX, -2)];
+        (Vector3 Normal, float Offset)[] planes =
+            [(Vector3.UnitY, 0), (Vector3.Normalize(new Vector3(0.3f, 1, -0.2f)), 0.7f), (Vector3.UnitX, -2)];
         var r = new Random(3);
         int hits = 0, misses = 0;
         for (int n = 0; n < 300; n++)
@@ -155,7 +158,8 @@ public class LaneGeometryTests
                 float u = (float)r.NextDouble() * 0.6f, v = (float)r.NextDouble() * 0.4f;
                 p.U[lane] = u; p.V[lane] = v;
                 Vector3 a = RandomVector(r, 2), b = RandomVector(r, 2), c = RandomVector(r, 2);
-                Vector3 na = Vector3.Normalize(RandomVector(r, 1)), nb = Vector3.Normalize(RandomVector(r, 1)), nc = Vector3.Normalize(RandomVector(r, 1));
+                Vector3 na = Vector3.Normalize(RandomVector(r, 1)), nb = Vector3.Normalize(RandomVector(r, 1)),
+                    nc = Vector3.Normalize(RandomVector(r, 1));
                 if (lane == 5) { nb = -na; nc = -na; u = v = 1 / 3f; p.U[lane] = u; p.V[lane] = v; }   // |n| may vanish
                 if (lane % 4 == 3)
                 {   // a plane or shape lane: its normals are given
@@ -180,10 +184,22 @@ public class LaneGeometryTests
             ShadingLanes at = default;
             switch (width)
             {
-                case 16: LaneGeometry.Records<Lanes512>(ref p, mesh, smooth, in tri, ref hits); LaneGeometry.Shading<Lanes512>(ref p, in hits, eps, ref at); break;
-                case 8: LaneGeometry.Records<Lanes256>(ref p, mesh, smooth, in tri, ref hits); LaneGeometry.Shading<Lanes256>(ref p, in hits, eps, ref at); break;
-                case 4: LaneGeometry.Records<Lanes128>(ref p, mesh, smooth, in tri, ref hits); LaneGeometry.Shading<Lanes128>(ref p, in hits, eps, ref at); break;
-                default: LaneGeometry.Records<Lanes1>(ref p, mesh, smooth, in tri, ref hits); LaneGeometry.Shading<Lanes1>(ref p, in hits, eps, ref at); break;
+                case 16:
+                    LaneGeometry.Records<Lanes512>(ref p, mesh, smooth, in tri, ref hits);
+                    LaneGeometry.Shading<Lanes512>(ref p, in hits, eps, ref at);
+                    break;
+                case 8:
+                    LaneGeometry.Records<Lanes256>(ref p, mesh, smooth, in tri, ref hits);
+                    LaneGeometry.Shading<Lanes256>(ref p, in hits, eps, ref at);
+                    break;
+                case 4:
+                    LaneGeometry.Records<Lanes128>(ref p, mesh, smooth, in tri, ref hits);
+                    LaneGeometry.Shading<Lanes128>(ref p, in hits, eps, ref at);
+                    break;
+                default:
+                    LaneGeometry.Records<Lanes1>(ref p, mesh, smooth, in tri, ref hits);
+                    LaneGeometry.Shading<Lanes1>(ref p, in hits, eps, ref at);
+                    break;
             }
             for (int lane = 0; lane < RayPacket.Size; lane++)
             {
@@ -208,7 +224,12 @@ public class LaneGeometryTests
     public void A_point_light_in_lanes_is_Illuminate_and_the_single_ray_shadow_ray(int width)
     {
         SkipUnsupported(width);
-        var light = new PointLight(new LightEmission("test", new float[24], new float[24], HasAmbient: false)) { Position = new Vector3(2.5f, 5, 4), Falloff = new DistanceFalloff(1, 0.2f, 0.05f) };
+        var light =
+            new PointLight(new LightEmission("test", new float[24], new float[24], HasAmbient: false))
+            {
+                Position = new Vector3(2.5f, 5, 4),
+                Falloff = new DistanceFalloff(1, 0.2f, 0.05f)
+            };
         // The light's lane form: an isotropic point emitter at its position with its falloff.
         var emitter = Assert.IsType<PointEmitter>(light.LaneForm);
         Assert.Equal(new PointEmitter(light.Position, light.Falloff), emitter);

@@ -30,8 +30,11 @@ public class MeshSceneTests
     {
         var lines = Obj.Split('\n').Select(l => l.Trim()).ToList();
         var v = lines.Where(l => l.StartsWith("v ")).Select(l => l[2..]).ToList();
-        var f = lines.Where(l => l.StartsWith("f ")).Select(l => "4 " + string.Join(' ', l[2..].Split(' ', StringSplitOptions.RemoveEmptyEntries).Select(i => int.Parse(i) - 1))).ToList();
-        return $"ply\nformat ascii 1.0\nelement vertex {v.Count}\nproperty float x\nproperty float y\nproperty float z\nelement face {f.Count}\nproperty list uchar int vertex_indices\nend_header\n{string.Join('\n', v)}\n{string.Join('\n', f)}\n";
+        var f = lines.Where(l => l.StartsWith("f "))
+            .Select(l => "4 " + string.Join(' ', l[2..].Split(' ', StringSplitOptions.RemoveEmptyEntries).Select(i => int.Parse(i) - 1)))
+            .ToList();
+        return $"ply\nformat ascii 1.0\nelement vertex {v.Count}\nproperty float x\nproperty float y\nproperty float z\nelement face "
+            + $"{f.Count}\nproperty list uchar int vertex_indices\nend_header\n{string.Join('\n', v)}\n{string.Join('\n', f)}\n";
     }
 
     static string Scene(string obj) => $$"""
@@ -67,7 +70,8 @@ public class MeshSceneTests
             if (box.ObjectIds[i] != obj.ObjectIds[i] || obj.ObjectIds[i] != ply.ObjectIds[i]) { differing++; continue; }
             for (int b = 0; b < box.Image.Bands; b++)
             {
-                float a = box.Image.Data[i * box.Image.Bands + b], o = obj.Image.Data[i * box.Image.Bands + b], p = ply.Image.Data[i * box.Image.Bands + b];
+                float a = box.Image.Data[i * box.Image.Bands + b], o = obj.Image.Data[i * box.Image.Bands + b],
+                    p = ply.Image.Data[i * box.Image.Bands + b];
                 Assert.Equal(o, p);   // the two files give the very same triangles
                 if (Math.Abs(a - o) > 1e-4 * Math.Max(1, Math.Abs(a))) differing++;
             }
@@ -133,7 +137,8 @@ public class MeshSceneTests
         var dir = Reference.TempDir();
         var path = Path.Combine(dir, "scene.json");
         File.WriteAllText(path, Scene("""{ "type": "mesh", "file": "nowhere.obj", "material": "m" }"""));
-        var e = Assert.Throws<SpectralRenderer.Diagnostics.InputException>(() => SceneLoader.Load(path, new SceneOverrides { ModelDirectories = [dir] }));
+        var e = Assert.Throws<SpectralRenderer.Diagnostics.InputException>(() =>
+            SceneLoader.Load(path, new SceneOverrides { ModelDirectories = [dir] }));
         Assert.Contains("mesh 'nowhere.obj' not found in", e.Message);
         Assert.Contains("$SPECTRAL_MODELS", e.Message);
         Assert.Contains("--models", e.Message);
@@ -148,7 +153,8 @@ public class MeshSceneTests
         var models = Directory.CreateDirectory(Path.Combine(dir, new string('m', 200))).FullName;
         var path = Path.Combine(deep, "scene.json");
         File.WriteAllText(path, Scene("""{ "type": "mesh", "file": "nowhere.obj", "material": "m" }"""));
-        var e = Assert.Throws<SpectralRenderer.Diagnostics.InputException>(() => SceneLoader.Load(path, new SceneOverrides { ModelDirectories = [models] }));
+        var e = Assert.Throws<SpectralRenderer.Diagnostics.InputException>(() =>
+            SceneLoader.Load(path, new SceneOverrides { ModelDirectories = [models] }));
         var line = e.Message;
         Assert.True(line.Length <= SpectralRenderer.Diagnostics.MessageText.MaxLine, line);
         Assert.Contains("not found in", line);

@@ -83,7 +83,8 @@ public class NoiseTests(Xunit.Abstractions.ITestOutputHelper output)
     internal static string SkyScene(string sampler, int seed, int spp, double target = 0) => $$"""
         { "radiometry": "physical", "bands": "400:700:3",
           "integrator": { "type": "path", "max_depth": 3, "sampler": "{{sampler}}", "seed": {{seed}} },
-          "camera": { "position": [0, 1.2, 3], "look_at": [0, 0.2, 0], "fov": 50, "width": 8, "height": 8, "spp": {{spp}}, "target_error": {{target}} },
+          "camera": { "position": [0, 1.2, 3], "look_at": [0, 0.2, 0], "fov": 50, "width": 8, "height": 8, "spp": {{spp}},
+            "target_error": {{target}} },
           "background": { "name": "D65", "scale": 0.01 },
           "materials": { "white": { "type": "lambertian", "reflectance": 0.8 } },
           "objects": [ { "type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "white" },
@@ -140,7 +141,8 @@ public class NoiseTests(Xunit.Abstractions.ITestOutputHelper output)
         var scene = SceneText.Load(SkyScene("sobol", 0, 8));
         var path = Integrators.Create(scene, new SceneGeometry(scene), "path");
         Assert.Equal(Renderer.Render(scene, path).Image.Data, Renderer.Render(scene, path, noise: true).Image.Data);
-        var w = SceneText.Load(PathRenderTests.Room.Replace("\"integrator\": \"path\",", ""), new SceneOverrides { Width = 16, Height = 12 });
+        var w =
+            SceneText.Load(PathRenderTests.Room.Replace("\"integrator\": \"path\",", ""), new SceneOverrides { Width = 16, Height = 12 });
         var whitted = Integrators.Create(w, new SceneGeometry(w));
         var plain = Renderer.Render(w, whitted);
         var noisy = Renderer.Render(w, whitted, noise: true);
@@ -167,7 +169,8 @@ public class NoiseTests(Xunit.Abstractions.ITestOutputHelper output)
         }
         double achieved = Math.Sqrt(sum2 / counted);
         var used = runs[0].SamplesUsed!;
-        output.WriteLine($"RMS achieved relative error {achieved:F4} (target {target}); spp min {used.Min()} mean {used.Average():F1} max {used.Max()}");
+        output.WriteLine(
+            $"RMS achieved relative error {achieved:F4} (target {target}); spp min {used.Min()} mean {used.Average():F1} max {used.Max()}");
         Assert.InRange(achieved, 0, target * 1.15);
         // The sky seen directly (top rows) is constant: its pixels stop at the minimum; the contact shadow takes more.
         int sky = 0 * 8 + 4, shadow = Enumerable.Range(0, 64).MaxBy(i => used[i]);
@@ -198,7 +201,8 @@ public class NoiseProductTests
         Assert.True(code == 0, err);
         string whole = Path.Combine(dir, "whole"), merged = Path.Combine(dir, "merged");
         foreach (var f in new[] { "noise.npy", "noise.img", "noise.hdr", "spectral.exr" })
-            Assert.True(File.ReadAllBytes(Path.Combine(whole, f)).AsSpan().SequenceEqual(File.ReadAllBytes(Path.Combine(merged, f))), $"{f} differs");
+            Assert.True(File.ReadAllBytes(Path.Combine(whole, f)).AsSpan().SequenceEqual(File.ReadAllBytes(Path.Combine(merged, f))),
+                $"{f} differs");
         var a = SpectralRenderer.Output.RenderManifest.Read(whole).Sampling!;
         var b = SpectralRenderer.Output.RenderManifest.Read(merged).Sampling!;
         Assert.Equal("sobol", a.Sampler);
@@ -220,12 +224,14 @@ public class NoiseProductTests
     [Fact]
     public void Noise_with_one_sample_per_pixel_is_bad_input()
     {
-        var (code, _, err) = Cli.CliRunner.Run(["render", Distributed.ShardMergeTests.Scene("glass-mirror.json"), "-o", Path.Combine(Reference.TempDir(), "x"),
+        var (code, _, err) = Cli.CliRunner.Run(
+            ["render", Distributed.ShardMergeTests.Scene("glass-mirror.json"), "-o", Path.Combine(Reference.TempDir(), "x"),
             "--width", "8", "--height", "8", "--spp", "1", "--formats", "noise"]);
         Assert.Equal(2, code);
         Assert.Contains("--formats", err);
         Assert.Contains("spp", err);
-        (code, _, err) = Cli.CliRunner.Run(["render", Distributed.ShardMergeTests.Scene("glass-mirror.json"), "-o", Path.Combine(Reference.TempDir(), "x"),
+        (code, _, err) = Cli.CliRunner.Run(
+            ["render", Distributed.ShardMergeTests.Scene("glass-mirror.json"), "-o", Path.Combine(Reference.TempDir(), "x"),
             "--target-error", "2"]);
         Assert.Equal(2, code);
         Assert.Contains("--target-error", err);

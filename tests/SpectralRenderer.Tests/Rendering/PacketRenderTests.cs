@@ -21,7 +21,8 @@ public class PacketRenderTests
             for (int j = 0; j < slices; j++)
             {
                 double th = Math.PI * i / stacks, ph = 2 * Math.PI * j / slices;
-                sb.AppendLine(string.Create(CultureInfo.InvariantCulture, $"v {Math.Sin(th) * Math.Cos(ph):R} {Math.Cos(th):R} {Math.Sin(th) * Math.Sin(ph):R}"));
+                sb.AppendLine(string.Create(CultureInfo.InvariantCulture,
+                    $"v {Math.Sin(th) * Math.Cos(ph):R} {Math.Cos(th):R} {Math.Sin(th) * Math.Sin(ph):R}"));
             }
         for (int i = 0; i < stacks; i++)
             for (int j = 0; j < slices; j++)
@@ -42,7 +43,8 @@ public class PacketRenderTests
     {
         var lights = string.Join(", ", Enumerable.Range(0, copies).Select(i => string.Create(CultureInfo.InvariantCulture, $$"""
                       { "type": "point", "position": [{{2.5 - i}}, 5, 4], "spectrum": "D65", "intensity": {{1.0 / copies}} },
-                      { "type": "spot", "position": [-3, 4, {{2 - 0.5 * i}}], "look_at": [0, 0.5, 0], "cutoff": 25, "exponent": 8, "spectrum": "A", "intensity": 0.7 },
+                      { "type": "spot", "position": [-3, 4, {{2 - 0.5 * i}}], "look_at": [0, 0.5, 0], "cutoff": 25, "exponent": 8,
+                        "spectrum": "A", "intensity": 0.7 },
                       { "type": "directional", "direction": [-0.3, -1, {{-0.2 + 0.1 * i}}], "spectrum": "D65", "intensity": 0.3 }
             """)));
         var dir = Reference.TempDir();
@@ -58,7 +60,8 @@ public class PacketRenderTests
           "ambient": 0.05,
           "lights": [ {{lights}} ],
           "objects": [ { "type": "mesh", "file": "sphere.obj", "fit": { "min": [-1.6, 0, -1], "max": [0.4, 2, 1] }, "material": "shiny" },
-                       { "type": "mesh", "file": "sphere.obj", "shading": "flat", "fit": { "min": [0.6, 0, 0.2], "max": [1.6, 1, 1.2] }, "material": "phong" },
+                       { "type": "mesh", "file": "sphere.obj", "shading": "flat", "fit": { "min": [0.6, 0, 0.2], "max": [1.6, 1, 1.2] },
+                         "material": "phong" },
                        { "type": "sphere", "center": [1.4, 0.4, -1.2], "radius": 0.4, "material": "mirror" },
                        { "type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "floor" } ],
           "max_depth": 2 }

@@ -35,8 +35,9 @@ public class PathDispersionTests(Xunit.Abstractions.ITestOutputHelper output)
     /// <summary>
     /// A camera looks through a tilted dispersive slab (Cauchy, Fresnel transmission only) at a Lambertian plane lit by a
     /// directional light, or a point light (whose fall-off makes each band's shifted image differ more), that the slab does
-    /// not shadow; the path integrator stops at max_depth 3, so the only chain is camera → slab → slab → plane → light. Its radiance per band equals the Whitted integrator's (which refracts each band along
-    /// its own ray, Eq2Walker) for every pixel behind the glass, while the bands differ from each other by dispersion.
+    /// not shadow; the path integrator stops at max_depth 3, so the only chain is camera → slab → slab → plane → light. Its radiance per
+    /// band equals the Whitted integrator's (which refracts each band along its own ray, Eq2Walker) for every pixel behind the glass, while
+    /// the bands differ from each other by dispersion.
     /// </summary>
     [Theory]
     [InlineData("""{ "type": "directional", "direction": [-1, 0.2, -0.3], "spectrum": { "constant": 1 }, "intensity": 0.5 }""", 0.005)]
@@ -76,7 +77,8 @@ public class PathDispersionTests(Xunit.Abstractions.ITestOutputHelper output)
                 }
                 spread = Math.Max(spread, (max - w.Min()) / max);
             }
-        output.WriteLine($"{compared} pixels through the slab: largest |path − Whitted| {worst:e2} of the pixel's largest band; band spread up to {spread:P1}");
+        output.WriteLine($"{compared} pixels through the slab: largest |path − Whitted| {worst:e2} of the pixel's largest "
+            + $"band; band spread up to {spread:P1}");
         Assert.True(compared > 150, $"only {compared} pixels see the slab");
         Assert.True(spread > minSpread, $"the bands differ by at most {spread:P2}: no dispersion to check");
     }
@@ -139,12 +141,16 @@ public class PathDispersionTests(Xunit.Abstractions.ITestOutputHelper output)
     // "fov" is the vertical field of view: 0.75° over 5 rows is about 30° over 200 columns.
     static string PrismScene(string strip, int spp = 1, double mirror = 0, int width = PrismWidth, int height = PrismHeight) => $$"""
         { "radiometry": "physical", "bands": "400:700:10", "integrator": "path",
-          "camera": { "position": [0, 0, 6], "look_at": [0, 0, 0], "fov": {{Num(0.75 * height / PrismHeight)}}, "width": {{width}}, "height": {{height}}, "spp": {{spp}} },
-          "materials": { "glass": { "diffuse": 0, "transmit": 1, "mirror": {{Num(mirror)}}, "fresnel": true, "ior": { "cauchy": [{{Num(CauchyA)}}, {{Num(CauchyB)}}] } },
-                         "lamp": { "type": "lambertian", "reflectance": 0, "emission": { "spectrum": { "constant": 1 }, "radiance": 1, "two_sided": true } } },
+          "camera": { "position": [0, 0, 6], "look_at": [0, 0, 0], "fov": {{Num(0.75 * height / PrismHeight)}}, "width": {{width}},
+            "height": {{height}}, "spp": {{spp}} },
+          "materials": { "glass": { "diffuse": 0, "transmit": 1, "mirror": {{Num(mirror)}}, "fresnel": true,
+            "ior": { "cauchy": [{{Num(CauchyA)}}, {{Num(CauchyB)}}] } },
+                         "lamp": { "type": "lambertian", "reflectance": 0, "emission": { "spectrum": { "constant": 1 }, "radiance": 1,
+                           "two_sided": true } } },
           "objects": [
             {{string.Join(",\n", Enumerable.Range(0, 3).Select(k =>
-                $$"""{ "type": "quad", "name": "face{{k}}", "center": {{V(Axis + FaceNormal(k) * (float)Inradius)}}, "size": [{{Num(Side)}}, 8], "normal": {{V(FaceNormal(k))}}, "up": [0, 1, 0], "material": "glass" }"""))}}
+                $$"""{ "type": "quad", "name": "face{{k}}", "center": {{V(Axis + FaceNormal(k) * (float)Inradius)}},""" +
+                    $$""" "size": [{{Num(Side)}}, 8], "normal": {{V(FaceNormal(k))}}, "up": [0, 1, 0], "material": "glass" }"""))}}
             {{strip}} ] }
         """;
 
@@ -161,7 +167,8 @@ public class PathDispersionTests(Xunit.Abstractions.ITestOutputHelper output)
         double Index(double nm) => CauchyA + CauchyB / (nm * nm);
         // The slit: 4 units beyond the prism along the centre pixel's ray at 550 nm, facing back along it.
         var centre = camera.Generate(PrismWidth / 2 + 0.5f, row + 0.5f);
-        var (exitPoint, exitDir) = ThroughPrism(centre.Origin, centre.Direction, Index(550)) ?? throw new InvalidOperationException("the centre ray misses the prism");
+        var (exitPoint, exitDir) = ThroughPrism(centre.Origin, centre.Direction, Index(550))
+            ?? throw new InvalidOperationException("the centre ray misses the prism");
         var slit = exitPoint + 4 * exitDir;
         var across = Vector3.Normalize(Vector3.Cross(Vector3.UnitY, -exitDir));
         // Signed distance across the slit of pixel x's ray at wavelength nm (NaN: it does not get through).
@@ -175,7 +182,8 @@ public class PathDispersionTests(Xunit.Abstractions.ITestOutputHelper output)
         }
         double step = Math.Abs(Across(PrismWidth / 2 + 1, 550) - Across(PrismWidth / 2, 550));
         double width = 3 * step;
-        string strip = $$""", { "type": "quad", "name": "slit", "center": {{V(slit)}}, "size": [{{Num(width)}}, 40], "normal": {{V(-exitDir)}}, "up": [0, 1, 0], "material": "lamp" }""";
+        string strip = $$""", { "type": "quad", "name": "slit", "center": {{V(slit)}}, "size": [{{Num(width)}}, 40],""" +
+            $$""" "normal": {{V(-exitDir)}}, "up": [0, 1, 0], "material": "lamp" }""";
         var scene = SceneText.Load(PrismScene(strip));
         var path = Integrators.Create(scene, new SceneGeometry(scene), "path");
         var image = new float[PrismWidth][];
@@ -200,13 +208,16 @@ public class PathDispersionTests(Xunit.Abstractions.ITestOutputHelper output)
             Assert.True(sum > 0, $"band {b} ({nm} nm): the slit is not seen through the prism");
             seen[b] = moment / sum;
             Assert.False(double.IsNaN(predicted[b]), $"band {b}: Snell's law sends no pixel ray onto the slit");
-            Assert.True(Math.Abs(seen[b] - predicted[b]) <= 1, $"band {b} ({nm} nm): slit at column {seen[b]:F2}, Snell's law puts it at {predicted[b]:F2}");
+            Assert.True(Math.Abs(seen[b] - predicted[b]) <= 1,
+                $"band {b} ({nm} nm): slit at column {seen[b]:F2}, Snell's law puts it at {predicted[b]:F2}");
             // Through glass only: a band's light comes from its own refraction (other columns of this band are dark).
             for (int x = 0; x < PrismWidth; x++)
-                if (Math.Abs(x - predicted[b]) > 3) Assert.True(image[x][b] == 0, $"band {b}: light at column {x}, far from the slit's image");
+                if (Math.Abs(x - predicted[b]) > 3)
+                    Assert.True(image[x][b] == 0, $"band {b}: light at column {x}, far from the slit's image");
         }
         output.WriteLine("band centre → slit column (rendered / Snell): " + string.Join(", ",
-            Enumerable.Range(0, scene.Bands).Select(b => string.Create(CultureInfo.InvariantCulture, $"{400 + 30 * (b + 0.5)} nm {seen[b]:F1}/{predicted[b]:F1}"))));
+            Enumerable.Range(0, scene.Bands)
+                .Select(b => string.Create(CultureInfo.InvariantCulture, $"{400 + 30 * (b + 0.5)} nm {seen[b]:F1}/{predicted[b]:F1}"))));
         Assert.True(Math.Abs(predicted[0] - predicted[^1]) > 15, $"415 nm at {predicted[0]:F1}, 685 nm at {predicted[^1]:F1}: not spread");
     }
 
@@ -215,8 +226,10 @@ public class PathDispersionTests(Xunit.Abstractions.ITestOutputHelper output)
     {
         var camera = SceneText.Load(PrismScene("", width: 64, height: 16)).Camera;
         var centre = camera.Generate(32.5f, 8.5f);
-        var (exitPoint, exitDir) = ThroughPrism(centre.Origin, centre.Direction, 1.57) ?? throw new InvalidOperationException("the centre ray misses the prism");
-        string strip = $$""", { "type": "quad", "name": "slit", "center": {{V(exitPoint + 4 * exitDir)}}, "size": [0.3, 40], "normal": {{V(-exitDir)}}, "up": [0, 1, 0], "material": "lamp" }""";
+        var (exitPoint, exitDir) =
+            ThroughPrism(centre.Origin, centre.Direction, 1.57) ?? throw new InvalidOperationException("the centre ray misses the prism");
+        string strip = $$""", { "type": "quad", "name": "slit", "center": {{V(exitPoint + 4 * exitDir)}}, "size": [0.3, 40],""" +
+            $$""" "normal": {{V(-exitDir)}}, "up": [0, 1, 0], "material": "lamp" }""";
         var scene = SceneText.Load(PrismScene(strip, spp: 2, mirror: 1, width: 64, height: 16));
         var integrator = Integrators.Create(scene, new SceneGeometry(scene), "path");
         var one = Renderer.Render(scene, integrator, threads: 1);
@@ -242,19 +255,22 @@ public class PathDispersionTests(Xunit.Abstractions.ITestOutputHelper output)
           "camera": { "position": [0, 0, 4], "look_at": [0, 0, 0], "width": 8, "height": 8 },
           "background": { "name": "D65", "scale": 0.01 },
           "materials": { "glass": { "diffuse": 0, "ambient": 0, "mirror": 1, "transmit": 1, "fresnel": true,
-            "ior": { "sellmeier": { "B1": 1.03961212, "B2": 0.231792344, "B3": 1.01046945, "C1": 0.00600069867, "C2": 0.0200179144, "C3": 103.560653 } } } },
+            "ior": { "sellmeier": { "B1": 1.03961212, "B2": 0.231792344, "B3": 1.01046945, "C1": 0.00600069867, "C2": 0.0200179144,
+              "C3": 103.560653 } } } },
           "objects": [ { "type": "sphere", "radius": 1, "material": "glass" } ] }
         """);
         Assert.True(scene.Materials[0].Dispersive);
         var d65 = SpectrumLibrary.Resolve("D65");
         foreach (var target in new[] { new Vector3(0.3f, 0.2f, 0), new Vector3(0.8f, -0.3f, 0), new Vector3(0, 0.95f, 0) })
         {
-            var (mean, error) = PathIntegratorTests.Estimate(scene, new Ray(new Vector3(0, 0, 4), Vector3.Normalize(target - new Vector3(0, 0, 4))), 2000);
+            var (mean, error) =
+                PathIntegratorTests.Estimate(scene, new Ray(new Vector3(0, 0, 4), Vector3.Normalize(target - new Vector3(0, 0, 4))), 2000);
             for (int b = 0; b < scene.Bands; b++)
             {
                 double expected = PathIntegratorTests.BandMean(l => 0.01 * d65.Evaluate(l), scene.Grid.Lower(b), scene.Grid.Upper(b));
                 double allowed = tolerance > 0 ? tolerance * expected : 4 * error[b] + 2e-4 * expected;
-                Assert.True(Math.Abs(mean[b] - expected) <= allowed, $"towards {target}, band {b}: {mean[b]:g6} vs the sky's {expected:g6} (±{error[b]:g2})");
+                Assert.True(Math.Abs(mean[b] - expected) <= allowed,
+                    $"towards {target}, band {b}: {mean[b]:g6} vs the sky's {expected:g6} (±{error[b]:g2})");
             }
         }
     }
@@ -273,15 +289,23 @@ public class PathDispersionTests(Xunit.Abstractions.ITestOutputHelper output)
               "materials": { "white": { "type": "lambertian", "reflectance": 0.75 },
                              "glass": { "diffuse": 0, "mirror": 1, "transmit": 1, "fresnel": true, "ior": { "cauchy": [1.5, 20000] } } },
               "lights": [ { "type": "point", "name": "bulb", "position": [0.5, 1.6, 0.5], "spectrum": "{{spectrum}}", "intensity": 0.3 } ],
-              "objects": [ { "type": "quad", "name": "floor", "center": [0, 0, 0], "size": [3, 3], "normal": [0, 1, 0], "up": [0, 0, -1], "material": "white" },
+              "objects": [ { "type": "quad", "name": "floor", "center": [0, 0, 0], "size": [3, 3], "normal": [0, 1, 0], "up": [0, 0, -1],
+                "material": "white" },
                            { "type": "sphere", "name": "lens", "center": [0, 0.5, 0], "radius": 0.45, "material": "glass" } ] }
             """;
         var dir = Reference.TempDir();
         string Write(string name, string json) { var p = Path.Combine(dir, name); File.WriteAllText(p, json); return p; }
-        float[] Npy(string folder, string file) { using var s = File.OpenRead(Path.Combine(dir, folder, file)); return NpyReader.Read(s).Data; }
-        Assert.Equal(0, CliRunner.Run("render", Write("a.json", Scene("A")), "-o", Path.Combine(dir, "a"), "--formats", "npy,lights", "--quiet").Exit);
-        Assert.Equal(0, CliRunner.Run("render", Write("b.json", Scene("led-blue")), "-o", Path.Combine(dir, "b"), "--formats", "npy", "--quiet").Exit);
-        var (code, _, err) = CliRunner.Run("relight", Path.Combine(dir, "a"), "-o", Path.Combine(dir, "relit"), "--light", "bulb=led-blue", "--quiet");
+        float[] Npy(string folder, string file)
+        {
+            using var s = File.OpenRead(Path.Combine(dir, folder, file));
+            return NpyReader.Read(s).Data;
+        }
+        Assert.Equal(0,
+            CliRunner.Run("render", Write("a.json", Scene("A")), "-o", Path.Combine(dir, "a"), "--formats", "npy,lights", "--quiet").Exit);
+        Assert.Equal(0,
+            CliRunner.Run("render", Write("b.json", Scene("led-blue")), "-o", Path.Combine(dir, "b"), "--formats", "npy", "--quiet").Exit);
+        var (code, _, err) =
+            CliRunner.Run("relight", Path.Combine(dir, "a"), "-o", Path.Combine(dir, "relit"), "--light", "bulb=led-blue", "--quiet");
         Assert.True(code == 0, err);
         foreach (var file in new[] { "spectral.npy", "xyz.npy" })
         {
@@ -311,7 +335,8 @@ public class PathDispersionTests(Xunit.Abstractions.ITestOutputHelper output)
         var scene = SceneText.Load("""
         { "bands": "400:700:10", "camera": { "position": [0, 0, 4], "look_at": [0, 0, 0], "width": 4, "height": 4 },
           "materials": { "glass": { "transmit": 1, "ior": { "sellmeier": { "B1": 1.03961212, "B2": 0.231792344, "B3": 1.01046945,
-                                                                            "C1": 0.00600069867, "C2": 0.0200179144, "C3": 103.560653 } } } },
+                                                                            "C1": 0.00600069867, "C2": 0.0200179144,
+                                                                              "C3": 103.560653 } } } },
           "objects": [ { "type": "sphere", "material": "glass" } ] }
         """);
         var glass = scene.Materials[0];

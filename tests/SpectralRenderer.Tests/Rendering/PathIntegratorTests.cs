@@ -81,7 +81,9 @@ public class PathIntegratorTests(Xunit.Abstractions.ITestOutputHelper output)
             // Without the converged tolerance: 4 standard errors, plus 2e-4 for the 5-nm grid's ratio of sub-band means.
             double allowed = tolerance > 0 ? tolerance * expected : 4 * error[b] + 2e-4 * expected;
             worst = Math.Max(worst, Math.Abs(mean[b] / expected - 1));
-            if (tolerance > 0) Assert.True(error[b] < tolerance * expected / 3, $"band {b}: standard error {error[b]:g3} is too large to judge {tolerance:g}");
+            if (tolerance > 0)
+                Assert.True(error[b] < tolerance * expected / 3,
+                    $"band {b}: standard error {error[b]:g3} is too large to judge {tolerance:g}");
             Assert.True(Math.Abs(mean[b] - expected) < allowed,
                 $"band {b}: {mean[b]:F5} vs L_e/(1 − ρ) = {expected:F5} (±{error[b]:g2}, {Math.Abs(mean[b] / expected - 1):e2} relative)");
         }
@@ -131,7 +133,8 @@ public class PathIntegratorTests(Xunit.Abstractions.ITestOutputHelper output)
         {
             double le = BandMean(l => 2 * d65.Evaluate(l), scene.Grid.Lower(b), scene.Grid.Upper(b));
             double expected = 0.5 * le * r * r / d2 * (h / d);
-            Assert.True(Math.Abs(mean[b] - expected) < 3e-3 * expected, $"band {b}: {mean[b]:g6} vs ρ·L·(r/d)²·cos θ = {expected:g6} (±{error[b]:g2})");
+            Assert.True(Math.Abs(mean[b] - expected) < 3e-3 * expected,
+                $"band {b}: {mean[b]:g6} vs ρ·L·(r/d)²·cos θ = {expected:g6} (±{error[b]:g2})");
         }
     }
 
@@ -162,7 +165,8 @@ public class PathIntegratorTests(Xunit.Abstractions.ITestOutputHelper output)
     public void An_emitting_infinite_plane_is_refused()
     {
         var scene = SceneText.Load("""
-        { "radiometry": "physical", "integrator": "path", "camera": { "position": [0, 1, 4], "look_at": [0, 0, 0], "width": 8, "height": 8 },
+        { "radiometry": "physical", "integrator": "path", "camera": { "position": [0, 1, 4], "look_at": [0, 0, 0], "width": 8,
+          "height": 8 },
           "materials": { "lamp": { "type": "lambertian", "reflectance": 0, "emission": { "spectrum": "D65" } } },
           "objects": [ { "type": "plane", "material": "lamp" } ] }
         """);

@@ -141,21 +141,29 @@ public class PathMaterialTests(Xunit.Abstractions.ITestOutputHelper output)
         Assert.Throws<InputException>(() => Sky(material));
 
     [Theory]
-    [InlineData("""{ "type": "conductor", "conductor": "Pt" }""", "$.materials.m.conductor", "unknown metal 'Pt'", "Au (gold), Ag (silver), Cu (copper), Al (aluminium)")]
-    [InlineData("""{ "type": "conductor", "conductor": "Au", "roughness": 1.5 }""", "$.materials.m.roughness", "roughness 1.5 is out of range", "[0, 1]")]
+    [InlineData("""{ "type": "conductor", "conductor": "Pt" }""", "$.materials.m.conductor", "unknown metal 'Pt'",
+        "Au (gold), Ag (silver), Cu (copper), Al (aluminium)")]
+    [InlineData("""{ "type": "conductor", "conductor": "Au", "roughness": 1.5 }""", "$.materials.m.roughness",
+        "roughness 1.5 is out of range", "[0, 1]")]
     [InlineData("""{ "type": "conductor", "conductor": "Au", "roughness": -0.1 }""", "$.materials.m.roughness", "out of range", "smooth")]
     [InlineData("""{ "type": "conductor", "conductor": { "n": 1.2 } }""", "$.materials.m.conductor", "missing required field 'k'", "")]
-    [InlineData("""{ "type": "conductor", "conductor": { "n": 0, "k": 0 } }""", "$.materials.m.conductor", "n and k are both 0", "measured n and k")]
-    [InlineData("""{ "type": "conductor", "conductor": { "n": 1, "k": 2, "r": 3 } }""", "$.materials.m.conductor.r", "unknown field 'r'", "")]
-    [InlineData("""{ "type": "conductor", "conductor": "Au", "diffuse": 0.5 }""", "$.materials.m.diffuse", "unknown field 'diffuse'", "roughness")]
-    [InlineData("""{ "type": "conductor", "emission": { "spectrum": "D65" } }""", "$.materials.m", "missing required field 'conductor'", "")]
+    [InlineData("""{ "type": "conductor", "conductor": { "n": 0, "k": 0 } }""", "$.materials.m.conductor", "n and k are both 0",
+        "measured n and k")]
+    [InlineData("""{ "type": "conductor", "conductor": { "n": 1, "k": 2, "r": 3 } }""", "$.materials.m.conductor.r", "unknown field 'r'",
+        "")]
+    [InlineData("""{ "type": "conductor", "conductor": "Au", "diffuse": 0.5 }""", "$.materials.m.diffuse", "unknown field 'diffuse'",
+        "roughness")]
+    [InlineData("""{ "type": "conductor", "emission": { "spectrum": "D65" } }""", "$.materials.m", "missing required field 'conductor'",
+        "")]
     [InlineData("""{ "model": "conductor", "conductor": "Au" }""", "$.materials.m.conductor", "unknown field 'conductor'", "")]
-    [InlineData("""{ "model": "conductor" }""", "$.materials.m.model", "unknown specular model 'conductor'", "write \"type\": \"conductor\"")]
+    [InlineData("""{ "model": "conductor" }""", "$.materials.m.model", "unknown specular model 'conductor'",
+        "write \"type\": \"conductor\"")]
     [InlineData("""{ "type": "plastic", "diffuse": 0.5, "ior": 1 }""", "$.materials.m.ior", "a coat of index 1", "(1, 4]")]
     [InlineData("""{ "type": "plastic", "diffuse": 0.5, "roughness": 2 }""", "$.materials.m.roughness", "out of range", "[0, 1]")]
     [InlineData("""{ "type": "plastic", "diffuse": 50 }""", "$.materials.m.diffuse", "cannot exceed 1", "scale")]
     [InlineData("""{ "type": "plastic", "reflectance": 0.5 }""", "$.materials.m.reflectance", "unknown field 'reflectance'", "diffuse")]
-    public void Materials_that_make_no_sense_are_refused_with_the_JSON_path_and_a_hint(string material, string where, string what, string hint)
+    public void Materials_that_make_no_sense_are_refused_with_the_JSON_path_and_a_hint(string material, string where, string what,
+        string hint)
     {
         var e = Refused(material);
         output.WriteLine(e.Message);

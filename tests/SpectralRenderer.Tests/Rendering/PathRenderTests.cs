@@ -21,12 +21,15 @@ public class PathRenderTests
         "glass": { "diffuse": 0, "transmit": 1, "mirror": 1, "fresnel": true, "ior": 1.5 } },
       "lights": [ { "type": "point", "position": [0.5, 1.6, 0.5], "spectrum": "A", "intensity": 0.2 } ],
       "objects": [
-        { "type": "quad", "name": "floor", "center": [0, 0, 0], "size": [2, 2], "normal": [0, 1, 0], "up": [0, 0, -1], "material": "white" },
-        { "type": "quad", "name": "ceiling", "center": [0, 2, 0], "size": [2, 2], "normal": [0, -1, 0], "up": [0, 0, -1], "material": "white" },
+        { "type": "quad", "name": "floor", "center": [0, 0, 0], "size": [2, 2], "normal": [0, 1, 0], "up": [0, 0, -1],
+          "material": "white" },
+        { "type": "quad", "name": "ceiling", "center": [0, 2, 0], "size": [2, 2], "normal": [0, -1, 0], "up": [0, 0, -1],
+          "material": "white" },
         { "type": "quad", "name": "back", "center": [0, 1, -1], "size": [2, 2], "normal": [0, 0, 1], "material": "white" },
         { "type": "quad", "name": "left", "center": [-1, 1, 0], "size": [2, 2], "normal": [1, 0, 0], "material": "red" },
         { "type": "quad", "name": "right", "center": [1, 1, 0], "size": [2, 2], "normal": [-1, 0, 0], "material": "green" },
-        { "type": "quad", "name": "lamp", "center": [0, 1.99, 0], "size": [0.5, 0.5], "normal": [0, -1, 0], "up": [0, 0, -1], "material": "lamp" },
+        { "type": "quad", "name": "lamp", "center": [0, 1.99, 0], "size": [0.5, 0.5], "normal": [0, -1, 0], "up": [0, 0, -1],
+          "material": "lamp" },
         { "type": "sphere", "name": "bulb", "center": [-0.6, 1.7, -0.6], "radius": 0.08, "material": "lamp" },
         { "type": "sphere", "name": "ball", "center": [0.4, 0.3, -0.3], "radius": 0.3, "material": "mirror" },
         { "type": "sphere", "name": "lens", "center": [-0.35, 0.25, 0.2], "radius": 0.25, "material": "glass" } ] }
@@ -57,7 +60,8 @@ public class PathRenderTests
         Assert.Equal(-1, scene.Integrator.MaxDepth);
         var job = SpectralRenderer.Pipeline.RenderJob.Load(new SpectralRenderer.Pipeline.RenderRequest { Scene = scene });
         Assert.Equal("path", job.IntegratorName);
-        job = SpectralRenderer.Pipeline.RenderJob.Load(new SpectralRenderer.Pipeline.RenderRequest { Scene = scene, Integrator = "whitted" });
+        job =
+            SpectralRenderer.Pipeline.RenderJob.Load(new SpectralRenderer.Pipeline.RenderRequest { Scene = scene, Integrator = "whitted" });
         Assert.Equal("whitted", job.IntegratorName);
     }
 }
@@ -69,7 +73,8 @@ public class PathAllocationTests
     static long Measure(int size, bool dispersive)
     {
         // Dispersive: the glass ball's Cauchy index splits every path that meets it into one sub-path per band.
-        string json = dispersive ? PathRenderTests.Room.Replace("\"ior\": 1.5", "\"ior\": { \"cauchy\": [1.5, 20000] }") : PathRenderTests.Room;
+        string json =
+            dispersive ? PathRenderTests.Room.Replace("\"ior\": 1.5", "\"ior\": { \"cauchy\": [1.5, 20000] }") : PathRenderTests.Room;
         Assert.Equal(dispersive, json.Contains("cauchy"));
         var scene = SceneText.Load(json, new SceneOverrides { Width = size, Height = size });
         var integrator = Integrators.Create(scene, new SceneGeometry(scene), "path");
@@ -90,8 +95,10 @@ public class PathAllocationTests
     [InlineData(true)]
     public void Allocated_bytes_beyond_the_result_buffers_do_not_grow_with_paths(bool dispersive)
     {
-        var debuggable = (System.Diagnostics.DebuggableAttribute?)Attribute.GetCustomAttribute(typeof(Renderer).Assembly, typeof(System.Diagnostics.DebuggableAttribute));
-        Skip.If(debuggable?.IsJITOptimizerDisabled == true, "the engine is a Debug build; run the tests with -c Release as the README says");
+        var debuggable = (System.Diagnostics.DebuggableAttribute?)Attribute.GetCustomAttribute(typeof(Renderer).Assembly,
+            typeof(System.Diagnostics.DebuggableAttribute));
+        Skip.If(debuggable?.IsJITOptimizerDisabled == true,
+            "the engine is a Debug build; run the tests with -c Release as the README says");
         long small = Measure(32, dispersive), large = Measure(96, dispersive);
         Assert.True(large <= 64 * 1024, $"render loop allocated {large} bytes");
         Assert.True(large <= small + 4096, $"allocation grew from {small} to {large} bytes with 9× the pixels");

@@ -36,7 +36,8 @@ public class PathTextureTests(Xunit.Abstractions.ITestOutputHelper output)
     const string Directional = """{ "type": "directional", "direction": [0, 0, -1], "spectrum": "D65", "intensity": 0.03 }""";
     const string Point = """{ "type": "point", "position": [1, 2, 6], "spectrum": "A", "intensity": 1 }""";
 
-    /// <summary>The 24 patches as untextured unit quads, each material given inline (<paramref name="material"/> of its spectrum pairs).</summary>
+    /// <summary>The 24 patches as untextured unit quads, each material given inline (<paramref name="material"/> of its spectrum
+    /// pairs).</summary>
     static string UntexturedObjects(double[] wl, double[][] patches, Func<string, string> material)
     {
         var inv = CultureInfo.InvariantCulture;
@@ -45,12 +46,15 @@ public class PathTextureTests(Xunit.Abstractions.ITestOutputHelper output)
         {
             var pairs = string.Join(", ", wl.Select((l, j) => $"[{l.ToString(inv)}, {((float)patches[p][j]).ToString("R", inv)}]"));
             if (p > 0) objects.Append(", ");
-            objects.Append(inv, $$"""{ "type": "quad", "center": [{{p % 6 - 2.5}}, {{1.5 - p / 6}}, 0], "size": 1, "material": {{material($"[{pairs}]")}} }""");
+            string quad = material($"[{pairs}]");
+            objects.Append(inv,
+                $$"""{ "type": "quad", "center": [{{p % 6 - 2.5}}, {{1.5 - p / 6}}, 0], "size": 1, "material": {{quad}} }""");
         }
         return objects.ToString();
     }
 
-    static string TexturedObject(string material) => $$"""{ "type": "quad", "center": [0, 0, 0], "size": [6, 4], "material": {{material}} }""";
+    static string TexturedObject(string material) =>
+        $$"""{ "type": "quad", "center": [0, 0, 0], "size": [6, 4], "material": {{material}} }""";
 
     static (Scene Scene, RenderResult Result) Render(string json, string dir)
     {
@@ -82,14 +86,16 @@ public class PathTextureTests(Xunit.Abstractions.ITestOutputHelper output)
             }
             int i = y * w + x;
             for (int c = 0; c < 3; c++)
-                Assert.True(Math.Abs(a.Xyz![3 * i + c] - b.Xyz![3 * i + c]) <= relative * Math.Abs(b.Xyz[3 * i + c]), $"patch {p + 1} XYZ lane {c}");
+                Assert.True(Math.Abs(a.Xyz![3 * i + c] - b.Xyz![3 * i + c]) <= relative * Math.Abs(b.Xyz[3 * i + c]),
+                    $"patch {p + 1} XYZ lane {c}");
         }
         output.WriteLine($"largest relative band difference {worst:G3}");
     }
 
     static string WriteChart(string dir, double[] wl, double[][] patches)
     {
-        SpectralTextureTests.WriteEnvi(Path.Combine(dir, "chart.img"), 6 * PerPatch, 4 * PerPatch, wl, SpectralTextureTests.ChartTexels(patches, wl.Length, v => (float)v));
+        SpectralTextureTests.WriteEnvi(Path.Combine(dir, "chart.img"), 6 * PerPatch, 4 * PerPatch, wl,
+            SpectralTextureTests.ChartTexels(patches, wl.Length, v => (float)v));
         return """{ "texture": "chart.hdr" }""";
     }
 
@@ -173,7 +179,8 @@ public class PathTextureTests(Xunit.Abstractions.ITestOutputHelper output)
         var dir = Reference.TempDir();
         var texture = WriteChart(dir, wl, patches);
         const double sky = 0.7;
-        string json = Scene(TexturedObject($$"""{ "diffuse": {{texture}} }"""), "", sky.ToString(CultureInfo.InvariantCulture)).Replace("\"lights\": [  ],", "");
+        string json = Scene(TexturedObject($$"""{ "diffuse": {{texture}} }"""), "", sky.ToString(CultureInfo.InvariantCulture))
+            .Replace("\"lights\": [  ],", "");
         var (scene, r) = Render(json, dir);
         double worst = 0;
         for (int p = 0; p < 24; p++)
@@ -213,7 +220,8 @@ public class PathTextureTests(Xunit.Abstractions.ITestOutputHelper output)
         var dir = Reference.TempDir();
         var texture = WriteChart(dir, wl, patches);
         const double k = 3;
-        var (scene, r) = Render(Scene(TexturedObject($$"""{ "diffuse": 0, "emission": { "spectrum": {{texture}}, "radiance": {{k}} } }"""), "", "0")
+        var (scene, r) = Render(
+            Scene(TexturedObject($$"""{ "diffuse": 0, "emission": { "spectrum": {{texture}}, "radiance": {{k}} } }"""), "", "0")
             .Replace("\"lights\": [  ],", ""), dir);
         for (int p = 0; p < 24; p++)
         {
@@ -223,7 +231,8 @@ public class PathTextureTests(Xunit.Abstractions.ITestOutputHelper output)
             {
                 double lo = scene.Grid.Lower(b), hi = scene.Grid.Upper(b);
                 double expected = k * Integral(wl, le, lo, hi) / (hi - lo);
-                Assert.True(Math.Abs(r.Image[x, y, b] / expected - 1) <= 1e-5, $"patch {p + 1} band {b}: {r.Image[x, y, b]:R} vs k·L_texel = {expected:R}");
+                Assert.True(Math.Abs(r.Image[x, y, b] / expected - 1) <= 1e-5,
+                    $"patch {p + 1} band {b}: {r.Image[x, y, b]:R} vs k·L_texel = {expected:R}");
             }
         }
     }
@@ -240,9 +249,11 @@ public class PathTextureTests(Xunit.Abstractions.ITestOutputHelper output)
         var dir = Reference.TempDir();
         File.WriteAllText(Path.Combine(dir, "lamp.obj"), "v -0.7 2 -0.7\nv 0.7 2 -0.7\nv 0.7 2 0.7\nv -0.7 2 0.7\nf 1 4 3 2\n");
         int w = 8, h = 8;
-        SpectralTextureTests.WriteEnvi(Path.Combine(dir, "lamp.img"), w, h, wl, Enumerable.Range(0, w * h).SelectMany(_ => patches[18].Select(v => (float)v)).ToArray());
+        SpectralTextureTests.WriteEnvi(Path.Combine(dir, "lamp.img"), w, h, wl,
+            Enumerable.Range(0, w * h).SelectMany(_ => patches[18].Select(v => (float)v)).ToArray());
         var inv = CultureInfo.InvariantCulture;
-        var pairs = "[" + string.Join(", ", wl.Select((l, j) => $"[{l.ToString(inv)}, {((float)patches[18][j]).ToString("R", inv)}]")) + "]";
+        var pairs =
+            "[" + string.Join(", ", wl.Select((l, j) => $"[{l.ToString(inv)}, {((float)patches[18][j]).ToString("R", inv)}]")) + "]";
         string Room(string spectrum) => $$"""
             { "bands": "380:780:20", "radiometry": "physical", "integrator": { "type": "path", "max_depth": 3 },
               "camera": { "position": [0, 1, 4], "look_at": [0, 0.5, 0], "width": 24, "height": 16, "spp": 4 },
@@ -267,8 +278,11 @@ public class PathTextureTests(Xunit.Abstractions.ITestOutputHelper output)
     }
 
     [Theory]
-    [InlineData("""{ "type": "quad", "center": [0.2, 2, 0.1], "normal": [0.3, -1, 0.2], "up": [0, 0, 1], "size": [1.5, 0.7], "material": "lamp" }""")]
-    [InlineData("""{ "type": "box", "center": [0, 2, 0], "size": [1, 0.6, 0.8], "transform": { "rotate": [10, 30, 0] }, "material": "lamp" }""")]
+    [InlineData("""
+        { "type": "quad", "center": [0.2, 2, 0.1], "normal": [0.3, -1, 0.2], "up": [0, 0, 1], "size": [1.5, 0.7], "material": "lamp" }
+        """)]
+    [InlineData(
+        """{ "type": "box", "center": [0, 2, 0], "size": [1, 0.6, 0.8], "transform": { "rotate": [10, 30, 0] }, "material": "lamp" }""")]
     [InlineData("""{ "type": "sphere", "center": [0, 2, 0], "radius": 0.5, "material": "lamp" }""")]
     [InlineData("""{ "type": "mesh", "file": "lamp.obj", "material": "lamp" }""")]
     [InlineData("""{ "type": "mesh", "file": "lamp-uv.obj", "material": "lamp" }""")]
@@ -279,7 +293,9 @@ public class PathTextureTests(Xunit.Abstractions.ITestOutputHelper output)
         // gives the hit's uv another way (the intersection's barycentrics or the shape's own coordinates). Both agree.
         var dir = Reference.TempDir();
         File.WriteAllText(Path.Combine(dir, "lamp.obj"), "v -0.7 2 -0.7\nv 0.7 2 -0.7\nv 0.7 2.3 0.7\nv -0.7 2 0.7\nf 1 4 3 2\n");
-        File.WriteAllText(Path.Combine(dir, "lamp-uv.obj"), "v -0.7 2 -0.7\nv 0.7 2 -0.7\nv 0.7 2.3 0.7\nv -0.7 2 0.7\nvt 0.1 0.2\nvt 0.9 0.1\nvt 0.8 0.95\nvt 0.05 0.7\nf 1/1 4/4 3/3 2/2\n");
+        File.WriteAllText(Path.Combine(dir, "lamp-uv.obj"),
+            "v -0.7 2 -0.7\nv 0.7 2 -0.7\nv 0.7 2.3 0.7\nv -0.7 2 0.7\nvt 0.1 0.2\nvt 0.9 0.1\nvt 0.8 "
+                + "0.95\nvt 0.05 0.7\nf 1/1 4/4 3/3 2/2\n");
         var scene = SceneLoader.Parse(Encoding.UTF8.GetBytes($$"""
             { "bands": "400:700:50", "radiometry": "physical", "integrator": "path",
               "camera": { "position": [0, 1, 4], "look_at": [0, 0.5, 0], "width": 4, "height": 4 },
@@ -297,7 +313,8 @@ public class PathTextureTests(Xunit.Abstractions.ITestOutputHelper output)
             if (!emitter.Sample(p, u, out var x, out _, out _, out int face)) continue;
             var d = x - p;
             var ray = new Ray(p, Vector3.Normalize(d), d.Length() * 1.001f);
-            if (!geometry.Intersect(ref ray, out var hit) || Vector3.Distance(hit.Position, x) > 1e-4f) continue;   // a nearer face in the way
+            // a nearer face in the way
+            if (!geometry.Intersect(ref ray, out var hit) || Vector3.Distance(hit.Position, x) > 1e-4f) continue;
             var expected = geometry.TexCoord(in hit, out float density);
             var uv = emitter.TexCoord(face, x, out float emitterDensity);
             Assert.True(Vector2.Distance(uv, expected) < 1e-4f, $"point {x}: uv {uv} drawn, {expected} hit");
@@ -309,15 +326,18 @@ public class PathTextureTests(Xunit.Abstractions.ITestOutputHelper output)
     }
 
     [Theory]
-    [InlineData("path", """{ "diffuse": 0, "emission": { "spectrum": TEX, "luminous_flux": 100 } }""", "$.objects[0].material.emission.luminous_flux", "not by luminous_flux")]
-    [InlineData("path", """{ "type": "plastic", "diffuse": TEX }""", "$.objects[0].material.diffuse", "eq. 2 and lambertian materials only")]
+    [InlineData("path", """{ "diffuse": 0, "emission": { "spectrum": TEX, "luminous_flux": 100 } }""",
+        "$.objects[0].material.emission.luminous_flux", "not by luminous_flux")]
+    [InlineData("path", """{ "type": "plastic", "diffuse": TEX }""", "$.objects[0].material.diffuse",
+        "eq. 2 and lambertian materials only")]
     [InlineData("path", """{ "diffuse": 0.5, "ambient": TEX }""", "$.objects[0].material.ambient", "can be a texture so far")]
     public void What_cannot_be_textured_is_bad_input_naming_its_place(string integrator, string material, string where, string what)
     {
         var (wl, patches) = SpectralTextureTests.ColorCheckerTable();
         var dir = Reference.TempDir();
         var texture = WriteChart(dir, wl, patches);
-        var json = Scene(TexturedObject(material.Replace("TEX", texture)), Point, "0").Replace("\"type\": \"path\"", $"\"type\": \"{integrator}\"");
+        var json = Scene(TexturedObject(material.Replace("TEX", texture)), Point, "0")
+            .Replace("\"type\": \"path\"", $"\"type\": \"{integrator}\"");
         var e = Assert.Throws<SpectralRenderer.Diagnostics.InputException>(() => Render(json, dir));
         output.WriteLine(e.Message);
         Assert.Contains(where, e.Message);
@@ -348,9 +368,11 @@ public class PathTextureTests(Xunit.Abstractions.ITestOutputHelper output)
         int lanes = Vector<float>.Count, padded = (scene.Bands * 4 + 3 + lanes - 1) / lanes * lanes;
         foreach (int threads in new[] { 1, 2, 16 })
         {
-            var part = SpectralRenderer.Output.RenderMemory.Estimate(scene, threads).Single(p => p.Part.StartsWith("texture", StringComparison.Ordinal));
+            var part = SpectralRenderer.Output.RenderMemory.Estimate(scene, threads)
+                .Single(p => p.Part.StartsWith("texture", StringComparison.Ordinal));
             Assert.Equal(("texture spectra (fine grid)", 2L * texels * padded * 4), part);
-            var whitted = SpectralRenderer.Output.RenderMemory.Estimate(scene, threads, integrator: "whitted").Single(p => p.Part.StartsWith("texture", StringComparison.Ordinal));
+            var whitted = SpectralRenderer.Output.RenderMemory.Estimate(scene, threads, integrator: "whitted")
+                .Single(p => p.Part.StartsWith("texture", StringComparison.Ordinal));
             Assert.Equal(("texture tables", (long)texels * ((1 + 2 * 1) + 1) * scene.PaddedBands * 4), whitted);
         }
     }

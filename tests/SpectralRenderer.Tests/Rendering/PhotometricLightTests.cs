@@ -61,7 +61,8 @@ public class PhotometricLightTests(Xunit.Abstractions.ITestOutputHelper output)
     [Theory, MemberData(nameof(Spectra))]
     public void A_directional_light_of_500_lx_on_a_diffuser_of_reflectance_half_gives_500_times_half_over_pi(string spectrum)
     {
-        double l = Luminance(Scene($$"""{ "type": "directional", "direction": [0, 0, -1], "spectrum": "{{spectrum}}", "illuminance": 500 }""", "0.5"));
+        double l = Luminance(
+            Scene($$"""{ "type": "directional", "direction": [0, 0, -1], "spectrum": "{{spectrum}}", "illuminance": 500 }""", "0.5"));
         Check($"{spectrum} 500 lx, ρ = 0.5", l, 500 * 0.5 / Math.PI);
     }
 
@@ -70,7 +71,8 @@ public class PhotometricLightTests(Xunit.Abstractions.ITestOutputHelper output)
     {
         foreach (double r in new[] { 1.5, 3.0 })
         {
-            double l = Luminance(Scene($$"""{ "type": "point", "position": [0, 0, {{r}}], "spectrum": "{{spectrum}}", "luminous_flux": 1000 }"""));
+            double l =
+                Luminance(Scene($$"""{ "type": "point", "position": [0, 0, {{r}}], "spectrum": "{{spectrum}}", "luminous_flux": 1000 }"""));
             Check($"{spectrum} 1000 lm at {r} m, illuminance (lx)", Math.PI * l, 1000 / (4 * Math.PI * r * r));
         }
     }
@@ -110,7 +112,8 @@ public class PhotometricLightTests(Xunit.Abstractions.ITestOutputHelper output)
     {
         var dir = Reference.TempDir();
         var scene = Path.Combine(dir, "scene.json");
-        File.WriteAllText(scene, Scene("""{ "type": "point", "name": "key", "position": [0, 0, 2], "spectrum": "D65", "luminous_intensity": 1000 }"""));
+        File.WriteAllText(scene,
+            Scene("""{ "type": "point", "name": "key", "position": [0, 0, 2], "spectrum": "D65", "luminous_intensity": 1000 }"""));
         var (code, _, err) = CliRunner.Run("render", scene, "-o", Path.Combine(dir, "r"), "--quiet", "--formats", "npy,lights");
         Assert.True(code == 0, err);
         JsonNode Light(string folder) => JsonNode.Parse(File.ReadAllText(Path.Combine(dir, folder, "render.json")))!["lights"]![0]!;
@@ -130,15 +133,19 @@ public class PhotometricLightTests(Xunit.Abstractions.ITestOutputHelper output)
 
     [Theory]
     [InlineData("\"radiometry\": \"physical\", ", "", "luminous_intensity needs physical radiometry", "\"radiometry\": \"physical\"")]
-    [InlineData("\"luminous_intensity\": 1000", "\"luminous_intensity\": 1000, \"intensity\": 2", "both intensity and luminous_intensity", "give one")]
-    [InlineData("\"luminous_intensity\": 1000", "\"illuminance\": 1000", "a point light takes no illuminance", "luminous_intensity (cd) or luminous_flux (lm)")]
-    [InlineData("\"luminous_intensity\": 1000", "\"luminous_intensity\": 10, \"luminous_flux\": 1", "gives both luminous_flux and luminous_intensity", "one")]
+    [InlineData("\"luminous_intensity\": 1000", "\"luminous_intensity\": 1000, \"intensity\": 2", "both intensity and luminous_intensity",
+        "give one")]
+    [InlineData("\"luminous_intensity\": 1000", "\"illuminance\": 1000", "a point light takes no illuminance",
+        "luminous_intensity (cd) or luminous_flux (lm)")]
+    [InlineData("\"luminous_intensity\": 1000", "\"luminous_intensity\": 10, \"luminous_flux\": 1",
+        "gives both luminous_flux and luminous_intensity", "one")]
     [InlineData("\"luminous_intensity\": 1000", "\"luminous_intensity\": -1", "$.lights[0].luminous_intensity", "")]
     public void A_bad_photometric_key_is_one_line_with_a_hint_and_exit_2(string from, string to, string what, string hint)
     {
         var dir = Reference.TempDir();
         var scene = Path.Combine(dir, "scene.json");
-        File.WriteAllText(scene, Scene("""{ "type": "point", "position": [0, 0, 2], "spectrum": "D65", "luminous_intensity": 1000 }""").Replace(from, to));
+        File.WriteAllText(scene,
+            Scene("""{ "type": "point", "position": [0, 0, 2], "spectrum": "D65", "luminous_intensity": 1000 }""").Replace(from, to));
         var (code, _, err) = CliRunner.Run("render", scene, "-o", Path.Combine(dir, "out"), "--quiet");
         Assert.Equal(2, code);
         Assert.Single(err.TrimEnd().Split('\n'));

@@ -25,7 +25,8 @@ public class RadiosityTests(Xunit.Abstractions.ITestOutputHelper output)
     ];
     const double Emitted = 1;   // the ceiling's L_e in both bands
 
-    /// <summary>The form factor from a differential area at x (unit normal n) to the polygon: (1/2π)|Σ_k γ_k n·(R_k × R_k+1)/|R_k × R_k+1||.</summary>
+    /// <summary>The form factor from a differential area at x (unit normal n) to the polygon: (1/2π)|Σ_k γ_k n·(R_k × R_k+1)/|R_k ×
+    /// R_k+1||.</summary>
     static double PointToPolygon(Vector3 x, Vector3 n, ReadOnlySpan<Vector3> polygon)
     {
         double sum = 0;
@@ -104,16 +105,20 @@ public class RadiosityTests(Xunit.Abstractions.ITestOutputHelper output)
         return result;
     }
 
-    static string Step(double a, double b) => string.Create(CultureInfo.InvariantCulture, $"[[400, {a}], [549.995, {a}], [550.005, {b}], [700, {b}]]");
+    static string Step(double a, double b) =>
+        string.Create(CultureInfo.InvariantCulture, $"[[400, {a}], [549.995, {a}], [550.005, {b}], [700, {b}]]");
 
     [Fact]
     public void Path_traced_radiance_in_a_closed_Lambertian_box_matches_a_radiosity_solution_per_band()
     {
         var materials = string.Join(",\n", Walls.Select(w =>
-            $$"""    "{{w.Name}}": { "type": "lambertian", "reflectance": {{Step(w.Rho0, w.Rho1)}}{{(w.Name == "ceiling" ? $", \"emission\": {{ \"spectrum\": {Emitted} }}" : "")}} }"""));
+            $$"""    "{{w.Name}}": { "type": "lambertian", "reflectance": {{Step(w.Rho0, w.Rho1)}}""" +
+                $$"""{{(w.Name == "ceiling" ? $", \"emission\": {{ \"spectrum\": {Emitted} }}" : "")}} }"""));
         var objects = string.Join(",\n", Walls.Select(w =>
             string.Create(CultureInfo.InvariantCulture,
-                $$"""    { "type": "quad", "name": "{{w.Name}}", "center": [{{w.Centre.X}}, {{w.Centre.Y}}, {{w.Centre.Z}}], "size": [1, 1], "normal": [{{w.Normal.X}}, {{w.Normal.Y}}, {{w.Normal.Z}}], "up": [{{w.V.X}}, {{w.V.Y}}, {{w.V.Z}}], "material": "{{w.Name}}" }""")));
+                $$"""    { "type": "quad", "name": "{{w.Name}}", "center": [{{w.Centre.X}}, {{w.Centre.Y}}, {{w.Centre.Z}}],""" +
+                    $$""" "size": [1, 1], "normal": [{{w.Normal.X}}, {{w.Normal.Y}}, {{w.Normal.Z}}],""" +
+                    $$""" "up": [{{w.V.X}}, {{w.V.Y}}, {{w.V.Z}}], "material": "{{w.Name}}" }""")));
         var scene = SceneText.Load($$"""
         { "radiometry": "physical", "bands": "400:700:2", "integrator": { "type": "path", "rr_depth": 40 },
           "camera": { "position": [0.5, 0.5, 0.5], "look_at": [0.3, 0, 0.6], "width": 8, "height": 8 },
@@ -129,7 +134,8 @@ public class RadiosityTests(Xunit.Abstractions.ITestOutputHelper output)
             var (mean, error) = PathIntegratorTests.Estimate(scene, new Ray(origin, Vector3.Normalize(point - origin)), 20_000);
             var expected = Radiosity(point, wall);
             for (int b = 0; b < 2; b++)
-                output.WriteLine($"{Walls[wall].Name} band {b}: path {mean[b]:F5} ± {error[b]:g2}, radiosity {expected[b]:F5}, {mean[b] / expected[b] - 1:+0.0000;-0.0000} relative");
+                output.WriteLine($"{Walls[wall].Name} band {b}: path {mean[b]:F5} ± {error[b]:g2}, radiosity {expected[b]:F5}, "
+                    + $"{mean[b] / expected[b] - 1:+0.0000;-0.0000} relative");
             for (int b = 0; b < 2; b++)
                 Assert.True(Math.Abs(mean[b] / expected[b] - 1) < 0.01,
                     $"{Walls[wall].Name} band {b}: path {mean[b]:F5} ± {error[b]:g2} vs radiosity {expected[b]:F5}");

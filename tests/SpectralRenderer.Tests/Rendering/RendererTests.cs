@@ -24,7 +24,8 @@ public class RendererTests
     [InlineData("paper")]
     public void Rendering_the_chart_adds_no_colour_error(string integration)
     {
-        var scene = SceneLoader.Load(ScenePath("paper-3.1-colorchecker-d65.json"), new SceneOverrides { Width = 180, Height = 120, Integration = integration });
+        var scene = SceneLoader.Load(ScenePath("paper-3.1-colorchecker-d65.json"),
+            new SceneOverrides { Width = 180, Height = 120, Integration = integration });
         var result = Renderer.Render(scene);
         var c = scene.Colorimeter;
         int checkedPatches = 0;
@@ -43,7 +44,8 @@ public class RendererTests
             for (int b = 0; b < sum.Length; b++) sum[b] /= n;
             var rendered = c.ToXyz(sum);
             var expected = c.OfReflectance(ColorChecker.Patch(p));
-            Assert.True(Math.Abs(rendered.X / expected.X - 1) < 1e-5 && Math.Abs(rendered.Y / expected.Y - 1) < 1e-5 && Math.Abs(rendered.Z / expected.Z - 1) < 1e-5,
+            Assert.True(Math.Abs(rendered.X / expected.X - 1) < 1e-5 && Math.Abs(rendered.Y / expected.Y - 1) < 1e-5
+                && Math.Abs(rendered.Z / expected.Z - 1) < 1e-5,
                 $"patch {p}: rendered {rendered} vs {expected}");
             checkedPatches++;
         }
@@ -56,10 +58,12 @@ public class RendererTests
         const string json = """
         { "bands": "400:700:12",
           "camera": { "position": [0, 1, 6], "look_at": [0, 0.5, 0], "width": 67, "height": 45, "spp": 3 },
-          "materials": { "glass": { "diffuse": 0.05, "specular": 1, "shininess": 40, "mirror": 0.2, "transmit": 0.7, "ior": { "cauchy": [1.5, 8000] } },
+          "materials": { "glass": { "diffuse": 0.05, "specular": 1, "shininess": 40, "mirror": 0.2, "transmit": 0.7,
+            "ior": { "cauchy": [1.5, 8000] } },
                          "floor": { "diffuse": "colorchecker:14", "mirror": 0.1 } },
           "lights": [ { "type": "point", "position": [2, 4, 3], "spectrum": "D65", "intensity": 0.2, "attenuation": [1, 0.1, 0.01] },
-                      { "type": "spot", "position": [-2, 4, 1], "look_at": [0, 0, 0], "cutoff": 25, "exponent": 4, "spectrum": "A", "intensity": 0.1 } ],
+                      { "type": "spot", "position": [-2, 4, 1], "look_at": [0, 0, 0], "cutoff": 25, "exponent": 4, "spectrum": "A",
+                        "intensity": 0.1 } ],
           "ambient": 0.02,
           "objects": [ { "type": "sphere", "center": [0, 1, 0], "radius": 1, "material": "glass" },
                        { "type": "plane", "material": "floor" } ],
@@ -112,7 +116,8 @@ public class RendererTests
         { "camera": { "position": [0, 0, 10], "look_at": [0, 0, 0], "fov": 20, "width": 32, "height": 24, "spp": {{spp}} },
           "materials": { "m": { "diffuse": 0.5 } },
           "lights": [ { "type": "directional", "direction": [0, 0, -1], "spectrum": "E" } ],
-          "objects": [ { "type": "quad", "center": [0, {{(edge + 50).ToString(System.Globalization.CultureInfo.InvariantCulture)}}, 0], "size": [100, 100], "material": "m" } ] }
+          "objects": [ { "type": "quad", "center": [0, {{(edge + 50).ToString(System.Globalization.CultureInfo.InvariantCulture)}}, 0],
+            "size": [100, 100], "material": "m" } ] }
         """;
     }
 }

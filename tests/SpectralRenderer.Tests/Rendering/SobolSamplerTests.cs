@@ -105,7 +105,8 @@ public class SobolSamplerTests
         Assert.Equal(a.Next1D(), b.Next1D());
         Assert.Equal(a.Next2D(), b.Next2D());
         Assert.NotEqual(new Sampler(3, 4, 5, 6, Sobol).Next1D(), new Sampler(4, 4, 5, 6, Sobol).Next1D());
-        Assert.NotEqual(new Sampler(3, 4, 5, 6, Sobol).Next1D(), new Sampler(3, 4, 5, 6, new SamplerSettings(SamplerKind.Sobol, 1)).Next1D());
+        Assert.NotEqual(new Sampler(3, 4, 5, 6, Sobol).Next1D(),
+            new Sampler(3, 4, 5, 6, new SamplerSettings(SamplerKind.Sobol, 1)).Next1D());
         // The independent sampler with seed 0 is the one every render before seeds used.
         Assert.Equal(new Sampler(3, 4, 5).Next2D(), new Sampler(3, 4, 5, 0, SamplerSettings.Independent).Next2D());
         Assert.NotEqual(new Sampler(3, 4, 5).Next2D(), new Sampler(3, 4, 5, 0, new SamplerSettings(SamplerKind.Independent, 7)).Next2D());
@@ -126,8 +127,10 @@ public class SobolSamplerTests
             return Integrators.Create(scene, new SceneGeometry(scene), "path");
         }
         Assert.Equal(new SamplerSettings(SamplerKind.Sobol), Make("\"path\"").Sampler);
-        Assert.Equal(new SamplerSettings(SamplerKind.Independent, 3), Make("""{ "type": "path", "sampler": "independent", "seed": 3 }""").Sampler);
-        var e = Assert.Throws<SpectralRenderer.Diagnostics.InputException>(() => SceneText.Load(Scene("""{ "type": "path", "sampler": "sobl" }""")));
+        Assert.Equal(new SamplerSettings(SamplerKind.Independent, 3),
+            Make("""{ "type": "path", "sampler": "independent", "seed": 3 }""").Sampler);
+        var e = Assert.Throws<SpectralRenderer.Diagnostics.InputException>(() =>
+            SceneText.Load(Scene("""{ "type": "path", "sampler": "sobl" }""")));
         Assert.Contains("$.integrator.sampler", e.Message);
         Assert.Contains("sobol", e.Message);
         // Whitted keeps the independent sampler (its pictures do not change).

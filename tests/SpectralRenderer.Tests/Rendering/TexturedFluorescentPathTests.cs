@@ -81,7 +81,8 @@ public sealed class TexturedFluorescentPathTests(Xunit.Abstractions.ITestOutputH
           "background": 0.05 }
         """;
 
-    /// <summary>A 6 × 4 quad of <paramref name="paper"/> alone, face on, under a uniform sky <paramref name="sky"/> and the lights.</summary>
+    /// <summary>A 6 × 4 quad of <paramref name="paper"/> alone, face on, under a uniform sky <paramref name="sky"/> and the
+    /// lights.</summary>
     static string Quad(string paper, string lights, double sky, int maxDepth) => $$"""
         { "radiometry": "physical", "bands": "300:780:96", "white": "D50", "integrator": { "type": "path", "max_depth": {{maxDepth}} },
           "camera": { "position": [0, 0, 20], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov": 16, "width": 96, "height": 64, "spp": 2 },

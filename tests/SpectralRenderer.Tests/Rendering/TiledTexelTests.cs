@@ -24,7 +24,8 @@ public class TiledTexelTests
     const int W = 42, H = 26;   // even: a level-1 texel is the plain mean of its 2 × 2; neither level a whole number of tiles of 4
 
     /// <summary>Texel (x, y)'s spectrum a + b·(λ − 380)/400: its mean over [lo, hi] is its value at the midpoint.</summary>
-    static (double A, double B) Linear(int x, int y) => (0.2 + 0.6 * ((x * 7 + y * 13) % 17) / 16.0, 0.3 * ((x * 3 + y * 5) % 11) / 10.0 - 0.15);
+    static (double A, double B) Linear(int x, int y) =>
+        (0.2 + 0.6 * ((x * 7 + y * 13) % 17) / 16.0, 0.3 * ((x * 3 + y * 5) % 11) / 10.0 - 0.15);
 
     static readonly double[] Wl = Enumerable.Range(0, 45).Select(i => 360.0 + 10 * i).ToArray();   // covers the bands
 
@@ -46,7 +47,8 @@ public class TiledTexelTests
               "bands": "380:780:20", "integration": "exact", "radiometry": "paper", "white": "D65",
               "camera": { "position": [0, 0, 9], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov": 40, "width": 64, "height": 48, "spp": 1 },
               "lights": [ {{lightList}} ],
-              "objects": [ { "type": "quad", "center": [0, 0, 0], "size": [5, 3], "material": { "diffuse": { "texture": "linear.hdr" }{{spec}} } } ],
+              "objects": [ { "type": "quad", "center": [0, 0, 0], "size": [5, 3],
+                "material": { "diffuse": { "texture": "linear.hdr" }{{spec}} } } ],
               "background": 0, "max_depth": 0
             }
             """;
@@ -77,7 +79,8 @@ public class TiledTexelTests
         // Whitted: per texel, the diffuse lobe 1 + 2·lights slots, the specular lobe one per light, each the 20 bands and
         // X, Y, Z padded to whole SIMD vectors.
         int slot = Padded(20 + 3);
-        long expected = 4 * (TileFloats(W, H, (1 + 2 * 3) * slot, TexelLevels.DefaultTileSide) + TileFloats(W, H, 3 * slot, TexelLevels.DefaultTileSide));
+        long expected = 4 * (TileFloats(W, H, (1 + 2 * 3) * slot, TexelLevels.DefaultTileSide)
+            + TileFloats(W, H, 3 * slot, TexelLevels.DefaultTileSide));
         var tables = new TermTables(scene).Textures!;
         long allocated = tables.Diffuse[0]!.AllocatedBytes + tables.Specular[0]!.AllocatedBytes;
         Assert.Equal(expected, allocated);

@@ -36,7 +36,8 @@ public class BadSceneTests
 
     [Theory]
     [InlineData("\"width\": 8,", "\"width\": 8", "scene.json:2:", "JSON syntax error")]
-    [InlineData("\"colorchecker:14\"", "\"colorchecker:gren\"", "scene.json:3:40: $.materials.green.diffuse", "unknown ColorChecker patch 'gren' (hint: did you mean 'green'?)")]
+    [InlineData("\"colorchecker:14\"", "\"colorchecker:gren\"", "scene.json:3:40: $.materials.green.diffuse",
+        "unknown ColorChecker patch 'gren' (hint: did you mean 'green'?)")]
     [InlineData("\"material\": \"green\"", "\"material\": \"gren\"", "scene.json:5:61: $.objects[0].material", "did you mean 'green'?")]
     [InlineData("\"radius\": 1", "\"radius\": \"one\"", "scene.json:5:46: $.objects[0].radius", "expected a number, found a string")]
     [InlineData("\"position\": [0, 0, 5], ", "", "$.camera.position", "missing required field 'position'")]
@@ -45,11 +46,13 @@ public class BadSceneTests
     [InlineData("\"type\": \"sphere\"", "\"type\": \"sphre\"", "scene.json:5:26: $.objects[0].type", "did you mean 'sphere'?")]
     [InlineData("\"type\": \"point\"", "\"type\": \"pointy\"", "$.lights[0].type", "unknown light type 'pointy'")]
     [InlineData("\"width\": 8, \"height\": 6", "\"width\": 30000, \"height\": 30000", "$.camera", "framebuffer of 20 bands needs 67.1 GiB")]
-    [InlineData("\"spectrum\": \"D65\"", "\"spectrum\": [[400, 1], [700, 1]]", "$.lights[0].spectrum", "covers 400–700 nm but the bands need 380–780 nm")]
+    [InlineData("\"spectrum\": \"D65\"", "\"spectrum\": [[400, 1], [700, 1]]", "$.lights[0].spectrum",
+        "covers 400–700 nm but the bands need 380–780 nm")]
     [InlineData("\"spectrum\": \"D65\"", "\"spectrum\": [[400, 1], [700, -1]]", "$.lights[0].spectrum[1][1]", "negative value -1")]
     [InlineData("\"radius\": 1", "\"radius\": 1, \"radiu\": 2", "$.objects[0].radiu", "did you mean 'radius'?")]
     [InlineData("\"spectrum\": \"D65\"", "\"spectrum\": 0", "$.lights[0].spectrum", "has no luminance over the bands")]
-    [InlineData("\"type\": \"point\", \"position\": [0, 3, 3]", "\"type\": \"spot\", \"position\": [0, 3, 3], \"look_at\": [0, 3, 3]", "$.lights[0].look_at", "look_at equals position")]
+    [InlineData("\"type\": \"point\", \"position\": [0, 3, 3]", "\"type\": \"spot\", \"position\": [0, 3, 3], \"look_at\": [0, 3, 3]",
+        "$.lights[0].look_at", "look_at equals position")]
     public void Broken_scenes_give_one_located_line_exit_2_and_write_nothing(string find, string replace, string where, string what)
     {
         Assert.Contains(find, Good);

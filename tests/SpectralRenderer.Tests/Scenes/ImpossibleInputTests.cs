@@ -5,7 +5,9 @@ namespace SpectralRenderer.Tests.Scenes;
 /// <summary>Physically impossible input: refused (exit 2, one line, a hint) or reported on stderr, never silently rendered.</summary>
 public class ImpossibleInputTests
 {
-    static string Scene(string diffuse, string lights = """[ { "type": "point", "position": [0, 3, 3], "spectrum": "D65" } ]""", string extra = "") => $$"""
+    static string Scene(string diffuse, string lights = """[ { "type": "point", "position": [0, 3, 3], "spectrum": "D65" } ]""",
+        string extra = "") =>
+        $$"""
     {
       "camera": { "position": [0, 0, 5], "look_at": [0, 0, 0], "width": 8, "height": 6 },
       "materials": { "m": { "diffuse": {{diffuse}} } },

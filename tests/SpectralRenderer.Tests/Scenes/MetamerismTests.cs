@@ -30,12 +30,14 @@ public class MetamerismTests(Xunit.Abstractions.ITestOutputHelper output)
             if (!ok) continue;
             admissible++;
             Assert.All(box, v => Assert.InRange(v, -1e-9, 1 + 1e-9));
-            Assert.True(DeltaE2000.Between(Lab.FromXyz(RgbTextureTests.Integrate(wl, box), d65White), Lab.FromXyz(RgbTextureTests.Target(r, g, b), d65White)) <= 0.01);
+            Assert.True(DeltaE2000.Between(Lab.FromXyz(RgbTextureTests.Integrate(wl, box), d65White),
+                Lab.FromXyz(RgbTextureTests.Target(r, g, b), d65White)) <= 0.01);
             var smooth = uplift.FromSrgbCodes(r, g, b, 255);
             for (int k = 0; k < lights.Length; k++)
             {
                 var white = RgbTextureTests.Integrate(wl, [.. wl.Select(_ => 1.0)], lights[k]);
-                double expected = DeltaE2000.Between(Lab.FromXyz(RgbTextureTests.Integrate(wl, smooth, lights[k]), white), Lab.FromXyz(RgbTextureTests.Integrate(wl, box, lights[k]), white));
+                double expected = DeltaE2000.Between(Lab.FromXyz(RgbTextureTests.Integrate(wl, smooth, lights[k]), white),
+                    Lab.FromXyz(RgbTextureTests.Integrate(wl, box, lights[k]), white));
                 Assert.Equal(expected, spread![k], 0.01);
                 largest = Math.Max(largest, spread[k]);
             }

@@ -198,7 +198,8 @@ public class MicrofacetTests(Xunit.Abstractions.ITestOutputHelper output)
             Assert.Equal(share, mass, 0.01);
             // At normal incidence the visible normals are D(h)·cos θh, whose tilt obeys P(tan²θh ≤ t) = t/(α² + t) (the GGX
             // slope distribution), and ωi stays above the surface iff θh < 45°: ∫pdf dω = 1/(1 + α²).
-            if (theta == 0) Assert.True(Math.Abs(mass - 1 / (1 + alpha * alpha)) < 2e-3, $"∫pdf = {mass}, 1/(1 + α²) = {1 / (1 + alpha * alpha)}");
+            if (theta == 0)
+                Assert.True(Math.Abs(mass - 1 / (1 + alpha * alpha)) < 2e-3, $"∫pdf = {mass}, 1/(1 + α²) = {1 / (1 + alpha * alpha)}");
             var reference = Albedo(bsdf, wo, alpha < 0.2f ? 300 : 200, 200);
             for (int b = 0; b < Bands; b++)
                 Assert.True(Math.Abs(estimate[b] - reference[b]) <= 0.01 * reference[b],

@@ -17,14 +17,16 @@ namespace SpectralRenderer.Tests.Scenes;
 public class RgbTextureTests(Xunit.Abstractions.ITestOutputHelper output)
 {
     internal static List<(int R, int G, int B)> Codes() =>
-        Reference.Rows("colorchecker-ohta-d65-2deg.csv").Select(r => ((int)r.D("srgb8_r"), (int)r.D("srgb8_g"), (int)r.D("srgb8_b"))).ToList();
+        Reference.Rows("colorchecker-ohta-d65-2deg.csv").Select(r => ((int)r.D("srgb8_r"), (int)r.D("srgb8_g"), (int)r.D("srgb8_b")))
+            .ToList();
 
     /// <summary>IEC 61966-2-1: the decoding curve and the RGB → XYZ matrix (white Y = 1).</summary>
     internal static Xyz Target(int r, int g, int b)
     {
         static double L(int c) { double v = c / 255.0; return v <= 0.04045 ? v / 12.92 : Math.Pow((v + 0.055) / 1.055, 2.4); }
         double lr = L(r), lg = L(g), lb = L(b);
-        return new Xyz(0.4124 * lr + 0.3576 * lg + 0.1805 * lb, 0.2126 * lr + 0.7152 * lg + 0.0722 * lb, 0.0193 * lr + 0.1192 * lg + 0.9505 * lb);
+        return new Xyz(0.4124 * lr + 0.3576 * lg + 0.1805 * lb, 0.2126 * lr + 0.7152 * lg + 0.0722 * lb,
+            0.0193 * lr + 0.1192 * lg + 0.9505 * lb);
     }
 
     static double[] Column(string file, string column)
@@ -45,11 +47,13 @@ public class RgbTextureTests(Xunit.Abstractions.ITestOutputHelper output)
         return y[i - 1] + f * (y[i] - y[i - 1]);
     }
 
-    /// <summary>XYZ of reflectance (wl, r) under a light of data/illuminants.csv (D65) by 0.1 nm midpoint sums over 380–780 nm, white Y = 1.</summary>
+    /// <summary>XYZ of reflectance (wl, r) under a light of data/illuminants.csv (D65) by 0.1 nm midpoint sums over 380–780 nm, white Y =
+    /// 1.</summary>
     internal static Xyz Integrate(double[] wl, double[] r, string light = "D65")
     {
         var cw = Column("cie1931-2deg-cmf.csv", "wavelength_nm");
-        double[] xb = Column("cie1931-2deg-cmf.csv", "xbar"), yb = Column("cie1931-2deg-cmf.csv", "ybar"), zb = Column("cie1931-2deg-cmf.csv", "zbar");
+        double[] xb = Column("cie1931-2deg-cmf.csv", "xbar"), yb = Column("cie1931-2deg-cmf.csv", "ybar"),
+            zb = Column("cie1931-2deg-cmf.csv", "zbar");
         var dw = Column("illuminants.csv", "wavelength_nm");
         var d65 = Column("illuminants.csv", light);
         double x = 0, y = 0, z = 0, white = 0;

@@ -15,9 +15,9 @@ namespace SpectralRenderer.Tests.Scenes;
 /// <summary>
 /// Spectral textures (issue 26): the 24 ColorChecker reflectances (read here from data/colorchecker-ohta.csv, the
 /// reference table) written as a texture — ENVI cube, spectral EXR (T.&lt;λ&gt;nm) and 16-bit PNG stack — on one flat quad
-/// head-on under D65 (intensity 0.01: band values of order 1, so 1e-6 is some 16 float ulps), against 24 untextured quads whose materials are the same spectra given inline: band values to 1e-6
-/// and colour to ΔE00 0.001 at every patch centre. A textured OBJ mesh (vt rotated by 90°) shows the texel its uv says.
-/// Mip levels keep the texture's mean.
+/// head-on under D65 (intensity 0.01: band values of order 1, so 1e-6 is some 16 float ulps), against 24 untextured quads whose materials
+/// are the same spectra given inline: band values to 1e-6 and colour to ΔE00 0.001 at every patch centre. A textured OBJ mesh (vt rotated
+/// by 90°) shows the texel its uv says. Mip levels keep the texture's mean.
 /// </summary>
 public class SpectralTextureTests(Xunit.Abstractions.ITestOutputHelper output)
 {
@@ -26,9 +26,11 @@ public class SpectralTextureTests(Xunit.Abstractions.ITestOutputHelper output)
     /// <summary>The reference table: wavelengths and the 24 reflectances (patch-major).</summary>
     internal static (double[] Wavelengths, double[][] Patches) ColorCheckerTable()
     {
-        var lines = File.ReadAllLines(Path.Combine(DataDirectory.Path, "colorchecker-ohta.csv")).Where(l => l.Length > 0 && char.IsDigit(l[0])).ToArray();
+        var lines = File.ReadAllLines(Path.Combine(DataDirectory.Path, "colorchecker-ohta.csv"))
+            .Where(l => l.Length > 0 && char.IsDigit(l[0])).ToArray();
         var wl = lines.Select(l => double.Parse(l.Split(',')[0], CultureInfo.InvariantCulture)).ToArray();
-        var patches = Enumerable.Range(1, 24).Select(p => lines.Select(l => double.Parse(l.Split(',')[p], CultureInfo.InvariantCulture)).ToArray()).ToArray();
+        var patches = Enumerable.Range(1, 24)
+            .Select(p => lines.Select(l => double.Parse(l.Split(',')[p], CultureInfo.InvariantCulture)).ToArray()).ToArray();
         return (wl, patches);
     }
 
@@ -67,7 +69,8 @@ public class SpectralTextureTests(Xunit.Abstractions.ITestOutputHelper output)
             int row = p / 6, col = p % 6;
             var pairs = string.Join(", ", wl.Select((l, j) => $"[{l.ToString(inv)}, {value(p, j).ToString("R", inv)}]"));
             if (p > 0) objects.Append(", ");
-            objects.Append(inv, $$"""{ "type": "quad", "center": [{{col - 2.5}}, {{1.5 - row}}, 0], "size": 1, "material": { "diffuse": [{{pairs}}] } }""");
+            objects.Append(inv,
+                $$"""{ "type": "quad", "center": [{{col - 2.5}}, {{1.5 - row}}, 0], "size": 1, "material": { "diffuse": [{{pairs}}] } }""");
         }
         return Scene(objects.ToString());
     }
@@ -75,7 +78,8 @@ public class SpectralTextureTests(Xunit.Abstractions.ITestOutputHelper output)
     static string TexturedChart(string texture) =>
         Scene($$"""{ "type": "quad", "center": [0, 0, 0], "size": [6, 4], "material": { "diffuse": {{texture}} } }""");
 
-    static RenderResult Render(string json, string dir) => Renderer.Render(SceneLoader.Parse(Encoding.UTF8.GetBytes(json), Path.Combine(dir, "scene.json")));
+    static RenderResult Render(string json, string dir) =>
+        Renderer.Render(SceneLoader.Parse(Encoding.UTF8.GetBytes(json), Path.Combine(dir, "scene.json")));
 
     /// <summary>Every patch centre: band values to 1e-6 and ΔE00 ≤ 0.001 between the two renders.</summary>
     void SamePatches(string textured, string untextured, string dir)
@@ -106,7 +110,8 @@ public class SpectralTextureTests(Xunit.Abstractions.ITestOutputHelper output)
         int n = wl.Length;
         var inv = CultureInfo.InvariantCulture;
         File.WriteAllText(Path.ChangeExtension(image, ".hdr"),
-            $"ENVI\nsamples = {w}\nlines = {h}\nbands = {n}\nheader offset = 0\nfile type = ENVI Standard\ndata type = 4\ninterleave = bsq\nbyte order = 0\n" +
+            $"ENVI\nsamples = {w}\nlines = {h}\nbands = {n}\nheader offset = 0\nfile type = ENVI Standard\ndata type = "
+                + $"4\ninterleave = bsq\nbyte order = 0\n" +
             $"wavelength units = Nanometers\nwavelength = {{{string.Join(", ", wl.Select(l => l.ToString(inv)))}}}\n");
         var bytes = new byte[4 * w * h * n];
         for (int b = 0; b < n; b++)
@@ -154,7 +159,8 @@ public class SpectralTextureTests(Xunit.Abstractions.ITestOutputHelper output)
             PngWriter.WriteGray16(f, w, h, band);
         }
         var list = string.Join(", ", wl.Select(l => l.ToString(CultureInfo.InvariantCulture)));
-        SamePatches(TexturedChart($$"""{ "texture": "chart_{nm}.png", "wavelengths": [{{list}}] }"""), UntexturedChart(wl, (p, j) => Q(patches[p][j]) / 65535.0), dir);
+        SamePatches(TexturedChart($$"""{ "texture": "chart_{nm}.png", "wavelengths": [{{list}}] }"""),
+            UntexturedChart(wl, (p, j) => Q(patches[p][j]) / 65535.0), dir);
     }
 
     [Theory]
@@ -166,9 +172,13 @@ public class SpectralTextureTests(Xunit.Abstractions.ITestOutputHelper output)
         // corner (s, t) of the square (s, t ∈ {0, 1}) has uv = (1 − t, s). Around a quarter's centre the bilinear taps stay
         // inside its block.
         var dir = Reference.TempDir();
-        File.WriteAllText(Path.Combine(dir, "square.obj"), "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0 0\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n");
-        File.WriteAllText(Path.Combine(dir, "square.ply"), "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nproperty float s\nproperty float t\n" +
-            "element face 1\nproperty list uchar int vertex_indices\nend_header\n-1 -1 0 1 0\n1 -1 0 1 1\n1 1 0 0 1\n-1 1 0 0 0\n4 0 1 2 3\n");
+        File.WriteAllText(Path.Combine(dir, "square.obj"),
+            "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0 0\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n");
+        File.WriteAllText(Path.Combine(dir, "square.ply"),
+            "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float "
+                + "z\nproperty float s\nproperty float t\n" +
+            "element face 1\nproperty list uchar int vertex_indices\nend_header\n-1 -1 0 1 0\n1 -1 0 1 1\n1 1 "
+                + "0 0 1\n-1 1 0 0 0\n4 0 1 2 3\n");
         double[] rho = [0.1, 0.3, 0.5, 0.7];   // texel (x, y) = rho[y·2 + x], row 0 at the top (v = 1)
         var texels = new float[8 * 8 * 2];
         for (int y = 0; y < 8; y++)
@@ -199,7 +209,8 @@ public class SpectralTextureTests(Xunit.Abstractions.ITestOutputHelper output)
         for (int i = 0; i < values.Length; i++) values[i] = (float)rng.NextDouble();
         var dir = Reference.TempDir();
         WriteEnvi(Path.Combine(dir, "noise.img"), w, h, wl, values);
-        var scene = SceneLoader.Parse(Encoding.UTF8.GetBytes(TexturedChart("""{ "texture": "noise.hdr" }""")), Path.Combine(dir, "scene.json"));
+        var scene =
+            SceneLoader.Parse(Encoding.UTF8.GetBytes(TexturedChart("""{ "texture": "noise.hdr" }""")), Path.Combine(dir, "scene.json"));
         var terms = new TermTables(scene).Textures!.Diffuse.Single(t => t is not null)!;
         Assert.True(terms.Levels >= 6);
         int padded = scene.PaddedBands, stride = terms.Slots * padded;
@@ -219,13 +230,19 @@ public class SpectralTextureTests(Xunit.Abstractions.ITestOutputHelper output)
         for (int l = 1; l < terms.Levels; l++)
         {
             var m = Mean(l);
-            for (int i = 0; i < stride; i++) Assert.True(Math.Abs(m[i] - full[i]) <= 1e-4 * Math.Max(1e-3, Math.Abs(full[i])), $"level {l}, entry {i}: {m[i]} vs {full[i]}");
+            for (int i = 0; i < stride; i++)
+                Assert.True(Math.Abs(m[i] - full[i]) <= 1e-4 * Math.Max(1e-3, Math.Abs(full[i])),
+                    $"level {l}, entry {i}: {m[i]} vs {full[i]}");
         }
         // The mean table is the product table of the mean texel spectrum (linearity), computed here another way: the
         // untextured material of the texture's mean spectrum.
         var meanSpectrum = new double[wl.Length];
         for (int i = 0; i < values.Length; i++) meanSpectrum[i % wl.Length] += values[i] / ((double)w * h);
-        var plain = SceneLoader.Parse(Encoding.UTF8.GetBytes(Scene($$"""{ "type": "quad", "size": 1, "material": { "diffuse": [{{string.Join(", ", wl.Select((l, j) => $"[{l}, {meanSpectrum[j].ToString("R", CultureInfo.InvariantCulture)}]"))}}] } }""")), Path.Combine(dir, "scene.json"));
+        string meanDiffuse =
+            string.Join(", ", wl.Select((l, j) => $"[{l}, {meanSpectrum[j].ToString("R", CultureInfo.InvariantCulture)}]"));
+        var plain = SceneLoader.Parse(
+            Encoding.UTF8.GetBytes(Scene($$"""{ "type": "quad", "size": 1, "material": { "diffuse": [{{meanDiffuse}}] } }""")),
+            Path.Combine(dir, "scene.json"));
         var diffuse = new TermTables(plain).Diffuse[0];
         int slot = 1 + scene.Lights.Count;
         for (int k = 0; k < scene.Bands + 3; k++)

@@ -8,10 +8,12 @@ using SpectralRenderer.Tests.Imaging;
 
 namespace SpectralRenderer.Tests.Sensor;
 
-/// <summary>`spectral camera` end to end: reproducible noise, the ideal colorimetric sensor against 1 nm CIE sums, the DNG in dcraw.</summary>
+/// <summary>`spectral camera` end to end: reproducible noise, the ideal colorimetric sensor against 1 nm CIE sums, the DNG in
+/// dcraw.</summary>
 public class CameraCommandTests
 {
-    /// <summary>Three flat grey quads (reflectance 0.2, 0.5, 0.9) lit head-on by one light, so each band radiance is R·E_b exactly.</summary>
+    /// <summary>Three flat grey quads (reflectance 0.2, 0.5, 0.9) lit head-on by one light, so each band radiance is R·E_b
+    /// exactly.</summary>
     static string GreyChart(string light, string bands, int width = 24, int height = 8, string cameraExtra = "")
     {
         var dir = Reference.TempDir();
@@ -41,7 +43,8 @@ public class CameraCommandTests
         var lines = File.ReadAllLines(Path.Combine(SpectralRenderer.Spectra.DataDirectory.Path, file));
         int col = Array.IndexOf(lines[0].Split(','), column);
         var rows = lines.Skip(1).Where(l => l.Length > 0).Select(l => l.Split(',')).ToArray();
-        return (rows.Select(r => double.Parse(r[0], CultureInfo.InvariantCulture)).ToArray(), rows.Select(r => double.Parse(r[col], CultureInfo.InvariantCulture)).ToArray());
+        return (rows.Select(r => double.Parse(r[0], CultureInfo.InvariantCulture)).ToArray(),
+            rows.Select(r => double.Parse(r[col], CultureInfo.InvariantCulture)).ToArray());
     }
 
     static double Lerp((double[] Wl, double[] V) t, double x)
@@ -75,7 +78,8 @@ public class CameraCommandTests
     {
         var render = GreyChart(light, "380:780:20");
         var outDir = Path.Combine(render, "cam");
-        var (code, _, err) = CliRunner.Run("camera", render, "--sensor", "cie-xyz", "--noise", "off", "-o", outDir, "--off-axis", "none", "--psf", "none");
+        var (code, _, err) =
+            CliRunner.Run("camera", render, "--sensor", "cie-xyz", "--noise", "off", "-o", outDir, "--off-axis", "none", "--psf", "none");
         Assert.True(code == 0, err);
         var (shape, raw) = NpyReader.Read(File.OpenRead(Path.Combine(outDir, "raw.npy")));
         Assert.Equal([8, 24, 3], shape);
@@ -120,14 +124,16 @@ public class CameraCommandTests
         foreach (var p in scene.Patches)
         {
             var refl = Column("colorchecker-ohta.csv", header[p.Number]);
-            var bandMean = Enumerable.Range(0, 20).Select(b => Enumerable.Range(0, 2000).Average(k => Lerp(refl, 380 + 20 * b + (k + 0.5) * 0.01))).ToArray();
+            var bandMean = Enumerable.Range(0, 20)
+                .Select(b => Enumerable.Range(0, 2000).Average(k => Lerp(refl, 380 + 20 * b + (k + 0.5) * 0.01))).ToArray();
             var exact = ExactXyz(d65, x => bandMean[Math.Min(19, (int)((x - 380) / 20))]);
             int pixel = p.Pixels[0];
             for (int c = 0; c < 3; c++)
             {
                 double q = raw[pixel * 3 + c] / exact[c];
                 ratio ??= q;
-                Assert.True(Math.Abs(q / ratio.Value - 1) <= 1e-5, $"patch {p.Number} channel {c}: relative error {q / ratio.Value - 1:E3}");
+                Assert.True(Math.Abs(q / ratio.Value - 1) <= 1e-5,
+                    $"patch {p.Number} channel {c}: relative error {q / ratio.Value - 1:E3}");
             }
         }
     }
@@ -137,7 +143,8 @@ public class CameraCommandTests
         get
         {
             for (var d = new DirectoryInfo(AppContext.BaseDirectory); d is not null; d = d.Parent)
-                if (File.Exists(Path.Combine(d.FullName, "scenes", "paper-3.1-colorchecker-d65.json"))) return Path.Combine(d.FullName, "scenes");
+                if (File.Exists(Path.Combine(d.FullName, "scenes", "paper-3.1-colorchecker-d65.json")))
+                    return Path.Combine(d.FullName, "scenes");
             throw new DirectoryNotFoundException("scenes/");
         }
     }

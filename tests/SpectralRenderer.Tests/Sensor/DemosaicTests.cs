@@ -2,7 +2,8 @@ using SpectralRenderer.Sensor;
 
 namespace SpectralRenderer.Tests.Sensor;
 
-/// <summary>Demosaicking against analytic images: per-channel planes that are constant or linear in x and y are reproduced exactly in the interior.</summary>
+/// <summary>Demosaicking against analytic images: per-channel planes that are constant or linear in x and y are reproduced exactly in the
+/// interior.</summary>
 public class DemosaicTests
 {
     static float Plane(int c, int x, int y) => 10 + 3 * c + (0.5f + 0.1f * c) * x + (0.25f - 0.05f * c) * y;

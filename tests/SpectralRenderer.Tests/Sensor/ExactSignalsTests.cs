@@ -16,13 +16,15 @@ public class ExactSignalsTests(ITestOutputHelper output)
 {
     const int Width = 90, Height = 60;
 
-    /// <summary>The §3.1 chart (head-on D65, so a patch's radiance is ρ·E·intensity, /π physical) at a band grid, radiometry and intensity.</summary>
+    /// <summary>The §3.1 chart (head-on D65, so a patch's radiance is ρ·E·intensity, /π physical) at a band grid, radiometry and
+    /// intensity.</summary>
     internal static string Chart(string bands, string radiometry = "paper", double intensity = 1, string formats = "exr,aov")
     {
         var dir = Reference.TempDir();
         var text = File.ReadAllText(Repo.PathOf("scenes", "paper-3.1-colorchecker-d65.json"))
             .Replace("\"radiometry\": \"paper\"", $"\"radiometry\": \"{radiometry}\"", StringComparison.Ordinal)
-            .Replace("\"intensity\": 1 }", string.Create(CultureInfo.InvariantCulture, $"\"intensity\": {intensity:R} }}"), StringComparison.Ordinal);
+            .Replace("\"intensity\": 1 }", string.Create(CultureInfo.InvariantCulture, $"\"intensity\": {intensity:R} }}"),
+                StringComparison.Ordinal);
         var scene = Path.Combine(dir, "chart.json");
         File.WriteAllText(scene, text);
         var outDir = Path.Combine(dir, "render");
@@ -36,7 +38,8 @@ public class ExactSignalsTests(ITestOutputHelper output)
     {
         var outDir = Path.Combine(render, $"cam-{sensor}-{string.Join("", extra)}");
         // A flat lens (no cos⁴, no blur): these tests compare the spectral integration pixel by pixel; the lens is OpticsTests'.
-        var (code, _, err) = CliRunner.Run(new[] { "camera", render, "--sensor", sensor, "--noise", "off", "-o", outDir, "--off-axis", "none", "--psf", "none" }
+        var (code, _, err) = CliRunner.Run(
+            new[] { "camera", render, "--sensor", sensor, "--noise", "off", "-o", outDir, "--off-axis", "none", "--psf", "none" }
             .Concat(extra).ToArray());
         Assert.True(code == 0, err);
         var (_, raw) = NpyReader.Read(File.OpenRead(Path.Combine(outDir, "raw.npy")));
@@ -107,7 +110,8 @@ public class ExactSignalsTests(ITestOutputHelper output)
         var xyz = new[] { exr.OtherChannels["X"], exr.OtherChannels["Y"], exr.OtherChannels["Z"] };
         // The left quad is the brightened paper, the right one the plain white: one pixel of each sets the scale apart.
         int left = 15 * 60 + 15, right = 15 * 60 + 45;
-        Assert.True(xyz[2][left] > 1.03 * xyz[2][right] * xyz[1][left] / xyz[1][right], "the brightened paper should be bluer than the plain white");
+        Assert.True(xyz[2][left] > 1.03 * xyz[2][right] * xyz[1][left] / xyz[1][right],
+            "the brightened paper should be bluer than the plain white");
         double ratio = raw[right * 3 + 1] / xyz[1][right], worst = 0;
         int lit = 0;
         for (int i = 0; i < 60 * 30; i++)
@@ -183,7 +187,8 @@ public class ExactSignalsTests(ITestOutputHelper output)
             output.WriteLine($"intensity {intensity}: largest |ΔE00 − paper's| {de.Zip(paperDe, (x, y) => Math.Abs(x - y)).Max():E2} " +
                 $"(paper mean {paperDe.Average():F3}), Wiener RMSE {rmse:F6} vs paper {paperRmse:F6}");
             for (int p = 0; p < de.Length; p++)
-                Assert.True(Math.Abs(de[p] - paperDe[p]) <= 0.01, $"intensity {intensity}, patch {p + 1}: ΔE00 {de[p]} vs paper {paperDe[p]}");
+                Assert.True(Math.Abs(de[p] - paperDe[p]) <= 0.01,
+                    $"intensity {intensity}, patch {p + 1}: ΔE00 {de[p]} vs paper {paperDe[p]}");
             Assert.True(Math.Abs(rmse - paperRmse) <= 1e-4, $"intensity {intensity}: Wiener RMSE {rmse} vs paper {paperRmse}");
         }
     }
@@ -234,12 +239,14 @@ public class ExactSignalsTests(ITestOutputHelper output)
         var scene = Path.Combine(dir, "scene.json");
         File.WriteAllText(scene, File.ReadAllText(Repo.PathOf("scenes", "path-colorchecker-booth.json")));
         var render = Path.Combine(dir, "render");
-        var (code, _, err) = CliRunner.Run("render", scene, "-o", render, "--width", "24", "--height", "16", "--spp", "1", "--bands", "380:780:10",
+        var (code, _, err) =
+            CliRunner.Run("render", scene, "-o", render, "--width", "24", "--height", "16", "--spp", "1", "--bands", "380:780:10",
             "--formats", "npy,aov", "--quiet", "--integrator", "whitted");
         Assert.True(code == 0, err);
         Assert.Equal("whitted", (string?)JsonNode.Parse(File.ReadAllText(Path.Combine(render, "render.json")))!["run"]!["integrator"]);
         var cam = Path.Combine(dir, "cam");
-        (code, _, err) = CliRunner.Run("camera", render, "--sensor", "wheel-6", "--noise", "off", "-o", cam, "--off-axis", "none", "--psf", "none");
+        (code, _, err) =
+            CliRunner.Run("camera", render, "--sensor", "wheel-6", "--noise", "off", "-o", cam, "--off-axis", "none", "--psf", "none");
         Assert.True(code == 0, err);
         var manifest = JsonNode.Parse(File.ReadAllText(Path.Combine(cam, "camera.json")))!;
         string used = (string)manifest["simulation"]!["signal_route"]!;
@@ -256,14 +263,17 @@ public class ExactSignalsTests(ITestOutputHelper output)
     public void BandRoute_PhysicalRadiometry_AtAnyIntensity_ColourAndRecoveryEqualThePapers()
     {
         var (paperDe, paperRmse) = ColourAndRecovery(Chart("380:780:20", formats: "npy,aov"), "--signals", "bands");
-        Assert.True(paperDe.Average() < 3 && paperRmse < 0.05, $"paper radiometry, band route: mean ΔE00 {paperDe.Average()}, RMSE {paperRmse}");
+        Assert.True(paperDe.Average() < 3 && paperRmse < 0.05,
+            $"paper radiometry, band route: mean ΔE00 {paperDe.Average()}, RMSE {paperRmse}");
         foreach (var intensity in new[] { 0.01, 1, 100 })
         {
             var (de, rmse) = ColourAndRecovery(Chart("380:780:20", "physical", intensity, "npy,aov"), "--signals", "bands");
-            output.WriteLine($"band route, intensity {intensity}: largest |ΔE00 − paper's| {de.Zip(paperDe, (x, y) => Math.Abs(x - y)).Max():E2} " +
+            output.WriteLine(
+                $"band route, intensity {intensity}: largest |ΔE00 − paper's| {de.Zip(paperDe, (x, y) => Math.Abs(x - y)).Max():E2} " +
                 $"(paper mean {paperDe.Average():F3}), Wiener RMSE {rmse:F6} vs paper {paperRmse:F6}");
             for (int p = 0; p < de.Length; p++)
-                Assert.True(Math.Abs(de[p] - paperDe[p]) <= 0.01, $"intensity {intensity}, patch {p + 1}: ΔE00 {de[p]} vs paper {paperDe[p]}");
+                Assert.True(Math.Abs(de[p] - paperDe[p]) <= 0.01,
+                    $"intensity {intensity}, patch {p + 1}: ΔE00 {de[p]} vs paper {paperDe[p]}");
             Assert.True(Math.Abs(rmse - paperRmse) <= 1e-4, $"intensity {intensity}: Wiener RMSE {rmse} vs paper {paperRmse}");
         }
     }
@@ -277,7 +287,8 @@ public class ExactSignalsTests(ITestOutputHelper output)
         int col = Array.IndexOf(rows[0].Split(','), "dE00");
         var de = rows.Skip(1).Select(r => double.Parse(r.Split(',')[col], CultureInfo.InvariantCulture)).ToArray();
         Assert.Equal(24, de.Length);
-        (code, var csv, err) = CliRunner.Run("recover", cam, "--method", "wiener", "--training", "rawtoaces-190", "--range", "400:700", "--csv");
+        (code, var csv, err) =
+            CliRunner.Run("recover", cam, "--method", "wiener", "--training", "rawtoaces-190", "--range", "400:700", "--csv");
         Assert.True(code == 0, err);
         var line = csv.Split('\n').Single(l => l.StartsWith("wiener,colorchecker,", StringComparison.Ordinal)).Split(',');
         return (de, double.Parse(line[3], CultureInfo.InvariantCulture));
@@ -288,7 +299,8 @@ public class ExactSignalsTests(ITestOutputHelper output)
         var lines = File.ReadAllLines(Path.Combine(SpectralRenderer.Spectra.DataDirectory.Path, file));
         int col = Array.IndexOf(lines[0].Split(','), column);
         var rows = lines.Skip(1).Where(l => l.Length > 0 && !l.StartsWith('#')).Select(l => l.Split(',')).ToArray();
-        return (rows.Select(r => double.Parse(r[0], CultureInfo.InvariantCulture)).ToArray(), rows.Select(r => double.Parse(r[col], CultureInfo.InvariantCulture)).ToArray());
+        return (rows.Select(r => double.Parse(r[0], CultureInfo.InvariantCulture)).ToArray(),
+            rows.Select(r => double.Parse(r[col], CultureInfo.InvariantCulture)).ToArray());
     }
 
     internal static double Lerp((double[] Wl, double[] V) t, double x)

@@ -6,7 +6,8 @@ using SpectralRenderer.Tests.Cli;
 
 namespace SpectralRenderer.Tests.Sensor;
 
-/// <summary>Issue 24's honest reports: clipping warned with its share, a monochrome image neutral, the real peak QE, units from the radiometry.</summary>
+/// <summary>Issue 24's honest reports: clipping warned with its share, a monochrome image neutral, the real peak QE, units from the
+/// radiometry.</summary>
 public class HonestReportTests
 {
     static readonly Lazy<string> Chart = new(() => ExactSignalsTests.Chart("380:780:20"));
@@ -50,7 +51,8 @@ public class HonestReportTests
         var head = rows[0].Split(',');
         // The D65 white from the CIE tables at 1 nm here (Y = 1), and CIELAB (CIE 015) of the grey patches' camera XYZ.
         var white = WhiteXyz();
-        foreach (var row in rows.Skip(1).Select(r => r.Split(',')).Where(f => int.Parse(f[0], CultureInfo.InvariantCulture) is >= 19 and <= 24))
+        foreach (var row in rows.Skip(1).Select(r => r.Split(','))
+            .Where(f => int.Parse(f[0], CultureInfo.InvariantCulture) is >= 19 and <= 24))
         {
             double X = D(row, head, "camera_X"), Y = D(row, head, "camera_Y"), Z = D(row, head, "camera_Z");
             static double F(double t) => t > 216.0 / 24389 ? Math.Cbrt(t) : (24389.0 / 27 * t + 16) / 116;
@@ -82,11 +84,13 @@ public class HonestReportTests
         Assert.True(code == 0, err);
         var m = (JsonObject)JsonNode.Parse(File.ReadAllText(Path.Combine(cam, "camera.json")))!;
         Assert.Contains("2^bits", (string)m["sensor"]!["dn_scale"]!);
-        // η = CMF·555 nm/λ × one factor that puts the highest table peak (z̄) at SensorPresets.DefaultPeakQe: its peak from the CIE table, here.
+        // η = CMF·555 nm/λ × one factor that puts the highest table peak (z̄) at SensorPresets.DefaultPeakQe: its peak from the CIE table,
+        // here.
         var lines = File.ReadAllLines(Path.Combine(SpectralRenderer.Spectra.DataDirectory.Path, "cie1931-2deg-cmf.csv"));
         var cols = lines[0].Split(',');
         var channels = m["sensor"]!["channels"]!.AsArray();
-        var rows = lines.Skip(1).Where(l => l.Length > 0).Select(l => l.Split(',').Select(v => double.Parse(v, CultureInfo.InvariantCulture)).ToArray()).ToArray();
+        var rows = lines.Skip(1).Where(l => l.Length > 0)
+            .Select(l => l.Split(',').Select(v => double.Parse(v, CultureInfo.InvariantCulture)).ToArray()).ToArray();
         double scale = SpectralRenderer.Sensor.SensorPresets.DefaultPeakQe / rows.Max(r => Math.Max(r[1], Math.Max(r[2], r[3])));
         foreach (var (name, col) in new[] { ("X", "xbar"), ("Y", "ybar"), ("Z", "zbar") })
         {
@@ -108,7 +112,8 @@ public class HonestReportTests
         Assert.Contains("physical radiometry", File.ReadAllText(Path.Combine(render, "probe.svg")));
     }
 
-    static double D(string[] row, string[] head, string column) => double.Parse(row[Array.IndexOf(head, column)], CultureInfo.InvariantCulture);
+    static double D(string[] row, string[] head, string column) =>
+        double.Parse(row[Array.IndexOf(head, column)], CultureInfo.InvariantCulture);
 
     static double[] WhiteXyz()
     {

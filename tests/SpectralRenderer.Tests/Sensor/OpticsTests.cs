@@ -14,7 +14,8 @@ namespace SpectralRenderer.Tests.Sensor;
 /// </summary>
 public class OpticsTests
 {
-    /// <summary>J_n(x) = (1/π)∫₀^π cos(nτ − x sin τ) dτ by the trapezoid rule on 4000 steps (a periodic integrand: spectrally accurate).</summary>
+    /// <summary>J_n(x) = (1/π)∫₀^π cos(nτ − x sin τ) dτ by the trapezoid rule on 4000 steps (a periodic integrand: spectrally
+    /// accurate).</summary>
     static double BesselByIntegral(int n, double x)
     {
         const int M = 4000;
@@ -32,7 +33,8 @@ public class OpticsTests
     {
         foreach (double x in new[] { 0.0, 0.5, 1, 3.8317, 7, 11.99, 12, 12.01, 20, 37.5, 80 })
             foreach (int n in new[] { 0, 1 })
-                Assert.True(Math.Abs(Optics.BesselJ(n, x) - BesselByIntegral(n, x)) < 1e-10, $"J{n}({x}): {Optics.BesselJ(n, x)} vs {BesselByIntegral(n, x)}");
+                Assert.True(Math.Abs(Optics.BesselJ(n, x) - BesselByIntegral(n, x)) < 1e-10,
+                    $"J{n}({x}): {Optics.BesselJ(n, x)} vs {BesselByIntegral(n, x)}");
     }
 
     [Theory]
@@ -67,7 +69,8 @@ public class OpticsTests
             Assert.True(Math.Abs(sum - (1 - j0 * j0 - j1 * j1)) < 1e-7, $"energy within {k} λN: {sum} vs {1 - j0 * j0 - j1 * j1}");
         }
         // The whole pattern: 1 − 2/(πv) → 1 as the radius grows (Rayleigh's asymptote of the encircled energy).
-        Assert.InRange(Optics.EncircledEnergy(2000 * ln, lambda, n), 1 - 2.2 / (Math.PI * Math.PI * 2000), 1 - 1.8 / (Math.PI * Math.PI * 2000));
+        Assert.InRange(Optics.EncircledEnergy(2000 * ln, lambda, n), 1 - 2.2 / (Math.PI * Math.PI * 2000),
+            1 - 1.8 / (Math.PI * Math.PI * 2000));
     }
 
     [Fact]
@@ -123,7 +126,8 @@ public class OpticsTests
         Assert.True(worst <= tolerance, $"edge response off by {worst} (kernel radius {kernel.Radius}, energy {kernel.CapturedEnergy})");
     }
 
-    /// <summary>cos⁴ of each pixel's field angle: the angle between the render camera's ray through the pixel centre and its axis.</summary>
+    /// <summary>cos⁴ of each pixel's field angle: the angle between the render camera's ray through the pixel centre and its
+    /// axis.</summary>
     [Fact]
     public void Cos4th_IsTheFourthPowerOfTheCosineOfTheRenderCamerasRayAngle()
     {
@@ -161,7 +165,8 @@ public class OpticsTests
     {
         var dir = Reference.TempDir();
         File.WriteAllText(Path.Combine(dir, "flat.json"), Flat);
-        var (code, _, err) = CliRunner.Run("render", Path.Combine(dir, "flat.json"), "-o", Path.Combine(dir, "out"), "--formats", "npy,aov", "--quiet");
+        var (code, _, err) =
+            CliRunner.Run("render", Path.Combine(dir, "flat.json"), "-o", Path.Combine(dir, "out"), "--formats", "npy,aov", "--quiet");
         Assert.True(code == 0, err);
         return Path.Combine(dir, "out");
     }
@@ -211,8 +216,10 @@ public class OpticsTests
         var render = FlatRender();
         var dir = Path.GetDirectoryName(render)!;
         File.WriteAllText(Path.Combine(dir, "lens.csv"), "wavelength,T\n380,0.4\n450,0.9\n520,0.95\n600,0.7\n780,0.5\n");
-        File.WriteAllText(Path.Combine(dir, "lens.json"), """{ "preset": "wheel-6", "transmittance": "lens.csv:T", "off_axis": "none", "psf": "none" }""");
-        var raw = Raw(render, "lens-" + route, "--sensor", Path.Combine(dir, "lens.json"), "--signals", route);   // the folder is shared: same files
+        File.WriteAllText(Path.Combine(dir, "lens.json"),
+            """{ "preset": "wheel-6", "transmittance": "lens.csv:T", "off_axis": "none", "psf": "none" }""");
+        // the folder is shared: same files
+        var raw = Raw(render, "lens-" + route, "--sensor", Path.Combine(dir, "lens.json"), "--signals", route);
         var bare = Raw(render, "bare-" + route, "--sensor", "wheel-6", "--off-axis", "none", "--psf", "none", "--signals", route);
         var sensor = SensorPresets.Get("wheel-6");
         var d65 = ExactSignalsTests.Table("illuminants.csv", "D65");
@@ -229,13 +236,18 @@ public class OpticsTests
             for (int k = 0; k < 4000; k++)
             {
                 double wl = 380 + (k + 0.5) * 0.1;
-                double f = ExactSignalsTests.Lerp(rho, wl) * ExactSignalsTests.Lerp(d65, wl) * ExactSignalsTests.Lerp(qe, wl) * wl * 1e-9 / (h * c0) * 0.1;
+                double f = ExactSignalsTests.Lerp(rho, wl) * ExactSignalsTests.Lerp(d65, wl) * ExactSignalsTests.Lerp(qe,
+                    wl) * wl * 1e-9 / (
+                    h * c0) * 0.1;
                 withLens += f * ExactSignalsTests.Lerp(lens, wl);
                 without += f;
             }
             double expected = sensor.SystemGain * 1e-6 * sensor.Etendue * withLens;
-            if (route == "exact") Assert.True(Math.Abs(raw[pixel * 6 + c] / expected - 1) < 1e-4, $"{ch.Name}: {raw[pixel * 6 + c]} vs {expected}");
-            else Assert.True(Math.Abs(raw[pixel * 6 + c] / bare[pixel * 6 + c] / (withLens / without) - 1) < 5e-3, $"{ch.Name}: ratio {raw[pixel * 6 + c] / bare[pixel * 6 + c]} vs {withLens / without}");
+            if (route == "exact")
+                Assert.True(Math.Abs(raw[pixel * 6 + c] / expected - 1) < 1e-4, $"{ch.Name}: {raw[pixel * 6 + c]} vs {expected}");
+            else
+                Assert.True(Math.Abs(raw[pixel * 6 + c] / bare[pixel * 6 + c] / (withLens / without) - 1) < 5e-3,
+                    $"{ch.Name}: ratio {raw[pixel * 6 + c] / bare[pixel * 6 + c]} vs {withLens / without}");
         }
     }
 

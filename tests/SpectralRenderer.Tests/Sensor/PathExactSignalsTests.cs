@@ -37,14 +37,20 @@ public class PathExactSignalsTests(ITestOutputHelper output)
     /// </summary>
     internal static string Booth(string bands, double grid, string formats = "exr,aov") =>
         Render($"booth {bands} {grid} {formats}", "path-colorchecker-booth.json",
-            t => t.Replace("\"integrator\": \"path\"", string.Create(CultureInfo.InvariantCulture, $"\"integrator\": {{ \"type\": \"path\", \"spectral_grid\": {grid} }}"), StringComparison.Ordinal),
+            t => t.Replace("\"integrator\": \"path\"",
+                string.Create(CultureInfo.InvariantCulture, $"\"integrator\": {{ \"type\": \"path\", \"spectral_grid\": {grid} }}"),
+                StringComparison.Ordinal),
             "--width", "60", "--height", "40", "--spp", "4", "--bands", bands, "--formats", formats);
 
-    /// <summary>The §3.1 chart head-on under D65 in physical radiometry by the path integrator (max_depth 1: direct light, L = ρ/π·E).</summary>
+    /// <summary>The §3.1 chart head-on under D65 in physical radiometry by the path integrator (max_depth 1: direct light, L =
+    /// ρ/π·E).</summary>
     internal static string DirectChart(string bands, double grid, string formats = "exr,aov") =>
         Render($"chart {bands} {grid} {formats}", "paper-3.1-colorchecker-d65.json",
             t => t.Replace("\"radiometry\": \"paper\"", "\"radiometry\": \"physical\"", StringComparison.Ordinal)
-                .Replace("\"max_depth\": 2,", string.Create(CultureInfo.InvariantCulture, $"\"integrator\": {{ \"type\": \"path\", \"max_depth\": 1, \"spectral_grid\": {grid} }},"), StringComparison.Ordinal),
+                .Replace("\"max_depth\": 2,",
+                    string.Create(CultureInfo.InvariantCulture,
+                        $"\"integrator\": {{ \"type\": \"path\", \"max_depth\": 1, \"spectral_grid\": {grid} }},"),
+                    StringComparison.Ordinal),
             "--width", "90", "--height", "60", "--bands", bands, "--formats", formats);
 
     [Theory]
@@ -96,7 +102,8 @@ public class PathExactSignalsTests(ITestOutputHelper output)
         for (int i = 0; i < fine.Length; i++)
             if (fine[i] > 1e-3 * peak && fine[i] < 0.99 * 4095) { worst = Math.Max(worst, Math.Abs(coarse[i] / fine[i] - 1)); compared++; }
         Assert.True(compared > fine.Length / 4, $"only {compared} of {fine.Length} photosites lit and unclipped");
-        output.WriteLine($"{sensor}: 5 bands vs {many} on a {grid} nm fine grid, largest relative difference {worst:E3} over {compared} photosites");
+        output.WriteLine(
+            $"{sensor}: 5 bands vs {many} on a {grid} nm fine grid, largest relative difference {worst:E3} over {compared} photosites");
         Assert.True(worst <= 1e-5, $"{sensor}: 5 bands vs {many} differ by {worst:E3} relative");
     }
 
@@ -149,7 +156,11 @@ public class PathExactSignalsTests(ITestOutputHelper output)
                         {
                             double wl = 380 + k * grid + (j + 0.5) * 0.1;
                             double r = ExactSignalsTests.Lerp(rho, wl), e = ExactSignalsTests.Lerp(d65, wl);
-                            double eta = zero && (wl < qe.Item1[0] || wl > qe.Item1[^1]) ? 0 : ch.PerEnergy ? ExactSignalsTests.Lerp(qe, wl) * 555 / wl : ExactSignalsTests.Lerp(qe, wl);
+                            double eta = zero && (wl < qe.Item1[0] || wl > qe.Item1[^1])
+                                ? 0
+                                : ch.PerEnergy
+                                ? ExactSignalsTests.Lerp(qe, wl) * 555 / wl
+                                : ExactSignalsTests.Lerp(qe, wl);
                             double g = eta * wl * 1e-9 / (h * c0) * 0.1;
                             sr += r; se += e; sg += g; sreg += r * e * g;
                         }
@@ -161,8 +172,10 @@ public class PathExactSignalsTests(ITestOutputHelper output)
                 }
             }
             overall = Math.Max(overall, worst);
-            output.WriteLine($"{name}: {grid} nm fine grid vs the 0.1 nm {(subBandMeans ? "sums of sub-band means" : "integral")}, largest relative difference {worst:E3}");
-            Assert.True(worst <= bound, $"{name}: {grid} nm grid vs the 0.1 nm {(subBandMeans ? "sub-band means" : "integral")}: {worst:E3} relative");
+            output.WriteLine($"{name}: {grid} nm fine grid vs the 0.1 nm {(subBandMeans ? "sums of sub-band means" : "integral")}, largest "
+                + $"relative difference {worst:E3}");
+            Assert.True(worst <= bound,
+                $"{name}: {grid} nm grid vs the 0.1 nm {(subBandMeans ? "sub-band means" : "integral")}: {worst:E3} relative");
         }
         output.WriteLine($"all presets: {overall:E3}");
     }
@@ -186,7 +199,8 @@ public class PathExactSignalsTests(ITestOutputHelper output)
         Assert.True(worst <= 1e-5, $"lights/ vs traced again differ by {worst:E3}");
     }
 
-    /// <summary>The path route's signals (the samples traced again, the lens applied per band) are the same on 1 and 2 threads, bit for bit.</summary>
+    /// <summary>The path route's signals (the samples traced again, the lens applied per band) are the same on 1 and 2 threads, bit for
+    /// bit.</summary>
     [Fact]
     public void Signals_AreTheSameOnAnyThreadCount()
     {

@@ -52,7 +52,8 @@ public class PhotonTransferTests(Xunit.Abstractions.ITestOutputHelper output)
 
     static double ElectronRate(SensorModel s, double radiance)
     {
-        double etendue = Math.Pow(s.PixelSizeMicrons * 1e-6, 2) * s.FillFactor * Math.PI * s.OpticsTransmittance / (1 + 4 * s.FNumber * s.FNumber);
+        double etendue =
+            Math.Pow(s.PixelSizeMicrons * 1e-6, 2) * s.FillFactor * Math.PI * s.OpticsTransmittance / (1 + 4 * s.FNumber * s.FNumber);
         double photonsPerWatt = (600.0 * 600 - 500.0 * 500) / 2 * 1e-9 / (6.62607015e-34 * 299792458);   // ∫ λ/(hc) dλ, λ in m, dλ in nm
         return radiance * etendue * photonsPerWatt;
     }
@@ -96,7 +97,8 @@ public class PhotonTransferTests(Xunit.Abstractions.ITestOutputHelper output)
         Assert.InRange(mus[0] / (configuredK * rate * t5), 0.995, 1.005);
 
         double readNoise = Math.Sqrt(darkVar - 1.0 / 12) / k;   // electrons (dark shot noise is negligible at these exposures)
-        output.WriteLine($"read noise measured {readNoise:G5} e⁻, configured {baseSensor.ReadNoiseElectrons:G5} ({readNoise / baseSensor.ReadNoiseElectrons - 1:P2})");
+        output.WriteLine($"read noise measured {readNoise:G5} e⁻, configured {baseSensor.ReadNoiseElectrons:G5} "
+            + $"({readNoise / baseSensor.ReadNoiseElectrons - 1:P2})");
         Assert.InRange(readNoise / baseSensor.ReadNoiseElectrons, 0.98, 1.02);
         Assert.True(darkMean > baseSensor.BlackLevel - 1);
     }
@@ -109,7 +111,8 @@ public class PhotonTransferTests(Xunit.Abstractions.ITestOutputHelper output)
         var (slope, _) = Fit(times, means);
         var s = Sensor(1);
         double darkCurrent = slope / s.SystemGain;   // e⁻/s
-        output.WriteLine($"dark current measured {darkCurrent:G5} e⁻/s, configured {s.DarkCurrentElectronsPerSecond:G5} ({darkCurrent / s.DarkCurrentElectronsPerSecond - 1:P2})");
+        output.WriteLine($"dark current measured {darkCurrent:G5} e⁻/s, configured {s.DarkCurrentElectronsPerSecond:G5} "
+            + $"({darkCurrent / s.DarkCurrentElectronsPerSecond - 1:P2})");
         Assert.InRange(darkCurrent / s.DarkCurrentElectronsPerSecond, 0.95, 1.05);
     }
 
@@ -124,7 +127,8 @@ public class PhotonTransferTests(Xunit.Abstractions.ITestOutputHelper output)
         var (m2, v2) = Stats(Sensor(2 * tSat), radiance, 77);
         var (m4, v4) = Stats(Sensor(4 * tSat), radiance, 99);
         var (m5, v5) = Stats(Sensor(0.5 * tSat), radiance, 55);
-        output.WriteLine($"plateau configured {plateau:F2} DN; measured {m2:F2} (2× saturation), {m4:F2} (4×); variance {v2:F2} DN² vs read+quantisation {Math.Pow(s0.SystemGain * s0.ReadNoiseElectrons, 2) + 1.0 / 12:F2}");
+        output.WriteLine($"plateau configured {plateau:F2} DN; measured {m2:F2} (2× saturation), {m4:F2} (4×); variance {v2:F2} DN² vs "
+            + $"read+quantisation {Math.Pow(s0.SystemGain * s0.ReadNoiseElectrons, 2) + 1.0 / 12:F2}");
         Assert.InRange(m2, plateau - 1, plateau + 1);
         Assert.InRange(m4, plateau - 1, plateau + 1);
         // At the plateau only read noise and quantisation remain: far below the shot-noise variance at half the well.

@@ -31,7 +31,8 @@ public class RegisteredPresetTests
 
     static RegisteredPresetTests() => SensorPresets.Register(Name, FlatAndBox);
 
-    /// <summary>∫ E(λ)·λ dλ over [lo, hi] of the table's linear interpolant, by the midpoint rule on 0.01 nm steps (not the engine's code).</summary>
+    /// <summary>∫ E(λ)·λ dλ over [lo, hi] of the table's linear interpolant, by the midpoint rule on 0.01 nm steps (not the engine's
+    /// code).</summary>
     static double LightTimesWavelength(string file, string column, double lo, double hi)
     {
         var lines = File.ReadAllLines(Path.Combine(DataDirectory.Path, file));
@@ -73,7 +74,8 @@ public class RegisteredPresetTests
         var (code, _, err) = CliRunner.Run("render", scene, "-o", render, "--quiet");
         Assert.True(code == 0, err);
         var cam = Path.Combine(render, "cam");
-        (code, _, err) = CliRunner.Run("camera", render, "--sensor", Name, "--noise", "off", "-o", cam, "--off-axis", "none", "--psf", "none");
+        (code, _, err) =
+            CliRunner.Run("camera", render, "--sensor", Name, "--noise", "off", "-o", cam, "--off-axis", "none", "--psf", "none");
         Assert.True(code == 0, err);
 
         var manifest = JsonNode.Parse(File.ReadAllText(Path.Combine(cam, "camera.json")))!;
@@ -83,7 +85,8 @@ public class RegisteredPresetTests
 
         // Photo-electrons ∝ ∫ η(λ) L(λ) λ dλ with L ∝ E (D65) on a flat diffuser: the box channel over the flat one is
         // ∫_500^600 E λ dλ / ∫_380^780 E λ dλ, whatever the exposure, optics and gain.
-        double expected = LightTimesWavelength("illuminants.csv", "D65", 500, 600) / LightTimesWavelength("illuminants.csv", "D65", 380, 780);
+        double expected =
+            LightTimesWavelength("illuminants.csv", "D65", 500, 600) / LightTimesWavelength("illuminants.csv", "D65", 380, 780);
         var folder = CameraScene.Open(render).Folder;
         var signal = new Dictionary<string, double>();
         foreach (var name in new[] { "white", "grey" })

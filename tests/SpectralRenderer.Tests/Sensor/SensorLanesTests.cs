@@ -48,7 +48,8 @@ public class SensorLanesTests(Xunit.Abstractions.ITestOutputHelper output)
         int decided = 0, total = 0;
         for (long p0 = 0; p0 < 80_000; p0 += 8)
         {
-            var keys = NoiseLanes.Keys(family, Vector512.Create((ulong)p0) + Vector512.Create(0UL, 1, 2, 3, 4, 5, 6, 7), Vector512<ulong>.Zero);
+            var keys =
+                NoiseLanes.Keys(family, Vector512.Create((ulong)p0) + Vector512.Create(0UL, 1, 2, 3, 4, 5, 6, 7), Vector512<ulong>.Zero);
             var k = NoiseLanes.Poisson(keys, mus, out var next, out var ok);
             var z = NoiseLanes.Normal(keys, next, out var zok);
             for (int l = 0; l < 8; l++)
@@ -66,7 +67,8 @@ public class SensorLanesTests(Xunit.Abstractions.ITestOutputHelper output)
         Assert.True(decided > 0.99 * total);
     }
 
-    /// <summary>A cube of 37 × 13 pixels (rows not a multiple of the 8 lanes), radiance falling by e¹² across it, spectrally varied.</summary>
+    /// <summary>A cube of 37 × 13 pixels (rows not a multiple of the 8 lanes), radiance falling by e¹² across it, spectrally
+    /// varied.</summary>
     static RadianceCube Cube()
     {
         const int w = 37, h = 13;
@@ -116,7 +118,8 @@ public class SensorLanesTests(Xunit.Abstractions.ITestOutputHelper output)
     [InlineData("mosaic-16", true)]
     public void NoiseOff_RawIsTheWeightedBandSum(string name, bool allChannelsAtEveryPixel)
     {
-        var sensor = SensorPresets.Get(name) with { OffAxis = OffAxisModel.None, Psf = PsfModel.None };   // the weighted sum per pixel, no lens blur
+        // the weighted sum per pixel, no lens blur
+        var sensor = SensorPresets.Get(name) with { OffAxis = OffAxisModel.None, Psf = PsfModel.None };
         if (allChannelsAtEveryPixel) sensor = sensor with { Arrangement = Arrangement.Full, Pattern = null, PatternName = null };
         var cube = Cube();
         var light = TabulatedSpectrum.Constant(1);
@@ -131,7 +134,9 @@ public class SensorLanesTests(Xunit.Abstractions.ITestOutputHelper output)
             for (int x = 0; x < cube.Width; x++)
                 for (int k = 0; k < planes; k++)
                 {
-                    int c = sensor.Arrangement == Arrangement.Mosaic ? sensor.Pattern![y % sensor.Pattern.GetLength(0), x % sensor.Pattern.GetLength(1)] : k;
+                    int c = sensor.Arrangement == Arrangement.Mosaic
+                        ? sensor.Pattern![y % sensor.Pattern.GetLength(0), x % sensor.Pattern.GetLength(1)]
+                        : k;
                     double sum = 0;
                     for (int b = 0; b < n; b++) sum += w[c, b] * cube.Data[(y * cube.Width + x) * n + b];
                     double expected = Math.Min(sum * t, sensor.FullWellElectrons) * sensor.SystemGain + sensor.BlackLevel;

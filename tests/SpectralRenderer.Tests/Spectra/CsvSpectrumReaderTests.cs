@@ -19,8 +19,11 @@ public class CsvSpectrumReaderTests
     {
         // The CIE daylight basis S1, S2 goes negative by definition: it is read as a signed table.
         foreach (var f in Directory.GetFiles(DataDirectory.Path, "*.csv"))
-            Assert.NotEmpty((Path.GetFileName(f) == "cie-daylight-components.csv" ? CsvSpectrumReader.ReadSigned(f) : CsvSpectrumReader.Read(f)).Columns);
-        Assert.Throws<SpectralRenderer.Diagnostics.InputException>(() => CsvSpectrumReader.Read(Path.Combine(DataDirectory.Path, "cie-daylight-components.csv")));
+            Assert.NotEmpty(
+                (Path.GetFileName(f) == "cie-daylight-components.csv" ? CsvSpectrumReader.ReadSigned(f) : CsvSpectrumReader.Read(f))
+                .Columns);
+        Assert.Throws<SpectralRenderer.Diagnostics.InputException>(() =>
+            CsvSpectrumReader.Read(Path.Combine(DataDirectory.Path, "cie-daylight-components.csv")));
     }
 
     [Theory]

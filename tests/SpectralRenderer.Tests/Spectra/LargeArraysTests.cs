@@ -26,8 +26,10 @@ public class LargeArraysTests
         foreach (var line in File.ReadLines("/proc/self/smaps"))
         {
             int dash = line.IndexOf('-'), space = line.IndexOf(' ');
-            if (dash > 0 && space > dash && ulong.TryParse(line.AsSpan(0, dash), NumberStyles.HexNumber, CultureInfo.InvariantCulture, out ulong lo)
-                && ulong.TryParse(line.AsSpan(dash + 1, space - dash - 1), NumberStyles.HexNumber, CultureInfo.InvariantCulture, out ulong hi))
+            if (dash > 0 && space > dash
+                && ulong.TryParse(line.AsSpan(0, dash), NumberStyles.HexNumber, CultureInfo.InvariantCulture, out ulong lo)
+                && ulong.TryParse(line.AsSpan(dash + 1, space - dash - 1), NumberStyles.HexNumber, CultureInfo.InvariantCulture,
+                    out ulong hi))
             {
                 inside = lo <= address && address < hi;
                 continue;

@@ -33,7 +33,8 @@ public sealed class CameraCapture
         var r = new JsonFields(path, RunAgain);
         var renderDir = Path.GetFullPath(Path.Combine(dir, record.RenderFolder));
         if (!Directory.Exists(renderDir))
-            throw r.Bad("$.render_folder", $"names {MessageText.Quote(record.RenderFolder, 60)}, which is not a folder (the render was moved or removed)");
+            throw r.Bad("$.render_folder",
+                $"names {MessageText.Quote(record.RenderFolder, 60)}, which is not a folder (the render was moved or removed)");
         var scene = CameraScene.Open(renderDir);
         var sensor = record.SensorArgument == SensorFile.SceneArgument
             ? SensorFile.FromScene(scene.Folder.Manifest.ResolvedScene?.ToJson(), scene.Folder.Manifest.Scene)
@@ -49,7 +50,8 @@ public sealed class CameraCapture
         }
         var exposures = record.Exposures;
         if (exposures.Length != sensor.Exposures)
-            throw r.Bad("$.simulation.exposure_s", $"has {exposures.Length} exposures, the sensor {MessageText.Quote(sensor.Name)} takes {sensor.Exposures}");
+            throw r.Bad("$.simulation.exposure_s",
+                $"has {exposures.Length} exposures, the sensor {MessageText.Quote(sensor.Name)} takes {sensor.Exposures}");
         var options = new SimulationOptions { Seed = record.Seed, Noise = record.Noise };
         var weights = ChannelWeights.Compute(sensor, scene.Grid, scene.Light, record.RadianceScale);
         var npy = Path.Combine(dir, "raw.npy");
@@ -58,12 +60,22 @@ public sealed class CameraCapture
         using (var f = File.OpenRead(npy)) (shape, dn) = NpyReader.Read(f, npy);
         int planes = shape.Length == 2 ? 1 : shape.Length == 3 ? shape[2] : -1;
         if (shape.Length is < 2 or > 3 || shape[0] != scene.Height || shape[1] != scene.Width || planes != sensor.Planes)
-            throw new InputException(npy, $"is {string.Join("×", shape)} but the render is {scene.Height}×{scene.Width} and the sensor has {sensor.Planes} planes",
+            throw new InputException(npy,
+                $"is {string.Join("×", shape)} but the render is {scene.Height}×{scene.Width} and the sensor has {sensor.Planes} planes",
                 "the camera folder and its render do not match; run 'spectral camera' again");
         var raw = new RawFrame(scene.Width, scene.Height, planes, dn, exposures, new double[exposures.Length], weights, sensor, options);
         // The route and the white the capture used (camera.json), so the white balance and forward model are its own.
-        var colour = ColourCorrection.Fit(weights, scene.Grid, scene.Light, scene.Observer, record.Exact ? sensor : null, record.WhiteScale);
-        return new CameraCapture { Dir = dir, Manifest = m, Scene = scene, Raw = raw, Image = ImageProcessing.Run(raw, colour, record.Demosaic), Colour = colour };
+        var colour =
+            ColourCorrection.Fit(weights, scene.Grid, scene.Light, scene.Observer, record.Exact ? sensor : null, record.WhiteScale);
+        return new CameraCapture
+        {
+            Dir = dir,
+            Manifest = m,
+            Scene = scene,
+            Raw = raw,
+            Image = ImageProcessing.Run(raw, colour, record.Demosaic),
+            Colour = colour
+        };
     }
 
     const string RunAgain = "camera.json is not as 'spectral camera' writes it: run 'spectral camera' again with this version";
@@ -94,22 +106,38 @@ public sealed class CameraCapture
         }
         var processing = r.OptObject(m, "processing", "$");
         return new CameraRecord(r.String(m, "render_folder", "$"), r.String(m, "sensor_argument", "$"), exposures, seed,
-            r.String(sim, "noise", at).StartsWith("on", StringComparison.Ordinal), Positive("radiance_scale_w_m2_sr_nm_per_band_unit", null),
-            r.OptString(sim, "signal_route", at)?.StartsWith("exact", StringComparison.Ordinal) == true, Positive("white_radiance_scale", 1),
-            processing is not null && r.OptString(processing, "demosaic", "$.processing") == "bilinear" ? DemosaicMethod.Bilinear : DemosaicMethod.Malvar);
+            r.String(sim, "noise", at).StartsWith("on", StringComparison.Ordinal),
+                Positive("radiance_scale_w_m2_sr_nm_per_band_unit", null),
+            r.OptString(sim, "signal_route", at)?.StartsWith("exact", StringComparison.Ordinal) == true,
+                Positive("white_radiance_scale", 1),
+            processing is not null && r.OptString(processing, "demosaic", "$.processing") == "bilinear"
+                ? DemosaicMethod.Bilinear
+                : DemosaicMethod.Malvar);
     }
 
     /// <summary>The camera run in memory on a render (nothing written): what `spectral camera` would write, read back.</summary>
     /// <param name="display">Whether the processed image gets its XYZ and sRGB too (recovery needs only the rates).</param>
-    /// <param name="cube">The camera's input when not the band cube at <paramref name="radianceScale"/> (the exact route's integrals).</param>
-    /// <param name="whiteScale">The render's white diffuser radiance per unit of the light's band values (<see cref="ColourCorrection.WhiteScale"/>).</param>
-    public static CameraCapture Simulate(CameraScene scene, SensorModel sensor, SimulationOptions options, double radianceScale = 1, bool display = true,
+    /// <param name="cube">The camera's input when not the band cube at <paramref name="radianceScale"/> (the exact route's
+    /// integrals).</param>
+    /// <param name="whiteScale">The render's white diffuser radiance per unit of the light's band values
+    /// (<see cref="ColourCorrection.WhiteScale"/>).</param>
+    public static CameraCapture Simulate(CameraScene scene, SensorModel sensor, SimulationOptions options, double radianceScale = 1,
+        bool display = true,
         RadianceCube? cube = null, double whiteScale = 1)
     {
         cube ??= scene.Cube(radianceScale);
         var raw = SensorSimulation.Run(sensor, cube, scene.Light, options);
-        var colour = ColourCorrection.Fit(raw.Weights, scene.Grid, scene.Light, scene.Observer, cube.ChannelIntegrals is null ? null : sensor, whiteScale);
-        return new CameraCapture { Dir = scene.Folder.Path, Manifest = [], Scene = scene, Raw = raw, Image = ImageProcessing.Run(raw, colour, display: display), Colour = colour };
+        var colour = ColourCorrection.Fit(raw.Weights, scene.Grid, scene.Light, scene.Observer,
+            cube.ChannelIntegrals is null ? null : sensor, whiteScale);
+        return new CameraCapture
+        {
+            Dir = scene.Folder.Path,
+            Manifest = [],
+            Scene = scene,
+            Raw = raw,
+            Image = ImageProcessing.Run(raw, colour, display: display),
+            Colour = colour
+        };
     }
 
     /// <summary>
@@ -174,7 +202,9 @@ public sealed class CameraCapture
         for (int k = 0; k < c; k++)
         {
             double t = Raw.ExposureOf(k), e = Math.Max(0, count > 0 ? mean[k] / count : 0) * t;
-            double dn2 = kk * kk * (e + p * p * e * e + Sensor.DarkCurrentElectronsPerSecond * t + Sensor.ReadNoiseElectrons * Sensor.ReadNoiseElectrons) + 1.0 / 12;
+            double dn2 = kk * kk * (e + p * p * e * e + Sensor.DarkCurrentElectronsPerSecond * t
+                + Sensor.ReadNoiseElectrons * Sensor.ReadNoiseElectrons)
+                + 1.0 / 12;
             v[k] = dn2 / (kk * t * kk * t);
         }
         return v;

@@ -6,8 +6,8 @@ namespace SpectralRenderer.Analysis.Recovery;
 /// <summary>
 /// One ColorChecker patch through the camera: the processed (corrected) colour against the patch's exact colour
 /// (1 nm CIE XYZ under the scene light, white Y = 1 — exact for a chart lit like the white, as in §3.1), and per
-/// channel the raw signal-to-noise ratio over the patch's unclipped sites (below the full well and white, above 0 DN), SNR = mean(DN − black) / std(DN),
-/// in dB (20 log10); NaN when fewer than two sites are unclipped.
+/// channel the raw signal-to-noise ratio over the patch's unclipped sites (below the full well and white, above 0 DN), SNR = mean(DN −
+/// black) / std(DN), in dB (20 log10); NaN when fewer than two sites are unclipped.
 /// </summary>
 public sealed record PatchMetrics(int Patch, string Object, int Pixels, Xyz Camera, Xyz Exact, double DeltaE00, double[] SnrDb);
 
@@ -40,7 +40,11 @@ public static class CameraPatchMetrics
                     sum += v - sensor.BlackLevel; sum2 += (v - sensor.BlackLevel) * (v - sensor.BlackLevel); n++;
                 }
                 double mean = n > 0 ? sum / n : 0, variance = n > 1 ? Math.Max(0, (sum2 - sum * sum / n) / (n - 1)) : 0;
-                snr[c] = n < 2 ? double.NaN : variance > 0 ? 20 * Math.Log10(Math.Max(mean, 1e-300) / Math.Sqrt(variance)) : double.PositiveInfinity;
+                snr[c] = n < 2
+                    ? double.NaN
+                    : variance > 0
+                    ? 20 * Math.Log10(Math.Max(mean, 1e-300) / Math.Sqrt(variance))
+                    : double.PositiveInfinity;
             }
             rows.Add(new PatchMetrics(p.Number, p.Object, p.Pixels.Length, cam, exact, de, snr));
         }

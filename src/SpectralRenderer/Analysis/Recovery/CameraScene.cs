@@ -39,7 +39,8 @@ public sealed class CameraScene
     /// </summary>
     public static CameraScene Of(RenderFolder folder, RenderAovs aovs) => new(folder, aovs, FindPatches(folder));
 
-    public RadianceCube Cube(double radianceScale) => new(Width, Height, Grid, Folder.Image.Data, radianceScale) { FovDegrees = FovDegrees };
+    public RadianceCube Cube(double radianceScale) =>
+        new(Width, Height, Grid, Folder.Image.Data, radianceScale) { FovDegrees = FovDegrees };
 
     /// <summary>The render camera's vertical field of view (degrees; the scene loader's default 40 when the scene gives none).</summary>
     public double FovDegrees => Folder.Manifest.ResolvedScene?.CameraFov ?? 40;
@@ -51,7 +52,9 @@ public sealed class CameraScene
         for (int o = 0; o < folder.ObjectNames.Length; o++)
         {
             var r = folder.ObjectReflectances[o];
-            if (r is null || !r.StartsWith("colorchecker:", StringComparison.Ordinal) || !int.TryParse(r["colorchecker:".Length..], out int number)) continue;
+            if (r is null || !r.StartsWith("colorchecker:", StringComparison.Ordinal)
+                || !int.TryParse(r["colorchecker:".Length..], out int number))
+                continue;
             // The interior: pixels whose neighbours within `margin` (3: a 4 × 4 mosaic's bilinear reach) show the same object.
             for (int margin = 3; margin >= 0; margin--)
             {

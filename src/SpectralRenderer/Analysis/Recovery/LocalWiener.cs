@@ -8,8 +8,8 @@ namespace SpectralRenderer.Analysis.Recovery;
 /// Locally weighted (adaptive) Wiener estimation: the prior of the Wiener estimate is not the whole training set but its
 /// samples weighted by how close their simulated signals s_j = A·r_j are to the measured signal s (after the adaptive
 /// Wiener estimation of Shen &amp; Xin 2007, Opt. Express 15(23):15545, which selects the prior's training samples per
-/// sample imaged; here every sample is weighted, smoothly, by the distance of its signal). With u = s ⊘ (A·1) the signal relative to a white reflector, its chromaticity q = u/‖u‖ and its intensity
-/// ln‖u‖, each training sample gets the Gaussian weight
+/// sample imaged; here every sample is weighted, smoothly, by the distance of its signal). With u = s ⊘ (A·1) the signal relative to a
+/// white reflector, its chromaticity q = u/‖u‖ and its intensity ln‖u‖, each training sample gets the Gaussian weight
 /// <code>w_j = exp(−½ [‖q − q_j‖²/h_c² + (ln‖u‖ − ln‖u_j‖)²/h_I²])</code>
 /// and the estimate is the Wiener estimate with the weighted mean μ_w and the covariance shrunk towards the whole set's,
 /// <code>K = (1 − β) K_w + β K_r,  r̂ = μ_w + K Aᵀ (A K Aᵀ + K_n)⁻¹ (s − A μ_w)</code>
@@ -22,7 +22,8 @@ namespace SpectralRenderer.Analysis.Recovery;
 /// </summary>
 public sealed class LocalWiener
 {
-    /// <summary>The grid leave-one-out searches: h_c (chromaticity distance), h_I (natural-log intensity; ∞: intensity ignored), β.</summary>
+    /// <summary>The grid leave-one-out searches: h_c (chromaticity distance), h_I (natural-log intensity; ∞: intensity ignored),
+    /// β.</summary>
     public static readonly double[] ChromaticityWidths = [0.05, 0.1, 0.2, 0.4];
     public static readonly double[] IntensityWidths = [0.25, 0.5, 1, double.PositiveInfinity];
     public static readonly double[] Shrinkages = [0.03, 0.1, 0.3, 0.5, 0.7];
@@ -47,7 +48,8 @@ public sealed class LocalWiener
     public double IntensityWidth { get; private set; }
     /// <summary>β: the weight of the whole training set's covariance K_r in K.</summary>
     public double Shrinkage { get; private set; }
-    /// <summary>The training set's leave-one-out error at the chosen widths: the mean over the samples of the RMSE over all bands (reflectance units).</summary>
+    /// <summary>The training set's leave-one-out error at the chosen widths: the mean over the samples of the RMSE over all bands
+    /// (reflectance units).</summary>
     public double LeaveOneOutRmse { get; private set; }
 
     LocalWiener(ForwardModel model, double[] noiseVariance)
@@ -81,7 +83,12 @@ public sealed class LocalWiener
         {
             krAt = new double[n * c];
             for (int b = 0; b < n; b++)
-                for (int i = 0; i < c; i++) { double v = 0; for (int k = 0; k < m; k++) v += p[b, k] * krAtX[k * c + i]; krAt[b * c + i] = v; }
+                for (int i = 0; i < c; i++)
+                {
+                    double v = 0;
+                    for (int k = 0; k < m; k++) v += p[b, k] * krAtX[k * c + i];
+                    krAt[b * c + i] = v;
+                }
         }
         noise = (double[])noiseVariance.Clone();
     }
@@ -107,7 +114,8 @@ public sealed class LocalWiener
         {
             // By widths (h_c, h_I): the weights and the weighted signal covariance of each left-out sample, shared by the βs.
             int nb = Shrinkages.Length;
-            Parallel.For(0, grid.Length / nb, g => e.LeaveOneOutRmseAt(grid[g * nb].hc, grid[g * nb].hi, Shrinkages, score.AsSpan(g * nb, nb)));
+            Parallel.For(0, grid.Length / nb,
+                g => e.LeaveOneOutRmseAt(grid[g * nb].hc, grid[g * nb].hi, Shrinkages, score.AsSpan(g * nb, nb)));
         }
         else e.LeaveOneOutRmseAt(grid[0].hc, grid[0].hi, [grid[0].beta], score);
         int best = 0;
@@ -117,7 +125,8 @@ public sealed class LocalWiener
         return e;
     }
 
-    /// <summary>Into <paramref name="rmse"/>, for each β of <paramref name="betas"/>: the mean over the samples of the RMSE of each estimated by the others.</summary>
+    /// <summary>Into <paramref name="rmse"/>, for each β of <paramref name="betas"/>: the mean over the samples of the RMSE of each
+    /// estimated by the others.</summary>
     void LeaveOneOutRmseAt(double hc, double hi, double[] betas, Span<double> rmse)
     {
         var scratch = new double[ScratchLength];
@@ -165,7 +174,8 @@ public sealed class LocalWiener
     }
 
     /// <summary>The estimate from <paramref name="signal"/> with training sample <paramref name="exclude"/> left out (−1: none).</summary>
-    void Estimate(ReadOnlySpan<double> signal, int exclude, double hc, double hi, double beta, Span<double> scratch, Span<double> reflectance) =>
+    void Estimate(ReadOnlySpan<double> signal, int exclude, double hc, double hi, double beta, Span<double> scratch,
+        Span<double> reflectance) =>
         Finish(signal, Weigh(signal, exclude, hc, hi, scratch), beta, scratch, reflectance);
 
     // The scratch: w (T), d = s_j − s̄ (C × T), w_j d_j (C × T), Σ w_j d_j d_jᵀ (C × C, lower), M (C × C), q(s), s̄, x (C each),
@@ -226,7 +236,8 @@ public sealed class LocalWiener
         return sw;
     }
 
-    /// <summary>The estimate for shrinkage β from what <see cref="Weigh"/> left in the scratch (its part of the scratch is read, not changed).</summary>
+    /// <summary>The estimate for shrinkage β from what <see cref="Weigh"/> left in the scratch (its part of the scratch is read, not
+    /// changed).</summary>
     void Finish(ReadOnlySpan<double> signal, double sw, double beta, Span<double> scratch, Span<double> reflectance)
     {
         var w = Weights(scratch);

@@ -5,7 +5,8 @@ using SpectralRenderer.Sensor;
 
 namespace SpectralRenderer.Analysis.Recovery;
 
-/// <summary>One sensor, noise setting and method on the §3.1 chart, each patch from its mean signal: mean ColorChecker RMSE on 400–700 nm and on all bands, ΔE00 under D65.</summary>
+/// <summary>One sensor, noise setting and method on the §3.1 chart, each patch from its mean signal: mean ColorChecker RMSE on 400–700 nm
+/// and on all bands, ΔE00 under D65.</summary>
 public sealed record ComparisonRow(string Sensor, bool Noise, string Method, double Rmse400To700, double RmseAllBands, double DeltaE00D65);
 
 /// <summary>
@@ -17,7 +18,8 @@ public static class RecoveryComparison
 {
     public static readonly string[] Sensors = ["nikon-d5100", "wheel-6", "mosaic-16"];
 
-    /// <summary>The camera's input for a sensor on the exact route (issue 24: channel integrals, the render's white scale), or null for the band cube.</summary>
+    /// <summary>The camera's input for a sensor on the exact route (issue 24: channel integrals, the render's white scale), or null for the
+    /// band cube.</summary>
     public delegate (RadianceCube Cube, double WhiteScale)? CameraInput(CameraScene scene, SensorModel sensor);
 
     /// <summary>
@@ -63,15 +65,26 @@ public static class RecoveryComparison
             return h.Append("<p class=\"skip\">The §3.1 chart was not rendered, so the camera comparison is skipped.</p>\n").ToString();
         var rows = Rows(chartRenderDir, input);
         var inv = CultureInfo.InvariantCulture;
-        h.Append("<p>The §3.1 chart seen by three simulated cameras (docs/camera.md: ISETCam's pixel, auto exposure, a flat lens: no cos⁴ fall-off or diffraction blur, which a recovery without lens shading correction would read as reflectance), " +
-            "reflectance recovered from the signals with the rawtoaces 190-patch prior, scored against the render's ground truth: each patch recovered from its mean signal (as a camera is characterised; for the affine methods the same as the mean of its pixels' estimates, which <code>spectral recover</code> reports), then the mean over the 24 patches of the RMSE on 400–700 nm (where the sensors respond) and on all bands, and of ΔE00 under D65. Noise on: shot, dark, read noise and quantisation, seed 1. " +
+        h.Append("<p>The §3.1 chart seen by three simulated cameras (docs/camera.md: ISETCam's pixel, auto exposure, a flat lens: no cos⁴ "
+            + "fall-off or diffraction blur, which a recovery without lens shading correction would read as reflectance), " +
+            "reflectance recovered from the signals with the rawtoaces 190-patch prior, scored against the render's ground truth: each "
+                + "patch recovered from its mean signal (as a camera is characterised; for the affine methods the same as the mean of its "
+                + "pixels' estimates, which <code>spectral recover</code> reports), then the mean over the 24 patches of the RMSE on "
+                + "400–700 nm (where the sensors respond) and on all bands, and of ΔE00 under D65. Noise on: shot, dark, read "
+                + "noise and quantisation, seed 1. " +
             (input is null ? "Signals from the band cube."
-                : "Signals exact (issue 24): each channel integrated per eq. 2 term at the spectra's full resolution, independent of the band " +
-                  "count; the recovery's forward model is at full resolution too (the training spectra's exact signals, recovered as band means).")
+                : "Signals exact (issue 24): each channel integrated per eq. 2 term at the spectra's full "
+                    + "resolution, independent of the band " +
+                  "count; the recovery's forward model is at full resolution too (the training spectra's exact "
+                      + "signals, recovered as band means).")
             + "</p>\n");
-        h.Append("<table><tr><th class=l>sensor</th><th class=l>noise</th><th class=l>method</th><th>RMSE 400–700 nm</th><th>RMSE all bands</th><th>ΔE00 D65</th></tr>\n");
+        h.Append("<table><tr><th class=l>sensor</th><th class=l>noise</th><th class=l>method</th><th>RMSE 400–700 nm</th><th>RMSE all "
+            + "bands</th><th>ΔE00 D65</th></tr>\n");
         foreach (var r in rows)
-            h.Append(inv, $"<tr><td class=l>{WebUtility.HtmlEncode(r.Sensor)}</td><td class=l>{(r.Noise ? "on" : "off")}</td><td class=l>{r.Method}</td><td>{r.Rmse400To700:0.0000}</td><td>{r.RmseAllBands:0.0000}</td><td>{r.DeltaE00D65:0.000}</td></tr>\n");
+            h.Append(inv,
+                $"<tr><td class=l>{WebUtility.HtmlEncode(r.Sensor)}</td><td class=l>{(r.Noise ? "on" : "off")}</td>"
+                    + $"<td class=l>{r.Method}</td><td>{r.Rmse400To700:0.0000}</td><td>{r.RmseAllBands:0.0000}</td>"
+                    + $"<td>{r.DeltaE00D65:0.000}</td></tr>\n");
         return h.Append("</table>\n").ToString();
     }
 }

@@ -23,12 +23,16 @@ public static class RecoveryEvaluation
 {
     /// <param name="regions">false: only the ColorChecker patches are scored, and only their pixels recovered (the cube is NaN
     /// elsewhere): much faster on large images, the same patch figures.</param>
-    /// <param name="metricRange">RMSE and GFC over the bands inside [lo, hi] nm only (null: every band); ΔE00 always uses the whole spectrum.</param>
-    public static RecoveryResult Run(CameraCapture capture, RecoveryMethod method, TrainingSet training, bool[]? whiteMask = null, string? whiteDescription = null,
+    /// <param name="metricRange">RMSE and GFC over the bands inside [lo, hi] nm only (null: every band); ΔE00 always uses the whole
+    /// spectrum.</param>
+    public static RecoveryResult Run(CameraCapture capture, RecoveryMethod method, TrainingSet training, bool[]? whiteMask = null,
+        string? whiteDescription = null,
         (double Lo, double Hi)? metricRange = null, bool regions = true)
     {
         var scene = capture.Scene;
-        var truth = scene.Aovs.Reflectance ?? throw new InputException(scene.Folder.Path, "has no ground-truth reflectance (reflectance.exr)", "render with --formats including aov");
+        var truth = scene.Aovs.Reflectance
+            ?? throw new InputException(scene.Folder.Path, "has no ground-truth reflectance (reflectance.exr)",
+                "render with --formats including aov");
         int c = capture.Sensor.ChannelCount, n = scene.Grid.Count, pixels = scene.Width * scene.Height;
         var model = capture.ForwardModel(training);
         if (whiteMask is not null)
@@ -64,7 +68,8 @@ public static class RecoveryEvaluation
                 if (recover is not null && !recover[i]) continue;
                 var signal = capture.Image.Rates.AsSpan(i * c, c);
                 // A pixel whose signal equals its left neighbour's (a flat patch without noise) gets the same estimate.
-                if (i > y * scene.Width && (recover is null || recover[i - 1]) && signal.SequenceEqual(capture.Image.Rates.AsSpan((i - 1) * c, c)))
+                if (i > y * scene.Width && (recover is null || recover[i - 1])
+                    && signal.SequenceEqual(capture.Image.Rates.AsSpan((i - 1) * c, c)))
                 {
                     cube.AsSpan((i - 1) * n, n).CopyTo(cube.AsSpan(i * n, n));
                     continue;
@@ -82,7 +87,8 @@ public static class RecoveryEvaluation
 
         var (first, bands) = BandsInside(scene.Grid, metricRange);
         (double Rmse, double Gfc, double D65, double A) Score(double[] est, double[] tru) =>
-            (SpectralMetrics.Rmse(est.AsSpan(first, bands), tru.AsSpan(first, bands)), SpectralMetrics.Gfc(est.AsSpan(first, bands), tru.AsSpan(first, bands)),
+            (SpectralMetrics.Rmse(est.AsSpan(first, bands), tru.AsSpan(first, bands)),
+                SpectralMetrics.Gfc(est.AsSpan(first, bands), tru.AsSpan(first, bands)),
              d65.DeltaE00(est, tru), illA.DeltaE00(est, tru));
 
         // Per pixel, by region.
@@ -107,8 +113,11 @@ public static class RecoveryEvaluation
             if (!medianCandidates.TryGetValue(key, out var list)) medianCandidates[key] = list = [];
             list.Add((s.Rmse, i));
         }
-        var rows = sums.OrderBy(kv => kv.Key == "all" ? 1 : 0).ThenBy(kv => Enum.TryParse<PixelRegion>(kv.Key, true, out var r) ? (int)r : 99)
-            .Select(kv => new RecoveryRow(name, kv.Key, kv.Value.N, kv.Value.R / kv.Value.N, kv.Value.G / kv.Value.N, kv.Value.D / kv.Value.N, kv.Value.A / kv.Value.N)).ToList();
+        var rows = sums.OrderBy(kv => kv.Key == "all" ? 1 : 0)
+            .ThenBy(kv => Enum.TryParse<PixelRegion>(kv.Key, true, out var r) ? (int)r : 99)
+            .Select(kv => new RecoveryRow(name, kv.Key, kv.Value.N, kv.Value.R / kv.Value.N, kv.Value.G / kv.Value.N,
+                kv.Value.D / kv.Value.N, kv.Value.A / kv.Value.N))
+            .ToList();
 
         var examples = new List<(string, double[], double[])>();
         if (scene.Patches.Count > 0)
@@ -131,7 +140,8 @@ public static class RecoveryEvaluation
                 list.Sort((x, y) => x.Rmse.CompareTo(y.Rmse));
                 int i = list[list.Count / 2].Pixel;
                 examples.Add(($"{key} ({i % scene.Width},{i / scene.Width})",
-                    Enumerable.Range(0, n).Select(b => (double)cube[i * n + b]).ToArray(), Enumerable.Range(0, n).Select(b => (double)truth.Data[i * n + b]).ToArray()));
+                    Enumerable.Range(0, n).Select(b => (double)cube[i * n + b]).ToArray(),
+                        Enumerable.Range(0, n).Select(b => (double)truth.Data[i * n + b]).ToArray()));
             }
         }
         return new RecoveryResult(method, estimator, cube, rows, examples, whiteDescription);
@@ -145,13 +155,19 @@ public static class RecoveryEvaluation
     /// of the pixels' estimates, so this is <see cref="Run"/>'s "colorchecker" row up to rounding, from 24 estimates
     /// instead of every patch pixel's; for wiener-local (nonlinear in the signal) it is the estimate of the patch's signal.
     /// </summary>
-    public static (double RmseAllBands, double RmseInRange, double DeltaE00D65) PatchMeanSignals(CameraCapture capture, SpectralEstimator estimator, (double Lo, double Hi) range)
+    public static (double RmseAllBands, double RmseInRange, double DeltaE00D65) PatchMeanSignals(CameraCapture capture,
+        SpectralEstimator estimator, (double Lo, double Hi) range)
     {
         var scene = capture.Scene;
-        var truth = scene.Aovs.Reflectance ?? throw new InputException(scene.Folder.Path, "has no ground-truth reflectance (reflectance.exr)", "render with --formats including aov");
-        if (scene.Patches.Count == 0) throw new InputException(scene.Folder.Path, "shows no ColorChecker patches", "render the §3.1 chart (scenes/paper-3.1-colorchecker-d65.json)");
+        var truth = scene.Aovs.Reflectance
+            ?? throw new InputException(scene.Folder.Path, "has no ground-truth reflectance (reflectance.exr)",
+                "render with --formats including aov");
+        if (scene.Patches.Count == 0)
+            throw new InputException(scene.Folder.Path, "shows no ColorChecker patches",
+                "render the §3.1 chart (scenes/paper-3.1-colorchecker-d65.json)");
         int c = capture.Sensor.ChannelCount, n = scene.Grid.Count;
-        var d65 = new ReflectanceDifference(new Colorimeter(scene.Grid, scene.Observer, SpectrumLibrary.Resolve("D65"), scene.Folder.Integration));
+        var d65 = new ReflectanceDifference(
+            new Colorimeter(scene.Grid, scene.Observer, SpectrumLibrary.Resolve("D65"), scene.Folder.Integration));
         var (first, bands) = BandsInside(scene.Grid, range);
         var mean = new double[c];
         var signal = new float[c];
@@ -197,7 +213,9 @@ public static class RecoveryEvaluation
     /// </summary>
     public static double PatchRmse(CameraScene scene, float[] cube, (double Lo, double Hi)? range)
     {
-        var truth = scene.Aovs.Reflectance ?? throw new InputException(scene.Folder.Path, "has no ground-truth reflectance (reflectance.exr)", "render with --formats including aov");
+        var truth = scene.Aovs.Reflectance
+            ?? throw new InputException(scene.Folder.Path, "has no ground-truth reflectance (reflectance.exr)",
+                "render with --formats including aov");
         int n = scene.Grid.Count;
         var (first, bands) = BandsInside(scene.Grid, range);
         double sr = 0;

@@ -55,7 +55,8 @@ public sealed class SpectralEstimator
         "tikhonov" => RecoveryMethod.Tikhonov,
         "wiener-local" => RecoveryMethod.WienerLocal,
         _ => throw new Diagnostics.InputException("--method", $"unknown method '{name}'",
-            Diagnostics.InputException.DidYouMean(name, ["pinv", "wiener", "linear", "tikhonov", "wiener-local", "all"]) ?? "pinv, wiener, linear, tikhonov, wiener-local or all"),
+            Diagnostics.InputException.DidYouMean(name, ["pinv", "wiener", "linear", "tikhonov", "wiener-local", "all"])
+                ?? "pinv, wiener, linear, tikhonov, wiener-local or all"),
     };
 
     public static string Name(RecoveryMethod m) => m == RecoveryMethod.WienerLocal ? "wiener-local" : m.ToString().ToLowerInvariant();

@@ -33,7 +33,8 @@ public sealed class TrainingSet
         if (named.Name is not null) path = DataDirectory.File_(named.File);
         else if (nameOrCsv.EndsWith(".csv", StringComparison.OrdinalIgnoreCase)) path = nameOrCsv;
         else throw new InputException("--training", $"unknown training set '{nameOrCsv}'",
-            InputException.DidYouMean(nameOrCsv, Named.Select(n => n.Name)) ?? $"one of {string.Join(", ", Named.Select(n => n.Name))}, or a CSV file");
+            InputException.DidYouMean(nameOrCsv, Named.Select(n => n.Name))
+                ?? $"one of {string.Join(", ", Named.Select(n => n.Name))}, or a CSV file");
         var table = SpectrumLibrary.Table(path);
         var samples = new List<double[]>();
         var spectra = new List<TabulatedSpectrum>();
@@ -45,7 +46,8 @@ public sealed class TrainingSet
             samples.Add(BandProjection.Means(s, grid).Select(v => Math.Max(0, v)).ToArray());
             spectra.Add(s);
         }
-        if (samples.Count < 2) throw new InputException(path, "a training set needs at least two reflectances", "list two or more reflectance spectra");
+        if (samples.Count < 2)
+            throw new InputException(path, "a training set needs at least two reflectances", "list two or more reflectance spectra");
         return new TrainingSet(named.Name ?? Path.GetFileNameWithoutExtension(path), samples.ToArray(), spectra.ToArray());
     }
 

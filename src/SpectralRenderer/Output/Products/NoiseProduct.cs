@@ -33,11 +33,14 @@ public sealed class NoiseProduct : OutputProduct
         done("noise.npy");
         var planes = Planes(noise, w * h, channels);
         var g = image.Grid;
-        var names = Enumerable.Range(0, g.Count).Select(b => FormattableString.Invariant($"stderr {g.Lower(b):0.###}-{g.Upper(b):0.###} nm"))
+        var names = Enumerable.Range(0, g.Count)
+            .Select(b => FormattableString.Invariant($"stderr {g.Lower(b):0.###}-{g.Upper(b):0.###} nm"))
             .Append("stderr luminance Y").ToList();
         EnviWriter.WritePlanes(Path.Combine(c.OutDir, "noise.img"), w, h, planes, names,
-            $"SpectralRenderer standard error of each pixel's mean from its samples (s/sqrt(n)) for {Path.GetFileName(c.Scene.SourcePath)}: " +
-            $"bands 1-{g.Count} in {RenderOutputWriter.RadianceUnit(c.Scene)}, band {channels} of luminance Y (as render.json radiometry.xyz states it)",
+            $"SpectralRenderer standard error of each pixel's mean from its samples (s/sqrt(n)) for "
+                + $"{Path.GetFileName(c.Scene.SourcePath)}: " +
+            $"bands 1-{g.Count} in {RenderOutputWriter.RadianceUnit(c.Scene)}, band {channels} of luminance Y (as "
+                + $"render.json radiometry.xyz states it)",
             new Dictionary<string, string> { ["radiometry"] = c.Scene.Radiometry.ToString().ToLowerInvariant() });
         done("noise.img");
         done("noise.hdr");
@@ -59,7 +62,8 @@ public sealed class NoiseProduct : OutputProduct
         var planes = Planes(noise, pixels, channels);
         var list = new List<(string, float[])>();
         for (int k = 0; k < channels; k++)
-            list.Add((ExrLayer + (k < scene.Bands ? ExrWriter.SpectralChannelName(scene.Grid.Centre(k)) : "Y"), planes.AsSpan(k * pixels, pixels).ToArray()));
+            list.Add((ExrLayer + (k < scene.Bands ? ExrWriter.SpectralChannelName(scene.Grid.Centre(k)) : "Y"),
+                planes.AsSpan(k * pixels, pixels).ToArray()));
         return list;
     }
 

@@ -79,7 +79,8 @@ public sealed class ProductContext
     public DisplayEncoder? Preview { get; init; }
     /// <summary>The integrator's per-light transfer (the lights product), or null.</summary>
     public ILightTransfer? Transfer { get; init; }
-    /// <summary>The render's ray queries and integrator, for products that trace rays of their own (photometry); null in a relight.</summary>
+    /// <summary>The render's ray queries and integrator, for products that trace rays of their own (photometry); null in a
+    /// relight.</summary>
     public RenderTracer? Tracer { get; init; }
     /// <summary>Files another folder holds exactly as this render would write them (relight): copied, not encoded.</summary>
     public ReusedFiles? Reuse { get; init; }

@@ -30,14 +30,17 @@ public sealed class PhotometryProduct : OutputProduct
     public static string Method(RenderTracer? tracer, Scene scene) => tracer is null
         ? "none: a relit render traces no rays (the channel holds 0); render the scene with --formats photometry"
         : tracer.Integrator is IGatherIntegrator
-            ? $"lights (shadow rays) + gather of {Illuminance.GatherRays(scene)} cosine-weighted path-traced rays (area lights, sky, interreflection), at the pixel-centre ray's first hit"
-            : "direct from every light (shadow rays), at the pixel-centre ray's first hit; no interreflection, ambient or emission (whitted)";
+            ? $"lights (shadow rays) + gather of {Illuminance.GatherRays(scene)} cosine-weighted path-traced rays (area lights, sky, "
+                + $"interreflection), at the pixel-centre ray's first hit"
+            : "direct from every light (shadow rays), at the pixel-centre ray's first hit; no "
+                + "interreflection, ambient or emission (whitted)";
 
     public override void Write(ProductContext c, int part, Action<string> done)
     {
         var scene = c.Scene;
         if (scene.Radiometry != Radiometry.Physical)
-            throw new Diagnostics.InputException("--formats", "photometry (cd/m², lx) needs physical radiometry", "add \"radiometry\": \"physical\" to the scene");
+            throw new Diagnostics.InputException("--formats", "photometry (cd/m², lx) needs physical radiometry",
+                "add \"radiometry\": \"physical\" to the scene");
         var crop = c.Result.Crop;
         var t = c.Tracer;
         var (luminance, illuminance) = new Illuminance(scene, t?.Geometry)
@@ -49,7 +52,8 @@ public sealed class PhotometryProduct : OutputProduct
             ["luminanceMethod"] = "K_m * integral of V(lambda) L(lambda), 683 lm/W, CIE 1924 V; mean over the pixel's samples",
             ["illuminanceMethod"] = Method(c.Tracer, scene),
         };
-        ExrChannelWriter.Write(Path.Combine(c.OutDir, Exr), crop.Width, crop.Height, [("illuminance", illuminance), ("luminance", luminance)],
+        ExrChannelWriter.Write(Path.Combine(c.OutDir, Exr), crop.Width, crop.Height,
+            [("illuminance", illuminance), ("luminance", luminance)],
             attributes, crop.X0, crop.Y0, scene.Camera.Width, scene.Camera.Height);
         done(Exr);
         WritePictures(c.OutDir, crop.Width, crop.Height, luminance, illuminance, done);
@@ -67,7 +71,8 @@ public sealed class PhotometryProduct : OutputProduct
             var rgb = scale.Rgb(values);
             AtomicFile.Write(Path.Combine(dir, $"{quantity}.png"), s => PngWriter.WriteRgb8(s, width, height, rgb));
             done($"{quantity}.png");
-            AtomicFile.WriteAllText(Path.Combine(dir, $"{quantity}-scale.svg"), scale.Legend($"colours of {quantity}.png; values in {Exr}"));
+            AtomicFile.WriteAllText(Path.Combine(dir, $"{quantity}-scale.svg"),
+                scale.Legend($"colours of {quantity}.png; values in {Exr}"));
             done($"{quantity}-scale.svg");
         }
     }

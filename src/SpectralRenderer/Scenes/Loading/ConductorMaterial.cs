@@ -49,7 +49,8 @@ public static class ConductorMaterial
             var name = s.String("conductor").Trim();
             if (!TryFind(name, out n, out k))
                 throw s.Error("conductor", $"unknown metal {Diagnostics.MessageText.Quote(name)}",
-                    $"built in: {string.Join(", ", Metals.Select(m => $"{m.Symbol} ({m.Names[0]})"))}; or give {{\"n\": spectrum, \"k\": spectrum}}");
+                    $"built in: {string.Join(", ", Metals.Select(m => $"{m.Symbol} ({m.Names[0]})"))}; or give "
+                        + $"{{\"n\": spectrum, \"k\": spectrum}}");
         }
         else
         {
@@ -62,7 +63,8 @@ public static class ConductorMaterial
         var kBands = s.Bands(k, "conductor");
         for (int i = 0; i < s.Grid.Count; i++)
             if (nBands[i] == 0 && kBands[i] == 0)
-                throw s.Error("conductor", $"n and k are both 0 in band {i} ({s.Grid.Lower(i):0.#}–{s.Grid.Upper(i):0.#} nm): that is no medium, not a metal",
+                throw s.Error("conductor",
+                    $"n and k are both 0 in band {i} ({s.Grid.Lower(i):0.#}–{s.Grid.Upper(i):0.#} nm): that is no medium, not a metal",
                     "give the metal's measured n and k (k > 0 absorbs), or name a built-in metal such as \"Au\"");
         var r0 = s.Zero();
         for (int i = 0; i < r0.Length; i++)
@@ -90,7 +92,8 @@ public static class ConductorMaterial
         if (!s.Has("roughness")) return 0;
         double alpha = s.Number("roughness", 0, double.MinValue, double.MaxValue);
         if (!(alpha >= 0 && alpha <= 1))
-            throw s.Error("roughness", $"roughness {alpha.ToString(System.Globalization.CultureInfo.InvariantCulture)} is out of range: GGX α lies in [0, 1]",
+            throw s.Error("roughness",
+                $"roughness {alpha.ToString(System.Globalization.CultureInfo.InvariantCulture)} is out of range: GGX α lies in [0, 1]",
                 "0 is a smooth surface, 0.05–0.3 a polished to brushed one, 1 the roughest");
         return (float)alpha;
     }

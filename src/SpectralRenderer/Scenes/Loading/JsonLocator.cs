@@ -71,7 +71,8 @@ public sealed class JsonLocator
                     else _offsets.TryAdd(path, reader.TokenStartIndex);
                 }
                 else if (path == find) { found = reader.TokenStartIndex; return; }
-                if (reader.TokenType == JsonTokenType.StartObject) stack.Push((false, 0, path, find is null ? new HashSet<string>(StringComparer.Ordinal) : null, bulk));
+                if (reader.TokenType == JsonTokenType.StartObject)
+                    stack.Push((false, 0, path, find is null ? new HashSet<string>(StringComparer.Ordinal) : null, bulk));
                 else if (reader.TokenType == JsonTokenType.StartArray) stack.Push((true, 0, path, null, bulk));
             }
         }

@@ -40,7 +40,8 @@ public static class LightTypes
     static readonly Dictionary<string, PhotometricKey> SpotPhotometry = new(StringComparer.Ordinal)
     {
         ["luminous_intensity"] = new("cd", _ => 1),
-        ["luminous_flux"] = new("lm", s => SpotSolidAngle(Math.Cos(s.Number("cutoff", 30, 0, 180) * Math.PI / 180), s.Number("exponent", 0, 0, 1e6))),
+        ["luminous_flux"] =
+            new("lm", s => SpotSolidAngle(Math.Cos(s.Number("cutoff", 30, 0, 180) * Math.PI / 180), s.Number("exponent", 0, 0, 1e6))),
     };
 
     // Directional: E_v in lx on a surface facing the light.
@@ -68,13 +69,15 @@ public static class LightTypes
         if (!s.Has("lamp_lumens")) return 1;
         double lumens = s.Number("lamp_lumens", 1, 0, 1e9);
         return File(s).LampLumens is { } rated ? lumens / rated
-            : throw s.Error("lamp_lumens", "the file has absolute photometry (lumens per lamp −1)", "its candela are the luminaire's: drop lamp_lumens, or scale with luminous_flux");
+            : throw s.Error("lamp_lumens", "the file has absolute photometry (lumens per lamp −1)",
+                "its candela are the luminaire's: drop lamp_lumens, or scale with luminous_flux");
     }
 
     static GoniometricLight Goniometric(SceneLoader.LightSource s)
     {
         if (s.Radiometry != Radiometry.Physical)
-            throw s.Error("type", "a goniometric light needs physical radiometry", "add \"radiometry\": \"physical\" to the scene: its file gives candela");
+            throw s.Error("type", "a goniometric light needs physical radiometry",
+                "add \"radiometry\": \"physical\" to the scene: its file gives candela");
         var file = File(s);
         var orientation = Matrix4x4.Identity;
         if (s.Has("rotate"))
@@ -119,10 +122,13 @@ public static class LightTypes
         else if (s.Has("look_at"))
         {
             var towards = s.Point("look_at") - position;
-            if (towards.LengthSquared() == 0) throw s.Error("look_at", "look_at equals position", "a spot light needs a direction to shine in");
+            if (towards.LengthSquared() == 0)
+                throw s.Error("look_at", "look_at equals position", "a spot light needs a direction to shine in");
             direction = Vector3.Normalize(towards);
         }
-        else throw s.Error("direction", "a spot light needs a direction or look_at", "e.g. \"direction\": [0, -1, 0] or \"look_at\": [0, 0, 0]");
+        else
+            throw s.Error("direction", "a spot light needs a direction or look_at",
+                "e.g. \"direction\": [0, -1, 0] or \"look_at\": [0, 0, 0]");
         return new SpotLight(s.Emission)
         {
             Position = position,

@@ -23,7 +23,9 @@ public static class PlasticMaterial
         var bands = s.Bands(rho, "diffuse");
         double eta = s.Number("ior", 1.5, double.MinValue, double.MaxValue);
         if (!(eta > 1 && eta <= 4))
-            throw s.Error("ior", $"a coat of index {eta.ToString(CultureInfo.InvariantCulture)} reflects nothing or is no dielectric: the coat's index lies in (1, 4]",
+            throw s.Error("ior",
+                $"a coat of index {eta.ToString(CultureInfo.InvariantCulture)} reflects nothing or is no dielectric: "
+                    + $"the coat's index lies in (1, 4]",
                 "plastics and varnishes are 1.4–1.6, e.g. \"ior\": 1.5");
         float alpha = ConductorMaterial.Roughness(s);
         var white = s.Bands(TabulatedSpectrum.Constant(1, "constant:1"), "ior");

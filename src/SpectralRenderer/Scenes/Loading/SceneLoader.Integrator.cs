@@ -19,7 +19,8 @@ public sealed partial class SceneLoader
         const string path = "$.integrator";
         if (e.ValueKind == JsonValueKind.String) return new IntegratorSettings(String(e, path).ToLowerInvariant());
         if (e.ValueKind != JsonValueKind.Object)
-            throw Error(path, $"expected a name or an object, found {Kind(e)}", "e.g. \"integrator\": \"path\" or { \"type\": \"path\", \"max_depth\": 8 }");
+            throw Error(path, $"expected a name or an object, found {Kind(e)}",
+                "e.g. \"integrator\": \"path\" or { \"type\": \"path\", \"max_depth\": 8 }");
         Keys(e, path, "type", "max_depth", "rr_depth", "spectral_grid", "sampler", "seed");
         var name = String(Required(e, "type", path), $"{path}.type").ToLowerInvariant();
         int maxDepth = Integer(e, "max_depth", path, -1, -1, 1_000_000);
@@ -61,15 +62,18 @@ public sealed partial class SceneLoader
         if (TryGet(e, "luminous_flux", out _))
         {
             if (_pendingTextures.ContainsKey($"{path}.spectrum"))
-                throw Error($"{path}.luminous_flux", "a textured emission is scaled by \"radiance\" or \"luminance\" (of the texture's mean), not by luminous_flux",
+                throw Error($"{path}.luminous_flux",
+                    "a textured emission is scaled by \"radiance\" or \"luminance\" (of the texture's mean), not by luminous_flux",
                     "give \"radiance\": k (the texels' multiplier) or \"luminance\": cd/m²");
             foreach (var other in new[] { "radiance", "luminance" })
                 if (TryGet(e, other, out _))
-                    throw Error($"{path}.luminous_flux", $"both {other} and luminous_flux are given", "give one: luminous_flux (lm) sets the radiance");
+                    throw Error($"{path}.luminous_flux", $"both {other} and luminous_flux are given",
+                        "give one: luminous_flux (lm) sets the radiance");
             double flux = Number(e, "luminous_flux", path, 0, 0);
             double luminous = Color.Photometry.Luminous(spectrum);
             if (!(luminous > 0))
-                throw Error($"{path}.spectrum", $"spectrum '{spectrum.Name}' emits no visible light (∫V·S dλ = 0), so luminous_flux cannot scale it",
+                throw Error($"{path}.spectrum",
+                    $"spectrum '{spectrum.Name}' emits no visible light (∫V·S dλ = 0), so luminous_flux cannot scale it",
                     "give \"radiance\" (radiometric) for an invisible emitter");
             _fluxEmissions.Add((materialPath, flux, luminous, spectrum, twoSided));
             return new Emission(Bands(spectrum, $"{path}.spectrum"), twoSided);   // scaled once the objects' area is known
@@ -150,11 +154,13 @@ public sealed partial class SceneLoader
     double? Luminance(JsonElement e, string path, Spectra.TabulatedSpectrum spectrum)
     {
         if (!TryGet(e, "luminance", out _)) return null;
-        if (TryGet(e, "radiance", out _)) throw Error($"{path}.luminance", "both radiance and luminance are given", "give one: luminance (cd/m²) sets the radiance");
+        if (TryGet(e, "radiance", out _))
+            throw Error($"{path}.luminance", "both radiance and luminance are given", "give one: luminance (cd/m²) sets the radiance");
         double value = Number(e, "luminance", path, 0, 0);
         double luminous = Color.Photometry.Luminous(spectrum);
         if (!(luminous > 0))
-            throw Error($"{path}.spectrum", $"spectrum '{spectrum.Name}' emits no visible light (∫V·S dλ = 0), so luminance cannot scale it",
+            throw Error($"{path}.spectrum",
+                $"spectrum '{spectrum.Name}' emits no visible light (∫V·S dλ = 0), so luminance cannot scale it",
                 "give \"radiance\" (radiometric) for an invisible emitter");
         return value / luminous;
     }
@@ -170,7 +176,8 @@ public sealed partial class SceneLoader
         if (bg.ValueKind != JsonValueKind.Object || !TryGet(bg, "luminance", out _)) return Bands(bg, path);
         Keys(bg, path, "spectrum", "luminance");
         if (_radiometry != Radiometry.Physical)
-            throw Error($"{path}.luminance", "luminance (cd/m²) needs physical radiometry", "add \"radiometry\": \"physical\" to the scene, or give the background as a spectrum");
+            throw Error($"{path}.luminance", "luminance (cd/m²) needs physical radiometry",
+                "add \"radiometry\": \"physical\" to the scene, or give the background as a spectrum");
         var spectrum = Spectrum(Required(bg, "spectrum", path), $"{path}.spectrum");
         return Bands(spectrum.Scaled(Luminance(bg, path, spectrum)!.Value), $"{path}.spectrum");
     }

@@ -48,28 +48,33 @@ public sealed partial class SceneLoader
     [MethodImpl(MethodImplOptions.NoOptimization)]
     JsonElement Object(JsonElement e, string path)
     {
-        if (e.ValueKind != JsonValueKind.Object) throw Error(path, $"expected an object, found {Kind(e)}", "write it as { \"key\": value, … }");
+        if (e.ValueKind != JsonValueKind.Object)
+            throw Error(path, $"expected an object, found {Kind(e)}", "write it as { \"key\": value, … }");
         return e;
     }
 
-    static bool TryGet(JsonElement obj, string name, out JsonElement value) => obj.TryGetProperty(name, out value) && value.ValueKind != JsonValueKind.Null;
+    static bool TryGet(JsonElement obj, string name, out JsonElement value) =>
+        obj.TryGetProperty(name, out value) && value.ValueKind != JsonValueKind.Null;
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
     JsonElement Required(JsonElement obj, string name, string path)
     {
-        if (!TryGet(obj, name, out var v)) throw Error($"{path}.{name}", $"missing required field '{name}'", "see docs/scene-format.md for the required fields");
+        if (!TryGet(obj, name, out var v))
+            throw Error($"{path}.{name}", $"missing required field '{name}'", "see docs/scene-format.md for the required fields");
         return v;
     }
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
     double Number(JsonElement e, string path, double min = -MaxMagnitude, double max = MaxMagnitude)
     {
-        if (e.ValueKind != JsonValueKind.Number) throw Error(path, $"expected a number, found {Kind(e)}", "write a plain number such as 1.5");
+        if (e.ValueKind != JsonValueKind.Number)
+            throw Error(path, $"expected a number, found {Kind(e)}", "write a plain number such as 1.5");
         double v = e.GetDouble();
         min = Math.Max(min, -MaxMagnitude);
         max = Math.Min(max, MaxMagnitude);
         if (!double.IsFinite(v) || v < min || v > max)
-            throw Error(path, $"{v.ToString(CultureInfo.InvariantCulture)} is out of range", $"expected {min.ToString(CultureInfo.InvariantCulture)} to {max.ToString(CultureInfo.InvariantCulture)}");
+            throw Error(path, $"{v.ToString(CultureInfo.InvariantCulture)} is out of range",
+                $"expected {min.ToString(CultureInfo.InvariantCulture)} to {max.ToString(CultureInfo.InvariantCulture)}");
         return v;
     }
 
@@ -81,7 +86,10 @@ public sealed partial class SceneLoader
     int Integer(JsonElement obj, string name, string path, int fallback, int min, int max)
     {
         if (!TryGet(obj, name, out var v)) return fallback;
-        if (v.ValueKind != JsonValueKind.Number || !v.TryGetInt32(out int i)) throw Error($"{path}.{name}", $"expected a whole number, found {(v.ValueKind == JsonValueKind.Number ? v.GetRawText() : Kind(v))}", "write an integer such as 4");
+        if (v.ValueKind != JsonValueKind.Number || !v.TryGetInt32(out int i))
+            throw Error($"{path}.{name}",
+                $"expected a whole number, found {(v.ValueKind == JsonValueKind.Number ? v.GetRawText() : Kind(v))}",
+                "write an integer such as 4");
         if (i < min || i > max) throw Error($"{path}.{name}", $"{i} is out of range", $"expected {min} to {max}");
         return i;
     }
@@ -97,7 +105,8 @@ public sealed partial class SceneLoader
     bool Bool(JsonElement obj, string name, string path, bool fallback)
     {
         if (!TryGet(obj, name, out var v)) return fallback;
-        if (v.ValueKind is not (JsonValueKind.True or JsonValueKind.False)) throw Error($"{path}.{name}", $"expected true or false, found {Kind(v)}", "write true or false without quotes");
+        if (v.ValueKind is not (JsonValueKind.True or JsonValueKind.False))
+            throw Error($"{path}.{name}", $"expected true or false, found {Kind(v)}", "write true or false without quotes");
         return v.GetBoolean();
     }
 
@@ -113,7 +122,8 @@ public sealed partial class SceneLoader
     {
         if (v.ValueKind != JsonValueKind.Array || v.GetArrayLength() != 3)
             throw Error(path, $"expected [x, y, z], found {Kind(v)}", "e.g. [0, 1, 5]");
-        return new Vector3((float)Number(v[0], $"{path}[0]", -MaxCoordinate, MaxCoordinate), (float)Number(v[1], $"{path}[1]", -MaxCoordinate, MaxCoordinate),
+        return new Vector3((float)Number(v[0], $"{path}[0]", -MaxCoordinate, MaxCoordinate),
+            (float)Number(v[1], $"{path}[1]", -MaxCoordinate, MaxCoordinate),
             (float)Number(v[2], $"{path}[2]", -MaxCoordinate, MaxCoordinate));
     }
 

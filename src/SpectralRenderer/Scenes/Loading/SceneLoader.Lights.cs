@@ -16,7 +16,8 @@ public sealed partial class SceneLoader
         var type = String(Required(e, "type", path), $"{path}.type").ToLowerInvariant();
         var names = LightTypes.ByName.Keys.ToArray();
         if (!LightTypes.ByName.TryGetValue(type, out var kind))
-            throw Error($"{path}.type", $"unknown light type '{type}'", InputException.DidYouMean(type, names) ?? $"use {string.Join(", ", names)}");
+            throw Error($"{path}.type", $"unknown light type '{type}'",
+                InputException.DidYouMean(type, names) ?? $"use {string.Join(", ", names)}");
         // Photometric keys are checked by ParsePhotometric, which names the ones this type takes.
         Keys(e, path, [.. LightTypes.CommonKeys, .. kind.Keys, .. LightTypes.PhotometricKeys]);
         var name = TryGet(e, "name", out var n) ? String(n, $"{path}.name") : $"light-{index}";
@@ -30,7 +31,8 @@ public sealed partial class SceneLoader
             bands[i] *= intensity;
             if (!(bands[i] <= MaxMagnitude))
                 throw Error(photometric is null ? $"{path}.intensity" : $"{path}.{photometric.Quantity}",
-                    $"intensity × spectrum is {bands[i]:g3} in band {i}, beyond {MaxMagnitude:g}", "lower the intensity or the spectrum's scale");
+                    $"intensity × spectrum is {bands[i]:g3} in band {i}, beyond {MaxMagnitude:g}",
+                        "lower the intensity or the spectrum's scale");
         }
         _spectra[bands] = spectrum.Scaled(intensity);
         var ambient = OptionalBands(e, "ambient", path);
@@ -38,11 +40,14 @@ public sealed partial class SceneLoader
         var falloff = _radiometry == Radiometry.Physical ? new DistanceFalloff(0, 0, 1) : DistanceFalloff.None;
         if (TryGet(e, "attenuation", out var att))
         {
-            if (att.ValueKind != JsonValueKind.Array || att.GetArrayLength() != 3) throw Error($"{path}.attenuation", "expected [c0, c1, c2] with d = 1/(c0 + c1·r + c2·r²)", "e.g. \"attenuation\": [1, 0, 0.1]");
+            if (att.ValueKind != JsonValueKind.Array || att.GetArrayLength() != 3)
+                throw Error($"{path}.attenuation", "expected [c0, c1, c2] with d = 1/(c0 + c1·r + c2·r²)",
+                    "e.g. \"attenuation\": [1, 0, 0.1]");
             float c0 = (float)Number(att[0], $"{path}.attenuation[0]", 0);
             float c1 = (float)Number(att[1], $"{path}.attenuation[1]", 0);
             float c2 = (float)Number(att[2], $"{path}.attenuation[2]", 0);
-            if (c0 + c1 + c2 <= 0) throw Error($"{path}.attenuation", "all attenuation coefficients are zero", "use [1, 0, 0] for no attenuation");
+            if (c0 + c1 + c2 <= 0)
+                throw Error($"{path}.attenuation", "all attenuation coefficients are zero", "use [1, 0, 0] for no attenuation");
             falloff = new DistanceFalloff(c0, c1, c2);
         }
         keys.Intensity = bands;
@@ -67,7 +72,9 @@ public sealed partial class SceneLoader
             var accepted = kind.Photometric ?? new Dictionary<string, PhotometricKey>();
             if (!accepted.ContainsKey(k))
                 throw Error($"{path}.{k}", $"a {type} light takes no {k}",
-                    accepted.Count == 0 ? "give its strength as \"intensity\"" : $"use {string.Join(" or ", accepted.Select(a => $"{a.Key} ({a.Value.Unit})"))}");
+                    accepted.Count == 0
+                        ? "give its strength as \"intensity\""
+                        : $"use {string.Join(" or ", accepted.Select(a => $"{a.Key} ({a.Value.Unit})"))}");
             if (_radiometry != Radiometry.Physical)
                 throw Error($"{path}.{k}", $"{k} needs physical radiometry (paper radiometry has relative units)",
                     "add \"radiometry\": \"physical\" to the scene, or give the light a relative \"intensity\"");
@@ -133,7 +140,9 @@ public sealed partial class SceneLoader
         {
             var name = _loader.String(_loader.Required(_e, key, _path), $"{_path}.{key}");
             var full = System.IO.Path.IsPathRooted(name) ? name : System.IO.Path.Combine(_loader._dir, name);
-            if (!File.Exists(full)) throw Error(key, $"{what} {Diagnostics.MessageText.Quote(name, 80)} not found", "a relative path starts at the scene's folder");
+            if (!File.Exists(full))
+                throw Error(key, $"{what} {Diagnostics.MessageText.Quote(name, 80)} not found",
+                    "a relative path starts at the scene's folder");
             return (full, InputFile.ReadAllText(full, what));
         }
         /// <summary>A required point [x, y, z].</summary>

@@ -62,21 +62,26 @@ public sealed partial class SceneLoader
                 Keys(iorE, $"{path}.ior", "cauchy", "sellmeier");
                 bool cauchy = TryGet(iorE, "cauchy", out var c), sellmeier = TryGet(iorE, "sellmeier", out var s);
                 if (cauchy == sellmeier)
-                    throw Error($"{path}.ior", cauchy ? "both \"cauchy\" and \"sellmeier\": give one dispersion formula" : "expected \"cauchy\" or \"sellmeier\"",
+                    throw Error($"{path}.ior",
+                        cauchy ? "both \"cauchy\" and \"sellmeier\": give one dispersion formula" : "expected \"cauchy\" or \"sellmeier\"",
                         "e.g. \"ior\": {\"cauchy\": [1.5, 4200]}");
                 Func<double, double> n;
                 if (cauchy)
                 {
-                    if (c.ValueKind != JsonValueKind.Array || c.GetArrayLength() != 2) throw Error($"{path}.ior.cauchy", "expected [A, B] with n(λ) = A + B/λ², λ in nm (B in nm²)", "e.g. \"ior\": {\"cauchy\": [1.5, 4200]}");
+                    if (c.ValueKind != JsonValueKind.Array || c.GetArrayLength() != 2)
+                        throw Error($"{path}.ior.cauchy", "expected [A, B] with n(λ) = A + B/λ², λ in nm (B in nm²)",
+                            "e.g. \"ior\": {\"cauchy\": [1.5, 4200]}");
                     double a = Number(c[0], $"{path}.ior.cauchy[0]", 1e-3, 100), b = Number(c[1], $"{path}.ior.cauchy[1]", -1e7, 1e7);
                     n = l => RefractiveIndex.Cauchy(a, b, l);
                     dispersive = b != 0 && _grid.Count > 1;
                 }
                 else
                 {
-                    const string Example = "e.g. Schott N-BK7: {\"B1\": 1.03961212, \"B2\": 0.231792344, \"B3\": 1.01046945, \"C1\": 0.00600069867, \"C2\": 0.0200179144, \"C3\": 103.560653}";
+                    const string Example = "e.g. Schott N-BK7: {\"B1\": 1.03961212, \"B2\": 0.231792344, \"B3\": 1.01046945, \"C1\": "
+                        + "0.00600069867, \"C2\": 0.0200179144, \"C3\": 103.560653}";
                     string sp = $"{path}.ior.sellmeier";
-                    if (s.ValueKind != JsonValueKind.Object) throw Error(sp, $"expected an object of B1, B2, B3 and C1, C2, C3 (C in µm²), found {Kind(s)}", Example);
+                    if (s.ValueKind != JsonValueKind.Object)
+                        throw Error(sp, $"expected an object of B1, B2, B3 and C1, C2, C3 (C in µm²), found {Kind(s)}", Example);
                     Keys(s, sp, "B1", "B2", "B3", "C1", "C2", "C3");
                     var bs = new double[3];
                     var cs = new double[3];
@@ -92,14 +97,19 @@ public sealed partial class SceneLoader
                 {
                     double v = n(_grid.Centre(i));
                     if (!(v >= 1e-3 && v <= 100))
-                        throw Error($"{path}.ior", string.Create(CultureInfo.InvariantCulture, $"the index of refraction is {v:0.####} at {_grid.Centre(i):0.###} nm (band {i + 1}): outside 0.001–100 (a Sellmeier resonance C_i = λ² in µm² inside the bands?)"),
+                        throw Error($"{path}.ior",
+                            string.Create(CultureInfo.InvariantCulture,
+                                $"the index of refraction is {v:0.####} at {_grid.Centre(i):0.###} nm (band {i + 1}): outside 0.001–100 (a "
+                                    + $"Sellmeier resonance C_i = λ² in µm² inside the bands?)"),
                             "check the coefficients' units: Cauchy B in nm², Sellmeier C_i in µm²");
                     ior[i] = (float)v;
                 }
                 if (sellmeier)
                     for (int i = 1; i < _grid.Count; i++) dispersive |= ior[i] != ior[0];
             }
-            else throw Error($"{path}.ior", $"expected a number or {{\"cauchy\": [A, B]}} or {{\"sellmeier\": {{…}}}}, found {Kind(iorE)}", "e.g. \"ior\": 1.5");
+            else
+                throw Error($"{path}.ior", $"expected a number or {{\"cauchy\": [A, B]}} or {{\"sellmeier\": {{…}}}}, found {Kind(iorE)}",
+                    "e.g. \"ior\": 1.5");
         }
         return (ior, dispersive);
     }
@@ -116,13 +126,16 @@ public sealed partial class SceneLoader
         var (min, max) = s.Range(_grid.Start, _grid.End);
         var inv = CultureInfo.InvariantCulture;
         if (max >= 2)
-            throw Error(path, $"reflectance '{s.Name}' reaches {max.ToString("0.###", inv)} over {_grid.Start:0.###}–{_grid.End:0.###} nm: a reflectance cannot exceed 1 (this looks like percent)",
+            throw Error(path,
+                $"reflectance '{s.Name}' reaches {max.ToString("0.###", inv)} over {_grid.Start:0.###}–{_grid.End:0.###} nm: a reflectance "
+                    + $"cannot exceed 1 (this looks like percent)",
                 $"give the spectrum as an object with \"scale\": 0.01, e.g. {{ \"csv\": \"…\", \"column\": \"…\", \"scale\": 0.01 }}");
         if (min < -1e-9)
             throw Error(path, $"reflectance '{s.Name}' goes down to {min.ToString("G4", inv)}: a reflectance cannot be negative",
                 "fix the table (noise below zero should be clipped to 0 before use)");
         if (max > 1)
-            _warnings.Add($"{Where(path)}: warning: reflectance '{s.Name}' reaches {max.ToString("0.###", inv)} > 1 (a reflectance factor of a fluorescent or glossy sample?); rendered as given");
+            _warnings.Add($"{Where(path)}: warning: reflectance '{s.Name}' reaches {max.ToString("0.###", inv)} > 1 (a reflectance factor "
+                + $"of a fluorescent or glossy sample?); rendered as given");
         return s;
     }
 
@@ -150,13 +163,15 @@ public sealed partial class SceneLoader
         {
             var name = m.GetString()!;
             // A built-in spectrum name stands for a diffuse material of that reflectance.
-            if (name.StartsWith("colorchecker:", StringComparison.OrdinalIgnoreCase) || name.StartsWith("constant:", StringComparison.OrdinalIgnoreCase) || _namedSpectra.ContainsKey(name))
+            if (name.StartsWith("colorchecker:", StringComparison.OrdinalIgnoreCase)
+                || name.StartsWith("constant:", StringComparison.OrdinalIgnoreCase) || _namedSpectra.ContainsKey(name))
             {
                 materials.Add(ParseMaterial(m, $"{path}.material", name));
                 return materials.Count - 1;
             }
             throw Error($"{path}.material", $"unknown material '{name}'",
-                InputException.DidYouMean(name, materialIndex.Keys) ?? (materialIndex.Count > 0 ? $"materials: {string.Join(", ", materialIndex.Keys)}" : "define it under \"materials\""));
+                InputException.DidYouMean(name, materialIndex.Keys)
+                    ?? (materialIndex.Count > 0 ? $"materials: {string.Join(", ", materialIndex.Keys)}" : "define it under \"materials\""));
         }
         materials.Add(ParseMaterial(m, $"{path}.material", $"{path}.material"));
         return materials.Count - 1;
@@ -207,7 +222,8 @@ public sealed partial class SceneLoader
         public bool IsString(string key) => TryGet(_e, key, out var v) && v.ValueKind == JsonValueKind.String;
         /// <summary>A required non-negative spectrum that is not a reflectance (an optical constant such as n or k).</summary>
         public TabulatedSpectrum Spectrum(string key) => _loader.Spectrum(_loader.Required(_e, key, _path), $"{_path}.{key}");
-        /// <summary>A required object under <paramref name="key"/> with only the keys <paramref name="keys"/>, read as a source of its own.</summary>
+        /// <summary>A required object under <paramref name="key"/> with only the keys <paramref name="keys"/>, read as a source of its
+        /// own.</summary>
         public MaterialSource Object(string key, params string[] keys)
         {
             var o = _loader.Object(_loader.Required(_e, key, _path), $"{_path}.{key}");

@@ -30,7 +30,8 @@ public sealed partial class SceneLoader
                 !type.GetString()!.Equals("mesh", StringComparison.OrdinalIgnoreCase) ||
                 !o.TryGetProperty("file", out var f) || f.ValueKind != JsonValueKind.String) continue;
             var full = ModelSearch.Find(f.GetString()!, _dir, _overrides.ModelDirectories);
-            if (full is null || _meshReads.ContainsKey(full) || Path.GetExtension(full).ToLowerInvariant() is not (".obj" or ".ply")) continue;
+            if (full is null || _meshReads.ContainsKey(full) || Path.GetExtension(full).ToLowerInvariant() is not (".obj" or ".ply"))
+                continue;
             _meshReads[full] = Task.Run(() => ReadMesh(full));
         }
     }
@@ -42,7 +43,8 @@ public sealed partial class SceneLoader
     void AbandonMeshReads()
     {
         foreach (var read in _meshReads.Values)
-            read.ContinueWith(static t => _ = t.Exception, CancellationToken.None, TaskContinuationOptions.OnlyOnFaulted | TaskContinuationOptions.ExecuteSynchronously, TaskScheduler.Default);
+            read.ContinueWith(static t => _ = t.Exception, CancellationToken.None,
+                TaskContinuationOptions.OnlyOnFaulted | TaskContinuationOptions.ExecuteSynchronously, TaskScheduler.Default);
         _meshReads.Clear();
     }
 
@@ -56,13 +58,15 @@ public sealed partial class SceneLoader
             ?? throw Error($"{path}.file", $"mesh '{file}' not found in {ModelSearch.Describe(_dir, _overrides.ModelDirectories)}",
                 "get the meshes (README, 'Meshes'); pass --models DIR or set SPECTRAL_MODELS", InputProblem.MissingFile);
         var ext = Path.GetExtension(full).ToLowerInvariant();
-        if (ext is not (".obj" or ".ply")) throw Error($"{path}.file", $"'{file}' is neither .obj nor .ply", "meshes are Wavefront .obj or Stanford .ply files");
+        if (ext is not (".obj" or ".ply"))
+            throw Error($"{path}.file", $"'{file}' is neither .obj nor .ply", "meshes are Wavefront .obj or Stanford .ply files");
         // The read started with the scene (StartMeshReads); a second object on the same file reads it again,
         // since fitting and transforming change the mesh. Its errors surface here, as if read in place.
         TriangleMesh mesh = _meshReads.Remove(full, out var read) ? read.GetAwaiter().GetResult() : ReadMesh(full);
         var extent = mesh.Bounds.Extent;
         if (!(float.IsFinite(extent.X) && float.IsFinite(extent.Y) && float.IsFinite(extent.Z)))
-            throw Error($"{path}.file", $"the vertices of {MessageText.Quote(file)} span more than single precision holds (coordinates near ±3.4e38)",
+            throw Error($"{path}.file",
+                $"the vertices of {MessageText.Quote(file)} span more than single precision holds (coordinates near ±3.4e38)",
                 "check the mesh for stray vertices, or scale it down in a modelling tool");
         if (TryGet(e, "fit", out var fit))
         {
@@ -70,18 +74,22 @@ public sealed partial class SceneLoader
             Keys(fit, $"{path}.fit", "min", "max");
             var lo = Vec3(Required(fit, "min", $"{path}.fit"), $"{path}.fit.min");
             var hi = Vec3(Required(fit, "max", $"{path}.fit"), $"{path}.fit.max");
-            if (hi.X < lo.X || hi.Y < lo.Y || hi.Z < lo.Z) throw Error($"{path}.fit", "max is below min on some axis", "give fit.min below fit.max on every axis");
+            if (hi.X < lo.X || hi.Y < lo.Y || hi.Z < lo.Z)
+                throw Error($"{path}.fit", "max is below min on some axis", "give fit.min below fit.max on every axis");
             // The transform orients the mesh, then fit places it: the rotated (scaled, mirrored) mesh is what fills
             // the box, so a rotation never moves it out. A translation would be undone by the fit.
             if (TryGet(e, "transform", out var t) && TryGet(t, "translate", out _))
-                throw Error($"{path}.transform.translate", "has no effect with fit (the fit box places the mesh)", "move fit.min and fit.max instead, or drop fit");
+                throw Error($"{path}.transform.translate", "has no effect with fit (the fit box places the mesh)",
+                    "move fit.min and fit.max instead, or drop fit");
             if (!user.IsIdentity) mesh.Transform(user);
             mesh.Fit(lo, hi);
         }
         else if (!user.IsIdentity) mesh.Transform(user);
         var placed = mesh.Bounds;
         if (!(Within(placed.Min) && Within(placed.Max)))
-            throw Error(TryGet(e, "fit", out _) ? $"{path}.fit" : $"{path}.file", $"the placed mesh reaches [{placed.Min.X:g3}, {placed.Min.Y:g3}, {placed.Min.Z:g3}]–[{placed.Max.X:g3}, {placed.Max.Y:g3}, {placed.Max.Z:g3}], outside ±{MaxCoordinate:g}",
+            throw Error(TryGet(e, "fit", out _) ? $"{path}.fit" : $"{path}.file",
+                $"the placed mesh reaches [{placed.Min.X:g3}, {placed.Min.Y:g3}, {placed.Min.Z:g3}]–[{placed.Max.X:g3}, {placed.Max.Y:g3}, "
+                    + $"{placed.Max.Z:g3}], outside ±{MaxCoordinate:g}",
                 "use \"fit\" to place the mesh in a box, or a smaller \"transform\" scale");
         bool smooth = true;
         if (TryGet(e, "shading", out var sh))
@@ -98,7 +106,9 @@ public sealed partial class SceneLoader
             var other => throw Error($"{path}.normals", $"unknown normals '{other}'", "use file or computed"),
         };
         if (smooth && (mesh.Normals is null || recompute)) mesh.ComputeVertexNormals();
-        if (mesh.TriangleCount == 0) throw Error($"{path}.file", $"'{file}' has no triangles left after dropping {mesh.DegenerateCount} degenerate ones", "check the mesh: every triangle has zero area");
+        if (mesh.TriangleCount == 0)
+            throw Error($"{path}.file", $"'{file}' has no triangles left after dropping {mesh.DegenerateCount} degenerate ones",
+                "check the mesh: every triangle has zero area");
         return new SceneObject { Name = name, Material = material, Mesh = mesh, Smooth = smooth };
     }
 }

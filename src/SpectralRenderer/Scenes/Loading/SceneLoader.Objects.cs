@@ -13,7 +13,8 @@ public sealed partial class SceneLoader
     static readonly string[] ObjectTypes = ["sphere", "plane", "quad", "box", "mesh", "colorchecker"];
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
-    void ParseObject(JsonElement e, string path, int index, List<SceneObject> objects, List<Material> materials, Dictionary<string, int> materialIndex)
+    void ParseObject(JsonElement e, string path, int index, List<SceneObject> objects, List<Material> materials,
+        Dictionary<string, int> materialIndex)
     {
         Object(e, path);
         var type = String(Required(e, "type", path), $"{path}.type").ToLowerInvariant();
@@ -75,7 +76,9 @@ public sealed partial class SceneLoader
                     var size = Size2(e, path);
                     var normal = TryGet(e, "normal", out var nn) ? Direction(nn, $"{path}.normal") : Vector3.UnitZ;
                     var up = TryGet(e, "up", out var u) ? Direction(u, $"{path}.up") : Vector3.UnitY;
-                    local = Matrix4x4.CreateScale(size.X, size.Y, 1) * Basis(normal, up, axisIsY: false, path: $"{path}.up") * Matrix4x4.CreateTranslation(Vec3(e, "center", path, Vector3.Zero));
+                    local = Matrix4x4.CreateScale(size.X, size.Y, 1) * Basis(normal, up, axisIsY: false,
+                        path: $"{path}.up") * Matrix4x4.CreateTranslation(
+                        Vec3(e, "center", path, Vector3.Zero));
                     kind = ShapeKind.Quad;
                     break;
                 }
@@ -96,7 +99,9 @@ public sealed partial class SceneLoader
                         size = Vec3(e, "size", path, Vector3.One);
                     }
                     if (!(size.X >= MinSize && size.Y >= MinSize && size.Z >= MinSize))
-                        throw Error($"{path}.size", $"a box needs a size of at least {MinSize} on every axis, found [{size.X}, {size.Y}, {size.Z}]", "give size as [x, y, z] of positive numbers, or max above min");
+                        throw Error($"{path}.size",
+                            $"a box needs a size of at least {MinSize} on every axis, found [{size.X}, {size.Y}, {size.Z}]",
+                            "give size as [x, y, z] of positive numbers, or max above min");
                     local = Matrix4x4.CreateScale(size) * Matrix4x4.CreateTranslation(centre);
                     kind = ShapeKind.Box;
                     break;
@@ -143,16 +148,24 @@ public sealed partial class SceneLoader
     Vector2 Size2(JsonElement e, string path)
     {
         if (!TryGet(e, "size", out var s)) return Vector2.One;
-        if (s.ValueKind == JsonValueKind.Number) { float v = (float)Number(s, $"{path}.size", MinSize, MaxCoordinate); return new Vector2(v, v); }
-        if (s.ValueKind != JsonValueKind.Array || s.GetArrayLength() != 2) throw Error($"{path}.size", $"expected [width, height], found {Kind(s)}", "e.g. \"size\": [2, 1] or \"size\": 2");
-        return new Vector2((float)Number(s[0], $"{path}.size[0]", MinSize, MaxCoordinate), (float)Number(s[1], $"{path}.size[1]", MinSize, MaxCoordinate));
+        if (s.ValueKind == JsonValueKind.Number)
+        {
+            float v = (float)Number(s, $"{path}.size", MinSize, MaxCoordinate);
+            return new Vector2(v, v);
+        }
+        if (s.ValueKind != JsonValueKind.Array || s.GetArrayLength() != 2)
+            throw Error($"{path}.size", $"expected [width, height], found {Kind(s)}", "e.g. \"size\": [2, 1] or \"size\": 2");
+        return new Vector2((float)Number(s[0], $"{path}.size[0]", MinSize, MaxCoordinate),
+            (float)Number(s[1], $"{path}.size[1]", MinSize, MaxCoordinate));
     }
 
     /// <summary>The Macbeth chart as 24 quads, 4 rows × 6 columns in the standard order, on an optional black frame.</summary>
     [MethodImpl(MethodImplOptions.NoOptimization)]
     void ColorCheckerChart(JsonElement e, string path, string name, Matrix4x4 user, List<SceneObject> objects, List<Material> materials)
     {
-        if (TryGet(e, "material", out _)) throw Error($"{path}.material", "a colorchecker chooses its own materials (the 24 Ohta reflectances)", "remove 'material' from the colorchecker");
+        if (TryGet(e, "material", out _))
+            throw Error($"{path}.material", "a colorchecker chooses its own materials (the 24 Ohta reflectances)",
+                "remove 'material' from the colorchecker");
         float patch = (float)Number(e, "patch_size", path, 1, MinSize, MaxCoordinate);
         float gap = (float)Number(e, "gap", path, 0.2 * patch, 0, MaxCoordinate);
         var normal = TryGet(e, "normal", out var nn) ? Direction(nn, $"{path}.normal") : Vector3.UnitZ;
@@ -164,24 +177,39 @@ public sealed partial class SceneLoader
         {
             int row = (p - 1) / 6, col = (p - 1) % 6;
             var offset = new Vector3((col - 2.5f) * pitch, (1.5f - row) * pitch, 0);
-            var local = Matrix4x4.CreateScale(patch, patch, 1) * Matrix4x4.CreateTranslation(offset) * basis * Matrix4x4.CreateTranslation(centre);
+            var local =
+                Matrix4x4.CreateScale(patch, patch, 1) * Matrix4x4.CreateTranslation(offset) * basis * Matrix4x4.CreateTranslation(centre);
             var spectrum = ColorChecker.Patch(p);
             var bands = Bands(spectrum, $"{path} (patch {p})");
             materials.Add(DiffuseMaterial($"colorchecker:{p}", bands, spectrum));
-            objects.Add(new SceneObject { Name = $"{name}-{p:00}", Material = materials.Count - 1, Shape = new AnalyticShape(ShapeKind.Quad, local * user) });
+            objects.Add(new SceneObject
+            {
+                Name = $"{name}-{p:00}",
+                Material = materials.Count - 1,
+                Shape = new AnalyticShape(ShapeKind.Quad, local * user)
+            });
         }
         if (TryGet(e, "frame", out var frame) && !(frame.ValueKind == JsonValueKind.False))
         {
-            var spectrum = frame.ValueKind == JsonValueKind.True ? TabulatedSpectrum.Constant(0.03, "chart frame") : Spectrum(frame, $"{path}.frame");
+            var spectrum =
+                frame.ValueKind == JsonValueKind.True ? TabulatedSpectrum.Constant(0.03, "chart frame") : Spectrum(frame, $"{path}.frame");
             var bands = Bands(spectrum, $"{path}.frame");
             materials.Add(DiffuseMaterial($"{name}-frame", bands, spectrum));
             // Behind the patches by a hair, so the patches win at every pixel they cover.
-            var local = Matrix4x4.CreateScale(6 * pitch + gap, 4 * pitch + gap, 1) * Matrix4x4.CreateTranslation(0, 0, -1e-3f * pitch) * basis * Matrix4x4.CreateTranslation(centre);
-            objects.Add(new SceneObject { Name = $"{name}-frame", Material = materials.Count - 1, Shape = new AnalyticShape(ShapeKind.Quad, local * user) });
+            var local = Matrix4x4.CreateScale(6 * pitch + gap, 4 * pitch + gap, 1) * Matrix4x4.CreateTranslation(0, 0,
+                -1e-3f * pitch) * basis * Matrix4x4.CreateTranslation(
+                centre);
+            objects.Add(new SceneObject
+            {
+                Name = $"{name}-frame",
+                Material = materials.Count - 1,
+                Shape = new AnalyticShape(ShapeKind.Quad, local * user)
+            });
         }
     }
 
-    /// <summary>A rotation taking the canonical normal (+z, or +y for planes) to <paramref name="normal"/>, with its height axis towards <paramref name="up"/>.</summary>
+    /// <summary>A rotation taking the canonical normal (+z, or +y for planes) to <paramref name="normal"/>, with its height axis towards
+    /// <paramref name="up"/>.</summary>
     [MethodImpl(MethodImplOptions.NoOptimization)]
     Matrix4x4 Basis(Vector3 normal, Vector3 up, bool axisIsY, string? path = null)
     {
@@ -194,7 +222,8 @@ public sealed partial class SceneLoader
             return Rows(x, normal, z);
         }
         var xAxis = Vector3.Cross(up, normal);
-        if (xAxis.LengthSquared() < 1e-12f) throw Error(path ?? "$", "up is parallel to the normal", "choose an up vector across the surface");
+        if (xAxis.LengthSquared() < 1e-12f)
+            throw Error(path ?? "$", "up is parallel to the normal", "choose an up vector across the surface");
         xAxis = Vector3.Normalize(xAxis);
         var yAxis = Vector3.Cross(normal, xAxis);
         return Rows(xAxis, yAxis, normal);
@@ -207,7 +236,8 @@ public sealed partial class SceneLoader
         z.X, z.Y, z.Z, 0,
         0, 0, 0, 1);
 
-    /// <summary>{"translate": [x,y,z], "rotate": [rx,ry,rz] degrees about x then y then z, "scale": s | [sx,sy,sz]}: scale, then rotate, then translate.</summary>
+    /// <summary>{"translate": [x,y,z], "rotate": [rx,ry,rz] degrees about x then y then z, "scale": s | [sx,sy,sz]}: scale, then rotate,
+    /// then translate.</summary>
     [MethodImpl(MethodImplOptions.NoOptimization)]
     Matrix4x4 Transform(JsonElement e, string path)
     {
@@ -220,8 +250,10 @@ public sealed partial class SceneLoader
             else
             {
                 var v = Vec3(s, $"{path}.scale");
-                if (!(Math.Abs(v.X) >= MinSize && Math.Abs(v.Y) >= MinSize && Math.Abs(v.Z) >= MinSize) || Math.Abs(v.X) > 1 / MinSize || Math.Abs(v.Y) > 1 / MinSize || Math.Abs(v.Z) > 1 / MinSize)
-                    throw Error($"{path}.scale", "a zero or extreme scale flattens or explodes the object", $"use scales of magnitude {MinSize} to {1 / MinSize}");
+                if (!(Math.Abs(v.X) >= MinSize && Math.Abs(v.Y) >= MinSize && Math.Abs(v.Z) >= MinSize) || Math.Abs(v.X) > 1 / MinSize
+                    || Math.Abs(v.Y) > 1 / MinSize || Math.Abs(v.Z) > 1 / MinSize)
+                    throw Error($"{path}.scale", "a zero or extreme scale flattens or explodes the object",
+                        $"use scales of magnitude {MinSize} to {1 / MinSize}");
                 m *= Matrix4x4.CreateScale(v);
             }
         }

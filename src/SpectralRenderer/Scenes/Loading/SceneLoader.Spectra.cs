@@ -35,7 +35,8 @@ public sealed partial class SceneLoader
                         if (onPath >= 0)
                         {
                             var cycle = string.Join(" → ", _resolving.Skip(onPath).Append(name).Select(n => MessageText.Quote(n, 24)));
-                            throw Error(path, $"spectrum names refer to each other in a cycle: {cycle}", "a spectrum name must lead, through other names, to a value");
+                            throw Error(path, $"spectrum names refer to each other in a cycle: {cycle}",
+                                "a spectrum name must lead, through other names, to a value");
                         }
                         _resolving.Add(name);
                         try { s = Spectrum(named.Element, named.Path); }
@@ -61,8 +62,11 @@ public sealed partial class SceneLoader
             case JsonValueKind.Object:
                 {
                     Keys(e, path, "name", "csv", "column", "values", "constant", "scale", "extrapolate");
-                    int given = (TryGet(e, "name", out _) ? 1 : 0) + (TryGet(e, "csv", out _) ? 1 : 0) + (TryGet(e, "values", out _) ? 1 : 0) + (TryGet(e, "constant", out _) ? 1 : 0);
-                    if (given != 1) throw Error(path, "a spectrum object needs exactly one of name, csv (+ column), values, constant", "e.g. {\"name\": \"D65\", \"scale\": 2}");
+                    int given = (TryGet(e, "name", out _) ? 1 : 0) + (TryGet(e, "csv", out _) ? 1 : 0)
+                        + (TryGet(e, "values", out _) ? 1 : 0) + (TryGet(e, "constant", out _) ? 1 : 0);
+                    if (given != 1)
+                        throw Error(path, "a spectrum object needs exactly one of name, csv (+ column), values, constant",
+                            "e.g. {\"name\": \"D65\", \"scale\": 2}");
                     if (TryGet(e, "name", out var n)) s = Spectrum(n, $"{path}.name");
                     else if (TryGet(e, "values", out var v)) s = Inline(v, $"{path}.values");
                     else if (TryGet(e, "constant", out var c)) s = TabulatedSpectrum.Constant(Number(c, $"{path}.constant", 0));
@@ -87,7 +91,8 @@ public sealed partial class SceneLoader
                     break;
                 }
             default:
-                throw Error(path, $"expected a spectrum (a name, a number, [[λ, v], …] or an object), found {Kind(e)}", "e.g. \"D65\", 0.5, [[400, 0.1], [700, 0.9]] or {\"csv\": \"f.csv\", \"column\": \"r\"}");
+                throw Error(path, $"expected a spectrum (a name, a number, [[λ, v], …] or an object), found {Kind(e)}",
+                    "e.g. \"D65\", 0.5, [[400, 0.1], [700, 0.9]] or {\"csv\": \"f.csv\", \"column\": \"r\"}");
         }
         return s;
     }
@@ -95,7 +100,8 @@ public sealed partial class SceneLoader
     [MethodImpl(MethodImplOptions.NoOptimization)]
     TabulatedSpectrum Inline(JsonElement e, string path)
     {
-        if (e.ValueKind != JsonValueKind.Array) throw Error(path, $"expected inline pairs [[λ, v], …], found {Kind(e)}", "e.g. [[400, 0.1], [700, 0.9]]");
+        if (e.ValueKind != JsonValueKind.Array)
+            throw Error(path, $"expected inline pairs [[λ, v], …], found {Kind(e)}", "e.g. [[400, 0.1], [700, 0.9]]");
         int n = e.GetArrayLength();
         if (n < 2) throw Error(path, "an inline spectrum needs at least two [λ, v] pairs", "e.g. [[400, 0.1], [700, 0.9]]");
         var wl = new double[n];
@@ -106,11 +112,18 @@ public sealed partial class SceneLoader
         {
             i++;
             string p = $"{path}[{i}]";
-            if (pair.ValueKind != JsonValueKind.Array || pair.GetArrayLength() != 2) throw Error(p, $"expected a pair [wavelength_nm, value], found {Kind(pair)}", "e.g. [550, 0.4]");
+            if (pair.ValueKind != JsonValueKind.Array || pair.GetArrayLength() != 2)
+                throw Error(p, $"expected a pair [wavelength_nm, value], found {Kind(pair)}", "e.g. [550, 0.4]");
             wl[i] = Number(pair[0], $"{p}[0]", 1e-9);
             v[i] = Number(pair[1], $"{p}[1]");
-            if (v[i] < 0) throw Error($"{p}[1]", $"negative value {v[i].ToString(CultureInfo.InvariantCulture)}", "reflectances and powers cannot be negative");
-            if (i > 0 && wl[i] <= wl[i - 1]) throw Error($"{p}[0]", $"wavelength {wl[i].ToString(CultureInfo.InvariantCulture)} nm does not follow {wl[i - 1].ToString(CultureInfo.InvariantCulture)} nm", "list the pairs in strictly ascending wavelength");
+            if (v[i] < 0)
+                throw Error($"{p}[1]", $"negative value {v[i].ToString(CultureInfo.InvariantCulture)}",
+                    "reflectances and powers cannot be negative");
+            if (i > 0 && wl[i] <= wl[i - 1])
+                throw Error($"{p}[0]",
+                    $"wavelength {wl[i].ToString(CultureInfo.InvariantCulture)} nm does not follow "
+                        + $"{wl[i - 1].ToString(CultureInfo.InvariantCulture)} nm",
+                    "list the pairs in strictly ascending wavelength");
         }
         return new TabulatedSpectrum($"inline@{path}", wl, v);
     }
@@ -122,12 +135,15 @@ public sealed partial class SceneLoader
     float[] Bands(TabulatedSpectrum s, string path)
     {
         if (!s.Covers(_grid.Start, _grid.End))
-            throw Error(path, $"spectrum '{s.Name}' covers {s.First:0.###}–{s.Last:0.###} nm but the bands need {_grid.Start:0.###}–{_grid.End:0.###} nm",
+            throw Error(path,
+                $"spectrum '{s.Name}' covers {s.First:0.###}–{s.Last:0.###} nm but the bands need {_grid.Start:0.###}–{_grid.End:0.###} nm",
                 "choose bands inside its range or give it \"extrapolate\": \"clamp\" or \"zero\"");
         var bands = SpectralMath.ToPadded(_colorimeter!.Project(s));
         for (int i = 0; i < _grid.Count; i++)
             if (!(Math.Abs(bands[i]) <= MaxMagnitude))
-                throw Error(path, $"spectrum {MessageText.Quote(s.Name)} is {bands[i]:g3} in band {i} ({_grid.Lower(i):0.#}–{_grid.Upper(i):0.#} nm), beyond {MaxMagnitude:g}",
+                throw Error(path,
+                    $"spectrum {MessageText.Quote(s.Name)} is {bands[i]:g3} in band {i} "
+                        + $"({_grid.Lower(i):0.#}–{_grid.Upper(i):0.#} nm), beyond {MaxMagnitude:g}",
                     "lower its values or its \"scale\"");
         _spectra[bands] = s;
         return bands;

@@ -39,24 +39,33 @@ public sealed partial class SceneLoader
         var (min, max, mean) = texture.Summary();
         var inv = CultureInfo.InvariantCulture;
         if (!float.IsFinite(min) || !float.IsFinite(max))
-            throw Error($"{path}.texture", $"texture {texture.Source} holds values that are not finite numbers", "write the texture again with finite reflectances");
+            throw Error($"{path}.texture", $"texture {texture.Source} holds values that are not finite numbers",
+                "write the texture again with finite reflectances");
         if (max >= 2 && !emission)
-            throw Error($"{path}.texture", $"texture {texture.Source} reaches {max.ToString("0.###", inv)}: a reflectance cannot exceed 1 (this looks like percent)", "add \"scale\": 0.01 to the texture object");
+            throw Error($"{path}.texture",
+                $"texture {texture.Source} reaches {max.ToString("0.###", inv)}: a reflectance cannot exceed 1 (this looks like percent)",
+                "add \"scale\": 0.01 to the texture object");
         if (min < -1e-6)
-            throw Error($"{path}.texture", $"texture {texture.Source} goes down to {min.ToString("G4", inv)}: {(emission ? "a radiance" : "a reflectance")} cannot be negative", "clip the texture's noise below zero to 0");
-        if (max > 1 && !emission) _warnings.Add($"{Where(path)}: warning: texture {texture.Source} reaches {max.ToString("0.###", inv)} > 1; rendered as given");
+            throw Error($"{path}.texture",
+                $"texture {texture.Source} goes down to {min.ToString("G4", inv)}: "
+                    + $"{(emission ? "a radiance" : "a reflectance")} cannot be negative",
+                "clip the texture's noise below zero to 0");
+        if (max > 1 && !emission)
+            _warnings.Add($"{Where(path)}: warning: texture {texture.Source} reaches {max.ToString("0.###", inv)} > 1; rendered as given");
         _pendingTextures[path] = new TextureBinding(texture, uv);
         return mean;
     }
 
-    /// <summary>The textures read for <paramref name="materialPath"/>'s "diffuse" and "specular" go onto the material made from them.</summary>
+    /// <summary>The textures read for <paramref name="materialPath"/>'s "diffuse" and "specular" go onto the material made from
+    /// them.</summary>
     void AttachTextures(Material material, string materialPath)
     {
         if (_pendingTextures.Remove($"{materialPath}.diffuse", out var binding)) material.DiffuseTexture = binding;
         if (_pendingTextures.Remove($"{materialPath}.specular", out binding)) material.SpecularTexture = binding;
     }
 
-    /// <summary>The texture read for an emission's "spectrum" at <paramref name="path"/>, its texels scaled by the emission's k, or null.</summary>
+    /// <summary>The texture read for an emission's "spectrum" at <paramref name="path"/>, its texels scaled by the emission's k, or
+    /// null.</summary>
     TextureBinding? EmissionTexture(string path, double k)
     {
         if (!_pendingTextures.Remove($"{path}.spectrum", out var binding)) return null;
@@ -71,7 +80,9 @@ public sealed partial class SceneLoader
         if (t.ValueKind == JsonValueKind.Array) return PngStack(t, e, path);
         var file = String(t, $"{path}.texture");
         if (file.Contains("{nm}", StringComparison.Ordinal)) return PngStack(t, e, path);
-        if (TryGet(e, "wavelengths", out _)) throw Error($"{path}.wavelengths", "\"wavelengths\" belongs to a stack of PNG bands", "name the bands as a list of files or a pattern with {nm}, or drop \"wavelengths\"");
+        if (TryGet(e, "wavelengths", out _))
+            throw Error($"{path}.wavelengths", "\"wavelengths\" belongs to a stack of PNG bands",
+                "name the bands as a list of files or a pattern with {nm}, or drop \"wavelengths\"");
         var full = TextureFile(file, $"{path}.texture");
         var ext = Path.GetExtension(full).ToLowerInvariant();
         try
@@ -98,13 +109,15 @@ public sealed partial class SceneLoader
         var stem = full[..^4];
         foreach (var ext in new[] { ".img", ".raw", ".bsq", ".bil", ".bip", ".dat", "" })
             if (File.Exists(stem + ext)) return stem + ext;
-        throw Error($"{path}.texture", $"ENVI header {full} has no image beside it", $"expected {Path.GetFileName(stem)}.img (or .raw, .bsq, .dat)");
+        throw Error($"{path}.texture", $"ENVI header {full} has no image beside it",
+            $"expected {Path.GetFileName(stem)}.img (or .raw, .bsq, .dat)");
     }
 
     string TextureFile(string file, string path)
     {
         var full = Path.GetFullPath(Path.Combine(_dir, file));
-        if (!File.Exists(full)) throw Error(path, $"texture file '{file}' not found (looked in {_dir})", "give the path relative to the scene file");
+        if (!File.Exists(full))
+            throw Error(path, $"texture file '{file}' not found (looked in {_dir})", "give the path relative to the scene file");
         return full;
     }
 
@@ -126,25 +139,31 @@ public sealed partial class SceneLoader
     {
         var wl = Required(e, "wavelengths", path);
         if (wl.ValueKind != JsonValueKind.Array || wl.GetArrayLength() < 2)
-            throw Error($"{path}.wavelengths", "expected a list of at least two wavelengths in nm, one per PNG band", "e.g. \"wavelengths\": [400, 410, 420]");
+            throw Error($"{path}.wavelengths", "expected a list of at least two wavelengths in nm, one per PNG band",
+                "e.g. \"wavelengths\": [400, 410, 420]");
         var wavelengths = new double[wl.GetArrayLength()];
         for (int i = 0; i < wavelengths.Length; i++)
         {
             wavelengths[i] = Number(wl[i], $"{path}.wavelengths[{i}]", 100, 5000);
-            if (i > 0 && !(wavelengths[i] > wavelengths[i - 1])) throw Error($"{path}.wavelengths[{i}]", "wavelengths must be strictly ascending", "list the bands from short to long wavelengths");
+            if (i > 0 && !(wavelengths[i] > wavelengths[i - 1]))
+                throw Error($"{path}.wavelengths[{i}]", "wavelengths must be strictly ascending",
+                    "list the bands from short to long wavelengths");
         }
         var files = new string[wavelengths.Length];
         if (t.ValueKind == JsonValueKind.Array)
         {
             if (t.GetArrayLength() != wavelengths.Length)
-                throw Error($"{path}.texture", $"{t.GetArrayLength()} PNG files for {wavelengths.Length} wavelengths", "give one file per wavelength");
+                throw Error($"{path}.texture", $"{t.GetArrayLength()} PNG files for {wavelengths.Length} wavelengths",
+                    "give one file per wavelength");
             for (int i = 0; i < files.Length; i++) files[i] = TextureFile(String(t[i], $"{path}.texture[{i}]"), $"{path}.texture[{i}]");
         }
         else
         {
             var pattern = String(t, $"{path}.texture");
             for (int i = 0; i < files.Length; i++)
-                files[i] = TextureFile(pattern.Replace("{nm}", wavelengths[i].ToString("0.###", CultureInfo.InvariantCulture), StringComparison.Ordinal), $"{path}.texture");
+                files[i] = TextureFile(
+                    pattern.Replace("{nm}", wavelengths[i].ToString("0.###", CultureInfo.InvariantCulture), StringComparison.Ordinal),
+                    $"{path}.texture");
         }
         // One band file at a time, each kept as its samples (2 bytes each, not a float cube); texels are made from them a block
         // of rows at a time (PngStackRows).
@@ -156,10 +175,13 @@ public sealed partial class SceneLoader
             PngImage png;
             try { png = PngReader.Read(files[b]); }
             catch (InputException ex) { throw Error($"{path}.texture", $"{ex.Where}: {ex.What}", ex.Hint); }
-            if (png.Channels != 1) throw Error($"{path}.texture", $"{files[b]} has {png.Channels} channels: a band of a PNG stack is one grey channel", "write each band as a greyscale PNG");
+            if (png.Channels != 1)
+                throw Error($"{path}.texture", $"{files[b]} has {png.Channels} channels: a band of a PNG stack is one grey channel",
+                    "write each band as a greyscale PNG");
             if (b == 0) { width = png.Width; height = png.Height; }
             else if (png.Width != width || png.Height != height)
-                throw Error($"{path}.texture", $"{files[b]} is {png.Width}×{png.Height}, the first band {width}×{height}", "every band of a stack has the same size");
+                throw Error($"{path}.texture", $"{files[b]} is {png.Width}×{png.Height}, the first band {width}×{height}",
+                    "every band of a stack has the same size");
             planes[b] = png.Samples;
             max[b] = (1 << png.BitDepth) - 1;
         }
@@ -173,7 +195,8 @@ public sealed partial class SceneLoader
     {
         var png = PngReader.Read(full);
         if (png.Channels != 3)
-            throw Error($"{path}.texture", $"{full} has {png.Channels} channel(s): an RGB texture is an sRGB PNG of three channels", "save the texture as RGB (no alpha), or give a spectral texture");
+            throw Error($"{path}.texture", $"{full} has {png.Channels} channel(s): an RGB texture is an sRGB PNG of three channels",
+                "save the texture as RGB (no alpha), or give a spectral texture");
         var uplift = Uplift.Value;
         int n = SigmoidUplift.Wavelengths.Length, texels = png.Width * png.Height, max = (1 << png.BitDepth) - 1;
         var values = new float[texels * n];
@@ -188,7 +211,8 @@ public sealed partial class SceneLoader
         return new SpectralTexture(full, png.Width, png.Height, SigmoidUplift.Wavelengths, values);
     }
 
-    /// <summary>"uv_transform": {"scale": s | [su, sv], "offset": [ou, ov], "rotation": degrees, "wrap": "repeat" | "clamp" | "mirror"}.</summary>
+    /// <summary>"uv_transform": {"scale": s | [su, sv], "offset": [ou, ov], "rotation": degrees, "wrap": "repeat" | "clamp" |
+    /// "mirror"}.</summary>
     [MethodImpl(MethodImplOptions.NoOptimization)]
     UvTransform UvTransformOf(JsonElement e, string path)
     {
@@ -196,8 +220,10 @@ public sealed partial class SceneLoader
         Keys(e, path, "scale", "offset", "rotation", "wrap");
         var scale = Vector2.One;
         if (TryGet(e, "scale", out var s))
-            scale = s.ValueKind == JsonValueKind.Number ? new Vector2((float)Number(s, $"{path}.scale", -1e6, 1e6)) : Pair(s, $"{path}.scale");
-        if (scale.X == 0 || scale.Y == 0) throw Error($"{path}.scale", "a zero scale squeezes the texture to a line", "use a non-zero scale, e.g. 2 to repeat it twice");
+            scale =
+                s.ValueKind == JsonValueKind.Number ? new Vector2((float)Number(s, $"{path}.scale", -1e6, 1e6)) : Pair(s, $"{path}.scale");
+        if (scale.X == 0 || scale.Y == 0)
+            throw Error($"{path}.scale", "a zero scale squeezes the texture to a line", "use a non-zero scale, e.g. 2 to repeat it twice");
         var offset = TryGet(e, "offset", out var o) ? Pair(o, $"{path}.offset") : Vector2.Zero;
         float rotation = (float)Number(e, "rotation", path, 0, -3600, 3600);
         var wrap = TextureWrap.Repeat;
@@ -210,7 +236,8 @@ public sealed partial class SceneLoader
                 "repeat" => TextureWrap.Repeat,
                 "clamp" => TextureWrap.Clamp,
                 "mirror" => TextureWrap.Mirror,
-                _ => throw Error($"{path}.wrap", $"unknown wrap '{name}'", InputException.DidYouMean(name, names) ?? "use repeat, clamp or mirror"),
+                _ => throw Error($"{path}.wrap", $"unknown wrap '{name}'",
+                    InputException.DidYouMean(name, names) ?? "use repeat, clamp or mirror"),
             };
         }
         return new UvTransform(scale, offset, rotation, wrap);
@@ -218,7 +245,8 @@ public sealed partial class SceneLoader
 
     Vector2 Pair(JsonElement e, string path)
     {
-        if (e.ValueKind != JsonValueKind.Array || e.GetArrayLength() != 2) throw Error(path, $"expected [u, v], found {Kind(e)}", "e.g. [2, 1]");
+        if (e.ValueKind != JsonValueKind.Array || e.GetArrayLength() != 2)
+            throw Error(path, $"expected [u, v], found {Kind(e)}", "e.g. [2, 1]");
         return new Vector2((float)Number(e[0], $"{path}[0]", -1e6, 1e6), (float)Number(e[1], $"{path}[1]", -1e6, 1e6));
     }
 }

@@ -83,7 +83,8 @@ public sealed partial class SceneLoader
         JsonDocument doc;
         try
         {
-            doc = JsonDocument.Parse(span.ToArray(), new JsonDocumentOptions { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true });
+            doc = JsonDocument.Parse(span.ToArray(),
+                new JsonDocumentOptions { CommentHandling = JsonCommentHandling.Skip, AllowTrailingCommas = true });
         }
         catch (JsonException e)
         {
@@ -101,20 +102,23 @@ public sealed partial class SceneLoader
             if (locator.Duplicate is { } dup)
             {
                 string key = dup.Path[(dup.Path.LastIndexOf('.') + 1)..];
-                throw new InputException($"{path}:{locator.Position(dup.Offset)}: {dup.Path}", $"key {MessageText.Quote(key)} appears a second time in this object",
+                throw new InputException($"{path}:{locator.Position(dup.Offset)}: {dup.Path}",
+                    $"key {MessageText.Quote(key)} appears a second time in this object",
                     "each key may appear once: remove or rename one of them");
             }
             var loader = new SceneLoader(path, locator, overrides ?? new SceneOverrides());
             try { return loader.Build(doc.RootElement); }
             catch (InsufficientExecutionStackException)
             {
-                throw new InputException(path, "the scene nests too deeply (spectrum names referring to names, thousands deep)", "refer to spectra by fewer levels of names");
+                throw new InputException(path, "the scene nests too deeply (spectrum names referring to names, thousands deep)",
+                    "refer to spectra by fewer levels of names");
             }
             finally { loader.AbandonMeshReads(); }
         }
     }
 
-    /// <summary>A scene file is UTF-8: any other encoding (Latin-1, UTF-16 without a byte order mark) is named at its first bad byte.</summary>
+    /// <summary>A scene file is UTF-8: any other encoding (Latin-1, UTF-16 without a byte order mark) is named at its first bad
+    /// byte.</summary>
     [MethodImpl(MethodImplOptions.NoOptimization)]
     static void CheckUtf8(ReadOnlySpan<byte> span, string path)
     {
@@ -136,7 +140,9 @@ public sealed partial class SceneLoader
 
     // ---- the scene ----------------------------------------------------------------------------
 
-    static readonly string[] TopKeys = ["name", "description", "bands", "wave", "integration", "radiometry", "observer", "white", "scaling", "spectra", "materials", "lights", "objects", "background", "sky", "ambient", "max_depth", "integrator", "min_ray_weight", "ray_budget", "camera", "output", "calculation_grids"];
+    static readonly string[] TopKeys = ["name", "description", "bands", "wave", "integration", "radiometry", "observer", "white", "scaling",
+        "spectra", "materials", "lights", "objects", "background", "sky", "ambient", "max_depth", "integrator", "min_ray_weight",
+        "ray_budget", "camera", "output", "calculation_grids"];
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
     Scene Build(JsonElement root)
@@ -148,7 +154,12 @@ public sealed partial class SceneLoader
         _grid = ParseBands(root);
         var integration = ParseIntegration(_overrides.Integration, root);
         var observer = TryGet(root, "observer", out var obs)
-            ? Observer.FromDegrees(obs.ValueKind == JsonValueKind.Number ? obs.GetRawText() : obs.ValueKind == JsonValueKind.String ? obs.GetString()! : "?", Where("$.observer"))
+            ? Observer.FromDegrees(obs.ValueKind == JsonValueKind.Number
+                ? obs.GetRawText()
+                : obs.ValueKind == JsonValueKind.String
+                ? obs.GetString()!
+                : "?",
+                Where("$.observer"))
             : Observer.Cie1931;
 
         if (TryGet(root, "spectra", out var spectra))
@@ -159,11 +170,14 @@ public sealed partial class SceneLoader
         TabulatedSpectrum white;
         if (TryGet(root, "white", out var w)) white = Spectrum(w, "$.white");
         else if (TryGet(root, "lights", out var ls) && ls.ValueKind == JsonValueKind.Array && ls.GetArrayLength() > 0 &&
-                 ls[0].ValueKind == JsonValueKind.Object && TryGet(ls[0], "spectrum", out var ls0)) white = Spectrum(ls0, "$.lights[0].spectrum");
+                 ls[0].ValueKind == JsonValueKind.Object && TryGet(ls[0], "spectrum", out var ls0)) white =
+                     Spectrum(ls0, "$.lights[0].spectrum");
         else white = SpectrumLibrary.Resolve("D65");
         string whitePath = TryGet(root, "white", out _) ? "$.white" : "$.lights[0].spectrum";
         if (!white.Covers(_grid.Start, _grid.End))
-            throw Error(whitePath, $"spectrum '{white.Name}' covers {white.First:0.###}–{white.Last:0.###} nm but the bands need {_grid.Start:0.###}–{_grid.End:0.###} nm",
+            throw Error(whitePath,
+                $"spectrum '{white.Name}' covers {white.First:0.###}–{white.Last:0.###} nm but the bands need "
+                    + $"{_grid.Start:0.###}–{_grid.End:0.###} nm",
                 "choose bands inside its range or give it \"extrapolate\": \"clamp\" or \"zero\"");
         bool absolute = false;
         if (TryGet(root, "scaling", out var scaling))
@@ -179,14 +193,16 @@ public sealed partial class SceneLoader
             {
                 "paper" => Radiometry.Paper,
                 "physical" => Radiometry.Physical,
-                var other => throw Error("$.radiometry", $"unknown radiometry '{other}'", "paper (eq. 2 as the paper writes it, relative units) or physical (W·sr⁻¹·nm⁻¹ lights, ρ/π, radiance out)"),
+                var other => throw Error("$.radiometry", $"unknown radiometry '{other}'",
+                    "paper (eq. 2 as the paper writes it, relative units) or physical (W·sr⁻¹·nm⁻¹ lights, ρ/π, radiance out)"),
             };
         // Relative κ gives a perfect white diffuser lit head-on by the reference white at unit intensity Y = 1 in both
         // radiometries: its radiance per unit irradiance is 1 (paper) or 1/π (physical).
         _colorimeter = new Colorimeter(_grid, observer, white, integration, absolute, _radiometry == Radiometry.Physical ? 1 / Math.PI : 1);
         // κ = 1 / Y(white): a white that is (nearly) dark in these bands makes every colour meaningless.
         if (!absolute && !(_colorimeter.Kappa > 0 && _colorimeter.Kappa < 1e12))
-            throw Error(whitePath, $"the reference white '{white.Name}' has no luminance over the bands {_grid}", "choose a white (or first light) that emits visible light inside the bands");
+            throw Error(whitePath, $"the reference white '{white.Name}' has no luminance over the bands {_grid}",
+                "choose a white (or first light) that emits visible light inside the bands");
 
         var camera = ParseCamera(Required(root, "camera", "$"), "$.camera");
         var materials = new List<Material>();
@@ -201,22 +217,32 @@ public sealed partial class SceneLoader
         var lights = new List<Light>();
         if (TryGet(root, "lights", out var lightArray))
         {
-            if (lightArray.ValueKind != JsonValueKind.Array) throw Error("$.lights", $"expected an array of lights, found {Kind(lightArray)}", "e.g. \"lights\": [{\"type\": \"point\", …}]");
+            if (lightArray.ValueKind != JsonValueKind.Array)
+                throw Error("$.lights", $"expected an array of lights, found {Kind(lightArray)}",
+                    "e.g. \"lights\": [{\"type\": \"point\", …}]");
             int i = 0;
             foreach (var l in lightArray.EnumerateArray()) { lights.Add(ParseLight(l, $"$.lights[{i}]", i)); i++; }
         }
 
         var objects = new List<SceneObject>();
         var objectsElement = Required(root, "objects", "$");
-        if (objectsElement.ValueKind != JsonValueKind.Array) throw Error("$.objects", $"expected an array of objects, found {Kind(objectsElement)}", "e.g. \"objects\": [{\"type\": \"sphere\", …}]");
+        if (objectsElement.ValueKind != JsonValueKind.Array)
+            throw Error("$.objects", $"expected an array of objects, found {Kind(objectsElement)}",
+                "e.g. \"objects\": [{\"type\": \"sphere\", …}]");
         {
             int i = 0;
-            foreach (var o in objectsElement.EnumerateArray()) { ParseObject(o, $"$.objects[{i}]", i, objects, materials, materialIndex); i++; }
+            foreach (var o in objectsElement.EnumerateArray())
+            {
+                ParseObject(o, $"$.objects[{i}]", i, objects, materials, materialIndex);
+                i++;
+            }
         }
         ScaleFluxEmission(materials, materialIndex, objects);
         var names = new HashSet<string>(StringComparer.Ordinal);
         foreach (var o in objects)
-            if (!names.Add(o.Name)) throw Error("$.objects", $"two objects are named '{o.Name}'", "object names must be unique (they label the object-id image)");
+            if (!names.Add(o.Name))
+                throw Error("$.objects", $"two objects are named '{o.Name}'",
+                    "object names must be unique (they label the object-id image)");
 
         var output = ParseOutput(root);
         var calculationGrids = ParseCalculationGrids(root);
@@ -229,7 +255,8 @@ public sealed partial class SceneLoader
         var background = TryGet(root, "background", out var bg) ? ParseBackground(bg) : new float[SpectralMath.Padded(_grid.Count)];
         if (TryGet(root, "sky", out var sky))
         {
-            if (TryGet(root, "background", out _)) throw Error("$.sky", "a scene gives both \"sky\" and \"background\"", "the sky is the background: keep one");
+            if (TryGet(root, "background", out _))
+                throw Error("$.sky", "a scene gives both \"sky\" and \"background\"", "the sky is the background: keep one");
             background = ParseSky(sky);
         }
         bool hasAmbient = TryGet(root, "ambient", out var amb);
@@ -276,13 +303,17 @@ public sealed partial class SceneLoader
             || materials.Any(m => m.Emission is { } e && SpectralMath.Any(e.Radiance));
         if (!lit)
         {
-            _warnings.Add($"{_file}: warning: the scene can only render black: {(lights.Count == 0 ? "it has no light" : "no light emits inside the bands " + _grid)}, no ambient light and a black background " +
+            _warnings.Add($"{_file}: warning: the scene can only render black: "
+                + $"{(lights.Count == 0 ? "it has no light" : "no light emits inside the bands " + _grid)}, no "
+                + $"ambient light and a black background " +
                 "(add a light with a spectrum and \"intensity\" > 0, an \"ambient\" or a \"background\")");
             return;
         }
-        bool reflects = objects.Any(o => materials[o.Material] is var m && (m.HasAmbient || SpectralMath.Any(m.Diffuse) || m.HasSpecular || m.HasMirror || m.HasTransmission));
+        bool reflects = objects.Any(o => materials[o.Material] is var m
+            && (m.HasAmbient || SpectralMath.Any(m.Diffuse) || m.HasSpecular || m.HasMirror || m.HasTransmission));
         if (!reflects)
-            _warnings.Add($"{_file}: warning: the scene can only render black: no object's material reflects or transmits light and the background is black");
+            _warnings.Add($"{_file}: warning: the scene can only render black: no object's material reflects or transmits "
+                + $"light and the background is black");
     }
 
     /// <summary>
@@ -299,7 +330,9 @@ public sealed partial class SceneLoader
             if (p.Name is "name" or "description")
             {
                 var text = String(p.Value, $"$.{p.Name}");
-                if (text.Length > MaxDescription) throw Error($"$.{p.Name}", $"is {text.Length} characters long, more than {MaxDescription}", "keep names and descriptions short; long notes belong in a file beside the scene");
+                if (text.Length > MaxDescription)
+                    throw Error($"$.{p.Name}", $"is {text.Length} characters long, more than {MaxDescription}",
+                        "keep names and descriptions short; long notes belong in a file beside the scene");
                 o[p.Name] = text;
                 continue;
             }
@@ -307,7 +340,8 @@ public sealed partial class SceneLoader
             {
                 var used = new JsonObject();
                 foreach (var s in p.Value.EnumerateObject())
-                    if (_resolvedNamed.ContainsKey(s.Name)) used[s.Name] = JsonNode.Parse(s.Value.GetRawText(), documentOptions: NodeOptions);
+                    if (_resolvedNamed.ContainsKey(s.Name))
+                        used[s.Name] = JsonNode.Parse(s.Value.GetRawText(), documentOptions: NodeOptions);
                 o[p.Name] = used;
                 continue;
             }
@@ -328,15 +362,19 @@ public sealed partial class SceneLoader
     BandGrid ParseBands(JsonElement root)
     {
         if (_overrides.Wave is not null && _overrides.Bands is not null)
-            throw new InputException("--wave", "--wave and --bands both give the bands", "use one: --wave 400:10:700 (centres) or --bands 395:705:31 (edges)");
+            throw new InputException("--wave", "--wave and --bands both give the bands",
+                "use one: --wave 400:10:700 (centres) or --bands 395:705:31 (edges)");
         if (_overrides.Wave is { } w) return BandGrid.ParseWave(w);
         if (_overrides.Bands is { } b) return BandGrid.Parse(b);
         bool hasBands = TryGet(root, "bands", out var bands), hasWave = TryGet(root, "wave", out var wave);
         if (hasBands && hasWave)
-            throw Error("$.wave", "the scene gives both \"bands\" and \"wave\"", "keep one: \"wave\": \"400:10:700\" (centres) or \"bands\": \"395:705:31\" (edges)");
+            throw Error("$.wave", "the scene gives both \"bands\" and \"wave\"",
+                "keep one: \"wave\": \"400:10:700\" (centres) or \"bands\": \"395:705:31\" (edges)");
         if (hasWave)
         {
-            if (wave.ValueKind != JsonValueKind.String) throw Error("$.wave", $"expected a string such as \"400:10:700\", found {Kind(wave)}", "give start:step:end in nm, e.g. \"400:10:700\"");
+            if (wave.ValueKind != JsonValueKind.String)
+                throw Error("$.wave", $"expected a string such as \"400:10:700\", found {Kind(wave)}",
+                    "give start:step:end in nm, e.g. \"400:10:700\"");
             return BandGrid.ParseWave(wave.GetString()!, Where("$.wave"));
         }
         return hasBands ? ParseGrid(bands, "$.bands") : BandGrid.Default;
@@ -345,7 +383,9 @@ public sealed partial class SceneLoader
     [MethodImpl(MethodImplOptions.NoOptimization)]
     BandGrid ParseGrid(JsonElement e, string path)
     {
-        if (e.ValueKind != JsonValueKind.String) throw Error(path, $"expected a string such as \"380:780:20\", found {Kind(e)}", "give start:end:count in nm, e.g. \"380:780:20\"");
+        if (e.ValueKind != JsonValueKind.String)
+            throw Error(path, $"expected a string such as \"380:780:20\", found {Kind(e)}",
+                "give start:end:count in nm, e.g. \"380:780:20\"");
         return BandGrid.Parse(e.GetString()!, Where(path));
     }
 
@@ -367,7 +407,9 @@ public sealed partial class SceneLoader
         long available = GC.GetGCMemoryInfo().TotalAvailableMemoryBytes;
         long elements = (long)camera.Width * camera.Height * _grid.Count;
         if (elements > Array.MaxLength || bytes > available / 2)
-            throw Error("$.camera", $"a {camera.Width}×{camera.Height} framebuffer of {_grid.Count} bands needs {Size(bytes)}, more than this machine can hold ({Size(available)} of memory)",
+            throw Error("$.camera",
+                $"a {camera.Width}×{camera.Height} framebuffer of {_grid.Count} bands needs {Size(bytes)}, more than this machine can "
+                    + $"hold ({Size(available)} of memory)",
                 "lower the width, height or band count");
     }
 
@@ -386,7 +428,8 @@ public sealed partial class SceneLoader
             if (TryGet(e, "exposure", out var ex) && ex.ValueKind == JsonValueKind.String)
             {
                 if (!string.Equals(ex.GetString(), "auto", StringComparison.OrdinalIgnoreCase))
-                    throw Error("$.output.exposure", $"unknown exposure '{ex.GetString()}'", "a number (XYZ multiplier) or \"auto\" (the 99th percentile of the brightest channel → 1)");
+                    throw Error("$.output.exposure", $"unknown exposure '{ex.GetString()}'",
+                        "a number (XYZ multiplier) or \"auto\" (the 99th percentile of the brightest channel → 1)");
                 o.ExposureAuto = true;
             }
             else o.Exposure = Number(e, "exposure", "$.output", 1.0, 0, 1e12);
@@ -395,21 +438,28 @@ public sealed partial class SceneLoader
                 {
                     "clip" => GamutMapping.Clip,
                     "desaturate" => GamutMapping.Desaturate,
-                    var other => throw Error("$.output.gamut", $"unknown gamut mapping '{other}'", "clip (per channel, colorimetric in gamut) or desaturate (toward white at constant luminance, then scale: keeps hue)"),
+                    var other => throw Error("$.output.gamut", $"unknown gamut mapping '{other}'",
+                        "clip (per channel, colorimetric in gamut) or desaturate (toward white at constant "
+                            + "luminance, then scale: keeps hue)"),
                 };
             o.Adapt = Bool(e, "adapt", "$.output", false);
             if (TryGet(e, "formats", out var f))
             {
-                if (f.ValueKind != JsonValueKind.Array) throw Error("$.output.formats", $"expected an array of format names, found {Kind(f)}", "e.g. \"formats\": [\"png\", \"exr\"]");
-                o.Products = ParseFormats(f.EnumerateArray().Select((x, i) => String(x, $"$.output.formats[{i}]")), Where("$.output.formats"));
+                if (f.ValueKind != JsonValueKind.Array)
+                    throw Error("$.output.formats", $"expected an array of format names, found {Kind(f)}",
+                        "e.g. \"formats\": [\"png\", \"exr\"]");
+                o.Products =
+                    ParseFormats(f.EnumerateArray().Select((x, i) => String(x, $"$.output.formats[{i}]")), Where("$.output.formats"));
             }
             // "light_groups": true adds the per-light transfer outputs (lights/) to the formats.
             if (Bool(e, "light_groups", "$.output", false)) o.Products |= OutputProducts.Lights;
-            if (TryGet(e, "exr_compression", out var c)) o.ExrCompression = ParseExrCompression(String(c, "$.output.exr_compression"), Where("$.output.exr_compression"));
+            if (TryGet(e, "exr_compression", out var c))
+                o.ExrCompression = ParseExrCompression(String(c, "$.output.exr_compression"), Where("$.output.exr_compression"));
         }
         if (_overrides.ExrCompression is { } ec) o.ExrCompression = ParseExrCompression(ec, "--exr-compression");
         if (_overrides.Rgb is { } r) o.Rgb = RgbSpace.Parse(r);
-        if (_overrides.Formats is { } fs) o.Products = ParseFormats(fs.Split(',', StringSplitOptions.RemoveEmptyEntries | StringSplitOptions.TrimEntries), "--formats");
+        if (_overrides.Formats is { } fs)
+            o.Products = ParseFormats(fs.Split(',', StringSplitOptions.RemoveEmptyEntries | StringSplitOptions.TrimEntries), "--formats");
         return o;
     }
 
@@ -419,7 +469,8 @@ public sealed partial class SceneLoader
         var n = name.ToLowerInvariant();
         foreach (var (choice, known) in OutputNames.ExrCompressions) if (known == n) return choice;
         throw new InputException(where, $"unknown EXR compression '{name}'",
-            InputException.DidYouMean(name, OutputNames.ExrCompressionNames) ?? "zip (deflate where samples repeat), zip-all (smallest file) or none");
+            InputException.DidYouMean(name, OutputNames.ExrCompressionNames)
+                ?? "zip (deflate where samples repeat), zip-all (smallest file) or none");
     }
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
@@ -433,7 +484,8 @@ public sealed partial class SceneLoader
             if (f == "all") { set |= OutputProducts.All; continue; }
             int i = Array.IndexOf(all, f);
             if (i < 0)
-                throw new InputException(where, $"unknown output format {MessageText.Quote(n)}", InputException.DidYouMean(n, all) ?? $"formats: {string.Join(", ", all)}, all");
+                throw new InputException(where, $"unknown output format {MessageText.Quote(n)}",
+                    InputException.DidYouMean(n, all) ?? $"formats: {string.Join(", ", all)}, all");
             set |= OutputNames.Products[i].Product;
         }
         if (set == OutputProducts.None)

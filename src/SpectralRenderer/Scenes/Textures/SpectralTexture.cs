@@ -35,10 +35,12 @@ public sealed class SpectralTexture
     readonly List<double> _factors = [];
 
     /// <param name="values">Texel-major: sample j of texel (x, y) at (y·width + x)·wavelengths.Length + j.</param>
-    public SpectralTexture(string source, int width, int height, double[] wavelengths, float[] values, Extrapolation extrapolation = Extrapolation.Clamp)
+    public SpectralTexture(string source, int width, int height, double[] wavelengths, float[] values,
+        Extrapolation extrapolation = Extrapolation.Clamp)
         : this(source, width, height, wavelengths, new TexelArray(values, width * wavelengths.Length), extrapolation)
     {
-        if ((long)width * height * wavelengths.Length != values.Length) throw new ArgumentException("values must hold width × height × wavelengths samples", nameof(values));
+        if ((long)width * height * wavelengths.Length != values.Length)
+            throw new ArgumentException("values must hold width × height × wavelengths samples", nameof(values));
     }
 
     /// <summary>A texture whose texels <paramref name="rows"/> reads.</summary>

@@ -3,7 +3,8 @@ using System.Runtime.CompilerServices;
 
 namespace SpectralRenderer.Scenes.Textures;
 
-/// <summary>How texel indices outside the image are brought back: tiled, held at the edge, or tiled with every other copy mirrored.</summary>
+/// <summary>How texel indices outside the image are brought back: tiled, held at the edge, or tiled with every other copy
+/// mirrored.</summary>
 public enum TextureWrap
 {
     Repeat,
