@@ -14,6 +14,10 @@
 #   bunny512b401   bunny 512², 401 bands (380:780:401): render median
 #   process512     one whole `spectral render` of the bunny at 512², all outputs, wall time (/usr/bin/time)
 #   peak1024       peak working set of `spectral bench` at bunny 1024² (MB; lower is better)
+#   pathbunny      the path tracer: the §3.4 bunny under a daylight sky (scenes/path-bunny-daylight-sky.json), 320×240,
+#                  16 spp: render median
+#   pathroom       the path tracer: the Cornell-like room with an area light (scenes/path-cornell-room.json), 320×240,
+#                  16 spp: render median
 # Every round runs each case once for each build; a bench case's figure is the render_s its `bench:` line
 # prints (the median of --repeat renders in that process), the figure of the case is the median over rounds.
 # Only ratios from one such run are fair figures: absolute times move with the machine's phase.
@@ -63,11 +67,13 @@ run_case() { # build case → one figure
         bunny512b401) "${run[@]}" bench "$S/paper-3.2-bunny-14.json" --width 512 --height 512 --bands 380:780:401 --repeat 5 | grep '^bench:' | field render_s ;;
         process512)   rm -rf "$out/r"; /usr/bin/time -f %e -o "$out/time" "${run[@]}" render "$S/paper-3.2-bunny-14.json" -o "$out/r" --width 512 --height 512 --quiet >/dev/null; cat "$out/time" ;;
         peak1024)     "${run[@]}" bench "$S/paper-3.2-bunny-14.json" --width 1024 --height 1024 --repeat 1 | grep '^bench:' | field peak_ws_mb ;;
+        pathbunny)    "${run[@]}" bench "$S/path-bunny-daylight-sky.json" --width 320 --height 240 --spp 16 --repeat 3 | grep '^bench:' | field render_s ;;
+        pathroom)     "${run[@]}" bench "$S/path-cornell-room.json" --width 320 --height 240 --spp 16 --repeat 3 | grep '^bench:' | field render_s ;;
     esac
 }
 
 # BENCH_CASES="peak1024 process512" runs only those cases.
-read -r -a cases <<< "${BENCH_CASES:-bunny1024 bunny512x16 igea1024 bunny512b401 process512 peak1024}"
+read -r -a cases <<< "${BENCH_CASES:-bunny1024 bunny512x16 igea1024 bunny512b401 process512 peak1024 pathbunny pathroom}"
 declare -A figures
 for ((r = 1; r <= rounds; r++)); do
     echo "round $r/$rounds" >&2
