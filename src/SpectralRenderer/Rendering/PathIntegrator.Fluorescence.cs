@@ -81,7 +81,7 @@ internal sealed partial class PathIntegrator
         var front = vertex.Front;
         wi = Bsdf.CosineHemisphere(front, u);
         pdf = 0;
-        float density = probability * SkyPdf(front, wi);
+        float density = probability * (MathF.Max(0, Vector3.Dot(front, wi)) / MathF.PI);   // cosine-weighted
         if (!(density > 0) || !FluorescentShift.Reflects(vertex.Wo, wi, vertex.Ns)) return false;
         float w = Vector3.Dot(front, wi) / density;
         var shift = vertex.Material.Shift!;

@@ -77,7 +77,7 @@ internal sealed partial class PathIntegrator
     /// <summary>The radiance a textured emitter sends from point <paramref name="x"/> (normal <paramref name="nx"/>) of
     /// <paramref name="face"/> along −<paramref name="wi"/>, seen from <paramref name="distance"/> away, into
     /// <paramref name="texel"/>.</summary>
-    ReadOnlySpan<float> EmittedAt(AreaEmitter emitter, int face, Vector3 x, Vector3 nx, Vector3 wi, float distance, Span<float> texel)
+    ReadOnlySpan<float> EmittedAt(Emitter emitter, int face, Vector3 x, Vector3 nx, Vector3 wi, float distance, Span<float> texel)
     {
         var uv = emitter.TexCoord(face, x, out float density);
         emitter.Texture!.Filter(uv, Footprint(distance, Vector3.Dot(nx, wi), density), texel);

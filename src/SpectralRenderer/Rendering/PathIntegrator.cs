@@ -32,15 +32,11 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
     readonly SceneGeometry _geometry;
     readonly FineGrid _grid;
     readonly int _maxDepth, _rrDepth, _padded;
-    readonly int[] _objectMaterial, _emitterOf;
+    readonly int[] _objectMaterial;
     readonly PathMaterial[] _materials;   // per scene material: what the walk reads of it (PathMaterial.cs)
     readonly Light[] _lights;
-    readonly float[][] _lightRadiance;
-    readonly AreaEmitter[] _emitters;
-    readonly float[]? _sky;
+    readonly EmitterSet _emitters;   // every light, emitting object and the sky, in one index space (Emitters/EmitterSet.cs)
     readonly float[] _background;
-    readonly int _lightCount;
-    readonly float _pick;   // P(light) of next-event estimation's uniform choice (0 without lights)
 
     public PathIntegrator(Scene scene, SceneGeometry geometry)
     {
@@ -62,30 +58,15 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         _fluoresces = _materials.Any(x => x.Shift is not null);
         _splitsShifts = _fluoresces && _materials.Any(x => x.Dispersive);
         _objectMaterial = scene.Objects.Select(o => o.Material).ToArray();
-        _emitterOf = new int[scene.Objects.Count];
-        var emitters = new List<AreaEmitter>();
-        for (int i = 0; i < scene.Objects.Count; i++)
-        {
-            _emitterOf[i] = -1;
-            var o = scene.Objects[i];
-            var material = _materials[o.Material];
-            if (material.Emission is { } radiance)
-            {
-                _emitterOf[i] = emitters.Count;
-                emitters.Add(new AreaEmitter(o, radiance, material.TwoSided, $"{where}: $.objects", material.EmissionTexture));
-            }
-        }
-        _emitters = [.. emitters];
+        _emitters = new EmitterSet(scene, _grid, _materials);
         _lights = [.. scene.Lights];
-        _lightRadiance = _lights.Select(l => _grid.Resample(l.Intensity)).ToArray();
-        _background = _grid.Resample(scene.Background);
-        _sky = Spectra.SpectralMath.Any(scene.Background) ? _background : null;
-        _lightCount = _lights.Length + _emitters.Length + (_sky is null ? 0 : 1);
-        _pick = _lightCount > 0 ? 1f / _lightCount : 0;
-        float[][] sources = [.. _lightRadiance, .. _emitters.Select(e => e.Radiance), .. _sky is null ? [] : new[] { _sky }];
-        foreach (var material in _materials) material.Shift?.Prepare(sources);
+        _background = _emitters.Background;
+        foreach (var material in _materials) material.Shift?.Prepare(_emitters.All.Select(e => e.Radiance));
         _textureBase = 5 * _padded + Math.Max(_padded, ShiftBase - 5 * _padded + ShiftScratch);
     }
+
+    /// <summary>The scene's emitters, one index space: scene lights, emitting objects, the sky (Emitters/EmitterSet.cs).</summary>
+    internal EmitterSet Emitters => _emitters;
 
     /// <summary>The sampler of its camera samples: Owen-scrambled Sobol unless the scene's "sampler" says otherwise.</summary>
     public SamplerSettings Sampler { get; }
@@ -252,10 +233,12 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
                 {
                     // The ray escapes: the sky (background) radiance, MIS-weighted against its own sampling.
                     if (depth == 0) sink.Emitted(beta, _background, 1);
-                    else if (_sky is not null)
+                    else if (_emitters.Sky is int s and >= 0)
                     {
-                        float w = deltaBounce ? 1 : PowerHeuristic(bsdfPdf, _pick * SkyPdf(previousFront, ray.Direction));
-                        sink.Emitted(beta, _sky, w);
+                        var sky = _emitters[s];
+                        float w = deltaBounce ? 1 : PowerHeuristic(bsdfPdf,
+                            _emitters.SelectionPdf(s) * sky.Pdf(previous, previousFront, ray.Direction, default, default));
+                        sink.Emitted(beta, sky.Radiance, w);
                     }
                     break;
                 }
@@ -263,14 +246,14 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
                 material = _materials[_objectMaterial[hit.Object]];
 
                 // Light the surface emits towards the ray (Le), MIS-weighted against next-event estimation of the same point.
-                if (material.Emission is { } le && (material.TwoSided || Vector3.Dot(hit.GeometricNormal, wo) > 0))
+                if (_emitters.OfObject(hit.Object) is int e and >= 0 && _emitters[e].Emitted(hit.GeometricNormal, wo) > 0)
                 {
+                    var emitter = _emitters[e];
                     float w = 1;
                     if (!deltaBounce)
-                    {
-                        int e = _emitterOf[hit.Object];
-                        w = PowerHeuristic(bsdfPdf, e >= 0 ? _pick * _emitters[e].Pdf(previous, hit.Position, hit.GeometricNormal) : 0);
-                    }
+                        w = PowerHeuristic(bsdfPdf, _emitters.SelectionPdf(e)
+                            * emitter.Pdf(previous, previousFront, ray.Direction, hit.Position, hit.GeometricNormal));
+                    var le = emitter.Radiance;
                     sink.Emitted(beta, _textured ? EmittedAt(material, le, in hit, wo, scratch) : le, w);
                 }
                 if (_maxDepth >= 0 && depth >= _maxDepth) break;
@@ -311,9 +294,9 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
             int dDirection = sampler.Reserve2D(), dRoulette = sampler.Reserve1D();
 
             // Next-event estimation: one light chosen uniformly, one point on it.
-            if ((material.Smooth || shiftShare > 0) && _lightCount > 0)
+            if ((material.Smooth || shiftShare > 0) && _emitters.Count > 0)
             {
-                float uLight = _lightCount > 1 ? sampler.At1D(dLight) : 0;   // one light: no choice
+                float uLight = _emitters.Count > 1 ? sampler.At1D(dLight) : 0;   // one light: no choice
                 var uPoint = sampler.At2D(dPoint);
                 NextEvent(ref sink, in vertex, uLight, new Vector2(uPoint.U, uPoint.V), smoothProbability, beta, f, ref counters);
             }
@@ -372,44 +355,22 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
     }
 
     /// <summary>
-    /// L += β·f·L_e·|cos θ|·w/(P(light)·p) for one light sample at <paramref name="vertex"/>: a delta light's (w = 1, p = 1,
-    /// its d_k·c_spot on I_k), an emitter's point, or a sky direction, each unshadowed.
+    /// L += β·f·L_e·|cos θ|·w/(P(k)·p) for one sample of emitter k of the set, chosen by <paramref name="uLight"/>, at
+    /// <paramref name="vertex"/>: a delta light's (w = 1, p = 1, its d_k·c_spot on I_k), an emitting object's point, or a sky
+    /// direction, each unshadowed.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     void NextEvent<TSink>(ref TSink sink, scoped in PathVertex vertex, float uLight, Vector2 u, float smoothProbability,
         Span<float> beta, Span<float> f, ref RayCounters counters) where TSink : IPathSink, allows ref struct
     {
         var p = vertex.P;
-        int k = Math.Min((int)(uLight * _lightCount), _lightCount - 1);
-        Vector3 wi;
-        float distance, factor, pdf;
-        bool delta;
-        ReadOnlySpan<float> radiance;
-        if (k < _lights.Length)
-        {
-            if (!_lights[k].Sample(p, u, out var inc)) return;
-            wi = inc.Direction; distance = inc.Distance; factor = inc.Factor; pdf = inc.Pdf; delta = inc.IsDelta;
-            radiance = _lightRadiance[k];
-        }
-        else if (k < _lights.Length + _emitters.Length)
-        {
-            var emitter = _emitters[k - _lights.Length];
-            if (!emitter.Sample(p, u, out var x, out var nx, out pdf, out int face)) return;
-            var d = x - p;
-            distance = d.Length();
-            if (!(distance > 0)) return;
-            wi = d / distance;
-            if (!emitter.Emits(nx, -wi)) return;
-            factor = 1; delta = false;
-            radiance = emitter.Texture is null ? emitter.Radiance : EmittedAt(emitter, face, x, nx, wi, distance, vertex.Texels.Emission);
-        }
-        else
-        {
-            wi = Bsdf.CosineHemisphere(vertex.Front, u);
-            pdf = SkyPdf(vertex.Front, wi);
-            distance = float.PositiveInfinity; factor = 1; delta = false;
-            radiance = _sky!;
-        }
+        int k = _emitters.Choose(uLight);
+        var emitter = _emitters[k];
+        if (!emitter.Sample(p, vertex.Front, u, out var sample)) return;
+        var wi = sample.Direction;
+        float distance = sample.Distance, factor = sample.Factor, pdf = sample.Pdf;
+        var radiance = emitter.Texture is null ? emitter.Radiance
+            : EmittedAt(emitter, sample.Face, sample.Point, sample.Normal, wi, distance, vertex.Texels.Emission);
         if (!(pdf > 0) || !(factor > 0)) return;
         var ns = vertex.Ns;
         var ng = vertex.Ng;
@@ -418,13 +379,14 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         Evaluate(bsdf, in vertex.Texels, vertex.Wo, wi, ns, f);
         counters.Shadow++;
         if (_geometry.OccludedScattered(ShadowRay(p, ng, wi, distance))) return;
-        float w = delta ? 1 : PowerHeuristic(_pick * pdf, smoothProbability * bsdf.Pdf(vertex.Wo, wi, ns));
-        sink.NextEvent(k < _lights.Length ? k : -1, beta, f, radiance, factor * cos * w / (_pick * pdf));
+        float pick = _emitters.SelectionPdf(k);
+        float w = sample.IsDelta ? 1 : PowerHeuristic(pick * pdf, smoothProbability * bsdf.Pdf(vertex.Wo, wi, ns));
+        sink.NextEvent(emitter.SceneLight, beta, f, radiance, factor * cos * w / (pick * pdf));
         // A fluorescent surface's shifted lobe: light sources excite it through this sample alone, weight 1 (a shifted bounce
         // of the continuation gives the sources it reaches weight 0 and carries only light from further bounces:
         // PathIntegrator.Fluorescence.cs).
         if (vertex.Material.Shift is { } shift && FluorescentShift.Reflects(vertex.Wo, wi, ns))
-            sink.Shifted(k < _lights.Length ? k : -1, shift, beta, radiance, factor * cos / (_pick * pdf));
+            sink.Shifted(emitter.SceneLight, shift, beta, radiance, factor * cos / (pick * pdf));
     }
 
     /// <summary>
@@ -443,10 +405,6 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         float length = towards.Length();
         return new Ray(origin, towards / length, length - 2 * _geometry.Epsilon);
     }
-
-    /// <summary>The sky's sampling density: cosine-weighted about the front shading normal.</summary>
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    static float SkyPdf(Vector3 front, Vector3 wi) => MathF.Max(0, Vector3.Dot(front, wi)) / MathF.PI;
 
     /// <summary>Veach's power heuristic (β = 2) for the strategy of density a against one of density b.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]

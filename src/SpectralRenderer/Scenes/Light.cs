@@ -63,37 +63,27 @@ public abstract class Light(LightEmission emission)
     /// <summary>The light as an isotropic point emitter that packets evaluate in SIMD lanes, or null when it is not one.</summary>
     public virtual PointEmitter? LaneForm => null;
 
-    // ---- sampling (docs: a light one new file; the defaults are a delta light's) ----------------------------
-
-    /// <summary>True for a light concentrated in a point or a direction (point, spot, directional): no ray can hit it.</summary>
-    public virtual bool IsDelta => true;
+    // ---- sampling: a scene light is a delta light --------------------------------------------------------------
 
     /// <summary>
-    /// One sample of the light seen from <paramref name="p"/> for the random numbers <paramref name="u"/> ∈ [0, 1)²: the
-    /// direction and distance to it, the factor on its spectrum <see cref="Intensity"/> (radiance for a light of extent,
-    /// d_k·c_spot,k for a delta light, as eq. 2 uses it), the solid-angle pdf (1 for a delta light: its one direction
-    /// is chosen with certainty) and whether it is a delta light. False when it cannot reach <paramref name="p"/>.
-    /// A delta light's sample is <see cref="Illuminate"/>'s, whatever <paramref name="u"/>.
+    /// True: every scene light is concentrated in a point or a direction (point, spot, directional, goniometric), so no ray
+    /// can hit it and the path tracer's emitter set (Rendering/Emitters) gives it pdf and emitted radiance 0. A light with
+    /// extent is an emitting object (a material's <c>emission</c> on any shape kind), not a <see cref="Light"/>.
     /// </summary>
-    public virtual bool Sample(Vector3 p, Vector2 u, out LightIncidence sample)
+    public bool IsDelta => true;
+
+    /// <summary>
+    /// One sample of the light seen from <paramref name="p"/> for the random numbers <paramref name="u"/> ∈ [0, 1)²:
+    /// <see cref="Illuminate"/>'s direction and distance, whatever <paramref name="u"/>, the factor d_k·c_spot,k on its
+    /// spectrum <see cref="Intensity"/> (as eq. 2 uses it), the pdf 1 (its one direction is chosen with certainty) and
+    /// <see cref="IsDelta"/>. False when it cannot reach <paramref name="p"/>.
+    /// </summary>
+    public bool Sample(Vector3 p, Vector2 u, out LightIncidence sample)
     {
         if (!Illuminate(p, out var ls)) { sample = default; return false; }
         sample = new LightIncidence(ls.Direction, ls.Distance, ls.Attenuation * ls.Spot, 1f, IsDelta);
         return true;
     }
-
-    /// <summary>
-    /// The solid-angle density with which <see cref="Sample"/> picks direction <paramref name="wi"/> from <paramref name="p"/>:
-    /// 0 for a delta light (no direction chosen at random, e.g. by a BSDF, ever meets it).
-    /// </summary>
-    public virtual float Pdf(Vector3 p, Vector3 wi) => 0;
-
-    /// <summary>
-    /// The factor on <see cref="Intensity"/> that gives the radiance a ray sees when it hits the light at
-    /// <paramref name="point"/> (surface normal <paramref name="normal"/>), travelling back along <paramref name="wo"/>
-    /// (towards the ray's origin). A delta light cannot be hit: 0.
-    /// </summary>
-    public virtual float Emitted(Vector3 point, Vector3 normal, Vector3 wo) => 0;
 
     /// <summary>The light as render.json lists it (its kind, what its intensity is in, where it is and how it falls off).</summary>
     public virtual LightDescription Describe(Radiometry radiometry) =>

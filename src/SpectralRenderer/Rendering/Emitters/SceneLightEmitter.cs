@@ -1,0 +1,27 @@
+using System.Numerics;
+using SpectralRenderer.Scenes;
+
+namespace SpectralRenderer.Rendering;
+
+/// <summary>
+/// A scene light (<see cref="Light"/>: point, spot, directional, goniometric, or a kind added by a registration) in the
+/// emitter set: its sample is <see cref="Light.Sample"/>'s (eq. 2's direction, distance and d_k·c_spot,k on I_k). Scene
+/// lights are delta lights: no ray hits them, so their pdf and emitted radiance are 0 (a light with extent is an emitting
+/// object, <see cref="ShapeEmitter"/>).
+/// </summary>
+internal sealed class SceneLightEmitter(Light light, int index, float[] intensity) : Emitter(intensity)
+{
+    public override bool IsDelta => true;
+    public override int SceneLight => index;
+
+    public override bool Sample(Vector3 p, Vector3 front, Vector2 u, out EmitterSample sample)
+    {
+        if (!light.Sample(p, u, out var inc)) { sample = default; return false; }
+        sample = new EmitterSample(inc.Direction, inc.Distance, inc.Factor, inc.Pdf, inc.IsDelta);
+        return true;
+    }
+
+    public override float Pdf(Vector3 p, Vector3 front, Vector3 wi, Vector3 x, Vector3 nx) => 0;
+    public override float Emitted(Vector3 n, Vector3 wo) => 0;
+    public override string Describe() => $"{light.Type} light '{light.Name}'";
+}
