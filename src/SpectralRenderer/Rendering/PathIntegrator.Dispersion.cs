@@ -38,12 +38,14 @@ internal sealed partial class PathIntegrator
     readonly bool _splitsShifts;
 
     /// <summary>
-    /// Splits the path at <paramref name="hit"/> (reached along <paramref name="ray"/> at <paramref name="depth"/>, its
-    /// emission already counted) into one sub-path per output band that β reaches, each the walk of that band's sub-bands.
+    /// Splits the path at <paramref name="hit"/> (reached along <paramref name="ray"/> in <paramref name="medium"/> at
+    /// <paramref name="depth"/>, its emission already counted) into one sub-path per output band that β reaches, each the
+    /// walk of that band's sub-bands.
     /// </summary>
     [MethodImpl(MethodImplOptions.NoInlining)]   // a dispersive vertex only: kept out of the walk (its frame)
-    void Disperse<TSink>(ref TSink sink, scoped in SurfaceHit hit, Ray ray, int depth, Span<float> beta, Sampler sampler,
-        ref ShiftState shifts, Span<float> scratch, ref RayCounters counters) where TSink : IPathSink, allows ref struct
+    void Disperse<TSink>(ref TSink sink, scoped in SurfaceHit hit, Ray ray, int medium, int depth, Span<float> beta,
+        Sampler sampler, ref ShiftState shifts, Span<float> scratch, ref RayCounters counters)
+        where TSink : IPathSink, allows ref struct
     {
         int width = _grid.PerBand;
         var bandBeta = BandBeta(scratch);
@@ -57,7 +59,7 @@ internal sealed partial class PathIntegrator
             bandBeta.Clear();
             part.CopyTo(bandBeta.Slice(lo, width));
             var sub = shifts;
-            Walk(ref sink, ray, depth, in hit, lo, bandBeta, sampler, ref sub, scratch, ref counters);
+            Walk(ref sink, ray, medium, depth, in hit, lo, bandBeta, sampler, ref sub, scratch, ref counters);
             shifts.Saved = sub.Saved;
             if (sub.Level > shifts.Level)
             {   // saved film += A_1⋯A_j·X_j of its last shifted bounce j; the film (X of the split's level) starts empty again

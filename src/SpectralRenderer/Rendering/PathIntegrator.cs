@@ -62,6 +62,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         _lights = [.. scene.Lights];
         _background = _emitters.Background;
         foreach (var material in _materials) material.Shift?.Prepare(_emitters.All.Select(e => e.Radiance));
+        TakeMedia(scene);   // PathIntegrator.Media.cs
         _textureBase = 5 * _padded + Math.Max(_padded, ShiftBase - 5 * _padded + ShiftScratch);
     }
 
@@ -187,7 +188,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         beta[.._grid.Count].Fill(1);   // the padding stays 0
         var shifts = new ShiftState(1);
         SurfaceHit none = default;
-        int first = Walk(ref sink, sample.Ray, 0, in none, -1, beta, sample.Sampler, ref shifts, scratch, ref counters);
+        int first = Walk(ref sink, sample.Ray, _sceneMedium, 0, in none, -1, beta, sample.Sampler, ref shifts, scratch, ref counters);
         if (shifts.Saved)
         {
             FinishShifted(sink.Fixed, scratch, shifts.Level);
@@ -198,14 +199,14 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
 
     /// <summary>
     /// The walk, carrying the bands of <paramref name="beta"/>: every band (<paramref name="band"/> −1) from
-    /// <paramref name="ray"/> at <paramref name="depth"/> on; or, as a sub-path of a dispersive split
-    /// (PathIntegrator.Dispersion.cs), one output band's sub-bands (<paramref name="band"/> its first) from the split's
-    /// vertex <paramref name="split"/>, reached along <paramref name="ray"/>, its emission already counted. Returns the first
-    /// object hit (−1: none, or a sub-path).
+    /// <paramref name="ray"/> (travelling in <paramref name="medium"/>, −1: vacuum; PathIntegrator.Media.cs) at
+    /// <paramref name="depth"/> on; or, as a sub-path of a dispersive split (PathIntegrator.Dispersion.cs), one output band's
+    /// sub-bands (<paramref name="band"/> its first) from the split's vertex <paramref name="split"/>, reached along
+    /// <paramref name="ray"/>, its emission already counted. Returns the first object hit (−1: none, or a sub-path).
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    int Walk<TSink>(ref TSink sink, Ray ray, int depth, scoped in SurfaceHit split, int band, Span<float> beta, Sampler sampler,
-        ref ShiftState shifts, Span<float> scratch, ref RayCounters counters) where TSink : IPathSink, allows ref struct
+    int Walk<TSink>(ref TSink sink, Ray ray, int medium, int depth, scoped in SurfaceHit split, int band, Span<float> beta,
+        Sampler sampler, ref ShiftState shifts, Span<float> scratch, ref RayCounters counters) where TSink : IPathSink, allows ref struct
     {
         int n = _padded;
         var f = scratch.Slice(2 * n, n);
@@ -229,7 +230,12 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
             else
             {
                 var traced = ray;
-                if (!_geometry.IntersectScattered(ref traced, out hit))
+                bool reached = _geometry.IntersectScattered(ref traced, out hit);
+                // β ⊙= T of the segment's medium, from the last vertex (the camera) to this one (PathIntegrator.Media.cs).
+                if (medium >= 0)
+                    Attenuate(medium, ray.Origin, ray.Direction, !reached ? float.PositiveInfinity
+                        : depth == 0 ? hit.T : Vector3.Distance(previous, hit.Position), beta);
+                if (!reached)
                 {
                     // The ray escapes: the sky (background) radiance, MIS-weighted against its own sampling.
                     if (depth == 0) sink.Emitted(beta, _background, 1);
@@ -262,7 +268,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
                 {   // every band at a dispersive vertex: split into the bands' sub-paths (PathIntegrator.Dispersion.cs)
                     if (!subPath)
                     {
-                        Disperse(ref sink, in hit, ray, depth, beta, sampler, ref shifts, scratch, ref counters);
+                        Disperse(ref sink, in hit, ray, medium, depth, beta, sampler, ref shifts, scratch, ref counters);
                         break;
                     }
                     if ((band = Narrow(beta, sampler.Next1D(), shifts.Level, scratch)) < 0) break;
@@ -274,7 +280,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
             // The lobes' shares of the continuation, by the channel: smooth (m_diff + m_spec), mirror, transmission.
             float smoothShare = material.Smooth ? material.SmoothChannel : 0;
             var vertex = new PathVertex(in hit, wo, material,
-                _textured ? Texels(material, in hit, wo, scratch, ref smoothShare) : default);
+                _textured ? Texels(material, in hit, wo, scratch, ref smoothShare) : default, medium, InteriorOf(hit.Object));
             // (a BSDF without a delta lobe is not asked for one: both answers would be "none")
             float mirrorShare = 0, transmitShare = 0;
             Vector3 wiMirror = default, wiTransmit = default;
@@ -338,6 +344,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
             }
             previous = vertex.P;
             previousFront = vertex.Front;
+            if (vertex.Interior >= 0) medium = MediumToward(in vertex, wi);   // a medium's boundary (PathIntegrator.Media.cs)
 
             // Russian roulette on the throughput's channel value.
             if (depth + 1 >= _rrDepth)
@@ -379,6 +386,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         Evaluate(bsdf, in vertex.Texels, vertex.Wo, wi, ns, f);
         counters.Shadow++;
         if (_geometry.OccludedScattered(ShadowRay(p, ng, wi, distance))) return;
+        if (MediumToward(in vertex, wi) is var medium and >= 0) Attenuate(medium, p, wi, distance, f);   // f ⊙= T along it
         float pick = _emitters.SelectionPdf(k);
         float w = sample.IsDelta ? 1 : PowerHeuristic(pick * pdf, smoothProbability * bsdf.Pdf(vertex.Wo, wi, ns));
         sink.NextEvent(emitter.SceneLight, beta, f, radiance, factor * cos * w / (pick * pdf));

@@ -5,11 +5,15 @@ namespace SpectralRenderer.Rendering;
 /// <summary>
 /// A vertex of a path: the surface point a ray reached (position p, geometric normal n_g, shading normal n_s and the shading
 /// normal facing the ray), the direction back along the ray ωo, the material there and its texels. What next-event
-/// estimation, the lobe choice and a shifted bounce read of the point (PathIntegrator.cs, PathIntegrator.Fluorescence.cs).
+/// estimation, the lobe choice and a shifted bounce read of the point (PathIntegrator.cs, PathIntegrator.Fluorescence.cs);
+/// and the media about it: the one its ray came through and the one its object bounds (PathIntegrator.Media.cs).
 /// </summary>
-readonly ref struct PathVertex(scoped in SurfaceHit hit, Vector3 wo, PathMaterial material, SurfaceTexels texels)
+readonly ref struct PathVertex(scoped in SurfaceHit hit, Vector3 wo, PathMaterial material, SurfaceTexels texels, int medium,
+    int interior)
 {
     public readonly Vector3 P = hit.Position, Ng = hit.GeometricNormal, Ns = hit.Normal, Wo = wo;
+    /// <summary>The medium of the ray that reached the vertex, and its object's interior medium (−1: vacuum; none).</summary>
+    public readonly int Medium = medium, Interior = interior;
     /// <summary>The shading normal on ωo's side.</summary>
     public readonly Vector3 Front = Vector3.Dot(hit.Normal, wo) >= 0 ? hit.Normal : -hit.Normal;
     public readonly PathMaterial Material = material;

@@ -35,6 +35,9 @@ internal sealed partial class WhittedIntegrator : IPacketIntegrator, IAnalysisIn
 
     public WhittedIntegrator(Scene scene, SceneGeometry geometry)
     {
+        if (scene.Media.Count > 0)   // Beer–Lambert along its rays is issue 41's (PathIntegrator.Media.cs)
+            throw new InputException($"{scene.SourcePath}: $.medium",
+                "the whitted integrator does not carry light through participating media yet", "render it with \"integrator\": \"path\"");
         _scene = scene;
         _geometry = geometry;
         _materials = scene.Materials.ToArray();

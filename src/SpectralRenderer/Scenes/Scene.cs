@@ -13,6 +13,11 @@ public sealed class SceneObject
     public Geometry.TriangleMesh? Mesh { get; init; }
     /// <summary>Interpolate vertex normals (true) or shade with the face normal.</summary>
     public bool Smooth { get; init; } = true;
+    /// <summary>
+    /// The medium inside it (an index into <see cref="Scene.Media"/>; −1: its surface bounds no medium, a ray that crosses
+    /// it stays in its medium). A closed object with outward normals.
+    /// </summary>
+    public int Medium { get; set; } = -1;
 }
 
 /// <summary>What eq. 2's terms mean (docs/scene-format.md, "Radiometry").</summary>
@@ -57,6 +62,10 @@ public sealed class Scene
     public required List<SceneObject> Objects { get; init; }
     /// <summary>Radiance of rays that escape, band values.</summary>
     public required float[] Background { get; init; }
+    /// <summary>The participating media of the objects' interiors and of the scene (none in a scene of today).</summary>
+    public IReadOnlyList<Medium> Media { get; init; } = [];
+    /// <summary>The medium around the objects, where the camera is (an index into <see cref="Media"/>; −1: vacuum).</summary>
+    public int Medium { get; init; } = -1;
     /// <summary>a_glob of eq. 2.</summary>
     public required float[] GlobalAmbient { get; init; }
     public bool HasGlobalAmbient { get; init; }

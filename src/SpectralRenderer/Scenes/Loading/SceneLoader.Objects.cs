@@ -28,7 +28,7 @@ public sealed partial class SceneLoader
         string[] common = ["type", "name", "material", "transform"];
         if (registered.TryGetValue(type, out var shapeType))
         {
-            Keys(e, path, [.. common, .. shapeType.Keys]);
+            Keys(e, path, [.. common, .. shapeType.Keys, "medium"]);   // "medium": its interior (SceneLoader.Media.cs)
             var shapeName = TryGet(e, "name", out var sn) ? String(sn, $"{path}.name") : $"{type}-{index}";
             var transform = TryGet(e, "transform", out var st) ? Transform(st, $"{path}.transform") : Matrix4x4.Identity;
             int shapeMaterial = MaterialOf(e, path, materials, materialIndex);
@@ -45,7 +45,7 @@ public sealed partial class SceneLoader
             "mesh" => ["file", "fit", "shading", "normals"],
             _ => ["center", "normal", "up", "patch_size", "gap", "frame"],
         };
-        Keys(e, path, [.. common, .. specific]);
+        Keys(e, path, [.. common, .. specific, "medium"]);
         var name = TryGet(e, "name", out var n) ? String(n, $"{path}.name") : type == "colorchecker" ? "patch" : $"{type}-{index}";
         var user = TryGet(e, "transform", out var t) ? Transform(t, $"{path}.transform") : Matrix4x4.Identity;
 

@@ -142,7 +142,7 @@ public sealed partial class SceneLoader
 
     static readonly string[] TopKeys = ["name", "description", "bands", "wave", "integration", "radiometry", "observer", "white", "scaling",
         "spectra", "materials", "lights", "objects", "background", "sky", "ambient", "max_depth", "integrator", "min_ray_weight",
-        "ray_budget", "camera", "output", "calculation_grids"];
+        "ray_budget", "camera", "output", "calculation_grids", "medium"];
 
     [MethodImpl(MethodImplOptions.NoOptimization)]
     Scene Build(JsonElement root)
@@ -233,7 +233,13 @@ public sealed partial class SceneLoader
             int i = 0;
             foreach (var o in objectsElement.EnumerateArray())
             {
+                int before = objects.Count;
                 ParseObject(o, $"$.objects[{i}]", i, objects, materials, materialIndex);
+                if (TryGet(o, "medium", out var interior))
+                {
+                    int medium = ParseMedium(interior, $"$.objects[{i}].medium");
+                    for (int j = before; j < objects.Count; j++) objects[j].Medium = medium;
+                }
                 i++;
             }
         }
@@ -259,6 +265,7 @@ public sealed partial class SceneLoader
                 throw Error("$.sky", "a scene gives both \"sky\" and \"background\"", "the sky is the background: keep one");
             background = ParseSky(sky);
         }
+        int sceneMedium = TryGet(root, "medium", out var around) ? ParseMedium(around, "$.medium") : -1;
         bool hasAmbient = TryGet(root, "ambient", out var amb);
         var ambient = hasAmbient ? Bands(amb, "$.ambient") : new float[SpectralMath.Padded(_grid.Count)];
 
@@ -281,6 +288,8 @@ public sealed partial class SceneLoader
             Lights = lights,
             Objects = objects,
             Background = background,
+            Media = _media,
+            Medium = sceneMedium,
             GlobalAmbient = ambient,
             HasGlobalAmbient = hasAmbient && SpectralMath.Any(ambient),
             MaxDepth = depth,
