@@ -8,7 +8,7 @@ namespace SpectralRenderer.Scenes;
 /// T(t) = exp(−∫₀ᵗ σ_t(x + sω) ds) per band (for a homogeneous absorbing medium Beer–Lambert's exp(−σ_a·t)), and multiplies
 /// it into a path's throughput between two vertices and into a light sample's contribution along its shadow ray
 /// (Rendering/PathIntegrator.Media.cs). A kind of medium is one class plus one registration in
-/// <see cref="Loading.MediumTypes"/> (ARCHITECTURE.md, "Extending"); the engine registers none yet (issue 41 adds the
+/// Scenes/Loading/MediumTypes.cs (ARCHITECTURE.md, "Extending"); the engine registers none yet (issue 41 adds the
 /// homogeneous and grid media, and scattering: free-flight sampling against a majorant and a phase function, here).
 /// </summary>
 public abstract class Medium
