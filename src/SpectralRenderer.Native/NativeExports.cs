@@ -289,8 +289,7 @@ sealed unsafe class NativeRender : IDisposable
     /// <summary>
     /// The per-light transfer of this render: a relit render's own, the one its save traced (the lights format), else its
     /// camera samples traced again once, each light's contribution kept apart (as `spectral render --formats …,lights`
-    /// does), and kept. Refused where the command line refuses the lights format (an integrator that records none; what
-    /// its transfer's format refuses, e.g. a path render's adaptive sampling; a crop that is not a shard).
+    /// does), and kept. Refused where the command line refuses the lights format (RenderJob.CheckTransferRecordable).
     /// </summary>
     ILightTransfer Transfer(CancellationToken cancel)
     {
@@ -299,14 +298,9 @@ sealed unsafe class NativeRender : IDisposable
         lock (_transferLock)
         {
             if (_transfer is not null) return _transfer;
-            if (job.Integrator is not ITransferIntegrator recorder)
-                throw new InputException("integrator", $"the {job.IntegratorName} integrator does not record a per-light transfer",
-                    "render with an integrator that records one (whitted, path) to relight");
-            if (recorder.TransferFormat.Refuses(job.Scene) is { } refused)
-                throw new InputException(refused.Option.TrimStart('-').Replace('-', '_'), refused.What, refused.Hint);
-            if (job.Crop is not null && !(job.Shard is not null && recorder.TransferFormat.Shards))
-                throw new InputException("crop", $"a {job.IntegratorName} render's per-light transfer is traced for whole renders"
-                    + (recorder.TransferFormat.Shards ? " and shards" : "") + ", not for a crop", "render without crop to relight");
+            job.CheckTransferRecordable();   // the lights format's rule: an integrator that records one, no refusal, no crop
+            var recorder = job.Integrator as ITransferIntegrator
+                ?? throw new InvalidOperationException($"integrator '{job.IntegratorName}' has a transfer format but records none");
             return _transfer = recorder.TraceTransfer(job.Scene, job.Threads, cancel, job.Crop);
         }
     }
@@ -472,8 +466,10 @@ sealed unsafe class NativeRender : IDisposable
             HighlightFraction = manifest.HighlightFraction,
             Reflectance = truth,
         };
+        // A cropped render has no whole-film transfer to trace (as PathFilm): its camera takes the band route.
         bool traced = job.Transfer is ITermRoute
-            || job.Transfer is null && job.Integrator is ITransferIntegrator { TransferFormat.Route: CameraRoute.Terms };
+            || job.Transfer is null && job.Crop is null
+                && job.Integrator is ITransferIntegrator { TransferFormat.Route: CameraRoute.Terms };
         return (CameraScene.Of(folder, aovs), job.Scene, traced ? Transfer(default) as ITermRoute : null);
     }
 

@@ -103,23 +103,12 @@ public sealed class RenderJob
                         entry.Keys.Count == 0 ? $"give just \"integrator\": \"{given.Name}\""
                             : $"{given.Name} takes: {string.Join(", ", entry.Keys)}");
         bool lights = (Scene.Output.Products & OutputProducts.Lights) != 0;
-        var transfer = Integrators.Entry(IntegratorName)?.Transfer;
-        if (transfer is null && lights)
-            throw new InputException("--formats", $"the per-light outputs (lights) are recorded by the {Recording()} integrators; " +
-                $"the {IntegratorName} integrator does not record one",
-                $"leave lights out of the formats, or render with --integrator {Recording(" or ")}");
-        if (lights && transfer?.Refuses(Scene) is { } refused) throw new InputException(refused.Option, refused.What, refused.Hint);
         var products = Scene.Output.Products;
         if (Shard is not null && (products & OutputProducts.Bands) != 0 && (products & (OutputProducts.Envi | OutputProducts.Npy)) == 0)
             throw new InputException("--shard",
                 "band images need a float cube in each shard: merge rescales them to the whole image's brightest value",
                     "add envi or npy to --formats");
-        bool shards = transfer?.Shards == true;
-        if (Crop is not null && lights && !(Shard is not null && shards))
-            throw new InputException("--formats", shards
-                    ? $"a {IntegratorName} render's per-light outputs (lights) are written for whole renders and shards, not for a crop"
-                    : "the per-light outputs (lights) are written for whole renders only, not for a crop or shard",
-                "render lights without --crop" + (shards ? "" : "/--shard"));
+        if (lights) CheckTransferRecordable();
         if ((products & OutputProducts.Noise) != 0 && Scene.Camera.SamplesPerPixel < 2)
             throw new InputException("--formats",
                 $"noise is each pixel's standard error from its samples and needs at least 2 samples per pixel, found spp "
@@ -133,6 +122,25 @@ public sealed class RenderJob
             throw new InputException(Request.ScenePath.Length > 0 ? Request.ScenePath : Scene.SourcePath,
                 "output.exposure \"auto\" is chosen from the whole image, which a shard or crop does not see",
                 "give a fixed \"exposure\" (a whole render's render.json states the one auto chose, $.colour.exposure)");
+    }
+
+    /// <summary>
+    /// Refuses (bad input) a per-light transfer this render cannot record: its integrator records none, its transfer's format
+    /// refuses the scene (e.g. a path render's adaptive sampling), or a crop that is not a shard of a format shards write.
+    /// The lights product and the C ABI's relight ask it.
+    /// </summary>
+    public void CheckTransferRecordable()
+    {
+        var transfer = Integrators.Entry(IntegratorName)?.Transfer
+            ?? throw new InputException("--formats", $"the per-light outputs (lights) are recorded by the {Recording()} integrators; " +
+                $"the {IntegratorName} integrator does not record one",
+                $"leave lights out of the formats, or render with --integrator {Recording(" or ")}");
+        if (transfer.Refuses(Scene) is { } refused) throw new InputException(refused.Option, refused.What, refused.Hint);
+        if (Crop is not null && !(Shard is not null && transfer.Shards))
+            throw new InputException("--formats", transfer.Shards
+                    ? $"a {IntegratorName} render's per-light outputs (lights) are written for whole renders and shards, not for a crop"
+                    : "the per-light outputs (lights) are written for whole renders only, not for a crop or shard",
+                "render lights without --crop" + (transfer.Shards ? "" : "/--shard"));
     }
 
     /// <summary>The integrators that record a per-light transfer, named as a sentence lists them ("whitted and path").</summary>
