@@ -1057,6 +1057,29 @@ for label, text, pat, place in [
      r"\$\.channels\[0\]\.name: must be a string", r"\.json: \$\.channels\[0\]\.name"),
     ("channel-spectrum-number", json.dumps({"name": "x", "channels": [{"name": "F1", "spectrum": 7}]}),
      r"\$\.channels\[0\]\.spectrum: must be a string", r"\.json: \$\.channels\[0\]\.spectrum"),
+    # Found by the sensor fuzz target in CI after b59d92d: a box edge, a mosaic cell or a channel's first letter that
+    # the reader took on trust (an exception instead of one line).
+    ("box-edge-string", json.dumps({"name": "x", "channels": [{"name": "F1", "box": ["a", 500]}]}),
+     r"\$\.channels\[0\]\.box\[0\]: must be a wavelength in nm", r"\.json: \$\.channels\[0\]\.box\[0\]"),
+    ("box-edge-null", json.dumps({"name": "x", "channels": [{"name": "F1", "box": [400, None]}]}),
+     r"\$\.channels\[0\]\.box\[1\]: must be a wavelength in nm", r"\.json: \$\.channels\[0\]\.box\[1\]"),
+    ("box-not-a-pair", json.dumps({"name": "x", "channels": [{"name": "F1", "box": 3}]}),
+     r"\$\.channels\[0\]\.box: must be two wavelengths", r"\.json: \$\.channels\[0\]\.box"),
+    ("channel-name-empty", json.dumps({"name": "x", "channels": [{"name": "", "gaussian": GAUSS}], "arrangement": "mosaic",
+                                       "pattern": "RGGB"}),
+     r"\$\.channels\[0\]\.name: is empty", r"\.json: \$\.channels\[0\]\.name"),
+    ("pattern-cell-fraction", json.dumps({"name": "x", "channels": [{"name": "F1", "gaussian": GAUSS}], "arrangement": "mosaic",
+                                          "pattern": [[0, 1.5]]}),
+     r"\$\.pattern\[0\]\[1\]: must be a channel index", r"\.json: \$\.pattern\[0\]\[1\]"),
+    ("pattern-cell-null", json.dumps({"name": "x", "channels": [{"name": "F1", "gaussian": GAUSS}], "arrangement": "mosaic",
+                                      "pattern": [[None]]}),
+     r"\$\.pattern\[0\]\[0\]: must be a channel index", r"\.json: \$\.pattern\[0\]\[0\]"),
+    ("pattern-cell-1e40", json.dumps({"name": "x", "channels": [{"name": "F1", "gaussian": GAUSS}], "arrangement": "mosaic",
+                                      "pattern": [[0], [1e40]]}),
+     r"\$\.pattern\[1\]\[0\]: must be a channel index", r"\.json: \$\.pattern\[1\]\[0\]"),
+    ("pattern-empty-row", json.dumps({"name": "x", "channels": [{"name": "F1", "gaussian": GAUSS}], "arrangement": "mosaic",
+                                      "pattern": [[]]}),
+     r"\$\.pattern: a pattern is letters", r"\.json: \$\.pattern"),
 ]:
     fname = write(f"sensor-{label}.json", text)
     case(f"sensor/{label}", ["camera", "{tmp}/r", "--sensor", "{in}/" + fname, "-o", "{tmp}/out"], pat, 2, fname, place, ["base-render r"])

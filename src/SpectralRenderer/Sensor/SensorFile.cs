@@ -190,6 +190,7 @@ public static class SensorFile
             throw new InputException(where, "a channel is an object",
                 "{ \"name\": \"F1\", \"gaussian\": { \"centre_nm\": 450, \"fwhm_nm\": 40 } }");
         var name = Str(c, "name", where) ?? throw new InputException(where, "a channel needs a \"name\"", "give each channel a \"name\"");
+        if (name.Length == 0) throw new InputException($"{where}.name", "is empty", "give each channel a name, e.g. \"R\"");
         if (c["gaussian"] is JsonObject g)
         {
             double centre = Num(g, "centre_nm", where + ".gaussian", 100, 3000)
@@ -200,9 +201,11 @@ public static class SensorFile
                     "e.g. \"gaussian\": {\"centre_nm\": 550, \"fwhm_nm\": 40}");
             return SensorPresets.Gaussian(name, centre, fwhm);
         }
-        if (c["box"] is JsonArray box && box.Count == 2)
+        if (c["box"] is JsonNode boxNode)
         {
-            double lo = box[0]!.GetValue<double>(), hi = box[1]!.GetValue<double>();
+            if (boxNode is not JsonArray { Count: 2 } box)
+                throw new InputException(where + ".box", "must be two wavelengths", "[lower_nm, upper_nm], e.g. [400, 500]");
+            double lo = Nm(box[0], where + ".box[0]"), hi = Nm(box[1], where + ".box[1]");
             if (!(hi > lo)) throw new InputException(where + ".box", $"[{lo}, {hi}] is empty", "[lower_nm, upper_nm]");
             return SensorPresets.Box(name, lo, hi);
         }
@@ -221,7 +224,8 @@ public static class SensorFile
         {
             // Letters name channels by their first letter (RGGB, GRBG …), row by row of a square tile.
             int side = (int)Math.Round(Math.Sqrt(text.Length));
-            if (side * side != text.Length || side == 0) throw new InputException(where, $"'{text}' is not a square pattern", "e.g. RGGB");
+            if (side * side != text.Length || side == 0 || side > MaxPatternSide)
+                throw new InputException(where, $"'{text}' is not a square pattern", "e.g. RGGB");
             var p = new int[side, side];
             for (int i = 0; i < text.Length; i++)
             {
@@ -233,14 +237,34 @@ public static class SensorFile
             }
             return p;
         }
-        if (node is JsonArray rows && rows.Count > 0 && rows.All(r => r is JsonArray ra && ra.Count == ((JsonArray)rows[0]!).Count))
+        if (node is JsonArray rows && rows.Count is > 0 and <= MaxPatternSide
+            && rows[0] is JsonArray { Count: > 0 and <= MaxPatternSide } first
+            && rows.All(r => r is JsonArray ra && ra.Count == first.Count))
         {
-            var p = new int[rows.Count, ((JsonArray)rows[0]!).Count];
+            var p = new int[rows.Count, first.Count];
             for (int y = 0; y < rows.Count; y++)
-                for (int x = 0; x < p.GetLength(1); x++) p[y, x] = rows[y]![x]!.GetValue<int>();
+                for (int x = 0; x < p.GetLength(1); x++)
+                {
+                    if (rows[y]![x] is not JsonValue cell || !cell.TryGetValue(out double d) || d != Math.Floor(d) || d < 0
+                        || d >= s.ChannelCount)
+                        throw new InputException($"{where}[{y}][{x}]", "must be a channel index",
+                            $"a whole number 0–{s.ChannelCount - 1}");
+                    p[y, x] = (int)d;
+                }
             return p;
         }
         throw new InputException(where, "a pattern is letters (\"RGGB\") or rows of channel indices", "e.g. [[0,1],[1,2]]");
+    }
+
+    /// <summary>The largest mosaic tile side: a colour filter array repeats a small tile (Bayer 2, X-Trans 6, a 16-band 4).</summary>
+    const int MaxPatternSide = 64;
+
+    /// <summary>A wavelength in nm within the range a channel may cover.</summary>
+    static double Nm(JsonNode? n, string where)
+    {
+        if (n is not JsonValue v || !v.TryGetValue(out double d) || !double.IsFinite(d) || d < 100 || d > 3000)
+            throw new InputException(where, "must be a wavelength in nm", "a number in 100–3000");
+        return d;
     }
 
     static string? Str(JsonObject o, string key, string at) => o[key] switch
