@@ -12,7 +12,7 @@ public enum InputProblem
 /// <summary>
 /// Bad input from the user (a file, a name, an argument). Its message is one line:
 /// "where: what is wrong (hint: what to do)", made printable and at most <see cref="MessageText.MaxLine"/>
-/// characters by <see cref="MessageText.Line"/>. Every bad input names its place and carries a hint.
+/// characters by <see cref="MessageText.Problem"/> (the reason cut last). Every bad input names its place and carries a hint.
 /// The CLI prints it and exits with code 2.
 /// </summary>
 public sealed class InputException : Exception
@@ -30,12 +30,7 @@ public sealed class InputException : Exception
     public string Hint { get; }
     public InputProblem Problem { get; init; } = InputProblem.Invalid;
 
-    static string Format(string where, string what, string? hint) =>
-        string.IsNullOrEmpty(hint)
-            ? string.IsNullOrEmpty(where) ? MessageText.Line(what) : MessageText.Line(where, ": ", what)
-            : string.IsNullOrEmpty(where)
-                ? MessageText.Line(what, " (hint: ", hint, ")")
-                : MessageText.Line(where, ": ", what, " (hint: ", hint, ")");
+    static string Format(string where, string what, string? hint) => MessageText.Problem(where, what, hint);
 
     /// <summary>Suggests the closest known name ("did you mean 'green'?") by edit distance.</summary>
     public static string? DidYouMean(string name, IEnumerable<string> known)

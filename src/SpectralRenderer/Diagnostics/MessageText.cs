@@ -83,6 +83,40 @@ public static class MessageText
     }
 
     /// <summary>
+    /// The one line of a bad input, "where: what (hint: hint)", at most <see cref="MaxLine"/> characters. What is
+    /// wrong is cut last: first the place loses its beginning (a long folder path, keeping the file name, line:column
+    /// and JSON path at its end), then the hint is cut in the middle, and only then the reason itself.
+    /// </summary>
+    public static string Problem(string where, string what, string? hint)
+    {
+        string w = Escape(where), r = Escape(what), h = string.IsNullOrEmpty(hint) ? "" : Escape(hint);
+        string Join() => (w.Length > 0 ? w + ": " : "") + r + (h.Length > 0 ? " (hint: " + h + ")" : "");
+        int Excess() => Join().Length - MaxLine;
+        if (Excess() > 0) w = ShortenFolder(w, Excess());
+        if (Excess() > 0 && w.Length > MaxPlace) w = Shorten(w, MaxPlace);   // a file name or JSON path longer than a line
+        if (Excess() > 0 && h.Length > MinHint) h = Shorten(h, Math.Max(MinHint, h.Length - Excess()));
+        if (Excess() > 0) r = Shorten(r, Math.Max(12, r.Length - Excess()));
+        return Join();
+    }
+
+    /// <summary>The longest a place keeps after its folder is gone, and the shortest a hint is cut to, before the reason is cut.</summary>
+    const int MaxPlace = 150, MinHint = 40;
+
+    /// <summary>
+    /// A place "folder/file:line:column: $.json.path" with its folder cut by <paramref name="excess"/> characters from
+    /// the start ("…" + the folder's end), keeping the file's name and everything after it.
+    /// </summary>
+    static string ShortenFolder(string place, int excess)
+    {
+        int colon = place.IndexOf(':');
+        int slash = place.LastIndexOf('/', colon < 0 ? place.Length - 1 : colon);
+        if (slash <= 1) return place;
+        int keep = Math.Max(0, slash - excess - 1);
+        if (keep > 0 && char.IsLowSurrogate(place[slash - keep])) keep--;
+        return "…" + place[(slash - keep)..];
+    }
+
+    /// <summary>
     /// One printable line of at most <see cref="MaxLine"/> characters from its parts: each escaped, and the
     /// longest cut in the middle until the whole fits.
     /// </summary>

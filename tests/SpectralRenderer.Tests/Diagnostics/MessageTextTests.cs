@@ -42,7 +42,38 @@ public class MessageTextTests
         var e = new InputException(path, "cannot be written: No such file\nor directory", "choose a folder you can write to");
         Assert.True(e.Message.Length <= MessageText.MaxLine, $"{e.Message.Length}");
         Assert.DoesNotContain('\n', e.Message);
-        Assert.StartsWith("/tmp/ddd", e.Message);
+        Assert.StartsWith("…ddd", e.Message);   // the place loses its beginning, not its file name
         Assert.Contains("/x: cannot be written: No such file\\nor directory (hint: choose a folder you can write to)", e.Message);
+    }
+
+    /// <summary>
+    /// Issue 42: a long folder path cut the reason in the middle ("material 'pri… a dispersive split yet"). The place
+    /// is cut first (keeping the file, line:column and JSON path), then the hint, and the reason only when nothing else is left.
+    /// </summary>
+    [Theory]
+    [InlineData(40)]
+    [InlineData(200)]
+    [InlineData(2000)]
+    public void A_long_place_is_cut_before_the_reason(int folderLength)
+    {
+        var where = "/home/user/" + new string('f', folderLength) + "/scenes/booth.json:12:7: $.materials.prism";
+        var what = "material 'prism-of-a-long-descriptive-name' is dispersive and fluorescent: the path tracer has no"
+            + " dispersive split for it yet";
+        var hint = "give the prism a constant ior or remove its fluorescence";
+        var message = new InputException(where, what, hint).Message;
+        Assert.True(message.Length <= MessageText.MaxLine, $"{message.Length}: {message}");
+        Assert.Contains(what, message);
+        Assert.Contains("booth.json:12:7: $.materials.prism: ", message);
+        Assert.EndsWith($" (hint: {hint})", message);
+    }
+
+    [Fact]
+    public void When_the_reason_alone_is_too_long_the_place_keeps_its_file_and_the_reason_its_start_and_end()
+    {
+        var message = new InputException("/" + new string('d', 500) + "/scene.json: $.x", "starts " + new string('r', 600) + " ends",
+            "a hint").Message;
+        Assert.True(message.Length <= MessageText.MaxLine, $"{message.Length}");
+        Assert.Contains("scene.json: $.x: starts rrr", message);
+        Assert.Contains("rrr ends (hint: a hint)", message);
     }
 }
