@@ -383,6 +383,12 @@ for label, text, pat in [
     ("ies-nan", IES_HEAD + "1 1000 1 2 1 1 2 0 0 0\n1 1 0\n0 90\n0\n10 NaN\n", r"not a number"),
     ("ies-huge-count", IES_HEAD + "1 1000 1 999999999 1 1 2 0 0 0\n", r"number of vertical angles"),
     ("ies-trailing", IES_HEAD + "1 1000 1 2 1 1 2 0 0 0\n1 1 0\n0 90\n0\n10 20 30\n", r"values after the candela table"),
+    # Issue 42: horizontal angles 0–270 match no LM-63 symmetry (were read as a full circle); a TILT=INCLUDE block is read.
+    ("ies-horizontal-0-270", IES_HEAD + "1 1000 1 2 4 1 2 0 0 0\n1 1 0\n0 90\n0 90 180 270\n1 2\n1 2\n1 2\n1 2\n",
+     r"horizontal angles 0 … 270 match no LM-63 symmetry"),
+    ("ies-tilt-geometry-4", "IESNA:LM-63-2002\nTILT=INCLUDE\n4\n", r"lamp-to-luminaire geometry"),
+    ("ies-tilt-factor-negative", "IESNA:LM-63-2002\nTILT=INCLUDE\n1\n2\n0 90\n1 -0.5\n", r"tilt factor"),
+    ("ies-tilt-angle-above-90", "IESNA:LM-63-2002\nTILT=INCLUDE\n1\n2\n0 120\n1 0.5\n", r"tilt"),
 ]:
     photometric_case(label, "ies", text, pat)
 LDT_HEAD = "corpus\n1\n1\n1\n0\n2\n90\nr\nl\n0\nf\nd\n" + "0\n" * 11 + "1\n0\n1\n1\nLED\n1000\n4000K\n80\n10\n" + "0.5\n" * 10
@@ -393,6 +399,9 @@ for label, text, pat in [
     ("ldt-gamma-descending", LDT_HEAD + "0\n90\n0\n100\n50\n", r"γ angle 0 is not in 0–180° after 90"),
     ("ldt-no-flux", LDT_HEAD.replace("LED\n1000\n", "LED\n0\n") + "0\n0\n90\n100\n50\n", r"luminous flux is 0"),
     ("ldt-trailing", LDT_HEAD + "0\n0\n90\n100\n50\n7\n", r"lines after the intensity table"),
+    # Issue 42: a conversion factor of 0 was read as 1.
+    ("ldt-cfli-zero", LDT_HEAD.replace("0\n" * 11 + "1\n0\n1\n", "0\n" * 11 + "0\n0\n1\n") + "0\n0\n90\n100\n50\n",
+     r"conversion factor CFLI is 0"),
     ("ldt-isym3-odd", "corpus\n1\n3\n6\n60\n2\n90\nr\nl\n0\nf\nd\n" + "0\n" * 11 + "1\n0\n1\n1\nLED\n1000\n4000K\n80\n10\n" + "0.5\n" * 10
         + "0\n60\n120\n180\n240\n300\n0\n90\n", r"does not split into the planes symmetry 3 needs"),
 ]:

@@ -51,6 +51,9 @@ public static class EulumdatReader
         for (int i = 8; i <= 12; i++) Line($"text line {i}");
         for (int i = 13; i <= 23; i++) Number($"dimension or ratio (line {i})");
         double cfli = Number("the conversion factor CFLI");
+        if (!(cfli > 0))
+            throw new InputException($"{file}:{at}", $"the conversion factor CFLI is {cfli.ToString(CultureInfo.InvariantCulture)}",
+                "intensities are multiplied by CFLI: give 1 when they need no conversion");
         Number("the tilt");
         int sets = Count("the number of lamp sets n", 1, 20);
         double flux = 0;
@@ -98,7 +101,7 @@ public static class EulumdatReader
             4 => (0, mc / 4 + 1, CandelaSymmetry.Quadrant),
             _ => (0, mc, CandelaSymmetry.Full),
         };
-        double toCd = flux / 1000 * (cfli > 0 ? cfli : 1);
+        double toCd = flux / 1000 * cfli;
         var horizontal = new double[count];
         var rows = new double[count][];
         for (int p = 0; p < count; p++)

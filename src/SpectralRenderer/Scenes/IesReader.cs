@@ -1,11 +1,49 @@
 using System.Globalization;
+using System.Numerics;
 using SpectralRenderer.Diagnostics;
 
 namespace SpectralRenderer.Scenes;
 
 /// <summary>A photometric file read: its candela table (multipliers applied) and what it says about its lamps.</summary>
 /// <param name="LampLumens">Rated lumens of all lamps (relative photometry), or null for absolute photometry.</param>
-public sealed record PhotometricFile(CandelaTable Table, double? LampLumens, string Format);
+public sealed record PhotometricFile(CandelaTable Table, double? LampLumens, string Format)
+{
+    /// <summary>An IES file's TILT=INCLUDE block, or null (TILT=NONE, EULUMDAT).</summary>
+    public LampTilt? Tilt { get; init; }
+}
+
+/// <summary>
+/// IES LM-63's TILT=INCLUDE data: candela multiplying factors against the lamp's tilt from the position it was measured
+/// in. <see cref="Geometry"/> is the lamp-to-luminaire geometry: 1, the lamp vertical (base up or down) with the
+/// luminaire aimed down; 2, the lamp horizontal and staying so when the luminaire tilts in its C0–C180 plane (its axis
+/// along C90–C270); 3, the lamp horizontal along C0–C180 (staying so when tilted in the C90–C270 plane).
+/// </summary>
+public sealed record LampTilt(int Geometry, double[] Angles, double[] Factors)
+{
+    /// <summary>The lamp's axis in the luminaire frame of <see cref="GoniometricLight"/> (nadir −y, C0 +x, C90 −z).</summary>
+    public Vector3 LampAxis => Geometry switch { 1 => Vector3.UnitY, 2 => Vector3.UnitZ, _ => Vector3.UnitX };
+
+    /// <summary>
+    /// The lamp's tilt in degrees when the luminaire frame is turned into the world by <paramref name="orientation"/>:
+    /// the angle of its axis from the vertical (geometry 1) or from the horizontal (2, 3), as it was measured.
+    /// </summary>
+    public double TiltDegrees(Matrix4x4 orientation)
+    {
+        var axis = Vector3.Normalize(Vector3.TransformNormal(LampAxis, orientation));
+        double up = Math.Min(1, Math.Abs((double)axis.Y));
+        return (Geometry == 1 ? Math.Acos(up) : Math.Asin(up)) * 180 / Math.PI;
+    }
+
+    /// <summary>The factor at <paramref name="degrees"/>: linear between the file's angles, its end values beyond them.</summary>
+    public double Factor(double degrees)
+    {
+        if (degrees <= Angles[0]) return Factors[0];
+        for (int i = 1; i < Angles.Length; i++)
+            if (degrees <= Angles[i])
+                return Factors[i - 1] + (Factors[i] - Factors[i - 1]) * (degrees - Angles[i - 1]) / (Angles[i] - Angles[i - 1]);
+        return Factors[^1];
+    }
+}
 
 /// <summary>
 /// IES LM-63 (-1995, -2002, -2019) photometric files, type C: keyword lines up to TILT=, then the numbers — lamps,
@@ -13,7 +51,8 @@ public sealed record PhotometricFile(CandelaTable Table, double? LampLumens, str
 /// units, dimensions; ballast factor, ballast-lamp photometric factor (LM-63-2002 "future use"), input watts; the vertical
 /// angles, the horizontal angles, and the candela values plane by plane. Candela = value × multiplier × ballast factor ×
 /// ballast-lamp factor. Symmetry from the horizontal angles (LM-63-2019 §5.10): one angle (0) axial, last 90 quadrant,
-/// last 180 bilateral, first 90 and last 270 bilateral about C90–C270, last above 180 full. Errors: file:line, a hint.
+/// last 180 bilateral, first 90 and last 270 bilateral about C90–C270, last 360 full; TILT=INCLUDE factors (LampTilt). Errors: file:line, a
+/// hint.
 /// </summary>
 public static class IesReader
 {
@@ -34,13 +73,17 @@ public static class IesReader
         int eq = tilt.IndexOf('=');
         string mode = eq < 0 ? "" : tilt[(eq + 1)..].Trim();
         var tokens = new Tokens(lines, l + 1, file);
+        LampTilt? lampTilt = null;
         if (mode.Equals("INCLUDE", StringComparison.OrdinalIgnoreCase))
         {
-            // Lamp-to-luminaire geometry, the number of tilt angles, the angles, the factors: for a luminaire used at the
-            // tilt it was measured at (the factor at 0° is 1), they change nothing here.
-            tokens.Number("the lamp-to-luminaire geometry");
-            int n = tokens.Count("the number of tilt angles", 0, MaxAngles);
-            for (int i = 0; i < 2 * n; i++) tokens.Number("a tilt angle or factor");
+            // Lamp-to-luminaire geometry, the number of tilt angles, the angles (0–90°, ascending), the factors: the
+            // light multiplies its candela by the factor at the tilt its "rotate" gives the lamp (GoniometricLight).
+            int geometry = tokens.Count("the lamp-to-luminaire geometry", 1, 3);
+            int n = tokens.Count("the number of tilt angles", 1, MaxAngles);
+            var angles = tokens.Angles("tilt", n, 0, 90);
+            var factors = new double[n];
+            for (int i = 0; i < n; i++) factors[i] = tokens.NonNegative("a tilt factor");
+            lampTilt = new LampTilt(geometry, angles, factors);
         }
         else if (!mode.Equals("NONE", StringComparison.OrdinalIgnoreCase))
             throw new InputException($"{file}:{l + 1}", $"TILT={MessageText.Quote(mode, 40)} is not supported",
@@ -70,9 +113,9 @@ public static class IesReader
         else if (horizontal[0] == 0 && horizontal[^1] == 90) symmetry = CandelaSymmetry.Quadrant;
         else if (horizontal[0] == 0 && horizontal[^1] == 180) symmetry = CandelaSymmetry.BilateralC0;
         else if (horizontal[0] == 90 && horizontal[^1] == 270) symmetry = CandelaSymmetry.BilateralC90;
-        else if (horizontal[0] == 0 && horizontal[^1] > 180) symmetry = CandelaSymmetry.Full;
-        else throw tokens.Error($"horizontal angles {horizontal[0]:0.###} … {horizontal[^1]:0.###}",
-            "type C horizontal angles are 0 (axial), 0–90, 0–180, 90–270 or 0–360");
+        else if (horizontal[0] == 0 && horizontal[^1] == 360) symmetry = CandelaSymmetry.Full;
+        else throw tokens.Error($"horizontal angles {horizontal[0]:0.###} … {horizontal[^1]:0.###} match no LM-63 symmetry",
+            "type C horizontal angles are 0 (axial), 0–90, 0–180, 90–270 or 0–360 (LM-63-2019 §5.10)");
         double factor = multiplier * ballast * ballastLamp;
         var rows = new double[nh][];
         for (int h = 0; h < nh; h++)
@@ -82,7 +125,7 @@ public static class IesReader
         }
         tokens.End();
         return new PhotometricFile(new CandelaTable(vertical, horizontal, rows, symmetry, file), lumens > 0 ? lamps * lumens : null,
-            "IES LM-63");
+            "IES LM-63") { Tilt = lampTilt };
     }
 
     /// <summary>The numbers of a text, with the line each came from, for errors.</summary>

@@ -193,6 +193,11 @@ public class GoniometricLightTests(Xunit.Abstractions.ITestOutputHelper output)
     [InlineData("t.ies", "IESNA:LM-63-2002\nTILT=NONE\n1 1000 1 2 2 1 2 0 0 0\n1 1 0\n0 90\n0 90\n10 20\n1 x\n", "t.ies:8",
         "'x', not a number")]
     [InlineData("t.ies", "IESNA:LM-63-2002\nTILT=lamp.tlt\n", "t.ies:2", "not supported")]
+    [InlineData("t.ies", "IESNA:LM-63-2002\nTILT=NONE\n1 1000 1 2 4 1 2 0 0 0\n1 1 0\n0 90\n0 90 180 270\n1 2\n1 2\n1 2\n1 2\n", "t.ies:6",
+        "horizontal angles 0 … 270 match no LM-63 symmetry")]
+    [InlineData("t.ies", "IESNA:LM-63-2002\nTILT=INCLUDE\n4\n", "t.ies:3", "lamp-to-luminaire geometry")]
+    [InlineData("t.ldt", "test\n1\n1\n1\n0\n2\n90\nr\nl\n0\nf\nd\n0\n0\n0\n0\n0\n0\n0\n0\n0\n0\n0\n0\n", "t.ldt:24",
+        "the conversion factor CFLI is 0")]
     [InlineData("t.ldt", "test\n1\n5\n", "t.ldt:3", "symmetry indicator")]
     [InlineData("t.ldt", "test\n1\n1\n12\n30\n3\n", "t.ldt:6", "ends before")]
     public void A_malformed_photometric_file_is_one_line_with_file_line_and_hint(string name, string text, string where, string what)
@@ -215,6 +220,34 @@ public class GoniometricLightTests(Xunit.Abstractions.ITestOutputHelper output)
         Assert.Contains("hint", err);
         var e = Assert.Throws<InputException>(() => name.EndsWith(".ldt") ? EulumdatReader.Parse(text, name) : IesReader.Parse(text, name));
         Assert.Contains(what, e.Message);
+    }
+
+    /// <summary>
+    /// LM-63's TILT=INCLUDE: an axial file whose lamp factors are 1, 0.9, 0.6, 0.2 at 0°, 30°, 60°, 90° of tilt. Turned by
+    /// 40°, the lamp's tilt is 40° when the turn moves its axis (factor 0.9 + (0.6 − 0.9)·10/30 = 0.8, by hand) and 0°
+    /// when the axis keeps its measured position (factor 1): geometry 1's vertical lamp tilts under any turn from the
+    /// vertical, geometry 2's lamp along C90–C270 (z) only about x, geometry 3's along C0–C180 (x) only about z.
+    /// </summary>
+    [Theory]
+    [InlineData(1, "[40, 0, 0]", 0.8)]
+    [InlineData(1, "[0, 0, 40]", 0.8)]
+    [InlineData(1, "[0, 40, 0]", 1.0)]
+    [InlineData(2, "[40, 0, 0]", 0.8)]
+    [InlineData(2, "[0, 0, 40]", 1.0)]
+    [InlineData(3, "[0, 0, 40]", 0.8)]
+    [InlineData(3, "[40, 0, 0]", 1.0)]
+    public void A_tilt_factor_multiplies_the_candela_at_the_lamps_installed_tilt(int geometry, string rotate, double factor)
+    {
+        string none = Ies(Gamma0To180, [0], (_, g) => Round(0, g));
+        string include = none.Replace("TILT=NONE", $"TILT=INCLUDE\n{geometry}\n4\n0 30 60 90\n1 0.9 0.6 0.2");
+        string a = Write($"tilt-none-{geometry}.ies", none), b = Write($"tilt-include-{geometry}.ies", include);
+        string r = $", \"rotate\": {rotate}";
+        foreach (var (c, g) in new[] { (0.0, 30.0), (90.0, 60.0), (200.0, 20.0) })
+        {
+            double ratio = Measured(b, c, g, 0, r) / Measured(a, c, g, 0, r);
+            Assert.True(Math.Abs(ratio - factor) <= 1e-5,
+                $"geometry {geometry}, rotate {rotate}, C {c} γ {g}: ratio {ratio:R}, factor {factor}");
+        }
     }
 
     [Fact]

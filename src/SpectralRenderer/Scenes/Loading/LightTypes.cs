@@ -53,7 +53,7 @@ public static class LightTypes
     // Goniometric: Φ_v = intensity × lamp factor × ∫ I_file dΩ; G = that integral (per unit intensity) / (K_m ∫V·S).
     static readonly Dictionary<string, PhotometricKey> GoniometricPhotometry = new(StringComparer.Ordinal)
     {
-        ["luminous_flux"] = new("lm", s => File(s).Table.Flux() * LampFactor(s) / Color.Photometry.Luminous(s.Spectrum)),
+        ["luminous_flux"] = new("lm", s => File(s).Table.Flux() * LampFactor(s) * TiltFactor(s) / Color.Photometry.Luminous(s.Spectrum)),
     };
 
     static PhotometricFile File(SceneLoader.LightSource s) => s.Memo("photometric-file", () =>
@@ -73,22 +73,27 @@ public static class LightTypes
                 "its candela are the luminaire's: drop lamp_lumens, or scale with luminous_flux");
     }
 
+    /// <summary>An IES file's TILT=INCLUDE factor at the tilt "rotate" gives its lamp (LampTilt), else 1.</summary>
+    static double TiltFactor(SceneLoader.LightSource s) => File(s).Tilt is { } tilt ? tilt.Factor(tilt.TiltDegrees(Orientation(s))) : 1;
+
+    /// <summary>The luminaire frame → world: "rotate" [rx, ry, rz] degrees about x, then y, then z.</summary>
+    static Matrix4x4 Orientation(SceneLoader.LightSource s)
+    {
+        if (!s.Has("rotate")) return Matrix4x4.Identity;
+        var deg = s.Point("rotate") * (MathF.PI / 180);
+        return Matrix4x4.CreateRotationX(deg.X) * Matrix4x4.CreateRotationY(deg.Y) * Matrix4x4.CreateRotationZ(deg.Z);
+    }
+
     static GoniometricLight Goniometric(SceneLoader.LightSource s)
     {
         if (s.Radiometry != Radiometry.Physical)
             throw s.Error("type", "a goniometric light needs physical radiometry",
                 "add \"radiometry\": \"physical\" to the scene: its file gives candela");
         var file = File(s);
-        var orientation = Matrix4x4.Identity;
-        if (s.Has("rotate"))
-        {
-            var deg = s.Point("rotate") * (MathF.PI / 180);
-            orientation = Matrix4x4.CreateRotationX(deg.X) * Matrix4x4.CreateRotationY(deg.Y) * Matrix4x4.CreateRotationZ(deg.Z);
-        }
-        return new GoniometricLight(s.Emission, file.Table, Color.Photometry.Luminous(s.Spectrum) / LampFactor(s))
+        return new GoniometricLight(s.Emission, file.Table, Color.Photometry.Luminous(s.Spectrum) / (LampFactor(s) * TiltFactor(s)))
         {
             Position = s.Point("position"),
-            Orientation = orientation,
+            Orientation = Orientation(s),
             Falloff = s.Falloff,
         };
     }
