@@ -125,7 +125,8 @@ public static class IesReader
         }
         tokens.End();
         return new PhotometricFile(new CandelaTable(vertical, horizontal, rows, symmetry, file), lumens > 0 ? lamps * lumens : null,
-            "IES LM-63") { Tilt = lampTilt };
+            "IES LM-63")
+        { Tilt = lampTilt };
     }
 
     /// <summary>The numbers of a text, with the line each came from, for errors.</summary>
