@@ -17,6 +17,10 @@ public sealed class Arguments
     public List<string> Positionals { get; } = [];
     public string Command { get; }
 
+    /// <summary>The options (values and flags) the last command run on this thread declared: what its help must list.</summary>
+    public static IReadOnlyList<string> LastDeclared => t_declared ?? [];
+    [ThreadStatic] static List<string>? t_declared;
+
     [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
     public Arguments(string command, IReadOnlyList<string> args, IEnumerable<string> valueOptions, IEnumerable<string> flagOptions,
         IReadOnlyDictionary<string, string>? aliases = null)
@@ -24,6 +28,7 @@ public sealed class Arguments
         Command = command;
         var values = new HashSet<string>(valueOptions);
         var flags = new HashSet<string>(flagOptions) { "--help" };
+        t_declared = [.. values, .. flags];
         for (int i = 0; i < args.Count; i++)
         {
             var a = args[i];

@@ -71,6 +71,8 @@ public static class CommandLine
     [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
     public static int Run(string[] args, TextWriter stdout, TextWriter stderr)
     {
+        // `spectral help COMMAND` is `spectral COMMAND --help`.
+        if (args is ["help", var topic] && topic is not ("--help" or "-h" or "help")) args = [topic, "--help"];
         if (args.Length == 0 || args[0] is "--help" or "-h" or "help")
         {
             stdout.Write(Usage());

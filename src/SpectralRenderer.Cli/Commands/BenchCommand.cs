@@ -13,7 +13,8 @@ public static class BenchCommand
 {
     const string Help = """
         usage: spectral bench [SCENE] [--width W] [--height H] [--repeat N] [--threads N] [--bands N|S:E:N | --wave S:STEP:E]
-                              [--spp N] [--models DIR] [--integrator NAME]
+                              [--band-range S:E:N] [--spp N] [--rgb MODE] [--integration S] [--formats LIST]
+                              [--models DIR] [--integrator NAME]
 
         Measures a scene (default: scenes/paper-3.2-bunny-14.json at 1024 × 1024): scene and mesh load,
         BVH build, and the render itself (median of N repeats, after one warm-up), with the rays traced

@@ -13,14 +13,16 @@ using SpectralRenderer.Sensor;
 
 namespace SpectralRenderer.Cli.Commands;
 
-/// <summary>`spectral camera OUTDIR --sensor NAME|FILE`: the render seen by a simulated camera (ISETCam's sensor model).</summary>
+/// <summary>`spectral camera OUTDIR [--sensor NAME|FILE|scene]`: the render seen by a simulated camera (ISETCam's sensor model).</summary>
 public static class CameraCommand
 {
     const string Help = """
-        usage: spectral camera OUTDIR --sensor NAME|FILE [--exposure auto|SECONDS] [--seed N] [--noise on|off]
+        usage: spectral camera OUTDIR [--sensor NAME|FILE|scene] [--exposure auto|SECONDS] [--seed N] [--noise on|off]
                                       [--radiance-scale S] [--demosaic malvar|bilinear] [--signals exact|bands]
                                       [--off-axis cos4th|none] [--psf diffraction|none] [--threads N]
                                       [-o DIR] [--bench N]
+
+        OUTDIR is the folder a 'spectral render' wrote; --sensor defaults to the scene camera's "sensor" (scene).
 
         Simulates a camera looking at a render (docs/camera.md): optics (thin lens with cos⁴ fall-off and the
         diffraction-limited Airy blur at the f-number, ISETCam's default optics), pixel, channel quantum

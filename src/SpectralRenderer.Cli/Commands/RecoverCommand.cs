@@ -16,7 +16,7 @@ public static class RecoverCommand
 {
     const string Help = """
         usage: spectral recover CAMERADIR [--method pinv|wiener|linear|tikhonov|wiener-local|all] [--training NAME|CSV]
-                                          [--white-object NAME | --white-region X0,Y0,X1,Y1] [--csv]
+                                          [--white-object NAME | --white-region X0,Y0,X1,Y1] [--range LO:HI] [--csv]
 
         Recovers each pixel's reflectance from the camera signals of a 'spectral camera' folder, with the
         sensor's channel weights and the scene light (the forward model of a surface lit like the white):
