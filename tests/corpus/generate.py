@@ -283,7 +283,7 @@ for opt, val, pat in [("--width", "abc", r"not a whole number"), ("--width", "0"
                       ("--width", "99999999999", r"not a whole number"), ("--width", "40000", r"exceeds 32768"), ("--height", "1e3", r"not a whole number"),
                       ("--spp", "0", r"not a whole number in 1–65536"), ("--spp", "1000000", r"not a whole number in 1–65536"),
                       ("--threads", "0", r"not a whole number in 1–1024"), ("--threads", "5000", r"not a whole number"),
-                      ("--bands", "0", r"neither a band count"), ("--bands", "abc", r"neither a band count"), ("--bands", "780:380:3", r"empty or not positive"),
+                      ("--bands", "0", r"band count 0 is outside 1–1024"), ("--bands", "4000", r"band count 4000 is outside 1–1024"), ("--bands", "abc", r"neither a band count"), ("--bands", "780:380:3", r"empty or not positive"),
                       ("--bands", "380:780:100000", r"outside 1"), ("--band-range", "1:2", r"not a band grid"),
                       ("--rgb", "adobe", r"adobe"), ("--integration", "bogus", r"unknown band integration"),
                       ("--formats", "", r"names no output format"), ("--formats", ",", r"names no output format"), ("--formats", "tiff", r"unknown output format 'tiff'"),

@@ -71,12 +71,19 @@ public static class SchedulerEnvironment
         return fromScheduler ?? shards;
     }
 
+    /// <summary>A whole number written with a sign and digits only, of any size.</summary>
+    static bool IsDigits(string v) => v.TrimStart('-', '+') is { Length: > 0 } d && d.All(char.IsAsciiDigit);
+
     static int? Get(Func<string, string?> env, string name)
     {
         var v = env(name);
         if (string.IsNullOrWhiteSpace(v)) return null;
         if (!int.TryParse(v.Trim(), NumberStyles.AllowLeadingSign, CultureInfo.InvariantCulture, out int n))
-            throw new InputException(name, $"'{v}' is not a whole number", "it is set by the scheduler; unset it outside a job array");
+            throw new InputException(name,
+                IsDigits(v.Trim())
+                    ? $"{MessageText.Quote(v)} is beyond the ±{int.MaxValue} a job array index can be"
+                    : $"{MessageText.Quote(v)} is not a whole number",
+                "it is set by the scheduler; unset it outside a job array");
         return n;
     }
 }

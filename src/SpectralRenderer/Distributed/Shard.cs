@@ -6,7 +6,7 @@ namespace SpectralRenderer.Distributed;
 
 /// <summary>
 /// Shard <see cref="Index"/> of <see cref="Count"/> (0-based, as Slurm, Kubernetes and AWS Batch number array tasks).
-/// A shard of a render is a horizontal strip of whole rows (<see cref="Strip"/>); a shard of a sweep is every
+/// A shard of a render is a horizontal strip of whole rows (<see cref="Strip(int, int)"/>); a shard of a sweep is every
 /// Count-th job starting at Index.
 /// </summary>
 public readonly record struct Shard(int Index, int Count)
@@ -43,12 +43,18 @@ public readonly record struct Shard(int Index, int Count)
     /// contiguous runs, shard i taking tile rows ⌊i·R/N⌋ … ⌊(i+1)·R/N⌋ − 1 (full width; the last strip ends at the
     /// image's last row). Every row belongs to exactly one shard.
     /// </summary>
-    public PixelRect Strip(int width, int height)
+    public PixelRect Strip(int width, int height) => Strip(width, height, null);
+
+    /// <inheritdoc cref="Strip(int, int)"/>
+    /// <param name="source">Where the shard came from, for an error (a job array's task); null: --shard.</param>
+    public PixelRect Strip(int width, int height, string? source)
     {
         int rows = (height + RowAlignment - 1) / RowAlignment;
         if (Count > rows)
-            throw new InputException($"--shard {this}", $"the {width}×{height} image has only {rows} strips of {RowAlignment} rows",
-                $"use at most {rows} shards");
+            throw new InputException(source ?? $"--shard {this}",
+                $"the {width}×{height} image has only {rows} strip{(rows == 1 ? "" : "s")} of {RowAlignment} rows",
+                source is null ? $"use at most {rows} shard{(rows == 1 ? "" : "s")}"
+                    : $"run an array of at most {rows} task{(rows == 1 ? "" : "s")}, or a taller image");
         int t0 = (int)((long)Index * rows / Count), t1 = (int)((long)(Index + 1) * rows / Count);
         return new PixelRect(0, t0 * RowAlignment, width, Math.Min(height, t1 * RowAlignment));
     }

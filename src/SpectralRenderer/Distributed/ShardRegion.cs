@@ -28,7 +28,8 @@ public static class ShardRegion
             return new RenderRegion(s.Strip, $"{s} (--shard)");
         }
         if (jobArray && SchedulerEnvironment.Resolve(shards) is { } env)
-            return new RenderRegion(env.Shard.Strip, $"{env.Shard} ({env.Source})");
+            return new RenderRegion((w, h) => env.Shard.Strip(w, h, $"{env.Source} job array task {env.Shard}"),
+                $"{env.Shard} ({env.Source})");
         if (shards is not null)
             throw new InputException("--shards", "is given but no job array variable is set", "use --shard I/N outside a job array");
         return null;

@@ -161,9 +161,12 @@ public static class RenderOptions
                 "use one: --wave 400:10:700 (centres) or --bands 395:705:31 (edges)");
         if (bands is not null && !bands.Contains(':'))
         {
-            if (!int.TryParse(bands, NumberStyles.Integer, CultureInfo.InvariantCulture, out int n) || n < 1 || n > BandGrid.MaxBands)
-                throw new InputException("--bands", $"'{bands}' is neither a band count nor a grid start:end:count",
+            if (!int.TryParse(bands, NumberStyles.Integer, CultureInfo.InvariantCulture, out int n))
+                throw new InputException("--bands", $"{MessageText.Quote(bands)} is neither a band count nor a grid start:end:count",
                     "e.g. --bands 40, --bands 395:705:31 (edges) or --wave 400:10:700 (centres)");
+            if (n < 1 || n > BandGrid.MaxBands)
+                throw new InputException("--bands", $"band count {n} is outside 1–{BandGrid.MaxBands}",
+                    $"e.g. --bands 40 (at most {BandGrid.MaxBands} bands)");
             // A count keeps the scene's range: peek at it without loading the scene twice.
             var grid = SceneRange(sceneText());
             bands = string.Create(CultureInfo.InvariantCulture, $"{grid.Start}:{grid.End}:{n}");

@@ -114,6 +114,27 @@ public class ShardTests
     [Fact]
     public void No_scheduler_variable_means_no_shard() => Assert.Null(SchedulerEnvironment.Resolve(4, Env()));
 
+    /// <summary>Issue 42: a huge task id was "not a whole number"; a task beyond the image's strips was blamed on --shard.</summary>
+    [Theory]
+    [InlineData("SLURM_ARRAY_TASK_ID", "99999999999")]
+    [InlineData("SLURM_ARRAY_TASK_MAX", "-99999999999")]
+    public void A_task_variable_beyond_the_whole_numbers_says_so_and_names_itself(string name, string value)
+    {
+        var env = name == "SLURM_ARRAY_TASK_ID" ? Env((name, value), ("SLURM_ARRAY_TASK_MAX", "3"))
+            : Env(("SLURM_ARRAY_TASK_ID", "0"), (name, value));
+        var e = Assert.Throws<InputException>(() => SchedulerEnvironment.Resolve(null, env));
+        Assert.StartsWith($"{name}: '{value}' is beyond the ±2147483647", e.Message);
+    }
+
+    [Fact]
+    public void A_job_array_task_beyond_the_images_strips_names_the_scheduler_not_shard()
+    {
+        var e = Assert.Throws<InputException>(() => new Shard(7, 10).Strip(8, 4, "Slurm job array task 7/10"));
+        Assert.Equal("Slurm job array task 7/10: the 8×4 image has only 1 strip of 32 rows (hint: run an array of at most 1 task,"
+            + " or a taller image)", e.Message);
+        Assert.StartsWith("--shard 7/10: ", Assert.Throws<InputException>(() => new Shard(7, 10).Strip(8, 4)).Message);
+    }
+
     [Fact]
     public void Sweep_slices_deal_every_job_to_exactly_one_shard()
     {
