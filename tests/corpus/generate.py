@@ -1089,6 +1089,11 @@ for label, text, pat, place in [
     ("pattern-empty-row", json.dumps({"name": "x", "channels": [{"name": "F1", "gaussian": GAUSS}], "arrangement": "mosaic",
                                       "pattern": [[]]}),
      r"\$\.pattern: a pattern is letters", r"\.json: \$\.pattern"),
+    # Issue 42: a channel outside the render's bands was an internal error; a black level above the white level was accepted.
+    ("channel-outside-bands", json.dumps({"name": "x", "channels": [{"name": "IR", "box": [900, 1000]}, {"name": "G", "gaussian": GAUSS}]}),
+     r"channel 'IR' \(box 900–1000 nm\) has no response within the render's", r"\.json"),
+    ("black-above-white", json.dumps({"name": "x", "adc_bits": 8, "black_level_dn": 300}),
+     r"\$\.black_level_dn: black level 300 DN is not below the white level 255 DN", r"\.json: \$\.black_level_dn"),
 ]:
     fname = write(f"sensor-{label}.json", text)
     case(f"sensor/{label}", ["camera", "{tmp}/r", "--sensor", "{in}/" + fname, "-o", "{tmp}/out"], pat, 2, fname, place, ["base-render r"])

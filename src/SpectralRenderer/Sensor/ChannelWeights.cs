@@ -1,3 +1,5 @@
+using System.Globalization;
+using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Sensor;
@@ -62,6 +64,12 @@ public sealed class ChannelWeights
                     : IntegrateTimesWavelength(qe, null, lo, hi);
                 values[c * n + b] = factor * w;
             }
+            // A channel blind to every band would give no signal to expose, calibrate or recover with.
+            if (values.AsSpan(c * n, n).IndexOfAnyExcept(0.0) < 0)
+                throw new InputException(sensor.Source,
+                    string.Create(CultureInfo.InvariantCulture,
+                        $"channel '{ch.Name}' ({ch.Source}) has no response within the render's {grid.Start:0.##}–{grid.End:0.##} nm"),
+                    "give channels that respond inside the render's bands, or render wider bands (--bands START:END:COUNT)");
         }
         return new ChannelWeights(m, n, values, factor);
     }

@@ -137,7 +137,7 @@ public static class SensorFile
             transmittance = 1;
         }
         else transmittance = Num(o, "transmittance", at, 0, 1);
-        return s with
+        var model = s with
         {
             OffAxis = Str(o, "off_axis", at) is { } oa ? ParseOffAxis(oa, $"{at}.off_axis") : s.OffAxis,
             Psf = Str(o, "psf", at) is { } ps ? ParsePsf(ps, $"{at}.psf") : s.Psf,
@@ -165,6 +165,13 @@ public static class SensorFile
             AutoExposureFraction = Num(o, "auto_exposure_fraction", at, 1e-6, 1) ?? s.AutoExposureFraction,
             FixedPatternSeed = (ulong?)Num(o, "fixed_pattern_seed", at, 0, 1e15, whole: true) ?? s.FixedPatternSeed,
         };
+        // The black level is an offset inside the ADC's range: at or above its white level no signal is left.
+        if (model.BlackLevel >= model.WhiteLevel)
+            throw new InputException($"{at}.black_level_dn",
+                string.Create(CultureInfo.InvariantCulture,
+                    $"black level {model.BlackLevel} DN is not below the white level {model.WhiteLevel} DN of {model.AdcBits}-bit samples"),
+                $"give a black level below 2^adc_bits − 1 = {model.WhiteLevel}");
+        return model;
     }
 
     /// <summary>"cos4th" or "none" (<see cref="OffAxisModel"/>); <paramref name="where"/> names the key or option in the error.</summary>
