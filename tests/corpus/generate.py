@@ -1049,6 +1049,8 @@ for label, args, pat, named in [
     ("relight-intensity-1e300", ["relight", "{tmp}/r", "--intensity", "light-0=1e300", "-o", "{tmp}/out", "--quiet"], r"--intensity: '1e300' is not a non-negative number ≤ 1e30", "--intensity"),
     ("relight-intensity-negative", ["relight", "{tmp}/r", "--intensity", "light-0=-1", "-o", "{tmp}/out", "--quiet"], r"--intensity: '-1' is not a non-negative number ≤ 1e30", "--intensity"),
     ("relight-intensity-nan", ["relight", "{tmp}/r", "--intensity", "light-0=nan", "-o", "{tmp}/out", "--quiet"], r"--intensity: 'nan' is not a non-negative number ≤ 1e30", "--intensity"),
+    # Issue 42: a dark new white named the rendered scene's $.white, not --white.
+    ("relight-white-dark", ["relight", "{tmp}/r", "--white", "constant:0", "-o", "{tmp}/out", "--quiet"], r"^spectral relight: --white: the reference white 'constant:0' has no luminance", "--white"),
 ]:
     base = "base-lights r" if label.startswith("relight") or label.startswith("view") else "base-render r"
     case(f"numbers/{label}", args, pat, 2, named, OPT + r"|--[a-z-]+", [base])

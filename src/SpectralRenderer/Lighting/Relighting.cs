@@ -66,7 +66,15 @@ public static class Relighting
             edits.Add((k, c.Spectrum, c.Intensity));
         }
         if (white is not null) Check(src, white, whiteWhere ?? "--white");
-        return SceneLoader.Parse(src.Scene.WithLights(edits, white), src.ScenePath, src.Overrides);
+        try
+        {
+            return SceneLoader.Parse(src.Scene.WithLights(edits, white), src.ScenePath, src.Overrides);
+        }
+        catch (InputException e) when (white is not null && e.Where.EndsWith("$.white", StringComparison.Ordinal))
+        {
+            // The new white is the user's argument, not the rendered scene's field: name where it was given.
+            throw new InputException(whiteWhere ?? "--white", e.What, e.Hint);
+        }
     }
 
     /// <summary>What <paramref name="name"/> is when it is a source of light a relight keeps (an emitting material, the sky), else
