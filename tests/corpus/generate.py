@@ -996,6 +996,8 @@ case("render/duplicate-key-bands-count", render("{in}/scene-duplicate-bands.json
 write("plan-latin1-scene.json", json.dumps({"scene": "scene-035-latin1-byte.json", "axes": [{"name": "light", "path": "lights[0].spectrum", "values": ["A"]}]}))
 case("sweep/scene-latin1", ["sweep", "{in}/plan-latin1-scene.json", "-o", "{tmp}/sw", "--quiet"], r"is not valid UTF-8", 2, "scene-035-latin1-byte.json", r".")
 plan_case("formats-number", {"scene": "good.json", "axes": [AX], "formats": 5}, r"\$\.formats: is not a list of formats")
+plan_case("formats-unknown", {"scene": "good.json", "axes": [AX], "formats": ["npy", "bogus"]},
+          r"plan-formats-unknown\.json:1:\d+: \$\.formats: unknown output format 'bogus'")   # issue 42: named no file
 # a job's own scene is bad: named as OUT/jobs/ID/scene.json (written so its line is true), and no job renders
 JOBSCENE = r"jobs/\d{4}/scene\.json:\d+:\d+: \$"
 for label, plan, pat in [

@@ -151,14 +151,15 @@ public static class SweepCommand
     static string Quote(string s) =>
         s.Length > 0 && s.All(c => char.IsLetterOrDigit(c) || "/._-+=:,".Contains(c)) ? s : "'" + s.Replace("'", "'\\''") + "'";
 
-    static string Common(SweepPlan plan, string outDir, string layout, Arguments a, List<string> models)
+    /// <summary>The arguments a job array's task runs (after the spectral command), one string per argument.</summary>
+    static List<string> Common(SweepPlan plan, string outDir, string layout, Arguments a, List<string> models)
     {
-        var sb = new StringBuilder($"sweep {Quote(plan.PlanPath)} -o {Quote(Path.GetFullPath(outDir))}");
-        if (layout != "folders") sb.Append($" --layout {layout}");
-        if (a.Value("--formats") is { } f) sb.Append($" --formats {Quote(f)}");
-        if (a.Value("--threads") is { } t) sb.Append($" --threads {t}");
-        foreach (var m in models) sb.Append($" --models {Quote(m)}");
-        return sb.ToString();
+        List<string> args = ["sweep", plan.PlanPath, "-o", Path.GetFullPath(outDir)];
+        if (layout != "folders") args.AddRange(["--layout", layout]);
+        if (a.Value("--formats") is { } f) args.AddRange(["--formats", f]);
+        if (a.Value("--threads") is { } t) args.AddRange(["--threads", t]);
+        foreach (var m in models) args.AddRange(["--models", m]);
+        return args;
     }
 
     static string EmitSlurm(SweepPlan plan, string outDir, int tasks, string layout, Arguments a, List<string> models)
@@ -177,7 +178,7 @@ public static class SweepCommand
             #SBATCH --output={logs}/%A_%a.out
             #SBATCH --cpus-per-task=1
             set -euo pipefail
-            exec {SpectralCommand()} {Common(plan, outDir, layout, a, models)}{threads}
+            exec {SpectralCommand()} {string.Join(' ', Common(plan, outDir, layout, a, models).Select(Quote))}{threads}
 
             """;
         var path = Path.Combine(outDir, "sweep.sbatch");
@@ -186,16 +187,26 @@ public static class SweepCommand
         return path;
     }
 
+    /// <summary>A YAML double-quoted scalar (YAML 1.2 §7.3.1): any path or name, spaces, colons and quotes included.</summary>
+    static string YamlString(string s) => "\"" + string.Concat(s.Select(c => c switch
+    {
+        '\\' => "\\\\",
+        '"' => "\\\"",
+        < ' ' or '\x7f' => $"\\x{(int)c:x2}",
+        _ => c.ToString(),
+    })) + "\"";
+
     static string EmitKubernetes(SweepPlan plan, string outDir, int tasks, string layout, Arguments a, List<string> models)
     {
         string image = a.Value("--image") ?? "spectral:latest";
-        var args = ("spectral " + Common(plan, outDir, layout, a, models) + $" --shards {tasks} --quiet").Split(' ');
+        // An exec-form command: each argument its own YAML string, never split on spaces (a path may hold them).
+        List<string> args = ["spectral", .. Common(plan, outDir, layout, a, models), "--shards", $"{tasks}", "--quiet"];
         string name = "spectral-sweep-"
             + new string(Path.GetFileNameWithoutExtension(plan.PlanPath).ToLowerInvariant()
                 .Select(c => char.IsAsciiLetterOrDigit(c) ? c : '-').ToArray())
                 .Trim('-');
         if (name.Length > 52) name = name[..52].TrimEnd('-');
-        var command = string.Join(", ", args.Select(x => "\"" + x.Replace("\\", "\\\\").Replace("\"", "\\\"") + "\""));
+        var command = string.Join(", ", args.Select(YamlString));
         string shared = Path.GetDirectoryName(plan.PlanPath)!;
         var yaml = $"""
             # {plan.Jobs.Count} jobs of {Path.GetFileName(plan.PlanPath)} as a Kubernetes Indexed Job of {tasks} completions: pod I runs
@@ -217,13 +228,13 @@ public static class SweepCommand
                   restartPolicy: Never
                   containers:
                     - name: spectral
-                      image: {image}
+                      image: {YamlString(image)}
                       command: [{command}]
                       volumeMounts:
                         - name: data
-                          mountPath: {shared}
+                          mountPath: {YamlString(shared)}
                         - name: out
-                          mountPath: {Path.GetFullPath(outDir)}
+                          mountPath: {YamlString(Path.GetFullPath(outDir))}
                   volumes:
                     - name: data
                       persistentVolumeClaim:

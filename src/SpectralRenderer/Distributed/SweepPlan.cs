@@ -169,6 +169,10 @@ public sealed class SweepPlan
             JsonValue fv when fv.GetValueKind() == JsonValueKind.String => fv.GetValue<string>(),
             _ => throw Bad("$.formats", "is not a list of formats", "e.g. [\"npy\", \"png\"]"),
         };
+        // Checked here, where the plan says it, rather than in every job's scene (which would name --formats).
+        if (formats is not null)
+            SceneLoader.ParseFormats(formats.Split(',', StringSplitOptions.RemoveEmptyEntries | StringSplitOptions.TrimEntries),
+                locator.Locate("$.formats") is { } fpos ? $"{planPath}:{fpos}: $.formats" : $"{planPath}: $.formats");
         var result = new SweepPlan
         {
             PlanPath = Path.GetFullPath(planPath),

@@ -192,6 +192,36 @@ public class SweepTests
             Assert.Equal(0, syntax.ExitCode);
         }
     }
+
+    /// <summary>
+    /// Issue 42: an output folder with a space was split into two arguments of the Job's command ("'/x/sw", "dir'"). The
+    /// exec-form command is a YAML flow sequence of double-quoted strings, which is also JSON: read back, it is the
+    /// arguments as given; the sbatch script runs them through bash, which must give the same words.
+    /// </summary>
+    [Fact]
+    public void An_output_folder_with_spaces_and_quotes_stays_one_argument_of_the_emitted_jobs()
+    {
+        var dir = Reference.TempDir();
+        var plan = Plan(dir);
+        var outDir = Path.Combine(dir, "sweep out \"it's\" here");
+        Assert.Equal(0, CliRunner.Run("sweep", plan, "-o", outDir, "--emit", "k8s", "--quiet").Exit);
+        var yaml = File.ReadAllLines(Path.Combine(outDir, "sweep-job.yaml"));
+        var command = yaml.Single(l => l.TrimStart().StartsWith("command: ", StringComparison.Ordinal)).Trim()["command: ".Length..];
+        var args = System.Text.Json.Nodes.JsonNode.Parse(command)!.AsArray().Select(x => x!.GetValue<string>()).ToList();
+        Assert.Equal(["spectral", "sweep", plan, "-o", outDir, "--shards", "7", "--quiet"], args);
+        Assert.Contains(yaml, l => l.Trim() == "mountPath: " + System.Text.Json.JsonSerializer.Serialize(outDir,
+            new System.Text.Json.JsonSerializerOptions { Encoder = System.Text.Encodings.Web.JavaScriptEncoder.UnsafeRelaxedJsonEscaping }));
+        Assert.Equal(0, CliRunner.Run("sweep", plan, "-o", outDir, "--emit", "slurm", "--quiet").Exit);
+        if (!File.Exists("/bin/bash")) return;
+        var exec = File.ReadAllLines(Path.Combine(outDir, "sweep.sbatch")).Single(l => l.StartsWith("exec ", StringComparison.Ordinal));
+        // bash prints the words of the exec line, one per line, instead of running it.
+        var words = exec["exec ".Length..].Replace("\"${SLURM_CPUS_PER_TASK:-1}\"", "1");
+        using var p = Process.Start(new ProcessStartInfo("/bin/bash", ["-c", "printf '%s\\n' " + words]) { RedirectStandardOutput = true })!;
+        var printed = p.StandardOutput.ReadToEnd().Split('\n', StringSplitOptions.RemoveEmptyEntries);
+        p.WaitForExit();
+        Assert.Contains(outDir, printed);
+        Assert.Equal("-o", printed[Array.IndexOf(printed, outDir) - 1]);
+    }
 }
 
 /// <summary>SIGINT during a sweep, then a rerun: every job done once, none lost (a subprocess, as a user would run it).</summary>
