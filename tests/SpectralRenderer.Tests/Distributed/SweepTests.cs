@@ -209,8 +209,11 @@ public class SweepTests
         var command = yaml.Single(l => l.TrimStart().StartsWith("command: ", StringComparison.Ordinal)).Trim()["command: ".Length..];
         var args = System.Text.Json.Nodes.JsonNode.Parse(command)!.AsArray().Select(x => x!.GetValue<string>()).ToList();
         Assert.Equal(["spectral", "sweep", plan, "-o", outDir, "--shards", "7", "--quiet"], args);
-        Assert.Contains(yaml, l => l.Trim() == "mountPath: " + System.Text.Json.JsonSerializer.Serialize(outDir,
-            new System.Text.Json.JsonSerializerOptions { Encoder = System.Text.Encodings.Web.JavaScriptEncoder.UnsafeRelaxedJsonEscaping }));
+        var relaxed = new System.Text.Json.JsonSerializerOptions
+        {
+            Encoder = System.Text.Encodings.Web.JavaScriptEncoder.UnsafeRelaxedJsonEscaping,
+        };
+        Assert.Contains(yaml, l => l.Trim() == "mountPath: " + System.Text.Json.JsonSerializer.Serialize(outDir, relaxed));
         Assert.Equal(0, CliRunner.Run("sweep", plan, "-o", outDir, "--emit", "slurm", "--quiet").Exit);
         if (!File.Exists("/bin/bash")) return;
         var exec = File.ReadAllLines(Path.Combine(outDir, "sweep.sbatch")).Single(l => l.StartsWith("exec ", StringComparison.Ordinal));
