@@ -219,7 +219,8 @@ public class SweepTests
         var exec = File.ReadAllLines(Path.Combine(outDir, "sweep.sbatch")).Single(l => l.StartsWith("exec ", StringComparison.Ordinal));
         // bash prints the words of the exec line, one per line, instead of running it.
         var words = exec["exec ".Length..].Replace("\"${SLURM_CPUS_PER_TASK:-1}\"", "1");
-        using var p = Process.Start(new ProcessStartInfo("/bin/bash", ["-c", "printf '%s\\n' " + words]) { RedirectStandardOutput = true })!;
+        using var p =
+            Process.Start(new ProcessStartInfo("/bin/bash", ["-c", "printf '%s\\n' " + words]) { RedirectStandardOutput = true })!;
         var printed = p.StandardOutput.ReadToEnd().Split('\n', StringSplitOptions.RemoveEmptyEntries);
         p.WaitForExit();
         Assert.Contains(outDir, printed);
