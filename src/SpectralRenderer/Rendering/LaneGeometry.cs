@@ -246,7 +246,7 @@ internal static class LaneGeometry
     }
 
     /// <summary>
-    /// An isotropic point emitter (<see cref="Light.LaneForm"/>, as <see cref="PointLight.Illuminate"/>) seen
+    /// An isotropic point light (<see cref="Light.LaneForm"/>, as <see cref="PointLight.Illuminate"/>) seen
     /// from the points P of the given lanes (<paramref name="at"/>),
     /// with shading normals n: the lanes it reaches (distance r ≠ 0) in
     /// <paramref name="reached"/>; their attenuation 1 / (c0 + c1·r + c2·r²) and n·l. The lanes that face it (not n·l ≤ 0)
@@ -254,7 +254,7 @@ internal static class LaneGeometry
     /// whose active lanes they become. Returns those lanes.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    internal static uint PointLight<L>(in PointEmitter light, float epsilon, uint lanes, in ShadingLanes at,
+    internal static uint PointLight<L>(in LanePointLight light, float epsilon, uint lanes, in ShadingLanes at,
         ref RayPacket shadows, ref PacketFloats attenuation, ref PacketFloats cosine, out uint reached) where L : struct, ILanes<L>
     {
         uint chunkMask = L.Count >= 32 ? uint.MaxValue : (1u << L.Count) - 1;

@@ -85,7 +85,7 @@ internal sealed partial class WhittedIntegrator
         {
             var light = _lights[k];
             ref var lk = ref lanes[k];
-            if (_laneForms[k] is PointEmitter point)
+            if (_laneForms[k] is LanePointLight point)
             {
                 // Direction, distance, falloff, n·l and the shadow rays of all lanes at once (c_spot = 1).
                 ref var d = ref lk.Attenuation;

@@ -60,8 +60,8 @@ public abstract class Light(LightEmission emission)
     /// </summary>
     public abstract bool Illuminate(Vector3 p, out LightSample sample);
 
-    /// <summary>The light as an isotropic point emitter that packets evaluate in SIMD lanes, or null when it is not one.</summary>
-    public virtual PointEmitter? LaneForm => null;
+    /// <summary>The light as an isotropic point light that packets evaluate in SIMD lanes, or null when it is not one.</summary>
+    public virtual LanePointLight? LaneForm => null;
 
     // ---- sampling: a scene light is a delta light --------------------------------------------------------------
 
@@ -115,8 +115,8 @@ public sealed record LightDescription(string Type, string Unit,
     public static double[] Of(DistanceFalloff f) => [f.C0, f.C1, f.C2];
 }
 
-/// <summary>An isotropic point emitter (c_spot = 1) at <paramref name="Position"/> with distance falloff d_k.</summary>
-public readonly record struct PointEmitter(Vector3 Position, DistanceFalloff Falloff);
+/// <summary>An isotropic point light in its lane form (c_spot = 1) at <paramref name="Position"/> with distance falloff d_k.</summary>
+public readonly record struct LanePointLight(Vector3 Position, DistanceFalloff Falloff);
 
 /// <summary>Distance attenuation d = 1/(c0 + c1·r + c2·r²) of eq. 2.</summary>
 public readonly record struct DistanceFalloff(float C0, float C1, float C2)

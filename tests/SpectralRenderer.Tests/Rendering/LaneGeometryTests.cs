@@ -230,9 +230,9 @@ public class LaneGeometryTests
                 Position = new Vector3(2.5f, 5, 4),
                 Falloff = new DistanceFalloff(1, 0.2f, 0.05f)
             };
-        // The light's lane form: an isotropic point emitter at its position with its falloff.
-        var emitter = Assert.IsType<PointEmitter>(light.LaneForm);
-        Assert.Equal(new PointEmitter(light.Position, light.Falloff), emitter);
+        // The light's lane form: an isotropic point light at its position with its falloff.
+        var laneForm = Assert.IsType<LanePointLight>(light.LaneForm);
+        Assert.Equal(new LanePointLight(light.Position, light.Falloff), laneForm);
         var r = new Random(11);
         const float eps = 2e-5f;
         int facing = 0, away = 0;
@@ -250,10 +250,10 @@ public class LaneGeometryTests
             uint lanes = n % 4 == 0 ? 0xF0F7u : 0xFFFFu, reached;
             uint lit = width switch
             {
-                16 => LaneGeometry.PointLight<Lanes512>(emitter, eps, lanes, in at, ref shadows, ref attenuation, ref cosine, out reached),
-                8 => LaneGeometry.PointLight<Lanes256>(emitter, eps, lanes, in at, ref shadows, ref attenuation, ref cosine, out reached),
-                4 => LaneGeometry.PointLight<Lanes128>(emitter, eps, lanes, in at, ref shadows, ref attenuation, ref cosine, out reached),
-                _ => LaneGeometry.PointLight<Lanes1>(emitter, eps, lanes, in at, ref shadows, ref attenuation, ref cosine, out reached),
+                16 => LaneGeometry.PointLight<Lanes512>(laneForm, eps, lanes, in at, ref shadows, ref attenuation, ref cosine, out reached),
+                8 => LaneGeometry.PointLight<Lanes256>(laneForm, eps, lanes, in at, ref shadows, ref attenuation, ref cosine, out reached),
+                4 => LaneGeometry.PointLight<Lanes128>(laneForm, eps, lanes, in at, ref shadows, ref attenuation, ref cosine, out reached),
+                _ => LaneGeometry.PointLight<Lanes1>(laneForm, eps, lanes, in at, ref shadows, ref attenuation, ref cosine, out reached),
             };
             Assert.Equal(lit, shadows.Active);
             for (int lane = 0; lane < RayPacket.Size; lane++)
