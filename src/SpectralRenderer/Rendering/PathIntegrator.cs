@@ -11,8 +11,8 @@ namespace SpectralRenderer.Rendering;
 /// Unidirectional path tracing of the rendering equation (Kajiya 1986) in physical radiometry, every band on every path:
 /// the throughput β and the radiance L are spectra on a fine internal grid (<see cref="FineGrid"/>, 5 nm by default),
 /// multiplied band by band in SIMD lanes and reduced to the output bands (exact band means) and to XYZ only at the film.
-/// At each vertex one light, chosen uniformly, is sampled (next-event estimation) and the BSDF is sampled to continue; both
-/// estimates of light that arrives from surfaces that emit, and from the sky, are combined by multiple importance
+/// At each vertex one light, chosen by power (Emitters/EmitterSet.cs), is sampled (next-event estimation) and the BSDF is
+/// sampled to continue; both estimates of light that arrives from surfaces that emit, and from the sky, are combined by multiple importance
 /// sampling with the power heuristic w_a = p_a²/(p_a² + p_b²) (Veach &amp; Guibas 1995). Delta lights (point, spot,
 /// directional) are reached by next-event estimation only, delta lobes (mirror, Fresnel dielectric) by the BSDF only. One
 /// walk (Walk) carries a set of bands: all of them, or after its first dispersive glass one output band's sub-bands, in a
@@ -58,7 +58,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         _fluoresces = _materials.Any(x => x.Shift is not null);
         _splitsShifts = _fluoresces && _materials.Any(x => x.Dispersive);
         _objectMaterial = scene.Objects.Select(o => o.Material).ToArray();
-        _emitters = new EmitterSet(scene, _grid, _materials);
+        _emitters = new EmitterSet(scene, _grid, geometry.BoundingRadius, m => _materials[m].EmissionTexture);
         _lights = [.. scene.Lights];
         _background = _emitters.Background;
         foreach (var material in _materials) material.Shift?.Prepare(_emitters.All.Select(e => e.Radiance));
@@ -299,7 +299,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
             int dLight = sampler.Reserve1D(), dPoint = sampler.Reserve2D(), dLobe = sampler.Reserve1D();
             int dDirection = sampler.Reserve2D(), dRoulette = sampler.Reserve1D();
 
-            // Next-event estimation: one light chosen uniformly, one point on it.
+            // Next-event estimation: one light chosen by the set's selection pdf (by power), one point on it.
             if ((material.Smooth || shiftShare > 0) && _emitters.Count > 0)
             {
                 float uLight = _emitters.Count > 1 ? sampler.At1D(dLight) : 0;   // one light: no choice

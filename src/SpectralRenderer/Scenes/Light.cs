@@ -85,6 +85,15 @@ public abstract class Light(LightEmission emission)
         return true;
     }
 
+    /// <summary>
+    /// The radiant power per unit of the spectrum <see cref="Intensity"/> (the factor Φ_λ/I_λ): the solid-angle integral
+    /// ∫c_spot dω of a light at a point (4π for an isotropic one, the kinds override it), πR² for a light at infinity (the
+    /// irradiance through the disc of the scene's bounding sphere of radius <paramref name="sceneRadius"/>, as pbrt-v4's
+    /// <c>DirectionalLight::Phi</c>). A point's distance falloff d_k is taken as the physical 1/r² (the power of a c0 or
+    /// c1 falloff is not defined).
+    /// </summary>
+    public virtual double PowerPerIntensity(double sceneRadius) => 4 * Math.PI;
+
     /// <summary>The light as render.json lists it (its kind, what its intensity is in, where it is and how it falls off).</summary>
     public virtual LightDescription Describe(Radiometry radiometry) =>
         new(Type, LightDescription.UnitOf(radiometry, LightDescription.RadiantIntensity));

@@ -27,6 +27,12 @@ internal abstract class Emitter(float[] radiance)
     /// <summary>True for an emitter concentrated in a point or a direction: no ray can hit it; its pdf is 1 by convention.</summary>
     public abstract bool IsDelta { get; }
 
+    /// <summary>
+    /// Its radiant power per unit of <see cref="Radiance"/>'s spectral integral (Φ = this × ∫L dλ; <see cref="EmitterSet.Power"/>),
+    /// a light at infinity's through the sphere of radius <paramref name="sceneRadius"/> about the scene.
+    /// </summary>
+    public abstract double PowerPerRadiance(double sceneRadius);
+
     /// <summary>The scene light this emitter is (its index in <c>Scene.Lights</c>, whose transfer a relight keeps apart), or −1.</summary>
     public virtual int SceneLight => -1;
 
