@@ -75,19 +75,14 @@ public sealed class Illuminance
     {
         double e = 0;
         var geometry = _geometry ?? throw new InvalidOperationException("illuminance needs the scene's geometry");
-        float eps = geometry.Epsilon;
         var lights = _scene.Lights;
         for (int k = 0; k < lights.Count; k++)
         {
             if (!lights[k].Illuminate(p, out var s)) continue;
             float cos = Vector3.Dot(n, s.Direction);
             if (!(cos > 0) || !(s.Spot > 0)) continue;
-            float side = Vector3.Dot(ng, s.Direction) >= 0 ? 1 : -1;
-            var origin = p + side * eps * ng;
-            var shadow = float.IsInfinity(s.Distance) ? new Ray(origin, s.Direction)
-                : new Ray(origin, s.Direction, MathF.Max(0, s.Distance - 2 * eps));
             counters.Shadow++;
-            if (geometry.Occluded(shadow)) continue;
+            if (geometry.Occluded(Visibility.ShadowRay(p, ng, s.Direction, s.Distance, geometry.Epsilon))) continue;
             e += _luminous[k] * s.Spot * s.Attenuation * cos;
         }
         return e;
@@ -103,13 +98,9 @@ public sealed class Illuminance
         if (!_scene.Lights[k].Illuminate(p, out var s)) return 0;
         float cos = Vector3.Dot(n, s.Direction);
         if (!(cos > 0) || !(s.Spot > 0)) return 0;
-        float eps = geometry.Epsilon;
-        float side = Vector3.Dot(ng, s.Direction) >= 0 ? 1 : -1;
-        var origin = p + side * eps * ng;
-        var shadow = float.IsInfinity(s.Distance) ? new Ray(origin, s.Direction)
-            : new Ray(origin, s.Direction, MathF.Max(0, s.Distance - 2 * eps));
         counters.Shadow++;
-        return geometry.Occluded(shadow) ? 0 : (double)s.Spot * s.Attenuation * cos;
+        return geometry.Occluded(Visibility.ShadowRay(p, ng, s.Direction, s.Distance, geometry.Epsilon)) ? 0
+            : (double)s.Spot * s.Attenuation * cos;
     }
 
     /// <summary>
@@ -230,8 +221,7 @@ public sealed class Illuminance
             int index = int.MaxValue - rays + i;
             var (u, v) = new Sampler(x, y, index).Next2D();
             var wi = Bsdf.CosineHemisphere(n, new Vector2(u, v));
-            float side = Vector3.Dot(ng, wi) >= 0 ? 1 : -1;
-            var ray = new Ray(p + side * _geometry!.Epsilon * ng, wi);
+            var ray = Visibility.Leaving(p, ng, wi, _geometry!.Epsilon);
             counters.Secondary++;
             integrator.Radiance(new CameraSample(x, y, index, ray), radiance.AsSpan(0, _scene.PaddedBands), scratch, ref counters);
             sum += Luminance(radiance.AsSpan(0, bands), radiance[bands + 1]);

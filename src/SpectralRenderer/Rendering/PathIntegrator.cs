@@ -126,7 +126,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         {
             if (!_lights[k].Sample(p, new Vector2(0.5f, 0.5f), out var inc) || !(inc.Factor > 0) || Vector3.Dot(front, inc.Direction) <= 0)
                 continue;
-            if (!_geometry.Occluded(ShadowRay(p, ng, inc.Direction, inc.Distance))) mask |= 1u << k;
+            if (!_geometry.Occluded(Visibility.ShadowRay(p, ng, inc.Direction, inc.Distance, _geometry.Epsilon))) mask |= 1u << k;
         }
         return mask;
     }
@@ -353,9 +353,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
                 if (!(q > 0) || sampler.At1D(dRoulette) >= q) break;
                 Scale(beta, 1 / q);
             }
-            var ng = hit.GeometricNormal;
-            float side = Vector3.Dot(ng, wi) >= 0 ? 1 : -1;
-            ray = new Ray(vertex.P + side * _geometry.Epsilon * ng, wi);
+            ray = Visibility.Leaving(vertex.P, hit.GeometricNormal, wi, _geometry.Epsilon);
             counters.Secondary++;
         }
         return first;
@@ -385,7 +383,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         float cos = MathF.Abs(Vector3.Dot(ns, wi));
         Evaluate(bsdf, in vertex.Texels, vertex.Wo, wi, ns, f);
         counters.Shadow++;
-        if (_geometry.OccludedScattered(ShadowRay(p, ng, wi, distance))) return;
+        if (_geometry.OccludedScattered(Visibility.ShadowRay(p, ng, wi, distance, _geometry.Epsilon))) return;
         if (MediumToward(in vertex, wi) is var medium and >= 0) Attenuate(medium, p, wi, distance, f);   // f ⊙= T along it
         float pick = _emitters.SelectionPdf(k);
         float w = sample.IsDelta ? 1 : PowerHeuristic(pick * pdf, smoothProbability * bsdf.Pdf(vertex.Wo, wi, ns));
@@ -395,23 +393,6 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         // PathIntegrator.Fluorescence.cs).
         if (vertex.Material.Shift is { } shift && FluorescentShift.Reflects(vertex.Wo, wi, ns))
             sink.Shifted(emitter.SceneLight, shift, beta, radiance, factor * cos / (pick * pdf));
-    }
-
-    /// <summary>
-    /// The path's shadow ray from <paramref name="p"/> (geometric normal <paramref name="ng"/>) along <paramref name="wi"/> to
-    /// a light's point <paramref name="distance"/> away (∞: a direction): it leaves from p offset by ε along ±n_g on ωi's side,
-    /// aimed from there at the light's point itself (a ray grazing a sphere light would otherwise meet it early), and ends
-    /// 2ε short of it.
-    /// </summary>
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    Ray ShadowRay(Vector3 p, Vector3 ng, Vector3 wi, float distance)
-    {
-        float side = Vector3.Dot(ng, wi) >= 0 ? 1 : -1;
-        var origin = p + side * _geometry.Epsilon * ng;
-        if (float.IsInfinity(distance)) return new Ray(origin, wi);
-        var towards = p + distance * wi - origin;
-        float length = towards.Length();
-        return new Ray(origin, towards / length, length - 2 * _geometry.Epsilon);
     }
 
     /// <summary>Veach's power heuristic (β = 2) for the strategy of density a against one of density b.</summary>
