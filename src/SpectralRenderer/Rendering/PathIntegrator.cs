@@ -252,13 +252,20 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
                 material = _materials[_objectMaterial[hit.Object]];
 
                 // Light the surface emits towards the ray (Le), MIS-weighted against next-event estimation of the same point.
-                if (_emitters.OfObject(hit.Object) is int e and >= 0 && _emitters[e].Emitted(hit.GeometricNormal, wo) > 0)
+                // (an emitting object's calls made on its own sealed class, which the JIT inlines: an AggressiveOptimization
+                // method gets no profile-guided devirtualisation)
+                if (_emitters.OfObject(hit.Object) is int e and >= 0 && _emitters[e] is var emitter
+                    && (emitter is ShapeEmitter shape ? shape.Emitted(hit.GeometricNormal, wo)
+                        : emitter.Emitted(hit.GeometricNormal, wo)) > 0)
                 {
-                    var emitter = _emitters[e];
                     float w = 1;
                     if (!deltaBounce)
-                        w = PowerHeuristic(bsdfPdf, _emitters.SelectionPdf(e)
-                            * emitter.Pdf(previous, previousFront, ray.Direction, hit.Position, hit.GeometricNormal));
+                    {
+                        float pdf = emitter is ShapeEmitter surface
+                            ? surface.Pdf(previous, previousFront, ray.Direction, hit.Position, hit.GeometricNormal)
+                            : emitter.Pdf(previous, previousFront, ray.Direction, hit.Position, hit.GeometricNormal);
+                        w = PowerHeuristic(bsdfPdf, _emitters.SelectionPdf(e) * pdf);
+                    }
                     var le = emitter.Radiance;
                     sink.Emitted(beta, _textured ? EmittedAt(material, le, in hit, wo, scratch) : le, w);
                 }
@@ -371,7 +378,10 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         var p = vertex.P;
         int k = _emitters.Choose(uLight);
         var emitter = _emitters[k];
-        if (!emitter.Sample(p, vertex.Front, u, out var sample)) return;
+        EmitterSample sample;
+        // An emitting object, the common emitter of a path scene, by its sealed class's call (inlined; see Walk).
+        if (!(emitter is ShapeEmitter shape ? shape.Sample(p, vertex.Front, u, out sample)
+            : emitter.Sample(p, vertex.Front, u, out sample))) return;
         var wi = sample.Direction;
         float distance = sample.Distance, factor = sample.Factor, pdf = sample.Pdf;
         var radiance = emitter.Texture is null ? emitter.Radiance

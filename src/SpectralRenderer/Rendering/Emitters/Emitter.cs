@@ -19,7 +19,7 @@ internal readonly record struct EmitterSample(Vector3 Direction, float Distance,
 /// The kinds: a scene light (<see cref="SceneLightEmitter"/>: point, spot, directional, goniometric — delta, never hit),
 /// an emitting object (<see cref="ShapeEmitter"/>: any shape kind) and the sky (<see cref="SkyEmitter"/>).
 /// </summary>
-internal abstract class Emitter(float[] radiance)
+internal abstract class Emitter(float[] radiance, FineTexture? texture = null)
 {
     /// <summary>The emitted spectrum on the path tracer's fine grid: radiance L_e, or a delta light's intensity I_k.</summary>
     public float[] Radiance { get; } = radiance;
@@ -57,7 +57,7 @@ internal abstract class Emitter(float[] radiance)
     public abstract float Emitted(Vector3 n, Vector3 wo);
 
     /// <summary>L_e as a texture on the fine grid (<see cref="TexCoord"/> places a sample's point on it), or null.</summary>
-    public virtual FineTexture? Texture => null;
+    public FineTexture? Texture { get; } = texture;
 
     /// <summary>
     /// The (u, v) of point <paramref name="x"/> on <paramref name="face"/> and the mapping's density (a textured emitter).
