@@ -21,7 +21,8 @@ public static class IlluminanceCommand
 
         The illuminance (lx) on a work plane from every light of the scene (physical radiometry): direct light from the
         point, spot, directional and goniometric lights (exact), and from emitting objects and the sky (sampled, at
-        least 64 shadow rays per point each, or the camera's spp if more), each shadow ray honoured (no interreflection). The plane is the parallelogram from the origin O spanned by the edge vectors U and V (metres, scene
+        least 64 shadow rays per point each, or the camera's spp if more), each shadow ray honoured (no
+        interreflection). The plane is the parallelogram from the origin O spanned by the edge vectors U and V (metres, scene
         coordinates); its grid points are the centres of NU × NV equal cells, O + (i + ½)/NU·U + (j + ½)/NV·V, and the
         illuminance is measured on the side U × V points to (flip U and V for the other). Writes PREFIX.csv (x,y,z,lx:
         one row per point, i fastest) and PREFIX.svg (the grid as a false-colour heat map with its labelled scale);
