@@ -875,6 +875,8 @@ lights_case("del-components", ["json-del r/lights/lights.json components"], r"\$
 lights_case("del-width", ["json-del r/lights/lights.json width"], r"\$\.width: is missing")
 lights_case("view-lobe-unknown", ['json-set r/lights/lights.json components.0.lobe "glow"'], r"\$\.components\[0\]\.lobe: is 'glow'", cmd=("view", "{tmp}/r"))
 lights_case("view-light-out-of-range", ["json-set r/lights/lights.json components.0.light 5"], r"\$\.components\[0\]\.light: is 5, outside", cmd=("view", "{tmp}/r"))
+lights_case("view-del-components", ["json-del r/lights/lights.json components"], r"\$\.components: is missing, expected an array",
+            cmd=("view", "{tmp}/r"))   # issue 42: was an internal error in the viewer
 for label, text, pat in [("not-json", "{ lights", r"lights\.json:\d+:\d+: broken JSON"), ("array", "[]", r"lights\.json: \$: is not a JSON object"),
                          ("duplicate", '{"width": 8, "width": 8}', r"lights\.json:\d+:\d+: broken JSON")]:
     write(f"lights-{label}.json", text)

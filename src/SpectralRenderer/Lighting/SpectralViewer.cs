@@ -58,6 +58,15 @@ public static class SpectralViewer
         // Only a transfer of eq. 2's terms (CameraRoute.Terms: Whitted's) has the components the page's sliders recombine;
         // of any other (a path render's) the page shows its cube.
         JsonObject? transfer = File.Exists(lightsJson) && TermsIn(dir) ? JsonNode.Parse(File.ReadAllText(lightsJson))!.AsObject() : null;
+        // Read through the transfer's own reader first: a lights.json that is not as a render writes it is one line
+        // naming its field (our files are never trusted when read back), before the page reads it as plain JSON.
+        Relighting.Source? src = null;
+        TransferComponent[]? components = null;
+        if (transfer is not null)
+        {
+            src = Relighting.Open(dir);
+            components = ((ITermRoute)TransferFiles.Read(dir, Relighting.ChangedScene(src, [], null))).Components;
+        }
         // A textured term's entries are texel samples (issue 26), which the page's F · P sum cannot take.
         if (transfer?["components"] is JsonArray tc && tc.Any(c => c?["texels"] is not null))
             throw new InputException(lightsJson,
@@ -116,14 +125,12 @@ public static class SpectralViewer
 
         var ids = new ushort[n];
         // Large arrays go into the data file as base64 strings, written in pieces (no one giant JSON string).
-        if (transfer is not null)
+        if (transfer is not null && src is not null && components is not null)
         {
             // Candidate lights: P of every component that follows a light, per unit intensity, from the term tables of
             // the render's scene with every light given that spectrum (so the page's colour is exact, not eq. 3 on bands).
-            var src = Relighting.Open(dir);
             var resolvedLights = manifest.ResolvedScene?.Lights;
             var comps = transfer["components"]!.AsArray();
-            var components = ((ITermRoute)TransferFiles.Read(dir, Relighting.ChangedScene(src, [], null))).Components;
             var presets = new JsonArray();
             var lights = new JsonArray();
             JsonArray PresetComponents(Func<int, float[]?> p) => new(Enumerable.Range(0, comps.Count)
