@@ -16,6 +16,14 @@ static class Reference
 
     public static double D(this Dictionary<string, string> row, string key) => double.Parse(row[key], CultureInfo.InvariantCulture);
 
+    /// <summary>A file of the repository (the folder holding SpectralRenderer.sln), e.g. "scenes/path-cornell-room.json".</summary>
+    public static string RepoFile(string relative)
+    {
+        for (var d = new DirectoryInfo(AppContext.BaseDirectory); d is not null; d = d.Parent)
+            if (File.Exists(Path.Combine(d.FullName, "SpectralRenderer.sln"))) return Path.Combine(d.FullName, relative);
+        throw new InvalidOperationException("repository root not found");
+    }
+
     /// <summary>
     /// A new empty folder for one test, under this test run's own folder in the system's temporary folder, which is
     /// deleted when the test process ends (set SPECTRAL_KEEP_TEST_FILES=1 to keep it for a look).

@@ -102,9 +102,14 @@ public static class RenderCommand
             string shard = job.Shard is null ? "" : $", shard {job.Shard}";
             string crop = job.Crop is { } c ? $" (film {scene.Camera.Width}×{scene.Camera.Height}, crop {c}{shard})" : "";
             string mesh = triangles > 0 ? $", {triangles:N0} triangles ({job.DegenerateTriangles} degenerate skipped)" : "";
+            // Adaptive sampling: the samples each pixel took, not the cap.
+            string spp = result.SamplesUsed is { Length: > 0 } used
+                ? string.Create(CultureInfo.InvariantCulture,
+                    $"{used.Min()}–{used.Max()} spp (mean {used.Average(u => (double)u):0.#}, cap {scene.Camera.SamplesPerPixel})")
+                : $"{scene.Camera.SamplesPerPixel} spp";
             stderr.WriteLine(string.Create(CultureInfo.InvariantCulture,
                 $"rendered {result.Image.Width}×{result.Image.Height}{crop}, {scene.Grid.Count} bands ({scene.Grid}), "
-                    + $"{scene.Camera.SamplesPerPixel} spp{mesh} in {secs:0.###} s "
+                    + $"{spp}{mesh} in {secs:0.###} s "
                     + $"({result.Rays.Total / Math.Max(secs, 1e-9) / 1e6:0.##} Mrays/s, {result.Threads} threads); "
                     + $"wrote {job.Files.Count} files to {outDir} in {job.WriteSeconds:0.##} s"));
         }
