@@ -113,6 +113,24 @@ public class PathTextureTests(Xunit.Abstractions.ITestOutputHelper output)
     }
 
     /// <summary>
+    /// Issue 42: a `lambertian` material's "reflectance" takes a texture under path, as the docs say (it was refused): the
+    /// textured chart equals 24 untextured lambertian patches of the same spectra at every patch centre.
+    /// </summary>
+    [Theory]
+    [InlineData(Directional)]
+    [InlineData(Point)]
+    public void A_lambertian_ColorChecker_texture_equals_untextured_lambertian_patches(string light)
+    {
+        var (wl, patches) = SpectralTextureTests.ColorCheckerTable();
+        var dir = Reference.TempDir();
+        var texture = WriteChart(dir, wl, patches);
+        var patchQuads = UntexturedObjects(wl, patches, s => $$"""{ "type": "lambertian", "reflectance": {{s}} }""");
+        var (scene, plain) = Render(Scene(patchQuads, light, "0"), dir);
+        var (_, textured) = Render(Scene(TexturedObject($$"""{ "type": "lambertian", "reflectance": {{texture}} }"""), light, "0"), dir);
+        SamePatches(textured, plain, scene);
+    }
+
+    /// <summary>
     /// The chart seen through a tilted slab of dispersive glass (Cauchy, Fresnel transmission only), which splits every
     /// camera path into one sub-path per output band: each sub-path looks the texture up where its band's refraction lands,
     /// so every band at each patch centre equals the untextured patches' seen through the same slab, to float rounding

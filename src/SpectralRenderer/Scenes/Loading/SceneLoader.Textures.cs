@@ -28,8 +28,11 @@ public sealed partial class SceneLoader
     TabulatedSpectrum TextureSpectrum(JsonElement e, string path)
     {
         bool emission = path.EndsWith(".emission.spectrum", StringComparison.Ordinal);
-        if (!emission && !path.EndsWith(".diffuse", StringComparison.Ordinal) && !path.EndsWith(".specular", StringComparison.Ordinal))
-            throw Error(path, "only a material's \"diffuse\", \"specular\" or emission \"spectrum\" can be a texture so far",
+        if (!emission && !path.EndsWith(".diffuse", StringComparison.Ordinal) && !path.EndsWith(".specular", StringComparison.Ordinal)
+            && !path.EndsWith(".reflectance", StringComparison.Ordinal))
+            throw Error(path,
+                "only a material's \"diffuse\", \"specular\", a lambertian's \"reflectance\" or emission "
+                    + "\"spectrum\" can be a texture so far",
                 "give a spectrum here, and the texture as a material's \"diffuse\", \"specular\" or \"emission\": { \"spectrum\": … }");
         Keys(e, path, TextureKeys);
         var uv = TryGet(e, "uv_transform", out var u) ? UvTransformOf(u, $"{path}.uv_transform") : UvTransform.Identity;
@@ -56,11 +59,14 @@ public sealed partial class SceneLoader
         return mean;
     }
 
-    /// <summary>The textures read for <paramref name="materialPath"/>'s "diffuse" and "specular" go onto the material made from
-    /// them.</summary>
+    /// <summary>The textures read for <paramref name="materialPath"/>'s "diffuse" (a lambertian's "reflectance") and "specular"
+    /// go onto the material made from them.</summary>
     void AttachTextures(Material material, string materialPath)
     {
-        if (_pendingTextures.Remove($"{materialPath}.diffuse", out var binding)) material.DiffuseTexture = binding;
+        // A lambertian's "reflectance" is its diffuse lobe (m_diff = m_amb = ρ).
+        if (_pendingTextures.Remove($"{materialPath}.diffuse", out var binding)
+            || _pendingTextures.Remove($"{materialPath}.reflectance", out binding))
+            material.DiffuseTexture = binding;
         if (_pendingTextures.Remove($"{materialPath}.specular", out binding)) material.SpecularTexture = binding;
     }
 
