@@ -6,7 +6,7 @@ using System.Text.Json.Nodes;
 using SpectralRenderer.Analysis;
 using SpectralRenderer.Analysis.Recovery;
 using SpectralRenderer.Diagnostics;
-using SpectralRenderer.Lighting;
+using SpectralRenderer.Relighting;
 using SpectralRenderer.Output;
 using SpectralRenderer.Sensor;
 using SpectralRenderer.Spectra;

@@ -7,7 +7,7 @@ using SpectralRenderer.Analysis.Recovery;
 using SpectralRenderer.Color;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
-using SpectralRenderer.Lighting;
+using SpectralRenderer.Relighting;
 using SpectralRenderer.Output;
 using SpectralRenderer.Sensor;
 

@@ -4,7 +4,7 @@ using System.Text;
 using SpectralRenderer.Analysis;
 using SpectralRenderer.Color;
 using SpectralRenderer.Imaging;
-using SpectralRenderer.Lighting;
+using SpectralRenderer.Relighting;
 using SpectralRenderer.Output;
 using SpectralRenderer.Spectra;
 

@@ -31,7 +31,7 @@ internal sealed class AreaEmitter
 
     enum Kind { Sphere, Parallelograms, Triangles, Shape }
 
-    public AreaEmitter(SceneObject o, float[] radiance, bool twoSided, string where, FineTexture? texture = null)
+    public AreaEmitter(SceneObject o, float[] radiance, bool twoSided, string where, SubBandTexture? texture = null)
     {
         Radiance = radiance;
         TwoSided = twoSided;
@@ -127,8 +127,8 @@ internal sealed class AreaEmitter
 
     /// <summary>L_e on the path tracer's grid (a textured emitter's: the texture's mean).</summary>
     public float[] Radiance { get; }
-    /// <summary>L_e as a texture on the fine grid (<see cref="TexCoord"/> places a point on it), or null.</summary>
-    public FineTexture? Texture { get; }
+    /// <summary>L_e as a texture on the sub-band grid (<see cref="TexCoord"/> places a point on it), or null.</summary>
+    public SubBandTexture? Texture { get; }
     public bool TwoSided { get; }
     /// <summary>The emitting surface's area in m² (scene units²).</summary>
     public float Area => _area;

@@ -6,7 +6,7 @@ using SpectralRenderer.Spectra;
 namespace SpectralRenderer.Rendering;
 
 /// <summary>
-/// A fluorescent material's shifted diffuse lobe on the path tracer's fine grid (<see cref="FineGrid"/>): the re-radiation
+/// A fluorescent material's shifted diffuse lobe on the path tracer's sub-band grid (<see cref="SubBandGrid"/>): the re-radiation
 /// matrix's off-diagonal part as f_s[o, i] = S[o, i]/π (a Lambertian re-emission, 1/sr; emission sub-band o, excitation i)
 /// integrated exactly over sub-band × sub-band (<see cref="ReradiationMatrix.ShiftOnBands(int, Func{int, double}, Func{int, double})"/>),
 /// beside the reflective diagonal that the material's BSDF already carries. Next-event estimation adds β ⊙ (f_s·L_e) for a
@@ -22,7 +22,7 @@ sealed class FluorescentShift
     readonly float[] _rowSum;      // Σ_i f_s[o, i]
     readonly float[] _emittedFlat; // S·1 = π·Σ_i f_s[o, i], padded (padding 0): the lobe's albedo under flat light
 
-    public FluorescentShift(ReradiationMatrix matrix, FineGrid grid)
+    public FluorescentShift(ReradiationMatrix matrix, SubBandGrid grid)
     {
         _n = grid.Count;
         _padded = grid.Padded;
@@ -213,7 +213,7 @@ sealed class FluorescentShift
 }
 
 /// <summary>
-/// A block of the fine grid's sub-bands: emission rows [Row0, Row0 + Rows) × excitation columns [Column0, Column0 + Columns)
+/// A block of the sub-band grid's sub-bands: emission rows [Row0, Row0 + Rows) × excitation columns [Column0, Column0 + Columns)
 /// — where a scene's fluorescent shifts have non-zero entries (the union's bounding block), so every product of shifted
 /// bounces maps excitation in the columns to emission in the rows. Empty (0 × 0) without a shift.
 /// </summary>

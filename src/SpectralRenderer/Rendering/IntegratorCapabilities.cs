@@ -64,8 +64,8 @@ public enum CameraRoute
     None,
     /// <summary>Eq. 2's terms per light (<see cref="ITermRoute"/>): each term's spectrum integrated at full resolution.</summary>
     Terms,
-    /// <summary>The film on a fine sub-band grid (<see cref="IFineFilmRoute"/>, <see cref="IFineFilmIntegrator"/>).</summary>
-    FineFilm,
+    /// <summary>The film on a sub-band grid (<see cref="ISubBandFilmRoute"/>, <see cref="ISubBandFilmIntegrator"/>).</summary>
+    SubBandFilm,
 }
 
 /// <summary>
@@ -124,21 +124,21 @@ public interface ITermRoute : ILightTransfer
     float[]?[]? Texels { get; }
 }
 
-/// <summary>The exact camera route of a film on a fine sub-band grid, recombined from a transfer without rays.</summary>
-public interface IFineFilmRoute : ILightTransfer
+/// <summary>The exact camera route of a film on a sub-band grid, recombined from a transfer without rays.</summary>
+public interface ISubBandFilmRoute : ILightTransfer
 {
-    /// <summary>The fine film of <paramref name="scene"/> (the render's lights).</summary>
-    PathFineFilm FineFilm(Scene scene);
+    /// <summary>The sub-band film of <paramref name="scene"/> (the render's lights).</summary>
+    SubBandFilm Film(Scene scene);
 
     /// <summary>How the film is formed from the transfer, for the camera's route text.</summary>
-    string FineFilmMethod { get; }
+    string FilmMethod { get; }
 }
 
-/// <summary>An integrator whose radiance lives on a fine sub-band grid: its film traced again for the camera's exact route.</summary>
-public interface IFineFilmIntegrator : IIntegrator
+/// <summary>An integrator whose radiance lives on a sub-band grid: its film traced again for the camera's exact route.</summary>
+public interface ISubBandFilmIntegrator : IIntegrator
 {
-    /// <summary>The render's camera samples traced again (the same paths) onto the fine grid.</summary>
-    PathFineFilm TraceFineFilm(Scene scene, int threads, CancellationToken cancel = default);
+    /// <summary>The render's camera samples traced again (the same paths) onto the sub-band grid.</summary>
+    SubBandFilm TraceSubBandFilm(Scene scene, int threads, CancellationToken cancel = default);
 }
 
 /// <summary>

@@ -33,7 +33,7 @@ public static class Integrators
     {
         Register(new IntegratorEntry(Default, (scene, geometry) => new WhittedIntegrator(scene, geometry))
         {
-            Transfer = LightTransferFiles.Format,
+            Transfer = WhittedTransferFiles.Format,
             Tables = scene => TextureTables.Bytes(scene) is > 0 and var b ? [("texture tables", b)] : [],
             WarmedUp = true,
         });
@@ -41,7 +41,7 @@ public static class Integrators
         {
             Keys = ["max_depth", "rr_depth", "spectral_grid", "sampler", "seed"],
             Transfer = PathTransferFiles.Format,
-            Tables = scene => FineTexture.Bytes(scene) is > 0 and var b ? [("texture spectra (fine grid)", b)] : [],
+            Tables = scene => SubBandTexture.Bytes(scene) is > 0 and var b ? [("texture spectra (fine grid)", b)] : [],
         });
     }
 

@@ -3,15 +3,15 @@ using SpectralRenderer.Scenes;
 namespace SpectralRenderer.Rendering;
 
 // What the path integrator can do beyond a picture (IntegratorCapabilities.cs): its per-light transfer (PathTransfer.cs,
-// files in PathTransferFiles.cs, for whole renders and shards), its film on the fine grid for the camera's exact route
-// (PathFineFilm.cs), and the gather of photometry and calculation grids (its radiance is every bounce).
-internal sealed partial class PathIntegrator : ITransferIntegrator, IFineFilmIntegrator, IGatherIntegrator
+// files in PathTransferFiles.cs, for whole renders and shards), its film on the sub-band grid for the camera's exact route
+// (SubBandFilm.cs), and the gather of photometry and calculation grids (its radiance is every bounce).
+internal sealed partial class PathIntegrator : ITransferIntegrator, ISubBandFilmIntegrator, IGatherIntegrator
 {
     public TransferFormat TransferFormat => PathTransferFiles.Format;
 
     public ILightTransfer TraceTransfer(Scene scene, int threads, CancellationToken cancel, PixelRect? crop) =>
         PathTransfer.Trace(scene, this, threads, cancel, crop);
 
-    public PathFineFilm TraceFineFilm(Scene scene, int threads, CancellationToken cancel = default) =>
-        PathFineFilm.Trace(scene, this, threads, cancel);
+    public SubBandFilm TraceSubBandFilm(Scene scene, int threads, CancellationToken cancel = default) =>
+        SubBandFilm.Trace(scene, this, threads, cancel);
 }

@@ -12,8 +12,8 @@ namespace SpectralRenderer.Rendering;
 /// as the Whitted integrator uses it), at this and at every later vertex; its next-event estimation, lobe choice, textures,
 /// fluorescent lobes and Russian roulette are the walk's. The bands together are the whole path's estimate (β is their sum), each band
 /// weighted by its own Fresnel factors, so there is no wavelength sampling and no chromatic noise.
-/// Per output band, not per sub-band of the fine grid: the output keeps one index per band (docs/scene-format.md), and a
-/// sub-path costs a whole path's spectral work, so splitting per sub-band would cost <see cref="FineGrid.PerBand"/> times
+/// Per output band, not per sub-band of the sub-band grid: the output keeps one index per band (docs/scene-format.md), and a
+/// sub-path costs a whole path's spectral work, so splitting per sub-band would cost <see cref="SubBandGrid.PerBand"/> times
 /// as much after the split for a refraction resolved finer than the film's bands.
 /// Random numbers: every sub-path starts from a copy of the path's <see cref="Sampler"/> at the split, so all bands draw the
 /// same dimensions (common random numbers: their noise is correlated, hence colourless) and the picture depends on the

@@ -24,14 +24,14 @@ namespace SpectralRenderer.Rendering;
 /// </summary>
 internal sealed partial class PathIntegrator
 {
-    /// <summary>The scene's media on the fine grid (empty: none).</summary>
+    /// <summary>The scene's media on the sub-band grid (empty: none).</summary>
     Medium[] _media = [];
     /// <summary>Each object's interior medium (−1: its surface bounds none), null without media.</summary>
     int[]? _interiorOf;
     /// <summary>The medium around the objects, where the camera is (−1: vacuum).</summary>
     int _sceneMedium = -1;
 
-    /// <summary>The scene's media on the fine grid, or bad input naming what the path integrator cannot carry through one.</summary>
+    /// <summary>The scene's media on the sub-band grid, or bad input naming what the path integrator cannot carry through one.</summary>
     void TakeMedia(Scene scene)
     {
         if (scene.Media.Count == 0) return;

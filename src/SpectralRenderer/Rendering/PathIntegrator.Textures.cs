@@ -5,7 +5,7 @@ using SpectralRenderer.Scenes;
 namespace SpectralRenderer.Rendering;
 
 // Spectral textures in the path tracer (issue 26): a material's diffuse reflectance, specular weight or emitted radiance
-// given as a texture is projected onto the fine grid once (FineTexture, shared by the threads) and looked up with the
+// given as a texture is projected onto the sub-band grid once (SubBandTexture, shared by the threads) and looked up with the
 // Whitted route's uv, bilinear and mip-map filtering: at every path vertex, the filtered texel replaces the BSDF's
 // spectrum in f for next-event estimation and BSDF sampling alike, and in the lobe choice's channel share; an emitter's
 // texel is looked up where a path hits it and where next-event estimation draws a point on it. Texels go into the

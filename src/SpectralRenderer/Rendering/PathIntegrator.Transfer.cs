@@ -23,7 +23,7 @@ internal sealed partial class PathIntegrator
         _materials.Aggregate(default(ShiftSpan), (a, m) => m.Shift is not { } s ? a : a.Union(s.Extent));
 
     /// <summary>The shift block of <paramref name="scene"/> on <paramref name="grid"/>, with no integrator (the memory estimate).</summary>
-    internal static ShiftSpan ShiftBlockOf(Scene scene, FineGrid grid) => scene.Materials
+    internal static ShiftSpan ShiftBlockOf(Scene scene, SubBandGrid grid) => scene.Materials
         .Where(m => m.Fluorescence is { HasShift: true })
         .Aggregate(default(ShiftSpan), (a, m) => a.Union(new FluorescentShift(m.Fluorescence!, grid).Extent));
 
@@ -34,7 +34,7 @@ internal sealed partial class PathIntegrator
     /// spectra — into the last slot [K·padded, (K+1)·padded); in a fluorescent scene the light's shifted paths' B_k, times
     /// the sample's film weight <see cref="ShiftRecord.Weight"/>, added to <paramref name="record"/>'s pixel sum. The
     /// film's walk (the same random numbers, the same decisions, none of which look at a light's spectrum), so
-    /// Σ_k (T_k ⊙ E_k + B_k·E_k) + fixed is its fine radiance. <paramref name="groups"/> is cleared.
+    /// Σ_k (T_k ⊙ E_k + B_k·E_k) + fixed is its sub-band radiance. <paramref name="groups"/> is cleared.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     internal int Transfer(in CameraSample sample, Span<float> groups, ShiftRecord? record, Span<float> scratch, ref RayCounters counters)

@@ -9,7 +9,7 @@ namespace SpectralRenderer.Rendering;
 
 /// <summary>
 /// Unidirectional path tracing of the rendering equation (Kajiya 1986) in physical radiometry, every band on every path:
-/// the throughput β and the radiance L are spectra on a fine internal grid (<see cref="FineGrid"/>, 5 nm by default),
+/// the throughput β and the radiance L are spectra on a internal sub-band grid (<see cref="SubBandGrid"/>, 5 nm by default),
 /// multiplied band by band in SIMD lanes and reduced to the output bands (exact band means) and to XYZ only at the film.
 /// At each vertex one light, chosen uniformly, is sampled (next-event estimation) and the BSDF is sampled to continue; both
 /// estimates of light that arrives from surfaces that emit, and from the sky, are combined by multiple importance
@@ -17,7 +17,7 @@ namespace SpectralRenderer.Rendering;
 /// directional) are reached by next-event estimation only, delta lobes (mirror, Fresnel dielectric) by the BSDF only. One
 /// walk (Walk) carries a set of bands: all of them, or after its first dispersive glass one output band's sub-bands, in a
 /// sub-path of the same walk per band (PathIntegrator.Dispersion.cs).
-/// A lobe is chosen by a luminance-like channel (<see cref="FineGrid.Luminance"/>), and Russian roulette ends a path from
+/// A lobe is chosen by a luminance-like channel (<see cref="SubBandGrid.Luminance"/>), and Russian roulette ends a path from
 /// depth <see cref="IntegratorSettings.RrDepth"/> on with survival probability min(0.95, max_λ β·gain) (the largest band,
 /// so no band's light is starved; gain bounds a fluorescent path's shifted bounces, 1 without them); each band keeps its
 /// own f·cos/pdf, so no wavelength is ever sampled. The sky is the scene's <c>background</c>: the radiance of every escaping
@@ -30,7 +30,7 @@ namespace SpectralRenderer.Rendering;
 internal sealed partial class PathIntegrator : IAnalysisIntegrator
 {
     readonly SceneGeometry _geometry;
-    readonly FineGrid _grid;
+    readonly SubBandGrid _grid;
     readonly int _maxDepth, _rrDepth, _padded;
     readonly int[] _objectMaterial;
     readonly PathMaterial[] _materials;   // per scene material: what the walk reads of it (PathMaterial.cs)
@@ -47,7 +47,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
                 "add \"radiometry\": \"physical\" to the scene, or render it with the whitted integrator");
         var settings = scene.Integrator is { Name: "path" } s ? s : new IntegratorSettings("path");
         _geometry = geometry;
-        _grid = new FineGrid(scene, settings.SpectralGrid);
+        _grid = new SubBandGrid(scene, settings.SpectralGrid);
         _padded = _grid.Padded;
         _maxDepth = settings.MaxDepth;
         Sampler = new SamplerSettings(settings.Sampler ?? SamplerKind.Sobol, settings.Seed);
@@ -76,7 +76,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
     public int SubBands => _grid.PerBand;
 
     /// <summary>
-    /// Scratch: L, β, f and the two delta lobes' weights, each a fine spectrum; then a band's β after a dispersive split
+    /// Scratch: L, β, f and the two delta lobes' weights, each a sub-band spectrum; then a band's β after a dispersive split
     /// (<see cref="BandBeta"/>) and a fluorescent scene's shifted paths' (<see cref="ShiftScratch"/>), which share their
     /// place unless the scene has both; then a textured vertex's texels (<see cref="TextureBase"/>).
     /// </summary>
@@ -134,8 +134,8 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
     /// <summary>Scene lights whose spectra a relight may change (their transfer is kept apart): the scene's lights, in order.</summary>
     public int TransferLights => _lights.Length;
 
-    /// <summary>The fine grid's sub-bands (the transfer's spectral resolution).</summary>
-    internal FineGrid Grid => _grid;
+    /// <summary>The sub-band grid's sub-bands (the transfer's spectral resolution).</summary>
+    internal SubBandGrid Grid => _grid;
 
     /// <summary>What a path does with the light it finds: a film sums it; the per-light transfer keeps each scene light's apart.</summary>
     interface IPathSink
@@ -425,7 +425,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
     static Span<Vector<float>> V(Span<float> s) => MemoryMarshal.Cast<float, Vector<float>>(s);
     static ReadOnlySpan<Vector<float>> RV(ReadOnlySpan<float> s) => MemoryMarshal.Cast<float, Vector<float>>(s);
 
-    /// <summary>The largest value of a fine spectrum (its padding is 0).</summary>
+    /// <summary>The largest value of a sub-band spectrum (its padding is 0).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     float Max(Span<float> a)
     {

@@ -4,7 +4,7 @@ using SpectralRenderer.Scenes;
 namespace SpectralRenderer.Rendering;
 
 /// <summary>
-/// One scene material as the path integrator walks it, on its fine grid (<see cref="FineGrid"/>): the BSDF, the emitted
+/// One scene material as the path integrator walks it, on its sub-band grid (<see cref="SubBandGrid"/>): the BSDF, the emitted
 /// radiance, the fluorescent shift with the albedos its lobe choice weighs, the lobe flags and the smooth lobes' channel
 /// share, whether it disperses, and its textures. Built once per render; read by every thread.
 /// </summary>
@@ -25,15 +25,16 @@ sealed class PathMaterial
     public readonly bool Dispersive;
     /// <summary>The smooth lobes' share in the lobe choice: the channel value of m_diff + m_spec (their albedo at most).</summary>
     public readonly float SmoothChannel;
-    /// <summary>Its textures on the fine grid (null: its spectrum), and the plain m_diff, m_spec channel values beside a texel.</summary>
-    public readonly FineTexture? DiffuseTexture, SpecularTexture, EmissionTexture;
+    /// <summary>Its textures on the sub-band grid (null: its spectrum), and the plain m_diff, m_spec channel values beside a
+    /// texel.</summary>
+    public readonly SubBandTexture? DiffuseTexture, SpecularTexture, EmissionTexture;
     public readonly float DiffuseChannel, SpecularChannel;
 
     /// <summary>
     /// Scene material <paramref name="index"/> on <paramref name="grid"/>, or bad input naming what the path integrator
     /// cannot carry.
     /// </summary>
-    public PathMaterial(Scene scene, int index, FineGrid grid)
+    public PathMaterial(Scene scene, int index, SubBandGrid grid)
     {
         var material = scene.Materials[index];
         string where = $"{scene.SourcePath}: {material.JsonPath}";
@@ -64,9 +65,9 @@ sealed class PathMaterial
                 $"material '{material.Name}' ({material.Bsdf.GetType().Name}) is textured: "
                 + "the path integrator textures eq. 2 and lambertian materials only",
                 "give this material a spectrum, or use an eq2 or lambertian material for the texture");
-        if (material.DiffuseTexture is { } d) DiffuseTexture = new FineTexture(d, grid);
-        if (material.SpecularTexture is { } s) SpecularTexture = new FineTexture(s, grid);
-        if (material.Emission?.Texture is { } t) EmissionTexture = new FineTexture(t, grid);
+        if (material.DiffuseTexture is { } d) DiffuseTexture = new SubBandTexture(d, grid);
+        if (material.SpecularTexture is { } s) SpecularTexture = new SubBandTexture(s, grid);
+        if (material.Emission?.Texture is { } t) EmissionTexture = new SubBandTexture(t, grid);
         if (Textured)
         {
             DiffuseChannel = grid.Luminance(grid.Resample(material.Diffuse));

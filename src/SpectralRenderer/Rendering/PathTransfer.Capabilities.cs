@@ -3,8 +3,8 @@ using SpectralRenderer.Scenes;
 namespace SpectralRenderer.Rendering;
 
 // The path transfer as a capability (IntegratorCapabilities.cs): recombined by relight and the C ABI, written by the
-// lights product (whole renders and shards), and the fine film for the camera's exact route.
-internal sealed partial class PathTransfer : IFineFilmRoute
+// lights product (whole renders and shards), and the sub-band film for the camera's exact route.
+internal sealed partial class PathTransfer : ISubBandFilmRoute
 {
     public TransferFormat Format => PathTransferFiles.Format;
 
@@ -49,8 +49,8 @@ internal sealed partial class PathTransfer : IFineFilmRoute
 
     public void Write(Scene scene, string outDir, Action<string> done) => PathTransferFiles.Write(scene, this, outDir, done);
 
-    public PathFineFilm FineFilm(Scene scene) => PathFineFilm.FromTransfer(this, scene);
+    public SubBandFilm Film(Scene scene) => SubBandFilm.FromTransfer(this, scene);
 
-    public string FineFilmMethod => "its path transfer: L_f = F_f + sum_k T_k,f * E_k,f" +
+    public string FilmMethod => "its path transfer: L_f = F_f + sum_k T_k,f * E_k,f" +
         (Shift.IsEmpty ? "" : " + sum_k B_k E_k of its fluorescent shift") + " per pixel, no rays traced";
 }

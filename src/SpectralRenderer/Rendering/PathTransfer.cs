@@ -9,14 +9,14 @@ namespace SpectralRenderer.Rendering;
 /// <summary>
 /// The per-light transfer of a path render. Light transport is linear in each light's emission, and the path integrator
 /// takes no decision from a light's spectrum (lights are chosen uniformly, lobes and Russian roulette by the materials'
-/// throughput, MIS weights from densities), so a pixel's radiance on the fine grid is
+/// throughput, MIS weights from densities), so a pixel's radiance on the sub-band grid is
 /// L_f = F_f + Σ_k (T_k,f · E_k,f + Σ_c B_k,f,c · E_k,c), with E_k the scene light k's spectrum × intensity on the grid (its
 /// exact sub-band means), T_k,f the pixel's mean over its samples of the path weights of light k's next-event estimates
 /// (β·f·|cos θ|·w/(P·p) × d_k·c_spot) on paths without a shifted (fluorescent) bounce, F_f the light of the emitters and
 /// the sky (kept with their spectra: not relightable), and B_k the mean of light k's paths through a fluorescent shift:
 /// a matrix from its excitation sub-bands c to the emission sub-bands f, held on the scene's shift block
 /// (<see cref="Shift"/>, rows × columns; none without fluorescence: PathIntegrator.Transfer.cs). A relight forms L_f under
-/// new E_k and reduces it to the output bands and XYZ as the film does (<see cref="FineGrid.Reduce"/>), so it equals a
+/// new E_k and reduces it to the output bands and XYZ as the film does (<see cref="SubBandGrid.Reduce"/>), so it equals a
 /// render of the changed scene with the same samples up to float rounding. Stored per pixel: (K + 1) × F floats, and
 /// K × rows × columns in a fluorescent scene.
 /// </summary>
@@ -65,7 +65,7 @@ internal sealed partial class PathTransfer
     /// <summary>Bytes of a transfer of <paramref name="pixels"/> pixels of <paramref name="scene"/> (for the memory estimate).</summary>
     public static long Bytes(Scene scene, long pixels)
     {
-        var grid = new FineGrid(scene, GridWidth(scene));
+        var grid = new SubBandGrid(scene, GridWidth(scene));
         int k = scene.Lights.Count;
         long block = k > 0 ? (long)k * PathIntegrator.ShiftBlockOf(scene, grid).Size : 0;   // a fluorescent scene's B_k
         return 4L * pixels * ((k + 1) * grid.Count + block);
@@ -177,7 +177,7 @@ internal sealed partial class PathTransfer
     /// </summary>
     public (SpectralImage Image, float[] Xyz) Relight(Scene scene)
     {
-        var grid = new FineGrid(scene, SpectralGrid);
+        var grid = new SubBandGrid(scene, SpectralGrid);
         if (grid.Count != SubBands || scene.Bands != Bands || scene.Lights.Count != Lights)
             throw new InputException("lights/lights.json",
                 $"the transfer has {Lights} lights × {SubBands} sub-bands of {Bands} bands, the scene rebuilds as {scene.Lights.Count} "
@@ -203,11 +203,12 @@ internal sealed partial class PathTransfer
         return (image, xyz);
     }
 
-    /// <summary>E_k: each light's spectrum × intensity on the fine grid (exact sub-band means), as the path integrator takes it.</summary>
-    internal static float[][] LightSpectra(Scene scene, FineGrid grid) => scene.Lights.Select(l => grid.Resample(l.Intensity)).ToArray();
+    /// <summary>E_k: each light's spectrum × intensity on the sub-band grid (exact sub-band means), as the path integrator takes
+    /// it.</summary>
+    internal static float[][] LightSpectra(Scene scene, SubBandGrid grid) => scene.Lights.Select(l => grid.Resample(l.Intensity)).ToArray();
 
     /// <summary>
-    /// Pixel <paramref name="i"/>'s radiance on the fine grid under light spectra <paramref name="e"/> (<see cref="LightSpectra"/>):
+    /// Pixel <paramref name="i"/>'s radiance on the sub-band grid under light spectra <paramref name="e"/> (<see cref="LightSpectra"/>):
     /// L_f = F_f + Σ_k T_k,f·E_k,f, then + Σ_k Σ_c B_k,f,c·E_k,c on the shift block, into <paramref name="fine"/>[0, F).
     /// </summary>
     internal void Radiance(int i, float[][] e, Span<float> fine)

@@ -12,7 +12,7 @@ namespace SpectralRenderer.Rendering;
 /// <item><c>lights.json</c>: <c>"kind": "path"</c>, the layout, the film and band counts, the internal grid (its width in nm,
 /// the sub-bands' edges), the lights (name, spectrum, band values) and the groups in file order (each light, then
 /// "emitters and sky").</item>
-/// <item><c>transfer.npy</c>: float32 [H, W, K + 1, F]: per pixel and light k its path weights T_k,f on the fine grid
+/// <item><c>transfer.npy</c>: float32 [H, W, K + 1, F]: per pixel and light k its path weights T_k,f on the sub-band grid
 /// (W·m⁻²·sr⁻¹·nm⁻¹ of radiance per unit of the light's spectrum × intensity), then the emitters' and the sky's radiance F_f
 /// (W·m⁻²·sr⁻¹·nm⁻¹). The pixel's radiance on the grid is F_f + Σ_k T_k,f · E_k,f; an output band is the mean of its
 /// sub-bands.</item>
@@ -36,14 +36,15 @@ internal static class PathTransferFiles
 
     const string Damaged = "lights/lights.json is not as a path render writes it: render the folder again with the lights output";
 
-    /// <summary>The path transfer's format: kind "path", written by shards too (joined by rows), the fine film for the camera.</summary>
-    public static readonly TransferFormat Format = new FineFormat();
+    /// <summary>The path transfer's format: kind "path", written by shards too (joined by rows), the sub-band film for the
+    /// camera.</summary>
+    public static readonly TransferFormat Format = new PathFormat();
 
-    sealed class FineFormat : TransferFormat
+    sealed class PathFormat : TransferFormat
     {
         public override string Kind => PathTransferFiles.Kind;
         public override string Integrator => "path";
-        public override CameraRoute Route => CameraRoute.FineFilm;
+        public override CameraRoute Route => CameraRoute.SubBandFilm;
         public override bool Shards => true;
 
         public override (string Option, string What, string Hint)? Refuses(Scene scene) => scene.TargetError > 0
@@ -81,16 +82,16 @@ internal static class PathTransferFiles
 
     public static void Write(Scene scene, PathTransfer t, string outDir, Action<string> done)
     {
-        var dir = Path.Combine(outDir, LightTransferFiles.Folder);
+        var dir = Path.Combine(outDir, WhittedTransferFiles.Folder);
         Directory.CreateDirectory(dir);
         int h = t.Region.Height, w = t.Region.Width;
         AtomicFile.Write(Path.Combine(dir, TransferFile), s => NpyWriter.Write(s, [h, w, t.Lights + 1, t.SubBands], t.Data));
-        done($"{LightTransferFiles.Folder}/{TransferFile}");
+        done($"{WhittedTransferFiles.Folder}/{TransferFile}");
         if (!t.Shift.IsEmpty)
         {
             int[] shape = [h, w, t.Lights, t.Shift.Rows, t.Shift.Columns];
             AtomicFile.Write(Path.Combine(dir, ShiftFile), s => NpyWriter.Write(s, shape, t.Blocks));
-            done($"{LightTransferFiles.Folder}/{ShiftFile}");
+            done($"{WhittedTransferFiles.Folder}/{ShiftFile}");
         }
         var ids = new float[3 * t.ObjectIds.Length];
         for (int i = 0; i < t.ObjectIds.Length; i++)
@@ -100,21 +101,21 @@ internal static class PathTransferFiles
             ids[3 * i + 2] = t.LitMasks[i] >> 16;
         }
         AtomicFile.Write(Path.Combine(dir, IdsFile), s => NpyWriter.Write(s, [h, w, 3], ids));
-        done($"{LightTransferFiles.Folder}/{IdsFile}");
+        done($"{WhittedTransferFiles.Folder}/{IdsFile}");
         AtomicFile.WriteAllText(Path.Combine(dir, "lights.json"),
             Describe(scene, t).ToJsonString(new JsonSerializerOptions { WriteIndented = true }));
-        done($"{LightTransferFiles.Folder}/lights.json");
+        done($"{WhittedTransferFiles.Folder}/lights.json");
     }
 
     /// <summary>lights.json of a path render (the whole film's: a shard's is the same).</summary>
     public static JsonObject Describe(Scene scene, PathTransfer t)
     {
-        var grid = new FineGrid(scene, t.SpectralGrid);
+        var grid = new SubBandGrid(scene, t.SpectralGrid);
         var lights = new JsonArray();
         var groups = new JsonArray();
         for (int k = 0; k < scene.Lights.Count; k++)
         {
-            lights.Add((JsonNode)LightTransferFiles.LightEntry(scene, k));
+            lights.Add((JsonNode)WhittedTransferFiles.LightEntry(scene, k));
             groups.Add((JsonNode)$"light {scene.Lights[k].Name}");
         }
         groups.Add((JsonNode)"emitters and sky");
@@ -180,7 +181,7 @@ internal static class PathTransferFiles
     /// <summary>Reads lights/ of a path render back, checked against <paramref name="scene"/> (sizes, lights, grid).</summary>
     public static PathTransfer Read(string outDir, Scene scene)
     {
-        var dir = Path.Combine(outDir, LightTransferFiles.Folder);
+        var dir = Path.Combine(outDir, WhittedTransferFiles.Folder);
         var jsonPath = Path.Combine(dir, "lights.json");
         var json = JsonFields.ParseFile(jsonPath, "lights.json", Damaged);
         var r = new JsonFields(jsonPath, Damaged);
@@ -191,7 +192,7 @@ internal static class PathTransferFiles
         r.Array(json, "lights", "$", k);
         double gridWidth = r.Number(json, "spectral_grid_nm", "$", 1, 1000);
         int sub = r.Int(json, "sub_bands", "$", 1, 1 << 20);
-        var grid = new FineGrid(scene, gridWidth);
+        var grid = new SubBandGrid(scene, gridWidth);
         if (grid.Count != sub) throw r.Bad("$.sub_bands", $"is {sub}, but the scene's grid of {gridWidth} nm has {grid.Count} sub-bands");
         int version = r.OptInt(json, "version", "$", 1, int.MaxValue) ?? 1;
         if (version > Version)
@@ -205,7 +206,7 @@ internal static class PathTransferFiles
         {
             var path = Path.Combine(dir, file);
             if (!File.Exists(path))
-                throw new InputException(outDir, $"misses {LightTransferFiles.Folder}/{file}", "render again with the lights output");
+                throw new InputException(outDir, $"misses {WhittedTransferFiles.Folder}/{file}", "render again with the lights output");
             using var s = new FileStream(path, FileMode.Open, FileAccess.Read, FileShare.Read, bufferSize: 1);
             var (shape, data) = NpyReader.Read(s, path);
             if (!shape.SequenceEqual(expected))

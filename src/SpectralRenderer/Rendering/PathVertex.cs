@@ -21,7 +21,7 @@ readonly ref struct PathVertex(scoped in SurfaceHit hit, Vector3 wo, PathMateria
 }
 
 /// <summary>
-/// A vertex's texels on the fine grid (an empty span: the material's own spectrum), and the scratch an emitter's texel
+/// A vertex's texels on the sub-band grid (an empty span: the material's own spectrum), and the scratch an emitter's texel
 /// drawn by next-event estimation goes to (PathIntegrator.Textures.cs).
 /// </summary>
 readonly ref struct SurfaceTexels(Span<float> diffuse, Span<float> specular, Span<float> emission)

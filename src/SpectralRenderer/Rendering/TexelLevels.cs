@@ -22,8 +22,8 @@ public struct TexelTaps
 /// image, each further level both sides halved (rounded down, at least 1) until 1 × 1, each coarse texel the
 /// area-weighted mean of the finer texels it covers (a texel's share by overlap, so every level keeps the mean). A
 /// lookup blends the two levels around the footprint's size, bilinear in each (trilinear). What a texel's floats mean
-/// is the subclass's: eq. 2's per-light tables (<see cref="TexturedTerms"/>), or a spectrum on the path tracer's fine
-/// grid (<see cref="FineTexture"/>). The tables are built once and shared by every thread.
+/// is the subclass's: eq. 2's per-light tables (<see cref="TexturedTerms"/>), or a spectrum on the path tracer's sub-band
+/// grid (<see cref="SubBandTexture"/>). The tables are built once and shared by every thread.
 /// Storage is tiled: each level is cut into square tiles of <see cref="TileSide"/> texels (the last column and row of
 /// tiles clipped to the level, so no texel is padding), a tile's texels row by row and contiguous (a bilinear lookup's
 /// four texels mostly share one tile), whole tiles packed into chunks (arrays) of at most <see cref="DefaultChunkFloats"/>

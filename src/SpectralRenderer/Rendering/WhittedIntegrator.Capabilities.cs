@@ -3,14 +3,14 @@ using SpectralRenderer.Scenes;
 namespace SpectralRenderer.Rendering;
 
 // What the Whitted integrator can do beyond a picture (IntegratorCapabilities.cs): its per-light transfer of eq. 2's terms
-// (LightTransfer.cs, files in LightTransferFiles.cs) and camera-ray packets for the scenes the packet path takes.
+// (WhittedTransfer.cs, files in WhittedTransferFiles.cs) and camera-ray packets for the scenes the packet path takes.
 internal sealed partial class WhittedIntegrator : ITransferIntegrator
 {
-    public TransferFormat TransferFormat => LightTransferFiles.Format;
+    public TransferFormat TransferFormat => WhittedTransferFiles.Format;
 
     /// <summary>The whole film's transfer (a Whitted transfer is not written for a crop or shard).</summary>
     public ILightTransfer TraceTransfer(Scene scene, int threads, CancellationToken cancel, PixelRect? crop) =>
-        LightTransfer.Trace(scene, _geometry, threads, cancel);
+        WhittedTransfer.Trace(scene, _geometry, threads, cancel);
 
     /// <summary>
     /// A scene with mirrors or glass is traced ray by ray, where each camera ray's tree has its ray budget and a stop request

@@ -21,7 +21,7 @@ public abstract class Medium
     public abstract void Attenuate(Vector3 origin, Vector3 direction, float distance, Span<float> values);
 
     /// <summary>
-    /// The medium on another band grid (the path tracer's fine grid, <c>FineGrid.Resample</c>): each of its band spectra
+    /// The medium on another band grid (the path tracer's sub-band grid, <c>SubBandGrid.Resample</c>): each of its band spectra
     /// through <paramref name="resample"/>, as <see cref="Bsdf.Resampled"/>.
     /// </summary>
     public abstract Medium Resampled(Func<float[], float[]> resample);

@@ -104,10 +104,10 @@ namespace SpectralRenderer.Tests.Architecture.Probe.Layers.Analysis
 {
     public static class Mark { public const int Value = 13; public const string Name = "analysis"; }
 
-    static class BackEdge { public static readonly int X = Lighting.Mark.Value; }
+    static class BackEdge { public static readonly int X = Relighting.Mark.Value; }
 }
 
-namespace SpectralRenderer.Tests.Architecture.Probe.Layers.Lighting
+namespace SpectralRenderer.Tests.Architecture.Probe.Layers.Relighting
 {
     public static class Mark { public const int Value = 14; }
 

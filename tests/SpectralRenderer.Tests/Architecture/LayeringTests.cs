@@ -30,11 +30,11 @@ public class LayeringTests
         [R + "Sensor"] = ["Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Analysis"] = ["Output", "Sensor", "Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Pipeline"] = ["Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Geometry", "Spectra", "Color", "Diagnostics"],
-        [R + "Lighting"] = ["Analysis", "Sensor", "Pipeline", "Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra",
+        [R + "Relighting"] = ["Analysis", "Sensor", "Pipeline", "Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra",
             "Color", "Diagnostics"],
         [R + "Distributed"] = ["Pipeline", "Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Cli"] = ["*"],
-        [R + "Native"] = ["Distributed", "Lighting", "Analysis", "Sensor", "Pipeline", "Output", "Rendering", "Scenes.Loading", "Scenes",
+        [R + "Native"] = ["Distributed", "Relighting", "Analysis", "Sensor", "Pipeline", "Output", "Rendering", "Scenes.Loading", "Scenes",
             "Imaging", "Spectra", "Color", "Diagnostics"],
     };
 
@@ -189,7 +189,7 @@ public class LayeringTests
         ("Diagnostics", "Spectra"), ("Spectra", "Color"), ("Color", "Geometry"), ("Geometry", "Acceleration"),
         ("Acceleration", "Scenes"), ("Scenes", "Scenes.Loading"), ("Scenes.Loading", "Rendering"), ("Rendering", "Output"),
         ("Imaging", "Sensor"), ("Sensor", "Output"), ("Output", "Pipeline"), ("Pipeline", "Analysis"),
-        ("Analysis", "Lighting"), ("Lighting", "Distributed"), ("Distributed", "Cli"), ("Native", "Cli"),
+        ("Analysis", "Relighting"), ("Relighting", "Distributed"), ("Distributed", "Cli"), ("Native", "Cli"),
     ];
 
     [Fact]
@@ -230,7 +230,7 @@ public class LayeringTests
         Assert.Contains(R + "Cli.Paper", graph[R + "Cli.Commands"]);
         var source = SourceGraph();   // and the source reader sees the layers the old pattern left out
         Assert.Contains(source[R + "Analysis.Recovery"], to => to.StartsWith(R + "Sensor", StringComparison.Ordinal));
-        Assert.Contains(source[R + "Cli.Commands"], to => to.StartsWith(R + "Lighting", StringComparison.Ordinal));
+        Assert.Contains(source[R + "Cli.Commands"], to => to.StartsWith(R + "Relighting", StringComparison.Ordinal));
         Assert.Contains(source[R + "Cli.Commands"], to => to.StartsWith(R + "Distributed", StringComparison.Ordinal));
     }
 

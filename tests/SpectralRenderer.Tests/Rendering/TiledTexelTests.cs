@@ -86,12 +86,12 @@ public class TiledTexelTests
         Assert.Equal(expected, allocated);
         Assert.Equal(expected, TextureTables.Bytes(scene));
         Assert.Contains(("texture tables", expected), RenderMemory.Estimate(scene, 1));
-        // The path tracer: each textured lobe a spectrum on the fine grid (its sub-bands and 3 colour lanes, padded).
-        var grid = new FineGrid(scene, IntegratorSettings.DefaultSpectralGrid);
+        // The path tracer: each textured lobe a spectrum on the sub-band grid (its sub-bands and 3 colour lanes, padded).
+        var grid = new SubBandGrid(scene, IntegratorSettings.DefaultSpectralGrid);
         long fine = 4 * 2 * TileFloats(W, H, Padded(grid.Count + 3), TexelLevels.DefaultTileSide);
         var binding = scene.Materials[0].DiffuseTexture!;
-        Assert.Equal(fine, 2 * new FineTexture(binding, grid).AllocatedBytes);
-        Assert.Equal(fine, FineTexture.Bytes(scene));
+        Assert.Equal(fine, 2 * new SubBandTexture(binding, grid).AllocatedBytes);
+        Assert.Equal(fine, SubBandTexture.Bytes(scene));
         Assert.Contains(("texture spectra (fine grid)", fine), RenderMemory.Estimate(scene, 1, integrator: "path"));
     }
 
@@ -100,12 +100,12 @@ public class TiledTexelTests
     {
         var dir = Reference.TempDir();
         var scene = LoadScene(dir);
-        var grid = new FineGrid(scene, IntegratorSettings.DefaultSpectralGrid);
+        var grid = new SubBandGrid(scene, IntegratorSettings.DefaultSpectralGrid);
         int stride = Padded(grid.Count + 3);
-        FineTexture texture;
+        SubBandTexture texture;
         TexelLevels.Layout.Value = (4, 3 * 16 * stride);   // tiles of 4 × 4 texels, three to a chunk
         SpectralTexture.BlockOverride.Value = 5 * W * Wl.Length;   // the cube read five rows at a time
-        try { texture = new FineTexture(scene.Materials[0].DiffuseTexture!, grid); }
+        try { texture = new SubBandTexture(scene.Materials[0].DiffuseTexture!, grid); }
         finally { TexelLevels.Layout.Value = null; SpectralTexture.BlockOverride.Value = null; }
         Assert.Equal(4, texture.TileSide);
         Assert.True(texture.Chunks >= 20, $"{texture.Chunks} chunks");

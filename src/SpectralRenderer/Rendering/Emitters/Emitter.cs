@@ -21,7 +21,7 @@ internal readonly record struct EmitterSample(Vector3 Direction, float Distance,
 /// </summary>
 internal abstract class Emitter(float[] radiance)
 {
-    /// <summary>The emitted spectrum on the path tracer's fine grid: radiance L_e, or a delta light's intensity I_k.</summary>
+    /// <summary>The emitted spectrum on the path tracer's sub-band grid: radiance L_e, or a delta light's intensity I_k.</summary>
     public float[] Radiance { get; } = radiance;
 
     /// <summary>True for an emitter concentrated in a point or a direction: no ray can hit it; its pdf is 1 by convention.</summary>
@@ -50,8 +50,8 @@ internal abstract class Emitter(float[] radiance)
     /// </summary>
     public abstract float Emitted(Vector3 n, Vector3 wo);
 
-    /// <summary>L_e as a texture on the fine grid (<see cref="TexCoord"/> places a sample's point on it), or null.</summary>
-    public virtual FineTexture? Texture => null;
+    /// <summary>L_e as a texture on the sub-band grid (<see cref="TexCoord"/> places a sample's point on it), or null.</summary>
+    public virtual SubBandTexture? Texture => null;
 
     /// <summary>
     /// The (u, v) of point <paramref name="x"/> on <paramref name="face"/> and the mapping's density (a textured emitter).

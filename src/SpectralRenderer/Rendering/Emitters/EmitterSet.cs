@@ -18,9 +18,9 @@ internal sealed class EmitterSet
     readonly int[] _ofObject;
     readonly float _pick;
 
-    /// <summary>The set of <paramref name="scene"/> on the fine grid <paramref name="grid"/>, an emitting object's radiance,
+    /// <summary>The set of <paramref name="scene"/> on the sub-band grid <paramref name="grid"/>, an emitting object's radiance,
     /// sidedness and texture from its <paramref name="materials"/> record.</summary>
-    public EmitterSet(Scene scene, FineGrid grid, IReadOnlyList<PathMaterial> materials)
+    public EmitterSet(Scene scene, SubBandGrid grid, IReadOnlyList<PathMaterial> materials)
     {
         var emitters = new List<Emitter>();
         for (int k = 0; k < scene.Lights.Count; k++)
@@ -59,7 +59,7 @@ internal sealed class EmitterSet
     /// <summary>The sky's index, or −1 when the background is black.</summary>
     public int Sky { get; }
 
-    /// <summary>The background radiance on the fine grid (what a camera ray that escapes sees; black without a sky).</summary>
+    /// <summary>The background radiance on the sub-band grid (what a camera ray that escapes sees; black without a sky).</summary>
     public float[] Background { get; }
 
     /// <summary>The emitter of scene object <paramref name="obj"/> (its index), or −1 when it emits nothing.</summary>

@@ -9,7 +9,7 @@ namespace SpectralRenderer.Rendering;
 internal sealed class ShapeEmitter(AreaEmitter area, string name) : Emitter(area.Radiance)
 {
     public override bool IsDelta => false;
-    public override FineTexture? Texture => area.Texture;
+    public override SubBandTexture? Texture => area.Texture;
 
     /// <summary>The surface point as <see cref="AreaEmitter.Sample(Vector3, Vector2, out Vector3, out Vector3, out float, out int)"/>
     /// draws it, seen along ω_i = (x − p)/|x − p|; nothing when x is at p or its surface faces away.</summary>

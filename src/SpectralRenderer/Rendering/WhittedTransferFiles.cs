@@ -23,9 +23,9 @@ namespace SpectralRenderer.Rendering;
 /// (bit k: light k reaches the point; exact for the first 24 lights) and 1 where a path met a coloured mirror or
 /// transmittance (the pixel's colour is then eq. 3 on its band values, as in the render).</item>
 /// </list>
-/// A pixel's band values are L_b = Σ_c F_c · P_c,b and its colour Σ_c F_c · XYZ_c (<see cref="LightTransfer"/>).
+/// A pixel's band values are L_b = Σ_c F_c · P_c,b and its colour Σ_c F_c · XYZ_c (<see cref="WhittedTransfer"/>).
 /// </summary>
-internal static class LightTransferFiles
+internal static class WhittedTransferFiles
 {
     public const string Folder = TransferFiles.Folder;
 
@@ -40,11 +40,12 @@ internal static class LightTransferFiles
 
         /// <summary>Its factors are known only once traced; its textured terms' texel samples (S per term and pixel, issue 26)
         /// are counted for a first hit.</summary>
-        public override IEnumerable<(string Part, long Bytes)> Memory(Scene scene) => LightTransfer.TexelBytes(scene) is > 0 and var texels
+        public override IEnumerable<(string Part, long Bytes)> Memory(Scene scene) =>
+            WhittedTransfer.TexelBytes(scene) is > 0 and var texels
             ? [("per-light transfer: texel samples of textured terms", texels)]
             : [];
 
-        public override ILightTransfer Read(string outDir, Scene scene) => LightTransferFiles.Read(outDir, scene);
+        public override ILightTransfer Read(string outDir, Scene scene) => WhittedTransferFiles.Read(outDir, scene);
     }
 
     /// <summary>The four arrays every transfer has, in the order written.</summary>
@@ -55,9 +56,10 @@ internal static class LightTransferFiles
 
     /// <summary>The arrays of <paramref name="t"/>, in the order written: the four, and the texel samples when it has
     /// textured terms.</summary>
-    public static IReadOnlyList<string> ArraysOf(LightTransfer t) => t.Texels is null ? Arrays : [.. Arrays, TexelsFile, CentreTexelsFile];
+    public static IReadOnlyList<string> ArraysOf(WhittedTransfer t) =>
+        t.Texels is null ? Arrays : [.. Arrays, TexelsFile, CentreTexelsFile];
 
-    public static void Write(Scene scene, LightTransfer t, string outDir, Action<string> done)
+    public static void Write(Scene scene, WhittedTransfer t, string outDir, Action<string> done)
     {
         var dir = Path.Combine(outDir, Folder);
         Directory.CreateDirectory(dir);
@@ -80,7 +82,7 @@ internal static class LightTransferFiles
         done($"{Folder}/lights.json");
     }
 
-    static void WriteArrays(LightTransfer t, string dir, Action<string> done)
+    static void WriteArrays(WhittedTransfer t, string dir, Action<string> done)
     {
         int n = t.Width * t.Height;
         int nnz = t.Factors.Sum(f => f.Length);
@@ -111,7 +113,7 @@ internal static class LightTransferFiles
     /// centre-texels.npy: float32 [Σ S_d + S_s], for each pixel (ascending) whose centre ray saw a textured material, its
     /// filtered samples of that material's diffuse texture, then of its specular texture.
     /// </summary>
-    static void WriteTexels(Scene scene, LightTransfer t, string dir, Action<string> done)
+    static void WriteTexels(Scene scene, WhittedTransfer t, string dir, Action<string> done)
     {
         var texels = new float[t.Texels!.Sum(v => (long)(v?.Length ?? 0))];
         long at = 0;
@@ -153,7 +155,7 @@ internal static class LightTransferFiles
     }
 
     /// <summary>The light band values I_k,b (spectrum × intensity) of the scene's lights, unpadded.</summary>
-    public static JsonObject Describe(Scene scene, LightTransfer t)
+    public static JsonObject Describe(Scene scene, WhittedTransfer t)
     {
         var lights = new JsonArray();
         for (int k = 0; k < scene.Lights.Count; k++) lights.Add((JsonNode)LightEntry(scene, k));
@@ -279,7 +281,7 @@ internal static class LightTransferFiles
 
     /// <summary>
     /// lights.json checked against the scene it is read with: sizes in range, one entry per scene light, each component's
-    /// light, lobe, materials (by name), chain (at most <see cref="LightTransfer.MaxChain"/>) and band valid, its entries
+    /// light, lobe, materials (by name), chain (at most <see cref="WhittedTransfer.MaxChain"/>) and band valid, its entries
     /// [offset, offset + count) inside the stored total, which fits one array.
     /// </summary>
     public static Layout ParseLayout(JsonObject json, string jsonPath, Scene scene)
@@ -320,7 +322,7 @@ internal static class LightTransferFiles
             int material = lobe == TransferLobe.Background
                 ? o["material"] is null ? -1 : throw r.Bad($"{at}.material", "is given for the background, which has no material")
                 : Mat(o["material"], $"{at}.material");
-            var chainNodes = r.Array(o, "chain", at, max: LightTransfer.MaxChain);
+            var chainNodes = r.Array(o, "chain", at, max: WhittedTransfer.MaxChain);
             var chain = new (int, bool)[chainNodes.Count];
             for (int i = 0; i < chain.Length; i++)
             {
@@ -370,7 +372,7 @@ internal static class LightTransferFiles
     }
 
     /// <summary>Reads lights/ back into a transfer whose components refer to <paramref name="scene"/>'s materials by name.</summary>
-    public static LightTransfer Read(string outDir, Scene scene)
+    public static WhittedTransfer Read(string outDir, Scene scene)
     {
         var dir = Path.Combine(outDir, Folder);
         var jsonPath = Path.Combine(dir, "lights.json");
@@ -446,7 +448,7 @@ internal static class LightTransferFiles
             texels = new float[]?[comps.Length];
             for (int c = 0; c < comps.Length; c++)
                 if (layout.Texels[c] is { } tc) texels[c] = all.AsSpan((int)tc.Offset, offsets[c].Count * tc.Samples).ToArray();
-            centreWidth = LightTransfer.CentreWidthOf(scene);
+            centreWidth = WhittedTransfer.CentreWidthOf(scene);
             var compact = Load(CentreTexelsFile, [(int)CentreTexelCount(scene, objectIds)]);
             centreTexels = new float[(long)n * centreWidth];
             for (int i = 0, at = 0; i < n; i++)
@@ -470,7 +472,7 @@ internal static class LightTransferFiles
                 || (Canonical(Path.Combine(dir, TexelsFile), NpyWriter.Preamble([(int)layout.TexelFloats]), 4 * layout.TexelFloats)
                 && Canonical(Path.Combine(dir, CentreTexelsFile), NpyWriter.Preamble([(int)CentreTexelCount(scene, objectIds)]),
                     4 * CentreTexelCount(scene, objectIds))));
-        return new LightTransfer
+        return new WhittedTransfer
         {
             Width = width,
             Height = height,

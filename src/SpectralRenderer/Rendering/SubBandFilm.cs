@@ -7,15 +7,15 @@ using SpectralRenderer.Spectra;
 namespace SpectralRenderer.Rendering;
 
 /// <summary>
-/// A path render's film on its fine grid (issue 24, the camera's exact route): per pixel the mean over its camera samples
-/// of the fine radiance L_f (W·m⁻²·sr⁻¹·nm⁻¹, one value per sub-band of <see cref="FineGrid"/>) that the film reduces to
+/// A path render's film on its sub-band grid (issue 24, the camera's exact route): per pixel the mean over its camera samples
+/// of the sub-band radiance L_f (W·m⁻²·sr⁻¹·nm⁻¹, one value per sub-band of <see cref="SubBandGrid"/>) that the film reduces to
 /// the output bands (their sub-bands' means) and to XYZ (Σ_f L_f·κ∫_f x̄ dλ). A sensor channel's signal is then
 /// Σ_f L_f · ∫_f η_c(λ)·λ/(hc) dλ, as the film integrates colour. Formed from the render's lights/ (L_f = F_f + Σ_k T_k,f·E_k,f,
 /// no rays) or traced again: the render's camera samples, bit for bit (every random number is the sample's own), summed
 /// with the film's weights 1/spp. Nothing of it is kept at render time; <see cref="Bytes"/> is what it holds.
 /// </summary>
 [CompiledAtFirstCall]
-public sealed class PathFineFilm
+public sealed class SubBandFilm
 {
     public required int Width { get; init; }
     public required int Height { get; init; }
@@ -28,12 +28,13 @@ public sealed class PathFineFilm
     public required float[] Data { get; init; }
     public int SubBands => Lower.Length;
 
-    /// <summary>Bytes of the fine film of <paramref name="scene"/> (4 per pixel and sub-band).</summary>
+    /// <summary>Bytes of the sub-band film of <paramref name="scene"/> (4 per pixel and sub-band).</summary>
     public static long Bytes(Scene scene) =>
-        4L * scene.Camera.Width * scene.Camera.Height * new FineGrid(scene, PathTransfer.GridWidth(scene)).Count;
+        4L * scene.Camera.Width * scene.Camera.Height * new SubBandGrid(scene, PathTransfer.GridWidth(scene)).Count;
 
-    /// <summary>Traces the render's camera samples of the whole film again, summing each sample's fine radiance with its weight.</summary>
-    internal static PathFineFilm Trace(Scene scene, PathIntegrator integrator, int threads = 0, CancellationToken cancel = default)
+    /// <summary>Traces the render's camera samples of the whole film again, summing each sample's sub-band radiance with its
+    /// weight.</summary>
+    internal static SubBandFilm Trace(Scene scene, PathIntegrator integrator, int threads = 0, CancellationToken cancel = default)
     {
         var cam = scene.Camera;
         var grid = integrator.Grid;
@@ -57,9 +58,9 @@ public sealed class PathFineFilm
     /// From a path render's per-light transfer: L_f = F_f + Σ_k T_k,f·E_k,f (+ its fluorescent shift B_k·E_k) with the scene's
     /// lights (as <see cref="PathTransfer.Relight"/>).
     /// </summary>
-    internal static PathFineFilm FromTransfer(PathTransfer t, Scene scene)
+    internal static SubBandFilm FromTransfer(PathTransfer t, Scene scene)
     {
-        var grid = new FineGrid(scene, t.SpectralGrid);
+        var grid = new SubBandGrid(scene, t.SpectralGrid);
         int sub = t.SubBands, w = t.Region.Width, h = t.Region.Height;
         var e = PathTransfer.LightSpectra(scene, grid);
         var data = new float[(long)w * h * sub];
@@ -76,7 +77,7 @@ public sealed class PathFineFilm
         return Of(grid, w, h, data);
     }
 
-    static PathFineFilm Of(FineGrid grid, int width, int height, float[] data) => new()
+    static SubBandFilm Of(SubBandGrid grid, int width, int height, float[] data) => new()
     {
         Width = width,
         Height = height,
@@ -101,7 +102,7 @@ public sealed class PathFineFilm
             Renderer.SampleTile(ref sink, in sampling, x0, y0, x1, y1, cancel, ref counters);
         }
 
-        /// <summary>A pixel's samples summed with the film's weights (<see cref="Renderer"/>'s RadianceSamples, on the fine
+        /// <summary>A pixel's samples summed with the film's weights (<see cref="Renderer"/>'s RadianceSamples, on the sub-band
         /// grid).</summary>
         readonly struct Samples(TileWork w) : ISampleSink
         {
@@ -110,7 +111,7 @@ public sealed class PathFineFilm
             [MethodImpl(MethodImplOptions.AggressiveOptimization)]
             public int Sample(in CameraSample sample, float weight, bool centre, ref RayCounters counters)
             {
-                int id = w._integrator.FineRadiance(in sample, w._sample, w._scratch, ref counters);
+                int id = w._integrator.SubBandRadiance(in sample, w._sample, w._scratch, ref counters);
                 if (weight != 0) SpectralMath.AddScaled(w._sum, w._sample, weight);
                 return id;
             }

@@ -10,7 +10,7 @@ using SpectralRenderer.Output.Products;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Spectra;
 
-namespace SpectralRenderer.Lighting;
+namespace SpectralRenderer.Relighting;
 
 /// <summary>
 /// The spectral viewer of a render folder: <c>viewer.html</c> (a self-contained page: no network reference, its
@@ -89,7 +89,7 @@ public static class SpectralViewer
                 || !planes.ContainsKey("luminance") || !planes.ContainsKey("illuminance"))
                 throw new InputException(photometryExr, $"does not hold luminance and illuminance of the whole {width}×{height} film",
                     "render the folder again with --formats …,photometry");
-            var probe = new Rendering.Illuminance(Relighting.ChangedScene(Relighting.Open(dir), [], null), null);
+            var probe = new Rendering.Illuminance(Relighter.ChangedScene(Relighter.Open(dir), [], null), null);
             var scales = new JsonObject();
             foreach (var (q, unit) in new[] { ("luminance", "cd/m²"), ("illuminance", "lx") })
             {
@@ -120,10 +120,10 @@ public static class SpectralViewer
         {
             // Candidate lights: P of every component that follows a light, per unit intensity, from the term tables of
             // the render's scene with every light given that spectrum (so the page's colour is exact, not eq. 3 on bands).
-            var src = Relighting.Open(dir);
+            var src = Relighter.Open(dir);
             var resolvedLights = manifest.ResolvedScene?.Lights;
             var comps = transfer["components"]!.AsArray();
-            var components = ((ITermRoute)TransferFiles.Read(dir, Relighting.ChangedScene(src, [], null))).Components;
+            var components = ((ITermRoute)TransferFiles.Read(dir, Relighter.ChangedScene(src, [], null))).Components;
             var presets = new JsonArray();
             var lights = new JsonArray();
             JsonArray PresetComponents(Func<int, float[]?> p) => new(Enumerable.Range(0, comps.Count)
@@ -143,7 +143,7 @@ public static class SpectralViewer
             // each preset, so the page's illuminance follows the lights (Illuminance.LightFactorMaps).
             // The scene with its meshes (the shadow rays need every triangle).
             var sourceScene = photometry is not null
-                ? Relighting.ChangedScene(src with { Overrides = src.Overrides with { LoadMeshes = true } }, [], null) : null;
+                ? Relighter.ChangedScene(src with { Overrides = src.Overrides with { LoadMeshes = true } }, [], null) : null;
             bool relitPhotometry = sourceScene is not null && sourceScene.Lights.Count == tl.Count;
             var luminous0 = relitPhotometry ? new Rendering.Illuminance(sourceScene!, null) : null;
             var presetLuminous = new List<JsonArray?>();
@@ -183,7 +183,7 @@ public static class SpectralViewer
             }
             foreach (var name in Presets)
             {
-                var scene = Relighting.ChangedScene(src, src.LightNames.Select(l => new LightChange(l, name, 1)).ToList(), null);
+                var scene = Relighter.ChangedScene(src, src.LightNames.Select(l => new LightChange(l, name, 1)).ToList(), null);
                 var tables = new Rendering.TermTables(scene);
                 var p = new float[scene.PaddedBands];
                 Add(name, PresetComponents(c =>

@@ -8,7 +8,7 @@ using SpectralRenderer.Scenes.Loading;
 using SpectralRenderer.Sensor;
 using SpectralRenderer.Spectra;
 
-namespace SpectralRenderer.Lighting;
+namespace SpectralRenderer.Relighting;
 
 /// <summary>
 /// The camera's exact route (issue 24): a render's pixel is L = Σ_c F_c · E_k·m·Π k_chain over its eq. 2 components
@@ -19,7 +19,7 @@ namespace SpectralRenderer.Lighting;
 /// when it wrote them, else the transfer is traced again from the resolved scene (the same rays the render traced).
 /// A component whose chain passes a coloured mirror or glass, a dispersive split, or a spectrum known only by its band
 /// values takes the band route for itself (its band values × the channel weights), and the manifest counts them.
-/// A path render has no eq. 2 terms; its channels are integrated from its fine spectral grid (ExactChannelSignals.Path.cs).
+/// A path render has no eq. 2 terms; its channels are integrated from its sub-band grid (ExactChannelSignals.Path.cs).
 /// Which route a render takes is its integrator's capability (<see cref="TransferFormat.Route"/>), not its name.
 /// </summary>
 public static partial class ExactChannelSignals
@@ -40,11 +40,11 @@ public static partial class ExactChannelSignals
     /// <summary>The exact route for <paramref name="cs"/>'s render, or null (with the reason) when the folder cannot give it.</summary>
     public static Result? Compute(CameraScene cs, SensorModel sensor, int threads, out string reason)
     {
-        Relighting.Source src;
-        try { src = Relighting.Open(cs.Folder.Path); }
+        Relighter.Source src;
+        try { src = Relighter.Open(cs.Folder.Path); }
         catch (InputException e) { reason = $"the render folder cannot be rebuilt ({e.Message})"; return null; }
-        // A path render's light is every bounce of the rendering equation, not eq. 2's terms: its fine grid is integrated instead.
-        if (RouteOf(src) == CameraRoute.FineFilm) return PathRoute(cs, sensor, src, threads, out reason);
+        // A path render's light is every bounce of the rendering equation, not eq. 2's terms: its sub-band grid is integrated instead.
+        if (RouteOf(src) == CameraRoute.SubBandFilm) return PathRoute(cs, sensor, src, threads, out reason);
         return Transfer(src, threads, out var scene, out var transfer, out var from, out reason)
             ? Compute(cs, sensor, scene, transfer, from, threads, out reason) : null;
     }
@@ -58,24 +58,24 @@ public static partial class ExactChannelSignals
     /// </summary>
     public static (double Scale, string Source)? BandRouteWhite(CameraScene cs, int threads)
     {
-        Relighting.Source src;
-        try { src = Relighting.Open(cs.Folder.Path); }
-        catch (InputException) { return LightsRoute(cs.Folder.Path) == CameraRoute.FineFilm ? PathWhite(cs) : null; }
-        if (RouteOf(src) == CameraRoute.FineFilm) return PathWhite(cs);
+        Relighter.Source src;
+        try { src = Relighter.Open(cs.Folder.Path); }
+        catch (InputException) { return LightsRoute(cs.Folder.Path) == CameraRoute.SubBandFilm ? PathWhite(cs) : null; }
+        if (RouteOf(src) == CameraRoute.SubBandFilm) return PathWhite(cs);
         if (!Transfer(src, threads, out var scene, out var transfer, out _, out _)
             || transfer.Width != cs.Width || transfer.Height != cs.Height) return null;
         return WhiteScale(cs, scene, transfer, scene.Radiometry == Radiometry.Physical);
     }
 
     /// <summary>A render's scene and its eq. 2 terms: its lights/ when written, else traced again (the render's rays).</summary>
-    static bool Transfer(Relighting.Source src, int threads, out Scene scene, out ITermRoute transfer, out string from, out string reason)
+    static bool Transfer(Relighter.Source src, int threads, out Scene scene, out ITermRoute transfer, out string from, out string reason)
     {
         string dir = src.Dir;
         scene = null!; transfer = null!; from = "";
         try
         {
             bool written = File.Exists(Path.Combine(dir, TransferFiles.Folder, TransferFiles.Description));
-            scene = written ? Relighting.ChangedScene(src, [], null)
+            scene = written ? Relighter.ChangedScene(src, [], null)
                 : SceneLoader.Parse(src.Scene.WithLights([], null), src.ScenePath, src.Overrides with { LoadMeshes = true });
             if (!HasTermTransfer(src, out reason)) return false;
             if (written)
@@ -103,7 +103,7 @@ public static partial class ExactChannelSignals
     /// The exact route a render folder gives: its lights/' format's when it wrote them, else its integrator's (the command
     /// line's run.integrator, else the resolved scene's, else the default) transfer format's.
     /// </summary>
-    static CameraRoute RouteOf(Relighting.Source src) => LightsRoute(src.Dir) is var written && written != CameraRoute.None
+    static CameraRoute RouteOf(Relighter.Source src) => LightsRoute(src.Dir) is var written && written != CameraRoute.None
         ? written
         : Integrators.Entry(IntegratorOf(src))?.Transfer?.Route ?? CameraRoute.None;
 
@@ -118,15 +118,15 @@ public static partial class ExactChannelSignals
     /// The integrator a render ran: render.json's run.integrator, else its resolved scene's (lower case, as the loader reads
     /// it), else the default.
     /// </summary>
-    static string IntegratorOf(Relighting.Source src) => src.Manifest.Run?.Integrator ?? (src.Scene.ToJson()["integrator"] is { } i
+    static string IntegratorOf(Relighter.Source src) => src.Manifest.Run?.Integrator ?? (src.Scene.ToJson()["integrator"] is { } i
         ? ((i as System.Text.Json.Nodes.JsonValue)?.ToString() ?? (string?)i["type"])?.ToLowerInvariant() : null) ?? Integrators.Default;
 
     /// <summary>
     /// Whether the render is a sum of eq. 2 terms whose per-light transfer the exact route can use (its integrator's
     /// transfer gives <see cref="CameraRoute.Terms"/>: the Whitted model's). A path-traced render is not (its light bounces
-    /// between surfaces): its fine grid is integrated instead (<see cref="PathRoute"/>).
+    /// between surfaces): its sub-band grid is integrated instead (<see cref="PathRoute"/>).
     /// </summary>
-    static bool HasTermTransfer(Relighting.Source src, out string reason)
+    static bool HasTermTransfer(Relighter.Source src, out string reason)
     {
         string name = IntegratorOf(src);
         bool terms = RouteOf(src) == CameraRoute.Terms;

@@ -7,32 +7,32 @@ using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
 using SpectralRenderer.Sensor;
 
-namespace SpectralRenderer.Lighting;
+namespace SpectralRenderer.Relighting;
 
 public static partial class ExactChannelSignals
 {
     /// <summary>
-    /// The exact route of a path render (issue 24): its radiance is carried on the fine grid (<see cref="PathFineFilm"/>:
+    /// The exact route of a path render (issue 24): its radiance is carried on the sub-band grid (<see cref="SubBandFilm"/>:
     /// exact sub-band means, 5 nm by default), which the film reduces to output bands and integrates into XYZ as
     /// X = Σ_f L_f·κ∫_f x̄ dλ. A channel is integrated the same way, rate_c = Σ_f L_f · ∫_f η_c(λ)·λ dλ (× the sensor's
     /// étendue/(hc)), each ∫_f at the sensitivity's full resolution (<see cref="ChannelWeights.ExactIntegral"/>), so the
-    /// signals depend on the fine grid and the samples but not on the output band count. The fine film comes from the
+    /// signals depend on the sub-band grid and the samples but not on the output band count. The sub-band film comes from the
     /// render's lights/ when it wrote a path transfer (no rays), else its camera samples are traced again (the same paths:
     /// the render's time once more, and 4 bytes per pixel and sub-band).
     /// </summary>
-    static Result? PathRoute(CameraScene cs, SensorModel sensor, Relighting.Source src, int threads, out string reason)
+    static Result? PathRoute(CameraScene cs, SensorModel sensor, Relighter.Source src, int threads, out string reason)
     {
         Scene scene;
-        PathFineFilm film;
+        SubBandFilm film;
         string from;
         try
         {
-            if (LightsRoute(src.Dir) == CameraRoute.FineFilm)
+            if (LightsRoute(src.Dir) == CameraRoute.SubBandFilm)
             {
-                scene = Relighting.ChangedScene(src, [], null);
-                var transfer = (IFineFilmRoute)TransferFiles.Read(src.Dir, scene);   // its format's route is FineFilm
-                film = transfer.FineFilm(scene);
-                from = $"the render's lights/ ({transfer.FineFilmMethod})";
+                scene = Relighter.ChangedScene(src, [], null);
+                var transfer = (ISubBandFilmRoute)TransferFiles.Read(src.Dir, scene);   // its format's route is SubBandFilm
+                film = transfer.Film(scene);
+                from = $"the render's lights/ ({transfer.FilmMethod})";
             }
             else
             {
@@ -50,13 +50,13 @@ public static partial class ExactChannelSignals
                     return null;
                 }
                 if (FilmTooLarge(scene, sensor) is { } why) { reason = why; return null; }
-                if (Integrators.Create(scene, new SceneGeometry(scene), IntegratorOf(src)) is not IFineFilmIntegrator integrator)
+                if (Integrators.Create(scene, new SceneGeometry(scene), IntegratorOf(src)) is not ISubBandFilmIntegrator integrator)
                 {
                     reason = $"the render's {IntegratorOf(src)} integrator cannot trace its film on a fine grid";
                     return null;
                 }
                 var clock = System.Diagnostics.Stopwatch.StartNew();
-                film = integrator.TraceFineFilm(scene, threads < 0 ? 0 : threads);
+                film = integrator.TraceSubBandFilm(scene, threads < 0 ? 0 : threads);
                 from = string.Create(CultureInfo.InvariantCulture,
                     $"the render's camera samples traced again from render.json's resolved scene (the same paths, "
                         + $"{clock.Elapsed.TotalSeconds:F1} s)");
@@ -67,10 +67,10 @@ public static partial class ExactChannelSignals
     }
 
     /// <summary>
-    /// The exact route of a path render from its fine film (<paramref name="from"/> says where the film came from: a folder's
+    /// The exact route of a path render from its sub-band film (<paramref name="from"/> says where the film came from: a folder's
     /// lights/, traced again, or a render held in memory), or null (with the reason) when it does not match the cube.
     /// </summary>
-    public static Result? Compute(CameraScene cs, SensorModel sensor, Scene scene, PathFineFilm film, string from, int threads,
+    public static Result? Compute(CameraScene cs, SensorModel sensor, Scene scene, SubBandFilm film, string from, int threads,
         out string reason)
     {
         if (film.Width != cs.Width || film.Height != cs.Height || film.SubBands != cs.Grid.Count * film.PerBand)
@@ -133,12 +133,12 @@ public static partial class ExactChannelSignals
     }
 
     /// <summary>
-    /// Why the fine film (4 bytes per pixel and sub-band) and the channel sums (12 bytes per pixel and channel) do not fit
+    /// Why the sub-band film (4 bytes per pixel and sub-band) and the channel sums (12 bytes per pixel and channel) do not fit
     /// in what this process may still use (the GC's available memory less what is in use, a tenth kept back), else null.
     /// </summary>
     static string? FilmTooLarge(Scene scene, SensorModel sensor)
     {
-        long need = PathFineFilm.Bytes(scene) + 12L * scene.Camera.Width * scene.Camera.Height * sensor.ChannelCount;
+        long need = SubBandFilm.Bytes(scene) + 12L * scene.Camera.Width * scene.Camera.Height * sensor.ChannelCount;
         long usable = (long)(0.9 * GC.GetGCMemoryInfo().TotalAvailableMemoryBytes) - GC.GetTotalMemory(false);
         return need <= usable ? null
             : $"the path render's fine film needs about {InputFile.Size(need)}, more than the {InputFile.Size(Math.Max(0, usable))} this "

@@ -4,9 +4,9 @@ namespace SpectralRenderer.Rendering;
 
 // The Whitted transfer as a capability (IntegratorCapabilities.cs): recombined by relight and the C ABI, written by the
 // lights product, and eq. 2's terms for the camera's exact route.
-internal sealed partial class LightTransfer : ITermRoute
+internal sealed partial class WhittedTransfer : ITermRoute
 {
-    public TransferFormat Format => LightTransferFiles.Format;
+    public TransferFormat Format => WhittedTransferFiles.Format;
     public int FilmWidth => Width;
     public int FilmHeight => Height;
     public PixelRect Region => PixelRect.Whole(Width, Height);
@@ -42,7 +42,7 @@ internal sealed partial class LightTransfer : ITermRoute
         "rebuilt from the new lights' term tables; no rays traced";
 
     public IEnumerable<string> StoredFiles => StoredIn is null ? []
-        : LightTransferFiles.ArraysOf(this).Select(f => $"{LightTransferFiles.Folder}/{f}");
+        : WhittedTransferFiles.ArraysOf(this).Select(f => $"{WhittedTransferFiles.Folder}/{f}");
 
-    public void Write(Scene scene, string outDir, Action<string> done) => LightTransferFiles.Write(scene, this, outDir, done);
+    public void Write(Scene scene, string outDir, Action<string> done) => WhittedTransferFiles.Write(scene, this, outDir, done);
 }

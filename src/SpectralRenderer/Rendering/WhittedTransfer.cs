@@ -182,7 +182,7 @@ public sealed record TransferComponent(int Light, TransferLobe Lobe, int Materia
 /// P_i the new light's product with sample i's tent function (<see cref="TransferComponent.TexelColumns"/>).
 /// </summary>
 [CompiledAtFirstCall]
-internal sealed partial class LightTransfer
+internal sealed partial class WhittedTransfer
 {
     public required int Width { get; init; }
     public required int Height { get; init; }
@@ -218,7 +218,7 @@ internal sealed partial class LightTransfer
     public int CentreWidth { get; init; }
     /// <summary>
     /// The render folder whose lights/*.npy this transfer was read from when they are byte for byte what writing it
-    /// gives (LightTransferFiles): a relit render copies them instead of encoding them again. Null for a traced transfer.
+    /// gives (WhittedTransferFiles): a relit render copies them instead of encoding them again. Null for a traced transfer.
     /// </summary>
     public string? StoredIn { get; init; }
 
@@ -252,7 +252,7 @@ internal sealed partial class LightTransfer
     }
 
     /// <summary>Traces the scene's camera rays and records S, the factors and the centre-ray data.</summary>
-    public static LightTransfer Trace(Scene scene, SceneGeometry geometry, int threads = 0, CancellationToken cancel = default)
+    public static WhittedTransfer Trace(Scene scene, SceneGeometry geometry, int threads = 0, CancellationToken cancel = default)
     {
         if (scene.MaxDepth > MaxChain)
             throw new InputException("max_depth", $"the 'lights' output supports max_depth ≤ {MaxChain}, the scene has {scene.MaxDepth}",
@@ -527,7 +527,7 @@ internal sealed partial class LightTransfer
             }
         }
 
-        public LightTransfer Run(int threads, CancellationToken cancel)
+        public WhittedTransfer Run(int threads, CancellationToken cancel)
         {
             int width = _width, height = _height, bands = _scene.Bands;
             var ids = new int[width * height];
@@ -538,7 +538,7 @@ internal sealed partial class LightTransfer
                 () => new TileWork(this, sampling, ids, lit, cancel));
 
             var (components, pixels, factors, merged, texels) = Assemble(width * height);
-            return new LightTransfer
+            return new WhittedTransfer
             {
                 Width = width,
                 Height = height,

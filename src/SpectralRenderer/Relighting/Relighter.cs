@@ -9,7 +9,7 @@ using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
 
-namespace SpectralRenderer.Lighting;
+namespace SpectralRenderer.Relighting;
 
 /// <summary>What to change: per light (by name) a new spectrum and/or intensity, and the reference white.</summary>
 /// <summary>A light's new spectrum and/or intensity; <paramref name="Where"/> names where the spectrum was given
@@ -24,7 +24,7 @@ public sealed record LightChange(string Light, string? Spectrum, double? Intensi
 /// light band values (<see cref="ILightTransfer.Relight"/>). No ray is traced. The result is written as a
 /// complete render folder, its render.json saying it was relit and from what.
 /// </summary>
-public static class Relighting
+public static class Relighter
 {
     public sealed record Source(string Dir, RenderManifest Manifest, ManifestScene Scene, string ScenePath, SceneOverrides Overrides,
         string[] LightNames);

@@ -15,12 +15,12 @@ namespace SpectralRenderer.Rendering;
 /// lanes, a multiple of <see cref="Vector{T}.Count"/>) for whole-vector arithmetic.
 /// </summary>
 [CompiledAtFirstCall]
-internal sealed class FineGrid
+internal sealed class SubBandGrid
 {
     readonly Scene _scene;
     readonly float[] _wx, _wy, _wz;
 
-    public FineGrid(Scene scene, double width)
+    public SubBandGrid(Scene scene, double width)
     {
         _scene = scene;
         var grid = scene.Grid;
@@ -39,7 +39,7 @@ internal sealed class FineGrid
                 Upper[b * PerBand + j] = j == PerBand - 1 ? grid.Upper(b) : lo + (j + 1) * w;
             }
         }
-        // Colour weights κ·∫_f x̄ dλ per sub-band (CIE 015 eq. 7.1 on the fine grid) and the luminance-like channel.
+        // Colour weights κ·∫_f x̄ dλ per sub-band (CIE 015 eq. 7.1 on the sub-band grid) and the luminance-like channel.
         var obs = scene.Observer;
         double kappa = scene.Colorimeter.Kappa;
         _wx = new float[Padded]; _wy = new float[Padded]; _wz = new float[Padded];
@@ -71,7 +71,7 @@ internal sealed class FineGrid
     public int PerBand { get; }
     /// <summary>Sub-bands in all.</summary>
     public int Count { get; }
-    /// <summary>The length of a fine spectrum (padded for SIMD).</summary>
+    /// <summary>The length of a sub-band spectrum (padded for SIMD).</summary>
     public int Padded { get; }
     public double[] Lower { get; }
     public double[] Upper { get; }
@@ -92,7 +92,7 @@ internal sealed class FineGrid
         return fine;
     }
 
-    /// <summary>The channel value Σ c_f·v_f of a fine spectrum.</summary>
+    /// <summary>The channel value Σ c_f·v_f of a sub-band spectrum.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public float Luminance(ReadOnlySpan<float> v)
     {
@@ -104,7 +104,7 @@ internal sealed class FineGrid
     }
 
     /// <summary>
-    /// A fine radiance to the film: each output band the mean of its sub-bands, and X, Y, Z integrated on the fine grid
+    /// A sub-band radiance to the film: each output band the mean of its sub-bands, and X, Y, Z integrated on the sub-band grid
     /// into the colour lanes after the bands.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]

@@ -7,15 +7,15 @@ using SpectralRenderer.Scenes.Textures;
 namespace SpectralRenderer.Rendering;
 
 /// <summary>
-/// A spectral texture on the path tracer's fine grid (<see cref="FineGrid"/>): texel (x, y)'s value on sub-band f is
-/// the exact mean over f of its tabulated spectrum — the projection <see cref="FineGrid.Resample"/> makes of a plain
+/// A spectral texture on the path tracer's sub-band grid (<see cref="SubBandGrid"/>): texel (x, y)'s value on sub-band f is
+/// the exact mean over f of its tabulated spectrum — the projection <see cref="SubBandGrid.Resample"/> makes of a plain
 /// spectrum. A mean is linear in the texel's samples, so the projection is one sub-band × sample matrix, each column the
 /// mean of a sample's tent function, applied to every texel once at load. Mip levels and the filtered lookup are
 /// <see cref="TexelLevels"/>'; one copy shared by every thread, a lookup writes into the caller's scratch.
 /// </summary>
-internal sealed class FineTexture : TexelLevels
+internal sealed class SubBandTexture : TexelLevels
 {
-    public FineTexture(TextureBinding binding, FineGrid grid)
+    public SubBandTexture(TextureBinding binding, SubBandGrid grid)
         : base(binding.Texture.Source, binding.Texture.Width, binding.Texture.Height, grid.Padded, binding.Transform)
     {
         var tex = binding.Texture;
@@ -43,8 +43,8 @@ internal sealed class FineTexture : TexelLevels
     }
 
     /// <summary>
-    /// Bytes the path tracer's fine textures of <paramref name="scene"/> take (the pre-render memory check): per textured
-    /// diffuse, specular or emission, its texels with their mip levels × the fine grid's padded sub-bands, once for all threads.
+    /// Bytes the path tracer's sub-band textures of <paramref name="scene"/> take (the pre-render memory check): per textured
+    /// diffuse, specular or emission, its texels with their mip levels × the sub-band grid's padded sub-bands, once for all threads.
     /// </summary>
     public static long Bytes(Scene scene)
     {
@@ -52,7 +52,7 @@ internal sealed class FineTexture : TexelLevels
             .OfType<TextureBinding>().ToList();
         if (textures.Count == 0) return 0;
         var settings = scene.Integrator is { Name: "path" } s ? s : new IntegratorSettings("path");
-        int padded = new FineGrid(scene, settings.SpectralGrid).Padded;
+        int padded = new SubBandGrid(scene, settings.SpectralGrid).Padded;
         return textures.Sum(t => TexelsWithMips(t.Texture.Width, t.Texture.Height) * padded * sizeof(float));
     }
 

@@ -5,12 +5,12 @@ namespace SpectralRenderer.Rendering;
 internal sealed partial class PathIntegrator
 {
     /// <summary>
-    /// One camera sample's radiance on the fine grid (<see cref="Grid"/>), before the film reduces it to output bands and
+    /// One camera sample's radiance on the sub-band grid (<see cref="Grid"/>), before the film reduces it to output bands and
     /// XYZ: the film's walk (the same random numbers, the same decisions), its L_f copied into <paramref name="fine"/>
-    /// (<see cref="FineGrid.Padded"/> floats). What <see cref="PathFineFilm"/> sums for the camera's exact signals.
+    /// (<see cref="SubBandGrid.Padded"/> floats). What <see cref="SubBandFilm"/> sums for the camera's exact signals.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    internal int FineRadiance(in CameraSample sample, Span<float> fine, Span<float> scratch, ref RayCounters counters)
+    internal int SubBandRadiance(in CameraSample sample, Span<float> fine, Span<float> scratch, ref RayCounters counters)
     {
         var l = scratch[.._padded];
         l.Clear();
