@@ -6,9 +6,10 @@ using SpectralRenderer.Distributed;
 using SpectralRenderer.Geometry;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Output;
+using SpectralRenderer.Rendering.Whitted;
 using SpectralRenderer.Rendering;
-using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
+using SpectralRenderer.Scenes;
 using SpectralRenderer.Sensor;
 using SpectralRenderer.Spectra;
 

@@ -6,8 +6,9 @@ using System.Text.Json.Nodes;
 using System.Text.RegularExpressions;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
-using SpectralRenderer.Output;
 using SpectralRenderer.Output.Products;
+using SpectralRenderer.Output;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Rendering;
 
 namespace SpectralRenderer.Distributed;
@@ -310,8 +311,8 @@ public static class ShardMerge
     static int[] TransferRows(Part p, string file)
     {
         var format = TransferFiles.FormatOf(p.Dir);
-        string name = file[(TransferFiles.Folder.Length + 1)..];
-        return (format is { Shards: true } ? format.RowShape(name, Path.Combine(p.Dir, TransferFiles.Folder)) : null)
+        string name = file[(TransferFormat.Folder.Length + 1)..];
+        return (format is { Shards: true } ? format.RowShape(name, Path.Combine(p.Dir, TransferFormat.Folder)) : null)
             ?? throw new InputException(Path.Combine(p.Dir, "render.json"), $"lists '{file}', a file merge does not know",
                 "merge shards written by the same version");
     }

@@ -1,10 +1,11 @@
 using System.Diagnostics;
 using SpectralRenderer.Diagnostics;
-using SpectralRenderer.Output;
 using SpectralRenderer.Output.Products;
+using SpectralRenderer.Output;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Rendering;
-using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
+using SpectralRenderer.Scenes;
 
 namespace SpectralRenderer.Pipeline;
 

@@ -2,9 +2,11 @@ using System.Globalization;
 using SpectralRenderer.Analysis.Recovery;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Output;
+using SpectralRenderer.Rendering.Registry;
+using SpectralRenderer.Rendering.Terms;
 using SpectralRenderer.Rendering;
-using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
+using SpectralRenderer.Scenes;
 using SpectralRenderer.Sensor;
 
 namespace SpectralRenderer.Relighting;
@@ -49,12 +51,12 @@ public static partial class ExactChannelSignals
                         + $"{cs.Width}×{cs.Height} (a crop or shard)";
                     return null;
                 }
-                if (FilmTooLarge(scene, sensor) is { } why) { reason = why; return null; }
                 if (Integrators.Create(scene, new SceneGeometry(scene), IntegratorOf(src)) is not ISubBandFilmIntegrator integrator)
                 {
                     reason = $"the render's {IntegratorOf(src)} integrator cannot trace its film on a fine grid";
                     return null;
                 }
+                if (FilmTooLarge(scene, integrator.FilmSubBands, sensor) is { } why) { reason = why; return null; }
                 var clock = System.Diagnostics.Stopwatch.StartNew();
                 film = integrator.TraceSubBandFilm(scene, threads < 0 ? 0 : threads);
                 from = string.Create(CultureInfo.InvariantCulture,
@@ -136,9 +138,10 @@ public static partial class ExactChannelSignals
     /// Why the sub-band film (4 bytes per pixel and sub-band) and the channel sums (12 bytes per pixel and channel) do not fit
     /// in what this process may still use (the GC's available memory less what is in use, a tenth kept back), else null.
     /// </summary>
-    static string? FilmTooLarge(Scene scene, SensorModel sensor)
+    static string? FilmTooLarge(Scene scene, int subBands, SensorModel sensor)
     {
-        long need = SubBandFilm.Bytes(scene) + 12L * scene.Camera.Width * scene.Camera.Height * sensor.ChannelCount;
+        long need = SubBandFilm.Bytes(scene.Camera.Width, scene.Camera.Height, subBands)
+            + 12L * scene.Camera.Width * scene.Camera.Height * sensor.ChannelCount;
         long usable = (long)(0.9 * GC.GetGCMemoryInfo().TotalAvailableMemoryBytes) - GC.GetTotalMemory(false);
         return need <= usable ? null
             : $"the path render's fine film needs about {InputFile.Size(need)}, more than the {InputFile.Size(Math.Max(0, usable))} this "

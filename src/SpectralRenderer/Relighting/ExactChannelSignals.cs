@@ -2,9 +2,11 @@ using System.Globalization;
 using SpectralRenderer.Analysis.Recovery;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Output;
+using SpectralRenderer.Rendering.Registry;
+using SpectralRenderer.Rendering.Terms;
 using SpectralRenderer.Rendering;
-using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
+using SpectralRenderer.Scenes;
 using SpectralRenderer.Sensor;
 using SpectralRenderer.Spectra;
 
@@ -74,7 +76,7 @@ public static partial class ExactChannelSignals
         scene = null!; transfer = null!; from = "";
         try
         {
-            bool written = File.Exists(Path.Combine(dir, TransferFiles.Folder, TransferFiles.Description));
+            bool written = File.Exists(Path.Combine(dir, TransferFormat.Folder, TransferFormat.Description));
             scene = written ? Relighter.ChangedScene(src, [], null)
                 : SceneLoader.Parse(src.Scene.WithLights([], null), src.ScenePath, src.Overrides with { LoadMeshes = true });
             if (!HasTermTransfer(src, out reason)) return false;

@@ -5,9 +5,10 @@ using System.Text.Json.Nodes;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Output;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Rendering;
-using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
+using SpectralRenderer.Scenes;
 
 namespace SpectralRenderer.Relighting;
 
@@ -205,7 +206,7 @@ public static class Relighter
     {
         try
         {
-            var lightsJson = Path.Combine(src.Dir, TransferFiles.Folder, TransferFiles.Description);
+            var lightsJson = Path.Combine(src.Dir, TransferFormat.Folder, TransferFormat.Description);
             var json = JsonNode.Parse(File.ReadAllText(lightsJson))?["materials"] as JsonArray;
             if (json is null || json.Count != scene.Materials.Count) return false;
             for (int m = 0; m < json.Count; m++)

@@ -5,8 +5,10 @@ using System.Text.Json.Nodes;
 using SpectralRenderer.Color;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
-using SpectralRenderer.Output;
 using SpectralRenderer.Output.Products;
+using SpectralRenderer.Output;
+using SpectralRenderer.Rendering.Registry;
+using SpectralRenderer.Rendering.Terms;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Spectra;
 
@@ -54,7 +56,7 @@ public static class SpectralViewer
             ["white"] = Nums([manifest.White.X, manifest.White.Y, manifest.White.Z]),
         };
 
-        var lightsJson = Path.Combine(dir, TransferFiles.Folder, "lights.json");
+        var lightsJson = Path.Combine(dir, TransferFormat.Folder, "lights.json");
         // Only a transfer of eq. 2's terms (CameraRoute.Terms: Whitted's) has the components the page's sliders recombine;
         // of any other (a path render's) the page shows its cube.
         JsonObject? transfer = File.Exists(lightsJson) && TermsIn(dir) ? JsonNode.Parse(File.ReadAllText(lightsJson))!.AsObject() : null;
@@ -89,7 +91,7 @@ public static class SpectralViewer
                 || !planes.ContainsKey("luminance") || !planes.ContainsKey("illuminance"))
                 throw new InputException(photometryExr, $"does not hold luminance and illuminance of the whole {width}×{height} film",
                     "render the folder again with --formats …,photometry");
-            var probe = new Rendering.Illuminance(Relighter.ChangedScene(Relighter.Open(dir), [], null), null);
+            var probe = new Rendering.Illumination.Illuminance(Relighter.ChangedScene(Relighter.Open(dir), [], null), null);
             var scales = new JsonObject();
             foreach (var (q, unit) in new[] { ("luminance", "cd/m²"), ("illuminance", "lx") })
             {
@@ -145,7 +147,7 @@ public static class SpectralViewer
             var sourceScene = photometry is not null
                 ? Relighter.ChangedScene(src with { Overrides = src.Overrides with { LoadMeshes = true } }, [], null) : null;
             bool relitPhotometry = sourceScene is not null && sourceScene.Lights.Count == tl.Count;
-            var luminous0 = relitPhotometry ? new Rendering.Illuminance(sourceScene!, null) : null;
+            var luminous0 = relitPhotometry ? new Rendering.Illumination.Illuminance(sourceScene!, null) : null;
             var presetLuminous = new List<JsonArray?>();
             for (int k = 0; k < tl.Count; k++)
             {
@@ -184,7 +186,7 @@ public static class SpectralViewer
             foreach (var name in Presets)
             {
                 var scene = Relighter.ChangedScene(src, src.LightNames.Select(l => new LightChange(l, name, 1)).ToList(), null);
-                var tables = new Rendering.TermTables(scene);
+                var tables = new Rendering.Terms.TermTables(scene);
                 var p = new float[scene.PaddedBands];
                 Add(name, PresetComponents(c =>
                 {
@@ -192,7 +194,7 @@ public static class SpectralViewer
                     components[c].BandValues(tables, p);
                     return p.AsSpan(0, grid.Count + 3).ToArray();
                 }), SpectrumLibrary.Resolve(name));
-                var luminous = relitPhotometry ? new Rendering.Illuminance(scene, null) : null;
+                var luminous = relitPhotometry ? new Rendering.Illumination.Illuminance(scene, null) : null;
                 presetLuminous.Add(luminous is null ? null : Numbers(Enumerable.Range(0, tl.Count).Select(luminous.LuminousOf)));
             }
             if (relitPhotometry)
@@ -201,7 +203,8 @@ public static class SpectralViewer
                 // render's own, and each light's lx per unit of it at every pixel's surface.
                 for (int q = 0; q < presets.Count; q++) presets[q]!["luminous"] = presetLuminous[q];
                 photometry!["luminous"] = Numbers(Enumerable.Range(0, tl.Count).Select(luminous0!.LuminousOf));
-                var factors = new Rendering.Illuminance(sourceScene!, new Rendering.SceneGeometry(sourceScene!)).LightFactorMaps(0);
+                var factors = new Rendering.Illumination.Illuminance(sourceScene!, new Rendering.SceneGeometry(sourceScene!))
+                    .LightFactorMaps(0);
                 var planes = factors.SelectMany(m => m).ToArray();
                 binary["light_factors"] = System.Runtime.InteropServices.MemoryMarshal.AsBytes(planes.AsSpan()).ToArray();
             }
@@ -217,11 +220,11 @@ public static class SpectralViewer
                 ["band_values"] = c["band_values"]!.DeepClone(),
                 ["xyz"] = c["xyz"]!.DeepClone(),
             }).ToArray());
-            var (_, f) = ReadNpy(Path.Combine(dir, TransferFiles.Folder, "factors.npy"));
-            using (var ps = File.OpenRead(Path.Combine(dir, TransferFiles.Folder, "pixels.npy")))
+            var (_, f) = ReadNpy(Path.Combine(dir, TransferFormat.Folder, "factors.npy"));
+            using (var ps = File.OpenRead(Path.Combine(dir, TransferFormat.Folder, "pixels.npy")))
                 binary["pixels"] = System.Runtime.InteropServices.MemoryMarshal.AsBytes(NpyInt32.Read(ps).Data.AsSpan()).ToArray();
             binary["factors"] = System.Runtime.InteropServices.MemoryMarshal.AsBytes(f.AsSpan()).ToArray();
-            var (_, idp) = ReadNpy(Path.Combine(dir, TransferFiles.Folder, "ids.npy"));
+            var (_, idp) = ReadNpy(Path.Combine(dir, TransferFormat.Folder, "ids.npy"));
             for (int i = 0; i < n; i++) ids[i] = (ushort)idp[i];
             var fallback = Enumerable.Range(0, n).Where(i => idp[2 * n + i] != 0).ToArray();
             binary["fallback"] = System.Runtime.InteropServices.MemoryMarshal.AsBytes(fallback.AsSpan()).ToArray();

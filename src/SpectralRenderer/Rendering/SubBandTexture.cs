@@ -1,8 +1,8 @@
 using System.Numerics;
 using System.Runtime.CompilerServices;
 using System.Runtime.InteropServices;
-using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Textures;
+using SpectralRenderer.Scenes;
 
 namespace SpectralRenderer.Rendering;
 
@@ -19,7 +19,7 @@ internal sealed class SubBandTexture : TexelLevels
         : base(binding.Texture.Source, binding.Texture.Width, binding.Texture.Height, grid.Padded, binding.Transform)
     {
         var tex = binding.Texture;
-        var hats = TexturedTerms.Hats(tex);
+        var hats = Hats(tex);
         int rows = grid.Count, samples = tex.Samples;
         var m = new double[rows, samples];
         for (int f = 0; f < rows; f++)
@@ -44,15 +44,15 @@ internal sealed class SubBandTexture : TexelLevels
 
     /// <summary>
     /// Bytes the path tracer's sub-band textures of <paramref name="scene"/> take (the pre-render memory check): per textured
-    /// diffuse, specular or emission, its texels with their mip levels × the sub-band grid's padded sub-bands, once for all threads.
+    /// diffuse, specular or emission, its texels with their mip levels × the padded sub-bands of a grid <paramref name="gridWidth"/> nm
+    /// wide, once for all threads.
     /// </summary>
-    public static long Bytes(Scene scene)
+    public static long Bytes(Scene scene, double gridWidth)
     {
         var textures = scene.Materials.SelectMany(m => new[] { m.DiffuseTexture, m.SpecularTexture, m.Emission?.Texture })
             .OfType<TextureBinding>().ToList();
         if (textures.Count == 0) return 0;
-        var settings = scene.Integrator is { Name: "path" } s ? s : new IntegratorSettings("path");
-        int padded = new SubBandGrid(scene, settings.SpectralGrid).Padded;
+        int padded = new SubBandGrid(scene, gridWidth).Padded;
         return textures.Sum(t => TexelsWithMips(t.Texture.Width, t.Texture.Height) * padded * sizeof(float));
     }
 

@@ -1,5 +1,7 @@
 using SpectralRenderer.Acceleration;
 using SpectralRenderer.Output.Products;
+using SpectralRenderer.Rendering.Illumination;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Tests.Cli;

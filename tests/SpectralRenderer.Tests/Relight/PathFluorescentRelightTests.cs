@@ -4,9 +4,10 @@ using System.Text.Json.Nodes;
 using SpectralRenderer.Geometry;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Output;
+using SpectralRenderer.Rendering.PathTracing;
 using SpectralRenderer.Rendering;
-using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
+using SpectralRenderer.Scenes;
 using SpectralRenderer.Tests.Cli;
 using SpectralRenderer.Tests.Distributed;
 using SpectralRenderer.Tests.Rendering;
@@ -155,8 +156,8 @@ public class PathFluorescentRelightTests(Xunit.Abstractions.ITestOutputHelper ou
         // render's samples through the film's sink), under the render's lights and under the UV-cut lamp.
         foreach (var lit in new[] { scene, Load(dir, Room(UvCut(dir), sunIntensity: 3)) })
         {
-            var fromTransfer = SubBandFilm.FromTransfer(t, lit);
-            var traced = SubBandFilm.Trace(lit, new PathIntegrator(lit, new SceneGeometry(lit)), threads: 2);
+            var fromTransfer = PathFilm.FromTransfer(t, lit);
+            var traced = PathFilm.Trace(lit, new PathIntegrator(lit, new SceneGeometry(lit)), threads: 2);
             double fine = WorstRelative(traced.Data, fromTransfer.Data);
             string lamp = ReferenceEquals(lit, scene) ? "D50" : "UV-cut";
             output.WriteLine($"fine film from the transfer vs traced (lamp {lamp}): {fine:0.###e0}");
@@ -178,8 +179,8 @@ public class PathFluorescentRelightTests(Xunit.Abstractions.ITestOutputHelper ou
             ObjectIds = t.ObjectIds,
             LitMasks = t.LitMasks,
         };
-        var with = SubBandFilm.FromTransfer(t, scene);
-        var without = SubBandFilm.FromTransfer(plain, scene);
+        var with = PathFilm.FromTransfer(t, scene);
+        var without = PathFilm.FromTransfer(plain, scene);
         int f440 = Array.FindIndex(with.Lower, l => l >= 440);
         double loss = 0;
         for (int i = 0; i < t.ObjectIds.Length; i++)

@@ -1,4 +1,5 @@
 using System.Globalization;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Rendering;
 
 namespace SpectralRenderer.Tests.Rendering;

@@ -1,5 +1,6 @@
 using System.Numerics;
 using SpectralRenderer.Geometry;
+using SpectralRenderer.Rendering.Emitters;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
 

@@ -1,5 +1,7 @@
 using System.Globalization;
 using System.Numerics;
+using SpectralRenderer.Rendering.Emitters;
+using SpectralRenderer.Rendering.PathTracing;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes.Loading;
 

@@ -3,6 +3,8 @@ using System.Numerics;
 using System.Text;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Geometry;
+using SpectralRenderer.Rendering.PathTracing;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
 

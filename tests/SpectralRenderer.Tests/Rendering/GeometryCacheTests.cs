@@ -1,6 +1,7 @@
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Rendering;
-using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
+using SpectralRenderer.Scenes;
 
 namespace SpectralRenderer.Tests.Rendering;
 

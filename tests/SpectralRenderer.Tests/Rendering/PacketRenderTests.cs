@@ -1,8 +1,9 @@
 using System.Globalization;
 using System.Text;
+using SpectralRenderer.Rendering.Whitted;
 using SpectralRenderer.Rendering;
-using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
+using SpectralRenderer.Scenes;
 
 namespace SpectralRenderer.Tests.Rendering;
 

@@ -3,6 +3,7 @@ using System.Numerics;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Geometry;
 using SpectralRenderer.Imaging;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Spectra;

@@ -1,6 +1,7 @@
 using System.Numerics;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Geometry;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Spectra;

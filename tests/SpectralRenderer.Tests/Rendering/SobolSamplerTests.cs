@@ -1,3 +1,4 @@
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
 

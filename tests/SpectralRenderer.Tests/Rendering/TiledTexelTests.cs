@@ -4,10 +4,13 @@ using System.Numerics;
 using System.Text;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Output;
+using SpectralRenderer.Rendering.PathTracing;
+using SpectralRenderer.Rendering.Registry;
+using SpectralRenderer.Rendering.Terms;
 using SpectralRenderer.Rendering;
-using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
 using SpectralRenderer.Scenes.Textures;
+using SpectralRenderer.Scenes;
 using SpectralRenderer.Tests.Scenes;
 
 namespace SpectralRenderer.Tests.Rendering;
@@ -91,7 +94,7 @@ public class TiledTexelTests
         long fine = 4 * 2 * TileFloats(W, H, Padded(grid.Count + 3), TexelLevels.DefaultTileSide);
         var binding = scene.Materials[0].DiffuseTexture!;
         Assert.Equal(fine, 2 * new SubBandTexture(binding, grid).AllocatedBytes);
-        Assert.Equal(fine, SubBandTexture.Bytes(scene));
+        Assert.Equal(fine, SubBandTexture.Bytes(scene, PathIntegrator.SettingsOf(scene).SpectralGrid));
         Assert.Contains(("texture spectra (fine grid)", fine), RenderMemory.Estimate(scene, 1, integrator: "path"));
     }
 
@@ -149,11 +152,11 @@ public class TiledTexelTests
     {
         var dir = Reference.TempDir();
         var scene = LoadScene(dir, lights: 2, specular: true);
-        var plain = Renderer.Render(scene, 2);
+        var plain = Integrators.Render(scene, 2);
         RenderResult small;
         TexelLevels.Layout.Value = (2, 1000);   // tiles of 2 × 2 texels, a few to a chunk
         SpectralTexture.BlockOverride.Value = 1;   // one row at a time
-        try { small = Renderer.Render(LoadScene(dir, lights: 2, specular: true), 2); }
+        try { small = Integrators.Render(LoadScene(dir, lights: 2, specular: true), 2); }
         finally { TexelLevels.Layout.Value = null; SpectralTexture.BlockOverride.Value = null; }
         Assert.Equal(plain.Image.Data, small.Image.Data);
         Assert.Equal(plain.Xyz, small.Xyz);

@@ -1,3 +1,5 @@
+using SpectralRenderer.Rendering.Illumination;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
 

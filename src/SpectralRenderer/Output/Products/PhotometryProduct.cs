@@ -1,4 +1,5 @@
 using SpectralRenderer.Imaging;
+using SpectralRenderer.Rendering.Illumination;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
 

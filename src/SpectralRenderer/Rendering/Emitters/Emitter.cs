@@ -1,6 +1,6 @@
 using System.Numerics;
 
-namespace SpectralRenderer.Rendering;
+namespace SpectralRenderer.Rendering.Emitters;
 
 /// <summary>
 /// One sample of an emitter seen from a point (<see cref="Emitter.Sample"/>): the unit direction ω_i towards it, the

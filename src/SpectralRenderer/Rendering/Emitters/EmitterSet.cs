@@ -1,7 +1,7 @@
 using System.Runtime.CompilerServices;
 using SpectralRenderer.Scenes;
 
-namespace SpectralRenderer.Rendering;
+namespace SpectralRenderer.Rendering.Emitters;
 
 /// <summary>
 /// Every emitter of a scene in one index space (Mitsuba 3's <c>scene.emitters()</c>, SeeSharp's one emitter list): the
@@ -19,8 +19,8 @@ internal sealed class EmitterSet
     readonly float _pick;
 
     /// <summary>The set of <paramref name="scene"/> on the sub-band grid <paramref name="grid"/>, an emitting object's radiance,
-    /// sidedness and texture from its <paramref name="materials"/> record.</summary>
-    public EmitterSet(Scene scene, SubBandGrid grid, IReadOnlyList<PathMaterial> materials)
+    /// sidedness and texture from its material's <paramref name="emission"/> (per material, null: none).</summary>
+    public EmitterSet(Scene scene, SubBandGrid grid, IReadOnlyList<SurfaceEmission?> emission)
     {
         var emitters = new List<Emitter>();
         for (int k = 0; k < scene.Lights.Count; k++)
@@ -30,10 +30,9 @@ internal sealed class EmitterSet
         {
             _ofObject[i] = -1;
             var o = scene.Objects[i];
-            var material = materials[o.Material];
-            if (material.Emission is not { } radiance) continue;
+            if (emission[o.Material] is not { } e) continue;
             _ofObject[i] = emitters.Count;
-            var area = new AreaEmitter(o, radiance, material.TwoSided, $"{scene.SourcePath}: $.objects", material.EmissionTexture);
+            var area = new AreaEmitter(o, e.Radiance, e.TwoSided, $"{scene.SourcePath}: $.objects", e.Texture);
             emitters.Add(new ShapeEmitter(area, o.Name));
         }
         Background = grid.Resample(scene.Background);
