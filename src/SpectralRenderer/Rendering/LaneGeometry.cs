@@ -215,12 +215,12 @@ internal static class LaneGeometry
 
     /// <summary>
     /// The shading points of the given lanes, as the single-ray Radiance sets them up: v = −d; the face normal decides the
-    /// side (outside when n_g·v ≥ 0) and both normals are turned to the viewer's side; A = P + ε·n_g.
+    /// side (outside when n_g·v ≥ 0) and both normals are turned to the viewer's side.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    internal static void Shading<L>(ref RayPacket p, in HitLanes h, float epsilon, ref ShadingLanes at) where L : struct, ILanes<L>
+    internal static void Shading<L>(ref RayPacket p, in HitLanes h, ref ShadingLanes at) where L : struct, ILanes<L>
     {
-        var zero = L.Splat(0); var eps = L.Splat(epsilon);
+        var zero = L.Splat(0);
         for (int c = 0; c < RayPacket.Size; c += L.Count)
         {
             var vx = L.Negate(L.Load(ref p.DirectionX[c]));
@@ -241,28 +241,30 @@ internal static class LaneGeometry
             var py = L.Load(ref Unsafe.AsRef(in h.PY[c]));
             var pz = L.Load(ref Unsafe.AsRef(in h.PZ[c]));
             L.Store(px, ref at.PX[c]); L.Store(py, ref at.PY[c]); L.Store(pz, ref at.PZ[c]);
-            L.Store(px + eps * gx, ref at.AX[c]); L.Store(py + eps * gy, ref at.AY[c]); L.Store(pz + eps * gz, ref at.AZ[c]);
+            L.Store(gx, ref at.GX[c]); L.Store(gy, ref at.GY[c]); L.Store(gz, ref at.GZ[c]);
         }
     }
 
     /// <summary>
-    /// An isotropic point emitter (<see cref="Light.LaneForm"/>, as <see cref="PointLight.Illuminate"/>) seen
+    /// An isotropic point light (<see cref="Light.LaneForm"/>, as <see cref="PointLight.Illuminate"/>) seen
     /// from the points P of the given lanes (<paramref name="at"/>),
     /// with shading normals n: the lanes it reaches (distance r ≠ 0) in
     /// <paramref name="reached"/>; their attenuation 1 / (c0 + c1·r + c2·r²) and n·l. The lanes that face it (not n·l ≤ 0)
-    /// get their shadow ray in <paramref name="shadows"/> (origin the point above the surface, direction l, TMax = r − 2ε),
-    /// whose active lanes they become. Returns those lanes.
+    /// get l in <paramref name="direction"/> and their shadow ray in <paramref name="shadows"/>, whose active lanes they
+    /// become: <see cref="Visibility.ShadowRay"/>'s, operation for operation (the origin P ± ε·n_g on l's side, aimed from
+    /// there at P + r·l, TMax its length − 2ε). Returns those lanes.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    internal static uint PointLight<L>(in PointEmitter light, float epsilon, uint lanes, in ShadingLanes at,
-        ref RayPacket shadows, ref PacketFloats attenuation, ref PacketFloats cosine, out uint reached) where L : struct, ILanes<L>
+    internal static uint PointLight<L>(in LanePointLight light, float epsilon, uint lanes, in ShadingLanes at,
+        ref RayPacket shadows, ref PacketFloats attenuation, ref PacketFloats cosine, ref LaneVectors direction, out uint reached)
+        where L : struct, ILanes<L>
     {
         uint chunkMask = L.Count >= 32 ? uint.MaxValue : (1u << L.Count) - 1;
         var zero = L.Splat(0); var one = L.Splat(1);
         var lx = L.Splat(light.Position.X); var ly = L.Splat(light.Position.Y); var lz = L.Splat(light.Position.Z);
         var f = light.Falloff;
         var c0 = L.Splat(f.C0); var c1 = L.Splat(f.C1); var c2 = L.Splat(f.C2);
-        var twoEps = L.Splat(2 * epsilon);
+        var eps = L.Splat(epsilon); var minusEps = L.Splat(-epsilon); var twoEps = L.Splat(2 * epsilon);
         uint facing = 0;
         reached = 0;
         for (int c = 0; c < RayPacket.Size; c += L.Count)
@@ -284,11 +286,22 @@ internal static class LaneGeometry
             uint lit = m & ~L.Bits(L.LessOrEqual(nl, zero));
             if (lit == 0) continue;
             facing |= lit << c;
-            L.Store(L.Load(ref Unsafe.AsRef(in at.AX[c])), ref shadows.OriginX[c]);
-            L.Store(L.Load(ref Unsafe.AsRef(in at.AY[c])), ref shadows.OriginY[c]);
-            L.Store(L.Load(ref Unsafe.AsRef(in at.AZ[c])), ref shadows.OriginZ[c]);
-            L.Store(dx, ref shadows.DirectionX[c]); L.Store(dy, ref shadows.DirectionY[c]); L.Store(dz, ref shadows.DirectionZ[c]);
-            L.Store(r - twoEps, ref shadows.TMax[c]);
+            L.Store(dx, ref direction.X[c]); L.Store(dy, ref direction.Y[c]); L.Store(dz, ref direction.Z[c]);
+            // Visibility.ShadowRay: origin O = P + (±ε)·n_g on l's side, towards (P + r·l) − O, its length less 2ε.
+            var px = L.Load(ref Unsafe.AsRef(in at.PX[c]));
+            var py = L.Load(ref Unsafe.AsRef(in at.PY[c]));
+            var pz = L.Load(ref Unsafe.AsRef(in at.PZ[c]));
+            var gx = L.Load(ref Unsafe.AsRef(in at.GX[c]));
+            var gy = L.Load(ref Unsafe.AsRef(in at.GY[c]));
+            var gz = L.Load(ref Unsafe.AsRef(in at.GZ[c]));
+            var sideEps = L.Select(L.LessOrEqual(zero, gx * dx + gy * dy + gz * dz), eps, minusEps);
+            var ox = px + sideEps * gx; var oy = py + sideEps * gy; var oz = pz + sideEps * gz;
+            var wx = px + r * dx - ox; var wy = py + r * dy - oy; var wz = pz + r * dz - oz;
+            var length = L.Sqrt(wx * wx + wy * wy + wz * wz);
+            L.Store(ox, ref shadows.OriginX[c]); L.Store(oy, ref shadows.OriginY[c]); L.Store(oz, ref shadows.OriginZ[c]);
+            L.Store(wx / length, ref shadows.DirectionX[c]); L.Store(wy / length, ref shadows.DirectionY[c]);
+            L.Store(wz / length, ref shadows.DirectionZ[c]);
+            L.Store(length - twoEps, ref shadows.TMax[c]);
         }
         shadows.Active = facing;
         return facing;
@@ -345,20 +358,29 @@ internal struct TriangleLanes
     }
 }
 
-/// <summary>A packet's shading points in lanes: hit position P, shading normal N and the shadow-ray origin A = P + ε·n_g (the viewer's
-/// side).</summary>
+/// <summary>A packet's shading points in lanes: hit position P, shading normal N and face normal G, both on the viewer's
+/// side.</summary>
 internal struct ShadingLanes
 {
-    public PacketFloats PX, PY, PZ, NX, NY, NZ, AX, AY, AZ;
+    public PacketFloats PX, PY, PZ, NX, NY, NZ, GX, GY, GZ;
 
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    public void Set(int lane, Vector3 p, Vector3 n, Vector3 above)
+    public void Set(int lane, Vector3 p, Vector3 n, Vector3 g)
     {
         PX[lane] = p.X; PY[lane] = p.Y; PZ[lane] = p.Z;
         NX[lane] = n.X; NY[lane] = n.Y; NZ[lane] = n.Z;
-        AX[lane] = above.X; AY[lane] = above.Y; AZ[lane] = above.Z;
+        GX[lane] = g.X; GY[lane] = g.Y; GZ[lane] = g.Z;
     }
 
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public readonly Vector3 Normal(int lane) => new(NX[lane], NY[lane], NZ[lane]);
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public readonly Vector3 Face(int lane) => new(GX[lane], GY[lane], GZ[lane]);
+}
+
+/// <summary>A unit vector per lane (a light's direction l).</summary>
+internal struct LaneVectors
+{
+    public PacketFloats X, Y, Z;
 }

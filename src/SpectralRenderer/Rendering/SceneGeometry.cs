@@ -70,7 +70,12 @@ public sealed partial class SceneGeometry
         if (_analyticBvh is not null) b.Include(_analyticBvh.Bounds);
         float extent = b.IsEmpty ? 1 : Math.Max(b.Extent.Length(), Vector3.Max(Vector3.Abs(b.Min), Vector3.Abs(b.Max)).Length());
         Epsilon = 1e-5f * Math.Max(1f, extent);
+        BoundingRadius = b.IsEmpty ? 0 : b.Extent.Length() / 2;
     }
+
+    /// <summary>The radius of the sphere about the finite geometry's bounding box (half its diagonal; 0 without finite
+    /// geometry): what a light at infinity shines through (its power, <c>EmitterSet.Power</c>).</summary>
+    public float BoundingRadius { get; }
 
     /// <summary>Offset for secondary-ray origins, scaled to the scene's size.</summary>
     public float Epsilon { get; }

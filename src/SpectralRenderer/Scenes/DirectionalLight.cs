@@ -14,6 +14,9 @@ public sealed class DirectionalLight(LightEmission emission) : Light(emission)
 
     public override string Type => "directional";
 
+    /// <summary>πR²: its irradiance through the disc of the scene's bounding sphere.</summary>
+    public override double PowerPerIntensity(double sceneRadius) => Math.PI * sceneRadius * sceneRadius;
+
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]   // hot: once per light per hit, compiled for this CPU at first call
     public override bool Illuminate(Vector3 p, out LightSample sample)
     {

@@ -26,6 +26,9 @@ public sealed class GoniometricLight(LightEmission emission, CandelaTable table,
 
     public override string Type => "goniometric";
 
+    /// <summary>∫c_spot dω: the table's luminous flux ∫I dΩ (<see cref="CandelaTable.Flux"/>) per K_m ∫V·S dλ.</summary>
+    public override double PowerPerIntensity(double sceneRadius) => Table.Flux() * _perCandela;
+
     public override LightDescription Describe(Radiometry radiometry) =>
         new(Type, "W.sr^-1.nm^-1 (radiant intensity) = spectrum × intensity × the file's cd / (683 lm/W · ∫V·spectrum dλ)",
             LightDescription.Of(Position), LightDescription.Of(Vector3.TransformNormal(-Vector3.UnitY, Orientation)),

@@ -60,8 +60,8 @@ public abstract class Light(LightEmission emission)
     /// </summary>
     public abstract bool Illuminate(Vector3 p, out LightSample sample);
 
-    /// <summary>The light as an isotropic point emitter that packets evaluate in SIMD lanes, or null when it is not one.</summary>
-    public virtual PointEmitter? LaneForm => null;
+    /// <summary>The light as an isotropic point light that packets evaluate in SIMD lanes, or null when it is not one.</summary>
+    public virtual LanePointLight? LaneForm => null;
 
     // ---- sampling: a scene light is a delta light --------------------------------------------------------------
 
@@ -84,6 +84,15 @@ public abstract class Light(LightEmission emission)
         sample = new LightIncidence(ls.Direction, ls.Distance, ls.Attenuation * ls.Spot, 1f, IsDelta);
         return true;
     }
+
+    /// <summary>
+    /// The radiant power per unit of the spectrum <see cref="Intensity"/> (the factor Φ_λ/I_λ): the solid-angle integral
+    /// ∫c_spot dω of a light at a point (4π for an isotropic one, the kinds override it), πR² for a light at infinity (the
+    /// irradiance through the disc of the scene's bounding sphere of radius <paramref name="sceneRadius"/>, as pbrt-v4's
+    /// <c>DirectionalLight::Phi</c>). A point's distance falloff d_k is taken as the physical 1/r² (the power of a c0 or
+    /// c1 falloff is not defined).
+    /// </summary>
+    public virtual double PowerPerIntensity(double sceneRadius) => 4 * Math.PI;
 
     /// <summary>The light as render.json lists it (its kind, what its intensity is in, where it is and how it falls off).</summary>
     public virtual LightDescription Describe(Radiometry radiometry) =>
@@ -115,8 +124,8 @@ public sealed record LightDescription(string Type, string Unit,
     public static double[] Of(DistanceFalloff f) => [f.C0, f.C1, f.C2];
 }
 
-/// <summary>An isotropic point emitter (c_spot = 1) at <paramref name="Position"/> with distance falloff d_k.</summary>
-public readonly record struct PointEmitter(Vector3 Position, DistanceFalloff Falloff);
+/// <summary>An isotropic point light in its lane form (c_spot = 1) at <paramref name="Position"/> with distance falloff d_k.</summary>
+public readonly record struct LanePointLight(Vector3 Position, DistanceFalloff Falloff);
 
 /// <summary>Distance attenuation d = 1/(c0 + c1·r + c2·r²) of eq. 2.</summary>
 public readonly record struct DistanceFalloff(float C0, float C1, float C2)

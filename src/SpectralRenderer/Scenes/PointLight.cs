@@ -15,7 +15,7 @@ public sealed class PointLight(LightEmission emission) : Light(emission)
 
     public override string Type => "point";
 
-    public override PointEmitter? LaneForm => new PointEmitter(Position, Falloff);
+    public override LanePointLight? LaneForm => new LanePointLight(Position, Falloff);
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]   // hot: once per light per hit, compiled for this CPU at first call
     public override bool Illuminate(Vector3 p, out LightSample sample)

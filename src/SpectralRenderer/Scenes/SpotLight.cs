@@ -23,6 +23,17 @@ public sealed class SpotLight(LightEmission emission) : Light(emission)
 
     public override string Type => "spot";
 
+    /// <summary>∫c_spot dω (<see cref="SolidAngle"/>).</summary>
+    public override double PowerPerIntensity(double sceneRadius) => SolidAngle(CosCutoff, Exponent);
+
+    /// <summary>
+    /// ∫c_spot dω = 2π ∫ max(0, μ)^e dμ over μ = cos θ from cos θ_c to 1: 2π(1 − max(0, cos θ_c)^(e+1))/(e + 1), and
+    /// 2π(1 − cos θ_c) for e = 0 (c_spot is then 1 down to the cutoff, behind the light too).
+    /// </summary>
+    public static double SolidAngle(double cosCutoff, double exponent) => exponent == 0
+        ? 2 * Math.PI * (1 - cosCutoff)
+        : 2 * Math.PI * (1 - Math.Pow(Math.Max(cosCutoff, 0), exponent + 1)) / (exponent + 1);
+
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]   // hot: once per light per hit, compiled for this CPU at first call
     public override bool Illuminate(Vector3 p, out LightSample sample)
     {

@@ -142,7 +142,6 @@ public class LaneGeometryTests
     {
         SkipUnsupported(width);
         var r = new Random(7);
-        const float eps = 3e-5f;
         for (int n = 0; n < 300; n++)
         {
             var p = new RayPacket();
@@ -186,19 +185,19 @@ public class LaneGeometryTests
             {
                 case 16:
                     LaneGeometry.Records<Lanes512>(ref p, mesh, smooth, in tri, ref hits);
-                    LaneGeometry.Shading<Lanes512>(ref p, in hits, eps, ref at);
+                    LaneGeometry.Shading<Lanes512>(ref p, in hits, ref at);
                     break;
                 case 8:
                     LaneGeometry.Records<Lanes256>(ref p, mesh, smooth, in tri, ref hits);
-                    LaneGeometry.Shading<Lanes256>(ref p, in hits, eps, ref at);
+                    LaneGeometry.Shading<Lanes256>(ref p, in hits, ref at);
                     break;
                 case 4:
                     LaneGeometry.Records<Lanes128>(ref p, mesh, smooth, in tri, ref hits);
-                    LaneGeometry.Shading<Lanes128>(ref p, in hits, eps, ref at);
+                    LaneGeometry.Shading<Lanes128>(ref p, in hits, ref at);
                     break;
                 default:
                     LaneGeometry.Records<Lanes1>(ref p, mesh, smooth, in tri, ref hits);
-                    LaneGeometry.Shading<Lanes1>(ref p, in hits, eps, ref at);
+                    LaneGeometry.Shading<Lanes1>(ref p, in hits, ref at);
                     break;
             }
             for (int lane = 0; lane < RayPacket.Size; lane++)
@@ -214,7 +213,7 @@ public class LaneGeometryTests
                 var g = outside ? expectedG[lane] : -expectedG[lane];
                 var nn = outside ? expectedN[lane] : -expectedN[lane];
                 Same(nn, at.NX[lane], at.NY[lane], at.NZ[lane], "normal to the viewer");
-                Same(position + eps * g, at.AX[lane], at.AY[lane], at.AZ[lane], "point above");
+                Same(g, at.GX[lane], at.GY[lane], at.GZ[lane], "face normal to the viewer");
             }
         }
     }
@@ -230,9 +229,9 @@ public class LaneGeometryTests
                 Position = new Vector3(2.5f, 5, 4),
                 Falloff = new DistanceFalloff(1, 0.2f, 0.05f)
             };
-        // The light's lane form: an isotropic point emitter at its position with its falloff.
-        var emitter = Assert.IsType<PointEmitter>(light.LaneForm);
-        Assert.Equal(new PointEmitter(light.Position, light.Falloff), emitter);
+        // The light's lane form: an isotropic point light at its position with its falloff.
+        var laneForm = Assert.IsType<LanePointLight>(light.LaneForm);
+        Assert.Equal(new LanePointLight(light.Position, light.Falloff), laneForm);
         var r = new Random(11);
         const float eps = 2e-5f;
         int facing = 0, away = 0;
@@ -243,17 +242,22 @@ public class LaneGeometryTests
             {
                 var pt = lane == 7 ? light.Position : RandomVector(r, 3);   // at the light: not reached (r = 0)
                 var nrm = Vector3.Normalize(RandomVector(r, 1));
-                at.Set(lane, pt, nrm, pt + eps * nrm);
+                at.Set(lane, pt, nrm, lane % 3 == 0 ? -nrm : nrm);   // a face normal against the shading normal too
             }
             var shadows = new RayPacket();
             PacketFloats attenuation = default, cosine = default;
+            LaneVectors direction = default;
             uint lanes = n % 4 == 0 ? 0xF0F7u : 0xFFFFu, reached;
             uint lit = width switch
             {
-                16 => LaneGeometry.PointLight<Lanes512>(emitter, eps, lanes, in at, ref shadows, ref attenuation, ref cosine, out reached),
-                8 => LaneGeometry.PointLight<Lanes256>(emitter, eps, lanes, in at, ref shadows, ref attenuation, ref cosine, out reached),
-                4 => LaneGeometry.PointLight<Lanes128>(emitter, eps, lanes, in at, ref shadows, ref attenuation, ref cosine, out reached),
-                _ => LaneGeometry.PointLight<Lanes1>(emitter, eps, lanes, in at, ref shadows, ref attenuation, ref cosine, out reached),
+                16 => LaneGeometry.PointLight<Lanes512>(laneForm, eps, lanes, in at, ref shadows, ref attenuation, ref cosine,
+                    ref direction, out reached),
+                8 => LaneGeometry.PointLight<Lanes256>(laneForm, eps, lanes, in at, ref shadows, ref attenuation, ref cosine,
+                    ref direction, out reached),
+                4 => LaneGeometry.PointLight<Lanes128>(laneForm, eps, lanes, in at, ref shadows, ref attenuation, ref cosine,
+                    ref direction, out reached),
+                _ => LaneGeometry.PointLight<Lanes1>(laneForm, eps, lanes, in at, ref shadows, ref attenuation, ref cosine,
+                    ref direction, out reached),
             };
             Assert.Equal(lit, shadows.Active);
             for (int lane = 0; lane < RayPacket.Size; lane++)
@@ -269,7 +273,9 @@ public class LaneGeometryTests
                 Assert.Equal(nl > 0, (lit >> lane & 1) != 0);
                 if (nl <= 0) { away++; continue; }
                 facing++;
-                var shadow = new Ray(new Vector3(at.AX[lane], at.AY[lane], at.AZ[lane]), ls.Direction, ls.Distance - 2 * eps);
+                Same(ls.Direction, direction.X[lane], direction.Y[lane], direction.Z[lane], "l");
+                // The one visibility rule (Visibility.ShadowRay), as the single ray takes it.
+                var shadow = Visibility.ShadowRay(pt, at.Face(lane), ls.Direction, ls.Distance, eps);
                 var s = shadows.Ray(lane);
                 Same(shadow.Origin, s.Origin.X, s.Origin.Y, s.Origin.Z, "shadow origin");
                 Same(shadow.Direction, s.Direction.X, s.Direction.Y, s.Direction.Z, "shadow direction");

@@ -33,8 +33,8 @@ public sealed class PhotometryProduct : OutputProduct
         : tracer.Integrator is IGatherIntegrator
             ? $"lights (shadow rays) + gather of {Illuminance.GatherRays(scene)} cosine-weighted path-traced rays (area lights, sky, "
                 + $"interreflection), at the pixel-centre ray's first hit"
-            : "direct from every light (shadow rays), at the pixel-centre ray's first hit; no "
-                + "interreflection, ambient or emission (whitted)";
+            : $"direct from every light (shadow rays) and every emitting object and the sky ({Illuminance.GatherRays(scene)} "
+                + "samples of each, shadow rays), at the pixel-centre ray's first hit; no interreflection or ambient (whitted)";
 
     public override void Write(ProductContext c, int part, Action<string> done)
     {

@@ -19,13 +19,19 @@ internal readonly record struct EmitterSample(Vector3 Direction, float Distance,
 /// The kinds: a scene light (<see cref="SceneLightEmitter"/>: point, spot, directional, goniometric — delta, never hit),
 /// an emitting object (<see cref="ShapeEmitter"/>: any shape kind) and the sky (<see cref="SkyEmitter"/>).
 /// </summary>
-internal abstract class Emitter(float[] radiance)
+internal abstract class Emitter(float[] radiance, SubBandTexture? texture = null)
 {
     /// <summary>The emitted spectrum on the path tracer's sub-band grid: radiance L_e, or a delta light's intensity I_k.</summary>
     public float[] Radiance { get; } = radiance;
 
     /// <summary>True for an emitter concentrated in a point or a direction: no ray can hit it; its pdf is 1 by convention.</summary>
     public abstract bool IsDelta { get; }
+
+    /// <summary>
+    /// Its radiant power per unit of <see cref="Radiance"/>'s spectral integral (Φ = this × ∫L dλ; <see cref="EmitterSet.Power"/>),
+    /// a light at infinity's through the sphere of radius <paramref name="sceneRadius"/> about the scene.
+    /// </summary>
+    public abstract double PowerPerRadiance(double sceneRadius);
 
     /// <summary>The scene light this emitter is (its index in <c>Scene.Lights</c>, whose transfer a relight keeps apart), or −1.</summary>
     public virtual int SceneLight => -1;
@@ -51,7 +57,7 @@ internal abstract class Emitter(float[] radiance)
     public abstract float Emitted(Vector3 n, Vector3 wo);
 
     /// <summary>L_e as a texture on the sub-band grid (<see cref="TexCoord"/> places a sample's point on it), or null.</summary>
-    public virtual SubBandTexture? Texture => null;
+    public SubBandTexture? Texture { get; } = texture;
 
     /// <summary>
     /// The (u, v) of point <paramref name="x"/> on <paramref name="face"/> and the mapping's density (a textured emitter).

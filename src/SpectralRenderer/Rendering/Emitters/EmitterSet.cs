@@ -8,20 +8,36 @@ namespace SpectralRenderer.Rendering.Emitters;
 /// scene lights in their order (index k is <c>Scene.Lights[k]</c>), then the emitting objects in object order, then the
 /// sky if the background is not black. Next-event estimation chooses one by <see cref="Choose"/> with probability
 /// <see cref="SelectionPdf"/>, and a surface hit finds its emitter by its object (<see cref="OfObject"/>), an escaping ray the
-/// sky's (<see cref="Sky"/>). The choice is uniform, P(k) = 1/N (N the emitters' count). A new kind of emitter plugs in
-/// as one file (a subclass of <see cref="Emitter"/>) and one line here; a new scene light kind or emissive shape kind
-/// needs not even that (a <see cref="Light"/> subclass, a registered shape).
+/// sky's (<see cref="Sky"/>). A new kind of emitter plugs in as one file (a subclass of <see cref="Emitter"/>) and one line
+/// here; a new scene light kind or emissive shape kind needs not even that (a <see cref="Light"/> subclass, a registered shape).
+/// <para>
+/// The choice is by power (pbrt-v4's <c>PowerLightSampler</c>), the emitter's radiant power over the grid's range,
+/// Φ_k = <see cref="Emitter.PowerPerRadiance"/> · Σ_f L_f·Δλ_f in W (<see cref="Power"/>): radiant rather than luminous, because
+/// the film keeps every band, invisible ones included (a UV lamp that excites a fluorescent surface must be drawn), and the
+/// estimator's noise is in each band alike. The emitters fall in two groups, each given its share of the choice by its count
+/// (N_g/N, N all emitters): the scene lights, whose spectra and intensities a relight may change (a choice by their power
+/// would make a relit render differ in its noise from a render of the changed lights, which the per-light transfer promises
+/// to equal: <c>PathRelightTests</c>), are chosen uniformly in theirs, P(k) = 1/N; the emitting objects and the sky, which a
+/// relight keeps, by power in theirs, P(k) = (N_e/N)·Φ_k/Σ_e Φ_e (uniform in the group when it has no power at all). A scene
+/// with emitting objects and a sky only is therefore chosen wholly by power, one with lights only uniformly. The choice is a
+/// table lookup in the cumulative probabilities (no allocation).
+/// </para>
 /// </summary>
 internal sealed class EmitterSet
 {
     readonly Emitter[] _emitters;
     readonly int[] _ofObject;
-    readonly float _pick;
+    readonly float[] _probability;   // P(k)
+    readonly float[] _cumulative;    // Σ_{j ≤ k} P(j), the last 1
+    readonly double _sceneRadius;
 
-    /// <summary>The set of <paramref name="scene"/> on the sub-band grid <paramref name="grid"/>, an emitting object's radiance,
-    /// sidedness and texture from its material's <paramref name="emission"/> (per material, null: none).</summary>
-    public EmitterSet(Scene scene, SubBandGrid grid, IReadOnlyList<SurfaceEmission?> emission)
+    /// <summary>The set of <paramref name="scene"/> on the sub-band grid <paramref name="grid"/>: an emitting object's radiance and
+    /// sidedness from its material's emission (on the grid), its texture from <paramref name="emissionTexture"/> (by material;
+    /// none when null), a light at infinity's power through the sphere of radius <paramref name="sceneRadius"/> about the
+    /// scene's finite geometry (<see cref="SceneGeometry.BoundingRadius"/>; 1 when there is none).</summary>
+    public EmitterSet(Scene scene, SubBandGrid grid, double sceneRadius, Func<int, SubBandTexture?>? emissionTexture = null)
     {
+        _sceneRadius = sceneRadius > 0 ? sceneRadius : 1;
         var emitters = new List<Emitter>();
         for (int k = 0; k < scene.Lights.Count; k++)
             emitters.Add(new SceneLightEmitter(scene.Lights[k], k, grid.Resample(scene.Lights[k].Intensity)));
@@ -30,9 +46,10 @@ internal sealed class EmitterSet
         {
             _ofObject[i] = -1;
             var o = scene.Objects[i];
-            if (emission[o.Material] is not { } e) continue;
+            if (scene.Materials[o.Material].Emission is not { } emission) continue;
             _ofObject[i] = emitters.Count;
-            var area = new AreaEmitter(o, e.Radiance, e.TwoSided, $"{scene.SourcePath}: $.objects", e.Texture);
+            var area = new AreaEmitter(o, grid.Resample(emission.Radiance), emission.TwoSided, $"{scene.SourcePath}: $.objects",
+                emissionTexture?.Invoke(o.Material));
             emitters.Add(new ShapeEmitter(area, o.Name));
         }
         Background = grid.Resample(scene.Background);
@@ -43,7 +60,52 @@ internal sealed class EmitterSet
             emitters.Add(new SkyEmitter(Background));
         }
         _emitters = [.. emitters];
-        _pick = _emitters.Length > 0 ? 1f / _emitters.Length : 0;
+        Widths = new double[grid.Count];
+        for (int f = 0; f < grid.Count; f++) Widths[f] = grid.Upper[f] - grid.Lower[f];
+        (_probability, _cumulative) = Selection();
+    }
+
+    /// <summary>P(k) of each emitter and their running sums (the groups and shares of the class summary).</summary>
+    (float[], float[]) Selection()
+    {
+        int n = _emitters.Length, lights = _emitters.Count(e => e.SceneLight >= 0), others = n - lights;
+        var p = new double[n];
+        double power = 0;
+        for (int k = 0; k < n; k++) if (_emitters[k].SceneLight < 0) power += Power(k);
+        for (int k = 0; k < n; k++)
+            p[k] = _emitters[k].SceneLight >= 0 ? 1.0 / n
+                : (double)others / n * (power > 0 ? Power(k) / power : 1.0 / others);
+        var probability = new float[n];
+        var cumulative = new float[n];
+        double sum = 0;
+        for (int k = 0; k < n; k++)
+        {
+            probability[k] = (float)p[k];
+            sum += p[k];
+            cumulative[k] = (float)sum;
+        }
+        // The sums end at 1 from the last emitter that can be chosen on, so a rounding gap never reaches one of P(k) = 0.
+        for (int k = n - 1; k >= 0; k--)
+        {
+            cumulative[k] = 1;
+            if (probability[k] > 0) break;
+        }
+        return (probability, cumulative);
+    }
+
+    /// <summary>The width Δλ_f (nm) of each sub-band of the grid.</summary>
+    double[] Widths { get; }
+
+    /// <summary>
+    /// Φ_k, emitter <paramref name="k"/>'s radiant power (W) over the grid's range: its <see cref="Emitter.PowerPerRadiance"/>
+    /// times Σ_f L_f·Δλ_f of its spectrum (a textured emitter's mean).
+    /// </summary>
+    public double Power(int k)
+    {
+        var radiance = _emitters[k].Radiance;
+        double integral = 0;
+        for (int f = 0; f < Widths.Length; f++) integral += radiance[f] * Widths[f];
+        return _emitters[k].PowerPerRadiance(_sceneRadius) * integral;
     }
 
     /// <summary>The number of emitters N.</summary>
@@ -65,11 +127,25 @@ internal sealed class EmitterSet
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public int OfObject(int obj) => _ofObject[obj];
 
-    /// <summary>The emitter that next-event estimation takes for <paramref name="u"/> ∈ [0, 1): uniform over the set.</summary>
+    /// <summary>
+    /// The emitter that next-event estimation takes for <paramref name="u"/> ∈ [0, 1): the first k whose running sum
+    /// Σ_{j ≤ k} P(j) exceeds u (an emitter of P(k) = 0 is never taken); the set must not be empty.
+    /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    public int Choose(float u) => Math.Min((int)(u * _emitters.Length), _emitters.Length - 1);
+    public int Choose(float u)
+    {
+        var c = _cumulative;
+        int lo = 0, hi = c.Length - 1;
+        while (lo < hi)
+        {
+            int mid = (lo + hi) >> 1;
+            if (u < c[mid]) hi = mid;
+            else lo = mid + 1;
+        }
+        return lo;
+    }
 
-    /// <summary>P(k), the probability that <see cref="Choose"/> takes emitter <paramref name="k"/>: 1/N (0 for an empty set).</summary>
+    /// <summary>P(k), the probability that <see cref="Choose"/> takes emitter <paramref name="k"/> (the class summary).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    public float SelectionPdf(int k) => _pick;
+    public float SelectionPdf(int k) => _probability[k];
 }

@@ -21,6 +21,9 @@ internal sealed class SceneLightEmitter(Light light, int index, float[] intensit
         return true;
     }
 
+    /// <summary>Φ/I: the light's <see cref="Light.PowerPerIntensity"/> (4π for a point light, πR² for a directional one).</summary>
+    public override double PowerPerRadiance(double sceneRadius) => light.PowerPerIntensity(sceneRadius);
+
     public override float Pdf(Vector3 p, Vector3 front, Vector3 wi, Vector3 x, Vector3 nx) => 0;
     public override float Emitted(Vector3 n, Vector3 wo) => 0;
     public override string Describe() => $"{light.Type} light '{light.Name}'";

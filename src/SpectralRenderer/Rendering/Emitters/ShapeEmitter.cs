@@ -6,10 +6,9 @@ namespace SpectralRenderer.Rendering.Emitters;
 /// An emitting object in the emitter set: a point on its surface drawn by <see cref="AreaEmitter"/> (by solid angle on a
 /// round sphere, by area on any other shape kind, a registered one included), L_e where the surface faces the point.
 /// </summary>
-internal sealed class ShapeEmitter(AreaEmitter area, string name) : Emitter(area.Radiance)
+internal sealed class ShapeEmitter(AreaEmitter area, string name) : Emitter(area.Radiance, area.Texture)
 {
     public override bool IsDelta => false;
-    public override SubBandTexture? Texture => area.Texture;
 
     /// <summary>The surface point as <see cref="AreaEmitter.Sample(Vector3, Vector2, out Vector3, out Vector3, out float, out int)"/>
     /// draws it, seen along ω_i = (x − p)/|x − p|; nothing when x is at p or its surface faces away.</summary>
@@ -25,6 +24,9 @@ internal sealed class ShapeEmitter(AreaEmitter area, string name) : Emitter(area
         sample = new EmitterSample(wi, distance, 1, pdf, false, x, nx, face);
         return true;
     }
+
+    /// <summary>Φ/L = π·A per emitting side (a Lambertian surface of area A; two-sided: 2πA).</summary>
+    public override double PowerPerRadiance(double sceneRadius) => Math.PI * area.Area * (area.TwoSided ? 2 : 1);
 
     public override float Pdf(Vector3 p, Vector3 front, Vector3 wi, Vector3 x, Vector3 nx) => area.Pdf(p, x, nx);
     public override float Emitted(Vector3 n, Vector3 wo) => area.Emits(n, wo) ? 1 : 0;

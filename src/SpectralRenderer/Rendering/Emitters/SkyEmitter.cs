@@ -19,6 +19,10 @@ internal sealed class SkyEmitter(float[] radiance) : Emitter(radiance)
         return true;
     }
 
+    /// <summary>Φ/L = 4π·πR²: radiance L from every direction through the disc of the scene's bounding sphere (pbrt-v4's
+    /// <c>UniformInfiniteLight::Phi</c>).</summary>
+    public override double PowerPerRadiance(double sceneRadius) => 4 * Math.PI * Math.PI * sceneRadius * sceneRadius;
+
     public override float Pdf(Vector3 p, Vector3 front, Vector3 wi, Vector3 x, Vector3 nx) => Density(front, wi);
 
     /// <summary>Every escaping ray sees the sky.</summary>

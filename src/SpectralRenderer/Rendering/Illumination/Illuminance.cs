@@ -2,16 +2,20 @@ using System.Numerics;
 using System.Runtime.CompilerServices;
 using SpectralRenderer.Color;
 using SpectralRenderer.Geometry;
+using SpectralRenderer.Rendering.Emitters;
 using SpectralRenderer.Scenes;
 
 namespace SpectralRenderer.Rendering.Illumination;
 
 /// <summary>
 /// Photometric quantities at surface points (physical radiometry, CIE 015:2018 §4): the illuminance E_v (lx) arriving at
-/// a point from the scene's lights, E_v = Σ_k K_m ∫V·I_k dλ · c_spot,k · d_k · max(0, n·l_k) with the shadow ray to light
-/// k unblocked (I/r²·cos θ for a point light, E⊥·cos θ for a directional one), and, for a path-traced scene, what arrives
-/// from every other direction (area lights, the sky, interreflection) by a cosine-weighted gather
-/// E = ∫ L_v cos θ dω ≈ π/N Σ L_v(ω_i), each L_v(ω_i) the integrator's own radiance along ω_i. Luminance of a radiance
+/// a point directly from the scene's emitters (the emitter set, <see cref="EmitterSet"/>, on the output bands): from each
+/// scene light E_v = K_m ∫V·I_k dλ · c_spot,k · d_k · max(0, n·l_k) with the shadow ray to light k unblocked (I/r²·cos θ for
+/// a point light, E⊥·cos θ for a directional one), from each emitting object and the sky E_v = ∫ L_v cos θ dω ≈
+/// 1/N Σ L_v·cos θ_i/p_ω(ω_i) over N of the emitter's own samples, each shadow ray honoured (<see cref="Visibility"/>); and,
+/// for a path-traced scene, what arrives from every direction but the scene lights' (area lights, the sky, interreflection)
+/// by a cosine-weighted gather E = ∫ L_v cos θ dω ≈ π/N Σ L_v(ω_i), each L_v(ω_i) the integrator's own radiance along
+/// ω_i, in place of the emitting objects' and the sky's direct share (which it counts). Luminance of a radiance
 /// spectrum: L_v = K_m ∫V·L dλ, from the exact colour's Y (κ folded out) when the observer's ȳ is V (CIE 1931),
 /// else from the bands with V's band integrals.
 /// </summary>
@@ -23,6 +27,8 @@ public sealed class Illuminance
     readonly double[] _bandV;
     readonly bool _yIsV;
     readonly double _yToLuminance;
+    readonly EmitterSet? _emitters;           // the scene's emitters on the output bands (with the geometry)
+    readonly double[] _emitterLuminance = [];   // L_v = K_m ∫V·L dλ of each emitting object and the sky (0: a scene light)
 
     /// <param name="geometry">The scene's ray queries; null: luminance only (<see cref="Maps"/> gives illuminance 0).</param>
     public Illuminance(Scene scene, SceneGeometry? geometry)
@@ -40,6 +46,10 @@ public sealed class Illuminance
         _luminous = scene.Lights.Select(l => l.Spectrum is { } s ? Photometry.Luminous(s) * l.Scale : BandLuminance(l.Intensity)).ToArray();
         _yIsV = ReferenceEquals(scene.Observer, Observer.Cie1931);
         _yToLuminance = Colorimeter.Km / scene.Colorimeter.Kappa;
+        if (geometry is null) return;
+        // A sub-band grid of one sub-band per band is the output bands (exact band means of each spectrum).
+        _emitters = new EmitterSet(scene, new SubBandGrid(scene, grid.Width), geometry.BoundingRadius);
+        _emitterLuminance = _emitters.All.Select(e => e.SceneLight >= 0 ? 0 : BandLuminance(e.Radiance)).ToArray();
     }
 
     /// <summary>K_m/κ when luminance is the exact colour's Y times it (the observer's ȳ is V), else null (bands:
@@ -66,51 +76,74 @@ public sealed class Illuminance
     public double Luminance(ReadOnlySpan<float> bands, float y) => _yIsV ? y * _yToLuminance : BandLuminance(bands);
 
     /// <summary>
-    /// Illuminance (lx) at point <paramref name="p"/> on the side of normal <paramref name="n"/> (unit) from the scene's
-    /// lights (point, spot, directional, goniometric: their own falloff and spot factor), each shadow ray honoured;
-    /// <paramref name="ng"/> is the geometric normal the shadow rays leave from (the surface's, or n for a free point).
+    /// Direct illuminance (lx) at point <paramref name="p"/> on the side of normal <paramref name="n"/> (unit) from the
+    /// emitter set: every scene light (point, spot, directional, goniometric: their own falloff and spot factor) and, unless
+    /// <paramref name="gathered"/> (an integrator's gather counts them), every emitting object and the sky by
+    /// <see cref="GatherRays"/> samples each, drawn from (<paramref name="x"/>, <paramref name="y"/>) and the sample index;
+    /// each shadow ray honoured. <paramref name="ng"/> is the geometric normal the shadow rays leave from (the surface's, or n
+    /// for a free point).
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    public double FromLights(Vector3 p, Vector3 n, Vector3 ng, ref RayCounters counters)
+    public double Direct(int x, int y, Vector3 p, Vector3 n, Vector3 ng, bool gathered, ref RayCounters counters)
     {
+        var set = _emitters ?? throw new InvalidOperationException("illuminance needs the scene's geometry");
         double e = 0;
-        var geometry = _geometry ?? throw new InvalidOperationException("illuminance needs the scene's geometry");
-        float eps = geometry.Epsilon;
-        var lights = _scene.Lights;
-        for (int k = 0; k < lights.Count; k++)
+        bool sampled = false;
+        for (int k = 0; k < set.Count; k++)
         {
-            if (!lights[k].Illuminate(p, out var s)) continue;
-            float cos = Vector3.Dot(n, s.Direction);
-            if (!(cos > 0) || !(s.Spot > 0)) continue;
-            float side = Vector3.Dot(ng, s.Direction) >= 0 ? 1 : -1;
-            var origin = p + side * eps * ng;
-            var shadow = float.IsInfinity(s.Distance) ? new Ray(origin, s.Direction)
-                : new Ray(origin, s.Direction, MathF.Max(0, s.Distance - 2 * eps));
-            counters.Shadow++;
-            if (geometry.Occluded(shadow)) continue;
-            e += _luminous[k] * s.Spot * s.Attenuation * cos;
+            if (set[k].SceneLight is int light and >= 0)
+            {
+                if (Lit(light, p, n, ng, ref counters, out var s, out float cos)) e += _luminous[light] * s.Spot * s.Attenuation * cos;
+            }
+            else sampled |= !gathered && _emitterLuminance[k] > 0;
         }
-        return e;
+        return sampled ? e + FromEmitters(set, x, y, p, n, ng, ref counters) : e;
+    }
+
+    /// <summary>Σ over the emitting objects and the sky of 1/N Σ_i L_v·cos θ_i/p_ω(ω_i), ω_i the emitter's own draw.</summary>
+    double FromEmitters(EmitterSet set, int x, int y, Vector3 p, Vector3 n, Vector3 ng, ref RayCounters counters)
+    {
+        var geometry = _geometry!;
+        int rays = GatherRays(_scene);
+        double sum = 0;
+        for (int i = 0; i < rays; i++)
+        {
+            // The gather's sample indices (beyond any camera sample's); each emitter takes the next 2D draw.
+            var sampler = new Sampler(x, y, int.MaxValue - rays + i);
+            for (int k = 0; k < set.Count; k++)
+            {
+                if (set[k].SceneLight >= 0 || !(_emitterLuminance[k] > 0)) continue;
+                var (u, v) = sampler.Next2D();
+                if (!set[k].Sample(p, n, new Vector2(u, v), out var s) || !(s.Pdf > 0)) continue;
+                float cos = Vector3.Dot(n, s.Direction);
+                if (!(cos > 0)) continue;
+                counters.Shadow++;
+                if (geometry.Occluded(Visibility.ShadowRay(p, ng, s.Direction, s.Distance, geometry.Epsilon))) continue;
+                sum += _emitterLuminance[k] * s.Factor * cos / s.Pdf;
+            }
+        }
+        return sum / rays;
+    }
+
+    /// <summary>Scene light <paramref name="k"/> at p: its sample, n·l > 0, c_spot > 0 and the shadow ray unblocked.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    bool Lit(int k, Vector3 p, Vector3 n, Vector3 ng, ref RayCounters counters, out LightSample s, out float cos)
+    {
+        var geometry = _geometry ?? throw new InvalidOperationException("illuminance needs the scene's geometry");
+        cos = 0;
+        if (!_scene.Lights[k].Illuminate(p, out s)) return false;
+        cos = Vector3.Dot(n, s.Direction);
+        if (!(cos > 0) || !(s.Spot > 0)) return false;
+        counters.Shadow++;
+        return !geometry.Occluded(Visibility.ShadowRay(p, ng, s.Direction, s.Distance, geometry.Epsilon));
     }
 
     /// <summary>
-    /// Light <paramref name="k"/>'s share of <see cref="FromLights"/> per unit of its luminous value: c_spot·d_k·max(0, n·l)
+    /// Light <paramref name="k"/>'s share of <see cref="Direct"/> per unit of its luminous value: c_spot·d_k·max(0, n·l)
     /// with the shadow ray unblocked, else 0 (lx per cd for a point light, lx per lx facing it for a directional one).
     /// </summary>
-    public double LightFactor(int k, Vector3 p, Vector3 n, Vector3 ng, ref RayCounters counters)
-    {
-        var geometry = _geometry ?? throw new InvalidOperationException("illuminance needs the scene's geometry");
-        if (!_scene.Lights[k].Illuminate(p, out var s)) return 0;
-        float cos = Vector3.Dot(n, s.Direction);
-        if (!(cos > 0) || !(s.Spot > 0)) return 0;
-        float eps = geometry.Epsilon;
-        float side = Vector3.Dot(ng, s.Direction) >= 0 ? 1 : -1;
-        var origin = p + side * eps * ng;
-        var shadow = float.IsInfinity(s.Distance) ? new Ray(origin, s.Direction)
-            : new Ray(origin, s.Direction, MathF.Max(0, s.Distance - 2 * eps));
-        counters.Shadow++;
-        return geometry.Occluded(shadow) ? 0 : (double)s.Spot * s.Attenuation * cos;
-    }
+    public double LightFactor(int k, Vector3 p, Vector3 n, Vector3 ng, ref RayCounters counters) =>
+        Lit(k, p, n, ng, ref counters, out var s, out float cos) ? (double)s.Spot * s.Attenuation * cos : 0;
 
     /// <summary>
     /// Per light, per pixel of the whole film, <see cref="LightFactor"/> at the surface the pixel-centre ray meets (as
@@ -148,8 +181,9 @@ public sealed class Illuminance
     /// <summary>
     /// Per pixel of the render's crop, the luminance (cd/m²) of what the camera sees, from the rendered pixels, and the
     /// illuminance (lx) arriving at the surface the pixel-centre ray meets first (on the side facing the camera; 0 where
-    /// it meets nothing): from the lights with shadows, plus, when <paramref name="gather"/> is given (an integrator that gathers),
-    /// π/N Σ L_v of N cosine-weighted rays it traces (area lights, sky and interreflection; delta lights it cannot hit).
+    /// it meets nothing): the direct share (<see cref="Direct"/>: the lights, and without a gather the emitting objects and
+    /// the sky), plus, when <paramref name="gather"/> is given (an integrator that gathers), π/N Σ L_v of N cosine-weighted
+    /// rays it traces (area lights, sky and interreflection; delta lights it cannot hit).
     /// The same on any thread count: a pixel's rays depend on (x, y, ray index) only.
     /// </summary>
     public (float[] Luminance, float[] Illuminance) Maps(RenderResult result, IGatherIntegrator? gather, int threads,
@@ -180,7 +214,7 @@ public sealed class Illuminance
                 var wo = -ray.Direction;
                 var ng = Vector3.Dot(hit.GeometricNormal, wo) >= 0 ? hit.GeometricNormal : -hit.GeometricNormal;
                 var n = Vector3.Dot(hit.Normal, wo) >= 0 ? hit.Normal : -hit.Normal;
-                double e = FromLights(hit.Position, n, ng, ref counters);
+                double e = Direct(x, y, hit.Position, n, ng, gather is not null, ref counters);
                 if (gather is not null) e += Gather(gather, x, y, hit.Position, n, ng, rays, radiance, scratch, ref counters);
                 illuminance[row * w + col] = (float)e;
             }
@@ -190,10 +224,11 @@ public sealed class Illuminance
     }
 
     /// <summary>
-    /// The illuminance (lx) at each point of a calculation grid (i fastest), on the side of its normal: from the lights with
-    /// shadows (<see cref="FromLights"/>), plus, when <paramref name="gather"/> is given (one that gathers: path), π/N Σ L_v of
-    /// <see cref="GatherRays"/> cosine-weighted rays from the point (area lights, sky and interreflection), drawn from the
-    /// point's (i, j). The same on any thread count.
+    /// The illuminance (lx) at each point of a calculation grid (i fastest), on the side of its normal: its direct share
+    /// (<see cref="Direct"/>: the lights, and without a gather the emitting objects and the sky), plus, when
+    /// <paramref name="gather"/> is given (one that gathers: path), π/N Σ L_v of <see cref="GatherRays"/> cosine-weighted
+    /// rays from the point (area lights, sky and interreflection), drawn from the point's (i, j). The same on any thread
+    /// count.
     /// </summary>
     public double[] OnGrid(CalculationGrid grid, IGatherIntegrator? gather, int threads, CancellationToken cancel = default)
     {
@@ -209,7 +244,7 @@ public sealed class Illuminance
             for (int i = 0; i < nu; i++)
             {
                 var p = grid.Point(i, j);
-                double e = FromLights(p, n, n, ref counters);
+                double e = Direct(i, j, p, n, n, gather is not null, ref counters);
                 if (gather is not null) e += Gather(gather, i, j, p, n, n, rays, radiance, scratch, ref counters);
                 lux[j * nu + i] = e;
             }
@@ -230,8 +265,7 @@ public sealed class Illuminance
             int index = int.MaxValue - rays + i;
             var (u, v) = new Sampler(x, y, index).Next2D();
             var wi = Bsdf.CosineHemisphere(n, new Vector2(u, v));
-            float side = Vector3.Dot(ng, wi) >= 0 ? 1 : -1;
-            var ray = new Ray(p + side * _geometry!.Epsilon * ng, wi);
+            var ray = Visibility.Leaving(p, ng, wi, _geometry!.Epsilon);
             counters.Secondary++;
             integrator.Radiance(new CameraSample(x, y, index, ray), radiance.AsSpan(0, _scene.PaddedBands), scratch, ref counters);
             sum += Luminance(radiance.AsSpan(0, bands), radiance[bands + 1]);

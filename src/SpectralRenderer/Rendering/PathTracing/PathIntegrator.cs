@@ -12,8 +12,8 @@ namespace SpectralRenderer.Rendering.PathTracing;
 /// Unidirectional path tracing of the rendering equation (Kajiya 1986) in physical radiometry, every band on every path:
 /// the throughput β and the radiance L are spectra on a internal sub-band grid (<see cref="SubBandGrid"/>, 5 nm by default),
 /// multiplied band by band in SIMD lanes and reduced to the output bands (exact band means) and to XYZ only at the film.
-/// At each vertex one light, chosen uniformly, is sampled (next-event estimation) and the BSDF is sampled to continue; both
-/// estimates of light that arrives from surfaces that emit, and from the sky, are combined by multiple importance
+/// At each vertex one light, chosen by power (Emitters/EmitterSet.cs), is sampled (next-event estimation) and the BSDF is
+/// sampled to continue; both estimates of light that arrives from surfaces that emit, and from the sky, are combined by multiple importance
 /// sampling with the power heuristic w_a = p_a²/(p_a² + p_b²) (Veach &amp; Guibas 1995). Delta lights (point, spot,
 /// directional) are reached by next-event estimation only, delta lobes (mirror, Fresnel dielectric) by the BSDF only. One
 /// walk (Walk) carries a set of bands: all of them, or after its first dispersive glass one output band's sub-bands, in a
@@ -59,8 +59,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         _fluoresces = _materials.Any(x => x.Shift is not null);
         _splitsShifts = _fluoresces && _materials.Any(x => x.Dispersive);
         _objectMaterial = scene.Objects.Select(o => o.Material).ToArray();
-        _emitters = new EmitterSet(scene, _grid,
-            [.. _materials.Select(m => m.Emission is { } e ? new SurfaceEmission(e, m.TwoSided, m.EmissionTexture) : null)]);
+        _emitters = new EmitterSet(scene, _grid, geometry.BoundingRadius, m => _materials[m].EmissionTexture);
         _lights = [.. scene.Lights];
         _background = _emitters.Background;
         foreach (var material in _materials) material.Shift?.Prepare(_emitters.All.Select(e => e.Radiance));
@@ -128,7 +127,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         {
             if (!_lights[k].Sample(p, new Vector2(0.5f, 0.5f), out var inc) || !(inc.Factor > 0) || Vector3.Dot(front, inc.Direction) <= 0)
                 continue;
-            if (!_geometry.Occluded(ShadowRay(p, ng, inc.Direction, inc.Distance))) mask |= 1u << k;
+            if (!_geometry.Occluded(Visibility.ShadowRay(p, ng, inc.Direction, inc.Distance, _geometry.Epsilon))) mask |= 1u << k;
         }
         return mask;
     }
@@ -254,13 +253,20 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
                 material = _materials[_objectMaterial[hit.Object]];
 
                 // Light the surface emits towards the ray (Le), MIS-weighted against next-event estimation of the same point.
-                if (_emitters.OfObject(hit.Object) is int e and >= 0 && _emitters[e].Emitted(hit.GeometricNormal, wo) > 0)
+                // (an emitting object's calls made on its own sealed class, which the JIT inlines: an AggressiveOptimization
+                // method gets no profile-guided devirtualisation)
+                if (_emitters.OfObject(hit.Object) is int e and >= 0 && _emitters[e] is var emitter
+                    && (emitter is ShapeEmitter shape ? shape.Emitted(hit.GeometricNormal, wo)
+                        : emitter.Emitted(hit.GeometricNormal, wo)) > 0)
                 {
-                    var emitter = _emitters[e];
                     float w = 1;
                     if (!deltaBounce)
-                        w = PowerHeuristic(bsdfPdf, _emitters.SelectionPdf(e)
-                            * emitter.Pdf(previous, previousFront, ray.Direction, hit.Position, hit.GeometricNormal));
+                    {
+                        float pdf = emitter is ShapeEmitter surface
+                            ? surface.Pdf(previous, previousFront, ray.Direction, hit.Position, hit.GeometricNormal)
+                            : emitter.Pdf(previous, previousFront, ray.Direction, hit.Position, hit.GeometricNormal);
+                        w = PowerHeuristic(bsdfPdf, _emitters.SelectionPdf(e) * pdf);
+                    }
                     var le = emitter.Radiance;
                     sink.Emitted(beta, _textured ? EmittedAt(material, le, in hit, wo, scratch) : le, w);
                 }
@@ -301,7 +307,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
             int dLight = sampler.Reserve1D(), dPoint = sampler.Reserve2D(), dLobe = sampler.Reserve1D();
             int dDirection = sampler.Reserve2D(), dRoulette = sampler.Reserve1D();
 
-            // Next-event estimation: one light chosen uniformly, one point on it.
+            // Next-event estimation: one light chosen by the set's selection pdf (by power), one point on it.
             if ((material.Smooth || shiftShare > 0) && _emitters.Count > 0)
             {
                 float uLight = _emitters.Count > 1 ? sampler.At1D(dLight) : 0;   // one light: no choice
@@ -355,9 +361,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
                 if (!(q > 0) || sampler.At1D(dRoulette) >= q) break;
                 Scale(beta, 1 / q);
             }
-            var ng = hit.GeometricNormal;
-            float side = Vector3.Dot(ng, wi) >= 0 ? 1 : -1;
-            ray = new Ray(vertex.P + side * _geometry.Epsilon * ng, wi);
+            ray = Visibility.Leaving(vertex.P, hit.GeometricNormal, wi, _geometry.Epsilon);
             counters.Secondary++;
         }
         return first;
@@ -375,7 +379,10 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         var p = vertex.P;
         int k = _emitters.Choose(uLight);
         var emitter = _emitters[k];
-        if (!emitter.Sample(p, vertex.Front, u, out var sample)) return;
+        EmitterSample sample;
+        // An emitting object, the common emitter of a path scene, by its sealed class's call (inlined; see Walk).
+        if (!(emitter is ShapeEmitter shape ? shape.Sample(p, vertex.Front, u, out sample)
+            : emitter.Sample(p, vertex.Front, u, out sample))) return;
         var wi = sample.Direction;
         float distance = sample.Distance, factor = sample.Factor, pdf = sample.Pdf;
         var radiance = emitter.Texture is null ? emitter.Radiance
@@ -387,7 +394,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         float cos = MathF.Abs(Vector3.Dot(ns, wi));
         Evaluate(bsdf, in vertex.Texels, vertex.Wo, wi, ns, f);
         counters.Shadow++;
-        if (_geometry.OccludedScattered(ShadowRay(p, ng, wi, distance))) return;
+        if (_geometry.OccludedScattered(Visibility.ShadowRay(p, ng, wi, distance, _geometry.Epsilon))) return;
         if (MediumToward(in vertex, wi) is var medium and >= 0) Attenuate(medium, p, wi, distance, f);   // f ⊙= T along it
         float pick = _emitters.SelectionPdf(k);
         float w = sample.IsDelta ? 1 : PowerHeuristic(pick * pdf, smoothProbability * bsdf.Pdf(vertex.Wo, wi, ns));
@@ -397,23 +404,6 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         // PathIntegrator.Fluorescence.cs).
         if (vertex.Material.Shift is { } shift && FluorescentShift.Reflects(vertex.Wo, wi, ns))
             sink.Shifted(emitter.SceneLight, shift, beta, radiance, factor * cos / (pick * pdf));
-    }
-
-    /// <summary>
-    /// The path's shadow ray from <paramref name="p"/> (geometric normal <paramref name="ng"/>) along <paramref name="wi"/> to
-    /// a light's point <paramref name="distance"/> away (∞: a direction): it leaves from p offset by ε along ±n_g on ωi's side,
-    /// aimed from there at the light's point itself (a ray grazing a sphere light would otherwise meet it early), and ends
-    /// 2ε short of it.
-    /// </summary>
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    Ray ShadowRay(Vector3 p, Vector3 ng, Vector3 wi, float distance)
-    {
-        float side = Vector3.Dot(ng, wi) >= 0 ? 1 : -1;
-        var origin = p + side * _geometry.Epsilon * ng;
-        if (float.IsInfinity(distance)) return new Ray(origin, wi);
-        var towards = p + distance * wi - origin;
-        float length = towards.Length();
-        return new Ray(origin, towards / length, length - 2 * _geometry.Epsilon);
     }
 
     /// <summary>Veach's power heuristic (β = 2) for the strategy of density a against one of density b.</summary>

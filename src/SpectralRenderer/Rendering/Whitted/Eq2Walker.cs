@@ -140,7 +140,7 @@ internal sealed class Eq2Walker
         var p = hit.Position;
         var pAbove = p + _geometry.Epsilon * ng;
         if (_textures is { } textures && textures.Textured[mi]) LookUpTexels(ref sink, textures, mi, in hit, ng, v);
-        var lights = new RayLights(_lights, _geometry, p, pAbove, n, v);
+        var lights = new RayLights(_lights, _geometry, p, ng, n, v);
         Shade(ref sink, ref lights, mi, m, ref counters);
 
         if (depth >= _maxDepth || !(m.HasMirror || m.HasTransmission)) return hit.Object;
@@ -273,8 +273,9 @@ internal sealed class Eq2Walker
         sink.Leave(mi, true, band, f, ref counters);
     }
 
-    /// <summary>A ray's own lights: <see cref="Light.Illuminate"/> at P, and a shadow ray from above the surface (counted).</summary>
-    readonly struct RayLights(Light[] lights, SceneGeometry geometry, Vector3 p, Vector3 pAbove, Vector3 n, Vector3 v) : ILightQuery
+    /// <summary>A ray's own lights: <see cref="Light.Illuminate"/> at P (face normal n_g), and the shadow ray of
+    /// <see cref="Visibility.ShadowRay"/> (counted).</summary>
+    readonly struct RayLights(Light[] lights, SceneGeometry geometry, Vector3 p, Vector3 ng, Vector3 n, Vector3 v) : ILightQuery
     {
         public Vector3 Normal => n;
         public Vector3 View => v;
@@ -291,9 +292,7 @@ internal sealed class Eq2Walker
         public bool Visible(int k, in LightSample sample, ref RayCounters counters)
         {
             counters.Shadow++;
-            float dist = sample.Distance;
-            float tMax = float.IsInfinity(dist) ? float.PositiveInfinity : dist - 2 * geometry.Epsilon;
-            return !geometry.Occluded(new Ray(pAbove, sample.Direction, tMax));
+            return !geometry.Occluded(Visibility.ShadowRay(p, ng, sample.Direction, sample.Distance, geometry.Epsilon));
         }
     }
 }

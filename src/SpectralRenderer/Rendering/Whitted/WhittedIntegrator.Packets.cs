@@ -39,10 +39,10 @@ internal sealed partial class WhittedIntegrator
         if (found != 0)
             switch (PacketLanes.Width)
             {
-                case 16: LaneGeometry.Shading<Lanes512>(ref packet, in hits, eps, ref at); break;
-                case 8: LaneGeometry.Shading<Lanes256>(ref packet, in hits, eps, ref at); break;
-                case 4: LaneGeometry.Shading<Lanes128>(ref packet, in hits, eps, ref at); break;
-                default: LaneGeometry.Shading<Lanes1>(ref packet, in hits, eps, ref at); break;
+                case 16: LaneGeometry.Shading<Lanes512>(ref packet, in hits, ref at); break;
+                case 8: LaneGeometry.Shading<Lanes256>(ref packet, in hits, ref at); break;
+                case 4: LaneGeometry.Shading<Lanes128>(ref packet, in hits, ref at); break;
+                default: LaneGeometry.Shading<Lanes1>(ref packet, in hits, ref at); break;
             }
         uint shaded = 0;
         for (uint all = packet.Active; all != 0; all &= all - 1)
@@ -85,7 +85,7 @@ internal sealed partial class WhittedIntegrator
         {
             var light = _lights[k];
             ref var lk = ref lanes[k];
-            if (_laneForms[k] is PointEmitter point)
+            if (_laneForms[k] is LanePointLight point)
             {
                 // Direction, distance, falloff, n·l and the shadow rays of all lanes at once (c_spot = 1).
                 ref var d = ref lk.Attenuation;
@@ -93,26 +93,31 @@ internal sealed partial class WhittedIntegrator
                 switch (PacketLanes.Width)
                 {
                     case 16:
-                        LaneGeometry.PointLight<Lanes512>(in point, eps, shaded, in at, ref shadows, ref d, ref nl, out lk.Reached);
+                        LaneGeometry.PointLight<Lanes512>(in point, eps, shaded, in at, ref shadows, ref d, ref nl, ref lk.Direction,
+                            out lk.Reached);
                         break;
                     case 8:
-                        LaneGeometry.PointLight<Lanes256>(in point, eps, shaded, in at, ref shadows, ref d, ref nl, out lk.Reached);
+                        LaneGeometry.PointLight<Lanes256>(in point, eps, shaded, in at, ref shadows, ref d, ref nl, ref lk.Direction,
+                            out lk.Reached);
                         break;
                     case 4:
-                        LaneGeometry.PointLight<Lanes128>(in point, eps, shaded, in at, ref shadows, ref d, ref nl, out lk.Reached);
+                        LaneGeometry.PointLight<Lanes128>(in point, eps, shaded, in at, ref shadows, ref d, ref nl, ref lk.Direction,
+                            out lk.Reached);
                         break;
                     default:
-                        LaneGeometry.PointLight<Lanes1>(in point, eps, shaded, in at, ref shadows, ref d, ref nl, out lk.Reached);
+                        LaneGeometry.PointLight<Lanes1>(in point, eps, shaded, in at, ref shadows, ref d, ref nl, ref lk.Direction,
+                            out lk.Reached);
                         break;
                 }
                 ((Span<float>)lk.Spot).Fill(1f);
             }
-            else lk.Reached = IlluminateLanes(light, shaded, in at, ref shadows, ref lk.Attenuation, ref lk.Cosine, ref lk.Spot);
+            else
+                lk.Reached = IlluminateLanes(light, shaded, in at, ref shadows, ref lk.Attenuation, ref lk.Cosine, ref lk.Spot,
+                    ref lk.Direction);
             lk.Lit = 0;
             if (shadows.Active == 0) continue;
             counters.Shadow += BitOperations.PopCount(shadows.Active);
             lk.Lit = shadows.Active & ~_geometry.Occluded(ref shadows);
-            lk.DirectionX = shadows.DirectionX; lk.DirectionY = shadows.DirectionY; lk.DirectionZ = shadows.DirectionZ;
         }
         ShadeLanes(ref packet, in at, shaded, material, lanes, listed, terms, results, infos, ref counters);
     }
@@ -161,7 +166,8 @@ internal sealed partial class WhittedIntegrator
     struct LightLanes
     {
         public const int Floats = 7 * RayPacket.Size;
-        public PacketFloats Attenuation, Cosine, Spot, DirectionX, DirectionY, DirectionZ;
+        public PacketFloats Attenuation, Cosine, Spot;
+        public LaneVectors Direction;   // l of the lanes that face the light
         public uint Reached, Lit;
     }
 
@@ -185,7 +191,7 @@ internal sealed partial class WhittedIntegrator
             ref readonly var r = ref _lanes[k];
             if ((r.Reached >> lane & 1) == 0) { sample = default; nl = 0; return false; }
             nl = r.Cosine[lane];
-            var l = new Vector3(r.DirectionX[lane], r.DirectionY[lane], r.DirectionZ[lane]);
+            var l = new Vector3(r.Direction.X[lane], r.Direction.Y[lane], r.Direction.Z[lane]);
             sample = new LightSample(l, 0, r.Spot[lane], r.Attenuation[lane]);
             return true;
         }
@@ -264,10 +270,11 @@ internal sealed partial class WhittedIntegrator
 
     /// <summary>
     /// Any light, lane by lane (<see cref="Light.Illuminate"/>): the lanes it reaches, their attenuation, c_spot and n·l, and
-    /// for those facing it (not n·l ≤ 0) the shadow ray in <paramref name="shadows"/>, whose active lanes they become.
+    /// for those facing it (not n·l ≤ 0) l in <paramref name="direction"/> and the shadow ray
+    /// (<see cref="Visibility.ShadowRay"/>) in <paramref name="shadows"/>, whose active lanes they become.
     /// </summary>
     uint IlluminateLanes(Light light, uint lanes, in ShadingLanes at, ref RayPacket shadows, ref PacketFloats attenuation,
-        ref PacketFloats cosine, ref PacketFloats spot)
+        ref PacketFloats cosine, ref PacketFloats spot, ref LaneVectors direction)
     {
         float eps = _geometry.Epsilon;
         uint reached = 0;
@@ -280,10 +287,9 @@ internal sealed partial class WhittedIntegrator
             float nl = Vector3.Dot(at.Normal(lane), ls.Direction);
             attenuation[lane] = ls.Attenuation; cosine[lane] = nl; spot[lane] = ls.Spot;
             if (nl <= 0) continue;
-            float dist = ls.Distance;
-            shadows.Set(lane,
-                new Ray(new Vector3(at.AX[lane], at.AY[lane], at.AZ[lane]), ls.Direction,
-                    float.IsInfinity(dist) ? float.PositiveInfinity : dist - 2 * eps));
+            direction.X[lane] = ls.Direction.X; direction.Y[lane] = ls.Direction.Y; direction.Z[lane] = ls.Direction.Z;
+            shadows.Set(lane, Visibility.ShadowRay(new Vector3(at.PX[lane], at.PY[lane], at.PZ[lane]), at.Face(lane), ls.Direction,
+                ls.Distance, eps));
         }
         return reached;
     }

@@ -27,8 +27,8 @@ internal sealed partial class WhittedIntegrator : IPacketIntegrator, IAnalysisIn
     readonly SceneGeometry _geometry;
     readonly Material[] _materials;
     readonly Light[] _lights;
-    /// <summary>Each light's lane form (<see cref="Light.LaneForm"/>), asked once: the packet path's SIMD point emitters.</summary>
-    readonly PointEmitter?[] _laneForms;
+    /// <summary>Each light's lane form (<see cref="Light.LaneForm"/>), asked once: the packet path's SIMD point lights.</summary>
+    readonly LanePointLight?[] _laneForms;
     readonly int[] _objectMaterial;
     readonly int _padded;
     readonly TermTables _tables;

@@ -41,7 +41,7 @@ public static class LightTypes
     {
         ["luminous_intensity"] = new("cd", _ => 1),
         ["luminous_flux"] =
-            new("lm", s => SpotSolidAngle(Math.Cos(s.Number("cutoff", 30, 0, 180) * Math.PI / 180), s.Number("exponent", 0, 0, 1e6))),
+            new("lm", s => SpotLight.SolidAngle(Math.Cos(s.Number("cutoff", 30, 0, 180) * Math.PI / 180), s.Number("exponent", 0, 0, 1e6))),
     };
 
     // Directional: E_v in lx on a surface facing the light.
@@ -92,11 +92,6 @@ public static class LightTypes
             Falloff = s.Falloff,
         };
     }
-
-    /// <summary>∫ c_spot dΩ (sr) of a cone of half-angle θc with c_spot = max(cos θ, 0)^e (μ^0 = 1, also for μ ≤ 0).</summary>
-    public static double SpotSolidAngle(double cosCutoff, double exponent) => exponent == 0
-        ? 2 * Math.PI * (1 - cosCutoff)
-        : 2 * Math.PI * (1 - Math.Pow(Math.Max(cosCutoff, 0), exponent + 1)) / (exponent + 1);
 
     static readonly Lock Gate = new();
     static Dictionary<string, LightType> s_byName = new(StringComparer.Ordinal)
