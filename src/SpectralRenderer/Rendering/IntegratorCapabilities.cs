@@ -7,7 +7,7 @@ namespace SpectralRenderer.Rendering;
 // relighting, the camera's exact route, the memory check, the shard merge and the C ABI hold "the integrator's
 // transfer" or "an integrator that gathers" and do not know its class. A new integrator implements the ones it can
 // (ARCHITECTURE.md, "Extending: an integrator"); what is known before its geometry is built rides on its registration
-// (IntegratorEntry in Integrators.cs: its settings keys, its transfer's format, its tables' memory).
+// (IntegratorEntry in Registry/Integrators.cs: its settings keys, its transfer's format, its tables' memory).
 
 /// <summary>
 /// An integrator that records a per-light transfer (the lights product; relight; the C ABI's relight and exact route):

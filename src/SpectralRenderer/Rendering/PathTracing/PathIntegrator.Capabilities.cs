@@ -4,7 +4,7 @@ namespace SpectralRenderer.Rendering.PathTracing;
 
 // What the path integrator can do beyond a picture (IntegratorCapabilities.cs): its per-light transfer (PathTransfer.cs,
 // files in PathTransferFiles.cs, for whole renders and shards), its film on the sub-band grid for the camera's exact route
-// (SubBandFilm.cs), and the gather of photometry and calculation grids (its radiance is every bounce).
+// (PathFilm.cs), and the gather of photometry and calculation grids (its radiance is every bounce).
 internal sealed partial class PathIntegrator : ITransferIntegrator, ISubBandFilmIntegrator, IGatherIntegrator
 {
     public TransferFormat TransferFormat => PathTransferFiles.Format;
