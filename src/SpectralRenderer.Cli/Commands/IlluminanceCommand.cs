@@ -2,10 +2,10 @@ using System.Globalization;
 using System.Numerics;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Output;
-using SpectralRenderer.Rendering.Illumination;
 using SpectralRenderer.Rendering;
-using SpectralRenderer.Scenes.Loading;
+using SpectralRenderer.Rendering.Illumination;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Scenes.Loading;
 
 namespace SpectralRenderer.Cli.Commands;
 

@@ -4,10 +4,10 @@ using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Distributed;
 using SpectralRenderer.Output;
 using SpectralRenderer.Pipeline;
-using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Rendering;
-using SpectralRenderer.Scenes.Loading;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Scenes.Loading;
 
 namespace SpectralRenderer.Cli.Commands;
 

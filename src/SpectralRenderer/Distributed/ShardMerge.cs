@@ -6,10 +6,10 @@ using System.Text.Json.Nodes;
 using System.Text.RegularExpressions;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
-using SpectralRenderer.Output.Products;
 using SpectralRenderer.Output;
-using SpectralRenderer.Rendering.Registry;
+using SpectralRenderer.Output.Products;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Registry;
 
 namespace SpectralRenderer.Distributed;
 

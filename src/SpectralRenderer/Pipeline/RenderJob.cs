@@ -1,11 +1,11 @@
 using System.Diagnostics;
 using SpectralRenderer.Diagnostics;
-using SpectralRenderer.Output.Products;
 using SpectralRenderer.Output;
-using SpectralRenderer.Rendering.Registry;
+using SpectralRenderer.Output.Products;
 using SpectralRenderer.Rendering;
-using SpectralRenderer.Scenes.Loading;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Scenes.Loading;
 
 namespace SpectralRenderer.Pipeline;
 

@@ -2,11 +2,11 @@ using System.Globalization;
 using SpectralRenderer.Analysis.Recovery;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Output;
+using SpectralRenderer.Rendering;
 using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Rendering.Terms;
-using SpectralRenderer.Rendering;
-using SpectralRenderer.Scenes.Loading;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Scenes.Loading;
 using SpectralRenderer.Sensor;
 
 namespace SpectralRenderer.Relighting;

@@ -5,10 +5,10 @@ using System.Text.Json.Nodes;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Output;
-using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Rendering;
-using SpectralRenderer.Scenes.Loading;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Scenes.Loading;
 
 namespace SpectralRenderer.Relighting;
 

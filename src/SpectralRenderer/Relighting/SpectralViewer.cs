@@ -5,11 +5,11 @@ using System.Text.Json.Nodes;
 using SpectralRenderer.Color;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
-using SpectralRenderer.Output.Products;
 using SpectralRenderer.Output;
+using SpectralRenderer.Output.Products;
+using SpectralRenderer.Rendering;
 using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Rendering.Terms;
-using SpectralRenderer.Rendering;
 using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Relighting;

@@ -1,8 +1,8 @@
 using System.Numerics;
 using System.Runtime.CompilerServices;
 using System.Runtime.InteropServices;
-using SpectralRenderer.Scenes.Textures;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Scenes.Textures;
 
 namespace SpectralRenderer.Rendering;
 

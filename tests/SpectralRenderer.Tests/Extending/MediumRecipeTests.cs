@@ -1,10 +1,10 @@
 using System.Numerics;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Geometry;
-using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Rendering;
-using SpectralRenderer.Scenes.Loading;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Scenes.Loading;
 using SpectralRenderer.Tests.Geometry;
 using SpectralRenderer.Tests.Relight;
 using SpectralRenderer.Tests.Rendering;

@@ -1,7 +1,7 @@
 using System.Text.Json.Nodes;
 using SpectralRenderer.Imaging;
-using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Tests.Cli;
 using SpectralRenderer.Tests.Rendering;

@@ -4,14 +4,13 @@ using System.Text.Json.Nodes;
 using SpectralRenderer.Geometry;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Output;
-using SpectralRenderer.Rendering.PathTracing;
 using SpectralRenderer.Rendering;
-using SpectralRenderer.Scenes.Loading;
+using SpectralRenderer.Rendering.PathTracing;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Scenes.Loading;
 using SpectralRenderer.Tests.Cli;
 using SpectralRenderer.Tests.Distributed;
 using SpectralRenderer.Tests.Rendering;
-
 using static SpectralRenderer.Tests.Relight.PathRelightTests;
 
 namespace SpectralRenderer.Tests.Relight;

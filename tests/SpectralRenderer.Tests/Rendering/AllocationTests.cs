@@ -1,7 +1,7 @@
-using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Rendering;
-using SpectralRenderer.Scenes.Loading;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Scenes.Loading;
 
 namespace SpectralRenderer.Tests.Rendering;
 

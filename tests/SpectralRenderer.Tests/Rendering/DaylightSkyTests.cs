@@ -1,6 +1,6 @@
 using System.Globalization;
-using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Registry;
 
 namespace SpectralRenderer.Tests.Rendering;
 

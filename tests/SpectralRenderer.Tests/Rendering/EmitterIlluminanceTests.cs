@@ -1,9 +1,9 @@
 using System.Globalization;
 using System.Numerics;
-using SpectralRenderer.Rendering.Illumination;
 using SpectralRenderer.Rendering;
-using SpectralRenderer.Scenes.Loading;
+using SpectralRenderer.Rendering.Illumination;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Scenes.Loading;
 
 namespace SpectralRenderer.Tests.Rendering;
 

@@ -1,8 +1,8 @@
 using System.Globalization;
 using System.Numerics;
+using SpectralRenderer.Rendering;
 using SpectralRenderer.Rendering.Emitters;
 using SpectralRenderer.Rendering.PathTracing;
-using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes.Loading;
 
 namespace SpectralRenderer.Tests.Rendering;

@@ -2,8 +2,8 @@ using System.Globalization;
 using System.Text;
 using SpectralRenderer.Color;
 using SpectralRenderer.Diagnostics;
-using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Registry;
 
 namespace SpectralRenderer.Tests.Rendering;
 

@@ -3,9 +3,9 @@ using System.Numerics;
 using System.Text;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Geometry;
+using SpectralRenderer.Rendering;
 using SpectralRenderer.Rendering.PathTracing;
 using SpectralRenderer.Rendering.Registry;
-using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
 
 namespace SpectralRenderer.Tests.Rendering;

@@ -1,9 +1,9 @@
 using System.Globalization;
 using System.Text;
-using SpectralRenderer.Rendering.Whitted;
 using SpectralRenderer.Rendering;
-using SpectralRenderer.Scenes.Loading;
+using SpectralRenderer.Rendering.Whitted;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Scenes.Loading;
 
 namespace SpectralRenderer.Tests.Rendering;
 

@@ -1,8 +1,8 @@
 using System.Numerics;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Geometry;
-using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Spectra;
 

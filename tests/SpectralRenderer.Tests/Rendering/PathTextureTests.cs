@@ -3,11 +3,11 @@ using System.Numerics;
 using System.Text;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Geometry;
+using SpectralRenderer.Rendering;
 using SpectralRenderer.Rendering.Emitters;
 using SpectralRenderer.Rendering.Registry;
-using SpectralRenderer.Rendering;
-using SpectralRenderer.Scenes.Loading;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Scenes.Loading;
 using SpectralRenderer.Tests.Scenes;
 
 namespace SpectralRenderer.Tests.Rendering;

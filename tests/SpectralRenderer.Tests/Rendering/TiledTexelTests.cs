@@ -4,13 +4,13 @@ using System.Numerics;
 using System.Text;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Output;
+using SpectralRenderer.Rendering;
 using SpectralRenderer.Rendering.PathTracing;
 using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Rendering.Terms;
-using SpectralRenderer.Rendering;
+using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
 using SpectralRenderer.Scenes.Textures;
-using SpectralRenderer.Scenes;
 using SpectralRenderer.Tests.Scenes;
 
 namespace SpectralRenderer.Tests.Rendering;

@@ -4,12 +4,12 @@ using System.Numerics;
 using System.Text;
 using SpectralRenderer.Color;
 using SpectralRenderer.Imaging;
-using SpectralRenderer.Rendering.Terms;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Rendering.Registry;
+using SpectralRenderer.Rendering.Terms;
+using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
 using SpectralRenderer.Scenes.Textures;
-using SpectralRenderer.Scenes;
 using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Tests.Scenes;

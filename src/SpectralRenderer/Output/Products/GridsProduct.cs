@@ -1,6 +1,6 @@
+using SpectralRenderer.Rendering;
 using SpectralRenderer.Rendering.Illumination;
 using SpectralRenderer.Rendering.Registry;
-using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
 
 namespace SpectralRenderer.Output.Products;

@@ -5,8 +5,8 @@ using System.Runtime.CompilerServices;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Geometry;
 using SpectralRenderer.Rendering.Terms;
-using SpectralRenderer.Scenes.Textures;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Scenes.Textures;
 using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Rendering.Whitted;
