@@ -6,9 +6,10 @@ using SpectralRenderer.Distributed;
 using SpectralRenderer.Geometry;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Output;
+using SpectralRenderer.Rendering.Whitted;
 using SpectralRenderer.Rendering;
-using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
+using SpectralRenderer.Scenes;
 using SpectralRenderer.Sensor;
 using SpectralRenderer.Spectra;
 
@@ -61,7 +62,7 @@ public static class Program
         // Our own manifests, never trusted when read back (JsonFields): render.json, lights/lights.json (against a fixed
         // two-light scene), camera.json; a sweep plan (beside a fixed base scene, every job's scene checked) and a sensor file.
         ["manifest"] = b => RenderManifest.Parse(JsonFields.Parse(Encoding.UTF8.GetString(b), "render.json", "fuzz"), "render.json"),
-        ["lights"] = b => LightTransferFiles.ParseLayout(JsonFields.Parse(Encoding.UTF8.GetString(b), "lights.json", "fuzz"), "lights.json",
+        ["lights"] = b => WhittedTransferFiles.ParseLayout(JsonFields.Parse(Encoding.UTF8.GetString(b), "lights.json", "fuzz"), "lights.json",
             LightsScene.Value),
         ["camera"] = b => CameraCapture.Read(JsonFields.Parse(Encoding.UTF8.GetString(b), "camera.json", "fuzz"), "camera.json"),
         ["sweep"] = b =>

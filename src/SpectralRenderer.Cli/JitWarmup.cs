@@ -15,16 +15,24 @@ namespace SpectralRenderer.Cli;
 /// </summary>
 static class JitWarmup
 {
+    /// <summary>Rendering's namespaces: the film, then its wings (Whitted's first, the default integrator's).</summary>
+    static readonly string[] RenderingWings =
+    [
+        "SpectralRenderer.Rendering", "SpectralRenderer.Rendering.Whitted", "SpectralRenderer.Rendering.Terms",
+        "SpectralRenderer.Rendering.Emitters", "SpectralRenderer.Rendering.PathTracing", "SpectralRenderer.Rendering.Illumination",
+        "SpectralRenderer.Rendering.Registry",
+    ];
+
     /// <summary>The namespaces whose hot loops a render runs, in the order it reaches them: the BVH build, the render, the
     /// writers.</summary>
     public static readonly string[] Render =
     [
-        "SpectralRenderer.Acceleration", "SpectralRenderer.Rendering", "SpectralRenderer.Scenes", "SpectralRenderer.Imaging",
+        "SpectralRenderer.Acceleration", .. RenderingWings, "SpectralRenderer.Scenes", "SpectralRenderer.Imaging",
         "SpectralRenderer.Output", "SpectralRenderer.Spectra", "SpectralRenderer.Color",
     ];
 
     /// <summary>What a relight runs: the recombination of the transfer (in Rendering), then the writers.</summary>
-    public static readonly string[] Relight = ["SpectralRenderer.Imaging", "SpectralRenderer.Output", "SpectralRenderer.Rendering"];
+    public static readonly string[] Relight = ["SpectralRenderer.Imaging", "SpectralRenderer.Output", .. RenderingWings];
 
     static int _started;
     static volatile bool _stopped;

@@ -6,8 +6,8 @@ using System.Text.Json.Nodes;
 using SpectralRenderer.Analysis;
 using SpectralRenderer.Analysis.Recovery;
 using SpectralRenderer.Diagnostics;
-using SpectralRenderer.Lighting;
 using SpectralRenderer.Output;
+using SpectralRenderer.Relighting;
 using SpectralRenderer.Sensor;
 using SpectralRenderer.Spectra;
 

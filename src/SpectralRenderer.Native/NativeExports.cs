@@ -8,10 +8,11 @@ using SpectralRenderer.Analysis.Recovery;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Distributed;
 using SpectralRenderer.Imaging;
-using SpectralRenderer.Lighting;
 using SpectralRenderer.Output;
 using SpectralRenderer.Pipeline;
+using SpectralRenderer.Relighting;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Terms;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
 using SpectralRenderer.Spectra;
@@ -307,7 +308,7 @@ sealed unsafe class NativeRender : IDisposable
 
     /// <summary>
     /// This render under changed lights, as `spectral relight` computes it from the folder's lights/: the scene rebuilt from
-    /// render.json's resolved scene and recorded overrides with the changes (<see cref="Relighting.ChangedScene"/>: the same
+    /// render.json's resolved scene and recorded overrides with the changes (<see cref="Relighter.ChangedScene"/>: the same
     /// checks and messages), the transfer recombined. Inline spectra ([[nm, value], …]) join the scene's named spectra.
     /// </summary>
     public Relight Relit(string? json, CancellationToken cancel)
@@ -322,8 +323,8 @@ sealed unsafe class NativeRender : IDisposable
         var (changes, white) = Changes(json, document);
         var overrides = RenderJob.Overrides(RenderJob.Recorded(Overrides)) with { LoadMeshes = false };
         var names = resolved.Lights.Select(l => l.Name).ToArray();
-        var src = new Relighting.Source("", manifest, new ManifestScene(document), ScenePath, overrides, names);
-        var scene = Relighting.ChangedScene(src, changes, white);
+        var src = new Relighter.Source("", manifest, new ManifestScene(document), ScenePath, overrides, names);
+        var scene = Relighter.ChangedScene(src, changes, white);
         scene.Output.Products &= ~OutputProducts.Noise;   // as `spectral relight`: measured from samples, which a relit render has none of
         // Whichever integrator rendered it: its transfer recombined, as `spectral relight` does from lights/.
         var transfer = Transfer(cancel);
@@ -474,23 +475,23 @@ sealed unsafe class NativeRender : IDisposable
     }
 
     /// <summary>
-    /// A path render's film on its fine grid for the camera's exact signals (ExactChannelSignals.Path.cs): from its per-light
+    /// A path render's film on its sub-band grid for the camera's exact signals (ExactChannelSignals.Path.cs): from its per-light
     /// transfer when it holds one (a relight's, or the lights output), else its camera samples traced again (the same paths);
     /// null for a render of another integrator, an adaptive or cropped one.
     /// </summary>
-    public (PathFineFilm Film, string From)? PathFilm(int threads)
+    public (SubBandFilm Film, string From)? PathFilm(int threads)
     {
         var job = Job!;
-        if (job.Transfer is IFineFilmRoute t)
-            return (t.FineFilm(job.Scene), "the render's path transfer in memory (L_f = F_f + sum_k T_k,f * E_k,f, no rays traced)");
-        if (job.Integrator is not IFineFilmIntegrator path || job.Scene.TargetError > 0
+        if (job.Transfer is ISubBandFilmRoute t)
+            return (t.Film(job.Scene), "the render's path transfer in memory (L_f = F_f + sum_k T_k,f * E_k,f, no rays traced)");
+        if (job.Integrator is not ISubBandFilmIntegrator path || job.Scene.TargetError > 0
             || Result.Crop != PixelRect.Whole(job.Scene.Camera.Width, job.Scene.Camera.Height)) return null;
-        return (path.TraceFineFilm(job.Scene, threads < 0 ? 0 : threads),
+        return (path.TraceSubBandFilm(job.Scene, threads < 0 ? 0 : threads),
             "the render's camera samples traced again in memory (the same paths)");
     }
 
     /// <summary>Whether the render held is a path render (its integrator, or the path transfer it was relit from).</summary>
-    public bool IsPath => Job is { } job && (job.Integrator is IFineFilmIntegrator || job.Transfer is IFineFilmRoute);
+    public bool IsPath => Job is { } job && (job.Integrator is ISubBandFilmIntegrator || job.Transfer is ISubBandFilmRoute);
 
     /// <summary>The error as the CLI ends `spectral render` with it (CommandLine.Describe: code and one line).</summary>
     public void Fail(Exception e, string prefix = "spectral render: ")

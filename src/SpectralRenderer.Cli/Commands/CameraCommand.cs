@@ -7,8 +7,8 @@ using SpectralRenderer.Analysis.Recovery;
 using SpectralRenderer.Color;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
-using SpectralRenderer.Lighting;
 using SpectralRenderer.Output;
+using SpectralRenderer.Relighting;
 using SpectralRenderer.Sensor;
 
 namespace SpectralRenderer.Cli.Commands;

@@ -3,6 +3,7 @@ using System.Numerics;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Output;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Illumination;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
 

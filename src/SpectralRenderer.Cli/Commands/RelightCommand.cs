@@ -2,7 +2,7 @@ using System.Globalization;
 using System.Text;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
-using SpectralRenderer.Lighting;
+using SpectralRenderer.Relighting;
 
 namespace SpectralRenderer.Cli.Commands;
 
@@ -42,7 +42,7 @@ public static class RelightCommand
             throw new InputException("", a.Positionals.Count == 0 ? "no render folder given" : $"unexpected argument '{a.Positionals[1]}'",
                 "usage: spectral relight OUTDIR --light NAME=SPECTRUM");
         var dir = a.Positionals[0];
-        var src = Relighting.Open(dir);
+        var src = Relighter.Open(dir);
         bool quiet = a.Flag("--quiet");
         var commandLine = "spectral relight " + string.Join(' ', argv);
         var clock = System.Diagnostics.Stopwatch.StartNew();
@@ -53,13 +53,13 @@ public static class RelightCommand
                 throw new InputException("--sweep",
                     "give the lights either in the sweep file or with --light/--intensity/--white, not both",
                     "see 'spectral relight --help'");
-            var rows = Relighting.ReadSweep(sweep, src.LightNames);
+            var rows = Relighter.ReadSweep(sweep, src.LightNames);
             // Every row checked (its spectra resolved, its scene loaded) before the first is written: a bad cell is named
             // by the sweep file's row and column, and no earlier row's folder is left behind for it.
             foreach (var row in rows)
             {
                 Signals.Token.ThrowIfCancellationRequested();
-                Relighting.ChangedScene(src, row.Changes, row.White, row.WhiteWhere);
+                Relighter.ChangedScene(src, row.Changes, row.White, row.WhiteWhere);
             }
             var outRoot = a.Value("--out") ?? dir.TrimEnd('/', '\\') + "-sweep";
             RenderCommand.PrepareOutputFolder(outRoot);
@@ -68,7 +68,7 @@ public static class RelightCommand
             {
                 var folder = (r + 1).ToString("0000", CultureInfo.InvariantCulture);
                 var (changes, white) = (rows[r].Changes, rows[r].White);
-                Relighting.Write(src, changes, white, Path.Combine(outRoot, folder), commandLine, metrics: a.Flag("--metrics"));
+                Relighter.Write(src, changes, white, Path.Combine(outRoot, folder), commandLine, metrics: a.Flag("--metrics"));
                 index.Append(CultureInfo.InvariantCulture, $"{r + 1},{folder},{white},\"{string.Join("; ", changes.Select(Describe))}\"\n");
             }
             AtomicFile.WriteAllText(Path.Combine(outRoot, "index.csv"), index.ToString());
@@ -100,7 +100,7 @@ public static class RelightCommand
         var outDir = a.Value("--out") ?? dir.TrimEnd('/', '\\') + "-relit";
         RenderCommand.PrepareOutputFolder(outDir);
         var (scene, files, compute) =
-            Relighting.Write(src, byName.Values.ToList(), whiteArg, outDir, commandLine, metrics: a.Flag("--metrics"));
+            Relighter.Write(src, byName.Values.ToList(), whiteArg, outDir, commandLine, metrics: a.Flag("--metrics"));
         if (a.Flag("--metrics")) stdout.Write(File.ReadAllText(Path.Combine(outDir, "relight-metrics.csv")));
         if (!quiet)
             stderr.WriteLine(string.Create(CultureInfo.InvariantCulture,

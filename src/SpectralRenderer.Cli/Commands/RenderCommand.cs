@@ -5,6 +5,7 @@ using SpectralRenderer.Distributed;
 using SpectralRenderer.Output;
 using SpectralRenderer.Pipeline;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
 

@@ -2,7 +2,7 @@ using System.Globalization;
 using System.Net;
 using System.Net.Sockets;
 using SpectralRenderer.Diagnostics;
-using SpectralRenderer.Lighting;
+using SpectralRenderer.Relighting;
 
 namespace SpectralRenderer.Cli.Commands;
 

@@ -4,8 +4,8 @@ using System.Text;
 using SpectralRenderer.Analysis;
 using SpectralRenderer.Color;
 using SpectralRenderer.Imaging;
-using SpectralRenderer.Lighting;
 using SpectralRenderer.Output;
+using SpectralRenderer.Relighting;
 using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Cli.Paper;

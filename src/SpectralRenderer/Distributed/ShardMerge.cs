@@ -9,6 +9,7 @@ using SpectralRenderer.Imaging;
 using SpectralRenderer.Output;
 using SpectralRenderer.Output.Products;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Registry;
 
 namespace SpectralRenderer.Distributed;
 
@@ -310,8 +311,8 @@ public static class ShardMerge
     static int[] TransferRows(Part p, string file)
     {
         var format = TransferFiles.FormatOf(p.Dir);
-        string name = file[(TransferFiles.Folder.Length + 1)..];
-        return (format is { Shards: true } ? format.RowShape(name, Path.Combine(p.Dir, TransferFiles.Folder)) : null)
+        string name = file[(TransferFormat.Folder.Length + 1)..];
+        return (format is { Shards: true } ? format.RowShape(name, Path.Combine(p.Dir, TransferFormat.Folder)) : null)
             ?? throw new InputException(Path.Combine(p.Dir, "render.json"), $"lists '{file}', a file merge does not know",
                 "merge shards written by the same version");
     }

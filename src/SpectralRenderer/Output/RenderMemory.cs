@@ -29,8 +29,8 @@ public static class RenderMemory
         int triangles = scene.TriangleCount;
         if (triangles > 0) parts.Add(("BVH", 160L * triangles));
         // The integrator's tables shared by the threads (textures: the Whitted route's tables per texel, mip level and light;
-        // the path tracer's texel spectra on its fine grid), as its registration says.
-        var entry = Rendering.Integrators.Entry(integrator ?? scene.Integrator?.Name ?? Rendering.Integrators.Default);
+        // the path tracer's texel spectra on its sub-band grid), as its registration says.
+        var entry = Rendering.Registry.Integrators.Entry(integrator ?? scene.Integrator?.Name ?? Rendering.Registry.Integrators.Default);
         if (entry?.Tables is { } tables) parts.AddRange(tables(scene));
         // The inputs the products share, once; then what each product's writers hold.
         var products = OutputProductTable.For(p, named);

@@ -3,6 +3,7 @@ using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Output;
 using SpectralRenderer.Output.Products;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
 

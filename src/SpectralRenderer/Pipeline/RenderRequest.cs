@@ -49,7 +49,8 @@ public sealed record RenderRequest
     public Scene? Scene { get; init; }
     /// <summary>Size, bands, spp, colour, formats, model folders: the command line's changes to the scene file.</summary>
     public SceneOverrides Overrides { get; init; } = new();
-    /// <summary>The integrator's registered name (<see cref="Integrators"/>); null: the scene's "integrator", else whitted.</summary>
+    /// <summary>The integrator's registered name (<see cref="Rendering.Registry.Integrators"/>); null: the scene's "integrator", else
+    /// whitted.</summary>
     public string? Integrator { get; init; }
     /// <summary>A crop or shard; null renders the whole film.</summary>
     public RenderRegion? Region { get; init; }

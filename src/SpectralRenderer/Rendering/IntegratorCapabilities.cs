@@ -1,3 +1,4 @@
+using System.Text.Json.Nodes;
 using SpectralRenderer.Scenes;
 
 namespace SpectralRenderer.Rendering;
@@ -6,7 +7,7 @@ namespace SpectralRenderer.Rendering;
 // relighting, the camera's exact route, the memory check, the shard merge and the C ABI hold "the integrator's
 // transfer" or "an integrator that gathers" and do not know its class. A new integrator implements the ones it can
 // (ARCHITECTURE.md, "Extending: an integrator"); what is known before its geometry is built rides on its registration
-// (IntegratorEntry in Integrators.cs: its settings keys, its transfer's format, its tables' memory).
+// (IntegratorEntry in Registry/Integrators.cs: its settings keys, its transfer's format, its tables' memory).
 
 /// <summary>
 /// An integrator that records a per-light transfer (the lights product; relight; the C ABI's relight and exact route):
@@ -62,19 +63,46 @@ public enum CameraRoute
 {
     /// <summary>None: the camera integrates the band cube.</summary>
     None,
-    /// <summary>Eq. 2's terms per light (<see cref="ITermRoute"/>): each term's spectrum integrated at full resolution.</summary>
+    /// <summary>Eq. 2's terms per light (the term route, <c>ITermRoute</c>): each term's spectrum integrated at full resolution.</summary>
     Terms,
-    /// <summary>The film on a fine sub-band grid (<see cref="IFineFilmRoute"/>, <see cref="IFineFilmIntegrator"/>).</summary>
-    FineFilm,
+    /// <summary>The film on a sub-band grid (<see cref="ISubBandFilmRoute"/>, <see cref="ISubBandFilmIntegrator"/>).</summary>
+    SubBandFilm,
 }
 
 /// <summary>
 /// What an integrator's per-light transfer is before one is traced or read: the kind lights.json names, the memory a
 /// render's transfer takes, whether shards may write it, how it is read back, how its shards' arrays merge, and the camera
-/// route it gives. One instance per integrator, on its registration (<see cref="IntegratorEntry.Transfer"/>).
+/// route it gives. One instance per integrator, on its registration (<c>IntegratorEntry.Transfer</c>).
 /// </summary>
 public abstract class TransferFormat
 {
+    /// <summary>The folder of a render that holds its transfer, and the file there that says which format it is (every format's).
+    /// </summary>
+    public const string Folder = "lights", Description = "lights.json";
+
+    /// <summary>lights.json's entry of scene light k (every format's): its index, name, kind, spectrum name and band values
+    /// I_k,b (spectrum × intensity, unpadded).</summary>
+    internal static JsonObject LightEntry(Scene scene, int k)
+    {
+        var l = scene.Lights[k];
+        return new JsonObject
+        {
+            ["index"] = k,
+            ["name"] = l.Name,
+            ["kind"] = l.Type,
+            ["spectrum"] = l.Spectrum?.Name,
+            ["band_values"] = Values(l.Intensity.AsSpan(0, scene.Bands)),
+        };
+    }
+
+    /// <summary>Float values as a JSON array of numbers (lights.json's band values).</summary>
+    internal static JsonArray Values(ReadOnlySpan<float> v)
+    {
+        var a = new JsonArray();
+        foreach (float x in v) a.Add((JsonNode)JsonValue.Create((double)x));
+        return a;
+    }
+
     /// <summary>lights.json's "kind", or null for the format whose lights.json names none (the first one, Whitted's).</summary>
     public abstract string? Kind { get; }
 
@@ -106,45 +134,30 @@ public abstract class TransferFormat
     public virtual int[]? RowShape(string file, string lightsDir) => null;
 }
 
-/// <summary>
-/// The exact camera route of eq. 2's terms: a pixel's radiance is Σ_c F_c · P_c over components c (a light's term through
-/// a chain of mirrors and glass, <see cref="TransferComponent"/>), each P_c a spectrum the camera integrates at its full
-/// resolution. Implemented by the Whitted transfer.
-/// </summary>
-public interface ITermRoute : ILightTransfer
+/// <summary>The exact camera route of a film on a sub-band grid, recombined from a transfer without rays.</summary>
+public interface ISubBandFilmRoute : ILightTransfer
 {
-    int Width { get; }
-    int Height { get; }
-    int Bands { get; }
-    TransferComponent[] Components { get; }
-    /// <summary>Per component, its pixels (y·W + x, ascending) and the factors there.</summary>
-    int[][] Pixels { get; }
-    float[][] Factors { get; }
-    /// <summary>Per component, a textured one's texel samples per entry (null for components of spectra).</summary>
-    float[]?[]? Texels { get; }
-}
-
-/// <summary>The exact camera route of a film on a fine sub-band grid, recombined from a transfer without rays.</summary>
-public interface IFineFilmRoute : ILightTransfer
-{
-    /// <summary>The fine film of <paramref name="scene"/> (the render's lights).</summary>
-    PathFineFilm FineFilm(Scene scene);
+    /// <summary>The sub-band film of <paramref name="scene"/> (the render's lights).</summary>
+    SubBandFilm Film(Scene scene);
 
     /// <summary>How the film is formed from the transfer, for the camera's route text.</summary>
-    string FineFilmMethod { get; }
+    string FilmMethod { get; }
 }
 
-/// <summary>An integrator whose radiance lives on a fine sub-band grid: its film traced again for the camera's exact route.</summary>
-public interface IFineFilmIntegrator : IIntegrator
+/// <summary>An integrator whose radiance lives on a sub-band grid: its film traced again for the camera's exact route.</summary>
+public interface ISubBandFilmIntegrator : IIntegrator
 {
-    /// <summary>The render's camera samples traced again (the same paths) onto the fine grid.</summary>
-    PathFineFilm TraceFineFilm(Scene scene, int threads, CancellationToken cancel = default);
+    /// <summary>The sub-bands of the grid its radiance lives on (the film's size is 4 bytes per pixel and sub-band).</summary>
+    int FilmSubBands { get; }
+
+    /// <summary>The render's camera samples traced again (the same paths) onto the sub-band grid.</summary>
+    SubBandFilm TraceSubBandFilm(Scene scene, int threads, CancellationToken cancel = default);
 }
 
 /// <summary>
 /// An integrator whose <see cref="IIntegrator.Radiance"/> along any ray is all the light arriving back along it (emitters,
 /// sky, interreflection), so a cosine-weighted gather of it from a surface point gives the illuminance the lights' shadow
-/// rays miss (<see cref="Illuminance.Maps"/>, <see cref="Illuminance.OnGrid"/>: photometry and calculation grids).
+/// rays miss (<c>Illuminance.Maps</c>, <c>Illuminance.OnGrid</c>: photometry and calculation grids).
 /// </summary>
 public interface IGatherIntegrator : IIntegrator
 {

@@ -64,13 +64,6 @@ public sealed partial class Renderer
     /// </summary>
     public static void ReturnLoadGarbage() => GC.Collect(2, GCCollectionMode.Aggressive, blocking: true, compacting: true);
 
-    public static RenderResult Render(Scene scene, int threads = 0, Action<RenderProgress>? progress = null,
-        CancellationToken cancel = default, PixelRect? crop = null)
-    {
-        var geometry = new SceneGeometry(scene);
-        return Render(scene, Integrators.Create(scene, geometry), threads, progress, cancel, crop);
-    }
-
     /// <param name="crop">Renders only these pixels of the film (--crop, --shard): the tiles are the whole film's
     /// 32 × 32 grid clipped to the crop, and each pixel is computed from its own film coordinates, so a crop holds the
     /// same values as the same pixels of a whole render.</param>

@@ -1,6 +1,7 @@
 using System.Numerics;
 using System.Runtime.CompilerServices;
 using SpectralRenderer.Scenes.Textures;
+using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Rendering;
 
@@ -22,8 +23,8 @@ public struct TexelTaps
 /// image, each further level both sides halved (rounded down, at least 1) until 1 × 1, each coarse texel the
 /// area-weighted mean of the finer texels it covers (a texel's share by overlap, so every level keeps the mean). A
 /// lookup blends the two levels around the footprint's size, bilinear in each (trilinear). What a texel's floats mean
-/// is the subclass's: eq. 2's per-light tables (<see cref="TexturedTerms"/>), or a spectrum on the path tracer's fine
-/// grid (<see cref="FineTexture"/>). The tables are built once and shared by every thread.
+/// is the subclass's: eq. 2's per-light tables (<c>TexturedTerms</c>), or a spectrum on the path tracer's sub-band
+/// grid (<see cref="SubBandTexture"/>). The tables are built once and shared by every thread.
 /// Storage is tiled: each level is cut into square tiles of <see cref="TileSide"/> texels (the last column and row of
 /// tiles clipped to the level, so no texel is padding), a tile's texels row by row and contiguous (a bilinear lookup's
 /// four texels mostly share one tile), whole tiles packed into chunks (arrays) of at most <see cref="DefaultChunkFloats"/>
@@ -249,5 +250,18 @@ public abstract class TexelLevels
             }
         }
         return result;
+    }
+
+    /// <summary>The tent functions of the texture's samples (1 at sample j, 0 at the others, the texture's extrapolation).</summary>
+    internal static TabulatedSpectrum[] Hats(SpectralTexture tex)
+    {
+        var hats = new TabulatedSpectrum[tex.Samples];
+        for (int j = 0; j < hats.Length; j++)
+        {
+            var v = new double[tex.Samples];
+            v[j] = 1;
+            hats[j] = new TabulatedSpectrum($"{tex.Source} sample {j}", tex.Wavelengths, v, tex.Extrapolation);
+        }
+        return hats;
     }
 }

@@ -86,7 +86,7 @@ public abstract class Bsdf
 
     /// <summary>
     /// The same BSDF with each of its spectra carried to another spectral grid by <paramref name="resample"/> (a scene
-    /// spectrum's padded band values in, its values on that grid out): the path tracer's fine grid. Null when the model
+    /// spectrum's padded band values in, its values on that grid out): the path tracer's sub-band grid. Null when the model
     /// cannot be carried (the path tracer then refuses the material).
     /// </summary>
     public virtual Bsdf? Resampled(Func<float[], float[]> resample) => null;
@@ -143,7 +143,7 @@ public sealed class LambertianBsdf(float[] reflectance) : Bsdf
         var rho = Reflectance.AsSpan(0, f.Length);
         int i = 0;
         if (Vector.IsHardwareAccelerated)
-        {   // the same product per band, a SIMD register at a time (the path tracer's fine spectra are padded to whole registers)
+        {   // the same product per band, a SIMD register at a time (the path tracer's sub-band spectra are padded to whole registers)
             var fv = MemoryMarshal.Cast<float, Vector<float>>(f);
             var rv = MemoryMarshal.Cast<float, Vector<float>>(rho);
             var sv = new Vector<float>(scale);

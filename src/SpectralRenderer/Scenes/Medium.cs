@@ -7,7 +7,7 @@ namespace SpectralRenderer.Scenes;
 /// objects (the scene's <c>"medium"</c>) does to light along a ray. The walk asks it for the transmittance of a segment,
 /// T(t) = exp(−∫₀ᵗ σ_t(x + sω) ds) per band (for a homogeneous absorbing medium Beer–Lambert's exp(−σ_a·t)), and multiplies
 /// it into a path's throughput between two vertices and into a light sample's contribution along its shadow ray
-/// (Rendering/PathIntegrator.Media.cs). A kind of medium is one class plus one registration in
+/// (the path walk's media slot, Rendering/PathTracing). A kind of medium is one class plus one registration in
 /// Scenes/Loading/MediumTypes.cs (ARCHITECTURE.md, "Extending"); the engine registers none yet (issue 41 adds the
 /// homogeneous and grid media, and scattering: free-flight sampling against a majorant and a phase function, here).
 /// </summary>
@@ -21,7 +21,7 @@ public abstract class Medium
     public abstract void Attenuate(Vector3 origin, Vector3 direction, float distance, Span<float> values);
 
     /// <summary>
-    /// The medium on another band grid (the path tracer's fine grid, <c>FineGrid.Resample</c>): each of its band spectra
+    /// The medium on another band grid (the path tracer's sub-band grid, <c>SubBandGrid.Resample</c>): each of its band spectra
     /// through <paramref name="resample"/>, as <see cref="Bsdf.Resampled"/>.
     /// </summary>
     public abstract Medium Resampled(Func<float[], float[]> resample);

@@ -231,7 +231,7 @@ public class RecoveryTests
     public void ReportComparison_OnTheExactRoute_AgreesWithTheCommand()
     {
         var rows = SpectralRenderer.Analysis.Recovery.RecoveryComparison.Rows(Chart.Value,
-            SpectralRenderer.Lighting.ExactChannelSignals.Input);
+            SpectralRenderer.Relighting.ExactChannelSignals.Input);
         Assert.Equal(3 * 2 * 5, rows.Count);
         var args = new[] { "--method", "wiener", "--range", "400:700" };
         double exact = RecoverOn("exact", "mosaic-16", "off", args)[("wiener", "colorchecker")].Rmse;

@@ -66,6 +66,54 @@ namespace SpectralRenderer.Tests.Architecture.Probe.Layers.Rendering
     static class BackEdge { public const int X = Writer.Value; }   // through a using alias
 }
 
+// Rendering's wings: Whitted and the path tracer never use each other; the terms, the emitters and the film use neither.
+namespace SpectralRenderer.Tests.Architecture.Probe.Layers.Rendering.Terms
+{
+    public static class Mark { public const int Value = 18; }
+
+    static class BackEdge { public const int X = Whitted.Mark.Value; }   // a sibling wing, named from the enclosing namespace
+}
+
+namespace SpectralRenderer.Tests.Architecture.Probe.Layers.Rendering.Emitters
+{
+    public static class Mark { public const int Value = 19; }
+
+    static class BackEdge { public const string X = nameof(PathTracing.Mark); }
+}
+
+namespace SpectralRenderer.Tests.Architecture.Probe.Layers.Rendering.Whitted
+{
+    public static class Mark { public const int Value = 20; }
+
+    static class BackEdge
+    {
+        public const int X = global::SpectralRenderer.Tests.Architecture.Probe.Layers.Rendering.PathTracing.Mark.Value;
+    }
+}
+
+namespace SpectralRenderer.Tests.Architecture.Probe.Layers.Rendering.PathTracing
+{
+    using static SpectralRenderer.Tests.Architecture.Probe.Layers.Rendering.Whitted.Mark;
+
+    public static class Mark { public const int Value = 21; }
+
+    static class BackEdge { public const int X = Value; }   // through the using static
+}
+
+namespace SpectralRenderer.Tests.Architecture.Probe.Layers.Rendering.Illumination
+{
+    public static class Mark { public const int Value = 22; }
+
+    static class BackEdge { public const int X = Rendering.Registry.Mark.Value; }   // photometry gathers from the integrator it is given
+}
+
+namespace SpectralRenderer.Tests.Architecture.Probe.Layers.Rendering.Registry
+{
+    public static class Mark { public const int Value = 23; }
+
+    static class BackEdge { public const int X = Output.Mark.Value; }
+}
+
 namespace SpectralRenderer.Tests.Architecture.Probe.Layers.Imaging
 {
     public static class Mark { public const int Value = 9; }
@@ -104,10 +152,10 @@ namespace SpectralRenderer.Tests.Architecture.Probe.Layers.Analysis
 {
     public static class Mark { public const int Value = 13; public const string Name = "analysis"; }
 
-    static class BackEdge { public static readonly int X = Lighting.Mark.Value; }
+    static class BackEdge { public static readonly int X = Relighting.Mark.Value; }
 }
 
-namespace SpectralRenderer.Tests.Architecture.Probe.Layers.Lighting
+namespace SpectralRenderer.Tests.Architecture.Probe.Layers.Relighting
 {
     public static class Mark { public const int Value = 14; }
 

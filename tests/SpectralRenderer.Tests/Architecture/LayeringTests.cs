@@ -24,18 +24,34 @@ public class LayeringTests
         [R + "Acceleration"] = ["Geometry", "Diagnostics"],
         [R + "Scenes"] = ["Spectra", "Color", "Geometry", "Diagnostics"],
         [R + "Scenes.Loading"] = ["Scenes", "Imaging", "Spectra", "Color", "Geometry", "Diagnostics"],
+        // Rendering in wings: the film (the renderer, samplers, scene geometry, the integrator interface and its capabilities)
+        // and around it eq. 2's terms, the emitters, Whitted, the path tracer, photometry and the registry of integrators.
+        // Whitted and the path tracer never use each other; the film, the terms and the emitters use neither.
         [R + "Rendering"] = ["Scenes", "Acceleration", "Imaging", "Geometry", "Spectra", "Color", "Diagnostics"],
+        [R + "Rendering.Terms"] = ["Rendering", "Scenes", "Geometry", "Spectra", "Color", "Diagnostics"],
+        [R + "Rendering.Emitters"] = ["Rendering", "Scenes", "Geometry", "Spectra", "Color", "Diagnostics"],
+        [R + "Rendering.Whitted"] = ["Rendering.Terms", "Rendering", "Scenes", "Acceleration", "Imaging", "Geometry", "Spectra", "Color",
+            "Diagnostics"],
+        [R + "Rendering.PathTracing"] = ["Rendering.Emitters", "Rendering", "Scenes", "Acceleration", "Imaging", "Geometry", "Spectra",
+            "Color", "Diagnostics"],
+        [R + "Rendering.Illumination"] = ["Rendering.Emitters", "Rendering", "Scenes", "Acceleration", "Geometry", "Spectra", "Color",
+            "Diagnostics"],
+        [R + "Rendering.Registry"] = ["Rendering.Whitted", "Rendering.PathTracing", "Rendering.Terms", "Rendering", "Scenes", "Spectra",
+            "Diagnostics"],
         [R + "Imaging"] = ["Spectra", "Color", "Diagnostics"],
-        [R + "Output"] = ["Rendering", "Scenes", "Geometry", "Imaging", "Spectra", "Color", "Diagnostics"],
+        [R + "Output"] = ["Rendering.Registry", "Rendering.Illumination", "Rendering", "Scenes", "Geometry", "Imaging", "Spectra", "Color",
+            "Diagnostics"],
         [R + "Sensor"] = ["Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Analysis"] = ["Output", "Sensor", "Imaging", "Spectra", "Color", "Diagnostics"],
-        [R + "Pipeline"] = ["Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Geometry", "Spectra", "Color", "Diagnostics"],
-        [R + "Lighting"] = ["Analysis", "Sensor", "Pipeline", "Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra",
+        [R + "Pipeline"] = ["Output", "Rendering.Registry", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Geometry", "Spectra",
             "Color", "Diagnostics"],
-        [R + "Distributed"] = ["Pipeline", "Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra", "Color", "Diagnostics"],
+        [R + "Relighting"] = ["Analysis", "Sensor", "Pipeline", "Output", "Rendering.Registry", "Rendering.Terms", "Rendering.Illumination",
+            "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra", "Color", "Diagnostics"],
+        [R + "Distributed"] = ["Pipeline", "Output", "Rendering.Registry", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra",
+            "Color", "Diagnostics"],
         [R + "Cli"] = ["*"],
-        [R + "Native"] = ["Distributed", "Lighting", "Analysis", "Sensor", "Pipeline", "Output", "Rendering", "Scenes.Loading", "Scenes",
-            "Imaging", "Spectra", "Color", "Diagnostics"],
+        [R + "Native"] = ["Distributed", "Relighting", "Analysis", "Sensor", "Pipeline", "Output", "Rendering.Registry", "Rendering.Terms",
+            "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra", "Color", "Diagnostics"],
     };
 
     /// <summary>The layer a namespace belongs to (its longest listed prefix), or null.</summary>
@@ -189,7 +205,10 @@ public class LayeringTests
         ("Diagnostics", "Spectra"), ("Spectra", "Color"), ("Color", "Geometry"), ("Geometry", "Acceleration"),
         ("Acceleration", "Scenes"), ("Scenes", "Scenes.Loading"), ("Scenes.Loading", "Rendering"), ("Rendering", "Output"),
         ("Imaging", "Sensor"), ("Sensor", "Output"), ("Output", "Pipeline"), ("Pipeline", "Analysis"),
-        ("Analysis", "Lighting"), ("Lighting", "Distributed"), ("Distributed", "Cli"), ("Native", "Cli"),
+        ("Analysis", "Relighting"), ("Relighting", "Distributed"), ("Distributed", "Cli"), ("Native", "Cli"),
+        ("Rendering.Terms", "Rendering.Whitted"), ("Rendering.Emitters", "Rendering.PathTracing"),
+        ("Rendering.Whitted", "Rendering.PathTracing"), ("Rendering.PathTracing", "Rendering.Whitted"),
+        ("Rendering.Illumination", "Rendering.Registry"), ("Rendering.Registry", "Output"),
     ];
 
     [Fact]
@@ -224,13 +243,17 @@ public class LayeringTests
         var graph = Graph();
         Assert.Contains(R + "Scenes", graph[R + "Rendering"]);       // the integrator reads the scene
         Assert.Contains(R + "Acceleration", graph[R + "Rendering"]); // through the BVH
+        Assert.Contains(R + "Rendering", graph[R + "Rendering.Whitted"]);              // the wings stand on the film
+        Assert.Contains(R + "Rendering.Terms", graph[R + "Rendering.Whitted"]);        // Whitted sums eq. 2's term tables
+        Assert.Contains(R + "Rendering.Emitters", graph[R + "Rendering.PathTracing"]); // next-event estimation draws from the emitters
+        Assert.Contains(R + "Rendering.PathTracing", graph[R + "Rendering.Registry"]); // the registry builds the integrators
         Assert.Contains(R + "Imaging", graph[R + "Output"]);         // the writers use the codecs
         Assert.Contains(R + "Output", graph[R + "Analysis"]);        // render folders are read through the manifest
         Assert.Contains(R + "Spectra", graph[R + "Color"]);
         Assert.Contains(R + "Cli.Paper", graph[R + "Cli.Commands"]);
         var source = SourceGraph();   // and the source reader sees the layers the old pattern left out
         Assert.Contains(source[R + "Analysis.Recovery"], to => to.StartsWith(R + "Sensor", StringComparison.Ordinal));
-        Assert.Contains(source[R + "Cli.Commands"], to => to.StartsWith(R + "Lighting", StringComparison.Ordinal));
+        Assert.Contains(source[R + "Cli.Commands"], to => to.StartsWith(R + "Relighting", StringComparison.Ordinal));
         Assert.Contains(source[R + "Cli.Commands"], to => to.StartsWith(R + "Distributed", StringComparison.Ordinal));
     }
 

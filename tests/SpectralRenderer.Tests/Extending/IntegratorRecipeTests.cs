@@ -1,6 +1,8 @@
 using SpectralRenderer.Acceleration;
 using SpectralRenderer.Output.Products;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Illumination;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Tests.Cli;
 using SpectralRenderer.Tests.Rendering;

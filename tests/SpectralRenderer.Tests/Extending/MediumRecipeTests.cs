@@ -2,6 +2,7 @@ using System.Numerics;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Geometry;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
 using SpectralRenderer.Tests.Geometry;

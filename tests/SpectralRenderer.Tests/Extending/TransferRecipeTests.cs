@@ -1,6 +1,7 @@
 using System.Text.Json.Nodes;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Tests.Cli;
 using SpectralRenderer.Tests.Rendering;
@@ -80,14 +81,14 @@ public class TransferRecipeTests
 
         public void Write(Scene scene, string outDir, Action<string> done)
         {
-            var dir = Path.Combine(outDir, TransferFiles.Folder);
+            var dir = Path.Combine(outDir, TransferFormat.Folder);
             Directory.CreateDirectory(dir);
             NpyWriter.Write(Path.Combine(dir, "albedo.npy"), albedo, [height, width, bands]);
             NpyWriter.Write(Path.Combine(dir, "ids.npy"), [.. ids.Select(i => (float)i)], [height, width]);
-            File.WriteAllText(Path.Combine(dir, TransferFiles.Description), new JsonObject { ["kind"] = Name }.ToJsonString());
-            done($"{TransferFiles.Folder}/albedo.npy");
-            done($"{TransferFiles.Folder}/ids.npy");
-            done($"{TransferFiles.Folder}/{TransferFiles.Description}");
+            File.WriteAllText(Path.Combine(dir, TransferFormat.Description), new JsonObject { ["kind"] = Name }.ToJsonString());
+            done($"{TransferFormat.Folder}/albedo.npy");
+            done($"{TransferFormat.Folder}/ids.npy");
+            done($"{TransferFormat.Folder}/{TransferFormat.Description}");
         }
     }
 
@@ -104,7 +105,7 @@ public class TransferRecipeTests
         {
             (int[] Shape, float[] Data) Load(string file)
             {
-                using var s = File.OpenRead(Path.Combine(outDir, TransferFiles.Folder, file));
+                using var s = File.OpenRead(Path.Combine(outDir, TransferFormat.Folder, file));
                 return NpyReader.Read(s);
             }
             var (shape, albedo) = Load("albedo.npy");
@@ -150,7 +151,7 @@ public class TransferRecipeTests
         var (code, _, err) = CliRunner.Run("render", Path.Combine(dir, "d65.json"), "-o", Path.Combine(dir, "r"), "--quiet",
             "--formats", "npy,lights", "--integrator", Name);
         Assert.True(code == 0, err);
-        Assert.True(File.Exists(Path.Combine(dir, "r", TransferFiles.Folder, "albedo.npy")));   // written by its transfer
+        Assert.True(File.Exists(Path.Combine(dir, "r", TransferFormat.Folder, "albedo.npy")));   // written by its transfer
 
         (code, _, err) = CliRunner.Run("relight", Path.Combine(dir, "r"), "--light", "key=A", "-o", Path.Combine(dir, "relit"), "--quiet");
         Assert.True(code == 0, err);

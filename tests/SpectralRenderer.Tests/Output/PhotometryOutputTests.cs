@@ -4,6 +4,7 @@ using System.Text;
 using System.Text.RegularExpressions;
 using System.Xml.Linq;
 using SpectralRenderer.Imaging;
+using SpectralRenderer.Rendering.Illumination;
 using SpectralRenderer.Tests.Cli;
 using SpectralRenderer.Tests.Imaging;
 using Xunit.Abstractions;

@@ -59,7 +59,7 @@ public class PathDownstreamTests
         Assert.True(Math.Abs(white * Math.PI - 1) <= 2e-3, $"white radiance scale {white} × π = {white * Math.PI}");
         var m = Regex.Match(stdout, @"mean ΔE00 (\d+\.\d+), max (\d+\.\d+)");
         Assert.True(m.Success, stdout);
-        // The fine grid's signals against the 1 nm colours (the Whitted render of the paper's scene, band route: mean 0.13, max 0.28).
+        // The sub-band grid's signals against the 1 nm colours (the Whitted render of the paper's scene, band route: mean 0.13, max 0.28).
         Assert.True(double.Parse(m.Groups[2].Value, CultureInfo.InvariantCulture) <= 0.5, m.Value);
 
         (code, var csv, err) = CliRunner.Run("recover", cam, "--csv");

@@ -5,12 +5,12 @@ using SpectralRenderer.Geometry;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Output;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.PathTracing;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
 using SpectralRenderer.Tests.Cli;
 using SpectralRenderer.Tests.Distributed;
 using SpectralRenderer.Tests.Rendering;
-
 using static SpectralRenderer.Tests.Relight.PathRelightTests;
 
 namespace SpectralRenderer.Tests.Relight;
@@ -151,12 +151,12 @@ public class PathFluorescentRelightTests(Xunit.Abstractions.ITestOutputHelper ou
         output.WriteLine($"relight in memory vs the render: {bands:0.###e0} (bands), {colour:0.###e0} (XYZ)");
         Assert.True(bands <= 1e-5 && colour <= 1e-5);
 
-        // The camera's exact route and libspectral read the fine film from the transfer: against the film traced again (the
+        // The camera's exact route and libspectral read the sub-band film from the transfer: against the film traced again (the
         // render's samples through the film's sink), under the render's lights and under the UV-cut lamp.
         foreach (var lit in new[] { scene, Load(dir, Room(UvCut(dir), sunIntensity: 3)) })
         {
-            var fromTransfer = PathFineFilm.FromTransfer(t, lit);
-            var traced = PathFineFilm.Trace(lit, new PathIntegrator(lit, new SceneGeometry(lit)), threads: 2);
+            var fromTransfer = PathFilm.FromTransfer(t, lit);
+            var traced = PathFilm.Trace(lit, new PathIntegrator(lit, new SceneGeometry(lit)), threads: 2);
             double fine = WorstRelative(traced.Data, fromTransfer.Data);
             string lamp = ReferenceEquals(lit, scene) ? "D50" : "UV-cut";
             output.WriteLine($"fine film from the transfer vs traced (lamp {lamp}): {fine:0.###e0}");
@@ -178,8 +178,8 @@ public class PathFluorescentRelightTests(Xunit.Abstractions.ITestOutputHelper ou
             ObjectIds = t.ObjectIds,
             LitMasks = t.LitMasks,
         };
-        var with = PathFineFilm.FromTransfer(t, scene);
-        var without = PathFineFilm.FromTransfer(plain, scene);
+        var with = PathFilm.FromTransfer(t, scene);
+        var without = PathFilm.FromTransfer(plain, scene);
         int f440 = Array.FindIndex(with.Lower, l => l >= 440);
         double loss = 0;
         for (int i = 0; i < t.ObjectIds.Length; i++)

@@ -1,6 +1,7 @@
 using System.Text;
 using System.Text.Json.Nodes;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
 using SpectralRenderer.Spectra;
@@ -50,7 +51,7 @@ public class AnalyticDataTests
         var doc = JsonNode.Parse(File.ReadAllText(Path.Combine(Folder, file)))!.AsObject();
         Assert.False(string.IsNullOrWhiteSpace((string?)doc["formula"]), $"{file}: no formula");
         var scene = SceneLoader.Parse(Encoding.UTF8.GetBytes(doc["scene"]!.ToJsonString()), Path.Combine(Folder, file));
-        var result = Renderer.Render(scene);
+        var result = Integrators.Render(scene);
         int w = result.Image.Width, n = scene.Bands;
         var checks = doc["checks"]!.AsArray();
         Assert.NotEmpty(checks);

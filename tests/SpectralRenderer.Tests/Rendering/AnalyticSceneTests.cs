@@ -1,6 +1,7 @@
 using System.Numerics;
 using SpectralRenderer.Geometry;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Spectra;
 
@@ -39,7 +40,7 @@ public class AnalyticSceneTests
           "lights": [ { "type": "point", "position": [3, 4, 5], "spectrum": "D65", "intensity": 0.5, "attenuation": [1, 0.2, 0.05] } ],
           "objects": [ { "type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "orange" } ] }
         """);
-        var img = Renderer.Render(scene).Image;
+        var img = Integrators.Render(scene).Image;
         var light = Project(scene, "D65");
         var m = Project(scene, "colorchecker:7");
         var lp = new Vector3(3, 4, 5);
@@ -74,7 +75,7 @@ public class AnalyticSceneTests
           "objects": [ { "type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "floor", "name": "floor" },
                        { "type": "sphere", "center": [0, 2, 0], "radius": 1, "material": "ball", "name": "ball" } ] }
         """);
-        var result = Renderer.Render(scene);
+        var result = Integrators.Render(scene);
         var img = result.Image;
         int floor = scene.Objects.FindIndex(o => o.Name == "floor");
         int shadowed = 0, lit = 0;
@@ -116,7 +117,7 @@ public class AnalyticSceneTests
                         "spectrum": "A", "intensity": 0.05, "ambient": 0.1 } ],
           "objects": [ { "type": "plane", "material": "floor" } ] }
         """);
-        var img = Renderer.Render(scene).Image;
+        var img = Integrators.Render(scene).Image;
         var a = Project(scene, "A");
         int inside = 0, outside = 0;
         for (int y = 0; y < 64; y += 2)
@@ -151,7 +152,7 @@ public class AnalyticSceneTests
           "lights": [ { "type": "point", "position": [0, 0, {{r}}], "spectrum": "D65", "attenuation": [0.5, 0.3, 0.2] } ],
           "objects": [ { "type": "quad", "center": [0, 0, 0], "size": [100, 100], "material": "patch" } ] }
         """);
-        var img = Renderer.Render(scene).Image;
+        var img = Integrators.Render(scene).Image;
         var e = Project(scene, "D65");
         var m = Project(scene, "colorchecker:13");
         for (int b = 0; b < scene.Bands; b++)
@@ -168,7 +169,7 @@ public class AnalyticSceneTests
           "objects": [ { "type": "plane", "material": "mirror", "name": "mirror" },
                        { "type": "quad", "center": [0, 0, -10], "size": [60, 60], "material": "red", "name": "red" } ] }
         """);
-        var result = Renderer.Render(scene);
+        var result = Integrators.Render(scene);
         var red = SpectralMath.ToPadded(scene.Colorimeter.Project(ColorChecker.Patch(15)));
         var d65 = Project(scene, "D65");
         int mirror = scene.Objects.FindIndex(o => o.Name == "mirror"), patch = scene.Objects.FindIndex(o => o.Name == "red");
@@ -194,7 +195,7 @@ public class AnalyticSceneTests
           "lights": [ { "type": "directional", "direction": [-1, -1, -1], "spectrum": "led-blue" } ],
           "objects": [ { "type": "sphere", "radius": 1, "material": "gloss" } ] }
         """);
-        var img = Renderer.Render(scene).Image;
+        var img = Integrators.Render(scene).Image;
         var blue = Project(scene, "led-blue");
         int peakBand = Array.IndexOf(blue, blue.Max());
         int bx = 0, by = 0;
@@ -223,7 +224,7 @@ public class AnalyticSceneTests
                        { "type": "quad", "center": [0.9, 0, -4], "size": [0.1, 40], "material": "strip", "name": "strip" } ],
           "max_depth": 4 }
         """);
-        var result = Renderer.Render(scene);
+        var result = Integrators.Render(scene);
         int glass = scene.Objects.FindIndex(o => o.Name == "glass");
         int row = 80, w = 160;
         int Peak(int band)

@@ -2,6 +2,7 @@ using SpectralRenderer.Color;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Output;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Spectra;
 using SpectralRenderer.Tests.Imaging;
 
@@ -93,7 +94,7 @@ public class BandPlanesTests
           "objects": [ { "type": "sphere", "center": [0, 1, 0], "radius": 1, "material": "a" },
                        { "type": "box", "center": [-1.5, 0.5, 0], "size": [1, 1, 1], "material": "b" } ] }
         """);
-        var result = Renderer.Render(scene, 2);
+        var result = Integrators.Render(scene, 2);
         // The definition, pixel by pixel: m_diff of the material the centre ray hit, zero for the background.
         var truth = new SpectralImage(result.Image.Width, result.Image.Height, result.Image.Grid);
         for (int i = 0; i < result.ObjectIds.Length; i++)

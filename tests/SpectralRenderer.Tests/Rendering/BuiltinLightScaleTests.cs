@@ -116,7 +116,7 @@ public class BuiltinLightScaleTests(Xunit.Abstractions.ITestOutputHelper output)
             scene["camera"]!["spp"] = 1;
             var s = SceneLoader.Parse(System.Text.Encoding.UTF8.GetBytes(scene.ToJsonString()), Repo.PathOf("sweeps", "job.json"),
                 new SceneOverrides { ModelDirectories = [Path.GetDirectoryName(bunny)!] });
-            var r = SpectralRenderer.Rendering.Renderer.Render(s);
+            var r = SpectralRenderer.Rendering.Registry.Integrators.Render(s);
             int floor = s.Objects.FindIndex(o => o.Name == "floor");   // ids: object index, −1 background
             double lit = 0, shadow = double.MaxValue;
             for (int i = 0; i < r.ObjectIds.Length; i++)

@@ -1,4 +1,5 @@
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Registry;
 
 namespace SpectralRenderer.Tests.Rendering;
 

@@ -1,5 +1,6 @@
 using SpectralRenderer.Color;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Tests.Rendering;
@@ -41,7 +42,7 @@ public class ChartColourTests(Xunit.Abstractions.ITestOutputHelper output)
           "lights": [ {{lightJson}} ],
           "objects": [ { "type": "colorchecker", "name": "patch", "frame": true } ] }
         """);
-        var result = Renderer.Render(scene);
+        var result = Integrators.Render(scene);
         var refWhite = Cie015.White(S(white));
         var spds = names.Select(n => (S(n).Scaled(Scale(n)), 1.0)).ToArray();
         double max = 0;
@@ -79,7 +80,7 @@ public class ChartColourTests(Xunit.Abstractions.ITestOutputHelper output)
           "lights": [ { "type": "directional", "direction": [0, 0, -1], "spectrum": "led-blue" } ],
           "objects": [ { "type": "colorchecker", "name": "patch" } ] }
         """);
-        var result = Renderer.Render(scene);
+        var result = Integrators.Render(scene);
         var white = Cie015.White(S("D65"));
         double max = 0;
         for (int i = 0; i < result.ObjectIds.Length; i++)

@@ -1,5 +1,6 @@
 using System.Globalization;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Registry;
 
 namespace SpectralRenderer.Tests.Rendering;
 

@@ -1,6 +1,7 @@
 using System.Globalization;
 using System.Numerics;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Illumination;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
 

@@ -1,6 +1,7 @@
 using System.Numerics;
 using SpectralRenderer.Geometry;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Emitters;
 using SpectralRenderer.Scenes;
 
 namespace SpectralRenderer.Tests.Rendering;

@@ -1,6 +1,8 @@
 using System.Globalization;
 using System.Numerics;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Emitters;
+using SpectralRenderer.Rendering.PathTracing;
 using SpectralRenderer.Scenes.Loading;
 
 namespace SpectralRenderer.Tests.Rendering;
@@ -111,7 +113,7 @@ public class EmitterSetTests(Xunit.Abstractions.ITestOutputHelper output)
             output.WriteLine($"{set[k].Describe()}: P {set.SelectionPdf(k):G6}, analytic power share {expected:G6}");
             Assert.Equal(expected, set.SelectionPdf(k), 1e-6 * expected + 1e-9);
         }
-        // Choose takes each emitter with its P(k): the fraction of a fine grid of u that lands on it.
+        // Choose takes each emitter with its P(k): the fraction of a sub-band grid of u that lands on it.
         const int m = 1 << 20;
         var counts = new int[9];
         for (int i = 0; i < m; i++) counts[set.Choose((i + 0.5f) / m)]++;

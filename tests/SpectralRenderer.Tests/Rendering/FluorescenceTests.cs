@@ -3,6 +3,7 @@ using System.Text;
 using SpectralRenderer.Color;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Registry;
 
 namespace SpectralRenderer.Tests.Rendering;
 
@@ -334,7 +335,7 @@ public sealed class FluorescenceTests(Xunit.Abstractions.ITestOutputHelper outpu
         {
             var scene = SceneText.Load(Scene(matrix, light: light,
                 extra: $"\"observer\": {observer},").Replace("\"white\": \"D50\"", $"\"white\": \"{white}\""));
-            var result = Renderer.Render(scene, 0);
+            var result = Integrators.Render(scene, 0);
             var xyz = new Xyz(result.Xyz![0], result.Xyz[1], result.Xyz[2]);
             lastXyz = xyz;
             return Lab.FromXyz(xyz, scene.Colorimeter.White);

@@ -2,6 +2,7 @@ using System.Numerics;
 using SpectralRenderer.Color;
 using SpectralRenderer.Geometry;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Tests.Rendering;
@@ -45,7 +46,7 @@ public class GroundTruthTests(Xunit.Abstractions.ITestOutputHelper output)
           "lights": [ { "type": "point", "position": [3, 4, 5], "spectrum": "{{light}}", "intensity": 2.5 } ],
           "objects": [ { "type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "green" } ] }
         """);
-        var img = Renderer.Render(scene).Image;
+        var img = Integrators.Render(scene).Image;
         var rho = ColorChecker.Patch(14);
         var spd = S(light);
         var g = scene.Grid;

@@ -1,4 +1,5 @@
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
 
@@ -50,7 +51,7 @@ public class MeshSceneTests
     {
         var path = Path.Combine(dir, "scene.json");
         File.WriteAllText(path, Scene(obj));
-        return Renderer.Render(SceneLoader.Load(path));
+        return Integrators.Render(SceneLoader.Load(path));
     }
 
     [Fact]

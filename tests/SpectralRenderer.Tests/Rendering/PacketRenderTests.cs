@@ -1,6 +1,7 @@
 using System.Globalization;
 using System.Text;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Whitted;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
 

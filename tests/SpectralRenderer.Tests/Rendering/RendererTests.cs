@@ -1,6 +1,7 @@
 using System.Numerics;
 using SpectralRenderer.Color;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
 using SpectralRenderer.Spectra;
@@ -26,7 +27,7 @@ public class RendererTests
     {
         var scene = SceneLoader.Load(ScenePath("paper-3.1-colorchecker-d65.json"),
             new SceneOverrides { Width = 180, Height = 120, Integration = integration });
-        var result = Renderer.Render(scene);
+        var result = Integrators.Render(scene);
         var c = scene.Colorimeter;
         int checkedPatches = 0;
         for (int p = 1; p <= 24; p++)
@@ -89,7 +90,7 @@ public class RendererTests
         """;
         var scene = SceneText.Load(json);
         Assert.Equal(683.0, scene.Colorimeter.Kappa);
-        var img = Renderer.Render(scene).Image;
+        var img = Integrators.Render(scene).Image;
         // L = 0.01 W·m⁻²·sr⁻¹·nm⁻¹ at every wavelength → Y = 683 · 0.01 · ∫ȳ dλ over 380–780 nm.
         double integral = SpectralRenderer.Color.Observer.Cie1931.YBar.Integrate(380, 780);
         Assert.Equal(683 * 0.01 * integral, scene.Colorimeter.ToXyz(img.Pixel(2, 2)).Y, 3);
@@ -107,7 +108,7 @@ public class RendererTests
         var ray = probe.Camera.Generate(16, 10.5f);
         float edge = ray.Origin.Y + ray.Direction.Y * (-ray.Origin.Z / ray.Direction.Z);
         var scene = SceneText.Load(Json(edge, spp));
-        var img = Renderer.Render(scene).Image;
+        var img = Integrators.Render(scene).Image;
         for (int x = 2; x < 30; x++)
             for (int b = 0; b < scene.Bands; b++)
                 Assert.Equal(0.5 * img[x, 5, b], img[x, 10, b], 5);

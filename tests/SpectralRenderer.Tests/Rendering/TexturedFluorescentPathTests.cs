@@ -4,6 +4,8 @@ using System.Text;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Geometry;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.PathTracing;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
 using SpectralRenderer.Tests.Scenes;

@@ -5,6 +5,9 @@ using System.Text;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Output;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.PathTracing;
+using SpectralRenderer.Rendering.Registry;
+using SpectralRenderer.Rendering.Terms;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
 using SpectralRenderer.Scenes.Textures;
@@ -86,12 +89,12 @@ public class TiledTexelTests
         Assert.Equal(expected, allocated);
         Assert.Equal(expected, TextureTables.Bytes(scene));
         Assert.Contains(("texture tables", expected), RenderMemory.Estimate(scene, 1));
-        // The path tracer: each textured lobe a spectrum on the fine grid (its sub-bands and 3 colour lanes, padded).
-        var grid = new FineGrid(scene, IntegratorSettings.DefaultSpectralGrid);
+        // The path tracer: each textured lobe a spectrum on the sub-band grid (its sub-bands and 3 colour lanes, padded).
+        var grid = new SubBandGrid(scene, IntegratorSettings.DefaultSpectralGrid);
         long fine = 4 * 2 * TileFloats(W, H, Padded(grid.Count + 3), TexelLevels.DefaultTileSide);
         var binding = scene.Materials[0].DiffuseTexture!;
-        Assert.Equal(fine, 2 * new FineTexture(binding, grid).AllocatedBytes);
-        Assert.Equal(fine, FineTexture.Bytes(scene));
+        Assert.Equal(fine, 2 * new SubBandTexture(binding, grid).AllocatedBytes);
+        Assert.Equal(fine, SubBandTexture.Bytes(scene, PathIntegrator.SettingsOf(scene).SpectralGrid));
         Assert.Contains(("texture spectra (fine grid)", fine), RenderMemory.Estimate(scene, 1, integrator: "path"));
     }
 
@@ -100,12 +103,12 @@ public class TiledTexelTests
     {
         var dir = Reference.TempDir();
         var scene = LoadScene(dir);
-        var grid = new FineGrid(scene, IntegratorSettings.DefaultSpectralGrid);
+        var grid = new SubBandGrid(scene, IntegratorSettings.DefaultSpectralGrid);
         int stride = Padded(grid.Count + 3);
-        FineTexture texture;
+        SubBandTexture texture;
         TexelLevels.Layout.Value = (4, 3 * 16 * stride);   // tiles of 4 × 4 texels, three to a chunk
         SpectralTexture.BlockOverride.Value = 5 * W * Wl.Length;   // the cube read five rows at a time
-        try { texture = new FineTexture(scene.Materials[0].DiffuseTexture!, grid); }
+        try { texture = new SubBandTexture(scene.Materials[0].DiffuseTexture!, grid); }
         finally { TexelLevels.Layout.Value = null; SpectralTexture.BlockOverride.Value = null; }
         Assert.Equal(4, texture.TileSide);
         Assert.True(texture.Chunks >= 20, $"{texture.Chunks} chunks");
@@ -149,11 +152,11 @@ public class TiledTexelTests
     {
         var dir = Reference.TempDir();
         var scene = LoadScene(dir, lights: 2, specular: true);
-        var plain = Renderer.Render(scene, 2);
+        var plain = Integrators.Render(scene, 2);
         RenderResult small;
         TexelLevels.Layout.Value = (2, 1000);   // tiles of 2 × 2 texels, a few to a chunk
         SpectralTexture.BlockOverride.Value = 1;   // one row at a time
-        try { small = Renderer.Render(LoadScene(dir, lights: 2, specular: true), 2); }
+        try { small = Integrators.Render(LoadScene(dir, lights: 2, specular: true), 2); }
         finally { TexelLevels.Layout.Value = null; SpectralTexture.BlockOverride.Value = null; }
         Assert.Equal(plain.Image.Data, small.Image.Data);
         Assert.Equal(plain.Xyz, small.Xyz);

@@ -3,6 +3,7 @@ using System.Numerics;
 using System.Text;
 using SpectralRenderer.Output;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
 using SpectralRenderer.Tests.Scenes;
@@ -68,7 +69,7 @@ public class WhittedTextureTests(Xunit.Abstractions.ITestOutputHelper output)
     static (Scene Scene, RenderResult Result) Render(string json, string dir, int threads = 2)
     {
         var scene = SceneLoader.Parse(Encoding.UTF8.GetBytes(json), Path.Combine(dir, "scene.json"));
-        return (scene, Renderer.Render(scene, threads));
+        return (scene, Integrators.Render(scene, threads));
     }
 
     /// <summary>Every band and X, Y, Z of pixel (x, y) of <paramref name="a"/> against <paramref name="b"/> to

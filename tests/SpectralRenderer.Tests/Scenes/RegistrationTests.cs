@@ -1,6 +1,7 @@
 using System.Numerics;
 using System.Text;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
 
@@ -51,7 +52,7 @@ public class RegistrationTests
         Assert.IsType<Overhead>(Assert.Single(scene.Lights));
         Assert.IsType<LambertianBsdf>(scene.Materials[0].Bsdf);
         var light = scene.Lights[0].Intensity;
-        var image = Renderer.Render(scene).Image;
+        var image = Integrators.Render(scene).Image;
         // Paper radiometry, head-on: L = I·m_diff·(n·l), n·l = 1.
         for (int b = 0; b < scene.Bands; b++) Assert.Equal(light[b] * 0.25f, image[4, 4, b], light[b] * 1e-5f);
         // An unknown material type is named with the registered ones.

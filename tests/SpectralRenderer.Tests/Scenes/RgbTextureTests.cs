@@ -4,6 +4,7 @@ using System.Text;
 using SpectralRenderer.Color;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Scenes.Loading;
 
 namespace SpectralRenderer.Tests.Scenes;
@@ -109,7 +110,7 @@ public class RgbTextureTests(Xunit.Abstractions.ITestOutputHelper output)
             }
             """;
         var scene = SceneLoader.Parse(Encoding.UTF8.GetBytes(json), Path.Combine(dir, "scene.json"));
-        var result = Renderer.Render(scene);
+        var result = Integrators.Render(scene);
         var white = scene.Colorimeter.White;
         double worst = 0;
         for (int p = 0; p < 24; p++)

@@ -5,6 +5,8 @@ using System.Text;
 using SpectralRenderer.Color;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Registry;
+using SpectralRenderer.Rendering.Terms;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Loading;
 using SpectralRenderer.Scenes.Textures;
@@ -79,14 +81,14 @@ public class SpectralTextureTests(Xunit.Abstractions.ITestOutputHelper output)
         Scene($$"""{ "type": "quad", "center": [0, 0, 0], "size": [6, 4], "material": { "diffuse": {{texture}} } }""");
 
     static RenderResult Render(string json, string dir) =>
-        Renderer.Render(SceneLoader.Parse(Encoding.UTF8.GetBytes(json), Path.Combine(dir, "scene.json")));
+        Integrators.Render(SceneLoader.Parse(Encoding.UTF8.GetBytes(json), Path.Combine(dir, "scene.json")));
 
     /// <summary>Every patch centre: band values to 1e-6 and ΔE00 ≤ 0.001 between the two renders.</summary>
     void SamePatches(string textured, string untextured, string dir)
     {
         var scene = SceneLoader.Parse(Encoding.UTF8.GetBytes(untextured), Path.Combine(dir, "scene.json"));
         var a = Render(textured, dir);
-        var b = Renderer.Render(scene);
+        var b = Integrators.Render(scene);
         int n = scene.Bands, w = scene.Camera.Width;
         var white = scene.Colorimeter.White;
         double worstBand = 0, worstDe = 0;

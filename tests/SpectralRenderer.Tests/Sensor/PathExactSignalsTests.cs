@@ -10,9 +10,9 @@ using Xunit.Abstractions;
 namespace SpectralRenderer.Tests.Sensor;
 
 /// <summary>
-/// Issue 24's exact route for path renders: each channel integrated from the render's fine spectral grid (each sub-band's
+/// Issue 24's exact route for path renders: each channel integrated from the render's sub-band grid (each sub-band's
 /// mean radiance × ∫ η·λ/(hc) over the sub-band at the sensitivity's full resolution), as the path film integrates XYZ;
-/// checked against the render's own XYZ, across output band counts with the same fine grid and samples, and against a
+/// checked against the render's own XYZ, across output band counts with the same sub-band grid and samples, and against a
 /// 0.1 nm integral of ρ·E·η·λ/(hc) for direct light, where the radiance is ρ/π·E analytically.
 /// </summary>
 public class PathExactSignalsTests(ITestOutputHelper output)
@@ -33,7 +33,7 @@ public class PathExactSignalsTests(ITestOutputHelper output)
 
     /// <summary>
     /// The light booth (path-colorchecker-booth.json: the chart lit by an emitter and the white walls' bounces, Monte Carlo
-    /// noise and all) at 60 × 40, 4 samples per pixel, its fine grid <paramref name="grid"/> nm wide.
+    /// noise and all) at 60 × 40, 4 samples per pixel, its sub-band grid <paramref name="grid"/> nm wide.
     /// </summary>
     internal static string Booth(string bands, double grid, string formats = "exr,aov") =>
         Render($"booth {bands} {grid} {formats}", "path-colorchecker-booth.json",
@@ -81,9 +81,9 @@ public class PathExactSignalsTests(ITestOutputHelper output)
     }
 
     /// <summary>
-    /// 5 output bands of 80 nm and 400 of 1 nm with a 1 nm fine grid (and 5 against 80 bands on the default 5 nm grid) are
+    /// 5 output bands of 80 nm and 400 of 1 nm with a 1 nm sub-band grid (and 5 against 80 bands on the default 5 nm grid) are
     /// the same 400 (80) sub-bands, so the booth's paths are the same and each band count's signals must agree. (401 bands
-    /// cannot share a fine grid with 5: 401 is no multiple of 5, so their sub-bands differ and so do the paths.)
+    /// cannot share a sub-band grid with 5: 401 is no multiple of 5, so their sub-bands differ and so do the paths.)
     /// </summary>
     [Theory]
     [InlineData("nikon-d5100", "380:780:400", 1)]
@@ -109,7 +109,7 @@ public class PathExactSignalsTests(ITestOutputHelper output)
 
     /// <summary>
     /// Direct light only (max_depth 1), head-on D65 in physical radiometry: a patch's radiance is ρ(λ)·E(λ)/π, and its
-    /// noise-free DN − black is K·t·A·ff·πT/(1+4N²)·∫ ρ·E/π·η_c·λ/(hc) dλ. On a 1 nm fine grid every channel of every
+    /// noise-free DN − black is K·t·A·ff·πT/(1+4N²)·∫ ρ·E/π·η_c·λ/(hc) dλ. On a 1 nm sub-band grid every channel of every
     /// preset meets the 0.1 nm integral (midpoint rule on the tables' linear interpolants, here) within 1e-4. On the default
     /// 5 nm grid the path carries ρ and E as their sub-band means, so the bound is the grid's own: the signals meet
     /// Σ_f ρ̄_f·Ē_f/π·∫_f η·λ/(hc) dλ (the same 0.1 nm sums per sub-band) within 1e-5, and the 5 nm grid's distance from the
@@ -148,7 +148,7 @@ public class PathExactSignalsTests(ITestOutputHelper output)
                     var qe = (ch.QuantumEfficiency.Wavelengths.ToArray(), ch.QuantumEfficiency.Values.ToArray());
                     bool zero = ch.QuantumEfficiency.Extrapolation == SpectralRenderer.Spectra.Extrapolation.Zero;
                     double integral = 0;
-                    // Per fine sub-band [380 + k·grid, 380 + (k+1)·grid]: the 0.1 nm sums of ρ, E and η·λ/(hc).
+                    // Per sub-band [380 + k·grid, 380 + (k+1)·grid]: the 0.1 nm sums of ρ, E and η·λ/(hc).
                     for (int k = 0; k * grid < 400 - 1e-9; k++)
                     {
                         double sr = 0, se = 0, sg = 0, sreg = 0;
@@ -181,7 +181,7 @@ public class PathExactSignalsTests(ITestOutputHelper output)
     }
 
     /// <summary>
-    /// A path render's fine film formed two ways gives the same signals: from its lights/ (L_f = F_f + Σ_k T_k,f·E_k,f, no
+    /// A path render's sub-band film formed two ways gives the same signals: from its lights/ (L_f = F_f + Σ_k T_k,f·E_k,f, no
     /// rays) and traced again from render.json (the render's samples) — within float rounding (1e-5), and camera.json says which.
     /// </summary>
     [Fact]

@@ -1,4 +1,6 @@
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Illumination;
+using SpectralRenderer.Rendering.Registry;
 using SpectralRenderer.Scenes;
 
 namespace SpectralRenderer.Output.Products;

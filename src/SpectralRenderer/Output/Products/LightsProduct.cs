@@ -17,9 +17,9 @@ public sealed class LightsProduct : OutputProduct
 
     /// <summary>Shards of a transfer its format shards: the arrays by rows, lights.json the same in each.</summary>
     public override ShardMerging Merging(string file) =>
-        file == $"{TransferFiles.Folder}/{TransferFiles.Description}" ? ShardMerging.Copy
+        file == $"{TransferFormat.Folder}/{TransferFormat.Description}" ? ShardMerging.Copy
         : Owns(file) ? ShardMerging.TransferRows
         : ShardMerging.None;
 
-    public override bool Owns(string file) => file.StartsWith(TransferFiles.Folder + "/", StringComparison.Ordinal);
+    public override bool Owns(string file) => file.StartsWith(TransferFormat.Folder + "/", StringComparison.Ordinal);
 }

@@ -1,5 +1,6 @@
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Rendering;
+using SpectralRenderer.Rendering.Illumination;
 using SpectralRenderer.Scenes;
 
 namespace SpectralRenderer.Output.Products;

@@ -1,6 +1,6 @@
 using System.Numerics;
 
-namespace SpectralRenderer.Rendering;
+namespace SpectralRenderer.Rendering.Emitters;
 
 /// <summary>
 /// One sample of an emitter seen from a point (<see cref="Emitter.Sample"/>): the unit direction ω_i towards it, the
@@ -19,9 +19,9 @@ internal readonly record struct EmitterSample(Vector3 Direction, float Distance,
 /// The kinds: a scene light (<see cref="SceneLightEmitter"/>: point, spot, directional, goniometric — delta, never hit),
 /// an emitting object (<see cref="ShapeEmitter"/>: any shape kind) and the sky (<see cref="SkyEmitter"/>).
 /// </summary>
-internal abstract class Emitter(float[] radiance, FineTexture? texture = null)
+internal abstract class Emitter(float[] radiance, SubBandTexture? texture = null)
 {
-    /// <summary>The emitted spectrum on the path tracer's fine grid: radiance L_e, or a delta light's intensity I_k.</summary>
+    /// <summary>The emitted spectrum on the path tracer's sub-band grid: radiance L_e, or a delta light's intensity I_k.</summary>
     public float[] Radiance { get; } = radiance;
 
     /// <summary>True for an emitter concentrated in a point or a direction: no ray can hit it; its pdf is 1 by convention.</summary>
@@ -56,8 +56,8 @@ internal abstract class Emitter(float[] radiance, FineTexture? texture = null)
     /// </summary>
     public abstract float Emitted(Vector3 n, Vector3 wo);
 
-    /// <summary>L_e as a texture on the fine grid (<see cref="TexCoord"/> places a sample's point on it), or null.</summary>
-    public FineTexture? Texture { get; } = texture;
+    /// <summary>L_e as a texture on the sub-band grid (<see cref="TexCoord"/> places a sample's point on it), or null.</summary>
+    public SubBandTexture? Texture { get; } = texture;
 
     /// <summary>
     /// The (u, v) of point <paramref name="x"/> on <paramref name="face"/> and the mapping's density (a textured emitter).

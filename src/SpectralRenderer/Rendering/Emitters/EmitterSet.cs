@@ -1,7 +1,7 @@
 using System.Runtime.CompilerServices;
 using SpectralRenderer.Scenes;
 
-namespace SpectralRenderer.Rendering;
+namespace SpectralRenderer.Rendering.Emitters;
 
 /// <summary>
 /// Every emitter of a scene in one index space (Mitsuba 3's <c>scene.emitters()</c>, SeeSharp's one emitter list): the
@@ -31,11 +31,11 @@ internal sealed class EmitterSet
     readonly float[] _cumulative;    // Σ_{j ≤ k} P(j), the last 1
     readonly double _sceneRadius;
 
-    /// <summary>The set of <paramref name="scene"/> on the fine grid <paramref name="grid"/>: an emitting object's radiance and
+    /// <summary>The set of <paramref name="scene"/> on the sub-band grid <paramref name="grid"/>: an emitting object's radiance and
     /// sidedness from its material's emission (on the grid), its texture from <paramref name="emissionTexture"/> (by material;
     /// none when null), a light at infinity's power through the sphere of radius <paramref name="sceneRadius"/> about the
     /// scene's finite geometry (<see cref="SceneGeometry.BoundingRadius"/>; 1 when there is none).</summary>
-    public EmitterSet(Scene scene, FineGrid grid, double sceneRadius, Func<int, FineTexture?>? emissionTexture = null)
+    public EmitterSet(Scene scene, SubBandGrid grid, double sceneRadius, Func<int, SubBandTexture?>? emissionTexture = null)
     {
         _sceneRadius = sceneRadius > 0 ? sceneRadius : 1;
         var emitters = new List<Emitter>();
@@ -120,7 +120,7 @@ internal sealed class EmitterSet
     /// <summary>The sky's index, or −1 when the background is black.</summary>
     public int Sky { get; }
 
-    /// <summary>The background radiance on the fine grid (what a camera ray that escapes sees; black without a sky).</summary>
+    /// <summary>The background radiance on the sub-band grid (what a camera ray that escapes sees; black without a sky).</summary>
     public float[] Background { get; }
 
     /// <summary>The emitter of scene object <paramref name="obj"/> (its index), or −1 when it emits nothing.</summary>

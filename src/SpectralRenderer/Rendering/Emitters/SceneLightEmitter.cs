@@ -1,7 +1,7 @@
 using System.Numerics;
 using SpectralRenderer.Scenes;
 
-namespace SpectralRenderer.Rendering;
+namespace SpectralRenderer.Rendering.Emitters;
 
 /// <summary>
 /// A scene light (<see cref="Light"/>: point, spot, directional, goniometric, or a kind added by a registration) in the

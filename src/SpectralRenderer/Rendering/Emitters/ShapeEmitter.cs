@@ -1,6 +1,6 @@
 using System.Numerics;
 
-namespace SpectralRenderer.Rendering;
+namespace SpectralRenderer.Rendering.Emitters;
 
 /// <summary>
 /// An emitting object in the emitter set: a point on its surface drawn by <see cref="AreaEmitter"/> (by solid angle on a

@@ -2,7 +2,7 @@ using System.Numerics;
 using System.Runtime.CompilerServices;
 using SpectralRenderer.Scenes;
 
-namespace SpectralRenderer.Rendering;
+namespace SpectralRenderer.Rendering.Emitters;
 
 /// <summary>
 /// The sky: the scene's <c>background</c> (a uniform radiance, or a CIE daylight by <c>"sky"</c>) as the radiance of every
