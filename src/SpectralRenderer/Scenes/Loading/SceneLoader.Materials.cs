@@ -65,7 +65,8 @@ public sealed partial class SceneLoader
                 bool tabulated = TryGet(iorE, "spectrum", out var t);
                 if ((cauchy ? 1 : 0) + (sellmeier ? 1 : 0) + (tabulated ? 1 : 0) != 1)
                     throw Error($"{path}.ior",
-                        cauchy || sellmeier || tabulated ? "more than one of \"cauchy\", \"sellmeier\" and \"spectrum\": give one dispersion formula"
+                        cauchy || sellmeier || tabulated
+                            ? "more than one of \"cauchy\", \"sellmeier\" and \"spectrum\": give one dispersion formula"
                             : "expected \"cauchy\" or \"sellmeier\" (a formula) or \"spectrum\" (a table of n(λ))",
                         "e.g. \"ior\": {\"cauchy\": [1.5, 4200]}");
                 Func<double, double> n;
@@ -118,7 +119,8 @@ public sealed partial class SceneLoader
                     for (int i = 1; i < _grid.Count; i++) dispersive |= ior[i] != ior[0];
             }
             else
-                throw Error($"{path}.ior", $"expected a number, {{\"cauchy\": [A, B]}}, {{\"sellmeier\": {{…}}}} or {{\"spectrum\": …}}, found {Kind(iorE)}",
+                throw Error($"{path}.ior",
+                    $"expected a number, {{\"cauchy\": [A, B]}}, {{\"sellmeier\": {{…}}}} or {{\"spectrum\": …}}, found {Kind(iorE)}",
                     "e.g. \"ior\": 1.5");
         }
         return (ior, dispersive);
