@@ -1097,6 +1097,24 @@ for label, text, pat, place in [
     case(f"relight-sweep/{label}", ["relight", "{tmp}/r", "--sweep", "{in}/" + fname, "-o", "{tmp}/out", "--quiet"], pat, 2, fname,
          r"\.csv" + place, ["base-lights r"])
 
+# pbrt-v4 scenes (spectral render FILE.pbrt converts in memory): one line with file:line:column and a hint.
+for label, text, pat, place in [
+    ("unclosed-string", 'WorldBegin\nShape "sphere" "float radius\n', r"a string is not closed", r"\.pbrt:2:16: "),
+    ("unknown-directive", 'WorldBegin\nShpe "sphere"\n', r"unknown directive 'Shpe'.*did you mean 'Shape'", r"\.pbrt:2:1: "),
+    ("unknown-spectrum", 'WorldBegin\nMaterial "conductor" "spectrum eta" "metal-Au-eat"\nShape "sphere"\n',
+     r"unknown named spectrum.*did you mean 'metal-Au-eta'", r"\.pbrt:2:22: "),
+    ("index-out-of-range", 'WorldBegin\nShape "trianglemesh" "point3 P" [ 0 0 0 1 0 0 0 1 0 ] "integer indices" [ 0 1 3 ]\n',
+     r"index 3 is not a vertex", r"\.pbrt:2:1: "),
+    ("medium", 'WorldBegin\nMakeNamedMedium "fog" "string type" "homogeneous"\nShape "sphere"\n', r"participating media.*--lenient",
+     r"\.pbrt:2:1: "),
+    ("attribute-unclosed", 'WorldBegin\nAttributeBegin\nShape "sphere"\n', r"not closed by AttributeEnd", r"\.pbrt:2:1: "),
+    ("projective-transform", 'Transform [ 1 0 0 1  0 1 0 0  0 0 1 0  0 0 0 1 ]\nWorldBegin\nShape "sphere"\n', r"a projective matrix",
+     r"\.pbrt:1:1: "),
+    ("missing-include", 'WorldBegin\nInclude "nothere.pbrt"\nShape "sphere"\n', r"nothere\.pbrt", r"\.pbrt:2:1: "),
+]:
+    fname = write(f"pbrt-{label}.pbrt", text)
+    case(f"pbrt/{label}", render("{in}/" + fname), pat, 2, fname, place)
+
 names = [c["name"] for c in cases]
 assert len(names) == len(set(names)), [x for x in names if names.count(x) > 1]
 with open(os.path.join(HERE, "cases.json"), "w", encoding="utf-8") as f:

@@ -79,7 +79,10 @@ public sealed class PbrtParser
         }
         catch (InputException e) when (from is { } f)
         {
-            throw new InputException(f.Where, e.What, e.Hint) { Problem = e.Problem };
+            throw new InputException(f.Where, $"{f.Text} {MessageText.Quote(Path.GetFileName(path))}: {e.What}", e.Hint)
+            {
+                Problem = e.Problem,
+            };
         }
         ParseTokens(PbrtTokenizer.Tokenize(text, Path.GetFileName(path)), path, depth);
     }
@@ -335,7 +338,7 @@ public sealed class PbrtParser
                         string name = StringArg(tokens, ref i, t);
                         ParameterList(tokens, ref i);
                         _note("error", t.Where, $"MakeNamedMedium \"{name}\"",
-                            "participating media are not imported (the engine registers no medium type yet); skipped");
+                            "participating media are not imported (the engine registers no medium type yet)");
                         break;
                     }
                 case "MediumInterface":
