@@ -6,10 +6,12 @@ using SpectralRenderer.Distributed;
 using SpectralRenderer.Geometry;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Output;
-using SpectralRenderer.Rendering.Whitted;
 using SpectralRenderer.Rendering;
-using SpectralRenderer.Scenes.Loading;
+using SpectralRenderer.Rendering.Whitted;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Scenes.Import;
+using SpectralRenderer.Scenes.Import.Pbrt;
+using SpectralRenderer.Scenes.Loading;
 using SpectralRenderer.Sensor;
 using SpectralRenderer.Spectra;
 
@@ -77,6 +79,13 @@ public static class Program
             int nul = Array.IndexOf(b, (byte)0);
             var header = EnviReader.ParseHeader(Encoding.UTF8.GetString(b, 0, nul < 0 ? b.Length : nul), "fuzz.hdr");
             EnviReader.ReadData(new MemoryStream(nul < 0 ? [] : b[(nul + 1)..]), header, "fuzz.img");
+        },
+        // A pbrt-v4 scene converted (includes and meshes looked up in a folder that is not there), then loaded.
+        ["pbrt"] = b =>
+        {
+            const string path = "/nonexistent-fuzz/scene.pbrt";
+            var scene = new PbrtConverter(path, new ImportOptions(Lenient: true)).ConvertText(Encoding.UTF8.GetString(b));
+            SceneLoader.Parse(ImportWriter.InlineJson(scene), path);
         },
     };
 

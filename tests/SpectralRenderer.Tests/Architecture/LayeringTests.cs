@@ -24,6 +24,7 @@ public class LayeringTests
         [R + "Acceleration"] = ["Geometry", "Diagnostics"],
         [R + "Scenes"] = ["Spectra", "Color", "Geometry", "Diagnostics"],
         [R + "Scenes.Loading"] = ["Scenes", "Imaging", "Spectra", "Color", "Geometry", "Diagnostics"],
+        [R + "Scenes.Import"] = ["Scenes", "Imaging", "Spectra", "Color", "Geometry", "Diagnostics"],
         // Rendering in wings: the film (the renderer, samplers, scene geometry, the integrator interface and its capabilities)
         // and around it eq. 2's terms, the emitters, Whitted, the path tracer, photometry and the registry of integrators.
         // Whitted and the path tracer never use each other; the film, the terms and the emitters use neither.
@@ -43,7 +44,8 @@ public class LayeringTests
             "Diagnostics"],
         [R + "Sensor"] = ["Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Analysis"] = ["Output", "Sensor", "Imaging", "Spectra", "Color", "Diagnostics"],
-        [R + "Pipeline"] = ["Output", "Rendering.Registry", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Geometry", "Spectra",
+        [R + "Pipeline"] =
+            ["Output", "Rendering.Registry", "Rendering", "Scenes.Import", "Scenes.Loading", "Scenes", "Imaging", "Geometry", "Spectra",
             "Color", "Diagnostics"],
         [R + "Relighting"] = ["Analysis", "Sensor", "Pipeline", "Output", "Rendering.Registry", "Rendering.Terms", "Rendering.Illumination",
             "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra", "Color", "Diagnostics"],
@@ -203,7 +205,8 @@ public class LayeringTests
     static readonly (string From, string To)[] ProbeBackEdges =
     [
         ("Diagnostics", "Spectra"), ("Spectra", "Color"), ("Color", "Geometry"), ("Geometry", "Acceleration"),
-        ("Acceleration", "Scenes"), ("Scenes", "Scenes.Loading"), ("Scenes.Loading", "Rendering"), ("Rendering", "Output"),
+        ("Acceleration", "Scenes"), ("Scenes", "Scenes.Loading"), ("Scenes.Loading", "Rendering"),
+        ("Scenes.Import", "Scenes.Loading"), ("Rendering", "Output"),
         ("Imaging", "Sensor"), ("Sensor", "Output"), ("Output", "Pipeline"), ("Pipeline", "Analysis"),
         ("Analysis", "Relighting"), ("Relighting", "Distributed"), ("Distributed", "Cli"), ("Native", "Cli"),
         ("Rendering.Terms", "Rendering.Whitted"), ("Rendering.Emitters", "Rendering.PathTracing"),

@@ -346,12 +346,42 @@ public class PathDispersionTests(Xunit.Abstractions.ITestOutputHelper output)
             Assert.Equal((float)RefractiveIndex.Sellmeier(b, c, 400 + 30 * (i + 0.5)), glass.Ior[i]);
     }
 
+    /// <summary>
+    /// A tabulated index {"spectrum": …} (how pbrt's named glasses arrive): at each band centre the linear interpolant of the
+    /// table, computed here from the pairs by hand; a varying table makes the glass dispersive, a flat one does not.
+    /// </summary>
+    [Fact]
+    public void A_tabulated_index_is_the_tables_interpolant_at_each_band_centre()
+    {
+        double[] wl = [380, 450, 560, 700, 780], n = [1.56, 1.53, 1.52, 1.51, 1.505];
+        var scene = SceneText.Load("""
+        { "bands": "400:700:10", "camera": { "position": [0, 0, 4], "look_at": [0, 0, 0], "width": 4, "height": 4 },
+          "materials": { "glass": { "transmit": 1,
+                                    "ior": { "spectrum": [[380, 1.56], [450, 1.53], [560, 1.52], [700, 1.51], [780, 1.505]] } },
+                         "flat": { "transmit": 1, "ior": { "spectrum": 1.45 } } },
+          "objects": [ { "type": "sphere", "material": "glass" }, { "type": "sphere", "center": [3, 0, 0], "material": "flat" } ] }
+        """);
+        var glass = scene.Materials[0];
+        Assert.True(glass.Dispersive);
+        for (int i = 0; i < 10; i++)
+        {
+            double centre = 400 + 30 * (i + 0.5);
+            int k = Array.FindLastIndex(wl, w => w <= centre);
+            double expected = n[k] + (centre - wl[k]) / (wl[k + 1] - wl[k]) * (n[k + 1] - n[k]);
+            Assert.Equal((float)expected, glass.Ior[i]);
+        }
+        Assert.False(scene.Materials[1].Dispersive);
+        Assert.Equal(1.45f, scene.Materials[1].Ior[3]);
+    }
+
     [Theory]
     [InlineData("""{ "sellmeier": [1, 2] }""", "$.materials.glass.ior.sellmeier", "expected an object of B1")]
     [InlineData("""{ "sellmeier": { "B1": 1, "B4": 1 } }""", "$.materials.glass.ior.sellmeier", "unknown field 'B4'")]
     [InlineData("""{ "sellmeier": { "B1": 1, "C1": 0.3 } }""", "$.materials.glass.ior", "resonance")]
     [InlineData("""{ "cauchy": [1.5, 4200], "sellmeier": { "B1": 1 } }""", "$.materials.glass.ior", "give one dispersion formula")]
     [InlineData("""{ }""", "$.materials.glass.ior", "expected \"cauchy\" or \"sellmeier\"")]
+    [InlineData("""{ "spectrum": [[500, 1.5], [600, 1.4]] }""", "$.materials.glass.ior.spectrum", "but the bands need")]
+    [InlineData("""{ "spectrum": 1.5, "cauchy": [1.5, 0] }""", "$.materials.glass.ior", "give one dispersion formula")]
     public void A_bad_dispersion_formula_names_its_place(string ior, string place, string message)
     {
         var e = Assert.Throws<InputException>(() => SceneText.Load($$"""

@@ -46,8 +46,9 @@ public sealed partial class SceneLoader
     }
 
     /// <summary>
-    /// The index of refraction per band: a number, {"cauchy": [A, B]} for n(λ) = A + B/λ², or {"sellmeier": {"B1" … "C3"}}
-    /// for n²(λ) = 1 + Σ B_i·λ²/(λ² − C_i) (λ in µm), each at the band centres (<see cref="RefractiveIndex"/>).
+    /// The index of refraction per band: a number, {"cauchy": [A, B]} for n(λ) = A + B/λ², {"sellmeier": {"B1" … "C3"}}
+    /// for n²(λ) = 1 + Σ B_i·λ²/(λ² − C_i) (λ in µm) (<see cref="RefractiveIndex"/>), or {"spectrum": S} a tabulated n(λ),
+    /// each at the band centres.
     /// </summary>
     [MethodImpl(MethodImplOptions.NoOptimization)]
     (float[] Ior, bool Dispersive) Ior(JsonElement e, string path)
@@ -59,14 +60,24 @@ public sealed partial class SceneLoader
             if (iorE.ValueKind == JsonValueKind.Number) ior = Const((float)Number(iorE, $"{path}.ior", 1e-3, 100));
             else if (iorE.ValueKind == JsonValueKind.Object)
             {
-                Keys(iorE, $"{path}.ior", "cauchy", "sellmeier");
+                Keys(iorE, $"{path}.ior", "cauchy", "sellmeier", "spectrum");
                 bool cauchy = TryGet(iorE, "cauchy", out var c), sellmeier = TryGet(iorE, "sellmeier", out var s);
-                if (cauchy == sellmeier)
+                bool tabulated = TryGet(iorE, "spectrum", out var t);
+                if ((cauchy ? 1 : 0) + (sellmeier ? 1 : 0) + (tabulated ? 1 : 0) != 1)
                     throw Error($"{path}.ior",
-                        cauchy ? "both \"cauchy\" and \"sellmeier\": give one dispersion formula" : "expected \"cauchy\" or \"sellmeier\"",
+                        cauchy || sellmeier || tabulated
+                            ? "more than one of \"cauchy\", \"sellmeier\" and \"spectrum\": give one dispersion formula"
+                            : "expected \"cauchy\" or \"sellmeier\" (a formula) or \"spectrum\" (a table of n(λ))",
                         "e.g. \"ior\": {\"cauchy\": [1.5, 4200]}");
                 Func<double, double> n;
-                if (cauchy)
+                if (tabulated)
+                {
+                    // A measured index n(λ) (e.g. pbrt-v4's glass-BK7 table): its linear interpolant at each band centre.
+                    var table = Spectrum(t, $"{path}.ior.spectrum");
+                    table.RequireCoverage(_grid.Centre(0), _grid.Centre(_grid.Count - 1), Where($"{path}.ior.spectrum"));
+                    n = table.Evaluate;
+                }
+                else if (cauchy)
                 {
                     if (c.ValueKind != JsonValueKind.Array || c.GetArrayLength() != 2)
                         throw Error($"{path}.ior.cauchy", "expected [A, B] with n(λ) = A + B/λ², λ in nm (B in nm²)",
@@ -104,11 +115,12 @@ public sealed partial class SceneLoader
                             "check the coefficients' units: Cauchy B in nm², Sellmeier C_i in µm²");
                     ior[i] = (float)v;
                 }
-                if (sellmeier)
+                if (sellmeier || tabulated)
                     for (int i = 1; i < _grid.Count; i++) dispersive |= ior[i] != ior[0];
             }
             else
-                throw Error($"{path}.ior", $"expected a number or {{\"cauchy\": [A, B]}} or {{\"sellmeier\": {{…}}}}, found {Kind(iorE)}",
+                throw Error($"{path}.ior",
+                    $"expected a number, {{\"cauchy\": [A, B]}}, {{\"sellmeier\": {{…}}}} or {{\"spectrum\": …}}, found {Kind(iorE)}",
                     "e.g. \"ior\": 1.5");
         }
         return (ior, dispersive);
@@ -210,7 +222,7 @@ public sealed partial class SceneLoader
         public bool Bool(string key, bool fallback) => _loader.Bool(_e, key, _path, fallback);
         /// <summary>A required string.</summary>
         public string String(string key) => _loader.String(_loader.Required(_e, key, _path), $"{_path}.{key}");
-        /// <summary>"ior": a number, {"cauchy": [A, B]} or {"sellmeier": {…}}; 1.5 when absent.</summary>
+        /// <summary>"ior": a number, {"cauchy": [A, B]}, {"sellmeier": {…}} or {"spectrum": …}; 1.5 when absent.</summary>
         public (float[] Ior, bool Dispersive) Ior() => _loader.Ior(_e, _path);
         /// <summary>A purely diffuse material of these band values (m_amb = m_diff), with its own BSDF or eq. 2's view.</summary>
         public Material Diffuse(float[] bands, TabulatedSpectrum? spectrum, Bsdf? bsdf = null) =>
