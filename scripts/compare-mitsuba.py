@@ -26,6 +26,11 @@ Mitsuba's llvm_* variants need a libLLVM that can compile drjit's kernels (here 
 Debian 12's libllvm19 works): DRJIT_LIBLLVM_PATH, else the newest /usr/lib/*/libLLVM*.so* found at version >= 17,
 else the scalar_spectral variant (said in the output). --regions-only stops after part 1 (the Interop test).
 Exit 0 when it ran (the bars are printed, not enforced), 2 on bad input (an unsupported scene feature).
+
+--xml FILE (issue 39): a Mitsuba 3 XML scene rendered by both from the same file — Mitsuba loads the XML itself, ours
+imports it (`spectral render FILE.xml`, scenes/…/docs/import.md) — with only the film (its size; Mitsuba's becomes a
+`specfilm` of box bands) and the sampler (sample count, seed) rewritten in a copy, so what is compared is the importer's
+conversion of everything else. Our bands: --xml-bands (380:780:20). Also prints BAND lines (every region × band).
 """
 import argparse
 import glob
@@ -324,6 +329,65 @@ def band_cmf(edges):
     return out
 
 
+# ---------------------------------------------------------------- a Mitsuba XML scene rendered by both (--xml)
+
+def xml_copy(path, width, height, spp, seed, edges, work, tag, sampler="independent"):
+    """The XML with its film and sampler rewritten: ours (edges None) an hdrfilm of width × height, Mitsuba's a specfilm
+    with one box response per band; the sampler's sample_count and seed set. Written beside the original when the scene
+    refers to files (relative paths keep working), else in the work folder; returns its path."""
+    import xml.etree.ElementTree as ET
+    tree = ET.parse(path)
+    sensor = tree.getroot().find("sensor")
+    if sensor is None:
+        fail(f"{path}: no <sensor>")
+    for old in sensor.findall("film") + sensor.findall("sampler"):
+        sensor.remove(old)
+    sampling = ET.SubElement(sensor, "sampler", {"type": sampler})
+    ET.SubElement(sampling, "integer", {"name": "sample_count", "value": str(spp)})
+    ET.SubElement(sampling, "integer", {"name": "seed", "value": str(seed)})
+    film = ET.SubElement(sensor, "film", {"type": "hdrfilm" if edges is None else "specfilm"})
+    ET.SubElement(film, "integer", {"name": "width", "value": str(width)})
+    ET.SubElement(film, "integer", {"name": "height", "value": str(height)})
+    ET.SubElement(film, "rfilter", {"type": "box"})
+    if edges is not None:
+        ET.SubElement(film, "string", {"name": "component_format", "value": "float32"})
+        for b in range(len(edges) - 1):
+            band = ET.SubElement(film, "spectrum", {"name": f"band{b:03d}", "type": "regular"})
+            ET.SubElement(band, "float", {"name": "wavelength_min", "value": f"{edges[b]:g}"})
+            ET.SubElement(band, "float", {"name": "wavelength_max", "value": f"{edges[b + 1]:g}"})
+            ET.SubElement(band, "string", {"name": "values", "value": ", ".join(["1"] * 5)})
+    refers = any("filename" in e.attrib or e.get("name") == "filename" for e in tree.iter())
+    folder = os.path.dirname(os.path.abspath(path)) if refers else work
+    out = os.path.join(folder, f".compare-mitsuba-{os.getpid()}-{tag}.xml")
+    tree.write(out, encoding="utf-8", xml_declaration=True)
+    return out
+
+
+def ours_render_xml(args, width, height, spp, seed, out, work):
+    """`spectral render COPY.xml` (the importer's conversion in memory); returns (bands H×W×N, ids, render_s, meta)."""
+    import numpy as np
+    copy = xml_copy(args.xml, width, height, spp, seed, None, work, f"ours{seed}")
+    try:
+        cmd = ["dotnet", args.spectral, "render", copy, "-o", out, "--bands", args.xml_bands, "--formats", "npy,aov", "--quiet"]
+        r = subprocess.run(cmd, text=True, capture_output=True)
+    finally:
+        os.remove(copy)
+    if r.returncode != 0:
+        fail(f"our render failed ({' '.join(cmd)}):\n{r.stderr}", 1)
+    meta = json.load(open(os.path.join(out, "render.json")))
+    ids = read_png16(os.path.join(out, "object-id.png"))
+    return np.load(os.path.join(out, "spectral.npy")).astype(np.float64), ids, meta["timings_s"]["render"], meta
+
+
+def mitsuba_load_xml(args, width, height, edges, work):
+    import mitsuba as mi
+    copy = xml_copy(args.xml, width, height, 1, 0, edges, work, "mitsuba", args.mitsuba_sampler)
+    try:
+        return mi.load_file(copy)
+    finally:
+        os.remove(copy)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--scene", default=os.path.join(REPO, "scenes", "path-cornell-room.json"))
@@ -341,8 +405,13 @@ def main():
     ap.add_argument("--spectral", default=os.path.join(REPO, "src", "SpectralRenderer.Cli", "bin", "Release", "net10.0",
                                                        "spectral.dll"), help="our CLI's spectral.dll (built if absent)")
     ap.add_argument("--json", help="write every figure to this file")
+    ap.add_argument("--xml", help="a Mitsuba 3 XML scene: Mitsuba renders the file, ours imports it (issue 39)")
+    ap.add_argument("--xml-bands", default="380:780:20", help="our bands for --xml (edges start:end:count)")
     args = ap.parse_args()
-    args.scene = os.path.abspath(args.scene)
+    args.scene = os.path.abspath(args.xml or args.scene)
+    if args.xml:
+        args.xml = os.path.abspath(args.xml)
+        args.regions_only = True   # the equal-time parts compare a JSON scene
     q = args.quick
     width = args.width or (32 if q else 64)
     height = args.height or (24 if q else 48)
@@ -369,8 +438,8 @@ def main():
         print("building our CLI (Release) ...", file=sys.stderr)
         subprocess.run(["dotnet", "build", "-c", "Release", "-v", "q", "-nologo",
                         os.path.join(REPO, "src", "SpectralRenderer.Cli")], check=True, stdout=subprocess.DEVNULL)
-    scene = read_scene(args.scene)
-    spectra = Spectra(scene)
+    scene = None if args.xml else read_scene(args.scene)
+    spectra = None if args.xml else Spectra(scene)
     work = tempfile.mkdtemp(prefix="compare-mitsuba-")
 
     # Part 1: converged references, K parts each, ours and Mitsuba's alternating.
@@ -379,11 +448,15 @@ def main():
     ours_parts, mi_parts, ours_rate, mi_rate = [], [], [], []
     mi_scene = edges = None
     for k in range(parts):
-        img, ids, secs, meta = ours_render(args, scene, width, height, part_spp, 1000 + k, os.path.join(work, f"ref{k}"))
+        if args.xml:
+            img, ids, secs, meta = ours_render_xml(args, width, height, part_spp, 1000 + k, os.path.join(work, f"ref{k}"), work)
+        else:
+            img, ids, secs, meta = ours_render(args, scene, width, height, part_spp, 1000 + k, os.path.join(work, f"ref{k}"))
         ours_parts.append(img); ours_rate.append(width * height * part_spp / secs)
         if mi_scene is None:
             edges = np.array(meta["bands"]["edges_nm"], float)
-            mi_scene = mitsuba_scene(scene, spectra, edges, width, height, args.mitsuba_sampler)
+            mi_scene = mitsuba_load_xml(args, width, height, edges, work) if args.xml else \
+                mitsuba_scene(scene, spectra, edges, width, height, args.mitsuba_sampler)
             band_width = np.diff(edges)
             mitsuba_render(mi_scene, pass_spp, 0, band_width, warm=False)   # compile
         acc, secs, done = 0, 0.0, 0
@@ -396,7 +469,7 @@ def main():
     ours_ref, mi_ref = np.mean(ours_parts, axis=0), np.mean(mi_parts, axis=0)
     regs = regions(ids, {o["id"]: o["name"] for o in meta["objects"]})
     nb = len(edges) - 1
-    rows, worst_band = [], np.zeros(nb)
+    rows, worst_band, band_lines = [], np.zeros(nb), []
     worst = (0.0, None, None, 0.0)
     for name, mask in regs.items():
         o = np.array([p[mask].mean(axis=0) for p in ours_parts])   # K × bands
@@ -405,6 +478,8 @@ def main():
         rel = mm / om - 1
         se = np.sqrt((o.std(axis=0, ddof=1) / om) ** 2 + (m.std(axis=0, ddof=1) / om) ** 2) / np.sqrt(parts)
         b = int(np.argmax(np.abs(rel)))
+        for j in range(nb):   # machine-readable, every band (the importer's Interop test)
+            band_lines.append(f"BAND region={name.replace(' ', '_')} band={j + 1} rel={rel[j]:.6f} se={se[j]:.6f}")
         rows.append((name, int(mask.sum()), float(rel[b]), int(b), float(se[b]), float(np.mean(rel))))
         worst_band = np.maximum(worst_band, np.abs(rel))
         if abs(rel[b]) > abs(worst[0]):
@@ -427,6 +502,7 @@ def main():
     for name, n, rel, b, se, mean in rows:   # machine-readable (the Interop test)
         print(f"REGION name={name.replace(' ', '_')} pixels={n} band={b + 1} rel={rel:.6f} se={se:.6f} mean={mean:.6f}")
     print(f"REGIONS worst_rel={worst[0]:.6f} se={worst[3]:.6f} regions={len(rows)}")
+    print("\n".join(band_lines))
 
     if not args.regions_only:
         # Part 2 and 3: equal time, R rounds alternating.

@@ -73,6 +73,13 @@ public static class Program
             SweepPlan.Load(plan).CheckJobs(SweepPlan.Load(plan).Jobs.Take(64), new SceneOverrides(), Path.Combine(Work.Value, "out"));
         },
         ["sensor"] = b => SensorFile.Resolve(Scratch("sensor.json", b)),
+        // A Mitsuba 3 XML scene converted (issue 39), and the converted JSON loaded as a render would load it.
+        ["mitsuba"] = b =>
+        {
+            var xml = Scratch("scene.xml", b);
+            var imported = SceneFormats.Convert(xml, new ImportOptions());
+            SceneLoader.Parse(ImportWriter.InlineJson(imported), xml);
+        },
         // An ENVI pair: the header text up to the first NUL byte, the samples after it.
         ["envi"] = b =>
         {

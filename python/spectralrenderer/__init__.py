@@ -80,8 +80,13 @@ def _json_default(o):
     raise TypeError(f"{type(o).__name__} is not JSON serializable")
 
 
+# Scene files of other renderers (docs/import.md): the library reads and converts them from their path.
+IMPORTED = (".xml", ".pbrt", ".gltf", ".glb")
+
+
 def _scene_text(scene):
-    """(UTF-8 JSON, the name it is loaded under): a dict, JSON text, or a scene file's path."""
+    """(UTF-8 JSON, the name it is loaded under): a dict, JSON text, or a scene file's path; for a Mitsuba, pbrt or glTF
+    file (None, its path): the library converts it as `spectral render FILE` does."""
     if isinstance(scene, dict):
         return json.dumps(scene, default=_json_default).encode(), "<dict>"
     if isinstance(scene, str) and scene.lstrip().startswith("{"):
@@ -89,6 +94,8 @@ def _scene_text(scene):
     path = os.fspath(scene)
     if not Path(path).is_file():   # the CLI's words (InputFile)
         raise SpectralError(f"spectral render: {path}: scene file not found (hint: check the path)", 2)
+    if Path(path).suffix.lower() in IMPORTED:
+        return None, path
     try:
         return Path(path).read_bytes(), path
     except OSError as e:
@@ -104,7 +111,8 @@ def _error(lib, handle):
 
 
 def render(scene, progress=None, **options):
-    """Renders a scene (dict, JSON text, or path) as `spectral render` does, in memory. The keywords are the command's
+    """Renders a scene (dict, JSON text, or path — our JSON, or a Mitsuba 3 .xml converted as `spectral import` does) as
+    `spectral render` does, in memory. The keywords are the command's
     options (`spectral render --help`, one table for the command line, libspectral and this package), with '_' for '-':
     width, height, bands (a count or "start:end:count"), band_range, wave, spp, target_error, threads, rgb, integration,
     formats, exr_compression, models (a folder or a list of them), crop ("x0,y0,x1,y1" or (x0, y0, x1, y1)), shard

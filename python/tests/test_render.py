@@ -236,3 +236,12 @@ def test_a_paper_scene_with_a_mesh_equals_the_cli_spectral_npy_bit_for_bit(sr, c
     assert p.returncode == 0, p.stderr
     r = sr.render(repo / scene, width=32, height=24)
     assert r.cube.tobytes() == np.load(out / "spectral.npy").tobytes()
+
+
+def test_a_mitsuba_xml_renders_as_the_cli_does(sr, cli, repo, tmp_path):
+    # The library converts the XML from its path (docs/import.md), as `spectral render FILE.xml` does: the same bits.
+    xml = "scenes/mitsuba-cornell-box.xml"
+    p = cli("render", xml, "-o", tmp_path / "cli", "--width", 24, "--height", 24, "--spp", 2, "--formats", "npy", "--quiet")
+    assert p.returncode == 0, p.stderr
+    r = sr.render(repo / xml, width=24, height=24, spp=2)
+    assert r.cube.tobytes() == np.load(tmp_path / "cli" / "spectral.npy").tobytes()

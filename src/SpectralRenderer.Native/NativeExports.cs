@@ -55,13 +55,14 @@ public static unsafe partial class NativeExports
 
     /// <summary>
     /// Renders a scene given as UTF-8 JSON text. <paramref name="path"/> names it (its relative mesh paths resolve from its
-    /// folder; messages name it). <paramref name="options"/>: a JSON object of `spectral render`'s options, each optional,
-    /// keyed by the option's name with '_' for '-' (<see cref="RenderOptions.All"/>: width, height, bands, wave, spp,
-    /// target_error, threads, rgb, integration, formats, exr_compression, models, crop, shard, …), valued as on the command
-    /// line (a text or a number; an array for models, or items joined by ','), checked by the same code with the same
-    /// messages; no job array variable is read. <paramref name="cancel"/> (may be null): the render stops soon after the
-    /// caller sets *cancel to non-zero (status 1, "interrupted …"). <paramref name="progress"/> (may be null) is called
-    /// after each tile with (user, tiles done, tiles) on a worker thread.
+    /// folder; messages name it). A null <paramref name="scene"/> reads the file at <paramref name="path"/> as `spectral render`
+    /// does: our JSON, or a Mitsuba 3 XML (another renderer's format, docs/import.md) converted in memory. <paramref name="options"/>: a
+    /// JSON object of `spectral render`'s options, each optional, keyed by the option's name with '_' for '-'
+    /// (<see cref="RenderOptions.All"/>: width, height, bands, wave, spp, target_error, threads, rgb, integration, formats,
+    /// exr_compression, models, crop, shard, …), valued as on the command line (a text or a number; an array for models, or items joined by
+    /// ','), checked by the same code with the same messages; no job array variable is read. <paramref name="cancel"/> (may be null): the
+    /// render stops soon after the caller sets *cancel to non-zero (status 1, "interrupted …"). <paramref name="progress"/> (may be null)
+    /// is called after each tile with (user, tiles done, tiles) on a worker thread.
     /// </summary>
     [UnmanagedCallersOnly(EntryPoint = "spectral_render")]
     public static nint Render(byte* scene, byte* path, byte* options, int* cancel,
@@ -71,8 +72,9 @@ public static unsafe partial class NativeExports
         try
         {
             string name = Utf8(path) ?? "scene.json";
-            byte[] text = scene is null ? [] : new ReadOnlySpan<byte>(scene, StrLen(scene)).ToArray();
-            var values = RenderOptions.Parse(RenderOptions.FromJson(Options(Utf8(options))), () => text);
+            // No text: the scene file at path, read (or converted from another renderer's format) as `spectral render` does.
+            byte[]? text = scene is null ? null : new ReadOnlySpan<byte>(scene, StrLen(scene)).ToArray();
+            var values = RenderOptions.Parse(RenderOptions.FromJson(Options(Utf8(options))), () => text ?? []);
             var request = values.Request(name, ShardRegion.Of(values, jobArray: false)) with
             {
                 SceneText = text,

@@ -1134,6 +1134,52 @@ for label, text, pat, place in [
 ]:
     fname = write(f"pbrt-{label}.pbrt", text)
     case(f"pbrt/{label}", render("{in}/" + fname), pat, 2, fname, place)
+# ---- I. Mitsuba 3 XML scenes (issue 39): spectral import and spectral render FILE.xml -------------------------------------
+MI_SENSOR = ('<sensor type="perspective"><float name="fov" value="40"/>'
+             '<transform name="to_world"><lookat origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform>'
+             '<film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="6"/></film></sensor>')
+MI_SHAPE = '<shape type="sphere"><bsdf type="diffuse"/></shape>'
+
+def mi_scene(body, sensor=MI_SENSOR, shape=MI_SHAPE):
+    return f'<scene version="3.0.0">\n{sensor}\n{shape}\n{body}\n</scene>\n'
+
+for label, text, pat in [
+    ("not-closed", mi_scene("<bsdf type=\"diffuse\" id=\"a\">"), r"malformed XML"),
+    ("text-content", mi_scene("<float name=\"x\">3</float>"), r"unexpected text"),
+    ("root-not-scene", '<shape type="sphere"/>\n', r"the root element is <shape>, not <scene>"),
+    ("unknown-ref", mi_scene("", shape='<shape type="sphere"><ref id="nope"/></shape>'), r"no element has id 'nope'"),
+    ("id-twice", mi_scene('<bsdf type="diffuse" id="a"/>\n<bsdf type="diffuse" id="a"/>'), r"id 'a' is given twice"),
+    ("parameter-undefined", mi_scene("", shape='<shape type="sphere"><float name="radius" value="$r"/></shape>'),
+     r"parameter \$r has no value"),
+    ("float-not-number", mi_scene("", shape='<shape type="sphere"><float name="radius" value="big"/></shape>'),
+     r"radius: 'big' is not a number"),
+    ("spectrum-not-ascending", mi_scene("", shape='<shape type="sphere"><bsdf type="diffuse">'
+                                            '<spectrum name="reflectance" value="500:0.5, 400:0.2"/></bsdf></shape>'),
+     r"wavelength 400 does not follow 500"),
+    ("spectrum-bad-pair", mi_scene("", shape='<shape type="sphere"><bsdf type="diffuse">'
+                                       '<spectrum name="reflectance" value="400:0.5:1, 500:0.2"/></bsdf></shape>'),
+     r"is not wavelength:value"),
+    ("serialized", mi_scene("", shape='<shape type="serialized"><string name="filename" value="m.serialized"/></shape>'),
+     r"re-export it as PLY"),
+    ("medium", mi_scene('<medium type="homogeneous" id="fog"/>'), r"participating medium.*--lenient"),
+    ("hair-bsdf", mi_scene("", shape='<shape type="sphere"><bsdf type="hair"/></shape>'), r"the BSDF 'hair' has no counterpart"),
+    ("fov-axis", mi_scene("", sensor=MI_SENSOR.replace('<float name="fov" value="40"/>',
+                                                        '<float name="fov" value="40"/><string name="fov_axis" value="z"/>')),
+     r"fov_axis 'z' is not x, y, diagonal"),
+    ("lookat-degenerate", mi_scene("", sensor=MI_SENSOR.replace('target="0, 0, 0"', 'target="0, 0, 5"')), r"target equals origin"),
+    ("matrix-short", mi_scene("", shape='<shape type="sphere"><transform name="to_world"><matrix value="1 0 0"/>'
+                                        '</transform></shape>'), r"<matrix> has 3 numbers"),
+    ("mesh-missing", mi_scene("", shape='<shape type="ply"><string name="filename" value="nowhere.ply"/></shape>'),
+     r"mesh 'nowhere.ply' not found"),
+    ("area-outside-shape", mi_scene('<emitter type="area"/>'), r"an area emitter outside a shape"),
+    ("include-missing", mi_scene('<include filename="nowhere.xml"/>'), r"included file 'nowhere.xml' not found"),
+    ("no-sensor", mi_scene("", sensor=""), r"the scene has no <sensor>"),
+]:
+    fname = write(f"mitsuba-{label}.xml", text)
+    place = r"\.xml:\d+:\d+" if label != "no-sensor" else r"\.xml"
+    case(f"mitsuba/{label}", ["import", "{in}/" + fname, "-o", "{tmp}/out/scene.json"], pat, 2, fname, place)
+fname = write("mitsuba-render-unknown-bsdf.xml", mi_scene("", shape='<shape type="sphere"><bsdf type="measured"/></shape>'))
+case("mitsuba/render-unknown-bsdf", render("{in}/" + fname), r"the BSDF 'measured' has no counterpart", 2, fname, r"\.xml:\d+:\d+")
 
 names = [c["name"] for c in cases]
 assert len(names) == len(set(names)), [x for x in names if names.count(x) > 1]

@@ -35,6 +35,9 @@ public sealed record ManifestRun
     public ManifestRelit? Relit { get; init; }
     /// <summary>Wall seconds from the pixels to every file but render.json written.</summary>
     public double? WriteSeconds { get; init; }
+    /// <summary>A scene of another renderer's format converted in memory (docs/import.md): its import report, { "source",
+    /// "format", "entries" }.</summary>
+    public System.Text.Json.Nodes.JsonObject? Imported { get; init; }
 }
 
 /// <summary>The command-line overrides of a render as render.json records them ("run.overrides"); null: the scene's own.</summary>

@@ -268,6 +268,7 @@ public sealed record RenderManifest
         Put("overrides", run.Overrides is { } v ? OverridesJson(v) : null, run.HasOverrides || run.Overrides is not null);
         Put("relit", run.Relit is { } relit ? RelitJson(relit) : null, run.Relit is not null);
         Put("write_s", run.WriteSeconds, run.WriteSeconds is not null);
+        Put("imported", run.Imported?.DeepClone(), run.Imported is not null);
         return o;
     }
 
@@ -498,6 +499,7 @@ public sealed record RenderManifest
             Overrides = overrides,
             Relit = r.OptObject(o, "relit", at) is { } relit ? Relit(r, relit) : null,
             WriteSeconds = r.OptNumber(o, "write_s", at, 0),
+            Imported = r.OptObject(o, "imported", at)?.DeepClone().AsObject(),
         };
     }
 

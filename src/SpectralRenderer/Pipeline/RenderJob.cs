@@ -285,7 +285,12 @@ public sealed class RenderJob
     }
 
     /// <summary>render.json's "run": the request's, with what <see cref="RenderRequest.Detail"/> adds.</summary>
-    ManifestRun? Record(RenderResult result) => Request.Detail switch
+    ManifestRun? Record(RenderResult result) => Import is null ? Detailed(result) : (Detailed(result) ?? new ManifestRun()) with
+    {
+        Imported = Import.ToJson(),
+    };
+
+    ManifestRun? Detailed(RenderResult result) => Request.Detail switch
     {
         RunDetail.None => Request.Run,
         RunDetail.Geometry => (Request.Run ?? new ManifestRun()) with { Triangles = Geometry?.TriangleCount },

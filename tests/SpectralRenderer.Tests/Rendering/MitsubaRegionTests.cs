@@ -17,14 +17,10 @@ public class MitsubaRegionTests
     [Trait("Category", "Interop")]
     public void The_cornell_room_region_means_agree_with_mitsuba()
     {
-        var python = Environment.GetEnvironmentVariable("SPECTRAL_ANCHORS_PYTHON");
-        Skip.If(python is null || !File.Exists(python),
-            "SPECTRAL_ANCHORS_PYTHON is not set to the anchors' Python (../shared/anchors/setup.sh VENV; VENV/bin/python)");
-        Skip.If(Repo.Run(python!, ["-c", "import mitsuba, colour, numpy"]).Exit != 0,
-            $"{python} cannot import mitsuba, colour and numpy (make it with ../shared/anchors/setup.sh)");
+        var python = AnchorsPython.Require();
 
         var spectral = Path.Combine(AppContext.BaseDirectory, "spectral.dll");
-        var (exit, stdout, stderr) = Repo.Run(python!, [Repo.PathOf("scripts", "compare-mitsuba.py"), "--regions-only",
+        var (exit, stdout, stderr) = Repo.Run(python, [Repo.PathOf("scripts", "compare-mitsuba.py"), "--regions-only",
             "--width", "32", "--height", "24", "--ref-spp", "2048", "--parts", "4", "--spectral", spectral], timeoutMs: 1_200_000);
         Assert.True(exit == 0, $"compare-mitsuba.py failed:\n{stderr}");
 

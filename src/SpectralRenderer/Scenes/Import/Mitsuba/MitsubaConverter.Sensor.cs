@@ -65,7 +65,8 @@ public sealed partial class MitsubaConverter
                 if (spp < 1) throw new InputException(c.Where, $"sample_count {spp} is below 1", "give at least one sample per pixel");
                 if (c.Attr("type") is not ("independent" or "stratified" or "multijitter" or "ldsampler" or "orthogonal"))
                     Note("approximated", c, $"sampler '{c.Attr("type")}': ours is Owen-scrambled Sobol (path) with the same sample count");
-                Prop(c, "seed");
+                // The sampler's seed: our path tracer's (another independent render, not Mitsuba's random sequence).
+                _seed = (int)Math.Clamp(Float(c, "seed", 0), 0, int.MaxValue);
                 ReportUnused(c);
             }
         }

@@ -243,13 +243,27 @@ public sealed partial class MitsubaConverter
                     Prop(t, "to_uv");
                     ReportUnused(t);
                     Note("approximated", t, "a checkerboard: our engine has no procedural textures; the mean of its two colours");
-                    if (c0 is JsonValue a && c1 is JsonValue b && a.TryGetValue<double>(out var x) && b.TryGetValue<double>(out var y))
-                        return JsonValue.Create(Round(0.5 * (x + y)))!;
-                    return c0 ?? 0.3;
+                    // The mean of two constants, or of two colours' rgb (linear, so the mean colour); else the first colour.
+                    var a = Rgb(c0!);
+                    var b = Rgb(c1!);
+                    if (a is null || b is null) return c0!;
+                    double[] mean = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2])];
+                    if (mean[0] == mean[1] && mean[1] == mean[2] && !emission) return JsonValue.Create(Round(mean[0]))!;
+                    var o = new JsonObject { ["rgb"] = new JsonArray([.. mean.Select(v => (JsonNode)JsonValue.Create(Round(v)))]) };
+                    if (emission) o["illuminant"] = "D65";
+                    return o;
                 }
             default:
                 Refuse(t, $"texture type '{t.Attr("type")}' has no counterpart");
                 return 0.5;
         }
+    }
+
+    /// <summary>A constant or an { "rgb" } value as linear rgb, else null.</summary>
+    static double[]? Rgb(JsonNode n)
+    {
+        if (n is JsonValue v && v.TryGetValue<double>(out var x)) return [x, x, x];
+        if (n is JsonObject o && o["rgb"] is JsonArray a) return [.. a.Select(c => c!.GetValue<double>())];
+        return null;
     }
 }

@@ -29,6 +29,7 @@ public sealed partial class MitsubaConverter
     JsonObject? _camera;
     JsonNode? _integrator;
     JsonNode? _background;
+    int _seed;
 
     public MitsubaConverter(string path, ImportOptions options)
     {
@@ -69,7 +70,7 @@ public sealed partial class MitsubaConverter
             ["description"] = $"imported from Mitsuba 3 XML by spectral import ({Path.GetFileName(_path)})",
             ["bands"] = Bands,
             ["radiometry"] = "physical",
-            ["integrator"] = _integrator ?? "path",
+            ["integrator"] = _seed == 0 ? _integrator ?? "path" : WithSeed(_integrator, _seed),
             ["camera"] = _camera,
         };
         if (_background is not null) scene["background"] = _background;
@@ -77,6 +78,13 @@ public sealed partial class MitsubaConverter
         scene["lights"] = _lights;
         scene["objects"] = _objects;
         return new ImportedScene(scene, _report, _meshes);
+    }
+
+    static JsonObject WithSeed(JsonNode? integrator, int seed)
+    {
+        var o = integrator as JsonObject ?? new JsonObject { ["type"] = "path" };
+        o["seed"] = seed;
+        return o;
     }
 
     void CollectIds(MitsubaElement e)
