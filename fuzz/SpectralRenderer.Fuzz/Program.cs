@@ -56,6 +56,7 @@ public static class Program
         ["matrix"] = b => ReradiationExrReader.Read(b, "fuzz.exr"),   // a bispectral re-radiation matrix (Fichet et al. 2021)
         ["npy"] = b => NpyReader.Read(new MemoryStream(b), "fuzz.npy"),
         ["png"] = b => PngReader.Read(new MemoryStream(b), "fuzz.png"),
+        ["jpeg"] = b => JpegReader.Read(b, "fuzz.jpg"),
         ["ies"] = b => IesReader.Parse(Encoding.UTF8.GetString(b), "fuzz.ies").Table.Evaluate(10, 20),
         ["ldt"] = b => EulumdatReader.Parse(Encoding.UTF8.GetString(b), "fuzz.ldt").Table.Evaluate(10, 20),
         // Our own manifests, never trusted when read back (JsonFields): render.json, lights/lights.json (against a fixed

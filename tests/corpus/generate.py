@@ -648,6 +648,47 @@ for label, data, pat in [
     folder_case(label, [f"copy {{in}}/{label}.png r/object-id.png"], pat, "object-id.png", PNGPLACE + r"|object-id\.png: ", cmd=COLORCHECK)
 
 
+# ---- JPEG textures (issue 39): a baseline JPEG as a material's diffuse texture; each defect one line naming the .jpg and
+# the byte where the decoder stopped. The good file is fuzz/seeds/jpeg/ycbcr-420.jpg (cjpeg -quality 75, 24×16, 4:2:0).
+GOODJPEG = open(os.path.join(HERE, "..", "..", "fuzz", "seeds", "jpeg", "ycbcr-420.jpg"), "rb").read()
+def jpeg_segment(marker, body):
+    return bytes([0xFF, marker]) + struct.pack(">H", len(body) + 2) + body
+def jpeg_replace_sof(data, sof):
+    i = data.index(b"\xff\xc0")
+    return data[:i + 1] + bytes([sof]) + data[i + 2:]
+def jpeg_find(data, marker):
+    return data.index(bytes([0xFF, marker]))
+SOS = jpeg_find(GOODJPEG, 0xDA)
+SOF = jpeg_find(GOODJPEG, 0xC0)
+DHT = jpeg_find(GOODJPEG, 0xC4)
+JPEGPLACE = r"\.jpg: byte \d+"
+for label, data, pat in [
+    ("jpeg-not-jpeg", b"GIF89a" + b"\0" * 50, r"not a JPEG file"),
+    ("jpeg-progressive", jpeg_replace_sof(GOODJPEG, 0xC2), r"progressive JPEG is not supported"),
+    ("jpeg-arithmetic", jpeg_replace_sof(GOODJPEG, 0xC9), r"arithmetic-coded JPEG is not supported"),
+    ("jpeg-lossless", jpeg_replace_sof(GOODJPEG, 0xC3), r"lossless JPEG is not supported"),
+    ("jpeg-12-bit", GOODJPEG[:SOF + 4] + b"\x0c" + GOODJPEG[SOF + 5:], r"12-bit JPEG is not supported"),
+    ("jpeg-cmyk", b"\xff\xd8" + jpeg_segment(0xC0, b"\x08\x00\x10\x00\x10\x04" + b"\x01\x11\x00" * 4) + b"\xff\xd9",
+     r"4 colour components are not supported"),
+    ("jpeg-truncated-scan", GOODJPEG[:SOS + 40], r"ends before the last block|ends before its EOI"),
+    ("jpeg-no-eoi", GOODJPEG[:-2], r"ends before its EOI marker"),
+    ("jpeg-no-scan", GOODJPEG[:SOS] + b"\xff\xd9", r"no image data"),
+    ("jpeg-scan-before-frame", GOODJPEG[:SOF] + GOODJPEG[SOS:], r"scan \(SOS\) before the frame header"),
+    ("jpeg-huge-frame", GOODJPEG[:SOF + 5] + b"\xff\xff\xff\xff" + GOODJPEG[SOF + 9:], r"more than the file's \d+ bytes can code"),
+    ("jpeg-zero-height", GOODJPEG[:SOF + 5] + b"\x00\x00" + GOODJPEG[SOF + 7:], r"no pixels"),
+    ("jpeg-bad-sampling", GOODJPEG[:SOF + 11] + b"\x32" + GOODJPEG[SOF + 12:SOF + 14] + b"\x21" + GOODJPEG[SOF + 15:],
+     r"sampling 2×1 is not a whole fraction of 3×2"),
+    ("jpeg-segment-past-end", GOODJPEG[:DHT + 2] + b"\xff\xf0" + GOODJPEG[DHT + 4:], r"runs past the end of the file"),
+    ("jpeg-huffman-overfull", GOODJPEG[:DHT + 5] + b"\x03" + GOODJPEG[DHT + 6:], r"more codes of length 1 than fit|shorter than its table"),
+    ("jpeg-garbage-between-segments", GOODJPEG[:SOF] + b"\x00" + GOODJPEG[SOF:], r"expected a marker, found byte 0x00"),
+    ("jpeg-restart-missing", b"\xff\xd8" + jpeg_segment(0xDD, b"\x00\x01") + GOODJPEG[2:], r"expected the restart marker RST0"),
+]:
+    write(label + ".jpg", data)
+    scene = deep(BASE)
+    scene["materials"]["green"] = {"diffuse": {"texture": label + ".jpg"}}
+    scene_case(label, scene, pat, file=label + ".jpg", place=JPEGPLACE)
+
+
 MANIFEST_VALIDATION = True  # step 4: analysis commands validate the folder through the manifest
 MANIFESTPLACE = r"render\.json(:\d+)?: (\$|line)|render\.json:\d+"
 for label, text, pat in [] if not MANIFEST_VALIDATION else [
