@@ -83,6 +83,7 @@ public sealed partial class SceneLoader
         if (TryGet(e, "wavelengths", out _))
             throw Error($"{path}.wavelengths", "\"wavelengths\" belongs to a stack of PNG bands",
                 "name the bands as a list of files or a pattern with {nm}, or drop \"wavelengths\"");
+        if (file.StartsWith("data:", StringComparison.OrdinalIgnoreCase)) return DataTexture(file, path);
         var full = TextureFile(file, $"{path}.texture");
         var ext = Path.GetExtension(full).ToLowerInvariant();
         try
@@ -191,10 +192,35 @@ public sealed partial class SceneLoader
 
     static readonly Lazy<SigmoidUplift> Uplift = new(() => new SigmoidUplift());
 
-    /// <summary>An 8- or 16-bit sRGB PNG, each colour uplifted to a reflectance spectrum (<see cref="SigmoidUplift"/>).</summary>
-    SpectralTexture RgbTexture(string full, string path)
+    /// <summary>An sRGB PNG or JPEG given inline as a base64 data: URI (RFC 2397; an imported glTF's embedded image), e.g.
+    /// "data:image/png;base64,iVBORw0…": uplifted as the file would be.</summary>
+    SpectralTexture DataTexture(string uri, string path)
     {
-        var png = PngReader.Read(full);
+        int comma = uri.IndexOf(',', StringComparison.Ordinal);
+        var header = comma < 0 ? uri : uri[..comma];
+        if (comma < 0 || !header.EndsWith(";base64", StringComparison.OrdinalIgnoreCase))
+            throw Error($"{path}.texture", "a data: URI texture must be base64", "data:image/png;base64,… or data:image/jpeg;base64,…");
+        byte[] bytes;
+        try { bytes = Convert.FromBase64String(uri[(comma + 1)..]); }
+        catch (FormatException) { throw Error($"{path}.texture", "the data: URI is not valid base64", "encode the image again"); }
+        var source = $"{header},…";
+        try
+        {
+            if (JpegReader.IsJpeg(bytes)) return JpegTexture(JpegReader.Read(bytes, source), source);
+            var png = PngReader.Read(new MemoryStream(bytes), source);
+            return RgbTexture(png, source, path);
+        }
+        catch (InputException ex) when (!ex.Where.StartsWith(_file, StringComparison.Ordinal))
+        {
+            throw Error($"{path}.texture", $"{ex.Where}: {ex.What}", ex.Hint);
+        }
+    }
+
+    /// <summary>An 8- or 16-bit sRGB PNG, each colour uplifted to a reflectance spectrum (<see cref="SigmoidUplift"/>).</summary>
+    SpectralTexture RgbTexture(string full, string path) => RgbTexture(PngReader.Read(full), full, path);
+
+    SpectralTexture RgbTexture(PngImage png, string full, string path)
+    {
         if (png.Channels != 3)
             throw Error($"{path}.texture", $"{full} has {png.Channels} channel(s): an RGB texture is an sRGB PNG of three channels",
                 "save the texture as RGB (no alpha), or give a spectral texture");
@@ -204,9 +230,10 @@ public sealed partial class SceneLoader
     }
 
     /// <summary>A baseline JPEG (<see cref="JpegReader"/>), its colours sRGB as a PNG's are; a greyscale JPEG is R = G = B.</summary>
-    static SpectralTexture JpegTexture(string full)
+    static SpectralTexture JpegTexture(string full) => JpegTexture(JpegReader.Read(full), full);
+
+    static SpectralTexture JpegTexture(JpegImage jpeg, string full)
     {
-        var jpeg = JpegReader.Read(full);
         var s = jpeg.Samples;
         return jpeg.Channels == 3
             ? Uplifted(full, jpeg.Width, jpeg.Height, 255, i => (s[3 * i], s[3 * i + 1], s[3 * i + 2]))
