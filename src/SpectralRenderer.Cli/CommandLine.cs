@@ -37,6 +37,8 @@ public static class CommandLine
             MetamerismCommand.Run),
         new("illuminance", "illuminance (lx) on a grid of points of a work plane from every light: CSV and an SVG heat map",
             IlluminanceCommand.Run),
+        new("import", "a Mitsuba 3 XML, pbrt-v4 or glTF 2.0 scene converted to our scene JSON, with a report of what was approximated",
+            ImportCommand.Run),
     ];
 
     /// <summary>Adds a command (a plug-in, a test) after the built-in ones; its name is lower-case letters, digits and '-'.</summary>

@@ -4,6 +4,7 @@ using SpectralRenderer.Output;
 using SpectralRenderer.Output.Products;
 using SpectralRenderer.Rendering;
 using SpectralRenderer.Scenes;
+using SpectralRenderer.Scenes.Import;
 using SpectralRenderer.Scenes.Loading;
 
 namespace SpectralRenderer.Pipeline;
@@ -77,15 +78,35 @@ public sealed class RenderJob
             throw new InputException("--integrator", $"unknown integrator '{named}'",
                 $"known integrators: {string.Join(", ", Integrators.Names)}");
         var clock = Stopwatch.StartNew();
-        var scene = request.Scene ?? SceneLoader.Parse(request.SceneText ?? InputFile.ReadAllBytes(request.ScenePath, "scene file"),
-            request.ScenePath, request.Overrides);
-        var job = new RenderJob(request, scene, clock.Elapsed.TotalSeconds);
+        ImportReport? imported = null;
+        var scene = request.Scene ?? SceneLoader.Parse(request.SceneText ?? SceneBytes(request, out imported), request.ScenePath,
+            request.Overrides);
+        var job = new RenderJob(request, scene, clock.Elapsed.TotalSeconds) { Import = imported };
+        if (imported is not null && observer?.Warning is { } say) say($"spectral import: {imported.Summary()}");
         job.Check();
         if (observer?.Warning is { } warn) foreach (var w in scene.Warnings) warn(w);
         // What the render and its writers hold, checked before anything is built.
         if (request.OutDir is not null) RenderMemory.Check(scene, request.Threads, job.NamedProducts, job.IntegratorName);
         return job;
     }
+
+    /// <summary>
+    /// The scene file's bytes: our JSON as it is, or a scene of another format (Mitsuba XML, pbrt, glTF: <see cref="SceneFormats"/>)
+    /// converted in memory to our JSON with its meshes inline, parsed from the source file's folder; <paramref name="report"/>
+    /// then says what the conversion approximated.
+    /// </summary>
+    static byte[] SceneBytes(RenderRequest request, out ImportReport? report)
+    {
+        report = null;
+        if (SceneFormats.Find(request.ScenePath) is not { } format)
+            return InputFile.ReadAllBytes(request.ScenePath, "scene file");
+        var imported = format.Convert(request.ScenePath, new ImportOptions(ModelDirectories: request.Overrides.ModelDirectories));
+        report = imported.Report;
+        return ImportWriter.InlineJson(imported);
+    }
+
+    /// <summary>What the conversion of a scene file of another format did (null for our JSON).</summary>
+    public ImportReport? Import { get; private init; }
 
     /// <summary>The integrator's name: the command line's, else the scene's "integrator", else whitted.</summary>
     public string IntegratorName => Request.Integrator ?? Scene.Integrator?.Name ?? Integrators.Default;

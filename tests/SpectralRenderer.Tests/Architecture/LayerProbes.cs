@@ -57,6 +57,13 @@ namespace SpectralRenderer.Tests.Architecture.Probe.Layers.Scenes.Loading
     static class BackEdge { public const string X = nameof(Rendering.Mark.Value); }
 }
 
+namespace SpectralRenderer.Tests.Architecture.Probe.Layers.Scenes.Import
+{
+    public static class Mark { public const int Value = 18; }
+
+    static class BackEdge { public const int X = Loading.Mark.Value; }   // an importer writes JSON; it never loads a scene
+}
+
 namespace SpectralRenderer.Tests.Architecture.Probe.Layers.Rendering
 {
     using Writer = SpectralRenderer.Tests.Architecture.Probe.Layers.Output.Mark;

@@ -24,12 +24,14 @@ public class LayeringTests
         [R + "Acceleration"] = ["Geometry", "Diagnostics"],
         [R + "Scenes"] = ["Spectra", "Color", "Geometry", "Diagnostics"],
         [R + "Scenes.Loading"] = ["Scenes", "Imaging", "Spectra", "Color", "Geometry", "Diagnostics"],
+        [R + "Scenes.Import"] = ["Scenes", "Imaging", "Spectra", "Color", "Geometry", "Diagnostics"],
         [R + "Rendering"] = ["Scenes", "Acceleration", "Imaging", "Geometry", "Spectra", "Color", "Diagnostics"],
         [R + "Imaging"] = ["Spectra", "Color", "Diagnostics"],
         [R + "Output"] = ["Rendering", "Scenes", "Geometry", "Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Sensor"] = ["Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Analysis"] = ["Output", "Sensor", "Imaging", "Spectra", "Color", "Diagnostics"],
-        [R + "Pipeline"] = ["Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Geometry", "Spectra", "Color", "Diagnostics"],
+        [R + "Pipeline"] = ["Output", "Rendering", "Scenes.Import", "Scenes.Loading", "Scenes", "Imaging", "Geometry", "Spectra", "Color",
+            "Diagnostics"],
         [R + "Lighting"] = ["Analysis", "Sensor", "Pipeline", "Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra",
             "Color", "Diagnostics"],
         [R + "Distributed"] = ["Pipeline", "Output", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra", "Color", "Diagnostics"],
@@ -187,7 +189,8 @@ public class LayeringTests
     static readonly (string From, string To)[] ProbeBackEdges =
     [
         ("Diagnostics", "Spectra"), ("Spectra", "Color"), ("Color", "Geometry"), ("Geometry", "Acceleration"),
-        ("Acceleration", "Scenes"), ("Scenes", "Scenes.Loading"), ("Scenes.Loading", "Rendering"), ("Rendering", "Output"),
+        ("Acceleration", "Scenes"), ("Scenes", "Scenes.Loading"), ("Scenes.Loading", "Rendering"),
+        ("Scenes.Import", "Scenes.Loading"), ("Rendering", "Output"),
         ("Imaging", "Sensor"), ("Sensor", "Output"), ("Output", "Pipeline"), ("Pipeline", "Analysis"),
         ("Analysis", "Lighting"), ("Lighting", "Distributed"), ("Distributed", "Cli"), ("Native", "Cli"),
     ];

@@ -63,6 +63,8 @@ public partial class SceneDocsTests
         Add("camera", "$.camera", s => s["camera"]![Unknown] = 1);
         Add("output", "$.output", s => s["output"] = With([]));
         Add("Spectrum values", "spectrum object", s => s["lights"]![0]!["spectrum"] = With(new JsonObject { ["name"] = "D65" }));
+        Add("Spectrum values", "rgb spectrum",
+            s => s["lights"]![0]!["spectrum"] = With(new JsonObject { ["rgb"] = new JsonArray(1, 1, 1) }));
         Add("materials", "$.materials.m", s => s["materials"]!["m"]![Unknown] = 1);
         Add("materials", "$.materials.m.ior",
             s => s["materials"]!["m"]!["ior"] = With(new JsonObject { ["cauchy"] = new JsonArray(1.5, 0) }));
@@ -108,6 +110,13 @@ public partial class SceneDocsTests
             ["material"] = "m",
             ["fit"] = With(new JsonObject { ["min"] = new JsonArray(0, 0, 0), ["max"] = new JsonArray(1, 1, 1) }),
         });
+        Add("objects", "mesh inline", s => s["objects"]![0] = new JsonObject
+        {
+            ["type"] = "mesh",
+            ["material"] = "m",
+            ["inline"] =
+                With(new JsonObject { ["positions"] = new JsonArray(0, 0, 0, 1, 0, 0, 0, 1, 0), ["indices"] = new JsonArray(0, 1, 2) }),
+        });
         return keys;
     }
 
@@ -141,16 +150,16 @@ public partial class SceneDocsTests
     public void The_probe_reaches_every_place_the_loader_checks_keys()
     {
         // Each call of the loader's Keys(element, path, allowed…) is one kind of JSON object; the probe above
-        // asks twenty-one of them (the light, object and material calls cover every type, the registered shape types' call
-        // every registered shape: disk, cylinder). The twenty-second checks a registered medium type's own keys
-        // (SceneLoader.Media.cs): this build registers none, so the scene file's "medium" takes only "type" (documented)
+        // asks twenty-three of them (the light, object and material calls cover every type, the registered shape types' call
+        // every registered shape: disk, cylinder; an rgb spectrum; an inline mesh). The twenty-fourth checks a registered medium type's own
+        // keys (SceneLoader.Media.cs): this build registers none, so the scene file's "medium" takes only "type" (documented)
         // and any name is refused; the probe joins it when the first medium type is built in. A new one must join the probe.
         var sources = Directory.GetFiles(Repo.PathOf("src", "SpectralRenderer"), "*.cs", SearchOption.AllDirectories)
             .Where(f => !f.Contains($"{Path.DirectorySeparatorChar}obj{Path.DirectorySeparatorChar}", StringComparison.Ordinal));
         var calls = sources.SelectMany(f => KeysCall().Matches(File.ReadAllText(f)).Select(m => $"{Path.GetFileName(f)}: {m.Value}"))
             .ToList();
-        Assert.True(calls.Count == 22,
-            $"{calls.Count} Keys(...) calls, the probe knows 22; add the new one to AcceptedKeys:\n" + string.Join("\n", calls));
+        Assert.True(calls.Count == 24,
+            $"{calls.Count} Keys(...) calls, the probe knows 24; add the new one to AcceptedKeys:\n" + string.Join("\n", calls));
     }
 
     // ---- the examples -------------------------------------------------------------------------------

@@ -42,7 +42,7 @@ public sealed partial class SceneLoader
             "plane" => ["point", "normal"],
             "quad" => ["center", "size", "normal", "up"],
             "box" => ["center", "size", "min", "max"],
-            "mesh" => ["file", "fit", "shading", "normals"],
+            "mesh" => ["file", "inline", "fit", "shading", "normals"],
             _ => ["center", "normal", "up", "patch_size", "gap", "frame"],
         };
         Keys(e, path, [.. common, .. specific, "medium"]);
@@ -237,12 +237,13 @@ public sealed partial class SceneLoader
         0, 0, 0, 1);
 
     /// <summary>{"translate": [x,y,z], "rotate": [rx,ry,rz] degrees about x then y then z, "scale": s | [sx,sy,sz]}: scale, then rotate,
-    /// then translate.</summary>
+    /// then translate; or {"matrix": [16 numbers]} alone.</summary>
     [MethodImpl(MethodImplOptions.NoOptimization)]
     Matrix4x4 Transform(JsonElement e, string path)
     {
         Object(e, path);
-        Keys(e, path, "translate", "rotate", "scale");
+        Keys(e, path, "translate", "rotate", "scale", "matrix");
+        if (TryGet(e, "matrix", out var mx)) return TransformMatrix(e, mx, path);
         var m = Matrix4x4.Identity;
         if (TryGet(e, "scale", out var s))
         {
@@ -263,6 +264,45 @@ public sealed partial class SceneLoader
             m *= Matrix4x4.CreateRotationX(deg.X) * Matrix4x4.CreateRotationY(deg.Y) * Matrix4x4.CreateRotationZ(deg.Z);
         }
         if (TryGet(e, "translate", out var tr)) m *= Matrix4x4.CreateTranslation(Vec3(tr, $"{path}.translate"));
+        return m;
+    }
+
+    /// <summary>
+    /// "matrix": 16 numbers, a row-major 4 × 4 matrix M acting on column vectors, p' = M·p (Mitsuba's and pbrt's order): the
+    /// last row must be [0, 0, 0, 1] (affine) and M invertible. System.Numerics acts on row vectors, so it holds Mᵀ.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
+    Matrix4x4 TransformMatrix(JsonElement e, JsonElement mx, string path)
+    {
+        string where = $"{path}.matrix";
+        foreach (var key in new[] { "translate", "rotate", "scale" })
+            if (TryGet(e, key, out _))
+                throw Error($"{path}.{key}", "a transform gives either \"matrix\" or translate/rotate/scale, not both",
+                    "fold the translation, rotation and scale into the matrix");
+        if (mx.ValueKind != JsonValueKind.Array || mx.GetArrayLength() != 16)
+            throw Error(where, $"expected 16 numbers (a row-major 4 × 4 matrix), found {Kind(mx)}",
+                "e.g. [1,0,0,tx, 0,1,0,ty, 0,0,1,tz, 0,0,0,1]");
+        var v = new float[16];
+        int i = 0;
+        foreach (var x in mx.EnumerateArray())
+        {
+            v[i] = (float)Number(x, $"{where}[{i}]", -MaxCoordinate, MaxCoordinate);
+            i++;
+        }
+        if (v[12] != 0 || v[13] != 0 || v[14] != 0 || v[15] != 1)
+            throw Error(where, $"the last row is [{v[12]}, {v[13]}, {v[14]}, {v[15]}], not [0, 0, 0, 1]: a projective matrix",
+                "give an affine transform (rotation, scale, shear and translation)");
+        var m = new Matrix4x4(
+            v[0], v[4], v[8], 0,
+            v[1], v[5], v[9], 0,
+            v[2], v[6], v[10], 0,
+            v[3], v[7], v[11], 1);
+        float det = m.GetDeterminant();
+        float norm = MathF.Max(MathF.Max(new Vector3(v[0], v[4], v[8]).Length(), new Vector3(v[1], v[5], v[9]).Length()),
+            new Vector3(v[2], v[6], v[10]).Length());
+        if (!(MathF.Abs(det) >= (float)Math.Pow(MinSize, 3) && MathF.Abs(det) >= 1e-9f * norm * norm * norm))
+            throw Error(where, $"the matrix is singular or nearly so (determinant {det:g3}): it flattens the object",
+                "give a matrix with three independent columns");
         return m;
     }
 }

@@ -1,6 +1,7 @@
 using System.Globalization;
 using System.Runtime.CompilerServices;
 using System.Text.Json;
+using SpectralRenderer.Color;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Spectra;
 
@@ -59,6 +60,8 @@ public sealed partial class SceneLoader
                 break;
             case JsonValueKind.Object when IsTexture(e):
                 return TextureSpectrum(e, path);   // issue 26: SceneLoader.Textures.cs
+            case JsonValueKind.Object when TryGet(e, "rgb", out _):
+                return RgbSpectrum(e, path);
             case JsonValueKind.Object:
                 {
                     Keys(e, path, "name", "csv", "column", "values", "constant", "scale", "extrapolate");
@@ -161,4 +164,60 @@ public sealed partial class SceneLoader
         Array.Fill(a, v, 0, _grid.Count);
         return a;
     }
+
+    /// <summary>
+    /// { "rgb": [r, g, b] }: a linear sRGB reflectance (each in [0, 1]) uplifted by the sigmoid polynomial
+    /// (<see cref="SigmoidUplift"/>: the smooth reflectance whose colour under D65 is that colour). With "illuminant": a spectrum
+    /// value I, an emission: S(λ) = s·r(λ)·I(λ)/Ȳ_I, where s = 2·max(r, g, b), r(λ) the uplift of rgb/s (at most ½, away from
+    /// the sigmoid's ends) and Ȳ_I = ∫ȳ·I dλ / ∫ȳ dλ (CIE 1931), so a white [1, 1, 1] is I scaled to luminance factor Y = 1
+    /// — Mitsuba 3's and pbrt-v4's illuminant uplift (Mitsuba's MI_CIE_D65_NORMALIZATION is 1/Ȳ of D65). "scale" multiplies.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
+    TabulatedSpectrum RgbSpectrum(JsonElement e, string path)
+    {
+        Keys(e, path, "rgb", "illuminant", "scale");
+        var a = Required(e, "rgb", path);
+        if (a.ValueKind != JsonValueKind.Array || a.GetArrayLength() != 3)
+            throw Error($"{path}.rgb", $"expected [r, g, b], found {Kind(a)}", "three linear sRGB values, e.g. [0.8, 0.2, 0.1]");
+        bool emission = TryGet(e, "illuminant", out var ill);
+        var c = new double[3];
+        for (int i = 0; i < 3; i++)
+            c[i] = Number(a[i], $"{path}.rgb[{i}]", 0, emission ? MaxMagnitude : 1);
+        string label = string.Create(CultureInfo.InvariantCulture, $"rgb({c[0]:R}, {c[1]:R}, {c[2]:R})");
+        TabulatedSpectrum s;
+        if (!emission) s = new TabulatedSpectrum(label, SigmoidUplift.Wavelengths, Uplifted(c[0], c[1], c[2]), Extrapolation.Clamp);
+        else
+        {
+            var illuminant = Spectrum(ill, $"{path}.illuminant");
+            double m = Math.Max(c[0], Math.Max(c[1], c[2]));
+            if (m == 0) s = TabulatedSpectrum.Constant(0, label);
+            else
+            {
+                double scale = 2 * m;
+                var r = new TabulatedSpectrum("uplift", SigmoidUplift.Wavelengths, Uplifted(c[0] / scale, c[1] / scale, c[2] / scale),
+                    Extrapolation.Clamp);
+                var ybar = Observer.Cie1931.YBar;
+                double lo = ybar.First, hi = ybar.Last;
+                if (!illuminant.Covers(lo, hi)) illuminant = illuminant.WithExtrapolation(Extrapolation.Zero);
+                double luminanceFactor = TabulatedSpectrum.IntegrateProduct(ybar, illuminant, lo, hi) / ybar.Integrate(lo, hi);
+                if (!(luminanceFactor > 0))
+                    throw Error($"{path}.illuminant", "the illuminant has no luminance (∫ȳ·I dλ = 0)",
+                        "name a visible light, e.g. \"D65\"");
+                var knots = new SortedSet<double>(SigmoidUplift.Wavelengths);
+                foreach (var w in illuminant.Wavelengths) knots.Add(w);
+                var wl = knots.Where(w => illuminant.Covers(w, w) || illuminant.Extrapolation != Extrapolation.Error).ToArray();
+                var v = wl.Select(w => scale * r.Evaluate(w) * illuminant.Evaluate(w) / luminanceFactor).ToArray();
+                s = new TabulatedSpectrum($"{label} × {illuminant.Name}", wl, v, illuminant.Extrapolation);
+            }
+        }
+        if (TryGet(e, "scale", out var sc)) s = s.Scaled(Number(sc, $"{path}.scale", 0));
+        return s;
+    }
+
+    /// <summary>The sigmoid reflectance (at <see cref="SigmoidUplift.Wavelengths"/>) of a linear sRGB colour (IEC 61966-2-1's
+    /// matrix).</summary>
+    static double[] Uplifted(double r, double g, double b) => Uplift.Value.Spectrum(new Xyz(
+        0.4124 * r + 0.3576 * g + 0.1805 * b,
+        0.2126 * r + 0.7152 * g + 0.0722 * b,
+        0.0193 * r + 0.1192 * g + 0.9505 * b), out _);
 }
