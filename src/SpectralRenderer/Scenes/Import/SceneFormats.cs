@@ -11,6 +11,7 @@ public static class SceneFormats
     static readonly List<ISceneFormat> Formats =
     [
         new Mitsuba.MitsubaFormat(),
+        new Gltf.GltfFormat(),
     ];
 
     /// <summary>Adds a format (after the built-in ones); a second format under a taken name is refused.</summary>
