@@ -11,6 +11,7 @@ using SpectralRenderer.Rendering.Whitted;
 using SpectralRenderer.Scenes;
 using SpectralRenderer.Scenes.Import;
 using SpectralRenderer.Scenes.Import.Pbrt;
+using SpectralRenderer.Scenes.Import.Gltf;
 using SpectralRenderer.Scenes.Loading;
 using SpectralRenderer.Sensor;
 using SpectralRenderer.Spectra;
@@ -46,7 +47,8 @@ public static class Program
           "objects": [ { "type": "sphere", "radius": 1, "material": "green" }, { "type": "sphere", "radius": 0.5, "center": [1, 0, 1], "material": "glass" } ] }
         """;
 
-    static readonly Lazy<Scene> LightsScene = new(() => SceneLoader.Parse(Encoding.UTF8.GetBytes(GoodScene), "/nonexistent-fuzz/scene.json"));
+    static readonly Lazy<Scene> LightsScene =
+        new(() => SceneLoader.Parse(Encoding.UTF8.GetBytes(GoodScene), "/nonexistent-fuzz/scene.json"));
 
     static readonly Dictionary<string, Action<byte[]>> Targets = new(StringComparer.Ordinal)
     {
@@ -59,6 +61,14 @@ public static class Program
         ["matrix"] = b => ReradiationExrReader.Read(b, "fuzz.exr"),   // a bispectral re-radiation matrix (Fichet et al. 2021)
         ["npy"] = b => NpyReader.Read(new MemoryStream(b), "fuzz.npy"),
         ["png"] = b => PngReader.Read(new MemoryStream(b), "fuzz.png"),
+        ["jpeg"] = b => JpegReader.Read(b, "fuzz.jpg"),
+        // A glTF 2.0 asset, .gltf JSON or .glb by its first bytes (files it names are looked up in the scratch folder), converted
+        // and the scene loaded as `spectral render FILE.gltf` loads it.
+        ["gltf"] = b =>
+        {
+            var path = Scratch("fuzz.gltf", b);
+            SceneLoader.Parse(ImportWriter.InlineJson(new GltfFormat().Convert(path, new ImportOptions())), path);
+        },
         ["ies"] = b => IesReader.Parse(Encoding.UTF8.GetString(b), "fuzz.ies").Table.Evaluate(10, 20),
         ["ldt"] = b => EulumdatReader.Parse(Encoding.UTF8.GetString(b), "fuzz.ldt").Table.Evaluate(10, 20),
         // Our own manifests, never trusted when read back (JsonFields): render.json, lights/lights.json (against a fixed

@@ -657,6 +657,127 @@ for label, data, pat in [
     folder_case(label, [f"copy {{in}}/{label}.png r/object-id.png"], pat, "object-id.png", PNGPLACE + r"|object-id\.png: ", cmd=COLORCHECK)
 
 
+# ---- JPEG textures (issue 39): a baseline JPEG as a material's diffuse texture; each defect one line naming the .jpg and
+# the byte where the decoder stopped. The good file is fuzz/seeds/jpeg/ycbcr-420.jpg (cjpeg -quality 75, 24×16, 4:2:0).
+GOODJPEG = open(os.path.join(HERE, "..", "..", "fuzz", "seeds", "jpeg", "ycbcr-420.jpg"), "rb").read()
+def jpeg_segment(marker, body):
+    return bytes([0xFF, marker]) + struct.pack(">H", len(body) + 2) + body
+def jpeg_replace_sof(data, sof):
+    i = data.index(b"\xff\xc0")
+    return data[:i + 1] + bytes([sof]) + data[i + 2:]
+def jpeg_find(data, marker):
+    return data.index(bytes([0xFF, marker]))
+SOS = jpeg_find(GOODJPEG, 0xDA)
+SOF = jpeg_find(GOODJPEG, 0xC0)
+DHT = jpeg_find(GOODJPEG, 0xC4)
+JPEGPLACE = r"\.jpg: byte \d+"
+for label, data, pat in [
+    ("jpeg-not-jpeg", b"GIF89a" + b"\0" * 50, r"not a JPEG file"),
+    ("jpeg-progressive", jpeg_replace_sof(GOODJPEG, 0xC2), r"progressive JPEG is not supported"),
+    ("jpeg-arithmetic", jpeg_replace_sof(GOODJPEG, 0xC9), r"arithmetic-coded JPEG is not supported"),
+    ("jpeg-lossless", jpeg_replace_sof(GOODJPEG, 0xC3), r"lossless JPEG is not supported"),
+    ("jpeg-12-bit", GOODJPEG[:SOF + 4] + b"\x0c" + GOODJPEG[SOF + 5:], r"12-bit JPEG is not supported"),
+    ("jpeg-cmyk", b"\xff\xd8" + jpeg_segment(0xC0, b"\x08\x00\x10\x00\x10\x04" + b"\x01\x11\x00" * 4) + b"\xff\xd9",
+     r"4 colour components are not supported"),
+    ("jpeg-truncated-scan", GOODJPEG[:SOS + 40], r"ends before the last block|ends before its EOI"),
+    ("jpeg-no-eoi", GOODJPEG[:-2], r"ends before its EOI marker"),
+    ("jpeg-no-scan", GOODJPEG[:SOS] + b"\xff\xd9", r"no image data"),
+    ("jpeg-scan-before-frame", GOODJPEG[:SOF] + GOODJPEG[SOS:], r"scan \(SOS\) before the frame header"),
+    ("jpeg-huge-frame", GOODJPEG[:SOF + 5] + b"\xff\xff\xff\xff" + GOODJPEG[SOF + 9:], r"more than the file's \d+ bytes can code"),
+    ("jpeg-zero-height", GOODJPEG[:SOF + 5] + b"\x00\x00" + GOODJPEG[SOF + 7:], r"no pixels"),
+    ("jpeg-bad-sampling", GOODJPEG[:SOF + 11] + b"\x32" + GOODJPEG[SOF + 12:SOF + 14] + b"\x21" + GOODJPEG[SOF + 15:],
+     r"sampling 2×1 is not a whole fraction of 3×2"),
+    ("jpeg-segment-past-end", GOODJPEG[:DHT + 2] + b"\xff\xf0" + GOODJPEG[DHT + 4:], r"runs past the end of the file"),
+    ("jpeg-huffman-overfull", GOODJPEG[:DHT + 5] + b"\x03" + GOODJPEG[DHT + 6:], r"more codes of length 1 than fit|shorter than its table"),
+    ("jpeg-garbage-between-segments", GOODJPEG[:SOF] + b"\x00" + GOODJPEG[SOF:], r"expected a marker, found byte 0x00"),
+    ("jpeg-restart-missing", b"\xff\xd8" + jpeg_segment(0xDD, b"\x00\x01") + GOODJPEG[2:], r"expected the restart marker RST0"),
+]:
+    write(label + ".jpg", data)
+    scene = deep(BASE)
+    scene["materials"]["green"] = {"diffuse": {"texture": label + ".jpg"}}
+    scene_case(label, scene, pat, file=label + ".jpg", place=JPEGPLACE)
+
+
+# ---- glTF 2.0 (issue 39): `spectral render FILE.gltf|.glb` converts in memory; each defect one line naming the file and the
+# JSON path (a .glb's header by byte), exit 2, nothing written.
+import base64 as _b64
+GLTF_BIN = struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack("<3H", 0, 1, 2) + b"\0\0"
+def gltf_base():
+    return {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
+            "nodes": [{"mesh": 0}, {"camera": 0, "translation": [0, 0, 3]}],
+            "cameras": [{"type": "perspective", "perspective": {"yfov": 0.8, "aspectRatio": 1.0}}],
+            "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+            "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"},
+                          {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}],
+            "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
+            "buffers": [{"byteLength": len(GLTF_BIN), "uri": "data:application/octet-stream;base64," + _b64.b64encode(GLTF_BIN).decode()}]}
+def gltf_with(edit):
+    g = gltf_base()
+    edit(g)
+    return json.dumps(g)
+def glb(json_bytes, bin_bytes=GLTF_BIN, version=2):
+    j = json_bytes + b" " * ((4 - len(json_bytes) % 4) % 4)
+    b = bin_bytes + b"\0" * ((4 - len(bin_bytes) % 4) % 4)
+    return (struct.pack("<III", 0x46546C67, version, 12 + 8 + len(j) + 8 + len(b)) + struct.pack("<II", len(j), 0x4E4F534A) + j
+            + struct.pack("<II", len(b), 0x004E4942) + b)
+GOODGLB = json.loads(gltf_with(lambda g: g["buffers"][0].pop("uri")))
+GLTFPLACE = r"\.gl(tf|b): (\$|line \d+:\d+|byte \d+)"
+def gltf_set(path, value):
+    def edit(g):
+        cur = g
+        for k in path[:-1]:
+            cur = cur[k]
+        if value is DELETE:
+            del cur[path[-1]]
+        else:
+            cur[path[-1]] = value
+    return gltf_with(edit)
+for label, data, pat in [
+    ("gltf-not-json", "{ nope", r"JSON syntax error in the glTF"),
+    ("gltf-array-root", "[]", r"the glTF JSON is an array, not an object"),
+    ("gltf-no-asset", gltf_set(["asset"], DELETE), r"missing \"asset\""),
+    ("gltf-version-1", gltf_set(["asset", "version"], "1.0"), r"glTF version '1\.0' is not supported"),
+    ("gltf-no-scenes", gltf_set(["scenes"], DELETE), r"the asset has no \"scenes\""),
+    ("gltf-scene-index", gltf_set(["scene"], 4), r"\$\.scene: 4 is not an index into \"scenes\""),
+    ("gltf-node-mesh-index", gltf_set(["nodes", 0, "mesh"], 7), r"\$\.nodes\[0\]\.mesh: 7 is not an index into \"meshes\""),
+    ("gltf-node-cycle", gltf_set(["nodes", 0, "children"], [0]), r"node 0 appears twice in the hierarchy"),
+    ("gltf-matrix-and-trs", gltf_set(["nodes", 0, "translation"], [0, 0, 0]) .replace('"mesh": 0,', '"mesh": 0, "matrix": [1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1],'),
+     r"both \"matrix\" and translation"),
+    ("gltf-accessor-past-view", gltf_set(["accessors", 0, "count"], 30), r"\$\.accessors\[0\]: 30 elements of 12 bytes every 12 .* run past buffer view 0"),
+    ("gltf-buffer-short", gltf_set(["buffers", 0, "byteLength"], 4000), r"\$\.buffers\[0\]\.byteLength: the buffer holds 44 bytes, fewer than its byteLength 4000"),
+    ("gltf-buffer-file-missing", gltf_set(["buffers", 0, "uri"], "no-such.bin"), r"the buffer file 'no-such\.bin' was not found"),
+    ("gltf-buffer-url", gltf_set(["buffers", 0, "uri"], "https://example.com/a.bin"), r"is a URL"),
+    ("gltf-bad-base64", gltf_set(["buffers", 0, "uri"], "data:application/octet-stream;base64,@@@@"), r"not valid base64"),
+    ("gltf-index-out-of-range", gltf_with(lambda g: g["buffers"][0].__setitem__("uri", "data:application/octet-stream;base64,"
+        + _b64.b64encode(GLTF_BIN[:36] + struct.pack("<3H", 0, 1, 9) + b"\0\0").decode())), r"index 9 \(element 2\) is not below the 3 vertices"),
+    ("gltf-position-bytes", gltf_set(["accessors", 0, "componentType"], 5121), r"componentType 5121 is not allowed for the attribute"),
+    ("gltf-position-vec2", gltf_set(["accessors", 0, "type"], "VEC2"), r"needs type VEC3, the accessor is VEC2"),
+    ("gltf-triangles-not-whole", gltf_set(["accessors", 1, "count"], 2), r"2 vertices do not make whole triangles"),
+    ("gltf-no-position", gltf_set(["meshes", 0, "primitives", 0, "attributes"], {}), r"missing \"POSITION\""),
+    ("gltf-yfov-zero", gltf_set(["cameras", 0, "perspective", "yfov"], 0), r"yfov: 0 is out of range"),
+    ("gltf-orthographic", gltf_set(["cameras", 0], {"type": "orthographic", "orthographic": {"xmag": 1, "ymag": 1, "znear": 0, "zfar": 9}}),
+     r"an orthographic camera has no counterpart"),
+    ("gltf-required-draco", gltf_set(["extensionsRequired"], ["KHR_draco_mesh_compression"]), r"requires the extension KHR_draco_mesh_compression"),
+    ("gltf-light-index", gltf_set(["nodes", 1, "extensions"], {"KHR_lights_punctual": {"light": 2}}), r"is not an index into the KHR_lights_punctual lights"),
+    ("gltf-spot-cones", gltf_with(lambda g: (g.__setitem__("extensions", {"KHR_lights_punctual": {"lights": [
+        {"type": "spot", "spot": {"innerConeAngle": 0.5, "outerConeAngle": 0.3}}]}}), g["nodes"][1].__setitem__("extensions",
+        {"KHR_lights_punctual": {"light": 0}}))), r"innerConeAngle must be below outerConeAngle"),
+    ("gltf-base-colour-range", gltf_with(lambda g: (g.__setitem__("materials", [{"pbrMetallicRoughness": {"baseColorFactor": [2, 0, 0, 1]}}]),
+        g["meshes"][0]["primitives"][0].__setitem__("material", 0))), r"baseColorFactor\[0\]: expected a number in \[0, 1\]"),
+    ("gltf-no-mesh", gltf_set(["scenes", 0, "nodes"], [1]), r"the scene holds no triangle mesh"),
+]:
+    fname = write(label + ".gltf", data)
+    case(f"gltf/{label}", render("{in}/" + fname), pat, 2, fname, GLTFPLACE)
+for label, data, pat in [
+    ("glb-version-1", glb(json.dumps(GOODGLB).encode(), version=1), r"GLB version 1 is not supported"),
+    ("glb-truncated", glb(json.dumps(GOODGLB).encode())[:40], r"the header says \d+ bytes, the file has 40"),
+    ("glb-chunk-past-end", struct.pack("<III", 0x46546C67, 2, 24) + struct.pack("<II", 9999, 0x4E4F534A) + b"{}  ", r"runs past the end of the file"),
+    ("glb-bin-short", glb(json.dumps(GOODGLB).encode(), GLTF_BIN[:20]), r"the buffer holds 20 bytes, fewer than its byteLength 44"),
+]:
+    fname = write(label + ".glb", data)
+    case(f"gltf/{label}", render("{in}/" + fname), pat, 2, fname, GLTFPLACE)
+
+
 MANIFEST_VALIDATION = True  # step 4: analysis commands validate the folder through the manifest
 MANIFESTPLACE = r"render\.json(:\d+)?: (\$|line)|render\.json:\d+"
 for label, text, pat in [] if not MANIFEST_VALIDATION else [

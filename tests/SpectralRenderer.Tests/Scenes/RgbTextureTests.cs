@@ -124,4 +124,29 @@ public class RgbTextureTests(Xunit.Abstractions.ITestOutputHelper output)
         output.WriteLine($"rendered RGB chart: largest ΔE00 {worst:G3}");
         Assert.True(worst <= 0.01, $"largest ΔE00 {worst:G3}");
     }
+    [Fact]
+    public void A_png_given_inline_as_a_data_uri_renders_the_same_bits_as_the_file()
+    {
+        var dir = Reference.TempDir();
+        var codes = Codes();
+        var rgb = new byte[3 * 4 * 2];
+        for (int p = 0; p < 8; p++) (rgb[3 * p], rgb[3 * p + 1], rgb[3 * p + 2]) = ((byte)codes[p].R, (byte)codes[p].G, (byte)codes[p].B);
+        var file = Path.Combine(dir, "tiny.png");
+        using (var f = File.Create(file)) PngWriter.WriteRgb8(f, 4, 2, rgb);
+        string Scene(string texture) => $$"""
+            {
+              "bands": "380:780:20", "radiometry": "paper", "white": "D65",
+              "camera": { "position": [0, 0, 20], "look_at": [0, 0, 0], "fov": 12, "width": 16, "height": 8, "spp": 1 },
+              "lights": [ { "type": "directional", "direction": [0, 0, -1], "spectrum": "D65", "intensity": 1 } ],
+              "objects": [ { "type": "quad", "size": [4, 2], "material": { "diffuse": { "texture": "{{texture}}" } } } ],
+              "max_depth": 0
+            }
+            """;
+        float[] Render(string texture) =>
+            Integrators.Render(SceneLoader.Parse(Encoding.UTF8.GetBytes(Scene(texture)), Path.Combine(dir, "scene.json"))).Image.Data;
+        var inline = "data:image/png;base64," + Convert.ToBase64String(File.ReadAllBytes(file));
+        Assert.True(Render("tiny.png").AsSpan().SequenceEqual(Render(inline)), "the data: URI texture differs from the file");
+        var e = Assert.Throws<SpectralRenderer.Diagnostics.InputException>(() => Render("data:image/png;base64,%%%"));
+        Assert.Contains("$.objects[0].material.diffuse.texture: the data: URI is not valid base64", e.Message);
+    }
 }

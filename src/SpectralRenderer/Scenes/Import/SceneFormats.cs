@@ -12,6 +12,7 @@ public static class SceneFormats
     [
         new Mitsuba.MitsubaFormat(),
         new Pbrt.PbrtFormat(),
+        new Gltf.GltfFormat(),
     ];
 
     /// <summary>Adds a format (after the built-in ones); a second format under a taken name is refused.</summary>

@@ -89,6 +89,7 @@ public sealed partial class SceneLoader
         if (TryGet(e, "wavelengths", out _))
             throw Error($"{path}.wavelengths", "\"wavelengths\" belongs to a stack of PNG bands",
                 "name the bands as a list of files or a pattern with {nm}, or drop \"wavelengths\"");
+        if (file.StartsWith("data:", StringComparison.OrdinalIgnoreCase)) return DataTexture(file, path);
         var full = TextureFile(file, $"{path}.texture");
         var ext = Path.GetExtension(full).ToLowerInvariant();
         try
@@ -99,6 +100,7 @@ public sealed partial class SceneLoader
                 return FromImage(exr.Image, full);
             }
             if (ext == ".png") return RgbTexture(full, path);
+            if (ext is ".jpg" or ".jpeg") return JpegTexture(full);
             var cube = EnviReader.Open(EnviImage(full, path));
             return new SpectralTexture(full, cube.Width, cube.Height, Centres(cube.Grid), new EnviRows(cube));
         }
@@ -196,25 +198,70 @@ public sealed partial class SceneLoader
 
     static readonly Lazy<SigmoidUplift> Uplift = new(() => new SigmoidUplift());
 
-    /// <summary>An 8- or 16-bit sRGB PNG, each colour uplifted to a reflectance spectrum (<see cref="SigmoidUplift"/>).</summary>
-    SpectralTexture RgbTexture(string full, string path)
+    /// <summary>An sRGB PNG or JPEG given inline as a base64 data: URI (RFC 2397; an imported glTF's embedded image), e.g.
+    /// "data:image/png;base64,iVBORw0…": uplifted as the file would be.</summary>
+    SpectralTexture DataTexture(string uri, string path)
     {
-        var png = PngReader.Read(full);
+        int comma = uri.IndexOf(',', StringComparison.Ordinal);
+        var header = comma < 0 ? uri : uri[..comma];
+        if (comma < 0 || !header.EndsWith(";base64", StringComparison.OrdinalIgnoreCase))
+            throw Error($"{path}.texture", "a data: URI texture must be base64", "data:image/png;base64,… or data:image/jpeg;base64,…");
+        byte[] bytes;
+        try { bytes = Convert.FromBase64String(uri[(comma + 1)..]); }
+        catch (FormatException) { throw Error($"{path}.texture", "the data: URI is not valid base64", "encode the image again"); }
+        var source = $"{header},…";
+        try
+        {
+            if (JpegReader.IsJpeg(bytes)) return JpegTexture(JpegReader.Read(bytes, source), source);
+            var png = PngReader.Read(new MemoryStream(bytes), source);
+            return RgbTexture(png, source, path);
+        }
+        catch (InputException ex) when (!ex.Where.StartsWith(_file, StringComparison.Ordinal))
+        {
+            throw Error($"{path}.texture", $"{ex.Where}: {ex.What}", ex.Hint);
+        }
+    }
+
+    /// <summary>An 8- or 16-bit sRGB PNG, each colour uplifted to a reflectance spectrum (<see cref="SigmoidUplift"/>).</summary>
+    SpectralTexture RgbTexture(string full, string path) => RgbTexture(PngReader.Read(full), full, path);
+
+    SpectralTexture RgbTexture(PngImage png, string full, string path)
+    {
         if (png.Channels != 3)
             throw Error($"{path}.texture", $"{full} has {png.Channels} channel(s): an RGB texture is an sRGB PNG of three channels",
                 "save the texture as RGB (no alpha), or give a spectral texture");
+        var samples = png.Samples;
+        return Uplifted(full, png.Width, png.Height, (1 << png.BitDepth) - 1,
+            i => (samples[3 * i], samples[3 * i + 1], samples[3 * i + 2]));
+    }
+
+    /// <summary>A baseline JPEG (<see cref="JpegReader"/>), its colours sRGB as a PNG's are; a greyscale JPEG is R = G = B.</summary>
+    static SpectralTexture JpegTexture(string full) => JpegTexture(JpegReader.Read(full), full);
+
+    static SpectralTexture JpegTexture(JpegImage jpeg, string full)
+    {
+        var s = jpeg.Samples;
+        return jpeg.Channels == 3
+            ? Uplifted(full, jpeg.Width, jpeg.Height, 255, i => (s[3 * i], s[3 * i + 1], s[3 * i + 2]))
+            : Uplifted(full, jpeg.Width, jpeg.Height, 255, i => (s[i], s[i], s[i]));
+    }
+
+    /// <summary>Texels from sRGB codes (0 … <paramref name="max"/>), each uplifted to a reflectance spectrum.</summary>
+    static SpectralTexture Uplifted(string source, int width, int height, int max, Func<int, (int R, int G, int B)> texel)
+    {
         var uplift = Uplift.Value;
-        int n = SigmoidUplift.Wavelengths.Length, texels = png.Width * png.Height, max = (1 << png.BitDepth) - 1;
-        var values = new float[texels * n];
-        Parallel.For(0, png.Height, y =>
+        int n = SigmoidUplift.Wavelengths.Length;
+        var values = new float[(long)width * height * n];
+        Parallel.For(0, height, y =>
         {
-            for (int i = y * png.Width; i < (y + 1) * png.Width; i++)
+            for (int i = y * width; i < (y + 1) * width; i++)
             {
-                var r = uplift.FromSrgbCodes(png.Samples[3 * i], png.Samples[3 * i + 1], png.Samples[3 * i + 2], max);
-                for (int j = 0; j < n; j++) values[i * n + j] = (float)r[j];
+                var (r, g, b) = texel(i);
+                var spectrum = uplift.FromSrgbCodes(r, g, b, max);
+                for (int j = 0; j < n; j++) values[(long)i * n + j] = (float)spectrum[j];
             }
         });
-        return new SpectralTexture(full, png.Width, png.Height, SigmoidUplift.Wavelengths, values);
+        return new SpectralTexture(source, width, height, SigmoidUplift.Wavelengths, values);
     }
 
     /// <summary>"uv_transform": {"scale": s | [su, sv], "offset": [ou, ov], "rotation": degrees, "wrap": "repeat" | "clamp" |
