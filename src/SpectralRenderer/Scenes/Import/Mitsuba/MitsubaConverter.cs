@@ -207,8 +207,9 @@ public sealed partial class MitsubaConverter
         return name;
     }
 
-    static JsonArray Array3(double[] v) =>
-        [(JsonNode)JsonValue.Create(Round(v[0])), JsonValue.Create(Round(v[1])), JsonValue.Create(Round(v[2]))];
+    // new JsonArray(params JsonNode[]), not a collection expression: that calls JsonArray.Add<T>, which trimming (the native
+    // command's AOT build) refuses.
+    static JsonArray Array3(double[] v) => new(Round(v[0]), Round(v[1]), Round(v[2]));
 
     /// <summary>
     /// A number as written in our JSON: rounded to 12 significant digits and below 1e-12 in magnitude to 0 (sin π of a

@@ -131,7 +131,8 @@ public sealed partial class PbrtConverter
         : throw new InputException("pbrt", "a converted number overflows (not finite)",
             "check the magnitudes of the transformations and values");
 
-    static JsonArray Array3(double[] v) => [Round(v[0]), Round(v[1]), Round(v[2])];
+    // new JsonArray(params JsonNode[]): a collection expression calls JsonArray.Add<T>, which the AOT build refuses.
+    static JsonArray Array3(double[] v) => new(Round(v[0]), Round(v[1]), Round(v[2]));
 
     // ---- camera, film, sampler, integrator ----
 
