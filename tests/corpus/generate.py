@@ -734,6 +734,8 @@ def gltf_set(path, value):
     return gltf_with(edit)
 for label, data, pat in [
     ("gltf-not-json", "{ nope", r"JSON syntax error in the glTF"),
+    ("gltf-not-utf8", b'{"asset": {"version": "2.0", "generator": "caf\xe9"}, "scenes": [{"nodes": []}]}',
+     r"the glTF JSON is not valid UTF-8"),   # found by the gltf fuzz target in CI
     ("gltf-array-root", "[]", r"the glTF JSON is an array, not an object"),
     ("gltf-no-asset", gltf_set(["asset"], DELETE), r"missing \"asset\""),
     ("gltf-version-1", gltf_set(["asset", "version"], "1.0"), r"glTF version '1\.0' is not supported"),

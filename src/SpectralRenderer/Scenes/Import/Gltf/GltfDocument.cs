@@ -42,6 +42,11 @@ sealed class GltfDocument
         ReadOnlyMemory<byte> json = bytes;
         if (bytes.Length >= 4 && BinaryPrimitives.ReadUInt32LittleEndian(bytes) == GlbMagic)
             (json, bin) = Glb(bytes, path);
+        // glTF's JSON is UTF-8 (§3.5): an invalid byte inside a string would surface later, when that string is read.
+        // Found by the gltf fuzz target in CI.
+        if (!System.Text.Unicode.Utf8.IsValid(json.Span))
+            throw new InputException($"{path}: byte {FirstInvalidUtf8(json.Span)}", "the glTF JSON is not valid UTF-8",
+                "glTF 2.0 §3.5: save the JSON as UTF-8");
         try
         {
             var doc = JsonDocument.Parse(json, new JsonDocumentOptions { MaxDepth = 128 });
@@ -55,6 +60,18 @@ sealed class GltfDocument
             throw new InputException($"{path}: line {(e.LineNumber ?? 0) + 1}:{(e.BytePositionInLine ?? 0) + 1}",
                 "JSON syntax error in the glTF", "check the file is complete JSON (glTF 2.0 §3.5)");
         }
+    }
+
+    /// <summary>The offset of the first byte that does not start a valid UTF-8 sequence (within the JSON).</summary>
+    static int FirstInvalidUtf8(ReadOnlySpan<byte> text)
+    {
+        int at = 0;
+        while (at < text.Length)
+        {
+            if (System.Text.Rune.DecodeFromUtf8(text[at..], out _, out int used) != System.Buffers.OperationStatus.Done) return at;
+            at += used;
+        }
+        return at;
     }
 
     /// <summary>A binary glTF (§4.4): 12-byte header, the JSON chunk, an optional BIN chunk.</summary>
