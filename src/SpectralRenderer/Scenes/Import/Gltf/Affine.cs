@@ -5,20 +5,9 @@ namespace SpectralRenderer.Scenes.Import.Gltf;
 /// <summary>4×4 affine matrices as 16 doubles, row-major, acting on column vectors (p' = M·p): our scene's "matrix" layout.</summary>
 static class Affine
 {
-    public static double[] Identity => [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1];
+    public static double[] Identity => RowMajorMatrix.Identity;
 
-    public static double[] Multiply(double[] a, double[] b)
-    {
-        var m = new double[16];
-        for (int r = 0; r < 4; r++)
-            for (int c = 0; c < 4; c++)
-            {
-                double s = 0;
-                for (int k = 0; k < 4; k++) s += a[4 * r + k] * b[4 * k + c];
-                m[4 * r + c] = s;
-            }
-        return m;
-    }
+    public static double[] Multiply(double[] a, double[] b) => RowMajorMatrix.Multiply(a, b);
 
     /// <summary>T·R·S (glTF 2.0 §3.5.3): translation t, unit quaternion q = [x, y, z, w], scale s.</summary>
     public static double[] Trs(double[] t, double[] q, double[] s)

@@ -8,7 +8,7 @@ namespace SpectralRenderer.Scenes.Import.Mitsuba;
 /// </summary>
 public static class MitsubaTransform
 {
-    public static double[] Identity => [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1];
+    public static double[] Identity => RowMajorMatrix.Identity;
 
     /// <summary>The matrix of a &lt;transform&gt; element.</summary>
     public static double[] Of(MitsubaElement transform)
@@ -84,18 +84,7 @@ public static class MitsubaTransform
         ];
     }
 
-    public static double[] Multiply(double[] a, double[] b)
-    {
-        var m = new double[16];
-        for (int r = 0; r < 4; r++)
-            for (int c = 0; c < 4; c++)
-            {
-                double s = 0;
-                for (int k = 0; k < 4; k++) s += a[4 * r + k] * b[4 * k + c];
-                m[4 * r + c] = s;
-            }
-        return m;
-    }
+    public static double[] Multiply(double[] a, double[] b) => RowMajorMatrix.Multiply(a, b);
 
     /// <summary>M·p for a point (w = 1) or a direction (w = 0).</summary>
     public static double[] Apply(double[] m, double[] p, double w) =>
