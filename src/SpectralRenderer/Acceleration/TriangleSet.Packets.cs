@@ -100,24 +100,31 @@ public partial struct TriangleSet
         uint inside = m & ~L.Bits(L.Or(outside, L.Equal(det, zero)));
         if (inside == 0) return 0;   // most tests end here: the rays pass beside the triangle
 
-        // Scaled hit distance, compared against the scaled interval before the one division.
+        // Scaled hit distance: behind the origin when its sign is not det's (t = tScaled / det).
         var rzx = L.Load(ref p.RowZx[c]); var rzy = L.Load(ref p.RowZy[c]); var rzz = L.Load(ref p.RowZz[c]);
         var az = rzx * a0 + rzy * a1 + rzz * a2;
         var bz = rzx * b0_ + rzy * b1_ + rzz * b2_;
         var cz = rzx * c0 + rzy * c1 + rzz * c2;
         var tScaled = u * az + v * bz + w * cz;
-        var tMax = L.Load(ref p.TMax[c]);
-        var bound = tMax * det;
-        var beyond = L.Select(L.Less(det, zero),
-            L.Or(L.Greater(tScaled, zero), L.Or(L.Equal(tScaled, zero), L.Less(tScaled, bound))),     // tScaled ≥ 0 || tScaled < tMax·det
-            L.Or(L.Less(tScaled, zero), L.Or(L.Equal(tScaled, zero), L.Greater(tScaled, bound))));   // tScaled ≤ 0 || tScaled > tMax·det
-        uint candidates = inside & ~L.Bits(beyond);
+        var behind = L.Select(L.Less(det, zero),
+            L.Or(L.Greater(tScaled, zero), L.Equal(tScaled, zero)),    // tScaled ≥ 0
+            L.Or(L.Less(tScaled, zero), L.Equal(tScaled, zero)));      // tScaled ≤ 0
+        uint candidates = inside & ~L.Bits(behind);
         if (candidates == 0) return 0;
 
         var inv = L.Splat(1) / det;
         var t = tScaled * inv;
-        uint hit = candidates & L.Bits(L.And(L.Less(t, tMax), L.Greater(t, zero)));   // rounding of the division
-        if (!TMode.Records || hit == 0) return hit;
+        var tMax = L.Load(ref p.TMax[c]);
+        uint ahead = candidates & L.Bits(L.Greater(t, zero));   // an underflow of the division
+        uint hit = ahead & L.Bits(L.Less(t, tMax));
+        if (!TMode.Records) return hit;
+        // As TriangleSet.Intersect for one ray: at t = TMax the smaller index wins (Primitive is −1 before a first hit).
+        for (uint tie = ahead & L.Bits(L.Equal(t, tMax)); tie != 0; tie &= tie - 1)
+        {
+            int lane = BitOperations.TrailingZeroCount(tie);
+            if (k < p.Primitive[c + lane]) hit |= 1u << lane;
+        }
+        if (hit == 0) return 0;
         var mask = L.FromBits(hit);
         L.Store(L.Select(mask, t, tMax), ref p.TMax[c]);
         L.Store(L.Select(mask, v * inv, L.Load(ref p.U[c])), ref p.U[c]);   // b1

@@ -7,6 +7,8 @@ namespace SpectralRenderer.Acceleration;
 /// <summary>
 /// The triangles of one or more meshes, copied into BVH order (three corners per triangle, contiguous) so a
 /// leaf's triangles sit together in memory, and tested with <see cref="TriangleIntersection"/>.
+/// Single rays (<see cref="Intersect(ref Ray, ref Hit)"/>, <see cref="Occluded(in Ray)"/>) walk the 8-wide <see cref="Wide"/>
+/// tree, ray packets the binary <see cref="Bvh"/>; both have the same leaves and order.
 /// Hit.Primitive is the position k in this order; <see cref="MeshOf"/>[k] and <see cref="TriangleOf"/>[k] lead
 /// back to the source mesh and its triangle.
 /// </summary>
@@ -16,6 +18,8 @@ public partial struct TriangleSet : IPrimitiveIntersector, IPacketIntersector
     ShearedRay _ray;              // the current query's ray, prepared once (Woop et al. 2013)
 
     public Bvh Bvh { get; }
+    /// <summary><see cref="Bvh"/> collapsed to 8-wide nodes, for single rays.</summary>
+    public WideBvh Wide { get; }
     /// <summary>k → index of the mesh (in the list given to <see cref="Build"/>).</summary>
     public int[] MeshOf { get; }
     /// <summary>k → triangle index within its mesh.</summary>
@@ -24,15 +28,23 @@ public partial struct TriangleSet : IPrimitiveIntersector, IPacketIntersector
 
     TriangleSet(Vector3[] corners, Bvh bvh, int[] meshOf, int[] triangleOf)
     {
-        _corners = corners; Bvh = bvh; MeshOf = meshOf; TriangleOf = triangleOf; _ray = default;
+        _corners = corners; Bvh = bvh; Wide = WideBvh.Collapse(bvh); MeshOf = meshOf; TriangleOf = triangleOf; _ray = default;
     }
+
+    /// <summary>Bytes held per triangle: corners, the binary and the wide nodes, the primitive order and the mesh and triangle
+    /// indices (not the source meshes).</summary>
+    public double BytesPerTriangle => Count == 0 ? 0 :
+        (12.0 * _corners.Length + (long)Bvh.NodeCount * Unsafe.SizeOf<BvhNode>() + Wide.Bytes + 4L * Bvh.PrimitiveOrder.Length
+         + 8L * Count) / Count;
 
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public void Prepare(in Ray ray) => _ray = new ShearedRay(ray);
 
     /// <summary>Builds the BVH over all triangles of the meshes and stores the triangles in its order.</summary>
+    /// <param name="maxLeafSize">At most <see cref="WideBvh.MaxLeafSize"/>.</param>
     public static TriangleSet Build(IReadOnlyList<TriangleMesh> meshes, int maxLeafSize = 4, bool parallel = true)
     {
+        if (maxLeafSize > WideBvh.MaxLeafSize) throw new ArgumentOutOfRangeException(nameof(maxLeafSize));
         // Triangle i of the concatenation is triangle i − firsts[m] of mesh m, firsts[m] ≤ i < firsts[m + 1].
         var firsts = new int[meshes.Count + 1];
         for (int m = 0; m < meshes.Count; m++) firsts[m + 1] = firsts[m] + meshes[m].TriangleCount;
@@ -79,12 +91,18 @@ public partial struct TriangleSet : IPrimitiveIntersector, IPacketIntersector
 
     public (Vector3 P0, Vector3 P1, Vector3 P2) Corners(int k) => (_corners[3 * k], _corners[3 * k + 1], _corners[3 * k + 2]);
 
+    /// <summary>
+    /// Closest hit: triangle k wins when it is nearer than the hit so far, or exactly as near and earlier in BVH order
+    /// (k &lt; hit.Primitive; a query starts with hit.Primitive = 0 or −1, so no tie is taken before a first hit). So the
+    /// closest hit is the least (t, k) whatever order the triangles are met in: the binary and the wide hierarchy, packets
+    /// and single rays, and brute force all give the same triangle.
+    /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public bool Intersect(int k, ref Ray ray, ref Hit hit)
     {
         ref Vector3 c = ref _corners[3 * k];
-        if (!TriangleIntersection.Intersect(_ray, c, Unsafe.Add(ref c, 1), Unsafe.Add(ref c, 2), ray.TMax, out float t, out float b1,
-            out float b2))
+        if (!TriangleIntersection.Distance(_ray, c, Unsafe.Add(ref c, 1), Unsafe.Add(ref c, 2), out float t, out float b1, out float b2)
+            || !(t < ray.TMax || t == ray.TMax && k < hit.Primitive))
             return false;
         ray.TMax = t;
         hit.Primitive = k; hit.U = b1; hit.V = b2;
@@ -95,20 +113,21 @@ public partial struct TriangleSet : IPrimitiveIntersector, IPacketIntersector
     public bool Occluded(int k, in Ray ray)
     {
         ref Vector3 c = ref _corners[3 * k];
-        return TriangleIntersection.Intersect(_ray, c, Unsafe.Add(ref c, 1), Unsafe.Add(ref c, 2), ray.TMax, out _, out _, out _);
+        return TriangleIntersection.Distance(_ray, c, Unsafe.Add(ref c, 1), Unsafe.Add(ref c, 2), out float t, out _, out _)
+            && t < ray.TMax;
     }
 
-    /// <summary>The closest hit among all triangles, through the BVH.</summary>
+    /// <summary>The closest hit among all triangles, through the wide BVH.</summary>
     public bool Intersect(ref Ray ray, ref Hit hit)
     {
         var self = this;
-        return Bvh.Intersect(ref self, ref ray, ref hit);
+        return Wide.Intersect(ref self, ref ray, ref hit);
     }
 
     /// <summary>Whether any triangle is hit in (0, ray.TMax).</summary>
     public bool Occluded(in Ray ray)
     {
         var self = this;
-        return Bvh.Occluded(ref self, in ray);
+        return Wide.Occluded(ref self, in ray);
     }
 }

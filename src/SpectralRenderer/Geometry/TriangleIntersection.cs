@@ -22,7 +22,18 @@ public static class TriangleIntersection
 
     /// <summary>As above with the ray's shear computed once (<see cref="ShearedRay"/>), for testing many triangles.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    public static bool Intersect(in ShearedRay ray, Vector3 p0, Vector3 p1, Vector3 p2, float tMax, out float t, out float b1, out float b2)
+    public static bool Intersect(in ShearedRay ray, Vector3 p0, Vector3 p1, Vector3 p2, float tMax, out float t, out float b1,
+        out float b2) =>
+        Distance(ray, p0, p1, p2, out t, out b1, out b2) && t < tMax;
+
+    /// <summary>
+    /// The hit at any t &gt; 0, whatever the ray's interval: the caller compares t itself (a closest-hit query keeps a hit at
+    /// t = TMax when its primitive index is smaller, so the winner does not depend on the order triangles are met in).
+    /// Whether a triangle is hit is decided on t alone: no test against a scaled bound tMax·det beforehand, whose rounding
+    /// could reject a triangle whose t is below the bound.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static bool Distance(in ShearedRay ray, Vector3 p0, Vector3 p1, Vector3 p2, out float t, out float b1, out float b2)
     {
         t = b1 = b2 = 0;
         // Vertices relative to the origin, sheared so the ray is the +z axis: (x, y) = A.xy − S·A.z, z = S_z·A.z.
@@ -47,14 +58,14 @@ public static class TriangleIntersection
         float det = u + v + w;
         if (det == 0) return false;
 
-        // Scaled hit distance, compared against the scaled interval before the one division.
+        // Scaled hit distance: behind the origin when its sign is not det's (t = tScaled / det).
         float az = Vector3.Dot(ray.RowZ, a), bz = Vector3.Dot(ray.RowZ, b), cz = Vector3.Dot(ray.RowZ, c);
         float tScaled = u * az + v * bz + w * cz;
-        if (det < 0 ? (tScaled >= 0 || tScaled < tMax * det) : (tScaled <= 0 || tScaled > tMax * det)) return false;
+        if (det < 0 ? tScaled >= 0 : tScaled <= 0) return false;
 
         float inv = 1 / det;
         t = tScaled * inv;
-        if (!(t < tMax) || !(t > 0)) return false; // rounding of the division
+        if (!(t > 0)) return false; // an underflow of the division
         b1 = v * inv;
         b2 = w * inv;
         return true;

@@ -7,7 +7,8 @@ using SpectralRenderer.Scenes;
 namespace SpectralRenderer.Rendering;
 
 /// <summary>
-/// Ray queries against every object of a scene: all mesh triangles in one SAH BVH, the finite analytic
+/// Ray queries against every object of a scene: all mesh triangles in one SAH BVH (walked 8-wide by single rays, binary by
+/// packets), the finite analytic
 /// shapes in another, infinite planes tested directly. Closest hit for camera and secondary rays,
 /// any hit (early exit) for shadow rays.
 /// </summary>
@@ -90,7 +91,7 @@ public sealed partial class SceneGeometry
         if (_hasTriangles)
         {
             var t = _triangles;
-            if (t.Bvh.Intersect(ref t, ref ray, ref h)) kind = 1;
+            if (t.Wide.Intersect(ref t, ref ray, ref h)) kind = 1;
         }
         var ah = new Hit();
         if (_analyticBvh is not null)
@@ -121,7 +122,7 @@ public sealed partial class SceneGeometry
         if (_hasTriangles)
         {
             var t = _triangles;
-            if (t.Bvh.Intersect(ref t, ref ray, ref h)) kind = 1;
+            if (t.Wide.Intersect(ref t, ref ray, ref h)) kind = 1;
         }
         int face = faces.Intersect(ref ray);
         if (face >= 0) kind = 2;
@@ -153,7 +154,7 @@ public sealed partial class SceneGeometry
         if (_hasTriangles)
         {
             var t = _triangles;
-            if (t.Bvh.Occluded(ref t, ray)) return true;
+            if (t.Wide.Occluded(ref t, ray)) return true;
         }
         if (faces.Occluded(ray)) return true;
         for (int i = 0; i < _planes.Length; i++)
@@ -218,7 +219,7 @@ public sealed partial class SceneGeometry
         if (_hasTriangles)
         {
             var t = _triangles;
-            if (t.Bvh.Occluded(ref t, ray)) return true;
+            if (t.Wide.Occluded(ref t, ray)) return true;
         }
         if (_analyticBvh is not null)
         {

@@ -177,6 +177,7 @@ public class PacketTests(ITestOutputHelper output)
         var t = Compare(width, set, [.. rays], bruteForce: true);
         output.WriteLine($"width {width}: {t}");
         Assert.Equal(0, t.Different);
+        Assert.Equal(0, t.Ties);
         Assert.Equal(0, t.Occlusion);
         Assert.Equal(t.Lanes, t.Hits);
     }
@@ -192,7 +193,7 @@ public class PacketTests(ITestOutputHelper output)
         output.WriteLine($"bunny, width {PacketLanes.Width}: {t}");
         Assert.Equal(0, t.Different);
         Assert.Equal(0, t.Occlusion);
-        Assert.True(t.Ties <= t.Hits / 10_000, $"{t.Ties} ties");     // a different triangle at exactly the same distance: an edge
+        Assert.Equal(0, t.Ties);     // a different triangle at exactly the same distance (an edge): the smaller index wins in both
         Assert.InRange(t.Hits, t.Lanes / 10, t.Lanes - 1);
     }
 
