@@ -72,6 +72,7 @@ public static class BenchCommand
         long peak = Process.GetCurrentProcess().PeakWorkingSet64;
         var inv = CultureInfo.InvariantCulture;
         int tris = job.Geometry!.TriangleCount;
+        double bytesPerTriangle = job.Geometry.TriangleBytesPerTriangle;
 
         stdout.WriteLine($"scene            {scenePath}");
         stdout.WriteLine(string.Create(inv,
@@ -80,6 +81,7 @@ public static class BenchCommand
         stdout.WriteLine(string.Create(inv, $"triangles        {tris:N0}"));
         stdout.WriteLine(string.Create(inv, $"load (+meshes)   {load:0.000} s"));
         stdout.WriteLine(string.Create(inv, $"BVH build        {build:0.000} s"));
+        stdout.WriteLine(string.Create(inv, $"triangle memory  {bytesPerTriangle:0.0} bytes/triangle (corners, binary and wide BVH, indices)"));
         stdout.WriteLine(
             string.Create(inv, $"render median    {median:0.0000} s  (min {times[0]:0.0000}, max {times[^1]:0.0000}, {repeat} runs)"));
         stdout.WriteLine(string.Create(inv,
@@ -92,7 +94,7 @@ public static class BenchCommand
             $"bench: scene={Path.GetFileName(scenePath)} width={scene.Camera.Width} height={scene.Camera.Height} bands={scene.Bands} "
                 + $"spp={scene.Camera.SamplesPerPixel} threads={threads} triangles={tris} load_s={load:0.0000} build_s={build:0.0000} "
                 + $"render_s={median:0.0000} rays={rays.Total} primary={rays.Primary} shadow={rays.Shadow} secondary={rays.Secondary} "
-                + $"mrays_per_s={mrays:0.00} peak_ws_mb={peak / 1048576.0:0.0}"));
+                + $"mrays_per_s={mrays:0.00} peak_ws_mb={peak / 1048576.0:0.0} bytes_per_triangle={bytesPerTriangle:0.0}"));
         return CommandLine.Success;
     }
 

@@ -38,6 +38,14 @@ public sealed partial class Bvh
         return new Bvh(nodes, order, depth);
     }
 
+    /// <summary>As <see cref="Build(ReadOnlySpan{Bounds3}, int, bool)"/> from boxes the caller made for it, which the builder takes
+    /// as its own (permutes, then lets go).</summary>
+    internal static Bvh Build(BvhBuilder.Box[] boxes, int maxLeafSize, bool parallel)
+    {
+        var (nodes, order, depth) = BvhBuilder.Build(boxes, maxLeafSize, parallel);
+        return new Bvh(nodes, order, depth);
+    }
+
     /// <summary>k → original primitive index: traversal hands k to the intersector, so store primitive data permuted by this.</summary>
     public int[] PrimitiveOrder { get; }
     /// <summary>Nodes in the node array (at most 2n − 1 for n primitives).</summary>

@@ -33,9 +33,12 @@ sealed class BvhBuilder
     const int SmallRange = 64;
 
     /// <summary>An axis-aligned box as two 4-lane vectors with w = 0.</summary>
-    struct Box
+    internal struct Box
     {
         public Vector128<float> Lo, Hi;
+
+        public static Box Of(in Bounds3 b) => new() { Lo = b.Min.AsVector128(), Hi = b.Max.AsVector128() };
+
         /// <summary>Twice the centroid.</summary>
         public readonly Vector128<float> Centroid2 => Lo + Hi;
     }
@@ -78,7 +81,7 @@ sealed class BvhBuilder
                 Vector128.MinNative(Vector128.MaxNative((b.Centroid2 - min) * scale, Vector128<float>.Zero), _last));
     }
 
-    readonly Box[] _boxes;      // permuted with _order
+    Box[]? _boxes;      // permuted with _order; dropped once the tree is built
     readonly int[] _order;
     readonly int _maxLeafSize;
     readonly bool _parallel;
@@ -89,28 +92,35 @@ sealed class BvhBuilder
     // thread count; the slots a leaf of several primitives leaves unused are never written, and Compact drops them.
     readonly BvhNode[] _nodes;
 
+    /// <summary>Takes <paramref name="boxes"/> (one per primitive) as its own: they are permuted as the tree is built.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
-    BvhBuilder(ReadOnlySpan<Bounds3> bounds, int maxLeafSize, bool parallel)
+    BvhBuilder(Box[] boxes, int maxLeafSize, bool parallel)
     {
-        _boxes = GC.AllocateUninitializedArray<Box>(bounds.Length);
-        _order = GC.AllocateUninitializedArray<int>(bounds.Length);
-        for (int i = 0; i < bounds.Length; i++)
-        {
-            _boxes[i] = new Box { Lo = bounds[i].Min.AsVector128(), Hi = bounds[i].Max.AsVector128() };
-            _order[i] = i;
-        }
+        _boxes = boxes;
+        _order = GC.AllocateUninitializedArray<int>(boxes.Length);
+        for (int i = 0; i < boxes.Length; i++) _order[i] = i;
         _maxLeafSize = maxLeafSize;
         _parallel = parallel;
         // each used slot is written once; Compact reads only those
-        _nodes = GC.AllocateUninitializedArray<BvhNode>(2 * bounds.Length - 1);
+        _nodes = GC.AllocateUninitializedArray<BvhNode>(2 * boxes.Length - 1);
     }
 
     public static (BvhNode[] nodes, int[] order, int maxDepth) Build(ReadOnlySpan<Bounds3> bounds, int maxLeafSize, bool parallel)
     {
+        var boxes = GC.AllocateUninitializedArray<Box>(bounds.Length);
+        for (int i = 0; i < bounds.Length; i++) boxes[i] = Box.Of(bounds[i]);
+        return Build(boxes, maxLeafSize, parallel);
+    }
+
+    /// <summary>As <see cref="Build(ReadOnlySpan{Bounds3}, int, bool)"/> from the primitives' boxes, which the builder permutes and
+    /// then lets go (so a caller that made them for the build alone holds them no longer than the build needs them).</summary>
+    public static (BvhNode[] nodes, int[] order, int maxDepth) Build(Box[] boxes, int maxLeafSize, bool parallel)
+    {
         if (maxLeafSize < 1 || maxLeafSize > ushort.MaxValue) throw new ArgumentOutOfRangeException(nameof(maxLeafSize));
-        if (bounds.Length == 0) return ([], [], 0);
-        var builder = new BvhBuilder(bounds, maxLeafSize, parallel);
-        int depth = builder.Subtree(0, bounds.Length, 0, 1, builder.RangeExtent(0, bounds.Length));
+        if (boxes.Length == 0) return ([], [], 0);
+        var builder = new BvhBuilder(boxes, maxLeafSize, parallel);
+        int depth = builder.Subtree(0, boxes.Length, 0, 1, builder.RangeExtent(0, boxes.Length));
+        builder._boxes = null;   // 32 bytes a primitive, free before the compacted nodes are allocated
         return (Compact(builder._nodes), builder._order, depth);
     }
 
@@ -150,7 +160,8 @@ sealed class BvhBuilder
     Extent RangeExtent(int start, int end)
     {
         var e = Extent.Empty;
-        for (int i = start; i < end; i++) e.Add(in _boxes[i]);
+        var boxes = _boxes!;
+        for (int i = start; i < end; i++) e.Add(in boxes[i]);
         return e;
     }
 
@@ -260,9 +271,10 @@ sealed class BvhBuilder
     void Fill(Span<int> counts, Span<Box> buckets, int start, int end, in Binning binning)
     {
         int nb = binning.Count;
+        var boxes = _boxes!;
         for (int i = start; i < end; i++)
         {
-            ref readonly var b = ref _boxes[i];
+            ref readonly var b = ref boxes[i];
             var bin = binning.Of(in b);
             int x = bin.ToScalar(), y = nb + bin.GetElement(1), z = 2 * nb + bin.GetElement(2);
             counts[x]++; counts[y]++; counts[z]++;
@@ -276,9 +288,10 @@ sealed class BvhBuilder
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     void FillAxis(Span<int> counts, Span<Box> buckets, int start, int end, in Binning binning, int axis)
     {
+        var boxes = _boxes!;
         for (int i = start; i < end; i++)
         {
-            ref readonly var b = ref _boxes[i];
+            ref readonly var b = ref boxes[i];
             int k = Bucket(binning.Of(in b), axis);
             counts[k]++;
             ref var bk = ref buckets[k]; bk.Lo = Vector128.MinNative(bk.Lo, b.Lo); bk.Hi = Vector128.MaxNative(bk.Hi, b.Hi);
@@ -349,7 +362,7 @@ sealed class BvhBuilder
     {
         var l = Extent.Empty;
         var r = Extent.Empty;
-        var boxes = _boxes;
+        var boxes = _boxes!;
         int i = start, j = end - 1;
         while (true)
         {
@@ -376,12 +389,13 @@ sealed class BvhBuilder
     int MedianSplit(int start, int end, int axis, out Extent left, out Extent right)
     {
         int n = end - start;
+        var all = _boxes!;
         var keys = new (float Key, int Primitive, int At)[n];
-        for (int i = 0; i < n; i++) keys[i] = (_boxes[start + i].Centroid2.GetElement(axis), _order[start + i], start + i);
+        for (int i = 0; i < n; i++) keys[i] = (all[start + i].Centroid2.GetElement(axis), _order[start + i], start + i);
         Array.Sort(keys, (a, b) => a.Key != b.Key ? a.Key.CompareTo(b.Key) : a.Primitive.CompareTo(b.Primitive));
         var boxes = new Box[n];
-        for (int i = 0; i < n; i++) boxes[i] = _boxes[keys[i].At];
-        for (int i = 0; i < n; i++) { _boxes[start + i] = boxes[i]; _order[start + i] = keys[i].Primitive; }
+        for (int i = 0; i < n; i++) boxes[i] = all[keys[i].At];
+        for (int i = 0; i < n; i++) { all[start + i] = boxes[i]; _order[start + i] = keys[i].Primitive; }
         int mid = (start + end) / 2;
         left = RangeExtent(start, mid);
         right = RangeExtent(mid, end);

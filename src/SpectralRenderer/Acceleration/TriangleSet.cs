@@ -49,9 +49,8 @@ public partial struct TriangleSet : IPrimitiveIntersector, IPacketIntersector
         var firsts = new int[meshes.Count + 1];
         for (int m = 0; m < meshes.Count; m++) firsts[m + 1] = firsts[m] + meshes[m].TriangleCount;
         int total = firsts[^1];
-        var bounds = GC.AllocateUninitializedArray<Bounds3>(total);
-        for (int m = 0; m < meshes.Count; m++) BoundTriangles(meshes[m], bounds, firsts[m]);
-        var bvh = Bvh.Build(bounds, maxLeafSize, parallel);
+        // The boxes go straight to the builder, which lets them go once the tree is built (no local here keeps them).
+        var bvh = Bvh.Build(BoundTriangles(meshes, firsts), maxLeafSize, parallel);
         var corners = GC.AllocateUninitializedArray<Vector3>(3 * total);
         var orderedMesh = GC.AllocateUninitializedArray<int>(total);
         var orderedTriangle = GC.AllocateUninitializedArray<int>(total);
@@ -73,20 +72,27 @@ public partial struct TriangleSet : IPrimitiveIntersector, IPacketIntersector
         return new TriangleSet(corners, bvh, orderedMesh, orderedTriangle);
     }
 
-    /// <summary>The box of each triangle of the mesh, into bounds[offset ..].</summary>
-    static void BoundTriangles(TriangleMesh mesh, Bounds3[] bounds, int offset)
+    /// <summary>The box of each triangle of the meshes, in the order of their concatenation.</summary>
+    static BvhBuilder.Box[] BoundTriangles(IReadOnlyList<TriangleMesh> meshes, int[] firsts)
     {
-        Parallel.For(0, (mesh.TriangleCount + 4095) / 4096, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (chunk) =>
+        var boxes = GC.AllocateUninitializedArray<BvhBuilder.Box>(firsts[^1]);
+        for (int m = 0; m < meshes.Count; m++)
         {
-            int t1 = Math.Min(mesh.TriangleCount, (chunk + 1) * 4096);
-            for (int t = chunk * 4096; t < t1; t++)
+            var mesh = meshes[m];
+            int offset = firsts[m];
+            Parallel.For(0, (mesh.TriangleCount + 4095) / 4096, [MethodImpl(MethodImplOptions.AggressiveOptimization)] (chunk) =>
             {
-                var (p0, p1, p2) = mesh.Triangle(t);
-                var b = new Bounds3(p0, p0);
-                b.Include(p1); b.Include(p2);
-                bounds[offset + t] = b;
-            }
-        });
+                int t1 = Math.Min(mesh.TriangleCount, (chunk + 1) * 4096);
+                for (int t = chunk * 4096; t < t1; t++)
+                {
+                    var (p0, p1, p2) = mesh.Triangle(t);
+                    var b = new Bounds3(p0, p0);
+                    b.Include(p1); b.Include(p2);
+                    boxes[offset + t] = BvhBuilder.Box.Of(b);
+                }
+            });
+        }
+        return boxes;
     }
 
     public (Vector3 P0, Vector3 P1, Vector3 P2) Corners(int k) => (_corners[3 * k], _corners[3 * k + 1], _corners[3 * k + 2]);

@@ -41,24 +41,19 @@ public sealed class WideBvh
         var bin = binary.Nodes;
         if (bin.Length == 0) return new WideBvh([], 0);
         if (binary.PrimitiveOrder.Length >= 1 << 28) throw new InvalidOperationException("too many primitives for a wide BVH");
-        var nodes = new List<WideNode>(Math.Max(1, bin.Length / 6));
-        int depth = 0;
-        CollapseNode(bin, 0, nodes, 1, ref depth);
-        return new WideBvh(nodes.ToArray(), depth);
+        // Two passes over the same choices: count the nodes, then write them into an array of that size (no list
+        // growing by doubling and copied at the end: on 16 M triangles that was twice the nodes' memory at once).
+        var nodes = new WideNode[Count(bin, 0)];
+        int next = 0, depth = 0;
+        CollapseNode(bin, 0, nodes, ref next, 1, ref depth);
+        return new WideBvh(nodes, depth);
     }
 
-    /// <summary>Wide nodes, depth first, each before its children; node 0 is the root.</summary>
-    public ReadOnlySpan<WideNode> Nodes => _nodes;
-    public int NodeCount => _nodes.Length;
-    /// <summary>Levels of wide nodes from the root to the deepest leaf's parent.</summary>
-    public int Depth { get; }
-    /// <summary>Bytes the node array holds.</summary>
-    public long Bytes => (long)_nodes.Length * Unsafe.SizeOf<WideNode>();
-
-    static int CollapseNode(ReadOnlySpan<BvhNode> bin, int index, List<WideNode> nodes, int level, ref int depth)
+    /// <summary>The binary nodes that become the children of the wide node made from binary node <paramref name="index"/>: its
+    /// two children, the interior one of largest surface area replaced by its own two until there are eight or only leaves
+    /// (a binary leaf at the root is the one child of the root).</summary>
+    static int Children(ReadOnlySpan<BvhNode> bin, int index, Span<int> kids)
     {
-        depth = Math.Max(depth, level);
-        Span<int> kids = stackalloc int[WideNode.Width];
         int n;
         if (bin[index].IsLeaf) { kids[0] = index; n = 1; }
         else { kids[0] = index + 1; kids[1] = bin[index].Offset; n = 2; }
@@ -81,8 +76,32 @@ public sealed class WideBvh
             kids[open + 1] = bin[opened].Offset;
             n++;
         }
-        int at = nodes.Count;
-        nodes.Add(default);
+        return n;
+    }
+
+    static int Count(ReadOnlySpan<BvhNode> bin, int index)
+    {
+        Span<int> kids = stackalloc int[WideNode.Width];
+        int n = Children(bin, index, kids), count = 1;
+        for (int i = 0; i < n; i++)
+            if (!bin[kids[i]].IsLeaf) count += Count(bin, kids[i]);
+        return count;
+    }
+
+    /// <summary>Wide nodes, depth first, each before its children; node 0 is the root.</summary>
+    public ReadOnlySpan<WideNode> Nodes => _nodes;
+    public int NodeCount => _nodes.Length;
+    /// <summary>Levels of wide nodes from the root to the deepest leaf's parent.</summary>
+    public int Depth { get; }
+    /// <summary>Bytes the node array holds.</summary>
+    public long Bytes => (long)_nodes.Length * Unsafe.SizeOf<WideNode>();
+
+    static int CollapseNode(ReadOnlySpan<BvhNode> bin, int index, WideNode[] nodes, ref int next, int level, ref int depth)
+    {
+        depth = Math.Max(depth, level);
+        Span<int> kids = stackalloc int[WideNode.Width];
+        int n = Children(bin, index, kids);
+        int at = next++;
         var node = WideNode.Empty;
         for (int i = 0; i < n; i++)
         {
@@ -96,7 +115,7 @@ public sealed class WideBvh
                     throw new InvalidOperationException($"a leaf of {c.Count} primitives is too large for a wide BVH");
                 node.Child[i] = WideNode.LeafReference(c.Offset, c.Count);
             }
-            else node.Child[i] = CollapseNode(bin, kids[i], nodes, level + 1, ref depth);
+            else node.Child[i] = CollapseNode(bin, kids[i], nodes, ref next, level + 1, ref depth);
         }
         nodes[at] = node;
         return at;

@@ -81,6 +81,9 @@ public sealed partial class SceneGeometry
     /// <summary>Offset for secondary-ray origins, scaled to the scene's size.</summary>
     public float Epsilon { get; }
     public int TriangleCount { get; }
+    /// <summary>Bytes the triangle structures hold per triangle (<see cref="TriangleSet.BytesPerTriangle"/>; 0 without
+    /// triangles).</summary>
+    public double TriangleBytesPerTriangle => _hasTriangles ? _triangles.BytesPerTriangle : 0;
 
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public bool Intersect(ref Ray ray, out SurfaceHit hit)
