@@ -81,7 +81,8 @@ public static class BenchCommand
         stdout.WriteLine(string.Create(inv, $"triangles        {tris:N0}"));
         stdout.WriteLine(string.Create(inv, $"load (+meshes)   {load:0.000} s"));
         stdout.WriteLine(string.Create(inv, $"BVH build        {build:0.000} s"));
-        stdout.WriteLine(string.Create(inv, $"triangle memory  {bytesPerTriangle:0.0} bytes/triangle (corners, binary and wide BVH, indices)"));
+        stdout.WriteLine(
+            string.Create(inv, $"triangle memory  {bytesPerTriangle:0.0} bytes/triangle (corners, binary and wide BVH, indices)"));
         stdout.WriteLine(
             string.Create(inv, $"render median    {median:0.0000} s  (min {times[0]:0.0000}, max {times[^1]:0.0000}, {repeat} runs)"));
         stdout.WriteLine(string.Create(inv,
