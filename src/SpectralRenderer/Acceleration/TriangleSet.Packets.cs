@@ -109,12 +109,18 @@ public partial struct TriangleSet
         var behind = L.Select(L.Less(det, zero),
             L.Or(L.Greater(tScaled, zero), L.Equal(tScaled, zero)),    // tScaled ≥ 0
             L.Or(L.Less(tScaled, zero), L.Equal(tScaled, zero)));      // tScaled ≤ 0
-        uint candidates = inside & ~L.Bits(behind);
+        // Clearly beyond the closest hit so far (tScaled past tMax·det·(1 + 2⁻²⁰)): no division. The margin is far above the
+        // rounding of the bound and of t = tScaled·(1/det) (a few 2⁻²⁴), so a lane whose t ≤ tMax always reaches the tests
+        // below (ties at t = tMax go to the index rule); a bound that is not a normal float (underflow) is not used.
+        var tMax = L.Load(ref p.TMax[c]);
+        var bound = tMax * det * L.Splat(1 + 1f / (1 << 20));
+        var far = L.And(L.Select(L.Less(det, zero), L.Less(tScaled, bound), L.Greater(tScaled, bound)),
+                        L.Greater(L.Max(bound, L.Negate(bound)), L.Splat(1.17549435e-38f)));   // FLT_MIN
+        uint candidates = inside & ~L.Bits(L.Or(behind, far));
         if (candidates == 0) return 0;
 
         var inv = L.Splat(1) / det;
         var t = tScaled * inv;
-        var tMax = L.Load(ref p.TMax[c]);
         uint ahead = candidates & L.Bits(L.Greater(t, zero));   // an underflow of the division
         uint hit = ahead & L.Bits(L.Less(t, tMax));
         if (!TMode.Records) return hit;
