@@ -90,7 +90,7 @@ internal static class RadiometryCases
         """;
 
     static ValidationCase Furnace(string name, string title, string material, double albedo, string reference, string source,
-        string why, Func<double, string>? label = null) => new()
+        string why) => new()
         {
             Name = name,
             Group = "radiometry",
@@ -108,7 +108,7 @@ internal static class RadiometryCases
                 int rays = context.Quick ? 16384 : 65536;
                 var l = Radiance(scene, "path", i => AtSphere(i, rays), rays, context);
                 return [.. l.Select((v, b) => ValidationPoint.Relative(scene.Grid.Centre(b),
-                label?.Invoke(scene.Grid.Centre(b)) ?? $"{F(scene.Grid.Centre(b))} nm", albedo, v.Mean, v.Sigma))];
+                $"{F(scene.Grid.Centre(b))} nm", albedo, v.Mean, v.Sigma))];
             },
         };
 
