@@ -39,6 +39,8 @@ public static class CommandLine
             IlluminanceCommand.Run),
         new("import", "a Mitsuba 3 XML, pbrt-v4 or glTF 2.0 scene converted to our scene JSON, with a report of what was approximated",
             ImportCommand.Run),
+        new("validate", "the tool's accuracy: CIE 171-style lighting, radiometric, colour and camera cases against closed forms",
+            ValidateCommand.Run),
     ];
 
     /// <summary>Adds a command (a plug-in, a test) after the built-in ones; its name is lower-case letters, digits and '-'.</summary>

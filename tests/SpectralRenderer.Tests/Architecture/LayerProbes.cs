@@ -176,6 +176,13 @@ namespace SpectralRenderer.Tests.Architecture.Probe.Layers.Distributed
     static class BackEdge { public const int X = Cli.Mark.Value; }
 }
 
+namespace SpectralRenderer.Tests.Architecture.Probe.Layers.Validation
+{
+    public static class Mark { public const int Value = 18; }
+
+    static class BackEdge { public static string X => nameof(Cli.Mark); }   // nameof: the validation cases never use the CLI
+}
+
 namespace SpectralRenderer.Tests.Architecture.Probe.Layers.Cli
 {
     public static class Mark { public const int Value = 16; }

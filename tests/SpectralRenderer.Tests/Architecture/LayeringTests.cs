@@ -51,6 +51,10 @@ public class LayeringTests
             "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Distributed"] = ["Pipeline", "Output", "Rendering.Registry", "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra",
             "Color", "Diagnostics"],
+        // The validation cases: small scenes built through the loader, measured by the renderer's integrators and photometry
+        // and by the camera model, judged against closed forms; never the pipeline, the outputs or the CLI.
+        [R + "Validation"] = ["Sensor", "Rendering.Registry", "Rendering.Illumination", "Rendering", "Scenes.Loading", "Scenes",
+            "Geometry", "Imaging", "Spectra", "Color", "Diagnostics"],
         [R + "Cli"] = ["*"],
         [R + "Native"] = ["Distributed", "Relighting", "Analysis", "Sensor", "Pipeline", "Output", "Rendering.Registry", "Rendering.Terms",
             "Rendering", "Scenes.Loading", "Scenes", "Imaging", "Spectra", "Color", "Diagnostics"],
@@ -208,7 +212,7 @@ public class LayeringTests
         ("Acceleration", "Scenes"), ("Scenes", "Scenes.Loading"), ("Scenes.Loading", "Rendering"),
         ("Scenes.Import", "Scenes.Loading"), ("Rendering", "Output"),
         ("Imaging", "Sensor"), ("Sensor", "Output"), ("Output", "Pipeline"), ("Pipeline", "Analysis"),
-        ("Analysis", "Relighting"), ("Relighting", "Distributed"), ("Distributed", "Cli"), ("Native", "Cli"),
+        ("Analysis", "Relighting"), ("Relighting", "Distributed"), ("Distributed", "Cli"), ("Validation", "Cli"), ("Native", "Cli"),
         ("Rendering.Terms", "Rendering.Whitted"), ("Rendering.Emitters", "Rendering.PathTracing"),
         ("Rendering.Whitted", "Rendering.PathTracing"), ("Rendering.PathTracing", "Rendering.Whitted"),
         ("Rendering.Illumination", "Rendering.Registry"), ("Rendering.Registry", "Output"),
