@@ -232,6 +232,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
             {
                 var traced = ray;
                 bool reached = _geometry.IntersectScattered(ref traced, out hit);
+                if (depth == 0 && reached) first = hit.Object;   // (also when the camera ray scatters before it)
                 // β ⊙= T of the segment's medium, from the last vertex (the camera) to this one; in a medium that scatters,
                 // free-flight sampling along it, which may end the path or scatter it there (PathIntegrator.Media.cs).
                 if (medium >= 0)
@@ -270,7 +271,6 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
                     }
                     break;
                 }
-                if (depth == 0) first = hit.Object;
                 material = _materials[_objectMaterial[hit.Object]];
 
                 // Light the surface emits towards the ray (Le), MIS-weighted against next-event estimation of the same point.

@@ -102,14 +102,10 @@ public sealed partial class SceneLoader
             string path = $"{_path}.phase";
             _loader.Object(phase, path);
             var type = TryGet(phase, "type", out var t) ? _loader.String(t, $"{path}.type").ToLowerInvariant() : "hg";
-            if (type == "isotropic")
-            {
-                _loader.Keys(phase, path, "type");
-                return new HenyeyGreenstein(0);
-            }
-            if (type != "hg")
+            if (type is not ("hg" or "isotropic"))
                 throw _loader.Error($"{path}.type", $"unknown phase function '{type}'", "types: hg, isotropic");
-            _loader.Keys(phase, path, "type", "g");
+            _loader.Keys(phase, path, type == "hg" ? ["type", "g"] : ["type"]);
+            if (type == "isotropic") return new HenyeyGreenstein(0);
             double g = _loader.Number(phase, "g", path, 0);
             if (!(Math.Abs(g) < 1))
                 throw _loader.Error($"{path}.g", $"the asymmetry g = {g} is not inside (−1, 1)",
