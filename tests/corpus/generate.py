@@ -1304,6 +1304,34 @@ for label, text, pat in [
 fname = write("mitsuba-render-unknown-bsdf.xml", mi_scene("", shape='<shape type="sphere"><bsdf type="measured"/></shape>'))
 case("mitsuba/render-unknown-bsdf", render("{in}/" + fname), r"the BSDF 'measured' has no counterpart", 2, fname, r"\.xml:\d+:\d+")
 
+# ---- Participating media (docs/scene-format.md, "Participating media") -------------------------------------------------
+MEDIUM_INTEGRATOR = {"radiometry": "physical", "integrator": "path"}
+for label, where, medium, pat in [
+    ("medium-negative-sigma-a", "scene", {"sigma_a": -0.5}, r"\$\.medium\.sigma_a: -0\.5 is out of range"),
+    ("medium-negative-sigma-s", "object", {"sigma_s": [[380, 1], [780, -1]]}, r"\$\.objects\[0\]\.medium\.sigma_s\[1\]\[1\]: negative value -1"),
+    ("medium-huge-sigma-t", "scene", {"albedo": 0.5, "sigma_t": 987654321}, r"\$\.medium\.sigma_t: Infinity is out of range"),
+    ("medium-albedo-above-1", "scene", {"albedo": 1.5, "sigma_t": 1}, r"\$\.medium\.albedo: the value 1\.5 is outside \[0, 1\]"),
+    ("medium-both-forms", "scene", {"sigma_a": 1, "albedo": 0.5, "sigma_t": 1}, r"gives both σ_a/σ_s and albedo/σ_t"),
+    ("medium-no-coefficients", "scene", {"phase": {"type": "hg", "g": 0.5}}, r"a medium has no coefficients"),
+    ("medium-hg-g-1", "scene", {"sigma_s": 1, "phase": {"type": "hg", "g": 1}}, r"\$\.medium\.phase\.g: the asymmetry g = 1 is not inside"),
+    ("medium-hg-g-minus-2", "object", {"sigma_s": 1, "phase": {"type": "hg", "g": -2}}, r"\$\.objects\[0\]\.medium\.phase\.g: the asymmetry"),
+    ("medium-phase-unknown", "scene", {"sigma_s": 1, "phase": {"type": "rayleigh"}}, r"unknown phase function 'rayleigh'"),
+    ("medium-unknown-type", "scene", {"type": "fgo", "sigma_a": 1}, r"unknown medium type 'fgo'"),
+    ("medium-unknown-key", "scene", {"sigma_a": 1, "sigma": 2}, r"\$\.medium.*sigma"),
+]:
+    s = deep(BASE); s.update(MEDIUM_INTEGRATOR)
+    if where == "scene": s["medium"] = medium
+    else: s["objects"][0]["medium"] = medium
+    scene_case(label, scene_text(s).replace("987654321", "1e400"), pat)   # 1e400: a JSON number beyond double
+s = deep(BASE); s.update(MEDIUM_INTEGRATOR)
+s["objects"].append({"type": "quad", "center": [0, 0, -2], "size": 4, "material": "green", "medium": {"sigma_a": 1}})
+scene_case("medium-on-open-quad", s, r"\$\.objects\[1\]\.medium: object 'quad-1' is not closed")
+s = deep(BASE); s.update(MEDIUM_INTEGRATOR)
+s["objects"].append({"type": "mesh", "inline": {"positions": [0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1],
+                                                 "indices": [0, 2, 1, 0, 1, 3, 0, 3, 2]},
+                     "material": "green", "medium": {"sigma_a": 1}})
+scene_case("medium-on-open-mesh", s, r"\$\.objects\[1\]\.medium: object '.*' is not closed")
+
 names = [c["name"] for c in cases]
 assert len(names) == len(set(names)), [x for x in names if names.count(x) > 1]
 with open(os.path.join(HERE, "cases.json"), "w", encoding="utf-8") as f:

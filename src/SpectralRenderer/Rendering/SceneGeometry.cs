@@ -72,7 +72,11 @@ public sealed partial class SceneGeometry
         float extent = b.IsEmpty ? 1 : Math.Max(b.Extent.Length(), Vector3.Max(Vector3.Abs(b.Min), Vector3.Abs(b.Max)).Length());
         Epsilon = 1e-5f * Math.Max(1f, extent);
         BoundingRadius = b.IsEmpty ? 0 : b.Extent.Length() / 2;
+        BoundingCentre = b.IsEmpty ? Vector3.Zero : (b.Min + b.Max) / 2;
     }
+
+    /// <summary>The centre of the finite geometry's bounding box (the origin without finite geometry).</summary>
+    public Vector3 BoundingCentre { get; }
 
     /// <summary>The radius of the sphere about the finite geometry's bounding box (half its diagonal; 0 without finite
     /// geometry): what a light at infinity shines through (its power, <c>EmitterSet.Power</c>).</summary>

@@ -31,6 +31,16 @@ public static class SpectrumLibrary
         ("led-rgb", "light-sources.csv", "3-LED-1 (457/540/605)", true), ("led-yag", "light-sources.csv", "Phosphor LED YAG", true),
     ];
 
+    /// <summary>
+    /// The built-in coefficient spectra, per metre as published (docs/scene-format.md, "Participating media"; data/README.md):
+    /// the absorption coefficient of pure water, Pope &amp; Fry (1997) from 380 to 727.5 nm and Smith &amp; Baker (1981) from
+    /// 730 to 800 nm (<c>water</c>), and Smith &amp; Baker's alone from 200 to 800 nm (<c>water-smith-baker</c>).
+    /// </summary>
+    static readonly (string Name, string File, string Column)[] Coefficients =
+    [
+        ("water", "water-absorption.csv", "a_w_per_m"), ("water-smith-baker", "water-smith-baker-1981.csv", "a_w_per_m"),
+    ];
+
     /// <summary>Whether the built-in light <paramref name="name"/> is scaled by luminous flux (else 100 at 560 nm); null if none.</summary>
     public static bool? IsLuminousNormalised(string name)
     {
@@ -56,7 +66,8 @@ public static class SpectrumLibrary
 
     /// <summary>Every built-in name, for help texts and "did you mean".</summary>
     public static IEnumerable<string> KnownNames =>
-        Builtins.Select(b => b.Name).Concat(ColorChecker.PatchKeys.Select(k => "colorchecker:" + k)).Append("constant:<value>")
+        Builtins.Select(b => b.Name).Concat(Coefficients.Select(c => c.Name))
+            .Concat(ColorChecker.PatchKeys.Select(k => "colorchecker:" + k)).Append("constant:<value>")
             .Append("blackbody:<K>").Append("daylight:<K>");
 
     public static SpectralTable Table(string path) => Tables.GetOrAdd(System.IO.Path.GetFullPath(path), CsvSpectrumReader.Read);
@@ -70,6 +81,10 @@ public static class SpectrumLibrary
         foreach (var b in Builtins)
             if (string.Equals(b.Name, name, StringComparison.OrdinalIgnoreCase))
                 return Rename(b.Luminous ? LuminousNormalised(b.Name, DataTable(b.File)[b.Column]) : DataTable(b.File)[b.Column], b.Name);
+
+        foreach (var c in Coefficients)
+            if (string.Equals(c.Name, name, StringComparison.OrdinalIgnoreCase))
+                return Rename(DataTable(c.File)[c.Column], c.Name);
 
         if (name.StartsWith("constant:", StringComparison.OrdinalIgnoreCase))
         {

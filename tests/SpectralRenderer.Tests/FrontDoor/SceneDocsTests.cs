@@ -103,6 +103,12 @@ public partial class SceneDocsTests
         foreach (var type in Listed(objectTypes.Hint!, "types: "))
             Add("objects", $"object {type}", s => s["objects"]![0] = With(new JsonObject { ["type"] = type }));
         Add("objects", "transform", s => s["objects"]![0]!["transform"] = With([]));
+        Add("objects", "$.medium", s => s["medium"] = With(new JsonObject { ["sigma_a"] = 1 }));
+        Add("objects", "$.medium.phase", s => s["medium"] = new JsonObject
+        {
+            ["sigma_s"] = 1,
+            ["phase"] = With(new JsonObject { ["type"] = "hg" }),
+        });
         Add("objects", "mesh fit", s => s["objects"]![0] = new JsonObject
         {
             ["type"] = "mesh",
@@ -150,16 +156,15 @@ public partial class SceneDocsTests
     public void The_probe_reaches_every_place_the_loader_checks_keys()
     {
         // Each call of the loader's Keys(element, path, allowed…) is one kind of JSON object; the probe above
-        // asks twenty-three of them (the light, object and material calls cover every type, the registered shape types' call
-        // every registered shape: disk, cylinder; an rgb spectrum; an inline mesh). The twenty-fourth checks a registered medium type's own
-        // keys (SceneLoader.Media.cs): this build registers none, so the scene file's "medium" takes only "type" (documented)
-        // and any name is refused; the probe joins it when the first medium type is built in. A new one must join the probe.
+        // asks all twenty-five (the light, object and material calls cover every type, the registered shape types' call
+        // every registered shape: disk, cylinder; an rgb spectrum; an inline mesh; a medium, the built-in homogeneous type's
+        // keys, and its phase function's). A new one must join the probe.
         var sources = Directory.GetFiles(Repo.PathOf("src", "SpectralRenderer"), "*.cs", SearchOption.AllDirectories)
             .Where(f => !f.Contains($"{Path.DirectorySeparatorChar}obj{Path.DirectorySeparatorChar}", StringComparison.Ordinal));
         var calls = sources.SelectMany(f => KeysCall().Matches(File.ReadAllText(f)).Select(m => $"{Path.GetFileName(f)}: {m.Value}"))
             .ToList();
-        Assert.True(calls.Count == 24,
-            $"{calls.Count} Keys(...) calls, the probe knows 24; add the new one to AcceptedKeys:\n" + string.Join("\n", calls));
+        Assert.True(calls.Count == 25,
+            $"{calls.Count} Keys(...) calls, the probe knows 25; add the new one to AcceptedKeys:\n" + string.Join("\n", calls));
     }
 
     // ---- the examples -------------------------------------------------------------------------------

@@ -1,26 +1,44 @@
 using System.Numerics;
 using System.Runtime.CompilerServices;
 using SpectralRenderer.Diagnostics;
+using SpectralRenderer.Geometry;
 using SpectralRenderer.Scenes;
 
 namespace SpectralRenderer.Rendering.PathTracing;
 
 /// <summary>
-/// The medium slot of the walk (PathIntegrator.cs). Every ray segment travels in one medium (<see cref="Medium"/>; −1:
+/// Participating media in the walk (PathIntegrator.cs). Every ray segment travels in one medium (<see cref="Medium"/>; −1:
 /// vacuum): a camera ray in the scene's "medium"; a ray that leaves a vertex of an object that names an interior medium
 /// travels in that medium when it goes into the object (against its outward geometric normal) and in the scene's medium
 /// when it goes out; any other vertex keeps the medium its ray came in (a surface that names no medium is no boundary,
 /// as pbrt-v4's primitives without a MediumInterface). <see cref="PathVertex.Medium"/> is the medium of the ray that
 /// reached a vertex and <see cref="PathVertex.Interior"/> its object's interior, so next-event estimation knows its
-/// shadow ray's. The walk multiplies β by the segment's transmittance T per band (Medium.Attenuate: the segment from
-/// one vertex to the next, measured between the vertices, not from the ray's ε-offset origin; +∞ for a ray that escapes)
-/// before it uses β at the segment's end, and next-event estimation multiplies f by T along the shadow ray (a shadow ray
-/// is blocked by any surface, so it crosses no boundary) — in f, not in the light's spectrum, so the per-light transfer
-/// keeps T and a relight stays exact. Absorption only: both MIS strategies see the same deterministic T, so the weights
-/// are unchanged. Without media (every scene of today) no medium is read and no number changes: the pictures are the
-/// same bit for bit. Issue 41 adds, here and at the segment in the walk, free-flight sampling against a majorant (a
-/// scattering vertex with a phase function instead of a surface), ratio-tracking transmittance on shadow rays and the
-/// Whitted integrator's Beer–Lambert.
+/// shadow ray's.
+/// <para>
+/// A medium that only absorbs: the walk multiplies β by the segment's transmittance T per band (Medium.Attenuate: the
+/// segment from one vertex to the next; +∞ for a ray that escapes), exact, and next-event estimation multiplies f by T
+/// along the shadow ray (a shadow ray is blocked by any surface, so it crosses no boundary) — in f, not in the light's
+/// spectrum, so the per-light transfer keeps T and a relight stays exact.
+/// </para>
+/// <para>
+/// A medium that scatters: free-flight sampling by spectral tracking (Kutz et al. 2017, "Spectral and decomposition tracking
+/// for rendering heterogeneous volumes", §5.2) — one majorant for every band, σ̄ = max_λ σ_t(λ); tentative collisions at
+/// exponential distances of rate σ̄; at each, absorption, scattering or a null collision is chosen with probabilities
+/// P_x = ‖σ_x ⊙ β‖∞ / Σ_y ‖σ_y ⊙ β‖∞ (history-aware: by the path's throughput, so no band's weight grows without bound),
+/// and β ⊙= σ_x/(σ̄·P_x) — so every band's estimate is unbiased although all share one distance, and no wavelength is
+/// sampled (no colour noise from wavelengths). Absorption ends the path (the medium emits nothing); scattering makes a
+/// vertex whose "BSDF" is the phase function: next-event estimation there (f = p(ωo, ωi)·T along the shadow ray, the exact
+/// Beer–Lambert T of a homogeneous medium in place of ratio tracking) with MIS (power heuristic) against phase sampling,
+/// which Henyey–Greenstein does exactly (f/pdf = 1), then Russian roulette on β as at a surface. The sky is not drawn
+/// from a vertex in a medium (it has no hemisphere: p_sky = 0 there), so phase samples that escape see it with weight 1.
+/// A ray that escapes in a scattering medium is tracked to the edge of the media's extent (a sphere about the scene's
+/// bounds and the camera, <see cref="_extentCentre"/>, radius <see cref="_extentRadius"/>) and only attenuated beyond it
+/// (exp(−σ_t·∞): 0 in a band that attenuates, 1 in one that does not) — scattering far outside the scene is not followed.
+/// Every random number of the tracking comes from the camera sample's sampler, so a picture is the same on any thread
+/// count or shard; the decisions depend on β only, never on a light's spectrum, so transport stays linear in each light's
+/// emission and a relight stays exact. Without media (every scene without a "medium") no medium is read and no number
+/// changes: the pictures are the same bit for bit.
+/// </para>
 /// </summary>
 internal sealed partial class PathIntegrator
 {
@@ -40,8 +58,146 @@ internal sealed partial class PathIntegrator
                 "the path integrator does not carry fluorescent light through participating media yet (issue 41)",
                 "remove the medium or the fluorescent material");
         _media = scene.Media.Select(m => m.Resampled(_grid.Resample)).ToArray();
+        _scattering = _media.Select(m => m.Scattering).ToArray();
         _interiorOf = scene.Objects.Select(o => o.Medium).ToArray();
         _sceneMedium = scene.Medium;
+        // The media's extent: a sphere about the finite geometry and the camera, twice as wide as both.
+        _extentCentre = _geometry.BoundingCentre;
+        _extentRadius = 2 * MathF.Max(MathF.Max(_geometry.BoundingRadius, Vector3.Distance(scene.Camera.Position, _extentCentre)), 1e-3f);
+    }
+
+    /// <summary>Each medium's scattering (null: it only absorbs), on the sub-band grid.</summary>
+    MediumScattering?[] _scattering = [];
+    Vector3 _extentCentre;
+    float _extentRadius;
+
+    /// <summary>How a segment's free flight ended.</summary>
+    enum Flight { Passed, Scattered, Absorbed }
+
+    /// <summary>
+    /// Spectral tracking (Kutz et al. 2017, §5.2) of the segment of <paramref name="ray"/> up to <paramref name="end"/> (+∞: it
+    /// escapes) in medium <paramref name="medium"/>, β weighted on the way: <see cref="Flight.Passed"/> (β ⊙= the null
+    /// collisions' weights, and for an escaping ray exp(−σ_t·∞) beyond the extent), <see cref="Flight.Scattered"/> at
+    /// <paramref name="at"/> (β ⊙= also σ_s/(σ̄·P_s)), or <see cref="Flight.Absorbed"/>.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.NoInlining)]   // a scene with scattering media only: kept out of the walk's frame
+    Flight Track(MediumScattering m, int medium, Ray ray, float end, Span<float> beta, ref Sampler sampler, out Vector3 at)
+    {
+        at = default;
+        float majorant = m.Majorant, tEnd = end;
+        bool escapes = float.IsPositiveInfinity(end);
+        if (escapes) tEnd = ExitOfExtent(ray);
+        if (majorant > 0)
+        {
+            var vb = V(beta);
+            ReadOnlySpan<Vector<float>> va = RV(m.SigmaA), vs = RV(m.SigmaS), vn = RV(m.SigmaN);
+            float t = 0;
+            for (; ; )
+            {
+                t -= MathF.Log(1 - sampler.Next1D()) / majorant;   // p(t) = σ̄·exp(−σ̄·t)
+                if (!(t < tEnd)) break;
+                Vector<float> ma = Vector<float>.Zero, ms = Vector<float>.Zero, mn = Vector<float>.Zero;
+                for (int i = 0; i < vb.Length; i++)
+                {
+                    ma = Vector.Max(ma, va[i] * vb[i]);
+                    ms = Vector.Max(ms, vs[i] * vb[i]);
+                    mn = Vector.Max(mn, vn[i] * vb[i]);
+                }
+                float pa = MaxLane(ma), ps = MaxLane(ms), pn = MaxLane(mn), c = pa + ps + pn;
+                if (!(c > 0)) return Flight.Absorbed;
+                float x = sampler.Next1D() * c;
+                if (x < pa) return Flight.Absorbed;   // absorbed: the medium emits nothing
+                if (x < pa + ps)
+                {
+                    Multiply(beta, m.SigmaS, c / (majorant * ps));
+                    at = ray.Origin + t * ray.Direction;
+                    return Flight.Scattered;
+                }
+                Multiply(beta, m.SigmaN, c / (majorant * pn));   // a null collision: on along the ray
+            }
+        }
+        if (escapes) Attenuate(medium, ray.Origin, ray.Direction, float.PositiveInfinity, beta);
+        return Flight.Passed;
+    }
+
+    /// <summary>The largest lane of <paramref name="v"/>.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    static float MaxLane(Vector<float> v)
+    {
+        float r = 0;
+        for (int i = 0; i < Vector<float>.Count; i++) r = MathF.Max(r, v[i]);
+        return r;
+    }
+
+    /// <summary>Where <paramref name="ray"/> leaves the media's extent (0: it does not cross it).</summary>
+    float ExitOfExtent(Ray ray)
+    {
+        var oc = ray.Origin - _extentCentre;
+        float b = Vector3.Dot(oc, ray.Direction), c = oc.LengthSquared() - _extentRadius * _extentRadius;
+        float discriminant = b * b - c;
+        return discriminant > 0 ? MathF.Max(0, -b + MathF.Sqrt(discriminant)) : 0;
+    }
+
+    /// <summary>
+    /// A vertex at <paramref name="p"/> in medium <paramref name="medium"/> with phase function <paramref name="phase"/>, reached
+    /// along <paramref name="ray"/> (ωo = <paramref name="wo"/>): next-event estimation of one emitter, then the next ray drawn
+    /// from the phase function (β unchanged: f/pdf = 1), Russian roulette on β. False: the path ends.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.NoInlining)]
+    bool Scatter<TSink>(ref TSink sink, HenyeyGreenstein phase, int medium, Vector3 p, Vector3 wo, ref Ray ray, Span<float> beta,
+        Span<float> f, ref Sampler sampler, int depth, Span<float> scratch, ref ShiftState shifts, ref RayCounters counters,
+        out float phasePdf) where TSink : IPathSink, allows ref struct
+    {
+        phasePdf = 0;
+        // The dimensions of a surface vertex, in its order (light, point on it, lobe — unused here —, direction, roulette).
+        int dLight = sampler.Reserve1D(), dPoint = sampler.Reserve2D();
+        sampler.Reserve1D();
+        int dDirection = sampler.Reserve2D(), dRoulette = sampler.Reserve1D();
+        if (_emitters.Count > 0)
+        {
+            float uLight = _emitters.Count > 1 ? sampler.At1D(dLight) : 0;
+            var uPoint = sampler.At2D(dPoint);
+            MediumNextEvent(ref sink, phase, medium, p, wo, uLight, new Vector2(uPoint.U, uPoint.V), beta, f, scratch, ref counters);
+        }
+        var u = sampler.At2D(dDirection);
+        var wi = phase.Sample(wo, new Vector2(u.U, u.V));
+        phasePdf = phase.Evaluate(wo, wi);
+        if (depth + 1 >= _rrDepth)
+        {
+            float q = MathF.Min(Survival, Max(beta) * shifts.Gain);
+            if (!(q > 0) || sampler.At1D(dRoulette) >= q) return false;
+            Scale(beta, 1 / q);
+        }
+        ray = new Ray(p, wi);
+        counters.Secondary++;
+        return true;
+    }
+
+    /// <summary>
+    /// L += β·p(ωo, ωi)·T·L_e·w/(P(k)·p_k) for one sample of emitter k, chosen by <paramref name="uLight"/>, seen from
+    /// <paramref name="p"/> in <paramref name="medium"/>: w = 1 for a delta light, else the power heuristic against the phase
+    /// function's density; T along the shadow ray (exact for a homogeneous medium), which any surface blocks.
+    /// </summary>
+    void MediumNextEvent<TSink>(ref TSink sink, HenyeyGreenstein phase, int medium, Vector3 p, Vector3 wo, float uLight, Vector2 u,
+        Span<float> beta, Span<float> f, Span<float> scratch, ref RayCounters counters) where TSink : IPathSink, allows ref struct
+    {
+        int k = _emitters.Choose(uLight);
+        var emitter = _emitters[k];
+        if (!emitter.Sample(p, Vector3.Zero, u, out var sample)) return;
+        var wi = sample.Direction;
+        float distance = sample.Distance, factor = sample.Factor, pdf = sample.Pdf;
+        if (!(pdf > 0) || !(factor > 0)) return;   // (the sky: p = 0 from a point in a medium)
+        var radiance = emitter.Texture is null ? emitter.Radiance
+            : EmittedAt(emitter, sample.Face, sample.Point, sample.Normal, wi, distance, scratch.Slice(TextureBase + 2 * _padded, _padded));
+        counters.Shadow++;
+        if (_geometry.OccludedScattered(Visibility.ShadowRay(p, Vector3.Zero, wi, distance, _geometry.Epsilon))) return;
+        float density = phase.Evaluate(wo, wi);
+        f.Clear();
+        f[.._grid.Count].Fill(density);
+        Attenuate(medium, p, wi, distance, f);
+        float pick = _emitters.SelectionPdf(k);
+        float w = sample.IsDelta ? 1 : PowerHeuristic(pick * pdf, density);
+        sink.NextEvent(emitter.SceneLight, beta, f, radiance, factor * w / (pick * pdf));
     }
 
     /// <summary>The interior medium of object <paramref name="o"/> (−1: none, or a scene without media).</summary>

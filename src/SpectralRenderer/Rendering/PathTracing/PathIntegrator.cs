@@ -232,10 +232,32 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
             {
                 var traced = ray;
                 bool reached = _geometry.IntersectScattered(ref traced, out hit);
-                // β ⊙= T of the segment's medium, from the last vertex (the camera) to this one (PathIntegrator.Media.cs).
+                if (depth == 0 && reached) first = hit.Object;   // (also when the camera ray scatters before it)
+                // β ⊙= T of the segment's medium, from the last vertex (the camera) to this one; in a medium that scatters,
+                // free-flight sampling along it, which may end the path or scatter it there (PathIntegrator.Media.cs).
                 if (medium >= 0)
-                    Attenuate(medium, ray.Origin, ray.Direction, !reached ? float.PositiveInfinity
-                        : depth == 0 ? hit.T : Vector3.Distance(previous, hit.Position), beta);
+                {
+                    if (_scattering[medium] is { } scattering)
+                    {
+                        var flight = Track(scattering, medium, ray, reached ? hit.T : float.PositiveInfinity, beta, ref sampler,
+                            out var at);
+                        if (flight == Flight.Absorbed) break;
+                        if (flight == Flight.Scattered)
+                        {   // a vertex in the medium: its phase function in place of a BSDF
+                            if (_maxDepth >= 0 && depth >= _maxDepth) break;
+                            if (counters.BudgetSpent) { counters.OverBudget = true; break; }
+                            if (!Scatter(ref sink, scattering.Phase, medium, at, wo, ref ray, beta, f, ref sampler, depth, scratch,
+                                ref shifts, ref counters, out bsdfPdf)) break;
+                            deltaBounce = false;
+                            previous = at;
+                            previousFront = Vector3.Zero;   // no surface: the sky is not drawn from here (p_sky = 0)
+                            continue;
+                        }
+                    }
+                    else
+                        Attenuate(medium, ray.Origin, ray.Direction, !reached ? float.PositiveInfinity
+                            : depth == 0 ? hit.T : Vector3.Distance(previous, hit.Position), beta);
+                }
                 if (!reached)
                 {
                     // The ray escapes: the sky (background) radiance, MIS-weighted against its own sampling.
@@ -249,7 +271,6 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
                     }
                     break;
                 }
-                if (depth == 0) first = hit.Object;
                 material = _materials[_objectMaterial[hit.Object]];
 
                 // Light the surface emits towards the ray (Le), MIS-weighted against next-event estimation of the same point.

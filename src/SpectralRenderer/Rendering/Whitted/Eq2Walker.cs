@@ -20,6 +20,9 @@ internal interface ITermSink
     /// <summary>A light that reaches the point unshadowed with n·l &gt; 0: d·(n·l)·I_k·m_diff and, when
     /// <paramref name="specular"/>, d·s·I_k·m_spec, with d = c_spot·d_k and s the lobe's factor.</summary>
     void Direct(int light, int material, int term, float d, float nl, float s, bool specular);
+    /// <summary><see cref="Direct"/> with its shadow ray through a participating medium: the pair ⊙ the transmittance
+    /// <paramref name="transmittance"/> per band (a sink whose rays meet no medium is never asked).</summary>
+    void DirectThrough(int light, int material, int term, float d, float nl, float s, bool specular, ReadOnlySpan<float> transmittance);
 }
 
 /// <summary>
@@ -53,6 +56,11 @@ internal interface IWalkSink : ITermSink
     void Leave(int material, bool transmit, int band, float factor, ref RayCounters counters);
     /// <summary>After a reflected ray of a dispersive Fresnel mirror traced once: band b enters weighted by F_b.</summary>
     void LeavePerBand(Material m, int material, float cosI, bool outside, ref RayCounters counters);
+    /// <summary>The ray's radiance so far (its terms and branches) ⊙= T of <paramref name="medium"/> along the ray for
+    /// <paramref name="distance"/> (+∞: it left the scene): Beer–Lambert per band.</summary>
+    void Attenuate(Medium medium, Vector3 origin, Vector3 direction, float distance, ref RayCounters counters);
+    /// <summary>Where a shadow ray's transmittance goes (a padded spectrum; empty for a sink whose rays meet no medium).</summary>
+    Span<float> Transmittance { get; }
 }
 
 /// <summary>A shading point as eq. 2's local step sees it: its normal and view direction (on the viewer's side) and where
@@ -67,6 +75,8 @@ internal interface ILightQuery
     bool Reach(int k, out LightSample sample, out float nl);
     /// <summary>Is light k unshadowed (asked only where n·l &gt; 0)?</summary>
     bool Visible(int k, in LightSample sample, ref RayCounters counters);
+    /// <summary>The transmittance per band along the shadow ray last found <see cref="Visible"/> (empty: it crosses no medium).</summary>
+    ReadOnlySpan<float> Transmittance { get; }
 }
 
 /// <summary>
@@ -75,6 +85,11 @@ internal interface ILightQuery
 /// terms visited in a fixed order (global ambient; per light its ambient, then, facing and unshadowed, its diffuse and
 /// specular pair; then the mirror and the transmission branch with Fresnel, total internal reflection and dispersion per
 /// band, to the maximum depth). What a term does is the sink's (<see cref="ITermSink"/>); the walk is written once.
+/// Participating media absorb along its rays (it scatters nothing): every ray travels in one medium — a camera ray in the
+/// scene's, a refracted ray into an object with an interior medium in that one and out of it in the scene's, any other in
+/// the medium it came in — and its radiance, terms and branches together, is multiplied by Beer–Lambert's
+/// T = exp(−σ_t·t) per band over its length (exact: a homogeneous medium's <see cref="Medium.Attenuate"/>), each direct
+/// term by T along its shadow ray, which leaves on the viewer's side and so travels in the ray's medium.
 /// </summary>
 internal sealed class Eq2Walker
 {
@@ -90,6 +105,10 @@ internal sealed class Eq2Walker
     readonly float _minWeight;
     readonly TextureTables? _textures;
     readonly float _pixelAngle;
+    // Participating media: the scene's, each object's interior (−1: none) and the camera's medium (−1: vacuum).
+    readonly Medium[] _media;
+    readonly int[] _interiorOf;
+    readonly int _sceneMedium;
 
     public Eq2Walker(Scene scene, SceneGeometry geometry, TermTables tables)
     {
@@ -109,6 +128,9 @@ internal sealed class Eq2Walker
         // A camera pixel's angular width at the image centre: a hit's footprint t·angle/|cos θ| picks the mip level (a ray
         // cone from the camera; a secondary ray's cone starts at its own origin).
         _pixelAngle = 2 * MathF.Tan(scene.Camera.Fov * MathF.PI / 360) / Math.Max(1, scene.Camera.Height);
+        _media = [.. scene.Media];
+        _interiorOf = scene.Objects.Select(o => o.Medium).ToArray();
+        _sceneMedium = scene.Medium;
     }
 
     public TermTables Tables => _tables;
@@ -122,14 +144,32 @@ internal sealed class Eq2Walker
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     public int Trace<TSink>(ref TSink sink, Ray ray, int depth, int band, float weight, ref RayCounters counters)
+        where TSink : IWalkSink, allows ref struct => TraceIn(ref sink, ray, _sceneMedium, depth, band, weight, ref counters);
+
+    /// <summary><see cref="Trace{TSink}(ref TSink, Ray, int, int, float, ref RayCounters)"/> of a ray in
+    /// <paramref name="medium"/> (−1: vacuum).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    int TraceIn<TSink>(ref TSink sink, Ray ray, int medium, int depth, int band, float weight, ref RayCounters counters)
         where TSink : IWalkSink, allows ref struct
     {
         sink.Begin();
+        var origin = ray.Origin;
         if (!_geometry.Intersect(ref ray, out var hit))
         {
             sink.Background();
+            if (medium >= 0) sink.Attenuate(_media[medium], origin, ray.Direction, float.PositiveInfinity, ref counters);
             return -1;
         }
+        int id = Follow(ref sink, ray, in hit, medium, depth, band, weight, ref counters);
+        if (medium >= 0) sink.Attenuate(_media[medium], origin, ray.Direction, hit.T, ref counters);
+        return id;
+    }
+
+    /// <summary>The terms and branches at <paramref name="hit"/>, reached by <paramref name="ray"/> in <paramref name="medium"/>.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    int Follow<TSink>(ref TSink sink, Ray ray, scoped in SurfaceHit hit, int medium, int depth, int band, float weight,
+        ref RayCounters counters) where TSink : IWalkSink, allows ref struct
+    {
         int mi = _objectMaterial[hit.Object];
         var m = _materials[mi];
         var v = -ray.Direction;
@@ -140,7 +180,8 @@ internal sealed class Eq2Walker
         var p = hit.Position;
         var pAbove = p + _geometry.Epsilon * ng;
         if (_textures is { } textures && textures.Textured[mi]) LookUpTexels(ref sink, textures, mi, in hit, ng, v);
-        var lights = new RayLights(_lights, _geometry, p, ng, n, v);
+        var lights = new RayLights(_lights, _geometry, p, ng, n, v, medium >= 0 ? _media[medium] : null,
+            medium >= 0 ? sink.Transmittance : default);
         Shade(ref sink, ref lights, mi, m, ref counters);
 
         if (depth >= _maxDepth || !(m.HasMirror || m.HasTransmission)) return hit.Object;
@@ -148,17 +189,21 @@ internal sealed class Eq2Walker
         if (TSink.Budgeted && counters.BudgetSpent) { counters.OverBudget = true; return hit.Object; }
 
         float cosI = Vector3.Dot(n, v);
-        if (m.HasMirror) Reflect(ref sink, ray.Direction, pAbove, n, m, mi, cosI, outside, depth, band, weight, ref counters);
+        if (m.HasMirror) Reflect(ref sink, ray.Direction, pAbove, n, m, mi, cosI, outside, medium, depth, band, weight, ref counters);
         if (m.HasTransmission)
         {
             float wt = weight * _transmitMax[mi];
-            if (!m.Dispersive || band >= 0) Refract(ref sink, ray.Direction, p, n, ng, m, mi, cosI, outside, depth, band, wt, ref counters);
+            // The medium beyond the surface: into the object's interior, out of it into the scene's, else unchanged.
+            int beyond = _interiorOf[hit.Object] is int interior and >= 0 ? outside ? interior : _sceneMedium : medium;
+            var across = new Media(medium, beyond);
+            if (!m.Dispersive || band >= 0)
+                Refract(ref sink, ray.Direction, p, n, ng, m, mi, cosI, outside, across, depth, band, wt, ref counters);
             else
             {
                 // Dispersion: every band bends by its own index, so each gets its own refracted ray.
                 sink.Split(ref counters);
                 for (int b = 0; b < _bands; b++)
-                    Refract(ref sink, ray.Direction, p, n, ng, m, mi, cosI, outside, depth, b, wt, ref counters);
+                    Refract(ref sink, ray.Direction, p, n, ng, m, mi, cosI, outside, across, depth, b, wt, ref counters);
             }
         }
         return hit.Object;
@@ -201,14 +246,15 @@ internal sealed class Eq2Walker
             float d = ls.Attenuation * ls.Spot;
             // Physical: the specular lobe is a BRDF, so it is weighted by cos θ_i like the diffuse one (paper: eq. 2 as written).
             float s = m.HasSpecular ? m.SpecularFactor(lights.Normal, ls.Direction, lights.View, nl) * (_physical ? nl : 1f) : 0;
-            sink.Direct(k, mi, term, d, nl, s, m.HasSpecular);
+            if (lights.Transmittance is { IsEmpty: false } t) sink.DirectThrough(k, mi, term, d, nl, s, m.HasSpecular, t);
+            else sink.Direct(k, mi, term, d, nl, s, m.HasSpecular);
         }
     }
 
     /// <summary>k_r·L(reflected), with F per band for a dispersive Fresnel mirror.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     void Reflect<TSink>(ref TSink sink, Vector3 incident, Vector3 pAbove, Vector3 n, Material m, int mi, float cosI, bool outside,
-        int depth, int band, float weight, ref RayCounters counters) where TSink : IWalkSink, allows ref struct
+        int medium, int depth, int band, float weight, ref RayCounters counters) where TSink : IWalkSink, allows ref struct
     {
         float f = m.MirrorFactor(cosI, outside, band);
         float branch = weight * _mirrorMax[mi] * f;
@@ -226,7 +272,7 @@ internal sealed class Eq2Walker
                 {
                     float fb = m.MirrorFactor(cosI, outside, b);
                     sink.Enter(mi, false, b, fb);
-                    Trace(ref sink, ray, depth + 1, b, branch, ref counters);
+                    TraceIn(ref sink, ray, medium, depth + 1, b, branch, ref counters);
                     sink.Leave(mi, false, b, fb, ref counters);
                     if (b == 0) counted = counters;
                 }
@@ -234,12 +280,12 @@ internal sealed class Eq2Walker
                 return;
             }
             sink.Enter(mi, false, band, f);
-            Trace(ref sink, ray, depth + 1, band, branch, ref counters);
+            TraceIn(ref sink, ray, medium, depth + 1, band, branch, ref counters);
             sink.LeavePerBand(m, mi, cosI, outside, ref counters);
             return;
         }
         sink.Enter(mi, false, band, f);
-        Trace(ref sink, ray, depth + 1, band, branch, ref counters);
+        TraceIn(ref sink, ray, medium, depth + 1, band, branch, ref counters);
         sink.Leave(mi, false, band, f, ref counters);
     }
 
@@ -247,17 +293,19 @@ internal sealed class Eq2Walker
     /// Fresnel (F = 1 on the mirror lobe), else the constant k_t share into the mirror direction.</summary>
     [MethodImpl(MethodImplOptions.AggressiveOptimization)]
     void Refract<TSink>(ref TSink sink, Vector3 incident, Vector3 p, Vector3 n, Vector3 ng, Material m, int mi, float cosI, bool outside,
-        int depth, int band, float branch, ref RayCounters counters) where TSink : IWalkSink, allows ref struct
+        Media across, int depth, int band, float branch, ref RayCounters counters) where TSink : IWalkSink, allows ref struct
     {
         float eta = m.Eta(outside, band);   // n_i / n_t
         float sin2T = eta * eta * (1 - cosI * cosI);
         Vector3 dir, origin;
         float f = 1;
+        int medium = across.Beyond;
         if (sin2T >= 1)
         {
             if (m.Fresnel) return;
             dir = Vector3.Normalize(incident + 2 * cosI * n);
             origin = p + _geometry.Epsilon * ng;
+            medium = across.Here;   // reflected back: the ray stays on its side
         }
         else
         {
@@ -269,14 +317,23 @@ internal sealed class Eq2Walker
         if (TSink.Prunes && branch * f < _minWeight) { counters.PrunedRays++; return; }   // adaptive depth (Hall & Greenberg 1983)
         counters.Secondary++;
         sink.Enter(mi, true, band, f);
-        Trace(ref sink, new Ray(origin, dir), depth + 1, band, branch * f, ref counters);
+        TraceIn(ref sink, new Ray(origin, dir), medium, depth + 1, band, branch * f, ref counters);
         sink.Leave(mi, true, band, f, ref counters);
     }
 
+    /// <summary>The media on the two sides of a surface a ray meets: where it came from and beyond it.</summary>
+    readonly record struct Media(int Here, int Beyond);
+
     /// <summary>A ray's own lights: <see cref="Light.Illuminate"/> at P (face normal n_g), and the shadow ray of
-    /// <see cref="Visibility.ShadowRay"/> (counted).</summary>
-    readonly struct RayLights(Light[] lights, SceneGeometry geometry, Vector3 p, Vector3 ng, Vector3 n, Vector3 v) : ILightQuery
+    /// <see cref="Visibility.ShadowRay"/> (counted), with its transmittance through <paramref name="medium"/> (null: vacuum)
+    /// into <paramref name="transmittance"/>.</summary>
+    readonly ref struct RayLights(Light[] lights, SceneGeometry geometry, Vector3 p, Vector3 ng, Vector3 n, Vector3 v, Medium? medium,
+        Span<float> transmittance) : ILightQuery
     {
+        readonly Span<float> _transmittance = transmittance;
+
+        public ReadOnlySpan<float> Transmittance => medium is null ? default : _transmittance;
+
         public Vector3 Normal => n;
         public Vector3 View => v;
 
@@ -292,7 +349,13 @@ internal sealed class Eq2Walker
         public bool Visible(int k, in LightSample sample, ref RayCounters counters)
         {
             counters.Shadow++;
-            return !geometry.Occluded(Visibility.ShadowRay(p, ng, sample.Direction, sample.Distance, geometry.Epsilon));
+            if (geometry.Occluded(Visibility.ShadowRay(p, ng, sample.Direction, sample.Distance, geometry.Epsilon))) return false;
+            if (medium is not null)
+            {
+                _transmittance.Fill(1);
+                medium.Attenuate(p, sample.Direction, sample.Distance, _transmittance);
+            }
+            return true;
         }
     }
 }

@@ -15,12 +15,12 @@ internal sealed partial class WhittedIntegrator : ITransferIntegrator
     /// <summary>
     /// A scene with mirrors or glass is traced ray by ray, where each camera ray's tree has its ray budget and a stop request
     /// is seen at every pixel (bounded work, prompt SIGINT). Textured materials (a diffuse or specular texture) are looked up
-    /// on the single-ray path (Eq2Walker); the packet path takes spectra only.
+    /// on the single-ray path (Eq2Walker); the packet path takes spectra only, and no participating media.
     /// </summary>
     public bool PrefersPackets(Scene scene)
     {
         bool recursive = scene.MaxDepth > 0 && scene.Materials.Any(m => m.HasMirror || m.HasTransmission);
         bool textured = scene.Materials.Any(m => m.DiffuseTexture is not null || m.SpecularTexture is not null);
-        return !recursive && !textured;
+        return !recursive && !textured && scene.Media.Count == 0;
     }
 }

@@ -65,7 +65,7 @@ internal sealed partial class WhittedIntegrator
             {
                 // The recursion is walked ray by ray.
                 long before = counters.Fallback;
-                var sink = new Sink(_tables, _scene.Bands, result, scratch, ref infos[lane]);
+                var sink = new Sink(_tables, _scene.Bands, result, scratch, FramesEnd, ref infos[lane]);
                 _walker.Trace(ref sink, packet.Ray(lane) with { TMax = float.PositiveInfinity }, 0, -1, 1f, ref counters);
                 fallbacks[lane] = counters.Fallback != before;
                 continue;
@@ -198,6 +198,9 @@ internal sealed partial class WhittedIntegrator
 
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
         public readonly bool Visible(int k, in LightSample sample, ref RayCounters counters) => (_lanes[k].Lit >> Lane & 1) != 0;
+
+        /// <summary>None: a scene with media is traced ray by ray (<see cref="PrefersPackets"/>).</summary>
+        public readonly ReadOnlySpan<float> Transmittance => default;
     }
 
     /// <summary>A packet lane's terms: listed as <see cref="SpectralTerm"/>s for the one-pass band sum (or added at once), and what the
@@ -236,6 +239,10 @@ internal sealed partial class WhittedIntegrator
 
         public void GlobalAmbient(int material) => Add(new SpectralTerm(_owner._globalAmbientAt[material], 1f));
         public void Ambient(int light, int material, int term, float spot) => Add(new SpectralTerm(_owner._ambientAt[term], spot));
+
+        /// <summary>Never asked: a scene with media is traced ray by ray (<see cref="PrefersPackets"/>).</summary>
+        public readonly void DirectThrough(int light, int material, int term, float d, float nl, float s, bool specular,
+            ReadOnlySpan<float> transmittance) => throw new InvalidOperationException("packets carry no participating media");
 
         [MethodImpl(MethodImplOptions.AggressiveInlining)]
         public void Direct(int light, int material, int term, float d, float nl, float s, bool specular)

@@ -36,9 +36,6 @@ internal sealed partial class WhittedIntegrator : IPacketIntegrator, IAnalysisIn
 
     public WhittedIntegrator(Scene scene, SceneGeometry geometry)
     {
-        if (scene.Media.Count > 0)   // Beer–Lambert along its rays is issue 41's (PathIntegrator.Media.cs)
-            throw new InputException($"{scene.SourcePath}: $.medium",
-                "the whitted integrator does not carry light through participating media yet", "render it with \"integrator\": \"path\"");
         _scene = scene;
         _geometry = geometry;
         _materials = scene.Materials.ToArray();
@@ -85,6 +82,10 @@ internal sealed partial class WhittedIntegrator : IPacketIntegrator, IAnalysisIn
     /// each light's lane results (<see cref="LightLanes"/>).</summary>
     public int ScratchLength => (_scene.MaxDepth + 2) * 2 * _padded + _lights.Length * LightLanes.Floats;
 
+    /// <summary>Where the scratch's frames (one per recursion level below the camera ray's) end: the sink's two spectra
+    /// for a shadow ray through a medium follow.</summary>
+    int FramesEnd => (_scene.MaxDepth + 1) * _padded;
+
     /// <inheritdoc/>
     public int Radiance(in CameraSample sample, Span<float> result, Span<float> scratch, ref RayCounters counters) =>
         Radiance(in sample, result, scratch, ref counters, ref Unsafe.NullRef<PixelInfo>());
@@ -92,7 +93,7 @@ internal sealed partial class WhittedIntegrator : IPacketIntegrator, IAnalysisIn
     /// <inheritdoc/>
     public int Radiance(in CameraSample sample, Span<float> result, Span<float> scratch, ref RayCounters counters, ref PixelInfo info)
     {
-        var sink = new Sink(_tables, _scene.Bands, result, scratch, ref info);
+        var sink = new Sink(_tables, _scene.Bands, result, scratch, FramesEnd, ref info);
         return _walker.Trace(ref sink, sample.Ray, 0, -1, 1f, ref counters);
     }
 
@@ -116,11 +117,38 @@ internal sealed partial class WhittedIntegrator : IPacketIntegrator, IAnalysisIn
         TexturedTerms? _diffuse, _specular;
         TexelTaps _diffuseTaps, _specularTaps;
 
-        public Sink(TermTables tables, int bands, Span<float> result, Span<float> scratch, ref PixelInfo info)
+        // Past the frames (one per recursion level): a shadow ray's transmittance, and a direct pair before it is applied.
+        readonly Span<float> _transmittance, _pair;
+
+        public Sink(TermTables tables, int bands, Span<float> result, Span<float> scratch, int frames, ref PixelInfo info)
         {
             _tables = tables; _bands = bands; _padded = result.Length;
             _result = result; _scratch = scratch; _frame = result;
             _info = ref info;
+            _transmittance = scratch.Slice(frames, _padded);
+            _pair = scratch.Slice(frames + _padded, _padded);
+        }
+
+        public readonly Span<float> Transmittance => _transmittance;
+
+        /// <summary>The pair as <see cref="Direct"/> adds it, into a frame of its own, then ⊙ T per band into the ray's frame.</summary>
+        public void DirectThrough(int light, int material, int term, float d, float nl, float s, bool specular,
+            ReadOnlySpan<float> transmittance)
+        {
+            var frame = _frame;
+            _frame = _pair;
+            _pair.Clear();
+            Direct(light, material, term, d, nl, s, specular);
+            _frame = frame;
+            for (int b = 0; b < _bands; b++) frame[b] += _pair[b] * transmittance[b];   // (colour: eq. 3 on the bands, Attenuate)
+        }
+
+        /// <summary>The ray's frame ⊙= T per band; its colour lanes no longer follow, so the pixel's colour is eq. 3 on its
+        /// bands.</summary>
+        public readonly void Attenuate(Medium medium, Vector3 origin, Vector3 direction, float distance, ref RayCounters counters)
+        {
+            medium.Attenuate(origin, direction, distance, _frame[.._bands]);
+            counters.Fallback++;
         }
 
         public static bool Prunes => true;

@@ -107,6 +107,10 @@ internal sealed partial class WhittedTransfer
         if (scene.Lights.Count > 254 || scene.Materials.Count > 4094)
             throw new InputException("lights", "the 'lights' output supports at most 255 lights and 4095 materials",
                 "render fewer lights or materials with the 'lights' output");
+        if (scene.Media.Count > 0)   // a factor per term and light is a scalar: Beer–Lambert per band does not fit in it
+            throw new InputException($"{scene.SourcePath}: $.medium",
+                "the whitted integrator's 'lights' output does not carry participating media",
+                "drop 'lights' from --formats, or render with \"integrator\": \"path\" (whose 'lights' output does)");
         var t = new Tracer(scene, geometry);
         return t.Run(threads, cancel);
     }
@@ -589,6 +593,13 @@ internal sealed partial class WhittedTransfer
             }
 
             public void Split(ref RayCounters counters) => w.Fallback = true;
+
+            // Never asked: a scene with media has no Whitted transfer (Trace refuses it).
+            public Span<float> Transmittance => default;
+            public void DirectThrough(int light, int material, int term, float d, float nl, float s, bool specular,
+                ReadOnlySpan<float> transmittance) => throw new InvalidOperationException("no transfer through media");
+            public void Attenuate(Medium medium, Vector3 origin, Vector3 direction, float distance, ref RayCounters counters) =>
+                throw new InvalidOperationException("no transfer through media");
 
             public void Enter(int material, bool transmit, int band, float factor)
             {

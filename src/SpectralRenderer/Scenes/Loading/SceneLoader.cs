@@ -238,7 +238,13 @@ public sealed partial class SceneLoader
                 if (TryGet(o, "medium", out var interior))
                 {
                     int medium = ParseMedium(interior, $"$.objects[{i}].medium");
-                    for (int j = before; j < objects.Count; j++) objects[j].Medium = medium;
+                    for (int j = before; j < objects.Count; j++)
+                    {
+                        if (!Encloses(objects[j]))
+                            throw Error($"$.objects[{i}].medium", $"object '{objects[j].Name}' is not closed, so it bounds no interior",
+                                "give the medium to a sphere, a box or a closed (watertight) mesh, or make it the scene's \"medium\"");
+                        objects[j].Medium = medium;
+                    }
                 }
                 i++;
             }
