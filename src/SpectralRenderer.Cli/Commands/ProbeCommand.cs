@@ -60,7 +60,7 @@ public static class ProbeCommand
         var centres = Enumerable.Range(0, image.Bands).Select(image.Grid.Centre).ToArray();
         foreach (var p in pixels) plot.Add(p.Label, centres, Values(image, p).Select(v => (double)v).ToArray());
         plot.Write(Path.Combine(folder.Staging, stem + ".svg"));
-        folder.Commit([stem + ".csv", stem + ".svg"]);
+        folder.Commit([stem + ".csv", stem + ".svg"], Signals.Token);
 
         if (a.Flag("--csv")) { stdout.Write(csv); return CommandLine.Success; }
         var inv = CultureInfo.InvariantCulture;
