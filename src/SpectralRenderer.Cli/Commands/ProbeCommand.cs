@@ -26,8 +26,10 @@ public static class ProbeCommand
         """;
 
     /// <summary>A plot's radiance axis in the render's radiometry (issue 24): W·m⁻²·sr⁻¹·nm⁻¹ physical, relative in the paper's.</summary>
+    /// <summary>The plot's axis: physical units for a physical render; a paper render's band values (eq. 2 without units)
+    /// are relative, and the axis names no physical unit for them.</summary>
     internal static string RadianceAxis(bool physical) =>
-        physical ? "spectral radiance (W·m⁻²·sr⁻¹·nm⁻¹, physical radiometry)" : "spectral radiance (W·m⁻²·sr⁻¹·nm⁻¹, relative)";
+        physical ? "spectral radiance (W·m⁻²·sr⁻¹·nm⁻¹, physical radiometry)" : "band value (relative units, the paper's eq. 2)";
 
     public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
     {
