@@ -957,6 +957,9 @@ for cmd_label, cmd in [("probe", ("probe", "{tmp}/r", "--pixel", "1,1")), ("reco
     manifest_case(f"{cmd_label}-weights-short", ["json-set r/render.json colour.weights_x [1]"], r"\$\.colour\.weights_x: has 1 entries, expected 20", cmd=cmd)
     manifest_case(f"{cmd_label}-files-traversal", ['json-set r/render.json files.0 "bands/../../../victim"'], r"\$\.files\[0\]: 'bands/\.\./\.\./\.\./victim' has an empty", cmd=cmd)
     manifest_case(f"{cmd_label}-files-link-out", ["remove r/preview.png", "symlink r/preview.png /etc/hostname"], r"\$\.files\[\d+\]: names 'preview\.png', a symbolic link leading out of the folder", cmd=cmd)
+    # Issue 42: a light index that names no light's files (mask-lit-3.png of a one-light render) was accepted, and
+    # reconstruct wrote its files with the masks silently left out.
+    manifest_case(f"{cmd_label}-light-index-dangling", ["json-set r/render.json lights.0.index 3"], r"\$\.lights\[0\]\.index: is 3, expected 0", cmd=cmd)
 
 # lights/lights.json, read by relight (and the viewer, the camera's exact route)
 RELIGHT = ("relight", "{tmp}/r", "--light", "light-0=A", "-o", "{tmp}/out", "--quiet")

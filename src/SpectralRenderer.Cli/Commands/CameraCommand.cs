@@ -205,7 +205,7 @@ public static class CameraCommand
         manifest["files"] = new JsonArray(written.Append("camera.json").Select(f => (JsonNode)f).ToArray());
         AtomicFile.WriteAllText(Path.Combine(outDir, "camera.json"),
             manifest.ToJsonString(new JsonSerializerOptions { WriteIndented = true }) + "\n");
-        folder.Commit([.. written, "camera.json"]);
+        folder.Commit([.. written, "camera.json"], Signals.Token);
         outDir = final;
 
         var inv = CultureInfo.InvariantCulture;

@@ -26,8 +26,10 @@ public static class ProbeCommand
         """;
 
     /// <summary>A plot's radiance axis in the render's radiometry (issue 24): W·m⁻²·sr⁻¹·nm⁻¹ physical, relative in the paper's.</summary>
+    /// <summary>The plot's axis: physical units for a physical render; a paper render's band values (eq. 2 without units)
+    /// are relative, and the axis names no physical unit for them.</summary>
     internal static string RadianceAxis(bool physical) =>
-        physical ? "spectral radiance (W·m⁻²·sr⁻¹·nm⁻¹, physical radiometry)" : "spectral radiance (W·m⁻²·sr⁻¹·nm⁻¹, relative)";
+        physical ? "spectral radiance (W·m⁻²·sr⁻¹·nm⁻¹, physical radiometry)" : "band value (relative units, the paper's eq. 2)";
 
     public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
     {
@@ -60,7 +62,7 @@ public static class ProbeCommand
         var centres = Enumerable.Range(0, image.Bands).Select(image.Grid.Centre).ToArray();
         foreach (var p in pixels) plot.Add(p.Label, centres, Values(image, p).Select(v => (double)v).ToArray());
         plot.Write(Path.Combine(folder.Staging, stem + ".svg"));
-        folder.Commit([stem + ".csv", stem + ".svg"]);
+        folder.Commit([stem + ".csv", stem + ".svg"], Signals.Token);
 
         if (a.Flag("--csv")) { stdout.Write(csv); return CommandLine.Success; }
         var inv = CultureInfo.InvariantCulture;

@@ -78,7 +78,7 @@ public static class ReconstructCommand
         var metrics = MetricsCsv(pixels, summaries);
         AtomicFile.WriteAllText(Path.Combine(staging, "reconstruction-metrics.csv"), metrics);
         Plot(rec, pixels).Write(Path.Combine(staging, "reconstruction.svg"));
-        target.Commit(names);
+        target.Commit(names, Signals.Token);
 
         if (a.Flag("--csv")) { stdout.Write(metrics); return CommandLine.Success; }
         var inv = CultureInfo.InvariantCulture;

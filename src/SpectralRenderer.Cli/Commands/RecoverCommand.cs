@@ -124,7 +124,7 @@ public static class RecoverCommand
             ["white"] = white?.Description,
         }.ToJsonString(new JsonSerializerOptions { WriteIndented = true }) + "\n");
         written.Add("recovery.json");
-        folder.Commit(written);
+        folder.Commit(written, Signals.Token);
 
         if (a.Flag("--csv")) { stdout.Write(csv.ToString()); return CommandLine.Success; }
         stdout.WriteLine($"recovery from {capture.Sensor.Name} ({capture.Sensor.ChannelCount} channels, noise "

@@ -54,6 +54,7 @@ public static class RelightCommand
                     "give the lights either in the sweep file or with --light/--intensity/--white, not both",
                     "see 'spectral relight --help'");
             var rows = Relighter.ReadSweep(sweep, src.LightNames);
+            Signals.ExpectCommits(int.MaxValue);   // finished only by its index.csv, written last
             // Every row checked (its spectra resolved, its scene loaded) before the first is written: a bad cell is named
             // by the sweep file's row and column, and no earlier row's folder is left behind for it.
             foreach (var row in rows)
@@ -68,7 +69,8 @@ public static class RelightCommand
             {
                 var folder = (r + 1).ToString("0000", CultureInfo.InvariantCulture);
                 var (changes, white) = (rows[r].Changes, rows[r].White);
-                Relighter.Write(src, changes, white, Path.Combine(outRoot, folder), commandLine, metrics: a.Flag("--metrics"));
+                Relighter.Write(src, changes, white, Path.Combine(outRoot, folder), commandLine, Signals.Token,
+                    metrics: a.Flag("--metrics"));
                 index.Append(CultureInfo.InvariantCulture, $"{r + 1},{folder},{white},\"{string.Join("; ", changes.Select(Describe))}\"\n");
             }
             AtomicFile.WriteAllText(Path.Combine(outRoot, "index.csv"), index.ToString());
@@ -98,9 +100,10 @@ public static class RelightCommand
             throw new InputException("", "nothing to change",
                 $"give --light NAME=SPECTRUM, --intensity NAME=F or --white; lights: {string.Join(", ", src.LightNames)}");
         var outDir = a.Value("--out") ?? dir.TrimEnd('/', '\\') + "-relit";
-        RenderCommand.PrepareOutputFolder(outDir);
+        // The folder is checked, locked and staged by the write itself (OutputFolder): nothing is made under its name before
+        // the relit render is swapped in whole.
         var (scene, files, compute) =
-            Relighter.Write(src, byName.Values.ToList(), whiteArg, outDir, commandLine, metrics: a.Flag("--metrics"));
+            Relighter.Write(src, byName.Values.ToList(), whiteArg, outDir, commandLine, Signals.Token, metrics: a.Flag("--metrics"));
         if (a.Flag("--metrics")) stdout.Write(File.ReadAllText(Path.Combine(outDir, "relight-metrics.csv")));
         if (!quiet)
             stderr.WriteLine(string.Create(CultureInfo.InvariantCulture,

@@ -94,6 +94,7 @@ public static class SweepCommand
         // SIGINT/SIGTERM (Signals; SIGTERM is what Slurm sends on pre-emption) stop the running job's render at its next
         // pixel; the index is rebuilt from the job records whichever way the run ends, a forced stop included.
         var cancel = Signals.Token;
+        Signals.ExpectCommits(int.MaxValue);   // finished only when its index says so
         Signals.OnForcedStop(() => SweepRunner.WriteIndex(plan, outDir, layout == "pairs" ? "pairs" : "folders"));
         Signals.DescribeLeft(() => $"finished jobs are kept and listed in {Path.Combine(outDir, "index.csv")} (rebuilt); the running job "
             + $"left nothing under a final name; run the same command again to resume");

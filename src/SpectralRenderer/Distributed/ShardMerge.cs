@@ -86,7 +86,7 @@ public static class ShardMerge
             throw;
         }
         List<string> written = [.. files, RenderManifest.FileName];
-        folder.Commit(written);
+        folder.Commit(written, cancel);
         return written;
     }
 

@@ -18,6 +18,10 @@ namespace SpectralRenderer.Output;
 /// the folder. Nothing else in the folder is touched: no file is removed by a pattern, none through a symbolic link,
 /// and a file of a new name that the previous run did not write stops the swap with the old files in place. Staging and
 /// aside folders of killed runs (their process gone, no journal naming them) are removed by the next run on the folder.
+/// A stop (a signal: <see cref="Commit"/>'s token, or <see cref="AbandonAll"/>) and the swap exclude each other: the
+/// token is checked once inside the swap's lock, before the journal — the one point where the new result is decided —
+/// and a stop that comes after it waits for the swap to end. So a stopped command leaves the old folder whole (and
+/// exits non-zero), or the new one whole (its result was written), never a mix, a staging folder or a lock.
 /// </summary>
 public sealed class OutputFolder : IDisposable
 {
@@ -35,9 +39,16 @@ public sealed class OutputFolder : IDisposable
     readonly HashSet<string>? _owned;
     readonly object _sync = new();
     FileStream? _lock;
-    bool _swapping, _done;
+    bool _swapping, _done, _abandoned;
 
     static readonly List<OutputFolder> Live = [];
+    /// <summary>Set by <see cref="AbandonAll"/>: the process is stopping, no folder begins or swaps in any more.</summary>
+    static bool _stopping;
+    static readonly List<string> Abandoned = [];
+
+    /// <summary>Called on the committing thread when a swap has ended (the new result is whole in its folder): the CLI
+    /// counts a command's commits to tell a finished command from an interrupted one.</summary>
+    public static Action? Committed;
 
     /// <summary>
     /// Fault injection for tests: called after each step of a swap (1 = journal written, then each move, then the
@@ -102,8 +113,16 @@ public sealed class OutputFolder : IDisposable
             throw new InputException(outDir, "exists and is a file, not a folder", $"choose another {option}");
         var parent = Path.GetDirectoryName(full) ?? throw new InputException(outDir, "is the root folder", "choose a folder below it");
         var folder = new OutputFolder(full, parent, Path.GetFileName(full), manifest, what, owned);
+        lock (Live)
+        {
+            if (_stopping) throw new InterruptedException($"interrupted before {full} was opened: nothing was written");
+            Live.Add(folder);
+        }
+        // Held while the lock and the staging are made: a stop (AbandonAll) waits for them and then removes them.
+        Monitor.Enter(folder._sync);
         try
         {
+            if (folder._abandoned) throw new InterruptedException($"interrupted before {full} was opened: nothing was written");
             Directory.CreateDirectory(parent);
             folder.TakeLock(outDir);
             folder.Recover();
@@ -124,7 +143,7 @@ public sealed class OutputFolder : IDisposable
             folder.Release();
             throw;
         }
-        lock (Live) Live.Add(folder);
+        finally { Monitor.Exit(folder._sync); }
         if (StageDelay > 0) Thread.Sleep(StageDelay);
         return folder;
     }
@@ -194,27 +213,52 @@ public sealed class OutputFolder : IDisposable
 
     /// <summary>
     /// Every folder of this process not yet swapped in, abandoned (a signal's last step); their descriptions for the message.
-    /// A folder in the middle of its swap is given a moment to finish it.
+    /// A swap under way is waited for (it only renames files): its folder then holds the new result, whole. From here on
+    /// no folder of this process begins or swaps in. <c>Abandoned</c>: whether a folder lost its new result.
     /// </summary>
-    public static IReadOnlyList<string> AbandonAll()
+    public static (IReadOnlyList<string> Left, bool Abandoned) AbandonAll()
     {
         OutputFolder[] live;
-        lock (Live) live = [.. Live];
+        lock (Live)
+        {
+            _stopping = true;
+            live = [.. Live];
+        }
         var left = new List<string>();
+        bool abandoned = false;
         foreach (var f in live)
         {
-            if (!Monitor.TryEnter(f._sync, 250)) { left.Add($"{f.Final} is being swapped in (a rerun finishes it)"); continue; }
-            try
+            lock (f._sync)
             {
+                if (f._done)
+                {
+                    left.Add($"{f.Final} holds the new {f.What}, whole");
+                    continue;
+                }
                 bool had = f.HoldsResult;
-                if (!f._swapping && !f._done) TryDelete(f.Staging);
+                f._abandoned = abandoned = true;
+                if (!f._swapping)
+                {
+                    lock (Abandoned) Abandoned.Add(f.Staging);
+                    TryDelete(f.Staging);
+                }
                 f.Release();
                 left.Add(f._owned is not null ? $"{f.Final} is as it was (no {f.What} file replaced)"
                     : $"{f.Final} {(had ? $"still holds the previous {f.What}, unchanged" : $"holds no {f.What}")}");
             }
-            finally { Monitor.Exit(f._sync); }
         }
-        return left;
+        return (left, abandoned);
+    }
+
+    /// <summary>
+    /// Removes the staging folders of <see cref="AbandonAll"/> again: a writer thread still running may have made one
+    /// anew (a sub-folder of its files) before the process ends.
+    /// </summary>
+    public static void RemoveAbandonedStaging()
+    {
+        string[] stagings;
+        lock (Abandoned) stagings = [.. Abandoned];
+        foreach (var s in stagings) TryDelete(s);
     }
 
     /// <summary>Whether the final folder holds a render (a render.json) now.</summary>
@@ -228,7 +272,10 @@ public sealed class OutputFolder : IDisposable
     /// Swaps the staged files in: <paramref name="files"/> (relative paths; the manifest among them) replace the files
     /// the previous manifest lists. A name taken by a file the previous run did not write stops the swap first.
     /// </summary>
-    public void Commit(IReadOnlyList<string> files)
+    /// <param name="cancel">Checked once, inside the swap's lock before its journal (the commit point): cancelled there, the
+    /// staging is removed, the folder keeps what it held and an <see cref="InterruptedException"/> says so; cancelled
+    /// later, the swap ends first.</param>
+    public void Commit(IReadOnlyList<string> files, CancellationToken cancel = default)
     {
         HashSet<string> previous;
         try
@@ -255,6 +302,15 @@ public sealed class OutputFolder : IDisposable
             Manifest, [.. previous.Order(StringComparer.Ordinal)], [.. files]);
         lock (_sync)
         {
+            if (_abandoned || cancel.IsCancellationRequested)
+            {
+                bool had = HoldsResult;
+                if (!_abandoned) TryDelete(Staging);
+                Release();
+                throw new InterruptedException($"interrupted before the new {What} was swapped in: its files were removed; "
+                    + (_owned is not null ? $"{Final} is as it was (no {What} file replaced)"
+                        : $"{Final} {(had ? $"still holds the previous {What}, unchanged" : $"holds no {What}")}"), cancel);
+            }
             int step = 0;
             try
             {
@@ -279,6 +335,7 @@ public sealed class OutputFolder : IDisposable
             _done = true;
             _swapping = false;
             Release();
+            Committed?.Invoke();
         }
     }
 

@@ -377,7 +377,10 @@ public sealed record RenderManifest
                     new ManifestPhotometry(r.String(po, "quantity", pat), r.OptNumber(po, "value", pat) ?? 0, r.String(po, "unit", pat),
                     r.OptNumber(po, "radiometric_scale", pat) ?? 0, r.OptNumber(po, "luminous_per_unit_scale", pat) ?? 0);
             }
-            return new ManifestLight(r.OptInt(l, "index", at, 0, int.MaxValue) ?? i, name, r.OptString(l, "kind", at) ?? "point",
+            // Light k's files are named by its index (mask-lit-k.png; lights/ ids): a render writes them in order from 0.
+            int index = r.OptInt(l, "index", at, 0, int.MaxValue) ?? i;
+            if (index != i) throw r.Bad($"{at}.index", $"is {index}, expected {i} (light indices count from 0 in order)");
+            return new ManifestLight(index, name, r.OptString(l, "kind", at) ?? "point",
                 r.OptString(l, "spectrum", at), r.OptNumber(l, "intensity", at) ?? 1, r.OptString(l, "intensity_unit", at),
                 r.OptBool(l, "has_ambient", at) ?? false, r.OptNumbers(l, "position", at, 3), r.OptNumbers(l, "direction", at, 3),
                 r.OptNumbers(l, "attenuation", at, 3), lightSpd, photometric);

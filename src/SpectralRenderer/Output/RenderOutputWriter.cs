@@ -39,13 +39,17 @@ public static class RenderOutputWriter
     /// copied, not encoded.</param>
     /// <param name="named">Products asked for by name beyond the scene's formats (<see cref="OutputProductTable.Named"/>).</param>
     /// <param name="tracer">The render's geometry and integrator, for products that trace rays (photometry's illuminance).</param>
+    /// <param name="extra">Text files staged and swapped in with the render's (name → text), listed in render.json.</param>
+    /// <param name="warning">Where a one-line warning goes (an all-black or all-white preview), or null.</param>
     public static List<string> Write(Scene scene, RenderResult result, OutputFolder folder, ManifestRun? run = null,
         CancellationToken cancel = default,
         ILightTransfer? transfer = null, ReusedFiles? reuse = null, IReadOnlyList<OutputProduct>? named = null,
-        RenderTracer? tracer = null)
+        RenderTracer? tracer = null, IReadOnlyDictionary<string, string>? extra = null, Action<string>? warning = null)
     {
         List<string> written;
-        try { written = WriteFiles(scene, result, folder.Staging, run, cancel, transfer, reuse, named, tracer); }
+        // Warnings are said once the render is swapped in: a render that fails says only why.
+        var warnings = new System.Collections.Concurrent.ConcurrentQueue<string>();
+        try { written = WriteFiles(scene, result, folder.Staging, run, cancel, transfer, reuse, named, tracer, extra, warnings.Enqueue); }
         catch (OperationCanceledException e) when (e is not InterruptedException)
         {
             folder.Abandon();
@@ -58,7 +62,8 @@ public static class RenderOutputWriter
             folder.Abandon();
             throw;
         }
-        folder.Commit(written);
+        folder.Commit(written, cancel);
+        if (warning is not null) foreach (var w in warnings) warning(w);
         return written;
     }
 
@@ -117,7 +122,8 @@ public static class RenderOutputWriter
     }
 
     static List<string> WriteFiles(Scene scene, RenderResult result, string outDir, ManifestRun? run, CancellationToken cancel,
-        ILightTransfer? transfer, ReusedFiles? reuse, IReadOnlyList<OutputProduct>? named, RenderTracer? tracer)
+        ILightTransfer? transfer, ReusedFiles? reuse, IReadOnlyList<OutputProduct>? named, RenderTracer? tracer,
+        IReadOnlyDictionary<string, string>? extra, Action<string>? warning)
     {
         var products = OutputProductTable.For(scene.Output.Products, named);
         var needs = ProductInputs.None;
@@ -153,6 +159,7 @@ public static class RenderOutputWriter
             Tracer = tracer,
             Reuse = reuse,
             Cancel = cancel,
+            Warning = warning,
         };
 
         // The products' writers are independent files: run them side by side; each keeps its own list, in a fixed order.
@@ -183,6 +190,12 @@ public static class RenderOutputWriter
 
         var written = new List<string>();
         foreach (var g in groups) written.AddRange(g);
+        foreach (var (name, text) in extra ?? new Dictionary<string, string>())
+        {
+            AtomicFile.WriteAllText(Path.Combine(outDir, name), text);
+            written.Add(name);
+        }
+        cancel.ThrowIfCancellationRequested();
         // Wall seconds from the pixels to every file but render.json written (not hashed: a timing).
         var final = manifest! with
         {
@@ -196,11 +209,26 @@ public static class RenderOutputWriter
         return written;
     }
 
-    internal static void WritePreview(SpectralImage image, XyzPlanes xyz, DisplayEncoder encoder, string outDir, Action<string> done)
+    internal static void WritePreview(SpectralImage image, XyzPlanes xyz, DisplayEncoder encoder, string outDir, Action<string> done,
+        Action<string>? warning = null)
     {
         var rgb = Preview(image.Width, image.Height, xyz, encoder);
+        if (warning is not null && Blank(rgb) is { } blank)
+            warning($"spectral render: warning: preview.png is all {blank} at exposure "
+                + $"{encoder.Exposure.ToString("G4", CultureInfo.InvariantCulture)} (hint: give the scene "
+                + $"\"output\": {{ \"exposure\": \"auto\" }} or a {(blank == "black" ? "larger" : "smaller")} exposure; "
+                + "the spectral files are not affected)");
         AtomicFile.Write(Path.Combine(outDir, "preview.png"), s => PngWriter.WriteRgb8(s, image.Width, image.Height, rgb));
         done("preview.png");
+    }
+
+    /// <summary>"black" or "white" when every code of an 8-bit RGB image is 0, or every one 255; else null.</summary>
+    public static string? Blank(ReadOnlySpan<byte> rgb)
+    {
+        if (rgb.IsEmpty) return null;
+        if (!rgb.ContainsAnyExcept((byte)0)) return "black";
+        if (!rgb.ContainsAnyExcept((byte)255)) return "white";
+        return null;
     }
 
     /// <summary>The preview's encoder: the scene's exposure (or the automatic one, from the pixels' XYZ) and gamut mapping.</summary>

@@ -40,6 +40,13 @@ public sealed class RenderJob
     public double? TransferSeconds { get; private set; }
     /// <summary>render.json's "run" as it will be written; a caller may add to it before <see cref="Write"/>.</summary>
     public ManifestRun? RunRecord { get; set; }
+
+    /// <summary>Text files written with the render's own (name → text; a relight's relight-metrics.csv): staged and swapped
+    /// in with them, listed in render.json.</summary>
+    public IReadOnlyDictionary<string, string>? ExtraFiles { get; set; }
+
+    /// <summary>The load's observer's warning line (an all-black or all-white preview is said there), or null.</summary>
+    Action<string>? _warning;
     /// <summary>The files written, relative to the folder (render.json last).</summary>
     public IReadOnlyList<string> Files { get; private set; } = [];
     public double WriteSeconds { get; private set; }
@@ -82,7 +89,7 @@ public sealed class RenderJob
         ImportReport? imported = null;
         var scene = request.Scene ?? SceneLoader.Parse(request.SceneText ?? SceneBytes(request, out imported), request.ScenePath,
             request.Overrides);
-        var job = new RenderJob(request, scene, clock.Elapsed.TotalSeconds) { Import = imported };
+        var job = new RenderJob(request, scene, clock.Elapsed.TotalSeconds) { Import = imported, _warning = observer?.Warning };
         if (imported is not null && observer?.Warning is { } say) say($"spectral import: {imported.Summary()}");
         job.Check();
         if (observer?.Warning is { } warn) foreach (var w in scene.Warnings) warn(w);
@@ -261,7 +268,8 @@ public sealed class RenderJob
         RunRecord ??= Record(result);
         var writeClock = Stopwatch.StartNew();
         Files = RenderOutputWriter.Write(Scene, result, _folder!, RunRecord, cancel, Transfer, Request.FromTransfer?.Reuse, NamedProducts,
-            Geometry is not null && Integrator is not null ? new RenderTracer(Geometry, Integrator, Request.Threads) : null);
+            Geometry is not null && Integrator is not null ? new RenderTracer(Geometry, Integrator, Request.Threads) : null, ExtraFiles,
+            _warning);
         WriteSeconds = writeClock.Elapsed.TotalSeconds;
         return Files;
     }

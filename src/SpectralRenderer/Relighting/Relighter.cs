@@ -116,7 +116,6 @@ public static class Relighter
         var transfer = TransferFiles.Read(src.Dir, scene);
         if (transfer.Mismatch(scene) is { } mismatch)
             throw new InputException(src.Dir, mismatch, "the scene file changed since the render; render again");
-        Directory.CreateDirectory(outDir);
         var reuse = Reusable(src, scene, transfer.Region);
         var job = Pipeline.RenderJob.Load(new Pipeline.RenderRequest
         {
@@ -138,14 +137,14 @@ public static class Relighter
             (metricsRecord, metricsCsv) = Metrics(src, scene, transfer.ObjectIds, unchanged, result.Xyz!);
         }
         return Finish(job, src, scene, changes, white, commandLine, compute, metricsRecord, metricsCsv, copied, transfer.RelightMethod,
-            outDir, cancel);
+            cancel);
     }
 
     /// <summary>The relit render's run record (what changed, how, which files were copied from the source: no light changes
     /// them, see <see cref="Reusable"/>) and its files, with relight-metrics.csv when asked for.</summary>
     static (Scene Scene, List<string> Files, TimeSpan Compute) Finish(Pipeline.RenderJob job, Source src, Scene scene,
         IReadOnlyList<LightChange> changes, string? white, string commandLine, TimeSpan compute, RelightMetrics? metricsRecord,
-        string? metricsCsv, IEnumerable<string> copied, string method, string outDir, CancellationToken cancel)
+        string? metricsCsv, IEnumerable<string> copied, string method, CancellationToken cancel)
     {
         job.RunRecord = new ManifestRun
         {
@@ -164,12 +163,9 @@ public static class Relighter
                 CopiedFiles = copied.Order(StringComparer.Ordinal).ToArray(),
             },
         };
+        // relight-metrics.csv is staged and swapped in with the render's files (never written beside them afterwards).
+        if (metricsCsv is not null) job.ExtraFiles = new Dictionary<string, string> { ["relight-metrics.csv"] = metricsCsv };
         var files = job.Write(cancel).ToList();
-        if (metricsCsv is not null)
-        {
-            AtomicFile.WriteAllText(Path.Combine(outDir, "relight-metrics.csv"), metricsCsv);
-            files.Add("relight-metrics.csv");
-        }
         return (scene, files, compute);
     }
 

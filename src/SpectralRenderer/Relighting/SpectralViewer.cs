@@ -54,12 +54,16 @@ public static class SpectralViewer
             ["wy"] = Nums(manifest.Wy),
             ["wz"] = Nums(manifest.Wz),
             ["white"] = Nums([manifest.White.X, manifest.White.Y, manifest.White.Z]),
+            // The page opens at the render's own exposure (render.json $.colour.exposure: given, or the one auto chose).
+            ["exposure"] = manifest.Exposure,
         };
 
         var lightsJson = Path.Combine(dir, TransferFormat.Folder, "lights.json");
         // Only a transfer of eq. 2's terms (CameraRoute.Terms: Whitted's) has the components the page's sliders recombine;
         // of any other (a path render's) the page shows its cube.
         JsonObject? transfer = File.Exists(lightsJson) && TermsIn(dir) ? JsonNode.Parse(File.ReadAllText(lightsJson))!.AsObject() : null;
+        // Per-light outputs the page does not recombine (a path render's lights/) are still there for `spectral relight`.
+        data["other_transfer"] = transfer is null && File.Exists(lightsJson);
         // Read through the transfer's own reader first: a lights.json that is not as a render writes it is one line
         // naming its field (our files are never trusted when read back), before the page reads it as plain JSON.
         Relighter.Source? src = null;

@@ -36,6 +36,34 @@ public class ProbeCommandTests
         Assert.Equal(3, svg.Descendants(XName.Get("polyline", "http://www.w3.org/2000/svg")).Count());
     }
 
+    /// <summary>Issue 42: a paper render's band values are relative (eq. 2 without units): its axis names no physical unit; a
+    /// physical render's names W·m⁻²·sr⁻¹·nm⁻¹.</summary>
+    [Fact]
+    public void The_plots_axis_names_physical_units_only_for_a_physical_render()
+    {
+        static string Axis(string dir)
+        {
+            var prefix = Path.Combine(Reference.TempDir(), "p");
+            var (code, _, err) = CliRunner.Run("probe", dir, "--pixel", "1,1", "-o", prefix);
+            Assert.True(code == 0, err);
+            return File.ReadAllText(prefix + ".svg");
+        }
+        var paper = Axis(AnalysisFolder.Render());
+        Assert.Contains("band value (relative units, the paper&apos;s eq. 2)".Replace("&apos;", "'"), paper.Replace("&apos;", "'")
+            .Replace("&#39;", "'"));
+        Assert.DoesNotContain("W·m⁻²", paper);
+        var d = Reference.TempDir();
+        File.WriteAllText(Path.Combine(d, "s.json"), """
+            { "radiometry": "physical", "camera": { "position": [0, 0, 5], "look_at": [0, 0, 0], "width": 4, "height": 3 },
+              "materials": { "m": { "diffuse": 0.5 } },
+              "lights": [ { "type": "point", "position": [0, 3, 3], "spectrum": "D65", "luminous_intensity": 10 } ],
+              "objects": [ { "type": "sphere", "radius": 1, "material": "m" } ] }
+            """);
+        var (rc, _, re) = CliRunner.Run("render", Path.Combine(d, "s.json"), "-o", Path.Combine(d, "r"), "--formats", "npy", "--quiet");
+        Assert.True(rc == 0, re);
+        Assert.Contains("spectral radiance (W·m⁻²·sr⁻¹·nm⁻¹, physical radiometry)", Axis(Path.Combine(d, "r")));
+    }
+
     [Fact]
     public void Output_prefix_and_table_output()
     {

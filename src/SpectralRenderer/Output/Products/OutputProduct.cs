@@ -85,6 +85,8 @@ public sealed class ProductContext
     /// <summary>Files another folder holds exactly as this render would write them (relight): copied, not encoded.</summary>
     public ReusedFiles? Reuse { get; init; }
     public CancellationToken Cancel { get; init; }
+    /// <summary>Where a product says something is probably not what the user meant (one line each), or null.</summary>
+    public Action<string>? Warning { get; init; }
 }
 
 /// <summary>The scene's ray queries and the integrator the render used, and the threads it may use.</summary>

@@ -16,7 +16,7 @@ public sealed class PreviewProduct : OutputProduct
     }
 
     public override void Write(ProductContext c, int part, Action<string> done) =>
-        RenderOutputWriter.WritePreview(c.Image, c.Xyz!, c.Preview!, c.OutDir, done);
+        RenderOutputWriter.WritePreview(c.Image, c.Xyz!, c.Preview!, c.OutDir, done, c.Warning);
 
     public override bool Owns(string file) => file == "preview.png";
     public override ShardMerging Merging(string file) => ShardMerging.Png;
