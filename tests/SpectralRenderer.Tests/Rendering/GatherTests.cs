@@ -8,7 +8,7 @@ namespace SpectralRenderer.Tests.Rendering;
 /// The illuminance gather under the path integrator (issue 42): next-event estimation and MIS through the emitter set,
 /// against the analytic illuminance under a uniform Lambertian rectangle, E = π·L_v·F, F the form factor from a
 /// differential area to a parallel rectangle (the sum of the four corner terms of the differential-area-to-rectangle
-/// factor, Howell's catalogue of configuration factors, C-11).
+/// factor, as in Howell's catalogue of radiation configuration factors).
 /// </summary>
 public class GatherTests(Xunit.Abstractions.ITestOutputHelper output)
 {
