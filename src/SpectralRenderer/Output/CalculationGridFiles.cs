@@ -7,7 +7,8 @@ using SpectralRenderer.Scenes;
 namespace SpectralRenderer.Output;
 
 /// <summary>
-/// A calculation grid's illuminance as lighting software writes it: PREFIX.csv (x,y,z,lx, one row per point, i fastest)
+/// A calculation grid's illuminance as lighting software writes it: PREFIX.csv (x,y,z,lx, one row per point, i fastest;
+/// a gathered grid adds stderr_lx, the point's standard error)
 /// and PREFIX.svg (the grid as a false-colour heat map with its labelled scale, each cell's lx in its title and data-lx);
 /// and the summary figures a designer checks (minimum, mean, maximum, uniformity U0 = min/mean, EN 12464-1 §4.4).
 /// Written by `spectral illuminance` and by a render of a scene with "calculation_grids" (grids/NAME.*).
@@ -17,14 +18,19 @@ public static class CalculationGridFiles
     /// <summary>The render's folder for its grids' files.</summary>
     public const string Folder = "grids";
 
-    /// <summary>Writes PREFIX.csv and PREFIX.svg; <paramref name="title"/> heads the heat map.</summary>
-    public static void Write(string prefix, CalculationGrid grid, double[] lux, string title)
+    /// <summary>Writes PREFIX.csv and PREFIX.svg; <paramref name="title"/> heads the heat map. With
+    /// <paramref name="standardError"/> (a gathered grid) the CSV has a fifth column, stderr_lx: each point's standard error.</summary>
+    public static void Write(string prefix, CalculationGrid grid, double[] lux, string title, double[]? standardError = null)
     {
         var points = grid.Points();
         var inv = CultureInfo.InvariantCulture;
-        var csv = new StringBuilder("x,y,z,lx\n");
+        var csv = new StringBuilder(standardError is null ? "x,y,z,lx\n" : "x,y,z,lx,stderr_lx\n");
         for (int k = 0; k < points.Length; k++)
-            csv.Append(inv, $"{points[k].X:R},{points[k].Y:R},{points[k].Z:R},{lux[k]:R}\n");
+        {
+            csv.Append(inv, $"{points[k].X:R},{points[k].Y:R},{points[k].Z:R},{lux[k]:R}");
+            if (standardError is not null) csv.Append(inv, $",{standardError[k]:R}");
+            csv.Append('\n');
+        }
         AtomicFile.WriteAllText(prefix + ".csv", csv.ToString());
         AtomicFile.WriteAllText(prefix + ".svg", HeatMap(lux, grid.PointsU, grid.PointsV, grid.U.Length(), grid.V.Length(), title));
     }

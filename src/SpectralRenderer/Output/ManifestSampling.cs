@@ -10,8 +10,16 @@ namespace SpectralRenderer.Output;
 /// </summary>
 public sealed record ManifestSampling(string Sampler, uint Seed, ManifestNoise? Noise, ManifestAdaptive? Adaptive)
 {
-    public const string Estimator =
-        "standard error of each pixel's mean from its own n samples: s/sqrt(n), s^2 the unbiased sample variance";
+    /// <summary>How each pixel's standard error was estimated from its own samples, for its sampler (docs/scene-format.md,
+    /// "Error estimates"; Rendering/Renderer.Statistics.cs), and what the adaptive stop decided on.</summary>
+    public string Estimator => (Sampler == "sobol"
+        ? "standard error of each pixel's mean from the spread of its 8 independent randomisations of the Owen-scrambled "
+            + "Sobol sequence (sample s in scramble s mod 8): sqrt(sum_g (mean_g - mean)^2 / (8 * 7))"
+        : Adaptive is null
+            ? "standard error of each pixel's mean from its stratified jitter cells (one sample each): sqrt(sigma^2 / n), "
+                + "sigma^2 = sum of (x_s - x_{s-1})^2 over neighbouring cells in a row / (2 * pairs) (collapsed strata, conservative)"
+            : "standard error of each pixel's mean from its own n independent samples: s/sqrt(n), s^2 the unbiased sample variance")
+        + (Adaptive is null ? "" : "; the adaptive stop decided on s/sqrt(n) * (1 + 2/sqrt(2(n - 1))) <= target * mean");
     public const string RelativeUnit = "1 (a fraction: the standard error of the pixel's mean luminance Y divided by that mean)";
 
     public JsonObject ToJson()

@@ -10,13 +10,27 @@ namespace SpectralRenderer.Rendering;
 /// cref="SamplerKind.Independent"/>: dimensions 0 and 1 are the film jitter (<see cref="Renderer"/>'s <c>Hash(x, y, s)</c>
 /// split in its 16-bit halves, as every render before it used); each later dimension is its own counter-based hash of the
 /// sample and the dimension. <see cref="SamplerKind.Sobol"/>: each 2D draw is a pair of Owen-scrambled Sobol dimensions and
-/// each 1D draw an Owen-scrambled van der Corput dimension (<see cref="OwenSobol"/>), seeded per (pixel, dimension, seed).
+/// each 1D draw an Owen-scrambled van der Corput dimension (<see cref="OwenSobol"/>), seeded per (pixel, dimension, seed)
+/// and per randomisation: sample s belongs to randomisation g = s mod <see cref="Randomisations"/> and is point s div
+/// <see cref="Randomisations"/> of that randomisation's own scrambled sequence, so a pixel's samples are
+/// <see cref="Randomisations"/> independent randomised quasi-Monte Carlo estimates, interleaved, whose spread gives the
+/// pixel's standard error (Owen 1997; L'Ecuyer &amp; Lemieux 2002, §3; <c>Renderer.Statistics.cs</c>).
 /// </summary>
 public struct Sampler(int x, int y, int sample, int dimension = 0, SamplerSettings settings = default)
 {
+    /// <summary>
+    /// The independent randomisations (scrambles) of the Sobol sequence a pixel's samples are spread over, sample s in
+    /// randomisation s mod R: their means are independent and identically distributed, so the spread of R means estimates
+    /// the variance of their average without bias (R − 1 degrees of freedom), which one scrambled net cannot.
+    /// </summary>
+    public const int Randomisations = 8;
+
     readonly uint _x = (uint)x, _y = (uint)y, _s = (uint)sample;
-    // The Sobol draws' shuffle starts from R(index); the independent sampler never reads it (a camera ray's jitter is one hash).
-    readonly uint _sReversed = settings.Kind == SamplerKind.Sobol ? OwenSobol.ReverseBits((uint)sample) : 0;
+    // The Sobol draws' shuffle starts from R(index within the randomisation); the independent sampler never reads it (a
+    // camera ray's jitter is one hash).
+    readonly uint _sReversed = settings.Kind == SamplerKind.Sobol ? OwenSobol.ReverseBits((uint)sample / (uint)Randomisations) : 0;
+    // The randomisation's own scramble: its index mixed into every dimension's seed (0: the pixel's seeds as they were).
+    readonly uint _group = settings.Kind == SamplerKind.Sobol ? (uint)sample % (uint)Randomisations * 0x27D4EB2Fu : 0;
     readonly SamplerSettings _settings = settings;
 
     /// <summary>The next dimension to be drawn.</summary>
@@ -87,10 +101,10 @@ public struct Sampler(int x, int y, int sample, int dimension = 0, SamplerSettin
             ? OwenSobol.Sample2DReversed(_sReversed, PixelSeed((uint)dimension))
             : (At1D(dimension), At1D(dimension + 1));
 
-    /// <summary>The scramble seed of dimension <paramref name="d"/> of this pixel (the sample index is not in it: the
-    /// pixel's samples are one scrambled sequence).</summary>
+    /// <summary>The scramble seed of dimension <paramref name="d"/> of this pixel and the sample's randomisation (the index
+    /// within the randomisation is not in it: each randomisation's samples are one scrambled sequence).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    readonly uint PixelSeed(uint d) => Renderer.Hash(_x, _y, d ^ _settings.Seed * 0x632BE5ABu);
+    readonly uint PixelSeed(uint d) => Renderer.Hash(_x, _y ^ _group, d ^ _settings.Seed * 0x632BE5ABu);
 }
 
 /// <summary>

@@ -161,4 +161,12 @@ public interface ISubBandFilmIntegrator : IIntegrator
 /// </summary>
 public interface IGatherIntegrator : IIntegrator
 {
+    /// <summary>
+    /// The radiance arriving back along the sample's ray without the light its first vertex emits — a surface of the
+    /// emitter set it meets, or the sky it escapes to: what the gather adds to its own next-event estimation and MIS of
+    /// the emitters (<c>Illuminance</c>), which count that light. The default, <see cref="IIntegrator.Radiance"/>, is
+    /// right for an integrator whose rays see no emitter of the set directly (none in the scene); one that does overrides it.
+    /// </summary>
+    int Reflected(in CameraSample sample, Span<float> result, Span<float> scratch, ref RayCounters counters) =>
+        Radiance(in sample, result, scratch, ref counters);
 }

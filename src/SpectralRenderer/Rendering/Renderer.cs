@@ -33,8 +33,9 @@ public sealed class RenderResult
     public bool Packets { get; init; }
     /// <summary>
     /// Per pixel (N + 1 floats, pixel-interleaved as <see cref="Image"/>): the standard error of the pixel's mean from its own
-    /// samples, s/√n, per band (the band unit) and of luminance Y (the unit of <see cref="Xyz"/>'s Y); null unless the noise
-    /// product or adaptive sampling was asked for.
+    /// samples, per band (the band unit) and of luminance Y (the unit of <see cref="Xyz"/>'s Y), by the sampler's method
+    /// (Renderer.Statistics.cs: Sobol from its independent randomisations, independent samples from the stratified cells or
+    /// s/√n); null unless the noise product or adaptive sampling was asked for.
     /// </summary>
     public float[]? Noise { get; init; }
     /// <summary>Per pixel, the samples adaptive sampling took (<see cref="TargetError"/> &gt; 0), else null.</summary>

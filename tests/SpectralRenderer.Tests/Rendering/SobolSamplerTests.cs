@@ -23,8 +23,10 @@ public class SobolSamplerTests
         int n = 1 << m;
         foreach (var (x, y) in new[] { (0, 0), (5, 9), (123, 77) })
         {
+            // The pixel's randomisation g holds its samples g, g + R, g + 2R, … (R = Sampler.Randomisations): its own net.
+            int g = (x + y) % Sampler.Randomisations;
             var points = new (float U, float V)[n];
-            for (int s = 0; s < n; s++) points[s] = new Sampler(x, y, s, dimension, Sobol).Next2D();
+            for (int s = 0; s < n; s++) points[s] = new Sampler(x, y, s * Sampler.Randomisations + g, dimension, Sobol).Next2D();
             for (int a = 0; a <= m; a++)
             {
                 // intervals 2^-a wide and 2^-(m-a) high
@@ -63,15 +65,16 @@ public class SobolSamplerTests
     [Fact]
     public void Its_error_on_a_smooth_integral_falls_far_below_independent_random_numbers()
     {
-        foreach (int n in new[] { 16, 256 })
+        // n samples are R = 8 independent randomisations of n/8 points each (Sampler.Randomisations).
+        foreach (int n in new[] { 64, 1024 })
         {
             double sobol = RmsError(Sobol, n, 4), random = RmsError(SamplerSettings.Independent, n, 4);
             // Independent: σ/√n (σ ≈ 0.53 for this f); scrambled Sobol: O(n^-3/2) for smooth f (Owen 1997).
             Assert.InRange(random * Math.Sqrt(n), 0.3, 0.8);
-            Assert.True(sobol < random / (n == 16 ? 3 : 10), $"n = {n}: Sobol RMS error {sobol:G3} against independent {random:G3}");
+            Assert.True(sobol < random / (n == 64 ? 3 : 10), $"n = {n}: Sobol RMS error {sobol:G3} against independent {random:G3}");
         }
-        // Convergence order: from 16 to 256 samples the Sobol error falls by far more than √16 = 4.
-        Assert.True(RmsError(Sobol, 256, 4) < RmsError(Sobol, 16, 4) / 12);
+        // Convergence order: from 64 to 1024 samples the Sobol error falls by far more than √16 = 4.
+        Assert.True(RmsError(Sobol, 1024, 4) < RmsError(Sobol, 64, 4) / 12);
     }
 
     [Fact]

@@ -27,10 +27,13 @@ public sealed class GridsProduct : OutputProduct
         var dir = Path.Combine(c.OutDir, CalculationGridFiles.Folder);
         Directory.CreateDirectory(dir);
         string title = Path.GetFileName(scene.SourcePath);
-        foreach (var grid in scene.CalculationGrids)
+        for (int k = 0; k < scene.CalculationGrids.Count; k++)
         {
-            var lux = illuminance.OnGrid(grid, integrator as IGatherIntegrator, c.Tracer?.Threads ?? 0, c.Cancel);
-            CalculationGridFiles.Write(Path.Combine(dir, grid.Name), grid, lux, $"{title}: {grid.Name}");
+            var grid = scene.CalculationGrids[k];
+            // A gathered grid samples to the render's target error (--target-error) and has a standard-error column.
+            var lux = illuminance.OnGridWithError(grid, integrator as IGatherIntegrator, c.Tracer?.Threads ?? 0, scene.TargetError, k,
+                null, c.Cancel);
+            CalculationGridFiles.Write(Path.Combine(dir, grid.Name), grid, lux.Lux, $"{title}: {grid.Name}", lux.StandardError);
             done($"{CalculationGridFiles.Folder}/{grid.Name}.csv");
             done($"{CalculationGridFiles.Folder}/{grid.Name}.svg");
         }

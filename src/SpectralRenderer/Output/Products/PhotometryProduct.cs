@@ -31,8 +31,9 @@ public sealed class PhotometryProduct : OutputProduct
     public static string Method(RenderTracer? tracer, Scene scene) => tracer is null
         ? "none: a relit render traces no rays (the channel holds 0); render the scene with --formats photometry"
         : tracer.Integrator is IGatherIntegrator
-            ? $"lights (shadow rays) + gather of {Illuminance.GatherRays(scene)} cosine-weighted path-traced rays (area lights, sky, "
-                + $"interreflection), at the pixel-centre ray's first hit"
+            ? $"lights (shadow rays) + gather of {Illuminance.GatherRays(scene)} samples: area lights and sky by next-event "
+                + "estimation and cosine-weighted path-traced rays combined by MIS (power heuristic), interreflection by the "
+                + "rays' paths, at the pixel-centre ray's first hit"
             : $"direct from every light (shadow rays) and every emitting object and the sky ({Illuminance.GatherRays(scene)} "
                 + "samples of each, shadow rays), at the pixel-centre ray's first hit; no interreflection or ambient (whitted)";
 

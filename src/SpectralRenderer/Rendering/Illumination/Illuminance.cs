@@ -14,8 +14,9 @@ namespace SpectralRenderer.Rendering.Illumination;
 /// a point light, E⊥·cos θ for a directional one), from each emitting object and the sky E_v = ∫ L_v cos θ dω ≈
 /// 1/N Σ L_v·cos θ_i/p_ω(ω_i) over N of the emitter's own samples, each shadow ray honoured (<see cref="Visibility"/>); and,
 /// for a path-traced scene, what arrives from every direction but the scene lights' (area lights, the sky, interreflection)
-/// by a cosine-weighted gather E = ∫ L_v cos θ dω ≈ π/N Σ L_v(ω_i), each L_v(ω_i) the integrator's own radiance along
-/// ω_i, in place of the emitting objects' and the sky's direct share (which it counts). Luminance of a radiance
+/// by a gather E = ∫ L_v cos θ dω: next-event estimation of the emitting objects and the sky and cosine-weighted rays
+/// combined by multiple importance sampling, each ray's reflected light the integrator's own (<see cref="Gather"/>), with
+/// its standard error, in place of the emitting objects' and the sky's direct share (which it counts). Luminance of a radiance
 /// spectrum: L_v = K_m ∫V·L dλ, from the exact colour's Y (κ folded out) when the observer's ȳ is V (CIE 1931),
 /// else from the bands with V's band integrals.
 /// </summary>
@@ -50,7 +51,20 @@ public sealed class Illuminance
         // A sub-band grid of one sub-band per band is the output bands (exact band means of each spectrum).
         _emitters = new EmitterSet(scene, new SubBandGrid(scene, grid.Width), geometry.BoundingRadius);
         _emitterLuminance = _emitters.All.Select(e => e.SceneLight >= 0 ? 0 : BandLuminance(e.Radiance)).ToArray();
+        // The gather's: each emitter's luminance on a 1-nm sub-band grid reduced as a path film is (K_m ∫V·L dλ to the grid's
+        // precision, as the integrator's own radiance it adds to), not from band means (off by 1e-3 or more under a
+        // narrow-band spectrum at 40-nm bands). The same emitters in the same order.
+        var fine = new SubBandGrid(scene, 1);
+        var reduced = new float[scene.PaddedBands + 64];
+        _gatherLuminance = new EmitterSet(scene, fine, geometry.BoundingRadius).All.Select(e =>
+        {
+            if (e.SceneLight >= 0) return 0;
+            fine.Reduce(e.Radiance, reduced);
+            return Luminance(reduced.AsSpan(0, grid.Count), reduced[grid.Count + 1]);
+        }).ToArray();
     }
+
+    readonly double[] _gatherLuminance = [];
 
     /// <summary>K_m/κ when luminance is the exact colour's Y times it (the observer's ȳ is V), else null (bands:
     /// <see cref="BandV"/>).</summary>
@@ -215,7 +229,9 @@ public sealed class Illuminance
                 var ng = Vector3.Dot(hit.GeometricNormal, wo) >= 0 ? hit.GeometricNormal : -hit.GeometricNormal;
                 var n = Vector3.Dot(hit.Normal, wo) >= 0 ? hit.Normal : -hit.Normal;
                 double e = Direct(x, y, hit.Position, n, ng, gather is not null, ref counters);
-                if (gather is not null) e += Gather(gather, x, y, hit.Position, n, ng, rays, radiance, scratch, ref counters);
+                if (gather is not null)
+                    e += Gather(gather, GatherSampler(gather, 0), x, y, hit.Position, n, ng, rays, 0, e, radiance, scratch,
+                        ref counters).Lux;
                 illuminance[row * w + col] = (float)e;
             }
             return buffers;
@@ -226,16 +242,29 @@ public sealed class Illuminance
     /// <summary>
     /// The illuminance (lx) at each point of a calculation grid (i fastest), on the side of its normal: its direct share
     /// (<see cref="Direct"/>: the lights, and without a gather the emitting objects and the sky), plus, when
-    /// <paramref name="gather"/> is given (one that gathers: path), π/N Σ L_v of <see cref="GatherRays"/> cosine-weighted
-    /// rays from the point (area lights, sky and interreflection), drawn from the point's (i, j). The same on any thread
-    /// count.
+    /// <paramref name="gather"/> is given (one that gathers: path), the gather of the emitting objects, the sky and
+    /// interreflection (<see cref="Gather"/>), drawn from the point's (i, j). The same on any thread count.
     /// </summary>
-    public double[] OnGrid(CalculationGrid grid, IGatherIntegrator? gather, int threads, CancellationToken cancel = default)
+    public double[] OnGrid(CalculationGrid grid, IGatherIntegrator? gather, int threads, CancellationToken cancel = default) =>
+        OnGridWithError(grid, gather, threads, 0, 0, null, cancel).Lux;
+
+    /// <summary>
+    /// <see cref="OnGrid"/> with each point's standard error (lx; null without a gather: the lights' share is exact) and
+    /// the gather's rays per point: <see cref="GatherRays"/>, or with <paramref name="target"/> &gt; 0 as many more, in rounds
+    /// of <see cref="Sampler.Randomisations"/>, up to <see cref="TargetCap"/> × that, until the point's relative standard error
+    /// (by the conservative rule of the pixels' adaptive stop) is at most the target. <paramref name="stream"/> gives each grid
+    /// its own random numbers; <paramref name="progress"/> hears (rows done, rows) after each row of points.
+    /// </summary>
+    public GridIlluminance OnGridWithError(CalculationGrid grid, IGatherIntegrator? gather, int threads, double target, int stream,
+        Action<int, int>? progress, CancellationToken cancel = default)
     {
         int nu = grid.PointsU, nv = grid.PointsV;
         var lux = new double[nu * nv];
+        var errors = gather is null ? null : new double[nu * nv];
+        var used = new int[nu * nv];
         var n = grid.Normal;
-        int rays = GatherRays(_scene);
+        int rays = GatherRays(_scene), done = 0;
+        var settings = gather is null ? default : GatherSampler(gather, stream);
         var options = new ParallelOptions { MaxDegreeOfParallelism = threads > 0 ? threads : -1, CancellationToken = cancel };
         Parallel.For(0, nv, options, () => (new float[_scene.PaddedBands + 64], new float[gather?.ScratchLength ?? 0]), (j, _, buffers) =>
         {
@@ -245,31 +274,135 @@ public sealed class Illuminance
             {
                 var p = grid.Point(i, j);
                 double e = Direct(i, j, p, n, n, gather is not null, ref counters);
-                if (gather is not null) e += Gather(gather, i, j, p, n, n, rays, radiance, scratch, ref counters);
+                if (gather is not null)
+                {
+                    var g = Gather(gather, settings, i, j, p, n, n, rays, target, e, radiance, scratch, ref counters);
+                    e += g.Lux;
+                    errors![j * nu + i] = g.StandardError;
+                    used[j * nu + i] = g.Rays;
+                }
                 lux[j * nu + i] = e;
             }
+            progress?.Invoke(Interlocked.Increment(ref done), nv);
             return buffers;
         }, _ => { });
-        return lux;
+        return new GridIlluminance(lux, errors, used);
     }
 
-    /// <summary>π/N Σ L_v(ω_i) over N cosine-weighted directions about n (E = ∫ L cos θ dω, pdf cos θ/π).</summary>
-    double Gather(IIntegrator integrator, int x, int y, Vector3 p, Vector3 n, Vector3 ng, int rays, float[] radiance, float[] scratch,
-        ref RayCounters counters)
+    /// <summary>The most gather rays a point takes towards a target error, as a multiple of <see cref="GatherRays"/>.</summary>
+    public const int TargetCap = 64;
+
+    /// <summary>The gather's sampler: the integrator's kind and seed, on a stream of its own (not the camera samples').</summary>
+    static SamplerSettings GatherSampler(IGatherIntegrator gather, int stream) =>
+        new(gather.Sampler.Kind, gather.Sampler.Seed ^ 0x5BD1E995u ^ (uint)stream * 0x27D4EB2Fu);
+
+    /// <summary>The dimension the gather's next-event draws start at, beyond any path's own (5 per vertex).</summary>
+    const int NextEventDimension = 1 << 16;
+
+    /// <summary>
+    /// What arrives at p from every direction but the scene lights' (which <see cref="Direct"/> counts exactly), E = ∫ L_v
+    /// cos θ dω, by two strategies combined by multiple importance sampling (Veach 1997, §9.2, power heuristic): per gather
+    /// ray i, (1) a sample of each emitting object and of the sky (<see cref="Emitter.Sample"/>, density p_e, the shadow ray
+    /// honoured), L_v·cos θ/p_e · p_e²/(p_e² + p_c²), and (2) a cosine-weighted direction (p_c = cos θ/π): the emitter or
+    /// sky it meets first, π·L_v · p_c²/(p_c² + p_e²), plus π·L_v of the light its first vertex reflects (the integrator's
+    /// <see cref="IGatherIntegrator.Reflected"/>: interreflection, with next-event estimation of its own). The rays' numbers
+    /// come from the integrator's sampler at (x, y) (a point of its own), so a Sobol gather is <see
+    /// cref="Sampler.Randomisations"/> independent randomisations whose spread gives the standard error, as the pixels'
+    /// (Renderer.Statistics.cs); independent rays give s/√n. <paramref name="direct"/> is the point's exact share, for the
+    /// relative target.
+    /// </summary>
+    GatherEstimate Gather(IGatherIntegrator integrator, SamplerSettings settings, int x, int y, Vector3 p, Vector3 n, Vector3 ng,
+        int rays, double target, double direct, float[] radiance, float[] scratch, ref RayCounters counters)
     {
-        double sum = 0;
-        int bands = _scene.Bands;
-        for (int i = 0; i < rays; i++)
+        var set = _emitters!;
+        var geometry = _geometry!;
+        int bands = _scene.Bands, cap = target > 0 ? TargetCap * rays : rays;
+        bool sobol = settings.Kind == SamplerKind.Sobol;
+        const int R = Sampler.Randomisations;
+        Span<double> groups = stackalloc double[R];
+        groups.Clear();
+        double s1 = 0, s2 = 0;
+        int count = 0;
+        for (; count < cap; count++)
         {
-            // Sample indices beyond any camera sample's (the film jitter draw of (x, y, index) picks the direction).
-            int index = int.MaxValue - rays + i;
-            var (u, v) = new Sampler(x, y, index).Next2D();
+            if (count >= rays && count % R == 0 && Converged(s1, s2, count, direct, target)) break;
+            var (u, v) = new Sampler(x, y, count, 0, settings).Next2D();
             var wi = Bsdf.CosineHemisphere(n, new Vector2(u, v));
-            var ray = Visibility.Leaving(p, ng, wi, _geometry!.Epsilon);
+            double pc = Math.Max(0, Vector3.Dot(n, wi)) / Math.PI, value = 0;
+            // (1) next-event estimation of each emitting object and the sky
+            var nee = new Sampler(x, y, count, NextEventDimension, settings);
+            for (int k = 0; k < set.Count; k++)
+            {
+                if (set[k].SceneLight >= 0 || !(_gatherLuminance[k] > 0)) continue;
+                var (a, b) = nee.Next2D();
+                if (!set[k].Sample(p, n, new Vector2(a, b), out var s) || !(s.Pdf > 0) || !(s.Factor > 0)) continue;
+                float cos = Vector3.Dot(n, s.Direction);
+                if (!(cos > 0)) continue;
+                counters.Shadow++;
+                if (geometry.Occluded(Visibility.ShadowRay(p, ng, s.Direction, s.Distance, geometry.Epsilon))) continue;
+                double pe = s.Pdf, pn = cos / Math.PI;
+                value += _gatherLuminance[k] * s.Factor * cos / pe * (pe * pe / (pe * pe + pn * pn));
+            }
+            // (2) the cosine-weighted ray: the emitter or sky it sees, then what its first vertex reflects
+            var ray = Visibility.Leaving(p, ng, wi, geometry.Epsilon);
+            var traced = ray;
             counters.Secondary++;
-            integrator.Radiance(new CameraSample(x, y, index, ray), radiance.AsSpan(0, _scene.PaddedBands), scratch, ref counters);
-            sum += Luminance(radiance.AsSpan(0, bands), radiance[bands + 1]);
+            if (geometry.Intersect(ref traced, out var hit))
+            {
+                if (set.OfObject(hit.Object) is int k and >= 0 && _gatherLuminance[k] > 0
+                    && set[k].Emitted(hit.GeometricNormal, -wi) is var seen and > 0)
+                {
+                    double pe = set[k].Pdf(p, n, wi, hit.Position, hit.GeometricNormal);
+                    value += Math.PI * _gatherLuminance[k] * seen * (pc * pc / (pc * pc + pe * pe));
+                }
+            }
+            else if (set.Sky is int sky and >= 0 && _gatherLuminance[sky] > 0)
+            {
+                double pe = set[sky].Pdf(p, n, wi, default, default);
+                value += Math.PI * _gatherLuminance[sky] * (pc * pc / (pc * pc + pe * pe));
+            }
+            integrator.Reflected(new CameraSample(x, y, count, ray, settings), radiance.AsSpan(0, _scene.PaddedBands), scratch,
+                ref counters);
+            value += Math.PI * Luminance(radiance.AsSpan(0, bands), radiance[bands + 1]);
+            s1 += value;
+            s2 += value * value;
+            groups[count % R] += value;
         }
-        return Math.PI * sum / rays;
+        double mean = s1 / count;
+        return new GatherEstimate(mean, sobol ? RandomisationError(groups, s1, count) : IndependentError(s1, s2, count), count);
+    }
+
+    /// <summary>s/√n of n independent values (0 for n &lt; 2).</summary>
+    static double IndependentError(double s1, double s2, int n) =>
+        n < 2 ? 0 : Math.Sqrt(Math.Max(0, (s2 - s1 * s1 / n) / (n - 1)) / n);
+
+    /// <summary>The standard error of the mean from the sums of its randomisations (Renderer.Statistics.cs, the same rule).</summary>
+    static double RandomisationError(ReadOnlySpan<double> groups, double s1, int n)
+    {
+        if (n < 2) return 0;
+        int r = Math.Min(Sampler.Randomisations, n);
+        double mean = s1 / n, sum = 0;
+        for (int g = 0; g < r; g++)
+        {
+            int size = n / Sampler.Randomisations + (g < n % Sampler.Randomisations ? 1 : 0);
+            double deviation = groups[g] - size * mean;
+            sum += deviation * deviation;
+        }
+        return Math.Sqrt(r / (r - 1.0) * sum) / n;
+    }
+
+    /// <summary>The adaptive stop's conservative rule (the pixels'): s/√n × (1 + 2/√(2(n − 1))) ≤ target × the point's lux.</summary>
+    static bool Converged(double s1, double s2, int n, double direct, double target)
+    {
+        if (!(target > 0)) return true;
+        double se = IndependentError(s1, s2, n) * (1 + 2 / Math.Sqrt(2.0 * (n - 1)));
+        return se <= target * Math.Abs(direct + s1 / n);
     }
 }
+
+/// <summary>One point's gather: its mean (lx), standard error (lx) and rays.</summary>
+public readonly record struct GatherEstimate(double Lux, double StandardError, int Rays);
+
+/// <summary>A calculation grid's illuminance (lx, i fastest), each point's standard error (lx; null: exact, no gather) and the
+/// gather's rays per point (0: none).</summary>
+public sealed record GridIlluminance(double[] Lux, double[]? StandardError, int[] Rays);

@@ -14,7 +14,7 @@ internal sealed partial class PathIntegrator
     {
         var l = scratch[.._padded];
         l.Clear();
-        var sink = new FilmSink(l);
+        var sink = new FilmSink(l, firstEmission: true);
         int first = Walk(ref sink, in sample, scratch, ref counters);
         l.CopyTo(fine);
         return first;

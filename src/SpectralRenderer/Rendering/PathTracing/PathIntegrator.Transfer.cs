@@ -185,6 +185,7 @@ internal sealed partial class PathIntegrator
     {
         readonly Span<float> _groups = groups;
         int _level, _split;   // the path's shifted bounces so far, and at its dispersive split
+        public readonly bool FirstEmission => true;
 
         public readonly void Emitted(Span<float> beta, ReadOnlySpan<float> le, float w) =>
             AddProduct(_groups.Slice(lights * padded, padded), beta, le, w);

@@ -93,7 +93,20 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
     {
         var l = scratch[.._padded];
         l.Clear();
-        var sink = new FilmSink(l);
+        var sink = new FilmSink(l, firstEmission: true);
+        int first = Walk(ref sink, in sample, scratch, ref counters);
+        _grid.Reduce(l, result);
+        return first;
+    }
+
+    /// <summary>The walk of <see cref="Radiance(in CameraSample, Span{float}, Span{float}, ref RayCounters)"/> without the
+    /// light of its first vertex's emitter or of the sky it escapes to (<see cref="IGatherIntegrator.Reflected"/>).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveOptimization)]
+    public int Reflected(in CameraSample sample, Span<float> result, Span<float> scratch, ref RayCounters counters)
+    {
+        var l = scratch[.._padded];
+        l.Clear();
+        var sink = new FilmSink(l, firstEmission: false);
         int first = Walk(ref sink, in sample, scratch, ref counters);
         _grid.Reduce(l, result);
         return first;
@@ -162,11 +175,15 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         void Branch();
         /// <summary>A sub-path's end after shifted bounces of its own: carry what it found since its last, back to the split's.</summary>
         void Rejoin();
+        /// <summary>Whether the light the path's first vertex emits (or the sky its first ray escapes to) counts: false for
+        /// a gather's reflected share (<see cref="Reflected"/>).</summary>
+        bool FirstEmission { get; }
     }
 
-    ref struct FilmSink(Span<float> l) : IPathSink
+    ref struct FilmSink(Span<float> l, bool firstEmission) : IPathSink
     {
         readonly Span<float> _l = l;
+        public readonly bool FirstEmission => firstEmission;
         public readonly void Emitted(Span<float> beta, ReadOnlySpan<float> le, float w) => AddProduct(_l, beta, le, w);
         public readonly void NextEvent(int light, Span<float> beta, Span<float> f, ReadOnlySpan<float> radiance, float s) =>
             AddProduct3(_l, beta, f, radiance, s);
@@ -261,7 +278,10 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
                 if (!reached)
                 {
                     // The ray escapes: the sky (background) radiance, MIS-weighted against its own sampling.
-                    if (depth == 0) sink.Emitted(beta, _background, 1);
+                    if (depth == 0)
+                    {
+                        if (sink.FirstEmission) sink.Emitted(beta, _background, 1);
+                    }
                     else if (_emitters.Sky is int s and >= 0)
                     {
                         var sky = _emitters[s];
@@ -276,7 +296,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
                 // Light the surface emits towards the ray (Le), MIS-weighted against next-event estimation of the same point.
                 // (an emitting object's calls made on its own sealed class, which the JIT inlines: an AggressiveOptimization
                 // method gets no profile-guided devirtualisation)
-                if (_emitters.OfObject(hit.Object) is int e and >= 0 && _emitters[e] is var emitter
+                if ((depth > 0 || sink.FirstEmission) && _emitters.OfObject(hit.Object) is int e and >= 0 && _emitters[e] is var emitter
                     && (emitter is ShapeEmitter shape ? shape.Emitted(hit.GeometricNormal, wo)
                         : emitter.Emitted(hit.GeometricNormal, wo)) > 0)
                 {
