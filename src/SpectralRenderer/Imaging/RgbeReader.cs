@@ -99,8 +99,9 @@ public static class RgbeReader
                 if (n > 128)
                 {   // a run: n − 128 copies of the next byte
                     n -= 128;
-                    if (x + n > width || pos >= bytes.Length)
+                    if (x + n > width)
                         throw new InputException(where, $"scanline {y}: a run passes the end of the line", "the file is damaged");
+                    if (pos >= bytes.Length) throw Truncated();
                     byte v = bytes[pos++];
                     for (int k = 0; k < n; k++) scan[4 * (x++) + c] = v;
                 }
