@@ -87,6 +87,7 @@ public partial class SceneDocsTests
         Add("Path tracing", "$.integrator", s => s["integrator"] = With(new JsonObject { ["type"] = "path" }));
         Add("Path tracing", "$.background", s => s["background"] = With(new JsonObject { ["spectrum"] = "D65", ["luminance"] = 1 }));
         Add("Path tracing", "$.sky", s => s["sky"] = With(new JsonObject { ["type"] = "daylight" }));
+        Add("Path tracing", "$.sky envmap", s => s["sky"] = With(new JsonObject { ["type"] = "envmap" }));
         Add("Radiometry", "$.calculation_grids[0]", s =>
         {
             s["radiometry"] = "physical";
@@ -150,16 +151,16 @@ public partial class SceneDocsTests
     public void The_probe_reaches_every_place_the_loader_checks_keys()
     {
         // Each call of the loader's Keys(element, path, allowed…) is one kind of JSON object; the probe above
-        // asks twenty-three of them (the light, object and material calls cover every type, the registered shape types' call
-        // every registered shape: disk, cylinder; an rgb spectrum; an inline mesh). The twenty-fourth checks a registered medium type's own
+        // asks twenty-four of them (the light, object and material calls cover every type, the registered shape types' call
+        // every registered shape: disk, cylinder; an rgb spectrum; an inline mesh). The twenty-fifth checks a registered medium type's own
         // keys (SceneLoader.Media.cs): this build registers none, so the scene file's "medium" takes only "type" (documented)
         // and any name is refused; the probe joins it when the first medium type is built in. A new one must join the probe.
         var sources = Directory.GetFiles(Repo.PathOf("src", "SpectralRenderer"), "*.cs", SearchOption.AllDirectories)
             .Where(f => !f.Contains($"{Path.DirectorySeparatorChar}obj{Path.DirectorySeparatorChar}", StringComparison.Ordinal));
         var calls = sources.SelectMany(f => KeysCall().Matches(File.ReadAllText(f)).Select(m => $"{Path.GetFileName(f)}: {m.Value}"))
             .ToList();
-        Assert.True(calls.Count == 24,
-            $"{calls.Count} Keys(...) calls, the probe knows 24; add the new one to AcceptedKeys:\n" + string.Join("\n", calls));
+        Assert.True(calls.Count == 25,
+            $"{calls.Count} Keys(...) calls, the probe knows 25; add the new one to AcceptedKeys:\n" + string.Join("\n", calls));
     }
 
     // ---- the examples -------------------------------------------------------------------------------

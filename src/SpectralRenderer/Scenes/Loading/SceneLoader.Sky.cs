@@ -22,12 +22,14 @@ public sealed partial class SceneLoader
     {
         const string path = "$.sky";
         Object(e, path);
+        bool map = TryGet(e, "type", out var t) && t.ValueKind == JsonValueKind.String && t.GetString() == "envmap";
+        if (map) Keys(e, path, "type", "file", "scale", "transform");
+        else Keys(e, path, "type", "cct", "luminance", "radiance");
         if (_radiometry != Radiometry.Physical)
             throw Error(path, "a sky is a spectral radiance (W·m⁻²·sr⁻¹·nm⁻¹) and needs physical radiometry",
                 "add \"radiometry\": \"physical\" to the scene (and render it with \"integrator\": \"path\")");
         var type = String(Required(e, "type", path), $"{path}.type");
-        if (type == "envmap") return ParseEnvironment(e, path);
-        Keys(e, path, "type", "cct", "luminance", "radiance");
+        if (map) return ParseEnvironment(e, path);
         if (type != "daylight")
             throw Error($"{path}.type", $"unknown sky type '{type}'",
                 "the sky types are: daylight (a CIE daylight by \"cct\"), envmap (a lat-long image by \"file\")");
@@ -54,7 +56,6 @@ public sealed partial class SceneLoader
     [MethodImpl(MethodImplOptions.NoOptimization)]
     float[] ParseEnvironment(JsonElement e, string path)
     {
-        Keys(e, path, "type", "file", "scale", "transform");
         var file = String(Required(e, "file", path), $"{path}.file");
         var full = Path.IsPathRooted(file) ? file : Path.Combine(_dir, file);
         if (!File.Exists(full))
