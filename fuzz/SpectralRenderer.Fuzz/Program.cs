@@ -62,6 +62,12 @@ public static class Program
         ["npy"] = b => NpyReader.Read(new MemoryStream(b), "fuzz.npy"),
         ["png"] = b => PngReader.Read(new MemoryStream(b), "fuzz.png"),
         ["jpeg"] = b => JpegReader.Read(b, "fuzz.jpg"),
+        // High-dynamic-range environment maps: Radiance RGBE (.hdr) and PFM, the first byte choosing the reader.
+        ["hdr"] = b =>
+        {
+            if (b.Length > 0 && b[0] == (byte)'P') PfmReader.Read(b, "fuzz.pfm");
+            else RgbeReader.Read(b, "fuzz.hdr");
+        },
         // A glTF 2.0 asset, .gltf JSON or .glb by its first bytes (files it names are looked up in the scratch folder), converted
         // and the scene loaded as `spectral render FILE.gltf` loads it.
         ["gltf"] = b =>

@@ -698,6 +698,52 @@ for label, data, pat in [
     scene_case(label, scene, pat, file=label + ".jpg", place=JPEGPLACE)
 
 
+# ---- Environment maps (issue 39): "sky": { "type": "envmap", "file": … } reads Radiance RGBE (.hdr) and PFM (and OpenEXR);
+# each defect one line naming the image (or the scene's $.sky.file for bad pixel values), exit 2.
+ENVSCENE = deep(BASE)
+ENVSCENE["radiometry"] = "physical"
+def envmap_case(label, name, data, pat, place=r"\.(hdr|pfm|png): ", file=None):
+    write(name, data)
+    scene = deep(ENVSCENE)
+    scene["sky"] = {"type": "envmap", "file": name}
+    scene_case(label, scene, pat, file=file or name, place=place)
+RGBE = b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 3 +X 8\n"
+RLEROW = bytes([2, 2, 0, 8, 128 + 8, 128, 128 + 8, 64, 128 + 8, 32, 128 + 8, 129])
+def pfm(w, h, values, scale=b"-1.0"):
+    return b"PF\n%d %d\n" % (w, h) + scale + b"\n" + struct.pack("<%df" % len(values), *values)
+for label, name, data, pat in [
+    ("hdr-not-rgbe", "not-rgbe.hdr", b"P6\n8 3\n255\n" + b"\0" * 72, r"not a Radiance HDR picture"),
+    ("hdr-xyze", "xyze.hdr", RGBE.replace(b"rle_rgbe", b"rle_xyze"), r"pixel format '32-bit_rle_xyze' is not supported"),
+    ("hdr-orientation", "flipped.hdr", RGBE.replace(b"-Y 3", b"+Y 3") + RLEROW * 3, r"is not '-Y H \+X W'"),
+    ("hdr-no-resolution", "no-resolution.hdr", b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n", r"the header ends before the resolution line"),
+    ("hdr-truncated", "truncated.hdr", RGBE + RLEROW + RLEROW[:7], r"scanline 1 is truncated"),
+    ("hdr-run-past-end", "run-past-end.hdr", RGBE + bytes([2, 2, 0, 8, 128 + 9, 1]) + RLEROW * 2,
+     r"scanline 0: a run passes the end of the line"),
+    ("hdr-width-mismatch", "width-mismatch.hdr", RGBE + bytes([2, 2, 0, 9]) + RLEROW[4:] * 3, r"scanline 0 declares width 9, the picture 8"),
+    ("hdr-zero-literal", "zero-literal.hdr", RGBE + bytes([2, 2, 0, 8, 0]) + RLEROW * 2, r"a literal count of 0 is invalid"),
+    ("hdr-old-rle", "old-rle.hdr", b"#?RADIANCE\n\n-Y 3 +X 2\n" + bytes([9, 9, 9, 130, 1, 1, 1, 5]) + b"\0" * 16,
+     r"scanline 0 uses the old run-length form"),
+    ("hdr-huge", "huge.hdr", b"#?RADIANCE\n\n-Y 40000 +X 40000\n", r"image size 40000 × 40000 is outside 1–32767"),
+    ("pfm-truncated", "truncated.pfm", pfm(4, 3, [1.0] * 10), r"the pixels need 144 bytes, the file has 40"),
+    ("pfm-zero-scale", "zero-scale.pfm", pfm(2, 3, [1.0] * 18, b"0"), r"the scale is not a non-zero number"),
+    ("pfm-not-pfm", "not-pfm.pfm", b"P7\n2 3\n-1\n", r"not a PFM picture"),
+    ("envmap-png", "sky.png", b"\x89PNG\r\n\x1a\n", r"'\.png' is not a high-dynamic-range image format"),
+]:
+    envmap_case(label, name, data, pat)
+for label, name, data, pat in [
+    ("envmap-negative", "negative.pfm", pfm(2, 3, [1.0] * 7 + [-1.0] + [1.0] * 10), r"pixel \(0, 1\) holds -1"),
+    ("envmap-nan", "nan.pfm", pfm(2, 3, [float("nan")] + [1.0] * 17), r"pixel \(0, 2\) holds NaN"),
+    ("envmap-too-small", "tiny.pfm", pfm(2, 2, [1.0] * 12), r"is 2 × 2 pixels"),
+]:
+    envmap_case(label, name, data, pat, place=JSONPLACE, file="")
+scene = deep(ENVSCENE)
+scene["sky"] = {"type": "envmap", "file": "no-such-sky.hdr"}
+scene_case("envmap-missing", scene, r"environment map 'no-such-sky\.hdr' not found")
+scene = deep(BASE)
+scene["sky"] = {"type": "envmap", "file": "x.hdr"}
+scene_case("envmap-paper-radiometry", scene, r"a sky is a spectral radiance .* needs physical radiometry")
+
+
 # ---- glTF 2.0 (issue 39): `spectral render FILE.gltf|.glb` converts in memory; each defect one line naming the file and the
 # JSON path (a .glb's header by byte), exit 2, nothing written.
 import base64 as _b64

@@ -62,6 +62,11 @@ public sealed class Scene
     public required List<SceneObject> Objects { get; init; }
     /// <summary>Radiance of rays that escape, band values.</summary>
     public required float[] Background { get; init; }
+    /// <summary>
+    /// The sky's image (<c>"sky": { "type": "envmap" }</c>), or null: the path integrator's sky then varies with direction,
+    /// and <see cref="Background"/> is its mean (the Whitted integrator's uniform sky).
+    /// </summary>
+    public EnvironmentMap? Environment { get; init; }
     /// <summary>The participating media of the objects' interiors and of the scene (none in a scene of today).</summary>
     public IReadOnlyList<Medium> Media { get; init; } = [];
     /// <summary>The medium around the objects, where the camera is (an index into <see cref="Media"/>; −1: vacuum).</summary>

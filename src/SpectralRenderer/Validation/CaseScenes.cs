@@ -81,7 +81,7 @@ internal static class CaseScenes
     /// <summary>
     /// The illuminance (lx) of the engine's path-traced gather (direct share plus π/N Σ L_v of N cosine-weighted paths) at
     /// each free point, as <see cref="Illuminance.OnGrid"/> measures a calculation grid: each point is a small grid of
-    /// k × k points within 10 µm of it (independent sample streams), their mean and its standard error.
+    /// k × k points within 10 µm of it (independent sample streams: a stream per point), their mean and its standard error.
     /// </summary>
     internal static (double Mean, double Sigma)[] Gathered(Scene scene, IReadOnlyList<(Vector3 P, Vector3 N)> points, int k,
         CaseContext context)
@@ -98,7 +98,7 @@ internal static class CaseScenes
             var u = Vector3.Normalize(Vector3.Cross(n, MathF.Abs(n.Y) < 0.9f ? Vector3.UnitY : Vector3.UnitX)) * 1e-5f;
             var v = Vector3.Cross(n, u);   // u × (n × u) = |u|²·n: the grid faces n
             var grid = new CalculationGrid("point", p - 0.5f * (u + v), u, v, k, k);
-            result[i] = MeanAndError(illuminance.OnGrid(grid, gather, context.Threads, context.Cancel));
+            result[i] = MeanAndError(illuminance.OnGridWithError(grid, gather, context.Threads, 0, i, null, context.Cancel).Lux);
         }
         return result;
     }

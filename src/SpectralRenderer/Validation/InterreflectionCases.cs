@@ -62,7 +62,7 @@ internal static class InterreflectionCases
                 if (Vector3.Dot(Vector3.Cross(u, v), n) < 0) (u, v) = (v, u);
                 var origin = Axis(a) * (side * (1 - inset)) - 0.5f * (u + v);
                 var grid = new Scenes.CalculationGrid($"face{f + 1}", origin, u, v, k, k);
-                var lux = illuminance.OnGrid(grid, gather, context.Threads, context.Cancel);
+                var lux = illuminance.OnGridWithError(grid, gather, context.Threads, 0, f, null, context.Cancel).Lux;   // a stream per face
                 double sum = 0;
                 for (int j = 0; j < k; j++)
                     for (int i = 0; i < k; i++)

@@ -87,6 +87,7 @@ public partial class SceneDocsTests
         Add("Path tracing", "$.integrator", s => s["integrator"] = With(new JsonObject { ["type"] = "path" }));
         Add("Path tracing", "$.background", s => s["background"] = With(new JsonObject { ["spectrum"] = "D65", ["luminance"] = 1 }));
         Add("Path tracing", "$.sky", s => s["sky"] = With(new JsonObject { ["type"] = "daylight" }));
+        Add("Path tracing", "$.sky envmap", s => s["sky"] = With(new JsonObject { ["type"] = "envmap" }));
         Add("Radiometry", "$.calculation_grids[0]", s =>
         {
             s["radiometry"] = "physical";
@@ -156,15 +157,15 @@ public partial class SceneDocsTests
     public void The_probe_reaches_every_place_the_loader_checks_keys()
     {
         // Each call of the loader's Keys(element, path, allowed…) is one kind of JSON object; the probe above
-        // asks all twenty-five (the light, object and material calls cover every type, the registered shape types' call
-        // every registered shape: disk, cylinder; an rgb spectrum; an inline mesh; a medium, the built-in homogeneous type's
-        // keys, and its phase function's). A new one must join the probe.
+        // asks all twenty-six (the light, object and material calls cover every type, the registered shape types' call
+        // every registered shape: disk, cylinder; an rgb spectrum; an inline mesh; both kinds of sky, the daylight and the
+        // environment map; a medium, the built-in homogeneous type's keys, and its phase function's). A new one must join the probe.
         var sources = Directory.GetFiles(Repo.PathOf("src", "SpectralRenderer"), "*.cs", SearchOption.AllDirectories)
             .Where(f => !f.Contains($"{Path.DirectorySeparatorChar}obj{Path.DirectorySeparatorChar}", StringComparison.Ordinal));
         var calls = sources.SelectMany(f => KeysCall().Matches(File.ReadAllText(f)).Select(m => $"{Path.GetFileName(f)}: {m.Value}"))
             .ToList();
-        Assert.True(calls.Count == 25,
-            $"{calls.Count} Keys(...) calls, the probe knows 25; add the new one to AcceptedKeys:\n" + string.Join("\n", calls));
+        Assert.True(calls.Count == 26,
+            $"{calls.Count} Keys(...) calls, the probe knows 26; add the new one to AcceptedKeys:\n" + string.Join("\n", calls));
     }
 
     // ---- the examples -------------------------------------------------------------------------------

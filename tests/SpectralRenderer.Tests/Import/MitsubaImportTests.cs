@@ -58,6 +58,36 @@ public class MitsubaImportTests
         Assert.Equal(32.2042, camera["fov"]!.GetValue<double>(), 1e-4);
     }
 
+    [Fact]
+    public void An_envmap_becomes_our_envmap_sky_with_its_file_scale_and_to_world()
+    {
+        var dir = Reference.TempDir();
+        File.WriteAllBytes(System.IO.Path.Combine(dir, "sky.pfm"), [.. "PF\n2 3\n-1\n"u8, .. new byte[72]]);
+        var path = System.IO.Path.Combine(dir, "scene.xml");
+        File.WriteAllText(path, Scene("""
+            <emitter type="envmap">
+                <string name="filename" value="sky.pfm"/>
+                <float name="scale" value="2.5"/>
+                <transform name="to_world"><rotate y="1" angle="90"/></transform>
+            </emitter>
+            """ + Sphere));
+        var imported = SceneFormats.Convert(path, new ImportOptions(false));
+        var sky = imported.Scene["sky"]!;
+        Assert.Null(imported.Scene["background"]);
+        Assert.Equal("envmap", sky["type"]!.GetValue<string>());
+        Assert.Equal("sky.pfm", sky["file"]!.GetValue<string>());
+        Assert.Equal(2.5, sky["scale"]!.GetValue<double>());
+        // A 90° turn about +y, row-major for column vectors: x → −z, z → x.
+        var m = Numbers(sky["transform"]!["matrix"]);
+        double[] expected = [0, 0, 1, 0, 0, 1, 0, 0, -1, 0, 0, 0, 0, 0, 0, 1];
+        for (int i = 0; i < 16; i++) Assert.Equal(expected[i], m[i], 1e-9);
+        Assert.Contains(imported.Report.Entries, e => e.Kind == "converted" && e.Element.Contains("envmap"));
+        // The converted scene loads: the sky is the map (a black map: no sky emitter, a black background).
+        var scene = SceneLoader.Parse(ImportWriter.InlineJson(imported), path);
+        Assert.NotNull(scene.Environment);
+        Assert.Equal(2.5, scene.Environment!.Scale);
+    }
+
     [Theory]
     [InlineData("y", 60.0)]
     [InlineData("smaller", 60.0)]            // the smaller side is y here

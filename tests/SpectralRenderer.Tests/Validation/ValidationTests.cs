@@ -138,9 +138,10 @@ public class ValidationPerturbationTests(Xunit.Abstractions.ITestOutputHelper ou
 
     public static TheoryData<string, string[]> Perturbations() => new()
     {
-        // Every light, emitter and sky 2 % brighter: every case measuring an absolute level of light fails — the lighting
-        // and radiometry cases, the rendered charts (their white is the light's spectrum, not its level) and the photon
-        // transfer; the CMF summation, cos⁴ and the Airy pattern hold no light.
+        // Every light, emitter and sky 5 % brighter (above every such case's tolerance, the photon transfer's 3 % the widest,
+        // so none can pass by its noise): every case measuring an absolute level of light fails — the lighting and radiometry
+        // cases, the rendered charts (their white is the light's spectrum, not its level) and the photon transfer; the CMF
+        // summation, cos⁴ and the Airy pattern hold no light.
         {
             "light", [.. Lighting, "white-furnace", "fresnel-furnace", "dispersion-furnace", "inverse-square", "conductor-normal",
                 "dispersion-snell", .. Colour.Skip(1), "emva1288-ptc"]
@@ -159,7 +160,7 @@ public class ValidationPerturbationTests(Xunit.Abstractions.ITestOutputHelper ou
     {
         var settings = what switch
         {
-            "light" => new Perturbation.Settings(LightScale: 1.02),
+            "light" => new Perturbation.Settings(LightScale: 1.05),
             "cosine" => new Perturbation.Settings(ReceiverTiltDegrees: 2),
             _ => new Perturbation.Settings(CmfShiftNm: 1),
         };

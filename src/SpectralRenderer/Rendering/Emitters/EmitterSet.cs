@@ -8,8 +8,9 @@ namespace SpectralRenderer.Rendering.Emitters;
 /// scene lights in their order (index k is <c>Scene.Lights[k]</c>), then the emitting objects in object order, then the
 /// sky if the background is not black. Next-event estimation chooses one by <see cref="Choose"/> with probability
 /// <see cref="SelectionPdf"/>, and a surface hit finds its emitter by its object (<see cref="OfObject"/>), an escaping ray the
-/// sky's (<see cref="Sky"/>). A new kind of emitter plugs in as one file (a subclass of <see cref="Emitter"/>) and one line
-/// here; a new scene light kind or emissive shape kind needs not even that (a <see cref="Light"/> subclass, a registered shape).
+/// sky's (<see cref="Sky"/>: a uniform <see cref="SkyEmitter"/>, or an <see cref="EnvironmentEmitter"/> for an image sky). A new kind of
+/// emitter plugs in as one file (a subclass of <see cref="Emitter"/>) and one line here; a new scene light kind or emissive shape kind
+/// needs not even that (a <see cref="Light"/> subclass, a registered shape).
 /// <para>
 /// The choice is by power (pbrt-v4's <c>PowerLightSampler</c>), the emitter's radiant power over the grid's range,
 /// Φ_k = <see cref="Emitter.PowerPerRadiance"/> · Σ_f L_f·Δλ_f in W (<see cref="Power"/>): radiant rather than luminous, because
@@ -57,7 +58,7 @@ internal sealed class EmitterSet
         if (Spectra.SpectralMath.Any(scene.Background))
         {
             Sky = emitters.Count;
-            emitters.Add(new SkyEmitter(Background));
+            emitters.Add(scene.Environment is { } map ? Environment = new EnvironmentEmitter(map, grid) : new SkyEmitter(Background));
         }
         _emitters = [.. emitters];
         Widths = new double[grid.Count];
@@ -119,6 +120,9 @@ internal sealed class EmitterSet
 
     /// <summary>The sky's index, or −1 when the background is black.</summary>
     public int Sky { get; }
+
+    /// <summary>The sky's environment map (its radiance varies with direction: <see cref="EnvironmentEmitter.Lookup"/>), or null.</summary>
+    public EnvironmentEmitter? Environment { get; }
 
     /// <summary>The background radiance on the sub-band grid (what a camera ray that escapes sees; black without a sky).</summary>
     public float[] Background { get; }

@@ -119,6 +119,7 @@ public sealed class Illuminance
     {
         var geometry = _geometry!;
         int rays = GatherRays(_scene);
+        Span<float> sky = set.Environment is null ? default : stackalloc float[_scene.PaddedBands];
         double sum = 0;
         for (int i = 0; i < rays; i++)
         {
@@ -133,7 +134,10 @@ public sealed class Illuminance
                 if (!(cos > 0)) continue;
                 counters.Shadow++;
                 if (geometry.Occluded(Visibility.ShadowRay(p, ng, s.Direction, s.Distance, geometry.Epsilon))) continue;
-                sum += _emitterLuminance[k] * s.Factor * cos / s.Pdf;
+                // an environment map's luminance is its direction's (EnvironmentEmitter.Lookup), else the emitter's own
+                double lv = set.Environment is { } map && set[k] == map ? BandLuminance(map.Lookup(s.Direction, sky))
+                    : _emitterLuminance[k];
+                sum += lv * s.Factor * cos / s.Pdf;
             }
         }
         return sum / rays;

@@ -22,7 +22,8 @@ namespace SpectralRenderer.Rendering.PathTracing;
 /// depth <see cref="IntegratorSettings.RrDepth"/> on with survival probability min(0.95, max_λ β·gain) (the largest band,
 /// so no band's light is starved; gain bounds a fluorescent path's shifted bounces, 1 without them); each band keeps its
 /// own f·cos/pdf, so no wavelength is ever sampled. The sky is the scene's <c>background</c>: the radiance of every escaping
-/// ray, sampled cosine-weighted about the shading normal. Depth is unbounded unless <c>max_depth</c> is given (1: direct
+/// ray, sampled cosine-weighted about the shading normal; or an environment map's radiance of the ray's direction, sampled
+/// by the map's luminance (Emitters/EnvironmentEmitter.cs). Depth is unbounded unless <c>max_depth</c> is given (1: direct
 /// light only). Every random number comes from the camera sample's <see cref="Sampler"/>, so the picture is the same on
 /// any thread count, tile order or shard; nothing is allocated per path.
 /// </summary>
@@ -38,6 +39,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
     readonly Light[] _lights;
     readonly EmitterSet _emitters;   // every light, emitting object and the sky, in one index space (Emitters/EmitterSet.cs)
     readonly float[] _background;
+    readonly EnvironmentEmitter? _environment;   // the sky's image, when it has one: its radiance is looked up per direction
 
     public PathIntegrator(Scene scene, SceneGeometry geometry)
     {
@@ -62,6 +64,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         _emitters = new EmitterSet(scene, _grid, geometry.BoundingRadius, m => _materials[m].EmissionTexture);
         _lights = [.. scene.Lights];
         _background = _emitters.Background;
+        _environment = _emitters.Environment;
         foreach (var material in _materials) material.Shift?.Prepare(_emitters.All.Select(e => e.Radiance));
         TakeMedia(scene);   // PathIntegrator.Media.cs
         _textureBase = 5 * _padded + Math.Max(_padded, ShiftBase - 5 * _padded + ShiftScratch);
@@ -81,7 +84,10 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
     /// (<see cref="BandBeta"/>) and a fluorescent scene's shifted paths' (<see cref="ShiftScratch"/>), which share their
     /// place unless the scene has both; then a textured vertex's texels (<see cref="TextureBase"/>).
     /// </summary>
-    public int ScratchLength => TextureBase + TextureScratch;
+    public int ScratchLength => TextureBase + TextureScratch + (_environment is null ? 0 : _padded);
+
+    /// <summary>Where an environment map's radiance of one direction goes (after the texels), when the sky has a map.</summary>
+    Span<float> SkyScratch(Span<float> scratch) => _environment is null ? default : scratch.Slice(TextureBase + TextureScratch, _padded);
 
     /// <summary>Where a textured vertex's texels start in the scratch: after the dispersive split's and the shifted paths' part.</summary>
     int TextureBase => _textureBase;
@@ -277,17 +283,21 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
                 }
                 if (!reached)
                 {
-                    // The ray escapes: the sky (background) radiance, MIS-weighted against its own sampling.
+                    // The ray escapes: the sky (background) radiance, MIS-weighted against its own sampling; an environment
+                    // map's of the ray's direction.
                     if (depth == 0)
                     {
-                        if (sink.FirstEmission) sink.Emitted(beta, _background, 1);
+                        if (sink.FirstEmission)
+                            sink.Emitted(beta, _environment is null ? _background : _environment.Lookup(ray.Direction, SkyScratch(scratch)),
+                                1);
                     }
                     else if (_emitters.Sky is int s and >= 0)
                     {
                         var sky = _emitters[s];
                         float w = deltaBounce ? 1 : PowerHeuristic(bsdfPdf,
                             _emitters.SelectionPdf(s) * sky.Pdf(previous, previousFront, ray.Direction, default, default));
-                        sink.Emitted(beta, sky.Radiance, w);
+                        sink.Emitted(beta, _environment is null ? sky.Radiance : _environment.Lookup(ray.Direction, SkyScratch(scratch)),
+                            w);
                     }
                     break;
                 }
@@ -353,7 +363,8 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
             {
                 float uLight = _emitters.Count > 1 ? sampler.At1D(dLight) : 0;   // one light: no choice
                 var uPoint = sampler.At2D(dPoint);
-                NextEvent(ref sink, in vertex, uLight, new Vector2(uPoint.U, uPoint.V), smoothProbability, beta, f, ref counters);
+                NextEvent(ref sink, in vertex, uLight, new Vector2(uPoint.U, uPoint.V), smoothProbability, beta, f, SkyScratch(scratch),
+                    ref counters);
             }
 
             // Continue: choose a lobe, then a direction from it; β gains f·|cos θ|/pdf per band.
@@ -411,11 +422,11 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
     /// <summary>
     /// L += β·f·L_e·|cos θ|·w/(P(k)·p) for one sample of emitter k of the set, chosen by <paramref name="uLight"/>, at
     /// <paramref name="vertex"/>: a delta light's (w = 1, p = 1, its d_k·c_spot on I_k), an emitting object's point, or a sky
-    /// direction, each unshadowed.
+    /// direction (an environment map's radiance looked up into <paramref name="sky"/>), each unshadowed.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     void NextEvent<TSink>(ref TSink sink, scoped in PathVertex vertex, float uLight, Vector2 u, float smoothProbability,
-        Span<float> beta, Span<float> f, ref RayCounters counters) where TSink : IPathSink, allows ref struct
+        Span<float> beta, Span<float> f, Span<float> sky, ref RayCounters counters) where TSink : IPathSink, allows ref struct
     {
         var p = vertex.P;
         int k = _emitters.Choose(uLight);
@@ -426,9 +437,10 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
             : emitter.Sample(p, vertex.Front, u, out sample))) return;
         var wi = sample.Direction;
         float distance = sample.Distance, factor = sample.Factor, pdf = sample.Pdf;
-        var radiance = emitter.Texture is null ? emitter.Radiance
-            : EmittedAt(emitter, sample.Face, sample.Point, sample.Normal, wi, distance, vertex.Texels.Emission);
         if (!(pdf > 0) || !(factor > 0)) return;
+        ReadOnlySpan<float> radiance = emitter.Texture is not null
+            ? EmittedAt(emitter, sample.Face, sample.Point, sample.Normal, wi, distance, vertex.Texels.Emission)
+            : emitter == _environment ? _environment.Lookup(wi, sky) : emitter.Radiance;
         var ns = vertex.Ns;
         var ng = vertex.Ng;
         var bsdf = vertex.Material.Bsdf;

@@ -1,6 +1,8 @@
+using System.Numerics;
 using System.Runtime.CompilerServices;
 using System.Text.Json;
 using SpectralRenderer.Color;
+using SpectralRenderer.Imaging;
 using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Scenes.Loading;
@@ -20,13 +22,17 @@ public sealed partial class SceneLoader
     {
         const string path = "$.sky";
         Object(e, path);
-        Keys(e, path, "type", "cct", "luminance", "radiance");
+        bool map = TryGet(e, "type", out var t) && t.ValueKind == JsonValueKind.String && t.GetString() == "envmap";
+        if (map) Keys(e, path, "type", "file", "scale", "transform");
+        else Keys(e, path, "type", "cct", "luminance", "radiance");
         if (_radiometry != Radiometry.Physical)
             throw Error(path, "a sky is a spectral radiance (W·m⁻²·sr⁻¹·nm⁻¹) and needs physical radiometry",
                 "add \"radiometry\": \"physical\" to the scene (and render it with \"integrator\": \"path\")");
         var type = String(Required(e, "type", path), $"{path}.type");
+        if (map) return ParseEnvironment(e, path);
         if (type != "daylight")
-            throw Error($"{path}.type", $"unknown sky type '{type}'", "the sky types are: daylight (a CIE daylight by \"cct\")");
+            throw Error($"{path}.type", $"unknown sky type '{type}'",
+                "the sky types are: daylight (a CIE daylight by \"cct\"), envmap (a lat-long image by \"file\")");
         double cct = Number(e, "cct", path, 6504, CieDaylight.MinKelvin, CieDaylight.MaxKelvin);
         bool luminance = TryGet(e, "luminance", out _), radiance = TryGet(e, "radiance", out _);
         if (luminance == radiance)
@@ -36,5 +42,40 @@ public sealed partial class SceneLoader
         // Every D SPD is exactly 100 at 560 nm (S₁ = S₂ = 0 there), so radiance k is the factor k/100.
         double scale = radiance ? Number(e, "radiance", path, 0, 0) / 100 : Number(e, "luminance", path, 0, 0) / Photometry.Luminous(spd);
         return Bands(spd.Scaled(scale), path);
+    }
+
+    EnvironmentMap? _environment;
+
+    /// <summary>
+    /// "sky": { "type": "envmap", "file": "sky.exr" | "sky.hdr" | "sky.pfm", "scale": s, "transform": {…} } — the radiance of
+    /// escaping rays from a lat-long image in Mitsuba 3's conventions (<see cref="EnvironmentMap"/>: +Y up, linear sRGB uplifted
+    /// as a D65 illuminant), its directions turned by the transform's linear part. The path integrator samples it by its
+    /// luminance; the background (what the Whitted integrator sees, and the sky's spectrum in power and summaries) is the
+    /// uplift of its solid-angle mean colour.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
+    float[] ParseEnvironment(JsonElement e, string path)
+    {
+        var file = String(Required(e, "file", path), $"{path}.file");
+        var full = Path.IsPathRooted(file) ? file : Path.Combine(_dir, file);
+        if (!File.Exists(full))
+            throw Error($"{path}.file", $"environment map '{file}' not found", "the path is relative to the scene file");
+        double scale = Number(e, "scale", path, 1, 0, MaxMagnitude);
+        var toWorld = TryGet(e, "transform", out var t) ? Transform(t, $"{path}.transform") : Matrix4x4.Identity;
+        var image = RgbImage.Read(full);
+        for (int i = 0; i < image.Rgb.Length; i++)
+            if (!float.IsFinite(image.Rgb[i]) || image.Rgb[i] < 0)
+                throw Error($"{path}.file", $"{file}: pixel ({i / 3 % image.Width}, {i / 3 / image.Width}) holds {image.Rgb[i]}",
+                    "an environment map holds finite radiances ≥ 0: fix or clip the image");
+        if (image.Width < 2 || image.Height < 3)
+            throw Error($"{path}.file", $"{file} is {image.Width} × {image.Height} pixels", "a lat-long map needs at least 2 × 3");
+        _environment = new EnvironmentMap(full, image.Width, image.Height, image.Rgb, scale, toWorld);
+        var mean = _environment.MeanRgb();
+        double m = Math.Max(mean[0], Math.Max(mean[1], mean[2]));
+        if (m == 0) return Const(0);
+        var d65 = SpectrumLibrary.Resolve("D65");
+        double factor = IlluminantUplift.LuminanceFactor(ref d65);
+        var r = IlluminantUplift.Reflectance(mean[0] / (2 * m), mean[1] / (2 * m), mean[2] / (2 * m));
+        return Bands(IlluminantUplift.Product($"mean of {Path.GetFileName(file)}", r, 2 * m, d65, factor), path);
     }
 }

@@ -185,7 +185,9 @@ public sealed partial class SceneLoader
             c[i] = Number(a[i], $"{path}.rgb[{i}]", 0, emission ? MaxMagnitude : 1);
         string label = string.Create(CultureInfo.InvariantCulture, $"rgb({c[0]:R}, {c[1]:R}, {c[2]:R})");
         TabulatedSpectrum s;
-        if (!emission) s = new TabulatedSpectrum(label, SigmoidUplift.Wavelengths, Uplifted(c[0], c[1], c[2]), Extrapolation.Clamp);
+        if (!emission)
+            s = new TabulatedSpectrum(label, SigmoidUplift.Wavelengths, IlluminantUplift.Reflectance(c[0], c[1], c[2]),
+                Extrapolation.Clamp);
         else
         {
             var illuminant = Spectrum(ill, $"{path}.illuminant");
@@ -194,30 +196,15 @@ public sealed partial class SceneLoader
             else
             {
                 double scale = 2 * m;
-                var r = new TabulatedSpectrum("uplift", SigmoidUplift.Wavelengths, Uplifted(c[0] / scale, c[1] / scale, c[2] / scale),
-                    Extrapolation.Clamp);
-                var ybar = Observer.Cie1931.YBar;
-                double lo = ybar.First, hi = ybar.Last;
-                if (!illuminant.Covers(lo, hi)) illuminant = illuminant.WithExtrapolation(Extrapolation.Zero);
-                double luminanceFactor = TabulatedSpectrum.IntegrateProduct(ybar, illuminant, lo, hi) / ybar.Integrate(lo, hi);
+                double luminanceFactor = IlluminantUplift.LuminanceFactor(ref illuminant);
                 if (!(luminanceFactor > 0))
                     throw Error($"{path}.illuminant", "the illuminant has no luminance (∫ȳ·I dλ = 0)",
                         "name a visible light, e.g. \"D65\"");
-                var knots = new SortedSet<double>(SigmoidUplift.Wavelengths);
-                foreach (var w in illuminant.Wavelengths) knots.Add(w);
-                var wl = knots.Where(w => illuminant.Covers(w, w) || illuminant.Extrapolation != Extrapolation.Error).ToArray();
-                var v = wl.Select(w => scale * r.Evaluate(w) * illuminant.Evaluate(w) / luminanceFactor).ToArray();
-                s = new TabulatedSpectrum($"{label} × {illuminant.Name}", wl, v, illuminant.Extrapolation);
+                var r = IlluminantUplift.Reflectance(c[0] / scale, c[1] / scale, c[2] / scale);
+                s = IlluminantUplift.Product($"{label} × {illuminant.Name}", r, scale, illuminant, luminanceFactor);
             }
         }
         if (TryGet(e, "scale", out var sc)) s = s.Scaled(Number(sc, $"{path}.scale", 0));
         return s;
     }
-
-    /// <summary>The sigmoid reflectance (at <see cref="SigmoidUplift.Wavelengths"/>) of a linear sRGB colour (IEC 61966-2-1's
-    /// matrix).</summary>
-    static double[] Uplifted(double r, double g, double b) => Uplift.Value.Spectrum(new Xyz(
-        0.4124 * r + 0.3576 * g + 0.1805 * b,
-        0.2126 * r + 0.7152 * g + 0.0722 * b,
-        0.0193 * r + 0.1192 * g + 0.9505 * b), out _);
 }

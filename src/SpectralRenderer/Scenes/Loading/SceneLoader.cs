@@ -294,6 +294,7 @@ public sealed partial class SceneLoader
             Lights = lights,
             Objects = objects,
             Background = background,
+            Environment = _environment,
             Media = _media,
             Medium = sceneMedium,
             GlobalAmbient = ambient,

@@ -4,7 +4,7 @@ using static SpectralRenderer.Scenes.Import.Mitsuba.MitsubaTransform;
 
 namespace SpectralRenderer.Scenes.Import.Mitsuba;
 
-// Emitters: point, spot and directional lights, and the constant and environment-map skies as our background.
+// Emitters: point, spot and directional lights, the constant sky as our background, an environment map as our envmap sky.
 public sealed partial class MitsubaConverter
 {
     void Emitter(MitsubaElement e)
@@ -68,13 +68,14 @@ public sealed partial class MitsubaConverter
                     break;
                 }
             case "constant":
-                if (_background is not null)
+                if (_background is not null || _sky is not null)
                     Note("approximated", e, "a second sky: the skies' radiances are not added; the last one counts");
+                _sky = null;
                 _background = Spectrum(e, "radiance", 1.0, true);
                 Note("converted", e, "a constant environment: our background, a uniform sky of that radiance");
                 break;
             case "envmap":
-                Envmap(e);
+                Envmap(e, m);
                 break;
             case "area":
                 throw new InputException(e.Where, "an area emitter outside a shape",
@@ -87,26 +88,27 @@ public sealed partial class MitsubaConverter
     }
 
     /// <summary>
-    /// A lat-long environment map: our engine has no image sky, so its mean radiance becomes a uniform sky (the mean of
-    /// the image's linear RGB, weighted by each row's solid angle, uplifted as an illuminant), reported as approximated.
+    /// A lat-long environment map: our "sky": { "type": "envmap" } with the same file, scale and to_world (its linear part), in
+    /// Mitsuba's conventions (Scenes/EnvironmentMap.cs); the file is read when the scene loads. Its filter_type is reported:
+    /// we interpolate bilinearly, as Mitsuba's default.
     /// </summary>
-    void Envmap(MitsubaElement e)
+    void Envmap(MitsubaElement e, double[] toWorld)
     {
         var file = String(e, "filename")
             ?? throw new InputException(e.Where, "an envmap without filename", "give <string name=\"filename\" value=\"sky.exr\"/>");
         double scale = Float(e, "scale", 1);
-        Prop(e, "to_world");
-        Prop(e, "filter_type");
-        var full = Path.Combine(_dir, file);
-        if (!File.Exists(full))
+        if (String(e, "filter_type") is { } filter && filter != "bilinear")
+            Note("approximated", e, $"filter_type '{filter}': the map is interpolated bilinearly");
+        if (!File.Exists(Path.Combine(_dir, file)))
             throw new InputException(e.Where, $"environment map {MessageText.Quote(file)} not found",
                 "the path is relative to the scene file")
             { Problem = InputProblem.MissingFile };
-        var mean = EnvironmentMean.Of(full, e.Where);
-        var rgb = new JsonArray([.. mean.Select(v => (JsonNode)JsonValue.Create(Round(v * scale)))]);
-        _background = new JsonObject { ["rgb"] = rgb, ["illuminant"] = "D65" };
-        Note("approximated", e,
-            $"the environment map {file} as a uniform sky of its mean radiance (solid-angle weighted, uplifted as an illuminant): "
-            + "our engine has no image sky; directional light and shadows from it are lost");
+        if (_background is not null || _sky is not null)
+            Note("approximated", e, "a second sky: the skies' radiances are not added; the last one counts");
+        _background = null;
+        _sky = new JsonObject { ["type"] = "envmap", ["file"] = file.Replace('\\', '/') };
+        if (scale != 1) _sky["scale"] = Round(scale);
+        Place(_sky, toWorld);
+        Note("converted", e, $"the environment map {file}: our envmap sky (Mitsuba's lat-long convention, D65 illuminant uplift)");
     }
 }

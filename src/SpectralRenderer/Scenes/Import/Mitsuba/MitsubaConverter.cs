@@ -29,6 +29,7 @@ public sealed partial class MitsubaConverter
     JsonObject? _camera;
     JsonNode? _integrator;
     JsonNode? _background;
+    JsonObject? _sky;
     int _seed;
 
     public MitsubaConverter(string path, ImportOptions options)
@@ -74,6 +75,7 @@ public sealed partial class MitsubaConverter
             ["camera"] = _camera,
         };
         if (_background is not null) scene["background"] = _background;
+        if (_sky is not null) scene["sky"] = _sky;
         scene["materials"] = _materials;
         scene["lights"] = _lights;
         scene["objects"] = _objects;
