@@ -60,6 +60,29 @@ public class PathRelightTests(Xunit.Abstractions.ITestOutputHelper output)
         return NpyReader.Read(s).Data;
     }
 
+    /// <summary>
+    /// Renders <paramref name="withA"/> (a light named "bulb" of spectrum A, intensity 2) with its per-light transfer, relights
+    /// it to bulb = D65 at 0.5, and requires the relit cube to equal a render of <paramref name="withD65"/> (that light) to
+    /// 1e-5 relative in every band value.
+    /// </summary>
+    internal static void RelitToD65EqualsRerender(string withA, string withD65)
+    {
+        var dir = Reference.TempDir();
+        var source = Path.Combine(dir, "source");
+        var (code, err) = Cli("render", Write(dir, "a.json", withA), "-o", source, "--formats", "npy,lights");
+        Assert.True(code == 0, err);
+        var relit = Path.Combine(dir, "relit");
+        (code, err) = Cli("relight", source, "-o", relit, "--light", "bulb=D65", "--intensity", "bulb=0.5");
+        Assert.True(code == 0, err);
+        var direct = Path.Combine(dir, "direct");
+        (code, err) = Cli("render", Write(dir, "b.json", withD65), "-o", direct, "--formats", "npy");
+        Assert.True(code == 0, err);
+        float[] expected = Npy(direct, "spectral.npy"), actual = Npy(relit, "spectral.npy");
+        Assert.Equal(expected.Length, actual.Length);
+        Assert.Contains(expected, v => v > 0);
+        for (int i = 0; i < expected.Length; i++) Assert.Equal(expected[i], actual[i], 1e-5 * Math.Abs(expected[i]) + 1e-12);
+    }
+
     /// <summary>The largest relative difference of <paramref name="actual"/> from <paramref name="expected"/> (both 0: none).</summary>
     static double WorstRelative(float[] expected, float[] actual)
     {
