@@ -127,6 +127,7 @@ public sealed class FluorescentPathTests(Xunit.Abstractions.ITestOutputHelper ou
     /// at the ball again one band drawn), and paths split after shifted bounces — the furnace's solution all the same.
     /// </summary>
     [Fact]
+    [Trait("Category", "Slow")]   // ~10 s (90 s with SIMD off): the default run only
     public void A_furnace_of_the_cascade_with_a_dispersive_glass_ball_converges_to_the_same_solution()
     {
         const double r = 0.3, yield = 0.9;
