@@ -1,5 +1,4 @@
 using System.Globalization;
-using System.Runtime.CompilerServices;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Pipeline;
 
@@ -21,7 +20,6 @@ public sealed class Arguments
     public static IReadOnlyList<string> LastDeclared => t_declared ?? [];
     [ThreadStatic] static List<string>? t_declared;
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
     public Arguments(string command, IReadOnlyList<string> args, IEnumerable<string> valueOptions, IEnumerable<string> flagOptions,
         IReadOnlyDictionary<string, string>? aliases = null)
     {

@@ -1,5 +1,4 @@
 using System.Reflection;
-using System.Runtime.CompilerServices;
 using SpectralRenderer.Cli.Commands;
 using SpectralRenderer.Diagnostics;
 
@@ -72,7 +71,6 @@ public static class CommandLine
 
     public static string Version => typeof(CommandLine).Assembly.GetName().Version?.ToString(3) ?? "0.0.0";
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
     public static int Run(string[] args, TextWriter stdout, TextWriter stderr)
     {
         // `spectral help COMMAND` is `spectral COMMAND --help`.

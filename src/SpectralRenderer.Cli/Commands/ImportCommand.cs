@@ -1,4 +1,3 @@
-using System.Runtime.CompilerServices;
 using System.Text;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Scenes.Import;
@@ -25,7 +24,6 @@ public static class ImportCommand
           --models DIR     another folder to search for meshes (repeatable; after the file's own)
         """;
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once
     public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
     {
         var a =

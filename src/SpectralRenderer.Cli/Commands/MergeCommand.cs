@@ -1,4 +1,3 @@
-using System.Runtime.CompilerServices;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Distributed;
 
@@ -21,7 +20,6 @@ public static class MergeCommand
           --quiet            no summary on stderr
         """;
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
     public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
     {
         var a = new Arguments("merge", argv, ["-o", "--out"], ["--quiet"], new Dictionary<string, string> { ["-o"] = "--out" });

@@ -1,5 +1,4 @@
 using System.Globalization;
-using System.Runtime.CompilerServices;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Distributed;
 using SpectralRenderer.Output;
@@ -54,7 +53,6 @@ public static class RenderCommand
     /// <summary>The command's own options (-o, --quiet) and the render options' flags.</summary>
     static string[] Values => ["-o", "--out", .. RenderOptions.All.Select(o => o.Flag)];
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
     public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
     {
         var a = new Arguments("render", argv, Values, ["--quiet"], new Dictionary<string, string> { ["-o"] = "--out" });

@@ -1,5 +1,4 @@
 using System.Globalization;
-using System.Runtime.CompilerServices;
 using System.Text;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Distributed;
@@ -45,7 +44,6 @@ public static class SweepCommand
     static readonly string[] Values =
         ["-o", "--out", "--shard", "--shards", "--layout", "--formats", "--threads", "--models", "--emit", "--image"];
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
     public static int Run(string[] argv, TextWriter stdout, TextWriter stderr)
     {
         var a = new Arguments("sweep", argv, Values, ["--quiet"], new Dictionary<string, string> { ["-o"] = "--out" });

@@ -1,4 +1,3 @@
-using System.Runtime.CompilerServices;
 using System.Text;
 using SpectralRenderer.Diagnostics;
 
@@ -64,7 +63,6 @@ sealed class PlyHeader
         ["char", "uchar", "short", "ushort", "int", "uint", "float", "double",
          "int8", "uint8", "int16", "uint16", "int32", "uint32", "float32", "float64"];
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     static bool TryParseType(string name, out PlyType type)
     {
         int i = Array.IndexOf(TypeNames, name);
@@ -72,8 +70,6 @@ sealed class PlyHeader
         return i >= 0;
     }
 
-    // The header is a few lines: compiled quickly (NoOptimization), like the scene loader.
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     public static PlyHeader Parse(ReadOnlySpan<byte> data, string path)
     {
         if (!data.StartsWith("ply"u8))
@@ -137,7 +133,6 @@ sealed class PlyHeader
         }
     }
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     static PlyProperty ParseProperty(string[] words, string line, string where)
     {
         bool isList = words.Length >= 2 && words[1] == "list";

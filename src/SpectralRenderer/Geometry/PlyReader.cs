@@ -22,7 +22,6 @@ public static class PlyReader
         return Parse(InputFile.ReadAllBytes(path, "mesh file"), path);
     }
 
-    [MethodImpl(MethodImplOptions.NoOptimization)] // runs once per file: the loops it calls are the hot part
     public static TriangleMesh Parse(ReadOnlySpan<byte> data, string path)
     {
         var header = PlyHeader.Parse(data, path);

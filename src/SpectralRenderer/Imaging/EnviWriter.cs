@@ -70,7 +70,6 @@ public static class EnviWriter
     }
 
     /// <summary>The header text. Keys per the ENVI header format; lists in braces; no braces inside the description.</summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
     public static string Header(SpectralImage image, string? description = null, IReadOnlyDictionary<string, string>? extra = null)
     {
         var inv = CultureInfo.InvariantCulture;

@@ -233,7 +233,6 @@ public static class ExrWriter
     }
 
     /// <summary>File layout §"Header": attributes (name, type name, size, value) sorted by name, then a null byte.</summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
     static byte[] Header(int width, int height, BandGrid grid, ExrOptions options, string[] channelNames, out bool longNames)
     {
         var attrs = new List<Attr>();

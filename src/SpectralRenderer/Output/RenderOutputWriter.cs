@@ -372,7 +372,6 @@ public static class RenderOutputWriter
         return rgb;
     }
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]  // runs once: cheap compilation matters more than speed
     internal static RenderManifest Describe(Scene scene, RenderResult result, float bandScale, ManifestRun? run, DisplayEncoder? preview)
     {
         var c = scene.Colorimeter;

@@ -1,4 +1,3 @@
-using System.Runtime.CompilerServices;
 using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Scenes.Loading;
@@ -40,7 +39,6 @@ public static class ConductorMaterial
         return false;
     }
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     public static Material Make(SceneLoader.MaterialSource s)
     {
         TabulatedSpectrum n, k;

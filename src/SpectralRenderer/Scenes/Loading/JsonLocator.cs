@@ -1,4 +1,3 @@
-using System.Runtime.CompilerServices;
 using System.Text;
 using System.Text.Json;
 
@@ -23,7 +22,6 @@ public sealed class JsonLocator
     /// <summary>The JSON path and offset of the first key that repeats an earlier key of its object, or null.</summary>
     public (string Path, long Offset)? Duplicate { get; private set; }
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     public JsonLocator(ReadOnlySpan<byte> utf8, JsonReaderOptions options)
     {
         for (int i = 0; i < utf8.Length; i++) if (utf8[i] == (byte)'\n') _lineStarts.Add(i + 1);
@@ -36,7 +34,6 @@ public sealed class JsonLocator
     /// One pass over the tokens, recording each value's offset under its path (all of them when
     /// <paramref name="find"/> is given, then stopping at that path), and every object's keys to catch duplicates.
     /// </summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     void Walk(string? find, out long found)
     {
         found = -1;
@@ -81,7 +78,6 @@ public sealed class JsonLocator
     }
 
     /// <summary>"line:column" (1-based, column in characters) of the value at <paramref name="path"/>, or null.</summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     public string? Locate(string path)
     {
         if (_offsets.TryGetValue(path, out long offset)) return Position(offset);
@@ -92,7 +88,6 @@ public sealed class JsonLocator
         return Position(offset);
     }
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     public string Position(long offset)
     {
         int line = _lineStarts.BinarySearch(offset);

@@ -1,5 +1,4 @@
 using System.Globalization;
-using System.Runtime.CompilerServices;
 using SpectralRenderer.Spectra;
 
 namespace SpectralRenderer.Scenes.Loading;
@@ -16,7 +15,6 @@ public static class PlasticMaterial
 {
     public static readonly string[] Keys = ["diffuse", "ior", "roughness"];
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     public static Material Make(SceneLoader.MaterialSource s)
     {
         var rho = s.RequiredReflectance("diffuse");

@@ -1,5 +1,4 @@
 using System.Numerics;
-using System.Runtime.CompilerServices;
 using System.Text.Json;
 
 namespace SpectralRenderer.Scenes.Loading;
@@ -7,7 +6,6 @@ namespace SpectralRenderer.Scenes.Loading;
 // The camera: position, look_at, up, fov, resolution (with the command line's overrides), samples per pixel.
 public sealed partial class SceneLoader
 {
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     Camera ParseCamera(JsonElement e, string path)
     {
         Object(e, path);

@@ -1,4 +1,3 @@
-using System.Runtime.CompilerServices;
 using System.Text.Json;
 using SpectralRenderer.Spectra;
 
@@ -26,7 +25,6 @@ public sealed partial class SceneLoader
     /// The matrix is read relative to the scene's folder, from CSV (<see cref="ReradiationCsvReader"/>: file:line errors,
     /// photon balance) or a bispectral OpenEXR (<see cref="Imaging.ReradiationExrReader"/>: file and channel named).
     /// </summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     ReradiationMatrix? ParseFluorescence(JsonElement e, string path, string model, out bool texelDiagonal)
     {
         texelDiagonal = false;
@@ -64,7 +62,6 @@ public sealed partial class SceneLoader
     /// the texel for D[i, i]). Checked for every texel, not a bound over them; a filtered lookup (bilinear, mip levels) is a
     /// convex combination of texels, so it keeps the balance too. The first texel (row by row) that breaks it is bad input.
     /// </summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     void CheckTexelPhotons(Scenes.Textures.SpectralTexture tex, ReradiationMatrix matrix, string path)
     {
         int n = matrix.Count;
@@ -102,7 +99,6 @@ public sealed partial class SceneLoader
     /// radiation below 400 nm), modelled as a filter edge whose transmittance rises linearly from 0 at 395 nm to 1 at 405 nm
     /// (half at 400 nm); the filtered table is the light's at its own knots and the edge's, so band means stay exact.
     /// </summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     TabulatedSpectrum FilteredLight(JsonElement e, string path, TabulatedSpectrum spectrum)
     {
         if (!TryGet(e, FilterKey, out var f)) return spectrum;

@@ -1,4 +1,3 @@
-using System.Runtime.CompilerServices;
 using System.Text.Json;
 
 namespace SpectralRenderer.Scenes.Loading;
@@ -6,7 +5,6 @@ namespace SpectralRenderer.Scenes.Loading;
 // "calculation_grids": work planes whose illuminance (lx) a render writes as grids/NAME.csv and grids/NAME.svg.
 public sealed partial class SceneLoader
 {
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     List<CalculationGrid> ParseCalculationGrids(JsonElement root)
     {
         var grids = new List<CalculationGrid>();

@@ -1,4 +1,3 @@
-using System.Runtime.CompilerServices;
 using System.Text.Json;
 using SpectralRenderer.Diagnostics;
 
@@ -12,7 +11,6 @@ public sealed partial class SceneLoader
     /// "sampler": "sobol" | "independent", "seed": N }: every key an integrator's settings may have is read here; the name,
     /// and the keys given against the keys its registration takes, are checked when the render is built (RenderJob).
     /// </summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     IntegratorSettings? ParseIntegrator(JsonElement root)
     {
         if (!TryGet(root, "integrator", out var e)) return null;
@@ -47,7 +45,6 @@ public sealed partial class SceneLoader
     /// W·m⁻²·sr⁻¹·nm⁻¹, physical radiometry only; or "luminance": cd/m² instead of "radiance", k = L_v/(K_m ∫V·S dλ); or
     /// "luminous_flux": lm, the total flux of the objects made of the material (<see cref="ScaleFluxEmission"/>).
     /// </summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     Emission? ParseEmission(JsonElement material, string materialPath)
     {
         if (!TryGet(material, "emission", out var e)) return null;
@@ -150,7 +147,6 @@ public sealed partial class SceneLoader
     /// A radiance given as "luminance" (cd/m²) in <paramref name="e"/>: the factor k on <paramref name="spectrum"/> whose
     /// K_m ∫V·(k·S) dλ is it (683 lm/W, CIE 1924 V), or null when the key is absent; with "radiance" too, an error.
     /// </summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     double? Luminance(JsonElement e, string path, Spectra.TabulatedSpectrum spectrum)
     {
         if (!TryGet(e, "luminance", out _)) return null;
@@ -169,7 +165,6 @@ public sealed partial class SceneLoader
     /// "background": a spectrum (radiance of escaping rays), or { "spectrum": …, "luminance": cd/m² } — a uniform sky of that
     /// luminance (physical radiometry).
     /// </summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     float[] ParseBackground(JsonElement bg)
     {
         const string path = "$.background";

@@ -1,6 +1,5 @@
 using System.Globalization;
 using System.Numerics;
-using System.Runtime.CompilerServices;
 using System.Text.Json;
 using SpectralRenderer.Diagnostics;
 
@@ -9,7 +8,6 @@ namespace SpectralRenderer.Scenes.Loading;
 // The JSON readers of the loader: each value read with its JSON path, every error located at file:line:column.
 public sealed partial class SceneLoader
 {
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     InputException Error(string jsonPath, string what, string hint, InputProblem problem = InputProblem.Invalid)
     {
         // Point at the nearest located ancestor when the path itself is absent (a missing field).
@@ -25,7 +23,6 @@ public sealed partial class SceneLoader
         return new InputException(pos is null ? $"{_file}: {jsonPath}" : $"{_file}:{pos}: {jsonPath}", what, hint) { Problem = problem };
     }
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     static string Kind(JsonElement e) => e.ValueKind switch
     {
         JsonValueKind.Object => "an object",
@@ -36,7 +33,6 @@ public sealed partial class SceneLoader
         _ => "null",
     };
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     void Keys(JsonElement obj, string path, params string[] allowed)
     {
         foreach (var p in obj.EnumerateObject())
@@ -45,7 +41,6 @@ public sealed partial class SceneLoader
                     InputException.DidYouMean(p.Name, allowed) ?? $"allowed here: {string.Join(", ", allowed)}");
     }
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     JsonElement Object(JsonElement e, string path)
     {
         if (e.ValueKind != JsonValueKind.Object)
@@ -56,7 +51,6 @@ public sealed partial class SceneLoader
     static bool TryGet(JsonElement obj, string name, out JsonElement value) =>
         obj.TryGetProperty(name, out value) && value.ValueKind != JsonValueKind.Null;
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     JsonElement Required(JsonElement obj, string name, string path)
     {
         if (!TryGet(obj, name, out var v))
@@ -64,7 +58,6 @@ public sealed partial class SceneLoader
         return v;
     }
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     double Number(JsonElement e, string path, double min = -MaxMagnitude, double max = MaxMagnitude)
     {
         if (e.ValueKind != JsonValueKind.Number)
@@ -78,11 +71,9 @@ public sealed partial class SceneLoader
         return v;
     }
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     double Number(JsonElement obj, string name, string path, double fallback, double min = -MaxMagnitude, double max = MaxMagnitude) =>
         TryGet(obj, name, out var v) ? Number(v, $"{path}.{name}", min, max) : fallback;
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     int Integer(JsonElement obj, string name, string path, int fallback, int min, int max)
     {
         if (!TryGet(obj, name, out var v)) return fallback;
@@ -94,14 +85,12 @@ public sealed partial class SceneLoader
         return i;
     }
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     string String(JsonElement e, string path)
     {
         if (e.ValueKind != JsonValueKind.String) throw Error(path, $"expected a string, found {Kind(e)}", "write it in double quotes");
         return e.GetString()!;
     }
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     bool Bool(JsonElement obj, string name, string path, bool fallback)
     {
         if (!TryGet(obj, name, out var v)) return fallback;
@@ -110,14 +99,12 @@ public sealed partial class SceneLoader
         return v.GetBoolean();
     }
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     Vector3 Vec3(JsonElement obj, string name, string path, Vector3 fallback)
     {
         if (!TryGet(obj, name, out var v)) return fallback;
         return Vec3(v, $"{path}.{name}");
     }
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     Vector3 Vec3(JsonElement v, string path)
     {
         if (v.ValueKind != JsonValueKind.Array || v.GetArrayLength() != 3)
@@ -127,7 +114,6 @@ public sealed partial class SceneLoader
             (float)Number(v[2], $"{path}[2]", -MaxCoordinate, MaxCoordinate));
     }
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     Vector3 Direction(JsonElement e, string path)
     {
         var v = Vec3(e, path);

@@ -1,5 +1,4 @@
 using System.Numerics;
-using System.Runtime.CompilerServices;
 using System.Text.Json;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Spectra;
@@ -9,7 +8,6 @@ namespace SpectralRenderer.Scenes.Loading;
 // Lights: the keys every light has, then its type's own (LightTypes).
 public sealed partial class SceneLoader
 {
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     Light ParseLight(JsonElement e, string path, int index)
     {
         Object(e, path);

@@ -1,5 +1,4 @@
 using System.Globalization;
-using System.Runtime.CompilerServices;
 using System.Text.Json;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Spectra;
@@ -9,7 +8,6 @@ namespace SpectralRenderer.Scenes.Loading;
 // Materials: named under "materials", given inline or as a spectrum name by an object; reflectances checked.
 public sealed partial class SceneLoader
 {
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     Material ParseMaterial(JsonElement e, string path, string name)
     {
         if (e.ValueKind == JsonValueKind.String || e.ValueKind == JsonValueKind.Number || e.ValueKind == JsonValueKind.Array)
@@ -50,7 +48,6 @@ public sealed partial class SceneLoader
     /// for n²(λ) = 1 + Σ B_i·λ²/(λ² − C_i) (λ in µm) (<see cref="RefractiveIndex"/>), or {"spectrum": S} a tabulated n(λ),
     /// each at the band centres.
     /// </summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     (float[] Ior, bool Dispersive) Ior(JsonElement e, string path)
     {
         float[] ior = Const(1.5f);
@@ -131,7 +128,6 @@ public sealed partial class SceneLoader
     /// is refused, as is a value below −1e-9; a maximum in (1, 2) — a fluorescent or glossy sample measured as a
     /// reflectance factor — is rendered as given with a one-line warning.
     /// </summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     TabulatedSpectrum Reflectance(TabulatedSpectrum s, string path)
     {
         if (!s.Covers(_grid.Start, _grid.End)) return s;   // Bands() reports the coverage
@@ -152,7 +148,6 @@ public sealed partial class SceneLoader
     }
 
     /// <summary>A purely diffuse material (m_amb = m_diff, no specular, mirror or transmission lobe).</summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     Material DiffuseMaterial(string name, float[] bands, TabulatedSpectrum? spectrum, Bsdf? bsdf = null) => new()
     {
         Name = name,
@@ -166,7 +161,6 @@ public sealed partial class SceneLoader
         Bsdf = bsdf!,   // null: eq. 2's own view
     };
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     int MaterialOf(JsonElement e, string path, List<Material> materials, Dictionary<string, int> materialIndex)
     {
         var m = Required(e, "material", path);

@@ -1,4 +1,3 @@
-using System.Runtime.CompilerServices;
 using System.Text.Json;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Spectra;
@@ -13,7 +12,6 @@ public sealed partial class SceneLoader
     readonly List<Medium> _media = [];
 
     /// <summary>The medium <paramref name="e"/> at <paramref name="path"/>, added to the scene's media: its index there.</summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     int ParseMedium(JsonElement e, string path)
     {
         Object(e, path);

@@ -1,5 +1,4 @@
 using System.Numerics;
-using System.Runtime.CompilerServices;
 using System.Text.Json;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Geometry;
@@ -20,7 +19,6 @@ public sealed partial class SceneLoader
     /// first. Only files that are found and are .obj or .ply are started; everything else is reported by
     /// <see cref="MeshObject"/> in document order, as before.
     /// </summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     void StartMeshReads(JsonElement root)
     {
         if (!_overrides.LoadMeshes || !TryGet(root, "objects", out var objects) || objects.ValueKind != JsonValueKind.Array) return;
@@ -49,7 +47,6 @@ public sealed partial class SceneLoader
     }
 
     /// <summary>A triangle mesh from an OBJ or PLY file found along the model search path, fitted and transformed.</summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     SceneObject MeshObject(JsonElement e, string path, string name, Matrix4x4 user, int material)
     {
         bool inline = TryGet(e, "inline", out var inlineBlock);
@@ -126,7 +123,6 @@ public sealed partial class SceneLoader
     /// held in the scene (an imported scene's, so a render needs no file): three indices per triangle, one normal and one uv
     /// pair per position.
     /// </summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     TriangleMesh InlineMesh(JsonElement e, string path, string name)
     {
         Object(e, path);
@@ -171,7 +167,6 @@ public sealed partial class SceneLoader
     }
 
     /// <summary>A flat array of numbers in [min, max] whose length is a positive multiple of <paramref name="group"/>.</summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     float[] Floats(JsonElement e, string path, int group, double min, double max)
     {
         if (e.ValueKind != JsonValueKind.Array || e.GetArrayLength() == 0 || e.GetArrayLength() % group != 0)

@@ -1,5 +1,4 @@
 using System.Numerics;
-using System.Runtime.CompilerServices;
 using System.Text.Json;
 using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Geometry;
@@ -12,7 +11,6 @@ public sealed partial class SceneLoader
 {
     static readonly string[] ObjectTypes = ["sphere", "plane", "quad", "box", "mesh", "colorchecker"];
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     void ParseObject(JsonElement e, string path, int index, List<SceneObject> objects, List<Material> materials,
         Dictionary<string, int> materialIndex)
     {
@@ -144,7 +142,6 @@ public sealed partial class SceneLoader
 
     static bool Within(Vector3 p) => Math.Abs(p.X) <= MaxCoordinate && Math.Abs(p.Y) <= MaxCoordinate && Math.Abs(p.Z) <= MaxCoordinate;
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     Vector2 Size2(JsonElement e, string path)
     {
         if (!TryGet(e, "size", out var s)) return Vector2.One;
@@ -160,7 +157,6 @@ public sealed partial class SceneLoader
     }
 
     /// <summary>The Macbeth chart as 24 quads, 4 rows × 6 columns in the standard order, on an optional black frame.</summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     void ColorCheckerChart(JsonElement e, string path, string name, Matrix4x4 user, List<SceneObject> objects, List<Material> materials)
     {
         if (TryGet(e, "material", out _))
@@ -210,7 +206,6 @@ public sealed partial class SceneLoader
 
     /// <summary>A rotation taking the canonical normal (+z, or +y for planes) to <paramref name="normal"/>, with its height axis towards
     /// <paramref name="up"/>.</summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     Matrix4x4 Basis(Vector3 normal, Vector3 up, bool axisIsY, string? path = null)
     {
         if (axisIsY)
@@ -229,7 +224,6 @@ public sealed partial class SceneLoader
         return Rows(xAxis, yAxis, normal);
     }
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     static Matrix4x4 Rows(Vector3 x, Vector3 y, Vector3 z) => new(
         x.X, x.Y, x.Z, 0,
         y.X, y.Y, y.Z, 0,
@@ -238,7 +232,6 @@ public sealed partial class SceneLoader
 
     /// <summary>{"translate": [x,y,z], "rotate": [rx,ry,rz] degrees about x then y then z, "scale": s | [sx,sy,sz]}: scale, then rotate,
     /// then translate; or {"matrix": [16 numbers]} alone.</summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     Matrix4x4 Transform(JsonElement e, string path)
     {
         Object(e, path);
@@ -271,7 +264,6 @@ public sealed partial class SceneLoader
     /// "matrix": 16 numbers, a row-major 4 × 4 matrix M acting on column vectors, p' = M·p (Mitsuba's and pbrt's order): the
     /// last row must be [0, 0, 0, 1] (affine) and M invertible. System.Numerics acts on row vectors, so it holds Mᵀ.
     /// </summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     Matrix4x4 TransformMatrix(JsonElement e, JsonElement mx, string path)
     {
         string where = $"{path}.matrix";

@@ -1,5 +1,4 @@
 using System.Numerics;
-using System.Runtime.CompilerServices;
 using System.Text.Json;
 using SpectralRenderer.Color;
 using SpectralRenderer.Imaging;
@@ -17,7 +16,6 @@ public sealed partial class SceneLoader
     /// direction; it is the scene's background (what escaping rays see), which the path integrator also lights the scene with.
     /// Physical radiometry only; instead of "background".
     /// </summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     float[] ParseSky(JsonElement e)
     {
         const string path = "$.sky";
@@ -53,7 +51,6 @@ public sealed partial class SceneLoader
     /// luminance; the background (what the Whitted integrator sees, and the sky's spectrum in power and summaries) is the
     /// uplift of its solid-angle mean colour.
     /// </summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     float[] ParseEnvironment(JsonElement e, string path)
     {
         var file = String(Required(e, "file", path), $"{path}.file");

@@ -14,7 +14,6 @@ public sealed partial class SceneLoader
     /// A spectrum value: a number (constant), a name (the scene's "spectra" first, then built-ins and
     /// file.csv:column), inline pairs [[λ, v], …], or an object {name|csv+column|values, scale, extrapolate}.
     /// </summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     TabulatedSpectrum Spectrum(JsonElement e, string path)
     {
         RuntimeHelpers.EnsureSufficientExecutionStack();
@@ -100,7 +99,6 @@ public sealed partial class SceneLoader
         return s;
     }
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     TabulatedSpectrum Inline(JsonElement e, string path)
     {
         if (e.ValueKind != JsonValueKind.Array)
@@ -134,7 +132,6 @@ public sealed partial class SceneLoader
     /// <summary>A spectrum as padded band values on the scene's grid (the scheme's projection).</summary>
     float[] Bands(JsonElement e, string path) => Bands(Spectrum(e, path), path);
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     float[] Bands(TabulatedSpectrum s, string path)
     {
         if (!s.Covers(_grid.Start, _grid.End))
@@ -152,12 +149,10 @@ public sealed partial class SceneLoader
         return bands;
     }
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     float[] OptionalBands(JsonElement obj, string name, string path, float[]? fallback = null) =>
         TryGet(obj, name, out var v) ? Bands(v, $"{path}.{name}") : fallback ?? new float[SpectralMath.Padded(_grid.Count)];
 
     float[] Zero() => new float[SpectralMath.Padded(_grid.Count)];
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     float[] Const(float v)
     {
         var a = new float[SpectralMath.Padded(_grid.Count)];
@@ -172,7 +167,6 @@ public sealed partial class SceneLoader
     /// the sigmoid's ends) and Ȳ_I = ∫ȳ·I dλ / ∫ȳ dλ (CIE 1931), so a white [1, 1, 1] is I scaled to luminance factor Y = 1
     /// — Mitsuba 3's and pbrt-v4's illuminant uplift (Mitsuba's MI_CIE_D65_NORMALIZATION is 1/Ȳ of D65). "scale" multiplies.
     /// </summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     TabulatedSpectrum RgbSpectrum(JsonElement e, string path)
     {
         Keys(e, path, "rgb", "illuminant", "scale");

@@ -1,6 +1,5 @@
 using System.Globalization;
 using System.Numerics;
-using System.Runtime.CompilerServices;
 using System.Text.Json;
 using SpectralRenderer.Color;
 using SpectralRenderer.Diagnostics;
@@ -24,7 +23,6 @@ public sealed partial class SceneLoader
 
     /// <summary>A texture given where a spectrum is expected: read, checked as a reflectance (an emission's as a radiance), kept
     /// for its material; its mean returned.</summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     TabulatedSpectrum TextureSpectrum(JsonElement e, string path)
     {
         bool emission = path.EndsWith(".emission.spectrum", StringComparison.Ordinal);
@@ -79,7 +77,6 @@ public sealed partial class SceneLoader
         return binding;
     }
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     SpectralTexture ReadTexture(JsonElement e, string path)
     {
         var t = Required(e, "texture", path);
@@ -142,7 +139,6 @@ public sealed partial class SceneLoader
 
     /// <summary>Single-band PNGs (8 or 16 bit, grey, linear: value / (2^bits − 1)), one per wavelength of "wavelengths":
     /// a list of files, or one pattern whose "{nm}" is each wavelength.</summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     SpectralTexture PngStack(JsonElement t, JsonElement e, string path)
     {
         var wl = Required(e, "wavelengths", path);
@@ -266,7 +262,6 @@ public sealed partial class SceneLoader
 
     /// <summary>"uv_transform": {"scale": s | [su, sv], "offset": [ou, ov], "rotation": degrees, "wrap": "repeat" | "clamp" |
     /// "mirror"}.</summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     UvTransform UvTransformOf(JsonElement e, string path)
     {
         Object(e, path);

@@ -1,6 +1,5 @@
 using System.Globalization;
 using System.Numerics;
-using System.Runtime.CompilerServices;
 using System.Text.Json;
 using System.Text.Json.Nodes;
 using SpectralRenderer.Color;
@@ -60,7 +59,6 @@ public sealed partial class SceneLoader
         _overrides = overrides;
     }
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     public static Scene Load(string path, SceneOverrides? overrides = null)
     {
         return Parse(InputFile.ReadAllBytes(path, "scene file"), path, overrides ?? new SceneOverrides());
@@ -74,7 +72,6 @@ public sealed partial class SceneLoader
         return buffer.ToArray();
     }
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     public static Scene Parse(byte[] utf8, string path, SceneOverrides? overrides = null)
     {
         var span = utf8.AsSpan();
@@ -119,7 +116,6 @@ public sealed partial class SceneLoader
 
     /// <summary>A scene file is UTF-8: any other encoding (Latin-1, UTF-16 without a byte order mark) is named at its first bad
     /// byte.</summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     static void CheckUtf8(ReadOnlySpan<byte> span, string path)
     {
         if (System.Text.Unicode.Utf8.IsValid(span)) return;
@@ -144,7 +140,6 @@ public sealed partial class SceneLoader
         "spectra", "materials", "lights", "objects", "background", "sky", "ambient", "max_depth", "integrator", "min_ray_weight",
         "ray_budget", "camera", "output", "calculation_grids", "medium"];
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     Scene Build(JsonElement root)
     {
         Object(root, "$");
@@ -311,7 +306,6 @@ public sealed partial class SceneLoader
     }
 
     /// <summary>A scene whose every pixel must be black is almost always a mistake: say so on stderr (the render still runs).</summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     void WarnIfBlack(List<Light> lights, List<Material> materials, List<SceneObject> objects, bool globalAmbient, bool background)
     {
         if (background) return;
@@ -336,7 +330,6 @@ public sealed partial class SceneLoader
     /// The scene as the manifest records it: the fields the renderer read, with the named spectra it used.
     /// "name" and "description" are short strings; named spectra nothing refers to are left out.
     /// </summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     JsonObject Resolved(JsonElement root)
     {
         var o = new JsonObject();
@@ -374,7 +367,6 @@ public sealed partial class SceneLoader
     string Where(string path) => _locator.Locate(path) is { } pos ? $"{_file}:{pos}: {path}" : $"{_file}: {path}";
 
     /// <summary>The band grid: --wave or --bands, else the scene's "wave" (centres) or "bands" (edges), else 380:780:20.</summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     BandGrid ParseBands(JsonElement root)
     {
         if (_overrides.Wave is not null && _overrides.Bands is not null)
@@ -396,7 +388,6 @@ public sealed partial class SceneLoader
         return hasBands ? ParseGrid(bands, "$.bands") : BandGrid.Default;
     }
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     BandGrid ParseGrid(JsonElement e, string path)
     {
         if (e.ValueKind != JsonValueKind.String)
@@ -405,7 +396,6 @@ public sealed partial class SceneLoader
         return BandGrid.Parse(e.GetString()!, Where(path));
     }
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     BandIntegration ParseIntegration(string? fromCli, JsonElement root)
     {
         if (fromCli is not null) return ParseIntegration(fromCli, "--integration");
@@ -413,10 +403,8 @@ public sealed partial class SceneLoader
         return ParseIntegration(String(e, "$.integration"), Where("$.integration"));
     }
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     static BandIntegration ParseIntegration(string s, string where) => BandIntegrations.Parse(s, where);
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     void CheckFramebuffer(Camera camera)
     {
         long bytes = (long)camera.Width * camera.Height * _grid.Count * sizeof(float);
@@ -431,7 +419,6 @@ public sealed partial class SceneLoader
 
     static string Size(long bytes) => bytes >= 1L << 30 ? $"{bytes / (double)(1L << 30):0.#} GiB" : $"{bytes / (double)(1L << 20):0.#} MiB";
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     OutputOptions ParseOutput(JsonElement root)
     {
         var o = new OutputOptions();
@@ -479,7 +466,6 @@ public sealed partial class SceneLoader
         return o;
     }
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     static ExrCompressionChoice ParseExrCompression(string name, string where)
     {
         var n = name.ToLowerInvariant();
@@ -489,7 +475,6 @@ public sealed partial class SceneLoader
                 ?? "zip (deflate where samples repeat), zip-all (smallest file) or none");
     }
 
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     public static OutputProducts ParseFormats(IEnumerable<string> names, string where)
     {
         var set = OutputProducts.None;
