@@ -31,6 +31,10 @@ Exit 0 when it ran (the bars are printed, not enforced), 2 on bad input (an unsu
 imports it (`spectral render FILE.xml`, scenes/…/docs/import.md) — with only the film (its size; Mitsuba's becomes a
 `specfilm` of box bands) and the sampler (sample count, seed) rewritten in a copy, so what is compared is the importer's
 conversion of everything else. Our bands: --xml-bands (380:780:20). Also prints BAND lines (every region × band).
+
+Part 1 also prints a TOTAL line per region: the radiance over the band range of ours and of Mitsuba's, their relative
+difference and its standard error (the points of `spectral validate --mitsuba PYTHON`, which runs this script). --spectral
+is our CLI: a spectral.dll (run by dotnet) or an executable.
 """
 import argparse
 import glob
@@ -60,6 +64,12 @@ def find_llvm():
         if m and int(m.group(1)) >= 17 and (best is None or int(m.group(1)) > best[0]):
             best = (int(m.group(1)), p)
     return best[1] if best else None
+
+
+def spectral_command(args):
+    """Our CLI: `dotnet spectral.dll` for a framework-dependent build's dll, else the executable itself (the apphost, a
+    published or Native AOT binary), as `spectral validate --mitsuba` passes its own."""
+    return ["dotnet", args.spectral] if args.spectral.endswith(".dll") else [args.spectral]
 
 
 # ---------------------------------------------------------------- scene JSON (comments and trailing commas allowed)
@@ -155,7 +165,7 @@ def ours_render(args, scene, width, height, spp, seed, out):
     if args.spectral_grid:
         integ["spectral_grid"] = args.spectral_grid
     s["integrator"] = integ
-    cmd = ["dotnet", args.spectral, "render", "-", "-o", out, "--width", str(width), "--height", str(height),
+    cmd = [*spectral_command(args), "render", "-", "-o", out, "--width", str(width), "--height", str(height),
            "--spp", str(spp), "--formats", "npy,aov", "--quiet"]
     r = subprocess.run(cmd, input=json.dumps(s), text=True, capture_output=True, cwd=os.path.dirname(args.scene))
     if r.returncode != 0:
@@ -368,7 +378,7 @@ def ours_render_xml(args, width, height, spp, seed, out, work):
     import numpy as np
     copy = xml_copy(args.xml, width, height, spp, seed, None, work, f"ours{seed}")
     try:
-        cmd = ["dotnet", args.spectral, "render", copy, "-o", out, "--bands", args.xml_bands, "--formats", "npy,aov", "--quiet"]
+        cmd = [*spectral_command(args), "render", copy, "-o", out, "--bands", args.xml_bands, "--formats", "npy,aov", "--quiet"]
         r = subprocess.run(cmd, text=True, capture_output=True)
     finally:
         os.remove(copy)
@@ -480,6 +490,13 @@ def main():
         b = int(np.argmax(np.abs(rel)))
         for j in range(nb):   # machine-readable, every band (the importer's Interop test)
             band_lines.append(f"BAND region={name.replace(' ', '_')} band={j + 1} rel={rel[j]:.6f} se={se[j]:.6f}")
+        # The region's radiance over the band range, ∫L dλ = Σ band mean × width (W·m⁻²·sr⁻¹), each part's; Mitsuba/ours − 1
+        # and its standard error from the parts as above (`spectral validate --mitsuba`'s points).
+        ot, mt = o @ np.diff(edges), m @ np.diff(edges)
+        tr = mt.mean() / ot.mean() - 1
+        tse = np.sqrt((ot.std(ddof=1) / ot.mean()) ** 2 + (mt.std(ddof=1) / ot.mean()) ** 2) / np.sqrt(parts)
+        band_lines.append(f"TOTAL region={name.replace(' ', '_')} pixels={int(mask.sum())} ours={ot.mean():.9g} "
+                          f"mitsuba={mt.mean():.9g} rel={tr:.6f} se={tse:.6f}")
         rows.append((name, int(mask.sum()), float(rel[b]), int(b), float(se[b]), float(np.mean(rel))))
         worst_band = np.maximum(worst_band, np.abs(rel))
         if abs(rel[b]) > abs(worst[0]):

@@ -1381,6 +1381,24 @@ s["objects"].append({"type": "mesh", "inline": {"positions": [0, 0, 0, 1, 0, 0, 
                      "material": "green", "medium": {"sigma_a": 1}})
 scene_case("medium-on-open-mesh", s, r"\$\.objects\[1\]\.medium: object '.*' is not closed")
 
+# ---- The CIE overcast sky (issue 43): "sky": { "type": "daylight", "distribution": "cie-overcast", "zenith": … }; an unknown
+# distribution, a zenith on a uniform sky or of zero length, one line with the JSON path; the whitted integrator refuses it.
+OVERCAST = {"type": "daylight", "cct": 6504, "luminance": 5000, "distribution": "cie-overcast"}
+for label, sky, extra, pat in [
+    ("sky-distribution-unknown", {**OVERCAST, "distribution": "cie-overcst"}, {"integrator": "path"},
+     r"\$\.sky\.distribution: unknown sky distribution 'cie-overcst'.*did you mean 'cie-overcast'"),
+    ("sky-distribution-not-text", {**OVERCAST, "distribution": 1}, {"integrator": "path"}, r"\$\.sky\.distribution"),
+    ("sky-zenith-on-uniform", {**OVERCAST, "distribution": "uniform", "zenith": [0, 0, 1]}, {"integrator": "path"},
+     r"\$\.sky\.zenith: a uniform sky has no zenith"),
+    ("sky-zenith-zero", {**OVERCAST, "zenith": [0, 0, 0]}, {"integrator": "path"}, r"\$\.sky\.zenith: the direction is the zero vector"),
+    ("sky-overcast-whitted", OVERCAST, {}, r"\$\.sky\.distribution: the whitted integrator .* cannot render a CIE overcast sky"),
+]:
+    s = deep(BASE)
+    s["radiometry"] = "physical"
+    s.update(extra)
+    s["sky"] = sky
+    scene_case(label, s, pat)
+
 names = [c["name"] for c in cases]
 assert len(names) == len(set(names)), [x for x in names if names.count(x) > 1]
 with open(os.path.join(HERE, "cases.json"), "w", encoding="utf-8") as f:

@@ -1,3 +1,4 @@
+using System.Numerics;
 using SpectralRenderer.Color;
 using SpectralRenderer.Spectra;
 
@@ -67,6 +68,10 @@ public sealed class Scene
     /// and <see cref="Background"/> is its mean (the Whitted integrator's uniform sky).
     /// </summary>
     public EnvironmentMap? Environment { get; init; }
+    /// <summary>How the daylight sky's radiance varies with direction (<see cref="Background"/> then the zenith's).</summary>
+    public SkyDistribution SkyDistribution { get; init; }
+    /// <summary>The unit direction of the zenith, up (+Y unless the sky names another): where a non-uniform sky is brightest.</summary>
+    public Vector3 Zenith { get; init; } = Vector3.UnitY;
     /// <summary>The participating media of the objects' interiors and of the scene (none in a scene of today).</summary>
     public IReadOnlyList<Medium> Media { get; init; } = [];
     /// <summary>The medium around the objects, where the camera is (an index into <see cref="Media"/>; −1: vacuum).</summary>

@@ -5,7 +5,8 @@ namespace SpectralRenderer.Validation;
 /// <summary>
 /// The closed forms the cases compare against, in double precision and written from their sources, independent of the
 /// engine's code: Lambert's polygon formula for the projected solid angle (form factors of area sources and sky
-/// openings), Gauss–Legendre quadrature (the closed surfaces' flux), and the photometric frame of a type C luminaire.
+/// openings), the CIE overcast sky's illuminances on planes and through openings, Gauss–Legendre quadrature (the closed
+/// surfaces' flux), and the photometric frame of a type C luminaire.
 /// </summary>
 internal static class Closed
 {
@@ -35,6 +36,70 @@ internal static class Closed
     {
         double x = (double)v.X - p.X, y = (double)v.Y - p.Y, z = (double)v.Z - p.Z, l = Math.Sqrt(x * x + y * y + z * z);
         return (x / l, y / l, z / l);
+    }
+
+    /// <summary>
+    /// The CIE standard overcast sky's gradation L(θ)/L_z = (1 + 2 cos θ)/3 above the horizon, 0 below (Moon &amp; Spencer,
+    /// Illuminating Engineering 37, 1942; CIE S 011/E:2003 sky type 1 in its traditional form), θ from the zenith.
+    /// </summary>
+    internal static double Overcast(double cosZenith) => cosZenith > 0 ? (1 + 2 * cosZenith) / 3 : 0;
+
+    /// <summary>
+    /// E_h/L_z on the open ground under the overcast sky: (1/3)∫₀^{2π}∫₀¹ (1 + 2μ)·μ dμ dφ = (2π/3)(1/2 + 2/3) = 7π/9.
+    /// </summary>
+    internal const double OvercastHorizontal = 7 * Math.PI / 9;
+
+    /// <summary>
+    /// E_v/L_z on a vertical plane (black ground): with θ from the zenith and φ from the plane's normal, cos = sin θ cos φ,
+    /// (1/3)∫_{−π/2}^{π/2} cos φ dφ ∫₀^{π/2} (1 + 2 cos θ) sin²θ dθ = (2/3)(π/4 + 2/3) = π/6 + 4/9.
+    /// </summary>
+    internal const double OvercastVertical = Math.PI / 6 + 4.0 / 9;
+
+    /// <summary>
+    /// E/L_z at a point facing up under the overcast sky through a horizontal opening x ∈ [x0, x1], z ∈ [z0, z1] (relative
+    /// to the point) at height h above it: the opening's points at distance r are seen at μ = h/r with dω = μ·dA/r², so
+    /// E/L_z = (1/3)∫∫ (h²/r⁴ + 2h³/r⁵) dA, summed over the four corner rectangles with signs (each term even in x and z).
+    /// Over [0, a] × [0, b]: ∫∫ h²/r⁴ dA = ½[a/√(a²+h²)·atan(b/√(a²+h²)) + b/√(b²+h²)·atan(a/√(b²+h²))] (π × the
+    /// configuration factor to a parallel rectangle), and with Ω(h) = atan(ab/(hR)), R = √(a²+b²+h²), the solid angle
+    /// (∫∫ h/r³ dA), ∫∫ h³/r⁵ dA = −(h²/3)·d(Ω/h)/dh = [Ω + h·ab(a²+b²+2h²)/(R(a²+h²)(b²+h²))]/3.
+    /// </summary>
+    internal static double OvercastRoof(double h, double x0, double x1, double z0, double z1) =>
+        (Corner(x1, z1, h) - Corner(x0, z1, h) - Corner(x1, z0, h) + Corner(x0, z0, h)) / 3;
+
+    /// <summary>The roof opening's ∫∫ (h²/r⁴ + 2h³/r⁵) dA over [0, a] × [0, b], odd in a and in b.</summary>
+    static double Corner(double a, double b, double h)
+    {
+        double sign = Math.Sign(a) * Math.Sign(b);
+        a = Math.Abs(a);
+        b = Math.Abs(b);
+        if (a == 0 || b == 0) return 0;
+        double ah = Math.Sqrt(a * a + h * h), bh = Math.Sqrt(b * b + h * h), r = Math.Sqrt(a * a + b * b + h * h);
+        double parallel = 0.5 * (a / ah * Math.Atan(b / ah) + b / bh * Math.Atan(a / bh));
+        double omega = Math.Atan(a * b / (h * r));
+        double cubed = (omega + h * a * b * (a * a + b * b + 2 * h * h) / (r * ah * ah * bh * bh)) / 3;
+        return sign * (parallel + 2 * cubed);
+    }
+
+    /// <summary>
+    /// E/L_z at a point facing up under the overcast sky (or a uniform sky, <paramref name="overcast"/> false: E/L) through a
+    /// vertical opening in a wall at distance d in front of it, x ∈ [x0, x1] along the wall from the foot of the perpendicular
+    /// and heights y ∈ [y0, y1] above the point (y0 ≥ 0). In the azimuth φ from the wall's normal and the elevation α,
+    /// dω = cos α dα dφ, the receiver's cosine and the sky's cos θ are both s = sin α, and the opening spans φ ∈ [atan(x0/d),
+    /// atan(x1/d)], s from s(y0) to s(y1), s(y) = y·cos φ/√(d² + y²cos²φ); the inner integral is exact,
+    /// ∫ (1 + 2s)/3 · s ds = (s²/2 + 2s³/3)/3 (uniform: s²/2), the outer by 64-point Gauss–Legendre (a smooth integrand).
+    /// </summary>
+    internal static double SkyWindow(double d, double x0, double x1, double y0, double y1, bool overcast)
+    {
+        double Inner(double s) => overcast ? (s * s / 2 + 2 * s * s * s / 3) / 3 : s * s / 2;
+        double S(double y, double c) => y * c / Math.Sqrt(d * d + y * y * c * c);
+        var (phi, w) = GaussLegendre(64, Math.Atan(x0 / d), Math.Atan(x1 / d));
+        double sum = 0;
+        for (int i = 0; i < phi.Length; i++)
+        {
+            double c = Math.Cos(phi[i]);
+            sum += w[i] * (Inner(S(y1, c)) - Inner(S(y0, c)));
+        }
+        return sum;
     }
 
     /// <summary>The four corners of a rectangle (centre, width along <paramref name="right"/>, height along

@@ -32,7 +32,7 @@ public sealed class ValidationCase
 {
     /// <summary>The case's name (lower-case words and '-'), what `--case` selects.</summary>
     public required string Name { get; init; }
-    /// <summary>lighting, radiometry, colour or camera.</summary>
+    /// <summary>lighting, radiometry, colour, camera, or interop (the comparisons with Mitsuba 3).</summary>
     public required string Group { get; init; }
     /// <summary>One line: what is set up and measured.</summary>
     public required string Title { get; init; }

@@ -19,16 +19,22 @@ public static class ValidationCases
         .. CameraCases.All,
     ];
 
-    /// <summary>The cases named (each once, in the registry's order); an unknown name is bad input naming the closest and
-    /// pointing to the list.</summary>
-    public static IReadOnlyList<ValidationCase> Select(IReadOnlyCollection<string> names)
+    /// <summary>The cases named (each once, in the registry's order; none named: all), and with <paramref name="mitsuba"/> the
+    /// comparisons with Mitsuba 3 (<see cref="MitsubaCases"/>) after them; an unknown name is bad input naming the closest
+    /// and pointing to the list, a Mitsuba case without <paramref name="mitsuba"/> bad input asking for it.</summary>
+    public static IReadOnlyList<ValidationCase> Select(IReadOnlyCollection<string> names, MitsubaAnchor? mitsuba = null)
     {
-        if (names.Count == 0) return All;
+        IReadOnlyList<ValidationCase> optional = mitsuba is null ? [] : MitsubaCases.For(mitsuba);
+        if (names.Count == 0) return [.. All, .. optional];
         foreach (var n in names)
-            if (!All.Any(c => c.Name == n))
+            if (mitsuba is null && MitsubaCases.Names.Contains(n))
+                throw new InputException("--case", $"{MessageText.Quote(n)} compares with Mitsuba 3 and needs --mitsuba PYTHON",
+                    "add --mitsuba PYTHON (a Python that imports mitsuba and numpy: the anchors' venv)");
+        foreach (var n in names)
+            if (!All.Any(c => c.Name == n) && !optional.Any(c => c.Name == n))
                 throw new InputException("--case", $"no validation case is called {MessageText.Quote(n, 60)}",
-                    (InputException.DidYouMean(n, All.Select(c => c.Name)) is { } guess ? guess + " " : "")
+                    (InputException.DidYouMean(n, All.Select(c => c.Name).Concat(MitsubaCases.Names)) is { } guess ? guess + " " : "")
                         + $"('spectral validate --list' names all {All.Count}: {string.Join(", ", All.Select(c => c.Group).Distinct())})");
-        return [.. All.Where(c => names.Contains(c.Name))];
+        return [.. All.Where(c => names.Contains(c.Name)), .. optional.Where(c => names.Contains(c.Name))];
     }
 }

@@ -26,16 +26,16 @@ public static class ValidationReport
     static string G(double v, int digits = 6) => double.IsFinite(v) ? v.ToString("G" + digits, Inv) : "n/a";
 
     /// <summary>Writes the three files into <paramref name="folder"/> (each atomically).</summary>
-    public static void Write(string folder, IReadOnlyList<CaseResult> results, bool quick, string version)
+    public static void Write(string folder, IReadOnlyList<CaseResult> results, bool quick, string version, bool mitsuba = false)
     {
-        AtomicFile.WriteAllText(Path.Combine(folder, Html), ToHtml(results, quick, version));
-        AtomicFile.WriteAllText(Path.Combine(folder, JsonFile), Json(results, quick, version));
+        AtomicFile.WriteAllText(Path.Combine(folder, Html), ToHtml(results, quick, version, mitsuba));
+        AtomicFile.WriteAllText(Path.Combine(folder, JsonFile), Json(results, quick, version, mitsuba));
         AtomicFile.WriteAllText(Path.Combine(folder, Csv), ToCsv(results));
     }
 
     /// <summary>results.json: the version, quick or full, and per case its statement (reference, source, tolerance and
     /// why, statistical), its outcome (max and RMS error, pass, seconds, failure) and its points.</summary>
-    public static string Json(IReadOnlyList<CaseResult> results, bool quick, string version)
+    public static string Json(IReadOnlyList<CaseResult> results, bool quick, string version, bool mitsuba = false)
     {
         using var stream = new MemoryStream();
         using (var w = new Utf8JsonWriter(stream, new JsonWriterOptions { Indented = true }))
@@ -45,6 +45,17 @@ public static class ValidationReport
             w.WriteString("version", version);
             w.WriteBoolean("quick", quick);
             w.WriteBoolean("passed", results.All(r => r.Passed));
+            // The optional comparisons with Mitsuba 3, when they were not asked for: named, and why not.
+            w.WriteStartArray("not_run");
+            if (!mitsuba)
+                foreach (var n in MitsubaCases.Names)
+                {
+                    w.WriteStartObject();
+                    w.WriteString("name", n);
+                    w.WriteString("why", NotRun);
+                    w.WriteEndObject();
+                }
+            w.WriteEndArray();
             w.WriteStartArray("cases");
             foreach (var r in results)
             {
@@ -110,8 +121,11 @@ public static class ValidationReport
 
     static string E(string s) => WebUtility.HtmlEncode(s);
 
+    /// <summary>Why the comparisons with Mitsuba 3 are not in a report run without <c>--mitsuba</c>.</summary>
+    const string NotRun = "not run: each needs --mitsuba PYTHON (a Python that imports mitsuba and numpy)";
+
     /// <summary>report.html.</summary>
-    public static string ToHtml(IReadOnlyList<CaseResult> results, bool quick, string version)
+    public static string ToHtml(IReadOnlyList<CaseResult> results, bool quick, string version, bool mitsuba = false)
     {
         int passed = results.Count(r => r.Passed);
         var sb = new StringBuilder();
@@ -138,6 +152,8 @@ public static class ValidationReport
                 + "measures it with the engine and compares it point by point with a reference computed independently in closed "
                 + "form or from a published table. A sampled (Monte Carlo) case passes when every point is within its tolerance "
                 + "and within 3σ of its reference (σ the standard error of the estimate).</p>\n")
+            .Append(mitsuba ? "" : $"<p id=\"not-run\">The comparisons with Mitsuba 3 ({string.Join(", ", MitsubaCases.Names)}): "
+                + $"{E(NotRun)}.</p>\n")
             .Append("<table id=\"cases\">\n<tr><th>case</th><th>group</th><th>reference</th><th>tolerance</th><th>max |error|</th>"
                 + "<th>RMS error</th><th>max σ</th><th>time (s)</th><th>result</th></tr>\n");
         foreach (var r in results)

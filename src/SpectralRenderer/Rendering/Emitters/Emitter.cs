@@ -17,8 +17,9 @@ internal readonly record struct EmitterSample(Vector3 Direction, float Distance,
 /// Next-event estimation draws from <see cref="Sample"/>; a BSDF-sampled ray that hits the emitter (or escapes, for the
 /// sky) is weighted by multiple importance sampling with <see cref="Pdf"/>, the density of the same draw (Veach 1997, §9.2).
 /// The kinds: a scene light (<see cref="SceneLightEmitter"/>: point, spot, directional, goniometric — delta, never hit),
-/// an emitting object (<see cref="ShapeEmitter"/>: any shape kind) and the sky (<see cref="SkyEmitter"/>, uniform, or
-/// <see cref="EnvironmentEmitter"/>, an image whose radiance the caller looks up per direction).
+/// an emitting object (<see cref="ShapeEmitter"/>: any shape kind) and the sky (<see cref="SkyEmitter"/>, uniform;
+/// <see cref="OvercastSkyEmitter"/>, the CIE overcast sky, whose <see cref="Emitted"/> of an escaping ray's direction is the
+/// factor on its radiance; or <see cref="EnvironmentEmitter"/>, an image whose radiance the caller looks up per direction).
 /// </summary>
 internal abstract class Emitter(float[] radiance, SubBandTexture? texture = null)
 {

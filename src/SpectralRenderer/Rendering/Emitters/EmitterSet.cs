@@ -1,3 +1,4 @@
+using System.Numerics;
 using System.Runtime.CompilerServices;
 using SpectralRenderer.Scenes;
 
@@ -8,7 +9,9 @@ namespace SpectralRenderer.Rendering.Emitters;
 /// scene lights in their order (index k is <c>Scene.Lights[k]</c>), then the emitting objects in object order, then the
 /// sky if the background is not black. Next-event estimation chooses one by <see cref="Choose"/> with probability
 /// <see cref="SelectionPdf"/>, and a surface hit finds its emitter by its object (<see cref="OfObject"/>), an escaping ray the
-/// sky's (<see cref="Sky"/>: a uniform <see cref="SkyEmitter"/>, or an <see cref="EnvironmentEmitter"/> for an image sky). A new kind of
+/// sky's (<see cref="Sky"/>: a uniform <see cref="SkyEmitter"/>, a CIE overcast <see cref="OvercastSkyEmitter"/> — whose
+/// escaping rays see the factor <see cref="Emitter.Emitted"/> of their direction on its radiance —, or an
+/// <see cref="EnvironmentEmitter"/> for an image sky). A new kind of
 /// emitter plugs in as one file (a subclass of <see cref="Emitter"/>) and one line here; a new scene light kind or emissive shape kind
 /// needs not even that (a <see cref="Light"/> subclass, a registered shape).
 /// <para>
@@ -58,7 +61,9 @@ internal sealed class EmitterSet
         if (Spectra.SpectralMath.Any(scene.Background))
         {
             Sky = emitters.Count;
-            emitters.Add(scene.Environment is { } map ? Environment = new EnvironmentEmitter(map, grid) : new SkyEmitter(Background));
+            emitters.Add(scene.Environment is { } map ? Environment = new EnvironmentEmitter(map, grid)
+                : scene.SkyDistribution == SkyDistribution.CieOvercast ? new OvercastSkyEmitter(Background, scene.Zenith)
+                : new SkyEmitter(Background));
         }
         _emitters = [.. emitters];
         Widths = new double[grid.Count];
@@ -124,8 +129,16 @@ internal sealed class EmitterSet
     /// <summary>The sky's environment map (its radiance varies with direction: <see cref="EnvironmentEmitter.Lookup"/>), or null.</summary>
     public EnvironmentEmitter? Environment { get; }
 
-    /// <summary>The background radiance on the sub-band grid (what a camera ray that escapes sees; black without a sky).</summary>
+    /// <summary>The background radiance on the sub-band grid (what a camera ray that escapes sees, × <see cref="SkySeen"/>; black
+    /// without a sky).</summary>
     public float[] Background { get; }
+
+    /// <summary>
+    /// The factor on the sky's radiance of a ray that escapes in direction <paramref name="direction"/> (the sky's
+    /// <see cref="Emitter.Emitted"/>: 1 for a uniform sky and an environment map, whose radiance is looked up instead).
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public float SkySeen(Vector3 direction) => Sky >= 0 ? _emitters[Sky].Emitted(default, -direction) : 1;
 
     /// <summary>The emitter of scene object <paramref name="obj"/> (its index), or −1 when it emits nothing.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]

@@ -360,10 +360,10 @@ public sealed class Illuminance
                     value += Math.PI * _gatherLuminance[k] * seen * (pc * pc / (pc * pc + pe * pe));
                 }
             }
-            else if (set.Sky is int sky and >= 0 && _gatherLuminance[sky] > 0)
+            else if (set.Sky is int sky and >= 0 && _gatherLuminance[sky] > 0 && set.SkySeen(wi) is var seen and > 0)
             {
                 double pe = set[sky].Pdf(p, n, wi, default, default);
-                value += Math.PI * _gatherLuminance[sky] * (pc * pc / (pc * pc + pe * pe));
+                value += Math.PI * _gatherLuminance[sky] * seen * (pc * pc / (pc * pc + pe * pe));
             }
             integrator.Reflected(new CameraSample(x, y, count, ray, settings), radiance.AsSpan(0, _scene.PaddedBands), scratch,
                 ref counters);

@@ -284,12 +284,12 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
                 if (!reached)
                 {
                     // The ray escapes: the sky (background) radiance, MIS-weighted against its own sampling; an environment
-                    // map's of the ray's direction.
+                    // map's of the ray's direction, a CIE overcast sky's times its gradation there (EmitterSet.SkySeen).
                     if (depth == 0)
                     {
                         if (sink.FirstEmission)
                             sink.Emitted(beta, _environment is null ? _background : _environment.Lookup(ray.Direction, SkyScratch(scratch)),
-                                1);
+                                _emitters.SkySeen(ray.Direction));
                     }
                     else if (_emitters.Sky is int s and >= 0)
                     {
@@ -297,7 +297,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
                         float w = deltaBounce ? 1 : PowerHeuristic(bsdfPdf,
                             _emitters.SelectionPdf(s) * sky.Pdf(previous, previousFront, ray.Direction, default, default));
                         sink.Emitted(beta, _environment is null ? sky.Radiance : _environment.Lookup(ray.Direction, SkyScratch(scratch)),
-                            w);
+                            w * sky.Emitted(default, -ray.Direction));
                     }
                     break;
                 }

@@ -36,6 +36,11 @@ internal sealed partial class WhittedIntegrator : IPacketIntegrator, IAnalysisIn
 
     public WhittedIntegrator(Scene scene, SceneGeometry geometry)
     {
+        // Eq. 2 has no sky term: Whitted's escaping rays see a uniform background, which a sky that varies with direction is not.
+        if (scene.SkyDistribution != SkyDistribution.Uniform && SpectralMath.Any(scene.Background))
+            throw new InputException($"{scene.SourcePath}: $.sky.distribution",
+                "the whitted integrator sees the sky as one uniform background and cannot render a CIE overcast sky",
+                "render it with \"integrator\": \"path\" in the scene, or --integrator path");
         _scene = scene;
         _geometry = geometry;
         _materials = scene.Materials.ToArray();

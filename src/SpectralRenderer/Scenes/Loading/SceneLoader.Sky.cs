@@ -1,6 +1,7 @@
 using System.Numerics;
 using System.Text.Json;
 using SpectralRenderer.Color;
+using SpectralRenderer.Diagnostics;
 using SpectralRenderer.Imaging;
 using SpectralRenderer.Spectra;
 
@@ -10,11 +11,13 @@ namespace SpectralRenderer.Scenes.Loading;
 public sealed partial class SceneLoader
 {
     /// <summary>
-    /// "sky": { "type": "daylight", "cct": K, "luminance": cd/m² | "radiance": W·m⁻²·sr⁻¹·nm⁻¹ at 560 nm } — a uniform sky whose
-    /// spectral radiance is the CIE D-series SPD of that CCT (CIE 015:2018 §4.1.2, S₀ + M₁S₁ + M₂S₂: <see cref="CieDaylight"/>),
-    /// scaled to the luminance K_m∫V·L dλ or to the spectral radiance at 560 nm (where every D SPD is 100). The same in every
-    /// direction; it is the scene's background (what escaping rays see), which the path integrator also lights the scene with.
-    /// Physical radiometry only; instead of "background".
+    /// "sky": { "type": "daylight", "cct": K, "luminance": cd/m² | "radiance": W·m⁻²·sr⁻¹·nm⁻¹ at 560 nm, "distribution":
+    /// "uniform" | "cie-overcast", "zenith": [x, y, z] } — a sky whose spectral radiance is the CIE D-series SPD of that CCT
+    /// (CIE 015:2018 §4.1.2, S₀ + M₁S₁ + M₂S₂: <see cref="CieDaylight"/>), scaled to the luminance K_m∫V·L dλ or to the spectral
+    /// radiance at 560 nm (where every D SPD is 100). Uniform (the default): the same in every direction. CIE overcast
+    /// (<see cref="SkyDistribution.CieOvercast"/>): the luminance or radiance given is the zenith's, L(θ) = L_z·(1 + 2 cos θ)/3
+    /// above the horizon and nothing below, the zenith +Y unless "zenith" turns it. It is the scene's background (what escaping
+    /// rays see), which the path integrator also lights the scene with. Physical radiometry only; instead of "background".
     /// </summary>
     float[] ParseSky(JsonElement e)
     {
@@ -22,7 +25,7 @@ public sealed partial class SceneLoader
         Object(e, path);
         bool map = TryGet(e, "type", out var t) && t.ValueKind == JsonValueKind.String && t.GetString() == "envmap";
         if (map) Keys(e, path, "type", "file", "scale", "transform");
-        else Keys(e, path, "type", "cct", "luminance", "radiance");
+        else Keys(e, path, "type", "cct", "luminance", "radiance", "distribution", "zenith");
         if (_radiometry != Radiometry.Physical)
             throw Error(path, "a sky is a spectral radiance (W·m⁻²·sr⁻¹·nm⁻¹) and needs physical radiometry",
                 "add \"radiometry\": \"physical\" to the scene (and render it with \"integrator\": \"path\")");
@@ -32,6 +35,7 @@ public sealed partial class SceneLoader
             throw Error($"{path}.type", $"unknown sky type '{type}'",
                 "the sky types are: daylight (a CIE daylight by \"cct\"), envmap (a lat-long image by \"file\")");
         double cct = Number(e, "cct", path, 6504, CieDaylight.MinKelvin, CieDaylight.MaxKelvin);
+        _skyDistribution = ParseDistribution(e, path);
         bool luminance = TryGet(e, "luminance", out _), radiance = TryGet(e, "radiance", out _);
         if (luminance == radiance)
             throw Error(path, luminance ? "gives both \"luminance\" and \"radiance\"" : "needs \"luminance\" or \"radiance\"",
@@ -40,6 +44,38 @@ public sealed partial class SceneLoader
         // Every D SPD is exactly 100 at 560 nm (S₁ = S₂ = 0 there), so radiance k is the factor k/100.
         double scale = radiance ? Number(e, "radiance", path, 0, 0) / 100 : Number(e, "luminance", path, 0, 0) / Photometry.Luminous(spd);
         return Bands(spd.Scaled(scale), path);
+    }
+
+    SkyDistribution _skyDistribution;
+    Vector3 _zenith = Vector3.UnitY;
+
+    /// <summary>The names of <see cref="SkyDistribution"/> in a scene file.</summary>
+    static readonly (string Name, SkyDistribution Value)[] Distributions =
+        [("uniform", SkyDistribution.Uniform), ("cie-overcast", SkyDistribution.CieOvercast)];
+
+    /// <summary>"distribution" (uniform unless given) and, for a sky that varies with direction, "zenith" (+Y unless given).</summary>
+    [MethodImpl(MethodImplOptions.NoOptimization)]
+    SkyDistribution ParseDistribution(JsonElement e, string path)
+    {
+        var distribution = SkyDistribution.Uniform;
+        if (TryGet(e, "distribution", out var d))
+        {
+            var name = String(d, $"{path}.distribution");
+            var known = Distributions.Select(k => k.Name).ToArray();
+            int i = Array.IndexOf(known, name);
+            if (i < 0)
+                throw Error($"{path}.distribution", $"unknown sky distribution '{name}'",
+                    InputException.DidYouMean(name, known) ?? "the distributions are: uniform (the same luminance everywhere), "
+                    + "cie-overcast (the CIE standard overcast sky, \"luminance\" its zenith's)");
+            distribution = Distributions[i].Value;
+        }
+        if (TryGet(e, "zenith", out var z))
+        {
+            if (distribution == SkyDistribution.Uniform)
+                throw Error($"{path}.zenith", "a uniform sky has no zenith", "drop \"zenith\", or give \"distribution\": \"cie-overcast\"");
+            _zenith = Direction(z, $"{path}.zenith");
+        }
+        return distribution;
     }
 
     EnvironmentMap? _environment;

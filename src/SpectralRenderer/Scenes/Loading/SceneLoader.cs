@@ -290,6 +290,8 @@ public sealed partial class SceneLoader
             Objects = objects,
             Background = background,
             Environment = _environment,
+            SkyDistribution = _skyDistribution,
+            Zenith = _zenith,
             Media = _media,
             Medium = sceneMedium,
             GlobalAmbient = ambient,
