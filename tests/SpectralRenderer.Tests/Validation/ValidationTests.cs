@@ -11,6 +11,7 @@ namespace SpectralRenderer.Tests.Validation;
 public class ValidationTests(Xunit.Abstractions.ITestOutputHelper output)
 {
     [Fact]
+    [Trait("Category", "Slow")]   // ~35 s (minutes with SIMD off); .ci/run also runs `spectral validate --quick` itself
     public void Validate_quick_passes_every_case_and_writes_a_self_contained_report_json_and_csv()
     {
         var dir = Path.Combine(Reference.TempDir(), "validation");
