@@ -736,6 +736,7 @@ for label, name, data, pat in [
     ("envmap-too-small", "tiny.pfm", pfm(2, 2, [1.0] * 12), r"is 2 × 2 pixels"),
 ]:
     envmap_case(label, name, data, pat, place=JSONPLACE, file="")
+write("wide.pfm", pfm(4, 3, [1.0] * 36))   # also the pbrt cases' non-square infinite light
 scene = deep(ENVSCENE)
 scene["sky"] = {"type": "envmap", "file": "no-such-sky.hdr"}
 scene_case("envmap-missing", scene, r"environment map 'no-such-sky\.hdr' not found")
@@ -1303,6 +1304,10 @@ for label, text, pat, place in [
     ("projective-transform", 'Transform [ 1 0 0 1  0 1 0 0  0 0 1 0  0 0 0 1 ]\nWorldBegin\nShape "sphere"\n', r"a projective matrix",
      r"\.pbrt:1:1: "),
     ("missing-include", 'WorldBegin\nInclude "nothere.pbrt"\nShape "sphere"\n', r"nothere\.pbrt", r"\.pbrt:2:1: "),
+    ("infinite-not-square", 'WorldBegin\nLightSource "infinite" "string filename" "wide.pfm"\nShape "sphere"\n',
+     r"'wide\.pfm' is 4 × 3 pixels.*makeequiarea", r"\.pbrt:2:1: "),
+    ("infinite-png", 'WorldBegin\nLightSource "infinite" "string filename" "sky.png"\nShape "sphere"\n',
+     r"must be OpenEXR, PFM or Radiance.*--lenient", r"\.pbrt:2:1: "),
 ]:
     fname = write(f"pbrt-{label}.pbrt", text)
     case(f"pbrt/{label}", render("{in}/" + fname), pat, 2, fname, place)
@@ -1380,6 +1385,14 @@ s["objects"].append({"type": "mesh", "inline": {"positions": [0, 0, 0, 1, 0, 0, 
                                                  "indices": [0, 2, 1, 0, 1, 3, 0, 3, 2]},
                      "material": "green", "medium": {"sigma_a": 1}})
 scene_case("medium-on-open-mesh", s, r"\$\.objects\[1\]\.medium: object '.*' is not closed")
+
+# Environment maps in pbrt-v4's equal-area layout ("mapping": "equal-area"; after the others, so their numbers stay).
+scene = deep(ENVSCENE)
+scene["sky"] = {"type": "envmap", "file": "wide.pfm", "mapping": "equal-area"}
+scene_case("envmap-equal-area-not-square", scene, r"wide\.pfm is 4 × 3 pixels.*equal-area map .* is square", file="")
+scene = deep(ENVSCENE)
+scene["sky"] = {"type": "envmap", "file": "wide.pfm", "mapping": "octahedral"}
+scene_case("envmap-unknown-mapping", scene, r"unknown mapping 'octahedral'.*equal-area", file="")
 
 names = [c["name"] for c in cases]
 assert len(names) == len(set(names)), [x for x in names if names.count(x) > 1]

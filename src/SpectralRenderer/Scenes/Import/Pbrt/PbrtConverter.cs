@@ -31,6 +31,7 @@ public sealed partial class PbrtConverter
     PbrtTransform _world = PbrtTransform.Identity;
 
     JsonNode? _background;
+    JsonObject? _sky;   // an image infinite light: our envmap sky
 
     public PbrtConverter(string path, ImportOptions options)
     {
@@ -68,6 +69,7 @@ public sealed partial class PbrtConverter
             ["camera"] = camera,
         };
         if (_background is not null) scene["background"] = _background;
+        if (_sky is not null) scene["sky"] = _sky;
         if (_spectra.Count > 0) scene["spectra"] = _spectra;
         scene["materials"] = _materials;
         scene["lights"] = _lights;
