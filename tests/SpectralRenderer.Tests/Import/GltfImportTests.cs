@@ -132,6 +132,73 @@ public class GltfImportTests(ITestOutputHelper output)
         }
     }
 
+    /// <summary>The code of the quadrants texture at glTF texture coordinates (u, v) (v down, the image's top row at v = 0),
+    /// repeating.</summary>
+    static int QuadrantCode(double u, double v)
+    {
+        u -= Math.Floor(u);
+        v -= Math.Floor(v);
+        return v < 0.5 ? (u < 0.5 ? 40 : 100) : (u < 0.5 ? 160 : 220);
+    }
+
+    [Theory]
+    [InlineData(0.0, 0.0, 0.0, 2.0, 2.0)]           // tiled twice
+    [InlineData(0.5, 0.0, 0.0, 0.5, 0.5)]           // the top right quadrant only
+    [InlineData(0.0, 0.0, Math.PI / 2, 1.0, 1.0)]   // a quarter turn: its direction matters
+    [InlineData(0.0, 1.0, Math.PI / 2, 0.5, 0.5)]   // the extension's example: the lower left quadrant, turned
+    [InlineData(0.25, 0.5, 0.3, 1.5, -0.7)]         // all at once, a mirror in v
+    public void KHR_texture_transform_puts_each_texel_where_the_extension_computes_it(double ou, double ov, double rotation,
+        double su, double sv)
+    {
+        var dir = Reference.TempDir();
+        File.Copy(Repo.PathOf("tests", "SpectralRenderer.Tests", "Import", "quadrants.jpg"), Path.Combine(dir, "quadrants.jpg"));
+        var b = new GltfBuilder();
+        b.Add("images", new JsonObject { ["uri"] = "quadrants.jpg" });
+        b.Add("textures", new JsonObject { ["source"] = 0 });
+        var material = WhiteDiffuser(1);
+        ((JsonObject)material["pbrMetallicRoughness"]!)["baseColorTexture"] = new JsonObject
+        {
+            ["index"] = 0,
+            ["extensions"] = new JsonObject
+            {
+                ["KHR_texture_transform"] = new JsonObject { ["offset"] = A(ou, ov), ["rotation"] = rotation, ["scale"] = A(su, sv) },
+            },
+        };
+        b.Add("materials", material);
+        b.Node(Node(("mesh", b.Square(2, material: 0))));
+        b.Light(new JsonObject { ["type"] = "directional", ["intensity"] = 100.0 });
+        b.Node(Node(("extensions", new JsonObject { ["KHR_lights_punctual"] = new JsonObject { ["light"] = 0 } })));
+        Camera(b, 2 * Math.Atan(0.2));   // the square fills the view: pixel (x, y) of 16 sees glTF uv ((x + ½)/16, (y + ½)/16)
+        var path = b.WriteGltf(Path.Combine(dir, "transformed.gltf"));
+        var scene = Load(Convert(path), path, s =>
+        {
+            var c = (JsonObject)s["camera"]!;
+            c["width"] = 16; c["height"] = 16; c["spp"] = 1;
+        });
+        var xyz = Integrators.Render(scene).Xyz!;
+        int checkedPixels = 0;
+        for (int y = 0; y < 16; y++)
+            for (int x = 0; x < 16; x++)
+            {
+                // The extension's t' = T·R·S·t, R = [[cos, sin], [−sin, cos]] on glTF's v-down map (its example; glTF#1563).
+                double u = (x + 0.5) / 16, v = (y + 0.5) / 16, c = Math.Cos(rotation), sn = Math.Sin(rotation);
+                double tu = c * su * u + sn * sv * v + ou, tv = -sn * su * u + c * sv * v + ov;
+                // Only pixels whose footprint (± a pixel, times the scale) stays inside one quadrant: texture filtering blends edges.
+                double reach = 1.5 / 16 * Math.Max(Math.Abs(su), Math.Abs(sv));
+                int code = QuadrantCode(tu, tv);
+                bool inside = true;
+                foreach (var (du, dv) in new[] { (reach, 0.0), (-reach, 0.0), (0.0, reach), (0.0, -reach) })
+                    inside &= QuadrantCode(tu + du, tv + dv) == code;
+                if (!inside) continue;
+                double k = code / 255.0, rho = k <= 0.04045 ? k / 12.92 : Math.Pow((k + 0.055) / 1.055, 2.4);
+                double expected = 100 * rho / Math.PI, luminance = xyz[(y * 16 + x) * 3 + 1];
+                Assert.True(Math.Abs(luminance - expected) <= 2e-3 * expected,
+                    $"pixel ({x}, {y}): {luminance} vs {expected} for code {code}");
+                checkedPixels++;
+            }
+        Assert.True(checkedPixels >= 12, $"only {checkedPixels} pixels away from the quadrants' edges");
+    }
+
     [Fact]
     public void Node_transforms_compose_down_the_hierarchy_as_computed_by_hand()
     {

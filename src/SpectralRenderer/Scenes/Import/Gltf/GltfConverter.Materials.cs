@@ -284,11 +284,20 @@ sealed partial class GltfConverter
         var infoPath = $"{pbrPath}.baseColorTexture";
         doc.Object(info, infoPath);
         int t = doc.Index(info, "index", infoPath, "textures", required: true);
-        if (doc.Number(info, "texCoord", infoPath, 0, 0, 64) != 0)
+        double texCoord = doc.Number(info, "texCoord", infoPath, 0, 0, 64);
+        JsonObject? uvTransform = null;
+        if (GltfDocument.Has(info, "extensions", out var ie) && GltfDocument.Has(ie, "KHR_texture_transform", out var tt))
+        {
+            var ttPath = $"{infoPath}.extensions.KHR_texture_transform";
+            doc.Object(tt, ttPath);
+            texCoord = doc.Number(tt, "texCoord", ttPath, texCoord, 0, 64);   // overrides the textureInfo's
+            uvTransform = TextureTransform(tt, ttPath);
+            Note("converted", ttPath, $"material {name} texture transform",
+                "offset, rotation and scale as our uv_transform, carried into our v-up texture coordinates");
+        }
+        if (texCoord != 0)
             Note("approximated", $"{infoPath}.texCoord", "texture coordinates",
                 "TEXCOORD_0 is used (our meshes keep one set)");
-        if (GltfDocument.Has(info, "extensions", out var ie) && GltfDocument.Has(ie, "KHR_texture_transform", out _))
-            Note("ignored", $"{infoPath}.extensions.KHR_texture_transform", "texture transform", "not applied");
         var texPath = $"$.textures[{t}]";
         var texture = doc.Item("textures", t);
         int source = doc.Index(texture, "source", texPath, "images");
@@ -325,10 +334,32 @@ sealed partial class GltfConverter
             if (ws != wt)
                 Note("approximated", sp, "texture wrap", "one wrap mode for u and v: wrapS's");
             var wrap = ws switch { 33071 => "clamp", 33648 => "mirror", _ => "repeat" };
-            if (wrap != "repeat") o["uv_transform"] = new JsonObject { ["wrap"] = wrap };
+            if (wrap != "repeat") (uvTransform ??= [])["wrap"] = wrap;
         }
+        if (uvTransform is not null) o["uv_transform"] = uvTransform;
         Note("uplifted", infoPath, $"material {name} texture", "sRGB texels through the sigmoid uplift");
         return o;
+    }
+
+    /// <summary>
+    /// KHR_texture_transform as our uv_transform. glTF: t' = T·R·S·t in its v-down texture space, R = [[cos r, sin r],
+    /// [−sin r, cos r]] ("counter-clockwise" on the v-down UV map: the extension's example, which takes the lower left quadrant,
+    /// and KhronosGroup/glTF#1563). Our coordinates are F(t) = (u, 1 − v) (the importer flips v), so ours is F·M·F: the same
+    /// scale, R conjugated by the flip — our counter-clockwise rotation by r (uv' = R(r)·(s ⊙ uv) + o) — and the offset
+    /// o = (o_u + sin r·s_v, 1 − o_v − cos r·s_v).
+    /// </summary>
+    JsonObject TextureTransform(JsonElement tt, string path)
+    {
+        var offset = doc.Numbers(tt, "offset", path, [0, 0]);
+        var scale = doc.Numbers(tt, "scale", path, [1, 1]);
+        double r = doc.Number(tt, "rotation", path, 0, -1e6, 1e6);
+        double ou = offset[0] + Math.Sin(r) * scale[1], ov = 1 - offset[1] - Math.Cos(r) * scale[1];
+        return new JsonObject
+        {
+            ["scale"] = new JsonArray(Round(scale[0]), Round(scale[1])),
+            ["offset"] = new JsonArray(Round(ou), Round(ov)),
+            ["rotation"] = Round(r * 180 / Math.PI),
+        };
     }
 
     /// <summary>An image as our texture reference: a PNG or JPEG file's path relative to the asset, or a data: URI (for a
