@@ -200,6 +200,33 @@ public class GltfImportTests(ITestOutputHelper output)
     }
 
     [Fact]
+    public void Alpha_mask_below_the_cutoff_leaves_the_primitive_out_and_other_alpha_is_reported_as_approximated()
+    {
+        var b = new GltfBuilder();
+        JsonObject Mat(string mode, double alpha, double? cutoff = null)
+        {
+            var m = WhiteDiffuser(0.5);
+            ((JsonObject)m["pbrMetallicRoughness"]!)["baseColorFactor"] = A(0.5, 0.5, 0.5, alpha);
+            m["alphaMode"] = mode;
+            if (cutoff is { } c) m["alphaCutoff"] = c;
+            return m;
+        }
+        // glTF 2.0 §3.9.4: MASK shows alpha ≥ cutoff (default 0.5): 0.3 < 0.5 is cut away, 0.3 ≥ 0.25 is shown.
+        b.Add("materials", Mat("MASK", 0.3));
+        b.Add("materials", Mat("MASK", 0.3, 0.25));
+        b.Add("materials", Mat("BLEND", 0.4));
+        for (int m = 0; m < 3; m++) b.Node(Node(("mesh", b.Square(2, material: m)), ("translation", A(3 * m, 0, 0))));
+        Camera(b, 0.5);
+        var path = b.WriteGltf(Path.Combine(Reference.TempDir(), "alpha.gltf"));
+        var imported = Convert(path);
+        Assert.Equal(2, imported.Scene["objects"]!.AsArray().Count);
+        var e = imported.Report.Entries;
+        Assert.Contains(e, x => x.Kind == "converted" && x.Where.EndsWith("$.meshes[0].primitives[0]") && x.Action.StartsWith("left out"));
+        Assert.Contains(e, x => x.Kind == "approximated" && x.Where.EndsWith("$.materials[2].alphaMode") && x.Action.Contains("BLEND"));
+        Assert.DoesNotContain(e, x => x.Where.EndsWith("$.materials[1].alphaMode"));   // 0.3 ≥ 0.25: shown, opaque, exactly
+    }
+
+    [Fact]
     public void Node_transforms_compose_down_the_hierarchy_as_computed_by_hand()
     {
         var b = new GltfBuilder();

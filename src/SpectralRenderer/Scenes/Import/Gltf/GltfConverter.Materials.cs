@@ -26,6 +26,20 @@ sealed partial class GltfConverter
     /// <summary>Fraunhofer lines of the Abbe number V_d = (n_d − 1)/(n_F − n_C): helium d, hydrogen F and C (nm).</summary>
     const double LambdaD = 587.56, LambdaF = 486.13, LambdaC = 656.27;
 
+    /// <summary>Whether glTF material <paramref name="m"/> cuts away all of its primitives: alpha mode MASK, no base colour
+    /// texture and a base colour factor's alpha below alphaCutoff (glTF 2.0 §3.9.4).</summary>
+    bool CutOut(int m)
+    {
+        var path = $"$.materials[{m}]";
+        var mat = doc.Item("materials", m);
+        if ((doc.String(mat, "alphaMode", path) ?? "OPAQUE") != "MASK") return false;
+        double cutoff = doc.Number(mat, "alphaCutoff", path, 0.5, 0);
+        if (!GltfDocument.Has(mat, "pbrMetallicRoughness", out var pbr)) return 1 < cutoff;
+        if (GltfDocument.Has(pbr, "baseColorTexture", out _)) return false;
+        var factor = doc.Numbers(pbr, "baseColorFactor", $"{path}.pbrMetallicRoughness", [1, 1, 1, 1], 0, 1);
+        return factor[3] < cutoff;
+    }
+
     /// <summary>Our material's name for glTF material <paramref name="m"/>, converted on first use.</summary>
     string Material(int m)
     {
@@ -75,9 +89,19 @@ sealed partial class GltfConverter
         ReportExtensions(ext, extPath, name);
         ReportIgnoredTextures(mat, pbr, path, pbrPath, ext, extPath);
         var mode = doc.String(mat, "alphaMode", path) ?? "OPAQUE";
-        if (mode != "OPAQUE" || baseColor[3] < 1)
-            Note("ignored", $"{path}.alphaMode", $"material {name} alpha",
-                $"alpha mode {mode}, base alpha {Round(baseColor[3])}: rendered opaque");
+        double cutoff = doc.Number(mat, "alphaCutoff", path, 0.5, 0);
+        bool textured = GltfDocument.Has(pbr, "baseColorTexture", out _);
+        // glTF 2.0 §3.9.4: OPAQUE ignores alpha; MASK shows a point where alpha (factor × texel) ≥ alphaCutoff; BLEND composites.
+        if (mode == "MASK" && textured)
+            Note("approximated", $"{path}.alphaMode", $"material {name} alpha",
+                $"alpha mode MASK, cutoff {Round(cutoff)}: rendered opaque: our surfaces have no alpha test, so texels whose alpha is "
+                + "below the cutoff are solid");
+        else if (mode == "BLEND")
+            Note("approximated", $"{path}.alphaMode", $"material {name} alpha",
+                $"alpha mode BLEND, base alpha {Round(baseColor[3])}: rendered opaque (no alpha compositing)");
+        else if (mode == "OPAQUE" && baseColor[3] < 1)
+            Note("ignored", $"{path}.baseColorFactor", $"material {name} alpha",
+                $"base alpha {Round(baseColor[3])} with alpha mode OPAQUE: ignored, as glTF asks");
         var texture = BaseColorTexture(pbr, pbrPath, rgb, name);
         double f0 = Math.Pow((ior - 1) / (ior + 1), 2) * specular;
 
