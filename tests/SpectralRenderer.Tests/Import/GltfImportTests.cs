@@ -96,19 +96,17 @@ public class GltfImportTests(ITestOutputHelper output)
     /// their DC exactly at quality 100, so these are the decoded texels.</summary>
     static readonly (int X, int Y, int Code)[] Quadrants = [(3, 3, 40), (12, 3, 100), (3, 12, 160), (12, 12, 220)];
 
-    [Fact]
-    public void A_jpeg_base_colour_texture_renders_the_texel_expected_in_each_quadrant()
+    /// <summary>The quadrants texture on a white 2 m square filling a 16 × 16 view from 5 m (pixel (x, y) sees glTF uv
+    /// ((x + ½)/16, (y + ½)/16)) under 100 lx head-on, with <paramref name="textureInfo"/> as its baseColorTexture: XYZ.</summary>
+    static float[] QuadrantsSquare(JsonObject textureInfo)
     {
-        var jpeg = SpectralRenderer.Imaging.JpegReader.Read(Repo.PathOf("tests", "SpectralRenderer.Tests", "Import", "quadrants.jpg"));
-        foreach (var (x, y, code) in Quadrants) Assert.Equal(code, jpeg.Samples[(2 * y + 1) * 32 + 2 * x + 1]);
-
         var dir = Reference.TempDir();
         File.Copy(Repo.PathOf("tests", "SpectralRenderer.Tests", "Import", "quadrants.jpg"), Path.Combine(dir, "quadrants.jpg"));
         var b = new GltfBuilder();
         b.Add("images", new JsonObject { ["uri"] = "quadrants.jpg" });
         b.Add("textures", new JsonObject { ["source"] = 0 });
         var material = WhiteDiffuser(1);
-        ((JsonObject)material["pbrMetallicRoughness"]!)["baseColorTexture"] = new JsonObject { ["index"] = 0 };
+        ((JsonObject)material["pbrMetallicRoughness"]!)["baseColorTexture"] = textureInfo;
         b.Add("materials", material);
         b.Node(Node(("mesh", b.Square(2, material: 0))));
         b.Light(new JsonObject { ["type"] = "directional", ["intensity"] = 100.0 });   // lux, shining down −Z onto the square
@@ -120,7 +118,16 @@ public class GltfImportTests(ITestOutputHelper output)
             var c = (JsonObject)s["camera"]!;
             c["width"] = 16; c["height"] = 16; c["spp"] = 1;
         });
-        var xyz = Integrators.Render(scene).Xyz!;
+        return Integrators.Render(scene).Xyz!;
+    }
+
+    [Fact]
+    public void A_jpeg_base_colour_texture_renders_the_texel_expected_in_each_quadrant()
+    {
+        var jpeg = SpectralRenderer.Imaging.JpegReader.Read(Repo.PathOf("tests", "SpectralRenderer.Tests", "Import", "quadrants.jpg"));
+        foreach (var (x, y, code) in Quadrants) Assert.Equal(code, jpeg.Samples[(2 * y + 1) * 32 + 2 * x + 1]);
+
+        var xyz = QuadrantsSquare(new JsonObject { ["index"] = 0 });
         foreach (var (x, y, code) in Quadrants)
         {
             // IEC 61966-2-1 decoding; a grey's uplift is flat at that reflectance (solved to ΔE00 < 1e-4).
@@ -150,32 +157,14 @@ public class GltfImportTests(ITestOutputHelper output)
     public void KHR_texture_transform_puts_each_texel_where_the_extension_computes_it(double ou, double ov, double rotation,
         double su, double sv)
     {
-        var dir = Reference.TempDir();
-        File.Copy(Repo.PathOf("tests", "SpectralRenderer.Tests", "Import", "quadrants.jpg"), Path.Combine(dir, "quadrants.jpg"));
-        var b = new GltfBuilder();
-        b.Add("images", new JsonObject { ["uri"] = "quadrants.jpg" });
-        b.Add("textures", new JsonObject { ["source"] = 0 });
-        var material = WhiteDiffuser(1);
-        ((JsonObject)material["pbrMetallicRoughness"]!)["baseColorTexture"] = new JsonObject
+        var xyz = QuadrantsSquare(new JsonObject
         {
             ["index"] = 0,
             ["extensions"] = new JsonObject
             {
                 ["KHR_texture_transform"] = new JsonObject { ["offset"] = A(ou, ov), ["rotation"] = rotation, ["scale"] = A(su, sv) },
             },
-        };
-        b.Add("materials", material);
-        b.Node(Node(("mesh", b.Square(2, material: 0))));
-        b.Light(new JsonObject { ["type"] = "directional", ["intensity"] = 100.0 });
-        b.Node(Node(("extensions", new JsonObject { ["KHR_lights_punctual"] = new JsonObject { ["light"] = 0 } })));
-        Camera(b, 2 * Math.Atan(0.2));   // the square fills the view: pixel (x, y) of 16 sees glTF uv ((x + ½)/16, (y + ½)/16)
-        var path = b.WriteGltf(Path.Combine(dir, "transformed.gltf"));
-        var scene = Load(Convert(path), path, s =>
-        {
-            var c = (JsonObject)s["camera"]!;
-            c["width"] = 16; c["height"] = 16; c["spp"] = 1;
         });
-        var xyz = Integrators.Render(scene).Xyz!;
         int checkedPixels = 0;
         for (int y = 0; y < 16; y++)
             for (int x = 0; x < 16; x++)
