@@ -646,7 +646,8 @@ for label, data, pat in [
     ("png-huge-ihdr", png(100000, 100000, idat=zlib.compress(b"\0" * 100)), r"declares 100000×100000 pixels"),
     ("png-negative-ihdr", png(0x80000000, 6, idat=zlib.compress(b"\0" * 100)), r"declares"),
     ("png-interlaced", png(8, 6, interlace=1), r"interlaced"),
-    ("png-palette", png(8, 6, depth=8, ctype=3), r"colour type 3"),
+    ("png-palette", png(8, 6, depth=8, ctype=3), r"a palette image without a PLTE chunk"),
+    ("png-bad-depth", png(8, 6, depth=4, ctype=2), r"colour type 2 at 4 bits is not a valid PNG"),
     ("png-bad-zlib", png(8, 6, idat=b"\x78\x9c\xff\xff\xff"), r"truncated or corrupt"),
     ("png-short-data", png(8, 6, idat=zlib.compress(b"\0" * 20)), r"truncated or corrupt"),
     ("png-bad-filter", png(8, 6, idat=zlib.compress(b"\x09" + b"\0" * 16 + b"\0" * 17 * 5)), r"unknown filter type 9"),
@@ -736,6 +737,7 @@ for label, name, data, pat in [
     ("envmap-too-small", "tiny.pfm", pfm(2, 2, [1.0] * 12), r"is 2 × 2 pixels"),
 ]:
     envmap_case(label, name, data, pat, place=JSONPLACE, file="")
+write("wide.pfm", pfm(4, 3, [1.0] * 36))   # also the pbrt cases' non-square infinite light
 scene = deep(ENVSCENE)
 scene["sky"] = {"type": "envmap", "file": "no-such-sky.hdr"}
 scene_case("envmap-missing", scene, r"environment map 'no-such-sky\.hdr' not found")
@@ -1303,6 +1305,10 @@ for label, text, pat, place in [
     ("projective-transform", 'Transform [ 1 0 0 1  0 1 0 0  0 0 1 0  0 0 0 1 ]\nWorldBegin\nShape "sphere"\n', r"a projective matrix",
      r"\.pbrt:1:1: "),
     ("missing-include", 'WorldBegin\nInclude "nothere.pbrt"\nShape "sphere"\n', r"nothere\.pbrt", r"\.pbrt:2:1: "),
+    ("infinite-not-square", 'WorldBegin\nLightSource "infinite" "string filename" "wide.pfm"\nShape "sphere"\n',
+     r"'wide\.pfm' is 4 × 3 pixels.*makeequiarea", r"\.pbrt:2:1: "),
+    ("infinite-png", 'WorldBegin\nLightSource "infinite" "string filename" "sky.png"\nShape "sphere"\n',
+     r"must be OpenEXR, PFM or Radiance.*--lenient", r"\.pbrt:2:1: "),
 ]:
     fname = write(f"pbrt-{label}.pbrt", text)
     case(f"pbrt/{label}", render("{in}/" + fname), pat, 2, fname, place)
@@ -1398,6 +1404,14 @@ for label, sky, extra, pat in [
     s.update(extra)
     s["sky"] = sky
     scene_case(label, s, pat)
+
+# Environment maps in pbrt-v4's equal-area layout ("mapping": "equal-area"; after the others, so their numbers stay).
+scene = deep(ENVSCENE)
+scene["sky"] = {"type": "envmap", "file": "wide.pfm", "mapping": "equal-area"}
+scene_case("envmap-equal-area-not-square", scene, r"wide\.pfm is 4 × 3 pixels.*equal-area map .* is square", file="")
+scene = deep(ENVSCENE)
+scene["sky"] = {"type": "envmap", "file": "wide.pfm", "mapping": "octahedral"}
+scene_case("envmap-unknown-mapping", scene, r"unknown mapping 'octahedral'.*equal-area", file="")
 
 names = [c["name"] for c in cases]
 assert len(names) == len(set(names)), [x for x in names if names.count(x) > 1]

@@ -24,6 +24,9 @@ namespace SpectralRenderer.Scenes;
 /// colours of a lattice of step 1/16 over rgb/s ∈ [0, ½]³ and interpolated trilinearly between them (<see cref="UnitSpectrum"/>):
 /// colour is linear in the spectrum, so a pixel keeps its colour exactly (to the solves' ΔE), its spectrum's shape only is
 /// a blend of its neighbours'. A colour on the lattice (each of rgb/s a multiple of 1/16) is uplifted exactly.
+/// <para>With <see cref="EnvironmentMapping.EqualArea"/> the image is instead pbrt-v4's equal-area octahedral square
+/// (<see cref="EqualAreaSquare"/>: N × N pixels of 4π/N² each, the square's centre along the map's +Z) and each pixel's radiance
+/// holds over its whole area, as pbrt's nearest-pixel lookup; the uplift is the same.</para>
 /// </summary>
 public sealed class EnvironmentMap
 {
@@ -36,15 +39,20 @@ public sealed class EnvironmentMap
     readonly double _luminanceFactor;
 
     /// <summary>A map of <paramref name="width"/> × <paramref name="height"/> pixels (linear RGB, rows top to bottom).</summary>
-    public EnvironmentMap(string source, int width, int height, float[] rgb, double scale, Matrix4x4 toWorld)
+    public EnvironmentMap(string source, int width, int height, float[] rgb, double scale, Matrix4x4 toWorld,
+        EnvironmentMapping mapping = EnvironmentMapping.LatLong)
     {
-        if (width < 2 || height < 3) throw new ArgumentException("an environment map needs at least 2 × 3 pixels");
+        if (mapping == EnvironmentMapping.LatLong && (width < 2 || height < 3))
+            throw new ArgumentException("an environment map needs at least 2 × 3 pixels");
+        if (mapping == EnvironmentMapping.EqualArea && (width < 1 || width != height))
+            throw new ArgumentException("an equal-area map is a square of pixels");
         if (rgb.Length != 3 * width * height) throw new ArgumentException("the pixels do not match the size");
         Source = source;
         Width = width;
         Height = height;
         Rgb = rgb;
         Scale = scale;
+        Mapping = mapping;
         ToWorld = toWorld with { M41 = 0, M42 = 0, M43 = 0 };
         if (!Matrix4x4.Invert(ToWorld, out var toLocal)) throw new ArgumentException("the map's transform is singular");
         ToLocal = toLocal;
@@ -60,6 +68,8 @@ public sealed class EnvironmentMap
     public float[] Rgb { get; }
     /// <summary>The factor on every pixel's radiance.</summary>
     public double Scale { get; }
+    /// <summary>The image's layout: Mitsuba's lat-long grid or pbrt-v4's equal-area square.</summary>
+    public EnvironmentMapping Mapping { get; }
     /// <summary>Map to scene directions (System.Numerics row-vector form: d_world = TransformNormal(d_map, ToWorld)).</summary>
     public Matrix4x4 ToWorld { get; }
     /// <summary>Scene to map directions, the inverse of <see cref="ToWorld"/>.</summary>
@@ -142,11 +152,24 @@ public sealed class EnvironmentMap
         return [Scale * sr / total, Scale * sg / total, Scale * sb / total];
     }
 
-    /// <summary>cos θ_a − cos θ_b over row y's band, from half a row above it to half a row below (rows at θ = πy/(H − 1)).</summary>
+    /// <summary>
+    /// A pixel of row y's solid angle × W/2π: cos θ_a − cos θ_b over the row's band, from half a row above it to half a row
+    /// below (rows at θ = πy/(H − 1)); for an equal-area square 2/N (4π/N² × N/2π). Over all rows they sum to 2.
+    /// </summary>
     public double RowSolidAngle(int y)
     {
+        if (Mapping == EnvironmentMapping.EqualArea) return 2.0 / Height;
         double step = Math.PI / (Height - 1);
         double a = Math.Max(0, (y - 0.5) * step), b = Math.Min(Math.PI, (y + 0.5) * step);
         return Math.Cos(a) - Math.Cos(b);
     }
+}
+
+/// <summary>The layout of an environment map's image (<see cref="EnvironmentMap"/>).</summary>
+public enum EnvironmentMapping
+{
+    /// <summary>Equirectangular, Mitsuba 3's conventions (+Y up, pixels the vertices of a bilinear grid).</summary>
+    LatLong,
+    /// <summary>pbrt-v4's equal-area octahedral square (<see cref="EqualAreaSquare"/>, +Z at its centre, nearest pixel).</summary>
+    EqualArea,
 }

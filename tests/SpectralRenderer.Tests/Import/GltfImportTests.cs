@@ -96,19 +96,17 @@ public class GltfImportTests(ITestOutputHelper output)
     /// their DC exactly at quality 100, so these are the decoded texels.</summary>
     static readonly (int X, int Y, int Code)[] Quadrants = [(3, 3, 40), (12, 3, 100), (3, 12, 160), (12, 12, 220)];
 
-    [Fact]
-    public void A_jpeg_base_colour_texture_renders_the_texel_expected_in_each_quadrant()
+    /// <summary>The quadrants texture on a white 2 m square filling a 16 × 16 view from 5 m (pixel (x, y) sees glTF uv
+    /// ((x + ½)/16, (y + ½)/16)) under 100 lx head-on, with <paramref name="textureInfo"/> as its baseColorTexture: XYZ.</summary>
+    static float[] QuadrantsSquare(JsonObject textureInfo)
     {
-        var jpeg = SpectralRenderer.Imaging.JpegReader.Read(Repo.PathOf("tests", "SpectralRenderer.Tests", "Import", "quadrants.jpg"));
-        foreach (var (x, y, code) in Quadrants) Assert.Equal(code, jpeg.Samples[(2 * y + 1) * 32 + 2 * x + 1]);
-
         var dir = Reference.TempDir();
         File.Copy(Repo.PathOf("tests", "SpectralRenderer.Tests", "Import", "quadrants.jpg"), Path.Combine(dir, "quadrants.jpg"));
         var b = new GltfBuilder();
         b.Add("images", new JsonObject { ["uri"] = "quadrants.jpg" });
         b.Add("textures", new JsonObject { ["source"] = 0 });
         var material = WhiteDiffuser(1);
-        ((JsonObject)material["pbrMetallicRoughness"]!)["baseColorTexture"] = new JsonObject { ["index"] = 0 };
+        ((JsonObject)material["pbrMetallicRoughness"]!)["baseColorTexture"] = textureInfo;
         b.Add("materials", material);
         b.Node(Node(("mesh", b.Square(2, material: 0))));
         b.Light(new JsonObject { ["type"] = "directional", ["intensity"] = 100.0 });   // lux, shining down −Z onto the square
@@ -120,7 +118,16 @@ public class GltfImportTests(ITestOutputHelper output)
             var c = (JsonObject)s["camera"]!;
             c["width"] = 16; c["height"] = 16; c["spp"] = 1;
         });
-        var xyz = Integrators.Render(scene).Xyz!;
+        return Integrators.Render(scene).Xyz!;
+    }
+
+    [Fact]
+    public void A_jpeg_base_colour_texture_renders_the_texel_expected_in_each_quadrant()
+    {
+        var jpeg = SpectralRenderer.Imaging.JpegReader.Read(Repo.PathOf("tests", "SpectralRenderer.Tests", "Import", "quadrants.jpg"));
+        foreach (var (x, y, code) in Quadrants) Assert.Equal(code, jpeg.Samples[(2 * y + 1) * 32 + 2 * x + 1]);
+
+        var xyz = QuadrantsSquare(new JsonObject { ["index"] = 0 });
         foreach (var (x, y, code) in Quadrants)
         {
             // IEC 61966-2-1 decoding; a grey's uplift is flat at that reflectance (solved to ΔE00 < 1e-4).
@@ -130,6 +137,82 @@ public class GltfImportTests(ITestOutputHelper output)
             output.WriteLine($"pixel ({x}, {y}), texel {code}: {luminance:R} vs {expected:R} cd/m² ({rel:E2})");
             Assert.True(rel <= 1e-4, $"pixel ({x}, {y}): {luminance} vs {expected} cd/m² for code {code}");
         }
+    }
+
+    /// <summary>The code of the quadrants texture at glTF texture coordinates (u, v) (v down, the image's top row at v = 0),
+    /// repeating.</summary>
+    static int QuadrantCode(double u, double v)
+    {
+        u -= Math.Floor(u);
+        v -= Math.Floor(v);
+        return v < 0.5 ? (u < 0.5 ? 40 : 100) : (u < 0.5 ? 160 : 220);
+    }
+
+    [Theory]
+    [InlineData(0.0, 0.0, 0.0, 2.0, 2.0)]           // tiled twice
+    [InlineData(0.5, 0.0, 0.0, 0.5, 0.5)]           // the top right quadrant only
+    [InlineData(0.0, 0.0, Math.PI / 2, 1.0, 1.0)]   // a quarter turn: its direction matters
+    [InlineData(0.0, 1.0, Math.PI / 2, 0.5, 0.5)]   // the extension's example: the lower left quadrant, turned
+    [InlineData(0.25, 0.5, 0.3, 1.5, -0.7)]         // all at once, a mirror in v
+    public void KHR_texture_transform_puts_each_texel_where_the_extension_computes_it(double ou, double ov, double rotation,
+        double su, double sv)
+    {
+        var xyz = QuadrantsSquare(new JsonObject
+        {
+            ["index"] = 0,
+            ["extensions"] = new JsonObject
+            {
+                ["KHR_texture_transform"] = new JsonObject { ["offset"] = A(ou, ov), ["rotation"] = rotation, ["scale"] = A(su, sv) },
+            },
+        });
+        int checkedPixels = 0;
+        for (int y = 0; y < 16; y++)
+            for (int x = 0; x < 16; x++)
+            {
+                // The extension's t' = T·R·S·t, R = [[cos, sin], [−sin, cos]] on glTF's v-down map (its example; glTF#1563).
+                double u = (x + 0.5) / 16, v = (y + 0.5) / 16, c = Math.Cos(rotation), sn = Math.Sin(rotation);
+                double tu = c * su * u + sn * sv * v + ou, tv = -sn * su * u + c * sv * v + ov;
+                // Only pixels whose footprint (± a pixel, times the scale) stays inside one quadrant: texture filtering blends edges.
+                double reach = 1.5 / 16 * Math.Max(Math.Abs(su), Math.Abs(sv));
+                int code = QuadrantCode(tu, tv);
+                bool inside = true;
+                foreach (var (du, dv) in new[] { (reach, 0.0), (-reach, 0.0), (0.0, reach), (0.0, -reach) })
+                    inside &= QuadrantCode(tu + du, tv + dv) == code;
+                if (!inside) continue;
+                double k = code / 255.0, rho = k <= 0.04045 ? k / 12.92 : Math.Pow((k + 0.055) / 1.055, 2.4);
+                double expected = 100 * rho / Math.PI, luminance = xyz[(y * 16 + x) * 3 + 1];
+                Assert.True(Math.Abs(luminance - expected) <= 2e-3 * expected,
+                    $"pixel ({x}, {y}): {luminance} vs {expected} for code {code}");
+                checkedPixels++;
+            }
+        Assert.True(checkedPixels >= 12, $"only {checkedPixels} pixels away from the quadrants' edges");
+    }
+
+    [Fact]
+    public void Alpha_mask_below_the_cutoff_leaves_the_primitive_out_and_other_alpha_is_reported_as_approximated()
+    {
+        var b = new GltfBuilder();
+        JsonObject Mat(string mode, double alpha, double? cutoff = null)
+        {
+            var m = WhiteDiffuser(0.5);
+            ((JsonObject)m["pbrMetallicRoughness"]!)["baseColorFactor"] = A(0.5, 0.5, 0.5, alpha);
+            m["alphaMode"] = mode;
+            if (cutoff is { } c) m["alphaCutoff"] = c;
+            return m;
+        }
+        // glTF 2.0 §3.9.4: MASK shows alpha ≥ cutoff (default 0.5): 0.3 < 0.5 is cut away, 0.3 ≥ 0.25 is shown.
+        b.Add("materials", Mat("MASK", 0.3));
+        b.Add("materials", Mat("MASK", 0.3, 0.25));
+        b.Add("materials", Mat("BLEND", 0.4));
+        for (int m = 0; m < 3; m++) b.Node(Node(("mesh", b.Square(2, material: m)), ("translation", A(3 * m, 0, 0))));
+        Camera(b, 0.5);
+        var path = b.WriteGltf(Path.Combine(Reference.TempDir(), "alpha.gltf"));
+        var imported = Convert(path);
+        Assert.Equal(2, imported.Scene["objects"]!.AsArray().Count);
+        var e = imported.Report.Entries;
+        Assert.Contains(e, x => x.Kind == "converted" && x.Where.EndsWith("$.meshes[0].primitives[0]") && x.Action.StartsWith("left out"));
+        Assert.Contains(e, x => x.Kind == "approximated" && x.Where.EndsWith("$.materials[2].alphaMode") && x.Action.Contains("BLEND"));
+        Assert.DoesNotContain(e, x => x.Where.EndsWith("$.materials[1].alphaMode"));   // 0.3 ≥ 0.25: shown, opaque, exactly
     }
 
     [Fact]

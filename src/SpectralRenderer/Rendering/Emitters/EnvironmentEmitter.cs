@@ -15,10 +15,14 @@ namespace SpectralRenderer.Rendering.Emitters;
 /// density in (u, v) (marginal rows, conditional columns: Pharr, Jakob &amp; Humphreys, PBR 4th ed. §A.5.3), whose solid-angle
 /// density is p(u, v)/(2π² sin θ). <see cref="Emitter.Radiance"/> is the map's mean, which the power of the emitter set's
 /// choice uses (Φ = 4π²R² × mean, as the uniform sky's).
+/// <para>An equal-area square (<see cref="EnvironmentMapping.EqualArea"/>, pbrt-v4's) is piecewise constant over its N × N
+/// pixels, each 4π/N² (<see cref="EqualAreaSquare"/>): the radiance is the pixel's, the cells are the pixels (weight: the
+/// luminance), and the solid-angle density of (u, v) in the square is p(u, v)/4π.</para>
 /// </summary>
 internal sealed class EnvironmentEmitter : Emitter
 {
     readonly int _w, _h, _padded, _count;
+    readonly bool _equalArea;   // pbrt's square: the cells are the pixels (no wrap, no corners), a pixel's radiance is constant
     readonly float[] _unit;     // [(y·W + x)·padded + f]: the pixel's unit spectrum on the sub-band grid
     readonly float[] _scale;    // [y·W + x]: s = 2·max(r, g, b)·Scale
     readonly float[] _rowCdf;   // H − 1 + 1 running sums of the rows' weights, normalised, [0] = 0
@@ -36,10 +40,11 @@ internal sealed class EnvironmentEmitter : Emitter
         _scale = scale;
         _toLocal = map.ToLocal;
         _toWorld = map.ToWorld;
+        _equalArea = map.Mapping == EnvironmentMapping.EqualArea;
         // The cells' weights: the largest corner luminance (channel value) × the row's solid angle.
         var luminance = new double[_w * _h];
         for (int i = 0; i < luminance.Length; i++) luminance[i] = _scale[i] * grid.Luminance(_unit.AsSpan(i * _padded, _padded));
-        int rows = _h - 1;
+        int rows = Rows;
         _rowCdf = new float[rows + 1];
         _colCdf = new float[rows * (_w + 1)];
         _cellPdf = new float[rows * _w];
@@ -48,10 +53,16 @@ internal sealed class EnvironmentEmitter : Emitter
         double total = 0;
         for (int y = 0; y < rows; y++)
         {
-            double solid = Math.Cos(Math.PI * y / rows) - Math.Cos(Math.PI * (y + 1) / rows);
+            double solid = _equalArea ? 1 : Math.Cos(Math.PI * y / rows) - Math.Cos(Math.PI * (y + 1) / rows);
             double sum = 0;
             for (int x = 0; x < _w; x++)
             {
+                if (_equalArea)
+                {
+                    cell[x] = luminance[y * _w + x];
+                    sum += cell[x];
+                    continue;
+                }
                 int x1 = (x + 1) % _w;
                 double l = Math.Max(Math.Max(luminance[y * _w + x], luminance[y * _w + x1]),
                     Math.Max(luminance[(y + 1) * _w + x], luminance[(y + 1) * _w + x1]));
@@ -119,6 +130,9 @@ internal sealed class EnvironmentEmitter : Emitter
         return result;
     }
 
+    /// <summary>The rows of sampling cells: H − 1 between a lat-long grid's pixel rows, or the square's N pixel rows.</summary>
+    int Rows => _equalArea ? _h : _h - 1;
+
     public override bool IsDelta => false;
 
     /// <summary>Φ/L̄ = 4π·πR², L̄ the map's mean radiance (<see cref="SkyEmitter.PowerPerRadiance"/>).</summary>
@@ -132,7 +146,7 @@ internal sealed class EnvironmentEmitter : Emitter
     public override bool Sample(Vector3 p, Vector3 front, Vector2 u, out EmitterSample sample)
     {
         sample = default;
-        int rows = _h - 1;
+        int rows = Rows;
         if (!(_rowCdf[rows] > 0)) return false;
         int y = Find(_rowCdf, 0, rows, u.Y);
         float dy = _rowCdf[y + 1] - _rowCdf[y];
@@ -142,6 +156,14 @@ internal sealed class EnvironmentEmitter : Emitter
         float dx = _colCdf[o + x + 1] - _colCdf[o + x];
         float fx = dx > 0 ? Math.Clamp((u.X - _colCdf[o + x]) / dx, 0, 1) : 0.5f;
         float pdfUv = _cellPdf[y * _w + x];
+        if (_equalArea)
+        {
+            if (!(pdfUv > 0)) return false;
+            var square = EqualAreaSquare.ToSphere((x + fx) / _w, (y + fy) / _h);
+            sample = new EmitterSample(Vector3.Normalize(Vector3.TransformNormal(square, _toWorld)), float.PositiveInfinity, 1,
+                pdfUv / (4 * MathF.PI), false);
+            return true;
+        }
         // Grid coordinates (s, t) = (x + fx, y + fy): u = (s + ½)/W, θ = π·t/(H − 1).
         float uu = (x + fx + 0.5f) / _w, theta = MathF.PI * (y + fy) / rows;
         float sinTheta = MathF.Sin(theta);
@@ -156,6 +178,7 @@ internal sealed class EnvironmentEmitter : Emitter
     /// <summary>The solid-angle density of <see cref="Sample"/> drawing scene direction <paramref name="wi"/>.</summary>
     public override float Pdf(Vector3 p, Vector3 front, Vector3 wi, Vector3 x, Vector3 nx)
     {
+        if (_equalArea) return _cellPdf[Pixel(wi)] / (4 * MathF.PI);
         Cell(wi, out int cx, out int cy, out _, out _, out float sinTheta);
         return sinTheta > 0 ? _cellPdf[cy * _w + cx] / (2 * MathF.PI * MathF.PI * sinTheta) : 0;
     }
@@ -167,6 +190,15 @@ internal sealed class EnvironmentEmitter : Emitter
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public ReadOnlySpan<float> Lookup(Vector3 wi, Span<float> radiance)
     {
+        if (_equalArea)
+        {
+            int i = Pixel(wi);
+            var o = MemoryMarshal.Cast<float, Vector<float>>(radiance[.._padded]);
+            var p = MemoryMarshal.Cast<float, Vector<float>>(_unit.AsSpan(i * _padded, _padded));
+            Vector<float> k = new(_scale[i]);
+            for (int j = 0; j < o.Length; j++) o[j] = p[j] * k;
+            return radiance[.._padded];
+        }
         Cell(wi, out int x, out int y, out float fx, out float fy, out _);
         int x1 = x + 1 == _w ? 0 : x + 1;
         int i00 = y * _w + x, i10 = y * _w + x1, i01 = i00 + _w, i11 = i10 + _w;
@@ -198,6 +230,15 @@ internal sealed class EnvironmentEmitter : Emitter
         float t = MathF.Acos(cosTheta) / MathF.PI * (_h - 1);
         y = Math.Clamp((int)t, 0, _h - 2);
         fy = Math.Clamp(t - y, 0, 1);
+    }
+
+    /// <summary>The equal-area square's pixel y·N + x holding scene direction <paramref name="wi"/> (pbrt's nearest lookup).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    int Pixel(Vector3 wi)
+    {
+        var uv = EqualAreaSquare.ToSquare(Vector3.TransformNormal(wi, _toLocal));
+        int x = Math.Clamp((int)(uv.X * _w), 0, _w - 1), y = Math.Clamp((int)(uv.Y * _h), 0, _h - 1);
+        return y * _w + x;
     }
 
     /// <summary>The k in [0, n) with cdf[o + k] ≤ u &lt; cdf[o + k + 1] (the last non-empty one for u at the end).</summary>

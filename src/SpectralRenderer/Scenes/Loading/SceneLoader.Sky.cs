@@ -24,7 +24,7 @@ public sealed partial class SceneLoader
         const string path = "$.sky";
         Object(e, path);
         bool map = TryGet(e, "type", out var t) && t.ValueKind == JsonValueKind.String && t.GetString() == "envmap";
-        if (map) Keys(e, path, "type", "file", "scale", "transform");
+        if (map) Keys(e, path, "type", "file", "scale", "transform", "mapping");
         else Keys(e, path, "type", "cct", "luminance", "radiance", "distribution", "zenith");
         if (_radiometry != Radiometry.Physical)
             throw Error(path, "a sky is a spectral radiance (W·m⁻²·sr⁻¹·nm⁻¹) and needs physical radiometry",
@@ -54,7 +54,6 @@ public sealed partial class SceneLoader
         [("uniform", SkyDistribution.Uniform), ("cie-overcast", SkyDistribution.CieOvercast)];
 
     /// <summary>"distribution" (uniform unless given) and, for a sky that varies with direction, "zenith" (+Y unless given).</summary>
-    [MethodImpl(MethodImplOptions.NoOptimization)]
     SkyDistribution ParseDistribution(JsonElement e, string path)
     {
         var distribution = SkyDistribution.Uniform;
@@ -85,7 +84,8 @@ public sealed partial class SceneLoader
     /// escaping rays from a lat-long image in Mitsuba 3's conventions (<see cref="EnvironmentMap"/>: +Y up, linear sRGB uplifted
     /// as a D65 illuminant), its directions turned by the transform's linear part. The path integrator samples it by its
     /// luminance; the background (what the Whitted integrator sees, and the sky's spectrum in power and summaries) is the
-    /// uplift of its solid-angle mean colour.
+    /// uplift of its solid-angle mean colour. "mapping": "equal-area" reads the image as pbrt-v4's equal-area octahedral square
+    /// instead (<see cref="EqualAreaSquare"/>: square, its centre along the map's +Z, each pixel constant over 4π/N²).
     /// </summary>
     float[] ParseEnvironment(JsonElement e, string path)
     {
@@ -95,14 +95,29 @@ public sealed partial class SceneLoader
             throw Error($"{path}.file", $"environment map '{file}' not found", "the path is relative to the scene file");
         double scale = Number(e, "scale", path, 1, 0, MaxMagnitude);
         var toWorld = TryGet(e, "transform", out var t) ? Transform(t, $"{path}.transform") : Matrix4x4.Identity;
+        var mapping = EnvironmentMapping.LatLong;
+        if (TryGet(e, "mapping", out var how))
+        {
+            var name = String(how, $"{path}.mapping");
+            mapping = name switch
+            {
+                "lat-long" => EnvironmentMapping.LatLong,
+                "equal-area" => EnvironmentMapping.EqualArea,
+                _ => throw Error($"{path}.mapping", $"unknown mapping '{name}'",
+                    "\"lat-long\" (Mitsuba's equirectangular image, the default) or \"equal-area\" (pbrt-v4's octahedral square)"),
+            };
+        }
         var image = RgbImage.Read(full);
         for (int i = 0; i < image.Rgb.Length; i++)
             if (!float.IsFinite(image.Rgb[i]) || image.Rgb[i] < 0)
                 throw Error($"{path}.file", $"{file}: pixel ({i / 3 % image.Width}, {i / 3 / image.Width}) holds {image.Rgb[i]}",
                     "an environment map holds finite radiances ≥ 0: fix or clip the image");
-        if (image.Width < 2 || image.Height < 3)
+        if (mapping == EnvironmentMapping.EqualArea && image.Width != image.Height)
+            throw Error($"{path}.file", $"{file} is {image.Width} × {image.Height} pixels",
+                "an equal-area map (pbrt-v4's) is square: N × N pixels");
+        if (mapping == EnvironmentMapping.LatLong && (image.Width < 2 || image.Height < 3))
             throw Error($"{path}.file", $"{file} is {image.Width} × {image.Height} pixels", "a lat-long map needs at least 2 × 3");
-        _environment = new EnvironmentMap(full, image.Width, image.Height, image.Rgb, scale, toWorld);
+        _environment = new EnvironmentMap(full, image.Width, image.Height, image.Rgb, scale, toWorld, mapping);
         var mean = _environment.MeanRgb();
         double m = Math.Max(mean[0], Math.Max(mean[1], mean[2]));
         if (m == 0) return Const(0);

@@ -218,17 +218,16 @@ public sealed partial class SceneLoader
         }
     }
 
-    /// <summary>An 8- or 16-bit sRGB PNG, each colour uplifted to a reflectance spectrum (<see cref="SigmoidUplift"/>).</summary>
+    /// <summary>An sRGB PNG (RGB, palette or grey as R = G = B, any bit depth; alpha not used), each colour uplifted to a
+    /// reflectance spectrum (<see cref="SigmoidUplift"/>).</summary>
     SpectralTexture RgbTexture(string full, string path) => RgbTexture(PngReader.Read(full), full, path);
 
     SpectralTexture RgbTexture(PngImage png, string full, string path)
     {
-        if (png.Channels != 3)
-            throw Error($"{path}.texture", $"{full} has {png.Channels} channel(s): an RGB texture is an sRGB PNG of three channels",
-                "save the texture as RGB (no alpha), or give a spectral texture");
         var samples = png.Samples;
-        return Uplifted(full, png.Width, png.Height, (1 << png.BitDepth) - 1,
-            i => (samples[3 * i], samples[3 * i + 1], samples[3 * i + 2]));
+        return png.Channels == 3
+            ? Uplifted(full, png.Width, png.Height, (1 << png.BitDepth) - 1, i => (samples[3 * i], samples[3 * i + 1], samples[3 * i + 2]))
+            : Uplifted(full, png.Width, png.Height, (1 << png.BitDepth) - 1, i => (samples[i], samples[i], samples[i]));
     }
 
     /// <summary>A baseline JPEG (<see cref="JpegReader"/>), its colours sRGB as a PNG's are; a greyscale JPEG is R = G = B.</summary>

@@ -26,6 +26,20 @@ sealed partial class GltfConverter
     /// <summary>Fraunhofer lines of the Abbe number V_d = (n_d − 1)/(n_F − n_C): helium d, hydrogen F and C (nm).</summary>
     const double LambdaD = 587.56, LambdaF = 486.13, LambdaC = 656.27;
 
+    /// <summary>Whether glTF material <paramref name="m"/> cuts away all of its primitives: alpha mode MASK, no base colour
+    /// texture and a base colour factor's alpha below alphaCutoff (glTF 2.0 §3.9.4).</summary>
+    bool CutOut(int m)
+    {
+        var path = $"$.materials[{m}]";
+        var mat = doc.Item("materials", m);
+        if ((doc.String(mat, "alphaMode", path) ?? "OPAQUE") != "MASK") return false;
+        double cutoff = doc.Number(mat, "alphaCutoff", path, 0.5, 0);
+        if (!GltfDocument.Has(mat, "pbrMetallicRoughness", out var pbr)) return 1 < cutoff;
+        if (GltfDocument.Has(pbr, "baseColorTexture", out _)) return false;
+        var factor = doc.Numbers(pbr, "baseColorFactor", $"{path}.pbrMetallicRoughness", [1, 1, 1, 1], 0, 1);
+        return factor[3] < cutoff;
+    }
+
     /// <summary>Our material's name for glTF material <paramref name="m"/>, converted on first use.</summary>
     string Material(int m)
     {
@@ -75,9 +89,19 @@ sealed partial class GltfConverter
         ReportExtensions(ext, extPath, name);
         ReportIgnoredTextures(mat, pbr, path, pbrPath, ext, extPath);
         var mode = doc.String(mat, "alphaMode", path) ?? "OPAQUE";
-        if (mode != "OPAQUE" || baseColor[3] < 1)
-            Note("ignored", $"{path}.alphaMode", $"material {name} alpha",
-                $"alpha mode {mode}, base alpha {Round(baseColor[3])}: rendered opaque");
+        double cutoff = doc.Number(mat, "alphaCutoff", path, 0.5, 0);
+        bool textured = GltfDocument.Has(pbr, "baseColorTexture", out _);
+        // glTF 2.0 §3.9.4: OPAQUE ignores alpha; MASK shows a point where alpha (factor × texel) ≥ alphaCutoff; BLEND composites.
+        if (mode == "MASK" && textured)
+            Note("approximated", $"{path}.alphaMode", $"material {name} alpha",
+                $"alpha mode MASK, cutoff {Round(cutoff)}: rendered opaque: our surfaces have no alpha test, so texels whose alpha is "
+                + "below the cutoff are solid");
+        else if (mode == "BLEND")
+            Note("approximated", $"{path}.alphaMode", $"material {name} alpha",
+                $"alpha mode BLEND, base alpha {Round(baseColor[3])}: rendered opaque (no alpha compositing)");
+        else if (mode == "OPAQUE" && baseColor[3] < 1)
+            Note("ignored", $"{path}.baseColorFactor", $"material {name} alpha",
+                $"base alpha {Round(baseColor[3])} with alpha mode OPAQUE: ignored, as glTF asks");
         var texture = BaseColorTexture(pbr, pbrPath, rgb, name);
         double f0 = Math.Pow((ior - 1) / (ior + 1), 2) * specular;
 
@@ -284,11 +308,20 @@ sealed partial class GltfConverter
         var infoPath = $"{pbrPath}.baseColorTexture";
         doc.Object(info, infoPath);
         int t = doc.Index(info, "index", infoPath, "textures", required: true);
-        if (doc.Number(info, "texCoord", infoPath, 0, 0, 64) != 0)
+        double texCoord = doc.Number(info, "texCoord", infoPath, 0, 0, 64);
+        JsonObject? uvTransform = null;
+        if (GltfDocument.Has(info, "extensions", out var ie) && GltfDocument.Has(ie, "KHR_texture_transform", out var tt))
+        {
+            var ttPath = $"{infoPath}.extensions.KHR_texture_transform";
+            doc.Object(tt, ttPath);
+            texCoord = doc.Number(tt, "texCoord", ttPath, texCoord, 0, 64);   // overrides the textureInfo's
+            uvTransform = TextureTransform(tt, ttPath);
+            Note("converted", ttPath, $"material {name} texture transform",
+                "offset, rotation and scale as our uv_transform, carried into our v-up texture coordinates");
+        }
+        if (texCoord != 0)
             Note("approximated", $"{infoPath}.texCoord", "texture coordinates",
                 "TEXCOORD_0 is used (our meshes keep one set)");
-        if (GltfDocument.Has(info, "extensions", out var ie) && GltfDocument.Has(ie, "KHR_texture_transform", out _))
-            Note("ignored", $"{infoPath}.extensions.KHR_texture_transform", "texture transform", "not applied");
         var texPath = $"$.textures[{t}]";
         var texture = doc.Item("textures", t);
         int source = doc.Index(texture, "source", texPath, "images");
@@ -325,10 +358,32 @@ sealed partial class GltfConverter
             if (ws != wt)
                 Note("approximated", sp, "texture wrap", "one wrap mode for u and v: wrapS's");
             var wrap = ws switch { 33071 => "clamp", 33648 => "mirror", _ => "repeat" };
-            if (wrap != "repeat") o["uv_transform"] = new JsonObject { ["wrap"] = wrap };
+            if (wrap != "repeat") (uvTransform ??= [])["wrap"] = wrap;
         }
+        if (uvTransform is not null) o["uv_transform"] = uvTransform;
         Note("uplifted", infoPath, $"material {name} texture", "sRGB texels through the sigmoid uplift");
         return o;
+    }
+
+    /// <summary>
+    /// KHR_texture_transform as our uv_transform. glTF: t' = T·R·S·t in its v-down texture space, R = [[cos r, sin r],
+    /// [−sin r, cos r]] ("counter-clockwise" on the v-down UV map: the extension's example, which takes the lower left quadrant,
+    /// and KhronosGroup/glTF#1563). Our coordinates are F(t) = (u, 1 − v) (the importer flips v), so ours is F·M·F: the same
+    /// scale, R conjugated by the flip — our counter-clockwise rotation by r (uv' = R(r)·(s ⊙ uv) + o) — and the offset
+    /// o = (o_u + sin r·s_v, 1 − o_v − cos r·s_v).
+    /// </summary>
+    JsonObject TextureTransform(JsonElement tt, string path)
+    {
+        var offset = doc.Numbers(tt, "offset", path, [0, 0]);
+        var scale = doc.Numbers(tt, "scale", path, [1, 1]);
+        double r = doc.Number(tt, "rotation", path, 0, -1e6, 1e6);
+        double ou = offset[0] + Math.Sin(r) * scale[1], ov = 1 - offset[1] - Math.Cos(r) * scale[1];
+        return new JsonObject
+        {
+            ["scale"] = new JsonArray(Round(scale[0]), Round(scale[1])),
+            ["offset"] = new JsonArray(Round(ou), Round(ov)),
+            ["rotation"] = Round(r * 180 / Math.PI),
+        };
     }
 
     /// <summary>An image as our texture reference: a PNG or JPEG file's path relative to the asset, or a data: URI (for a

@@ -258,6 +258,12 @@ sealed partial class GltfConverter(GltfDocument doc, ImportOptions options)
             var prim = doc.Object(primitives[k], p);
             var triangles = Primitive(prim, p);
             if (triangles is null) continue;
+            if (doc.Index(prim, "material", p, "materials") is >= 0 and var cut && CutOut(cut))
+            {
+                Note("converted", p, "primitive of a cut-out material",
+                    $"left out: material {cut}'s alpha mode MASK with a base alpha below its alphaCutoff and no texture cuts it all away");
+                continue;
+            }
             var name = Unique(primitives.GetArrayLength() > 1 ? $"{baseName}-{k}" : baseName);
             var (positions, indices, normals, uvs) = triangles.Value;
             _meshes.Add(new ImportedMesh(name, positions, indices, normals, uvs));

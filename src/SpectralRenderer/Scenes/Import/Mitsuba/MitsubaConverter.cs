@@ -74,6 +74,7 @@ public sealed partial class MitsubaConverter
             ["integrator"] = _seed == 0 ? _integrator ?? "path" : WithSeed(_integrator, _seed),
             ["camera"] = _camera,
         };
+        ImportDisplay.Native(scene, 1 / ImportDisplay.YBarIntegral);   // Mitsuba's Y: ∫ȳ·L dλ / ∫ȳ dλ
         if (_background is not null) scene["background"] = _background;
         if (_sky is not null) scene["sky"] = _sky;
         scene["materials"] = _materials;

@@ -92,7 +92,8 @@ public sealed partial class PbrtConverter
                     break;
                 }
             case "infinite":
-                Infinite(e, label, scale);
+                if (p.String("filename") is { } image) InfiniteImage(e, label, scale, image, m);
+                else Infinite(e, label, scale);
                 break;
             case "goniometric":
             case "projection":
@@ -113,21 +114,85 @@ public sealed partial class PbrtConverter
         if (_background is not null)
             Note("approximated", e, label, "a second infinite light: added to the first (our sky is one uniform background)");
         double illuminance = p.Float("illuminance", -1);
-        SpectrumValue s;
-        if (p.String("filename") is { } file)
-        {
-            Refuse(e.Where, $"{label} \"filename\"", $"an environment image ('{Path.GetFileName(file)}') has no counterpart yet; "
-                + "rendered as a uniform sky of pbrt's default illuminant at the given scale");
-            s = DefaultIlluminant();
-        }
-        else s = Spectrum(e, "L", SpectrumUse.Illuminant, label) ?? DefaultIlluminant();
+        var s = Spectrum(e, "L", SpectrumUse.Illuminant, label) ?? DefaultIlluminant();
         if (p.Find("portal") is { } portal)
             _report.Add("ignored", Place(portal.Token), $"{label} \"portal\"", "portals only guide pbrt's sampling");
         double k = scale / Photometric(s, e, label);
         // pbrt: a uniform sky of luminance L lights an upward surface with π·L, so "illuminance" E sets L = E/π.
         if (illuminance > 0) k *= illuminance / Math.PI;
         var value = Scaled(s.Node, k);
+        if (_sky is not null)
+        {
+            Note("approximated", e, label,
+                "a uniform infinite light beside an image one: left out (our sky is one image or one background)");
+            return;
+        }
         _background = _background is null ? value : Sum(_background, value, e);
+    }
+
+    /// <summary>
+    /// An image infinite light: our "sky": { "type": "envmap", "mapping": "equal-area" } on the same file — pbrt-v4's
+    /// equal-area octahedral square (Scenes/EqualAreaSquare.cs), nearest pixel, in the light's frame (+z at the square's
+    /// centre) turned by its transformation. pbrt's radiance of pixel rgb is scale·RGBIlluminantSpectrum(rgb)/Σȳ·D65 (the
+    /// colour space's illuminant, lights.cpp), ours s·sigmoid·D65/Ȳ_D65 × our "scale" (Mitsuba's srgb_d65), so our scale is
+    /// pbrt's / CIE_Y_integral (the 1 nm sum and the integral of ȳ·D65 differ by &lt; 1e-4). "illuminance" E: pbrt scales by
+    /// E/k_e, k_e = 2π/N² Σ lum(rgb)·cos θ over the pixels whose centre is above the horizon (z > 0); kept as pbrt has it.
+    /// </summary>
+    void InfiniteImage(PbrtEntity e, string label, double scale, string file, PbrtTransform m)
+    {
+        var p = e.Parameters;
+        if (p.Find("L") is not null)
+            throw new InputException(e.Where, $"{label}: both \"L\" and \"filename\"", "give one (pbrt refuses both, too)");
+        if (p.Find("portal") is { } portal)
+            _report.Add("ignored", Place(portal.Token), $"{label} \"portal\"", "portals only guide pbrt's sampling");
+        string ext = Path.GetExtension(file).ToLowerInvariant();
+        if (ext is not (".exr" or ".pfm" or ".hdr" or ".pic"))
+        {
+            Refuse(e.Where, $"{label} \"filename\"", $"'{Path.GetFileName(file)}': an environment image must be OpenEXR, PFM or "
+                + "Radiance .hdr here (convert it, e.g. with imgtool convert)");
+            return;
+        }
+        var full = Path.Combine(_dir, file);
+        if (!File.Exists(full))
+            throw new InputException(e.Where, $"{label}: environment image {MessageText.Quote(file)} not found",
+                "the path is relative to the scene file")
+            { Problem = InputProblem.MissingFile };
+        var image = Imaging.RgbImage.Read(full);
+        if (image.Width != image.Height)
+            throw new InputException(e.Where, $"{label}: '{Path.GetFileName(file)}' is {image.Width} × {image.Height} pixels",
+                "pbrt-v4's infinite light takes an equal-area square (N × N); convert a lat-long map with pbrt's imgtool makeequiarea");
+        double k = scale / PbrtNamedSpectra.CieYIntegral;
+        double illuminance = p.Float("illuminance", -1);
+        if (illuminance > 0)
+        {
+            double ke = 0;
+            int n = image.Width;
+            for (int y = 0; y < n; y++)
+                for (int x = 0; x < n; x++)
+                {
+                    var w = EqualAreaSquare.ToSphere((x + 0.5) / n, (y + 0.5) / n);
+                    if (w.Z <= 0) continue;
+                    int o = 3 * (y * n + x);
+                    ke += (0.2126 * image.Rgb[o] + 0.7152 * image.Rgb[o + 1] + 0.0722 * image.Rgb[o + 2]) * w.Z;
+                }
+            ke *= 2 * Math.PI / ((double)n * n);
+            if (ke > 0) k *= illuminance / ke;
+            Note("converted", e, $"{label} \"illuminance\"", $"scaled by E/k_e = {Round(ke > 0 ? illuminance / ke : 1)} as pbrt-v4 "
+                + "does (k_e = 2π/N² Σ lum·cos θ over the upper hemisphere's pixels: an upward surface then receives 2E)");
+        }
+        if (_sky is not null || _background is not null)
+            Note("approximated", e, label, "a second infinite light: only the image is kept (our sky is one image or one background)");
+        _background = null;
+        _sky = new JsonObject
+        {
+            ["type"] = "envmap",
+            ["file"] = file.Replace('\\', '/'),
+            ["mapping"] = "equal-area",
+            ["scale"] = Round(k),
+            ["transform"] = Matrix(m),
+        };
+        Note("converted", e, $"{label} \"filename\"", $"the equal-area image {Path.GetFileName(file)}: our envmap sky with "
+            + "\"mapping\": \"equal-area\" (pbrt's layout and nearest-pixel lookup, D65 illuminant uplift), scale/CIE_Y_integral");
     }
 
     JsonNode Sum(JsonNode a, JsonNode b, PbrtEntity e)

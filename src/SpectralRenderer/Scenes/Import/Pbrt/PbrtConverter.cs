@@ -31,6 +31,8 @@ public sealed partial class PbrtConverter
     PbrtTransform _world = PbrtTransform.Identity;
 
     JsonNode? _background;
+    double _imagingRatio = 1;   // pbrt's PixelSensor: exposure time (shutterclose − shutteropen) × Film "iso"/100
+    JsonObject? _sky;   // an image infinite light: our envmap sky
 
     public PbrtConverter(string path, ImportOptions options)
     {
@@ -67,7 +69,9 @@ public sealed partial class PbrtConverter
             ["integrator"] = integrator,
             ["camera"] = camera,
         };
+        ImportDisplay.Native(scene, _imagingRatio);   // pbrt's "cie1931" sensor: Y = imagingRatio·∫ȳ·L dλ
         if (_background is not null) scene["background"] = _background;
+        if (_sky is not null) scene["sky"] = _sky;
         if (_spectra.Count > 0) scene["spectra"] = _spectra;
         scene["materials"] = _materials;
         scene["lights"] = _lights;
@@ -149,6 +153,12 @@ public sealed partial class PbrtConverter
                 throw new InputException(film.Where, $"the film is {width} × {height} pixels",
                     "give xresolution and yresolution of 1 to 65536");
             foreach (var name in new[] { "filename", "savefp16", "diagonal" }) film.Parameters.Find(name);
+            double iso = film.Parameters.Float("iso", 100);
+            if (!(iso > 0)) throw new InputException(film.Where, $"iso {iso}", "give an ISO above 0 (pbrt's default is 100)");
+            _imagingRatio *= iso / 100;
+            if (film.Parameters.Find("sensor") is { } sensor && film.Parameters.String("sensor") != "cie1931")
+                _report.Add("approximated", Place(sensor.Token), $"Film \"{film.Type}\" \"sensor\"",
+                    "the preview is exposed as pbrt's cie1931 sensor (colour from the CIE 1931 observer, no camera response)");
             ReportUnused(film, $"Film \"{film.Type}\"");
         }
         int spp = 16;
@@ -178,6 +188,8 @@ public sealed partial class PbrtConverter
             if (camera.Parameters.Has("lensradius") && camera.Parameters.Float("lensradius", 0) > 0)
                 Note("approximated", camera, "Camera \"float lensradius\"", "depth of field is not rendered: a pinhole camera");
             camera.Parameters.Find("focaldistance");
+            double open = camera.Parameters.Float("shutteropen", 0), close = camera.Parameters.Float("shutterclose", 1);
+            _imagingRatio *= Math.Abs(close - open) > 0 ? Math.Abs(close - open) : 1;
             ReportUnused(camera, $"Camera \"{camera.Type}\"");
         }
         // pbrt's fov spans the shorter image axis; ours is vertical.
