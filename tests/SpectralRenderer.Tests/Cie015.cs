@@ -28,6 +28,17 @@ static class Cie015
         return new Xyz(x / yw, y / yw, z / yw);
     }
 
+    /// <summary>
+    /// Σ f(λ)·1 nm over whole nanometres first…last with the two ends at half weight: §7.1's 1 nm sum in its trapezoidal form
+    /// (the engine's one summation rule for colour and camera signals), f built from the tables' interpolants by the caller.
+    /// </summary>
+    public static double Sum(Func<int, double> f, int first = 380, int last = 780)
+    {
+        double s = 0.5 * (f(first) + f(last));
+        for (int l = first + 1; l < last; l++) s += f(l);
+        return s;
+    }
+
     /// <summary>XYZ of the perfect white diffuser under the white itself (Y = 1).</summary>
     public static Xyz White(TabulatedSpectrum white, Observer? observer = null) =>
         Of(TabulatedSpectrum.Constant(1), [(white, 1)], white, observer);

@@ -8,16 +8,16 @@ public enum BandIntegration
     /// <summary>
     /// Exact at the tables' full resolution (default): every term of eq. 2 is a scalar × a light spectrum ×
     /// a material spectrum, so its band value is the scalar × the band mean of the product E·m, and its colour
-    /// the scalar × κ∫x̄·E·m dλ — both exact integrals of the piecewise-linear tables, precomputed per
-    /// (light, material component). The cube is the band average of the true spectral radiance; a pixel's
-    /// XYZ is the exact colour of its spectrum, not eq. 3 on its bands. The cube's own colour weights are
-    /// the <see cref="Weighted"/> ones.
+    /// the scalar × κΣx̄·E·m — the band mean the exact integral of the piecewise-linear tables, the colour CIE 015's
+    /// 1 nm sum of them (<see cref="Spectra.CieSummation"/>), precomputed per (light, material component). The cube
+    /// is the band average of the true spectral radiance; a pixel's XYZ is the exact colour of its spectrum, not eq. 3
+    /// on its bands. The cube's own colour weights are the <see cref="Weighted"/> ones.
     /// </summary>
     Exact,
     /// <summary>
     /// Spectral prefiltering (the former default; Ward &amp; Eydelberg-Vileshin 2002, the paper's ref. [4]):
     /// a spectrum's band value is its exact mean over the band, a term's the product of its factors' band means, and its colour weight is
-    /// ∫_b x̄·E dλ / ∫_b E dλ · Δλ, the CMF averaged under the reference light E at full resolution.
+    /// Σ_b x̄·E / ∫_b E dλ · Δλ, the CMF averaged under the reference light E at full resolution (CIE 015's 1 nm sum).
     /// Right for narrow-band lights.
     /// </summary>
     Weighted,

@@ -38,8 +38,9 @@ public sealed class Colorimeter
         }
         else
         {
-            // Prefiltered weights: the CMF averaged under the reference light within each band,
-            // ∫_b x̄E dλ / ∫_b E dλ, at the data's full resolution (exact for piecewise-linear tables).
+            // Prefiltered weights: the CMF averaged under the reference light within each band, Σ_b x̄E / ∫_b E dλ, the
+            // numerator CIE 015's 1 nm sum (CieSummation, as OfProduct), the denominator the band integral the band values
+            // are means of — so the weights applied to the light's band means give its 1 nm sum exactly.
             double peak = 0;
             var e = new double[n];
             for (int b = 0; b < n; b++) { e[b] = referenceLight.Integrate(grid.Lower(b), grid.Upper(b)); peak = Math.Max(peak, e[b]); }
@@ -48,15 +49,15 @@ public sealed class Colorimeter
                 double lo = grid.Lower(b), hi = grid.Upper(b);
                 if (e[b] > 1e-12 * peak)
                 {
-                    Wx[b] = TabulatedSpectrum.IntegrateProduct(observer.XBar, referenceLight, lo, hi) / e[b] * dl;
-                    Wy[b] = TabulatedSpectrum.IntegrateProduct(observer.YBar, referenceLight, lo, hi) / e[b] * dl;
-                    Wz[b] = TabulatedSpectrum.IntegrateProduct(observer.ZBar, referenceLight, lo, hi) / e[b] * dl;
+                    Wx[b] = CieSummation.Product(observer.XBar, referenceLight, lo, hi) / e[b] * dl;
+                    Wy[b] = CieSummation.Product(observer.YBar, referenceLight, lo, hi) / e[b] * dl;
+                    Wz[b] = CieSummation.Product(observer.ZBar, referenceLight, lo, hi) / e[b] * dl;
                 }
                 else
                 {   // The reference light is dark here: fall back to the plain CMF band integral.
-                    Wx[b] = observer.XBar.Integrate(lo, hi);
-                    Wy[b] = observer.YBar.Integrate(lo, hi);
-                    Wz[b] = observer.ZBar.Integrate(lo, hi);
+                    Wx[b] = CieSummation.Product(observer.XBar, null, lo, hi);
+                    Wy[b] = CieSummation.Product(observer.YBar, null, lo, hi);
+                    Wz[b] = CieSummation.Product(observer.ZBar, null, lo, hi);
                 }
             }
         }
@@ -74,16 +75,17 @@ public sealed class Colorimeter
     public double WhiteRadiance { get; }
 
     /// <summary>
-    /// κ·∫ x̄·a·b dλ (and ȳ, z̄) over the band range, exactly on the tables: the colour of the radiance a·b
-    /// (a light on a material component; b null for a radiance a alone) at full resolution, whatever the bands.
+    /// κ·Σ x̄·a·b (and ȳ, z̄) over the band range, CIE 015:2018 §7.1's 1 nm sum of the tables' interpolants
+    /// (<see cref="CieSummation"/>): the colour of the radiance a·b (a light on a material component; b null for a radiance
+    /// a alone) at full resolution, whatever the bands.
     /// </summary>
     public Xyz OfProduct(TabulatedSpectrum a, TabulatedSpectrum? b)
     {
         double lo = Grid.Start, hi = Grid.End;
         return new Xyz(
-            Kappa * TabulatedSpectrum.IntegrateProduct(Observer.XBar, a, b, lo, hi),
-            Kappa * TabulatedSpectrum.IntegrateProduct(Observer.YBar, a, b, lo, hi),
-            Kappa * TabulatedSpectrum.IntegrateProduct(Observer.ZBar, a, b, lo, hi));
+            Kappa * CieSummation.Product(Observer.XBar, a, b, lo, hi),
+            Kappa * CieSummation.Product(Observer.YBar, a, b, lo, hi),
+            Kappa * CieSummation.Product(Observer.ZBar, a, b, lo, hi));
     }
 
     /// <summary>

@@ -17,7 +17,7 @@ public static partial class ExactChannelSignals
     /// The exact route of a path render (issue 24): its radiance is carried on the sub-band grid (<see cref="SubBandFilm"/>:
     /// exact sub-band means, 5 nm by default), which the film reduces to output bands and integrates into XYZ as
     /// X = Σ_f L_f·κ∫_f x̄ dλ. A channel is integrated the same way, rate_c = Σ_f L_f · ∫_f η_c(λ)·λ dλ (× the sensor's
-    /// étendue/(hc)), each ∫_f at the sensitivity's full resolution (<see cref="ChannelWeights.ExactIntegral"/>), so the
+    /// étendue/(hc)), each ∫_f at the sensitivity's full resolution (<see cref="ChannelWeights.BoxIntegral"/>), so the
     /// signals depend on the sub-band grid and the samples but not on the output band count. The sub-band film comes from the
     /// render's lights/ when it wrote a path transfer (no rays), else its camera samples are traced again (the same paths:
     /// the render's time once more, and 4 bytes per pixel and sub-band).
@@ -87,7 +87,7 @@ public static partial class ExactChannelSignals
         var g = new double[cc * sub];
         for (int c = 0; c < cc; c++)
             for (int f = 0; f < sub; f++)
-                g[c * sub + f] = ChannelWeights.ExactIntegral(sensor.Channels[c], null, null, film.Lower[f], film.Upper[f]);
+                g[c * sub + f] = ChannelWeights.BoxIntegral(sensor.Channels[c], film.Lower[f], film.Upper[f]);
         // With the lens's optics each output band's share (its sub-bands) goes through them on its own, as on the Whitted route.
         var optics = Optics.For(sensor, cs.Width, cs.Height, cs.FovDegrees, scene.Grid);
         int parts = optics.Any ? scene.Bands : 1;

@@ -15,9 +15,9 @@ namespace SpectralRenderer.Relighting;
 /// <summary>
 /// The camera's exact route (issue 24): a render's pixel is L = Σ_c F_c · E_k·m·Π k_chain over its eq. 2 components
 /// (<see cref="ITermRoute"/>: a geometric factor F per pixel × a light spectrum × a material spectrum), so a channel's
-/// signal is Σ_c F_c · s_c · Π k · ∫ η(λ)·λ·E_k(λ)·m(λ) dλ — the same per-term scalar × precomputed table that gives
-/// the render its exact colour (<see cref="TermTables"/>), with the channel's η·λ/(hc) in place of x̄, integrated at the
-/// spectra's full resolution (<see cref="ChannelWeights.ExactIntegral"/>). The factors come from the render's lights/
+/// signal is Σ_c F_c · s_c · Π k · Σ η(λ)·λ·E_k(λ)·m(λ) — the same per-term scalar × precomputed table that gives
+/// the render its exact colour (<see cref="TermTables"/>), with the channel's η·λ/(hc) in place of x̄, summed by the same
+/// rule (CIE 015's 1 nm sum, <see cref="ChannelWeights.ExactIntegral"/>). The factors come from the render's lights/
 /// when it wrote them, else the transfer is traced again from the resolved scene (the same rays the render traced).
 /// A component whose chain passes a coloured mirror or glass, a dispersive split, or a spectrum known only by its band
 /// values takes the band route for itself (its band values × the channel weights), and the manifest counts them.
@@ -281,7 +281,8 @@ public static partial class ExactChannelSignals
     /// forms it.</summary>
     /// <summary>
     /// ∫_lo^hi η_c(λ)·λ·L_s(λ) dλ of a fluorescent term's shifted emission L_s, constant over each of the matrix's emission
-    /// cells (<see cref="ReradiationMatrix.ShiftedCells"/>, as the render's exact colour takes it: <see cref="FluorescentTerms"/>).
+    /// cells (<see cref="ReradiationMatrix.ShiftedCells"/>, as the render's exact colour takes it: <see cref="FluorescentTerms"/>;
+    /// <see cref="ChannelWeights.BoxIntegral"/>).
     /// </summary>
     static double ShiftIntegral(SensorChannel channel, ReradiationMatrix matrix, double[] cells, double lo, double hi)
     {
@@ -289,7 +290,7 @@ public static partial class ExactChannelSignals
         for (int o = 0; o < cells.Length; o++)
         {
             double a = Math.Max(lo, matrix.CellLower(o)), b = Math.Min(hi, matrix.CellUpper(o));
-            if (b > a && cells[o] != 0) sum += cells[o] * ChannelWeights.ExactIntegral(channel, null, null, a, b);
+            if (b > a && cells[o] != 0) sum += cells[o] * ChannelWeights.BoxIntegral(channel, a, b);
         }
         return sum;
     }

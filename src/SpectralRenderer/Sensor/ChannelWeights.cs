@@ -6,13 +6,14 @@ namespace SpectralRenderer.Sensor;
 
 /// <summary>
 /// Per channel c and band b, the photo-electron rate per unit of band radiance (e⁻/s per band unit):
-/// <code>  w_c,b = s · A·ff·πT/(1 + 4N²) · Δλ · ∫_b η_c(λ) λ E(λ) dλ / (h c ∫_b E(λ) dλ)</code>
+/// <code>  w_c,b = s · A·ff·πT/(1 + 4N²) · Δλ · Σ_b η_c(λ) λ E(λ) / (h c ∫_b E(λ) dλ)</code>
 /// with s the radiance scale (W·m⁻²·sr⁻¹·nm⁻¹ per band unit) and E the scene light. A band value is the mean
 /// radiance over the band, and within the band the radiance is taken to have the light's spectral shape —
 /// spectral prefiltering, as the colorimeter's eq. 3 weights do — so a narrow-band light's peak meets the
-/// sensitivity at full resolution instead of at the band's mean. The integral of the three piecewise-linear
-/// factors η·λ·E is a cubic between merged knots, which Simpson's rule integrates exactly.
-/// A band where the light is dark falls back to the plain ∫_b η λ dλ.
+/// sensitivity at full resolution instead of at the band's mean. The numerator is CIE 015's 1 nm sum, the rule colour uses
+/// (<see cref="ExactIntegral"/>, <see cref="CieSummation"/>), the denominator the band integral the band values are means
+/// of, so the weights applied to the light's band means give its 1 nm sum. A band where the light is dark falls back to
+/// the plain Σ_b η λ.
 /// </summary>
 public sealed class ChannelWeights
 {
@@ -48,20 +49,12 @@ public sealed class ChannelWeights
         for (int c = 0; c < m; c++)
         {
             var ch = sensor.Channels[c];
-            var qe = ch.QuantumEfficiency;
-            bool perEnergy = ch.PerEnergy;   // η·λ = R·555 nm: no λ factor left to integrate
             for (int b = 0; b < n; b++)
             {
                 double lo = grid.Lower(b), hi = grid.Upper(b), width = hi - lo;
-                double w = ch.Lens is not null   // a lens transmittance spectrum: η·T·λ·E, degree 4, by Gauss–Legendre
-                    ? e[b] > 1e-12 * peak ? ExactIntegral(ch, light, null, lo, hi) / e[b] * width : ExactIntegral(ch, null, null, lo, hi)
-                    : perEnergy
-                    ? SensorChannel.EnergyReferenceNm * (e[b] > 1e-12 * peak
-                        ? TabulatedSpectrum.IntegrateProduct(qe, light, lo, hi) / e[b] * width
-                        : qe.Integrate(lo, hi))
-                    : e[b] > 1e-12 * peak
-                    ? IntegrateTimesWavelength(qe, light, lo, hi) / e[b] * width
-                    : IntegrateTimesWavelength(qe, null, lo, hi);
+                double w = e[b] > 1e-12 * peak
+                    ? ExactIntegral(ch, light, null, lo, hi) / e[b] * width
+                    : ExactIntegral(ch, null, null, lo, hi);
                 values[c * n + b] = factor * w;
             }
             // A channel blind to every band would give no signal to expose, calibrate or recover with.
@@ -78,17 +71,35 @@ public sealed class ChannelWeights
     public static double FactorOf(SensorModel sensor, double radianceScale) => radianceScale * sensor.Etendue * 1e-9 / (H * C);
 
     /// <summary>
-    /// ∫_lo^hi η_c(λ)·λ·a(λ)·b(λ) dλ (nm² × the units of a·b; a or b null = 1) at the tables' full resolution: the
-    /// channel's signal from a radiance a·b, as exact colour integrates x̄·E·m (a per-energy channel: 555 nm·R(λ)
-    /// in place of η·λ; times the channel's lens transmittance T(λ) when it has one). Between merged knots η, a, b and T are
-    /// linear, so the integrand is a polynomial of degree ≤ 5, which 3-point Gauss–Legendre integrates without error.
+    /// Σ η_c(λ)·λ·a(λ)·b(λ) over [lo, hi] (nm² × the units of a·b; a or b null = 1), CIE 015's 1 nm sum of the tables'
+    /// interpolants (<see cref="CieSummation"/>): the channel's signal from a radiance a·b, by the rule exact colour sums x̄·E·m by
+    /// (a per-energy channel: 555 nm·R(λ) in place of η·λ; times the channel's lens transmittance T(λ) when it has one).
+    /// The sum runs within a zero-extrapolated table's range (<see cref="CieSummation.Clip"/>); any other table is its end value beyond it.
     /// </summary>
     public static double ExactIntegral(SensorChannel channel, TabulatedSpectrum? a, TabulatedSpectrum? b, double lo, double hi)
     {
         var qe = channel.QuantumEfficiency;
         var lens = channel.Lens;
+        CieSummation.Clip(qe, ref lo, ref hi); CieSummation.Clip(a, ref lo, ref hi);
+        CieSummation.Clip(b, ref lo, ref hi); CieSummation.Clip(lens, ref lo, ref hi);
+        return CieSummation.Of(x => (channel.PerEnergy ? SensorChannel.EnergyReferenceNm * At(qe, x) : At(qe, x) * x)
+            * (a is null ? 1 : At(a, x)) * (b is null ? 1 : At(b, x)) * (lens is null ? 1 : At(lens, x)), lo, hi);
+    }
+
+    static double At(TabulatedSpectrum s, double x) => Outside(s, x) ? 0 : Value(s, x);
+
+    /// <summary>
+    /// ∫_lo^hi η_c(λ)·λ dλ (× T(λ) with a lens; 555 nm·R(λ) for a per-energy channel), exactly: the channel's weight for a
+    /// radiance constant over [lo, hi] — the path film's sub-band means, a fluorescent term's emission cells — as colour weights
+    /// those by ∫ x̄ dλ. Between merged knots the integrand is a polynomial of degree ≤ 3, which 3-point Gauss–Legendre
+    /// integrates without error.
+    /// </summary>
+    public static double BoxIntegral(SensorChannel channel, double lo, double hi)
+    {
+        var qe = channel.QuantumEfficiency;
+        var lens = channel.Lens;
         var knots = new List<double> { lo, hi };
-        foreach (var s in (ReadOnlySpan<TabulatedSpectrum?>)[qe, a, b, lens])
+        foreach (var s in (ReadOnlySpan<TabulatedSpectrum?>)[qe, lens])
             if (s is not null) foreach (var x in s.Wavelengths) if (x > lo && x < hi) knots.Add(x);
         knots.Sort();
         const double G = 0.7745966692414834;   // √(3/5)
@@ -103,35 +114,10 @@ public sealed class ChannelWeights
         return sum;
 
         double F(double x) => (channel.PerEnergy ? SensorChannel.EnergyReferenceNm * At(qe, x) : At(qe, x) * x)
-            * (a is null ? 1 : At(a, x)) * (b is null ? 1 : At(b, x)) * (lens is null ? 1 : At(lens, x));
+            * (lens is null ? 1 : At(lens, x));
     }
 
-    static double At(TabulatedSpectrum s, double x) => Outside(s, x) ? 0 : Value(s, x);
-
-    /// <summary>∫_lo^hi a(λ)·b(λ)·λ dλ of piecewise-linear a, b (b null = 1), exactly (Simpson on each interval between merged
-    /// knots).</summary>
-    public static double IntegrateTimesWavelength(TabulatedSpectrum a, TabulatedSpectrum? b, double lo, double hi)
-    {
-        var knots = new List<double> { lo, hi };
-        foreach (var x in a.Wavelengths) if (x > lo && x < hi) knots.Add(x);
-        if (b is not null) foreach (var x in b.Wavelengths) if (x > lo && x < hi) knots.Add(x);
-        knots.Sort();
-        double sum = 0;
-        for (int i = 0; i + 1 < knots.Count; i++)
-        {
-            double x0 = knots[i], x1 = knots[i + 1];
-            if (x1 <= x0) continue;
-            double xm = 0.5 * (x0 + x1);
-            if (Outside(a, xm) || (b is not null && Outside(b, xm))) continue;
-            sum += (x1 - x0) / 6 * (F(x0) + 4 * F(xm) + F(x1));
-        }
-        return sum;
-
-        double F(double x) => Value(a, x) * (b is null ? 1 : Value(b, x)) * x;
-    }
-
-    /// <summary>Knots include the table's ends, so an interval lies wholly inside or outside; outside a zero-extrapolated table the factor
-    /// is 0.</summary>
+    /// <summary>Outside a zero-extrapolated table the factor is 0.</summary>
     static bool Outside(TabulatedSpectrum s, double x) => s.Extrapolation == Extrapolation.Zero && (x < s.First || x > s.Last);
 
     /// <summary>The interpolant at λ, its end values beyond the table.</summary>

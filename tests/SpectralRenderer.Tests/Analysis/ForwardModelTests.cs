@@ -8,8 +8,8 @@ namespace SpectralRenderer.Tests.Analysis;
 
 /// <summary>
 /// The recovery's forward model at full resolution (issue 24, the exact route), without a render: its signals and band
-/// means against a 0.1 nm integral computed here, and mosaic-16's ColorChecker recovery from exact signals (that integral,
-/// the exact route's signals of the 24 Ohta patches head-on under D65) with it and with the band model.
+/// means against CIE 015's 1 nm sum and 0.1 nm band means computed here, and mosaic-16's ColorChecker recovery from exact
+/// signals (that sum, the exact route's signals of the 24 Ohta patches head-on under D65) with it and with the band model.
 /// </summary>
 public class ForwardModelTests(ITestOutputHelper output)
 {
@@ -32,29 +32,26 @@ public class ForwardModelTests(ITestOutputHelper output)
     static double[] Sampled((double[] Wl, double[] V) t) =>
         Enumerable.Range(0, Steps).Select(k => ExactSignalsTests.Lerp(t, At(k))).ToArray();
 
-    static readonly Lazy<double[]> D65Sampled = new(() => Sampled(D65));
     static readonly Lazy<double[][]> PatchesSampled = new(() => Patches.Value.Select(Sampled).ToArray());
 
     /// <summary>
-    /// ∫ ρ·E·η·λ dλ (nm², E relative, η a quantum efficiency; a per-energy channel's η = R·555 nm/λ) by the midpoint rule on
-    /// 0.1 nm steps of the tables' linear interpolants, for each of <paramref name="rho"/> (null: ρ = 1).
+    /// Σ ρ·E·η·λ (nm², E relative, η a quantum efficiency; a per-energy channel's η = R·555 nm/λ), CIE 015's 1 nm sum
+    /// (trapezoidal form, <see cref="Cie015.Sum"/>) of the tables' linear interpolants, for each of <paramref name="rho"/>
+    /// (null: ρ = 1).
     /// </summary>
-    static double[] Integrals(SensorChannel ch, double[][]? rho)
+    static double[] Integrals(SensorChannel ch, (double[] Wl, double[] V)[]? rho)
     {
         var qe = (ch.QuantumEfficiency.Wavelengths.ToArray(), ch.QuantumEfficiency.Values.ToArray());
         bool zero = ch.QuantumEfficiency.Extrapolation == Extrapolation.Zero;
-        var e = D65Sampled.Value;
-        var f = new double[Steps];
-        for (int k = 0; k < Steps; k++)
+        double F(int wl)
         {
-            double wl = At(k);
-            if (zero && (wl < qe.Item1[0] || wl > qe.Item1[^1])) continue;
+            if (zero && (wl < qe.Item1[0] || wl > qe.Item1[^1])) return 0;
             double eta = ExactSignalsTests.Lerp(qe, wl);
             if (ch.PerEnergy) eta *= SensorChannel.EnergyReferenceNm / wl;
-            f[k] = e[k] * eta * wl * 0.1;
+            return ExactSignalsTests.Lerp(D65, wl) * eta * wl;
         }
-        return rho is null ? [f.Sum()]
-            : rho.Select(r => { double v = 0; for (int k = 0; k < Steps; k++) v += r[k] * f[k]; return v; }).ToArray();
+        return rho is null ? [Cie015.Sum(F)]
+            : rho.Select(r => Cie015.Sum(wl => ExactSignalsTests.Lerp(r, wl) * F(wl))).ToArray();
     }
 
     /// <summary>The band means on <see cref="Grid"/> (20 nm: 200 midpoints each) of a sampled table.</summary>
@@ -80,10 +77,10 @@ public class ForwardModelTests(ITestOutputHelper output)
             double expected = Integrals(sensor.Channels[c], null)[0];
             Assert.True(Math.Abs(white[c] / expected - 1) <= 1e-4, $"{preset} {c}: A·1 {white[c]} vs {expected}");
             // The Ohta patches are tabulated on the same 5 nm knots, so their values there are the model's coordinates.
-            var patches = Integrals(sensor.Channels[c], rho);
+            var patches = Integrals(sensor.Channels[c], Patches.Value);
             for (int p = 0; p < patches.Length; p++)
                 Assert.True(Math.Abs(s[p][c] / patches[p] - 1) <= 1e-4,
-                    $"{preset} channel {c}, patch {p + 1}: {s[p][c]} vs the 0.1 nm integral {patches[p]}");
+                    $"{preset} channel {c}, patch {p + 1}: {s[p][c]} vs the 1 nm sum {patches[p]}");
         }
         for (int p = 0; p < rho.Length; p++)
         {
@@ -95,7 +92,7 @@ public class ForwardModelTests(ITestOutputHelper output)
     }
 
     /// <summary>
-    /// mosaic-16 and the 24 Ohta patches head-on under D65: their exact signals (the 0.1 nm integral, e⁻/s), the band route's
+    /// mosaic-16 and the 24 Ohta patches head-on under D65: their exact signals (the 1 nm sum, e⁻/s), the band route's
     /// signals (A·r_b, r_b their band means: what a band cube gives), the band means, the capture's noise-free K_n (the
     /// 1/12 DN² quantisation floor at the auto exposure: the brightest signal at 0.8 of the full well, one frame), and the
     /// two forward models.
@@ -110,7 +107,7 @@ public class ForwardModelTests(ITestOutputHelper output)
         double factor = ChannelWeights.FactorOf(sensor, 1);
         var patches = PatchesSampled.Value;
         int c = sensor.ChannelCount;
-        var perChannel = sensor.Channels.Select(ch => Integrals(ch, patches)).ToArray();
+        var perChannel = sensor.Channels.Select(ch => Integrals(ch, Patches.Value)).ToArray();
         var exactSignals = Enumerable.Range(0, patches.Length)
             .Select(p => Enumerable.Range(0, c).Select(k => factor * perChannel[k][p]).ToArray()).ToArray();
         var truth = patches.Select(BandMeans).ToArray();

@@ -134,9 +134,9 @@ public class ColorimetryTests(ITestOutputHelper output)
     {
         var c = new Colorimeter(BandGrid.Default, Observer.Cie1931, D65, absolute: true);
         Assert.Equal(683.0, c.Kappa);
-        // Y of the white = 683 ∫ ȳ E dλ.
-        double y = 683 * TabulatedSpectrum.IntegrateProduct(Observer.Cie1931.YBar, D65, 380, 780);
-        Assert.Equal(y, c.White.Y, 6);
+        // Y of the white = 683 Σ ȳ E at 1 nm (CIE 015 §7.1, trapezoidal form).
+        double y = 683 * Cie015.Sum(l => Observer.Cie1931.YBar.Evaluate(l) * D65.Evaluate(l));
+        Assert.Equal(1, c.White.Y / y, 12);
     }
 
     [Fact]
