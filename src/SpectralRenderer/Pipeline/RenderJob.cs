@@ -189,7 +189,7 @@ public sealed class RenderJob
         {
             if (Request.FromTransfer is null) Build();
             Render(observer, cancel);
-            Write(cancel);
+            Write(cancel, observer?.Progress);
         }
         catch (Exception e) when (e is not InterruptedException)
         {
@@ -252,7 +252,8 @@ public sealed class RenderJob
     /// <summary>
     /// The transfer when the lights product is asked for, then every product and render.json into the folder, swapped in whole.
     /// </summary>
-    public IReadOnlyList<string> Write(CancellationToken cancel = default)
+    /// <param name="progress">Where the products that trace rays of their own (photometry, grids) report progress, or null.</param>
+    public IReadOnlyList<string> Write(CancellationToken cancel = default, Action<RenderProgress>? progress = null)
     {
         var result = Result ?? throw new InvalidOperationException("render before writing");
         if (Request.OutDir is null && _folder is null) return Files;
@@ -269,7 +270,7 @@ public sealed class RenderJob
         var writeClock = Stopwatch.StartNew();
         Files = RenderOutputWriter.Write(Scene, result, _folder!, RunRecord, cancel, Transfer, Request.FromTransfer?.Reuse, NamedProducts,
             Geometry is not null && Integrator is not null ? new RenderTracer(Geometry, Integrator, Request.Threads) : null, ExtraFiles,
-            _warning);
+            _warning, progress);
         WriteSeconds = writeClock.Elapsed.TotalSeconds;
         return Files;
     }
