@@ -121,7 +121,7 @@ def render(scene, progress=None, **options):
     """Renders a scene (dict, JSON text, or path — our JSON, or a Mitsuba 3 .xml converted as `spectral import` does) as
     `spectral render` does, in memory. The keywords are the command's
     options (`spectral render --help`, one table for the command line, libspectral and this package), with '_' for '-':
-    width, height, bands (a count or "start:end:count"), band_range, wave, spp, target_error, threads, rgb, integration,
+    width, height, bands (a count or "start:end:count"), band_range, wave, spp, target_error, threads, rgb, exposure, integration,
     formats, exr_compression, models (a folder or a list of them), crop ("x0,y0,x1,y1" or (x0, y0, x1, y1)), shard
     ("i/n"), shards, integrator; None leaves an option out. Values are checked by the library with the command line's
     messages. progress(done, total) is called after each tile.

@@ -17,7 +17,8 @@ public sealed class ProgressBar
 
     readonly Lock _gate = new();
 
-    /// <summary>Redraws the bar (at most every 100 ms, and at the end); called from any thread (a gather's rows report in parallel).</summary>
+    /// <summary>Redraws the bar (at most every 100 ms, and at the end); called from any thread (a gather's rows report in
+    /// parallel).</summary>
     public void Report(RenderProgress p)
     {
         lock (_gate) Draw(p);
@@ -34,7 +35,8 @@ public sealed class ProgressBar
         double eta = f > 0 ? secs / f - secs : 0;
         // The render's tiles and its ray rate; a product's gather after it (p.Stage) in rows, its rays not counted.
         string what = p.Stage is null
-            ? string.Create(CultureInfo.InvariantCulture, $"{p.TilesDone}/{p.Tiles} tiles  {p.Rays / Math.Max(secs, 1e-9) / 1e6:0.0} Mrays/s")
+            ? string.Create(CultureInfo.InvariantCulture,
+                $"{p.TilesDone}/{p.Tiles} tiles  {p.Rays / Math.Max(secs, 1e-9) / 1e6:0.0} Mrays/s")
             : $"{p.TilesDone}/{p.Tiles} rows of the {p.Stage}";
         _err.Write(string.Create(CultureInfo.InvariantCulture,
             $"\r[{new string('#', filled)}{new string('.', 30 - filled)}] {f * 100,5:0.0}%  {what}  ETA {eta:0.0} s "));

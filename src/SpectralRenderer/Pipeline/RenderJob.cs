@@ -150,7 +150,8 @@ public sealed class RenderJob
         if (Crop is not null && Scene.Output.ExposureAuto)
             throw new InputException(Request.ScenePath.Length > 0 ? Request.ScenePath : Scene.SourcePath,
                 "output.exposure \"auto\" is chosen from the whole image, which a shard or crop does not see",
-                "give a fixed \"exposure\" (a whole render's render.json states the one auto chose, $.colour.exposure)");
+                "give every shard one fixed exposure: --exposure E (or the scene's \"exposure\"), e.g. the one a small whole render "
+                    + "chose, its render.json's $.colour.exposure");
     }
 
     /// <summary>
@@ -323,7 +324,7 @@ public sealed class RenderJob
 
     /// <summary>The command-line overrides as render.json records them (model folders as full paths).</summary>
     public static ManifestOverrides Recorded(SceneOverrides o) => new(o.Width, o.Height, o.Bands, o.Wave, o.SamplesPerPixel, o.Rgb,
-        o.Integration, o.Formats, o.ExrCompression, o.ModelDirectories.Select(Path.GetFullPath).ToArray());
+        o.Integration, o.Formats, o.ExrCompression, o.ModelDirectories.Select(Path.GetFullPath).ToArray(), o.Exposure);
 
     /// <summary>The overrides render.json recorded, to load the same scene again (relight).</summary>
     public static SceneOverrides Overrides(ManifestOverrides? o) => new()
@@ -337,6 +338,7 @@ public sealed class RenderJob
         Integration = o?.Integration,
         Formats = o?.Formats,
         ExrCompression = o?.ExrCompression,
+        Exposure = o?.Exposure,
         ModelDirectories = o?.Models.Where(Directory.Exists).ToList() ?? [],
     };
 }
