@@ -192,7 +192,9 @@ public class PhotometryOutputTests(ITestOutputHelper output)
         var events = new System.Collections.Concurrent.ConcurrentQueue<SpectralRenderer.Rendering.RenderProgress>();
         var job = SpectralRenderer.Pipeline.RenderJob.Load(new SpectralRenderer.Pipeline.RenderRequest
         {
-            SceneText = Encoding.UTF8.GetBytes(json), ScenePath = "gather.json", OutDir = Path.Combine(Reference.TempDir(), "out"),
+            SceneText = Encoding.UTF8.GetBytes(json),
+            ScenePath = "gather.json",
+            OutDir = Path.Combine(Reference.TempDir(), "out"),
             Products = ["photometry"],
         });
         job.Execute(new SpectralRenderer.Pipeline.RenderObserver(Progress: events.Enqueue));
