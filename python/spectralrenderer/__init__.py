@@ -21,6 +21,7 @@ import json
 import os
 import struct
 import threading
+import warnings
 import zlib
 from pathlib import Path
 
@@ -46,25 +47,31 @@ def abi_version():
     return _native.lib().spectral_abi_version()
 
 
-def spectrum(wavelengths, values=None):
+def spectrum(wavelengths, values=None, scale=None):
     """A spectrum value of the scene format from arrays: inline [[nm, value], …] pairs (linear in between).
 
     spectrum(wl, v) with two 1-D arrays of one length, or spectrum(a) with an N x 2 array of (nm, value) rows. Names
-    ("D65", "blackbody:3000", …) and such pairs are what render(), relight() and scene dicts take as a spectrum."""
+    ("D65", "blackbody:3000", …) and such pairs are what render(), relight() and scene dicts take as a spectrum.
+    Arrays are taken as given, as a CSV column is: a light's values multiply its intensity as they are. scale: a number
+    (a factor), or "luminous" to put a light's shape on the built-in lights' scale (∫V·S dλ = D65's, as led-blue and
+    FL11 are: at the same intensity it gives the luminance D65 gives); either makes the object {"values": …, "scale": …}."""
     if values is None:
         a = np.asarray(wavelengths, dtype=float)
         if a.ndim != 2 or a.shape[1] != 2:
             raise ValueError(f"a spectrum array is N x 2 (nm, value) rows, not {a.shape}")
-        return a.tolist()
-    wl, v = np.asarray(wavelengths, dtype=float), np.asarray(values, dtype=float)
-    if wl.ndim != 1 or wl.shape != v.shape:
-        raise ValueError(f"wavelengths {wl.shape} and values {v.shape} must be 1-D of one length")
-    return np.stack([wl, v], axis=1).tolist()
+        pairs = a.tolist()
+    else:
+        wl, v = np.asarray(wavelengths, dtype=float), np.asarray(values, dtype=float)
+        if wl.ndim != 1 or wl.shape != v.shape:
+            raise ValueError(f"wavelengths {wl.shape} and values {v.shape} must be 1-D of one length")
+        pairs = np.stack([wl, v], axis=1).tolist()
+    return pairs if scale is None else {"values": pairs, "scale": scale}
 
 
 def _spectrum_value(value):
-    """A spectrum given as a name, a number, pairs, an N x 2 array or a (wavelengths, values) pair, as JSON."""
-    if isinstance(value, (str, int, float)) or value is None:
+    """A spectrum given as a name, a number, pairs, an N x 2 array, a (wavelengths, values) pair or a spectrum object (a
+    dict, e.g. from spectrum(wl, v, scale=…)), as JSON."""
+    if isinstance(value, (str, int, float, dict)) or value is None:
         return value
     if isinstance(value, tuple) and len(value) == 2 and np.ndim(value[0]) == 1:
         return spectrum(value[0], value[1])
@@ -114,7 +121,7 @@ def render(scene, progress=None, **options):
     """Renders a scene (dict, JSON text, or path — our JSON, or a Mitsuba 3 .xml converted as `spectral import` does) as
     `spectral render` does, in memory. The keywords are the command's
     options (`spectral render --help`, one table for the command line, libspectral and this package), with '_' for '-':
-    width, height, bands (a count or "start:end:count"), band_range, wave, spp, target_error, threads, rgb, integration,
+    width, height, bands (a count or "start:end:count"), band_range, wave, spp, target_error, threads, rgb, exposure, integration,
     formats, exr_compression, models (a folder or a list of them), crop ("x0,y0,x1,y1" or (x0, y0, x1, y1)), shard
     ("i/n"), shards, integrator; None leaves an option out. Values are checked by the library with the command line's
     messages. progress(done, total) is called after each tile.
@@ -167,7 +174,10 @@ def relight(render, lights=None, white=None):
     """The render under other lights, as `spectral relight` computes it (no ray traced into the picture): a new Render.
 
     lights: {name: spectrum} or {name: {"spectrum": spectrum, "intensity": F}} (either key); white: a new reference white
-    (κ and the colour weights follow it). A spectrum is a name or arrays (see spectrum()). The render's per-light transfer
+    (κ and the colour weights follow it). A spectrum is a name or arrays (see spectrum()): arrays are taken as given, as a
+    CSV column is, so a shape with peak 1 replacing D65 (100 at 560 nm) is about a hundred times darker; put it on the
+    built-in lights' scale with spectrum(wl, v, scale="luminous"). A relit picture under 1/20 of the render's mean
+    luminance after arrays without a scale warns (RuntimeWarning) with that hint. The render's per-light transfer
     (the Whitted model's factors, or a path render's weights on its fine grid) is traced once, on the first relight, and
     kept with it (or taken from an earlier save with lights). Raises SpectralError with the command's one line."""
     lib = _native.need(1, "relight")
@@ -176,14 +186,22 @@ def relight(render, lights=None, white=None):
                             "(hint: relight a render from sr.render, or run 'spectral relight' on the folder)", 2)
     changes = {}
     for name, value in (lights or {}).items():
-        if isinstance(value, dict):
+        if isinstance(value, dict) and ("spectrum" in value or "intensity" in value):
             value = {k: (_spectrum_value(v) if k == "spectrum" else v) for k, v in value.items()}
         else:
             value = {"spectrum": _spectrum_value(value)}
         changes[name] = value
     body = json.dumps({"lights": changes, **({} if white is None else {"white": _spectrum_value(white)})},
                       default=_json_default).encode()
-    return Render(_handle=_call(lib, "spectral_relight", lambda cancel: lib.spectral_relight(render._handle, body, cancel)))
+    relit = Render(_handle=_call(lib, "spectral_relight", lambda cancel: lib.spectral_relight(render._handle, body, cancel)))
+    bare = [name for name, value in changes.items() if isinstance(value.get("spectrum"), list)]
+    if bare:
+        before, after = float(np.mean(render.xyz[..., 1])), float(np.mean(relit.xyz[..., 1]))
+        if before > 0 and after < before / 20:
+            warnings.warn(f"sr.relight: the relit picture's mean luminance is {after / before:.2g}× the render's: the "
+                          f"spectra of {', '.join(bare)} given as arrays are taken as given, not on the built-in lights' "
+                          "scale (hint: sr.spectrum(wl, v, scale=\"luminous\"), or an intensity)", RuntimeWarning, stacklevel=2)
+    return relit
 
 
 def camera(render, sensor=None, exposure=None, seed=None, noise=None, radiance_scale=None, demosaic=None, signals=None,

@@ -72,6 +72,36 @@ def test_a_spectrum_as_arrays_equals_the_same_table_from_a_csv_file(sr, cli, cha
         assert r.cube.tobytes() == np.load(relit_dir / "spectral.npy").tobytes()
 
 
+def _table(repo, name, column):
+    rows = [l.split(",") for l in (repo / "data" / name).read_text().splitlines()]
+    c = rows[0].index(column)
+    return np.array([float(r[0]) for r in rows[1:] if r[0]]), np.array([float(r[c]) for r in rows[1:] if r[0]])
+
+
+def test_arrays_are_taken_as_given_warn_when_dark_and_scale_luminous_puts_them_on_the_lights_scale(sr, repo, chart):
+    """Issue 42: the README's blue LED shape (peak 1) in place of D65 (100 at 560 nm) relights as given — a hundred times
+    darker, with a RuntimeWarning and its hint — and with scale="luminous" on the built-in lights' scale: the two relit
+    pictures differ by ∫V·G / ∫V·D65, both integrals computed here (0.01 nm midpoint sums on the data tables)."""
+    wl = np.arange(380.0, 781.0, 5.0)
+    values = np.exp(-0.5 * ((wl - 450.0) / 12.0) ** 2)
+    with pytest.warns(RuntimeWarning, match='scale="luminous"'):
+        dark = sr.relight(chart, lights={"D65": (wl, values)})
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        lit = sr.relight(chart, lights={"D65": sr.spectrum(wl, values, scale="luminous")})
+    v_wl, v = _table(repo, "cie1931-2deg-cmf.csv", "ybar")
+    d_wl, d65 = _table(repo, "illuminants.csv", "D65")
+
+    def luminous(s_wl, s):
+        lo, hi = max(s_wl[0], v_wl[0]), min(s_wl[-1], v_wl[-1])
+        x = lo + (np.arange(int(round((hi - lo) / 0.01))) + 0.5) * 0.01
+        return float(np.sum(np.interp(x, v_wl, v) * np.interp(x, s_wl, s)) * 0.01)
+    expected = luminous(wl, values) / luminous(d_wl, d65)
+    ratio = float(dark.xyz[..., 1].sum() / lit.xyz[..., 1].sum())
+    assert expected < 0.05 and abs(ratio / expected - 1) < 1e-3, (ratio, expected)
+
+
 def test_relight_errors_are_the_cli_lines(sr, cli, chart, cli_chart, tmp_path):
     p = cli("relight", cli_chart, "--light", "D66=A", "-o", tmp_path / "x")
     assert p.returncode == 2

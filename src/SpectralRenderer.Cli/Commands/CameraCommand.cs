@@ -217,11 +217,11 @@ public static class CameraCommand
                 + $"= {sensor.SystemGain:G4} DN/e⁻"));
         if (patches.Count > 0)
         {
-            stdout.WriteLine($"{"patch",5} {"object",-12} {"ΔE00",7}  SNR dB per channel");
+            stdout.WriteLine($"{"patch",5} {"object",-12} {"ΔE00",7}  SNR dB per channel (20 log10 mean/σ of DN − black; "
+                + "— no signal above black)");
             foreach (var p in patches)
                 stdout.WriteLine(string.Create(inv,
-                    $"{p.Patch,5} {p.Object,-12} {p.DeltaE00,7:F3}  "
-                        + $"{string.Join(" ", p.SnrDb.Select(v => double.IsFinite(v) ? v.ToString("F1", inv) : "inf"))}"));
+                    $"{p.Patch,5} {p.Object,-12} {p.DeltaE00,7:F3}  {string.Join(" ", p.SnrDb.Select(SnrText))}"));
             stdout.WriteLine(string.Create(inv,
                 $"mean ΔE00 {patches.Average(p => p.DeltaE00):F3}, max {patches.Max(p => p.DeltaE00):F3} (corrected colour vs 1 nm "
                     + $"CIE XYZ under {scene.LightName})"));
@@ -229,6 +229,11 @@ public static class CameraCommand
         stdout.WriteLine($"wrote {string.Join(", ", written)}, camera.json in {outDir}");
         return CommandLine.Success;
     }
+
+    /// <summary>A patch's SNR in dB on the console: "—" without signal above black (−∞ dB), "n/a" with under two unclipped sites.</summary>
+    static string SnrText(double db) =>
+        double.IsFinite(db) ? db.ToString("F1", CultureInfo.InvariantCulture)
+            : double.IsNaN(db) ? "n/a" : db > 0 ? "inf" : "—";
 
     static ushort[] Plane(RawFrame raw, int plane)
     {
@@ -262,7 +267,8 @@ public static class CameraCommand
             sb.Append(inv,
                 $"{p.Patch},{p.Object},{p.Pixels},{p.Camera.X:R},{p.Camera.Y:R},{p.Camera.Z:R},{p.Exact.X:R},"
                     + $"{p.Exact.Y:R},{p.Exact.Z:R},{p.DeltaE00:R}");
-            foreach (var v in p.SnrDb) sb.Append(',').Append(double.IsFinite(v) ? v.ToString("R", inv) : double.IsNaN(v) ? "" : "inf");
+            foreach (var v in p.SnrDb)
+                sb.Append(',').Append(double.IsFinite(v) ? v.ToString("R", inv) : double.IsNaN(v) ? "" : v > 0 ? "inf" : "-inf");
             sb.Append('\n');
         }
         return sb.ToString();

@@ -157,9 +157,10 @@ public static class ReconstructCommand
             XLabel = "wavelength (nm)",
             YLabel = "reflectance (1 = white board)"
         };
-        foreach (var p in pixels) plot.Add(p.Label, centres, p.Reflectance);
-        foreach (var t in pixels.Where(p => p.Object != "background").GroupBy(p => p.Object))
-            plot.Add($"truth: {t.Key}", centres, t.First().Truth, dashed: true);
+        // Each object's truth (dashed) in the colour of its first pixel's curve (solid).
+        for (int k = 0; k < pixels.Count; k++) plot.Add(pixels[k].Label, centres, pixels[k].Reflectance, colour: k);
+        foreach (var t in pixels.Select((p, k) => (p, k)).Where(e => e.p.Object != "background").GroupBy(e => e.p.Object))
+            plot.Add($"truth: {t.Key}", centres, t.First().p.Truth, dashed: true, colour: t.First().k);
         return plot;
     }
 }

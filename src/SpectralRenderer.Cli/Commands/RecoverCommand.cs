@@ -105,8 +105,10 @@ public static class RecoverCommand
                 XLabel = "wavelength (nm)",
                 YLabel = "reflectance factor",
             };
-            foreach (var (label, rec, _) in r.Examples) plot.Add(label, centres, rec);
-            foreach (var (label, _, truth) in r.Examples) plot.Add($"truth: {label}", centres, truth, dashed: true);
+            // Each recovered curve (solid) in the colour of its truth (dashed).
+            for (int k = 0; k < r.Examples.Count; k++) plot.Add(r.Examples[k].Label, centres, r.Examples[k].Recovered, colour: k);
+            for (int k = 0; k < r.Examples.Count; k++)
+                plot.Add($"truth: {r.Examples[k].Label}", centres, r.Examples[k].Truth, dashed: true, colour: k);
             plot.Write(Path.Combine(folder.Staging, $"recovery-{name}.svg"));
             written.Add($"recovered-{name}.npy");
             written.Add($"recovery-{name}.svg");

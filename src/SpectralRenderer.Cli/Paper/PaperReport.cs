@@ -366,10 +366,11 @@ public static class PaperReport
             Width = 720,
             Height = 420
         };
-        var truth = picks.FirstOrDefault(p => p.Object == subjectName);
+        // The truth (dashed) in the colour of the subject's first pixel (solid).
+        int first = picks.FindIndex(p => p.Object == subjectName);
         for (int k = 0; k < picks.Count; k++)
             if (picks[k].Object == subjectName) plot.Add($"{k + 1}: {picks[k].Label}", centres, picks[k].Reflectance);
-        if (truth is not null) plot.Add($"truth: {subjectTruth}", centres, truth.Truth, dashed: true);
+        if (first >= 0) plot.Add($"truth: {subjectTruth}", centres, picks[first].Truth, dashed: true, colour: 0);
         h.Append($"<figure>{PlotSvg(plot)}<figcaption>White reference: {Esc(white.Description)} ({white.Pixels} pixels). The dashed curve "
             + $"is the reflectance {Esc(subjectName)} was given.</figcaption></figure>\n");
 

@@ -27,11 +27,14 @@ public sealed class SvgPlot
     /// <summary>Forces the y axis to include 0 (spectra are non-negative).</summary>
     public bool YFromZero { get; init; } = true;
 
-    /// <summary>Adds a series; its colour is the next in <see cref="Palette"/>.</summary>
-    public SvgPlot Add(string name, IReadOnlyList<double> x, IReadOnlyList<double> y, bool dashed = false)
+    /// <summary>
+    /// Adds a series; its colour is <see cref="Palette"/>[<paramref name="colour"/>] (cycling), else the next in it. A curve and
+    /// its reference share a colour by passing the same index (solid and dashed).
+    /// </summary>
+    public SvgPlot Add(string name, IReadOnlyList<double> x, IReadOnlyList<double> y, bool dashed = false, int? colour = null)
     {
         if (x.Count != y.Count) throw new ArgumentException($"series '{name}': {x.Count} x values but {y.Count} y values");
-        _series.Add(new Series(name, x.ToArray(), y.ToArray(), dashed, Palette[_series.Count % Palette.Length]));
+        _series.Add(new Series(name, x.ToArray(), y.ToArray(), dashed, Palette[(colour ?? _series.Count) % Palette.Length]));
         return this;
     }
 
@@ -40,7 +43,12 @@ public sealed class SvgPlot
     public string ToSvg()
     {
         XNamespace ns = "http://www.w3.org/2000/svg";
-        const double left = 78, right = 170, top = 40, bottom = 56;
+        const double left = 78, top = 40, bottom = 56, legendFont = 12;
+        // The legend column holds the longest label (its width bounded above, LegendTextWidth), up to 45 % of the width; a
+        // longer label is fitted into the column by textLength (squeezed, never cut at the edge).
+        double labelWidth = _series.Count == 0 ? 0 : _series.Max(s => LegendTextWidth(s.Name, legendFont));
+        double right = Math.Clamp(LegendText + labelWidth + LegendPad, 170, Math.Max(170, 0.45 * Width));
+        double labelRoom = right - LegendText - LegendPad;
         double pw = Width - left - right, ph = Height - top - bottom;
         var finite = _series.SelectMany(s => s.X.Zip(s.Y)).Where(p => double.IsFinite(p.First) && double.IsFinite(p.Second)).ToList();
         double x0 = finite.Count > 0 ? finite.Min(p => p.First) : 0, x1 = finite.Count > 0 ? finite.Max(p => p.First) : 1;
@@ -107,11 +115,39 @@ public sealed class SvgPlot
             var mark = Line(lx, ly, lx + 24, ly, s.Colour, 2);
             if (s.Dashed) mark.Add(new XAttribute("stroke-dasharray", "6 4"));
             legend.Add(mark);
-            legend.Add(Text(lx + 30, ly + 4, s.Name, anchor: "start"));
+            var label = Text(left + pw + LegendText, ly + 4, s.Name, anchor: "start", size: (int)legendFont);
+            if (LegendTextWidth(s.Name, legendFont) > labelRoom)
+                label.Add(new XAttribute("textLength", F(labelRoom)), new XAttribute("lengthAdjust", "spacingAndGlyphs"));
+            legend.Add(label);
         }
         svg.Add(lines);
         svg.Add(legend);
         return new XDocument(new XDeclaration("1.0", "utf-8", null), svg).Declaration + "\n" + svg.ToString() + "\n";
+    }
+
+    /// <summary>From the plot's right edge to a legend label's start (after its line sample), and the space kept after it.</summary>
+    const double LegendText = 44, LegendPad = 8;
+
+    /// <summary>
+    /// An upper bound of a label's width in px at <paramref name="size"/> px: each character at the widest advance of its class
+    /// in Helvetica/Arial (Adobe's core-font metrics) and DejaVu Sans (the usual sans-serif fallback): narrow (i l j I . , : ;
+    /// ' |) 0.34 em, medium (f t r space ( ) [ ] - / \ !) 0.42 em, wide (m w M W % @) 1.05 em, other capitals, &amp; and the
+    /// maths signs (# + = &lt; &gt; ~ ^) 0.84 em, other ASCII 0.64 em, anything else 1.05 em.
+    /// </summary>
+    public static double LegendTextWidth(string text, double size)
+    {
+        double em = 0;
+        foreach (char c in text)
+            em += c switch
+            {
+                'i' or 'l' or 'j' or 'I' or '.' or ',' or ':' or ';' or '\'' or '|' => 0.34,
+                'f' or 't' or 'r' or ' ' or '(' or ')' or '[' or ']' or '-' or '/' or '\\' or '!' => 0.42,
+                'm' or 'w' or 'M' or 'W' or '%' or '@' => 1.05,
+                (>= 'A' and <= 'Z') or '&' or '#' or '+' or '=' or '<' or '>' or '~' or '^' => 0.84,
+                < (char)128 => 0.64,
+                _ => 1.05,
+            };
+        return em * size;
     }
 
     /// <summary>Tick positions at a "nice" step (1, 2 or 5 × 10^k) covering [lo, hi] with about <paramref name="target"/>

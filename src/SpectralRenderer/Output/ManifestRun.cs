@@ -42,7 +42,7 @@ public sealed record ManifestRun
 
 /// <summary>The command-line overrides of a render as render.json records them ("run.overrides"); null: the scene's own.</summary>
 public sealed record ManifestOverrides(int? Width, int? Height, string? Bands, string? Wave, int? SamplesPerPixel, string? Rgb,
-    string? Integration, string? Formats, string? ExrCompression, IReadOnlyList<string> Models);
+    string? Integration, string? Formats, string? ExrCompression, IReadOnlyList<string> Models, string? Exposure = null);
 
 /// <summary>A light's change in a relight: its new spectrum and/or intensity (null: kept).</summary>
 public sealed record ManifestLightChange(string Light, string? Spectrum, double? Intensity);

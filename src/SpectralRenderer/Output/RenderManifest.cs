@@ -272,7 +272,14 @@ public sealed record RenderManifest
         return o;
     }
 
-    static JsonObject OverridesJson(ManifestOverrides v) => new()
+    static JsonObject OverridesJson(ManifestOverrides v)
+    {
+        var o = Overrides(v);
+        if (v.Exposure is not null) o["exposure"] = v.Exposure;   // only when given (--exposure): earlier folders' bytes kept
+        return o;
+    }
+
+    static JsonObject Overrides(ManifestOverrides v) => new()
     {
         ["width"] = v.Width,
         ["height"] = v.Height,
@@ -480,7 +487,7 @@ public sealed record RenderManifest
                 new ManifestOverrides(r.OptInt(v, "width", ov, 1, 32768), r.OptInt(v, "height", ov, 1, 32768), r.OptString(v, "bands", ov),
                 r.OptString(v, "wave", ov), r.OptInt(v, "spp", ov, 1, 1 << 20), r.OptString(v, "rgb", ov),
                     r.OptString(v, "integration", ov),
-                r.OptString(v, "formats", ov), r.OptString(v, "exr_compression", ov), models);
+                r.OptString(v, "formats", ov), r.OptString(v, "exr_compression", ov), models, r.OptString(v, "exposure", ov));
         }
         return new ManifestRun
         {

@@ -41,15 +41,21 @@ public static class RenderOutputWriter
     /// <param name="tracer">The render's geometry and integrator, for products that trace rays (photometry's illuminance).</param>
     /// <param name="extra">Text files staged and swapped in with the render's (name → text), listed in render.json.</param>
     /// <param name="warning">Where a one-line warning goes (an all-black or all-white preview), or null.</param>
+    /// <param name="progress">Where products that trace rays of their own report progress (photometry, grids), or null.</param>
     public static List<string> Write(Scene scene, RenderResult result, OutputFolder folder, ManifestRun? run = null,
         CancellationToken cancel = default,
         ILightTransfer? transfer = null, ReusedFiles? reuse = null, IReadOnlyList<OutputProduct>? named = null,
-        RenderTracer? tracer = null, IReadOnlyDictionary<string, string>? extra = null, Action<string>? warning = null)
+        RenderTracer? tracer = null, IReadOnlyDictionary<string, string>? extra = null, Action<string>? warning = null,
+        Action<RenderProgress>? progress = null)
     {
         List<string> written;
         // Warnings are said once the render is swapped in: a render that fails says only why.
         var warnings = new System.Collections.Concurrent.ConcurrentQueue<string>();
-        try { written = WriteFiles(scene, result, folder.Staging, run, cancel, transfer, reuse, named, tracer, extra, warnings.Enqueue); }
+        try
+        {
+            written = WriteFiles(scene, result, folder.Staging, run, cancel, transfer, reuse, named, tracer, extra, warnings.Enqueue,
+                progress);
+        }
         catch (OperationCanceledException e) when (e is not InterruptedException)
         {
             folder.Abandon();
@@ -123,7 +129,7 @@ public static class RenderOutputWriter
 
     static List<string> WriteFiles(Scene scene, RenderResult result, string outDir, ManifestRun? run, CancellationToken cancel,
         ILightTransfer? transfer, ReusedFiles? reuse, IReadOnlyList<OutputProduct>? named, RenderTracer? tracer,
-        IReadOnlyDictionary<string, string>? extra, Action<string>? warning)
+        IReadOnlyDictionary<string, string>? extra, Action<string>? warning, Action<RenderProgress>? progress)
     {
         var products = OutputProductTable.For(scene.Output.Products, named);
         var needs = ProductInputs.None;
@@ -160,6 +166,7 @@ public static class RenderOutputWriter
             Reuse = reuse,
             Cancel = cancel,
             Warning = warning,
+            Progress = progress,
         };
 
         // The products' writers are independent files: run them side by side; each keeps its own list, in a fixed order.

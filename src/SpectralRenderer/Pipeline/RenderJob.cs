@@ -150,7 +150,8 @@ public sealed class RenderJob
         if (Crop is not null && Scene.Output.ExposureAuto)
             throw new InputException(Request.ScenePath.Length > 0 ? Request.ScenePath : Scene.SourcePath,
                 "output.exposure \"auto\" is chosen from the whole image, which a shard or crop does not see",
-                "give a fixed \"exposure\" (a whole render's render.json states the one auto chose, $.colour.exposure)");
+                "give every shard one fixed exposure: --exposure E (or the scene's \"exposure\"), e.g. the one a small whole render "
+                    + "chose, its render.json's $.colour.exposure");
     }
 
     /// <summary>
@@ -189,7 +190,7 @@ public sealed class RenderJob
         {
             if (Request.FromTransfer is null) Build();
             Render(observer, cancel);
-            Write(cancel);
+            Write(cancel, observer?.Progress);
         }
         catch (Exception e) when (e is not InterruptedException)
         {
@@ -252,7 +253,8 @@ public sealed class RenderJob
     /// <summary>
     /// The transfer when the lights product is asked for, then every product and render.json into the folder, swapped in whole.
     /// </summary>
-    public IReadOnlyList<string> Write(CancellationToken cancel = default)
+    /// <param name="progress">Where the products that trace rays of their own (photometry, grids) report progress, or null.</param>
+    public IReadOnlyList<string> Write(CancellationToken cancel = default, Action<RenderProgress>? progress = null)
     {
         var result = Result ?? throw new InvalidOperationException("render before writing");
         if (Request.OutDir is null && _folder is null) return Files;
@@ -269,7 +271,7 @@ public sealed class RenderJob
         var writeClock = Stopwatch.StartNew();
         Files = RenderOutputWriter.Write(Scene, result, _folder!, RunRecord, cancel, Transfer, Request.FromTransfer?.Reuse, NamedProducts,
             Geometry is not null && Integrator is not null ? new RenderTracer(Geometry, Integrator, Request.Threads) : null, ExtraFiles,
-            _warning);
+            _warning, progress);
         WriteSeconds = writeClock.Elapsed.TotalSeconds;
         return Files;
     }
@@ -322,7 +324,7 @@ public sealed class RenderJob
 
     /// <summary>The command-line overrides as render.json records them (model folders as full paths).</summary>
     public static ManifestOverrides Recorded(SceneOverrides o) => new(o.Width, o.Height, o.Bands, o.Wave, o.SamplesPerPixel, o.Rgb,
-        o.Integration, o.Formats, o.ExrCompression, o.ModelDirectories.Select(Path.GetFullPath).ToArray());
+        o.Integration, o.Formats, o.ExrCompression, o.ModelDirectories.Select(Path.GetFullPath).ToArray(), o.Exposure);
 
     /// <summary>The overrides render.json recorded, to load the same scene again (relight).</summary>
     public static SceneOverrides Overrides(ManifestOverrides? o) => new()
@@ -336,6 +338,7 @@ public sealed class RenderJob
         Integration = o?.Integration,
         Formats = o?.Formats,
         ExrCompression = o?.ExrCompression,
+        Exposure = o?.Exposure,
         ModelDirectories = o?.Models.Where(Directory.Exists).ToList() ?? [],
     };
 }

@@ -74,6 +74,10 @@ public static class RenderOptions
             + "0.01), taking at most --spp samples (render.json: sampling)"),
         new("threads", RenderOptionKind.Integer, "N", "worker threads (default: all cores); output is identical for any N", 1, 1024),
         new("rgb", RenderOptionKind.Text, "MODE", "srgb (default) or paper (the paper's eq. 4, linear, clipped)"),
+        new("exposure", RenderOptionKind.Text, "E|auto",
+            "the preview's exposure, over the scene's output.exposure: a multiplier on XYZ, or auto (from the whole image; a "
+            + "shard or crop needs a number: every shard the same, e.g. the one a small whole render chose, its render.json's "
+            + "colour.exposure)"),
         new("integration", RenderOptionKind.Text, "S",
             "exact (default: band values and colour integrated on the full tables), weighted (band products, prefiltered "
             + "colour weights) or paper (eq. 3)"),
@@ -186,6 +190,7 @@ public static class RenderOptions
             SamplesPerPixel = Int("spp"),
             TargetError = TargetError(Text("target-error")),
             Rgb = Text("rgb"),
+            Exposure = Text("exposure") is { } x ? (OutputOptions.ParseExposure(x).Auto ? "auto" : x.Trim()) : null,
             Integration = Text("integration"),
             Formats = SplitFormats(Text("formats")).Formats,
             ExrCompression = Text("exr-compression"),

@@ -46,8 +46,12 @@ public sealed class RenderResult
     public SamplerSettings Sampler { get; init; }
 }
 
-/// <summary>Progress of a render, reported after each tile.</summary>
-public readonly record struct RenderProgress(int TilesDone, int Tiles, long Rays, TimeSpan Elapsed);
+/// <summary>
+/// Progress of a render, reported after each tile; with a <paramref name="Stage"/> (e.g. "photometry gather"), of a product
+/// that traces rays of its own after the render, its units rows of pixels or grid points (<paramref name="Rays"/> 0: not
+/// counted).
+/// </summary>
+public readonly record struct RenderProgress(int TilesDone, int Tiles, long Rays, TimeSpan Elapsed, string? Stage = null);
 
 /// <summary>
 /// Renders a scene in square tiles on all cores. Each pixel depends only on its own position

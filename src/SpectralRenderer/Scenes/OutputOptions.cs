@@ -73,6 +73,20 @@ public sealed class OutputOptions
     /// <summary><c>"exposure": "auto"</c>: the 99th percentile of the display-linear maximum channel of the non-black pixels maps to
     /// 1.</summary>
     public bool ExposureAuto { get; set; }
+
+    /// <summary>
+    /// --exposure's text as the preview's exposure: (true, 1) for "auto", else (false, the multiplier: a finite number in
+    /// 0–1e12, the range of the scene's "exposure"); bad input under <paramref name="where"/>.
+    /// </summary>
+    public static (bool Auto, double Exposure) ParseExposure(string text, string where = "--exposure")
+    {
+        if (string.Equals(text.Trim(), "auto", StringComparison.OrdinalIgnoreCase)) return (true, 1);
+        if (!double.TryParse(text, System.Globalization.NumberStyles.Float, System.Globalization.CultureInfo.InvariantCulture,
+                out double e) || !double.IsFinite(e) || e < 0 || e > 1e12)
+            throw new Diagnostics.InputException(where, $"{Diagnostics.MessageText.Quote(text)} is neither auto nor a number in 0–1e12",
+                "e.g. --exposure 0.01 (a multiplier on XYZ) or --exposure auto");
+        return (false, e);
+    }
     /// <summary>How the preview brings out-of-gamut colours inside (<c>"gamut": "clip"</c>, the default, or <c>"desaturate"</c>).</summary>
     public GamutMapping Gamut { get; set; } = GamutMapping.Clip;
     /// <summary>Bradford-adapt from the scene's reference white to the RGB space's white (off by default: §3.3 is about seeing the light's

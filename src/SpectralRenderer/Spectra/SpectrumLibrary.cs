@@ -55,14 +55,25 @@ public static class SpectrumLibrary
     /// The table scaled so that ∫V·S dλ = ∫V·D65 dλ: V(λ) = ȳ of data/cie1931-2deg-cmf.csv (CIE 1924 photopic), each
     /// integral exact on the tables over the spectrum's own range.
     /// </summary>
-    static TabulatedSpectrum LuminousNormalised(string name, TabulatedSpectrum s) => Normalised.GetOrAdd(name, _ =>
+    static TabulatedSpectrum LuminousNormalised(string name, TabulatedSpectrum s) => Normalised.GetOrAdd(name, _ => OnLightScale(s, name));
+
+    /// <summary>
+    /// <paramref name="s"/> on the built-in lights' scale (a spectrum object's <c>"scale": "luminous"</c>): scaled so that
+    /// ∫V·S dλ = ∫V·D65 dλ, as the built-in line and narrow-band lights are; refused when ∫V·S is 0 (no visible light).
+    /// </summary>
+    public static TabulatedSpectrum OnLightScale(TabulatedSpectrum s, string? name = null, string where = "spectrum")
     {
         var v = DataTable("cie1931-2deg-cmf.csv")["ybar"];
         var d65 = DataTable("illuminants.csv")["D65"];
         static double Luminous(TabulatedSpectrum v, TabulatedSpectrum s) =>
-            TabulatedSpectrum.IntegrateProduct(v, s, Math.Max(v.First, s.First), Math.Min(v.Last, s.Last));
-        return s.Scaled(Luminous(v, d65) / Luminous(v, s), name);
-    });
+            s.Last <= v.First || s.First >= v.Last ? 0
+                : TabulatedSpectrum.IntegrateProduct(v, s, Math.Max(v.First, s.First), Math.Min(v.Last, s.Last));
+        double flux = Luminous(v, s);
+        if (!(flux > 0))
+            throw new InputException(where, "\"scale\": \"luminous\" needs a spectrum with visible light (∫V·S dλ is 0)",
+                "give a light's spectrum, or a number as the scale");
+        return s.Scaled(Luminous(v, d65) / flux, name ?? s.Name);
+    }
 
     /// <summary>Every built-in name, for help texts and "did you mean".</summary>
     public static IEnumerable<string> KnownNames =>

@@ -242,6 +242,28 @@ public class RecoveryTests
             $"exact route {exact} vs band route {bands}: the routes differ, so the report took the exact one");
     }
 
+    [Fact]
+    public void RecoverySvg_DrawsEachRecoveredCurveInItsTruthsColour_SolidAgainstDashed()
+    {
+        Recover("nikon-d5100", "off", "--method", "wiener");
+        System.Xml.Linq.XNamespace ns = "http://www.w3.org/2000/svg";
+        var svg = System.Xml.Linq.XDocument.Load(Path.Combine(Chart.Value, "camera-nikon-d5100-off", "recovery-wiener.svg"));
+        var lines = svg.Descendants(ns + "polyline").Select(p => (Title: p.Element(ns + "title")!.Value,
+            Stroke: p.Attribute("stroke")!.Value, Dashed: p.Attribute("stroke-dasharray") is not null)).ToList();
+        var truths = lines.Where(l => l.Title.StartsWith("truth: ", StringComparison.Ordinal)).ToList();
+        Assert.True(truths.Count >= 2, $"{truths.Count} truth curves");
+        Assert.Equal(lines.Count, 2 * truths.Count);
+        foreach (var t in truths)
+        {
+            var recovered = lines.Single(l => l.Title == t.Title["truth: ".Length..]);
+            Assert.True(t.Dashed && !recovered.Dashed, t.Title);
+            Assert.Equal(t.Stroke, recovered.Stroke);
+        }
+        // Different curves in different colours, as far as the palette goes.
+        Assert.Equal(Math.Min(truths.Count, SpectralRenderer.Imaging.SvgPlot.Palette.Length),
+            truths.Select(t => t.Stroke).Distinct().Count());
+    }
+
     [Theory]
     [InlineData("nikon-d5100")]
     [InlineData("mosaic-16")]

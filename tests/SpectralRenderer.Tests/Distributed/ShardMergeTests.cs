@@ -70,6 +70,31 @@ public class ShardMergeTests
         AssertSameRender(Path.Combine(dir, "whole"), Path.Combine(dir, "merged"));
     }
 
+    /// <summary>
+    /// Issue 42: a shipped GI scene (path-cornell-room.json: "exposure": "auto") cannot be sharded as it is — each strip would
+    /// pick its own exposure — and says to give one with --exposure; given one, its shards merge into the whole render at
+    /// that exposure byte for byte, and render.json says the exposure given.
+    /// </summary>
+    [Fact]
+    public void A_scene_with_auto_exposure_shards_with_a_fixed_exposure_option_and_merges_byte_for_byte()
+    {
+        var dir = Reference.TempDir();
+        var scene = Scene("path-cornell-room.json");
+        string[] size = ["--width", "40", "--height", "72", "--spp", "2"];
+        var (code, _, err) = CliRunner.Run(["render", scene, "-o", Path.Combine(dir, "refused"), "--quiet", "--shard", "0/2", .. size]);
+        Assert.Equal(2, code);
+        Assert.Contains("--exposure E", err);
+        string[] args = [.. size, "--exposure", "0.75"];
+        Render(scene, Path.Combine(dir, "whole"), args);
+        var shards = Shards(scene, dir, 2, args);
+        (code, _, err) = CliRunner.Run(["merge", .. shards, "-o", Path.Combine(dir, "merged"), "--quiet"]);
+        Assert.True(code == 0, err);
+        AssertSameRender(Path.Combine(dir, "whole"), Path.Combine(dir, "merged"));
+        var manifest = JsonNode.Parse(File.ReadAllText(Path.Combine(dir, "merged", "render.json")))!;
+        Assert.Equal(0.75, (double)manifest["colour"]!["exposure"]!);
+        Assert.Equal("fixed", (string)manifest["colour"]!["exposure_mode"]!);
+    }
+
     [Theory]
     [InlineData("whitted", 3)]
     [InlineData("whitted", 2)]

@@ -177,6 +177,38 @@ public class PhotometryOutputTests(ITestOutputHelper output)
         Check("sky: illuminance (lx)", e, Math.PI * lv, 2e-3);
     }
 
+    /// <summary>
+    /// Issue 42: a long gather is not silent. The path render's photometry gather and its grid's gather report progress
+    /// after the render's tiles, as rows: every row of the 7-pixel-high film and of the 5-point-deep grid reported once,
+    /// ending at all of them.
+    /// </summary>
+    [Fact]
+    public void The_photometry_and_grid_gathers_report_their_rows_after_the_render()
+    {
+        var json = Scene("{ \"type\": \"point\", \"position\": [0, 0, 2], \"spectrum\": \"D65\", \"intensity\": 1 }",
+                extra: "\"integrator\": \"path\", \"calculation_grids\": [{ \"name\": \"desk\", \"origin\": [-1, -1, 0], "
+                    + "\"u\": [2, 0, 0], \"v\": [0, 2, 0], \"points\": [3, 5] }],", size: 7)
+            .Replace("\"width\": 7, \"height\": 7", "\"width\": 9, \"height\": 7, \"spp\": 2");
+        var events = new System.Collections.Concurrent.ConcurrentQueue<SpectralRenderer.Rendering.RenderProgress>();
+        var job = SpectralRenderer.Pipeline.RenderJob.Load(new SpectralRenderer.Pipeline.RenderRequest
+        {
+            SceneText = Encoding.UTF8.GetBytes(json),
+            ScenePath = "gather.json",
+            OutDir = Path.Combine(Reference.TempDir(), "out"),
+            Products = ["photometry"],
+        });
+        job.Execute(new SpectralRenderer.Pipeline.RenderObserver(Progress: events.Enqueue));
+        var stages = events.GroupBy(e => e.Stage ?? "tiles").ToDictionary(g => g.Key, g => g.ToList());
+        Assert.Contains("tiles", stages.Keys);
+        foreach (var (stage, rows) in new[] { ("photometry gather", 7), ("grid desk gather", 5) })
+        {
+            Assert.True(stages.ContainsKey(stage), $"no '{stage}' progress: {string.Join(", ", stages.Keys)}");
+            var seen = stages[stage];
+            Assert.All(seen, e => Assert.Equal(rows, e.Tiles));
+            Assert.Equal(Enumerable.Range(1, rows), seen.Select(e => e.TilesDone).Order());
+        }
+    }
+
     [Fact]
     public void An_integrating_sphere_multiplies_the_direct_illuminance_by_one_over_one_minus_rho()
     {

@@ -98,6 +98,29 @@ public class BuiltinLightScaleTests(Xunit.Abstractions.ITestOutputHelper output)
     }
 
     /// <summary>
+    /// Issue 42: a spectrum object's <c>"scale": "luminous"</c> puts a light's own shape (here a Gaussian of peak 1 at 450 nm, the
+    /// README's LED) on the built-in lights' scale — at the same intensity a white diffuser has D65's luminance — while the same
+    /// shape as given is ∫V·G / ∫V·D65 of it (both integrals by this class's midpoint sum).
+    /// </summary>
+    [Fact]
+    public void A_spectrum_objects_luminous_scale_gives_D65s_luminance_at_the_same_intensity()
+    {
+        var l = Enumerable.Range(0, 81).Select(i => 380.0 + 5 * i).ToArray();
+        var g = l.Select(x => Math.Exp(-0.5 * ((x - 450) / 12) * ((x - 450) / 12))).ToArray();
+        string pairs =
+            string.Join(", ", l.Zip(g, (a, b) => string.Create(System.Globalization.CultureInfo.InvariantCulture, $"[{a}, {b:R}]")));
+        string Scene(string spectrum) =>
+            Diffuser("D65", "\"intensity\": 3").Replace("\"D65\", \"intensity\"", $"{spectrum}, \"intensity\"");
+        double d65 = SceneText.Render(Diffuser("D65", "\"intensity\": 3")).Xyz![1];
+        double scaled = SceneText.Render(Scene($"{{ \"values\": [{pairs}], \"scale\": \"luminous\" }}")).Xyz![1];
+        double given = SceneText.Render(Scene($"[{pairs}]")).Xyz![1];
+        double expected = LuminousIntegral((l, g)) / LuminousIntegral(Column("illuminants.csv", "D65"));
+        output.WriteLine($"scaled {scaled / d65:F5} × D65's luminance; as given {given / d65:G5} (expected {expected:G5})");
+        Assert.True(Math.Abs(scaled / d65 - 1) <= 1e-3, $"scaled: {scaled} vs D65 {d65}");
+        Assert.True(Math.Abs(given / d65 / expected - 1) <= 1e-3, $"as given: {given / d65} vs {expected}");
+    }
+
+    /// <summary>
     /// The example sweep's LED jobs are lit: on the floor, the brightest lit pixel over the darkest shadowed one (both Y),
     /// within 10 % of the D65 job's, at equal photometric value (the LEDs now carry D65's luminous flux per unit).
     /// </summary>

@@ -290,6 +290,31 @@ public sealed class FluorescenceTests(Xunit.Abstractions.ITestOutputHelper outpu
     }
 
     /// <summary>
+    /// Issue 42: the shipped fluorescence demos' previews do not clip. Their XYZ (xyz.npy) through IEC 61966-2-1's XYZ → linear
+    /// sRGB matrix (written here) times the scene's exposure stays below 1 in every channel, where exposure 1 clipped the plain
+    /// white's red (the scene white D50, not adapted).
+    /// </summary>
+    [Theory]
+    [InlineData("fluorescence-paper-m1.json")]
+    [InlineData("fluorescence-paper-m2.json")]
+    public void The_fluorescence_demos_previews_do_not_clip(string scene)
+    {
+        var outDir = Path.Combine(_dir, Path.GetFileNameWithoutExtension(scene));
+        var (code, _, err) = Cli.CliRunner.Run("render", Repo.PathOf("scenes", scene), "-o", outDir, "--width", "48", "--height", "24",
+            "--formats", "npy", "--quiet");
+        Assert.True(code == 0, err);
+        var (_, xyz) = SpectralRenderer.Imaging.NpyReader.Read(File.OpenRead(Path.Combine(outDir, "xyz.npy")));
+        double[,] m = { { 3.2406, -1.5372, -0.4986 }, { -0.9689, 1.8758, 0.0415 }, { 0.0557, -0.2040, 1.0570 } };
+        double max = 0;
+        for (int i = 0; i + 2 < xyz.Length; i += 3)
+            for (int c = 0; c < 3; c++) max = Math.Max(max, m[c, 0] * xyz[i] + m[c, 1] * xyz[i + 1] + m[c, 2] * xyz[i + 2]);
+        var manifest = System.Text.Json.Nodes.JsonNode.Parse(File.ReadAllText(Path.Combine(outDir, "render.json")))!;
+        double exposure = (double)manifest["colour"]!["exposure"]!;
+        Assert.True(max > 1, $"{scene}: brightest linear channel {max} at exposure 1: the test wants a scene that clipped there");
+        Assert.True(max * exposure < 0.98, $"{scene}: brightest linear channel {max * exposure} at exposure {exposure}");
+    }
+
+    /// <summary>
     /// The shipped scene (its matrix from scripts/oba-paper-matrix.py) rendered under D50 with the per-light transfer, then
     /// relit to D65: the relit cube is byte for byte the fresh render under D65 (the shift follows the new light).
     /// </summary>

@@ -112,6 +112,50 @@ public class HonestReportTests
         Assert.Contains("physical radiometry", File.ReadAllText(Path.Combine(render, "probe.svg")));
     }
 
+    [Fact]
+    public void SnrDb_IsTwentyLog10OfMeanOverSampleDeviation_AndMinusInfinityWithoutSignal()
+    {
+        // Hand-computed: {1, 2, 3} has mean 2 and sample deviation 1 → 20 log10 2; {4, 4.5} mean 4.25, s = 0.5/√2.
+        static double Of(params double[] v) => CameraPatchMetrics.SnrDb(v.Sum(), v.Sum(x => x * x), v.Length);
+        Assert.Equal(20 * Math.Log10(2), Of(1, 2, 3), 12);
+        Assert.Equal(20 * Math.Log10(4.25 / (0.5 / Math.Sqrt(2))), Of(4, 4.5), 12);
+        Assert.Equal(20 * Math.Log10(0.5), Of(-0.5, 0.5, 1.5), 12);   // mean 0.5 below σ = 1: a true SNR under 1 (−6 dB)
+        Assert.Equal(double.NegativeInfinity, Of(-1, 0, 1));           // mean 0: no signal above black
+        Assert.Equal(double.NegativeInfinity, Of(-3, -2, -1.5));       // a shaded patch whose sites read below black
+        Assert.Equal(double.PositiveInfinity, Of(3, 3));
+        Assert.True(double.IsNaN(Of(5)));
+    }
+
+    [Fact]
+    public void Camera_OnPatchesWithoutSignal_PrintsADash_NotANegativeThousandsOfDb()
+    {
+        // A black level of 64 DN and an exposure of 0.11 ns (~1/20000 of the auto exposure, 2.4 µs): every patch's expected
+        // signal is ~0.15 DN, so its sites read black ± read noise and the mean of DN − black is ≤ 0 for some patches (SNR 0).
+        var sensor = Path.Combine(Chart.Value, "black64.json");
+        File.WriteAllText(sensor, """{ "preset": "nikon-d5100", "name": "black64", "black_level_dn": 64 }""");
+        var cam = Path.Combine(Chart.Value, "cam-black64");
+        var (code, stdout, err) = CliRunner.Run("camera", Chart.Value, "--sensor", sensor, "--exposure", "1.1e-10", "-o", cam);
+        Assert.True(code == 0, err);
+        var rows = File.ReadAllLines(Path.Combine(cam, "patches.csv")).Skip(1).Select(r => r.Split(',')).ToList();
+        var snr = rows.SelectMany(r => r[^3..]).ToList();
+        Assert.Contains("-inf", snr);
+        // A positive mean of whole DN over n sites is at least 1/n DN and σ < 4096 DN, so a finite SNR is above −200 dB
+        // (20 log10 1/(4096 n) for n < 10⁶): −6000 dB (the logarithm of a clamped 1e-300) cannot appear.
+        Assert.All(snr, v => Assert.True(v == "-inf" || double.Parse(v, CultureInfo.InvariantCulture) > -200, v));
+        var table = stdout.Split('\n').Where(l => l.Length > 5 && int.TryParse(l[..5], out _)).ToList();
+        Assert.Equal(rows.Count, table.Count);
+        for (int i = 0; i < rows.Count; i++)
+        {
+            var printed = table[i].Split(' ', StringSplitOptions.RemoveEmptyEntries)[^3..];
+            var csv = rows[i][^3..];
+            for (int c = 0; c < 3; c++)
+                Assert.Equal(csv[c] == "-inf"
+                    ? "—"
+                    : double.Parse(csv[c], CultureInfo.InvariantCulture).ToString("F1", CultureInfo.InvariantCulture),
+                    printed[c]);
+        }
+    }
+
     static double D(string[] row, string[] head, string column) =>
         double.Parse(row[Array.IndexOf(head, column)], CultureInfo.InvariantCulture);
 

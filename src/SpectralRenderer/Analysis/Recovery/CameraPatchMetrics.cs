@@ -7,7 +7,8 @@ namespace SpectralRenderer.Analysis.Recovery;
 /// One ColorChecker patch through the camera: the processed (corrected) colour against the patch's exact colour
 /// (1 nm CIE XYZ under the scene light, white Y = 1 — exact for a chart lit like the white, as in §3.1), and per
 /// channel the raw signal-to-noise ratio over the patch's unclipped sites (below the full well and white, above 0 DN), SNR = mean(DN −
-/// black) / std(DN), in dB (20 log10); NaN when fewer than two sites are unclipped.
+/// black) / std(DN), in dB (20 log10; <see cref="CameraPatchMetrics.SnrDb"/>): −∞ when the mean signal is not above the black level
+/// (SNR 0: no signal, e.g. a shaded object), +∞ when the sites do not vary, NaN when fewer than two sites are unclipped.
 /// </summary>
 public sealed record PatchMetrics(int Patch, string Object, int Pixels, Xyz Camera, Xyz Exact, double DeltaE00, double[] SnrDb);
 
@@ -39,15 +40,23 @@ public static class CameraPatchMetrics
                     if (raw.Clipped(site) || v <= 0) continue;   // clipped: its noise is not the sensor's
                     sum += v - sensor.BlackLevel; sum2 += (v - sensor.BlackLevel) * (v - sensor.BlackLevel); n++;
                 }
-                double mean = n > 0 ? sum / n : 0, variance = n > 1 ? Math.Max(0, (sum2 - sum * sum / n) / (n - 1)) : 0;
-                snr[c] = n < 2
-                    ? double.NaN
-                    : variance > 0
-                    ? 20 * Math.Log10(Math.Max(mean, 1e-300) / Math.Sqrt(variance))
-                    : double.PositiveInfinity;
+                snr[c] = SnrDb(sum, sum2, n);
             }
             rows.Add(new PatchMetrics(p.Number, p.Object, p.Pixels.Length, cam, exact, de, snr));
         }
         return rows;
+    }
+
+    /// <summary>
+    /// 20 log10(mean/s) of n signals (DN − black) from their sum and sum of squares, s the sample standard deviation: NaN for
+    /// n &lt; 2; −∞ when the mean is ≤ 0 (no signal above black: SNR 0, not the logarithm of a negative or tiny ratio); +∞ when
+    /// s = 0 and the mean is positive.
+    /// </summary>
+    public static double SnrDb(double sum, double sumOfSquares, int n)
+    {
+        if (n < 2) return double.NaN;
+        double mean = sum / n, variance = Math.Max(0, (sumOfSquares - sum * sum / n) / (n - 1));
+        if (!(mean > 0)) return double.NegativeInfinity;
+        return variance > 0 ? 20 * Math.Log10(mean / Math.Sqrt(variance)) : double.PositiveInfinity;
     }
 }

@@ -32,7 +32,7 @@ public sealed class GridsProduct : OutputProduct
             var grid = scene.CalculationGrids[k];
             // A gathered grid samples to the render's target error (--target-error) and has a standard-error column.
             var lux = illuminance.OnGridWithError(grid, integrator as IGatherIntegrator, c.Tracer?.Threads ?? 0, scene.TargetError, k,
-                null, c.Cancel);
+                integrator is IGatherIntegrator ? c.StageProgress($"grid {grid.Name} gather") : null, c.Cancel);
             CalculationGridFiles.Write(Path.Combine(dir, grid.Name), grid, lux.Lux, $"{title}: {grid.Name}", lux.StandardError);
             done($"{CalculationGridFiles.Folder}/{grid.Name}.csv");
             done($"{CalculationGridFiles.Folder}/{grid.Name}.svg");

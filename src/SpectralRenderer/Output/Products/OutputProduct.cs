@@ -87,6 +87,18 @@ public sealed class ProductContext
     public CancellationToken Cancel { get; init; }
     /// <summary>Where a product says something is probably not what the user meant (one line each), or null.</summary>
     public Action<string>? Warning { get; init; }
+    /// <summary>Where a product that traces rays of its own (the photometry gather, the grids) reports its progress, or null.</summary>
+    public Action<RenderProgress>? Progress { get; init; }
+
+    /// <summary>
+    /// A (rows done, rows) reporter for <paramref name="stage"/> on <see cref="Progress"/>, timed from now; null without one.
+    /// </summary>
+    public Action<int, int>? StageProgress(string stage)
+    {
+        if (Progress is not { } progress) return null;
+        var clock = System.Diagnostics.Stopwatch.StartNew();
+        return (done, total) => progress(new RenderProgress(done, total, 0, clock.Elapsed, stage));
+    }
 }
 
 /// <summary>The scene's ray queries and the integrator the render used, and the threads it may use.</summary>

@@ -46,7 +46,8 @@ public sealed class PhotometryProduct : OutputProduct
         var crop = c.Result.Crop;
         var t = c.Tracer;
         var (luminance, illuminance) = new Illuminance(scene, t?.Geometry)
-            .Maps(c.Result, t?.Integrator as IGatherIntegrator, t?.Threads ?? 0, c.Cancel);
+            .Maps(c.Result, t?.Integrator as IGatherIntegrator, t?.Threads ?? 0, c.Cancel,
+                t?.Integrator is IGatherIntegrator ? c.StageProgress("photometry gather") : null);
         var attributes = new Dictionary<string, string>
         {
             ["luminanceUnits"] = "cd.m^-2",

@@ -202,10 +202,11 @@ public sealed class Illuminance
     /// it meets nothing): the direct share (<see cref="Direct"/>: the lights, and without a gather the emitting objects and
     /// the sky), plus, when <paramref name="gather"/> is given (an integrator that gathers), π/N Σ L_v of N cosine-weighted
     /// rays it traces (area lights, sky and interreflection; delta lights it cannot hit).
-    /// The same on any thread count: a pixel's rays depend on (x, y, ray index) only.
+    /// The same on any thread count: a pixel's rays depend on (x, y, ray index) only. <paramref name="progress"/> hears (rows
+    /// done, rows) after each row of pixels.
     /// </summary>
     public (float[] Luminance, float[] Illuminance) Maps(RenderResult result, IGatherIntegrator? gather, int threads,
-        CancellationToken cancel = default)
+        CancellationToken cancel = default, Action<int, int>? progress = null)
     {
         var crop = result.Crop;
         var image = result.Image;
@@ -217,7 +218,7 @@ public sealed class Illuminance
             luminance[i] = (float)(xyz is not null && _yIsV ? xyz[3 * i + 1] * _yToLuminance : BandLuminance(image.Pixel(i % w, i / w)));
         if (_geometry is not { } geometry) return (luminance, illuminance);
         var camera = _scene.Camera;
-        int rays = GatherRays(_scene);
+        int rays = GatherRays(_scene), done = 0;
         var options = new ParallelOptions { MaxDegreeOfParallelism = threads > 0 ? threads : -1, CancellationToken = cancel };
         Parallel.For(0, h, options, () => (new float[_scene.PaddedBands + 64], new float[gather?.ScratchLength ?? 0]), (row, _, buffers) =>
         {
@@ -238,6 +239,7 @@ public sealed class Illuminance
                         ref counters).Lux;
                 illuminance[row * w + col] = (float)e;
             }
+            progress?.Invoke(Interlocked.Increment(ref done), h);
             return buffers;
         }, _ => { });
         return (luminance, illuminance);

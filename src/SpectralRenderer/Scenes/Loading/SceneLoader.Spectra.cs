@@ -89,7 +89,11 @@ public sealed partial class SceneLoader
                         };
                         s = s.WithExtrapolation(policy);
                     }
-                    if (TryGet(e, "scale", out var sc)) s = s.Scaled(Number(sc, $"{path}.scale", 0));
+                    if (TryGet(e, "scale", out var sc))
+                        s = sc.ValueKind != JsonValueKind.String ? s.Scaled(Number(sc, $"{path}.scale", 0))
+                            : sc.GetString() == "luminous" ? SpectrumLibrary.OnLightScale(s, where: Where($"{path}.scale"))
+                            : throw Error($"{path}.scale", $"unknown scale {MessageText.Quote(sc.GetString()!)}",
+                                "a number, or \"luminous\" (the built-in lights' scale: ∫V·S dλ = D65's)");
                     break;
                 }
             default:

@@ -463,6 +463,10 @@ public sealed partial class SceneLoader
         }
         if (_overrides.ExrCompression is { } ec) o.ExrCompression = ParseExrCompression(ec, "--exr-compression");
         if (_overrides.Rgb is { } r) o.Rgb = RgbSpace.Parse(r);
+        if (_overrides.Exposure is { } x)
+        {
+            (o.ExposureAuto, o.Exposure) = OutputOptions.ParseExposure(x);
+        }
         if (_overrides.Formats is { } fs)
             o.Products = ParseFormats(fs.Split(',', StringSplitOptions.RemoveEmptyEntries | StringSplitOptions.TrimEntries), "--formats");
         return o;

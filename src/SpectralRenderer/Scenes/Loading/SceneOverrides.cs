@@ -19,6 +19,8 @@ public sealed record SceneOverrides
     public string? Integration { get; init; }
     public string? Formats { get; init; }
     public string? ExrCompression { get; init; }
+    /// <summary>The preview's exposure (--exposure): a number (XYZ multiplier) or "auto", over the scene's output.exposure.</summary>
+    public string? Exposure { get; init; }
     public IReadOnlyList<string> ModelDirectories { get; init; } = [];
     /// <summary>
     /// False: mesh objects keep their name and material but no triangles (their files are not read). For work on a
