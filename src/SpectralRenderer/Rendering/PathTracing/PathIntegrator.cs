@@ -283,44 +283,12 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
                 }
                 if (!reached)
                 {
-                    // The ray escapes: the sky (background) radiance, MIS-weighted against its own sampling; an environment
-                    // map's of the ray's direction, a CIE overcast sky's times its gradation there (EmitterSet.SkySeen).
-                    if (depth == 0)
-                    {
-                        if (sink.FirstEmission)
-                            sink.Emitted(beta, _environment is null ? _background : _environment.Lookup(ray.Direction, SkyScratch(scratch)),
-                                _emitters.SkySeen(ray.Direction));
-                    }
-                    else if (_emitters.Sky is int s and >= 0)
-                    {
-                        var sky = _emitters[s];
-                        float w = deltaBounce ? 1 : PowerHeuristic(bsdfPdf,
-                            _emitters.SelectionPdf(s) * sky.Pdf(previous, previousFront, ray.Direction, default, default));
-                        sink.Emitted(beta, _environment is null ? sky.Radiance : _environment.Lookup(ray.Direction, SkyScratch(scratch)),
-                            w * sky.Emitted(default, -ray.Direction));
-                    }
+                    Escaped(ref sink, ray.Direction, depth, deltaBounce, bsdfPdf, previous, previousFront, beta, scratch);
                     break;
                 }
                 material = _materials[_objectMaterial[hit.Object]];
-
-                // Light the surface emits towards the ray (Le), MIS-weighted against next-event estimation of the same point.
-                // (an emitting object's calls made on its own sealed class, which the JIT inlines: an AggressiveOptimization
-                // method gets no profile-guided devirtualisation)
-                if ((depth > 0 || sink.FirstEmission) && _emitters.OfObject(hit.Object) is int e and >= 0 && _emitters[e] is var emitter
-                    && (emitter is ShapeEmitter shape ? shape.Emitted(hit.GeometricNormal, wo)
-                        : emitter.Emitted(hit.GeometricNormal, wo)) > 0)
-                {
-                    float w = 1;
-                    if (!deltaBounce)
-                    {
-                        float pdf = emitter is ShapeEmitter surface
-                            ? surface.Pdf(previous, previousFront, ray.Direction, hit.Position, hit.GeometricNormal)
-                            : emitter.Pdf(previous, previousFront, ray.Direction, hit.Position, hit.GeometricNormal);
-                        w = PowerHeuristic(bsdfPdf, _emitters.SelectionPdf(e) * pdf);
-                    }
-                    var le = emitter.Radiance;
-                    sink.Emitted(beta, _textured ? EmittedAt(material, le, in hit, wo, scratch) : le, w);
-                }
+                if ((depth > 0 || sink.FirstEmission) && _emitters.OfObject(hit.Object) is int e and >= 0)
+                    Seen(ref sink, e, in hit, ray.Direction, material, deltaBounce, bsdfPdf, previous, previousFront, beta, scratch);
                 if (_maxDepth >= 0 && depth >= _maxDepth) break;
                 if (counters.BudgetSpent) { counters.OverBudget = true; break; }
                 if (material.Dispersive && band < 0)
@@ -344,10 +312,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
             float mirrorShare = 0, transmitShare = 0;
             Vector3 wiMirror = default, wiTransmit = default;
             if (material.Delta)
-            {   // at the index of band's output band (−1: every band, band 0's index, a non-dispersive material's)
-                mirrorShare = bsdf.SampleMirror(wo, ns, band, mirror, out wiMirror) ? _grid.Luminance(mirror) : 0;
-                transmitShare = bsdf.SampleTransmission(wo, ns, band, transmit, out wiTransmit) ? _grid.Luminance(transmit) : 0;
-            }
+                DeltaLobes(bsdf, wo, ns, band, mirror, transmit, out mirrorShare, out transmitShare, out wiMirror, out wiTransmit);
             // A fluorescent vertex weighs the smooth and the shifted lobe by their albedos under β (PathIntegrator.Fluorescence.cs).
             float shiftShare = material.Shift is not null ? LobeShares(in vertex, beta, ref smoothShare) : 0;
             float total = smoothShare + mirrorShare + transmitShare + shiftShare;
@@ -419,12 +384,82 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         return first;
     }
 
+    // The walk's rarer steps are methods of their own, never inlined into it: the JIT stops inlining into a method once its
+    // inlining budget is spent, and the walk's hot loop (the band arithmetic, the vector maths) must keep it
+    // (BENCHMARKS.md, "The path walk's inlining").
+
+    /// <summary>
+    /// A ray that escapes, leaving along <paramref name="direction"/>: the sky's (background's) radiance, MIS-weighted
+    /// against its own sampling from the last vertex (after a delta bounce or from the camera: weight 1);
+    /// an environment map's of the direction, a CIE overcast sky's times its gradation there (EmitterSet.SkySeen).
+    /// </summary>
+    [MethodImpl(MethodImplOptions.NoInlining | MethodImplOptions.AggressiveOptimization)]
+    void Escaped<TSink>(ref TSink sink, Vector3 direction, int depth, bool deltaBounce, float bsdfPdf, Vector3 previous,
+        Vector3 previousFront, Span<float> beta, Span<float> scratch) where TSink : IPathSink, allows ref struct
+    {
+        if (depth == 0)
+        {
+            if (sink.FirstEmission)
+                sink.Emitted(beta, _environment is null ? _background : _environment.Lookup(direction, SkyScratch(scratch)),
+                    _emitters.SkySeen(direction));
+        }
+        else if (_emitters.Sky is int s and >= 0)
+        {
+            var sky = _emitters[s];
+            float w = deltaBounce ? 1 : PowerHeuristic(bsdfPdf,
+                _emitters.SelectionPdf(s) * sky.Pdf(previous, previousFront, direction, default, default));
+            sink.Emitted(beta, _environment is null ? sky.Radiance : _environment.Lookup(direction, SkyScratch(scratch)),
+                w * sky.Emitted(default, -direction));
+        }
+    }
+
+    /// <summary>
+    /// Light emitter <paramref name="e"/>'s surface at <paramref name="hit"/> sends back along the ray (L_e), MIS-weighted
+    /// against next-event estimation of the same point from the last vertex (after a delta bounce or from the camera: 1).
+    /// (An emitting object's calls are made on its own sealed class, which the JIT inlines: an AggressiveOptimization
+    /// method gets no profile-guided devirtualisation.)
+    /// </summary>
+    [MethodImpl(MethodImplOptions.NoInlining | MethodImplOptions.AggressiveOptimization)]
+    void Seen<TSink>(ref TSink sink, int e, scoped in SurfaceHit hit, Vector3 direction, PathMaterial material, bool deltaBounce,
+        float bsdfPdf, Vector3 previous, Vector3 previousFront, Span<float> beta, Span<float> scratch)
+        where TSink : IPathSink, allows ref struct
+    {
+        var emitter = _emitters[e];
+        var wo = -direction;
+        if (!((emitter is ShapeEmitter shape ? shape.Emitted(hit.GeometricNormal, wo) : emitter.Emitted(hit.GeometricNormal, wo)) > 0))
+            return;
+        float w = 1;
+        if (!deltaBounce)
+        {
+            float pdf = emitter is ShapeEmitter surface
+                ? surface.Pdf(previous, previousFront, direction, hit.Position, hit.GeometricNormal)
+                : emitter.Pdf(previous, previousFront, direction, hit.Position, hit.GeometricNormal);
+            w = PowerHeuristic(bsdfPdf, _emitters.SelectionPdf(e) * pdf);
+        }
+        var le = emitter.Radiance;
+        sink.Emitted(beta, _textured ? EmittedAt(material, le, in hit, wo, scratch) : le, w);
+    }
+
+    /// <summary>
+    /// The delta lobes of <paramref name="bsdf"/> at a vertex: the mirror's and the transmission's f into
+    /// <paramref name="mirror"/> and <paramref name="transmit"/>, their directions, and their shares of the lobe choice (channel
+    /// values; 0: none), at the index of <paramref name="band"/>'s output band (−1: every band, band 0's index, a
+    /// non-dispersive material's).
+    /// </summary>
+    [MethodImpl(MethodImplOptions.NoInlining | MethodImplOptions.AggressiveOptimization)]
+    void DeltaLobes(Bsdf bsdf, Vector3 wo, Vector3 ns, int band, Span<float> mirror, Span<float> transmit, out float mirrorShare,
+        out float transmitShare, out Vector3 wiMirror, out Vector3 wiTransmit)
+    {
+        mirrorShare = bsdf.SampleMirror(wo, ns, band, mirror, out wiMirror) ? _grid.Luminance(mirror) : 0;
+        transmitShare = bsdf.SampleTransmission(wo, ns, band, transmit, out wiTransmit) ? _grid.Luminance(transmit) : 0;
+    }
+
     /// <summary>
     /// L += β·f·L_e·|cos θ|·w/(P(k)·p) for one sample of emitter k of the set, chosen by <paramref name="uLight"/>, at
     /// <paramref name="vertex"/>: a delta light's (w = 1, p = 1, its d_k·c_spot on I_k), an emitting object's point, or a sky
     /// direction (an environment map's radiance looked up into <paramref name="sky"/>), each unshadowed.
     /// </summary>
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    [MethodImpl(MethodImplOptions.NoInlining | MethodImplOptions.AggressiveOptimization)]
     void NextEvent<TSink>(ref TSink sink, scoped in PathVertex vertex, float uLight, Vector2 u, float smoothProbability,
         Span<float> beta, Span<float> f, Span<float> sky, ref RayCounters counters) where TSink : IPathSink, allows ref struct
     {
