@@ -88,8 +88,6 @@ public sealed partial class SceneLoader
         public BandGrid Grid => _loader._grid;
         /// <summary>The box about the object(s) whose interior this medium fills (null: the scene's medium).</summary>
         public (System.Numerics.Vector3 Min, System.Numerics.Vector3 Max)? ObjectBounds { get; init; }
-        /// <summary>Where the medium's JSON key points in the file (for a reader's messages).</summary>
-        public string Where(string key) => _loader.Where($"{_path}.{key}");
 
         /// <summary>A required file name, resolved against the scene file's folder; it must exist.</summary>
         public string File(string key)
