@@ -7,7 +7,7 @@
 set -uo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-20}"; shift || true
-targets=("$@"); [ ${#targets[@]} -gt 0 ] || targets=(scene csv obj ply exr matrix envi npy png jpeg hdr ies ldt manifest lights camera sweep sensor mitsuba pbrt gltf)
+targets=("$@"); [ ${#targets[@]} -gt 0 ] || targets=(scene csv obj ply exr matrix envi npy densitygrid png jpeg hdr ies ldt manifest lights camera sweep sensor mitsuba pbrt gltf)
 export DOTNET_CLI_TELEMETRY_OPTOUT=1 DOTNET_NOLOGO=1
 command -v afl-fuzz >/dev/null || { echo "fuzz: afl-fuzz not found (apt-get install afl++)"; exit 1; }
 

@@ -60,6 +60,14 @@ public static class Program
         ["exr"] = b => ExrReader.Read(b, "fuzz.exr"),
         ["matrix"] = b => ReradiationExrReader.Read(b, "fuzz.exr"),   // a bispectral re-radiation matrix (Fichet et al. 2021)
         ["npy"] = b => NpyReader.Read(new MemoryStream(b), "fuzz.npy"),
+        // A heterogeneous medium's density grid, Mitsuba .vol or NumPy .npy by its first bytes, placed and integrated along a ray.
+        ["densitygrid"] = b =>
+        {
+            var s = DensityGridReader.Read(b, "fuzz.vol");
+            var (min, max) = s.Bounds ?? (System.Numerics.Vector3.Zero, System.Numerics.Vector3.One);
+            var grid = new DensityGrid(s.Data, s.Nx, s.Ny, s.Nz, min, max);
+            grid.OpticalDepth(min - System.Numerics.Vector3.One, System.Numerics.Vector3.Normalize(new(1, 0.7f, 0.3f)), float.PositiveInfinity);
+        },
         ["png"] = b => PngReader.Read(new MemoryStream(b), "fuzz.png"),
         ["jpeg"] = b => JpegReader.Read(b, "fuzz.jpg"),
         // High-dynamic-range environment maps: Radiance RGBE (.hdr) and PFM, the first byte choosing the reader.

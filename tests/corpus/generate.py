@@ -1413,6 +1413,54 @@ scene = deep(ENVSCENE)
 scene["sky"] = {"type": "envmap", "file": "wide.pfm", "mapping": "octahedral"}
 scene_case("envmap-unknown-mapping", scene, r"unknown mapping 'octahedral'.*equal-area", file="")
 
+# Heterogeneous media (type "grid"; after the others, so their numbers stay): a .vol or .npy density grid beside the scene; each broken file or placement one line
+# naming the grid file (byte or sample) or the scene's JSON path.
+def vol(nx=2, ny=2, nz=2, values=None, version=3, encoding=1, channels=1, bbox=(0, 0, 0, 1, 1, 1), cut=0):
+    values = [1.0] * (nx * ny * nz * max(channels, 0)) if values is None else values
+    data = b"VOL" + bytes([version]) + struct.pack("<iiiii", encoding, nx, ny, nz, channels) + struct.pack("<6f", *bbox)
+    data += struct.pack(f"<{len(values)}f", *values)
+    return data[:len(data) - cut] if cut else data
+
+VOLPLACE = r"\.(vol|npy): (byte \d+|sample \(x \d+, y \d+, z \d+\)|header|data)"
+for label, fname, data, pat in [
+    ("grid-vol-no-magic", "g.vol", b"VOX\x03" + b"\0" * 60, r"not a \.vol grid \(no \"VOL\" magic\)"),
+    ("grid-vol-version-2", "g.vol", vol(version=2), r"\.vol version 2 is not supported"),
+    ("grid-vol-encoding-3", "g.vol", vol(encoding=3), r"encoding 3 is not supported"),
+    ("grid-vol-short-header", "g.vol", vol()[:20], r"truncated in its 48-byte header"),
+    ("grid-vol-truncated", "g.vol", vol(cut=4), r"declares 2 × 2 × 2 = 8 float32 values \(32 bytes\), the file holds 28"),
+    ("grid-vol-too-long", "g.vol", vol() + b"\0\0\0\0", r"the file holds 36 bytes of data"),
+    ("grid-vol-zero-size", "g.vol", vol(nx=0, values=[]), r"resolution 0 × 2 × 2 is not positive"),
+    ("grid-vol-3-channels", "g.vol", vol(channels=3), r"the grid has 3 channels"),
+    ("grid-vol-empty-bbox", "g.vol", vol(bbox=(0, 0, 0, 1, 0, 1)), r"bounds .* are empty"),
+    ("grid-vol-nan-bbox", "g.vol", vol(bbox=(0, 0, 0, float("nan"), 1, 1)), r"bounds .* are not finite"),
+    ("grid-vol-negative", "g.vol", vol(values=[1, 1, 1, -0.5, 1, 1, 1, 1]), r"sample \(x 1, y 1, z 0\).*density -0\.5 is negative"),
+    ("grid-vol-inf", "g.vol", vol(values=[1, 1, 1, 1, 1, 1, 1, float("inf")]), r"density ∞ is not finite|density Infinity is not finite"),
+    ("grid-npy-2d", "g.npy", npy((4, 4), body=b"\0" * 64), r"the array's shape is \(4, 4\)"),
+    ("grid-npy-int", "g.npy", npy((2, 2, 2), dtype="<i4", body=b"\0" * 32), r"unsupported dtype"),
+    ("grid-npy-truncated", "g.npy", npy((2, 2, 2), body=b"\0" * 20), r"holds only 20 bytes"),
+    ("grid-npy-nan", "g.npy", npy((1, 1, 2), body=struct.pack("<2f", 1, float("nan"))), r"sample \(x 1, y 0, z 0\).*not finite"),
+]:
+    gname = f"{label}-{fname}"
+    write(gname, data)
+    s = deep(BASE); s.update(MEDIUM_INTEGRATOR)
+    s["objects"][0]["medium"] = {"type": "grid", "file": gname, "sigma_a": 1}
+    sname = f"{label}.json"
+    write(sname, scene_text(s))
+    case(f"media/{label}", render("{in}/" + sname), pat, 2, gname, VOLPLACE)
+for label, medium, pat in [
+    ("grid-npy-no-bounds", {"file": "GOOD.npy"}, r"\$\.medium\.file: a \.npy grid in the scene's medium has no placement"),
+    ("grid-bounds-empty", {"file": "GOOD.vol", "bounds": [[0, 0, 0], [1, -1, 1]]}, r"\$\.medium\.bounds: the grid's bounds .* are empty"),
+    ("grid-resolution-mismatch", {"file": "GOOD.vol", "resolution": [2, 2, 3]},
+     r"\$\.medium\.resolution: the grid declares 2 × 2 × 3 samples, grid-resolution-mismatch\.vol holds 2 × 2 × 2"),
+    ("grid-file-missing", {"file": "nowhere.vol"}, r"\$\.medium\.file: file 'nowhere\.vol' not found"),
+]:
+    s = deep(BASE); s.update(MEDIUM_INTEGRATOR)
+    s["medium"] = {"type": "grid", "sigma_s": 0.5, **medium}
+    s["medium"]["file"] = s["medium"]["file"].replace("GOOD", label)
+    if "nowhere" not in medium["file"]:
+        write(s["medium"]["file"], vol() if s["medium"]["file"].endswith(".vol") else npy((2, 2, 2), body=b"\0" * 32))
+    scene_case(label, s, pat)
+
 names = [c["name"] for c in cases]
 assert len(names) == len(set(names)), [x for x in names if names.count(x) > 1]
 with open(os.path.join(HERE, "cases.json"), "w", encoding="utf-8") as f:

@@ -37,17 +37,21 @@ public abstract class Medium
 /// <summary>
 /// What free-flight sampling reads of a homogeneous scattering medium (Kutz et al. 2017, §5): per band the absorption and
 /// scattering coefficients σ_a, σ_s (per scene unit, padded arrays, 0 in the padding), one majorant for every band
-/// σ̄ = max_λ σ_t(λ), the null coefficient σ_n = σ̄ − σ_t ≥ 0 per band, and the phase function.
+/// σ̄ = max_λ σ_t(λ), the null coefficient σ_n = σ̄ − σ_t ≥ 0 per band, and the phase function. A heterogeneous medium
+/// (<see cref="GridMedium"/>) scales them by a <see cref="Density"/>: then σ_a, σ_s are the coefficients at density 1, the
+/// majorant is max d · max_λ σ_t(λ) and σ_n(x) = σ̄ − d(x)·σ_t is formed at each tentative collision.
 /// </summary>
 public sealed class MediumScattering
 {
-    public MediumScattering(float[] sigmaA, float[] sigmaS, HenyeyGreenstein phase, int count)
+    public MediumScattering(float[] sigmaA, float[] sigmaS, HenyeyGreenstein phase, int count, DensityGrid? density = null)
     {
         SigmaA = sigmaA;
         SigmaS = sigmaS;
         Phase = phase;
+        Density = density;
         float majorant = 0;
         for (int i = 0; i < count; i++) majorant = MathF.Max(majorant, sigmaA[i] + sigmaS[i]);
+        if (density is not null) majorant *= density.Maximum;
         Majorant = majorant;
         SigmaN = new float[sigmaA.Length];
         for (int i = 0; i < count; i++) SigmaN[i] = MathF.Max(0, majorant - sigmaA[i] - sigmaS[i]);
@@ -60,4 +64,6 @@ public sealed class MediumScattering
     /// <summary>σ̄ = max over the bands of σ_t.</summary>
     public float Majorant { get; }
     public HenyeyGreenstein Phase { get; }
+    /// <summary>The density scaling σ_a and σ_s in space (null: homogeneous).</summary>
+    public DensityGrid? Density { get; }
 }

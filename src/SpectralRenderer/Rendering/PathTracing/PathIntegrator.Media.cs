@@ -61,10 +61,74 @@ internal sealed partial class PathIntegrator
         _scattering = _media.Select(m => m.Scattering).ToArray();
         _interiorOf = scene.Objects.Select(o => o.Medium).ToArray();
         _sceneMedium = scene.Medium;
+        var clear = scene.Objects.Select(o => IsNullBoundary(scene.Materials[o.Material], scene.Grid.Count)).ToArray();
+        _nullBoundary = clear.Any(c => c) ? clear : null;
         // The media's extent: a sphere about the finite geometry and the camera, twice as wide as both.
         _extentCentre = _geometry.BoundingCentre;
         _extentRadius = 2 * MathF.Max(MathF.Max(_geometry.BoundingRadius, Vector3.Distance(scene.Camera.Position, _extentCentre)), 1e-3f);
     }
+
+    /// <summary>
+    /// Which objects are null boundaries, surfaces that change nothing but the medium (index-matched and clear:
+    /// <see cref="IsNullBoundary"/>), which shadow rays cross; null: none, or a scene without media.
+    /// </summary>
+    bool[]? _nullBoundary;
+
+    /// <summary>
+    /// Is <paramref name="m"/> a null boundary: eq. 2's lobes with nothing but k_t = 1 and n = 1 in every band (no diffuse,
+    /// specular or mirror lobe, no emission, fluorescence or texture), so that light crosses it unchanged and unbent?
+    /// </summary>
+    static bool IsNullBoundary(Material m, int bands)
+    {
+        if (m.Bsdf is not Eq2Bsdf || m.HasSpecular || m.HasMirror || m.Emission is not null || m.Fluorescence is not null
+            || m.DiffuseTexture is not null || m.SpecularTexture is not null || m.Dispersive) return false;
+        for (int b = 0; b < bands; b++)
+            if (m.Diffuse[b] != 0 || m.Transmit[b] != 1 || m.Ior[b] != 1) return false;
+        return true;
+    }
+
+    /// <summary>
+    /// The shadow ray from <paramref name="p"/> (geometric normal <paramref name="ng"/>; zero in a medium) along
+    /// <paramref name="wi"/> for <paramref name="distance"/>, leaving in <paramref name="medium"/>: false when a surface
+    /// blocks it, else true with f ⊙= T of the media along it. Without null boundaries any surface blocks it (and f ⊙= T of
+    /// its one medium); with them it crosses each null boundary it meets, its medium changing there as a path's does
+    /// (<see cref="MediumToward"/>), and T is the product over its segments — index-matched shadow rays.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.NoInlining)]   // a scene with media only: kept out of the walk's frame
+    bool ShadowThrough(Vector3 p, Vector3 ng, Vector3 wi, float distance, int medium, Span<float> f)
+    {
+        float epsilon = _geometry.Epsilon;
+        var ray = Visibility.ShadowRay(p, ng, wi, distance, epsilon);
+        if (_nullBoundary is not { } clear)
+        {
+            if (_geometry.OccludedScattered(ray)) return false;
+            if (medium >= 0) Attenuate(medium, p, wi, distance, f);
+            return true;
+        }
+        var target = p + distance * wi;
+        var from = p;
+        for (int crossings = 0; crossings < MaxNullCrossings; crossings++)
+        {
+            var probe = ray;
+            if (!_geometry.IntersectScattered(ref probe, out var hit))
+            {
+                if (medium >= 0)
+                    Attenuate(medium, from, wi, float.IsInfinity(distance) ? distance : Vector3.Distance(from, target), f);
+                return true;
+            }
+            if (!clear[hit.Object]) return false;
+            if (medium >= 0) Attenuate(medium, from, wi, Vector3.Distance(from, hit.Position), f);
+            if (InteriorOf(hit.Object) is var interior and >= 0)
+                medium = Vector3.Dot(hit.GeometricNormal, wi) < 0 ? interior : _sceneMedium;
+            from = hit.Position;
+            ray = Visibility.ShadowRay(from, hit.GeometricNormal, wi,
+                float.IsInfinity(distance) ? distance : Vector3.Distance(from, target), epsilon);
+        }
+        return false;   // (more null boundaries than any scene stacks: treated as blocked)
+    }
+
+    /// <summary>The null boundaries a shadow ray crosses at most.</summary>
+    const int MaxNullCrossings = 64;
 
     /// <summary>Each medium's scattering (null: it only absorbs), on the sub-band grid.</summary>
     MediumScattering?[] _scattering = [];
@@ -83,6 +147,7 @@ internal sealed partial class PathIntegrator
     [MethodImpl(MethodImplOptions.NoInlining)]   // a scene with scattering media only: kept out of the walk's frame
     Flight Track(MediumScattering m, int medium, Ray ray, float end, Span<float> beta, ref Sampler sampler, out Vector3 at)
     {
+        if (m.Density is { } density) return TrackDensity(m, density, ray, end, beta, ref sampler, out at);
         at = default;
         float majorant = m.Majorant, tEnd = end;
         bool escapes = float.IsPositiveInfinity(end);
@@ -118,6 +183,51 @@ internal sealed partial class PathIntegrator
         }
         if (escapes) Attenuate(medium, ray.Origin, ray.Direction, float.PositiveInfinity, beta);
         return Flight.Passed;
+    }
+
+    /// <summary>
+    /// Spectral tracking in a heterogeneous medium (<see cref="MediumScattering.Density"/>): as <see cref="Track"/>, over the
+    /// segment's overlap with the grid's box (the density is 0 outside it, so the rest passes with T = 1), against the
+    /// majorant σ̄ = max d · max_λ σ_t(λ); at a tentative collision at x the coefficients are d(x)·σ_a, d(x)·σ_s and
+    /// σ_n = σ̄ − d(x)·σ_t ≥ 0 per band (Kutz et al. 2017, §5.2, with null collisions: unbiased for any majorant ≥ σ_t).
+    /// </summary>
+    [MethodImpl(MethodImplOptions.NoInlining)]
+    static Flight TrackDensity(MediumScattering m, DensityGrid density, Ray ray, float end, Span<float> beta, ref Sampler sampler,
+        out Vector3 at)
+    {
+        at = default;
+        float majorant = m.Majorant;
+        if (!(majorant > 0) || !density.Clip(ray.Origin, ray.Direction, end, out float t, out float tEnd)) return Flight.Passed;
+        var vb = V(beta);
+        ReadOnlySpan<Vector<float>> va = RV(m.SigmaA), vs = RV(m.SigmaS);
+        var vMajorant = new Vector<float>(majorant);
+        for (; ; )
+        {
+            t -= MathF.Log(1 - sampler.Next1D()) / majorant;   // p(t) = σ̄·exp(−σ̄·t)
+            if (!(t < tEnd)) return Flight.Passed;
+            var x = ray.Origin + t * ray.Direction;
+            float d = density.Density(x);
+            var vd = new Vector<float>(d);
+            Vector<float> ma = Vector<float>.Zero, ms = Vector<float>.Zero, mn = Vector<float>.Zero;
+            for (int i = 0; i < vb.Length; i++)
+            {
+                ma = Vector.Max(ma, va[i] * vb[i]);
+                ms = Vector.Max(ms, vs[i] * vb[i]);
+                mn = Vector.Max(mn, Vector.Max(Vector<float>.Zero, vMajorant - vd * (va[i] + vs[i])) * vb[i]);
+            }
+            float pa = d * MaxLane(ma), ps = d * MaxLane(ms), pn = MaxLane(mn), c = pa + ps + pn;
+            if (!(c > 0)) return Flight.Absorbed;
+            float u = sampler.Next1D() * c;
+            if (u < pa) return Flight.Absorbed;   // absorbed: the medium emits nothing
+            if (u < pa + ps)
+            {
+                Multiply(beta, m.SigmaS, d * c / (majorant * ps));
+                at = x;
+                return Flight.Scattered;
+            }
+            var scale = new Vector<float>(c / (majorant * pn));   // a null collision: β ⊙= σ_n(x)·c/(σ̄·P_n), on along the ray
+            for (int i = 0; i < vb.Length; i++) vb[i] *= Vector.Max(Vector<float>.Zero, vMajorant - vd * (va[i] + vs[i])) * scale;
+        }
     }
 
     /// <summary>The largest lane of <paramref name="v"/>.</summary>
@@ -190,11 +300,10 @@ internal sealed partial class PathIntegrator
         var radiance = emitter.Texture is null ? emitter.Radiance
             : EmittedAt(emitter, sample.Face, sample.Point, sample.Normal, wi, distance, scratch.Slice(TextureBase + 2 * _padded, _padded));
         counters.Shadow++;
-        if (_geometry.OccludedScattered(Visibility.ShadowRay(p, Vector3.Zero, wi, distance, _geometry.Epsilon))) return;
         float density = phase.Evaluate(wo, wi);
         f.Clear();
         f[.._grid.Count].Fill(density);
-        Attenuate(medium, p, wi, distance, f);
+        if (!ShadowThrough(p, Vector3.Zero, wi, distance, medium, f)) return;
         float pick = _emitters.SelectionPdf(k);
         float w = sample.IsDelta ? 1 : PowerHeuristic(pick * pdf, density);
         sink.NextEvent(emitter.SceneLight, beta, f, radiance, factor * w / (pick * pdf));

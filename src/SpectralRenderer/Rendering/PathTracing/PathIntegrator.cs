@@ -482,8 +482,8 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         float cos = MathF.Abs(Vector3.Dot(ns, wi));
         Evaluate(bsdf, in vertex.Texels, vertex.Wo, wi, ns, f);
         counters.Shadow++;
-        if (_geometry.OccludedScattered(Visibility.ShadowRay(p, ng, wi, distance, _geometry.Epsilon))) return;
-        if (MediumToward(in vertex, wi) is var medium and >= 0) Attenuate(medium, p, wi, distance, f);   // f ⊙= T along it
+        if (_media.Length == 0 ? _geometry.OccludedScattered(Visibility.ShadowRay(p, ng, wi, distance, _geometry.Epsilon))
+            : !ShadowThrough(p, ng, wi, distance, MediumToward(in vertex, wi), f)) return;   // f ⊙= T along it (Media.cs)
         float pick = _emitters.SelectionPdf(k);
         float w = sample.IsDelta ? 1 : PowerHeuristic(pick * pdf, smoothProbability * bsdf.Pdf(vertex.Wo, wi, ns));
         sink.NextEvent(emitter.SceneLight, beta, f, radiance, factor * cos * w / (pick * pdf));

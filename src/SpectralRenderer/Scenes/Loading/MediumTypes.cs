@@ -18,6 +18,9 @@ public static class MediumTypes
     {
         // σ_a and σ_s, or α and σ_t, per band and per scene length unit, and a phase function (Scenes/HomogeneousMedium.cs).
         [Default] = new(["sigma_a", "sigma_s", "albedo", "sigma_t", "phase"], Homogeneous),
+        // The same coefficients at density 1, scaled by a density grid from a .vol or .npy "file" placed in "bounds"
+        // (Scenes/GridMedium.cs, Scenes/DensityGrid.cs, Scenes/Loading/DensityGridReader.cs).
+        ["grid"] = new(["sigma_a", "sigma_s", "albedo", "sigma_t", "phase", "file", "bounds", "resolution", "scale"], Grid),
     };
 
     public static IReadOnlyDictionary<string, MediumType> ByName => Volatile.Read(ref s_byName);
@@ -25,7 +28,36 @@ public static class MediumTypes
     /// <summary>Adds a medium type under a new (lower-case) name; loads that start afterwards can use it.</summary>
     public static void Register(string name, MediumType type) => Registry.Add(ref s_byName, Gate, name, type);
 
-    static Medium Homogeneous(SceneLoader.MediumSource s)
+    /// <summary>
+    /// A grid medium: the homogeneous medium of its coefficients where the density is 1, times the grid's density (times
+    /// "scale", default 1). Placed in "bounds" ([[min], [max]], scene units), else in the box about the object whose interior
+    /// it fills, else in the .vol file's own bounding box; a .npy grid in the scene's medium needs "bounds". "resolution"
+    /// [nx, ny, nz], when given, must match the file's.
+    /// </summary>
+    static Medium Grid(SceneLoader.MediumSource s)
+    {
+        var unit = Homogeneous(s);
+        var file = s.File("file");
+        var samples = DensityGridReader.Read(Diagnostics.InputFile.ReadAllBytes(file, "density grid"), file);
+        if (s.Resolution("resolution") is { } r && (r[0] != samples.Nx || r[1] != samples.Ny || r[2] != samples.Nz))
+            throw s.Error("resolution", $"the grid declares {r[0]} × {r[1]} × {r[2]} samples, {Path.GetFileName(file)} holds "
+                + $"{samples.Nx} × {samples.Ny} × {samples.Nz}", "fix \"resolution\" or the file (x, y, z: a .npy's shape reversed)");
+        var bounds = s.Box("bounds") ?? s.ObjectBounds ?? samples.Bounds
+            ?? throw s.Error("file", "a .npy grid in the scene's medium has no placement",
+                "give \"bounds\": [[x, y, z], [x, y, z]] in scene units");
+        float scale = (float)s.Number("scale", 1, 0, 1e30);
+        var data = samples.Data;
+        if (scale != 1) for (int i = 0; i < data.Length; i++) data[i] *= scale;
+        if (data.Any(v => !float.IsFinite(v)))
+            throw s.Error("scale", $"the densities times {scale} are too large for single precision", "give a smaller \"scale\"");
+        var medium = new GridMedium(unit, new DensityGrid(data, samples.Nx, samples.Ny, samples.Nz, bounds.Min, bounds.Max));
+        if (medium.Scattering is { } m && !float.IsFinite(m.Majorant))
+            throw s.Error("file", "the largest density times the largest σ_t is too large for single precision",
+                "lower the coefficients, the densities or \"scale\"");
+        return medium;
+    }
+
+    static HomogeneousMedium Homogeneous(SceneLoader.MediumSource s)
     {
         bool albedoForm = s.Has("albedo") || s.Has("sigma_t");
         if (albedoForm && (s.Has("sigma_a") || s.Has("sigma_s")))

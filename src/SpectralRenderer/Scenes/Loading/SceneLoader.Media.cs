@@ -12,7 +12,8 @@ public sealed partial class SceneLoader
     readonly List<Medium> _media = [];
 
     /// <summary>The medium <paramref name="e"/> at <paramref name="path"/>, added to the scene's media: its index there.</summary>
-    int ParseMedium(JsonElement e, string path)
+    /// <param name="interiorOf">The objects whose interior it fills (a grid medium's default placement: their bounds).</param>
+    int ParseMedium(JsonElement e, string path, IReadOnlyList<SceneObject>? interiorOf = null)
     {
         Object(e, path);
         var type = TryGet(e, "type", out var t) ? String(t, $"{path}.type").ToLowerInvariant() : MediumTypes.Default;
@@ -24,8 +25,21 @@ public sealed partial class SceneLoader
                 InputException.DidYouMean(type, types) ?? $"types: {string.Join(", ", types)}");
         }
         Keys(e, path, ["type", .. kind.Keys]);
-        _media.Add(kind.Make(new MediumSource(this, e, path)));
+        _media.Add(kind.Make(new MediumSource(this, e, path) { ObjectBounds = BoundsOf(interiorOf) }));
         return _media.Count - 1;
+    }
+
+    /// <summary>The box about <paramref name="objects"/> (null: none, or one with no volume).</summary>
+    static (System.Numerics.Vector3 Min, System.Numerics.Vector3 Max)? BoundsOf(IReadOnlyList<SceneObject>? objects)
+    {
+        if (objects is null || objects.Count == 0) return null;
+        var box = Geometry.Bounds3.Empty;
+        foreach (var o in objects)
+        {
+            if (o.Shape is { } shape) box.Include(shape.Bounds);
+            if (o.Mesh is { } mesh) foreach (var p in mesh.Positions) box.Include(p);
+        }
+        return box.Min.X < box.Max.X && box.Min.Y < box.Max.Y && box.Min.Z < box.Max.Z ? (box.Min, box.Max) : null;
     }
 
     /// <summary>
@@ -72,6 +86,39 @@ public sealed partial class SceneLoader
         public double Number(string key, double fallback, double min, double max) => _loader.Number(_e, key, _path, fallback, min, max);
         public InputException Error(string key, string what, string hint) => _loader.Error($"{_path}.{key}", what, hint);
         public BandGrid Grid => _loader._grid;
+        /// <summary>The box about the object(s) whose interior this medium fills (null: the scene's medium).</summary>
+        public (System.Numerics.Vector3 Min, System.Numerics.Vector3 Max)? ObjectBounds { get; init; }
+
+        /// <summary>A required file name, resolved against the scene file's folder; it must exist.</summary>
+        public string File(string key)
+        {
+            var name = _loader.String(_loader.Required(_e, key, _path), $"{_path}.{key}");
+            var full = Path.IsPathRooted(name) ? name : Path.Combine(_loader._dir, name);
+            if (!System.IO.File.Exists(full)) throw Error(key, $"file '{name}' not found", "the path is relative to the scene file");
+            return full;
+        }
+
+        /// <summary>An optional box [[x, y, z], [x, y, z]] (min and max corners, scene units).</summary>
+        public (System.Numerics.Vector3 Min, System.Numerics.Vector3 Max)? Box(string key)
+        {
+            if (!TryGet(_e, key, out var v)) return null;
+            string path = $"{_path}.{key}";
+            if (v.ValueKind != JsonValueKind.Array || v.GetArrayLength() != 2)
+                throw _loader.Error(path, $"expected [[x, y, z], [x, y, z]], found {Kind(v)}", "the box's min and max corners");
+            var (min, max) = (_loader.Vec3(v[0], $"{path}[0]"), _loader.Vec3(v[1], $"{path}[1]"));
+            DensityGridReader.CheckBounds(min, max, _loader.Where(path));
+            return (min, max);
+        }
+
+        /// <summary>An optional [nx, ny, nz] of positive integers.</summary>
+        public int[]? Resolution(string key)
+        {
+            if (!TryGet(_e, key, out var v)) return null;
+            string path = $"{_path}.{key}";
+            if (v.ValueKind != JsonValueKind.Array || v.GetArrayLength() != 3)
+                throw _loader.Error(path, $"expected [nx, ny, nz], found {Kind(v)}", "the grid's samples along x, y and z");
+            return [.. Enumerable.Range(0, 3).Select(i => (int)_loader.Number(v[i], $"{path}[{i}]", 1, int.MaxValue))];
+        }
 
         /// <summary>
         /// A coefficient spectrum's padded band values (0 when absent and not <paramref name="required"/>): every value of

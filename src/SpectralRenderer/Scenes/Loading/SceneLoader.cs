@@ -232,7 +232,7 @@ public sealed partial class SceneLoader
                 ParseObject(o, $"$.objects[{i}]", i, objects, materials, materialIndex);
                 if (TryGet(o, "medium", out var interior))
                 {
-                    int medium = ParseMedium(interior, $"$.objects[{i}].medium");
+                    int medium = ParseMedium(interior, $"$.objects[{i}].medium", objects[before..]);
                     for (int j = before; j < objects.Count; j++)
                     {
                         if (!Encloses(objects[j]))
