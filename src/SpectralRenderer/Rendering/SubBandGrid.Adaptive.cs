@@ -39,7 +39,7 @@ internal sealed partial class SubBandGrid
 
     static int[]? Allocate(Scene scene, int perBand)
     {
-        if (scene.Media.Count > 0 || scene.Materials.Any(m => m.Dispersive && m.HasTransmission || m.Fluorescence is { HasShift: true }))
+        if (scene.Media.Count > 0 || scene.Materials.Any(m => m.Dispersive && m.HasTransmission || m.Fluorescence is not null))
             return null;
         var error = PredictedErrors(scene, perBand);
         if (error is null || error.All(e => e[perBand - 1] <= AdaptiveThreshold)) return null;
