@@ -467,10 +467,6 @@ public sealed partial class SceneLoader
         {
             (o.ExposureAuto, o.Exposure) = OutputOptions.ParseExposure(x);
         }
-        // A photometric scene ("scaling": "absolute": Y in cd/m²) at exposure 1 previews all white under any real light:
-        // without an exposure of its own (scene or --exposure) it takes the automatic one, which render.json records.
-        else if (_colorimeter is { Absolute: true } && !(TryGet(root, "output", out var oe) && TryGet(oe, "exposure", out _)))
-            o.ExposureAuto = true;
         if (_overrides.Formats is { } fs)
             o.Products = ParseFormats(fs.Split(',', StringSplitOptions.RemoveEmptyEntries | StringSplitOptions.TrimEntries), "--formats");
         return o;
