@@ -75,7 +75,8 @@ public static partial class ExactChannelSignals
     public static Result? Compute(CameraScene cs, SensorModel sensor, Scene scene, SubBandFilm film, string from, int threads,
         out string reason)
     {
-        if (film.Width != cs.Width || film.Height != cs.Height || film.SubBands != cs.Grid.Count * film.PerBand)
+        if (film.Width != cs.Width || film.Height != cs.Height || film.BandStart.Length != cs.Grid.Count + 1
+            || film.BandStart[^1] != film.SubBands)
         {
             reason = $"the fine film is {film.Width}×{film.Height}×{film.SubBands} sub-bands, the cube "
                 + $"{cs.Width}×{cs.Height}×{cs.Grid.Count} bands (a crop or shard)";
@@ -100,7 +101,7 @@ public static partial class ExactChannelSignals
         var parallel = new ParallelOptions { MaxDegreeOfParallelism = threads };
         for (int part = 0; part < parts; part++)
         {
-            int f0 = parts == 1 ? 0 : part * per, f1 = parts == 1 ? sub : f0 + per;
+            int f0 = parts == 1 ? 0 : film.BandStart[part], f1 = parts == 1 ? sub : film.BandStart[part + 1];
             Parallel.For(0, cs.Height, parallel, y =>
             {
                 for (int i = y * cs.Width; i < (y + 1) * cs.Width; i++)
@@ -127,11 +128,25 @@ public static partial class ExactChannelSignals
         string width = (film.Upper[0] - film.Lower[0]).ToString("0.###", CultureInfo.InvariantCulture);
         string route = "exact (path): rate_c = sum over the fine grid's sub-bands f of L_f * integral_f(eta_c * lambda/(h c)) at the "
             + "sensitivity's full resolution, " +
-            $"{sub} sub-bands of {width} nm ({per} per band) from {from}" +
+            (per > 0 ? $"{sub} sub-bands of {width} nm ({per} per band)" : $"{sub} sub-bands, adaptive ({Widths(film)})")
+            + $" from {from}" +
             (optics.Any
                 ? "; each band's share through the lens (cos4th fall-off, Airy blur at the band centre) before the bands are summed"
                 : "");
         return new Result(plane, whiteScale, route, whiteSource, optics.Any);
+    }
+
+    /// <summary>An adaptive grid's sub-band widths, run by run: "1 nm × 40, 10 nm × 8, …".</summary>
+    static string Widths(SubBandFilm film)
+    {
+        var runs = new List<(double Width, int Count)>();
+        for (int f = 0; f < film.SubBands; f++)
+        {
+            double w = Math.Round(film.Upper[f] - film.Lower[f], 3);
+            if (runs.Count > 0 && runs[^1].Width == w) runs[^1] = (w, runs[^1].Count + 1);
+            else runs.Add((w, 1));
+        }
+        return string.Join(", ", runs.Select(r => string.Create(CultureInfo.InvariantCulture, $"{r.Width:0.###} nm × {r.Count}")));
     }
 
     /// <summary>

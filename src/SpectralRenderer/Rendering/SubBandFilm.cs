@@ -19,8 +19,10 @@ public sealed class SubBandFilm
 {
     public required int Width { get; init; }
     public required int Height { get; init; }
-    /// <summary>Sub-bands per output band (an output band is the mean of its <see cref="PerBand"/> sub-bands).</summary>
+    /// <summary>Sub-bands per output band of a uniform grid (an output band is the mean of its sub-bands), 0 when adaptive.</summary>
     public required int PerBand { get; init; }
+    /// <summary>Output band b's sub-bands are [BandStart[b], BandStart[b + 1]).</summary>
+    public required int[] BandStart { get; init; }
     /// <summary>The sub-bands' edges (nm).</summary>
     public required double[] Lower { get; init; }
     public required double[] Upper { get; init; }
@@ -38,6 +40,7 @@ public sealed class SubBandFilm
         Width = width,
         Height = height,
         PerBand = grid.PerBand,
+        BandStart = grid.BandStart,
         Lower = grid.Lower,
         Upper = grid.Upper,
         Data = data,

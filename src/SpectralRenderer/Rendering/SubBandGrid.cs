@@ -8,35 +8,47 @@ namespace SpectralRenderer.Rendering;
 
 /// <summary>
 /// The path tracer's internal spectral grid: every output band split into <see cref="PerBand"/> equal sub-bands no wider
-/// than the requested width (5 nm by default), so an output band is exactly the mean of its sub-bands. A spectrum's value
+/// than the requested width (5 nm by default), so an output band is exactly the mean of its sub-bands; or, adaptive (the
+/// default width when a scene does not set one), as many sub-bands in all but more of them in the bands where the scene's
+/// spectra change fast and fewer where they are smooth (SubBandGrid.Adaptive.cs), equal within each band. A spectrum's value
 /// on a sub-band is its exact mean there (<see cref="TabulatedSpectrum.Mean"/>); products along a path are taken
 /// sub-band by sub-band, so multi-bounce products are products at this resolution, not of output-band means. Colour is
 /// integrated on this grid: X = κ·Σ_f L_f·∫_f x̄ dλ (and Y, Z). Spectra are padded float arrays (<see cref="Padded"/>
 /// lanes, a multiple of <see cref="Vector{T}.Count"/>) for whole-vector arithmetic.
 /// </summary>
 [CompiledAtFirstCall]
-internal sealed class SubBandGrid
+internal sealed partial class SubBandGrid
 {
     readonly Scene _scene;
     readonly float[] _wx, _wy, _wz;
 
-    public SubBandGrid(Scene scene, double width)
+    /// <summary>
+    /// The grid of <paramref name="scene"/> at <paramref name="width"/> nm: uniform, or with <paramref name="adaptive"/> the
+    /// same number of sub-bands spread over the output bands where the scene's spectra need them (SubBandGrid.Adaptive.cs),
+    /// when the uniform grid's predicted error calls for it.
+    /// </summary>
+    public SubBandGrid(Scene scene, double width, bool adaptive = false)
     {
         _scene = scene;
         var grid = scene.Grid;
         Bands = grid.Count;
-        PerBand = Math.Max(1, (int)Math.Ceiling(grid.Width / width - 1e-9));
-        Count = Bands * PerBand;
+        int perBand = Math.Max(1, (int)Math.Ceiling(grid.Width / width - 1e-9));
+        var counts = adaptive ? AdaptiveCounts(scene, perBand) : null;
+        PerBand = counts is null ? perBand : 0;
+        BandStart = new int[Bands + 1];
+        for (int b = 0; b < Bands; b++) BandStart[b + 1] = BandStart[b] + (counts is null ? perBand : counts[b]);
+        Count = BandStart[Bands];
         Padded = SpectralMath.Padded(Count);
         Lower = new double[Count];
         Upper = new double[Count];
         for (int b = 0; b < Bands; b++)
         {
-            double lo = grid.Lower(b), w = (grid.Upper(b) - lo) / PerBand;
-            for (int j = 0; j < PerBand; j++)
+            int n = BandStart[b + 1] - BandStart[b], f0 = BandStart[b];
+            double lo = grid.Lower(b), w = (grid.Upper(b) - lo) / n;
+            for (int j = 0; j < n; j++)
             {
-                Lower[b * PerBand + j] = lo + j * w;
-                Upper[b * PerBand + j] = j == PerBand - 1 ? grid.Upper(b) : lo + (j + 1) * w;
+                Lower[f0 + j] = lo + j * w;
+                Upper[f0 + j] = j == n - 1 ? grid.Upper(b) : lo + (j + 1) * w;
             }
         }
         // Colour weights κ·∫_f x̄ dλ per sub-band (CIE 015 eq. 7.1 on the sub-band grid) and the luminance-like channel.
@@ -67,8 +79,12 @@ internal sealed class SubBandGrid
 
     /// <summary>Output bands.</summary>
     public int Bands { get; }
-    /// <summary>Sub-bands per output band.</summary>
+    /// <summary>Sub-bands per output band of a uniform grid; 0 when the grid is adaptive (see <see cref="BandStart"/>).</summary>
     public int PerBand { get; }
+    /// <summary>Output band b's sub-bands are [BandStart[b], BandStart[b + 1]), of equal width within the band.</summary>
+    public int[] BandStart { get; }
+    /// <summary>Every output band split into the same number of sub-bands.</summary>
+    public bool Uniform => PerBand > 0;
     /// <summary>Sub-bands in all.</summary>
     public int Count { get; }
     /// <summary>The length of a sub-band spectrum (padded for SIMD).</summary>
@@ -88,7 +104,8 @@ internal sealed class SubBandGrid
         if (_scene.Spectra.TryGetValue(bands, out var s))
             for (int f = 0; f < Count; f++) fine[f] = (float)s.Mean(Lower[f], Upper[f]);
         else
-            for (int f = 0; f < Count; f++) fine[f] = bands[f / PerBand];
+            for (int b = 0; b < Bands; b++)
+                for (int f = BandStart[b]; f < BandStart[b + 1]; f++) fine[f] = bands[b];
         return fine;
     }
 
@@ -114,7 +131,14 @@ internal sealed class SubBandGrid
         float inv = 1f / PerBand;
         ref float f = ref MemoryMarshal.GetReference(fine[..Count]);
         ref float r = ref MemoryMarshal.GetReference(result[..Bands]);
-        if (PerBand == 4)   // the default 5-nm grid under 20-nm bands: the same sums, unrolled and without bounds checks
+        if (!Uniform)   // an adaptive grid: each band the mean of its own count of equal sub-bands
+            for (int b = 0; b < Bands; b++)
+            {
+                float s = 0;
+                for (int j = BandStart[b]; j < BandStart[b + 1]; j++) s += Unsafe.Add(ref f, j);
+                Unsafe.Add(ref r, b) = s * (1f / (BandStart[b + 1] - BandStart[b]));
+            }
+        else if (PerBand == 4)   // the default 5-nm grid under 20-nm bands: the same sums, unrolled and without bounds checks
             for (int b = 0; b < Bands; b++)
             {
                 ref float q = ref Unsafe.Add(ref f, 4 * b);

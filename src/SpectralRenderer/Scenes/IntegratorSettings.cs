@@ -13,4 +13,9 @@ public sealed record IntegratorSettings(string Name, int MaxDepth = -1, int RrDe
     /// <summary>The keys the scene's "integrator" object gave beside "type", each with where it stands ("file:line:col: $.path").</summary>
     public IReadOnlyList<(string Key, string Where)> Keys { get; init; } = [];
     public const double DefaultSpectralGrid = 5;
+    /// <summary>
+    /// No "spectral_grid" given: the grid of the default width is adaptive (its sub-bands where the scene's spectra need
+    /// them, Rendering/SubBandGrid.Adaptive.cs); a width given is a uniform grid.
+    /// </summary>
+    public bool AdaptiveGrid { get; init; } = true;
 }

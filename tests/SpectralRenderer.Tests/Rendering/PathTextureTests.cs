@@ -17,7 +17,8 @@ namespace SpectralRenderer.Tests.Rendering;
 /// (data/colorchecker-ohta.csv) as an ENVI cube on one flat quad, rendered with direct light only (max_depth 1), against
 /// 24 untextured quads of the same spectra given inline — every band and X, Y, Z at each patch centre to float rounding;
 /// under a uniform sky (its radiance the same at every wavelength) against the analytic ρ·L_sky, ρ's band mean
-/// integrated here from the table's straight segments.
+/// integrated here from the table's straight segments. Both on the uniform 5 nm grid (<c>"spectral_grid": 5</c>): the default
+/// adaptive grid follows the plain materials' spectra, not a texture's texels, so it would differ between the two.
 /// </summary>
 public class PathTextureTests(Xunit.Abstractions.ITestOutputHelper output)
 {
@@ -26,7 +27,7 @@ public class PathTextureTests(Xunit.Abstractions.ITestOutputHelper output)
     static string Scene(string objects, string light, string background, string materials = "{}", int maxDepth = 1) => $$"""
         {
           "bands": "380:780:20", "integration": "exact", "radiometry": "physical", "white": "D65",
-          "integrator": { "type": "path", "max_depth": {{maxDepth}} },
+          "integrator": { "type": "path", "max_depth": {{maxDepth}}, "spectral_grid": 5 },
           "camera": { "position": [0, 0, 20], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov": 16, "width": 96, "height": 64, "spp": 1 },
           "lights": [ {{light}} ],
           "materials": {{materials}},

@@ -41,7 +41,7 @@ internal static class PathFilm
     /// </summary>
     public static SubBandFilm FromTransfer(PathTransfer t, Scene scene)
     {
-        var grid = new SubBandGrid(scene, t.SpectralGrid);
+        var grid = PathIntegrator.GridOf(scene, t.SpectralGrid);
         int sub = t.SubBands, w = t.Region.Width, h = t.Region.Height;
         var e = PathTransfer.LightSpectra(scene, grid);
         var data = new float[(long)w * h * sub];

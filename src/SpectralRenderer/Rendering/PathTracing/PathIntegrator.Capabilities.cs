@@ -16,6 +16,10 @@ internal sealed partial class PathIntegrator : ITransferIntegrator, ISubBandFilm
     public static IntegratorSettings SettingsOf(Scene scene) =>
         scene.Integrator is { Name: "path" } s ? s : new IntegratorSettings("path");
 
+    /// <summary>The sub-band grid of <paramref name="width"/> nm its paths carry in <paramref name="scene"/> (adaptive when the
+    /// scene sets no "spectral_grid": SubBandGrid.Adaptive.cs).</summary>
+    internal static SubBandGrid GridOf(Scene scene, double width) => new(scene, width, SettingsOf(scene).AdaptiveGrid);
+
     public int FilmSubBands => _grid.Count;
 
     public SubBandFilm TraceSubBandFilm(Scene scene, int threads, CancellationToken cancel = default) =>

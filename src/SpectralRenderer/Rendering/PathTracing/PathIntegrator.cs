@@ -50,7 +50,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
                 "add \"radiometry\": \"physical\" to the scene, or render it with the whitted integrator");
         var settings = SettingsOf(scene);
         _geometry = geometry;
-        _grid = new SubBandGrid(scene, settings.SpectralGrid);
+        _grid = GridOf(scene, settings.SpectralGrid);
         _padded = _grid.Padded;
         _maxDepth = settings.MaxDepth;
         Sampler = new SamplerSettings(settings.Sampler ?? SamplerKind.Sobol, settings.Seed);
@@ -76,7 +76,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
     /// <summary>The sampler of its camera samples: Owen-scrambled Sobol unless the scene's "sampler" says otherwise.</summary>
     public SamplerSettings Sampler { get; }
 
-    /// <summary>The internal grid's sub-bands per output band.</summary>
+    /// <summary>The internal grid's sub-bands per output band (0: an adaptive grid, its own count per band).</summary>
     public int SubBands => _grid.PerBand;
 
     /// <summary>

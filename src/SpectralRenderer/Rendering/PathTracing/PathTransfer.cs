@@ -65,7 +65,7 @@ internal sealed partial class PathTransfer
     /// <summary>Bytes of a transfer of <paramref name="pixels"/> pixels of <paramref name="scene"/> (for the memory estimate).</summary>
     public static long Bytes(Scene scene, long pixels)
     {
-        var grid = new SubBandGrid(scene, GridWidth(scene));
+        var grid = PathIntegrator.GridOf(scene, GridWidth(scene));
         int k = scene.Lights.Count;
         long block = k > 0 ? (long)k * PathIntegrator.ShiftBlockOf(scene, grid).Size : 0;   // a fluorescent scene's B_k
         return 4L * pixels * ((k + 1) * grid.Count + block);
@@ -177,7 +177,7 @@ internal sealed partial class PathTransfer
     /// </summary>
     public (SpectralImage Image, float[] Xyz) Relight(Scene scene)
     {
-        var grid = new SubBandGrid(scene, SpectralGrid);
+        var grid = PathIntegrator.GridOf(scene, SpectralGrid);
         if (grid.Count != SubBands || scene.Bands != Bands || scene.Lights.Count != Lights)
             throw new InputException("lights/lights.json",
                 $"the transfer has {Lights} lights × {SubBands} sub-bands of {Bands} bands, the scene rebuilds as {scene.Lights.Count} "

@@ -1,3 +1,4 @@
+using System.Globalization;
 using System.Text.Json;
 using System.Text.Json.Nodes;
 using SpectralRenderer.Diagnostics;
@@ -110,7 +111,7 @@ internal static class PathTransferFiles
     /// <summary>lights.json of a path render (the whole film's: a shard's is the same).</summary>
     public static JsonObject Describe(Scene scene, PathTransfer t)
     {
-        var grid = new SubBandGrid(scene, t.SpectralGrid);
+        var grid = PathIntegrator.GridOf(scene, t.SpectralGrid);
         var lights = new JsonArray();
         var groups = new JsonArray();
         for (int k = 0; k < scene.Lights.Count; k++)
@@ -192,8 +193,16 @@ internal static class PathTransferFiles
         r.Array(json, "lights", "$", k);
         double gridWidth = r.Number(json, "spectral_grid_nm", "$", 1, 1000);
         int sub = r.Int(json, "sub_bands", "$", 1, 1 << 20);
-        var grid = new SubBandGrid(scene, gridWidth);
+        var grid = PathIntegrator.GridOf(scene, gridWidth);
         if (grid.Count != sub) throw r.Bad("$.sub_bands", $"is {sub}, but the scene's grid of {gridWidth} nm has {grid.Count} sub-bands");
+        if (json["sub_band_edges_nm"] is not null)
+        {   // an adaptive grid has as many sub-bands as the uniform one: the edges say which the render carried
+            var edges = r.Numbers(json, "sub_band_edges_nm", "$", sub + 1);
+            for (int f = 0; f <= sub; f++)
+                if (Math.Abs(edges[f] - (f < sub ? grid.Lower[f] : grid.Upper[^1])) > 1e-6)
+                    throw r.Bad($"$.sub_band_edges_nm[{f}]", string.Create(CultureInfo.InvariantCulture,
+                        $"is {edges[f]} nm, but the scene's grid has an edge at {(f < sub ? grid.Lower[f] : grid.Upper[^1])} nm"));
+        }
         int version = r.OptInt(json, "version", "$", 1, int.MaxValue) ?? 1;
         if (version > Version)
             throw new InputException($"{jsonPath}: $.version",

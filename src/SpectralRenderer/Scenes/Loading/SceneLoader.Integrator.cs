@@ -23,7 +23,8 @@ public sealed partial class SceneLoader
         var name = String(Required(e, "type", path), $"{path}.type").ToLowerInvariant();
         int maxDepth = Integer(e, "max_depth", path, -1, -1, 1_000_000);
         int rrDepth = Integer(e, "rr_depth", path, IntegratorSettings.DefaultRrDepth, 0, 1_000_000);
-        // The internal grid: every output band split into equal sub-bands of at most this width (1 nm allowed).
+        // The internal grid: every output band split into equal sub-bands of at most this width (1 nm allowed); without
+        // the key, the default width's sub-bands placed where the scene's spectra need them (IntegratorSettings.AdaptiveGrid).
         double grid = Number(e, "spectral_grid", path, IntegratorSettings.DefaultSpectralGrid, 1, 1000);
         SamplerKind? sampler = null;
         if (TryGet(e, "sampler", out var se))
@@ -37,7 +38,11 @@ public sealed partial class SceneLoader
         // The seed changes every random number (independent renders of the same scene); 0 is the default's.
         uint seed = (uint)Integer(e, "seed", path, 0, 0, int.MaxValue);
         var given = e.EnumerateObject().Where(p => p.Name != "type").Select(p => (p.Name, Where($"{path}.{p.Name}"))).ToArray();
-        return new IntegratorSettings(name, maxDepth, rrDepth, grid, sampler, seed) { Keys = given };
+        return new IntegratorSettings(name, maxDepth, rrDepth, grid, sampler, seed)
+        {
+            Keys = given,
+            AdaptiveGrid = !TryGet(e, "spectral_grid", out _),
+        };
     }
 
     /// <summary>
