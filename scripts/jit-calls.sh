@@ -7,7 +7,8 @@
 #
 #   usage: scripts/jit-calls.sh [DLL] [METHODS] [SCENE]
 #     DLL      the build's spectral.dll (default: this tree's Release build)
-#     METHODS  DOTNET_JitDisasm's list (default "Walk NextEvent": the path tracer's walk and its next-event estimation)
+#     METHODS  DOTNET_JitDisasm's list, *Class:Method (default "*PathIntegrator:Walk *PathIntegrator:NextEvent": the path
+#              tracer's walk and its next-event estimation)
 #     SCENE    the scene benched, 80x60, 4 spp (default scenes/path-cornell-room.json)
 #
 # For a profile with the JIT's frames named, run `perf record` with DOTNET_PerfMapEnabled=1 and
@@ -15,7 +16,7 @@
 set -euo pipefail
 repo=$(git rev-parse --show-toplevel)
 dll=${1:-$repo/src/SpectralRenderer.Cli/bin/Release/net10.0/spectral.dll}
-methods=${2:-Walk NextEvent}
+methods=${2:-*PathIntegrator:Walk *PathIntegrator:NextEvent}
 scene=${3:-$repo/scenes/path-cornell-room.json}
 [[ -f $dll ]] || { echo "jit-calls: no build at $dll (dotnet build -c Release first)" >&2; exit 2; }
 export SPECTRAL_MODELS=${SPECTRAL_MODELS:-$repo/../shared/models}
