@@ -1431,6 +1431,15 @@ for label, protos, o, pat in [
     if protos is not None: s["prototypes"] = protos
     scene_case(label, s, pat)
 
+for label, text, pat in [
+    ("instance-no-group", mi_scene("", shape='<shape type="instance"><transform name="to_world"><translate x="1"/></transform></shape>'),
+     r"an instance without a shapegroup"),
+    ("instance-of-sphere", mi_scene('<shape type="sphere" id="ball"/>', shape='<shape type="instance"><ref id="ball"/></shape>'),
+     r"an instance of a <shape type=\"sphere\">"),
+]:
+    fname = write(f"mitsuba-{label}.xml", text)
+    case(f"mitsuba/{label}", ["import", "{in}/" + fname, "-o", "{tmp}/out/scene.json"], pat, 2, fname, r"\.xml:\d+:\d+")
+
 with open(os.path.join(HERE, "cases.json"), "w", encoding="utf-8") as f:
     json.dump(cases, f, indent=1, ensure_ascii=True)
     f.write("\n")
