@@ -52,15 +52,12 @@ public struct InstanceSet : IPrimitiveIntersector
         return new InstanceSet([.. prototypes], [.. order.Select(i => prototypeOf[i])], [.. order.Select(i => inverse[i])], bvh);
     }
 
-    /// <summary>The world box of an object-space box under <paramref name="m"/>: the box about its eight transformed corners,
-    /// widened by a few float ulps of its size so a ray that meets the geometry in object space (rounded there) is never
-    /// culled by a box rounded in world space.</summary>
+    /// <summary>The world box of an object-space box under <paramref name="m"/> (<see cref="Bounds3.Transformed"/>), widened by a
+    /// few float ulps of its size so a ray that meets the geometry in object space (rounded there) is never culled by a box
+    /// rounded in world space.</summary>
     public static Bounds3 WorldBounds(Bounds3 box, Matrix4x4 m)
     {
-        var b = Bounds3.Empty;
-        for (int c = 0; c < 8; c++)
-            b.Include(Vector3.Transform(new Vector3((c & 1) == 0 ? box.Min.X : box.Max.X, (c & 2) == 0 ? box.Min.Y : box.Max.Y,
-                (c & 4) == 0 ? box.Min.Z : box.Max.Z), m));
+        var b = box.Transformed(m);
         var pad = new Vector3(4e-7f * (b.Extent.Length() + Vector3.Max(Vector3.Abs(b.Min), Vector3.Abs(b.Max)).Length()));
         return new Bounds3(b.Min - pad, b.Max + pad);
     }

@@ -37,7 +37,7 @@ public sealed partial class SceneLoader
                     $"prototypes: {string.Join(", ", _prototypes.Keys.Order(StringComparer.Ordinal))}"));
         if (prototype.Mesh is { } mesh)
         {
-            var placed = Acceleration.InstanceSet.WorldBounds(mesh.Bounds, transform);
+            var placed = mesh.Bounds.Transformed(transform);
             if (!(Within(placed.Min) && Within(placed.Max)))
                 throw Error($"{path}.transform",
                     $"the instance reaches [{placed.Min.X:g3}, {placed.Min.Y:g3}, {placed.Min.Z:g3}]–[{placed.Max.X:g3}, "
