@@ -1463,6 +1463,31 @@ for label, medium, pat in [
 
 names = [c["name"] for c in cases]
 assert len(names) == len(set(names)), [x for x in names if names.count(x) > 1]
+# instancing: "prototypes" and "instance" objects
+TRI = {"inline": {"positions": [0, 0, 0, 1, 0, 0, 0, 1, 0], "indices": [0, 1, 2]}}
+for label, protos, o, pat in [
+    ("instance-unknown-prototype", {"tri": TRI}, {"type": "instance", "prototype": "tir", "material": "green"}, r"no prototype named 'tir'.*did you mean 'tri'"),
+    ("instance-no-prototypes", None, {"type": "instance", "prototype": "tri", "material": "green"}, r"define it under the top-level \"prototypes\""),
+    ("instance-no-prototype-field", {"tri": TRI}, {"type": "instance", "material": "green"}, r"missing required field 'prototype'"),
+    ("instance-far", {"tri": TRI}, {"type": "instance", "prototype": "tri", "material": "green", "transform": {"scale": 1e6, "translate": [9.5e6, 0, 0]}}, r"outside ±10000000"),
+    ("instance-file-key", {"tri": TRI}, {"type": "instance", "prototype": "tri", "file": "tri.obj", "material": "green"}, r"unknown field 'file'"),
+    ("prototype-unknown-key", {"tri": dict(TRI, material="green")}, {"type": "sphere", "material": "green"}, r"unknown field 'material'"),
+    ("prototypes-not-object", [TRI], {"type": "sphere", "material": "green"}, r"expected an object"),
+    ("prototype-no-mesh", {"tri": {"shading": "flat"}}, {"type": "sphere", "material": "green"}, r"missing required field 'file'"),
+]:
+    s = deep(BASE); s["objects"] = [o]
+    if protos is not None: s["prototypes"] = protos
+    scene_case(label, s, pat)
+
+for label, text, pat in [
+    ("instance-no-group", mi_scene("", shape='<shape type="instance"><transform name="to_world"><translate x="1"/></transform></shape>'),
+     r"an instance without a shapegroup"),
+    ("instance-of-sphere", mi_scene('<shape type="sphere" id="ball"/>', shape='<shape type="instance"><ref id="ball"/></shape>'),
+     r"an instance of a <shape type=\"sphere\">"),
+]:
+    fname = write(f"mitsuba-{label}.xml", text)
+    case(f"mitsuba/{label}", ["import", "{in}/" + fname, "-o", "{tmp}/out/scene.json"], pat, 2, fname, r"\.xml:\d+:\d+")
+
 with open(os.path.join(HERE, "cases.json"), "w", encoding="utf-8") as f:
     json.dump(cases, f, indent=1, ensure_ascii=True)
     f.write("\n")

@@ -27,6 +27,17 @@ public struct Bounds3
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     static Vector3 Hi(Vector3 a, Vector3 b) => Vector128.MaxNative(a.AsVector128(), b.AsVector128()).AsVector3();
 
+    /// <summary>The box about the eight corners of this one under the affine <paramref name="m"/> (p·M, System.Numerics' row
+    /// vectors): the world box of an object-space box.</summary>
+    public readonly Bounds3 Transformed(Matrix4x4 m)
+    {
+        var b = Empty;
+        for (int c = 0; c < 8; c++)
+            b.Include(Vector3.Transform(new Vector3((c & 1) == 0 ? Min.X : Max.X, (c & 2) == 0 ? Min.Y : Max.Y,
+                (c & 4) == 0 ? Min.Z : Max.Z), m));
+        return b;
+    }
+
     /// <summary>Half the surface area (the SAH only needs ratios).</summary>
     public readonly float HalfArea
     {

@@ -6,4 +6,6 @@ public struct Hit
     public int Primitive;
     public float U;
     public float V;
+    /// <summary>When <see cref="Primitive"/> is an instance (<c>InstanceSet</c>): the triangle hit in its prototype's order.</summary>
+    public int Element;
 }

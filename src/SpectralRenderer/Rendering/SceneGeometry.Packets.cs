@@ -6,8 +6,9 @@ using SpectralRenderer.Geometry;
 namespace SpectralRenderer.Rendering;
 
 // Ray queries for a packet of rays: the mesh triangles (most of a scene's work) as a packet through their
-// BVH, then, lane by lane and in the single-ray order, the analytic shapes and the planes with each lane's
-// shortened TMax, so every lane's answer is the one its ray gets from Intersect / Occluded.
+// BVH, then, lane by lane and in the single-ray order, the instanced meshes, the analytic shapes and the planes with each
+// lane's shortened TMax, so every lane's answer is the one its ray gets from Intersect / Occluded. (Instances are met ray by
+// ray: each lane's ray goes into its own object space.)
 public sealed partial class SceneGeometry
 {
     /// <summary>
@@ -20,6 +21,21 @@ public sealed partial class SceneGeometry
     internal uint Intersect(ref RayPacket packet, ref HitLanes hits)
     {
         uint triangles = _hasTriangles ? _triangles.Intersect(ref packet) : 0;
+        uint instanced = 0;
+        Span<Hit> instanceHits = stackalloc Hit[RayPacket.Size];
+        if (_hasInstances)
+            for (uint m = packet.Active; m != 0; m &= m - 1)
+            {
+                int lane = BitOperations.TrailingZeroCount(m);
+                var ray = packet.Ray(lane);
+                var s = _instances;
+                instanceHits[lane] = new Hit();
+                if (s.Bvh.Intersect(ref s, ref ray, ref instanceHits[lane]))
+                {
+                    instanced |= 1u << lane;
+                    packet.TMax[lane] = ray.TMax;
+                }
+            }
         // The analytic shapes lane by lane with each lane's TMax, then the planes for all lanes at once: the single-ray order.
         uint analytic = 0;
         Span<Hit> analyticHits = stackalloc Hit[RayPacket.Size];
@@ -41,10 +57,10 @@ public sealed partial class SceneGeometry
         ref var work = ref LaneMemory.At<RecordLanes>(laneMemory);
         ref var plane = ref work.Plane;
         uint planes = _planes.Length > 0 ? LaneGeometry.Planes(_planes, ref packet, packet.Active, ref plane) : 0;
-        uint found = triangles | analytic | planes;
+        uint found = triangles | instanced | analytic | planes;
         if (found == 0) return 0;
         // Per lane, what its record is made from: the triangle's corners and vertex normals, or the shape's or plane's normal.
-        uint mesh = triangles & ~analytic & ~planes, smooth = 0;
+        uint mesh = triangles & ~instanced & ~analytic & ~planes, smooth = 0;
         ref var corners = ref work.Corners;
         for (uint m = found; m != 0; m &= m - 1)
         {
@@ -58,6 +74,13 @@ public sealed partial class SceneGeometry
             else if ((analytic >> lane & 1) != 0)
             {
                 Record(2, packet.Ray(lane), default, analyticHits[lane], -1, out var h);
+                hits.SetNormals(lane, h.GeometricNormal, h.Normal);
+                hits.Object[lane] = h.Object;
+            }
+            else if ((instanced >> lane & 1) != 0)
+            {
+                var h = new SurfaceHit();
+                RecordInstance(instanceHits[lane], ref h);
                 hits.SetNormals(lane, h.GeometricNormal, h.Normal);
                 hits.Object[lane] = h.Object;
             }
@@ -93,6 +116,12 @@ public sealed partial class SceneGeometry
     public uint Occluded(ref RayPacket packet)
     {
         uint blocked = _hasTriangles ? _triangles.Occluded(ref packet) : 0;
+        if (_hasInstances)
+            for (uint m = packet.Active & ~blocked; m != 0; m &= m - 1)
+            {
+                int lane = BitOperations.TrailingZeroCount(m);
+                if (_instances.Occluded(packet.Ray(lane))) blocked |= 1u << lane;
+            }
         if (_analyticBvh is not null)
             for (uint m = packet.Active & ~blocked; m != 0; m &= m - 1)
             {

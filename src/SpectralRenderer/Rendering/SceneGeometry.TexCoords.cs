@@ -30,6 +30,7 @@ public sealed partial class SceneGeometry
                 }
             case 2: return TextureCoordinates.OfShape(_analytic[hit.Primitive], hit.Position, out uvPerLength);
             case 3: return TextureCoordinates.OfShape(_planeShapes[hit.Primitive], hit.Position, out uvPerLength);
+            case 4: return InstanceTexCoord(hit, out uvPerLength);
             default: uvPerLength = 0; return default;
         }
     }

@@ -8,7 +8,7 @@ namespace SpectralRenderer.Rendering;
 
 /// <summary>
 /// Ray queries against every object of a scene: all mesh triangles in one SAH BVH (walked 8-wide by single rays, binary by
-/// packets), the finite analytic
+/// packets), instanced meshes in a two-level <see cref="InstanceSet"/> (SceneGeometry.Instances.cs), the finite analytic
 /// shapes in another, infinite planes tested directly. Closest hit for camera and secondary rays,
 /// any hit (early exit) for shadow rays.
 /// </summary>
@@ -34,10 +34,12 @@ public sealed partial class SceneGeometry
         var meshObject = new List<int>();
         var finite = new List<(AnalyticShape Shape, int Object)>();
         var planes = new List<(AnalyticShape Shape, int Object)>();
+        var instances = new List<int>();
         for (int i = 0; i < scene.Objects.Count; i++)
         {
             var o = scene.Objects[i];
-            if (o.Mesh is { } m) { meshes.Add(m); meshObject.Add(i); }
+            if (o.Mesh is { TriangleCount: > 0 } && o.InstanceTransform is not null) instances.Add(i);
+            else if (o.Mesh is { } m) { meshes.Add(m); meshObject.Add(i); }
             else if (o.Shape is { IsInfinite: true } p) planes.Add((p, i));
             else if (o.Shape is { } s) finite.Add((s, i));
         }
@@ -46,7 +48,8 @@ public sealed partial class SceneGeometry
         _meshSmooth = meshObject.Select(i => scene.Objects[i].Smooth).ToArray();
         _hasTriangles = meshes.Count > 0 && meshes.Sum(m => m.TriangleCount) > 0;
         _triangles = !_hasTriangles ? default : cache is null ? TriangleSet.Build(_meshes) : cache.Triangles(_meshes);
-        TriangleCount = _hasTriangles ? _triangles.Count : 0;
+        (_instances, _hasInstances) = BuildInstances(scene, instances);
+        TriangleCount = (_hasTriangles ? _triangles.Count : 0) + InstancedTriangleCount;
 
         if (finite.Count > 0)
         {
@@ -68,6 +71,7 @@ public sealed partial class SceneGeometry
 
         var b = Bounds3.Empty;
         if (_hasTriangles) b.Include(_triangles.Bvh.Bounds);
+        if (_hasInstances) b.Include(_instances.Bvh.Bounds);
         if (_analyticBvh is not null) b.Include(_analyticBvh.Bounds);
         float extent = b.IsEmpty ? 1 : Math.Max(b.Extent.Length(), Vector3.Max(Vector3.Abs(b.Min), Vector3.Abs(b.Max)).Length());
         Epsilon = 1e-5f * Math.Max(1f, extent);
@@ -84,6 +88,7 @@ public sealed partial class SceneGeometry
 
     /// <summary>Offset for secondary-ray origins, scaled to the scene's size.</summary>
     public float Epsilon { get; }
+    /// <summary>Triangles seen: the meshes' in world space and every instance's prototype triangles.</summary>
     public int TriangleCount { get; }
     /// <summary>Bytes the triangle structures hold per triangle (<see cref="TriangleSet.BytesPerTriangle"/>; 0 without
     /// triangles).</summary>
@@ -99,6 +104,11 @@ public sealed partial class SceneGeometry
         {
             var t = _triangles;
             if (t.Wide.Intersect(ref t, ref ray, ref h)) kind = 1;
+        }
+        if (_hasInstances)
+        {
+            var s = _instances;
+            if (s.Bvh.Intersect(ref s, ref ray, ref h)) kind = 4;
         }
         var ah = new Hit();
         if (_analyticBvh is not null)
@@ -130,6 +140,11 @@ public sealed partial class SceneGeometry
         {
             var t = _triangles;
             if (t.Wide.Intersect(ref t, ref ray, ref h)) kind = 1;
+        }
+        if (_hasInstances)
+        {
+            var s = _instances;
+            if (s.Bvh.Intersect(ref s, ref ray, ref h)) kind = 4;
         }
         int face = faces.Intersect(ref ray);
         if (face >= 0) kind = 2;
@@ -163,13 +178,15 @@ public sealed partial class SceneGeometry
             var t = _triangles;
             if (t.Wide.Occluded(ref t, ray)) return true;
         }
+        if (_hasInstances && _instances.Occluded(ray)) return true;
         if (faces.Occluded(ray)) return true;
         for (int i = 0; i < _planes.Length; i++)
             if (HitPlane(i, ray, out _)) return true;
         return false;
     }
 
-    /// <summary>The surface record of a closest hit found by kind (1 triangle h, 2 analytic shape ah, 3 plane) at ray.TMax.</summary>
+    /// <summary>The surface record of a closest hit found by kind (1 triangle h, 2 analytic shape ah, 3 plane, 4 instanced
+    /// triangle h) at ray.TMax.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     void Record(int kind, in Ray ray, in Hit h, in Hit ah, int plane, out SurfaceHit hit)
     {
@@ -212,6 +229,9 @@ public sealed partial class SceneGeometry
                 hit.Object = _analyticObject[ah.Primitive];
                 hit.Primitive = ah.Primitive;
                 break;
+            case 4:
+                RecordInstance(h, ref hit);
+                break;
             default:
                 hit.Normal = hit.GeometricNormal = _planes[plane].Normal;
                 hit.Object = _planeObject[plane];
@@ -228,6 +248,7 @@ public sealed partial class SceneGeometry
             var t = _triangles;
             if (t.Wide.Occluded(ref t, ray)) return true;
         }
+        if (_hasInstances && _instances.Occluded(ray)) return true;
         if (_analyticBvh is not null)
         {
             var a = _analytic;

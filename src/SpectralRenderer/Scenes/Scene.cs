@@ -10,8 +10,19 @@ public sealed class SceneObject
     public required string Name { get; init; }
     public required int Material { get; init; }
     public Geometry.AnalyticShape? Shape { get; init; }
-    /// <summary>A triangle mesh in world space.</summary>
+    /// <summary>A triangle mesh: in world space, or for an instance in object space (then shared by every instance of it).</summary>
     public Geometry.TriangleMesh? Mesh { get; init; }
+    /// <summary>
+    /// An instance's object-to-world transform (System.Numerics' row vectors, p_world = p·M; affine, invertible): the
+    /// <see cref="Mesh"/> is then a prototype in object space, traced once through its own BVH for all its instances
+    /// (docs/scene-format.md, "prototypes"); null for a mesh in world space.
+    /// </summary>
+    public Matrix4x4? InstanceTransform { get; init; }
+
+    /// <summary>The mesh in world space: <see cref="Mesh"/> itself, or for an instance a transformed copy of its prototype.</summary>
+    public Geometry.TriangleMesh? WorldMesh() => Mesh is not { } m || InstanceTransform is not { } x ? Mesh
+        : new Geometry.TriangleMesh([.. m.Positions], [.. m.Indices], m.Indices.Length, m.Normals is null ? null : [.. m.Normals], m.Source,
+            m.TexCoords is null ? null : [.. m.TexCoords]).Transform(x);
     /// <summary>Interpolate vertex normals (true) or shade with the face normal.</summary>
     public bool Smooth { get; init; } = true;
     /// <summary>

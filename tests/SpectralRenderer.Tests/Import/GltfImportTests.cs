@@ -234,16 +234,19 @@ public class GltfImportTests(ITestOutputHelper output)
         //   (0, 1, 0) → (0, 1, −1) → (0, 2, −2) → (−2, 2, 0)  → (−1, 4, 3)
         //   (0, 0, 1) → (0, 0, 0)  → (0, 0, 0)  → (0, 0, 0)   → (1, 2, 3)
         float[][] expected = [[-1, 2, -3], [-1, 4, 3], [1, 2, 3]];
+        // The mesh is used by two nodes: one prototype, two instances, placed as computed by hand.
         var meshes = scene.Objects.Where(o => o.Mesh is not null).ToList();
         Assert.Equal(2, meshes.Count);
-        var p = meshes[0].Mesh!.Positions;
+        Assert.All(meshes, o => Assert.NotNull(o.InstanceTransform));
+        Assert.Same(meshes[0].Mesh, meshes[1].Mesh);
+        var p = meshes[0].WorldMesh()!.Positions;
         for (int i = 0; i < 3; i++)
         {
             Assert.Equal(expected[i][0], p[i].X, 5);
             Assert.Equal(expected[i][1], p[i].Y, 5);
             Assert.Equal(expected[i][2], p[i].Z, 5);
         }
-        var q = meshes[1].Mesh!.Positions;
+        var q = meshes[1].WorldMesh()!.Positions;
         Assert.Equal([new(11, 0, 0), new(10, 1, 0), new(10, 0, 1)], q.Take(3).ToArray());
     }
 

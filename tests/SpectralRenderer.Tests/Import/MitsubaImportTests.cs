@@ -44,6 +44,43 @@ public class MitsubaImportTests
 
     const string Sphere = """<shape type="sphere"><float name="radius" value="0.5"/></shape>""";
 
+    /// <summary>
+    /// A shapegroup of a PLY triangle (its own to_world: scale 2) and a sphere, placed by two instances (translations): the
+    /// PLY becomes one prototype and an instance per placement, whose world corners are the ones worked out by hand (instance
+    /// ∘ member); the sphere is copied with the composed transformation; the group itself renders nothing.
+    /// </summary>
+    [Fact]
+    public void A_shapegroup_becomes_a_prototype_placed_by_each_instance()
+    {
+        var dir = Reference.TempDir();
+        File.WriteAllText(System.IO.Path.Combine(dir, "tri.ply"),
+            "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+            + "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+        var path = System.IO.Path.Combine(dir, "scene.xml");
+        File.WriteAllText(path, Scene("""
+            <shape type="shapegroup" id="group">
+                <shape type="ply"><string name="filename" value="tri.ply"/>
+                    <transform name="to_world"><scale value="2"/></transform></shape>
+                <shape type="sphere"><float name="radius" value="0.25"/></shape>
+            </shape>
+            <shape type="instance" id="a"><ref id="group"/><transform name="to_world"><translate x="5"/></transform></shape>
+            <shape type="instance" id="b"><ref id="group"/><transform name="to_world"><translate y="-3"/></transform></shape>
+            """));
+        var imported = SceneFormats.Convert(path, new ImportOptions(false));
+        Assert.Single(imported.Scene["prototypes"]!.AsObject());
+        var scene = SceneLoader.Parse(ImportWriter.InlineJson(imported), path);
+        var instances = scene.Objects.Where(o => o.InstanceTransform is not null).ToList();
+        Assert.Equal(2, instances.Count);
+        Assert.Same(instances[0].Mesh, instances[1].Mesh);
+        // tri.ply scaled by 2, then translated: (0,0,0), (2,0,0), (0,2,0) + (5,0,0) and + (0,−3,0).
+        Assert.Equal([new(5, 0, 0), new(7, 0, 0), new(5, 2, 0)], instances[0].WorldMesh()!.Positions);
+        Assert.Equal([new(0, -3, 0), new(2, -3, 0), new(0, -1, 0)], instances[1].WorldMesh()!.Positions);
+        var spheres = scene.Objects.Where(o => o.Shape is not null).ToList();
+        Assert.Equal(2, spheres.Count);
+        Assert.Equal(new Vector3(5, 0, 0), Vector3.Transform(Vector3.Zero, spheres[0].Shape!.ObjectToWorld));
+        Assert.Equal(new Vector3(0, -3, 0), Vector3.Transform(Vector3.Zero, spheres[1].Shape!.ObjectToWorld));
+    }
+
     [Fact]
     public void The_camera_is_the_lookat_and_the_fov_is_made_vertical()
     {

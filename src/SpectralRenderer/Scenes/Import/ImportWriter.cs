@@ -81,9 +81,9 @@ public static class ImportWriter
     static bool Flat(JsonArray a) => a.All(v => v is JsonValue || (v is JsonArray inner && inner.All(x => x is JsonValue)));
 
     /// <summary>
-    /// Writes <paramref name="output"/> (the scene), its inline meshes as PLY files in STEM-meshes/ beside it (objects then
-    /// name them by "file"), and import-report.json beside it. Relative paths of the source's folder (mesh and texture files,
-    /// CSV spectra) are rewritten relative to the output's folder. Returns the files written.
+    /// Writes <paramref name="output"/> (the scene), its inline meshes as PLY files in STEM-meshes/ beside it (objects and
+    /// prototypes then name them by "file"), and import-report.json beside it. Relative paths of the source's folder (mesh and texture
+    /// files, CSV spectra) are rewritten relative to the output's folder. Returns the files written.
     /// </summary>
     public static IReadOnlyList<string> WriteFolder(ImportedScene scene, string sourcePath, string output)
     {
@@ -98,21 +98,26 @@ public static class ImportWriter
             var meshDir = Path.Combine(outDir, $"{stem}-meshes");
             Directory.CreateDirectory(meshDir);
             var byName = scene.Meshes.ToDictionary(m => m.Name, StringComparer.Ordinal);
+            // An inline mesh of an object (named by its "name") or of a prototype (named by its key) is written as a PLY file,
+            // and "file" takes the place of "inline"; the other keys keep their order.
+            JsonObject? Externalize(JsonNode? node, string? name)
+            {
+                if (node is not JsonObject obj || obj["inline"] is null || name is null || !byName.TryGetValue(name, out var mesh))
+                    return null;
+                var file = Path.Combine(meshDir, $"{mesh.Name}.ply");
+                File.WriteAllBytes(file, Ply(mesh));
+                written.Add(file);
+                var copy = new JsonObject();
+                foreach (var (k, v) in obj)
+                    copy[k == "inline" ? "file" : k] = k == "inline" ? JsonValue.Create($"{stem}-meshes/{mesh.Name}.ply") : v?.DeepClone();
+                return copy;
+            }
             if (json["objects"] is JsonArray objects)
                 for (int i = 0; i < objects.Count; i++)
-                {
-                    if (objects[i] is not JsonObject obj || obj["inline"] is null || obj["name"]?.GetValue<string>() is not { } name
-                        || !byName.TryGetValue(name, out var mesh)) continue;
-                    var file = Path.Combine(meshDir, $"{mesh.Name}.ply");
-                    File.WriteAllBytes(file, Ply(mesh));
-                    written.Add(file);
-                    // "file" takes the place of "inline"; the object's other keys keep their order.
-                    var copy = new JsonObject();
-                    foreach (var (k, v) in obj)
-                        copy[k == "inline" ? "file" : k] =
-                            k == "inline" ? JsonValue.Create($"{stem}-meshes/{mesh.Name}.ply") : v?.DeepClone();
-                    objects[i] = copy;
-                }
+                    if (Externalize(objects[i], (objects[i] as JsonObject)?["name"]?.GetValue<string>()) is { } copy) objects[i] = copy;
+            if (json["prototypes"] is JsonObject prototypes)
+                foreach (var (name, node) in prototypes.ToList())
+                    if (Externalize(node, name) is { } copy) prototypes[name] = copy;
         }
         File.WriteAllBytes(output, Serialize(json));
         written.Add(output);

@@ -5,7 +5,7 @@ namespace SpectralRenderer.Scenes.Import;
 /// <summary>
 /// A converted scene: our scene JSON (docs/scene-format.md), loadable by SceneLoader.Parse with the source file's folder as
 /// base (relative paths resolve from there), its report, and the meshes it holds inline (objects of type "mesh" with an
-/// "inline" block naming them by <see cref="ImportedMesh.Name"/>).
+/// "inline" block, named by <see cref="ImportedMesh.Name"/>, and "prototypes" entries with one, keyed by it).
 /// </summary>
 public sealed record ImportedScene(JsonObject Scene, ImportReport Report, IReadOnlyList<ImportedMesh> Meshes);
 

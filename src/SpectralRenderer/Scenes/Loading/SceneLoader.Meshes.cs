@@ -21,12 +21,18 @@ public sealed partial class SceneLoader
     /// </summary>
     void StartMeshReads(JsonElement root)
     {
-        if (!_overrides.LoadMeshes || !TryGet(root, "objects", out var objects) || objects.ValueKind != JsonValueKind.Array) return;
-        foreach (var o in objects.EnumerateArray())
+        if (!_overrides.LoadMeshes) return;
+        var meshes = new List<JsonElement>();
+        if (TryGet(root, "prototypes", out var prototypes) && prototypes.ValueKind == JsonValueKind.Object)
+            foreach (var p in prototypes.EnumerateObject()) meshes.Add(p.Value);
+        if (TryGet(root, "objects", out var objects) && objects.ValueKind == JsonValueKind.Array)
+            foreach (var o in objects.EnumerateArray())
+                if (o.ValueKind == JsonValueKind.Object && o.TryGetProperty("type", out var type) && type.ValueKind == JsonValueKind.String
+                    && type.GetString()!.Equals("mesh", StringComparison.OrdinalIgnoreCase)) meshes.Add(o);
+        foreach (var o in meshes)
         {
-            if (o.ValueKind != JsonValueKind.Object || !o.TryGetProperty("type", out var type) || type.ValueKind != JsonValueKind.String ||
-                !type.GetString()!.Equals("mesh", StringComparison.OrdinalIgnoreCase) ||
-                !o.TryGetProperty("file", out var f) || f.ValueKind != JsonValueKind.String) continue;
+            if (o.ValueKind != JsonValueKind.Object || !o.TryGetProperty("file", out var f) || f.ValueKind != JsonValueKind.String)
+                continue;
             var full = ModelSearch.Find(f.GetString()!, _dir, _overrides.ModelDirectories);
             if (full is null || _meshReads.ContainsKey(full) || Path.GetExtension(full).ToLowerInvariant() is not (".obj" or ".ply"))
                 continue;

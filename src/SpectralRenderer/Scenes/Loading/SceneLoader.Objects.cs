@@ -9,7 +9,7 @@ namespace SpectralRenderer.Scenes.Loading;
 // Objects: analytic shapes, the ColorChecker chart, transforms and orientation bases.
 public sealed partial class SceneLoader
 {
-    static readonly string[] ObjectTypes = ["sphere", "plane", "quad", "box", "mesh", "colorchecker"];
+    static readonly string[] ObjectTypes = ["sphere", "plane", "quad", "box", "mesh", "instance", "colorchecker"];
 
     void ParseObject(JsonElement e, string path, int index, List<SceneObject> objects, List<Material> materials,
         Dictionary<string, int> materialIndex)
@@ -41,6 +41,7 @@ public sealed partial class SceneLoader
             "quad" => ["center", "size", "normal", "up"],
             "box" => ["center", "size", "min", "max"],
             "mesh" => ["file", "inline", "fit", "shading", "normals"],
+            "instance" => ["prototype"],
             _ => ["center", "normal", "up", "patch_size", "gap", "frame"],
         };
         Keys(e, path, [.. common, .. specific, "medium"]);
@@ -49,6 +50,7 @@ public sealed partial class SceneLoader
 
         if (type == "colorchecker") { ColorCheckerChart(e, path, name, user, objects, materials); return; }
         if (type == "mesh") { objects.Add(MeshObject(e, path, name, user, MaterialOf(e, path, materials, materialIndex))); return; }
+        if (type == "instance") { objects.Add(InstanceObject(e, path, name, user, MaterialOf(e, path, materials, materialIndex))); return; }
 
         int material = MaterialOf(e, path, materials, materialIndex);
         Matrix4x4 local;

@@ -138,7 +138,7 @@ public sealed partial class SceneLoader
 
     static readonly string[] TopKeys = ["name", "description", "bands", "wave", "integration", "radiometry", "observer", "white", "scaling",
         "spectra", "materials", "lights", "objects", "background", "sky", "ambient", "max_depth", "integrator", "min_ray_weight",
-        "ray_budget", "camera", "output", "calculation_grids", "medium"];
+        "ray_budget", "camera", "output", "calculation_grids", "medium", "prototypes"];
 
     Scene Build(JsonElement root)
     {
@@ -219,6 +219,7 @@ public sealed partial class SceneLoader
             foreach (var l in lightArray.EnumerateArray()) { lights.Add(ParseLight(l, $"$.lights[{i}]", i)); i++; }
         }
 
+        ParsePrototypes(root);
         var objects = new List<SceneObject>();
         var objectsElement = Required(root, "objects", "$");
         if (objectsElement.ValueKind != JsonValueKind.Array)
@@ -244,6 +245,7 @@ public sealed partial class SceneLoader
                 i++;
             }
         }
+        CopyEmittingInstances(objects, materials, materialIndex);
         ScaleFluxEmission(materials, materialIndex, objects);
         var names = new HashSet<string>(StringComparer.Ordinal);
         foreach (var o in objects)

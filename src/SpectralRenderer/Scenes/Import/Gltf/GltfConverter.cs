@@ -10,7 +10,8 @@ namespace SpectralRenderer.Scenes.Import.Gltf;
 /// A glTF 2.0 asset as our scene (docs/import.md "glTF 2.0"): the default scene's node hierarchy walked from its roots, each
 /// node's world matrix the product of its ancestors' local matrices (a node's "matrix", or T·R·S from "translation",
 /// "rotation" and "scale", §3.5.3); each triangle primitive of a node's mesh one of our mesh objects (inline, in the
-/// mesh's own coordinates, placed by "transform": { "matrix" }); the first perspective camera met; KHR_lights_punctual
+/// mesh's own coordinates, placed by "transform": { "matrix" }; a mesh used by several nodes a prototype and an instance
+/// per node); the first perspective camera met; KHR_lights_punctual
 /// lights in candela and lux; materials in GltfConverter.Materials.cs. glTF is in metres, +Y up, right-handed, a camera
 /// looking down its −Z: our scene's own conventions, so coordinates are taken as they are.
 /// </summary>
@@ -74,6 +75,7 @@ sealed partial class GltfConverter(GltfDocument doc, ImportOptions options)
             ["lights"] = _lights,
             ["objects"] = _objects,
         };
+        if (_prototypes.Count > 0) result.Insert(result.Count - 1, "prototypes", _prototypes);
         foreach (var n in _notes.Select((n, i) => (n, i)).OrderBy(x => x.n.Path, new DocumentOrder(doc.Root)).ThenBy(x => x.i))
             _report.Add(n.n.Kind, doc.Where(n.n.Path), n.n.Element, n.n.Action);
         return new ImportedScene(result, _report, _meshes);
@@ -255,6 +257,11 @@ sealed partial class GltfConverter(GltfDocument doc, ImportOptions options)
         for (int k = 0; k < primitives.GetArrayLength(); k++)
         {
             var p = $"{path}.primitives[{k}]";
+            if (_uses.TryGetValue((m, k), out var first))
+            {
+                Instance(first, world, nodeName is null ? first.Name : SafeName(nodeName), nodePath);
+                continue;
+            }
             var prim = doc.Object(primitives[k], p);
             var triangles = Primitive(prim, p);
             if (triangles is null) continue;
@@ -286,8 +293,48 @@ sealed partial class GltfConverter(GltfDocument doc, ImportOptions options)
                     "the node's matrix has a negative determinant: its triangles' front faces are reversed (§3.7.2.1)");
             o["inline"] = _meshes[^1].InlineJson();
             _objects.Add((JsonNode)o);
+            _uses[(m, k)] = new(o, name, positions);
             Grow(positions, world);
         }
+    }
+
+    // A mesh referenced by several nodes (§3.5.1): its primitives become prototypes, each node's use an instance of them
+    // placed by the node's world matrix (docs/scene-format.md, "Instancing"), not copies.
+    readonly Dictionary<(int Mesh, int Primitive), PrimitiveUse> _uses = [];
+    readonly JsonObject _prototypes = [];
+
+    /// <summary>A primitive's first object (a mesh object until a second node uses it), its mesh's name, its positions.</summary>
+    sealed record PrimitiveUse(JsonObject First, string Name, float[] Positions);
+
+    /// <summary>A further use of a converted primitive: the first use's object turned into an instance of the primitive's
+    /// prototype (once), and an instance for this use.</summary>
+    void Instance(PrimitiveUse use, double[] world, string baseName, string nodePath)
+    {
+        var first = use.First;
+        if (!_prototypes.ContainsKey(use.Name))
+        {
+            var prototype = new JsonObject();
+            if (first["shading"] is { } shading) prototype["shading"] = shading.DeepClone();
+            prototype["inline"] = first["inline"]!.DeepClone();
+            _prototypes[use.Name] = prototype;
+            first.Remove("inline");
+            first.Remove("shading");
+            first["type"] = "instance";
+            first["prototype"] = use.Name;
+        }
+        var o = new JsonObject
+        {
+            ["type"] = "instance",
+            ["name"] = Unique(baseName),
+            ["prototype"] = use.Name,
+            ["material"] = first["material"]!.DeepClone(),
+        };
+        if (!Affine.IsIdentity(world)) o["transform"] = new JsonObject { ["matrix"] = Affine.Json(world) };
+        if (Affine.Determinant(world) < 0)
+            Note("converted", nodePath, "mirroring transform",
+                "the node's matrix has a negative determinant: its triangles' front faces are reversed (§3.7.2.1)");
+        _objects.Add((JsonNode)o);
+        Grow(use.Positions, world);
     }
 
     /// <summary>A primitive's triangles (positions, indices, normals, uvs with v = 1 − v_glTF), or null when it is not a surface.</summary>

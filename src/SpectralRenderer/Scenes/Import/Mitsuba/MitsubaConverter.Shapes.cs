@@ -7,14 +7,49 @@ namespace SpectralRenderer.Scenes.Import.Mitsuba;
 // Shapes: Mitsuba's canonical shapes placed by to_world, written as our objects with a "transform": { "matrix" }.
 public sealed partial class MitsubaConverter
 {
+    // A shapegroup's members are converted where an instance names it, under the instance's to_world (_outer): an obj or ply
+    // member once as a prototype (with its own to_world) and per instance an "instance" object of it (docs/scene-format.md,
+    // "Instancing"); any other member (a sphere, a rectangle: a few numbers) is copied under the composed transformation.
+    readonly Dictionary<MitsubaElement, string> _prototypeOf = [];
+    readonly JsonObject _prototypes = [];
+    double[]? _outer;
+    string? _instanceName;
+
     void Shape(MitsubaElement e)
     {
         var type = e.Attr("type");
         var m = Prop(e, "to_world") is { } t ? Transform(t) : Identity;
-        var name = UniqueName(e.Attr("id") ?? type ?? "shape");
+        if (_outer is { } outer) m = Multiply(outer, m);
+        var name = UniqueName(_instanceName is null ? e.Attr("id") ?? type ?? "shape" : $"{_instanceName}-{e.Attr("id") ?? type}");
         var o = new JsonObject { ["type"] = "", ["name"] = name };
+        bool repeated = false;   // an instanced member: its notes and unused properties were reported with its prototype
         switch (type)
         {
+            case "obj" or "ply" when _outer is not null:
+                {
+                    if (!_prototypeOf.TryGetValue(e, out var prototype))
+                    {
+                        var saved = (_outer, _instanceName);
+                        (_outer, _instanceName) = (null, null);
+                        int before = _objects.Count;
+                        Shape(e);   // the member on its own, as a mesh object: its keys become the prototype's
+                        (_outer, _instanceName) = saved;
+                        if (_objects.Count == before) return;
+                        var converted = (JsonObject)_objects[^1]!;
+                        _objects.RemoveAt(_objects.Count - 1);
+                        prototype = converted["name"]!.GetValue<string>();
+                        var entry = new JsonObject();
+                        foreach (var (k, v) in converted)
+                            if (k is not ("type" or "name" or "material")) entry[k] = v?.DeepClone();
+                        _prototypes[prototype] = entry;
+                        _prototypeOf[e] = prototype;
+                    }
+                    repeated = true;
+                    o["type"] = "instance";
+                    o["prototype"] = prototype;
+                    Place(o, _outer);
+                    break;
+                }
             case "obj" or "ply":
                 {
                     var file = String(e, "filename") ?? throw new InputException(e.Where, $"a {type} shape without filename",
@@ -77,10 +112,10 @@ public sealed partial class MitsubaConverter
                     + "(Mitsuba: mi.load_dict({'type': 'serialized', …}).write_ply('mesh.ply'), or Blender's PLY export)");
                 return;
             case "shapegroup":
-                Refuse(e, "shape groups and instances are not converted yet; flatten the instances in the source");
-                return;
+                if (_outer is not null) Refuse(e, "a shapegroup inside a shapegroup (Mitsuba does not nest them)");
+                return;   // declared: its members are converted where an instance names it
             case "instance":
-                Refuse(e, "instances are not converted yet; flatten the instances in the source");
+                Instance(e, m, name);
                 return;
             default:
                 Refuse(e, $"the shape '{type}' has no counterpart");
@@ -121,8 +156,36 @@ public sealed partial class MitsubaConverter
             }
         }
         o["material"] = material;
-        ReportUnused(e);
+        if (!repeated) ReportUnused(e);
         _objects.Add((JsonNode)o);
+    }
+
+    /// <summary>&lt;shape type="instance"&gt; with a reference to a shapegroup and its to_world: the group's members placed by
+    /// it.</summary>
+    void Instance(MitsubaElement e, double[] m, string name)
+    {
+        if (_outer is not null) { Refuse(e, "an instance inside a shapegroup (Mitsuba does not nest them)"); return; }
+        MitsubaElement? group = null;
+        foreach (var c in e.Children)
+            if (c.Tag is "ref" or "shape")
+            {
+                var target = Resolve(c);
+                _used.Add(c);
+                if (target.Tag != "shape" || target.Attr("type") != "shapegroup")
+                    throw new InputException(c.Where, $"an instance of a <{target.Tag} type=\"{target.Attr("type")}\">",
+                        "an instance refers to a <shape type=\"shapegroup\" id=\"…\"> by <ref id=\"…\"/>");
+                group = target;
+            }
+        if (group is null)
+            throw new InputException(e.Where, "an instance without a shapegroup", "add <ref id=\"GROUP\"/> naming a shapegroup");
+        ReportUnused(e);
+        (_outer, _instanceName) = (m, name);
+        try
+        {
+            foreach (var member in group.Children)
+                if (member.Tag == "shape") { _used.Add(member); Shape(member); }
+        }
+        finally { (_outer, _instanceName) = (null, null); }
     }
 
     /// <summary>The object's "transform": { "matrix" } unless the identity.</summary>

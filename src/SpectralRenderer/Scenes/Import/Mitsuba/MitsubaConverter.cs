@@ -79,6 +79,7 @@ public sealed partial class MitsubaConverter
         if (_sky is not null) scene["sky"] = _sky;
         scene["materials"] = _materials;
         scene["lights"] = _lights;
+        if (_prototypes.Count > 0) scene["prototypes"] = _prototypes;
         scene["objects"] = _objects;
         return new ImportedScene(scene, _report, _meshes);
     }

@@ -10,12 +10,47 @@ public sealed partial class PbrtConverter
 {
     readonly Dictionary<string, string> _emitting = new(StringComparer.Ordinal);
 
+    // ObjectInstance copies of a mesh shape: the shape converted once, in its own space, as a prototype, and each copy an
+    // "instance" object of it under the copy's transformation (docs/scene-format.md, "Instancing").
+    readonly Dictionary<PbrtEntity, string> _prototypeOf = new(ReferenceEqualityComparer.Instance);
+    readonly JsonObject _prototypes = [];
+    static readonly string[] MeshShapes = ["trianglemesh", "bilinearmesh", "loopsubdiv", "plymesh"];
+
     void Shape(PbrtShape s)
     {
         var e = s.Entity;
         var p = e.Parameters;
         string label = $"Shape \"{e.Type}\"";
         var m = _world * s.WorldFromObject;
+        bool instanced = s.Instance is not null && Array.IndexOf(MeshShapes, e.Type) >= 0;
+        if (instanced && MaterialName(s.Material) is { } instanceMaterial)
+        {
+            if (!_prototypeOf.TryGetValue(e, out var prototype))
+            {
+                // The shape in its own space (pbrt's winding rules then see the identity; the instance's transform, applied
+                // by the inverse transpose to normals, keeps its side as pbrt's flip for a mirroring transform does).
+                int before = _objects.Count;
+                Shape(s with { Instance = null, WorldFromObject = _world.Inverse() ?? PbrtTransform.Identity });
+                if (_objects.Count == before) return;
+                var converted = (JsonObject)_objects[^1]!;
+                _objects.RemoveAt(_objects.Count - 1);
+                prototype = converted["name"]!.GetValue<string>();
+                var entry = new JsonObject();
+                foreach (var (k, v) in converted)
+                    if (k is not ("type" or "name" or "material")) entry[k] = v?.DeepClone();
+                _prototypes[prototype] = entry;
+                _prototypeOf[e] = prototype;
+            }
+            _objects.Add((JsonNode)new JsonObject
+            {
+                ["type"] = "instance",
+                ["name"] = UniqueName($"{s.Instance}-{s.InstanceCopy}"),
+                ["prototype"] = prototype,
+                ["material"] = instanceMaterial,
+                ["transform"] = Matrix(m),
+            });
+            return;
+        }
         if (p.Find("alpha") is { } alpha)
             _report.Add("ignored", Place(alpha.Token), $"{label} \"alpha\"", "alpha cut-outs are not rendered: the shape is opaque");
         foreach (var q in new[] { "emissionfilename", "displacement", "edgelength" }) p.Find(q);

@@ -57,7 +57,8 @@ public sealed partial class PbrtConverter
         foreach (var shape in doc.Shapes) Shape(shape);
         foreach (var name in doc.InstancedObjects.Order(StringComparer.Ordinal))
             _report.Add("converted", file, $"ObjectInstance \"{name}\"",
-                "copied: the engine has no instancing, so each instance is its own object with the instance's transformation");
+                "instanced: each mesh of the object is a prototype, each ObjectInstance an instance of it under the instance's "
+                + "transformation (not copied); spheres, disks and cylinders in it are copied");
         if (_objects.Count == 0)
             throw new InputException(file, "the scene has no shapes we could convert", "add a Shape after WorldBegin, or see the report");
         var scene = new JsonObject
@@ -75,6 +76,7 @@ public sealed partial class PbrtConverter
         if (_spectra.Count > 0) scene["spectra"] = _spectra;
         scene["materials"] = _materials;
         scene["lights"] = _lights;
+        if (_prototypes.Count > 0) scene["prototypes"] = _prototypes;
         scene["objects"] = _objects;
         return new ImportedScene(scene, _report, _meshes);
     }

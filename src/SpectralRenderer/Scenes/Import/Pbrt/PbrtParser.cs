@@ -6,7 +6,8 @@ namespace SpectralRenderer.Scenes.Import.Pbrt;
 /// Reads a pbrt-v4 scene file (pbrt.org/fileformat-v4) into a <see cref="PbrtDocument"/>: the directives in order, the
 /// graphics state (the current transformation matrix, `AttributeBegin`/`End`, `ReverseOrientation`, the material and
 /// area light in force), `Include`/`Import` (relative to the including file), named coordinate systems, and object
-/// instancing (each `ObjectInstance` becomes a copy of the object's shapes under the instance's transformation).
+/// instancing (each `ObjectInstance` lists the object's shapes under the instance's transformation; the converter makes
+/// the meshes among them instances of one prototype each).
 /// What it reads but does not keep is passed to its <see cref="Note"/> (kind, where, element, action).
 /// </summary>
 public sealed class PbrtParser
@@ -371,7 +372,7 @@ public sealed class PbrtParser
     {
         if (_doc.Shapes.Count >= MaxShapes)
             throw new InputException(shape.Entity.Where, $"more than {MaxShapes} shapes after instancing",
-                "the engine copies each instance; use fewer instances");
+                "each instance adds its object's shapes to the scene (meshes as instances, not copies); use fewer instances");
         _doc.Shapes.Add(shape);
     }
 
