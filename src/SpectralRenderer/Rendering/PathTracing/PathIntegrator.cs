@@ -61,7 +61,8 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         _fluoresces = _materials.Any(x => x.Shift is not null);
         _splitsShifts = _fluoresces && _materials.Any(x => x.Dispersive);
         _objectMaterial = scene.Objects.Select(o => o.Material).ToArray();
-        _emitters = new EmitterSet(scene, _grid, geometry.BoundingRadius, m => _materials[m].EmissionTexture);
+        _emitters = new EmitterSet(scene, _grid, geometry.BoundingRadius, m => _materials[m].EmissionTexture,
+            settings.LightTree switch { true => 1, false => int.MaxValue, null => EmitterSet.TreeThreshold });
         _lights = [.. scene.Lights];
         _background = _emitters.Background;
         _environment = _emitters.Environment;
@@ -294,8 +295,8 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
                     else if (_emitters.Sky is int s and >= 0)
                     {
                         var sky = _emitters[s];
-                        float w = deltaBounce ? 1 : PowerHeuristic(bsdfPdf,
-                            _emitters.SelectionPdf(s) * sky.Pdf(previous, previousFront, ray.Direction, default, default));
+                        float w = deltaBounce ? 1 : PowerHeuristic(bsdfPdf, _emitters.SelectionPdf(s, previous, previousFront)
+                            * sky.Pdf(previous, previousFront, ray.Direction, default, default));
                         sink.Emitted(beta, _environment is null ? sky.Radiance : _environment.Lookup(ray.Direction, SkyScratch(scratch)),
                             w * sky.Emitted(default, -ray.Direction));
                     }
@@ -316,7 +317,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
                         float pdf = emitter is ShapeEmitter surface
                             ? surface.Pdf(previous, previousFront, ray.Direction, hit.Position, hit.GeometricNormal)
                             : emitter.Pdf(previous, previousFront, ray.Direction, hit.Position, hit.GeometricNormal);
-                        w = PowerHeuristic(bsdfPdf, _emitters.SelectionPdf(e) * pdf);
+                        w = PowerHeuristic(bsdfPdf, _emitters.SelectionPdf(e, previous, previousFront) * pdf);
                     }
                     var le = emitter.Radiance;
                     sink.Emitted(beta, _textured ? EmittedAt(material, le, in hit, wo, scratch) : le, w);
@@ -429,7 +430,8 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         Span<float> beta, Span<float> f, Span<float> sky, ref RayCounters counters) where TSink : IPathSink, allows ref struct
     {
         var p = vertex.P;
-        int k = _emitters.Choose(uLight);
+        int k = _emitters.Choose(p, vertex.Front, uLight, out float pick);
+        if (k < 0) return;
         var emitter = _emitters[k];
         EmitterSample sample;
         // An emitting object, the common emitter of a path scene, by its sealed class's call (inlined; see Walk).
@@ -449,7 +451,6 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         counters.Shadow++;
         if (_geometry.OccludedScattered(Visibility.ShadowRay(p, ng, wi, distance, _geometry.Epsilon))) return;
         if (MediumToward(in vertex, wi) is var medium and >= 0) Attenuate(medium, p, wi, distance, f);   // f ⊙= T along it
-        float pick = _emitters.SelectionPdf(k);
         float w = sample.IsDelta ? 1 : PowerHeuristic(pick * pdf, smoothProbability * bsdf.Pdf(vertex.Wo, wi, ns));
         sink.NextEvent(emitter.SceneLight, beta, f, radiance, factor * cos * w / (pick * pdf));
         // A fluorescent surface's shifted lobe: light sources excite it through this sample alone, weight 1 (a shifted bounce
