@@ -1413,6 +1413,18 @@ scene = deep(ENVSCENE)
 scene["sky"] = {"type": "envmap", "file": "wide.pfm", "mapping": "octahedral"}
 scene_case("envmap-unknown-mapping", scene, r"unknown mapping 'octahedral'.*equal-area", file="")
 
+# Window portals (issue 40: "portal": true on a quad; after the others, so their numbers stay): a portal that is not a
+# quad, a portal with an emitting material.
+s = deep(BASE)
+s["objects"].append({"type": "sphere", "center": [0, 0, -3], "radius": 1, "portal": True})
+scene_case("portal-not-quad", s, r"\$\.objects\[1\]\.portal: a portal must be a quad, found a sphere")
+s = deep(BASE)
+s["radiometry"] = "physical"
+s["integrator"] = "path"
+s["materials"]["glow"] = {"type": "lambertian", "reflectance": 0, "emission": {"spectrum": "D65", "radiance": 1}}
+s["objects"].append({"type": "quad", "center": [0, 0, -3], "size": 1, "material": "glow", "portal": True})
+scene_case("portal-emits", s, r"\$\.objects\[1\]\.portal: portal 'quad-1' has an emitting material")
+
 names = [c["name"] for c in cases]
 assert len(names) == len(set(names)), [x for x in names if names.count(x) > 1]
 with open(os.path.join(HERE, "cases.json"), "w", encoding="utf-8") as f:

@@ -11,7 +11,8 @@ namespace SpectralRenderer.Rendering.Emitters;
 /// <see cref="SelectionPdf"/>, and a surface hit finds its emitter by its object (<see cref="OfObject"/>), an escaping ray the
 /// sky's (<see cref="Sky"/>: a uniform <see cref="SkyEmitter"/>, a CIE overcast <see cref="OvercastSkyEmitter"/> — whose
 /// escaping rays see the factor <see cref="Emitter.Emitted"/> of their direction on its radiance —, or an
-/// <see cref="EnvironmentEmitter"/> for an image sky). A new kind of
+/// <see cref="EnvironmentEmitter"/> for an image sky; any of them seen through the scene's window portals, a
+/// <see cref="PortalSkyEmitter"/>). A new kind of
 /// emitter plugs in as one file (a subclass of <see cref="Emitter"/>) and one line here; a new scene light kind or emissive shape kind
 /// needs not even that (a <see cref="Light"/> subclass, a registered shape).
 /// <para>
@@ -76,9 +77,11 @@ internal sealed class EmitterSet
         if (Spectra.SpectralMath.Any(scene.Background))
         {
             Sky = emitters.Count;
-            emitters.Add(scene.Environment is { } map ? Environment = new EnvironmentEmitter(map, grid)
+            Emitter sky = scene.Environment is { } map ? Environment = new EnvironmentEmitter(map, grid)
                 : scene.SkyDistribution == SkyDistribution.CieOvercast ? new OvercastSkyEmitter(Background, scene.Zenith)
-                : new SkyEmitter(Background));
+                : new SkyEmitter(Background);
+            // window portals: the sky drawn through them too (an environment map's radiance still looked up by direction)
+            emitters.Add(scene.Portals.Count > 0 ? new PortalSkyEmitter(sky, scene.Portals) : sky);
         }
         _emitters = [.. emitters];
         Widths = new double[grid.Count];

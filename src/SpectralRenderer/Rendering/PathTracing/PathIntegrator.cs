@@ -442,7 +442,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         if (!(pdf > 0) || !(factor > 0)) return;
         ReadOnlySpan<float> radiance = emitter.Texture is not null
             ? EmittedAt(emitter, sample.Face, sample.Point, sample.Normal, wi, distance, vertex.Texels.Emission)
-            : emitter == _environment ? _environment.Lookup(wi, sky) : emitter.Radiance;
+            : _environment is not null && k == _emitters.Sky ? _environment.Lookup(wi, sky) : emitter.Radiance;
         var ns = vertex.Ns;
         var ng = vertex.Ng;
         var bsdf = vertex.Material.Bsdf;

@@ -288,6 +288,7 @@ public sealed partial class SceneLoader
             Materials = materials,
             Lights = lights,
             Objects = objects,
+            Portals = _portals,
             Background = background,
             Environment = _environment,
             SkyDistribution = _skyDistribution,
