@@ -80,8 +80,15 @@ internal sealed class LightTree
             cone = (b.Axis, b.CosSpread);
             nodes[index] = new Node
             {
-                Centre = box.Centre, Radius = 0.5f * box.Extent.Length(), Axis = b.Axis, CosSpread = b.CosSpread,
-                CosEmission = b.CosEmission, Phi = (float)phi, TwoSided = b.TwoSided, Second = -1, Emitter = emitter,
+                Centre = box.Centre,
+                Radius = 0.5f * box.Extent.Length(),
+                Axis = b.Axis,
+                CosSpread = b.CosSpread,
+                CosEmission = b.CosEmission,
+                Phi = (float)phi,
+                TwoSided = b.TwoSided,
+                Second = -1,
+                Emitter = emitter,
             };
             _trail[emitter] = trail;
             _depth[emitter] = depth;
@@ -108,9 +115,15 @@ internal sealed class LightTree
         Node a = nodes[index + 1], c = nodes[second];
         nodes[index] = new Node
         {
-            Centre = box.Centre, Radius = 0.5f * box.Extent.Length(), Axis = cone.Axis, CosSpread = cone.Cos,
-            CosEmission = MathF.Min(a.CosEmission, c.CosEmission), Phi = a.Phi + c.Phi, TwoSided = a.TwoSided || c.TwoSided,
-            Second = second, Emitter = -1,
+            Centre = box.Centre,
+            Radius = 0.5f * box.Extent.Length(),
+            Axis = cone.Axis,
+            CosSpread = cone.Cos,
+            CosEmission = MathF.Min(a.CosEmission, c.CosEmission),
+            Phi = a.Phi + c.Phi,
+            TwoSided = a.TwoSided || c.TwoSided,
+            Second = second,
+            Emitter = -1,
         };
     }
 
