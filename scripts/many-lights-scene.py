@@ -2,9 +2,13 @@
 """Writes scenes/path-many-lights.json (issue 40's light-tree benchmark): a 10 × 3 × 10 m hall of Lambertian surfaces lit
 by 240 small emitters — 160 coloured emissive spheres hung at 1.6–2.8 m (string lights) and 80 downward ceiling panels of
 0.1–0.3 m — with powers spread over two decades, so that at any point a few near emitters dominate. Fixed seed: the file is
-the same on every run.   usage: python3 scripts/many-lights-scene.py > scenes/path-many-lights.json
+the same on every run.   usage: python3 scripts/many-lights-scene.py [N (default 240)] > scenes/path-many-lights.json
+(N emitters, two thirds spheres and one third panels: the threshold measurement of BENCHMARKS.md uses N = 8 and 16).
 """
-import json, random
+import json, random, sys
+
+count = int(sys.argv[1]) if len(sys.argv) > 1 else 240
+spheres = count * 2 // 3
 
 rng = random.Random(40)
 materials = {
@@ -19,13 +23,13 @@ objects = [
     {"type": "quad", "name": "right", "center": [5, 1.5, 0], "size": [10, 3], "normal": [-1, 0, 0], "up": [0, 1, 0], "material": "wall"},
 ]
 cct = [2200, 2700, 3000, 4000, 5000, 6500]
-for i in range(240):
+for i in range(count):
     name = f"e{i}"
     radiance = round(10 ** rng.uniform(0, 2), 3)
     materials[name] = {"type": "lambertian", "reflectance": 0,
                        "emission": {"spectrum": f"blackbody:{rng.choice(cct)}", "luminance": radiance * 100}}
     x, z = round(rng.uniform(-4.8, 4.8), 3), round(rng.uniform(-4.8, 4.8), 3)
-    if i < 160:
+    if i < spheres:
         objects.append({"type": "sphere", "name": name, "center": [x, round(rng.uniform(1.6, 2.8), 3), z],
                         "radius": round(rng.uniform(0.02, 0.05), 3), "material": name})
     else:
