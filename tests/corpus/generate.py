@@ -1460,6 +1460,17 @@ for label, medium, pat in [
     if "nowhere" not in medium["file"]:
         write(s["medium"]["file"], vol() if s["medium"]["file"].endswith(".vol") else npy((2, 2, 2), body=b"\0" * 32))
     scene_case(label, s, pat)
+# Window portals (issue 40: "portal": true on a quad; after the others, so their numbers stay): a portal that is not a
+# quad, a portal with an emitting material.
+s = deep(BASE)
+s["objects"].append({"type": "sphere", "center": [0, 0, -3], "radius": 1, "portal": True})
+scene_case("portal-not-quad", s, r"\$\.objects\[1\]\.portal: a portal must be a quad, found a sphere")
+s = deep(BASE)
+s["radiometry"] = "physical"
+s["integrator"] = "path"
+s["materials"]["glow"] = {"type": "lambertian", "reflectance": 0, "emission": {"spectrum": "D65", "radiance": 1}}
+s["objects"].append({"type": "quad", "center": [0, 0, -3], "size": 1, "material": "glow", "portal": True})
+scene_case("portal-emits", s, r"\$\.objects\[1\]\.portal: portal 'quad-1' has an emitting material")
 
 names = [c["name"] for c in cases]
 assert len(names) == len(set(names)), [x for x in names if names.count(x) > 1]

@@ -24,6 +24,8 @@ public sealed class GoniometricLight(LightEmission emission, CandelaTable table,
     public CandelaTable Table { get; } = table;
     readonly double _perCandela = 1 / luminousPerUnit;
 
+    public override LightExtent? Extent => new LightExtent(Position, Vector3.UnitY, -1);
+
     public override string Type => "goniometric";
 
     /// <summary>∫c_spot dω: the table's luminous flux ∫I dΩ (<see cref="CandelaTable.Flux"/>) per K_m ∫V·S dλ.</summary>

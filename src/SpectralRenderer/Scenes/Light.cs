@@ -94,6 +94,12 @@ public abstract class Light(LightEmission emission)
     /// </summary>
     public virtual double PowerPerIntensity(double sceneRadius) => 4 * Math.PI;
 
+    /// <summary>
+    /// Where the light is and the cone it shines into, for a light tree's bounds (Rendering/Emitters/LightTree), or null for a
+    /// light at infinity (directional). The kinds at a point override it.
+    /// </summary>
+    public virtual LightExtent? Extent => null;
+
     /// <summary>The light as render.json lists it (its kind, what its intensity is in, where it is and how it falls off).</summary>
     public virtual LightDescription Describe(Radiometry radiometry) =>
         new(Type, LightDescription.UnitOf(radiometry, LightDescription.RadiantIntensity));
@@ -134,3 +140,9 @@ public readonly record struct DistanceFalloff(float C0, float C1, float C2)
 
     public float At(float r) => 1f / (C0 + C1 * r + C2 * r * r);
 }
+
+/// <summary>
+/// A light at a point: its <paramref name="Position"/> and the cone it can shine into, about the unit
+/// <paramref name="Axis"/> with half-angle θ_c (<paramref name="CosHalfAngle"/> = cos θ_c; −1 for every direction).
+/// </summary>
+public readonly record struct LightExtent(Vector3 Position, Vector3 Axis, float CosHalfAngle);

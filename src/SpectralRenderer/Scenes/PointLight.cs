@@ -13,6 +13,8 @@ public sealed class PointLight(LightEmission emission) : Light(emission)
         new(Type, LightDescription.UnitOf(radiometry, LightDescription.RadiantIntensity), LightDescription.Of(Position), null,
             LightDescription.Of(Falloff));
 
+    public override LightExtent? Extent => new LightExtent(Position, Vector3.UnitY, -1);
+
     public override string Type => "point";
 
     public override LanePointLight? LaneForm => new LanePointLight(Position, Falloff);

@@ -72,6 +72,8 @@ public sealed class Scene
     public required List<Material> Materials { get; init; }
     public required List<Light> Lights { get; init; }
     public required List<SceneObject> Objects { get; init; }
+    /// <summary>Window portals (quads with <c>"portal": true</c>): not objects, rays pass them; the sky is drawn through them.</summary>
+    public IReadOnlyList<Portal> Portals { get; init; } = [];
     /// <summary>Radiance of rays that escape, band values.</summary>
     public required float[] Background { get; init; }
     /// <summary>

@@ -21,6 +21,8 @@ public sealed class SpotLight(LightEmission emission) : Light(emission)
         new(Type, LightDescription.UnitOf(radiometry, LightDescription.RadiantIntensity), LightDescription.Of(Position),
             LightDescription.Of(Direction), LightDescription.Of(Falloff));
 
+    public override LightExtent? Extent => new LightExtent(Position, Direction, CosCutoff);
+
     public override string Type => "spot";
 
     /// <summary>∫c_spot dω (<see cref="SolidAngle"/>).</summary>

@@ -106,19 +106,19 @@ public class EmitterSetTests(Xunit.Abstractions.ITestOutputHelper output)
 
         // P(k): the 4 lights 1/9 each; the 5 other emitters share 5/9 by power.
         double total = objects.Sum();
-        for (int k = 0; k < 4; k++) Assert.Equal(1.0 / 9, set.SelectionPdf(k), 1e-7);
+        for (int k = 0; k < 4; k++) Assert.Equal(1.0 / 9, set.SelectionPdf(k, default, default), 1e-7);
         for (int k = 4; k < 9; k++)
         {
             double expected = 5.0 / 9 * objects[k - 4] / total;
-            output.WriteLine($"{set[k].Describe()}: P {set.SelectionPdf(k):G6}, analytic power share {expected:G6}");
-            Assert.Equal(expected, set.SelectionPdf(k), 1e-6 * expected + 1e-9);
+            output.WriteLine($"{set[k].Describe()}: P {set.SelectionPdf(k, default, default):G6}, analytic power share {expected:G6}");
+            Assert.Equal(expected, set.SelectionPdf(k, default, default), 1e-6 * expected + 1e-9);
         }
         // Choose takes each emitter with its P(k): the fraction of a sub-band grid of u that lands on it.
         const int m = 1 << 20;
         var counts = new int[9];
-        for (int i = 0; i < m; i++) counts[set.Choose((i + 0.5f) / m)]++;
-        for (int k = 0; k < 9; k++) Assert.Equal(set.SelectionPdf(k), counts[k] / (double)m, 2.0 / m + 1e-6);
-        Assert.Equal(8, set.Choose(0.99999994f));
+        for (int i = 0; i < m; i++) counts[set.Choose(default, default, (i + 0.5f) / m, out _)]++;
+        for (int k = 0; k < 9; k++) Assert.Equal(set.SelectionPdf(k, default, default), counts[k] / (double)m, 2.0 / m + 1e-6);
+        Assert.Equal(8, set.Choose(default, default, 0.99999994f, out _));
     }
 
     /// <summary>
@@ -156,7 +156,7 @@ public class EmitterSetTests(Xunit.Abstractions.ITestOutputHelper output)
         }
         double exact = Sphere(50, 0.25, 1, 2, 0) + Sphere(0.5, 0.5, -1, 1, 0.5);
         // P(strong) = Φ share: 4π²r²L, 50·0.0625 against 0.5·0.25.
-        Assert.Equal(50 * 0.0625 / (50 * 0.0625 + 0.5 * 0.25), set.SelectionPdf(0), 1e-6);
+        Assert.Equal(50 * 0.0625 / (50 * 0.0625 + 0.5 * 0.25), set.SelectionPdf(0, default, default), 1e-6);
         const int samples = 100_000;
         var rng = new Random(5);
         double[] sum = new double[2], sum2 = new double[2];
@@ -166,8 +166,8 @@ public class EmitterSetTests(Xunit.Abstractions.ITestOutputHelper output)
             var v = new Vector2(rng.NextSingle(), rng.NextSingle());
             for (int way = 0; way < 2; way++)
             {
-                int k = way == 0 ? set.Choose(u) : Math.Min((int)(u * 2), 1);
-                double pick = way == 0 ? set.SelectionPdf(k) : 0.5;
+                int k = way == 0 ? set.Choose(default, default, u, out _) : Math.Min((int)(u * 2), 1);
+                double pick = way == 0 ? set.SelectionPdf(k, default, default) : 0.5;
                 double value = 0;
                 if (set[k].Sample(p, n, v, out var s))
                     value = set[k].Radiance[0] * Math.Max(0, Vector3.Dot(n, s.Direction)) / (pick * s.Pdf);

@@ -133,6 +133,49 @@ internal sealed class AreaEmitter
     /// <summary>The emitting surface's area in m² (scene units²).</summary>
     public float Area => _area;
 
+    /// <summary>
+    /// Its bounds for a light tree: the box of its surface, the cone of its outward normals (about their area-weighted mean;
+    /// every direction for a sphere, a box, a registered kind or normals that cancel) and θ_e = π/2 (a Lambertian surface).
+    /// </summary>
+    public EmitterBounds Bounds()
+    {
+        var box = Bounds3.Empty;
+        Vector3 axis = Vector3.UnitY;
+        float cosSpread = -1;
+        switch (_kind)
+        {
+            case Kind.Sphere:
+                box.Include(_centre - new Vector3(_radius));
+                box.Include(_centre + new Vector3(_radius));
+                break;
+            case Kind.Shape:
+                box = _shape!.Bounds;   // its normals: every direction (a registered kind's sidedness is its own)
+                break;
+            default:
+                {
+                    var mean = Vector3.Zero;
+                    for (int i = 0; i < _corner.Length; i++)
+                    {
+                        box.Include(_corner[i]);
+                        box.Include(_corner[i] + _edge1[i]);
+                        box.Include(_corner[i] + _edge2[i]);
+                        if (_kind == Kind.Parallelograms) box.Include(_corner[i] + _edge1[i] + _edge2[i]);
+                        mean += Vector3.Cross(_edge1[i], _edge2[i]).Length() * _normal[i];
+                    }
+                    if (mean.LengthSquared() > 0 && float.IsFinite(mean.LengthSquared()))
+                    {
+                        axis = Vector3.Normalize(mean);
+                        cosSpread = 1;
+                        for (int i = 0; i < _normal.Length; i++) cosSpread = MathF.Min(cosSpread, Vector3.Dot(axis, _normal[i]));
+                        // a little wider than the normals, so rounding never leaves one outside; all but a hemisphere: all
+                        cosSpread = cosSpread > 1e-3f ? MathF.Cos(MathF.Acos(MathF.Min(cosSpread, 1)) + 1e-4f) : -1;
+                    }
+                    break;
+                }
+        }
+        return new EmitterBounds(box, axis, cosSpread, 0, TwoSided);
+    }
+
     /// <summary>Does the emitter send light from surface normal <paramref name="n"/> along <paramref name="towards"/>?</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public bool Emits(Vector3 n, Vector3 towards) => TwoSided || Vector3.Dot(n, towards) > 0;

@@ -35,6 +35,10 @@ internal abstract class Emitter(float[] radiance, SubBandTexture? texture = null
     /// </summary>
     public abstract double PowerPerRadiance(double sceneRadius);
 
+    /// <summary>Where it is and where it shines, for a light tree (<see cref="LightTree"/>), or null for an emitter at infinity
+    /// (the sky, a directional light).</summary>
+    public virtual EmitterBounds? Bounds => null;
+
     /// <summary>The scene light this emitter is (its index in <c>Scene.Lights</c>, whose transfer a relight keeps apart), or −1.</summary>
     public virtual int SceneLight => -1;
 

@@ -1,4 +1,5 @@
 using System.Numerics;
+using SpectralRenderer.Geometry;
 using SpectralRenderer.Scenes;
 
 namespace SpectralRenderer.Rendering.Emitters;
@@ -23,6 +24,10 @@ internal sealed class SceneLightEmitter(Light light, int index, float[] intensit
 
     /// <summary>Φ/I: the light's <see cref="Light.PowerPerIntensity"/> (4π for a point light, πR² for a directional one).</summary>
     public override double PowerPerRadiance(double sceneRadius) => light.PowerPerIntensity(sceneRadius);
+
+    /// <summary>A light at a point: the point, its cone θ_o and no spread beyond it (θ_e = 0); null at infinity.</summary>
+    public override EmitterBounds? Bounds => light.Extent is { } x
+        ? new EmitterBounds(new Bounds3(x.Position, x.Position), x.Axis, x.CosHalfAngle, 1, false) : null;
 
     public override float Pdf(Vector3 p, Vector3 front, Vector3 wi, Vector3 x, Vector3 nx) => 0;
     public override float Emitted(Vector3 n, Vector3 wo) => 0;

@@ -28,6 +28,7 @@ internal sealed class ShapeEmitter(AreaEmitter area, string name) : Emitter(area
     /// <summary>Φ/L = π·A per emitting side (a Lambertian surface of area A; two-sided: 2πA).</summary>
     public override double PowerPerRadiance(double sceneRadius) => Math.PI * area.Area * (area.TwoSided ? 2 : 1);
 
+    public override EmitterBounds? Bounds { get; } = area.Bounds();
     public override float Pdf(Vector3 p, Vector3 front, Vector3 wi, Vector3 x, Vector3 nx) => area.Pdf(p, x, nx);
     public override float Emitted(Vector3 n, Vector3 wo) => area.Emits(n, wo) ? 1 : 0;
     public override Vector2 TexCoord(int face, Vector3 x, out float uvPerLength) => area.TexCoord(face, x, out uvPerLength);

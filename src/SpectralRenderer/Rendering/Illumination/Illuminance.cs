@@ -135,7 +135,7 @@ public sealed class Illuminance
                 counters.Shadow++;
                 if (geometry.Occluded(Visibility.ShadowRay(p, ng, s.Direction, s.Distance, geometry.Epsilon))) continue;
                 // an environment map's luminance is its direction's (EnvironmentEmitter.Lookup), else the emitter's own
-                double lv = set.Environment is { } map && set[k] == map ? BandLuminance(map.Lookup(s.Direction, sky))
+                double lv = set.Environment is { } map && k == set.Sky ? BandLuminance(map.Lookup(s.Direction, sky))
                     : _emitterLuminance[k];
                 sum += lv * s.Factor * cos / s.Pdf;
             }

@@ -291,7 +291,8 @@ internal sealed partial class PathIntegrator
     void MediumNextEvent<TSink>(ref TSink sink, HenyeyGreenstein phase, int medium, Vector3 p, Vector3 wo, float uLight, Vector2 u,
         Span<float> beta, Span<float> f, Span<float> scratch, ref RayCounters counters) where TSink : IPathSink, allows ref struct
     {
-        int k = _emitters.Choose(uLight);
+        int k = _emitters.Choose(p, Vector3.Zero, uLight, out float pick);
+        if (k < 0) return;
         var emitter = _emitters[k];
         if (!emitter.Sample(p, Vector3.Zero, u, out var sample)) return;
         var wi = sample.Direction;
@@ -304,7 +305,6 @@ internal sealed partial class PathIntegrator
         f.Clear();
         f[.._grid.Count].Fill(density);
         if (!ShadowThrough(p, Vector3.Zero, wi, distance, medium, f)) return;
-        float pick = _emitters.SelectionPdf(k);
         float w = sample.IsDelta ? 1 : PowerHeuristic(pick * pdf, density);
         sink.NextEvent(emitter.SceneLight, beta, f, radiance, factor * w / (pick * pdf));
     }

@@ -61,7 +61,8 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         _fluoresces = _materials.Any(x => x.Shift is not null);
         _splitsShifts = _fluoresces && _materials.Any(x => x.Dispersive);
         _objectMaterial = scene.Objects.Select(o => o.Material).ToArray();
-        _emitters = new EmitterSet(scene, _grid, geometry.BoundingRadius, m => _materials[m].EmissionTexture);
+        _emitters = new EmitterSet(scene, _grid, geometry.BoundingRadius, m => _materials[m].EmissionTexture,
+            settings.LightTree switch { true => 1, false => int.MaxValue, null => EmitterSet.TreeThreshold });
         _lights = [.. scene.Lights];
         _background = _emitters.Background;
         _environment = _emitters.Environment;
@@ -407,7 +408,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         {
             var sky = _emitters[s];
             float w = deltaBounce ? 1 : PowerHeuristic(bsdfPdf,
-                _emitters.SelectionPdf(s) * sky.Pdf(previous, previousFront, direction, default, default));
+                _emitters.SelectionPdf(s, previous, previousFront) * sky.Pdf(previous, previousFront, direction, default, default));
             sink.Emitted(beta, _environment is null ? sky.Radiance : _environment.Lookup(direction, SkyScratch(scratch)),
                 w * sky.Emitted(default, -direction));
         }
@@ -434,7 +435,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
             float pdf = emitter is ShapeEmitter surface
                 ? surface.Pdf(previous, previousFront, direction, hit.Position, hit.GeometricNormal)
                 : emitter.Pdf(previous, previousFront, direction, hit.Position, hit.GeometricNormal);
-            w = PowerHeuristic(bsdfPdf, _emitters.SelectionPdf(e) * pdf);
+            w = PowerHeuristic(bsdfPdf, _emitters.SelectionPdf(e, previous, previousFront) * pdf);
         }
         var le = emitter.Radiance;
         sink.Emitted(beta, _textured ? EmittedAt(material, le, in hit, wo, scratch) : le, w);
@@ -464,7 +465,8 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         Span<float> beta, Span<float> f, Span<float> sky, ref RayCounters counters) where TSink : IPathSink, allows ref struct
     {
         var p = vertex.P;
-        int k = _emitters.Choose(uLight);
+        int k = _emitters.Choose(p, vertex.Front, uLight, out float pick);
+        if (k < 0) return;
         var emitter = _emitters[k];
         EmitterSample sample;
         // An emitting object, the common emitter of a path scene, by its sealed class's call (inlined; see Walk).
@@ -475,7 +477,7 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         if (!(pdf > 0) || !(factor > 0)) return;
         ReadOnlySpan<float> radiance = emitter.Texture is not null
             ? EmittedAt(emitter, sample.Face, sample.Point, sample.Normal, wi, distance, vertex.Texels.Emission)
-            : emitter == _environment ? _environment.Lookup(wi, sky) : emitter.Radiance;
+            : _environment is not null && k == _emitters.Sky ? _environment.Lookup(wi, sky) : emitter.Radiance;
         var ns = vertex.Ns;
         var ng = vertex.Ng;
         var bsdf = vertex.Material.Bsdf;
@@ -484,7 +486,6 @@ internal sealed partial class PathIntegrator : IAnalysisIntegrator
         counters.Shadow++;
         if (_media.Length == 0 ? _geometry.OccludedScattered(Visibility.ShadowRay(p, ng, wi, distance, _geometry.Epsilon))
             : !ShadowThrough(p, ng, wi, distance, MediumToward(in vertex, wi), f)) return;   // f ⊙= T along it (Media.cs)
-        float pick = _emitters.SelectionPdf(k);
         float w = sample.IsDelta ? 1 : PowerHeuristic(pick * pdf, smoothProbability * bsdf.Pdf(vertex.Wo, wi, ns));
         sink.NextEvent(emitter.SceneLight, beta, f, radiance, factor * cos * w / (pick * pdf));
         // A fluorescent surface's shifted lobe: light sources excite it through this sample alone, weight 1 (a shifted bounce

@@ -42,7 +42,7 @@ public static class Integrators
         });
         Register(new IntegratorEntry("path", (scene, geometry) => new PathIntegrator(scene, geometry))
         {
-            Keys = ["max_depth", "rr_depth", "spectral_grid", "sampler", "seed"],
+            Keys = ["max_depth", "rr_depth", "spectral_grid", "sampler", "seed", "light_tree"],
             Transfer = PathTransferFiles.Format,
             Tables = scene => SubBandTexture.Bytes(scene, PathIntegrator.SettingsOf(scene).SpectralGrid) is > 0 and var b
                 ? [("texture spectra (fine grid)", b)]

@@ -8,8 +8,8 @@ public sealed partial class SceneLoader
 {
     /// <summary>
     /// "integrator": a registered name or { "type": name, "max_depth": N, "rr_depth": N, "spectral_grid": nm,
-    /// "sampler": "sobol" | "independent", "seed": N }: every key an integrator's settings may have is read here; the name,
-    /// and the keys given against the keys its registration takes, are checked when the render is built (RenderJob).
+    /// "sampler": "sobol" | "independent", "seed": N, "light_tree": true | false }: every key an integrator's settings may have is read
+    /// here; the name, and the keys given against the keys its registration takes, are checked when the render is built (RenderJob).
     /// </summary>
     IntegratorSettings? ParseIntegrator(JsonElement root)
     {
@@ -19,7 +19,7 @@ public sealed partial class SceneLoader
         if (e.ValueKind != JsonValueKind.Object)
             throw Error(path, $"expected a name or an object, found {Kind(e)}",
                 "e.g. \"integrator\": \"path\" or { \"type\": \"path\", \"max_depth\": 8 }");
-        Keys(e, path, "type", "max_depth", "rr_depth", "spectral_grid", "sampler", "seed");
+        Keys(e, path, "type", "max_depth", "rr_depth", "spectral_grid", "sampler", "seed", "light_tree");
         var name = String(Required(e, "type", path), $"{path}.type").ToLowerInvariant();
         int maxDepth = Integer(e, "max_depth", path, -1, -1, 1_000_000);
         int rrDepth = Integer(e, "rr_depth", path, IntegratorSettings.DefaultRrDepth, 0, 1_000_000);
@@ -37,8 +37,10 @@ public sealed partial class SceneLoader
         }
         // The seed changes every random number (independent renders of the same scene); 0 is the default's.
         uint seed = (uint)Integer(e, "seed", path, 0, 0, int.MaxValue);
+        // A light tree among many emitters: absent, the path tracer's rule (by their number); true or false forces it.
+        bool? lightTree = TryGet(e, "light_tree", out _) ? Bool(e, "light_tree", path, false) : null;
         var given = e.EnumerateObject().Where(p => p.Name != "type").Select(p => (p.Name, Where($"{path}.{p.Name}"))).ToArray();
-        return new IntegratorSettings(name, maxDepth, rrDepth, grid, sampler, seed)
+        return new IntegratorSettings(name, maxDepth, rrDepth, grid, sampler, seed, lightTree)
         {
             Keys = given,
             AdaptiveGrid = !TryGet(e, "spectral_grid", out _),

@@ -11,6 +11,9 @@ public sealed partial class SceneLoader
 {
     static readonly string[] ObjectTypes = ["sphere", "plane", "quad", "box", "mesh", "instance", "colorchecker"];
 
+    /// <summary>The window portals among the objects (quads with "portal": true), kept apart: they are no objects.</summary>
+    readonly List<Portal> _portals = [];
+
     void ParseObject(JsonElement e, string path, int index, List<SceneObject> objects, List<Material> materials,
         Dictionary<string, int> materialIndex)
     {
@@ -23,7 +26,11 @@ public sealed partial class SceneLoader
             throw Error($"{path}.type", $"unknown object type '{type}'",
                 InputException.DidYouMean(type, types) ?? $"types: {string.Join(", ", types)}");
         }
-        string[] common = ["type", "name", "material", "transform"];
+        string[] common = ["type", "name", "material", "transform", "portal"];
+        bool portal = Bool(e, "portal", path, false);
+        if (portal && type != "quad")
+            throw Error($"{path}.portal", $"a portal must be a quad, found a {type}",
+                "give the window's opening as a quad (its normal into the room) with \"portal\": true, apart from the wall");
         if (registered.TryGetValue(type, out var shapeType))
         {
             Keys(e, path, [.. common, .. shapeType.Keys, "medium"]);   // "medium": its interior (SceneLoader.Media.cs)
@@ -52,6 +59,7 @@ public sealed partial class SceneLoader
         if (type == "mesh") { objects.Add(MeshObject(e, path, name, user, MaterialOf(e, path, materials, materialIndex))); return; }
         if (type == "instance") { objects.Add(InstanceObject(e, path, name, user, MaterialOf(e, path, materials, materialIndex))); return; }
 
+        if (portal) { Portal(e, path, name, user, materials, materialIndex); return; }
         int material = MaterialOf(e, path, materials, materialIndex);
         Matrix4x4 local;
         ShapeKind kind;
@@ -72,16 +80,9 @@ public sealed partial class SceneLoader
                     break;
                 }
             case "quad":
-                {
-                    var size = Size2(e, path);
-                    var normal = TryGet(e, "normal", out var nn) ? Direction(nn, $"{path}.normal") : Vector3.UnitZ;
-                    var up = TryGet(e, "up", out var u) ? Direction(u, $"{path}.up") : Vector3.UnitY;
-                    local = Matrix4x4.CreateScale(size.X, size.Y, 1) * Basis(normal, up, axisIsY: false,
-                        path: $"{path}.up") * Matrix4x4.CreateTranslation(
-                        Vec3(e, "center", path, Vector3.Zero));
-                    kind = ShapeKind.Quad;
-                    break;
-                }
+                local = QuadPlacement(e, path);
+                kind = ShapeKind.Quad;
+                break;
             default:
                 {
                     Vector3 centre, size;
@@ -108,6 +109,32 @@ public sealed partial class SceneLoader
                 }
         }
         objects.Add(new SceneObject { Name = name, Material = material, Shape = new AnalyticShape(kind, local * user) });
+    }
+
+    /// <summary>A quad's placement: the unit square scaled to its "size", turned to its "normal" and "up", at its "center".</summary>
+    Matrix4x4 QuadPlacement(JsonElement e, string path)
+    {
+        var size = Size2(e, path);
+        var normal = TryGet(e, "normal", out var nn) ? Direction(nn, $"{path}.normal") : Vector3.UnitZ;
+        var up = TryGet(e, "up", out var u) ? Direction(u, $"{path}.up") : Vector3.UnitY;
+        return Matrix4x4.CreateScale(size.X, size.Y, 1) * Basis(normal, up, axisIsY: false, path: $"{path}.up")
+            * Matrix4x4.CreateTranslation(Vec3(e, "center", path, Vector3.Zero));
+    }
+
+    /// <summary>
+    /// A window portal: a quad with "portal": true, its normal into the room (<see cref="Scenes.Portal"/>); it needs no material,
+    /// and one that emits is refused (a portal is no surface: it would emit from nowhere).
+    /// </summary>
+    void Portal(JsonElement e, string path, string name, Matrix4x4 user, List<Material> materials, Dictionary<string, int> materialIndex)
+    {
+        if (TryGet(e, "material", out _) && materials[MaterialOf(e, path, materials, materialIndex)].Emission is not null)
+            throw Error($"{path}.portal", $"portal '{name}' has an emitting material",
+                "a portal is an opening, not a light: drop its \"material\" (or make the emitter a separate quad)");
+        var shape = new AnalyticShape(ShapeKind.Quad, QuadPlacement(e, path) * user);
+        var m = shape.ObjectToWorld;
+        var corner = Vector3.Transform(new Vector3(-0.5f, -0.5f, 0), m);
+        _portals.Add(new Portal(name, corner, Vector3.Transform(new Vector3(0.5f, -0.5f, 0), m) - corner,
+            Vector3.Transform(new Vector3(-0.5f, 0.5f, 0), m) - corner, shape.FlatNormal!.Value));
     }
 
     /// <summary>A registered shape type's object as its <see cref="ShapeType.Place"/> reads it: its keys, checked, with errors

@@ -290,6 +290,7 @@ public sealed partial class SceneLoader
             Materials = materials,
             Lights = lights,
             Objects = objects,
+            Portals = _portals,
             Background = background,
             Environment = _environment,
             SkyDistribution = _skyDistribution,
