@@ -21,6 +21,7 @@ internal sealed partial class SubBandGrid
 {
     readonly Scene _scene;
     readonly float[] _wx, _wy, _wz;
+    readonly float[] _bandMean;   // 1/n of each output band's n sub-bands
 
     /// <summary>
     /// The grid of <paramref name="scene"/> at <paramref name="width"/> nm: uniform, or with <paramref name="adaptive"/> the
@@ -38,6 +39,8 @@ internal sealed partial class SubBandGrid
         BandStart = new int[Bands + 1];
         for (int b = 0; b < Bands; b++) BandStart[b + 1] = BandStart[b] + (counts is null ? perBand : counts[b]);
         Count = BandStart[Bands];
+        _bandMean = new float[Bands];
+        for (int b = 0; b < Bands; b++) _bandMean[b] = 1f / (BandStart[b + 1] - BandStart[b]);
         Padded = SpectralMath.Padded(Count);
         Lower = new double[Count];
         Upper = new double[Count];
@@ -131,13 +134,17 @@ internal sealed partial class SubBandGrid
         float inv = 1f / PerBand;
         ref float f = ref MemoryMarshal.GetReference(fine[..Count]);
         ref float r = ref MemoryMarshal.GetReference(result[..Bands]);
-        if (!Uniform)   // an adaptive grid: each band the mean of its own count of equal sub-bands
-            for (int b = 0; b < Bands; b++)
+        if (!Uniform)
+        {   // an adaptive grid: each band the mean of its own count of equal sub-bands (1/n kept per band: no division here)
+            ref int end = ref MemoryMarshal.GetArrayDataReference(BandStart);
+            ref float mean = ref MemoryMarshal.GetArrayDataReference(_bandMean);
+            for (int b = 0, j = 0; b < Bands; b++)
             {
                 float s = 0;
-                for (int j = BandStart[b]; j < BandStart[b + 1]; j++) s += Unsafe.Add(ref f, j);
-                Unsafe.Add(ref r, b) = s * (1f / (BandStart[b + 1] - BandStart[b]));
+                for (int stop = Unsafe.Add(ref end, b + 1); j < stop; j++) s += Unsafe.Add(ref f, j);
+                Unsafe.Add(ref r, b) = s * Unsafe.Add(ref mean, b);
             }
+        }
         else if (PerBand == 4)   // the default 5-nm grid under 20-nm bands: the same sums, unrolled and without bounds checks
             for (int b = 0; b < Bands; b++)
             {
