@@ -129,19 +129,9 @@ public class PortalTests(ITestOutputHelper output)
             Assert.Equal(way == 0 ? 1 : 0, scene.Portals.Count);
             images[way] = Renderer.Render(scene, new PathIntegrator(scene, new SceneGeometry(scene)), 2).Image;
         }
-        int pixels = images[0].Width * images[0].Height;
-        double s1 = 0, s2 = 0, level = 0;
-        for (int y = 0; y < images[0].Height; y++)
-            for (int x = 0; x < images[0].Width; x++)
-            {
-                double d = images[0][x, y, 0] - images[1][x, y, 0];
-                s1 += d;
-                s2 += d * d;
-                level += images[1][x, y, 0];
-            }
-        double mean = s1 / pixels, sigma = Math.Sqrt((s2 / pixels - mean * mean) / (pixels - 1));
-        output.WriteLine($"mean radiance {level / pixels:G5}; with − without the portal {mean:E3} ± {sigma:E2} ({mean / sigma:F2}σ)");
-        Assert.True(level / pixels > 0, "the room is lit");
+        var (mean, sigma, level) = PairedImages.Difference(images[0], images[1]);
+        output.WriteLine($"mean radiance {level:G5}; with − without the portal {mean:E3} ± {sigma:E2} ({mean / sigma:F2}σ)");
+        Assert.True(level > 0, "the room is lit");
         Assert.InRange(mean, -3 * sigma, 3 * sigma);
     }
 }

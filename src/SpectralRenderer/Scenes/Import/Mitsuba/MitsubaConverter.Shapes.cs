@@ -35,13 +35,7 @@ public sealed partial class MitsubaConverter
                         Shape(e);   // the member on its own, as a mesh object: its keys become the prototype's
                         (_outer, _instanceName) = saved;
                         if (_objects.Count == before) return;
-                        var converted = (JsonObject)_objects[^1]!;
-                        _objects.RemoveAt(_objects.Count - 1);
-                        prototype = converted["name"]!.GetValue<string>();
-                        var entry = new JsonObject();
-                        foreach (var (k, v) in converted)
-                            if (k is not ("type" or "name" or "material")) entry[k] = v?.DeepClone();
-                        _prototypes[prototype] = entry;
+                        prototype = Prototypes.TakeLast(_objects, _prototypes);
                         _prototypeOf[e] = prototype;
                     }
                     repeated = true;

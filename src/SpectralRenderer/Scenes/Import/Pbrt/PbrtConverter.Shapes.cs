@@ -32,13 +32,7 @@ public sealed partial class PbrtConverter
                 int before = _objects.Count;
                 Shape(s with { Instance = null, WorldFromObject = _world.Inverse() ?? PbrtTransform.Identity });
                 if (_objects.Count == before) return;
-                var converted = (JsonObject)_objects[^1]!;
-                _objects.RemoveAt(_objects.Count - 1);
-                prototype = converted["name"]!.GetValue<string>();
-                var entry = new JsonObject();
-                foreach (var (k, v) in converted)
-                    if (k is not ("type" or "name" or "material")) entry[k] = v?.DeepClone();
-                _prototypes[prototype] = entry;
+                prototype = Prototypes.TakeLast(_objects, _prototypes);
                 _prototypeOf[e] = prototype;
             }
             _objects.Add((JsonNode)new JsonObject
